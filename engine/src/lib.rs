@@ -1,0 +1,16 @@
+//! ctc-engine: the finite-element engine of ctc.
+//!
+//! - [`model`]: the lowered scene a deck compiles into;
+//! - [`mesh`]: storage, generators, gmsh import, selections, checks;
+//! - [`element`] and [`material`]: element kernels and constitutive laws;
+//! - [`contact`]: rigid analytical tools, search, penalty enforcement;
+//! - [`solve`]: assembly, sparse linear solvers, the Newton loop, stepping;
+//! - [`output`]: VTU/PVD, CSV histories, JSON run summary.
+
+pub mod contact;
+pub mod element;
+pub mod material;
+pub mod mesh;
+pub mod model;
+pub mod output;
+pub mod solve;

@@ -1,0 +1,452 @@
+//! The lowered scene: everything the engine needs to run a deck, and nothing
+//! the deck did not ask for.
+//!
+//! `ctc-lang` parses and validates a `.ctc` deck and lowers it into a [`Model`].
+//! All node and element numbers here are **global** (all bodies share one
+//! [`Mesh`]); each [`Body`] owns a contiguous range of nodes and cells.
+//! Sign and unit conventions are stated on each field; there are no units in
+//! the engine (consistent units are the user's business, as in Abaqus).
+
+use crate::mesh::Mesh;
+use std::ops::Range;
+
+/// A complete, validated problem ready to be solved.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// Kinematic assumption of the 2D analysis and out-of-plane thickness.
+    pub analysis: Analysis,
+    /// Nodes, cells and named sets of every body, globally numbered.
+    pub mesh: Mesh,
+    /// The deformable bodies, in deck order.
+    pub bodies: Vec<Body>,
+    /// Materials referenced by bodies (index = `Body::material`).
+    pub materials: Vec<Material>,
+    /// Prescribed displacement components (fixed = constant 0).
+    pub constraints: Vec<Dirichlet>,
+    /// External loads (pressures, nodal forces).
+    pub loads: Vec<Load>,
+    /// Rigid analytical tools (no mesh, no unknowns).
+    pub tools: Vec<RigidTool>,
+    /// Contact pairs between a body surface and a rigid tool.
+    pub contacts: Vec<ContactPair>,
+    /// Load steps, run in order; their time ranges are contiguous.
+    pub steps: Vec<Step>,
+    /// What to write, and how often.
+    pub output: OutputRequest,
+}
+
+/// 2D kinematic assumption.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AnalysisKind {
+    /// eps_zz = 0; sigma_zz = lambda (eps_xx + eps_yy).
+    PlaneStrain,
+    /// sigma_zz = 0.
+    PlaneStress,
+    /// x is the radius r >= 0, y is the axis z; hoop strain u_r / r.
+    /// Forces, reactions and contact forces are totals over the full 2*pi.
+    Axisymmetric,
+}
+
+/// Analysis settings.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Analysis {
+    /// Plane strain, plane stress or axisymmetric.
+    pub kind: AnalysisKind,
+    /// Out-of-plane thickness for plane strain/stress (ignored for axisymmetric).
+    pub thickness: f64,
+}
+
+/// One deformable body: a contiguous block of the global mesh.
+#[derive(Debug, Clone)]
+pub struct Body {
+    /// Name from the deck (`body disc { .. }`).
+    pub name: String,
+    /// Global node numbers of this body.
+    pub nodes: Range<usize>,
+    /// Global cell numbers of this body.
+    pub cells: Range<usize>,
+    /// Index into `Model::materials`.
+    pub material: usize,
+    /// How quadrilaterals are integrated (triangles are always 1-point tri3).
+    pub formulation: Formulation,
+}
+
+/// Element technology of a body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formulation {
+    /// quad4 with 2x2 Gauss; tri3 with 1 point.
+    Full,
+    /// quad4 with 2x2 Gauss on the deviatoric part and 1 point on the
+    /// volumetric part (B-bar style selective reduced integration).
+    SelectiveReduced,
+}
+
+/// A named material.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// Name from the deck.
+    pub name: String,
+    /// The constitutive law.
+    pub law: MaterialLaw,
+}
+
+/// Constitutive laws. Only what decks can ask for exists here.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MaterialLaw {
+    /// Small-strain isotropic linear elasticity.
+    LinearElastic {
+        /// Young's modulus, > 0.
+        young: f64,
+        /// Poisson's ratio, in (-1, 0.5).
+        poisson: f64,
+    },
+}
+
+/// A scalar function of the analysis time.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TimeFunction {
+    /// The same value at all times.
+    Constant(f64),
+    /// Linear from `v0` at `t0` to `v1` at `t1`, constant outside.
+    Ramp {
+        /// Start time.
+        t0: f64,
+        /// End time (> t0).
+        t1: f64,
+        /// Value at and before t0.
+        v0: f64,
+        /// Value at and after t1.
+        v1: f64,
+    },
+    /// Piecewise-linear through (time, value) points with strictly
+    /// increasing times; constant beyond the first and last points.
+    Table(Vec<(f64, f64)>),
+}
+
+impl TimeFunction {
+    /// Value at time `t`.
+    pub fn eval(&self, t: f64) -> f64 {
+        match self {
+            TimeFunction::Constant(v) => *v,
+            TimeFunction::Ramp { t0, t1, v0, v1 } => {
+                if t <= *t0 {
+                    *v0
+                } else if t >= *t1 {
+                    *v1
+                } else {
+                    v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+                }
+            }
+            TimeFunction::Table(points) => {
+                let Some(first) = points.first() else {
+                    return 0.0;
+                };
+                if t <= first.0 {
+                    return first.1;
+                }
+                for w in points.windows(2) {
+                    let ((ta, va), (tb, vb)) = (w[0], w[1]);
+                    if t <= tb {
+                        return va + (vb - va) * (t - ta) / (tb - ta);
+                    }
+                }
+                points[points.len() - 1].1
+            }
+        }
+    }
+}
+
+/// Prescribed value of one displacement component on a set of nodes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dirichlet {
+    /// Human-readable origin, e.g. `fix disc.bottom`.
+    pub label: String,
+    /// Global node numbers.
+    pub nodes: Vec<usize>,
+    /// 0 = x (or r), 1 = y (or z).
+    pub component: usize,
+    /// Prescribed displacement as a function of time.
+    pub value: TimeFunction,
+}
+
+/// External loads.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Load {
+    /// Follower-free pressure on boundary edges (positive pushes into the
+    /// body, i.e. along the inward normal), in the reference configuration.
+    Pressure {
+        /// Human-readable origin.
+        label: String,
+        /// Boundary edges `[a, b]` oriented with the body on their left.
+        edges: Vec<[usize; 2]>,
+        /// Pressure as a function of time.
+        value: TimeFunction,
+    },
+    /// A force applied at each listed node (Abaqus CLOAD semantics: the value
+    /// is per node; axisymmetric: total over the ring).
+    NodalForce {
+        /// Human-readable origin.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+        /// 0 = x (or r), 1 = y (or z).
+        component: usize,
+        /// Force per node as a function of time.
+        value: TimeFunction,
+    },
+}
+
+/// A rigid tool described analytically (exact CAD-like geometry, no mesh).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidTool {
+    /// Name from the deck.
+    pub name: String,
+    /// Geometry in the tool's reference position (time 0 of its motion).
+    pub geometry: ToolGeometry,
+    /// Prescribed rigid motion.
+    pub motion: ToolMotion,
+}
+
+/// Which side of a closed curve (circle) is free space for the body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ToolSide {
+    /// The body lives outside the circle (a punch, a roller).
+    Outside,
+    /// The body lives inside the circle (a die, a container).
+    Inside,
+}
+
+/// Analytical tool geometry. For open curves (segment polylines, arcs,
+/// splines) the free side — where the body may be — is on the **left** when
+/// walking along the curve in its given direction (outward normal =
+/// tangent rotated by +90 degrees).
+#[derive(Debug, Clone, PartialEq)]
+pub enum ToolGeometry {
+    /// Infinite straight line through `point`; `normal` (unit) points to the
+    /// free side.
+    Plane {
+        /// A point of the line.
+        point: [f64; 2],
+        /// Unit normal pointing into free space.
+        normal: [f64; 2],
+    },
+    /// Connected straight segments through the points (at least 2).
+    Polyline {
+        /// Vertices in walking order.
+        points: Vec<[f64; 2]>,
+    },
+    /// Circular arc from `start_angle` to `end_angle` (radians,
+    /// counter-clockwise when `end_angle > start_angle`).
+    Arc {
+        /// Centre.
+        center: [f64; 2],
+        /// Radius > 0.
+        radius: f64,
+        /// Angle of the first end, radians.
+        start_angle: f64,
+        /// Angle of the second end, radians.
+        end_angle: f64,
+    },
+    /// Full circle.
+    Circle {
+        /// Centre.
+        center: [f64; 2],
+        /// Radius > 0.
+        radius: f64,
+        /// Whether the body is outside or inside the circle.
+        side: ToolSide,
+    },
+    /// Rational B-spline (NURBS) curve; a B-spline when all weights are 1.
+    Nurbs {
+        /// Polynomial degree >= 1.
+        degree: usize,
+        /// Control points.
+        control_points: Vec<[f64; 2]>,
+        /// Positive weights, one per control point.
+        weights: Vec<f64>,
+        /// Non-decreasing knot vector of length `control_points.len() + degree + 1`.
+        knots: Vec<f64>,
+    },
+}
+
+/// Rigid motion of a tool: its reference geometry is rotated by `rotation(t)`
+/// (radians, counter-clockwise) about `center`, then translated by
+/// `(ux(t), uy(t))`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ToolMotion {
+    /// Translation along x.
+    pub ux: TimeFunction,
+    /// Translation along y.
+    pub uy: TimeFunction,
+    /// Rotation angle about `center`, radians.
+    pub rotation: TimeFunction,
+    /// Centre of rotation in the reference configuration.
+    pub center: [f64; 2],
+}
+
+impl ToolMotion {
+    /// A tool that does not move.
+    pub fn fixed() -> Self {
+        ToolMotion {
+            ux: TimeFunction::Constant(0.0),
+            uy: TimeFunction::Constant(0.0),
+            rotation: TimeFunction::Constant(0.0),
+            center: [0.0, 0.0],
+        }
+    }
+}
+
+/// How the penalty coefficient is scaled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PenaltyKind {
+    /// Force per unit gap at each node (Metafor style; halve it when the mesh
+    /// size is halved to keep the same gaps).
+    Nodal,
+    /// Pressure per unit gap, times the node's tributary length x thickness
+    /// (plane) or tributary length x 2*pi*r (axisymmetric): mesh independent.
+    Area,
+}
+
+/// Normal contact enforcement.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContactMethod {
+    /// R_N = -alpha g for g < 0.
+    Penalty {
+        /// Nodal or area-weighted.
+        kind: PenaltyKind,
+        /// alpha (force/length for nodal, pressure/length for area), > 0.
+        stiffness: f64,
+    },
+}
+
+/// A body surface (slave nodes) against a rigid tool (master).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactPair {
+    /// Human-readable name, e.g. `disc.arc -> floor`.
+    pub name: String,
+    /// Index into `Model::bodies`.
+    pub body: usize,
+    /// Slave boundary edges `[a, b]` (body on the left); they define the slave
+    /// nodes and their tributary lengths.
+    pub edges: Vec<[usize; 2]>,
+    /// Slave nodes: the distinct nodes of `edges`, sorted.
+    pub nodes: Vec<usize>,
+    /// Index into `Model::tools`.
+    pub tool: usize,
+    /// Normal enforcement.
+    pub method: ContactMethod,
+    /// Maximum gap `prof`: nodes farther than this from the tool create no
+    /// contact element. `None`: automatic (a multiple of the slave edge size).
+    pub prof: Option<f64>,
+}
+
+/// Newton-Raphson settings of a step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NewtonSettings {
+    /// Converged when ||r|| <= tol * max(||f_ext + f_reaction||, tiny).
+    pub tol: f64,
+    /// And ||du|| <= tol_displacement * max(||u||, tiny).
+    pub tol_displacement: f64,
+    /// Maximum Newton iterations per increment before a cutback.
+    pub max_iter: usize,
+    /// Backtracking line search on the residual norm.
+    pub line_search: bool,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            tol: 1e-8,
+            tol_displacement: 1e-8,
+            max_iter: 25,
+            line_search: true,
+        }
+    }
+}
+
+/// A load step.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// Name from the deck.
+    pub name: String,
+    /// Start time (the previous step's end time, or 0).
+    pub t_start: f64,
+    /// End time (> t_start).
+    pub t_end: f64,
+    /// Number of equal increments initially tried.
+    pub increments: usize,
+    /// Smallest increment allowed by cutbacks, as a fraction of the initial
+    /// increment (default 1/1024).
+    pub min_fraction: f64,
+    /// Newton settings.
+    pub newton: NewtonSettings,
+}
+
+/// A nodal or element field that can be written to VTU.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Field {
+    /// Displacement vector.
+    Displacement,
+    /// Cauchy stress (xx, yy, zz, xy), nodal average of integration points.
+    Stress,
+    /// Small strain (xx, yy, zz, xy).
+    Strain,
+    /// von Mises equivalent stress.
+    VonMises,
+    /// Reaction forces at constrained dofs.
+    Reaction,
+    /// Contact gap, pressure and status at slave nodes.
+    Contact,
+}
+
+/// A quantity recorded at every increment into the CSV history.
+#[derive(Debug, Clone, PartialEq)]
+pub enum HistoryRequest {
+    /// Sum of reaction forces (x, y) over a node set.
+    Reaction {
+        /// Column label, e.g. `reaction(disc.top)`.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+    },
+    /// Mean displacement (x, y) over a node set.
+    Displacement {
+        /// Column label.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+    },
+    /// Total contact force (x, y) exerted by the tool on the body.
+    ContactForce {
+        /// Column label.
+        label: String,
+        /// Index into `Model::contacts`.
+        pair: usize,
+    },
+}
+
+/// Output settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutputRequest {
+    /// Write VTU every `every` converged increments (the last one always).
+    pub every: usize,
+    /// Fields written to VTU.
+    pub fields: Vec<Field>,
+    /// Histories written to `history.csv`.
+    pub history: Vec<HistoryRequest>,
+}
+
+impl Default for OutputRequest {
+    fn default() -> Self {
+        OutputRequest {
+            every: 1,
+            fields: vec![Field::Displacement, Field::Stress, Field::Reaction],
+            history: Vec::new(),
+        }
+    }
+}
