@@ -1,1 +1,201 @@
-fn main() {}
+//! `ctc`: check, run, verify and benchmark `.ctc` contact decks.
+
+mod progress;
+
+use clap::{Parser, Subcommand};
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+/// Nonlinear finite-element simulation of solids in contact.
+#[derive(Parser, Debug)]
+#[command(name = "ctc", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Parse and validate a deck; print every error at once.
+    Check {
+        /// The `.ctc` deck.
+        deck: PathBuf,
+        /// Print the lowered plan: what the scene contains and what it leaves out.
+        #[arg(long)]
+        explain: bool,
+    },
+    /// Run a deck and write VTU/PVD, CSV histories and a JSON summary.
+    Run {
+        /// The `.ctc` deck.
+        deck: PathBuf,
+        /// Output directory (default: out/<deck name>).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Print nothing but errors.
+        #[arg(short, long)]
+        quiet: bool,
+        /// Print every Newton iteration (residual, displacement norm, line search).
+        #[arg(short, long)]
+        verbose: bool,
+    },
+    /// Run the verification cases against their references.
+    Verify {
+        /// Only cases whose name contains this text.
+        filter: Option<String>,
+        /// Write a Markdown report with plots into this directory.
+        #[arg(long)]
+        report: Option<PathBuf>,
+        /// Print the results as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+        /// Highest refinement level to run (0 = coarsest only).
+        #[arg(long)]
+        max_level: Option<usize>,
+    },
+    /// Run the performance benchmark (rigid cylinder on an elastic block).
+    Bench {
+        /// Approximate number of degrees of freedom.
+        #[arg(long, default_value_t = 80_000)]
+        dofs: usize,
+        /// Print the results as JSON instead of a table.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Check { deck, explain } => check(&deck, explain),
+        Command::Run {
+            deck,
+            output,
+            quiet,
+            verbose,
+        } => run(&deck, output.as_deref(), quiet, verbose),
+        Command::Verify {
+            filter,
+            report,
+            json,
+            max_level,
+        } => verify(filter, report, json, max_level),
+        Command::Bench { dofs, json } => bench(dofs, json),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            if !message.is_empty() {
+                eprintln!("{message}");
+            }
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Reads and compiles a deck, rendering every diagnostic on failure.
+fn compile(deck: &Path) -> Result<ctc_engine::model::Model, String> {
+    let source = ctc_lang::Source::read(deck)
+        .map_err(|e| format!("error: cannot read deck `{}`: {e}", deck.display()))?;
+    ctc_lang::compile(&source).map_err(|diags| diags.render(&source))
+}
+
+fn check(deck: &Path, explain: bool) -> Result<(), String> {
+    let model = compile(deck)?;
+    if explain {
+        print!("{}", ctc_lang::explain(&model));
+    } else {
+        println!("{}: ok", deck.display());
+    }
+    Ok(())
+}
+
+fn run(deck: &Path, output: Option<&Path>, quiet: bool, verbose: bool) -> Result<(), String> {
+    let model = compile(deck)?;
+    let dir = match output {
+        Some(d) => d.to_path_buf(),
+        None => {
+            let stem = deck
+                .file_stem()
+                .map(|s| s.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "run".into());
+            PathBuf::from("out").join(stem)
+        }
+    };
+    let mut writer = ctc_engine::output::ResultWriter::create(&dir, &model)
+        .map_err(|e| format!("error: cannot create output directory `{}`: {e}", dir.display()))?;
+    let mut observer = progress::Progress::new(&model, &mut writer, quiet, verbose);
+    let outcome = ctc_engine::solve::run(&model, &mut observer);
+    observer.finish();
+    let summary = match &outcome {
+        Ok(s) => s.clone(),
+        Err(e) => e.summary.clone(),
+    };
+    writer
+        .finish(&summary)
+        .map_err(|e| format!("error: cannot write summary.json: {e}"))?;
+    match outcome {
+        Ok(s) => {
+            if !quiet {
+                println!(
+                    "done: {} increments, {} Newton iterations, {} cutbacks, {:.3} s -> {}",
+                    s.increments.len(),
+                    s.newton_iterations,
+                    s.cutbacks,
+                    s.timings.total,
+                    dir.display()
+                );
+            }
+            Ok(())
+        }
+        Err(e) => Err(format!(
+            "error: the analysis stopped before the end\n{}\nresults of the converged increments are in {} (summary.json: completed = false)",
+            e.message,
+            dir.display()
+        )),
+    }
+}
+
+fn verify(
+    filter: Option<String>,
+    report: Option<PathBuf>,
+    json: bool,
+    max_level: Option<usize>,
+) -> Result<(), String> {
+    let opts = ctc_verification::VerifyOptions {
+        filter,
+        report_dir: report,
+        max_level,
+        ..Default::default()
+    };
+    let report = ctc_verification::run(&opts)?;
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", report.table());
+    }
+    if report.passed() {
+        Ok(())
+    } else {
+        Err("verification failed: see the table above".into())
+    }
+}
+
+fn bench(dofs: usize, json: bool) -> Result<(), String> {
+    let opts = ctc_verification::BenchOptions {
+        target_dofs: dofs,
+        ..Default::default()
+    };
+    let report = ctc_verification::run_bench(&opts)?;
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{report}");
+    }
+    Ok(())
+}
