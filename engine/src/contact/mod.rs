@@ -5,8 +5,31 @@
 //! force the tool exerts on it and the consistent 2x2 tangent block.
 //! The same gap function is used to decide contact, to compute forces and to
 //! post-process pressure.
+//!
+//! Pieces (one concept per file):
+//! - [`geometry`]: tool entities in the tool's reference frame (plane,
+//!   polyline, arc, circle, NURBS), closest-point projection, signed gap,
+//!   normal and normal rate (curvature) for the consistent tangent;
+//! - [`motion`]: the tool's rigid placement at time `t`;
+//! - [`aabb`] and [`search`]: bounding boxes and the memory-first search
+//!   with the window `prof` ([`prof`]);
+//! - [`penalty`]: force and consistent tangent;
+//! - [`tributary`]: tributary areas of slave nodes;
+//! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
+
+pub mod aabb;
+pub mod geometry;
+pub mod log;
+pub mod motion;
+pub mod penalty;
+pub mod prof;
+pub mod search;
+pub mod tributary;
+pub(crate) mod vec2;
 
 use crate::model::Model;
+use geometry::ToolShape;
+use motion::Placement;
 
 /// Contact status of a slave node.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
@@ -45,20 +68,85 @@ pub struct NodeContact {
 pub struct PairState {
     /// Tributary area of each slave node (`ContactPair::nodes` order).
     pub tributary: Vec<f64>,
+    /// Pair this state was prepared for (`None`: not prepared yet).
+    pub pair: Option<usize>,
+    /// Search window `prof` in use (explicit or default, see [`prof`]).
+    pub prof: f64,
+    /// The tool geometry prepared for projection (`None` if invalid).
+    pub shape: Option<ToolShape>,
+    /// Why the tool geometry could not be prepared, if it could not.
+    pub error: Option<String>,
+    /// Per slave node: entity found at the latest evaluation (trial).
+    pub last_entity: Vec<Option<usize>>,
+    /// Per slave node: entity at the last converged increment.
+    pub committed_entity: Vec<Option<usize>>,
+    /// Projections computed by the latest [`evaluate_pair`] call.
+    pub last_projection_tests: usize,
+    /// Projections a brute-force search would have computed in that call
+    /// (slave nodes x tool entities), for comparison.
+    pub last_brute_force_tests: usize,
+    /// Projections computed since the state was created.
+    pub total_projection_tests: u64,
 }
 
 impl PairState {
     /// Prepares the state of pair `pair` of `model` (reference configuration).
+    /// An invalid tool geometry leaves `shape = None` and the reason in
+    /// `error` (the pair then produces no contact); see [`PairState::try_new`].
     pub fn new(model: &Model, pair: usize) -> Self {
-        let _ = (model, pair);
-        PairState::default()
+        let Some(cp) = model.contacts.get(pair) else {
+            return PairState {
+                pair: Some(pair),
+                error: Some(format!("contact pair {pair} does not exist")),
+                ..PairState::default()
+            };
+        };
+        let n = cp.nodes.len();
+        let shape = match model.tools.get(cp.tool) {
+            Some(tool) => ToolShape::new(&tool.geometry)
+                .map_err(|e| format!("tool '{}': {e}", tool.name)),
+            None => Err(format!(
+                "contact pair '{}' refers to tool {} which does not exist",
+                cp.name, cp.tool
+            )),
+        };
+        let (shape, error) = match shape {
+            Ok(s) => (Some(s), None),
+            Err(e) => (None, Some(e)),
+        };
+        PairState {
+            tributary: tributary::tributary_areas(model, pair),
+            pair: Some(pair),
+            prof: prof::effective_prof(model, pair),
+            shape,
+            error,
+            last_entity: vec![None; n],
+            committed_entity: vec![None; n],
+            last_projection_tests: 0,
+            last_brute_force_tests: 0,
+            total_projection_tests: 0,
+        }
+    }
+
+    /// Like [`PairState::new`] but fails with a clear message when the
+    /// pair or its tool geometry is invalid.
+    pub fn try_new(model: &Model, pair: usize) -> Result<Self, String> {
+        let s = PairState::new(model, pair);
+        match s.error.clone() {
+            Some(e) => Err(e),
+            None => Ok(s),
+        }
     }
 
     /// Called when an increment has converged: commits history variables.
-    pub fn commit(&mut self) {}
+    pub fn commit(&mut self) {
+        self.committed_entity.clone_from(&self.last_entity);
+    }
 
     /// Called when an increment is cut back: restores the committed state.
-    pub fn rollback(&mut self) {}
+    pub fn rollback(&mut self) {
+        self.last_entity.clone_from(&self.committed_entity);
+    }
 }
 
 /// Evaluates pair `pair` at time `t` for current coordinates `x` (all nodes).
@@ -70,6 +158,109 @@ pub fn evaluate_pair(
     t: f64,
     state: &mut PairState,
 ) -> Vec<NodeContact> {
-    let _ = (model, pair, x, t, state);
-    Vec::new()
+    let Some(cp) = model.contacts.get(pair) else {
+        return Vec::new();
+    };
+    if state.pair != Some(pair) || state.last_entity.len() != cp.nodes.len() {
+        *state = PairState::new(model, pair);
+    }
+    let (Some(shape), Some(tool)) = (state.shape.as_ref(), model.tools.get(cp.tool)) else {
+        return Vec::new();
+    };
+    let placement = Placement::at(&tool.motion, t);
+    let prof = state.prof;
+    let mut tests = 0usize;
+    let mut guess = None;
+    let mut out = Vec::new();
+    for (i, &node) in cp.nodes.iter().enumerate() {
+        let Some(&xn) = x.get(node) else {
+            debug_assert!(false, "node {node} outside the coordinate array");
+            continue;
+        };
+        let xr = placement.to_reference(xn);
+        let memory = state.last_entity[i];
+        let Some(found) = search::closest(shape, xr, prof, memory, guess, &mut tests) else {
+            continue;
+        };
+        state.last_entity[i] = Some(found.entity);
+        guess = Some(found.entity);
+        let p = found.projection;
+        if p.gap > prof {
+            continue;
+        }
+        let normal = placement.rotate(p.normal);
+        let r = penalty::respond(
+            &cp.method,
+            state.tributary.get(i).copied().unwrap_or(0.0),
+            p.gap,
+            normal,
+            p.normal_rate,
+        );
+        out.push(NodeContact {
+            node,
+            gap: p.gap,
+            normal,
+            force: r.force,
+            stiffness: r.stiffness,
+            pressure: r.pressure,
+            status: r.status,
+            entity: found.entity,
+        });
+    }
+    state.last_projection_tests = tests;
+    state.last_brute_force_tests = cp.nodes.len() * shape.entity_count();
+    state.total_projection_tests += tests as u64;
+    if log::debug_enabled() {
+        let closed = out
+            .iter()
+            .filter(|c| c.status == ContactStatus::Closed)
+            .count();
+        let min_gap = out.iter().map(|c| c.gap).fold(f64::INFINITY, f64::min);
+        eprintln!(
+            "[ctc contact] pair '{}' t={t:.6e}: {} slave nodes, {} entities, {} closed, {} open, \
+             min gap {min_gap:.3e}, prof {prof:.3e}, projection tests {} (brute force {})",
+            cp.name,
+            cp.nodes.len(),
+            shape.entity_count(),
+            closed,
+            out.len() - closed,
+            tests,
+            state.last_brute_force_tests
+        );
+    }
+    out
+}
+
+/// Total force exerted by the tool on the body over a pair's evaluation
+/// (axisymmetric: total over 2*pi). The force on the tool is its opposite.
+pub fn pair_total_force(contacts: &[NodeContact]) -> [f64; 2] {
+    contacts.iter().fold([0.0; 2], |acc, c| {
+        [acc[0] + c.force[0], acc[1] + c.force[1]]
+    })
+}
+
+/// Moment about `point` of the forces exerted by the tool on the body, the
+/// forces acting at the current node positions `x` (the force of a node
+/// acts along the normal through its projection, so its moment is the same
+/// taken at the node or at the projection). The moment on the tool is its
+/// opposite.
+pub fn pair_total_moment(contacts: &[NodeContact], x: &[[f64; 2]], point: [f64; 2]) -> f64 {
+    contacts
+        .iter()
+        .filter_map(|c| {
+            let p = x.get(c.node)?;
+            Some(vec2::cross(vec2::sub(*p, point), c.force))
+        })
+        .sum()
+}
+
+/// Penalty energy stored in the pair, `sum alpha_eff g^2 / 2` over closed
+/// nodes (= `|force| |gap| / 2` per node); its derivative with respect to
+/// the tool's motion is minus the load on the tool.
+pub fn pair_penalty_energy(contacts: &[NodeContact]) -> f64 {
+    contacts
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .map(|c| 0.5 * vec2::norm(c.force) * c.gap.abs())
+        .sum()
 }

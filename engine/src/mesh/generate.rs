@@ -1,7 +1,22 @@
 //! Built-in structured mesh generators.
 //!
-//! Each generator returns a single-body [`Mesh`] with named node sets and
-//! boundary edge sets (edges oriented with the body on their left).
+//! Each generator returns a single-body [`Mesh`] with counter-clockwise
+//! cells, named node sets and boundary edge sets (edges oriented with the
+//! body on their left, listed in walking order along the boundary; a node
+//! set of the same name holds the sorted nodes of each edge set).
+//! Invalid specs (non-positive sizes, too few divisions, bad ratios, more
+//! than [`MAX_NODES`] nodes) return a [`MeshError`].
+
+mod annulus;
+mod common;
+mod disc;
+mod grading;
+mod half_disc;
+mod quarter_disc;
+mod rectangle;
+
+pub use common::MAX_NODES;
+pub use grading::RATIO_RANGE;
 
 use super::{CellKind, Mesh};
 use crate::mesh::MeshError;
@@ -45,7 +60,11 @@ pub enum MeshSpec {
         kind: CellKind,
     },
     /// Half disc below (`upper = false`) or above its diameter, polar
-    /// structured (triangles in the innermost ring).
+    /// structured: straight radial rays, a fan of triangles around the
+    /// centre, and 2:1 coarsening of the rings towards the centre where the
+    /// circumferential divisions would be much thinner than the radial ones
+    /// (so a grading refined at the pole does not send slivers to the
+    /// centre). Every arc angle is kept on the arc.
     /// Sets: `arc` (curved boundary), `flat` (the diameter), `center` (node).
     HalfDisc {
         /// Centre of the full circle.
@@ -59,24 +78,28 @@ pub enum MeshSpec {
         /// Radial grading (ratio < 1 refines towards the arc).
         radial_grading: Grading,
         /// Circumferential grading (`Center { ratio > 1 }` refines towards the
-        /// middle of the arc, i.e. the pole where contact usually happens).
+        /// middle of the arc, i.e. the pole where contact usually happens;
+        /// `Geometric` runs from the `x = center.x - radius` end to the
+        /// `x = center.x + radius` end).
         circumferential_grading: Grading,
         /// `false`: the half below the diameter (arc at the bottom, pole at
         /// angle -90 degrees); `true`: above.
         upper: bool,
-        /// Tri3 or Quad4 (quads except the innermost ring).
+        /// Tri3 or Quad4 (quads except the innermost ring and one triangle
+        /// per 2:1 coarsening).
         kind: CellKind,
     },
     /// Quarter disc with its straight edges on x = center.x (set `axis`) and
     /// y = center.y (set `flat`); below the centre (`upper = false`) or above,
     /// always on the x >= center.x side (the axisymmetric half-section).
-    /// Sets: `arc`, `axis`, `flat`, `center`.
+    /// Same topology as the half disc (it is meshed like the matching half of
+    /// one). Sets: `arc`, `axis`, `flat`, `center`.
     QuarterDisc {
         /// Centre.
         center: [f64; 2],
         /// Radius > 0.
         radius: f64,
-        /// Radial divisions.
+        /// Radial divisions (>= 1).
         radial: usize,
         /// Circumferential divisions over 90 degrees (>= 1).
         circumferential: usize,
@@ -87,7 +110,8 @@ pub enum MeshSpec {
         circumferential_grading: Grading,
         /// Above (`true`) or below (`false`) the centre.
         upper: bool,
-        /// Tri3 or Quad4.
+        /// Tri3 or Quad4 (quads except the innermost ring and one triangle
+        /// per 2:1 coarsening).
         kind: CellKind,
     },
     /// Annular sector between `inner` and `outer` radii, from `start_angle` to
@@ -105,9 +129,10 @@ pub enum MeshSpec {
         start_angle: f64,
         /// End angle, degrees (> start, at most start + 360).
         end_angle: f64,
-        /// Radial divisions.
+        /// Radial divisions (>= 1).
         radial: usize,
-        /// Circumferential divisions.
+        /// Circumferential divisions (uniform; >= 3 for a full ring, each
+        /// spanning less than 180 degrees).
         circumferential: usize,
         /// Radial grading.
         radial_grading: Grading,
@@ -118,6 +143,72 @@ pub enum MeshSpec {
 
 /// Builds the mesh described by `spec`.
 pub fn generate(spec: &MeshSpec) -> Result<Mesh, MeshError> {
-    let _ = spec;
-    Err(MeshError::new("mesh generators are not implemented yet"))
+    match *spec {
+        MeshSpec::Rectangle {
+            origin,
+            size,
+            divisions,
+            grading,
+            kind,
+        } => rectangle::rectangle(origin, size, divisions, grading, kind),
+        MeshSpec::HalfDisc {
+            center,
+            radius,
+            radial,
+            circumferential,
+            radial_grading,
+            circumferential_grading,
+            upper,
+            kind,
+        } => half_disc::half_disc(
+            center,
+            radius,
+            radial,
+            circumferential,
+            radial_grading,
+            circumferential_grading,
+            upper,
+            kind,
+        ),
+        MeshSpec::QuarterDisc {
+            center,
+            radius,
+            radial,
+            circumferential,
+            radial_grading,
+            circumferential_grading,
+            upper,
+            kind,
+        } => quarter_disc::quarter_disc(
+            center,
+            radius,
+            radial,
+            circumferential,
+            radial_grading,
+            circumferential_grading,
+            upper,
+            kind,
+        ),
+        MeshSpec::Annulus {
+            center,
+            inner,
+            outer,
+            start_angle,
+            end_angle,
+            radial,
+            circumferential,
+            radial_grading,
+            kind,
+        } => annulus::annulus(
+            center,
+            inner,
+            outer,
+            start_angle,
+            end_angle,
+            radial,
+            circumferential,
+            radial_grading,
+            kind,
+        ),
+    }
 }

@@ -7,6 +7,7 @@
 
 pub mod generate;
 pub mod gmsh;
+pub mod quality;
 pub mod select;
 pub mod validate;
 

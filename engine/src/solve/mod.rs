@@ -6,6 +6,10 @@
 //! residual and the displacement increment are small; cut the increment
 //! back on divergence, NaN or too many iterations.
 
+pub mod dofs;
+pub mod linear;
+pub mod pattern;
+
 use crate::contact::NodeContact;
 use crate::model::Model;
 

@@ -1,0 +1,220 @@
+//! Contact search: which tool entity is closest to a slave node.
+//!
+//! Strategy (Metafor style, seed slides "Part I - Geometrical aspects"):
+//! 1. the entity the node touched last (per-node memory, committed with the
+//!    increment) is projected first, unconditionally, so a node that
+//!    penetrated deeper than `prof` during an increment is still found;
+//! 2. then that entity's neighbours, then a guess (the entity found for the
+//!    previous slave node along the surface) and its neighbours;
+//! 3. then every other entity, skipping those whose bounding box (tool
+//!    reference frame, i.e. boxes that move with the tool) is farther than
+//!    the search radius. The radius is `window` (`prof`) until a candidate
+//!    is found, then the best `|gap|` found so far.
+//!
+//! Guarantee (tested against [`brute_force`]): a returned candidate is the
+//! closest candidate of the whole tool (smallest `|gap|`, ties: lowest
+//! entity index). `None` is returned only when no entity has a candidate
+//! within `window` and the memory entity gave none.
+
+use super::geometry::{Projection, ToolShape};
+
+/// The closest entity of the tool to a node and the projection on it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Found {
+    /// Entity index.
+    pub entity: usize,
+    /// Projection on that entity (tool reference frame).
+    pub projection: Projection,
+}
+
+/// Whether candidate (`p`, `e`) beats the current best (smaller `|gap|`,
+/// then lower index).
+fn better(p: &Projection, e: usize, best: &Option<Found>) -> bool {
+    match best {
+        None => true,
+        Some(b) => {
+            let (a, c) = (p.gap.abs(), b.projection.gap.abs());
+            a < c || (a == c && e < b.entity)
+        }
+    }
+}
+
+/// Search state for one node.
+struct Scan<'a> {
+    shape: &'a ToolShape,
+    x: [f64; 2],
+    window: f64,
+    best: Option<Found>,
+    tests: usize,
+}
+
+impl Scan<'_> {
+    fn radius(&self) -> f64 {
+        self.best
+            .map(|b| b.projection.gap.abs())
+            .unwrap_or(self.window)
+    }
+
+    /// Projects on `e` unless its box is beyond the radius; returns whether
+    /// the entity was projected.
+    fn consider(&mut self, e: usize, unconditional: bool) -> bool {
+        if !unconditional && self.shape.bounding_box(e).distance(self.x) > self.radius() {
+            return false;
+        }
+        self.tests += 1;
+        if let Some(p) = self.shape.project(e, self.x) {
+            if better(&p, e, &self.best) {
+                self.best = Some(Found {
+                    entity: e,
+                    projection: p,
+                });
+            }
+        }
+        true
+    }
+}
+
+/// Closest entity to `x` (tool reference frame) within `window`, testing
+/// `memory` first (unconditionally), then its neighbours, then `guess` and
+/// its neighbours, then the rest. Adds the number of projections made to
+/// `tests`.
+pub fn closest(
+    shape: &ToolShape,
+    x: [f64; 2],
+    window: f64,
+    memory: Option<usize>,
+    guess: Option<usize>,
+    tests: &mut usize,
+) -> Option<Found> {
+    let count = shape.entity_count();
+    let mut scan = Scan {
+        shape,
+        x,
+        window,
+        best: None,
+        tests: 0,
+    };
+    // Priority entities (at most 6, kept in a small array: no allocation).
+    let mut first = [usize::MAX; 6];
+    let mut nfirst = 0;
+    let mut push = |e: Option<usize>, first: &mut [usize; 6]| {
+        if let Some(e) = e {
+            if e < count && !first[..nfirst].contains(&e) {
+                first[nfirst] = e;
+                nfirst += 1;
+            }
+        }
+    };
+    let memory = memory.filter(|&e| e < count);
+    push(memory, &mut first);
+    if let Some(m) = memory {
+        let [a, b] = shape.neighbours(m);
+        push(a, &mut first);
+        push(b, &mut first);
+    }
+    if let Some(g) = guess.filter(|&g| g < count) {
+        push(Some(g), &mut first);
+        let [a, b] = shape.neighbours(g);
+        push(a, &mut first);
+        push(b, &mut first);
+    }
+    let first = &first[..nfirst];
+    let mut skipped_before_any = false;
+    for (k, &e) in first.iter().enumerate() {
+        let had = scan.best.is_some();
+        if !scan.consider(e, k == 0 && memory == Some(e)) && !had {
+            skipped_before_any = true;
+        }
+    }
+    for e in 0..count {
+        if first.contains(&e) {
+            continue;
+        }
+        let had = scan.best.is_some();
+        if !scan.consider(e, false) && !had {
+            skipped_before_any = true;
+        }
+    }
+    // A candidate farther than the window was found after some entities had
+    // been skipped with the window radius: rescan them with the final radius
+    // so the result is exactly the closest one.
+    if skipped_before_any && scan.radius() > window {
+        let mut tested = vec![false; count];
+        // Re-derive which entities were projected: any entity whose box is
+        // within the window was projected in the first pass.
+        for (e, t) in tested.iter_mut().enumerate() {
+            *t = shape.bounding_box(e).distance(x) <= window
+                || (memory == Some(e) && first.first() == Some(&e));
+        }
+        for (e, t) in tested.iter().enumerate() {
+            if !t {
+                scan.consider(e, false);
+            }
+        }
+    }
+    *tests += scan.tests;
+    scan.best
+}
+
+/// Reference search: projects `x` on every entity and returns the closest
+/// candidate (smallest `|gap|`, ties: lowest index), with no window.
+pub fn brute_force(shape: &ToolShape, x: [f64; 2], tests: &mut usize) -> Option<Found> {
+    let mut best = None;
+    for e in 0..shape.entity_count() {
+        *tests += 1;
+        if let Some(p) = shape.project(e, x) {
+            if better(&p, e, &best) {
+                best = Some(Found {
+                    entity: e,
+                    projection: p,
+                });
+            }
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::ToolGeometry;
+
+    fn zigzag(n: usize) -> ToolShape {
+        let points: Vec<[f64; 2]> = (0..=n)
+            .map(|i| [i as f64 * 0.1, if i % 2 == 0 { 0.0 } else { 0.03 }])
+            .collect();
+        ToolShape::new(&ToolGeometry::Polyline { points }).unwrap()
+    }
+
+    #[test]
+    fn memory_first_prunes_other_entities() {
+        let shape = zigzag(100);
+        let x = [5.04, 0.01];
+        let mut brute = 0;
+        let b = brute_force(&shape, x, &mut brute).unwrap();
+        let mut t = 0;
+        let s = closest(&shape, x, 0.2, Some(b.entity), None, &mut t).unwrap();
+        assert_eq!((s.entity, s.projection), (b.entity, b.projection));
+        assert_eq!(brute, 100);
+        assert!(t <= 3, "{t} projections with memory");
+        let mut t2 = 0;
+        let s2 = closest(&shape, x, 0.2, None, None, &mut t2).unwrap();
+        assert_eq!(s2.entity, b.entity);
+        assert!(t2 < 10, "{t2} projections without memory");
+    }
+
+    #[test]
+    fn deep_memory_candidate_beyond_window_is_still_exact() {
+        let shape = zigzag(10);
+        // Far below the tool (behind it): memory entity 3 finds a candidate
+        // with |gap| > window; the result must still be the global closest.
+        let x = [0.52, -0.5];
+        let mut n = 0;
+        let b = brute_force(&shape, x, &mut n).unwrap();
+        let s = closest(&shape, x, 0.01, Some(3), None, &mut n).unwrap();
+        assert_eq!(s.entity, b.entity);
+        assert_eq!(s.projection, b.projection);
+        // Without memory nothing is within the window.
+        assert!(closest(&shape, x, 0.01, None, None, &mut n).is_none());
+    }
+}

@@ -1,0 +1,461 @@
+//! Typed nodes of the top-level items of a deck.
+//!
+//! Optional fields are `None` when the deck does not give them; required
+//! fields are `Option` too, so that a deck with a missing field still yields
+//! a node (the missing field has already been reported) and later checks
+//! keep running.
+
+use super::values::{Grading, IntPair, Pair, Point, SetRef, TimeFn};
+use crate::span::{Ident, Span, Spanned};
+
+/// `analysis { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Analysis {
+    /// `dimension = ..`.
+    pub dimension: Option<Spanned<Dimension>>,
+    /// `thickness = ..`.
+    pub thickness: Option<Spanned<f64>>,
+    /// The `analysis` keyword.
+    pub keyword: Span,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `dimension` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Dimension {
+    /// `plane_strain`.
+    PlaneStrain,
+    /// `plane_stress`.
+    PlaneStress,
+    /// `axisymmetric`.
+    Axisymmetric,
+    /// `3d` (reserved, not supported yet).
+    ThreeD,
+}
+
+/// `material name { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Material {
+    /// The material's name.
+    pub name: Ident,
+    /// `elastic { E = .. nu = .. }`.
+    pub elastic: Option<Elastic>,
+    /// Reserved blocks present (`plastic`, `viscoplastic`, `thermal`), by key.
+    pub reserved: Vec<Ident>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `elastic { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Elastic {
+    /// `E`: Young's modulus.
+    pub young: Option<Spanned<f64>>,
+    /// `nu`: Poisson's ratio.
+    pub poisson: Option<Spanned<f64>>,
+    /// The `elastic` block (key to closing brace).
+    pub span: Span,
+}
+
+/// `body name { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// The body's name.
+    pub name: Ident,
+    /// `mesh = ..`.
+    pub mesh: Option<Spanned<MeshDef>>,
+    /// `material = name`.
+    pub material: Option<Ident>,
+    /// `formulation = ..`.
+    pub formulation: Option<Spanned<FormulationKind>>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `formulation` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FormulationKind {
+    /// `full`.
+    Full,
+    /// `selective_reduced`.
+    SelectiveReduced,
+}
+
+/// `element` values of mesh generators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ElementKind {
+    /// `tri3`.
+    Tri3,
+    /// `quad4`.
+    Quad4,
+}
+
+/// Where a body's mesh comes from.
+#[derive(Debug, Clone, PartialEq)]
+pub enum MeshDef {
+    /// A built-in generator.
+    Generator(Generator),
+    /// `file "path"`: a gmsh file relative to the deck.
+    File(Spanned<String>),
+}
+
+/// A built-in mesh generator with its settings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Generator {
+    /// The generator name as written (`rectangle`, ...).
+    pub name: Ident,
+    /// Its settings.
+    pub kind: GeneratorKind,
+    /// `element = tri3 | quad4`.
+    pub element: Option<Spanned<ElementKind>>,
+}
+
+/// Settings of each generator.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GeneratorKind {
+    /// `rectangle { origin size divisions grading }`.
+    Rectangle {
+        /// Lower-left corner (default (0, 0)).
+        origin: Option<Point>,
+        /// Width and height.
+        size: Option<Pair>,
+        /// Divisions along x and y.
+        divisions: Option<IntPair>,
+        /// Gradings along x and y.
+        grading: Option<Spanned<[Spanned<Grading>; 2]>>,
+    },
+    /// `half_disc { .. }` or `quarter_disc { .. }`.
+    Disc {
+        /// `true` for `quarter_disc`.
+        quarter: bool,
+        /// Centre.
+        center: Option<Point>,
+        /// Radius.
+        radius: Option<Spanned<f64>>,
+        /// Radial divisions.
+        radial: Option<Spanned<i64>>,
+        /// Circumferential divisions.
+        circumferential: Option<Spanned<i64>>,
+        /// Radial grading.
+        radial_grading: Option<Spanned<Grading>>,
+        /// Circumferential grading.
+        circumferential_grading: Option<Spanned<Grading>>,
+        /// Upper (`true`) or lower half/quarter.
+        upper: Option<Spanned<bool>>,
+    },
+    /// `annulus { .. }`.
+    Annulus {
+        /// Centre.
+        center: Option<Point>,
+        /// Inner radius.
+        inner: Option<Spanned<f64>>,
+        /// Outer radius.
+        outer: Option<Spanned<f64>>,
+        /// Start angle, degrees (default 0).
+        start: Option<Spanned<f64>>,
+        /// End angle, degrees (default 360).
+        end: Option<Spanned<f64>>,
+        /// Radial divisions.
+        radial: Option<Spanned<i64>>,
+        /// Circumferential divisions.
+        circumferential: Option<Spanned<i64>>,
+        /// Radial grading.
+        radial_grading: Option<Spanned<Grading>>,
+    },
+}
+
+/// `set name = ref`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetDef {
+    /// The set's name (referenced afterwards as `body.name`).
+    pub name: Ident,
+    /// What it selects.
+    pub target: SetRef,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `tool name = kind { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Tool {
+    /// The tool's name.
+    pub name: Ident,
+    /// The geometry kind as written (`circle`, ...).
+    pub kind: Ident,
+    /// The geometry settings.
+    pub geometry: ToolGeometry,
+    /// `motion { .. }`.
+    pub motion: Option<Motion>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `side` values of a circle tool.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Side {
+    /// `outside`.
+    Outside,
+    /// `inside`.
+    Inside,
+}
+
+/// Geometry settings of each tool kind.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ToolGeometry {
+    /// `plane { point normal }`.
+    Plane {
+        /// A point of the line.
+        point: Option<Point>,
+        /// Normal towards free space.
+        normal: Option<Point>,
+    },
+    /// `polyline { points }`.
+    Polyline {
+        /// Vertices.
+        points: Option<Spanned<Vec<Point>>>,
+    },
+    /// `arc { center radius start end }` (degrees).
+    Arc {
+        /// Centre.
+        center: Option<Point>,
+        /// Radius.
+        radius: Option<Spanned<f64>>,
+        /// Start angle, degrees.
+        start: Option<Spanned<f64>>,
+        /// End angle, degrees.
+        end: Option<Spanned<f64>>,
+    },
+    /// `circle { center radius side }`.
+    Circle {
+        /// Centre.
+        center: Option<Point>,
+        /// Radius.
+        radius: Option<Spanned<f64>>,
+        /// Where the body is (default outside).
+        side: Option<Spanned<Side>>,
+    },
+    /// `nurbs { degree points weights knots }`.
+    Nurbs {
+        /// Polynomial degree.
+        degree: Option<Spanned<i64>>,
+        /// Control points.
+        points: Option<Spanned<Vec<Point>>>,
+        /// Weights (default all 1).
+        weights: Option<Spanned<Vec<Spanned<f64>>>>,
+        /// Knot vector (default open uniform).
+        knots: Option<Spanned<Vec<Spanned<f64>>>>,
+    },
+}
+
+/// `motion { ux uy rotation center }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Motion {
+    /// Translation along x.
+    pub ux: Option<Spanned<TimeFn>>,
+    /// Translation along y.
+    pub uy: Option<Spanned<TimeFn>>,
+    /// Rotation, radians.
+    pub rotation: Option<Spanned<TimeFn>>,
+    /// Centre of rotation.
+    pub center: Option<Point>,
+    /// The `motion` block.
+    pub span: Span,
+}
+
+/// `contact ref -> tool { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Contact {
+    /// The slave surface.
+    pub target: SetRef,
+    /// The master tool's name.
+    pub tool: Ident,
+    /// `method = ..`.
+    pub method: Option<Spanned<Method>>,
+    /// `prof = ..`.
+    pub prof: Option<Spanned<f64>>,
+    /// Reserved keys present (`friction`).
+    pub reserved: Vec<Ident>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `penalty` kinds.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PenaltyKindAst {
+    /// `nodal`.
+    Nodal,
+    /// `area`.
+    Area,
+}
+
+/// Contact enforcement methods.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Method {
+    /// `penalty { kind stiffness }`.
+    Penalty {
+        /// Nodal or area (default area).
+        kind: Option<Spanned<PenaltyKindAst>>,
+        /// Penalty coefficient.
+        stiffness: Option<Spanned<f64>>,
+    },
+    /// A reserved method name (`lagrange`, `augmented_lagrange`).
+    Reserved(Ident),
+}
+
+/// Displacement components.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Component {
+    /// `ux` (x, or r in axisymmetric).
+    X,
+    /// `uy` (y, or z in axisymmetric).
+    Y,
+}
+
+impl Component {
+    /// 0 for x, 1 for y.
+    pub fn index(self) -> usize {
+        match self {
+            Component::X => 0,
+            Component::Y => 1,
+        }
+    }
+}
+
+/// `fix` or `displace`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BoundaryKind {
+    /// `fix ref { ux uy }`: components held at zero.
+    Fix,
+    /// `displace ref { ux = f(t) }`: prescribed components.
+    Displace,
+}
+
+/// `fix ref { .. }` or `displace ref { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Boundary {
+    /// Fix or displace.
+    pub kind: BoundaryKind,
+    /// The keyword.
+    pub keyword: Span,
+    /// The nodes.
+    pub target: SetRef,
+    /// Components with their prescribed value (zero for `fix`).
+    pub components: Vec<(Spanned<Component>, Spanned<TimeFn>)>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `pressure` or `force`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LoadKind {
+    /// `pressure ref { p = f(t) }` on edges.
+    Pressure,
+    /// `force ref { fx = .. fy = .. }` per node.
+    Force,
+}
+
+/// `pressure ref { .. }` or `force ref { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadDef {
+    /// Pressure or force.
+    pub kind: LoadKind,
+    /// The keyword.
+    pub keyword: Span,
+    /// Edges (pressure) or nodes (force).
+    pub target: SetRef,
+    /// Pressure: one entry with component `None`; force: one per component.
+    pub values: Vec<(Option<Component>, Spanned<TimeFn>)>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `step name { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Step {
+    /// The step's name (optional in the deck).
+    pub name: Option<Ident>,
+    /// The `step` keyword.
+    pub keyword: Span,
+    /// `time = t0 .. t1`.
+    pub time: Option<Spanned<[Spanned<f64>; 2]>>,
+    /// `increments = n`.
+    pub increments: Option<Spanned<i64>>,
+    /// `min_increment = fraction`.
+    pub min_increment: Option<Spanned<f64>>,
+    /// `newton { .. }`.
+    pub newton: Option<Newton>,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// `newton { tol tol_displacement max_iter line_search }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Newton {
+    /// Residual tolerance.
+    pub tol: Option<Spanned<f64>>,
+    /// Displacement-correction tolerance.
+    pub tol_displacement: Option<Spanned<f64>>,
+    /// Maximum iterations.
+    pub max_iter: Option<Spanned<i64>>,
+    /// Line search on/off.
+    pub line_search: Option<Spanned<bool>>,
+    /// The block.
+    pub span: Span,
+}
+
+/// Output fields.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FieldName {
+    /// `displacement`.
+    Displacement,
+    /// `stress`.
+    Stress,
+    /// `strain`.
+    Strain,
+    /// `von_mises`.
+    VonMises,
+    /// `reaction`.
+    Reaction,
+    /// `contact`.
+    Contact,
+}
+
+/// History requests as written.
+#[derive(Debug, Clone, PartialEq)]
+pub enum History {
+    /// `reaction(ref)`.
+    Reaction(SetRef),
+    /// `displacement(ref)`.
+    Displacement(SetRef),
+    /// `contact_force(ref -> tool)`.
+    ContactForce(SetRef, Ident),
+}
+
+/// `output { .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Output {
+    /// `every = n`.
+    pub every: Option<Spanned<i64>>,
+    /// `fields = [..]`.
+    pub fields: Option<Spanned<Vec<Spanned<FieldName>>>>,
+    /// `history = [..]`.
+    pub history: Option<Vec<Spanned<History>>>,
+    /// The `output` keyword.
+    pub keyword: Span,
+    /// The whole item.
+    pub span: Span,
+}
+
+/// An item whose text could not be parsed (already reported as a syntax
+/// error). Kept so that references to its name are not reported again as
+/// unknown names.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BrokenItem {
+    /// The item keyword (`material`, `body`, ...).
+    pub keyword: String,
+    /// The item's name, if one could be recognised.
+    pub name: Option<String>,
+    /// The item's text.
+    pub span: Span,
+}

@@ -1,0 +1,197 @@
+//! Typed values shared by several constructs: points, set references,
+//! geometric selections, time functions, gradings.
+
+use crate::span::{Ident, Span, Spanned};
+use std::fmt;
+
+/// A point or vector `(x, y)`.
+pub type Point = Spanned<[f64; 2]>;
+
+/// A pair of numbers `(a, b)`, each with its own span (for range errors).
+pub type Pair = Spanned<[Spanned<f64>; 2]>;
+
+/// A pair of whole numbers `(a, b)`, each with its own span.
+pub type IntPair = Spanned<[Spanned<i64>; 2]>;
+
+/// A reference to a set of nodes or edges of a body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetRef {
+    /// The body (`block` in `block.top`).
+    pub body: Ident,
+    /// Which part of the body.
+    pub kind: SetRefKind,
+    /// The whole reference.
+    pub span: Span,
+}
+
+/// The ways of naming part of a body.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SetRefKind {
+    /// A named set: generator set, gmsh physical group, deck `set`, or the
+    /// built-in `boundary` (edges) and `all` (nodes).
+    Named(Ident),
+    /// `body.nodes(..)`: nodes selected geometrically.
+    Nodes(Spanned<Selection>),
+    /// `body.node(near(x, y))`: the single node closest to a point.
+    Node(Spanned<Selection>),
+    /// `body.edges(..)`: boundary edges with both nodes selected.
+    Edges(Spanned<Selection>),
+}
+
+/// A geometric selection, as written.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Selection {
+    /// `x = value`.
+    X(f64),
+    /// `y = value`.
+    Y(f64),
+    /// `box((x0, y0), (x1, y1))`.
+    Box {
+        /// First corner.
+        min: [f64; 2],
+        /// Opposite corner.
+        max: [f64; 2],
+    },
+    /// `near(x, y)`.
+    Near([f64; 2]),
+}
+
+impl fmt::Display for Selection {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Selection::X(v) => write!(f, "x = {}", num(*v)),
+            Selection::Y(v) => write!(f, "y = {}", num(*v)),
+            Selection::Box { min, max } => write!(
+                f,
+                "box(({}, {}), ({}, {}))",
+                num(min[0]),
+                num(min[1]),
+                num(max[0]),
+                num(max[1])
+            ),
+            Selection::Near(p) => write!(f, "near({}, {})", num(p[0]), num(p[1])),
+        }
+    }
+}
+
+impl fmt::Display for SetRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match &self.kind {
+            SetRefKind::Named(n) => write!(f, "{}.{}", self.body, n),
+            SetRefKind::Nodes(s) => write!(f, "{}.nodes({})", self.body, s.value),
+            SetRefKind::Node(s) => write!(f, "{}.node({})", self.body, s.value),
+            SetRefKind::Edges(s) => write!(f, "{}.edges({})", self.body, s.value),
+        }
+    }
+}
+
+/// Formats a number the way a user would write it (shortest round-trip
+/// form, exponent notation for very large or small magnitudes).
+pub fn num(v: f64) -> String {
+    let a = v.abs();
+    if v == 0.0 {
+        "0".to_string()
+    } else if (1e-4..1e7).contains(&a) {
+        format!("{v}")
+    } else {
+        format!("{v:e}")
+    }
+}
+
+/// A scalar function of the analysis time, as written.
+#[derive(Debug, Clone, PartialEq)]
+pub enum TimeFn {
+    /// A plain number: constant in time.
+    Number(f64),
+    /// `constant(v)`.
+    Constant(f64),
+    /// `ramp(v0, v1)` over the whole analysis, or `ramp(v0, v1, t0, t1)`.
+    Ramp {
+        /// Start value.
+        v0: f64,
+        /// End value.
+        v1: f64,
+        /// Explicit time window `(t0, t1)`, if given.
+        window: Option<[Spanned<f64>; 2]>,
+    },
+    /// `table((t, v), ..)`: piecewise linear.
+    Table(Vec<Spanned<(f64, f64)>>),
+}
+
+impl fmt::Display for TimeFn {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TimeFn::Number(v) => write!(f, "{}", num(*v)),
+            TimeFn::Constant(v) => write!(f, "constant({})", num(*v)),
+            TimeFn::Ramp { v0, v1, window } => match window {
+                None => write!(f, "ramp({}, {})", num(*v0), num(*v1)),
+                Some([t0, t1]) => write!(
+                    f,
+                    "ramp({}, {}, {}, {})",
+                    num(*v0),
+                    num(*v1),
+                    num(t0.value),
+                    num(t1.value)
+                ),
+            },
+            TimeFn::Table(pts) => {
+                f.write_str("table(")?;
+                for (i, p) in pts.iter().enumerate() {
+                    if i > 0 {
+                        f.write_str(", ")?;
+                    }
+                    write!(f, "({}, {})", num(p.value.0), num(p.value.1))?;
+                }
+                f.write_str(")")
+            }
+        }
+    }
+}
+
+/// Division spacing of a mesh generator direction.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Grading {
+    /// `uniform`.
+    Uniform,
+    /// `geometric(ratio)`: last / first division size.
+    Geometric(Spanned<f64>),
+    /// `center(ratio)`: end / middle division size.
+    Center(Spanned<f64>),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_print_like_a_user_writes_them() {
+        assert_eq!(num(0.0), "0");
+        assert_eq!(num(210000.0), "210000");
+        assert_eq!(num(0.3), "0.3");
+        assert_eq!(num(1e-9), "1e-9");
+        assert_eq!(num(-2.5e12), "-2.5e12");
+    }
+
+    #[test]
+    fn set_refs_display_normalised() {
+        let s = Span::default();
+        let r = SetRef {
+            body: Ident::new("block", s),
+            kind: SetRefKind::Edges(Spanned::new(
+                Selection::Box {
+                    min: [-1.0, -0.01],
+                    max: [1.0, 0.01],
+                },
+                s,
+            )),
+            span: s,
+        };
+        assert_eq!(r.to_string(), "block.edges(box((-1, -0.01), (1, 0.01)))");
+        let t = TimeFn::Ramp {
+            v0: 0.0,
+            v1: -0.05,
+            window: None,
+        };
+        assert_eq!(t.to_string(), "ramp(0, -0.05)");
+    }
+}

@@ -1,0 +1,619 @@
+//! Generic values -> typed values: numbers, whole numbers, booleans,
+//! points, lists, enum choices, time functions, gradings, set references.
+//!
+//! Every function returns `None` after pushing a diagnostic when the value
+//! has the wrong shape, so that callers simply skip the field.
+
+use crate::ast::syntax::{path_text, Arg, ArgKind, Value, ValueKind};
+use crate::ast::{Grading, Point, SetRef, SetRefKind, Selection, TimeFn};
+use crate::diagnostics::Diagnostic;
+use crate::span::{Ident, Span, Spanned};
+use crate::suggest::{did_you_mean, one_of};
+
+/// Diagnostics sink used by all conversions.
+pub type Diags = Vec<Diagnostic>;
+
+fn wrong(v: &Value, expected: &str, diags: &mut Diags) {
+    diags.push(Diagnostic::error(
+        format!("expected {expected}, found {}", v.kind.describe()),
+        v.span,
+        format!("expected {expected}"),
+    ));
+}
+
+/// A finite number.
+pub fn number(v: &Value, diags: &mut Diags) -> Option<Spanned<f64>> {
+    match v.kind {
+        ValueKind::Number(x) if x.is_finite() => Some(Spanned::new(x, v.span)),
+        ValueKind::Number(_) => {
+            diags.push(Diagnostic::error(
+                "number out of range",
+                v.span,
+                "not a finite double-precision number",
+            ));
+            None
+        }
+        _ => {
+            wrong(v, "a number", diags);
+            None
+        }
+    }
+}
+
+/// A whole number (written without fraction, e.g. `20`, `1e3`).
+pub fn integer(v: &Value, diags: &mut Diags) -> Option<Spanned<i64>> {
+    let x = number(v, diags)?;
+    if x.value.fract() != 0.0 || x.value.abs() > 9.0e15 {
+        diags.push(Diagnostic::error(
+            format!("expected a whole number, found `{}`", x.value),
+            v.span,
+            "expected a whole number",
+        ));
+        return None;
+    }
+    Some(Spanned::new(x.value as i64, v.span))
+}
+
+/// `true` or `false`.
+pub fn boolean(v: &Value, diags: &mut Diags) -> Option<Spanned<bool>> {
+    choice(v, "value", &[("true", true), ("false", false)], diags)
+}
+
+/// One of a fixed set of names, with a "did you mean" for a misspelling.
+/// `what` names the setting in messages (e.g. "dimension").
+pub fn choice<T: Copy>(
+    v: &Value,
+    what: &str,
+    options: &[(&str, T)],
+    diags: &mut Diags,
+) -> Option<Spanned<T>> {
+    let names: Vec<&str> = options.iter().map(|(n, _)| *n).collect();
+    let word = match &v.kind {
+        ValueKind::Path(p) if p.len() == 1 => &p[0].name,
+        _ => {
+            wrong(v, &one_of(&names), diags);
+            return None;
+        }
+    };
+    if let Some((_, t)) = options.iter().find(|(n, _)| n == word) {
+        return Some(Spanned::new(*t, v.span));
+    }
+    diags.push(
+        Diagnostic::error(
+            format!("unknown {what} `{word}`"),
+            v.span,
+            format!("expected {}", one_of(&names)),
+        )
+        .with_help_opt(did_you_mean(word, &names)),
+    );
+    None
+}
+
+/// A point or vector `(x, y)`.
+pub fn point(v: &Value, diags: &mut Diags) -> Option<Point> {
+    let [a, b] = pair_of(v, "a point `(x, y)`", diags)?;
+    let x = number(a, diags)?;
+    let y = number(b, diags)?;
+    Some(Spanned::new([x.value, y.value], v.span))
+}
+
+/// A pair of numbers `(a, b)`, keeping each number's span.
+pub fn pair(v: &Value, diags: &mut Diags) -> Option<Spanned<[Spanned<f64>; 2]>> {
+    let [a, b] = pair_of(v, "a pair `(a, b)`", diags)?;
+    let x = number(a, diags);
+    let y = number(b, diags);
+    Some(Spanned::new([x?, y?], v.span))
+}
+
+/// A pair of whole numbers `(a, b)`.
+pub fn int_pair(v: &Value, diags: &mut Diags) -> Option<Spanned<[Spanned<i64>; 2]>> {
+    let [a, b] = pair_of(v, "a pair of whole numbers `(nx, ny)`", diags)?;
+    let x = integer(a, diags);
+    let y = integer(b, diags);
+    Some(Spanned::new([x?, y?], v.span))
+}
+
+/// The two elements of a 2-tuple.
+pub fn pair_of<'v>(v: &'v Value, expected: &str, diags: &mut Diags) -> Option<[&'v Value; 2]> {
+    match &v.kind {
+        ValueKind::Tuple(items) if items.len() == 2 => Some([&items[0], &items[1]]),
+        ValueKind::Tuple(items) => {
+            diags.push(Diagnostic::error(
+                format!("expected {expected}, found a tuple of {}", items.len()),
+                v.span,
+                format!("expected {expected}"),
+            ));
+            None
+        }
+        _ => {
+            wrong(v, expected, diags);
+            None
+        }
+    }
+}
+
+/// The elements of a list `[..]`.
+pub fn list<'v>(v: &'v Value, expected: &str, diags: &mut Diags) -> Option<&'v [Value]> {
+    match &v.kind {
+        ValueKind::List(items) => Some(items),
+        _ => {
+            wrong(v, expected, diags);
+            None
+        }
+    }
+}
+
+/// A list of points `[(x, y), ..]`.
+pub fn point_list(v: &Value, diags: &mut Diags) -> Option<Spanned<Vec<Point>>> {
+    let items = list(v, "a list of points `[(x, y), ..]`", diags)?;
+    let n = diags.len();
+    let pts: Vec<Point> = items.iter().filter_map(|p| point(p, diags)).collect();
+    (diags.len() == n).then(|| Spanned::new(pts, v.span))
+}
+
+/// A list of numbers `[a, b, ..]`.
+pub fn number_list(v: &Value, diags: &mut Diags) -> Option<Spanned<Vec<Spanned<f64>>>> {
+    let items = list(v, "a list of numbers `[a, b, ..]`", diags)?;
+    let n = diags.len();
+    let xs: Vec<Spanned<f64>> = items.iter().filter_map(|x| number(x, diags)).collect();
+    (diags.len() == n).then(|| Spanned::new(xs, v.span))
+}
+
+/// A single-name call such as `ramp(..)`: its name and arguments.
+fn simple_call(v: &Value) -> Option<(&Ident, &[Arg])> {
+    match &v.kind {
+        ValueKind::Call { path, args } if path.len() == 1 => Some((&path[0], args)),
+        _ => None,
+    }
+}
+
+/// The values of positional arguments; errors for named or arrow arguments.
+fn positional<'v>(args: &'v [Arg], diags: &mut Diags) -> Option<Vec<&'v Value>> {
+    let mut out = Vec::new();
+    for a in args {
+        match &a.kind {
+            ArgKind::Positional(v) => out.push(v),
+            _ => {
+                diags.push(Diagnostic::error(
+                    "unexpected argument",
+                    a.span,
+                    "expected a plain value here",
+                ));
+                return None;
+            }
+        }
+    }
+    Some(out)
+}
+
+fn arity(name: &Ident, call: Span, got: usize, expected: &str, diags: &mut Diags) {
+    diags.push(Diagnostic::error(
+        format!("`{}` takes {expected}, found {got}", name.name),
+        call,
+        format!("expected {expected}"),
+    ));
+}
+
+const TIME_FUNCTIONS: [&str; 3] = ["constant", "ramp", "table"];
+const TIME_FN_HELP: &str = "a time function is a number, `constant(v)`, `ramp(v0, v1)`, \
+`ramp(v0, v1, t0, t1)` or `table((t, v), ..)`";
+
+/// A time function: a number, `constant(v)`, `ramp(v0, v1)`,
+/// `ramp(v0, v1, t0, t1)` or `table((t, v), ..)`.
+pub fn time_fn(v: &Value, diags: &mut Diags) -> Option<Spanned<TimeFn>> {
+    if let ValueKind::Number(_) = v.kind {
+        return number(v, diags).map(|x| Spanned::new(TimeFn::Number(x.value), v.span));
+    }
+    let Some((name, args)) = simple_call(v) else {
+        diags.push(
+            Diagnostic::error(
+                format!("expected a time function, found {}", v.kind.describe()),
+                v.span,
+                "expected a number or a time function",
+            )
+            .with_help(TIME_FN_HELP),
+        );
+        return None;
+    };
+    let args = positional(args, diags)?;
+    let f = match name.name.as_str() {
+        "constant" => {
+            if args.len() != 1 {
+                arity(name, v.span, args.len(), "1 argument", diags);
+                return None;
+            }
+            TimeFn::Constant(number(args[0], diags)?.value)
+        }
+        "ramp" => {
+            if args.len() != 2 && args.len() != 4 {
+                arity(name, v.span, args.len(), "2 or 4 arguments", diags);
+                return None;
+            }
+            let nums: Vec<Option<Spanned<f64>>> = args.iter().map(|a| number(a, diags)).collect();
+            let nums: Option<Vec<Spanned<f64>>> = nums.into_iter().collect();
+            let nums = nums?;
+            TimeFn::Ramp {
+                v0: nums[0].value,
+                v1: nums[1].value,
+                window: (nums.len() == 4).then(|| [nums[2].clone(), nums[3].clone()]),
+            }
+        }
+        "table" => {
+            if args.is_empty() {
+                arity(name, v.span, 0, "at least 1 point `(t, v)`", diags);
+                return None;
+            }
+            let mut pts = Vec::new();
+            for a in args {
+                let [t, x] = pair_of(a, "a point `(t, v)`", diags)?;
+                let t = number(t, diags)?;
+                let x = number(x, diags)?;
+                pts.push(Spanned::new((t.value, x.value), a.span));
+            }
+            TimeFn::Table(pts)
+        }
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    format!("unknown time function `{other}`"),
+                    name.span,
+                    format!("expected {}", one_of(&TIME_FUNCTIONS)),
+                )
+                .with_help(did_you_mean(other, TIME_FUNCTIONS).unwrap_or(TIME_FN_HELP.into())),
+            );
+            return None;
+        }
+    };
+    Some(Spanned::new(f, v.span))
+}
+
+const GRADINGS: [&str; 3] = ["uniform", "geometric", "center"];
+
+/// A grading: `uniform`, `geometric(ratio)` or `center(ratio)`.
+pub fn grading(v: &Value, diags: &mut Diags) -> Option<Spanned<Grading>> {
+    let unknown = |word: &Ident, diags: &mut Diags| {
+        diags.push(
+            Diagnostic::error(
+                format!("unknown grading `{}`", word.name),
+                word.span,
+                "expected `uniform`, `geometric(ratio)` or `center(ratio)`",
+            )
+            .with_help_opt(did_you_mean(&word.name, GRADINGS)),
+        );
+    };
+    match &v.kind {
+        ValueKind::Path(p) if p.len() == 1 => {
+            if p[0].name == "uniform" {
+                Some(Spanned::new(Grading::Uniform, v.span))
+            } else {
+                unknown(&p[0], diags);
+                None
+            }
+        }
+        ValueKind::Call { path, args } if path.len() == 1 => {
+            let name = &path[0];
+            let make: fn(Spanned<f64>) -> Grading = match name.name.as_str() {
+                "geometric" => Grading::Geometric,
+                "center" => Grading::Center,
+                _ => {
+                    unknown(name, diags);
+                    return None;
+                }
+            };
+            let args = positional(args, diags)?;
+            if args.len() != 1 {
+                arity(name, v.span, args.len(), "1 argument (the ratio)", diags);
+                return None;
+            }
+            let r = number(args[0], diags)?;
+            Some(Spanned::new(make(r), v.span))
+        }
+        _ => {
+            wrong(
+                v,
+                "a grading (`uniform`, `geometric(ratio)` or `center(ratio)`)",
+                diags,
+            );
+            None
+        }
+    }
+}
+
+const SELECTORS: [&str; 3] = ["nodes", "node", "edges"];
+const SETREF_HELP: &str = "a set reference is `body.set`, `body.nodes(x = ..)`, \
+`body.nodes(y = ..)`, `body.nodes(box((x0, y0), (x1, y1)))`, `body.node(near(x, y))` \
+or `body.edges(..)`";
+
+/// A set reference: `body.set`, `body.nodes(..)`, `body.node(near(..))`,
+/// `body.edges(..)`.
+pub fn set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
+    let bad = |diags: &mut Diags, found: &str| {
+        diags.push(
+            Diagnostic::error(
+                format!("expected a set reference, found {found}"),
+                v.span,
+                "expected `body.set`",
+            )
+            .with_help(SETREF_HELP),
+        );
+    };
+    match &v.kind {
+        ValueKind::Path(p) if p.len() == 2 => Some(SetRef {
+            body: p[0].clone(),
+            kind: SetRefKind::Named(p[1].clone()),
+            span: v.span,
+        }),
+        ValueKind::Path(p) if p.len() == 1 => {
+            bad(diags, &format!("the bare name `{}`", p[0].name));
+            None
+        }
+        ValueKind::Call { path, args } if path.len() == 2 => {
+            let body = path[0].clone();
+            let sel_name = &path[1];
+            if !SELECTORS.contains(&sel_name.name.as_str()) {
+                diags.push(
+                    Diagnostic::error(
+                        format!("unknown selection `{}`", sel_name.name),
+                        sel_name.span,
+                        "expected `nodes`, `node` or `edges`",
+                    )
+                    .with_help(did_you_mean(&sel_name.name, SELECTORS).unwrap_or(SETREF_HELP.into())),
+                );
+                return None;
+            }
+            let call_span = Span::new(sel_name.span.start, v.span.end);
+            if args.len() != 1 {
+                arity(sel_name, call_span, args.len(), "1 argument", diags);
+                return None;
+            }
+            let sel = selection(&args[0], diags)?;
+            let kind = match sel_name.name.as_str() {
+                "node" => {
+                    if !matches!(sel.value, Selection::Near(_)) {
+                        diags.push(
+                            Diagnostic::error(
+                                "`node(..)` selects a single node",
+                                sel.span,
+                                "expected `near(x, y)`",
+                            )
+                            .with_help(format!(
+                                "to select several nodes write `{}.nodes({})`",
+                                body.name, sel.value
+                            )),
+                        );
+                        return None;
+                    }
+                    SetRefKind::Node(sel)
+                }
+                _ if matches!(sel.value, Selection::Near(_)) => {
+                    diags.push(
+                        Diagnostic::error(
+                            format!("`near(..)` selects a single node, not {}", sel_name.name),
+                            sel.span,
+                            "not allowed here",
+                        )
+                        .with_help(format!("write `{}.node({})`", body.name, sel.value)),
+                    );
+                    return None;
+                }
+                "nodes" => SetRefKind::Nodes(sel),
+                _ => SetRefKind::Edges(sel),
+            };
+            Some(SetRef {
+                body,
+                kind,
+                span: v.span,
+            })
+        }
+        ValueKind::Path(p) => {
+            bad(diags, &format!("`{}`", path_text(p)));
+            None
+        }
+        other => {
+            bad(diags, other.describe());
+            None
+        }
+    }
+}
+
+/// The argument of `nodes(..)`, `node(..)`, `edges(..)`.
+fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
+    let help = "expected `x = ..`, `y = ..`, `box((x0, y0), (x1, y1))` or `near(x, y)`";
+    match &a.kind {
+        ArgKind::Named(n, v) if n.name == "x" || n.name == "y" => {
+            let x = number(v, diags)?;
+            let s = if n.name == "x" {
+                Selection::X(x.value)
+            } else {
+                Selection::Y(x.value)
+            };
+            Some(Spanned::new(s, a.span))
+        }
+        ArgKind::Named(n, _) => {
+            diags.push(
+                Diagnostic::error(
+                    format!("unknown coordinate `{}`", n.name),
+                    n.span,
+                    "expected `x` or `y`",
+                )
+                .with_help_opt(did_you_mean(&n.name, ["x", "y"])),
+            );
+            None
+        }
+        ArgKind::Positional(v) => {
+            let Some((name, args)) = simple_call(v) else {
+                diags.push(Diagnostic::error(
+                    format!("expected a selection, found {}", v.kind.describe()),
+                    v.span,
+                    help,
+                ));
+                return None;
+            };
+            let args = positional(args, diags)?;
+            match name.name.as_str() {
+                "box" => {
+                    if args.len() != 2 {
+                        arity(name, v.span, args.len(), "2 corners", diags);
+                        return None;
+                    }
+                    let a0 = point(args[0], diags)?;
+                    let a1 = point(args[1], diags)?;
+                    Some(Spanned::new(
+                        Selection::Box {
+                            min: a0.value,
+                            max: a1.value,
+                        },
+                        v.span,
+                    ))
+                }
+                "near" => {
+                    if args.len() != 2 {
+                        arity(name, v.span, args.len(), "2 coordinates `near(x, y)`", diags);
+                        return None;
+                    }
+                    let x = number(args[0], diags)?;
+                    let y = number(args[1], diags)?;
+                    Some(Spanned::new(Selection::Near([x.value, y.value]), v.span))
+                }
+                other => {
+                    diags.push(
+                        Diagnostic::error(
+                            format!("unknown selection function `{other}`"),
+                            name.span,
+                            help,
+                        )
+                        .with_help_opt(did_you_mean(other, ["box", "near"])),
+                    );
+                    None
+                }
+            }
+        }
+        ArgKind::Arrow(..) => {
+            diags.push(Diagnostic::error(
+                "unexpected `->` in a selection",
+                a.span,
+                help,
+            ));
+            None
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::parse::test_support::value_of;
+
+    #[test]
+    fn numbers_and_integers() {
+        let mut d = Diags::new();
+        assert_eq!(number(&value_of("-2.5e3"), &mut d).unwrap().value, -2500.0);
+        assert_eq!(number(&value_of(".5"), &mut d).unwrap().value, 0.5);
+        assert_eq!(number(&value_of("1.2E+3"), &mut d).unwrap().value, 1200.0);
+        assert_eq!(integer(&value_of("1e3"), &mut d).unwrap().value, 1000);
+        assert!(d.is_empty());
+        assert!(integer(&value_of("2.5"), &mut d).is_none());
+        assert!(number(&value_of("1e999"), &mut d).is_none());
+        assert!(number(&value_of("(1, 2)"), &mut d).is_none());
+        assert_eq!(d.len(), 3);
+        assert_eq!(d[2].message, "expected a number, found a tuple");
+    }
+
+    #[test]
+    fn points_and_lists() {
+        let mut d = Diags::new();
+        assert_eq!(point(&value_of("(0, -1.5)"), &mut d).unwrap().value, [0.0, -1.5]);
+        let pts = point_list(&value_of("[(0, 0), (1, 0), (2, 1)]"), &mut d).unwrap();
+        assert_eq!(pts.value.len(), 3);
+        assert_eq!(pts.value[2].value, [2.0, 1.0]);
+        assert!(d.is_empty());
+        assert!(point(&value_of("(1, 2, 3)"), &mut d).is_none());
+        assert_eq!(d[0].message, "expected a point `(x, y)`, found a tuple of 3");
+    }
+
+    #[test]
+    fn choices_suggest_the_closest_name() {
+        let mut d = Diags::new();
+        let opts = [("plane_strain", 1), ("plane_stress", 2)];
+        assert_eq!(choice(&value_of("plane_stress"), "dimension", &opts, &mut d).unwrap().value, 2);
+        assert!(choice(&value_of("plane_stran"), "dimension", &opts, &mut d).is_none());
+        assert_eq!(d[0].message, "unknown dimension `plane_stran`");
+        assert_eq!(d[0].help.as_deref(), Some("did you mean `plane_strain`?"));
+    }
+
+    #[test]
+    fn time_functions() {
+        let mut d = Diags::new();
+        let t = |s: &str, d: &mut Diags| time_fn(&value_of(s), d).map(|t| t.value);
+        assert_eq!(t("-1", &mut d), Some(TimeFn::Number(-1.0)));
+        assert_eq!(t("constant(2)", &mut d), Some(TimeFn::Constant(2.0)));
+        assert_eq!(
+            t("ramp(0, -0.05)", &mut d),
+            Some(TimeFn::Ramp {
+                v0: 0.0,
+                v1: -0.05,
+                window: None
+            })
+        );
+        match t("ramp(0, 1, 0.5, 2)", &mut d) {
+            Some(TimeFn::Ramp {
+                window: Some([a, b]),
+                ..
+            }) => assert_eq!((a.value, b.value), (0.5, 2.0)),
+            other => panic!("{other:?}"),
+        }
+        match t("table((0, 0), (0.5, 1), (1, 0))", &mut d) {
+            Some(TimeFn::Table(p)) => {
+                let v: Vec<(f64, f64)> = p.iter().map(|s| s.value).collect();
+                assert_eq!(v, vec![(0.0, 0.0), (0.5, 1.0), (1.0, 0.0)]);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(d.is_empty());
+        assert!(t("ramp(0)", &mut d).is_none());
+        assert!(t("rmap(0, 1)", &mut d).is_none());
+        assert_eq!(d[1].help.as_deref(), Some("did you mean `ramp`?"));
+    }
+
+    #[test]
+    fn gradings() {
+        let mut d = Diags::new();
+        assert_eq!(grading(&value_of("uniform"), &mut d).unwrap().value, Grading::Uniform);
+        match grading(&value_of("geometric(0.2)"), &mut d).unwrap().value {
+            Grading::Geometric(r) => assert_eq!(r.value, 0.2),
+            g => panic!("{g:?}"),
+        }
+        match grading(&value_of("center(4)"), &mut d).unwrap().value {
+            Grading::Center(r) => assert_eq!(r.value, 4.0),
+            g => panic!("{g:?}"),
+        }
+        assert!(d.is_empty());
+        assert!(grading(&value_of("geometrik(2)"), &mut d).is_none());
+        assert_eq!(d[0].help.as_deref(), Some("did you mean `geometric`?"));
+    }
+
+    #[test]
+    fn set_references() {
+        let mut d = Diags::new();
+        let r = set_ref(&value_of("block.top"), &mut d).unwrap();
+        assert_eq!(r.to_string(), "block.top");
+        let r = set_ref(&value_of("block.nodes(y = -4)"), &mut d).unwrap();
+        assert_eq!(r.kind, SetRefKind::Nodes(Spanned::new(Selection::Y(-4.0), r_span(&r))));
+        let r = set_ref(&value_of("block.edges(box((-1, -0.01), (1, 0.01)))"), &mut d).unwrap();
+        assert_eq!(r.to_string(), "block.edges(box((-1, -0.01), (1, 0.01)))");
+        let r = set_ref(&value_of("block.node(near(0, 0))"), &mut d).unwrap();
+        assert!(matches!(r.kind, SetRefKind::Node(_)));
+        assert!(d.is_empty());
+        assert!(set_ref(&value_of("block.node(x = 0)"), &mut d).is_none());
+        assert!(set_ref(&value_of("block.nodez(x = 0)"), &mut d).is_none());
+        assert_eq!(d[1].help.as_deref(), Some("did you mean `nodes`?"));
+        assert!(set_ref(&value_of("top"), &mut d).is_none());
+    }
+
+    fn r_span(r: &SetRef) -> Span {
+        match &r.kind {
+            SetRefKind::Nodes(s) => s.span,
+            _ => Span::default(),
+        }
+    }
+}

@@ -1,0 +1,65 @@
+//! The `ctc` binary: exit codes and what a user sees.
+
+use std::path::Path;
+use std::process::Command;
+
+fn ctc() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_ctc"));
+    c.current_dir(env!("CARGO_MANIFEST_DIR"));
+    c
+}
+
+#[test]
+fn check_accepts_every_example() {
+    for deck in ["examples/hertz_cylinder.ctc", "examples/hertz_sphere_axi.ctc"] {
+        let out = ctc().args(["check", deck]).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    }
+}
+
+#[test]
+fn check_explain_prints_the_plan() {
+    let out = ctc()
+        .args(["check", "--explain", "examples/lame_cylinder_axi.ctc"])
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    insta::assert_snapshot!(String::from_utf8_lossy(&out.stdout));
+}
+
+#[test]
+fn bad_deck_gives_located_errors_and_nonzero_exit() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = dir.path().join("bad.ctc");
+    std::fs::write(
+        &deck,
+        "analysis { dimension = plane_strain }\nmaterial m { elastic { E = -1  nu = 0.3 } }\n",
+    )
+    .unwrap();
+    let out = ctc().arg("check").arg(&deck).output().unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("bad.ctc:2:"), "{err}");
+    assert!(err.contains('^'), "{err}");
+}
+
+#[test]
+fn missing_deck_is_a_clean_error() {
+    let out = ctc().args(["run", "no/such/deck.ctc"]).output().unwrap();
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("cannot read deck"));
+}
+
+#[test]
+fn run_writes_results() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = ctc()
+        .args(["run", "examples/lame_cylinder_axi.ctc", "-q", "-o"])
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for f in ["results.pvd", "summary.json", "history.csv"] {
+        assert!(Path::new(&dir.path().join(f)).exists(), "{f} missing");
+    }
+}

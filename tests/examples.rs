@@ -1,0 +1,131 @@
+//! Every example deck compiles, runs to the end, and its rounded run summary
+//! matches the reviewed snapshot (increments, iterations, contact state,
+//! resultant forces to 4 significant digits).
+
+use ctc_engine::model::Model;
+use ctc_engine::solve::{IncrementView, Observer};
+use std::path::{Path, PathBuf};
+
+/// Rounds to `digits` significant digits (for snapshots).
+fn sig(x: f64, digits: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let p = digits - 1 - x.abs().log10().floor() as i32;
+    let s = 10f64.powi(p);
+    (x * s).round() / s
+}
+
+/// Keeps what the snapshot needs from each converged increment.
+#[derive(Default)]
+struct Probe {
+    lines: Vec<String>,
+}
+
+impl Observer for Probe {
+    fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
+        let mut reaction = [0.0; 2];
+        for r in v.reaction {
+            reaction[0] += r[0];
+            reaction[1] += r[1];
+        }
+        let mut contact = [0.0; 2];
+        let mut closed = 0;
+        for pair in v.contact {
+            for n in pair {
+                contact[0] += n.force[0];
+                contact[1] += n.force[1];
+                if n.status == ctc_engine::contact::ContactStatus::Closed {
+                    closed += 1;
+                }
+            }
+        }
+        let umax = v
+            .displacement
+            .iter()
+            .map(|u| u[0].hypot(u[1]))
+            .fold(0.0, f64::max);
+        self.lines.push(format!(
+            "inc {} t={} iters={} closed={} |u|max={} reaction=({}, {}) contact=({}, {})",
+            v.increment,
+            sig(v.time, 6),
+            v.residuals.len(),
+            closed,
+            sig(umax, 4),
+            sig(reaction[0], 4),
+            sig(reaction[1], 4),
+            sig(contact[0], 4),
+            sig(contact[1], 4),
+        ));
+        Ok(())
+    }
+}
+
+fn examples() -> Vec<PathBuf> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let mut decks: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("examples/ exists")
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "ctc"))
+        .collect();
+    decks.sort();
+    decks
+}
+
+fn compile(path: &Path) -> Model {
+    let src = ctc_lang::Source::read(path).expect("readable deck");
+    match ctc_lang::compile(&src) {
+        Ok(m) => m,
+        Err(d) => panic!("{}", d.render(&src)),
+    }
+}
+
+#[test]
+fn every_example_opens_with_goal_reference_and_run_command() {
+    for deck in examples() {
+        let text = std::fs::read_to_string(&deck).unwrap();
+        let header: String = text
+            .lines()
+            .take_while(|l| l.starts_with('#'))
+            .collect::<Vec<_>>()
+            .join("\n");
+        assert!(!header.is_empty(), "{} has no opening comment", deck.display());
+        assert!(
+            header.contains("Reference"),
+            "{}: opening comment names no reference",
+            deck.display()
+        );
+        assert!(
+            header.contains("Run: cargo run"),
+            "{}: opening comment has no run command",
+            deck.display()
+        );
+    }
+}
+
+#[test]
+fn every_example_runs_and_matches_its_summary_snapshot() {
+    let decks = examples();
+    assert!(decks.len() >= 3, "expected the example decks");
+    for deck in decks {
+        let model = compile(&deck);
+        let dir = tempfile::tempdir().unwrap();
+        let mut writer = ctc_engine::output::ResultWriter::create(dir.path(), &model).unwrap();
+        let mut probe = Probe::default();
+        struct Both<'a>(&'a mut Probe, &'a mut ctc_engine::output::ResultWriter);
+        impl Observer for Both<'_> {
+            fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
+                self.0.converged(v)?;
+                self.1.converged(v)
+            }
+        }
+        let summary = ctc_engine::solve::run(&model, &mut Both(&mut probe, &mut writer))
+            .unwrap_or_else(|e| panic!("{}: {}", deck.display(), e.message));
+        writer.finish(&summary).unwrap();
+        assert!(summary.completed);
+        assert!(dir.path().join("results.pvd").exists());
+        assert!(dir.path().join("summary.json").exists());
+        let name = deck.file_stem().unwrap().to_string_lossy().into_owned();
+        insta::assert_snapshot!(format!("summary_{name}"), probe.lines.join("\n"));
+    }
+}
