@@ -28,7 +28,7 @@ fn plane() -> ToolGeometry {
 }
 
 #[test]
-fn plane_fixed_gap_force_and_status() {
+fn contact_plane_fixed_gap_force_and_status() {
     let m = probe_model(plane(), ToolMotion::fixed(), 0.5);
     let c = probe(&m, [0.3, -0.02], 0.0).unwrap();
     assert_eq!(c.status, ContactStatus::Closed);
@@ -44,7 +44,7 @@ fn plane_fixed_gap_force_and_status() {
 }
 
 #[test]
-fn plane_translating_with_time() {
+fn contact_plane_translating_with_time() {
     let motion = ToolMotion {
         uy: TimeFunction::Ramp {
             t0: 0.0,
@@ -63,7 +63,7 @@ fn plane_translating_with_time() {
 }
 
 #[test]
-fn plane_rotated_quarter_turn_about_origin() {
+fn contact_plane_rotated_quarter_turn_about_origin() {
     let motion = ToolMotion {
         rotation: TimeFunction::Constant(FRAC_PI_2),
         center: [0.0, 0.0],
@@ -80,7 +80,7 @@ fn plane_rotated_quarter_turn_about_origin() {
 }
 
 #[test]
-fn circle_punch_moving_and_rotating() {
+fn contact_circle_punch_moving_and_rotating() {
     let geometry = ToolGeometry::Circle {
         center: [0.0, 1.0],
         radius: 1.0,
@@ -106,7 +106,7 @@ fn circle_punch_moving_and_rotating() {
 }
 
 #[test]
-fn circle_container_inside() {
+fn contact_circle_container_inside() {
     let geometry = ToolGeometry::Circle {
         center: [0.0, 0.0],
         radius: 2.0,
@@ -128,7 +128,7 @@ fn die() -> ToolGeometry {
 }
 
 #[test]
-fn polyline_node_exactly_on_kink_and_segment_ends() {
+fn contact_polyline_node_exactly_on_kink_and_segment_ends() {
     let m = probe_model(die(), ToolMotion::fixed(), 0.5);
     let c = probe(&m, [1.0, 0.0], 0.0).unwrap();
     assert_eq!((c.gap, c.entity), (0.0, 0));
@@ -140,7 +140,7 @@ fn polyline_node_exactly_on_kink_and_segment_ends() {
 }
 
 #[test]
-fn polyline_concave_kink_nearer_segment_and_corner_fan() {
+fn contact_polyline_concave_kink_nearer_segment_and_corner_fan() {
     let m = probe_model(die(), ToolMotion::fixed(), 0.5);
     // Penetrates segment 1 (gap (-0.1 + 0.05)/sqrt2); its foot on segment 0
     // would lie beyond the kink.
@@ -164,7 +164,7 @@ fn polyline_concave_kink_nearer_segment_and_corner_fan() {
 }
 
 #[test]
-fn polyline_convex_corner_projects_on_vertex() {
+fn contact_polyline_convex_corner_projects_on_vertex() {
     // A punch edge: (0,0) -> (1,0) -> (1,-1) turns right: convex corner.
     let g = ToolGeometry::Polyline {
         points: vec![[0.0, 0.0], [1.0, 0.0], [1.0, -1.0]],
@@ -183,7 +183,7 @@ fn polyline_convex_corner_projects_on_vertex() {
 }
 
 #[test]
-fn node_outside_all_entities() {
+fn contact_node_outside_all_entities() {
     let m = probe_model(die(), ToolMotion::fixed(), 0.5);
     // Far above: beyond prof of every segment box.
     assert!(probe(&m, [0.5, 3.0], 0.0).is_none());
@@ -195,7 +195,7 @@ fn node_outside_all_entities() {
 }
 
 #[test]
-fn arc_bowl_and_roller() {
+fn contact_arc_bowl_and_roller() {
     // Lower half circle walked counter-clockwise: a bowl, free inside.
     let bowl = ToolGeometry::Arc {
         center: [0.0, 0.0],
@@ -224,7 +224,7 @@ fn arc_bowl_and_roller() {
 }
 
 #[test]
-fn nurbs_quarter_circle_equals_arc_through_evaluate_pair() {
+fn contact_nurbs_quarter_circle_equals_arc_through_evaluate_pair() {
     let nurbs = ToolGeometry::Nurbs {
         degree: 2,
         control_points: vec![[1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
@@ -268,7 +268,7 @@ fn nurbs_quarter_circle_equals_arc_through_evaluate_pair() {
 }
 
 #[test]
-fn invalid_tool_is_reported_not_panicking() {
+fn contact_invalid_tool_is_reported_not_panicking() {
     let bad = ToolGeometry::Polyline {
         points: vec![[0.0, 0.0], [0.0, 0.0]],
     };

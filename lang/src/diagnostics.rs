@@ -334,7 +334,7 @@ error: unknown material `steeel`
         let text = "body b {\n  mesh = x\n}\n";
         let d = Diagnostic::error("m", Span::new(5, text.len()), "here");
         let r = d.render(&src(text));
-        assert!(r.contains("1 | body b {\n  |      ^^^^ here\n"), "{r}");
+        assert!(r.contains("1 | body b {\n  |      ^^^ here\n"), "{r}");
     }
 
     #[test]

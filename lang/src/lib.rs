@@ -1,7 +1,87 @@
-//! ctc-lang (work in progress)
+//! ctc-lang: the `.ctc` deck language.
+//!
+//! ```text
+//! text --pest (ctc.pest)--> generic syntax --parse/<construct>.rs--> typed AST (spans)
+//!      --validate.rs--> all semantic errors at once --lower.rs--> ctc_engine::model::Model
+//! ```
+//!
+//! - [`compile`]: parse + validate + lower; the model, or every diagnostic;
+//! - [`check`]: the same, but also returns the warnings of a valid deck;
+//! - [`Diagnostics::render`]: rustc-style plain text;
+//! - [`explain`]: the plan of a lowered scene (`ctc check --explain`).
+
+#![warn(missing_docs)]
+
 pub mod ast;
 pub mod diagnostics;
+pub mod explain;
+pub mod lower;
 pub mod parse;
 pub mod source;
 pub mod span;
 pub mod suggest;
+pub mod validate;
+
+pub use diagnostics::{Diagnostic, Diagnostics, Severity};
+pub use explain::explain;
+pub use source::Source;
+pub use span::Span;
+
+use ctc_engine::model::Model;
+
+/// The outcome of checking a deck: the model when there is no error, and
+/// every diagnostic (errors and warnings) in deck order.
+#[derive(Debug, Clone)]
+pub struct Compilation {
+    /// The lowered scene, `None` if there is at least one error.
+    pub model: Option<Model>,
+    /// All errors and warnings, sorted by position in the deck.
+    pub diagnostics: Diagnostics,
+}
+
+/// Parses, validates and lowers a deck, collecting every diagnostic.
+pub fn check(src: &Source) -> Compilation {
+    let (deck, mut diags) = parse::parse(&src.text);
+    diags.extend(validate::validate(&deck, &src.text));
+    let (model, lowered) = lower::lower(&deck, src, &diags);
+    diags.extend(lowered);
+    let mut diagnostics = Diagnostics(diags);
+    diagnostics.sort();
+    let model = if diagnostics.has_errors() {
+        None
+    } else {
+        model
+    };
+    Compilation { model, diagnostics }
+}
+
+/// Parses, validates and lowers a deck into the engine's [`Model`].
+/// On failure returns every diagnostic of the deck (errors and warnings);
+/// warnings of a successful compilation are dropped (use [`check`] to see
+/// them).
+pub fn compile(src: &Source) -> Result<Model, Diagnostics> {
+    let c = check(src);
+    match c.model {
+        Some(m) => Ok(m),
+        None => Err(c.diagnostics),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn empty_deck_reports_what_is_missing() {
+        let e = compile(&Source::new("empty.ctc", "")).unwrap_err();
+        let msgs: Vec<&str> = e.0.iter().map(|d| d.message.as_str()).collect();
+        assert_eq!(
+            msgs,
+            [
+                "the deck has no `analysis` block",
+                "the deck has no `body`",
+                "the deck has no `step`"
+            ]
+        );
+    }
+}

@@ -3,6 +3,7 @@
 
 use crate::analytical::lame::ThickCylinder;
 use crate::analytical::patch::PenaltyPatch;
+use crate::profile::Abscissa;
 use std::fmt;
 
 /// A quantity extracted from a converged state and compared with a
@@ -14,6 +15,10 @@ pub enum Quantity {
     /// pressure profile ([`crate::profile::ContactProfile::half_width`]),
     /// against Hertz for the computed load. Error `|a_h - a| / a`.
     HalfWidth,
+    /// Hertz a from the first moment of the contact forces
+    /// ([`crate::profile::ContactProfile::moment_ratio`]): an integral
+    /// estimate, insensitive to where the nodes fall. Error `|a_m - a| / a`.
+    HalfWidthMoment,
     /// Pressure at the node on the axis against Hertz p0 for the computed
     /// load. Error `|p_h - p0| / p0`.
     PeakPressure,
@@ -53,6 +58,7 @@ impl Quantity {
     pub fn name(self) -> &'static str {
         match self {
             Quantity::HalfWidth => "a",
+            Quantity::HalfWidthMoment => "a (moment)",
             Quantity::PeakPressure => "p0",
             Quantity::ContactForce => "contact force",
             Quantity::PressureL2 => "L2(p)/p0",
@@ -92,6 +98,9 @@ pub enum Reference {
         axis: f64,
         /// Whether the model is the half x >= axis (load doubled).
         half_model: bool,
+        /// Coordinate the profile is read in (reference for a curved body on
+        /// a plane tool, current for a circle tool on a flat body).
+        abscissa: Abscissa,
     },
     /// Elastic sphere on a rigid plane, axisymmetric: Hertz point contact.
     HertzSphere {

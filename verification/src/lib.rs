@@ -1,8 +1,113 @@
-//! ctc-verification: verification cases of ctc.
+//! ctc-verification: the verification harness of ctc.
+//!
+//! Every case is a runnable `.ctc` deck in `cases/` (written at its coarsest
+//! level, with `# refine:` markers listing the mesh divisions of finer
+//! levels, see [`refine`]) plus a closed-form reference in code
+//! ([`analytical`]). [`run`] solves each level with the engine, extracts the
+//! quantities from the converged final state ([`capture`], [`profile`],
+//! [`measure`]), compares them with the reference, computes observed
+//! convergence rates and returns a [`Report`]; with a report directory it
+//! also writes SVG plots ([`plot`]), `report.md` ([`markdown`]) and
+//! `report.json`. [`run_bench`] times the issue-3 benchmark ([`bench`]).
+//!
+//! Modules:
+//! - [`analytical`]: Hertz (cylinder, sphere), Lamé, contact patch;
+//! - [`refine`]: refinement markers of decks; [`deck`]: read and compile;
+//! - [`capture`]: observer keeping the final state; [`profile`]: contact
+//!   pressure profile and the half-width estimator; [`measure`]: quantities;
+//! - [`case`]: what a case is; [`cases`]: the catalogue;
+//! - [`runner`]: levels, judging, rates; [`report`]: tables and JSON;
+//! - [`plot`], [`markdown`]: the report directory; [`bench`]: the benchmark.
 
 pub mod analytical;
-pub mod refine;
+pub mod bench;
 pub mod capture;
-pub mod profile;
 pub mod case;
+pub mod cases;
+pub mod deck;
+pub mod markdown;
 pub mod measure;
+pub mod plot;
+pub mod profile;
+pub mod refine;
+pub mod report;
+pub mod runner;
+
+pub use bench::{run_bench, BenchOptions, BenchReport};
+pub use report::Report;
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Options of [`run`] (the `ctc verify` command).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct VerifyOptions {
+    /// Run only the cases whose name contains this text.
+    pub filter: Option<String>,
+    /// Write plots, `report.md` and `report.json` into this directory
+    /// (created if needed).
+    pub report_dir: Option<PathBuf>,
+    /// Highest refinement level to run (0 = the decks as written). `None`:
+    /// each case's default number of levels. Capped by the levels a deck
+    /// defines.
+    pub max_level: Option<usize>,
+    /// Directory of the case decks. `None`: [`default_cases_dir`].
+    pub cases_dir: Option<PathBuf>,
+    /// Print one line per finished level to stderr.
+    pub progress: bool,
+}
+
+/// The `cases/` directory of this crate's sources (compiled in), so the
+/// `ctc` binary finds the decks whatever the working directory.
+pub fn default_cases_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
+}
+
+/// Runs the verification cases selected by `opts`. `Err` only when the
+/// report directory cannot be written or the cases directory does not
+/// exist; failed cases are in the [`Report`] (see [`Report::passed`]).
+pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
+    let start = Instant::now();
+    let dir = opts.cases_dir.clone().unwrap_or_else(default_cases_dir);
+    if !dir.is_dir() {
+        return Err(format!(
+            "verification cases directory {} does not exist (pass the directory of the .ctc case decks)",
+            dir.display()
+        ));
+    }
+    let mut progress = |line: &str| {
+        if opts.progress {
+            eprintln!("{line}");
+        }
+    };
+    let cases: Vec<_> = cases::all()
+        .into_iter()
+        .filter(|c| c.matches(opts.filter.as_deref()))
+        .collect();
+    let mut report = Report {
+        cases: cases
+            .iter()
+            .map(|c| runner::run_case(c, &dir, opts.max_level, &mut progress))
+            .collect(),
+        cases_dir: dir.display().to_string(),
+        wall_time: 0.0,
+    };
+    report.wall_time = start.elapsed().as_secs_f64();
+    if let Some(out) = &opts.report_dir {
+        write_report_dir(&report, out)?;
+    }
+    Ok(report)
+}
+
+/// Writes the plots, `report.md` and `report.json` into `dir`.
+pub fn write_report_dir(report: &Report, dir: &Path) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    let mut plots = Vec::new();
+    for c in &report.cases {
+        plots.extend(plot::case_plots(c, dir)?);
+    }
+    let md = markdown::markdown(report, &plots);
+    std::fs::write(dir.join("report.md"), md).map_err(|e| format!("cannot write report.md: {e}"))?;
+    std::fs::write(dir.join("report.json"), report.to_json()).map_err(|e| format!("cannot write report.json: {e}"))?;
+    Ok(())
+}

@@ -35,26 +35,24 @@ impl Aabb {
 
     /// Grows the box to contain `p`.
     pub fn include(&mut self, p: [f64; 2]) {
-        for k in 0..2 {
-            self.min[k] = self.min[k].min(p[k]);
-            self.max[k] = self.max[k].max(p[k]);
-        }
+        self.min = [self.min[0].min(p[0]), self.min[1].min(p[1])];
+        self.max = [self.max[0].max(p[0]), self.max[1].max(p[1])];
     }
 
     /// Euclidean distance from `x` to the box (0 inside).
     pub fn distance(&self, x: [f64; 2]) -> f64 {
-        let mut d2 = 0.0;
-        for k in 0..2 {
-            let e = if x[k] < self.min[k] {
-                self.min[k] - x[k]
-            } else if x[k] > self.max[k] {
-                x[k] - self.max[k]
+        let excess = |v: f64, lo: f64, hi: f64| {
+            if v < lo {
+                lo - v
+            } else if v > hi {
+                v - hi
             } else {
                 0.0
-            };
-            d2 += e * e;
-        }
-        d2.sqrt()
+            }
+        };
+        let ex = excess(x[0], self.min[0], self.max[0]);
+        let ey = excess(x[1], self.min[1], self.max[1]);
+        (ex * ex + ey * ey).sqrt()
     }
 
     /// Whether `x` lies in the box inflated by `margin` in every direction

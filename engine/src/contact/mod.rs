@@ -103,8 +103,9 @@ impl PairState {
         };
         let n = cp.nodes.len();
         let shape = match model.tools.get(cp.tool) {
-            Some(tool) => ToolShape::new(&tool.geometry)
-                .map_err(|e| format!("tool '{}': {e}", tool.name)),
+            Some(tool) => {
+                ToolShape::new(&tool.geometry).map_err(|e| format!("tool '{}': {e}", tool.name))
+            }
             None => Err(format!(
                 "contact pair '{}' refers to tool {} which does not exist",
                 cp.name, cp.tool

@@ -103,7 +103,10 @@ mod tests {
         assert_eq!(r.stiffness, [[0.0, 0.0], [0.0, 50.0]]);
         assert!((r.pressure - 1.0).abs() < 1e-15);
         let o = respond(&m, 0.5, 0.01, [0.0, 1.0], 0.0);
-        assert_eq!((o.status, o.force, o.pressure), (ContactStatus::Open, [0.0; 2], 0.0));
+        assert_eq!(
+            (o.status, o.force, o.pressure),
+            (ContactStatus::Open, [0.0; 2], 0.0)
+        );
         let nodal = ContactMethod::Penalty {
             kind: PenaltyKind::Nodal,
             stiffness: 100.0,

@@ -41,10 +41,15 @@ fn better(p: &Projection, e: usize, best: &Option<Found>) -> bool {
 
 /// Search state for one node.
 struct Scan<'a> {
+    /// The tool.
     shape: &'a ToolShape,
+    /// Query point, tool reference frame.
     x: [f64; 2],
+    /// Search window `prof` (radius until a candidate is found).
     window: f64,
+    /// Closest candidate so far.
     best: Option<Found>,
+    /// Projections computed.
     tests: usize,
 }
 
@@ -56,9 +61,12 @@ impl Scan<'_> {
     }
 
     /// Projects on `e` unless its box is beyond the radius; returns whether
-    /// the entity was projected.
+    /// the entity was projected. The box test keeps a relative margin of
+    /// 1e-12 so that rounding never prunes an entity tying with the best
+    /// (two segments sharing the closest corner).
     fn consider(&mut self, e: usize, unconditional: bool) -> bool {
-        if !unconditional && self.shape.bounding_box(e).distance(self.x) > self.radius() {
+        let r = self.radius();
+        if !unconditional && self.shape.bounding_box(e).distance(self.x) > r + 1e-12 * r {
             return false;
         }
         self.tests += 1;
@@ -138,16 +146,13 @@ pub fn closest(
     // A candidate farther than the window was found after some entities had
     // been skipped with the window radius: rescan them with the final radius
     // so the result is exactly the closest one.
+    // Entities projected in the first pass then include every entity whose
+    // box is within the window (the radius never fell below it).
     if skipped_before_any && scan.radius() > window {
-        let mut tested = vec![false; count];
-        // Re-derive which entities were projected: any entity whose box is
-        // within the window was projected in the first pass.
-        for (e, t) in tested.iter_mut().enumerate() {
-            *t = shape.bounding_box(e).distance(x) <= window
-                || (memory == Some(e) && first.first() == Some(&e));
-        }
-        for (e, t) in tested.iter().enumerate() {
-            if !t {
+        for e in 0..count {
+            let done =
+                memory == Some(e) || shape.bounding_box(e).distance(x) <= window + 1e-12 * window;
+            if !done {
                 scan.consider(e, false);
             }
         }

@@ -30,7 +30,7 @@ pub fn strain_displacement<const ND: usize>(
         b[(3, 2 * i + 1)] = d[0];
     }
     if kind == AnalysisKind::Axisymmetric {
-        if !(r > 0.0) {
+        if r.is_nan() || r <= 0.0 {
             return Err(ElementError::new(format!(
                 "axisymmetric integration point at radius r = {r:e} <= 0: the body must lie \
                  in x = r >= 0"

@@ -189,11 +189,7 @@ pub(crate) mod testing {
         pub x: Vec<[f64; 2]>,
     }
 
-    fn polygon(
-        n: usize,
-        start: f64,
-        angle_jitter: f64,
-    ) -> impl Strategy<Value = Shape> {
+    fn polygon(n: usize, start: f64, angle_jitter: f64) -> impl Strategy<Value = Shape> {
         (
             proptest::collection::vec((-angle_jitter..angle_jitter, 0.6f64..1.4), n),
             0.05f64..20.0,

@@ -42,7 +42,10 @@ pub fn blocks_of(model: &Model) -> Result<Vec<CellBlock>, String> {
         .iter()
         .map(|b| {
             let m = model.materials.get(b.material).ok_or_else(|| {
-                format!("body `{}` refers to missing material {}", b.name, b.material)
+                format!(
+                    "body `{}` refers to missing material {}",
+                    b.name, b.material
+                )
             })?;
             Ok(CellBlock {
                 cells: b.cells.clone(),
@@ -148,8 +151,7 @@ pub fn nodal_fields(
 /// [`nodal_fields`] for a whole model.
 pub fn nodal_fields_of_model(model: &Model, u: &[[f64; 2]]) -> Result<NodalFields, String> {
     let blocks = blocks_of(model)?;
-    nodal_fields(&model.mesh, &blocks, &Section::new(&model.analysis), u)
-        .map_err(|e| e.message)
+    nodal_fields(&model.mesh, &blocks, &Section::new(&model.analysis), u).map_err(|e| e.message)
 }
 
 #[cfg(test)]
@@ -162,17 +164,15 @@ mod tests {
     fn recovery_of_uniform_strain_on_mixed_mesh() {
         // a quad and a triangle; u = (0.01 x, -0.02 y): uniform strain everywhere
         let mesh = Mesh {
-            nodes: vec![
-                [0.0, 0.0],
-                [1.0, 0.0],
-                [1.2, 1.0],
-                [0.0, 1.0],
-                [2.0, 0.5],
-            ],
+            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.2, 1.0], [0.0, 1.0], [2.0, 0.5]],
             cells: vec![Cell::quad(0, 1, 2, 3), Cell::tri(1, 4, 2)],
             ..Default::default()
         };
-        let u: Vec<[f64; 2]> = mesh.nodes.iter().map(|p| [0.01 * p[0], -0.02 * p[1]]).collect();
+        let u: Vec<[f64; 2]> = mesh
+            .nodes
+            .iter()
+            .map(|p| [0.01 * p[0], -0.02 * p[1]])
+            .collect();
         let law = LinearElastic::new(100.0, 0.25, AnalysisKind::PlaneStress).unwrap();
         let blocks = [CellBlock {
             cells: 0..2,

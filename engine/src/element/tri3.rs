@@ -27,10 +27,7 @@ pub fn integration_points(
         [(p0[1] - p1[1]) / two_area, (p1[0] - p0[0]) / two_area],
     ];
     let n = [1.0 / 3.0; 3];
-    let centroid = [
-        (p0[0] + p1[0] + p2[0]) / 3.0,
-        (p0[1] + p1[1] + p2[1]) / 3.0,
-    ];
+    let centroid = [(p0[0] + p1[0] + p2[0]) / 3.0, (p0[1] + p1[1] + p2[1]) / 3.0];
     let b = strain_displacement::<DOFS>(&n, &dndx, centroid[0], section.kind)?;
     Ok([IntegrationPoint {
         b,
@@ -88,8 +85,14 @@ mod tests {
         // K_00 = A (dN0/dx^2 + dN0/dy^2 / 2) = 0.75, K_01 = A (1/2) dN0/dy dN0/dx = 0.25.
         let law = LinearElastic::new(1.0, 0.0, AnalysisKind::PlaneStress).unwrap();
         let x = [[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]];
-        let r = response(&x, &SVector::zeros(), &section(AnalysisKind::PlaneStress), &law, true)
-            .unwrap();
+        let r = response(
+            &x,
+            &SVector::zeros(),
+            &section(AnalysisKind::PlaneStress),
+            &law,
+            true,
+        )
+        .unwrap();
         let k = r.stiffness;
         assert!((k[(0, 0)] - 0.75).abs() < 1e-15);
         assert!((k[(0, 1)] - 0.25).abs() < 1e-15);
@@ -102,8 +105,14 @@ mod tests {
     fn tri3_clockwise_nodes_are_rejected() {
         let law = LinearElastic::new(1.0, 0.3, AnalysisKind::PlaneStrain).unwrap();
         let x = [[0.0, 0.0], [0.0, 1.0], [1.0, 0.0]];
-        let e = response(&x, &SVector::zeros(), &section(AnalysisKind::PlaneStrain), &law, true)
-            .unwrap_err();
+        let e = response(
+            &x,
+            &SVector::zeros(),
+            &section(AnalysisKind::PlaneStrain),
+            &law,
+            true,
+        )
+        .unwrap_err();
         assert!(e.message.contains("counter-clockwise"), "{}", e.message);
     }
 

@@ -34,7 +34,8 @@ pub enum Grading {
     },
     /// Symmetric geometric progression refined (ratio > 1) or coarsened
     /// (ratio < 1) towards the middle; `ratio` = size at the ends / size at
-    /// the middle.
+    /// the middle (with fewer than 3 divisions there is no middle: uniform).
+    /// Ratios must lie in [`RATIO_RANGE`].
     Center {
         /// end / middle division size, > 0.
         ratio: f64,
@@ -56,7 +57,8 @@ pub enum MeshSpec {
         divisions: [usize; 2],
         /// Grading along x and y.
         grading: [Grading; 2],
-        /// Tri3 (each quad split in two) or Quad4.
+        /// Tri3 (each quad split in two along the diagonal pointing to the
+        /// rectangle centre: mirror-symmetric) or Quad4.
         kind: CellKind,
     },
     /// Half disc below (`upper = false`) or above its diameter, polar
@@ -64,7 +66,9 @@ pub enum MeshSpec {
     /// centre, and 2:1 coarsening of the rings towards the centre where the
     /// circumferential divisions would be much thinner than the radial ones
     /// (so a grading refined at the pole does not send slivers to the
-    /// centre). Every arc angle is kept on the arc.
+    /// centre). Every arc angle is kept on the arc and on the ring below it:
+    /// the surface layer has one regular cell per arc division. A symmetric
+    /// circumferential grading gives a mesh symmetric about the pole.
     /// Sets: `arc` (curved boundary), `flat` (the diameter), `center` (node).
     HalfDisc {
         /// Centre of the full circle.

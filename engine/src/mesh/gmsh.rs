@@ -1,12 +1,303 @@
 //! gmsh `.msh` reader (ASCII formats 2.2 and 4.1).
+//!
+//! What is read:
+//! - `$MeshFormat`: versions 2, 2.0, 2.1, 2.2 and 4.1, ASCII only (a binary
+//!   file is a clear error);
+//! - `$PhysicalNames`, `$Entities` (4.1: physical groups of each entity),
+//!   `$Nodes` (4.1 blocks, any tags), `$Elements`;
+//! - other sections (`$NodeData`, `$Periodic`, `$Comments`, ...) are skipped.
+//!
+//! How it becomes a [`Mesh`]:
+//! - cells are the triangles (type 2) and quadrangles (type 3) of every
+//!   surface, re-oriented counter-clockwise when the file has them
+//!   clockwise; duplicates (MSH 2 repeats elements once per physical group)
+//!   are dropped;
+//! - nodes are those used by cells, numbered densely in file order (gmsh
+//!   tags need not be contiguous; geometry points off the mesh, like a circle
+//!   centre, are dropped); z is ignored (the mesh is taken as planar);
+//! - physical groups become sets named from `$PhysicalNames`, else
+//!   `physical_<tag>`: dimension 1 -> an edge set (each line oriented like
+//!   the boundary edge of its cell, body on the left) and a node set;
+//!   dimension 0 -> a node set; dimension 2 -> the node set of its cells.
+//!   A dimension-1 group made only of interior lines (shared by two cells)
+//!   gives a node set only; one mixing boundary and interior lines is an
+//!   error. Groups of different dimensions sharing a name given in
+//!   `$PhysicalNames` are merged; unnamed groups of different dimensions
+//!   with the same tag (both `physical_<tag>`) are an error asking for names;
+//! - points (type 15) and lines (type 1) only feed the sets; second-order
+//!   and 3D elements are errors.
+//!
+//! Every malformed input gives a [`MeshError`] with the 1-based line.
+
+mod assemble;
+mod cursor;
+mod raw;
+mod v2;
+mod v41;
 
 use super::Mesh;
 use crate::mesh::MeshError;
+use cursor::Cursor;
+use raw::RawMesh;
+
+/// Supported format families.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+enum Version {
+    V2,
+    V41,
+}
 
 /// Parses the text of a `.msh` file. Physical groups of dimension 1 become
 /// edge sets (and node sets), of dimension 0 node sets; cells are the 2D
 /// triangles and quadrangles. Errors carry the 1-based line number.
 pub fn parse(text: &str) -> Result<Mesh, MeshError> {
-    let _ = text;
-    Err(MeshError::new("gmsh reader not implemented yet"))
+    let mut c = Cursor::new(text);
+    let version = header(&mut c)?;
+    let mut raw = RawMesh::default();
+    let mut entities = v41::EntityPhysicals::new();
+    while let Some((tok, line)) = c.next_token() {
+        let Some(name) = tok.strip_prefix('$') else {
+            return Err(MeshError::at_line(
+                line,
+                format!(
+                    "expected a section header such as $Nodes, found '{}'",
+                    tok.chars().take(40).collect::<String>()
+                ),
+            ));
+        };
+        match name {
+            "MeshFormat" => return Err(MeshError::at_line(line, "a second $MeshFormat section")),
+            "PhysicalNames" => {
+                c.section = "$PhysicalNames";
+                physical_names(&mut c, &mut raw)?;
+            }
+            "Entities" if version == Version::V41 => {
+                c.section = "$Entities";
+                entities = v41::entities(&mut c)?;
+            }
+            "Nodes" | "Elements" => {
+                let seen = if name == "Nodes" {
+                    &mut raw.has_nodes
+                } else {
+                    &mut raw.has_elements
+                };
+                if *seen {
+                    return Err(MeshError::at_line(
+                        line,
+                        format!("a second ${name} section (partitioned files are not supported)"),
+                    ));
+                }
+                *seen = true;
+                c.section = if name == "Nodes" {
+                    "$Nodes"
+                } else {
+                    "$Elements"
+                };
+                match (name, version) {
+                    ("Nodes", Version::V2) => v2::nodes(&mut c, &mut raw)?,
+                    ("Nodes", Version::V41) => v41::nodes(&mut c, &mut raw)?,
+                    (_, Version::V2) => v2::elements(&mut c, &mut raw)?,
+                    (_, Version::V41) => v41::elements(&mut c, &mut raw, &entities)?,
+                }
+            }
+            n if n.starts_with("End") => {
+                return Err(MeshError::at_line(
+                    line,
+                    format!("{tok} without its opening section"),
+                ))
+            }
+            _ => skip(&mut c, name, line)?,
+        }
+    }
+    assemble::assemble(raw, c.line())
+}
+
+/// Parses a `.msh` file's bytes: like [`parse`], but recognises binary
+/// files before requiring UTF-8 text, and reports invalid bytes by line.
+pub fn parse_bytes(bytes: &[u8]) -> Result<Mesh, MeshError> {
+    match std::str::from_utf8(bytes) {
+        Ok(text) => parse(text),
+        Err(e) => {
+            let valid = &bytes[..e.valid_up_to()];
+            // a binary file has a readable header: let `header` explain
+            if let Ok(head) = std::str::from_utf8(valid) {
+                let mut c = Cursor::new(head);
+                if let Err(err) = header(&mut c) {
+                    if err.message.contains("binary") {
+                        return Err(err);
+                    }
+                }
+            }
+            let line = 1 + valid.iter().filter(|&&b| b == b'\n').count();
+            Err(MeshError::at_line(
+                line,
+                "the file is not valid UTF-8 text: is it a binary .msh? (ctc reads ASCII .msh only)",
+            ))
+        }
+    }
+}
+
+/// Reads and parses a `.msh` file; I/O errors name the path.
+pub fn read(path: &std::path::Path) -> Result<Mesh, MeshError> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| MeshError::new(format!("cannot read {}: {e}", path.display())))?;
+    parse_bytes(&bytes)
+}
+
+/// Reads `$MeshFormat` .. `$EndMeshFormat`.
+fn header(c: &mut Cursor) -> Result<Version, MeshError> {
+    match c.next_token() {
+        Some(("$MeshFormat", _)) => {}
+        Some((tok, line)) => {
+            return Err(MeshError::at_line(
+                line,
+                format!(
+                    "not a gmsh mesh in format 2.2 or 4.1: the file must start with $MeshFormat, found '{}'",
+                    tok.chars().take(40).collect::<String>()
+                ),
+            ))
+        }
+        None => return Err(MeshError::at_line(1, "the mesh file is empty")),
+    }
+    c.section = "$MeshFormat";
+    let (v, line) = c.token("the format version")?;
+    let version = match v {
+        "2" | "2.0" | "2.1" | "2.2" => Version::V2,
+        "4.1" => Version::V41,
+        "4" | "4.0" => {
+            return Err(MeshError::at_line(
+                line,
+                "MSH format 4.0 is not supported: save as 4.1 or 2.2 (gmsh -format msh41)",
+            ))
+        }
+        _ => {
+            return Err(MeshError::at_line(
+                line,
+                format!(
+                    "unsupported MSH format version '{}': ctc reads 2.2 and 4.1",
+                    v.chars().take(20).collect::<String>()
+                ),
+            ))
+        }
+    };
+    let file_type = c.usize("the file type (0 = ASCII, 1 = binary)")?;
+    if file_type != 0 {
+        return Err(c.error(
+            "binary .msh files are not supported: save the mesh as ASCII \
+             (gmsh: Mesh.Binary = 0, or File > Export with 'Save all' unchecked and ASCII)",
+        ));
+    }
+    c.usize("the data size")?;
+    c.end("MeshFormat")?;
+    Ok(version)
+}
+
+/// Reads `$PhysicalNames` after its header: `n`, then `dim tag "name"`.
+fn physical_names(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
+    let n = c.usize("the number of physical names")?;
+    for _ in 0..n {
+        let dim = c.usize("the dimension of a physical group")?;
+        let line = c.line();
+        if dim > 3 {
+            return Err(MeshError::at_line(
+                line,
+                format!("physical group dimension {dim} is not 0, 1, 2 or 3"),
+            ));
+        }
+        let tag = c.i64("a physical tag")?;
+        let rest = c.rest_of_line();
+        let name = rest
+            .strip_prefix('"')
+            .and_then(|r| r.strip_suffix('"'))
+            .filter(|s| !s.is_empty())
+            .ok_or_else(|| {
+                MeshError::at_line(
+                    line,
+                    format!("expected a quoted physical name, found '{rest}'"),
+                )
+            })?;
+        raw.names.insert((dim, tag), name.to_string());
+    }
+    c.end("PhysicalNames")
+}
+
+/// Skips an unknown section up to its `$End<name>`.
+fn skip(c: &mut Cursor, name: &str, start: usize) -> Result<(), MeshError> {
+    let end = format!("$End{name}");
+    while let Some((tok, _)) = c.next_token() {
+        if tok == end {
+            return Ok(());
+        }
+    }
+    Err(MeshError::at_line(
+        start,
+        format!("section ${name} is never closed by {end} (is the file truncated?)"),
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SQUARE_V2: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
+$PhysicalNames\n2\n1 1 \"bottom\"\n2 2 \"body\"\n$EndPhysicalNames\n\
+$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n\
+$Elements\n3\n1 1 2 1 1 1 2\n2 2 2 2 1 1 3 2\n3 2 2 2 1 1 4 3\n$EndElements\n";
+
+    #[test]
+    fn unit_square_v2_two_triangles_reoriented_and_sets() {
+        let m = parse(SQUARE_V2).unwrap();
+        assert_eq!(m.nodes.len(), 4);
+        assert_eq!(m.cells.len(), 2);
+        // the first triangle was clockwise in the file
+        assert_eq!(m.cells[0].node_slice(), &[0, 1, 2]);
+        assert_eq!(m.edge_sets["bottom"], vec![[0, 1]]);
+        assert_eq!(m.node_sets["bottom"], vec![0, 1]);
+        assert_eq!(m.node_sets["body"], vec![0, 1, 2, 3]);
+    }
+
+    #[test]
+    fn binary_header_is_a_clear_error() {
+        let e = parse("$MeshFormat\n4.1 1 8\n").unwrap_err();
+        assert_eq!(e.line, Some(2));
+        assert!(e.message.contains("binary"), "{}", e.message);
+        let mut bytes = b"$MeshFormat\n4.1 1 8\n".to_vec();
+        bytes.extend_from_slice(&[1, 0, 0, 0, 0xff, 0xfe, b'\n']);
+        let e = parse_bytes(&bytes).unwrap_err();
+        assert!(e.message.contains("binary"), "{}", e.message);
+    }
+
+    #[test]
+    fn invalid_utf8_reported_at_its_line() {
+        let mut bytes = b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n".to_vec();
+        bytes.push(0xff);
+        let e = parse_bytes(&bytes).unwrap_err();
+        assert_eq!(e.line, Some(5));
+    }
+
+    #[test]
+    fn unknown_sections_skipped_unclosed_reported() {
+        let text = SQUARE_V2.replace(
+            "$Nodes",
+            "$Comments\nanything $Nodes-like goes 1 2\n$EndComments\n$Nodes",
+        );
+        assert!(parse(&text).is_ok());
+        let e = parse("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Foo\n1 2\n").unwrap_err();
+        assert_eq!(e.line, Some(4));
+        assert!(e.message.contains("$EndFoo"), "{}", e.message);
+    }
+
+    #[test]
+    fn unsupported_versions_and_non_msh_files() {
+        for (text, line, word) in [
+            ("$MeshFormat\n4 0 8\n$EndMeshFormat\n", 2, "4.0"),
+            ("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n", 2, "3.0"),
+            ("$NOD\n1\n1 0 0 0\n$ENDNOD\n", 1, "$MeshFormat"),
+            ("", 1, "empty"),
+        ] {
+            let e = parse(text).unwrap_err();
+            assert_eq!(e.line, Some(line), "{text}");
+            assert!(e.message.contains(word), "{}", e.message);
+        }
+    }
 }

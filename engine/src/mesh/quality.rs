@@ -122,7 +122,13 @@ mod tests {
     #[test]
     fn unit_square_and_equilateral_triangle_quality() {
         let mesh = Mesh {
-            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 3f64.sqrt() / 2.0]],
+            nodes: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [0.5, 3f64.sqrt() / 2.0],
+            ],
             cells: vec![Cell::quad(0, 1, 2, 3), Cell::tri(0, 1, 4)],
             ..Default::default()
         };

@@ -283,9 +283,21 @@ mod tests {
         m.cells.push(Cell::quad(0, 1, 2, 6)); // positive area, re-entrant at node 6
         let errs = check(&m).unwrap_err();
         let text: Vec<String> = errs.iter().map(|e| e.message.clone()).collect();
-        assert!(text.iter().any(|t| t.contains("cell 1") && t.contains("inverted")), "{text:?}");
-        assert!(text.iter().any(|t| t.contains("cell 2") && t.contains("degenerate")), "{text:?}");
-        assert!(text.iter().any(|t| t.contains("cell 3") && t.contains("not convex")), "{text:?}");
+        assert!(
+            text.iter()
+                .any(|t| t.contains("cell 1") && t.contains("inverted")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter()
+                .any(|t| t.contains("cell 2") && t.contains("degenerate")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter()
+                .any(|t| t.contains("cell 3") && t.contains("not convex")),
+            "{text:?}"
+        );
     }
 
     #[test]
@@ -299,9 +311,20 @@ mod tests {
         let text: Vec<String> = errs.iter().map(|e| e.message.clone()).collect();
         assert!(text.iter().any(|t| t.contains("node 9")), "{text:?}");
         assert!(text.iter().any(|t| t.contains("node set 's'")), "{text:?}");
-        assert!(text.iter().any(|t| t.contains("nodes 2 and 4 coincide")), "{text:?}");
-        assert!(text.iter().any(|t| t.contains("node 4") && t.contains("no cell")), "{text:?}");
-        assert!(text.iter().any(|t| t.contains("node 5") && t.contains("non-finite")), "{text:?}");
+        assert!(
+            text.iter().any(|t| t.contains("nodes 2 and 4 coincide")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter()
+                .any(|t| t.contains("node 4") && t.contains("no cell")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter()
+                .any(|t| t.contains("node 5") && t.contains("non-finite")),
+            "{text:?}"
+        );
     }
 
     #[test]
@@ -336,7 +359,11 @@ mod tests {
         }
         let errs = check(&m).unwrap_err();
         assert_eq!(errs.len(), MAX_REPORTED + 1);
-        assert!(errs.last().unwrap().message.contains("10 more unused nodes"));
+        assert!(errs
+            .last()
+            .unwrap()
+            .message
+            .contains("10 more unused nodes"));
     }
 
     #[test]

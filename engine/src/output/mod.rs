@@ -1,36 +1,156 @@
 //! Result writers: VTU per increment + PVD index, CSV histories, contact
 //! pressure along each surface, JSON run summary.
+//!
+//! Files in the result directory:
+//! - `inc_NNNN.vtu`: every `output.every` converged increments and always
+//!   the last one of the analysis (and, on failure, the last converged one);
+//! - `results.pvd`: the time series, rewritten after each VTU, so a killed
+//!   run leaves a valid index;
+//! - `history.csv`: one row per converged increment (flushed each time);
+//! - `contact_<pair>_<NNNN>.csv`: the slave nodes of each pair at each
+//!   written increment;
+//! - `summary.json`: the run summary, written by [`ResultWriter::finish`].
+//!
+//! VTU, PVD, contact CSV and summary files are replaced atomically (temporary
+//! file + rename).
 
-use crate::model::Model;
+pub mod atomic;
+pub mod contact_csv;
+pub mod history;
+pub mod pvd;
+pub mod vtu;
+
+use crate::contact::NodeContact;
+use crate::element::recovery::nodal_fields_of_model;
+use crate::model::{Field, Model};
 use crate::solve::{IncrementView, Observer, RunSummary};
+use atomic::write_atomic;
+use history::HistoryWriter;
 use std::path::{Path, PathBuf};
+
+/// A converged increment kept until it is written.
+#[derive(Debug, Clone)]
+struct Snapshot {
+    step: usize,
+    increment: usize,
+    time: f64,
+    displacement: Vec<[f64; 2]>,
+    reaction: Vec<[f64; 2]>,
+    contact: Vec<Vec<NodeContact>>,
+}
 
 /// Writes a run's results into a directory (an [`Observer`]).
 #[derive(Debug)]
 pub struct ResultWriter {
     dir: PathBuf,
+    model: Model,
+    history: HistoryWriter,
+    pvd: Vec<(f64, String)>,
+    pending: Option<Snapshot>,
 }
 
 impl ResultWriter {
     /// Creates `dir` (and parents) and prepares the writers for `model`.
     pub fn create(dir: &Path, model: &Model) -> std::io::Result<Self> {
-        let _ = model;
         std::fs::create_dir_all(dir)?;
+        let history = HistoryWriter::create(&dir.join("history.csv"), model)?;
         Ok(ResultWriter {
             dir: dir.to_path_buf(),
+            model: model.clone(),
+            history,
+            pvd: Vec::new(),
+            pending: None,
         })
     }
 
-    /// Writes `summary.json` (call at the end, also after a failed run).
+    /// The result directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Writes `summary.json` (call at the end, also after a failed run);
+    /// writes the last converged increment first if it was not written.
     pub fn finish(&mut self, summary: &RunSummary) -> std::io::Result<()> {
+        if let Some(snap) = self.pending.take() {
+            self.write_increment(&snap).map_err(std::io::Error::other)?;
+        }
         let text = serde_json::to_string_pretty(summary).map_err(std::io::Error::other)?;
-        std::fs::write(self.dir.join("summary.json"), text)
+        write_atomic(&self.dir.join("summary.json"), text.as_bytes())
+    }
+
+    fn write_increment(&mut self, snap: &Snapshot) -> Result<(), String> {
+        let model = &self.model;
+        let fields = &model.output.fields;
+        let needs_recovery = fields
+            .iter()
+            .any(|f| matches!(f, Field::Stress | Field::Strain | Field::VonMises));
+        let nodal = if needs_recovery {
+            Some(nodal_fields_of_model(model, &snap.displacement)?)
+        } else {
+            None
+        };
+        let name = format!("inc_{:04}.vtu", snap.increment);
+        let text = vtu::vtu(&vtu::VtuData {
+            model,
+            step: model.steps.get(snap.step).map_or("", |s| s.name.as_str()),
+            increment: snap.increment,
+            time: snap.time,
+            fields,
+            displacement: &snap.displacement,
+            reaction: &snap.reaction,
+            contact: &snap.contact,
+            nodal: nodal.as_ref(),
+        });
+        let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
+        write_atomic(&self.dir.join(&name), text.as_bytes()).map_err(io)?;
+        for (p, list) in snap.contact.iter().enumerate() {
+            let csv = contact_csv::contact_csv(model, p, &snap.displacement, list);
+            let file = format!("contact_{p}_{:04}.csv", snap.increment);
+            write_atomic(&self.dir.join(file), csv.as_bytes()).map_err(io)?;
+        }
+        self.pvd.push((snap.time, name));
+        write_atomic(
+            &self.dir.join("results.pvd"),
+            pvd::pvd(&self.pvd).as_bytes(),
+        )
+        .map_err(io)?;
+        Ok(())
     }
 }
 
 impl Observer for ResultWriter {
     fn converged(&mut self, view: &IncrementView<'_>) -> Result<(), String> {
-        let _ = view;
-        Ok(())
+        let row = history::row(
+            view.model,
+            view.time,
+            view.displacement,
+            view.reaction,
+            view.contact,
+        );
+        self.history
+            .append(&row)
+            .map_err(|e| format!("cannot write history.csv in {}: {e}", self.dir.display()))?;
+        let snap = Snapshot {
+            step: view.step,
+            increment: view.increment,
+            time: view.time,
+            displacement: view.displacement.to_vec(),
+            reaction: view.reaction.to_vec(),
+            contact: view.contact.to_vec(),
+        };
+        let every = self.model.output.every.max(1);
+        let last = view.step + 1 == self.model.steps.len()
+            && self
+                .model
+                .steps
+                .last()
+                .is_some_and(|s| view.time >= s.t_end);
+        if view.increment.is_multiple_of(every) || last {
+            self.pending = None;
+            self.write_increment(&snap)
+        } else {
+            self.pending = Some(snap);
+            Ok(())
+        }
     }
 }

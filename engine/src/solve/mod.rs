@@ -6,12 +6,20 @@
 //! residual and the displacement increment are small; cut the increment
 //! back on divergence, NaN or too many iterations.
 
+pub mod assembly;
+pub mod check;
 pub mod dofs;
 pub mod linear;
+pub mod loads;
+pub mod newton;
 pub mod pattern;
+pub mod stepping;
 
 use crate::contact::NodeContact;
-use crate::model::Model;
+use crate::model::{AnalysisKind, Model};
+use newton::{Converged, Failure, Newton};
+use std::time::Instant;
+use stepping::{IncrementSolver, StepError};
 
 /// One Newton iteration, reported to observers as it happens.
 #[derive(Debug, Clone, serde::Serialize)]
@@ -110,14 +118,24 @@ pub struct RunSummary {
     pub nodes: usize,
     /// Number of free (unconstrained) degrees of freedom.
     pub free_dofs: usize,
+    /// Stored entries of the free-free stiffness matrix (both triangles).
+    pub matrix_nonzeros: usize,
+    /// Conventions a reader of the results must know (e.g. axisymmetric
+    /// forces are totals over 2*pi).
+    pub notes: Vec<String>,
     /// Converged increments.
     pub increments: Vec<IncrementRecord>,
     /// Total Newton iterations (converged and failed attempts).
     pub newton_iterations: usize,
     /// Total cutbacks.
     pub cutbacks: usize,
-    /// Linear solver used (`cholesky` or `lu`).
+    /// Linear solver used (`cholesky`, or `lu` if any factorization needed
+    /// LU because the tangent was not positive definite).
     pub linear_solver: String,
+    /// Numeric Cholesky factorizations.
+    pub cholesky_factorizations: usize,
+    /// Numeric LU factorizations (Cholesky is retried at each increment).
+    pub lu_factorizations: usize,
     /// Wall time per phase.
     pub timings: Timings,
     /// Whether the whole analysis finished.
@@ -144,11 +162,161 @@ impl std::fmt::Display for RunError {
 
 impl std::error::Error for RunError {}
 
+/// Note attached to axisymmetric results.
+pub const AXISYMMETRIC_NOTE: &str =
+    "axisymmetric: x = r, y = z, component zz = hoop (theta theta); \
+     forces, reactions and contact forces are totals over the full 2*pi (Abaqus convention)";
+
 /// Runs every step of `model`, reporting to `observer`.
+///
+/// The model is checked first (all problems reported at once); then each
+/// step is solved increment by increment (see [`stepping`] and [`newton`]).
+// The error carries the summary of the run so far (contract signature).
+#[allow(clippy::result_large_err)]
 pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, RunError> {
-    let _ = (model, observer);
-    Err(RunError {
-        summary: RunSummary::default(),
-        message: "solver not implemented yet".into(),
-    })
+    let start = Instant::now();
+    let mut summary = RunSummary {
+        nodes: model.mesh.nodes.len(),
+        linear_solver: linear::Method::Cholesky.name().to_string(),
+        ..Default::default()
+    };
+    if model.analysis.kind == AnalysisKind::Axisymmetric {
+        summary.notes.push(AXISYMMETRIC_NOTE.to_string());
+    }
+    let fail = |mut summary: RunSummary, message: String| {
+        summary.failure = Some(message.clone());
+        summary.timings.total = start.elapsed().as_secs_f64();
+        RunError { summary, message }
+    };
+    let errors = check::check_model(model);
+    if !errors.is_empty() {
+        let message = format!("the model cannot be solved:\n  - {}", errors.join("\n  - "));
+        return Err(fail(summary, message));
+    }
+    let newton = match Newton::new(model) {
+        Ok(n) => n,
+        Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
+    };
+    summary.free_dofs = newton.dofs.n_free();
+    summary.matrix_nonzeros = newton.nnz();
+    let mut driver = Driver {
+        model,
+        newton,
+        observer,
+        summary,
+        increment: 0,
+    };
+    let result = stepping::drive(&model.steps, &mut driver);
+    let Driver {
+        newton,
+        mut summary,
+        ..
+    } = driver;
+    let output = summary.timings.output;
+    summary.timings = newton.timings.clone();
+    summary.timings.output = output;
+    summary.newton_iterations = newton.iterations;
+    summary.linear_solver = newton.linear_solver().to_string();
+    (summary.cholesky_factorizations, summary.lu_factorizations) = newton.factorizations();
+    match result {
+        Ok(()) => {
+            summary.completed = true;
+            summary.timings.total = start.elapsed().as_secs_f64();
+            Ok(summary)
+        }
+        Err(StepError::Aborted(e)) => Err(fail(summary, format!("run aborted: {e}"))),
+        Err(StepError::Cutbacks {
+            step,
+            time,
+            dt,
+            min_dt,
+            failure,
+        }) => {
+            let s = &model.steps[step];
+            let (cause, remedy) = failure.diagnose(&s.newton);
+            let residuals: Vec<String> = failure
+                .residuals
+                .iter()
+                .map(|r| format!("{r:.2e}"))
+                .collect();
+            let message = format!(
+                "step `{}` (step {} of {}) could not advance from time t = {time}: the increment \
+                 was cut back to dt = {dt:.3e} and still failed; the smallest allowed is \
+                 {min_dt:.3e} (min_increment {} x initial increment {:.3e}).\n  what: {}\n  last relative \
+                 residuals: [{}]\n  likely cause: {cause}\n  remedy: {remedy}",
+                s.name,
+                step + 1,
+                model.steps.len(),
+                s.min_fraction,
+                (s.t_end - s.t_start) / s.increments as f64,
+                failure.detail,
+                residuals.join(", "),
+            );
+            Err(fail(summary, message))
+        }
+    }
+}
+
+/// Glue between the stepper, the Newton solver, the observer and the summary.
+struct Driver<'m, 'o> {
+    model: &'m Model,
+    newton: Newton<'m>,
+    observer: &'o mut dyn Observer,
+    summary: RunSummary,
+    increment: usize,
+}
+
+impl IncrementSolver for Driver<'_, '_> {
+    fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+        let settings = self.model.steps[step].newton;
+        self.newton
+            .attempt(&settings, t, step, self.increment + 1, &mut *self.observer)
+    }
+
+    fn accept(
+        &mut self,
+        step: usize,
+        t: f64,
+        dt: f64,
+        cutbacks: usize,
+        converged: Converged,
+    ) -> Result<(), String> {
+        self.newton.commit();
+        self.increment += 1;
+        let reaction = self.newton.reaction_field();
+        let view = IncrementView {
+            model: self.model,
+            step,
+            increment: self.increment,
+            time: t,
+            displacement: &self.newton.u,
+            reaction: &reaction,
+            contact: &self.newton.contact,
+            residuals: &converged.residuals,
+        };
+        let start = Instant::now();
+        let r = self.observer.converged(&view);
+        self.summary.timings.output += start.elapsed().as_secs_f64();
+        self.summary.increments.push(IncrementRecord {
+            step: self.model.steps[step].name.clone(),
+            increment: self.increment,
+            time: t,
+            dt,
+            iterations: converged.iterations,
+            residuals: converged.residuals,
+            cutbacks,
+            active_contacts: converged.active_contacts,
+        });
+        r
+    }
+
+    fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64) {
+        self.newton.rollback();
+        self.summary.cutbacks += 1;
+        let reason = format!(
+            "step `{}`: {} (residuals: {:?}); retrying with dt = {new_dt:.3e}",
+            self.model.steps[step].name, failure.detail, failure.residuals
+        );
+        self.observer.cutback(&reason, new_dt);
+    }
 }

@@ -277,6 +277,9 @@ mod tests {
         }
         // node self blocks: node 0 is fully prescribed, node 4 free
         assert_eq!(s.node_slots(0), &[NO_SLOT; 4]);
-        assert!(s.node_slots(4).iter().all(|&k| (k as usize) < s.pattern.nnz()));
+        assert!(s
+            .node_slots(4)
+            .iter()
+            .all(|&k| (k as usize) < s.pattern.nnz()));
     }
 }

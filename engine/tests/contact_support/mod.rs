@@ -11,6 +11,8 @@ use ctc_engine::model::{
 
 /// A model whose single body is the slave surface `nodes` joined by edges
 /// `edges` (no cells: enough for contact kernels), against one tool.
+/// (One argument per `Model` ingredient the tests vary.)
+#[allow(clippy::too_many_arguments)]
 pub fn surface_model(
     analysis: AnalysisKind,
     thickness: f64,

@@ -95,7 +95,7 @@ pub enum ElementKind {
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshDef {
     /// A built-in generator.
-    Generator(Generator),
+    Generator(Box<Generator>),
     /// `file "path"`: a gmsh file relative to the deck.
     File(Spanned<String>),
 }

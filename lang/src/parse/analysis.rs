@@ -53,6 +53,9 @@ mod tests {
     #[test]
     fn three_d_is_parsed_for_validation_to_reject() {
         let deck = parse_ok("analysis { dimension = 3d }");
-        assert_eq!(deck.analysis[0].dimension.as_ref().unwrap().value, Dimension::ThreeD);
+        assert_eq!(
+            deck.analysis[0].dimension.as_ref().unwrap().value,
+            Dimension::ThreeD
+        );
     }
 }

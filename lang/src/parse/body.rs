@@ -18,7 +18,8 @@ const FORMULATIONS: [(&str, FormulationKind); 2] = [
     ("selective_reduced", FormulationKind::SelectiveReduced),
 ];
 
-const ELEMENTS: [(&str, ElementKind); 2] = [("tri3", ElementKind::Tri3), ("quad4", ElementKind::Quad4)];
+const ELEMENTS: [(&str, ElementKind); 2] =
+    [("tri3", ElementKind::Tri3), ("quad4", ElementKind::Quad4)];
 
 const MESH_HELP: &str = "expected `rectangle { .. }`, `half_disc { .. }`, `quarter_disc { .. }`, \
 `annulus { .. }` or `file \"part.msh\"`";
@@ -52,11 +53,25 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
                 e.key.span,
                 "not a key of a body",
             )
-            .with_help("write it inside the generator block: `mesh = rectangle { .. element = tri3 }`"),
+            .with_help(
+                "write it inside the generator block: `mesh = rectangle { .. element = tri3 }`",
+            ),
         );
     }
-    f.require(&mesh, "mesh", name.span, "add e.g. `mesh = rectangle { size = (1, 1)  divisions = (10, 10) }`", diags);
-    f.require(&material, "material", name.span, "add `material = <name of a material>`", diags);
+    f.require(
+        &mesh,
+        "mesh",
+        name.span,
+        "add e.g. `mesh = rectangle { size = (1, 1)  divisions = (10, 10) }`",
+        diags,
+    );
+    f.require(
+        &material,
+        "material",
+        name.span,
+        "add `material = <name of a material>`",
+        diags,
+    );
     f.finish(diags);
     Some(Body {
         name,
@@ -70,12 +85,16 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
 /// `mesh = generator { .. }` or `mesh = file "path"`.
 fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
     match &v.kind {
-        ValueKind::CtorStr { name, text, text_span } if name.name == "file" => Some(Spanned::new(
+        ValueKind::CtorStr {
+            name,
+            text,
+            text_span,
+        } if name.name == "file" => Some(Spanned::new(
             MeshDef::File(Spanned::new(text.clone(), *text_span)),
             v.span,
         )),
         ValueKind::Ctor { name, block } if GENERATORS.contains(&name.name.as_str()) => {
-            generator(name, block, diags).map(|g| Spanned::new(MeshDef::Generator(g), v.span))
+            generator(name, block, diags).map(|g| Spanned::new(MeshDef::Generator(Box::new(g)), v.span))
         }
         ValueKind::Ctor { name, .. } | ValueKind::CtorStr { name, .. } => {
             let mut options = GENERATORS.to_vec();
@@ -117,7 +136,11 @@ fn generator(name: &Ident, block: &Block, diags: &mut Diags) -> Option<Generator
     let at = name.span;
     let (kind, element) = match name.name.as_str() {
         "rectangle" => {
-            let mut f = Fields::new(block, what, &["origin", "size", "divisions", "grading", "element"]);
+            let mut f = Fields::new(
+                block,
+                what,
+                &["origin", "size", "divisions", "grading", "element"],
+            );
             let origin = f.point("origin", diags);
             let size = f.pair("size", diags);
             let divisions = f
@@ -131,7 +154,13 @@ fn generator(name: &Ident, block: &Block, diags: &mut Diags) -> Option<Generator
             });
             let element = f.choice("element", "element", &ELEMENTS, diags);
             f.require(&size, "size", at, "add `size = (width, height)`", diags);
-            f.require(&divisions, "divisions", at, "add `divisions = (nx, ny)`", diags);
+            f.require(
+                &divisions,
+                "divisions",
+                at,
+                "add `divisions = (nx, ny)`",
+                diags,
+            );
             f.finish(diags);
             (
                 GeneratorKind::Rectangle {
@@ -168,7 +197,13 @@ fn generator(name: &Ident, block: &Block, diags: &mut Diags) -> Option<Generator
             let element = f.choice("element", "element", &ELEMENTS, diags);
             f.require(&center, "center", at, "add `center = (x, y)`", diags);
             f.require(&radius, "radius", at, "add `radius = ..`", diags);
-            f.require(&radial, "radial", at, "add `radial = <radial divisions>`", diags);
+            f.require(
+                &radial,
+                "radial",
+                at,
+                "add `radial = <radial divisions>`",
+                diags,
+            );
             f.require(
                 &circumferential,
                 "circumferential",
@@ -219,7 +254,13 @@ fn generator(name: &Ident, block: &Block, diags: &mut Diags) -> Option<Generator
             f.require(&center, "center", at, "add `center = (x, y)`", diags);
             f.require(&inner, "inner", at, "add `inner = <inner radius>`", diags);
             f.require(&outer, "outer", at, "add `outer = <outer radius>`", diags);
-            f.require(&radial, "radial", at, "add `radial = <radial divisions>`", diags);
+            f.require(
+                &radial,
+                "radial",
+                at,
+                "add `radial = <radial divisions>`",
+                diags,
+            );
             f.require(
                 &circumferential,
                 "circumferential",
@@ -263,7 +304,10 @@ mod tests {
         let b = &deck.bodies[0];
         assert_eq!(b.name.name, "block");
         assert_eq!(b.material.as_ref().unwrap().name, "steel");
-        assert_eq!(b.formulation.as_ref().unwrap().value, FormulationKind::SelectiveReduced);
+        assert_eq!(
+            b.formulation.as_ref().unwrap().value,
+            FormulationKind::SelectiveReduced
+        );
         let MeshDef::Generator(g) = &b.mesh.as_ref().unwrap().value else {
             panic!()
         };
@@ -302,7 +346,10 @@ mod tests {
                 MeshDef::File(f) => format!("file {}", f.value),
             })
             .collect();
-        assert_eq!(kinds, ["half_disc", "quarter_disc", "annulus", "file part.msh"]);
+        assert_eq!(
+            kinds,
+            ["half_disc", "quarter_disc", "annulus", "file part.msh"]
+        );
         let MeshDef::Generator(g) = &deck.bodies[1].mesh.as_ref().unwrap().value else {
             panic!()
         };
@@ -319,7 +366,9 @@ mod tests {
             ]
         );
         assert_eq!(
-            parse_messages("body b { mesh = rectangle { size = (1, 1) divisons = (2, 2) } material = m }"),
+            parse_messages(
+                "body b { mesh = rectangle { size = (1, 1) divisons = (2, 2) } material = m }"
+            ),
             ["unknown key `divisons` in the `rectangle` mesh"]
         );
     }

@@ -22,8 +22,20 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         let mut e = Fields::new(b, "`elastic` block", &["E", "nu"]);
         let young = e.number("E", diags);
         let poisson = e.number("nu", diags);
-        e.require(&young, "E", b.span, "add Young's modulus, e.g. `E = 210e3`", diags);
-        e.require(&poisson, "nu", b.span, "add Poisson's ratio, e.g. `nu = 0.3`", diags);
+        e.require(
+            &young,
+            "E",
+            b.span,
+            "add Young's modulus, e.g. `E = 210e3`",
+            diags,
+        );
+        e.require(
+            &poisson,
+            "nu",
+            b.span,
+            "add Poisson's ratio, e.g. `nu = 0.3`",
+            diags,
+        );
         e.finish(diags);
         Elastic {
             young,
@@ -31,7 +43,11 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
             span: b.span,
         }
     });
-    let reserved: Vec<_> = f.take_all(&RESERVED).into_iter().map(|e| e.key.clone()).collect();
+    let reserved: Vec<_> = f
+        .take_all(&RESERVED)
+        .into_iter()
+        .map(|e| e.key.clone())
+        .collect();
     if reserved.is_empty() {
         f.require(
             &elastic,

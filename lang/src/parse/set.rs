@@ -17,7 +17,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<SetDef> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::{SetRefKind, Selection};
+    use crate::ast::{Selection, SetRefKind};
     use crate::parse::test_support::parse_ok;
 
     #[test]

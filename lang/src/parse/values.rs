@@ -5,7 +5,7 @@
 //! has the wrong shape, so that callers simply skip the field.
 
 use crate::ast::syntax::{path_text, Arg, ArgKind, Value, ValueKind};
-use crate::ast::{Grading, Point, SetRef, SetRefKind, Selection, TimeFn};
+use crate::ast::{Grading, Point, Selection, SetRef, SetRefKind, TimeFn};
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Span, Spanned};
 use crate::suggest::{did_you_mean, one_of};
@@ -56,7 +56,26 @@ pub fn integer(v: &Value, diags: &mut Diags) -> Option<Spanned<i64>> {
 
 /// `true` or `false`.
 pub fn boolean(v: &Value, diags: &mut Diags) -> Option<Spanned<bool>> {
-    choice(v, "value", &[("true", true), ("false", false)], diags)
+    match &v.kind {
+        ValueKind::Path(p) if p.len() == 1 && p[0].name == "true" => {
+            Some(Spanned::new(true, v.span))
+        }
+        ValueKind::Path(p) if p.len() == 1 && p[0].name == "false" => {
+            Some(Spanned::new(false, v.span))
+        }
+        ValueKind::Path(p) if p.len() == 1 => {
+            diags.push(Diagnostic::error(
+                format!("expected `true` or `false`, found `{}`", p[0].name),
+                v.span,
+                "expected `true` or `false`",
+            ));
+            None
+        }
+        _ => {
+            wrong(v, "`true` or `false`", diags);
+            None
+        }
+    }
 }
 
 /// One of a fixed set of names, with a "did you mean" for a misspelling.
@@ -357,7 +376,9 @@ pub fn set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
                         sel_name.span,
                         "expected `nodes`, `node` or `edges`",
                     )
-                    .with_help(did_you_mean(&sel_name.name, SELECTORS).unwrap_or(SETREF_HELP.into())),
+                    .with_help(
+                        did_you_mean(&sel_name.name, SELECTORS).unwrap_or(SETREF_HELP.into()),
+                    ),
                 );
                 return None;
             }
@@ -468,7 +489,13 @@ fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
                 }
                 "near" => {
                     if args.len() != 2 {
-                        arity(name, v.span, args.len(), "2 coordinates `near(x, y)`", diags);
+                        arity(
+                            name,
+                            v.span,
+                            args.len(),
+                            "2 coordinates `near(x, y)`",
+                            diags,
+                        );
                         return None;
                     }
                     let x = number(args[0], diags)?;
@@ -522,20 +549,31 @@ mod tests {
     #[test]
     fn points_and_lists() {
         let mut d = Diags::new();
-        assert_eq!(point(&value_of("(0, -1.5)"), &mut d).unwrap().value, [0.0, -1.5]);
+        assert_eq!(
+            point(&value_of("(0, -1.5)"), &mut d).unwrap().value,
+            [0.0, -1.5]
+        );
         let pts = point_list(&value_of("[(0, 0), (1, 0), (2, 1)]"), &mut d).unwrap();
         assert_eq!(pts.value.len(), 3);
         assert_eq!(pts.value[2].value, [2.0, 1.0]);
         assert!(d.is_empty());
         assert!(point(&value_of("(1, 2, 3)"), &mut d).is_none());
-        assert_eq!(d[0].message, "expected a point `(x, y)`, found a tuple of 3");
+        assert_eq!(
+            d[0].message,
+            "expected a point `(x, y)`, found a tuple of 3"
+        );
     }
 
     #[test]
     fn choices_suggest_the_closest_name() {
         let mut d = Diags::new();
         let opts = [("plane_strain", 1), ("plane_stress", 2)];
-        assert_eq!(choice(&value_of("plane_stress"), "dimension", &opts, &mut d).unwrap().value, 2);
+        assert_eq!(
+            choice(&value_of("plane_stress"), "dimension", &opts, &mut d)
+                .unwrap()
+                .value,
+            2
+        );
         assert!(choice(&value_of("plane_stran"), "dimension", &opts, &mut d).is_none());
         assert_eq!(d[0].message, "unknown dimension `plane_stran`");
         assert_eq!(d[0].help.as_deref(), Some("did you mean `plane_strain`?"));
@@ -578,7 +616,10 @@ mod tests {
     #[test]
     fn gradings() {
         let mut d = Diags::new();
-        assert_eq!(grading(&value_of("uniform"), &mut d).unwrap().value, Grading::Uniform);
+        assert_eq!(
+            grading(&value_of("uniform"), &mut d).unwrap().value,
+            Grading::Uniform
+        );
         match grading(&value_of("geometric(0.2)"), &mut d).unwrap().value {
             Grading::Geometric(r) => assert_eq!(r.value, 0.2),
             g => panic!("{g:?}"),
@@ -598,8 +639,15 @@ mod tests {
         let r = set_ref(&value_of("block.top"), &mut d).unwrap();
         assert_eq!(r.to_string(), "block.top");
         let r = set_ref(&value_of("block.nodes(y = -4)"), &mut d).unwrap();
-        assert_eq!(r.kind, SetRefKind::Nodes(Spanned::new(Selection::Y(-4.0), r_span(&r))));
-        let r = set_ref(&value_of("block.edges(box((-1, -0.01), (1, 0.01)))"), &mut d).unwrap();
+        assert_eq!(
+            r.kind,
+            SetRefKind::Nodes(Spanned::new(Selection::Y(-4.0), r_span(&r)))
+        );
+        let r = set_ref(
+            &value_of("block.edges(box((-1, -0.01), (1, 0.01)))"),
+            &mut d,
+        )
+        .unwrap();
         assert_eq!(r.to_string(), "block.edges(box((-1, -0.01), (1, 0.01)))");
         let r = set_ref(&value_of("block.node(near(0, 0))"), &mut d).unwrap();
         assert!(matches!(r.kind, SetRefKind::Node(_)));

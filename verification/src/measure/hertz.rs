@@ -4,13 +4,16 @@
 //! total contact force in the direction of the axis (y), per unit length in
 //! plane strain (divided by the thickness, doubled for a half model), total
 //! over 2*pi for the axisymmetric sphere. Hertz is then evaluated for that
-//! P, and a, p0 and p(x) are compared with it.
+//! P, and a, p0 and p(x) are compared with it. The half-width is measured
+//! twice: at the edge of the pressure profile
+//! ([`ContactProfile::half_width`]) and from the first moment of the contact
+//! forces ([`ContactProfile::moment_ratio`]).
 
 use super::{relative_error, total_reaction, Measured, ProfileData, Value};
 use crate::analytical::hertz::{combined_modulus, HertzCylinder, HertzSphere};
 use crate::capture::FinalState;
 use crate::case::Quantity;
-use crate::profile::ContactProfile;
+use crate::profile::{Abscissa, ContactProfile};
 use ctc_engine::model::Model;
 
 /// Which Hertz solution and how the model maps onto it.
@@ -28,11 +31,21 @@ pub struct HertzSetup {
     pub sphere: bool,
     /// Half model: the force of the modelled half is doubled (cylinder).
     pub half_model: bool,
+    /// Coordinate the profile is read in.
+    pub abscissa: Abscissa,
 }
 
 impl HertzSetup {
     /// An elastic body (E, nu) against a rigid cylinder or plane.
-    pub fn cylinder(young: f64, poisson: f64, radius: f64, pair: usize, axis: f64, half_model: bool) -> Self {
+    pub fn cylinder(
+        young: f64,
+        poisson: f64,
+        radius: f64,
+        pair: usize,
+        axis: f64,
+        half_model: bool,
+        abscissa: Abscissa,
+    ) -> Self {
         HertzSetup {
             e_star: combined_modulus(young, poisson, f64::INFINITY, 0.0),
             radius,
@@ -40,6 +53,7 @@ impl HertzSetup {
             axis,
             sphere: false,
             half_model,
+            abscissa,
         }
     }
 
@@ -52,13 +66,14 @@ impl HertzSetup {
             axis: 0.0,
             sphere: true,
             half_model: false,
+            abscissa: Abscissa::Reference,
         }
     }
 }
 
 /// Measures a, p0, the force balance and the profile error.
 pub fn measure(model: &Model, state: &FinalState, setup: &HertzSetup) -> Result<Measured, String> {
-    let profile = ContactProfile::extract(model, state, setup.pair, setup.axis)?;
+    let profile = ContactProfile::extract(model, state, setup.pair, setup.axis, setup.abscissa)?;
     let force_y = profile.force[1];
     let load = if setup.sphere {
         force_y.abs()
@@ -85,6 +100,12 @@ pub fn measure(model: &Model, state: &FinalState, setup: &HertzSetup) -> Result<
         (h.half_width(), h.peak_pressure(), Box::new(move |x| h.pressure(x)))
     };
     let a = profile.half_width()?;
+    let a_moment = profile.moment_ratio()
+        * if setup.sphere {
+            16.0 / (3.0 * std::f64::consts::PI)
+        } else {
+            0.75 * std::f64::consts::PI
+        };
     let p0 = profile.axis_pressure()?;
     let reaction = total_reaction(state);
     let extent = (1.5 * a_ref).min(profile.points.last().map_or(0.0, |p| p.x));
@@ -95,6 +116,12 @@ pub fn measure(model: &Model, state: &FinalState, setup: &HertzSetup) -> Result<
             reference: Some(a_ref),
             computed: a,
             error: relative_error(a, a_ref),
+        },
+        Value {
+            quantity: Quantity::HalfWidthMoment,
+            reference: Some(a_ref),
+            computed: a_moment,
+            error: relative_error(a_moment, a_ref),
         },
         Value {
             quantity: Quantity::PeakPressure,

@@ -120,3 +120,72 @@ fn axial_strain(model: &Model, u: &[[f64; 2]]) -> f64 {
     }
     sxy / sxx
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analytical::lame::EndCondition;
+    use crate::measure::test_model::one_body;
+    use ctc_engine::mesh::generate::{generate, Grading, MeshSpec};
+    use ctc_engine::mesh::CellKind;
+    use ctc_engine::model::AnalysisKind;
+
+    fn pipe() -> ThickCylinder {
+        ThickCylinder {
+            inner: 1.0,
+            outer: 2.0,
+            pressure: 100.0,
+            young: 210e3,
+            poisson: 0.3,
+            ends: EndCondition::PlaneStrain,
+        }
+    }
+
+    /// Error of the Lamé quantities for the exact field interpolated on an
+    /// n x 2n quarter ring.
+    fn interpolated_errors(n: usize) -> (f64, f64, f64) {
+        let cyl = pipe();
+        let mesh = generate(&MeshSpec::Annulus {
+            center: [0.0, 0.0],
+            inner: 1.0,
+            outer: 2.0,
+            start_angle: 0.0,
+            end_angle: 90.0,
+            radial: n,
+            circumferential: 2 * n,
+            radial_grading: Grading::Uniform,
+            kind: CellKind::Quad4,
+        })
+        .unwrap();
+        let model = one_body(mesh, AnalysisKind::PlaneStrain, cyl.young, cyl.poisson);
+        let displacement = model
+            .mesh
+            .nodes
+            .iter()
+            .map(|p| {
+                let r = (p[0] * p[0] + p[1] * p[1]).sqrt();
+                let ur = cyl.u_r(r);
+                [ur * p[0] / r, ur * p[1] / r]
+            })
+            .collect();
+        let state = FinalState {
+            displacement,
+            ..FinalState::default()
+        };
+        let m = measure(&model, &state, &cyl, [0.0, 0.0], false).unwrap();
+        let e = |q| m.values.iter().find(|v| v.quantity == q).unwrap().error;
+        (e(Quantity::InnerDisplacement), e(Quantity::HoopStress), m.h)
+    }
+
+    /// The exact nodal field has no nodal error, and the hoop stress of its
+    /// interpolant converges (checks the polar transformation of stress).
+    #[test]
+    fn lame_plane_strain_exact_field_measures_zero_displacement_error() {
+        let (u1, s1, h1) = interpolated_errors(8);
+        let (u2, s2, h2) = interpolated_errors(16);
+        assert!(u1 < 1e-13 && u2 < 1e-13, "{u1} {u2}");
+        assert!(s1 < 0.1 && s2 < s1, "hoop stress errors {s1} {s2}");
+        let rate = (s1 / s2).ln() / (h1 / h2).ln();
+        assert!(rate > 0.9, "hoop stress {s1} {s2} rate {rate}");
+    }
+}

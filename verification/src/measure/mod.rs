@@ -60,10 +60,12 @@ pub fn measure(reference: &Reference, model: &Model, state: &FinalState) -> Resu
             pair,
             axis,
             half_model,
+            abscissa,
         } => {
             expect_kind(model, &[AnalysisKind::PlaneStrain])?;
             expect_material(model, *young, *poisson)?;
-            hertz::measure(model, state, &hertz::HertzSetup::cylinder(*young, *poisson, *radius, *pair, *axis, *half_model))
+            let setup = hertz::HertzSetup::cylinder(*young, *poisson, *radius, *pair, *axis, *half_model, *abscissa);
+            hertz::measure(model, state, &setup)
         }
         Reference::HertzSphere {
             young,
@@ -157,5 +159,45 @@ pub fn relative_error(computed: f64, reference: f64) -> f64 {
         d
     } else {
         d / reference.abs()
+    }
+}
+
+/// Hand-built models for the unit tests of the measurement modules.
+#[cfg(test)]
+pub(crate) mod test_model {
+    use ctc_engine::mesh::Mesh;
+    use ctc_engine::model::*;
+
+    /// A one-body linear-elastic model on `mesh`, no loads, one step.
+    pub fn one_body(mesh: Mesh, kind: AnalysisKind, young: f64, poisson: f64) -> Model {
+        let (n, c) = (mesh.nodes.len(), mesh.cells.len());
+        Model {
+            analysis: Analysis { kind, thickness: 1.0 },
+            mesh,
+            bodies: vec![Body {
+                name: "b".into(),
+                nodes: 0..n,
+                cells: 0..c,
+                material: 0,
+                formulation: Formulation::Full,
+            }],
+            materials: vec![Material {
+                name: "m".into(),
+                law: MaterialLaw::LinearElastic { young, poisson },
+            }],
+            constraints: vec![],
+            loads: vec![],
+            tools: vec![],
+            contacts: vec![],
+            steps: vec![Step {
+                name: "s".into(),
+                t_start: 0.0,
+                t_end: 1.0,
+                increments: 1,
+                min_fraction: 1.0 / 1024.0,
+                newton: NewtonSettings::default(),
+            }],
+            output: OutputRequest::default(),
+        }
     }
 }

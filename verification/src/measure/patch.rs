@@ -5,14 +5,14 @@ use super::{max_cell_edge, relative_error, total_reaction, Measured, Value};
 use crate::analytical::patch::PenaltyPatch;
 use crate::capture::FinalState;
 use crate::case::Quantity;
-use crate::profile::ContactProfile;
+use crate::profile::{Abscissa, ContactProfile};
 use ctc_engine::element::recovery::{blocks_of, cell_states};
 use ctc_engine::element::Section;
 use ctc_engine::model::Model;
 
 /// Measures the deviations from the uniform state.
 pub fn measure(model: &Model, state: &FinalState, patch: &PenaltyPatch, pair: usize) -> Result<Measured, String> {
-    let profile = ContactProfile::extract(model, state, pair, patch.x0)?;
+    let profile = ContactProfile::extract(model, state, pair, patch.x0, Abscissa::Reference)?;
     if profile.points.is_empty() {
         return Err("the contact surface has no node".into());
     }
@@ -93,4 +93,121 @@ pub fn measure(model: &Model, state: &FinalState, patch: &PenaltyPatch, pair: us
         h: max_cell_edge(model),
         profile: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analytical::patch::PatchKind;
+    use crate::measure::test_model::one_body;
+    use ctc_engine::contact::tributary::tributary_areas;
+    use ctc_engine::contact::{ContactStatus, NodeContact};
+    use ctc_engine::mesh::generate::{generate, Grading, MeshSpec};
+    use ctc_engine::mesh::CellKind;
+    use ctc_engine::model::*;
+
+    /// A graded patch model with the exact state filled in as the engine
+    /// would report it.
+    fn exact(kind: PatchKind, poisson: f64) -> (Model, FinalState, PenaltyPatch) {
+        let analysis = match kind {
+            PatchKind::PlaneStrain => AnalysisKind::PlaneStrain,
+            PatchKind::PlaneStress => AnalysisKind::PlaneStress,
+            PatchKind::Axisymmetric => AnalysisKind::Axisymmetric,
+        };
+        let mesh = generate(&MeshSpec::Rectangle {
+            origin: [0.0, 0.0],
+            size: [1.0, 1.0],
+            divisions: [5, 3],
+            grading: [Grading::Geometric { ratio: 4.0 }, Grading::Geometric { ratio: 0.3 }],
+            kind: CellKind::Tri3,
+        })
+        .unwrap();
+        let mut model = one_body(mesh, analysis, 2e6, poisson);
+        let edges = model.mesh.edge_sets["bottom"].clone();
+        let mut nodes: Vec<usize> = edges.iter().flatten().copied().collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        model.tools.push(RigidTool {
+            name: "floor".into(),
+            geometry: ToolGeometry::Plane {
+                point: [0.0, 0.0],
+                normal: [0.0, 1.0],
+            },
+            motion: ToolMotion::fixed(),
+        });
+        model.contacts.push(ContactPair {
+            name: "b.bottom -> floor".into(),
+            body: 0,
+            edges,
+            nodes: nodes.clone(),
+            tool: 0,
+            method: ContactMethod::Penalty {
+                kind: PenaltyKind::Area,
+                stiffness: 1e9,
+            },
+            prof: None,
+        });
+        let patch = PenaltyPatch {
+            kind,
+            young: 2e6,
+            poisson,
+            height: 1.0,
+            top_displacement: 0.05,
+            penalty: 1e9,
+            x0: 0.0,
+            y0: 0.0,
+        };
+        let area = tributary_areas(&model, 0);
+        let contact = nodes
+            .iter()
+            .zip(&area)
+            .map(|(&n, &a)| NodeContact {
+                node: n,
+                gap: patch.gap(),
+                normal: [0.0, 1.0],
+                force: [0.0, patch.pressure() * a],
+                stiffness: [[0.0; 2]; 2],
+                pressure: patch.pressure(),
+                status: ContactStatus::Closed,
+                entity: 0,
+            })
+            .collect::<Vec<_>>();
+        let total: f64 = contact.iter().map(|c| c.force[1]).sum();
+        let top = &model.mesh.node_sets["top"];
+        let mut reaction = vec![[0.0; 2]; model.mesh.nodes.len()];
+        for &n in top {
+            reaction[n][1] = -total / top.len() as f64;
+        }
+        let displacement = model.mesh.nodes.iter().map(|p| patch.displacement(p[0], p[1])).collect();
+        let state = FinalState {
+            displacement,
+            reaction,
+            contact: vec![contact],
+            ..FinalState::default()
+        };
+        (model, state, patch)
+    }
+
+    /// The exact state measures zero deviation for every quantity (this
+    /// also checks the closed form against the engine's elastic law).
+    #[test]
+    fn patch_test_exact_state_measures_round_off() {
+        for (kind, nu) in [(PatchKind::PlaneStrain, 0.0), (PatchKind::PlaneStrain, 0.3), (PatchKind::Axisymmetric, 0.3)] {
+            let (model, state, patch) = exact(kind, nu);
+            let m = measure(&model, &state, &patch, 0).unwrap();
+            for v in &m.values {
+                assert!(v.error < 1e-9, "{kind:?} nu={nu}: {} error {}", v.quantity, v.error);
+            }
+        }
+    }
+
+    /// One node off by 1 % in pressure is caught.
+    #[test]
+    fn patch_test_detects_non_uniform_pressure() {
+        let (model, mut state, patch) = exact(PatchKind::PlaneStrain, 0.0);
+        state.contact[0][2].pressure *= 1.01;
+        let m = measure(&model, &state, &patch, 0).unwrap();
+        let p = m.values.iter().find(|v| v.quantity == Quantity::PatchPressure).unwrap();
+        assert!((p.error - 0.01).abs() < 1e-9, "{}", p.error);
+    }
 }

@@ -143,12 +143,7 @@ impl ToolShape {
                 control_points,
                 weights,
                 knots,
-            } => ToolShape::Nurbs(nurbs::Nurbs::new(
-                *degree,
-                control_points,
-                weights,
-                knots,
-            )?),
+            } => ToolShape::Nurbs(nurbs::Nurbs::new(*degree, control_points, weights, knots)?),
         })
     }
 

@@ -53,8 +53,11 @@ pub struct Nurbs {
 /// Point and first two derivatives of the curve at a parameter.
 #[derive(Debug, Clone, Copy)]
 struct Eval {
+    /// Point `C(u)`.
     c: [f64; 2],
+    /// `C'(u)`.
     d1: [f64; 2],
+    /// `C''(u)`.
     d2: [f64; 2],
 }
 
@@ -147,10 +150,14 @@ impl Nurbs {
             let k = curve.spans[s];
             let (a, b) = (curve.knots[k], curve.knots[k + 1]);
             let na = curve.normal_at(s, a).ok_or_else(|| {
-                format!("nurbs tool: the tangent vanishes at u = {a}; remove coincident control points")
+                format!(
+                    "nurbs tool: the tangent vanishes at u = {a}; remove coincident control points"
+                )
             })?;
             let nb = curve.normal_at(s, b).ok_or_else(|| {
-                format!("nurbs tool: the tangent vanishes at u = {b}; remove coincident control points")
+                format!(
+                    "nurbs tool: the tangent vanishes at u = {b}; remove coincident control points"
+                )
             })?;
             curve.start_normals.push(na);
             curve.end_normals.push(nb);
@@ -203,8 +210,8 @@ impl Nurbs {
         for j in 0..=p {
             let idx = k - p + j;
             let (pt, wt) = (self.points[idx], self.weights[idx]);
-            for d in 0..3 {
-                let nw = ders[d][j] * wt;
+            for (d, row) in ders.iter().enumerate() {
+                let nw = row[j] * wt;
                 w[d] += nw;
                 a[d][0] += nw * pt[0];
                 a[d][1] += nw * pt[1];
@@ -270,13 +277,25 @@ impl Nurbs {
         if u <= ua {
             if s > 0 || self.closed {
                 let prev = if s > 0 { s - 1 } else { last };
-                Some(corner(x, e.c, self.end_normals[prev], self.start_normals[s], u))
+                Some(corner(
+                    x,
+                    e.c,
+                    self.end_normals[prev],
+                    self.start_normals[s],
+                    u,
+                ))
             } else {
                 Some(end_cap(x, e.c, self.start_normals[s], u))
             }
         } else if s < last || self.closed {
             let next = if s < last { s + 1 } else { 0 };
-            Some(corner(x, e.c, self.end_normals[s], self.start_normals[next], u))
+            Some(corner(
+                x,
+                e.c,
+                self.end_normals[s],
+                self.start_normals[next],
+                u,
+            ))
         } else {
             Some(end_cap(x, e.c, self.end_normals[s], u))
         }
@@ -549,6 +568,52 @@ mod tests {
         assert!((q.gap - 2f64.sqrt()).abs() < 1e-14);
         let r = k.project(1, [0.9, -0.5]).unwrap();
         assert!((r.gap + 0.1).abs() < 1e-14 && (r.normal[0] - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn nurbs_projection_is_the_global_minimum_among_several() {
+        // One cubic span shaped like a U (and a rational S): many nodes have
+        // two or three local minima of the distance on the span.
+        let curves = [
+            Nurbs::new(
+                3,
+                &[[0.0, 1.0], [0.0, -1.0], [1.0, -1.0], [1.0, 1.0]],
+                &[1.0; 4],
+                &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            )
+            .unwrap(),
+            Nurbs::new(
+                3,
+                &[[0.0, 0.0], [2.0, 1.5], [-1.0, 1.5], [1.0, 3.0]],
+                &[1.0, 3.0, 0.5, 1.0],
+                &[0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0],
+            )
+            .unwrap(),
+        ];
+        let mut worst: f64 = 0.0;
+        for c in &curves {
+            let dense: Vec<[f64; 2]> = (0..=20000)
+                .map(|i| c.point(0, i as f64 / 20000.0))
+                .collect();
+            for i in 0..15 {
+                for j in 0..15 {
+                    let x = [-0.5 + 2.0 * i as f64 / 14.0, -1.5 + 4.0 * j as f64 / 14.0];
+                    let d_dense = dense
+                        .iter()
+                        .map(|p| norm(sub(*p, x)))
+                        .fold(f64::INFINITY, f64::min);
+                    let u = c.closest_parameter(0, x);
+                    let d = norm(sub(c.point(0, u), x));
+                    // Dense sampling can only overestimate the minimum.
+                    assert!(d <= d_dense + 1e-12, "x={x:?}: {d} > dense {d_dense}");
+                    worst = worst.max(d - d_dense);
+                }
+            }
+        }
+        assert!(
+            worst < 1e-6,
+            "dense sampling much closer than expected: {worst}"
+        );
     }
 
     #[test]

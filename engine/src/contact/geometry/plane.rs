@@ -18,8 +18,10 @@ impl Plane {
         if !finite(point) || !finite(normal) {
             return Err("plane tool: point and normal must be finite numbers".into());
         }
-        let normal = unit(normal)
-            .ok_or_else(|| "plane tool: the normal is (0, 0); give a non-zero normal pointing to the free side".to_string())?;
+        let normal = unit(normal).ok_or_else(|| {
+            "plane tool: the normal is (0, 0); give a non-zero normal pointing to the free side"
+                .to_string()
+        })?;
         Ok(Plane { point, normal })
     }
 

@@ -58,8 +58,8 @@ impl Polyline {
             (b.max[0] - b.min[0]).max(b.max[1] - b.min[1])
         };
         let mut pts = points.to_vec();
-        let closed = points.len() > 3
-            && norm(sub(points[0], points[points.len() - 1])) <= 1e-12 * extent;
+        let closed =
+            points.len() > 3 && norm(sub(points[0], points[points.len() - 1])) <= 1e-12 * extent;
         if closed {
             pts.pop();
         }

@@ -44,14 +44,23 @@ pub fn annulus(
     }
     let full = (span - 360.0).abs() <= 360.0 * 1e-12;
     divisions(NAME, "radial", radial, 1)?;
-    divisions(NAME, "circumferential", circumferential, if full { 3 } else { 1 })?;
+    divisions(
+        NAME,
+        "circumferential",
+        circumferential,
+        if full { 3 } else { 1 },
+    )?;
     if span / circumferential as f64 >= 180.0 {
         return Err(MeshError::new(format!(
             "{NAME}: {circumferential} circumferential division(s) over {span} degrees: each must span less than 180 degrees"
         )));
     }
     radial_grading.check("annulus radial grading")?;
-    let per_ring = if full { circumferential } else { circumferential + 1 };
+    let per_ring = if full {
+        circumferential
+    } else {
+        circumferential + 1
+    };
     node_budget(
         NAME,
         radial.checked_add(1).and_then(|r| r.checked_mul(per_ring)),

@@ -78,7 +78,7 @@ impl Grading {
             for i in 0..=n / 2 {
                 t[n - i] = 1.0 - t[i];
             }
-            if n % 2 == 0 {
+            if n.is_multiple_of(2) {
                 t[n / 2] = 0.5;
             }
         }
@@ -121,7 +121,10 @@ mod tests {
             let t = Grading::Center { ratio }.points(n);
             let s = sizes_of(&t);
             let mid = s[(n - 1) / 2];
-            assert!((s[0] / mid - ratio).abs() < 1e-12 * ratio.max(1.0), "{n} {ratio}");
+            assert!(
+                (s[0] / mid - ratio).abs() < 1e-12 * ratio.max(1.0),
+                "{n} {ratio}"
+            );
             for i in 0..n {
                 assert!((s[i] - s[n - 1 - i]).abs() < 1e-15, "not symmetric");
             }
@@ -133,7 +136,10 @@ mod tests {
 
     #[test]
     fn center_grading_two_divisions_is_uniform() {
-        assert_eq!(Grading::Center { ratio: 9.0 }.points(2), vec![0.0, 0.5, 1.0]);
+        assert_eq!(
+            Grading::Center { ratio: 9.0 }.points(2),
+            vec![0.0, 0.5, 1.0]
+        );
         assert_eq!(Grading::Center { ratio: 9.0 }.points(1), vec![0.0, 1.0]);
     }
 

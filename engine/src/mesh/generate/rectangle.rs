@@ -147,19 +147,17 @@ mod tests {
             .map(|c| key(c.node_slice().iter().map(|&n| m.nodes[n]).collect()))
             .collect();
         for c in &m.cells {
-            let mirrored = key(
-                c.node_slice()
-                    .iter()
-                    .map(|&n| [-m.nodes[n][0], m.nodes[n][1]])
-                    .collect(),
-            );
+            let mirrored = key(c
+                .node_slice()
+                .iter()
+                .map(|&n| [-m.nodes[n][0], m.nodes[n][1]])
+                .collect());
             assert!(all.contains(&mirrored));
-            let flipped = key(
-                c.node_slice()
-                    .iter()
-                    .map(|&n| [m.nodes[n][0], -m.nodes[n][1]])
-                    .collect(),
-            );
+            let flipped = key(c
+                .node_slice()
+                .iter()
+                .map(|&n| [m.nodes[n][0], -m.nodes[n][1]])
+                .collect());
             assert!(all.contains(&flipped));
         }
         assert!((area(&m) - 4.0).abs() < 1e-14);

@@ -1,0 +1,66 @@
+//! `$Nodes` and `$Elements` of the MSH 2.x format.
+//!
+//! ```text
+//! $Nodes
+//! n
+//! tag x y z            (n lines)
+//! $EndNodes
+//! $Elements
+//! n
+//! tag type ntags tag_1 .. tag_ntags node_1 .. node_k   (n lines)
+//! $EndElements
+//! ```
+//! The first element tag is the physical group (0: none), the second the
+//! elementary entity.
+
+use super::cursor::Cursor;
+use super::raw::{ElementType, RawElement, RawMesh, RawNode};
+use crate::mesh::MeshError;
+
+/// Reads the body of `$Nodes` (after the header token) and `$EndNodes`.
+pub fn nodes(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
+    let n = c.usize("the number of nodes")?;
+    for _ in 0..n {
+        let tag = c.tag("a node tag")?;
+        let line = c.line();
+        let x = c.f64("the node's x")?;
+        let y = c.f64("the node's y")?;
+        c.f64("the node's z")?;
+        raw.nodes.push(RawNode {
+            tag,
+            xy: [x, y],
+            line,
+        });
+    }
+    c.end("Nodes")
+}
+
+/// Reads the body of `$Elements` and `$EndElements`.
+pub fn elements(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
+    let n = c.usize("the number of elements")?;
+    for _ in 0..n {
+        c.tag("an element tag")?;
+        let line = c.line();
+        let t = c.i64("the element type")?;
+        let kind = ElementType::from_gmsh(t).map_err(|m| MeshError::at_line(line, m))?;
+        let ntags = c.usize("the number of element tags")?;
+        let mut physicals = Vec::new();
+        for k in 0..ntags {
+            let v = c.i64("an element tag value")?;
+            if k == 0 && v != 0 {
+                physicals.push(v);
+            }
+        }
+        let mut nodes = [0u64; 4];
+        for slot in nodes.iter_mut().take(kind.nodes()) {
+            *slot = c.tag("a node tag of the element")?;
+        }
+        raw.elements.push(RawElement {
+            kind,
+            nodes,
+            physicals,
+            line,
+        });
+    }
+    c.end("Elements")
+}

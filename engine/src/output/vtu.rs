@@ -1,0 +1,291 @@
+//! VTK XML unstructured grid (`.vtu`, ASCII) of one increment.
+//!
+//! Points are the reference coordinates (z = 0); ParaView's "Warp By
+//! Vector" on `displacement` shows the deformed shape. Point data, as
+//! requested: `displacement` (3 components, z = 0), `stress` and `strain`
+//! (4 components named xx, yy, zz, xy; zz is the hoop component for
+//! axisymmetric runs; strain shear is engineering `gamma_xy`), `von_mises`,
+//! `reaction` (3 components), `contact_gap`, `contact_pressure`,
+//! `contact_status` (-1 not a slave node, 0 open or out of reach, 1 closed;
+//! the gap is 0 where no contact was evaluated). Cell data: `body` index.
+
+use crate::contact::{ContactStatus, NodeContact};
+use crate::element::recovery::NodalFields;
+use crate::mesh::CellKind;
+use crate::model::{AnalysisKind, Field, Model};
+use std::fmt::Write;
+
+/// What one VTU file shows.
+#[derive(Debug)]
+pub struct VtuData<'a> {
+    /// The model (mesh, bodies, contact pairs).
+    pub model: &'a Model,
+    /// Step name, for the header comment.
+    pub step: &'a str,
+    /// Increment number.
+    pub increment: usize,
+    /// Time.
+    pub time: f64,
+    /// Fields to write.
+    pub fields: &'a [Field],
+    /// Nodal displacements.
+    pub displacement: &'a [[f64; 2]],
+    /// Nodal reactions.
+    pub reaction: &'a [[f64; 2]],
+    /// Contact evaluation per pair.
+    pub contact: &'a [Vec<NodeContact>],
+    /// Recovered stress/strain (required when a stress/strain field is requested).
+    pub nodal: Option<&'a NodalFields>,
+}
+
+fn array<T: std::fmt::Display>(
+    s: &mut String,
+    ty: &str,
+    name: &str,
+    comps: usize,
+    extra: &str,
+    values: impl Iterator<Item = T>,
+) {
+    let _ = writeln!(
+        s,
+        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\"{extra} format=\"ascii\">"
+    );
+    let per_line = 3 * comps.max(1);
+    for (i, v) in values.enumerate() {
+        if i % per_line == 0 {
+            s.push_str(if i == 0 { "          " } else { "\n          " });
+        } else {
+            s.push(' ');
+        }
+        let _ = write!(s, "{v}");
+    }
+    s.push_str("\n        </DataArray>\n");
+}
+
+const TENSOR_NAMES: &str =
+    " ComponentName0=\"xx\" ComponentName1=\"yy\" ComponentName2=\"zz\" ComponentName3=\"xy\"";
+
+/// The VTU text.
+pub fn vtu(d: &VtuData<'_>) -> String {
+    let m = d.model;
+    let nn = m.mesh.nodes.len();
+    let mut s = String::with_capacity(256 * nn + 1024);
+    s.push_str("<?xml version=\"1.0\"?>\n");
+    let _ = writeln!(
+        s,
+        "<!-- ctc results: step `{}`, increment {}, time {}. Stress/strain components xx, yy, zz, xy \
+         (engineering shear strain). -->",
+        d.step.replace("--", "- -"),
+        d.increment,
+        d.time
+    );
+    if m.analysis.kind == AnalysisKind::Axisymmetric {
+        let _ = writeln!(s, "<!-- {} -->", crate::solve::AXISYMMETRIC_NOTE);
+    }
+    s.push_str(
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
+         header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
+    );
+    let _ = writeln!(
+        s,
+        "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" \
+         format=\"ascii\">{}</DataArray>\n    </FieldData>",
+        d.time
+    );
+    let _ = writeln!(
+        s,
+        "    <Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{}\">",
+        m.mesh.cells.len()
+    );
+    let has = |f: Field| d.fields.contains(&f);
+    if has(Field::Displacement) {
+        s.push_str("      <PointData Vectors=\"displacement\">\n");
+    } else {
+        s.push_str("      <PointData>\n");
+    }
+    if has(Field::Displacement) {
+        array(
+            &mut s,
+            "Float64",
+            "displacement",
+            3,
+            "",
+            d.displacement.iter().flat_map(|u| [u[0], u[1], 0.0]),
+        );
+    }
+    if let Some(nodal) = d.nodal {
+        if has(Field::Stress) {
+            array(
+                &mut s,
+                "Float64",
+                "stress",
+                4,
+                TENSOR_NAMES,
+                nodal.stress.iter().flatten(),
+            );
+        }
+        if has(Field::Strain) {
+            array(
+                &mut s,
+                "Float64",
+                "strain",
+                4,
+                TENSOR_NAMES,
+                nodal.strain.iter().flatten(),
+            );
+        }
+        if has(Field::VonMises) {
+            array(
+                &mut s,
+                "Float64",
+                "von_mises",
+                1,
+                "",
+                nodal.von_mises.iter(),
+            );
+        }
+    }
+    if has(Field::Reaction) {
+        array(
+            &mut s,
+            "Float64",
+            "reaction",
+            3,
+            "",
+            d.reaction.iter().flat_map(|r| [r[0], r[1], 0.0]),
+        );
+    }
+    if has(Field::Contact) {
+        let mut gap = vec![0.0f64; nn];
+        let mut pressure = vec![0.0f64; nn];
+        let mut status = vec![-1i32; nn];
+        let mut best = vec![f64::INFINITY; nn];
+        for pair in &m.contacts {
+            for &n in &pair.nodes {
+                status[n] = status[n].max(0);
+            }
+        }
+        for list in d.contact {
+            for c in list {
+                if c.gap < best[c.node] {
+                    best[c.node] = c.gap;
+                    gap[c.node] = c.gap;
+                    pressure[c.node] = c.pressure;
+                    status[c.node] = match c.status {
+                        ContactStatus::Open => 0,
+                        ContactStatus::Closed => 1,
+                    };
+                }
+            }
+        }
+        array(&mut s, "Float64", "contact_gap", 1, "", gap.iter());
+        array(
+            &mut s,
+            "Float64",
+            "contact_pressure",
+            1,
+            "",
+            pressure.iter(),
+        );
+        array(&mut s, "Int32", "contact_status", 1, "", status.iter());
+    }
+    s.push_str("      </PointData>\n      <CellData>\n");
+    let mut body = vec![-1i32; m.mesh.cells.len()];
+    for (b, bd) in m.bodies.iter().enumerate() {
+        for c in bd.cells.clone() {
+            if let Some(x) = body.get_mut(c) {
+                *x = b as i32;
+            }
+        }
+    }
+    array(&mut s, "Int32", "body", 1, "", body.iter());
+    s.push_str("      </CellData>\n      <Points>\n");
+    array(
+        &mut s,
+        "Float64",
+        "coordinates",
+        3,
+        "",
+        m.mesh.nodes.iter().flat_map(|p| [p[0], p[1], 0.0]),
+    );
+    s.push_str("      </Points>\n      <Cells>\n");
+    array(
+        &mut s,
+        "Int64",
+        "connectivity",
+        1,
+        "",
+        m.mesh
+            .cells
+            .iter()
+            .flat_map(|c| c.node_slice().iter().copied()),
+    );
+    array(
+        &mut s,
+        "Int64",
+        "offsets",
+        1,
+        "",
+        m.mesh.cells.iter().scan(0usize, |o, c| {
+            *o += c.kind.node_count();
+            Some(*o)
+        }),
+    );
+    array(
+        &mut s,
+        "UInt8",
+        "types",
+        1,
+        "",
+        m.mesh.cells.iter().map(|c| match c.kind {
+            CellKind::Tri3 => 5u8,
+            CellKind::Quad4 => 9u8,
+        }),
+    );
+    s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::contact_csv::tests::{contact, model_with_pair};
+
+    fn values_of<'a>(text: &'a str, name: &str) -> Vec<&'a str> {
+        let start = text.find(&format!("Name=\"{name}\"")).unwrap();
+        let body = &text[start..];
+        let open = body.find('>').unwrap() + 1;
+        let close = body.find("</DataArray>").unwrap();
+        body[open..close].split_whitespace().collect()
+    }
+
+    #[test]
+    fn vtu_contact_status_gap_pressure_and_cells() {
+        let m = model_with_pair();
+        let u = vec![[0.0; 2]; 4];
+        let r = vec![[0.0; 2]; 4];
+        let contacts = vec![vec![contact(2, -0.1, true), contact(0, 0.2, false)]];
+        let text = vtu(&VtuData {
+            model: &m,
+            step: "a--b",
+            increment: 3,
+            time: 0.5,
+            fields: &[Field::Contact, Field::Displacement],
+            displacement: &u,
+            reaction: &r,
+            contact: &contacts,
+            nodal: None,
+        });
+        // node 3 is not a slave, node 1 is a slave out of reach, 0 open, 2 closed
+        assert_eq!(values_of(&text, "contact_status"), ["0", "0", "1", "-1"]);
+        assert_eq!(values_of(&text, "contact_gap"), ["0.2", "0", "-0.1", "0"]);
+        assert_eq!(values_of(&text, "contact_pressure"), ["0", "0", "0.5", "0"]);
+        assert_eq!(values_of(&text, "connectivity"), ["1", "2", "3", "2", "0", "3"]);
+        assert_eq!(values_of(&text, "offsets"), ["3", "6"]);
+        assert_eq!(values_of(&text, "types"), ["5", "5"]);
+        assert_eq!(values_of(&text, "displacement").len(), 12);
+        // comments may not contain "--"
+        let comment = &text[text.find("<!--").unwrap() + 4..text.find("-->").unwrap()];
+        assert!(!comment.contains("--"), "{comment}");
+    }
+}

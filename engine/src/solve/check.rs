@@ -1,0 +1,384 @@
+//! Checks of a [`Model`] before solving: every index in range, every
+//! parameter usable, every body held. Errors are user-facing sentences.
+
+use crate::model::{AnalysisKind, HistoryRequest, Load, Model};
+
+/// Returns every problem found in `model` (empty when it can be solved).
+pub fn check_model(model: &Model) -> Vec<String> {
+    let mut errors = Vec::new();
+    let nn = model.mesh.nodes.len();
+    let nc = model.mesh.cells.len();
+    if nn == 0 || nc == 0 {
+        errors.push("the model has no mesh (no nodes or no cells)".to_string());
+    }
+    if let Some(n) = model
+        .mesh
+        .nodes
+        .iter()
+        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+    {
+        errors.push(format!("node {n} has a non-finite coordinate"));
+    }
+    if model.analysis.kind != AnalysisKind::Axisymmetric
+        && !(model.analysis.thickness.is_finite() && model.analysis.thickness > 0.0)
+    {
+        errors.push(format!(
+            "thickness must be > 0 (got {})",
+            model.analysis.thickness
+        ));
+    }
+    for (c, cell) in model.mesh.cells.iter().enumerate() {
+        if let Some(&n) = cell.node_slice().iter().find(|&&n| n >= nn) {
+            errors.push(format!(
+                "cell {c} refers to node {n}, but the mesh has {nn} nodes"
+            ));
+        }
+    }
+    let mut owner: Vec<Option<usize>> = vec![None; nc];
+    for (b, body) in model.bodies.iter().enumerate() {
+        if body.material >= model.materials.len() {
+            errors.push(format!(
+                "body `{}` refers to material {} but there are {}",
+                body.name,
+                body.material,
+                model.materials.len()
+            ));
+        }
+        if body.cells.end > nc || body.nodes.end > nn {
+            errors.push(format!(
+                "body `{}` has cells {:?} / nodes {:?} outside the mesh ({nc} cells, {nn} nodes)",
+                body.name, body.cells, body.nodes
+            ));
+            continue;
+        }
+        for c in body.cells.clone() {
+            if let Some(other) = owner[c] {
+                errors.push(format!(
+                    "cell {c} belongs to both bodies `{}` and `{}`",
+                    model.bodies[other].name, body.name
+                ));
+                break;
+            }
+            owner[c] = Some(b);
+        }
+    }
+    if let Some(c) = owner.iter().position(|o| o.is_none()) {
+        errors.push(format!("cell {c} belongs to no body (no material)"));
+    }
+    for m in &model.materials {
+        if let Err(e) = crate::material::build(m, model.analysis.kind) {
+            errors.push(e);
+        }
+    }
+    for d in &model.constraints {
+        if d.component > 1 {
+            errors.push(format!(
+                "`{}`: component {} is not 0 (x) or 1 (y)",
+                d.label, d.component
+            ));
+        }
+        if let Some(n) = d.nodes.iter().find(|&&n| n >= nn) {
+            errors.push(format!(
+                "`{}` refers to node {n}, the mesh has {nn} nodes",
+                d.label
+            ));
+        }
+    }
+    for l in &model.loads {
+        match l {
+            Load::NodalForce {
+                label,
+                nodes,
+                component,
+                ..
+            } => {
+                if *component > 1 {
+                    errors.push(format!(
+                        "`{label}`: component {component} is not 0 (x) or 1 (y)"
+                    ));
+                }
+                if let Some(n) = nodes.iter().find(|&&n| n >= nn) {
+                    errors.push(format!(
+                        "`{label}` refers to node {n}, the mesh has {nn} nodes"
+                    ));
+                }
+            }
+            Load::Pressure { label, edges, .. } => {
+                if let Some(e) = edges.iter().find(|e| e[0] >= nn || e[1] >= nn) {
+                    errors.push(format!("`{label}` refers to edge {e:?} outside the mesh"));
+                }
+            }
+        }
+    }
+    for c in &model.contacts {
+        if c.body >= model.bodies.len() || c.tool >= model.tools.len() {
+            errors.push(format!(
+                "contact `{}` refers to a missing body or tool",
+                c.name
+            ));
+        }
+        if c.nodes
+            .iter()
+            .chain(c.edges.iter().flatten())
+            .any(|&n| n >= nn)
+        {
+            errors.push(format!(
+                "contact `{}` refers to a node outside the mesh",
+                c.name
+            ));
+        }
+    }
+    if model.steps.is_empty() {
+        errors.push("the model has no step: nothing to solve".to_string());
+    }
+    for s in &model.steps {
+        let n = &s.newton;
+        let mut bad = |what: String| errors.push(format!("step `{}`: {what}", s.name));
+        if !(s.t_start.is_finite() && s.t_end.is_finite() && s.t_end > s.t_start) {
+            bad(format!(
+                "time range {} .. {} must be increasing",
+                s.t_start, s.t_end
+            ));
+        }
+        if s.increments == 0 {
+            bad("increments must be >= 1".into());
+        }
+        if !(s.min_fraction > 0.0 && s.min_fraction <= 1.0) {
+            bad(format!(
+                "min_increment must be in (0, 1] (got {})",
+                s.min_fraction
+            ));
+        }
+        if !(n.tol > 0.0 && n.tol_displacement > 0.0) {
+            bad(format!(
+                "newton tolerances must be > 0 (tol = {}, tol_displacement = {})",
+                n.tol, n.tol_displacement
+            ));
+        }
+        if n.max_iter == 0 {
+            bad("newton max_iter must be >= 1".into());
+        }
+    }
+    // time functions must give finite values over the analysis
+    let mut times: Vec<f64> = model.steps.iter().flat_map(|s| [s.t_start, s.t_end]).collect();
+    let functions = model
+        .constraints
+        .iter()
+        .map(|d| (d.label.as_str(), &d.value))
+        .chain(model.loads.iter().map(|l| match l {
+            Load::NodalForce { label, value, .. } | Load::Pressure { label, value, .. } => {
+                (label.as_str(), value)
+            }
+        }));
+    for (label, f) in functions {
+        times.truncate(2 * model.steps.len());
+        if let crate::model::TimeFunction::Table(points) = f {
+            times.extend(points.iter().map(|p| p.0));
+        }
+        if let Some(t) = times.iter().find(|&&t| !f.eval(t).is_finite()) {
+            errors.push(format!("`{label}`: its value at time {t} is not a finite number"));
+        }
+    }
+    for h in &model.output.history {
+        match h {
+            HistoryRequest::Reaction { label, nodes }
+            | HistoryRequest::Displacement { label, nodes } => {
+                if nodes.iter().any(|&n| n >= nn) {
+                    errors.push(format!(
+                        "history `{label}` refers to a node outside the mesh"
+                    ));
+                }
+            }
+            HistoryRequest::ContactForce { label, pair } => {
+                if *pair >= model.contacts.len() {
+                    errors.push(format!(
+                        "history `{label}` refers to a missing contact pair"
+                    ));
+                }
+            }
+        }
+    }
+    if errors.is_empty() {
+        errors.extend(unheld_bodies(model));
+    }
+    errors
+}
+
+/// Bodies that nothing holds: their constrained dofs leave a rigid-body
+/// motion free (plane: translations x, y and the in-plane rotation;
+/// axisymmetric: the translation along the axis), and no contact pair
+/// involves them.
+///
+/// Each constrained dof `(node, c)` constrains the rigid velocity
+/// `(a, b, w)` through the row `[1, 0, -y]` (c = 0) or `[0, 1, x]`
+/// (c = 1); the motion is held when these rows have full rank.
+fn unheld_bodies(model: &Model) -> Vec<String> {
+    let mut errors = Vec::new();
+    let axi = model.analysis.kind == AnalysisKind::Axisymmetric;
+    let mut constrained = vec![[false; 2]; model.mesh.nodes.len()];
+    for d in &model.constraints {
+        for &n in &d.nodes {
+            constrained[n][d.component] = true;
+        }
+    }
+    for (b, body) in model.bodies.iter().enumerate() {
+        if model.contacts.iter().any(|c| c.body == b) || body.nodes.is_empty() {
+            continue;
+        }
+        let pts = &model.mesh.nodes[body.nodes.clone()];
+        let k = pts.len() as f64;
+        let c = pts
+            .iter()
+            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / k, a[1] + p[1] / k]);
+        let size = pts
+            .iter()
+            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        let mut g = nalgebra::Matrix3::<f64>::zeros();
+        for n in body.nodes.clone() {
+            let (x, y) = (
+                (pts[n - body.nodes.start][0] - c[0]) / size,
+                (pts[n - body.nodes.start][1] - c[1]) / size,
+            );
+            for (comp, row) in [(0, [1.0, 0.0, -y]), (1, [0.0, 1.0, x])] {
+                if constrained[n][comp] {
+                    let r = nalgebra::Vector3::from(row);
+                    g += r * r.transpose();
+                }
+            }
+        }
+        let free: Vec<&str> = if axi {
+            if g[(1, 1)] > 0.0 {
+                vec![]
+            } else {
+                vec!["translate along the axis (y)"]
+            }
+        } else {
+            let eig = g.symmetric_eigen();
+            let max = eig.eigenvalues.max().max(f64::MIN_POSITIVE);
+            (0..3)
+                .filter(|&i| eig.eigenvalues[i] <= 1e-10 * max)
+                .map(|i| {
+                    let v = eig.eigenvectors.column(i);
+                    if v[2].abs() > 0.5 {
+                        "rotate"
+                    } else if v[0].abs() > v[1].abs() {
+                        "translate along x"
+                    } else {
+                        "translate along y"
+                    }
+                })
+                .collect()
+        };
+        if !free.is_empty() {
+            errors.push(format!(
+                "body `{}` is free to {} (a rigid-body motion: the stiffness matrix would be \
+                 singular): its `fix`/`displace` conditions do not hold it and no contact pair \
+                 involves it; constrain e.g. one node in x and y and a second node in the \
+                 other direction",
+                body.name,
+                free.join(" and ")
+            ));
+        }
+    }
+    errors
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Cell, Mesh};
+    use crate::model::*;
+
+    fn square(kind: AnalysisKind, constraints: Vec<(usize, usize)>) -> Model {
+        Model {
+            analysis: Analysis {
+                kind,
+                thickness: 1.0,
+            },
+            mesh: Mesh {
+                nodes: vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]],
+                cells: vec![Cell::quad(0, 1, 2, 3)],
+                ..Default::default()
+            },
+            bodies: vec![Body {
+                name: "sq".into(),
+                nodes: 0..4,
+                cells: 0..1,
+                material: 0,
+                formulation: Formulation::Full,
+            }],
+            materials: vec![Material {
+                name: "m".into(),
+                law: MaterialLaw::LinearElastic {
+                    young: 1.0,
+                    poisson: 0.3,
+                },
+            }],
+            constraints: constraints
+                .into_iter()
+                .map(|(n, c)| Dirichlet {
+                    label: "fix".into(),
+                    nodes: vec![n],
+                    component: c,
+                    value: TimeFunction::Constant(0.0),
+                })
+                .collect(),
+            loads: vec![],
+            tools: vec![],
+            contacts: vec![],
+            steps: vec![Step {
+                name: "s".into(),
+                t_start: 0.0,
+                t_end: 1.0,
+                increments: 1,
+                min_fraction: 0.5,
+                newton: NewtonSettings::default(),
+            }],
+            output: OutputRequest::default(),
+        }
+    }
+
+    #[test]
+    fn well_held_body_passes() {
+        let m = square(AnalysisKind::PlaneStrain, vec![(0, 0), (0, 1), (1, 1)]);
+        assert!(check_model(&m).is_empty(), "{:?}", check_model(&m));
+    }
+
+    #[test]
+    fn rigid_body_modes_are_named() {
+        let m = square(AnalysisKind::PlaneStrain, vec![(0, 0), (0, 1)]);
+        let e = check_model(&m);
+        assert!(e.len() == 1 && e[0].contains("rotate"), "{e:?}");
+        let m = square(AnalysisKind::PlaneStress, vec![(0, 0), (3, 0)]);
+        let e = check_model(&m);
+        assert!(e.len() == 1 && e[0].contains("translate along y"), "{e:?}");
+        assert!(!e[0].contains("rotate"), "{e:?}");
+    }
+
+    #[test]
+    fn axisymmetric_needs_only_an_axial_constraint() {
+        let m = square(AnalysisKind::Axisymmetric, vec![(0, 1)]);
+        assert!(check_model(&m).is_empty());
+        let m = square(AnalysisKind::Axisymmetric, vec![(0, 0), (1, 0)]);
+        let e = check_model(&m);
+        assert!(e.len() == 1 && e[0].contains("axis"), "{e:?}");
+    }
+
+    #[test]
+    fn bad_indices_and_settings_are_all_reported() {
+        let mut m = square(AnalysisKind::PlaneStrain, vec![(0, 0), (0, 1), (1, 1)]);
+        m.constraints[0].nodes = vec![99];
+        m.steps[0].increments = 0;
+        m.steps[0].newton.max_iter = 0;
+        m.bodies[0].material = 3;
+        m.constraints[1].value = TimeFunction::Constant(f64::NAN);
+        let e = check_model(&m);
+        assert!(e.iter().any(|s| s.contains("not a finite number")), "{e:?}");
+        assert!(e.iter().any(|s| s.contains("node 99")), "{e:?}");
+        assert!(e.iter().any(|s| s.contains("increments")), "{e:?}");
+        assert!(e.iter().any(|s| s.contains("max_iter")), "{e:?}");
+        assert!(e.iter().any(|s| s.contains("material 3")), "{e:?}");
+    }
+}

@@ -1,0 +1,581 @@
+//! Newton-Raphson iterations of one increment (seed flowchart):
+//! contact search and forces -> internal forces -> residual
+//! `r = f_int - f_ext - f_contact` on the free dofs -> tangent
+//! `K = K_int + K_contact` -> solve -> update, with a backtracking line
+//! search, NaN/inf and divergence detection.
+//!
+//! Predictor: the first iteration starts from the last converged state and
+//! applies the whole increment of prescribed displacements `dp` through the
+//! tangent, `K_ff du = -(r_f + K_fp dp)`, so a linear problem is solved
+//! exactly by one iteration.
+//!
+//! Convergence (after each update, on the updated state):
+//! `||r|| / max(||f_ext + f_c|| + ||reactions||, ||f_int||, tiny) <= tol`
+//! and `||du|| / max(||u||, tiny) <= tol_displacement`, where `du` is the
+//! correction just applied or, when it is large but the residual is
+//! already within tolerance (a linear or nearly linear increment), the
+//! next correction `K^-1 r` estimated with the factorization already at
+//! hand (one triangular solve, no factorization). A linear elastic
+//! increment thus takes exactly one factorization, one solve plus one
+//! back-substitution, and two residual evaluations.
+
+use super::assembly::Assembler;
+use super::dofs::{Dof, DofMap};
+use super::linear::LinearSolver;
+use super::loads::external_forces;
+use super::pattern::{Scatter, NO_SLOT};
+use super::{IterationInfo, Observer, Timings};
+use crate::contact::{self, ContactStatus, NodeContact, PairState};
+use crate::model::{Model, NewtonSettings};
+use std::time::Instant;
+
+/// Floor of norms used as denominators.
+const TINY: f64 = 1e-300;
+/// Line-search halvings before giving up on decreasing the residual.
+const LINE_SEARCH_HALVINGS: i32 = 6;
+/// Consecutive residual increases that mean divergence.
+const DIVERGENCE_GROWTHS: usize = 3;
+
+/// A converged increment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Converged {
+    /// Newton iterations (factorizations) used.
+    pub iterations: usize,
+    /// Relative residual after each iteration.
+    pub residuals: Vec<f64>,
+    /// Closed contact nodes at convergence.
+    pub active_contacts: usize,
+}
+
+/// Why an increment failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FailureKind {
+    /// `max_iter` iterations without convergence.
+    MaxIterations,
+    /// The residual grew over several consecutive iterations.
+    Diverged,
+    /// NaN or infinity in the solution or the residual.
+    NotFinite,
+    /// The linear system could not be factorized.
+    Singular,
+    /// An element could not be evaluated.
+    Element,
+}
+
+/// A failed increment attempt.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// Category.
+    pub kind: FailureKind,
+    /// Relative residuals of the attempt, one per completed iteration.
+    pub residuals: Vec<f64>,
+    /// What happened, in words.
+    pub detail: String,
+}
+
+impl Failure {
+    /// Likely cause and remedy, for the final error message.
+    pub fn diagnose(&self, settings: &NewtonSettings) -> (String, String) {
+        let last = self.residuals.last().copied().unwrap_or(f64::NAN);
+        match self.kind {
+            FailureKind::MaxIterations => {
+                let n = self.residuals.len();
+                let stagnant = n >= 3
+                    && last < 1e-9
+                    && self.residuals[n - 3..]
+                        .iter()
+                        .all(|r| *r < 1e3 * last.max(TINY));
+                if stagnant {
+                    (
+                        format!(
+                            "the residual stagnates at {last:.1e}: tol = {:.0e} (or tol_displacement = \
+                             {:.0e}) is below what round-off allows for this problem",
+                            settings.tol, settings.tol_displacement
+                        ),
+                        "raise `newton { tol = .. }` (1e-8 is usual; 1e-10 for verification)".into(),
+                    )
+                } else {
+                    (
+                        "the increment is too large for the nonlinearity (contact status \
+                         changing back and forth, stiff penalty)"
+                            .into(),
+                        "use more `increments`, keep `line_search = true`, raise `max_iter`, or \
+                         lower the penalty stiffness"
+                            .into(),
+                    )
+                }
+            }
+            FailureKind::Diverged => (
+                "the residual grows from iteration to iteration: the load or contact \
+                 increment is too large, or the penalty stiffness is too high for the mesh"
+                    .into(),
+                "use more `increments`, a smaller penalty stiffness, `line_search = true`".into(),
+            ),
+            FailureKind::NotFinite | FailureKind::Singular => (
+                "the stiffness matrix is singular or nearly so: a body (or part of one) can \
+                 move rigidly (not enough `fix`/`displace`, or a body held only by a contact \
+                 that is still open)"
+                    .into(),
+                "constrain every rigid-body motion (e.g. `fix` one node in x), or start the \
+                 contact closed"
+                    .into(),
+            ),
+            FailureKind::Element => (
+                "an element is inverted or degenerate (mesh or deformation)".into(),
+                "check the mesh orientation and quality, or use smaller increments".into(),
+            ),
+        }
+    }
+}
+
+/// Norms of one evaluation of the residual.
+#[derive(Debug, Clone, Copy)]
+struct Eval {
+    /// `||r||` on the free dofs.
+    abs: f64,
+    /// Relative residual.
+    rel: f64,
+}
+
+/// The Newton solver of a model: numbering, pattern, factorization and the
+/// evolving state.
+pub struct Newton<'m> {
+    model: &'m Model,
+    /// Dof numbering.
+    pub dofs: DofMap,
+    scatter: Scatter,
+    assembler: Assembler,
+    linear: LinearSolver,
+    /// Current nodal displacements.
+    pub u: Vec<[f64; 2]>,
+    committed: Vec<[f64; 2]>,
+    pairs: Vec<PairState>,
+    /// Contact evaluation of each pair at the last evaluated state.
+    pub contact: Vec<Vec<NodeContact>>,
+    values: Vec<f64>,
+    f_int: Vec<f64>,
+    f_ext: Vec<f64>,
+    f_c: Vec<f64>,
+    r_free: Vec<f64>,
+    reactions: Vec<f64>,
+    target: Vec<f64>,
+    dp: Vec<f64>,
+    rhs: Vec<f64>,
+    base: Vec<f64>,
+    x: Vec<[f64; 2]>,
+    /// Wall time per phase.
+    pub timings: Timings,
+    /// Newton iterations done, all attempts included.
+    pub iterations: usize,
+}
+
+impl std::fmt::Debug for Newton<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Newton")
+            .field("free_dofs", &self.dofs.n_free())
+            .field("nnz", &self.scatter.pattern.nnz())
+            .finish()
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+impl<'m> Newton<'m> {
+    /// Numbers the dofs, builds the sparse pattern and checks every element
+    /// of the (checked) `model` in its reference configuration.
+    pub fn new(model: &'m Model) -> Result<Self, String> {
+        let nn = model.mesh.nodes.len();
+        let dofs = DofMap::new(model);
+        let scatter = Scatter::new(&model.mesh, &dofs)?;
+        let assembler = Assembler::new(model)?;
+        let n_free = dofs.n_free();
+        let n_presc = dofs.prescribed.len();
+        let mut newton = Newton {
+            model,
+            values: vec![0.0; scatter.n_values()],
+            scatter,
+            assembler,
+            linear: LinearSolver::new(),
+            u: vec![[0.0; 2]; nn],
+            committed: vec![[0.0; 2]; nn],
+            pairs: (0..model.contacts.len())
+                .map(|i| PairState::new(model, i))
+                .collect(),
+            contact: vec![Vec::new(); model.contacts.len()],
+            f_int: vec![0.0; 2 * nn],
+            f_ext: vec![0.0; 2 * nn],
+            f_c: vec![0.0; 2 * nn],
+            r_free: vec![0.0; n_free],
+            reactions: vec![0.0; n_presc],
+            target: vec![0.0; n_presc],
+            dp: vec![0.0; n_presc],
+            rhs: vec![0.0; n_free],
+            base: vec![0.0; n_free],
+            x: model.mesh.nodes.clone(),
+            dofs,
+            timings: Timings::default(),
+            iterations: 0,
+        };
+        // element check in the reference configuration (inverted, off-axis cells)
+        let mut f = std::mem::take(&mut newton.f_int);
+        let r = newton
+            .assembler
+            .assemble(&model.mesh, &newton.scatter, &newton.u, &mut f, None);
+        newton.f_int = f;
+        r?;
+        Ok(newton)
+    }
+
+    /// `lu` if any factorization of the run needed LU, else `cholesky`.
+    pub fn linear_solver(&self) -> &'static str {
+        if self.linear.lu_count > 0 {
+            super::linear::Method::Lu.name()
+        } else {
+            super::linear::Method::Cholesky.name()
+        }
+    }
+
+    /// Numeric factorizations done (Cholesky, LU).
+    pub fn factorizations(&self) -> (usize, usize) {
+        (self.linear.cholesky_count, self.linear.lu_count)
+    }
+
+    /// Number of nonzeros of the free-free matrix (both triangles).
+    pub fn nnz(&self) -> usize {
+        self.scatter.pattern.nnz()
+    }
+
+    /// Reaction forces per node at the last evaluated state (zero except at
+    /// prescribed dofs).
+    pub fn reaction_field(&self) -> Vec<[f64; 2]> {
+        let mut out = vec![[0.0; 2]; self.u.len()];
+        for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
+            out[p.dof / 2][p.dof % 2] = *r;
+        }
+        out
+    }
+
+    /// Closed contact nodes at the last evaluated state.
+    pub fn active_contacts(&self) -> usize {
+        self.contact
+            .iter()
+            .flatten()
+            .filter(|c| c.status == ContactStatus::Closed)
+            .count()
+    }
+
+    /// Makes the current state the converged one.
+    pub fn commit(&mut self) {
+        self.committed.copy_from_slice(&self.u);
+        for p in &mut self.pairs {
+            p.commit();
+        }
+    }
+
+    /// Returns to the last converged state.
+    pub fn rollback(&mut self) {
+        self.u.copy_from_slice(&self.committed);
+        for p in &mut self.pairs {
+            p.rollback();
+        }
+    }
+
+    /// Contact, internal forces and residual at the current `u` and time
+    /// `t`; the tangent too if `with_tangent`.
+    fn evaluate(&mut self, t: f64, with_tangent: bool) -> Result<Eval, Failure> {
+        let model = self.model;
+        let zeroing = Instant::now();
+        if with_tangent {
+            self.values.fill(0.0);
+        }
+        let start = Instant::now();
+        self.timings.assembly += (start - zeroing).as_secs_f64();
+        self.f_c.fill(0.0);
+        if !model.contacts.is_empty() {
+            for ((x, x0), u) in self.x.iter_mut().zip(&model.mesh.nodes).zip(&self.u) {
+                *x = [x0[0] + u[0], x0[1] + u[1]];
+            }
+            for (i, state) in self.pairs.iter_mut().enumerate() {
+                let res = contact::evaluate_pair(model, i, &self.x, t, state);
+                for nc in &res {
+                    self.f_c[2 * nc.node] += nc.force[0];
+                    self.f_c[2 * nc.node + 1] += nc.force[1];
+                    if with_tangent {
+                        let slots = self.scatter.node_slots(nc.node);
+                        for b in 0..2 {
+                            for a in 0..2 {
+                                let s = slots[a + 2 * b];
+                                if s != NO_SLOT {
+                                    self.values[s as usize] += nc.stiffness[a][b];
+                                }
+                            }
+                        }
+                    }
+                }
+                self.contact[i] = res;
+            }
+        }
+        let mid = Instant::now();
+        self.timings.contact += (mid - start).as_secs_f64();
+        let values = if with_tangent {
+            Some(&mut self.values[..])
+        } else {
+            None
+        };
+        let assembled =
+            self.assembler
+                .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
+        self.timings.assembly += mid.elapsed().as_secs_f64();
+        assembled.map_err(|detail| Failure {
+            kind: FailureKind::Element,
+            residuals: Vec::new(),
+            detail,
+        })?;
+        let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
+        for (g, role) in self.dofs.dofs.iter().enumerate() {
+            let r = self.f_int[g] - self.f_ext[g] - self.f_c[g];
+            match *role {
+                Dof::Free(i) => {
+                    self.r_free[i] = r;
+                    r2 += r * r;
+                }
+                Dof::Prescribed(p) => {
+                    self.reactions[p] = r;
+                    react2 += r * r;
+                }
+                Dof::Inactive => continue,
+            }
+            let l = self.f_ext[g] + self.f_c[g];
+            load2 += l * l;
+            fint2 += self.f_int[g] * self.f_int[g];
+        }
+        let abs = r2.sqrt();
+        let denom = (load2.sqrt() + react2.sqrt()).max(fint2.sqrt()).max(TINY);
+        Ok(Eval {
+            abs,
+            rel: abs / denom,
+        })
+    }
+
+    /// Sets the free dofs to `base + s * rhs` and, in the first iteration,
+    /// the prescribed dofs to their target values.
+    fn set_state(&mut self, s: f64, prescribed: bool) {
+        let u = self.u.as_flattened_mut();
+        for ((&g, b), d) in self.dofs.free.iter().zip(&self.base).zip(&self.rhs) {
+            u[g] = b + s * d;
+        }
+        if prescribed {
+            for (p, v) in self.dofs.prescribed.iter().zip(&self.target) {
+                u[p.dof] = *v;
+            }
+        }
+    }
+
+    fn factorize(&mut self) -> Result<(), Failure> {
+        let start = Instant::now();
+        let r = self.linear.factorize(&self.scatter.pattern, &self.values);
+        self.timings.factorization += start.elapsed().as_secs_f64();
+        r.map_err(|detail| Failure {
+            kind: FailureKind::Singular,
+            residuals: Vec::new(),
+            detail,
+        })
+    }
+
+    fn solve_rhs(&mut self) {
+        let start = Instant::now();
+        self.linear.solve(&mut self.rhs);
+        self.timings.solve += start.elapsed().as_secs_f64();
+    }
+
+    /// Iterates to equilibrium at time `t` from the current state (the last
+    /// converged one), reporting each iteration of increment `increment` of
+    /// step `step` to `observer`.
+    pub fn attempt(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer,
+    ) -> Result<Converged, Failure> {
+        let model = self.model;
+        self.linear.prefer_cholesky();
+        external_forces(model, t, &mut self.f_ext);
+        self.dofs.prescribed_values(model, t, &mut self.target);
+        {
+            let u = self.u.as_flattened();
+            for ((d, p), v) in self
+                .dp
+                .iter_mut()
+                .zip(&self.dofs.prescribed)
+                .zip(&self.target)
+            {
+                *d = v - u[p.dof];
+            }
+        }
+        let dp_norm = norm(&self.dp);
+        let mut residuals: Vec<f64> = Vec::new();
+        let fail = |kind, residuals: &Vec<f64>, detail: String| Failure {
+            kind,
+            residuals: residuals.clone(),
+            detail,
+        };
+        let mut tangent_valid = false;
+        let mut growths = 0;
+        for k in 1..=settings.max_iter {
+            let first = k == 1;
+            if !tangent_valid {
+                self.evaluate(t, true).map_err(|mut f| {
+                    f.residuals.clone_from(&residuals);
+                    f
+                })?;
+            }
+            self.iterations += 1;
+            // right-hand side -(r_f + K_fp dp)
+            self.rhs.copy_from_slice(&self.r_free);
+            if first {
+                self.scatter
+                    .add_fp_product(&self.values, &self.dp, &mut self.rhs);
+            }
+            for v in &mut self.rhs {
+                *v = -*v;
+            }
+            let ref_norm = norm(&self.rhs);
+            self.factorize().map_err(|mut f| {
+                f.residuals.clone_from(&residuals);
+                f
+            })?;
+            self.solve_rhs();
+            let du_norm = norm(&self.rhs);
+            if !du_norm.is_finite() {
+                return Err(fail(
+                    FailureKind::NotFinite,
+                    &residuals,
+                    format!("iteration {k}: the displacement correction is not finite"),
+                ));
+            }
+            {
+                let u = self.u.as_flattened();
+                for (b, &g) in self.base.iter_mut().zip(&self.dofs.free) {
+                    *b = u[g];
+                }
+            }
+            self.set_state(1.0, first);
+            let with_residuals = |mut f: Failure, r: &Vec<f64>| {
+                f.residuals.clone_from(r);
+                f
+            };
+            let mut ev = self
+                .evaluate(t, true)
+                .map_err(|f| with_residuals(f, &residuals))?;
+            tangent_valid = true;
+            let mut s = 1.0;
+            // line search when the full step increases the residual (and has not
+            // already reached the tolerance: no backtracking on round-off noise)
+            if settings.line_search
+                && ev.abs > ref_norm
+                && ev.rel > settings.tol
+                && ref_norm > 0.0
+                && ev.abs.is_finite()
+            {
+                let mut best = (1.0, ev);
+                let mut last_s = 1.0;
+                for h in 1..=LINE_SEARCH_HALVINGS {
+                    let trial = 0.5f64.powi(h);
+                    self.set_state(trial, first);
+                    let e = self
+                        .evaluate(t, false)
+                        .map_err(|f| with_residuals(f, &residuals))?;
+                    last_s = trial;
+                    if e.abs < best.1.abs {
+                        best = (trial, e);
+                    }
+                    if e.abs < ref_norm {
+                        break;
+                    }
+                }
+                s = best.0;
+                ev = best.1;
+                if last_s != s {
+                    self.set_state(s, first);
+                    ev = self
+                        .evaluate(t, s == 1.0)
+                        .map_err(|f| with_residuals(f, &residuals))?;
+                    tangent_valid = s == 1.0;
+                } else {
+                    tangent_valid = false;
+                }
+            }
+            let u_norm = norm(self.u.as_flattened()).max(TINY);
+            let dp_step = if first { dp_norm } else { 0.0 };
+            let rel_du = ((s * du_norm).powi(2) + dp_step * dp_step).sqrt() / u_norm;
+            residuals.push(ev.rel);
+            let mut reported_du = rel_du;
+            let mut converged = false;
+            if ev.rel.is_finite() && ev.rel <= settings.tol {
+                if rel_du <= settings.tol_displacement {
+                    converged = true;
+                } else {
+                    // next correction estimated with the factorization at hand
+                    for (d, r) in self.rhs.iter_mut().zip(&self.r_free) {
+                        *d = -r;
+                    }
+                    self.solve_rhs();
+                    reported_du = norm(&self.rhs) / u_norm;
+                    converged = reported_du <= settings.tol_displacement;
+                }
+            }
+            let active_contacts = self.active_contacts();
+            observer.iteration(&IterationInfo {
+                step,
+                increment,
+                iteration: k,
+                residual: ev.rel,
+                displacement: reported_du,
+                step_length: s,
+                active_contacts,
+            });
+            if !ev.rel.is_finite() {
+                return Err(fail(
+                    FailureKind::NotFinite,
+                    &residuals,
+                    format!("iteration {k}: the residual is not finite"),
+                ));
+            }
+            if converged {
+                return Ok(Converged {
+                    iterations: k,
+                    residuals,
+                    active_contacts,
+                });
+            }
+            let n = residuals.len();
+            if n >= 2 && residuals[n - 1] > residuals[n - 2] {
+                growths += 1;
+            } else {
+                growths = 0;
+            }
+            if growths >= DIVERGENCE_GROWTHS {
+                return Err(fail(
+                    FailureKind::Diverged,
+                    &residuals,
+                    format!(
+                        "the residual grew in {DIVERGENCE_GROWTHS} consecutive iterations \
+                         (iteration {k})"
+                    ),
+                ));
+            }
+        }
+        Err(fail(
+            FailureKind::MaxIterations,
+            &residuals,
+            format!(
+                "no convergence in max_iter = {} iterations",
+                settings.max_iter
+            ),
+        ))
+    }
+}

@@ -1,0 +1,237 @@
+//! Load stepping: equal increments over each step, automatic cutback and
+//! grow-back.
+//!
+//! Each step starts with `(t_end - t_start) / increments`. A failed
+//! increment is retried from the last converged state with half the size;
+//! below `min_fraction` of the initial size the run stops with a diagnosis.
+//! After two consecutive easy increments (first attempt, at most half of
+//! `max_iter` iterations) the size grows by 1.5, never above the initial one.
+//! The last increment of a step ends exactly at `t_end`.
+
+use super::newton::{Converged, Failure};
+use crate::model::Step;
+
+/// Cutback factor.
+const CUT: f64 = 0.5;
+/// Grow-back factor.
+const GROW: f64 = 1.5;
+/// Easy increments needed before growing back.
+const EASY_BEFORE_GROW: usize = 2;
+
+/// What the stepper drives: one increment attempt, its acceptance or its
+/// rejection.
+pub trait IncrementSolver {
+    /// Tries to reach equilibrium at time `t` of step `step`, starting from
+    /// the last accepted state.
+    fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure>;
+    /// Accepts the state reached by the last attempt (time `t`, size `dt`,
+    /// after `cutbacks` failed attempts). An error aborts the run.
+    fn accept(
+        &mut self,
+        step: usize,
+        t: f64,
+        dt: f64,
+        cutbacks: usize,
+        converged: Converged,
+    ) -> Result<(), String>;
+    /// Discards the last attempt (restores the last accepted state); the
+    /// next attempt will use `new_dt`.
+    fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64);
+}
+
+/// Why stepping stopped.
+#[derive(Debug, Clone)]
+pub enum StepError {
+    /// An increment could not converge even at the smallest size.
+    Cutbacks {
+        /// Step index.
+        step: usize,
+        /// Time of the last converged state.
+        time: f64,
+        /// Size of the last failed attempt.
+        dt: f64,
+        /// Smallest allowed size.
+        min_dt: f64,
+        /// The last failure.
+        failure: Failure,
+    },
+    /// Accepting an increment failed (e.g. writing results).
+    Aborted(String),
+}
+
+/// Runs all `steps` with `solver`.
+pub fn drive(steps: &[Step], solver: &mut dyn IncrementSolver) -> Result<(), StepError> {
+    for (si, step) in steps.iter().enumerate() {
+        let dt0 = (step.t_end - step.t_start) / step.increments as f64;
+        let min_dt = dt0 * step.min_fraction;
+        let easy_iterations = (step.newton.max_iter / 2).max(1);
+        let mut t = step.t_start;
+        let mut dt = dt0;
+        let mut easy = 0;
+        while step.t_end - t > 1e-9 * dt0 {
+            let mut cutbacks = 0;
+            loop {
+                let remaining = step.t_end - t;
+                let (this_dt, t_new) = if dt >= remaining - 1e-6 * dt0 {
+                    (remaining, step.t_end)
+                } else {
+                    (dt, t + dt)
+                };
+                match solver.attempt(si, t_new) {
+                    Ok(conv) => {
+                        let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
+                        solver
+                            .accept(si, t_new, this_dt, cutbacks, conv)
+                            .map_err(StepError::Aborted)?;
+                        t = t_new;
+                        easy = if is_easy { easy + 1 } else { 0 };
+                        if easy >= EASY_BEFORE_GROW && dt < dt0 {
+                            dt = (dt * GROW).min(dt0);
+                            easy = 0;
+                        }
+                        break;
+                    }
+                    Err(failure) => {
+                        let new_dt = this_dt * CUT;
+                        if new_dt < min_dt * (1.0 - 1e-9) {
+                            return Err(StepError::Cutbacks {
+                                step: si,
+                                time: t,
+                                dt: this_dt,
+                                min_dt,
+                                failure,
+                            });
+                        }
+                        solver.reject(si, &failure, new_dt);
+                        dt = new_dt;
+                        cutbacks += 1;
+                        easy = 0;
+                    }
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::NewtonSettings;
+    use crate::solve::newton::FailureKind;
+
+    /// Converges whenever the increment is at most `max_dt`.
+    struct Mock {
+        max_dt: f64,
+        t: f64,
+        attempts: Vec<f64>,
+        accepted: Vec<(f64, usize)>,
+        rejected: Vec<f64>,
+    }
+
+    impl IncrementSolver for Mock {
+        fn attempt(&mut self, _step: usize, t: f64) -> Result<Converged, Failure> {
+            self.attempts.push(t);
+            if t - self.t <= self.max_dt + 1e-12 {
+                Ok(Converged {
+                    iterations: 1,
+                    residuals: vec![1e-16],
+                    active_contacts: 0,
+                })
+            } else {
+                Err(Failure {
+                    kind: FailureKind::MaxIterations,
+                    residuals: vec![1.0, 0.5],
+                    detail: "mock".into(),
+                })
+            }
+        }
+        fn accept(
+            &mut self,
+            _: usize,
+            t: f64,
+            _: f64,
+            cutbacks: usize,
+            _: Converged,
+        ) -> Result<(), String> {
+            self.t = t;
+            self.accepted.push((t, cutbacks));
+            Ok(())
+        }
+        fn reject(&mut self, _: usize, _: &Failure, new_dt: f64) {
+            self.rejected.push(new_dt);
+        }
+    }
+
+    fn step(t_end: f64, increments: usize, min_fraction: f64) -> Step {
+        Step {
+            name: "s".into(),
+            t_start: 0.0,
+            t_end,
+            increments,
+            min_fraction,
+            newton: NewtonSettings::default(),
+        }
+    }
+
+    fn mock(max_dt: f64) -> Mock {
+        Mock {
+            max_dt,
+            t: 0.0,
+            attempts: vec![],
+            accepted: vec![],
+            rejected: vec![],
+        }
+    }
+
+    #[test]
+    fn cutback_then_grow_back_sequence() {
+        let mut m = mock(0.3);
+        drive(&[step(2.0, 2, 1e-3)], &mut m).unwrap();
+        let times: Vec<f64> = m.accepted.iter().map(|a| a.0).collect();
+        // dt 1 and 0.5 fail -> 0.25 (after 2 cutbacks, not easy), 0.5, 0.75
+        // (two easy: grow to 0.375) -> 1.125 fails -> 0.1875: 0.9375 (not easy),
+        // 1.125, 1.3125 (grow to 0.28125), 1.59375, 1.875 (grow), 2.0 (0.125 left)
+        let expect = [0.25, 0.5, 0.75, 0.9375, 1.125, 1.3125, 1.59375, 1.875, 2.0];
+        assert_eq!(times.len(), expect.len(), "{times:?}");
+        for (a, b) in times.iter().zip(expect) {
+            assert!((a - b).abs() < 1e-12, "{times:?}");
+        }
+        assert_eq!(m.rejected, vec![0.5, 0.25, 0.1875]);
+        assert_eq!(m.accepted[0].1, 2);
+        assert_eq!(m.accepted[3].1, 1);
+        assert_eq!(m.accepted[4].1, 0);
+        assert_eq!(*m.attempts.last().unwrap(), 2.0);
+    }
+
+    #[test]
+    fn failure_below_min_increment_names_the_state() {
+        let mut m = mock(0.0);
+        let e = drive(&[step(1.0, 2, 1.0 / 8.0)], &mut m).unwrap_err();
+        match e {
+            StepError::Cutbacks {
+                step,
+                time,
+                dt,
+                min_dt,
+                ..
+            } => {
+                assert_eq!((step, time), (0, 0.0));
+                assert_eq!(dt, 0.0625);
+                assert_eq!(min_dt, 0.0625);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(m.attempts.len(), 4);
+        assert_eq!(m.rejected, vec![0.25, 0.125, 0.0625]);
+    }
+
+    #[test]
+    fn equal_increments_without_failures_end_exactly_at_t_end() {
+        let mut m = mock(1.0);
+        drive(&[step(1.0, 3, 0.5)], &mut m).unwrap();
+        assert_eq!(m.accepted.len(), 3);
+        assert_eq!(m.accepted[2].0, 1.0);
+        assert!((m.accepted[0].0 - 1.0 / 3.0).abs() < 1e-15);
+    }
+}

@@ -1,0 +1,326 @@
+//! Building each body's mesh (generator or gmsh file), checking it, and
+//! appending it to the global mesh with qualified set names.
+
+use crate::ast::{ElementKind, Generator, GeneratorKind, Grading, MeshDef};
+use crate::diagnostics::Diagnostic;
+use crate::source::Source;
+use crate::span::{Span, Spanned};
+use ctc_engine::mesh::generate::{self, MeshSpec};
+use ctc_engine::mesh::{gmsh, validate, CellKind, Mesh};
+use std::collections::BTreeSet;
+use std::ops::Range;
+
+/// At most this many mesh check errors are listed per body.
+const MAX_MESH_ERRORS: usize = 5;
+
+fn grading(g: &Option<Spanned<Grading>>) -> generate::Grading {
+    match g.as_ref().map(|g| &g.value) {
+        None | Some(Grading::Uniform) => generate::Grading::Uniform,
+        Some(Grading::Geometric(r)) => generate::Grading::Geometric { ratio: r.value },
+        Some(Grading::Center(r)) => generate::Grading::Center { ratio: r.value },
+    }
+}
+
+fn count(x: &Option<Spanned<i64>>) -> usize {
+    x.as_ref().map_or(1, |v| v.value.max(1) as usize)
+}
+
+/// The engine's [`MeshSpec`] for a validated generator.
+pub fn spec(g: &Generator) -> MeshSpec {
+    let kind = match g.element.as_ref().map(|e| e.value) {
+        Some(ElementKind::Tri3) => CellKind::Tri3,
+        _ => CellKind::Quad4,
+    };
+    let pt = |p: &Option<Spanned<[f64; 2]>>| p.as_ref().map_or([0.0, 0.0], |p| p.value);
+    let val = |x: &Option<Spanned<f64>>, d: f64| x.as_ref().map_or(d, |x| x.value);
+    match &g.kind {
+        GeneratorKind::Rectangle {
+            origin,
+            size,
+            divisions,
+            grading: gr,
+        } => MeshSpec::Rectangle {
+            origin: pt(origin),
+            size: size
+                .as_ref()
+                .map_or([1.0, 1.0], |s| [s.value[0].value, s.value[1].value]),
+            divisions: divisions.as_ref().map_or([1, 1], |d| {
+                [
+                    d.value[0].value.max(1) as usize,
+                    d.value[1].value.max(1) as usize,
+                ]
+            }),
+            grading: match gr {
+                Some(gr) => [
+                    grading(&Some(gr.value[0].clone())),
+                    grading(&Some(gr.value[1].clone())),
+                ],
+                None => [generate::Grading::Uniform, generate::Grading::Uniform],
+            },
+            kind,
+        },
+        GeneratorKind::Disc {
+            quarter,
+            center,
+            radius,
+            radial,
+            circumferential,
+            radial_grading,
+            circumferential_grading,
+            upper,
+        } => {
+            let (center, radius) = (pt(center), val(radius, 1.0));
+            let (radial, circumferential) = (count(radial), count(circumferential));
+            let radial_grading = grading(radial_grading);
+            let circumferential_grading = grading(circumferential_grading);
+            let upper = upper.as_ref().is_some_and(|u| u.value);
+            if *quarter {
+                MeshSpec::QuarterDisc {
+                    center,
+                    radius,
+                    radial,
+                    circumferential,
+                    radial_grading,
+                    circumferential_grading,
+                    upper,
+                    kind,
+                }
+            } else {
+                MeshSpec::HalfDisc {
+                    center,
+                    radius,
+                    radial,
+                    circumferential,
+                    radial_grading,
+                    circumferential_grading,
+                    upper,
+                    kind,
+                }
+            }
+        }
+        GeneratorKind::Annulus {
+            center,
+            inner,
+            outer,
+            start,
+            end,
+            radial,
+            circumferential,
+            radial_grading,
+        } => MeshSpec::Annulus {
+            center: pt(center),
+            inner: val(inner, 1.0),
+            outer: val(outer, 2.0),
+            start_angle: val(start, 0.0),
+            end_angle: val(end, 360.0),
+            radial: count(radial),
+            circumferential: count(circumferential),
+            radial_grading: grading(radial_grading),
+            kind,
+        },
+    }
+}
+
+/// Builds (generates or reads) and checks the mesh of body `body`.
+pub fn build(body: &str, mesh: &Spanned<MeshDef>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
+    let m = match &mesh.value {
+        MeshDef::Generator(g) => generate::generate(&spec(g)).map_err(|e| {
+            vec![Diagnostic::error(
+                format!("cannot generate the mesh of body `{body}`: {}", e.message),
+                mesh.span,
+                "mesh generation failed",
+            )]
+        })?,
+        MeshDef::File(f) => read_file(f, src)?,
+    };
+    if m.cells.is_empty() {
+        return Err(vec![Diagnostic::error(
+            format!("the mesh of body `{body}` has no cells"),
+            mesh.span,
+            "empty mesh",
+        )
+        .with_help("gmsh files must contain 2D triangles or quadrangles")]);
+    }
+    if let Err(errors) = validate::check(&m) {
+        let n = errors.len();
+        let mut out: Vec<Diagnostic> = errors
+            .iter()
+            .take(MAX_MESH_ERRORS)
+            .map(|e| {
+                Diagnostic::error(
+                    format!("invalid mesh for body `{body}`: {e}"),
+                    mesh.span,
+                    "bad mesh",
+                )
+            })
+            .collect();
+        if n > MAX_MESH_ERRORS {
+            if let Some(last) = out.last_mut() {
+                last.help = Some(format!(
+                    "{} more mesh errors not shown",
+                    n - MAX_MESH_ERRORS
+                ));
+            }
+        }
+        return Err(out);
+    }
+    Ok(m)
+}
+
+fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
+    let path = src.directory().join(&f.value);
+    let bytes = std::fs::read(&path).map_err(|e| {
+        let label = match e.kind() {
+            std::io::ErrorKind::NotFound => "file not found".to_string(),
+            _ => "cannot read this file".to_string(),
+        };
+        vec![Diagnostic::error(
+            format!("cannot read mesh file `{}`: {e}", f.value),
+            f.span,
+            label,
+        )
+        .with_help(format!(
+            "looked for `{}`; mesh paths are relative to the deck's directory",
+            path.display()
+        ))]
+    })?;
+    gmsh::parse_bytes(&bytes).map_err(|e| {
+        let at = match e.line {
+            Some(l) => format!(", line {l}"),
+            None => String::new(),
+        };
+        vec![Diagnostic::error(
+            format!("error in mesh file `{}`{at}: {}", f.value, e.message),
+            f.span,
+            "in this mesh file",
+        )]
+    })
+}
+
+/// Where a body landed in the global mesh.
+#[derive(Debug, Clone)]
+pub struct Placed {
+    /// Global node numbers.
+    pub nodes: Range<usize>,
+    /// Global cell numbers.
+    pub cells: Range<usize>,
+}
+
+/// Appends `m` (the mesh of body `body`) to `global`: node and cell numbers
+/// are offset, sets are renamed `body.set`, every edge set gets a node set,
+/// and the built-in sets `body.boundary` (edges) and `body.all` (nodes) are
+/// added. Returns warnings (mesh sets shadowed by the built-in ones).
+pub fn append(global: &mut Mesh, body: &str, m: Mesh, at: Span) -> (Placed, Vec<Diagnostic>) {
+    let mut warnings = Vec::new();
+    let node_off = global.nodes.len();
+    let cell_off = global.cells.len();
+    let n_nodes = m.nodes.len();
+    global.nodes.extend_from_slice(&m.nodes);
+    for c in &m.cells {
+        let mut c = *c;
+        for n in c.nodes.iter_mut() {
+            *n += node_off;
+        }
+        global.cells.push(c);
+    }
+    let cells = cell_off..global.cells.len();
+    for name in ["boundary", "all"] {
+        if m.node_sets.contains_key(name) || m.edge_sets.contains_key(name) {
+            warnings.push(Diagnostic::warning(
+                format!("the mesh of body `{body}` has its own set `{name}`; the built-in `{body}.{name}` replaces it"),
+                at,
+                "shadowed set",
+            ));
+        }
+    }
+    for (name, nodes) in &m.node_sets {
+        let mut v: Vec<usize> = nodes.iter().map(|n| n + node_off).collect();
+        v.sort_unstable();
+        v.dedup();
+        global.node_sets.insert(format!("{body}.{name}"), v);
+    }
+    for (name, edges) in &m.edge_sets {
+        let v: Vec<[usize; 2]> = edges
+            .iter()
+            .map(|e| [e[0] + node_off, e[1] + node_off])
+            .collect();
+        let key = format!("{body}.{name}");
+        global
+            .node_sets
+            .entry(key.clone())
+            .or_insert_with(|| edge_nodes(&v));
+        global.edge_sets.insert(key, v);
+    }
+    let boundary = global.boundary_edges(cells.clone());
+    global
+        .node_sets
+        .insert(format!("{body}.boundary"), edge_nodes(&boundary));
+    global
+        .edge_sets
+        .insert(format!("{body}.boundary"), boundary);
+    global.node_sets.insert(
+        format!("{body}.all"),
+        (node_off..node_off + n_nodes).collect(),
+    );
+    (
+        Placed {
+            nodes: node_off..node_off + n_nodes,
+            cells,
+        },
+        warnings,
+    )
+}
+
+/// The distinct nodes of `edges`, sorted.
+pub fn edge_nodes(edges: &[[usize; 2]]) -> Vec<usize> {
+    let set: BTreeSet<usize> = edges.iter().flat_map(|e| [e[0], e[1]]).collect();
+    set.into_iter().collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use ctc_engine::mesh::Cell;
+
+    fn unit_square() -> Mesh {
+        let mut m = Mesh {
+            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            cells: vec![Cell::quad(0, 1, 2, 3)],
+            ..Mesh::default()
+        };
+        m.edge_sets.insert("bottom".into(), vec![[0, 1]]);
+        m.node_sets.insert("corner".into(), vec![2]);
+        m
+    }
+
+    #[test]
+    fn append_offsets_numbers_and_qualifies_sets() {
+        let mut g = Mesh::default();
+        let (a, w) = append(&mut g, "a", unit_square(), Span::default());
+        assert!(w.is_empty());
+        let (b, _) = append(&mut g, "b", unit_square(), Span::default());
+        assert_eq!(a.nodes, 0..4);
+        assert_eq!(b.nodes, 4..8);
+        assert_eq!(b.cells, 1..2);
+        assert_eq!(g.cells[1].nodes, [4, 5, 6, 7]);
+        assert_eq!(g.edge_sets["b.bottom"], vec![[4, 5]]);
+        assert_eq!(g.node_sets["b.bottom"], vec![4, 5]);
+        assert_eq!(g.node_sets["b.corner"], vec![6]);
+        assert_eq!(g.node_sets["b.all"], vec![4, 5, 6, 7]);
+        assert_eq!(g.edge_sets["b.boundary"].len(), 4);
+        assert_eq!(g.node_sets["b.boundary"], vec![4, 5, 6, 7]);
+        // Boundary edges keep the body on their left (counter-clockwise cell).
+        assert!(g.edge_sets["a.boundary"].contains(&[0, 1]));
+    }
+
+    #[test]
+    fn missing_mesh_file_is_a_diagnostic_at_the_path() {
+        let src = Source::new("/nonexistent-dir/deck.ctc", "");
+        let f = Spanned::new("part.msh".to_string(), Span::new(10, 20));
+        let mesh = Spanned::new(MeshDef::File(f), Span::new(5, 20));
+        let e = build("b", &mesh, &src).unwrap_err();
+        assert_eq!(e[0].span, Span::new(10, 20));
+        assert!(e[0].message.starts_with("cannot read mesh file `part.msh`"));
+        assert_eq!(e[0].label, "file not found");
+    }
+}

@@ -1,0 +1,112 @@
+//! `pressure body.edges { p = .. }` and `force body.nodes { fx = .. fy = .. }`.
+
+use super::values::{self, Diags};
+use super::ItemParts;
+use crate::ast::syntax::EntryBody;
+use crate::ast::{Component, LoadDef, LoadKind};
+use crate::diagnostics::Diagnostic;
+use crate::suggest::{did_you_mean, one_of};
+
+/// Converts a `pressure` or `force` item.
+pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadDef> {
+    let target = values::set_ref(item.target.as_ref()?, diags)?;
+    let block = item.block?;
+    let (word, keys): (&str, &[(&str, Option<Component>)]) = match kind {
+        LoadKind::Pressure => ("pressure", &[("p", None)]),
+        LoadKind::Force => (
+            "force",
+            &[("fx", Some(Component::X)), ("fy", Some(Component::Y))],
+        ),
+    };
+    let names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
+    let mut values_out = Vec::new();
+    let mut seen: Vec<&str> = Vec::new();
+    for e in &block.entries {
+        let Some((key, comp)) = keys.iter().find(|(n, _)| *n == e.key.name) else {
+            diags.push(
+                Diagnostic::error(
+                    format!("unknown key `{}` in `{word}`", e.key.name),
+                    e.key.span,
+                    format!("expected {}", one_of(&names)),
+                )
+                .with_help_opt(did_you_mean(&e.key.name, &names)),
+            );
+            continue;
+        };
+        if seen.contains(key) {
+            diags.push(
+                Diagnostic::error(
+                    format!("`{key}` is given twice in `{word}`"),
+                    e.key.span,
+                    "duplicate key",
+                )
+                .with_help("remove one of them"),
+            );
+            continue;
+        }
+        seen.push(key);
+        match &e.body {
+            EntryBody::Assign(v) => {
+                if let Some(t) = values::time_fn(v, diags) {
+                    values_out.push((*comp, t));
+                }
+            }
+            _ => diags.push(Diagnostic::error(
+                format!("`{key}` needs a value"),
+                e.span,
+                format!("expected `{key} = <value or time function>`"),
+            )),
+        }
+    }
+    if block.entries.is_empty() {
+        let example = match kind {
+            LoadKind::Pressure => "p = ramp(0, 10)",
+            LoadKind::Force => "fy = -1",
+        };
+        diags.push(
+            Diagnostic::error(
+                format!("`{word}` gives no value"),
+                block.span,
+                "empty block",
+            )
+            .with_help(format!("write e.g. `{word} {target} {{ {example} }}`")),
+        );
+    }
+    Some(LoadDef {
+        kind,
+        keyword: item.keyword,
+        target,
+        values: values_out,
+        span: item.span,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ast::{Component, LoadKind, TimeFn};
+    use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn pressure_and_force() {
+        let deck = parse_ok("pressure block.right { p = ramp(0, 10) }\nforce block.node(near(0, 0)) { fy = -1  fx = table((0, 0), (1, 2)) }");
+        assert_eq!(deck.loads.len(), 2);
+        assert_eq!(deck.loads[0].kind, LoadKind::Pressure);
+        assert_eq!(deck.loads[0].values[0].0, None);
+        let f = &deck.loads[1];
+        assert_eq!(f.values[0].0, Some(Component::Y));
+        assert_eq!(f.values[0].1.value, TimeFn::Number(-1.0));
+        assert_eq!(f.values[1].0, Some(Component::X));
+    }
+
+    #[test]
+    fn load_mistakes() {
+        assert_eq!(
+            parse_messages("force a.b { fz = 1 }"),
+            ["unknown key `fz` in `force`"]
+        );
+        assert_eq!(
+            parse_messages("pressure a.b { }"),
+            ["`pressure` gives no value"]
+        );
+    }
+}

@@ -1,0 +1,141 @@
+//! `output { every = n  fields = [..]  history = [..] }`.
+
+use super::fields::Fields;
+use super::values::{self, Diags};
+use super::ItemParts;
+use crate::ast::syntax::{ArgKind, Value, ValueKind};
+use crate::ast::{FieldName, History, Output};
+use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
+use crate::suggest::did_you_mean;
+
+/// Output field names.
+pub const FIELDS: [(&str, FieldName); 6] = [
+    ("displacement", FieldName::Displacement),
+    ("stress", FieldName::Stress),
+    ("strain", FieldName::Strain),
+    ("von_mises", FieldName::VonMises),
+    ("reaction", FieldName::Reaction),
+    ("contact", FieldName::Contact),
+];
+
+const HISTORIES: [&str; 3] = ["reaction", "displacement", "contact_force"];
+
+/// Converts an `output` item.
+pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Output> {
+    let block = item.block?;
+    let mut f = Fields::new(&block, "`output` block", &["every", "fields", "history"]);
+    let every = f.integer("every", diags);
+    let fields = f.value("fields", diags).and_then(|v| {
+        let items = values::list(v, "a list of fields `[displacement, stress, ..]`", diags)?;
+        let out: Vec<_> = items
+            .iter()
+            .filter_map(|x| values::choice(x, "output field", &FIELDS, diags))
+            .collect();
+        Some(Spanned::new(out, v.span))
+    });
+    let history = f.value("history", diags).and_then(|v| {
+        let items = values::list(v, "a list of histories `[reaction(body.set), ..]`", diags)?;
+        Some(items.iter().filter_map(|x| history(x, diags)).collect())
+    });
+    f.finish(diags);
+    Some(Output {
+        every,
+        fields,
+        history,
+        keyword: item.keyword,
+        span: item.span,
+    })
+}
+
+fn history(v: &Value, diags: &mut Diags) -> Option<Spanned<History>> {
+    let help = "expected `reaction(body.set)`, `displacement(body.set)` or `contact_force(body.set -> tool)`";
+    let ValueKind::Call { path, args } = &v.kind else {
+        diags.push(Diagnostic::error(
+            format!("expected a history request, found {}", v.kind.describe()),
+            v.span,
+            help,
+        ));
+        return None;
+    };
+    if path.len() != 1 || !HISTORIES.contains(&path[0].name.as_str()) {
+        let name = crate::ast::syntax::path_text(path);
+        diags.push(
+            Diagnostic::error(format!("unknown history `{name}`"), v.span, help)
+                .with_help_opt(did_you_mean(&name, HISTORIES)),
+        );
+        return None;
+    }
+    let name = &path[0].name;
+    if args.len() != 1 {
+        diags.push(Diagnostic::error(
+            format!("`{name}` takes 1 argument, found {}", args.len()),
+            v.span,
+            help,
+        ));
+        return None;
+    }
+    let h = match (&args[0].kind, name.as_str()) {
+        (ArgKind::Positional(r), "reaction") => History::Reaction(values::set_ref(r, diags)?),
+        (ArgKind::Positional(r), "displacement") => {
+            History::Displacement(values::set_ref(r, diags)?)
+        }
+        (ArgKind::Arrow(r, tool), "contact_force") => {
+            History::ContactForce(values::set_ref(r, diags)?, tool.clone())
+        }
+        (_, "contact_force") => {
+            diags.push(Diagnostic::error(
+                "`contact_force` names a contact pair",
+                args[0].span,
+                "expected `body.set -> tool`",
+            ));
+            return None;
+        }
+        _ => {
+            diags.push(Diagnostic::error(
+                format!("`{name}` takes a set reference"),
+                args[0].span,
+                "expected `body.set`",
+            ));
+            return None;
+        }
+    };
+    Some(Spanned::new(h, v.span))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ast::{FieldName, History};
+    use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn output_block() {
+        let deck = parse_ok(
+            "output {\n  every = 2\n  fields = [displacement, stress, strain, von_mises, reaction, contact]\n  history = [reaction(block.bottom), displacement(block.top), contact_force(block.top -> punch)]\n}",
+        );
+        let o = &deck.outputs[0];
+        assert_eq!(o.every.as_ref().unwrap().value, 2);
+        assert_eq!(o.fields.as_ref().unwrap().value.len(), 6);
+        assert_eq!(
+            o.fields.as_ref().unwrap().value[3].value,
+            FieldName::VonMises
+        );
+        let h = o.history.as_ref().unwrap();
+        assert!(matches!(&h[0].value, History::Reaction(r) if r.to_string() == "block.bottom"));
+        assert!(
+            matches!(&h[2].value, History::ContactForce(r, t) if r.to_string() == "block.top" && t.name == "punch")
+        );
+    }
+
+    #[test]
+    fn output_mistakes() {
+        assert_eq!(
+            parse_messages("output { fields = [displacment] }"),
+            ["unknown output field `displacment`"]
+        );
+        assert_eq!(
+            parse_messages("output { history = [reactoin(a.b)] }"),
+            ["unknown history `reactoin`"]
+        );
+    }
+}

@@ -1,0 +1,112 @@
+//! `step name { time = t0 .. t1  increments = n  min_increment = f  newton { .. } }`.
+
+use super::fields::Fields;
+use super::values::{self, Diags};
+use super::ItemParts;
+use crate::ast::syntax::ValueKind;
+use crate::ast::{Newton, Step};
+use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
+
+/// Converts a `step` item.
+pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
+    let block = item.block?;
+    let what = match &item.name {
+        Some(n) => format!("step `{}`", n.name),
+        None => "`step` block".to_string(),
+    };
+    let mut f = Fields::new(
+        &block,
+        what,
+        &["time", "increments", "min_increment", "newton"],
+    );
+    let time = f.value("time", diags).and_then(|v| match &v.kind {
+        ValueKind::Range(a, b) => {
+            let t0 = values::number(a, diags);
+            let t1 = values::number(b, diags);
+            Some(Spanned::new([t0?, t1?], v.span))
+        }
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    format!("expected a time range, found {}", other.describe()),
+                    v.span,
+                    "expected `t0 .. t1`",
+                )
+                .with_help("write e.g. `time = 0 .. 1`"),
+            );
+            None
+        }
+    });
+    let increments = f.integer("increments", diags);
+    let min_increment = f.number("min_increment", diags);
+    let newton = f.block("newton", diags).map(|b| {
+        let mut n = Fields::new(
+            b,
+            "`newton` block",
+            &["tol", "tol_displacement", "max_iter", "line_search"],
+        );
+        let out = Newton {
+            tol: n.number("tol", diags),
+            tol_displacement: n.number("tol_displacement", diags),
+            max_iter: n.integer("max_iter", diags),
+            line_search: n.boolean("line_search", diags),
+            span: b.span,
+        };
+        n.finish(diags);
+        out
+    });
+    let at = item.name.as_ref().map(|n| n.span).unwrap_or(item.keyword);
+    f.require(&time, "time", at, "add e.g. `time = 0 .. 1`", diags);
+    f.finish(diags);
+    Some(Step {
+        name: item.name,
+        keyword: item.keyword,
+        time,
+        increments,
+        min_increment,
+        newton,
+        span: item.span,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn step_with_newton_block() {
+        let deck = parse_ok(
+            "step press {\n  time = 0 .. 1\n  increments = 4\n  min_increment = 1e-3\n  newton { tol = 1e-9  max_iter = 20  line_search = true }\n}\nstep { time = 1..2 }",
+        );
+        let s = &deck.steps[0];
+        assert_eq!(s.name.as_ref().unwrap().name, "press");
+        let t = s.time.as_ref().unwrap();
+        assert_eq!((t.value[0].value, t.value[1].value), (0.0, 1.0));
+        assert_eq!(s.increments.as_ref().unwrap().value, 4);
+        assert_eq!(s.min_increment.as_ref().unwrap().value, 1e-3);
+        let n = s.newton.as_ref().unwrap();
+        assert_eq!(n.tol.as_ref().unwrap().value, 1e-9);
+        assert_eq!(n.max_iter.as_ref().unwrap().value, 20);
+        assert!(n.line_search.as_ref().unwrap().value);
+        assert!(deck.steps[1].name.is_none());
+        let t = deck.steps[1].time.as_ref().unwrap();
+        assert_eq!((t.value[0].value, t.value[1].value), (1.0, 2.0));
+    }
+
+    #[test]
+    fn step_mistakes() {
+        assert_eq!(
+            parse_messages("step s { time = 1 }"),
+            ["expected a time range, found a number"]
+        );
+        assert_eq!(
+            parse_messages("step s { increments = 2 }"),
+            ["missing `time` in the step `s`"]
+        );
+        assert_eq!(
+            parse_messages("step s { time = 0 .. 1 newton { tol = 1e-9 max_iters = 3 } }"),
+            ["unknown key `max_iters` in the `newton` block"]
+        );
+    }
+}

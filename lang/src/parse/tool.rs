@@ -1,0 +1,238 @@
+//! `tool name = kind { .. }` for the rigid analytical tools (plane,
+//! polyline, arc, circle, nurbs) and their `motion { .. }` block.
+
+use super::fields::Fields;
+use super::values::{self, Diags};
+use super::ItemParts;
+use crate::ast::syntax::Block;
+use crate::ast::{Motion, Side, Tool, ToolGeometry};
+use crate::diagnostics::Diagnostic;
+use crate::suggest::did_you_mean;
+
+/// Tool geometry kinds.
+pub const KINDS: [&str; 5] = ["plane", "polyline", "arc", "circle", "nurbs"];
+
+const SIDES: [(&str, Side); 2] = [("outside", Side::Outside), ("inside", Side::Inside)];
+
+/// Converts a `tool` item.
+pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
+    let mut names = item.names.into_iter();
+    let name = names.next()?;
+    let kind = names.next()?;
+    let block = item.block?;
+    let at = kind.span;
+    let what = format!("`{}` tool", kind.name);
+    let motion_block: Option<&Block>;
+    let geometry = match kind.name.as_str() {
+        "plane" => {
+            let mut f = Fields::new(&block, what, &["point", "normal", "motion"]);
+            let point = f.point("point", diags);
+            let normal = f.point("normal", diags);
+            motion_block = f.block("motion", diags);
+            f.require(&point, "point", at, "add `point = (x, y)`", diags);
+            f.require(
+                &normal,
+                "normal",
+                at,
+                "add `normal = (nx, ny)` pointing to the free side",
+                diags,
+            );
+            f.finish(diags);
+            ToolGeometry::Plane { point, normal }
+        }
+        "polyline" => {
+            let mut f = Fields::new(&block, what, &["points", "motion"]);
+            let points = f
+                .value("points", diags)
+                .and_then(|v| values::point_list(v, diags));
+            motion_block = f.block("motion", diags);
+            f.require(
+                &points,
+                "points",
+                at,
+                "add `points = [(x0, y0), (x1, y1), ..]`",
+                diags,
+            );
+            f.finish(diags);
+            ToolGeometry::Polyline { points }
+        }
+        "arc" => {
+            let mut f = Fields::new(
+                &block,
+                what,
+                &["center", "radius", "start", "end", "motion"],
+            );
+            let center = f.point("center", diags);
+            let radius = f.number("radius", diags);
+            let start = f.number("start", diags);
+            let end = f.number("end", diags);
+            motion_block = f.block("motion", diags);
+            f.require(&center, "center", at, "add `center = (x, y)`", diags);
+            f.require(&radius, "radius", at, "add `radius = ..`", diags);
+            f.require(
+                &start,
+                "start",
+                at,
+                "add `start = <angle in degrees>`",
+                diags,
+            );
+            f.require(&end, "end", at, "add `end = <angle in degrees>`", diags);
+            f.finish(diags);
+            ToolGeometry::Arc {
+                center,
+                radius,
+                start,
+                end,
+            }
+        }
+        "circle" => {
+            let mut f = Fields::new(&block, what, &["center", "radius", "side", "motion"]);
+            let center = f.point("center", diags);
+            let radius = f.number("radius", diags);
+            let side = f.choice("side", "side", &SIDES, diags);
+            motion_block = f.block("motion", diags);
+            f.require(&center, "center", at, "add `center = (x, y)`", diags);
+            f.require(&radius, "radius", at, "add `radius = ..`", diags);
+            f.finish(diags);
+            ToolGeometry::Circle {
+                center,
+                radius,
+                side,
+            }
+        }
+        "nurbs" => {
+            let mut f = Fields::new(
+                &block,
+                what,
+                &["degree", "points", "weights", "knots", "motion"],
+            );
+            let degree = f.integer("degree", diags);
+            let points = f
+                .value("points", diags)
+                .and_then(|v| values::point_list(v, diags));
+            let weights = f
+                .value("weights", diags)
+                .and_then(|v| values::number_list(v, diags));
+            let knots = f
+                .value("knots", diags)
+                .and_then(|v| values::number_list(v, diags));
+            motion_block = f.block("motion", diags);
+            f.require(
+                &degree,
+                "degree",
+                at,
+                "add `degree = 2` (or another degree >= 1)",
+                diags,
+            );
+            f.require(
+                &points,
+                "points",
+                at,
+                "add `points = [(x0, y0), ..]` (the control points)",
+                diags,
+            );
+            f.finish(diags);
+            ToolGeometry::Nurbs {
+                degree,
+                points,
+                weights,
+                knots,
+            }
+        }
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    format!("unknown tool kind `{other}`"),
+                    kind.span,
+                    "not a tool kind",
+                )
+                .with_help(did_you_mean(other, KINDS).unwrap_or_else(|| {
+                    "expected `plane`, `polyline`, `arc`, `circle` or `nurbs`".to_string()
+                })),
+            );
+            return None;
+        }
+    };
+    let motion = motion_block.map(|b| {
+        let mut f = Fields::new(b, "`motion` block", &["ux", "uy", "rotation", "center"]);
+        let m = Motion {
+            ux: f.time_fn("ux", diags),
+            uy: f.time_fn("uy", diags),
+            rotation: f.time_fn("rotation", diags),
+            center: f.point("center", diags),
+            span: b.span,
+        };
+        f.finish(diags);
+        m
+    });
+    Some(Tool {
+        name,
+        kind,
+        geometry,
+        motion,
+        span: item.span,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ast::{Side, TimeFn, ToolGeometry};
+    use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn all_tool_kinds() {
+        let deck = parse_ok(
+            "tool punch = circle { center = (0, 1)  radius = 1  side = outside\n motion { uy = ramp(0, -0.02) rotation = 0.1 center = (0, 1) } }\n\
+             tool floor = plane { point = (0, 0)  normal = (0, 1) }\n\
+             tool die   = polyline { points = [(0, 0), (1, 0), (2, 1)] }\n\
+             tool roll  = arc { center = (0, 0)  radius = 1  start = 180  end = 360 }\n\
+             tool cad   = nurbs { degree = 2  points = [(0,0), (1,1), (2,0)]  weights = [1, 0.75, 1]\n knots = [0, 0, 0, 1, 1, 1] }",
+        );
+        assert_eq!(deck.tools.len(), 5);
+        let t = &deck.tools[0];
+        assert_eq!(t.name.name, "punch");
+        match &t.geometry {
+            ToolGeometry::Circle { side, radius, .. } => {
+                assert_eq!(side.as_ref().unwrap().value, Side::Outside);
+                assert_eq!(radius.as_ref().unwrap().value, 1.0);
+            }
+            g => panic!("{g:?}"),
+        }
+        let m = t.motion.as_ref().unwrap();
+        assert_eq!(
+            m.uy.as_ref().unwrap().value,
+            TimeFn::Ramp {
+                v0: 0.0,
+                v1: -0.02,
+                window: None
+            }
+        );
+        assert_eq!(m.rotation.as_ref().unwrap().value, TimeFn::Number(0.1));
+        match &deck.tools[4].geometry {
+            ToolGeometry::Nurbs {
+                degree,
+                points,
+                weights,
+                knots,
+            } => {
+                assert_eq!(degree.as_ref().unwrap().value, 2);
+                assert_eq!(points.as_ref().unwrap().value.len(), 3);
+                assert_eq!(weights.as_ref().unwrap().value[1].value, 0.75);
+                assert_eq!(knots.as_ref().unwrap().value.len(), 6);
+            }
+            g => panic!("{g:?}"),
+        }
+    }
+
+    #[test]
+    fn unknown_tool_kind_and_motion_key() {
+        assert_eq!(
+            parse_messages("tool t = circel { }"),
+            ["unknown tool kind `circel`"]
+        );
+        assert_eq!(
+            parse_messages("tool t = plane { point = (0,0) normal = (0,1) motion { uz = 1 } }"),
+            ["unknown key `uz` in the `motion` block"]
+        );
+    }
+}

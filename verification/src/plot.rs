@@ -1,0 +1,285 @@
+//! SVG plots of a verification report (plotters, SVG backend, built-in
+//! text metrics: no font files involved).
+//!
+//! Per case: the contact pressure profile of every level against Hertz
+//! (normalised `p / p0` against `x / a`, so all levels share one curve),
+//! the errors against the mesh size (log-log, with the observed slope
+//! visible) and the errors against the solve wall time (log-log).
+//! Quantities whose errors are all at round-off level are left out of the
+//! error plots (a case with only such quantities gets none).
+
+use crate::case::Quantity;
+use crate::report::{CaseReport, LevelReport, ROUND_OFF};
+use plotters::prelude::*;
+use std::path::Path;
+
+/// Size of every plot, pixels.
+const SIZE: (u32, u32) = (800, 560);
+
+/// A plot written to disk.
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct PlotFile {
+    /// Case name.
+    pub case: String,
+    /// What it shows: `profile`, `convergence` or `time`.
+    pub kind: String,
+    /// File name inside the report directory.
+    pub file: String,
+}
+
+/// Writes every plot of `case` into `dir`; returns the files written.
+pub fn case_plots(case: &CaseReport, dir: &Path) -> Result<Vec<PlotFile>, String> {
+    let mut files = Vec::new();
+    let ok: Vec<&LevelReport> = case.levels.iter().filter(|l| l.failure.is_none()).collect();
+    if ok.iter().any(|l| l.profile.is_some()) {
+        let file = format!("{}_profile.svg", case.name);
+        profile_plot(case, &ok, &dir.join(&file))?;
+        files.push(PlotFile {
+            case: case.name.clone(),
+            kind: "profile".into(),
+            file,
+        });
+    }
+    if !ok.is_empty() {
+        let file = format!("{}_convergence.svg", case.name);
+        if error_plot(case, &ok, &dir.join(&file), Axis::MeshSize)? {
+            files.push(PlotFile {
+                case: case.name.clone(),
+                kind: "convergence".into(),
+                file,
+            });
+        }
+        let file = format!("{}_time.svg", case.name);
+        if error_plot(case, &ok, &dir.join(&file), Axis::WallTime)? {
+            files.push(PlotFile {
+                case: case.name.clone(),
+                kind: "time".into(),
+                file,
+            });
+        }
+    }
+    Ok(files)
+}
+
+/// Colour of the i-th series.
+fn colour(i: usize) -> RGBColor {
+    const C: [RGBColor; 6] = [
+        RGBColor(31, 119, 180),
+        RGBColor(255, 127, 14),
+        RGBColor(44, 160, 44),
+        RGBColor(214, 39, 40),
+        RGBColor(148, 103, 189),
+        RGBColor(140, 86, 75),
+    ];
+    C[i % C.len()]
+}
+
+/// Maps a plotters error to a message.
+fn err<E: std::fmt::Debug>(what: &Path) -> impl Fn(E) -> String + '_ {
+    move |e| format!("cannot draw {}: {e:?}", what.display())
+}
+
+/// `p / p0` against `x / a` for every level, with the Hertz ellipse.
+fn profile_plot(case: &CaseReport, levels: &[&LevelReport], path: &Path) -> Result<(), String> {
+    let e = err(path);
+    let root = SVGBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(&e)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(format!("{}: contact pressure vs Hertz", case.name), ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(60)
+        .build_cartesian_2d(0.0..1.5f64, 0.0..1.2f64)
+        .map_err(&e)?;
+    chart
+        .configure_mesh()
+        .x_desc("x / a (Hertz a for the computed load)")
+        .y_desc("p / p0")
+        .draw()
+        .map_err(&e)?;
+    let hertz: Vec<(f64, f64)> = (0..=300)
+        .map(|i| {
+            let x = 1.5 * i as f64 / 300.0;
+            (x, if x < 1.0 { (1.0 - x * x).sqrt() } else { 0.0 })
+        })
+        .collect();
+    chart
+        .draw_series(LineSeries::new(hertz, BLACK.stroke_width(2)))
+        .map_err(&e)?
+        .label("Hertz")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+    for (i, l) in levels.iter().enumerate() {
+        let Some(p) = &l.profile else { continue };
+        let c = colour(i);
+        let pts: Vec<(f64, f64)> = p
+            .points
+            .iter()
+            .map(|q| (q[0] / p.a, q[1] / p.p0))
+            .filter(|q| q.0 <= 1.5)
+            .collect();
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(1)))
+            .map_err(&e)?;
+        chart
+            .draw_series(pts.into_iter().map(move |q| Circle::new(q, 3, c.filled())))
+            .map_err(&e)?
+            .label(format!("level {} (h = {:.2e})", l.level, l.h))
+            .legend(move |(x, y)| Circle::new((x + 10, y), 3, c.filled()));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()
+        .map_err(&e)?;
+    root.present().map_err(&e)?;
+    Ok(())
+}
+
+/// Abscissa of an error plot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Axis {
+    /// Characteristic mesh size h.
+    MeshSize,
+    /// Solve wall time.
+    WallTime,
+}
+
+/// Log-log errors of every quantity against h or wall time. Returns false
+/// (and writes nothing) when no positive error/abscissa pair exists.
+fn error_plot(case: &CaseReport, levels: &[&LevelReport], path: &Path, axis: Axis) -> Result<bool, String> {
+    let abscissa = |l: &LevelReport| match axis {
+        Axis::MeshSize => l.h,
+        Axis::WallTime => l.solve_time,
+    };
+    let series: Vec<(Quantity, Vec<(f64, f64)>)> = case
+        .quantities()
+        .into_iter()
+        .map(|q| {
+            let pts = levels
+                .iter()
+                .filter_map(|l| Some((abscissa(l), l.error_of(q)?)))
+                .filter(|(x, y)| *x > 0.0 && *y > 0.0 && x.is_finite() && y.is_finite())
+                .collect::<Vec<_>>();
+            (q, pts)
+        })
+        // Round-off-level quantities (force balance, patch tests) would
+        // only squash the scale: they are in the tables.
+        .filter(|(_, p)| p.iter().any(|&(_, e)| e > ROUND_OFF))
+        .collect();
+    if series.is_empty() {
+        return Ok(false);
+    }
+    let all = series.iter().flat_map(|(_, p)| p.iter());
+    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, 0.0f64, f64::INFINITY, 0.0f64);
+    for &(x, y) in all {
+        x0 = x0.min(x);
+        x1 = x1.max(x);
+        y0 = y0.min(y);
+        y1 = y1.max(y);
+    }
+    let (x0, x1) = (x0 / 1.5, x1 * 1.5);
+    let (y0, y1) = (y0 / 3.0, y1 * 3.0);
+    let e = err(path);
+    let root = SVGBackend::new(path, SIZE).into_drawing_area();
+    root.fill(&WHITE).map_err(&e)?;
+    let (title, xdesc) = match axis {
+        Axis::MeshSize => (format!("{}: relative error vs mesh size", case.name), "h"),
+        Axis::WallTime => (format!("{}: relative error vs solve time", case.name), "wall time [s]"),
+    };
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 22))
+        .margin(15)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())
+        .map_err(&e)?;
+    chart
+        .configure_mesh()
+        .x_desc(xdesc)
+        .y_desc("relative error")
+        .x_label_formatter(&|x| format!("{x:.1e}"))
+        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .draw()
+        .map_err(&e)?;
+    for (i, (q, pts)) in series.into_iter().enumerate() {
+        let c = colour(i);
+        chart
+            .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
+            .map_err(&e)?;
+        chart
+            .draw_series(pts.into_iter().map(move |p| Circle::new(p, 4, c.filled())))
+            .map_err(&e)?
+            .label(q.name())
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
+    }
+    chart
+        .configure_series_labels()
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .position(SeriesLabelPosition::LowerRight)
+        .draw()
+        .map_err(&e)?;
+    root.present().map_err(&e)?;
+    Ok(true)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::measure::ProfileData;
+    use crate::report::Judged;
+
+    fn level(level: usize, h: f64, error: f64) -> LevelReport {
+        LevelReport {
+            level,
+            h,
+            nodes: 10,
+            free_dofs: 16,
+            increments: 1,
+            newton_total: 2,
+            newton_max: 2,
+            cutbacks: 0,
+            solve_time: 0.01 * (level + 1) as f64,
+            compile_time: 0.0,
+            values: vec![Judged {
+                quantity: Quantity::HalfWidth,
+                reference: Some(0.1),
+                computed: 0.1 * (1.0 + error),
+                error,
+                tolerance: None,
+                passed: true,
+            }],
+            failure: None,
+            profile: Some(ProfileData {
+                points: (0..20).map(|i| [i as f64 * 0.01, (1.0 - (i as f64 * 0.1).powi(2)).max(0.0).sqrt()]).collect(),
+                a: 0.1,
+                p0: 1.0,
+                a_computed: 0.1,
+            }),
+        }
+    }
+
+    #[test]
+    fn plots_are_written_as_svg() {
+        let dir = tempfile::tempdir().unwrap();
+        let case = CaseReport {
+            name: "hertz_test".into(),
+            title: "t".into(),
+            source: "s".into(),
+            deck: "d".into(),
+            levels: vec![level(0, 0.02, 0.04), level(1, 0.01, 0.01)],
+            rates: vec![],
+            failure: None,
+        };
+        let files = case_plots(&case, dir.path()).unwrap();
+        let kinds: Vec<&str> = files.iter().map(|f| f.kind.as_str()).collect();
+        assert_eq!(kinds, ["profile", "convergence", "time"]);
+        for f in files {
+            let text = std::fs::read_to_string(dir.path().join(&f.file)).unwrap();
+            assert!(text.starts_with("<svg"), "{}", &text[..40.min(text.len())]);
+            assert!(text.contains("<circle"), "{} has no data points", f.file);
+        }
+    }
+}

@@ -1,0 +1,181 @@
+//! Runs cases level by level: render the deck, compile, solve with a
+//! [`Capture`] observer, measure, judge against the tolerances, compute the
+//! observed convergence rates.
+
+use crate::capture::Capture;
+use crate::case::Case;
+use crate::deck::DeckFile;
+use crate::measure::measure;
+use crate::report::{observed_rate, CaseReport, Judged, LevelReport, RateReport};
+use ctc_engine::solve::{run, RunSummary};
+use std::path::Path;
+use std::time::Instant;
+
+/// Runs levels `0..=last` of `case`, where `last` is `max_level` (capped at
+/// the levels the deck defines) or the case's default number of levels.
+/// `progress` receives one line per level as it finishes.
+pub fn run_case(case: &Case, cases_dir: &Path, max_level: Option<usize>, progress: &mut dyn FnMut(&str)) -> CaseReport {
+    let path = cases_dir.join(case.deck);
+    let mut report = CaseReport {
+        name: case.name.to_string(),
+        title: case.title.to_string(),
+        source: case.source.to_string(),
+        deck: path.display().to_string(),
+        levels: Vec::new(),
+        rates: Vec::new(),
+        failure: None,
+    };
+    let deck = match DeckFile::read(&path) {
+        Ok(d) => d,
+        Err(e) => {
+            report.failure = Some(e);
+            return report;
+        }
+    };
+    let count = match max_level {
+        Some(m) => (m + 1).min(deck.levels()),
+        None => case.levels.min(deck.levels()),
+    };
+    for level in 0..count {
+        let l = run_level(case, &deck, level);
+        progress(&format!(
+            "{} level {level}: {} dofs, {} Newton iterations, {:.2} s{}",
+            case.name,
+            l.free_dofs,
+            l.newton_total,
+            l.solve_time,
+            match (&l.failure, l.passed()) {
+                (Some(f), _) => format!(" -- FAILED: {}", f.lines().next().unwrap_or("")),
+                (None, true) => " -- pass".to_string(),
+                (None, false) => " -- FAIL".to_string(),
+            }
+        ));
+        report.levels.push(l);
+    }
+    report.rates = rates(case, &report.levels);
+    report
+}
+
+/// Runs one level of a case.
+pub fn run_level(case: &Case, deck: &DeckFile, level: usize) -> LevelReport {
+    let mut report = LevelReport {
+        level,
+        h: f64::NAN,
+        nodes: 0,
+        free_dofs: 0,
+        increments: 0,
+        newton_total: 0,
+        newton_max: 0,
+        cutbacks: 0,
+        solve_time: 0.0,
+        compile_time: 0.0,
+        values: Vec::new(),
+        failure: None,
+        profile: None,
+    };
+    let t0 = Instant::now();
+    let model = match deck.compile(level) {
+        Ok(m) => m,
+        Err(e) => {
+            report.failure = Some(e);
+            return report;
+        }
+    };
+    report.compile_time = t0.elapsed().as_secs_f64();
+    report.nodes = model.mesh.nodes.len();
+    let mut capture = Capture::default();
+    let t1 = Instant::now();
+    let outcome = run(&model, &mut capture);
+    report.solve_time = t1.elapsed().as_secs_f64();
+    let summary = match outcome {
+        Ok(s) => s,
+        Err(e) => {
+            fill_counts(&mut report, &e.summary);
+            report.failure = Some(format!("solver: {}", e.message));
+            return report;
+        }
+    };
+    fill_counts(&mut report, &summary);
+    let Some(state) = capture.last.as_ref() else {
+        report.failure = Some("the solver converged no increment (no state to measure)".into());
+        return report;
+    };
+    match measure(&case.reference, &model, state) {
+        Ok(m) => {
+            report.h = m.h;
+            report.profile = m.profile;
+            report.values = m
+                .values
+                .into_iter()
+                .map(|v| {
+                    let tolerance = case
+                        .checks
+                        .iter()
+                        .find(|c| c.quantity == v.quantity)
+                        .map(|c| c.tolerance_at(level));
+                    Judged {
+                        passed: tolerance.is_none_or(|t| v.error <= t),
+                        quantity: v.quantity,
+                        reference: v.reference,
+                        computed: v.computed,
+                        error: v.error,
+                        tolerance,
+                    }
+                })
+                .collect();
+        }
+        Err(e) => report.failure = Some(format!("measurement: {e}")),
+    }
+    report
+}
+
+/// Copies the iteration counts of a run summary.
+fn fill_counts(report: &mut LevelReport, summary: &RunSummary) {
+    report.free_dofs = summary.free_dofs;
+    report.increments = summary.increments.len();
+    report.newton_total = summary.newton_iterations;
+    report.newton_max = summary.increments.iter().map(|i| i.iterations).max().unwrap_or(0);
+    report.cutbacks = summary.cutbacks;
+}
+
+/// Observed rates between consecutive successful levels; the case's
+/// minimum rate is checked on the last pair.
+pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
+    let ok: Vec<&LevelReport> = levels.iter().filter(|l| l.failure.is_none()).collect();
+    let mut out = Vec::new();
+    let quantities: Vec<_> = {
+        let mut qs = Vec::new();
+        for l in &ok {
+            for v in &l.values {
+                if !qs.contains(&v.quantity) {
+                    qs.push(v.quantity);
+                }
+            }
+        }
+        qs
+    };
+    for q in quantities {
+        let check = case.checks.iter().find(|c| c.quantity == q);
+        for (i, w) in ok.windows(2).enumerate() {
+            let (Some(e1), Some(e2)) = (w[0].error_of(q), w[1].error_of(q)) else {
+                continue;
+            };
+            let rate = observed_rate(e1, e2, w[0].h, w[1].h);
+            let last = i + 2 == ok.len();
+            let min_rate = if last { check.and_then(|c| c.min_rate) } else { None };
+            let passed = match min_rate {
+                Some(m) => rate.is_some_and(|r| r >= m),
+                None => true,
+            };
+            out.push(RateReport {
+                quantity: q,
+                from_level: w[0].level,
+                to_level: w[1].level,
+                rate,
+                min_rate,
+                passed,
+            });
+        }
+    }
+    out
+}

@@ -1,0 +1,49 @@
+//! End-to-end verification: every case of the catalogue at its coarsest
+//! level (the decks as written), judged with the level-0 tolerances; and,
+//! ignored by default because it takes longer, every default level with
+//! the finest tolerances (Hertz a and p0 within 2 %), as `ctc verify` runs it.
+
+use ctc_verification::{run, VerifyOptions};
+
+#[test]
+fn verification_cases_coarsest_level() {
+    let report = run(&VerifyOptions {
+        max_level: Some(0),
+        ..VerifyOptions::default()
+    })
+    .expect("verification runs");
+    println!("{}", report.table());
+    assert_eq!(report.cases.len(), ctc_verification::cases::all().len());
+    assert!(report.passed(), "failures:\n{}", report.failures().join("\n"));
+}
+
+#[test]
+#[ignore = "runs every default refinement level (minutes at -O1); `ctc verify` runs it"]
+fn verification_cases_all_default_levels() {
+    let dir = tempfile::tempdir().unwrap();
+    let report = run(&VerifyOptions {
+        report_dir: Some(dir.path().to_path_buf()),
+        progress: true,
+        ..VerifyOptions::default()
+    })
+    .expect("verification runs");
+    println!("{}", report.table());
+    assert!(dir.path().join("report.md").is_file());
+    assert!(report.passed(), "failures:\n{}", report.failures().join("\n"));
+}
+
+#[test]
+fn verification_filter_selects_cases() {
+    let report = run(&VerifyOptions {
+        filter: Some("no_such_case".into()),
+        ..VerifyOptions::default()
+    })
+    .unwrap();
+    assert!(report.cases.is_empty());
+    assert!(!report.passed(), "an empty selection must not pass");
+    let missing = run(&VerifyOptions {
+        cases_dir: Some("/definitely/not/here".into()),
+        ..VerifyOptions::default()
+    });
+    assert!(missing.unwrap_err().contains("does not exist"));
+}
