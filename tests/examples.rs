@@ -25,9 +25,11 @@ struct Probe {
 impl Observer for Probe {
     fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
         let mut reaction = [0.0; 2];
+        let mut reaction_abs = 0.0f64;
         for r in v.reaction {
             reaction[0] += r[0];
             reaction[1] += r[1];
+            reaction_abs += r[0].abs() + r[1].abs();
         }
         let mut contact = [0.0; 2];
         let mut closed = 0;
@@ -40,6 +42,11 @@ impl Observer for Probe {
                 }
             }
         }
+        // Round-off below 1e-9 of the force scale is noise, not a regression.
+        let scale = contact
+            .iter()
+            .fold(reaction_abs, |m, x| m.max(x.abs()));
+        let clean = |x: f64| if x.abs() <= 1e-9 * scale { 0.0 } else { sig(x, 4) };
         let umax = v
             .displacement
             .iter()
@@ -52,10 +59,10 @@ impl Observer for Probe {
             v.residuals.len(),
             closed,
             sig(umax, 4),
-            sig(reaction[0], 4),
-            sig(reaction[1], 4),
-            sig(contact[0], 4),
-            sig(contact[1], 4),
+            clean(reaction[0]),
+            clean(reaction[1]),
+            clean(contact[0]),
+            clean(contact[1]),
         ));
         Ok(())
     }

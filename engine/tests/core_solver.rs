@@ -279,14 +279,20 @@ fn multi_step_loads_follow_time_functions() {
     }
 }
 
-/// Timing of an ~80k-dof plate (200 x 200 quads), 2 increments: run with
+/// Timing of an ~80k-dof plate (200 x 200 quads), 6 increments: run with
 /// `cargo test -p ctc-engine --test core_solver -- --ignored --nocapture`.
 #[test]
 #[ignore]
 fn perf_plate_80k_dofs() {
     let n = 200;
     let mesh = grid(n, n, [0.0, 0.0], [1.0, 1.0], 0.2, 3, false);
-    let mut m = one_body(AnalysisKind::PlaneStrain, mesh, 1000.0, 0.3, Formulation::Full);
+    let mut m = one_body(
+        AnalysisKind::PlaneStrain,
+        mesh,
+        1000.0,
+        0.3,
+        Formulation::Full,
+    );
     let bottom: Vec<usize> = (0..=n).map(|i| grid_node(n, i, 0)).collect();
     let top: Vec<usize> = (0..=n).map(|i| grid_node(n, i, n)).collect();
     m.constraints = vec![
@@ -304,7 +310,7 @@ fn perf_plate_80k_dofs() {
             },
         },
     ];
-    m.steps = vec![step(2)];
+    m.steps = vec![step(6)];
     let start = std::time::Instant::now();
     let s = run(&m, &mut Recorder::default()).unwrap();
     println!(
@@ -330,7 +336,13 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         .into_iter()
         .filter(|e| mesh.nodes[e[0]][1] == 0.0 && mesh.nodes[e[1]][1] == 0.0)
         .collect();
-    let mut m = one_body(AnalysisKind::PlaneStrain, mesh, 100.0, 0.3, Formulation::Full);
+    let mut m = one_body(
+        AnalysisKind::PlaneStrain,
+        mesh,
+        100.0,
+        0.3,
+        Formulation::Full,
+    );
     m.constraints = vec![fix(vec![0, 3, 6], 0, 0.0)];
     m.loads = vec![force(vec![6, 7, 8], 1, TimeFunction::Constant(-1.0))];
     m.tools = vec![RigidTool {
@@ -360,13 +372,20 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         println!("{i:?}");
     }
     assert_eq!(s.linear_solver, "lu");
-    assert!(s.lu_factorizations >= 1 && s.cholesky_factorizations >= 1, "{s:?}");
+    assert!(
+        s.lu_factorizations >= 1 && s.cholesky_factorizations >= 1,
+        "{s:?}"
+    );
     assert!(rec.iterations[0].step_length < 1.0, "line search expected");
     let last = rec.increments.last().unwrap();
     // the floor carries the load: total force 3, reactions only in x
     let fy: f64 = last.reaction.iter().map(|r| r[1]).sum();
     assert_eq!(fy, 0.0);
-    assert!((last.contact_force[0][1] - 3.0).abs() < 1e-9, "{:?}", last.contact_force);
+    assert!(
+        (last.contact_force[0][1] - 3.0).abs() < 1e-9,
+        "{:?}",
+        last.contact_force
+    );
     // bottom nodes rest on the floor with the penalty gap p / k ~ 3e-4
     for n in 0..3 {
         let y = last.displacement[n][1];

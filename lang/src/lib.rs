@@ -8,7 +8,7 @@
 //! - [`compile`]: parse + validate + lower; the model, or every diagnostic;
 //! - [`check`]: the same, but also returns the warnings of a valid deck;
 //! - [`Diagnostics::render`]: rustc-style plain text;
-//! - [`explain`]: the plan of a lowered scene (`ctc check --explain`).
+//! - [`explain()`]: the plan of a lowered scene (`ctc check --explain`).
 
 #![warn(missing_docs)]
 

@@ -212,6 +212,11 @@ impl Lowerer<'_> {
 
     fn bodies(&mut self) -> (Vec<m::Body>, Vec<Material>) {
         let deck = self.deck;
+        let axisymmetric = deck
+            .analysis
+            .first()
+            .and_then(|a| a.dimension.as_ref())
+            .is_some_and(|d| d.value == Dimension::Axisymmetric);
         let mut bodies = Vec::new();
         let mut materials: Vec<Material> = Vec::new();
         for b in &deck.bodies {
@@ -229,6 +234,12 @@ impl Lowerer<'_> {
                     continue;
                 }
             };
+            if axisymmetric {
+                if let Some(d) = mesh::negative_radius(&b.name.name, &built, mesh_def.span) {
+                    self.diags.push(d);
+                    continue;
+                }
+            }
             let (placed, warnings) =
                 mesh::append(&mut self.mesh, &b.name.name, built, mesh_def.span);
             self.diags.extend(warnings);

@@ -82,7 +82,8 @@ struct BodyInfo {
     /// (or the mesh is broken): then any name is accepted here and checked
     /// when the mesh is built.
     sets: Option<BTreeMap<String, SetKind>>,
-    /// Sets defined by `set` items (always known).
+    /// Sets defined by `set` items so far (plus the built-in sets when
+    /// `sets` is `None`).
     deck_sets: BTreeMap<String, SetKind>,
 }
 
@@ -324,12 +325,14 @@ impl Checker<'_> {
                             m.span,
                             "no material with this name",
                         )
-                        .with_help(did_you_mean(&m.name, &material_names).unwrap_or_else(|| {
-                            format!(
+                        .with_help(
+                            did_you_mean(&m.name, &material_names).unwrap_or_else(|| {
+                                format!(
                                 "define it with `material {} {{ elastic {{ E = ..  nu = .. }} }}`",
                                 m.name
                             )
-                        })),
+                            }),
+                        ),
                     );
                 }
             }
@@ -356,16 +359,15 @@ impl Checker<'_> {
                     }
                 }
             }
-            let mut info = BodyInfo {
-                sets,
-                deck_sets: BTreeMap::new(),
-            };
-            let mut builtin = BTreeMap::new();
-            add_builtin_sets(&mut builtin);
-            if info.sets.is_none() {
-                info.deck_sets.extend(builtin);
+            let mut deck_sets = BTreeMap::new();
+            if sets.is_none() {
+                // A mesh file's sets are only known once it is read, but the
+                // built-in ones exist anyway (and their kinds are known).
+                add_builtin_sets(&mut deck_sets);
             }
-            self.bodies.entry(b.name.name.clone()).or_insert(info);
+            self.bodies
+                .entry(b.name.name.clone())
+                .or_insert(BodyInfo { sets, deck_sets });
         }
     }
 
@@ -465,7 +467,11 @@ impl Checker<'_> {
                 }
                 self.at_least(radial, 1, "radial divisions");
                 let full = (e_val - s - 360.0).abs() <= 1e-9;
-                self.at_least(circumferential, if full { 3 } else { 1 }, "circumferential divisions");
+                self.at_least(
+                    circumferential,
+                    if full { 3 } else { 1 },
+                    "circumferential divisions",
+                );
                 if let Some(c) = circumferential.as_ref().filter(|c| c.value >= 1) {
                     let sweep = e_val - s;
                     if sweep > 0.0 && sweep / c.value as f64 >= 180.0 {

@@ -61,6 +61,9 @@ decks!(
     table_not_increasing,
     unknown_time_function,
     warnings_only,
+    axisymmetric_negative_radius,
+    unterminated_string,
+    comma_in_block,
 );
 
 #[test]

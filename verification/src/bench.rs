@@ -85,6 +85,12 @@ pub struct BenchReport {
     pub cutbacks: usize,
     /// Linear solver the engine chose.
     pub linear_solver: String,
+    /// Stored entries of the free-free stiffness matrix.
+    pub matrix_nonzeros: usize,
+    /// Numeric Cholesky factorizations.
+    pub cholesky_factorizations: usize,
+    /// Numeric LU factorizations.
+    pub lu_factorizations: usize,
     /// Deck compilation (parsing, mesh generation), seconds.
     pub compile_time: f64,
     /// Solve wall time measured around `run`, seconds.
@@ -137,7 +143,10 @@ pub fn min_cell_edge(model: &Model) -> f64 {
 /// compile; a solver failure is reported inside the [`BenchReport`].
 pub fn run_bench(opts: &BenchOptions) -> Result<BenchReport, String> {
     if !(opts.size > 0.0 && opts.size.is_finite()) {
-        return Err(format!("bench size must be a positive number, got {}", opts.size));
+        return Err(format!(
+            "bench size must be a positive number, got {}",
+            opts.size
+        ));
     }
     if opts.increments == 0 {
         return Err("bench increments must be at least 1".into());
@@ -158,7 +167,10 @@ pub fn run_bench(opts: &BenchOptions) -> Result<BenchReport, String> {
     }
     debug_assert!(matches!(
         model.contacts.first().map(|c| &c.method),
-        Some(ctc_engine::model::ContactMethod::Penalty { kind: PenaltyKind::Area, .. })
+        Some(ctc_engine::model::ContactMethod::Penalty {
+            kind: PenaltyKind::Area,
+            ..
+        })
     ));
 
     let mut capture = Capture::default();
@@ -170,12 +182,27 @@ pub fn run_bench(opts: &BenchOptions) -> Result<BenchReport, String> {
         Err(e) => (e.summary.clone(), Some(e.message)),
     };
     let accuracy = match capture.last.as_ref() {
-        Some(state) => hertz_measure(&model, state, &HertzSetup::cylinder(YOUNG, 0.3, 1.0, 0, 0.0, false, Abscissa::Current))
-            .map(|m| m.values)
-            .unwrap_or_default(),
+        Some(state) => hertz_measure(
+            &model,
+            state,
+            &HertzSetup::cylinder(YOUNG, 0.3, 1.0, 0, 0.0, false, Abscissa::Current),
+        )
+        .map(|m| m.values)
+        .unwrap_or_default(),
         None => Vec::new(),
     };
-    Ok(report_of(opts, divisions, &model, h_min, penalty, compile_time, wall_time, summary, accuracy, failure))
+    Ok(report_of(
+        opts,
+        divisions,
+        &model,
+        h_min,
+        penalty,
+        compile_time,
+        wall_time,
+        summary,
+        accuracy,
+        failure,
+    ))
 }
 
 /// Assembles the report.
@@ -206,6 +233,9 @@ fn report_of(
         newton_iterations: summary.newton_iterations,
         cutbacks: summary.cutbacks,
         linear_solver: summary.linear_solver.clone(),
+        matrix_nonzeros: summary.matrix_nonzeros,
+        cholesky_factorizations: summary.cholesky_factorizations,
+        lu_factorizations: summary.lu_factorizations,
         compile_time,
         wall_time,
         per_iteration: PerIteration {
@@ -229,27 +259,50 @@ impl BenchReport {
 
 impl fmt::Display for BenchReport {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        writeln!(f, "ctc bench: rigid cylinder into an elastic block (issue 3)")?;
+        writeln!(
+            f,
+            "ctc bench: rigid cylinder into an elastic block (issue 3)"
+        )?;
         writeln!(
             f,
             "  mesh           {} x {} quad4, {} nodes, {} free dofs, h_min {:.3e}",
             self.divisions[0], self.divisions[1], self.nodes, self.free_dofs, self.h_min
         )?;
-        writeln!(f, "  penalty        area, 10 E / h_min = {:.3e}", self.penalty)?;
+        writeln!(
+            f,
+            "  penalty        area, 10 E / h_min = {:.3e}",
+            self.penalty
+        )?;
         writeln!(
             f,
             "  increments     {} converged, {} cutbacks; Newton iterations {} ({:?} per increment)",
             self.increments, self.cutbacks, self.newton_iterations, self.iterations_per_increment
         )?;
-        writeln!(f, "  linear solver  {}", self.linear_solver)?;
+        writeln!(
+            f,
+            "  linear solver  {} ({} nonzeros; {} Cholesky, {} LU factorizations)",
+            self.linear_solver, self.matrix_nonzeros, self.cholesky_factorizations, self.lu_factorizations
+        )?;
         writeln!(f, "  compile        {:>9.3} s", self.compile_time)?;
         writeln!(f, "  solve (total)  {:>9.3} s", self.wall_time)?;
-        writeln!(f, "  {:<14} {:>10} {:>14} {:>7}", "phase", "total [s]", "per iter [ms]", "share")?;
+        writeln!(
+            f,
+            "  {:<14} {:>10} {:>14} {:>7}",
+            "phase", "total [s]", "per iter [ms]", "share"
+        )?;
         let total = self.timings.total.max(1e-300);
         for (name, tot, per) in [
-            ("assembly", self.timings.assembly, self.per_iteration.assembly),
+            (
+                "assembly",
+                self.timings.assembly,
+                self.per_iteration.assembly,
+            ),
             ("contact", self.timings.contact, self.per_iteration.contact),
-            ("factorization", self.timings.factorization, self.per_iteration.factorization),
+            (
+                "factorization",
+                self.timings.factorization,
+                self.per_iteration.factorization,
+            ),
             ("solve", self.timings.solve, self.per_iteration.solve),
             ("output", self.timings.output, f64::NAN),
         ] {
@@ -258,7 +311,11 @@ impl fmt::Display for BenchReport {
                 "  {:<14} {:>10.3} {:>14} {:>6.1}%",
                 name,
                 tot,
-                if per.is_nan() { "-".to_string() } else { format!("{:.3}", 1e3 * per) },
+                if per.is_nan() {
+                    "-".to_string()
+                } else {
+                    format!("{:.3}", 1e3 * per)
+                },
                 100.0 * tot / total
             )?;
         }
@@ -267,7 +324,14 @@ impl fmt::Display for BenchReport {
             let acc: Vec<String> = self
                 .accuracy
                 .iter()
-                .map(|v| format!("{} {} (err {:.2e})", v.quantity, fmt_num(v.computed), v.error))
+                .map(|v| {
+                    format!(
+                        "{} {} (err {:.2e})",
+                        v.quantity,
+                        fmt_num(v.computed),
+                        v.error
+                    )
+                })
                 .collect();
             writeln!(f, "  vs Hertz       {}", acc.join(", "))?;
         }

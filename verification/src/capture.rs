@@ -56,6 +56,7 @@ impl Observer for Capture {
     }
 
     fn cutback(&mut self, reason: &str, new_dt: f64) {
-        self.cutbacks.push(format!("{reason} (new increment {new_dt:e})"));
+        self.cutbacks
+            .push(format!("{reason} (new increment {new_dt:e})"));
     }
 }

@@ -209,6 +209,9 @@ mod tests {
         assert_eq!(c.tolerance_at(0), 0.1);
         assert_eq!(c.tolerance_at(2), 0.02);
         assert_eq!(c.tolerance_at(7), 0.02);
-        assert_eq!(Check::new(Quantity::HalfWidth, &[]).tolerance_at(0), f64::INFINITY);
+        assert_eq!(
+            Check::new(Quantity::HalfWidth, &[]).tolerance_at(0),
+            f64::INFINITY
+        );
     }
 }

@@ -34,7 +34,13 @@ pub fn all() -> Vec<Case> {
 /// Hertz contact checks shared by the three Hertz cases: per-level
 /// tolerances on a (both estimators), p0 and the L2 error of p(x), the
 /// force balance, and optionally a minimum observed rate of the L2 error.
-fn hertz_checks(a: &[f64], a_moment: &[f64], p0: &[f64], l2: &[f64], l2_rate: Option<f64>) -> Vec<Check> {
+fn hertz_checks(
+    a: &[f64],
+    a_moment: &[f64],
+    p0: &[f64],
+    l2: &[f64],
+    l2_rate: Option<f64>,
+) -> Vec<Check> {
     let mut l2 = Check::new(Quantity::PressureL2, l2);
     l2.min_rate = l2_rate;
     vec![
@@ -206,6 +212,20 @@ fn patch_checks() -> Vec<Check> {
     ]
 }
 
+/// The exact state of the plane strain patch deck.
+pub fn patch_plane_strain_patch() -> PenaltyPatch {
+    PenaltyPatch {
+        kind: PatchKind::PlaneStrain,
+        young: 2e6,
+        poisson: 0.0,
+        height: 1.0,
+        top_displacement: 0.05,
+        penalty: 1e9,
+        x0: 0.0,
+        y0: 0.0,
+    }
+}
+
 /// Tri3 block on a plane, plane strain, nu = 0 (the §3 instance).
 pub fn patch_plane_strain() -> Case {
     Case {
@@ -215,16 +235,7 @@ pub fn patch_plane_strain() -> Case {
         deck: "patch_plane_strain.ctc",
         levels: 2,
         reference: Reference::Patch {
-            patch: PenaltyPatch {
-                kind: PatchKind::PlaneStrain,
-                young: 2e6,
-                poisson: 0.0,
-                height: 1.0,
-                top_displacement: 0.05,
-                penalty: 1e9,
-                x0: 0.0,
-                y0: 0.0,
-            },
+            patch: patch_plane_strain_patch(),
             pair: 0,
         },
         checks: patch_checks(),
@@ -272,10 +283,24 @@ mod tests {
         for case in all() {
             assert!(names.insert(case.name), "duplicate case {}", case.name);
             let deck = DeckFile::read(&dir.join(case.deck)).unwrap();
-            assert!(deck.levels() >= case.levels, "{}: {} < {}", case.name, deck.levels(), case.levels);
+            assert!(
+                deck.levels() >= case.levels,
+                "{}: {} < {}",
+                case.name,
+                deck.levels(),
+                case.levels
+            );
             let text = std::fs::read_to_string(dir.join(case.deck)).unwrap();
-            assert!(text.starts_with("# "), "{} must open with a comment", case.deck);
-            assert!(text.contains("Run: ctc verify"), "{} must say how to run it", case.deck);
+            assert!(
+                text.starts_with("# "),
+                "{} must open with a comment",
+                case.deck
+            );
+            assert!(
+                text.contains("Run: ctc verify"),
+                "{} must say how to run it",
+                case.deck
+            );
             assert!(!case.checks.is_empty());
         }
     }

@@ -2,8 +2,8 @@
 //! it into an engine [`Model`] with `ctc-lang`.
 
 use crate::refine::RefinableDeck;
-use ctc_lang::{compile, Source};
 use ctc_engine::model::Model;
+use ctc_lang::{compile, Source};
 use std::path::{Path, PathBuf};
 
 /// A deck file with its refinement markers.
@@ -18,7 +18,8 @@ pub struct DeckFile {
 impl DeckFile {
     /// Reads and parses the refinement markers of the deck at `path`.
     pub fn read(path: &Path) -> Result<Self, String> {
-        let text = std::fs::read_to_string(path).map_err(|e| format!("cannot read deck {}: {e}", path.display()))?;
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read deck {}: {e}", path.display()))?;
         let deck = RefinableDeck::parse(&text).map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(DeckFile {
             path: path.to_path_buf(),
@@ -34,7 +35,10 @@ impl DeckFile {
     /// Renders and compiles level `level`. Errors carry the rendered
     /// diagnostics (file, line, caret) of `ctc-lang`.
     pub fn compile(&self, level: usize) -> Result<Model, String> {
-        let text = self.deck.render(level).map_err(|e| format!("{}: {e}", self.path.display()))?;
+        let text = self
+            .deck
+            .render(level)
+            .map_err(|e| format!("{}: {e}", self.path.display()))?;
         compile_text(&self.path, &text)
     }
 }

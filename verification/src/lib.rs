@@ -51,16 +51,25 @@ pub struct VerifyOptions {
     /// each case's default number of levels. Capped by the levels a deck
     /// defines.
     pub max_level: Option<usize>,
-    /// Directory of the case decks. `None`: [`default_cases_dir`].
+    /// Directory of the case decks (overrides everything). `None`:
+    /// [`default_cases_dir`].
     pub cases_dir: Option<PathBuf>,
     /// Print one line per finished level to stderr.
     pub progress: bool,
 }
 
-/// The `cases/` directory of this crate's sources (compiled in), so the
-/// `ctc` binary finds the decks whatever the working directory.
+/// Environment variable overriding the cases directory (for a `ctc`
+/// binary moved away from its source tree).
+pub const CASES_DIR_ENV: &str = "CTC_CASES_DIR";
+
+/// The directory of the case decks: `$CTC_CASES_DIR` if set, else the
+/// `cases/` directory of this crate's sources (compiled in), so the `ctc`
+/// binary finds the decks whatever the working directory.
 pub fn default_cases_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("cases")
+    match std::env::var_os(CASES_DIR_ENV) {
+        Some(dir) if !dir.is_empty() => PathBuf::from(dir),
+        _ => Path::new(env!("CARGO_MANIFEST_DIR")).join("cases"),
+    }
 }
 
 /// Runs the verification cases selected by `opts`. `Err` only when the
@@ -107,7 +116,9 @@ pub fn write_report_dir(report: &Report, dir: &Path) -> Result<(), String> {
         plots.extend(plot::case_plots(c, dir)?);
     }
     let md = markdown::markdown(report, &plots);
-    std::fs::write(dir.join("report.md"), md).map_err(|e| format!("cannot write report.md: {e}"))?;
-    std::fs::write(dir.join("report.json"), report.to_json()).map_err(|e| format!("cannot write report.json: {e}"))?;
+    std::fs::write(dir.join("report.md"), md)
+        .map_err(|e| format!("cannot write report.md: {e}"))?;
+    std::fs::write(dir.join("report.json"), report.to_json())
+        .map_err(|e| format!("cannot write report.json: {e}"))?;
     Ok(())
 }

@@ -16,7 +16,11 @@ pub fn markdown(report: &Report, plots: &[PlotFile]) -> String {
         "{} of {} cases passed ({}), {:.1} s wall time. Decks: `{}`.\n",
         passed,
         report.cases.len(),
-        if report.passed() { "**PASSED**" } else { "**FAILED**" },
+        if report.passed() {
+            "**PASSED**"
+        } else {
+            "**FAILED**"
+        },
         report.wall_time,
         report.cases_dir
     );
@@ -25,7 +29,10 @@ pub fn markdown(report: &Report, plots: &[PlotFile]) -> String {
         "Errors are relative. Observed rates are `log(e1/e2) / log(h1/h2)` between consecutive \
          levels. Times are the wall time of the solve (`ctc_engine::solve::run`).\n"
     );
-    let _ = writeln!(s, "| case | levels | finest dofs | finest errors | status |");
+    let _ = writeln!(
+        s,
+        "| case | levels | finest dofs | finest errors | status |"
+    );
     let _ = writeln!(s, "|---|---:|---:|---|---|");
     for c in &report.cases {
         let finest = c.levels.iter().rev().find(|l| l.failure.is_none());
@@ -67,7 +74,11 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
     let _ = writeln!(s, "- Reference: {}", c.source);
     let _ = writeln!(s, "- Deck: `{}`", c.deck);
     let _ = writeln!(s, "- Run: `ctc verify {}`", c.name);
-    let _ = writeln!(s, "- Status: {}\n", if c.passed() { "pass" } else { "**FAIL**" });
+    let _ = writeln!(
+        s,
+        "- Status: {}\n",
+        if c.passed() { "pass" } else { "**FAIL**" }
+    );
     if let Some(f) = &c.failure {
         let _ = writeln!(s, "Could not run:\n\n```\n{f}\n```");
         return;
@@ -75,7 +86,10 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
     for p in plots.iter().filter(|p| p.case == c.name) {
         let _ = writeln!(s, "![{} {}]({})\n", c.name, p.kind, p.file);
     }
-    let _ = writeln!(s, "| level | h | dofs | quantity | reference | computed | rel. error | tolerance | status |");
+    let _ = writeln!(
+        s,
+        "| level | h | dofs | quantity | reference | computed | rel. error | tolerance | status |"
+    );
     let _ = writeln!(s, "|---:|---:|---:|---|---:|---:|---:|---:|---|");
     for l in &c.levels {
         if let Some(f) = &l.failure {
@@ -137,7 +151,13 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
     for l in &c.levels {
         let mut row = format!(
             "| {} | {} | {} / {} | {} | {:.3} | {:.3} |",
-            l.level, l.free_dofs, l.newton_total, l.newton_max, l.increments, l.solve_time, l.compile_time
+            l.level,
+            l.free_dofs,
+            l.newton_total,
+            l.newton_max,
+            l.increments,
+            l.solve_time,
+            l.compile_time
         );
         for q in &qs {
             row.push_str(&match l.error_of(*q) {

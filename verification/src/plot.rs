@@ -85,7 +85,10 @@ fn profile_plot(case: &CaseReport, levels: &[&LevelReport], path: &Path) -> Resu
     let root = SVGBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(&e)?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(format!("{}: contact pressure vs Hertz", case.name), ("sans-serif", 22))
+        .caption(
+            format!("{}: contact pressure vs Hertz", case.name),
+            ("sans-serif", 22),
+        )
         .margin(15)
         .x_label_area_size(45)
         .y_label_area_size(60)
@@ -148,7 +151,12 @@ enum Axis {
 
 /// Log-log errors of every quantity against h or wall time. Returns false
 /// (and writes nothing) when no positive error/abscissa pair exists.
-fn error_plot(case: &CaseReport, levels: &[&LevelReport], path: &Path, axis: Axis) -> Result<bool, String> {
+fn error_plot(
+    case: &CaseReport,
+    levels: &[&LevelReport],
+    path: &Path,
+    axis: Axis,
+) -> Result<bool, String> {
     let abscissa = |l: &LevelReport| match axis {
         Axis::MeshSize => l.h,
         Axis::WallTime => l.solve_time,
@@ -186,7 +194,10 @@ fn error_plot(case: &CaseReport, levels: &[&LevelReport], path: &Path, axis: Axi
     root.fill(&WHITE).map_err(&e)?;
     let (title, xdesc) = match axis {
         Axis::MeshSize => (format!("{}: relative error vs mesh size", case.name), "h"),
-        Axis::WallTime => (format!("{}: relative error vs solve time", case.name), "wall time [s]"),
+        Axis::WallTime => (
+            format!("{}: relative error vs solve time", case.name),
+            "wall time [s]",
+        ),
     };
     let mut chart = ChartBuilder::on(&root)
         .caption(title, ("sans-serif", 22))
@@ -253,7 +264,14 @@ mod tests {
             }],
             failure: None,
             profile: Some(ProfileData {
-                points: (0..20).map(|i| [i as f64 * 0.01, (1.0 - (i as f64 * 0.1).powi(2)).max(0.0).sqrt()]).collect(),
+                points: (0..20)
+                    .map(|i| {
+                        [
+                            i as f64 * 0.01,
+                            (1.0 - (i as f64 * 0.1).powi(2)).max(0.0).sqrt(),
+                        ]
+                    })
+                    .collect(),
                 a: 0.1,
                 p0: 1.0,
                 a_computed: 0.1,

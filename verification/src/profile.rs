@@ -138,7 +138,12 @@ impl ContactProfile {
         let edges = cp
             .edges
             .iter()
-            .map(|e| [model.mesh.nodes[e[0]][0] - x_axis, model.mesh.nodes[e[1]][0] - x_axis])
+            .map(|e| {
+                [
+                    model.mesh.nodes[e[0]][0] - x_axis,
+                    model.mesh.nodes[e[1]][0] - x_axis,
+                ]
+            })
             .filter(|e| e[0] >= -tol && e[1] >= -tol)
             .map(|e| [e[0].min(e[1]), e[0].max(e[1])])
             .collect();
@@ -154,7 +159,10 @@ impl ContactProfile {
 
     /// Pressure at the node on the axis (the peak of a symmetric profile).
     pub fn axis_pressure(&self) -> Result<f64, String> {
-        let first = self.points.first().ok_or("the contact surface has no node on the axis side")?;
+        let first = self
+            .points
+            .first()
+            .ok_or("the contact surface has no node on the axis side")?;
         let span = self.points.last().map_or(0.0, |p| p.x_ref).max(1.0);
         if first.x_ref.abs() > 1e-9 * span {
             return Err(format!(
@@ -182,32 +190,35 @@ impl ContactProfile {
     /// (`p^2` linear in `x^2`) is extrapolated instead. The result is clamped
     /// to `[x_c, x_o]`; its error is therefore at most one edge length.
     pub fn half_width(&self) -> Result<f64, String> {
-        let c = self
-            .points
-            .iter()
-            .rposition(|p| p.closed)
-            .ok_or("no closed contact node: the bodies are not in contact at the end of the run")?;
+        let c =
+            self.points.iter().rposition(|p| p.closed).ok_or(
+                "no closed contact node: the bodies are not in contact at the end of the run",
+            )?;
         let o = self.points.get(c + 1).ok_or(
             "the last node of the contact surface is closed: the contact zone reaches the end of the \
              slave surface, so its edge cannot be located",
         )?;
         let pc = &self.points[c];
         let (xc, xo) = (pc.x, o.x);
-        let from_gap = match (o.gap, self.points.get(c + 2).and_then(|p| p.gap.map(|g| (p.x, g)))) {
+        let from_gap = match (
+            o.gap,
+            self.points.get(c + 2).and_then(|p| p.gap.map(|g| (p.x, g))),
+        ) {
             (Some(g1), Some((x2, g2))) if g2 > g1 && g1 >= 0.0 => {
                 let (s1, s2) = (g1.powf(2.0 / 3.0), g2.powf(2.0 / 3.0));
                 Some(xo - s1 * (x2 - xo) / (s2 - s1))
             }
             _ => None,
         };
-        let estimate = from_gap.unwrap_or_else(|| match c.checked_sub(1).map(|b| &self.points[b]) {
-            Some(pb) if pb.closed && pb.pressure > pc.pressure => {
-                let (x2b, x2c) = (pb.x * pb.x, xc * xc);
-                let (p2b, p2c) = (pb.pressure.powi(2), pc.pressure.powi(2));
-                (x2c + p2c * (x2c - x2b) / (p2b - p2c)).sqrt()
-            }
-            _ => 0.5 * (xc + xo),
-        });
+        let estimate =
+            from_gap.unwrap_or_else(|| match c.checked_sub(1).map(|b| &self.points[b]) {
+                Some(pb) if pb.closed && pb.pressure > pc.pressure => {
+                    let (x2b, x2c) = (pb.x * pb.x, xc * xc);
+                    let (p2b, p2c) = (pb.pressure.powi(2), pc.pressure.powi(2));
+                    (x2c + p2c * (x2c - x2b) / (p2b - p2c)).sqrt()
+                }
+                _ => 0.5 * (xc + xo),
+            });
         Ok(estimate.clamp(xc, xo))
     }
 
@@ -245,7 +256,12 @@ impl ContactProfile {
     /// on `[0, extent]`: `sqrt(int (p_h - p_ref)^2 dx / a) / p0`, with
     /// 6-point Gauss-Legendre on every interval between nodes (and `a`).
     pub fn l2_error(&self, reference: impl Fn(f64) -> f64, a: f64, p0: f64, extent: f64) -> f64 {
-        let mut breaks: Vec<f64> = self.points.iter().map(|p| p.x).filter(|&x| x > 0.0 && x < extent).collect();
+        let mut breaks: Vec<f64> = self
+            .points
+            .iter()
+            .map(|p| p.x)
+            .filter(|&x| x > 0.0 && x < extent)
+            .collect();
         breaks.push(0.0);
         breaks.push(extent);
         if a > 0.0 && a < extent {
@@ -331,7 +347,9 @@ mod tests {
                 point(x, hz.pressure(x), x < a)
             })
             .collect();
-        let edges = (0..n - 1).map(|i| [i as f64 * h, (i + 1) as f64 * h]).collect();
+        let edges = (0..n - 1)
+            .map(|i| [i as f64 * h, (i + 1) as f64 * h])
+            .collect();
         let profile = ContactProfile {
             points,
             force: [0.0, 0.0],
@@ -380,7 +398,10 @@ mod tests {
             q.closed = i <= 5;
         }
         let a = p.half_width().unwrap();
-        assert!((a - 0.078).abs() < 1e-12, "clamped to the first open node: {a}");
+        assert!(
+            (a - 0.078).abs() < 1e-12,
+            "clamped to the first open node: {a}"
+        );
         for q in &mut p.points {
             q.closed = false;
         }
@@ -401,7 +422,11 @@ mod tests {
         assert!(rate > 0.8, "rate {rate}");
         // A profile off by 10% everywhere has an error of about 10% * ||p||/p0.
         let off = ContactProfile {
-            points: fine.points.iter().map(|q| point(q.x, 1.1 * q.pressure, q.closed)).collect(),
+            points: fine
+                .points
+                .iter()
+                .map(|q| point(q.x, 1.1 * q.pressure, q.closed))
+                .collect(),
             ..fine.clone()
         };
         let e = off.l2_error(|x| hz.pressure(x), a, p0, 1.5 * a);
@@ -412,7 +437,11 @@ mod tests {
     #[test]
     fn contact_profile_interpolates_pressure() {
         let p = ContactProfile {
-            points: vec![point(0.0, 2.0, true), point(1.0, 1.0, true), point(2.0, 0.0, false)],
+            points: vec![
+                point(0.0, 2.0, true),
+                point(1.0, 1.0, true),
+                point(2.0, 0.0, false),
+            ],
             force: [0.0, 0.0],
             closed: 2,
             moment: 0.0,

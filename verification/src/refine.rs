@@ -52,7 +52,11 @@ impl RefinableDeck {
             };
             let param = parse_marker(rest).map_err(|e| format!("line {}: {e}", i + 1))?;
             if params.iter().any(|p: &RefineParam| p.key == param.key) {
-                return Err(format!("line {}: key `{}` has two refine markers", i + 1, param.key));
+                return Err(format!(
+                    "line {}: key `{}` has two refine markers",
+                    i + 1,
+                    param.key
+                ));
             }
             params.push(param);
         }
@@ -74,7 +78,10 @@ impl RefinableDeck {
         for p in &deck.params {
             let written = assigned_values(&deck.text, &p.key);
             if written.is_empty() {
-                return Err(format!("refine marker for `{}`: the deck never assigns `{} = ..`", p.key, p.key));
+                return Err(format!(
+                    "refine marker for `{}`: the deck never assigns `{} = ..`",
+                    p.key, p.key
+                ));
             }
             for w in written {
                 if normalise(&w) != normalise(&p.values[0]) {
@@ -96,7 +103,10 @@ impl RefinableDeck {
     /// The deck text at `level`.
     pub fn render(&self, level: usize) -> Result<String, String> {
         if level >= self.levels() {
-            return Err(format!("level {level} requested but the deck defines {} level(s)", self.levels()));
+            return Err(format!(
+                "level {level} requested but the deck defines {} level(s)",
+                self.levels()
+            ));
         }
         if level == 0 {
             // Checked by `parse`: the written values are the level-0 values.
@@ -138,9 +148,12 @@ fn comment_of(line: &str) -> Option<&str> {
 
 /// Parses `key = v0 v1 ...` (values: numbers or parenthesised tuples).
 fn parse_marker(rest: &str) -> Result<RefineParam, String> {
-    let (key, values) = rest
-        .split_once('=')
-        .ok_or_else(|| format!("refine marker `{}` has no `=`; expected `# refine: key = v0 v1 ..`", rest.trim()))?;
+    let (key, values) = rest.split_once('=').ok_or_else(|| {
+        format!(
+            "refine marker `{}` has no `=`; expected `# refine: key = v0 v1 ..`",
+            rest.trim()
+        )
+    })?;
     let key = key.trim();
     if key.is_empty() || !key.chars().all(|c| c.is_ascii_alphanumeric() || c == '_') {
         return Err(format!("refine marker key `{key}` is not a name"));
@@ -230,7 +243,9 @@ fn find_assignments(code: &str, key: &str) -> Vec<std::ops::Range<usize>> {
                 i += 1;
             }
         } else {
-            while i < bytes.len() && (bytes[i].is_ascii_alphanumeric() || matches!(bytes[i], b'.' | b'-' | b'+')) {
+            while i < bytes.len()
+                && (bytes[i].is_ascii_alphanumeric() || matches!(bytes[i], b'.' | b'-' | b'+'))
+            {
                 i += 1;
             }
         }
@@ -288,7 +303,10 @@ body c { mesh = rectangle { origin = (0, 0) size = (1, 1) divisions = (8,4) } }
         assert_eq!(d.levels(), 3);
         assert_eq!(d.render(0).unwrap(), DECK);
         let l2 = d.render(2).unwrap();
-        assert!(l2.contains("radial = 16  circumferential = 12  radial_grading = geometric(0.2)"), "{l2}");
+        assert!(
+            l2.contains("radial = 16  circumferential = 12  radial_grading = geometric(0.2)"),
+            "{l2}"
+        );
         assert!(l2.contains("divisions = (32, 16) }"), "{l2}");
         assert!(l2.contains("# radial = 4 in a comment"), "{l2}");
         assert!(d.render(3).is_err());
@@ -305,7 +323,8 @@ body c { mesh = rectangle { origin = (0, 0) size = (1, 1) divisions = (8,4) } }
     fn refine_marker_errors_are_reported() {
         let unknown = RefinableDeck::parse("# refine: nope = 1 2\nx = 1\n").unwrap_err();
         assert!(unknown.contains("never assigns"), "{unknown}");
-        let counts = RefinableDeck::parse("# refine: a = 1 2\n# refine: b = 1 2 3\na = 1 b = 1\n").unwrap_err();
+        let counts = RefinableDeck::parse("# refine: a = 1 2\n# refine: b = 1 2 3\na = 1 b = 1\n")
+            .unwrap_err();
         assert!(counts.contains("disagree"), "{counts}");
         let syntax = RefinableDeck::parse("# refine: a 1 2\n").unwrap_err();
         assert!(syntax.contains("no `=`"), "{syntax}");
@@ -317,13 +336,19 @@ body c { mesh = rectangle { origin = (0, 0) size = (1, 1) divisions = (8,4) } }
     fn refine_no_marker_is_one_level() {
         let d = RefinableDeck::parse("analysis { dimension = plane_strain }\n").unwrap();
         assert_eq!(d.levels(), 1);
-        assert_eq!(d.render(0).unwrap(), "analysis { dimension = plane_strain }\n");
+        assert_eq!(
+            d.render(0).unwrap(),
+            "analysis { dimension = plane_strain }\n"
+        );
     }
 
     #[test]
     fn refine_ignores_hash_inside_strings() {
         let text = "# refine: radial = 2 4\nmesh = file \"a#b.msh\" radial = 2\n";
         let d = RefinableDeck::parse(text).unwrap();
-        assert_eq!(d.render(1).unwrap(), "# refine: radial = 2 4\nmesh = file \"a#b.msh\" radial = 4\n");
+        assert_eq!(
+            d.render(1).unwrap(),
+            "# refine: radial = 2 4\nmesh = file \"a#b.msh\" radial = 4\n"
+        );
     }
 }

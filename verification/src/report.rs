@@ -62,7 +62,10 @@ impl LevelReport {
 
     /// The error of `q` at this level, if measured.
     pub fn error_of(&self, q: Quantity) -> Option<f64> {
-        self.values.iter().find(|v| v.quantity == q).map(|v| v.error)
+        self.values
+            .iter()
+            .find(|v| v.quantity == q)
+            .map(|v| v.error)
     }
 }
 
@@ -92,7 +95,8 @@ pub const ROUND_OFF: f64 = 1e-9;
 /// round-off level or the mesh size did not change).
 pub fn observed_rate(e1: f64, e2: f64, h1: f64, h2: f64) -> Option<f64> {
     let r = (e1 / e2).ln() / (h1 / h2).ln();
-    (e1 > ROUND_OFF && e2 > ROUND_OFF && h1 > 0.0 && h2 > 0.0 && h1 != h2 && r.is_finite()).then_some(r)
+    (e1 > ROUND_OFF && e2 > ROUND_OFF && h1 > 0.0 && h2 > 0.0 && h1 != h2 && r.is_finite())
+        .then_some(r)
 }
 
 /// All levels of one case.
@@ -206,7 +210,18 @@ impl Report {
         let mut s = String::new();
         let header = format!(
             "{:<22} {:>3} {:>9} {:>7} {:<13} {:>11} {:>11} {:>9} {:>7} {:<4} {:>9} {:>8}",
-            "case", "lvl", "h", "dofs", "quantity", "reference", "computed", "rel.err", "tol", "ok", "newton", "time[s]"
+            "case",
+            "lvl",
+            "h",
+            "dofs",
+            "quantity",
+            "reference",
+            "computed",
+            "rel.err",
+            "tol",
+            "ok",
+            "newton",
+            "time[s]"
         );
         let _ = writeln!(s, "{header}");
         let _ = writeln!(s, "{}", "-".repeat(header.len()));
@@ -258,14 +273,22 @@ impl Report {
                             (Some(m), false) => format!(" (FAIL < {m})"),
                             _ => String::new(),
                         };
-                        format!("{} {}->{}: {x:.2}{mark}", r.quantity, r.from_level, r.to_level)
+                        format!(
+                            "{} {}->{}: {x:.2}{mark}",
+                            r.quantity, r.from_level, r.to_level
+                        )
                     })
                 })
                 .collect();
             if !rates.is_empty() {
                 let _ = writeln!(s, "{:<22} rates: {}", c.name, rates.join(", "));
             }
-            let _ = writeln!(s, "{:<22} {}", c.name, if c.passed() { "PASSED" } else { "FAILED" });
+            let _ = writeln!(
+                s,
+                "{:<22} {}",
+                c.name,
+                if c.passed() { "PASSED" } else { "FAILED" }
+            );
             let _ = writeln!(s);
         }
         let n_pass = self.cases.iter().filter(|c| c.passed()).count();
@@ -370,7 +393,10 @@ mod tests {
         };
         assert!(!empty.passed());
         let json: serde_json::Value = serde_json::from_str(&bad.to_json()).unwrap();
-        assert_eq!(json["cases"][1]["levels"][0]["values"][0]["quantity"], "half_width");
+        assert_eq!(
+            json["cases"][1]["levels"][0]["values"][0]["quantity"],
+            "half_width"
+        );
     }
 
     #[test]

@@ -14,7 +14,12 @@ use std::time::Instant;
 /// Runs levels `0..=last` of `case`, where `last` is `max_level` (capped at
 /// the levels the deck defines) or the case's default number of levels.
 /// `progress` receives one line per level as it finishes.
-pub fn run_case(case: &Case, cases_dir: &Path, max_level: Option<usize>, progress: &mut dyn FnMut(&str)) -> CaseReport {
+pub fn run_case(
+    case: &Case,
+    cases_dir: &Path,
+    max_level: Option<usize>,
+    progress: &mut dyn FnMut(&str),
+) -> CaseReport {
     let path = cases_dir.join(case.deck);
     let mut report = CaseReport {
         name: case.name.to_string(),
@@ -134,12 +139,18 @@ fn fill_counts(report: &mut LevelReport, summary: &RunSummary) {
     report.free_dofs = summary.free_dofs;
     report.increments = summary.increments.len();
     report.newton_total = summary.newton_iterations;
-    report.newton_max = summary.increments.iter().map(|i| i.iterations).max().unwrap_or(0);
+    report.newton_max = summary
+        .increments
+        .iter()
+        .map(|i| i.iterations)
+        .max()
+        .unwrap_or(0);
     report.cutbacks = summary.cutbacks;
 }
 
 /// Observed rates between consecutive successful levels; the case's
-/// minimum rate is checked on the last pair.
+/// minimum rate is checked on the last pair when it reaches the case's
+/// default finest level (a run limited by `max_level` reports rates only).
 pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
     let ok: Vec<&LevelReport> = levels.iter().filter(|l| l.failure.is_none()).collect();
     let mut out = Vec::new();
@@ -161,8 +172,14 @@ pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
                 continue;
             };
             let rate = observed_rate(e1, e2, w[0].h, w[1].h);
-            let last = i + 2 == ok.len();
-            let min_rate = if last { check.and_then(|c| c.min_rate) } else { None };
+            // Judged on the last pair, and only once the case's default
+            // finest level is reached: coarser pairs are pre-asymptotic.
+            let last = i + 2 == ok.len() && w[1].level + 1 >= case.levels;
+            let min_rate = if last {
+                check.and_then(|c| c.min_rate)
+            } else {
+                None
+            };
             let passed = match min_rate {
                 Some(m) => rate.is_some_and(|r| r >= m),
                 None => true,
@@ -178,4 +195,74 @@ pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::{Check, Quantity, Reference};
+    use crate::report::Judged;
+
+    fn level(level: usize, h: f64, error: f64) -> LevelReport {
+        LevelReport {
+            level,
+            h,
+            nodes: 0,
+            free_dofs: 0,
+            increments: 1,
+            newton_total: 1,
+            newton_max: 1,
+            cutbacks: 0,
+            solve_time: 0.0,
+            compile_time: 0.0,
+            values: vec![Judged {
+                quantity: Quantity::InnerDisplacement,
+                reference: Some(1.0),
+                computed: 1.0,
+                error,
+                tolerance: None,
+                passed: true,
+            }],
+            failure: None,
+            profile: None,
+        }
+    }
+
+    fn case(levels: usize) -> Case {
+        Case {
+            name: "c",
+            title: "t",
+            source: "s",
+            deck: "d.ctc",
+            levels,
+            reference: Reference::Patch {
+                patch: crate::cases::patch_plane_strain_patch(),
+                pair: 0,
+            },
+            checks: vec![Check::new(Quantity::InnerDisplacement, &[1.0]).with_min_rate(1.5)],
+        }
+    }
+
+    /// Rates are judged only on the pair reaching the default finest level.
+    #[test]
+    fn rate_check_only_on_default_finest_pair() {
+        // Pre-asymptotic first pair (rate 1), asymptotic second (rate 2).
+        let levels = [
+            level(0, 0.4, 4e-2),
+            level(1, 0.2, 2e-2),
+            level(2, 0.1, 5e-3),
+        ];
+        let all = rates(&case(3), &levels);
+        assert_eq!(all.len(), 2);
+        assert!(all[0].min_rate.is_none() && all[0].passed);
+        assert_eq!(all[1].min_rate, Some(1.5));
+        assert!(all[1].passed, "{:?}", all[1]);
+        // A run stopped at level 1 (max_level) reports but does not judge.
+        let partial = rates(&case(3), &levels[..2]);
+        assert!(partial[0].min_rate.is_none() && partial[0].passed);
+        // A case whose default finest is level 1 judges the first pair.
+        let judged = rates(&case(2), &levels[..2]);
+        assert_eq!(judged[0].min_rate, Some(1.5));
+        assert!(!judged[0].passed, "rate 1 < 1.5 must fail");
+    }
 }

@@ -280,7 +280,10 @@ mod tests {
         assert_eq!(values_of(&text, "contact_status"), ["0", "0", "1", "-1"]);
         assert_eq!(values_of(&text, "contact_gap"), ["0.2", "0", "-0.1", "0"]);
         assert_eq!(values_of(&text, "contact_pressure"), ["0", "0", "0.5", "0"]);
-        assert_eq!(values_of(&text, "connectivity"), ["1", "2", "3", "2", "0", "3"]);
+        assert_eq!(
+            values_of(&text, "connectivity"),
+            ["1", "2", "3", "2", "0", "3"]
+        );
         assert_eq!(values_of(&text, "offsets"), ["3", "6"]);
         assert_eq!(values_of(&text, "types"), ["5", "5"]);
         assert_eq!(values_of(&text, "displacement").len(), 12);

@@ -160,7 +160,11 @@ pub fn check_model(model: &Model) -> Vec<String> {
         }
     }
     // time functions must give finite values over the analysis
-    let mut times: Vec<f64> = model.steps.iter().flat_map(|s| [s.t_start, s.t_end]).collect();
+    let mut times: Vec<f64> = model
+        .steps
+        .iter()
+        .flat_map(|s| [s.t_start, s.t_end])
+        .collect();
     let functions = model
         .constraints
         .iter()
@@ -176,7 +180,9 @@ pub fn check_model(model: &Model) -> Vec<String> {
             times.extend(points.iter().map(|p| p.0));
         }
         if let Some(t) = times.iter().find(|&&t| !f.eval(t).is_finite()) {
-            errors.push(format!("`{label}`: its value at time {t} is not a finite number"));
+            errors.push(format!(
+                "`{label}`: its value at time {t} is not a finite number"
+            ));
         }
     }
     for h in &model.output.history {

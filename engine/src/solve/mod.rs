@@ -5,6 +5,18 @@
 //! internal forces -> residual -> tangent -> solve -> update, until the
 //! residual and the displacement increment are small; cut the increment
 //! back on divergence, NaN or too many iterations.
+//!
+//! - [`check`]: the model is checked first, every problem reported at once
+//!   (indices, parameters, unheld bodies);
+//! - [`dofs`]: 2 dofs per node, free / prescribed (eliminated) / inactive;
+//! - [`pattern`]: CSC pattern of the free-free block built once per run and
+//!   the cell -> value-slot scatter map (assembly only adds numbers);
+//! - [`linear`]: faer sparse Cholesky with the symbolic factorization reused,
+//!   LU fallback for indefinite tangents;
+//! - [`assembly`], [`loads`]: element loop and external forces;
+//! - [`newton`]: one increment (predictor with the prescribed increment,
+//!   line search, convergence, NaN and divergence detection);
+//! - [`stepping`]: increments, cutback and grow-back.
 
 pub mod assembly;
 pub mod check;

@@ -192,7 +192,10 @@ impl Observer for Recorder {
             contact_force: v
                 .contact
                 .iter()
-                .map(|l| l.iter().fold([0.0, 0.0], |a, c| [a[0] + c.force[0], a[1] + c.force[1]]))
+                .map(|l| {
+                    l.iter()
+                        .fold([0.0, 0.0], |a, c| [a[0] + c.force[0], a[1] + c.force[1]])
+                })
                 .collect(),
         });
         Ok(())

@@ -197,6 +197,31 @@ fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>>
     })
 }
 
+/// For axisymmetric analyses (x = r): an error if the mesh reaches x < 0
+/// (beyond a round-off tolerance relative to the mesh size).
+pub fn negative_radius(body: &str, m: &Mesh, at: Span) -> Option<Diagnostic> {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for p in &m.nodes {
+        for &c in p {
+            lo = lo.min(c);
+            hi = hi.max(c);
+        }
+    }
+    let tol = 1e-9 * (hi - lo).abs().max(f64::MIN_POSITIVE);
+    let min_x = m.nodes.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+    (min_x < -tol).then(|| {
+        Diagnostic::error(
+            format!(
+                "body `{body}` reaches x = {} < 0 in an axisymmetric analysis",
+                crate::ast::num(min_x)
+            ),
+            at,
+            "x is the radius r and must be >= 0",
+        )
+        .with_help("move the mesh to x >= 0 (the axis of revolution is x = 0)")
+    })
+}
+
 /// Where a body landed in the global mesh.
 #[derive(Debug, Clone)]
 pub struct Placed {

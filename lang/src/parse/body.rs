@@ -94,7 +94,8 @@ fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
             v.span,
         )),
         ValueKind::Ctor { name, block } if GENERATORS.contains(&name.name.as_str()) => {
-            generator(name, block, diags).map(|g| Spanned::new(MeshDef::Generator(Box::new(g)), v.span))
+            generator(name, block, diags)
+                .map(|g| Spanned::new(MeshDef::Generator(Box::new(g)), v.span))
         }
         ValueKind::Ctor { name, .. } | ValueKind::CtorStr { name, .. } => {
             let mut options = GENERATORS.to_vec();

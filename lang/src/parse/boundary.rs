@@ -40,8 +40,7 @@ pub fn parse(item: ItemParts, kind: BoundaryKind, diags: &mut Diags) -> Option<B
         let Some(c) = component(&e.key, word, diags) else {
             continue;
         };
-        if let Some((first, _)) = components.iter().find(|(k, _)| k.value == c) {
-            let _ = first;
+        if components.iter().any(|(k, _)| k.value == c) {
             diags.push(
                 Diagnostic::error(
                     format!("`{}` is given twice in `{word}`", e.key.name),

@@ -67,15 +67,18 @@ pub fn found_token(text: &str, pos: usize) -> (String, Span) {
     (shown, Span::new(pos, pos + len))
 }
 
-/// Describes the tokens the parser would have accepted at `pos`.
-pub fn expected_words(err: &Error<Rule>, text: &str, pos: usize) -> Vec<String> {
+/// Describes the tokens the parser would have accepted at `pos`. Tokens
+/// that would only continue the word just before `pos` (more letters or
+/// digits) are left out when `skip_continuations` is set.
+pub fn expected_words(
+    err: &Error<Rule>,
+    text: &str,
+    pos: usize,
+    skip_continuations: bool,
+) -> Vec<String> {
     let mut literals: Vec<String> = Vec::new();
     let (mut name, mut number, mut string, mut item) = (false, false, false, false);
-    let after_word = pos > 0
-        && text[..pos.min(text.len())]
-            .chars()
-            .next_back()
-            .is_some_and(|c| is_word_char(c) || c == '.');
+    let after_word = skip_continuations && word_before(text, pos);
     // `ParsingToken` is not exported by pest; its `Display` gives the
     // literal text, or `a..z` for a character range.
     let tokens: Vec<String> = err
@@ -159,6 +162,25 @@ pub fn expected_words(err: &Error<Rule>, text: &str, pos: usize) -> Vec<String> 
     out
 }
 
+/// Whether the character before `pos` belongs to a word or number.
+fn word_before(text: &str, pos: usize) -> bool {
+    text.get(..pos)
+        .and_then(|t| t.chars().next_back())
+        .is_some_and(|c| is_word_char(c) || c == '.')
+}
+
+/// The word or number ending at `pos`.
+fn word_ending_at(text: &str, pos: usize) -> Span {
+    let before = text.get(..pos).unwrap_or("");
+    let len: usize = before
+        .chars()
+        .rev()
+        .take_while(|&c| is_word_char(c) || matches!(c, '.' | '+' | '-'))
+        .map(char::len_utf8)
+        .sum();
+    Span::new(pos - len, pos)
+}
+
 /// The diagnostic for a pest error on `text`.
 pub fn syntax_error(err: &Error<Rule>, text: &str) -> Diagnostic {
     if let pest::error::ErrorVariant::CustomError { message } = &err.variant {
@@ -170,10 +192,35 @@ pub fn syntax_error(err: &Error<Rule>, text: &str) -> Diagnostic {
     }
     let pos = error_position(err).min(text.len());
     let (found, span) = found_token(text, pos);
-    let expected = expected_words(err, text, pos);
+    let expected = expected_words(err, text, pos, true);
+    if expected.is_empty() && word_before(text, pos) {
+        // Only a continuation of the word before would do: e.g. `-1e`.
+        let word = word_ending_at(text, pos);
+        let all = expected_words(err, text, pos, false);
+        let list = if all.is_empty() {
+            "more".to_string()
+        } else {
+            one_of_words(&all)
+        };
+        return Diagnostic::error(
+            format!("incomplete `{}`", word.text(text)),
+            word,
+            format!("expected {list} after this"),
+        );
+    }
     if found == "`}`" && expected.iter().any(|e| e.starts_with("an item")) {
         return Diagnostic::error("unexpected `}`", span, "no open block to close here")
             .with_help("remove it, or check the braces of the item above");
+    }
+    if (found == "`,`" || found == "`;`") && expected.iter().any(|e| e == "`}`") {
+        return Diagnostic::error(
+            format!("unexpected {found} in a block"),
+            span,
+            "not allowed here",
+        )
+        .with_help(
+            "entries of a block are separated by spaces or new lines: `{ E = 1  nu = 0.3 }`",
+        );
     }
     let list = if expected.is_empty() {
         "something else".to_string()

@@ -224,7 +224,7 @@ fn recover(text: &str, whole: &pest::error::Error<Rule>, deck: &mut Deck, diags:
             Err(e) => {
                 failed += 1;
                 diags.push(chunk_error(&padded, &e, start, end, text.len()));
-                deck.broken.push(broken_chunk(text, start, end));
+                deck.broken.extend(broken_chunk(text, start, end));
             }
         }
     }
@@ -292,22 +292,39 @@ pub fn chunks(text: &str) -> Vec<(usize, usize)> {
     out
 }
 
-/// What a failing chunk looked like, to silence references to its name.
-fn broken_chunk(text: &str, start: usize, end: usize) -> BrokenItem {
+/// The items a failing chunk may have contained (every item keyword in it,
+/// with the word after it as the name), to silence references to them and
+/// "the deck has no ..." errors.
+fn broken_chunk(text: &str, start: usize, end: usize) -> Vec<BrokenItem> {
     let chunk = &text[start..end];
-    let mut words = chunk
+    let words: Vec<&str> = chunk
         .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
-        .filter(|w| !w.is_empty());
-    let keyword = words.next().unwrap_or("").to_string();
-    let name = match keyword.as_str() {
-        "material" | "body" | "tool" | "step" | "set" => words.next().map(str::to_string),
-        _ => None,
-    };
-    BrokenItem {
-        keyword,
-        name,
-        span: Span::new(start, end),
+        .filter(|w| !w.is_empty())
+        .collect();
+    let mut out = Vec::new();
+    for (i, w) in words.iter().enumerate() {
+        if ITEM_KEYWORDS.contains(w) {
+            let name = match *w {
+                "material" | "body" | "tool" | "step" | "set" => {
+                    words.get(i + 1).map(|n| n.to_string())
+                }
+                _ => None,
+            };
+            out.push(BrokenItem {
+                keyword: w.to_string(),
+                name,
+                span: Span::new(start, end),
+            });
+        }
     }
+    if out.is_empty() {
+        out.push(BrokenItem {
+            keyword: words.first().map_or(String::new(), |w| w.to_string()),
+            name: None,
+            span: Span::new(start, end),
+        });
+    }
+    out
 }
 
 /// An opening bracket found while scanning.
@@ -317,27 +334,41 @@ struct Open {
     at: usize,
 }
 
+/// What [`scan_brackets`] found.
+struct Scan {
+    /// Brackets still open at the end, innermost last.
+    open: Vec<Open>,
+    /// Where the nesting first got deeper than the limit.
+    too_deep: Option<usize>,
+    /// Opening quote of the first string not closed on its line.
+    unterminated: Option<usize>,
+}
+
 /// Scans `text[start..end]` for brackets, skipping comments and strings.
-/// Returns the brackets still open at the end, and the maximum depth seen
-/// (with the position where it was first exceeded past `limit`).
-fn scan_brackets(text: &str, start: usize, end: usize, limit: usize) -> (Vec<Open>, Option<usize>) {
+fn scan_brackets(text: &str, start: usize, end: usize, limit: usize) -> Scan {
     let mut stack: Vec<Open> = Vec::new();
     let mut too_deep = None;
+    let mut unterminated = None;
     let mut in_comment = false;
-    let mut in_string = false;
+    let mut string_start: Option<usize> = None;
     for (i, c) in text[start..end].char_indices() {
         let at = start + i;
         if in_comment {
             in_comment = c != '\n';
             continue;
         }
-        if in_string {
-            in_string = c != '"' && c != '\n';
+        if let Some(q) = string_start {
+            if c == '\n' && unterminated.is_none() {
+                unterminated = Some(q);
+            }
+            if c == '"' || c == '\n' {
+                string_start = None;
+            }
             continue;
         }
         match c {
             '#' => in_comment = true,
-            '"' => in_string = true,
+            '"' => string_start = Some(at),
             '{' | '(' | '[' => {
                 stack.push(Open { ch: c, at });
                 if stack.len() > limit && too_deep.is_none() {
@@ -357,19 +388,27 @@ fn scan_brackets(text: &str, start: usize, end: usize, limit: usize) -> (Vec<Ope
             _ => {}
         }
     }
-    (stack, too_deep)
+    if let (Some(q), None) = (string_start, unterminated) {
+        unterminated = Some(q);
+    }
+    Scan {
+        open: stack,
+        too_deep,
+        unterminated,
+    }
 }
 
 fn nesting_error(text: &str) -> Option<Diagnostic> {
-    let (_, deep) = scan_brackets(text, 0, text.len(), MAX_NESTING);
-    deep.map(|at| {
-        Diagnostic::error(
-            format!("brackets nested more than {MAX_NESTING} deep"),
-            Span::new(at, at + 1),
-            "too deep",
-        )
-        .with_help("check for missing closing brackets")
-    })
+    scan_brackets(text, 0, text.len(), MAX_NESTING)
+        .too_deep
+        .map(|at| {
+            Diagnostic::error(
+                format!("brackets nested more than {MAX_NESTING} deep"),
+                Span::new(at, at + 1),
+                "too deep",
+            )
+            .with_help("check for missing closing brackets")
+        })
 }
 
 /// The diagnostic for a chunk that failed to parse: an unclosed bracket if
@@ -387,9 +426,17 @@ fn chunk_error(
         r.lines()
             .all(|l| l.trim().is_empty() || l.trim_start().starts_with('#'))
     });
-    let (open, _) = scan_brackets(padded, start, end, usize::MAX);
+    let scan = scan_brackets(padded, start, end, usize::MAX);
+    if let Some(q) = scan.unterminated.filter(|q| *q <= pos) {
+        return Diagnostic::error(
+            "unterminated string",
+            Span::new(q, q + 1),
+            "this string is not closed",
+        )
+        .with_help("close it with `\"` on the same line");
+    }
     if rest_is_blank {
-        if let Some(o) = open.last() {
+        if let Some(o) = scan.open.last() {
             let close = match o.ch {
                 '{' => '}',
                 '(' => ')',

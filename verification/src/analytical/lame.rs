@@ -98,7 +98,11 @@ mod tests {
 
     #[test]
     fn lame_boundary_tractions() {
-        for ends in [EndCondition::PlaneStrain, EndCondition::OpenEnds, EndCondition::ClosedEnds] {
+        for ends in [
+            EndCondition::PlaneStrain,
+            EndCondition::OpenEnds,
+            EndCondition::ClosedEnds,
+        ] {
             let c = cyl(ends);
             assert!((c.sigma_rr(1.0) + 1.0).abs() < 1e-14);
             assert!(c.sigma_rr(2.0).abs() < 1e-14);
@@ -111,7 +115,11 @@ mod tests {
     fn lame_plane_strain_inner_displacement() {
         let c = cyl(EndCondition::PlaneStrain);
         let expected = 1.3 * (0.4 / 3.0 + 4.0 / 3.0);
-        assert!((c.u_r(1.0) - expected).abs() < 1e-14, "u_r = {}", c.u_r(1.0));
+        assert!(
+            (c.u_r(1.0) - expected).abs() < 1e-14,
+            "u_r = {}",
+            c.u_r(1.0)
+        );
         assert!((c.sigma_tt(1.0) - 5.0 / 3.0).abs() < 1e-14);
         assert_eq!(c.eps_zz(), 0.0);
     }
@@ -132,13 +140,20 @@ mod tests {
     /// the stresses satisfy radial equilibrium, for all end conditions.
     #[test]
     fn lame_compatibility_and_equilibrium() {
-        for ends in [EndCondition::PlaneStrain, EndCondition::OpenEnds, EndCondition::ClosedEnds] {
+        for ends in [
+            EndCondition::PlaneStrain,
+            EndCondition::OpenEnds,
+            EndCondition::ClosedEnds,
+        ] {
             let c = cyl(ends);
             for &r in &[1.1, 1.5, 1.9] {
                 let h = 1e-5;
                 let du = (c.u_r(r + h) - c.u_r(r - h)) / (2.0 * h);
                 let eps_rr = (c.sigma_rr(r) - c.poisson * (c.sigma_tt(r) + c.sigma_zz())) / c.young;
-                assert!((du - eps_rr).abs() < 1e-8, "{ends:?} r={r}: {du} vs {eps_rr}");
+                assert!(
+                    (du - eps_rr).abs() < 1e-8,
+                    "{ends:?} r={r}: {du} vs {eps_rr}"
+                );
                 let ds = (c.sigma_rr(r + h) - c.sigma_rr(r - h)) / (2.0 * h);
                 let eq = ds + (c.sigma_rr(r) - c.sigma_tt(r)) / r;
                 assert!(eq.abs() < 1e-8, "{ends:?} equilibrium residual {eq}");

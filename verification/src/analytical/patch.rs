@@ -120,7 +120,11 @@ mod tests {
     /// top, and the strain gives the stress through the modulus.
     #[test]
     fn patch_test_consistent_state() {
-        for kind in [PatchKind::PlaneStrain, PatchKind::PlaneStress, PatchKind::Axisymmetric] {
+        for kind in [
+            PatchKind::PlaneStrain,
+            PatchKind::PlaneStress,
+            PatchKind::Axisymmetric,
+        ] {
             let p = patch(kind, 0.3);
             let bottom = p.displacement(0.7, 0.0);
             let top = p.displacement(0.7, 1.0);

@@ -82,7 +82,9 @@ pub fn measure(model: &Model, state: &FinalState, setup: &HertzSetup) -> Result<
         factor * force_y.abs() / model.analysis.thickness
     };
     if load <= 0.0 || !load.is_finite() {
-        return Err(format!("the total contact force is {force_y:e}: no load went through the contact"));
+        return Err(format!(
+            "the total contact force is {force_y:e}: no load went through the contact"
+        ));
     }
     let (a_ref, p0_ref, pressure): (f64, f64, Box<dyn Fn(f64) -> f64>) = if setup.sphere {
         let h = HertzSphere {
@@ -90,14 +92,22 @@ pub fn measure(model: &Model, state: &FinalState, setup: &HertzSetup) -> Result<
             radius: setup.radius,
             load,
         };
-        (h.contact_radius(), h.peak_pressure(), Box::new(move |x| h.pressure(x)))
+        (
+            h.contact_radius(),
+            h.peak_pressure(),
+            Box::new(move |x| h.pressure(x)),
+        )
     } else {
         let h = HertzCylinder {
             e_star: setup.e_star,
             radius: setup.radius,
             load,
         };
-        (h.half_width(), h.peak_pressure(), Box::new(move |x| h.pressure(x)))
+        (
+            h.half_width(),
+            h.peak_pressure(),
+            Box::new(move |x| h.pressure(x)),
+        )
     };
     let a = profile.half_width()?;
     let a_moment = profile.moment_ratio()

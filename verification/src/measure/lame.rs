@@ -50,7 +50,8 @@ pub fn measure(
             worst = Some((e, ur));
         }
     }
-    let (ur_err, ur_h) = worst.ok_or_else(|| format!("no node on the inner surface r = {}", cyl.inner))?;
+    let (ur_err, ur_h) =
+        worst.ok_or_else(|| format!("no node on the inner surface r = {}", cyl.inner))?;
 
     // Hoop stress at the integration points.
     let section = Section::new(&model.analysis);
@@ -59,7 +60,8 @@ pub fn measure(
     let mut worst_s: Option<(f64, f64, f64)> = None; // (error, computed, exact)
     for block in &blocks {
         for c in block.cells.clone() {
-            let states = cell_states(&model.mesh, c, u, &section, block).map_err(|e| e.to_string())?;
+            let states =
+                cell_states(&model.mesh, c, u, &section, block).map_err(|e| e.to_string())?;
             for s in states {
                 let p = s.position;
                 let hoop = if axisymmetric {

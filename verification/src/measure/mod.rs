@@ -51,7 +51,11 @@ pub struct Measured {
 }
 
 /// Measures the quantities of `reference` on the final state of a run.
-pub fn measure(reference: &Reference, model: &Model, state: &FinalState) -> Result<Measured, String> {
+pub fn measure(
+    reference: &Reference,
+    model: &Model,
+    state: &FinalState,
+) -> Result<Measured, String> {
     match reference {
         Reference::HertzCylinder {
             young,
@@ -64,7 +68,15 @@ pub fn measure(reference: &Reference, model: &Model, state: &FinalState) -> Resu
         } => {
             expect_kind(model, &[AnalysisKind::PlaneStrain])?;
             expect_material(model, *young, *poisson)?;
-            let setup = hertz::HertzSetup::cylinder(*young, *poisson, *radius, *pair, *axis, *half_model, *abscissa);
+            let setup = hertz::HertzSetup::cylinder(
+                *young,
+                *poisson,
+                *radius,
+                *pair,
+                *axis,
+                *half_model,
+                *abscissa,
+            );
             hertz::measure(model, state, &setup)
         }
         Reference::HertzSphere {
@@ -75,7 +87,11 @@ pub fn measure(reference: &Reference, model: &Model, state: &FinalState) -> Resu
         } => {
             expect_kind(model, &[AnalysisKind::Axisymmetric])?;
             expect_material(model, *young, *poisson)?;
-            hertz::measure(model, state, &hertz::HertzSetup::sphere(*young, *poisson, *radius, *pair))
+            hertz::measure(
+                model,
+                state,
+                &hertz::HertzSetup::sphere(*young, *poisson, *radius, *pair),
+            )
         }
         Reference::Lame {
             cylinder,
@@ -115,7 +131,10 @@ fn expect_kind(model: &Model, kinds: &[AnalysisKind]) -> Result<(), String> {
 fn expect_material(model: &Model, young: f64, poisson: f64) -> Result<(), String> {
     for m in &model.materials {
         match m.law {
-            MaterialLaw::LinearElastic { young: e, poisson: nu } => {
+            MaterialLaw::LinearElastic {
+                young: e,
+                poisson: nu,
+            } => {
                 if (e - young).abs() > 1e-12 * young.abs() || (nu - poisson).abs() > 1e-12 {
                     return Err(format!(
                         "material `{}` has E = {e}, nu = {nu} but the reference uses E = {young}, nu = {poisson}: \
@@ -172,7 +191,10 @@ pub(crate) mod test_model {
     pub fn one_body(mesh: Mesh, kind: AnalysisKind, young: f64, poisson: f64) -> Model {
         let (n, c) = (mesh.nodes.len(), mesh.cells.len());
         Model {
-            analysis: Analysis { kind, thickness: 1.0 },
+            analysis: Analysis {
+                kind,
+                thickness: 1.0,
+            },
             mesh,
             bodies: vec![Body {
                 name: "b".into(),

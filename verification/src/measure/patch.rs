@@ -11,7 +11,12 @@ use ctc_engine::element::Section;
 use ctc_engine::model::Model;
 
 /// Measures the deviations from the uniform state.
-pub fn measure(model: &Model, state: &FinalState, patch: &PenaltyPatch, pair: usize) -> Result<Measured, String> {
+pub fn measure(
+    model: &Model,
+    state: &FinalState,
+    patch: &PenaltyPatch,
+    pair: usize,
+) -> Result<Measured, String> {
     let profile = ContactProfile::extract(model, state, pair, patch.x0, Abscissa::Reference)?;
     if profile.points.is_empty() {
         return Err("the contact surface has no node".into());
@@ -65,7 +70,8 @@ pub fn measure(model: &Model, state: &FinalState, patch: &PenaltyPatch, pair: us
     let (mut se, mut sw) = (0.0, patch.sigma_yy());
     for block in blocks_of(model)? {
         for c in block.cells.clone() {
-            let states = cell_states(&model.mesh, c, &state.displacement, &section, &block).map_err(|e| e.to_string())?;
+            let states = cell_states(&model.mesh, c, &state.displacement, &section, &block)
+                .map_err(|e| e.to_string())?;
             for s in states {
                 let e = (s.stress[1] - patch.sigma_yy()).abs() / p;
                 if e >= se {
@@ -118,7 +124,10 @@ mod tests {
             origin: [0.0, 0.0],
             size: [1.0, 1.0],
             divisions: [5, 3],
-            grading: [Grading::Geometric { ratio: 4.0 }, Grading::Geometric { ratio: 0.3 }],
+            grading: [
+                Grading::Geometric { ratio: 4.0 },
+                Grading::Geometric { ratio: 0.3 },
+            ],
             kind: CellKind::Tri3,
         })
         .unwrap();
@@ -178,7 +187,12 @@ mod tests {
         for &n in top {
             reaction[n][1] = -total / top.len() as f64;
         }
-        let displacement = model.mesh.nodes.iter().map(|p| patch.displacement(p[0], p[1])).collect();
+        let displacement = model
+            .mesh
+            .nodes
+            .iter()
+            .map(|p| patch.displacement(p[0], p[1]))
+            .collect();
         let state = FinalState {
             displacement,
             reaction,
@@ -192,11 +206,20 @@ mod tests {
     /// also checks the closed form against the engine's elastic law).
     #[test]
     fn patch_test_exact_state_measures_round_off() {
-        for (kind, nu) in [(PatchKind::PlaneStrain, 0.0), (PatchKind::PlaneStrain, 0.3), (PatchKind::Axisymmetric, 0.3)] {
+        for (kind, nu) in [
+            (PatchKind::PlaneStrain, 0.0),
+            (PatchKind::PlaneStrain, 0.3),
+            (PatchKind::Axisymmetric, 0.3),
+        ] {
             let (model, state, patch) = exact(kind, nu);
             let m = measure(&model, &state, &patch, 0).unwrap();
             for v in &m.values {
-                assert!(v.error < 1e-9, "{kind:?} nu={nu}: {} error {}", v.quantity, v.error);
+                assert!(
+                    v.error < 1e-9,
+                    "{kind:?} nu={nu}: {} error {}",
+                    v.quantity,
+                    v.error
+                );
             }
         }
     }
@@ -207,7 +230,11 @@ mod tests {
         let (model, mut state, patch) = exact(PatchKind::PlaneStrain, 0.0);
         state.contact[0][2].pressure *= 1.01;
         let m = measure(&model, &state, &patch, 0).unwrap();
-        let p = m.values.iter().find(|v| v.quantity == Quantity::PatchPressure).unwrap();
+        let p = m
+            .values
+            .iter()
+            .find(|v| v.quantity == Quantity::PatchPressure)
+            .unwrap();
         assert!((p.error - 0.01).abs() < 1e-9, "{}", p.error);
     }
 }
