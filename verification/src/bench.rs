@@ -281,7 +281,10 @@ impl fmt::Display for BenchReport {
         writeln!(
             f,
             "  linear solver  {} ({} nonzeros; {} Cholesky, {} LU factorizations)",
-            self.linear_solver, self.matrix_nonzeros, self.cholesky_factorizations, self.lu_factorizations
+            self.linear_solver,
+            self.matrix_nonzeros,
+            self.cholesky_factorizations,
+            self.lu_factorizations
         )?;
         writeln!(f, "  compile        {:>9.3} s", self.compile_time)?;
         writeln!(f, "  solve (total)  {:>9.3} s", self.wall_time)?;
