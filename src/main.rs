@@ -128,8 +128,12 @@ fn run(deck: &Path, output: Option<&Path>, quiet: bool, verbose: bool) -> Result
             PathBuf::from("out").join(stem)
         }
     };
-    let mut writer = ctc_engine::output::ResultWriter::create(&dir, &model)
-        .map_err(|e| format!("error: cannot create output directory `{}`: {e}", dir.display()))?;
+    let mut writer = ctc_engine::output::ResultWriter::create(&dir, &model).map_err(|e| {
+        format!(
+            "error: cannot create output directory `{}`: {e}",
+            dir.display()
+        )
+    })?;
     let mut observer = progress::Progress::new(&model, &mut writer, quiet, verbose);
     let outcome = ctc_engine::solve::run(&model, &mut observer);
     observer.finish();

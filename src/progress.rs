@@ -98,7 +98,9 @@ impl Observer for Progress<'_> {
     }
 
     fn cutback(&mut self, reason: &str, new_dt: f64) {
-        self.say(format!("  cutback: {reason}; retrying with dt = {new_dt:.3e}"));
+        self.say(format!(
+            "  cutback: {reason}; retrying with dt = {new_dt:.3e}"
+        ));
         self.inner.cutback(reason, new_dt);
     }
 }

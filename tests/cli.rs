@@ -11,9 +11,16 @@ fn ctc() -> Command {
 
 #[test]
 fn check_accepts_every_example() {
-    for deck in ["examples/hertz_cylinder.ctc", "examples/hertz_sphere_axi.ctc"] {
+    for deck in [
+        "examples/hertz_cylinder.ctc",
+        "examples/hertz_sphere_axi.ctc",
+    ] {
         let out = ctc().args(["check", deck]).output().unwrap();
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
     }
 }
 
@@ -58,7 +65,11 @@ fn run_writes_results() {
         .arg(dir.path())
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     for f in ["results.pvd", "summary.json", "history.csv"] {
         assert!(Path::new(&dir.path().join(f)).exists(), "{f} missing");
     }

@@ -43,10 +43,14 @@ impl Observer for Probe {
             }
         }
         // Round-off below 1e-9 of the force scale is noise, not a regression.
-        let scale = contact
-            .iter()
-            .fold(reaction_abs, |m, x| m.max(x.abs()));
-        let clean = |x: f64| if x.abs() <= 1e-9 * scale { 0.0 } else { sig(x, 4) };
+        let scale = contact.iter().fold(reaction_abs, |m, x| m.max(x.abs()));
+        let clean = |x: f64| {
+            if x.abs() <= 1e-9 * scale {
+                0.0
+            } else {
+                sig(x, 4)
+            }
+        };
         let umax = v
             .displacement
             .iter()
@@ -96,7 +100,11 @@ fn every_example_opens_with_goal_reference_and_run_command() {
             .take_while(|l| l.starts_with('#'))
             .collect::<Vec<_>>()
             .join("\n");
-        assert!(!header.is_empty(), "{} has no opening comment", deck.display());
+        assert!(
+            !header.is_empty(),
+            "{} has no opening comment",
+            deck.display()
+        );
         assert!(
             header.contains("Reference"),
             "{}: opening comment names no reference",

@@ -19,6 +19,8 @@
 //! - [`runner`]: levels, judging, rates; [`report`]: tables and JSON;
 //! - [`plot`], [`markdown`]: the report directory; [`bench`]: the benchmark.
 
+#![warn(missing_docs)]
+
 pub mod analytical;
 pub mod bench;
 pub mod capture;
