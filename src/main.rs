@@ -176,6 +176,7 @@ fn verify(
         filter,
         report_dir: report,
         max_level,
+        progress: true,
         ..Default::default()
     };
     let report = ctc_verification::run(&opts)?;

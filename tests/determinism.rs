@@ -38,6 +38,14 @@ fn cylinder_on_block_twice_gives_identical_bits() {
     ctc_engine::solve::run(&model2, &mut second).unwrap();
     assert!(!first.0.is_empty());
     assert_eq!(first.0.len(), second.0.len());
-    let differing = first.0.iter().zip(&second.0).filter(|(a, b)| a != b).count();
-    assert_eq!(differing, 0, "{differing} values differ between two identical runs");
+    let differing = first
+        .0
+        .iter()
+        .zip(&second.0)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(
+        differing, 0,
+        "{differing} values differ between two identical runs"
+    );
 }

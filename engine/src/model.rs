@@ -70,6 +70,20 @@ pub struct Body {
     pub material: usize,
     /// How quadrilaterals are integrated (triangles are always 1-point tri3).
     pub formulation: Formulation,
+    /// Small strain (linear kinematics) or finite strain (total Lagrangian).
+    pub kinematics: Kinematics,
+}
+
+/// Kinematic assumption of a body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Kinematics {
+    /// Small displacements and strains: `eps = sym grad u` (the cheaper path).
+    #[default]
+    Small,
+    /// Finite strains and rotations: total Lagrangian with the deformation
+    /// gradient `F = I + Grad u` (see `crate::element::finite`).
+    Finite,
 }
 
 /// Element technology of a body.
@@ -101,6 +115,58 @@ pub enum MaterialLaw {
         young: f64,
         /// Poisson's ratio, in (-1, 0.5).
         poisson: f64,
+    },
+    /// Compressible Neo-Hookean hyperelasticity (finite kinematics only):
+    /// `W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2`, with the Lame
+    /// constants of `young` and `poisson`.
+    NeoHookean {
+        /// Small-strain Young's modulus, > 0.
+        young: f64,
+        /// Small-strain Poisson's ratio, in (-1, 0.5).
+        poisson: f64,
+    },
+    /// Isotropic elasticity with von Mises (J2) plasticity and isotropic
+    /// hardening; small strain (additive split) or finite strain
+    /// (multiplicative split, Hencky elastic strains) by the body's
+    /// kinematics.
+    ElastoPlastic {
+        /// Young's modulus, > 0.
+        young: f64,
+        /// Poisson's ratio, in (-1, 0.5).
+        poisson: f64,
+        /// Flow stress as a function of the equivalent plastic strain.
+        hardening: Hardening,
+    },
+}
+
+/// Isotropic hardening: flow stress `sigma_y(ep)` for the equivalent plastic
+/// strain `ep >= 0`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Hardening {
+    /// `sigma_y = yield + modulus * ep`.
+    Linear {
+        /// Initial yield stress, > 0.
+        yield_stress: f64,
+        /// Plastic modulus `H` (>= 0; 0 is perfect plasticity).
+        modulus: f64,
+    },
+    /// Swift/Krupkowski: `sigma_y = k (eps0 + ep)^n`.
+    Swift {
+        /// Strength coefficient `K`, > 0.
+        k: f64,
+        /// Pre-strain `eps0`, > 0.
+        eps0: f64,
+        /// Hardening exponent `n`, in [0, 1].
+        n: f64,
+    },
+    /// Voce: `sigma_y = yield + (sigma_inf - yield) (1 - exp(-delta ep))`.
+    Voce {
+        /// Initial yield stress, > 0.
+        yield_stress: f64,
+        /// Saturation stress, >= yield.
+        sigma_inf: f64,
+        /// Saturation rate, > 0.
+        delta: f64,
     },
 }
 

@@ -82,6 +82,7 @@ fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
             cells: 0..ncells,
             material: 0,
             formulation: Formulation::Full,
+            kinematics: Default::default(),
         }],
         materials: vec![Material {
             name: "soft".into(),

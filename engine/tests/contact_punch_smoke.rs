@@ -90,6 +90,7 @@ fn contact_punch_smoke_flat_polyline_punch_with_corners() {
             cells: 0..nc,
             material: 0,
             formulation: Formulation::Full,
+            kinematics: Default::default(),
         }],
         materials: vec![Material {
             name: "m".into(),

@@ -259,6 +259,7 @@ impl Lowerer<'_> {
                 cells: placed.cells,
                 material,
                 formulation,
+                kinematics: m::Kinematics::Small,
             });
         }
         (bodies, materials)

@@ -314,6 +314,7 @@ mod tests {
                 cells: 0..1,
                 material: 0,
                 formulation: Formulation::Full,
+                kinematics: Default::default(),
             }],
             materials: vec![Material {
                 name: "m".into(),

@@ -42,6 +42,7 @@ pub fn surface_model(
             cells: 0..0,
             material: 0,
             formulation: Formulation::Full,
+            kinematics: Default::default(),
         }],
         materials: vec![Material {
             name: "m".into(),

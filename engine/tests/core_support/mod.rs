@@ -132,6 +132,7 @@ pub fn one_body(
             cells: 0..nc,
             material: 0,
             formulation,
+            kinematics: Default::default(),
         }],
         materials: vec![Material {
             name: "mat".into(),

@@ -143,6 +143,12 @@ fn expect_material(model: &Model, young: f64, poisson: f64) -> Result<(), String
                     ));
                 }
             }
+            _ => {
+                return Err(format!(
+                    "material `{}` is not linear elastic but the reference is",
+                    m.name
+                ))
+            }
         }
     }
     Ok(())
@@ -202,6 +208,7 @@ pub(crate) mod test_model {
                 cells: 0..c,
                 material: 0,
                 formulation: Formulation::Full,
+                kinematics: Default::default(),
             }],
             materials: vec![Material {
                 name: "m".into(),
