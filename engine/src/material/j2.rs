@@ -1,0 +1,154 @@
+//! J2 (von Mises) radial return with isotropic hardening, shared by the
+//! small-strain (additive split, strains) and finite-strain (multiplicative
+//! split, Hencky logarithmic elastic strains, exponential map) models.
+//!
+//! Given the trial elastic strain `e_tr` (small strain tensor, or
+//! `1/2 ln b_e,tr`), the elastic predictor is
+//! `s_tr = 2 G dev e_tr`, `q_tr = sqrt(3/2 s_tr : s_tr)`. If
+//! `q_tr > sigma_y(ep_n)` the plastic multiplier solves
+//! `q_tr - 3 G dgamma - sigma_y(ep_n + dgamma) = 0` (scalar Newton in `f64`,
+//! then one Newton correction in the caller's scalar type so that
+//! derivatives are exact), and `s = (1 - 3 G dgamma / q_tr) s_tr`,
+//! `ep = ep_n + dgamma`. Stress (Cauchy for small strain, Kirchhoff for
+//! finite strain): `K tr(e) I + s`.
+
+use super::dual::Scalar;
+use super::tensor::{deviator, norm2, trace, Sym};
+use crate::model::Hardening;
+
+/// Elastic constants of the return mapping.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Elastic {
+    /// Bulk modulus `K`.
+    pub bulk: f64,
+    /// Shear modulus `G`.
+    pub shear: f64,
+}
+
+impl Elastic {
+    /// From Young's modulus and Poisson's ratio.
+    pub fn from_young(young: f64, poisson: f64) -> Self {
+        Elastic {
+            bulk: young / (3.0 * (1.0 - 2.0 * poisson)),
+            shear: young / (2.0 * (1.0 + poisson)),
+        }
+    }
+
+    /// Isotropic linear stress `K tr(e) I + 2 G dev(e)`.
+    pub fn stress<T: Scalar>(&self, e: &Sym<T>) -> Sym<T> {
+        let p = trace(e) * self.bulk;
+        let s = deviator(e);
+        let g2 = 2.0 * self.shear;
+        [p + s[0] * g2, p + s[1] * g2, p + s[2] * g2, s[3] * g2]
+    }
+}
+
+/// Result of a return mapping.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Returned<T> {
+    /// Stress `K tr(e) I + s`.
+    pub stress: Sym<T>,
+    /// Elastic strain after the return.
+    pub elastic_strain: Sym<T>,
+    /// Equivalent plastic strain after the return.
+    pub ep: f64,
+    /// Plastic multiplier increment (0 when elastic).
+    pub dgamma: f64,
+}
+
+/// Local Newton iterations of the return mapping.
+const MAX_LOCAL: usize = 60;
+
+/// Radial return from the trial elastic strain `e_tr` with equivalent
+/// plastic strain `ep_n` at the start of the increment. `viscosity`, when
+/// given as `(eta, dt)`, turns the consistency condition into Perzyna's
+/// over-stress law `q - 3 G dgamma - sigma_y = sigma_y^0... ` (see
+/// [`super::viscoplastic`]); `None` is rate independent.
+pub fn radial_return<T: Scalar>(
+    elastic: &Elastic,
+    hardening: &Hardening,
+    e_tr: &Sym<T>,
+    ep_n: f64,
+    viscosity: Option<(f64, f64)>,
+) -> Result<Returned<T>, String> {
+    let g = elastic.shear;
+    let tr = trace(e_tr);
+    let dev = deviator(e_tr);
+    let q = (norm2(&dev) * 1.5).sqrt() * (2.0 * g);
+    let sy0 = hardening.flow_stress(ep_n);
+    if q.re() <= sy0 * (1.0 + 1e-12) {
+        return Ok(Returned {
+            stress: elastic.stress(e_tr),
+            elastic_strain: *e_tr,
+            ep: ep_n,
+            dgamma: 0.0,
+        });
+    }
+    let qv = q.re();
+    // residual r(dg) = q - 3 G dg - sigma_y(ep_n + dg) - eta/dt dg (Perzyna, linear)
+    let visc = viscosity.map_or(0.0, |(eta, dt)| eta / dt);
+    let resid = |dg: f64| qv - 3.0 * g * dg - hardening.flow_stress(ep_n + dg) - visc * dg;
+    let slope = |dg: f64| 3.0 * g + hardening.slope(ep_n + dg) + visc;
+    let mut dg = 0.0;
+    let mut converged = false;
+    for _ in 0..MAX_LOCAL {
+        let r = resid(dg);
+        let mut next = dg + r / slope(dg);
+        if next <= 0.0 {
+            next = 0.5 * dg;
+        }
+        let step = (next - dg).abs();
+        dg = next;
+        if step <= 1e-14 * dg.max(1e-300) || resid(dg).abs() <= 1e-13 * sy0 {
+            converged = true;
+            break;
+        }
+    }
+    if !converged || !dg.is_finite() {
+        return Err(format!(
+            "the plastic return mapping did not converge (trial von Mises stress {qv:e}, flow \
+             stress {sy0:e})"
+        ));
+    }
+    // one Newton correction in T: exact derivatives (implicit function theorem)
+    let dg_t = (q - (3.0 * g * dg + hardening.flow_stress(ep_n + dg) + visc * dg)) / slope(dg) + dg;
+    let factor = -(dg_t * (3.0 * g)) / q + 1.0;
+    let p = tr * elastic.bulk;
+    let g2 = 2.0 * g;
+    let s = [dev[0] * factor * g2, dev[1] * factor * g2, dev[2] * factor * g2, dev[3] * factor * g2];
+    let m = tr / 3.0;
+    let elastic_strain = [
+        m + s[0] / g2,
+        m + s[1] / g2,
+        m + s[2] / g2,
+        s[3] / g2,
+    ];
+    Ok(Returned {
+        stress: [p + s[0], p + s[1], p + s[2], s[3]],
+        elastic_strain,
+        ep: ep_n + dg,
+        dgamma: dg,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn radial_return_lands_on_the_yield_surface() {
+        let el = Elastic::from_young(200e3, 0.3);
+        let h = Hardening::Swift {
+            k: 500.0,
+            eps0: 0.01,
+            n: 0.2,
+        };
+        let e = [0.01, -0.004, -0.003, 0.002];
+        let r = radial_return(&el, &h, &e, 0.02, None).unwrap();
+        assert!(r.dgamma > 0.0);
+        let q = (1.5 * norm2(&deviator(&r.stress))).sqrt();
+        assert!((q - h.flow_stress(r.ep)).abs() < 1e-9 * q, "{q}");
+        // pressure unchanged by the (isochoric) return
+        assert!((trace(&r.stress) - 3.0 * el.bulk * trace(&e)).abs() < 1e-9);
+    }
+}
