@@ -51,6 +51,12 @@ enum Command {
         /// Highest refinement level to run (0 = coarsest only).
         #[arg(long)]
         max_level: Option<usize>,
+        /// Run the stress matrix (stiff and extreme cases) instead of the cases.
+        #[arg(long)]
+        stress: bool,
+        /// With --stress: only the quick subset run by the tests.
+        #[arg(long, requires = "stress")]
+        reduced: bool,
     },
     /// Run the performance benchmark (rigid cylinder on an elastic block).
     Bench {
@@ -81,7 +87,15 @@ fn main() -> ExitCode {
             report,
             json,
             max_level,
-        } => verify(filter, report, json, max_level),
+            stress,
+            reduced,
+        } => {
+            if stress {
+                verify_stress(reduced, json)
+            } else {
+                verify(filter, report, json, max_level)
+            }
+        }
         Command::Bench {
             size,
             increments,
@@ -192,6 +206,23 @@ fn verify(
         Ok(())
     } else {
         Err("verification failed: see the table above".into())
+    }
+}
+
+fn verify_stress(reduced: bool, json: bool) -> Result<(), String> {
+    let report = ctc_verification::run_stress(reduced);
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", report.table());
+    }
+    if report.passed() {
+        Ok(())
+    } else {
+        Err("stress matrix: some cells did not meet their expectation (see above)".into())
     }
 }
 

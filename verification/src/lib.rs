@@ -17,7 +17,10 @@
 //!   pressure profile and the half-width estimator; [`measure`]: quantities;
 //! - [`case`]: what a case is; [`cases`]: the catalogue;
 //! - [`runner`]: levels, judging, rates; [`report`]: tables and JSON;
-//! - [`plot`], [`markdown`]: the report directory; [`bench`]: the benchmark.
+//! - [`plot`], [`markdown`]: the report directory; [`bench`]: the benchmark;
+//! - [`fenicsx_export`], [`fenicsx`]: FEniCSx reference solutions on the
+//!   same meshes (issue 9); `meshio` (feature `meshio`): cross-checks of the
+//!   VTU writer and the gmsh reader with Python's meshio through pyo3.
 
 #![warn(missing_docs)]
 
@@ -27,6 +30,8 @@ pub mod capture;
 pub mod case;
 pub mod cases;
 pub mod deck;
+pub mod fenicsx;
+pub mod fenicsx_export;
 pub mod markdown;
 pub mod measure;
 pub mod plot;
@@ -34,9 +39,11 @@ pub mod profile;
 pub mod refine;
 pub mod report;
 pub mod runner;
+pub mod stress;
 
 pub use bench::{run_bench, BenchOptions, BenchReport};
 pub use report::Report;
+pub use stress::{run_stress, StressReport};
 
 use std::path::{Path, PathBuf};
 use std::time::Instant;
