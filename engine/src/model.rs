@@ -136,6 +136,9 @@ pub enum MaterialLaw {
         poisson: f64,
         /// Flow stress as a function of the equivalent plastic strain.
         hardening: Hardening,
+        /// Perzyna viscosity `eta` (stress x time): `d ep / dt =
+        /// <q - sigma_y(ep)> / eta`; `None` is rate-independent plasticity.
+        viscosity: Option<f64>,
     },
 }
 
@@ -387,6 +390,46 @@ pub enum ContactMethod {
         /// alpha (force/length for nodal, pressure/length for area), > 0.
         stiffness: f64,
     },
+    /// Lagrange multipliers: one multiplier (the normal contact force,
+    /// non-negative in compression) per active slave node, `g = 0` enforced
+    /// exactly on the active set, which is found by an active-set loop.
+    Lagrange {
+        /// How the saddle-point system is written and factorized.
+        formulation: LagrangeFormulation,
+    },
+    /// Augmented Lagrangian (Uzawa): `R_N = max(0, lambda* - alpha g)`, the
+    /// multiplier `lambda*` updated until the max penetration is below
+    /// `tolerance`.
+    AugmentedLagrange {
+        /// Nodal or area-weighted penalty (default area).
+        kind: PenaltyKind,
+        /// alpha (force/length for nodal, pressure/length for area), > 0.
+        penalty: f64,
+        /// Largest accepted penetration `gmax*` (length), > 0.
+        tolerance: f64,
+        /// When `lambda*` is updated.
+        update: MultiplierUpdate,
+    },
+}
+
+/// Formulation of the Lagrange-multiplier saddle-point system.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LagrangeFormulation {
+    /// `[K G^T; G 0]`, sparse LU with pivoting.
+    Single,
+    /// Doubled multipliers `lambda1, q, lambda2` (seed, "Main difficulties
+    /// (1)"), symmetric `L D L^T` without pivoting.
+    Doubled,
+}
+
+/// When the augmented-Lagrangian multipliers are updated.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MultiplierUpdate {
+    /// After each converged Newton loop (Uzawa), until the penetration is
+    /// below the tolerance.
+    Converged,
+    /// At every Newton iteration (inside the loop).
+    Newton,
 }
 
 /// A body surface (slave nodes) against a rigid tool (master).

@@ -6,8 +6,9 @@
 use crate::ast::num;
 use ctc_engine::mesh::CellKind;
 use ctc_engine::model::{
-    AnalysisKind, ContactMethod, Field, Formulation, HistoryRequest, Load, MaterialLaw, Model,
-    PenaltyKind, TimeFunction, ToolGeometry, ToolSide,
+    AnalysisKind, ContactMethod, Field, Formulation, Hardening, HistoryRequest, Kinematics,
+    LagrangeFormulation, Load, MaterialLaw, Model, MultiplierUpdate, PenaltyKind, TimeFunction,
+    ToolGeometry, ToolSide,
 };
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -113,17 +114,13 @@ pub fn explain(model: &Model) -> String {
             kinds.join(" + ")
         );
         if let Some(m) = model.materials.get(b.material) {
-            match &m.law {
-                MaterialLaw::LinearElastic { young, poisson } => {
-                    let _ = writeln!(
-                        o,
-                        "    material {}: small-strain linear elastic, E = {}, nu = {}",
-                        m.name,
-                        num(*young),
-                        num(*poisson)
-                    );
-                }
-            }
+            let _ = writeln!(
+                o,
+                "    material {}: {}",
+                m.name,
+                material_law(&m.law, b.kinematics)
+            );
+            let _ = writeln!(o, "    kinematics: {}", kinematics(b.kinematics));
         }
     }
     // ------------------------------------------------------------ unknowns
@@ -284,6 +281,37 @@ pub fn explain(model: &Model) -> String {
                         num(*stiffness)
                     ),
                 },
+                ContactMethod::Lagrange { formulation } => match formulation {
+                    LagrangeFormulation::Single => "Lagrange multipliers (exact, active set), \
+                        saddle-point system [K G^T; G 0] by sparse LU"
+                        .to_string(),
+                    LagrangeFormulation::Doubled => "Lagrange multipliers (exact, active set), \
+                        doubled multipliers (lambda1, q, lambda2) by LDL^T without pivoting"
+                        .to_string(),
+                },
+                ContactMethod::AugmentedLagrange {
+                    kind,
+                    penalty,
+                    tolerance,
+                    update,
+                } => format!(
+                    "augmented Lagrangian, {}: {} {} per unit gap, penetration tolerance {}, \
+                     multipliers updated {}",
+                    match kind {
+                        PenaltyKind::Nodal => "nodal",
+                        PenaltyKind::Area => "area-weighted",
+                    },
+                    num(*penalty),
+                    match kind {
+                        PenaltyKind::Nodal => "force",
+                        PenaltyKind::Area => "pressure",
+                    },
+                    num(*tolerance),
+                    match update {
+                        MultiplierUpdate::Converged => "after each converged Newton loop (Uzawa)",
+                        MultiplierUpdate::Newton => "at every Newton iteration",
+                    }
+                ),
             };
             let prof = match c.prof {
                 Some(p) => format!("search within prof = {}", num(p)),
@@ -374,16 +402,121 @@ pub fn explain(model: &Model) -> String {
     if model.constraints.is_empty() {
         absent.push("prescribed displacements");
     }
-    absent.extend([
-        "plasticity",
-        "viscoplasticity",
-        "friction",
-        "thermal unknowns",
-        "finite strain",
-        "inertia",
-    ]);
+    let law_present = |f: &dyn Fn(&MaterialLaw) -> bool| {
+        model
+            .bodies
+            .iter()
+            .filter_map(|b| model.materials.get(b.material))
+            .any(|m| f(&m.law))
+    };
+    if !law_present(&|l| matches!(l, MaterialLaw::ElastoPlastic { .. })) {
+        absent.push("plasticity");
+    }
+    if !law_present(&|l| {
+        matches!(
+            l,
+            MaterialLaw::ElastoPlastic {
+                viscosity: Some(_),
+                ..
+            }
+        )
+    }) {
+        absent.push("viscoplasticity");
+    }
+    absent.extend(["friction", "thermal unknowns"]);
+    if !model
+        .bodies
+        .iter()
+        .any(|b| b.kinematics == Kinematics::Finite)
+    {
+        absent.push("finite strain");
+    }
+    absent.push("inertia");
     let _ = writeln!(o, "not in this scene: {}", absent.join(", "));
     o
+}
+
+/// A body's kinematics in words.
+fn kinematics(k: Kinematics) -> &'static str {
+    match k {
+        Kinematics::Small => "small strain (linear kinematics)",
+        Kinematics::Finite => {
+            "finite strain (total Lagrangian, deformation gradient F, exact tangent incl. \
+             geometric stiffness; selective_reduced quad4 = F-bar)"
+        }
+    }
+}
+
+/// A material law in words.
+fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
+    match law {
+        MaterialLaw::LinearElastic { young, poisson } => match k {
+            Kinematics::Small => format!(
+                "small-strain linear elastic, E = {}, nu = {}",
+                num(*young),
+                num(*poisson)
+            ),
+            Kinematics::Finite => format!(
+                "Hencky (logarithmic strain) elastic, E = {}, nu = {}",
+                num(*young),
+                num(*poisson)
+            ),
+        },
+        MaterialLaw::NeoHookean { young, poisson } => format!(
+            "compressible Neo-Hookean W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, \
+             E = {}, nu = {}",
+            num(*young),
+            num(*poisson)
+        ),
+        MaterialLaw::ElastoPlastic {
+            young,
+            poisson,
+            hardening,
+            viscosity,
+        } => {
+            let h = match hardening {
+                Hardening::Linear {
+                    yield_stress,
+                    modulus,
+                } => format!("sigma_y = {} + {} ep", num(*yield_stress), num(*modulus)),
+                Hardening::Swift { k, eps0, n } => {
+                    format!(
+                        "Swift sigma_y = {} ({} + ep)^{}",
+                        num(*k),
+                        num(*eps0),
+                        num(*n)
+                    )
+                }
+                Hardening::Voce {
+                    yield_stress,
+                    sigma_inf,
+                    delta,
+                } => format!(
+                    "Voce sigma_y = {} + ({} - {}) (1 - exp(-{} ep))",
+                    num(*yield_stress),
+                    num(*sigma_inf),
+                    num(*yield_stress),
+                    num(*delta)
+                ),
+            };
+            let split = match k {
+                Kinematics::Small => "small-strain J2 plasticity (additive split, radial return)",
+                Kinematics::Finite => {
+                    "finite-strain J2 plasticity (multiplicative split, Hencky elastic strain, \
+                     exponential-map return)"
+                }
+            };
+            let visc = match viscosity {
+                Some(eta) => format!(", Perzyna viscosity eta = {}", num(*eta)),
+                None => String::new(),
+            };
+            format!(
+                "{split}, E = {}, nu = {}, {h}{visc}; consistent tangent",
+                num(*young),
+                num(*poisson)
+            )
+        }
+    }
 }
 
 #[cfg(test)]

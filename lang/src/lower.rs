@@ -259,7 +259,10 @@ impl Lowerer<'_> {
                 cells: placed.cells,
                 material,
                 formulation,
-                kinematics: m::Kinematics::Small,
+                kinematics: match b.kinematics.as_ref().map(|k| k.value) {
+                    Some(ast::KinematicsKind::Finite) => m::Kinematics::Finite,
+                    _ => m::Kinematics::Small,
+                },
             });
         }
         (bodies, materials)
@@ -280,7 +283,7 @@ impl Lowerer<'_> {
             self.missing("the material", name.span);
             return None;
         };
-        let e = def.elastic.as_ref();
+        let e = def.elastic.as_ref().or(def.neo_hookean.as_ref());
         let (Some(young), Some(poisson)) = (
             e.and_then(|e| e.young.as_ref()),
             e.and_then(|e| e.poisson.as_ref()),
@@ -288,12 +291,44 @@ impl Lowerer<'_> {
             self.missing("the elastic constants", def.name.span);
             return None;
         };
+        let (young, poisson) = (young.value, poisson.value);
+        let law = if def.neo_hookean.is_some() {
+            MaterialLaw::NeoHookean { young, poisson }
+        } else if let Some(p) = &def.plastic {
+            let v = |x: &Option<crate::span::Spanned<f64>>| x.as_ref().map(|x| x.value);
+            let yield_stress = v(&p.yield_stress);
+            let hardening = match p.hardening.as_ref().map(|h| &h.value) {
+                None => m::Hardening::Linear {
+                    yield_stress: yield_stress?,
+                    modulus: 0.0,
+                },
+                Some(ast::HardeningAst::Linear { modulus }) => m::Hardening::Linear {
+                    yield_stress: yield_stress?,
+                    modulus: v(modulus)?,
+                },
+                Some(ast::HardeningAst::Swift { k, eps0, n }) => m::Hardening::Swift {
+                    k: v(k)?,
+                    eps0: v(eps0)?,
+                    n: v(n)?,
+                },
+                Some(ast::HardeningAst::Voce { sigma_inf, delta }) => m::Hardening::Voce {
+                    yield_stress: yield_stress?,
+                    sigma_inf: v(sigma_inf)?,
+                    delta: v(delta)?,
+                },
+            };
+            MaterialLaw::ElastoPlastic {
+                young,
+                poisson,
+                hardening,
+                viscosity: def.viscoplastic.as_ref().and_then(|vp| v(&vp.eta)),
+            }
+        } else {
+            MaterialLaw::LinearElastic { young, poisson }
+        };
         materials.push(Material {
             name: name.name.clone(),
-            law: MaterialLaw::LinearElastic {
-                young: young.value,
-                poisson: poisson.value,
-            },
+            law,
         });
         Some(materials.len() - 1)
     }
@@ -575,6 +610,31 @@ impl Lowerer<'_> {
                         _ => PenaltyKind::Area,
                     },
                     stiffness: s.value,
+                },
+                Some(Method::Lagrange { formulation }) => ContactMethod::Lagrange {
+                    formulation: match formulation.as_ref().map(|f| f.value) {
+                        Some(ast::LagrangeFormulationAst::Doubled) => {
+                            m::LagrangeFormulation::Doubled
+                        }
+                        _ => m::LagrangeFormulation::Single,
+                    },
+                },
+                Some(Method::AugmentedLagrange {
+                    kind,
+                    penalty: Some(p),
+                    tolerance: Some(tol),
+                    update,
+                }) => ContactMethod::AugmentedLagrange {
+                    kind: match kind.as_ref().map(|k| k.value) {
+                        Some(PenaltyKindAst::Nodal) => PenaltyKind::Nodal,
+                        _ => PenaltyKind::Area,
+                    },
+                    penalty: p.value,
+                    tolerance: tol.value,
+                    update: match update.as_ref().map(|u| u.value) {
+                        Some(ast::MultiplierUpdateAst::Newton) => m::MultiplierUpdate::Newton,
+                        _ => m::MultiplierUpdate::Converged,
+                    },
                 },
                 _ => {
                     self.missing("a supported contact method", c.tool.span);

@@ -250,10 +250,13 @@ impl Checker<'_> {
                         r.span,
                         "not supported yet",
                     )
-                    .with_help("only `elastic { E = ..  nu = .. }` can be used for now"),
+                    .with_help("use `elastic`, `neo_hookean`, `plastic` and `viscoplastic` blocks"),
                 );
             }
-            let Some(e) = &m.elastic else { continue };
+            self.inelastic(m);
+            let Some(e) = m.elastic.as_ref().or(m.neo_hookean.as_ref()) else {
+                continue;
+            };
             self.must_be_positive(&e.young, "Young's modulus E");
             if let Some(nu) = e
                 .poisson
@@ -296,6 +299,159 @@ impl Checker<'_> {
         }
     }
 
+    /// Kinematics against the material law and the analysis dimension.
+    fn body_kinematics(&mut self, b: &Body, dim: Option<Dimension>) {
+        let deck = self.deck;
+        let finite = b
+            .kinematics
+            .as_ref()
+            .filter(|k| k.value == KinematicsKind::Finite);
+        let material = b
+            .material
+            .as_ref()
+            .and_then(|n| deck.materials.iter().find(|m| m.name.name == n.name));
+        let plastic = material.is_some_and(|m| m.plastic.is_some());
+        if dim == Some(Dimension::PlaneStress) {
+            if let Some(k) = finite {
+                self.err(
+                    Diagnostic::error(
+                        "finite strain in plane stress is not supported yet",
+                        k.span,
+                        "not supported yet",
+                    )
+                    .with_help("use `dimension = plane_strain` or `axisymmetric`"),
+                );
+            } else if plastic {
+                self.err(
+                    Diagnostic::error(
+                        "plasticity in plane stress is not supported yet",
+                        b.name.span,
+                        "not supported yet",
+                    )
+                    .with_help("use `dimension = plane_strain` or `axisymmetric`"),
+                );
+            }
+        }
+        if let Some(m) = material.filter(|m| m.neo_hookean.is_some()) {
+            if finite.is_none() {
+                self.err(
+                    Diagnostic::error(
+                        format!(
+                            "material `{}` is Neo-Hookean, a finite-strain law: body `{}` needs \
+                             `kinematics = finite`",
+                            m.name.name, b.name.name
+                        ),
+                        b.name.span,
+                        "small-strain body",
+                    )
+                    .with_help("add `kinematics = finite` to the body"),
+                );
+            }
+        }
+    }
+
+    /// `neo_hookean`, `plastic`, `viscoplastic` blocks of a material.
+    fn inelastic(&mut self, m: &Material) {
+        if let (Some(n), Some(_)) = (&m.neo_hookean, &m.elastic) {
+            self.err(
+                Diagnostic::error(
+                    "a material has either `elastic` or `neo_hookean`, not both",
+                    n.span,
+                    "second elastic law",
+                )
+                .with_help("remove one of the two blocks"),
+            );
+        }
+        if let (Some(n), Some(p)) = (&m.neo_hookean, &m.plastic) {
+            let _ = n;
+            self.err(
+                Diagnostic::error(
+                    "plasticity on a Neo-Hookean material is not supported yet",
+                    p.span,
+                    "not supported yet",
+                )
+                .with_help("use `elastic { .. }` with `plastic { .. }` (Hencky elasticity at finite strain)"),
+            );
+        }
+        if let (Some(v), None) = (&m.viscoplastic, &m.plastic) {
+            self.err(
+                Diagnostic::error(
+                    "`viscoplastic` needs a `plastic` block (the static yield stress and hardening)",
+                    v.span,
+                    "no `plastic` block",
+                )
+                .with_help("add e.g. `plastic { yield = 250  hardening = linear { H = 1000 } }`"),
+            );
+        }
+        if let Some(v) = &m.viscoplastic {
+            self.must_be_positive(&v.eta, "the viscosity eta");
+        }
+        let Some(p) = &m.plastic else { return };
+        let swift = matches!(
+            p.hardening.as_ref().map(|h| &h.value),
+            Some(HardeningAst::Swift { .. })
+        );
+        match (&p.yield_stress, swift) {
+            (Some(y), true) => self.err(
+                Diagnostic::error(
+                    "`yield` is not used with Swift hardening",
+                    y.span,
+                    "the initial yield stress is K eps0^n",
+                )
+                .with_help("remove `yield` (or use `linear` / `voce` hardening)"),
+            ),
+            (None, false) => self.err(
+                Diagnostic::error(
+                    "missing `yield` in the `plastic` block",
+                    p.span,
+                    "no yield stress",
+                )
+                .with_help("add the initial yield stress, e.g. `yield = 250`"),
+            ),
+            _ => self.must_be_positive(&p.yield_stress, "the yield stress"),
+        }
+        let Some(h) = &p.hardening else { return };
+        match &h.value {
+            HardeningAst::Linear { modulus } => {
+                if let Some(v) = modulus.as_ref().filter(|v| v.value < 0.0) {
+                    self.err(
+                        Diagnostic::error(
+                            "the hardening modulus H must be >= 0",
+                            v.span,
+                            "negative",
+                        )
+                        .with_help(
+                            "softening is not supported: it makes the solution mesh dependent",
+                        ),
+                    );
+                }
+            }
+            HardeningAst::Swift { k, eps0, n } => {
+                self.must_be_positive(k, "Swift K");
+                self.must_be_positive(eps0, "Swift eps0");
+                if let Some(v) = n.as_ref().filter(|v| !(0.0..=1.0).contains(&v.value)) {
+                    self.err(Diagnostic::error(
+                        "Swift n must lie in [0, 1]",
+                        v.span,
+                        format!("n = {}", num(v.value)),
+                    ));
+                }
+            }
+            HardeningAst::Voce { sigma_inf, delta } => {
+                self.must_be_positive(delta, "Voce delta");
+                if let (Some(si), Some(y)) = (sigma_inf, &p.yield_stress) {
+                    if si.value < y.value {
+                        self.err(Diagnostic::error(
+                            "Voce sigma_inf must be at least the yield stress",
+                            si.span,
+                            format!("sigma_inf = {} < yield = {}", num(si.value), num(y.value)),
+                        ));
+                    }
+                }
+            }
+        }
+    }
+
     // ------------------------------------------------------------ bodies
     fn bodies(&mut self) {
         let deck = self.deck;
@@ -314,7 +470,13 @@ impl Checker<'_> {
             .iter()
             .map(|m| m.name.name.as_str())
             .collect();
+        let dim = deck
+            .analysis
+            .first()
+            .and_then(|a| a.dimension.as_ref())
+            .map(|d| d.value);
         for b in &deck.bodies {
+            self.body_kinematics(b, dim);
             if let Some(m) = &b.material {
                 if !material_names.contains(&m.name.as_str())
                     && !deck.broken_named("material", &m.name)
@@ -835,15 +997,13 @@ impl Checker<'_> {
                 Some(Method::Penalty { stiffness, .. }) => {
                     self.must_be_positive(stiffness, "penalty stiffness")
                 }
-                Some(Method::Reserved(n)) => self.err(
-                    Diagnostic::error(
-                        format!("`{}` contact is not supported yet", n.name),
-                        n.span,
-                        "not supported yet",
-                    )
-                    .with_help("use `method = penalty { kind = area  stiffness = .. }`"),
-                ),
-                None => {}
+                Some(Method::AugmentedLagrange {
+                    penalty, tolerance, ..
+                }) => {
+                    self.must_be_positive(penalty, "augmented Lagrangian penalty");
+                    self.must_be_positive(tolerance, "augmented Lagrangian tolerance");
+                }
+                Some(Method::Lagrange { .. }) | None => {}
             }
             self.must_be_positive(&c.prof, "prof");
             for r in &c.reserved {
@@ -1093,6 +1253,65 @@ mod tests {
             .into_iter()
             .map(|d| d.message)
             .collect()
+    }
+
+    /// Messages of a deck with one body `b` of material `m` (given in full).
+    fn material_messages(dim: &str, material: &str, body_extra: &str) -> Vec<String> {
+        let text = format!(
+            "analysis {{ dimension = {dim} }}\nmaterial m {{ {material} }}\n\
+             body b {{ mesh = rectangle {{ origin = (0, 0) size = (2, 1) divisions = (4, 2) }} \
+             material = m {body_extra} }}\nfix b.bottom {{ ux uy }}\n\
+             step load {{ time = 0 .. 1  increments = 2 }}\n"
+        );
+        let (deck, d) = parse(&text);
+        assert!(d.is_empty(), "{d:?}");
+        validate(&deck, &text)
+            .into_iter()
+            .map(|d| d.message)
+            .collect()
+    }
+
+    #[test]
+    fn plastic_and_finite_strain_decks_validate() {
+        let ok = [
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 hardening = linear { H = 1000 } }", ""),
+            ("axisymmetric", "elastic { E = 200e3 nu = 0.3 } plastic { hardening = swift { K = 500 eps0 = 0.01 n = 0.2 } }", "kinematics = finite"),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 200 hardening = voce { sigma_inf = 300 delta = 5 } } viscoplastic { eta = 10 }", "kinematics = finite"),
+            ("plane_strain", "neo_hookean { E = 10 nu = 0.45 }", "kinematics = finite"),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 }", ""),
+        ];
+        for (dim, m, b) in ok {
+            assert!(
+                material_messages(dim, m, b).is_empty(),
+                "{m}: {:?}",
+                material_messages(dim, m, b)
+            );
+        }
+    }
+
+    #[test]
+    fn unsupported_or_inconsistent_plasticity_is_explained() {
+        let el = "elastic { E = 200e3 nu = 0.3 }";
+        let cases = [
+            ("plane_stress", format!("{el} plastic {{ yield = 250 }}"), "", "plasticity in plane stress is not supported yet"),
+            ("plane_stress", el.to_string(), "kinematics = finite", "finite strain in plane stress is not supported yet"),
+            ("plane_strain", "neo_hookean { E = 10 nu = 0.4 }".to_string(), "", "material `m` is Neo-Hookean, a finite-strain law: body `b` needs `kinematics = finite`"),
+            ("plane_strain", format!("{el} plastic {{ yield = 250 hardening = swift {{ K = 500 eps0 = 0.01 n = 0.2 }} }}"), "", "`yield` is not used with Swift hardening"),
+            ("plane_strain", format!("{el} plastic {{ hardening = linear {{ H = 1 }} }}"), "", "missing `yield` in the `plastic` block"),
+            ("plane_strain", format!("{el} viscoplastic {{ eta = 1 }}"), "", "`viscoplastic` needs a `plastic` block (the static yield stress and hardening)"),
+            ("plane_strain", format!("{el} plastic {{ yield = 250 hardening = voce {{ sigma_inf = 100 delta = 1 }} }}"), "", "Voce sigma_inf must be at least the yield stress"),
+            ("plane_strain", format!("{el} plastic {{ yield = 250 hardening = swift {{ K = 5 eps0 = 0.01 n = 2 }} }}"), "", "`yield` is not used with Swift hardening"),
+        ];
+        for (dim, m, b, expected) in cases {
+            let got = material_messages(dim, &m, b);
+            assert!(got.iter().any(|g| g == expected), "{m}: {got:?}");
+        }
+        let got = material_messages(
+            "plane_strain",
+            &format!("{el} plastic {{ hardening = swift {{ K = 5 eps0 = 0.01 n = 2 }} }}"),
+            "",
+        );
+        assert_eq!(got, ["Swift n must lie in [0, 1]"]);
     }
 
     #[test]

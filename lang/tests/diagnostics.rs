@@ -57,7 +57,7 @@ decks!(
     unknown_set_name,
     missing_analysis,
     unknown_history,
-    lagrange_unsupported,
+    augmented_lagrange_bad_update,
     table_not_increasing,
     unknown_time_function,
     warnings_only,

@@ -34,6 +34,8 @@ pub mod fenicsx;
 pub mod fenicsx_export;
 pub mod markdown;
 pub mod measure;
+#[cfg(feature = "meshio")]
+pub mod meshio;
 pub mod plot;
 pub mod profile;
 pub mod refine;

@@ -14,11 +14,15 @@
 //! - [`aabb`] and [`search`]: bounding boxes and the memory-first search
 //!   with the window `prof` ([`prof`]);
 //! - [`penalty`]: force and consistent tangent;
+//! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
+//!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
 //! - [`tributary`]: tributary areas of slave nodes;
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
+pub mod augmented;
 pub mod geometry;
+pub mod lagrange;
 pub mod log;
 pub mod motion;
 pub mod penalty;
@@ -27,7 +31,7 @@ pub mod search;
 pub mod tributary;
 pub(crate) mod vec2;
 
-use crate::model::Model;
+use crate::model::{ContactMethod, Model};
 use geometry::ToolShape;
 use motion::Placement;
 
@@ -87,6 +91,15 @@ pub struct PairState {
     pub last_brute_force_tests: usize,
     /// Projections computed since the state was created.
     pub total_projection_tests: u64,
+    /// Per slave node: contact multiplier in force units (Lagrange: the
+    /// normal force `lambda >= 0`; augmented Lagrangian: `lambda*`).
+    pub multiplier: Vec<f64>,
+    /// Per slave node: multiplier at the last converged increment.
+    pub committed_multiplier: Vec<f64>,
+    /// Per slave node: in the Lagrange active set (trial).
+    pub active: Vec<bool>,
+    /// Per slave node: active set at the last converged increment.
+    pub committed_active: Vec<bool>,
 }
 
 impl PairState {
@@ -126,6 +139,10 @@ impl PairState {
             last_projection_tests: 0,
             last_brute_force_tests: 0,
             total_projection_tests: 0,
+            multiplier: vec![0.0; n],
+            committed_multiplier: vec![0.0; n],
+            active: vec![false; n],
+            committed_active: vec![false; n],
         }
     }
 
@@ -142,11 +159,15 @@ impl PairState {
     /// Called when an increment has converged: commits history variables.
     pub fn commit(&mut self) {
         self.committed_entity.clone_from(&self.last_entity);
+        self.committed_multiplier.clone_from(&self.multiplier);
+        self.committed_active.clone_from(&self.active);
     }
 
     /// Called when an increment is cut back: restores the committed state.
     pub fn rollback(&mut self) {
         self.last_entity.clone_from(&self.committed_entity);
+        self.multiplier.clone_from(&self.committed_multiplier);
+        self.active.clone_from(&self.committed_active);
     }
 }
 
@@ -190,13 +211,28 @@ pub fn evaluate_pair(
             continue;
         }
         let normal = placement.rotate(p.normal);
-        let r = penalty::respond(
-            &cp.method,
-            state.tributary.get(i).copied().unwrap_or(0.0),
-            p.gap,
-            normal,
-            p.normal_rate,
-        );
+        let tributary = state.tributary.get(i).copied().unwrap_or(0.0);
+        let lambda = state.multiplier.get(i).copied().unwrap_or(0.0);
+        let r = match &cp.method {
+            ContactMethod::Penalty { .. } => {
+                penalty::respond(&cp.method, tributary, p.gap, normal, p.normal_rate)
+            }
+            ContactMethod::Lagrange { .. } => lagrange::respond(
+                state.active.get(i).copied().unwrap_or(false),
+                lambda,
+                tributary,
+                normal,
+                p.normal_rate,
+            ),
+            ContactMethod::AugmentedLagrange { .. } => augmented::respond(
+                penalty::effective_stiffness(&cp.method, tributary),
+                lambda,
+                tributary,
+                p.gap,
+                normal,
+                p.normal_rate,
+            ),
+        };
         out.push(NodeContact {
             node,
             gap: p.gap,

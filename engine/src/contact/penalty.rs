@@ -21,10 +21,16 @@ use crate::model::{ContactMethod, PenaltyKind};
 /// tributary area.
 pub fn effective_stiffness(method: &ContactMethod, tributary: f64) -> f64 {
     match method {
-        ContactMethod::Penalty { kind, stiffness } => match kind {
+        ContactMethod::Penalty { kind, stiffness }
+        | ContactMethod::AugmentedLagrange {
+            kind,
+            penalty: stiffness,
+            ..
+        } => match kind {
             PenaltyKind::Nodal => *stiffness,
             PenaltyKind::Area => *stiffness * tributary,
         },
+        ContactMethod::Lagrange { .. } => 0.0,
     }
 }
 
@@ -76,8 +82,8 @@ pub fn respond(
             kind: PenaltyKind::Area,
             stiffness,
         } => stiffness * -gap,
-        ContactMethod::Penalty { .. } if tributary > 0.0 => alpha * -gap / tributary,
-        ContactMethod::Penalty { .. } => 0.0,
+        _ if tributary > 0.0 => alpha * -gap / tributary,
+        _ => 0.0,
     };
     Response {
         force: [-alpha * gap * n[0], -alpha * gap * n[1]],

@@ -11,9 +11,14 @@
 //! - [`tri3`]: 1-point constant-strain triangle;
 //! - [`quad4`]: 2x2 Gauss, full or selective reduced (B-bar) integration;
 //! - [`bmatrix`]: strain-displacement matrices and the B-bar projection;
-//! - [`recovery`]: nodal averages of stress and strain for output.
+//! - [`recovery`]: nodal averages of stress and strain for output;
+//! - [`inelastic`]: small-strain history-dependent laws (J2 plasticity);
+//! - [`finite`]: finite-strain total Lagrangian kernel (Neo-Hookean, Hencky,
+//!   finite J2 plasticity, F-bar).
 
 pub mod bmatrix;
+pub mod finite;
+pub mod inelastic;
 pub mod quad4;
 pub mod recovery;
 pub mod tri3;
@@ -85,6 +90,20 @@ pub struct IntegrationPoint<const ND: usize> {
     pub position: [f64; 2],
 }
 
+/// Reference-configuration shape data of one integration point, for the
+/// nonlinear kernels.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RefPoint<const NN: usize> {
+    /// Shape function values.
+    pub n: [f64; NN],
+    /// Shape function derivatives `[dN/dX, dN/dY]` per node.
+    pub dndx: [[f64; 2]; NN],
+    /// Position (x, y) — (r, z) for axisymmetric analyses.
+    pub position: [f64; 2],
+    /// Volume weight `w det(J) t` or `w det(J) 2 pi r`.
+    pub volume: f64,
+}
+
 /// Stress and strain at one integration point.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PointState {
@@ -97,6 +116,17 @@ pub struct PointState {
     pub strain: Strain,
     /// Stress `[xx, yy, zz, xy]`.
     pub stress: Stress,
+}
+
+/// State of one integration point of a nonlinear kernel: output values and
+/// the updated internal variables.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MaterialPoint {
+    /// Stress (Cauchy) and strain (small strain, or the logarithmic strain
+    /// `1/2 ln(F F^T)` for finite strain; engineering shear).
+    pub state: PointState,
+    /// Internal variables after the update.
+    pub history: crate::material::History,
 }
 
 /// Element stiffness and internal force.

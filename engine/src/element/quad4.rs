@@ -6,7 +6,7 @@
 use super::bmatrix::{apply_bbar, strain_displacement};
 use super::{
     check_jacobian, integrate, point_states, ElementError, ElementResponse, IntegrationPoint,
-    PointState, Section,
+    PointState, RefPoint, Section,
 };
 use crate::material::Constitutive;
 use crate::model::Formulation;
@@ -101,6 +101,37 @@ pub fn integration_points(
         };
     }
     Ok(points)
+}
+
+/// Reference shape data at the 2x2 Gauss points (ordered like the nodes)
+/// and at the element centre (whose volume weight is the element's).
+pub fn reference_points(
+    x: &[[f64; 2]; 4],
+    section: &Section,
+) -> Result<([RefPoint<4>; 4], RefPoint<4>), ElementError> {
+    let g = 1.0 / 3f64.sqrt();
+    let at = |xi: f64, eta: f64, w: f64| -> Result<RefPoint<4>, ElementError> {
+        let s = shape_at(x, xi, eta)?;
+        if section.kind == crate::model::AnalysisKind::Axisymmetric && s.position[0] <= 0.0 {
+            return Err(ElementError::new(format!(
+                "axisymmetric integration point at radius r = {:e} <= 0: the body must lie in x = r >= 0",
+                s.position[0]
+            )));
+        }
+        Ok(RefPoint {
+            n: s.n,
+            dndx: s.dndx,
+            position: s.position,
+            volume: w * s.det * section.measure(s.position[0]),
+        })
+    };
+    let points = [
+        at(-g, -g, 1.0)?,
+        at(g, -g, 1.0)?,
+        at(g, g, 1.0)?,
+        at(-g, g, 1.0)?,
+    ];
+    Ok((points, at(0.0, 0.0, 4.0)?))
 }
 
 /// Stiffness (if `with_tangent`) and internal force for displacement `u`.

@@ -4,7 +4,7 @@
 use super::bmatrix::strain_displacement;
 use super::{
     check_jacobian, integrate, point_states, ElementError, ElementResponse, IntegrationPoint,
-    PointState, Section,
+    PointState, RefPoint, Section,
 };
 use crate::material::Constitutive;
 use nalgebra::SVector;
@@ -33,6 +33,34 @@ pub fn integration_points(
         b,
         volume: 0.5 * two_area * section.measure(centroid[0]),
         position: centroid,
+    }])
+}
+
+/// Reference shape data at the centroid (the single integration point).
+pub fn reference_points(
+    x: &[[f64; 2]; 3],
+    section: &Section,
+) -> Result<[RefPoint<3>; 1], ElementError> {
+    let [p0, p1, p2] = *x;
+    let two_area = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]);
+    check_jacobian(two_area, "tri3")?;
+    let dndx = [
+        [(p1[1] - p2[1]) / two_area, (p2[0] - p1[0]) / two_area],
+        [(p2[1] - p0[1]) / two_area, (p0[0] - p2[0]) / two_area],
+        [(p0[1] - p1[1]) / two_area, (p1[0] - p0[0]) / two_area],
+    ];
+    let centroid = [(p0[0] + p1[0] + p2[0]) / 3.0, (p0[1] + p1[1] + p2[1]) / 3.0];
+    if section.kind == crate::model::AnalysisKind::Axisymmetric && centroid[0] <= 0.0 {
+        return Err(ElementError::new(format!(
+            "axisymmetric integration point at radius r = {:e} <= 0: the body must lie in x = r >= 0",
+            centroid[0]
+        )));
+    }
+    Ok([RefPoint {
+        n: [1.0 / 3.0; 3],
+        dndx,
+        position: centroid,
+        volume: 0.5 * two_area * section.measure(centroid[0]),
     }])
 }
 

@@ -48,7 +48,9 @@ impl Hardening {
             } => {
                 pos(yield_stress, "the yield stress")?;
                 if !(modulus.is_finite() && modulus >= 0.0) {
-                    return Err(format!("the hardening modulus H must be >= 0 (got {modulus})"));
+                    return Err(format!(
+                        "the hardening modulus H must be >= 0 (got {modulus})"
+                    ));
                 }
                 Ok(())
             }
@@ -106,13 +108,23 @@ mod tests {
                 let e = 1e-6;
                 let fd = (h.flow_stress(ep + e) - h.flow_stress((ep - e).max(0.0)))
                     / (ep + e - (ep - e).max(0.0));
-                assert!((fd - h.slope(ep)).abs() < 1e-4 * h.slope(ep).abs().max(1.0), "{h:?}");
+                assert!(
+                    (fd - h.slope(ep)).abs() < 1e-4 * h.slope(ep).abs().max(1.0),
+                    "{h:?}"
+                );
             }
         }
-        assert!((Hardening::Swift { k: 500.0, eps0: 0.01, n: 0.2 }.flow_stress(0.0)
-            - 500.0 * 0.01f64.powf(0.2))
-        .abs()
-            < 1e-12);
+        assert!(
+            (Hardening::Swift {
+                k: 500.0,
+                eps0: 0.01,
+                n: 0.2
+            }
+            .flow_stress(0.0)
+                - 500.0 * 0.01f64.powf(0.2))
+            .abs()
+                < 1e-12
+        );
         assert!(Hardening::Voce {
             yield_stress: 200.0,
             sigma_inf: 100.0,

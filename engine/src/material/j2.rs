@@ -60,10 +60,12 @@ pub struct Returned<T> {
 const MAX_LOCAL: usize = 60;
 
 /// Radial return from the trial elastic strain `e_tr` with equivalent
-/// plastic strain `ep_n` at the start of the increment. `viscosity`, when
-/// given as `(eta, dt)`, turns the consistency condition into Perzyna's
-/// over-stress law `q - 3 G dgamma - sigma_y = sigma_y^0... ` (see
-/// [`super::viscoplastic`]); `None` is rate independent.
+/// plastic strain `ep_n` at the start of the increment. `viscosity =
+/// Some((eta, dt))` gives Perzyna visco-plasticity with a linear over-stress
+/// law, `d ep / dt = <q - sigma_y(ep)> / eta`, integrated by backward Euler
+/// over the time increment `dt` (consistency becomes
+/// `q - 3 G dgamma - sigma_y(ep_n + dgamma) = eta dgamma / dt`); `None` is
+/// rate independent.
 pub fn radial_return<T: Scalar>(
     elastic: &Elastic,
     hardening: &Hardening,
@@ -77,6 +79,15 @@ pub fn radial_return<T: Scalar>(
     let q = (norm2(&dev) * 1.5).sqrt() * (2.0 * g);
     let sy0 = hardening.flow_stress(ep_n);
     if q.re() <= sy0 * (1.0 + 1e-12) {
+        return Ok(Returned {
+            stress: elastic.stress(e_tr),
+            elastic_strain: *e_tr,
+            ep: ep_n,
+            dgamma: 0.0,
+        });
+    }
+    if viscosity.is_some_and(|(_, dt)| dt.is_nan() || dt <= 0.0) {
+        // no time elapsed: a viscous material responds elastically
         return Ok(Returned {
             stress: elastic.stress(e_tr),
             elastic_strain: *e_tr,
@@ -115,14 +126,14 @@ pub fn radial_return<T: Scalar>(
     let factor = -(dg_t * (3.0 * g)) / q + 1.0;
     let p = tr * elastic.bulk;
     let g2 = 2.0 * g;
-    let s = [dev[0] * factor * g2, dev[1] * factor * g2, dev[2] * factor * g2, dev[3] * factor * g2];
-    let m = tr / 3.0;
-    let elastic_strain = [
-        m + s[0] / g2,
-        m + s[1] / g2,
-        m + s[2] / g2,
-        s[3] / g2,
+    let s = [
+        dev[0] * factor * g2,
+        dev[1] * factor * g2,
+        dev[2] * factor * g2,
+        dev[3] * factor * g2,
     ];
+    let m = tr / 3.0;
+    let elastic_strain = [m + s[0] / g2, m + s[1] / g2, m + s[2] / g2, s[3] / g2];
     Ok(Returned {
         stress: [p + s[0], p + s[1], p + s[2], s[3]],
         elastic_strain,

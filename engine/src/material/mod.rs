@@ -14,8 +14,14 @@
 //! so that elements compute `f_int = int B^T sigma` and `K = int B^T D B`
 //! whatever the law (nonlinear laws plug in behind the same trait).
 
+pub mod dual;
+pub mod hardening;
+pub mod j2;
+pub mod law;
 pub mod linear_elastic;
+pub mod tensor;
 
+pub use law::{History, NonlinearLaw};
 pub use linear_elastic::LinearElastic;
 
 use crate::model::{AnalysisKind, Material, MaterialLaw};
@@ -47,13 +53,18 @@ pub fn von_mises(s: &Stress) -> f64 {
     (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy).sqrt()
 }
 
-/// Builds the law of `material` for analyses of `kind`; checks its
-/// parameters and explains what is wrong.
+/// Builds the (small-strain, linear) elastic law of `material` for
+/// analyses of `kind` — for nonlinear materials, their initial elastic
+/// response; checks its parameters and explains what is wrong. The full law
+/// of nonlinear materials is [`NonlinearLaw::build`].
 pub fn build(material: &Material, kind: AnalysisKind) -> Result<LinearElastic, String> {
-    match material.law {
-        MaterialLaw::LinearElastic { young, poisson } => LinearElastic::new(young, poisson, kind)
-            .map_err(|e| format!("material `{}`: {e}", material.name)),
-    }
+    let (young, poisson) = match material.law {
+        MaterialLaw::LinearElastic { young, poisson }
+        | MaterialLaw::NeoHookean { young, poisson }
+        | MaterialLaw::ElastoPlastic { young, poisson, .. } => (young, poisson),
+    };
+    LinearElastic::new(young, poisson, kind)
+        .map_err(|e| format!("material `{}`: {e}", material.name))
 }
 
 #[cfg(test)]

@@ -21,7 +21,7 @@ pub mod pvd;
 pub mod vtu;
 
 use crate::contact::NodeContact;
-use crate::element::recovery::nodal_fields_of_model;
+use crate::element::recovery::nodal_fields_of_model_with_points;
 use crate::model::{Field, Model};
 use crate::solve::{IncrementView, Observer, RunSummary};
 use atomic::write_atomic;
@@ -37,6 +37,8 @@ struct Snapshot {
     displacement: Vec<[f64; 2]>,
     reaction: Vec<[f64; 2]>,
     contact: Vec<Vec<NodeContact>>,
+    /// Converged integration points of nonlinear bodies (may be empty).
+    points: Vec<Vec<crate::element::MaterialPoint>>,
 }
 
 /// Writes a run's results into a directory (an [`Observer`]).
@@ -85,7 +87,11 @@ impl ResultWriter {
             .iter()
             .any(|f| matches!(f, Field::Stress | Field::Strain | Field::VonMises));
         let nodal = if needs_recovery {
-            Some(nodal_fields_of_model(model, &snap.displacement)?)
+            Some(nodal_fields_of_model_with_points(
+                model,
+                &snap.displacement,
+                &snap.points,
+            )?)
         } else {
             None
         };
@@ -137,6 +143,7 @@ impl Observer for ResultWriter {
             displacement: view.displacement.to_vec(),
             reaction: view.reaction.to_vec(),
             contact: view.contact.to_vec(),
+            points: view.points.to_vec(),
         };
         let every = self.model.output.every.max(1);
         let last = view.step + 1 == self.model.steps.len()

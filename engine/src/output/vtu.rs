@@ -4,8 +4,10 @@
 //! Vector" on `displacement` shows the deformed shape. Point data, as
 //! requested: `displacement` (3 components, z = 0), `stress` and `strain`
 //! (4 components named xx, yy, zz, xy; zz is the hoop component for
-//! axisymmetric runs; strain shear is engineering `gamma_xy`), `von_mises`,
-//! `reaction` (3 components), `contact_gap`, `contact_pressure`,
+//! axisymmetric runs; strain shear is engineering `gamma_xy`; finite-strain
+//! bodies: Cauchy stress and logarithmic strain), `von_mises`,
+//! `equivalent_plastic_strain` (with stress/strain/von_mises when a body is
+//! plastic: converged integration-point values, nodal averages), `reaction` (3 components), `contact_gap`, `contact_pressure`,
 //! `contact_status` (-1 not a slave node, 0 open or out of reach, 1 closed;
 //! the gap is 0 where no contact was evaluated). Cell data: `body` index.
 
@@ -142,6 +144,19 @@ pub fn vtu(d: &VtuData<'_>) -> String {
                 1,
                 "",
                 nodal.von_mises.iter(),
+            );
+        }
+        // written whenever a body is plastic and stresses are requested
+        if !nodal.equivalent_plastic_strain.is_empty()
+            && (has(Field::Stress) || has(Field::VonMises) || has(Field::Strain))
+        {
+            array(
+                &mut s,
+                "Float64",
+                "equivalent_plastic_strain",
+                1,
+                "",
+                nodal.equivalent_plastic_strain.iter(),
             );
         }
     }

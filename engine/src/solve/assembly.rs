@@ -1,10 +1,19 @@
 //! Element loop: internal forces and tangent stiffness of every cell,
 //! scattered into the global force vector and the sparse value array.
 //! Serial, in cell order: results are bit-for-bit reproducible.
+//!
+//! Bodies with history-dependent or finite-strain laws keep their
+//! integration-point internal variables here: each evaluation computes
+//! trial points from the **committed** ones (so a rejected or cut-back
+//! attempt leaves no trace); [`Assembler::commit`] makes the last evaluated
+//! points the committed ones at a converged increment, and
+//! [`Assembler::begin_increment`] sets the time increment seen by
+//! rate-dependent laws.
 
 use super::pattern::{Scatter, NO_SLOT};
-use crate::element::recovery::{blocks_of, gather, CellBlock};
-use crate::element::{quad4, tri3, ElementResponse, Section};
+use crate::element::recovery::{blocks_of, gather, nonlinear_points, CellBlock, NonlinearResponse};
+use crate::element::{quad4, tri3, ElementResponse, MaterialPoint, PointState, Section};
+use crate::material::History;
 use crate::mesh::{CellKind, Mesh};
 use crate::model::Model;
 
@@ -15,22 +24,100 @@ pub struct Assembler {
     pub blocks: Vec<CellBlock>,
     /// Cross-section (kind, thickness).
     pub section: Section,
+    /// Committed integration points per global cell (empty for
+    /// small-strain linear elastic cells).
+    committed: Vec<Vec<MaterialPoint>>,
+    /// Points of the last evaluation.
+    trial: Vec<Vec<MaterialPoint>>,
+    /// Time of the committed state.
+    t_committed: f64,
+    /// Time increment of the current attempt.
+    dt: f64,
 }
 
 impl Assembler {
     /// Builds the kernels of `model` (materials must be valid).
     pub fn new(model: &Model) -> Result<Self, String> {
+        let blocks = blocks_of(model)?;
+        let mut committed = vec![Vec::new(); model.mesh.cells.len()];
+        for b in &blocks {
+            if b.nonlinear.is_some() {
+                for c in b.cells.clone() {
+                    let n = match model.mesh.cells[c].kind {
+                        CellKind::Tri3 => 1,
+                        CellKind::Quad4 => 4,
+                    };
+                    let virgin = MaterialPoint {
+                        state: PointState {
+                            position: [0.0; 2],
+                            volume: 0.0,
+                            strain: Default::default(),
+                            stress: Default::default(),
+                        },
+                        history: History::initial(b.kinematics),
+                    };
+                    committed[c] = vec![virgin; n];
+                }
+            }
+        }
+        let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
         Ok(Assembler {
-            blocks: blocks_of(model)?,
+            blocks,
             section: Section::new(&model.analysis),
+            trial: committed.clone(),
+            committed,
+            t_committed: t0,
+            dt: 0.0,
         })
+    }
+
+    /// Starts an attempt to reach time `t` from the committed state.
+    pub fn begin_increment(&mut self, t: f64) {
+        self.dt = t - self.t_committed;
+    }
+
+    /// Makes the points of the last evaluation the committed ones.
+    pub fn commit(&mut self) {
+        for (c, t) in self.committed.iter_mut().zip(&self.trial) {
+            c.copy_from_slice(t);
+        }
+        self.t_committed += self.dt;
+        self.dt = 0.0;
+    }
+
+    /// Forgets the points of the last evaluation.
+    pub fn rollback(&mut self) {
+        for (c, t) in self.committed.iter().zip(self.trial.iter_mut()) {
+            t.copy_from_slice(c);
+        }
+    }
+
+    /// Committed integration points per global cell (empty for small-strain
+    /// linear elastic cells).
+    pub fn points(&self) -> &[Vec<MaterialPoint>] {
+        &self.committed
+    }
+
+    /// Whether the element tangent is symmetric (false with F-bar: finite
+    /// strain with selective reduced quads).
+    pub fn symmetric(&self) -> bool {
+        !self.blocks.iter().any(|b| {
+            b.nonlinear.is_some()
+                && b.kinematics == crate::model::Kinematics::Finite
+                && b.formulation == crate::model::Formulation::SelectiveReduced
+        })
+    }
+
+    /// Whether any body has a nonlinear law (stored integration points).
+    pub fn has_points(&self) -> bool {
+        self.blocks.iter().any(|b| b.nonlinear.is_some())
     }
 
     /// Internal forces `f_int` (2 per node, overwritten) at displacements
     /// `u`, and, if `values` is given, the tangent (the caller zeroes
     /// `values`; element entries are added).
     pub fn assemble(
-        &self,
+        &mut self,
         mesh: &Mesh,
         scatter: &Scatter,
         u: &[[f64; 2]],
@@ -43,6 +130,40 @@ impl Assembler {
             for c in block.cells.clone() {
                 let cell = &mesh.cells[c];
                 let slots = scatter.cell_slots(c);
+                if let Some(law) = &block.nonlinear {
+                    let history: Vec<History> =
+                        self.committed[c].iter().map(|p| p.history).collect();
+                    let (r, points) = nonlinear_points(
+                        mesh,
+                        c,
+                        u,
+                        &self.section,
+                        block,
+                        law,
+                        &history,
+                        self.dt,
+                        with_tangent,
+                    )
+                    .map_err(|e| e.message)?;
+                    self.trial[c].copy_from_slice(&points);
+                    match &r {
+                        NonlinearResponse::Tri3(r) => add(
+                            r.as_ref(),
+                            cell.node_slice(),
+                            slots,
+                            f_int,
+                            values.as_deref_mut(),
+                        ),
+                        NonlinearResponse::Quad4(r) => add(
+                            r.as_ref(),
+                            cell.node_slice(),
+                            slots,
+                            f_int,
+                            values.as_deref_mut(),
+                        ),
+                    }
+                    continue;
+                }
                 let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
                 match cell.kind {
                     CellKind::Tri3 => {

@@ -90,6 +90,12 @@ impl LinearSolver {
         self.method = Method::Cholesky;
     }
 
+    /// Uses LU at the next factorizations (unsymmetric tangents, e.g. F-bar
+    /// elements), until [`LinearSolver::prefer_cholesky`].
+    pub fn require_lu(&mut self) {
+        self.method = Method::Lu;
+    }
+
     /// Numerically factorizes the matrix with `pattern` and `values` (the
     /// first `pattern.nnz()` entries are used).
     pub fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), String> {

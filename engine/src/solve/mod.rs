@@ -18,6 +18,7 @@
 //!   line search, convergence, NaN and divergence detection);
 //! - [`stepping`]: increments, cutback and grow-back.
 
+pub mod active_set;
 pub mod assembly;
 pub mod check;
 pub mod dofs;
@@ -25,6 +26,7 @@ pub mod linear;
 pub mod loads;
 pub mod newton;
 pub mod pattern;
+pub mod saddle;
 pub mod stepping;
 
 use crate::contact::NodeContact;
@@ -71,6 +73,11 @@ pub struct IncrementView<'a> {
     pub contact: &'a [Vec<NodeContact>],
     /// Relative residual after each Newton iteration of this increment.
     pub residuals: &'a [f64],
+    /// Converged integration points per global cell for bodies with
+    /// nonlinear laws (stress, strain, internal variables such as the
+    /// equivalent plastic strain); empty for small-strain linear elastic
+    /// cells.
+    pub points: &'a [Vec<crate::element::MaterialPoint>],
 }
 
 /// Receives progress and converged states (writers, progress bars, tests).
@@ -104,6 +111,12 @@ pub struct IncrementRecord {
     pub cutbacks: usize,
     /// Closed contact nodes at convergence.
     pub active_contacts: usize,
+    /// Contact iterations: Lagrange active-set changes plus
+    /// augmented-Lagrangian (Uzawa) multiplier updates (0 for penalty).
+    pub contact_iterations: usize,
+    /// Largest penetration `max(0, -g)` over all pairs at convergence
+    /// (length).
+    pub max_penetration: f64,
 }
 
 /// Wall time spent per phase, seconds.
@@ -148,6 +161,12 @@ pub struct RunSummary {
     pub cholesky_factorizations: usize,
     /// Numeric LU factorizations (Cholesky is retried at each increment).
     pub lu_factorizations: usize,
+    /// Symbolic factorizations of the Lagrange-multiplier saddle-point
+    /// system (one per distinct active set met).
+    pub saddle_symbolic_factorizations: usize,
+    /// Numeric factorizations of the saddle-point system (sparse LU, or
+    /// `L D L^T` for the doubled-multiplier formulation).
+    pub saddle_factorizations: usize,
     /// Wall time per phase.
     pub timings: Timings,
     /// Whether the whole analysis finished.
@@ -230,6 +249,10 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, Run
     summary.newton_iterations = newton.iterations;
     summary.linear_solver = newton.linear_solver().to_string();
     (summary.cholesky_factorizations, summary.lu_factorizations) = newton.factorizations();
+    (
+        summary.saddle_symbolic_factorizations,
+        summary.saddle_factorizations,
+    ) = newton.saddle_factorizations();
     match result {
         Ok(()) => {
             summary.completed = true;
@@ -305,6 +328,7 @@ impl IncrementSolver for Driver<'_, '_> {
             reaction: &reaction,
             contact: &self.newton.contact,
             residuals: &converged.residuals,
+            points: self.newton.material_points(),
         };
         let start = Instant::now();
         let r = self.observer.converged(&view);
@@ -318,6 +342,8 @@ impl IncrementSolver for Driver<'_, '_> {
             residuals: converged.residuals,
             cutbacks,
             active_contacts: converged.active_contacts,
+            contact_iterations: converged.contact_iterations,
+            max_penetration: converged.max_penetration,
         });
         r
     }

@@ -19,14 +19,16 @@
 //! increment thus takes exactly one factorization, one solve plus one
 //! back-substitution, and two residual evaluations.
 
+use super::active_set::{self, Constraints};
 use super::assembly::Assembler;
 use super::dofs::{Dof, DofMap};
 use super::linear::LinearSolver;
 use super::loads::external_forces;
 use super::pattern::{Scatter, NO_SLOT};
+use super::saddle::SaddleSolver;
 use super::{IterationInfo, Observer, Timings};
 use crate::contact::{self, ContactStatus, NodeContact, PairState};
-use crate::model::{Model, NewtonSettings};
+use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 use std::time::Instant;
 
 /// Floor of norms used as denominators.
@@ -45,6 +47,11 @@ pub struct Converged {
     pub residuals: Vec<f64>,
     /// Closed contact nodes at convergence.
     pub active_contacts: usize,
+    /// Contact iterations: Lagrange active-set changes plus
+    /// augmented-Lagrangian multiplier updates (0 for penalty).
+    pub contact_iterations: usize,
+    /// Largest penetration `max(0, -g)` over all pairs at convergence.
+    pub max_penetration: f64,
 }
 
 /// Why an increment failed.
@@ -60,6 +67,9 @@ pub enum FailureKind {
     Singular,
     /// An element could not be evaluated.
     Element,
+    /// The Lagrange-multiplier active set came back to a set already met
+    /// in the increment.
+    ActiveSetCycling,
 }
 
 /// A failed increment attempt.
@@ -120,6 +130,15 @@ impl Failure {
                  contact closed"
                     .into(),
             ),
+            FailureKind::ActiveSetCycling => (
+                "the contact active set cycles: nodes are introduced and released in turn \
+                 (a node close to the contact boundary, or an increment too large for the \
+                 change of contact zone)"
+                    .into(),
+                "use more `increments`; if it persists, use `augmented_lagrange` or \
+                 `penalty` for this pair"
+                    .into(),
+            ),
             FailureKind::Element => (
                 "an element is inverted or degenerate (mesh or deformation)".into(),
                 "check the mesh orientation and quality, or use smaller increments".into(),
@@ -140,7 +159,7 @@ struct Eval {
 /// The Newton solver of a model: numbering, pattern, factorization and the
 /// evolving state.
 pub struct Newton<'m> {
-    model: &'m Model,
+    pub(super) model: &'m Model,
     /// Dof numbering.
     pub dofs: DofMap,
     scatter: Scatter,
@@ -149,7 +168,16 @@ pub struct Newton<'m> {
     /// Current nodal displacements.
     pub u: Vec<[f64; 2]>,
     committed: Vec<[f64; 2]>,
-    pairs: Vec<PairState>,
+    /// Contact state of each pair (search history, multipliers, active set).
+    pub(super) pairs: Vec<PairState>,
+    /// Lagrange constraints of the last evaluation.
+    pub(super) constraints: Constraints,
+    /// Saddle-point solver (models with a Lagrange-multiplier pair).
+    saddle: Option<SaddleSolver>,
+    /// Multiplier corrections of the last saddle-point solve.
+    dlambda: Vec<f64>,
+    /// Augmented-Lagrangian updates made inside the current Newton loop.
+    inner_updates: usize,
     /// Contact evaluation of each pair at the last evaluated state.
     pub contact: Vec<Vec<NodeContact>>,
     values: Vec<f64>,
@@ -204,6 +232,13 @@ impl<'m> Newton<'m> {
                 .map(|i| PairState::new(model, i))
                 .collect(),
             contact: vec![Vec::new(); model.contacts.len()],
+            constraints: Constraints::default(),
+            saddle: model.contacts.iter().find_map(|c| match c.method {
+                ContactMethod::Lagrange { formulation } => Some(SaddleSolver::new(formulation)),
+                _ => None,
+            }),
+            dlambda: Vec::new(),
+            inner_updates: 0,
             f_int: vec![0.0; 2 * nn],
             f_ext: vec![0.0; 2 * nn],
             f_c: vec![0.0; 2 * nn],
@@ -242,6 +277,15 @@ impl<'m> Newton<'m> {
         (self.linear.cholesky_count, self.linear.lu_count)
     }
 
+    /// Saddle-point factorizations (symbolic, numeric) of the Lagrange
+    /// multiplier systems; the symbolic one is recomputed only when the
+    /// active set changes.
+    pub fn saddle_factorizations(&self) -> (usize, usize) {
+        self.saddle
+            .as_ref()
+            .map_or((0, 0), |s| (s.symbolic_count, s.numeric_count))
+    }
+
     /// Number of nonzeros of the free-free matrix (both triangles).
     pub fn nnz(&self) -> usize {
         self.scatter.pattern.nnz()
@@ -257,6 +301,12 @@ impl<'m> Newton<'m> {
         out
     }
 
+    /// Committed integration points per global cell (bodies with nonlinear
+    /// laws; empty for small-strain linear elastic cells).
+    pub fn material_points(&self) -> &[Vec<crate::element::MaterialPoint>] {
+        self.assembler.points()
+    }
+
     /// Closed contact nodes at the last evaluated state.
     pub fn active_contacts(&self) -> usize {
         self.contact
@@ -269,6 +319,7 @@ impl<'m> Newton<'m> {
     /// Makes the current state the converged one.
     pub fn commit(&mut self) {
         self.committed.copy_from_slice(&self.u);
+        self.assembler.commit();
         for p in &mut self.pairs {
             p.commit();
         }
@@ -277,6 +328,7 @@ impl<'m> Newton<'m> {
     /// Returns to the last converged state.
     pub fn rollback(&mut self) {
         self.u.copy_from_slice(&self.committed);
+        self.assembler.rollback();
         for p in &mut self.pairs {
             p.rollback();
         }
@@ -315,6 +367,10 @@ impl<'m> Newton<'m> {
                     }
                 }
                 self.contact[i] = res;
+            }
+            if self.saddle.is_some() {
+                self.constraints
+                    .build(model, &self.dofs.dofs, &self.pairs, &self.contact);
             }
         }
         let mid = Instant::now();
@@ -390,9 +446,92 @@ impl<'m> Newton<'m> {
         self.timings.solve += start.elapsed().as_secs_f64();
     }
 
+    /// Factorizes and solves for the correction in `rhs`: the tangent alone,
+    /// or, when Lagrange constraints are active, the saddle-point system
+    /// (then `dlambda` receives the multiplier corrections, applied to the
+    /// pairs at once). `first`: the prescribed increment enters the
+    /// constraint right-hand side.
+    fn factorize_solve(&mut self, first: bool) -> Result<(), Failure> {
+        self.dlambda.clear();
+        let Some(saddle) = self
+            .saddle
+            .as_mut()
+            .filter(|_| !self.constraints.rows.is_empty())
+        else {
+            self.factorize()?;
+            self.solve_rhs();
+            return Ok(());
+        };
+        let start = Instant::now();
+        let r = saddle.factorize(&self.scatter.pattern, &self.values, &self.constraints.rows);
+        let mid = Instant::now();
+        self.timings.factorization += (mid - start).as_secs_f64();
+        r.map_err(|detail| Failure {
+            kind: FailureKind::Singular,
+            residuals: Vec::new(),
+            detail,
+        })?;
+        // G du = g + (d g / d u_p) dp
+        for (g, presc) in self
+            .constraints
+            .gap
+            .iter()
+            .zip(&self.constraints.prescribed)
+        {
+            let mut v = *g;
+            if first {
+                for &(p, n) in presc {
+                    v += n * self.dp[p];
+                }
+            }
+            self.dlambda.push(v);
+        }
+        saddle.solve(&mut self.rhs, &mut self.dlambda);
+        for (&(p, i), dl) in self.constraints.owner.iter().zip(&self.dlambda) {
+            self.pairs[p].multiplier[i] += dl;
+        }
+        self.timings.solve += mid.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// Next correction `(du, dlambda)` for the current residual estimated
+    /// with the factorization at hand; `None` if the constraint set changed
+    /// since that factorization.
+    fn next_correction_norm(&mut self, saddle_used: bool) -> Option<f64> {
+        for (d, r) in self.rhs.iter_mut().zip(&self.r_free) {
+            *d = -r;
+        }
+        if !saddle_used {
+            if !self.constraints.rows.is_empty() {
+                return None;
+            }
+            self.solve_rhs();
+            return Some(norm(&self.rhs));
+        }
+        let saddle = self.saddle.as_ref()?;
+        if saddle.constraints() != self.constraints.rows.len() {
+            return None;
+        }
+        let start = Instant::now();
+        let mut dl = self.constraints.gap.clone();
+        saddle.solve(&mut self.rhs, &mut dl);
+        self.timings.solve += start.elapsed().as_secs_f64();
+        Some(norm(&self.rhs))
+    }
+
+    /// Largest penetration over all pairs at the last evaluation.
+    pub fn max_penetration(&self) -> f64 {
+        self.contact
+            .iter()
+            .map(|c| active_set::max_penetration(c))
+            .fold(0.0, f64::max)
+    }
+
     /// Iterates to equilibrium at time `t` from the current state (the last
     /// converged one), reporting each iteration of increment `increment` of
-    /// step `step` to `observer`.
+    /// step `step` to `observer`; contact iterations (Lagrange active set,
+    /// augmented-Lagrangian updates) around the Newton loops, see
+    /// [`active_set`].
     pub fn attempt(
         &mut self,
         settings: &NewtonSettings,
@@ -401,9 +540,45 @@ impl<'m> Newton<'m> {
         increment: usize,
         observer: &mut dyn Observer,
     ) -> Result<Converged, Failure> {
+        active_set::attempt(self, settings, t, step, increment, observer)
+    }
+
+    /// One Newton loop at time `t` with the Lagrange active sets and the
+    /// multipliers `lambda*` of `update = converged` pairs fixed.
+    pub(super) fn attempt_newton(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer,
+    ) -> Result<Converged, Failure> {
         let model = self.model;
-        self.linear.prefer_cholesky();
+        self.inner_updates = 0;
+        let newton_update = model.contacts.iter().any(|c| {
+            matches!(
+                c.method,
+                ContactMethod::AugmentedLagrange {
+                    update: MultiplierUpdate::Newton,
+                    ..
+                }
+            )
+        });
+        let mut updated_last = false;
+        // With Lagrange pairs the first Newton loop of an increment may carry
+        // no force at all (a body moved rigidly towards a tool whose
+        // constraints are not introduced yet): the relative residual is then
+        // round-off over round-off. The residual is also accepted when small
+        // against the increment's initial out-of-balance force.
+        let force_free_ok = self.saddle.is_some();
+        let mut first_ref = 0.0;
+        if self.assembler.symmetric() {
+            self.linear.prefer_cholesky();
+        } else {
+            self.linear.require_lu();
+        }
         external_forces(model, t, &mut self.f_ext);
+        self.assembler.begin_increment(t);
         self.dofs.prescribed_values(model, t, &mut self.target);
         {
             let u = self.u.as_flattened();
@@ -444,11 +619,14 @@ impl<'m> Newton<'m> {
                 *v = -*v;
             }
             let ref_norm = norm(&self.rhs);
-            self.factorize().map_err(|mut f| {
+            if first {
+                first_ref = ref_norm;
+            }
+            self.factorize_solve(first).map_err(|mut f| {
                 f.residuals.clone_from(&residuals);
                 f
             })?;
-            self.solve_rhs();
+            let saddle_used = !self.dlambda.is_empty();
             let du_norm = norm(&self.rhs);
             if !du_norm.is_finite() {
                 return Err(fail(
@@ -475,7 +653,9 @@ impl<'m> Newton<'m> {
             let mut s = 1.0;
             // line search when the full step increases the residual (and has not
             // already reached the tolerance: no backtracking on round-off noise)
+            // (not with Lagrange constraints: the multipliers are already updated)
             if settings.line_search
+                && !saddle_used
                 && ev.abs > ref_norm
                 && ev.rel > settings.tol
                 && ref_norm > 0.0
@@ -515,16 +695,16 @@ impl<'m> Newton<'m> {
             residuals.push(ev.rel);
             let mut reported_du = rel_du;
             let mut converged = false;
-            if ev.rel.is_finite() && ev.rel <= settings.tol {
+            // Lagrange constraints: the gaps of the active nodes vanish too
+            let gap_ok = norm(&self.constraints.gap) / u_norm <= settings.tol_displacement;
+            let small =
+                ev.rel <= settings.tol || (force_free_ok && ev.abs <= settings.tol * first_ref);
+            if ev.rel.is_finite() && small && gap_ok {
                 if rel_du <= settings.tol_displacement {
                     converged = true;
-                } else {
+                } else if let Some(next) = self.next_correction_norm(saddle_used) {
                     // next correction estimated with the factorization at hand
-                    for (d, r) in self.rhs.iter_mut().zip(&self.r_free) {
-                        *d = -r;
-                    }
-                    self.solve_rhs();
-                    reported_du = norm(&self.rhs) / u_norm;
+                    reported_du = next / u_norm;
                     converged = reported_du <= settings.tol_displacement;
                 }
             }
@@ -545,19 +725,39 @@ impl<'m> Newton<'m> {
                     format!("iteration {k}: the residual is not finite"),
                 ));
             }
+            // augmented Lagrangian, `update = newton`: lambda* updated inside
+            // the loop while a penetration exceeds its tolerance
+            let updated = newton_update
+                && active_set::uzawa_update(
+                    model,
+                    &mut self.pairs,
+                    &self.contact,
+                    MultiplierUpdate::Newton,
+                );
+            if updated {
+                self.inner_updates += 1;
+                converged = false;
+                tangent_valid = false;
+            }
             if converged {
                 return Ok(Converged {
                     iterations: k,
                     residuals,
                     active_contacts,
+                    contact_iterations: self.inner_updates,
+                    max_penetration: self.max_penetration(),
                 });
             }
             let n = residuals.len();
-            if n >= 2 && residuals[n - 1] > residuals[n - 2] {
+            if updated || updated_last {
+                // a multiplier update changes the problem: no divergence test
+                growths = 0;
+            } else if n >= 2 && residuals[n - 1] > residuals[n - 2] {
                 growths += 1;
             } else {
                 growths = 0;
             }
+            updated_last = updated;
             if growths >= DIVERGENCE_GROWTHS {
                 return Err(fail(
                     FailureKind::Diverged,

@@ -137,6 +137,8 @@ mod tests {
                     iterations: 1,
                     residuals: vec![1e-16],
                     active_contacts: 0,
+                    contact_iterations: 0,
+                    max_penetration: 0.0,
                 })
             } else {
                 Err(Failure {

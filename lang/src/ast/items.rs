@@ -41,7 +41,13 @@ pub struct Material {
     pub name: Ident,
     /// `elastic { E = .. nu = .. }`.
     pub elastic: Option<Elastic>,
-    /// Reserved blocks present (`plastic`, `viscoplastic`, `thermal`), by key.
+    /// `neo_hookean { E = .. nu = .. }` (instead of `elastic`).
+    pub neo_hookean: Option<Elastic>,
+    /// `plastic { yield = ..  hardening = .. }`.
+    pub plastic: Option<Plastic>,
+    /// `viscoplastic { eta = .. }`.
+    pub viscoplastic: Option<Viscoplastic>,
+    /// Reserved blocks present (`thermal`), by key.
     pub reserved: Vec<Ident>,
     /// The whole item.
     pub span: Span,
@@ -58,6 +64,61 @@ pub struct Elastic {
     pub span: Span,
 }
 
+/// `plastic { yield = ..  hardening = .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Plastic {
+    /// `yield`: initial yield stress (not with `swift`).
+    pub yield_stress: Option<Spanned<f64>>,
+    /// `hardening = ..` (absent: perfect plasticity).
+    pub hardening: Option<Spanned<HardeningAst>>,
+    /// The `plastic` block.
+    pub span: Span,
+}
+
+/// Isotropic hardening laws of the deck.
+#[derive(Debug, Clone, PartialEq)]
+pub enum HardeningAst {
+    /// `linear { H = .. }`.
+    Linear {
+        /// `H`: plastic modulus.
+        modulus: Option<Spanned<f64>>,
+    },
+    /// `swift { K = ..  eps0 = ..  n = .. }`.
+    Swift {
+        /// `K`.
+        k: Option<Spanned<f64>>,
+        /// `eps0`.
+        eps0: Option<Spanned<f64>>,
+        /// `n`.
+        n: Option<Spanned<f64>>,
+    },
+    /// `voce { sigma_inf = ..  delta = .. }`.
+    Voce {
+        /// `sigma_inf`.
+        sigma_inf: Option<Spanned<f64>>,
+        /// `delta`.
+        delta: Option<Spanned<f64>>,
+    },
+}
+
+/// `viscoplastic { eta = .. }` (Perzyna).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Viscoplastic {
+    /// `eta`: viscosity (stress x time).
+    pub eta: Option<Spanned<f64>>,
+    /// The block.
+    pub span: Span,
+}
+
+/// `kinematics` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum KinematicsKind {
+    /// `small`.
+    Small,
+    /// `finite`.
+    Finite,
+}
+
 /// `body name { .. }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Body {
@@ -69,6 +130,8 @@ pub struct Body {
     pub material: Option<Ident>,
     /// `formulation = ..`.
     pub formulation: Option<Spanned<FormulationKind>>,
+    /// `kinematics = small | finite`.
+    pub kinematics: Option<Spanned<KinematicsKind>>,
     /// The whole item.
     pub span: Span,
 }
@@ -299,8 +362,40 @@ pub enum Method {
         /// Penalty coefficient.
         stiffness: Option<Spanned<f64>>,
     },
-    /// A reserved method name (`lagrange`, `augmented_lagrange`).
-    Reserved(Ident),
+    /// `lagrange { formulation }`.
+    Lagrange {
+        /// `single` (default) or `doubled`.
+        formulation: Option<Spanned<LagrangeFormulationAst>>,
+    },
+    /// `augmented_lagrange { kind penalty tolerance update }`.
+    AugmentedLagrange {
+        /// Nodal or area (default area).
+        kind: Option<Spanned<PenaltyKindAst>>,
+        /// Penalty coefficient alpha.
+        penalty: Option<Spanned<f64>>,
+        /// Largest accepted penetration.
+        tolerance: Option<Spanned<f64>>,
+        /// `converged` (default) or `newton`.
+        update: Option<Spanned<MultiplierUpdateAst>>,
+    },
+}
+
+/// `lagrange { formulation = .. }` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum LagrangeFormulationAst {
+    /// `single`: `[K G^T; G 0]`.
+    Single,
+    /// `doubled`: multipliers `lambda1, q, lambda2`.
+    Doubled,
+}
+
+/// `augmented_lagrange { update = .. }` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MultiplierUpdateAst {
+    /// After each converged Newton loop.
+    Converged,
+    /// At every Newton iteration.
+    Newton,
 }
 
 /// Displacement components.

@@ -5,13 +5,21 @@ use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{Block, Value, ValueKind};
-use crate::ast::{Body, ElementKind, FormulationKind, Generator, GeneratorKind, MeshDef};
+use crate::ast::{
+    Body, ElementKind, FormulationKind, Generator, GeneratorKind, KinematicsKind, MeshDef,
+};
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
 use crate::suggest::did_you_mean;
 
 /// Names of the built-in mesh generators.
 pub const GENERATORS: [&str; 4] = ["rectangle", "half_disc", "quarter_disc", "annulus"];
+
+/// `kinematics` keywords.
+const KINEMATICS: [(&str, KinematicsKind); 2] = [
+    ("small", KinematicsKind::Small),
+    ("finite", KinematicsKind::Finite),
+];
 
 const FORMULATIONS: [(&str, FormulationKind); 2] = [
     ("full", FormulationKind::Full),
@@ -31,7 +39,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
     let mut f = Fields::new(
         &block,
         format!("body `{}`", name.name),
-        &["mesh", "material", "formulation"],
+        &["mesh", "material", "formulation", "kinematics"],
     );
     let mesh = f.value("mesh", diags).and_then(|v| mesh(v, diags));
     let material = f.value("material", diags).and_then(|v| match &v.kind {
@@ -46,6 +54,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
         }
     });
     let formulation = f.choice("formulation", "formulation", &FORMULATIONS, diags);
+    let kinematics = f.choice("kinematics", "kinematics", &KINEMATICS, diags);
     for e in f.take_all(&["element"]) {
         diags.push(
             Diagnostic::error(
@@ -78,6 +87,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
         mesh,
         material,
         formulation,
+        kinematics,
         span: item.span,
     })
 }
@@ -309,6 +319,7 @@ mod tests {
             b.formulation.as_ref().unwrap().value,
             FormulationKind::SelectiveReduced
         );
+        assert!(b.kinematics.is_none());
         let MeshDef::Generator(g) = &b.mesh.as_ref().unwrap().value else {
             panic!()
         };

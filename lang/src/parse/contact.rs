@@ -4,17 +4,27 @@ use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{Value, ValueKind};
-use crate::ast::{Contact, Method, PenaltyKindAst};
+use crate::ast::{Contact, LagrangeFormulationAst, Method, MultiplierUpdateAst, PenaltyKindAst};
 use crate::diagnostics::Diagnostic;
 use crate::span::Spanned;
 use crate::suggest::did_you_mean;
 
-/// Contact methods the language knows; only `penalty` is supported yet.
+/// Contact methods the language knows.
 pub const METHODS: [&str; 3] = ["penalty", "lagrange", "augmented_lagrange"];
 
 const KINDS: [(&str, PenaltyKindAst); 2] = [
     ("nodal", PenaltyKindAst::Nodal),
     ("area", PenaltyKindAst::Area),
+];
+
+const FORMULATIONS: [(&str, LagrangeFormulationAst); 2] = [
+    ("single", LagrangeFormulationAst::Single),
+    ("doubled", LagrangeFormulationAst::Doubled),
+];
+
+const UPDATES: [(&str, MultiplierUpdateAst); 2] = [
+    ("converged", MultiplierUpdateAst::Converged),
+    ("newton", MultiplierUpdateAst::Newton),
 ];
 
 /// Converts a `contact` item.
@@ -84,8 +94,61 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
             f.finish(diags);
             Some(Spanned::new(Method::Penalty { kind, stiffness }, v.span))
         }
-        "lagrange" | "augmented_lagrange" => {
-            Some(Spanned::new(Method::Reserved(name.clone()), v.span))
+        "lagrange" => {
+            let formulation = match block {
+                Some(block) => {
+                    let mut f = Fields::new(block, "`lagrange` block", &["formulation"]);
+                    let formulation =
+                        f.choice("formulation", "Lagrange formulation", &FORMULATIONS, diags);
+                    f.finish(diags);
+                    formulation
+                }
+                None => None,
+            };
+            Some(Spanned::new(Method::Lagrange { formulation }, v.span))
+        }
+        "augmented_lagrange" => {
+            let Some(block) = block else {
+                diags.push(Diagnostic::error(
+                    "`augmented_lagrange` needs its penalty and tolerance",
+                    v.span,
+                    "expected `augmented_lagrange { penalty = ..  tolerance = .. }`",
+                ));
+                return None;
+            };
+            let mut f = Fields::new(
+                block,
+                "`augmented_lagrange` block",
+                &["kind", "penalty", "tolerance", "update"],
+            );
+            let kind = f.choice("kind", "penalty kind", &KINDS, diags);
+            let penalty = f.number("penalty", diags);
+            let tolerance = f.number("tolerance", diags);
+            let update = f.choice("update", "multiplier update", &UPDATES, diags);
+            f.require(
+                &penalty,
+                "penalty",
+                name.span,
+                "add `penalty = <penalty coefficient>`",
+                diags,
+            );
+            f.require(
+                &tolerance,
+                "tolerance",
+                name.span,
+                "add `tolerance = <largest accepted penetration>`",
+                diags,
+            );
+            f.finish(diags);
+            Some(Spanned::new(
+                Method::AugmentedLagrange {
+                    kind,
+                    penalty,
+                    tolerance,
+                    update,
+                },
+                v.span,
+            ))
         }
         other => {
             diags.push(
@@ -106,7 +169,9 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::{Method, PenaltyKindAst, SetRefKind};
+    use crate::ast::{
+        LagrangeFormulationAst, Method, MultiplierUpdateAst, PenaltyKindAst, SetRefKind,
+    };
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -128,12 +193,55 @@ mod tests {
     }
 
     #[test]
+    fn lagrange_and_augmented_lagrange_methods() {
+        let deck = parse_ok(
+            "contact a.b -> t { method = lagrange { formulation = doubled } }\n\
+             contact a.c -> t { method = lagrange { } }\n\
+             contact a.d -> t { method = augmented_lagrange { penalty = 1e3  tolerance = 1e-6  \
+             update = newton  kind = nodal } }",
+        );
+        assert!(matches!(
+            &deck.contacts[0].method.as_ref().unwrap().value,
+            Method::Lagrange { formulation: Some(f) } if f.value == LagrangeFormulationAst::Doubled
+        ));
+        assert!(matches!(
+            &deck.contacts[1].method.as_ref().unwrap().value,
+            Method::Lagrange { formulation: None }
+        ));
+        match &deck.contacts[2].method.as_ref().unwrap().value {
+            Method::AugmentedLagrange {
+                kind,
+                penalty,
+                tolerance,
+                update,
+            } => {
+                assert_eq!(kind.as_ref().unwrap().value, PenaltyKindAst::Nodal);
+                assert_eq!(penalty.as_ref().unwrap().value, 1e3);
+                assert_eq!(tolerance.as_ref().unwrap().value, 1e-6);
+                assert_eq!(update.as_ref().unwrap().value, MultiplierUpdateAst::Newton);
+            }
+            m => panic!("{m:?}"),
+        }
+        assert_eq!(
+            parse_messages("contact a.b -> t { method = augmented_lagrange { penalty = 1 } }"),
+            ["missing `tolerance` in the `augmented_lagrange` block"]
+        );
+        let m = parse_messages(
+            "contact a.b -> t { method = augmented_lagrange { penalty = 1  tolerance = 1  update = newtn } }",
+        );
+        assert_eq!(m.len(), 1, "{m:?}");
+        let m = parse_messages("contact a.b -> t { method = lagrange { formulaton = doubled } }");
+        assert_eq!(m.len(), 1, "{m:?}");
+    }
+
+    #[test]
     fn reserved_and_unknown_methods() {
         let deck =
             parse_ok("contact a.b -> t { method = lagrange  friction = coulomb { mu = 0.2 } }");
-        assert!(
-            matches!(&deck.contacts[0].method.as_ref().unwrap().value, Method::Reserved(n) if n.name == "lagrange")
-        );
+        assert!(matches!(
+            &deck.contacts[0].method.as_ref().unwrap().value,
+            Method::Lagrange { formulation: None }
+        ));
         assert_eq!(deck.contacts[0].reserved[0].name, "friction");
         assert_eq!(
             parse_messages("contact a.b -> t { method = penalti { stiffness = 1 } }"),

@@ -1,13 +1,133 @@
-//! `material name { elastic { E = .. nu = .. } }` and the reserved
-//! `plastic`, `viscoplastic`, `thermal` blocks.
+//! `material name { elastic { E = .. nu = .. } }`, or
+//! `neo_hookean { E = .. nu = .. }` instead of `elastic`, optionally with
+//! `plastic { yield = ..  hardening = linear { H = .. } | swift { K = ..
+//! eps0 = ..  n = .. } | voce { sigma_inf = ..  delta = .. } }` and
+//! `viscoplastic { eta = .. }` (Perzyna); the reserved `thermal` block.
 
 use super::fields::Fields;
 use super::values::Diags;
 use super::ItemParts;
-use crate::ast::{Elastic, Material};
+use crate::ast::syntax::{Block, Value, ValueKind};
+use crate::ast::{Elastic, HardeningAst, Material, Plastic, Viscoplastic};
+use crate::diagnostics::Diagnostic;
+use crate::span::{Ident, Spanned};
+use crate::suggest::did_you_mean;
 
 /// Material blocks that parse but are not supported yet.
-pub const RESERVED: [&str; 3] = ["plastic", "viscoplastic", "thermal"];
+pub const RESERVED: [&str; 1] = ["thermal"];
+
+/// Hardening law names.
+pub const HARDENINGS: [&str; 3] = ["linear", "swift", "voce"];
+
+/// `E` and `nu` of an `elastic` or `neo_hookean` block.
+fn elastic(b: &Block, what: &str, diags: &mut Diags) -> Elastic {
+    let mut e = Fields::new(b, format!("`{what}` block"), &["E", "nu"]);
+    let young = e.number("E", diags);
+    let poisson = e.number("nu", diags);
+    e.require(
+        &young,
+        "E",
+        b.span,
+        "add Young's modulus, e.g. `E = 210e3`",
+        diags,
+    );
+    e.require(
+        &poisson,
+        "nu",
+        b.span,
+        "add Poisson's ratio, e.g. `nu = 0.3`",
+        diags,
+    );
+    e.finish(diags);
+    Elastic {
+        young,
+        poisson,
+        span: b.span,
+    }
+}
+
+fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<HardeningAst>> {
+    let (name, block): (&Ident, &Block) = match &v.kind {
+        ValueKind::Ctor { name, block } => (name, block),
+        other => {
+            diags.push(Diagnostic::error(
+                format!("expected a hardening law, found {}", other.describe()),
+                v.span,
+                "expected `linear { H = .. }`, `swift { K = ..  eps0 = ..  n = .. }` or \
+                 `voce { sigma_inf = ..  delta = .. }`",
+            ));
+            return None;
+        }
+    };
+    let law = match name.name.as_str() {
+        "linear" => {
+            let mut f = Fields::new(block, "`linear` hardening", &["H"]);
+            let modulus = f.number("H", diags);
+            f.require(
+                &modulus,
+                "H",
+                name.span,
+                "add the plastic modulus `H = ..`",
+                diags,
+            );
+            f.finish(diags);
+            HardeningAst::Linear { modulus }
+        }
+        "swift" => {
+            let mut f = Fields::new(block, "`swift` hardening", &["K", "eps0", "n"]);
+            let k = f.number("K", diags);
+            let eps0 = f.number("eps0", diags);
+            let n = f.number("n", diags);
+            f.require(
+                &k,
+                "K",
+                name.span,
+                "add `K = ..` (sigma_y = K (eps0 + ep)^n)",
+                diags,
+            );
+            f.require(&eps0, "eps0", name.span, "add `eps0 = ..`", diags);
+            f.require(&n, "n", name.span, "add `n = ..`", diags);
+            f.finish(diags);
+            HardeningAst::Swift { k, eps0, n }
+        }
+        "voce" => {
+            let mut f = Fields::new(block, "`voce` hardening", &["sigma_inf", "delta"]);
+            let sigma_inf = f.number("sigma_inf", diags);
+            let delta = f.number("delta", diags);
+            f.require(
+                &sigma_inf,
+                "sigma_inf",
+                name.span,
+                "add the saturation stress `sigma_inf = ..`",
+                diags,
+            );
+            f.require(
+                &delta,
+                "delta",
+                name.span,
+                "add the saturation rate `delta = ..`",
+                diags,
+            );
+            f.finish(diags);
+            HardeningAst::Voce { sigma_inf, delta }
+        }
+        other => {
+            diags.push(
+                Diagnostic::error(
+                    format!("unknown hardening law `{other}`"),
+                    name.span,
+                    "not a hardening law",
+                )
+                .with_help(
+                    did_you_mean(other, HARDENINGS)
+                        .unwrap_or_else(|| "expected `linear`, `swift` or `voce`".into()),
+                ),
+            );
+            return None;
+        }
+    };
+    Some(Spanned::new(law, v.span))
+}
 
 /// Converts a `material` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
@@ -16,41 +136,54 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
     let mut f = Fields::new(
         &block,
         format!("material `{}`", name.name),
-        &["elastic", "plastic", "viscoplastic", "thermal"],
+        &[
+            "elastic",
+            "neo_hookean",
+            "plastic",
+            "viscoplastic",
+            "thermal",
+        ],
     );
-    let elastic = f.block("elastic", diags).map(|b| {
-        let mut e = Fields::new(b, "`elastic` block", &["E", "nu"]);
-        let young = e.number("E", diags);
-        let poisson = e.number("nu", diags);
-        e.require(
-            &young,
-            "E",
-            b.span,
-            "add Young's modulus, e.g. `E = 210e3`",
-            diags,
-        );
-        e.require(
-            &poisson,
-            "nu",
-            b.span,
-            "add Poisson's ratio, e.g. `nu = 0.3`",
-            diags,
-        );
-        e.finish(diags);
-        Elastic {
-            young,
-            poisson,
+    let elastic_block = f
+        .block("elastic", diags)
+        .map(|b| elastic(b, "elastic", diags));
+    let neo_hookean = f
+        .block("neo_hookean", diags)
+        .map(|b| elastic(b, "neo_hookean", diags));
+    let plastic = f.block("plastic", diags).map(|b| {
+        let mut p = Fields::new(b, "`plastic` block", &["yield", "hardening"]);
+        let yield_stress = p.number("yield", diags);
+        let hardening = p
+            .value("hardening", diags)
+            .and_then(|v| hardening(v, diags));
+        p.finish(diags);
+        Plastic {
+            yield_stress,
+            hardening,
             span: b.span,
         }
+    });
+    let viscoplastic = f.block("viscoplastic", diags).map(|b| {
+        let mut p = Fields::new(b, "`viscoplastic` block", &["eta"]);
+        let eta = p.number("eta", diags);
+        p.require(
+            &eta,
+            "eta",
+            b.span,
+            "add the Perzyna viscosity `eta = ..` (stress x time)",
+            diags,
+        );
+        p.finish(diags);
+        Viscoplastic { eta, span: b.span }
     });
     let reserved: Vec<_> = f
         .take_all(&RESERVED)
         .into_iter()
         .map(|e| e.key.clone())
         .collect();
-    if reserved.is_empty() {
+    if reserved.is_empty() && neo_hookean.is_none() {
         f.require(
-            &elastic,
+            &elastic_block,
             "elastic",
             name.span,
             "add `elastic { E = ..  nu = .. }`",
@@ -60,7 +193,10 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
     f.finish(diags);
     Some(Material {
         name,
-        elastic,
+        elastic: elastic_block,
+        neo_hookean,
+        plastic,
+        viscoplastic,
         reserved,
         span: item.span,
     })
@@ -68,6 +204,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
 
 #[cfg(test)]
 mod tests {
+    use crate::ast::HardeningAst;
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -78,15 +215,63 @@ mod tests {
         let e = m.elastic.as_ref().unwrap();
         assert_eq!(e.young.as_ref().unwrap().value, 210e3);
         assert_eq!(e.poisson.as_ref().unwrap().value, 0.3);
-        assert!(m.reserved.is_empty());
+        assert!(m.reserved.is_empty() && m.plastic.is_none());
     }
 
     #[test]
-    fn reserved_blocks_parse_generically() {
+    fn plastic_material_with_each_hardening_law() {
         let deck = parse_ok(
-            "material al { elastic { E = 70e3 nu = 0.33 }\n plastic { yield = 250 hardening = linear { H = 1000 } } }",
+            "material al { elastic { E = 70e3 nu = 0.33 }\n plastic { yield = 250 hardening = linear { H = 1000 } } }\n\
+             material st { elastic { E = 200e3 nu = 0.3 }\n plastic { hardening = swift { K = 500 eps0 = 0.01 n = 0.2 } }\n viscoplastic { eta = 10 } }\n\
+             material cu { elastic { E = 120e3 nu = 0.34 }\n plastic { yield = 100 hardening = voce { sigma_inf = 300 delta = 8 } } }",
         );
-        assert_eq!(deck.materials[0].reserved[0].name, "plastic");
+        let p = deck.materials[0].plastic.as_ref().unwrap();
+        assert_eq!(p.yield_stress.as_ref().unwrap().value, 250.0);
+        assert!(matches!(
+            &p.hardening.as_ref().unwrap().value,
+            HardeningAst::Linear { modulus: Some(h) } if h.value == 1000.0
+        ));
+        let m = &deck.materials[1];
+        assert!(matches!(
+            &m.plastic.as_ref().unwrap().hardening.as_ref().unwrap().value,
+            HardeningAst::Swift { n: Some(n), .. } if n.value == 0.2
+        ));
+        assert_eq!(
+            m.viscoplastic.as_ref().unwrap().eta.as_ref().unwrap().value,
+            10.0
+        );
+        assert!(matches!(
+            &deck.materials[2]
+                .plastic
+                .as_ref()
+                .unwrap()
+                .hardening
+                .as_ref()
+                .unwrap()
+                .value,
+            HardeningAst::Voce { .. }
+        ));
+    }
+
+    #[test]
+    fn neo_hookean_material_needs_no_elastic_block() {
+        let deck = parse_ok("material rubber { neo_hookean { E = 10  nu = 0.45 } }");
+        assert!(deck.materials[0].neo_hookean.is_some());
+        assert!(deck.materials[0].elastic.is_none());
+    }
+
+    #[test]
+    fn unknown_hardening_law_gets_a_suggestion() {
+        let m = parse_messages(
+            "material a { elastic { E = 1 nu = 0.3 } plastic { yield = 1 hardening = swfit { K = 1 } } }",
+        );
+        assert_eq!(m, ["unknown hardening law `swfit`"]);
+    }
+
+    #[test]
+    fn reserved_thermal_block_parses_generically() {
+        let deck = parse_ok("material al { elastic { E = 70e3 nu = 0.33 }\n thermal { k = 1 } }");
+        assert_eq!(deck.materials[0].reserved[0].name, "thermal");
     }
 
     #[test]

@@ -1,0 +1,62 @@
+//! Lagrange-multiplier enforcement of the normal contact constraint (seed
+//! slides, "Part II – Lagrange multipliers"): on the active set the
+//! constraint `g(x) = 0` is enforced exactly by a multiplier `lambda` (the
+//! normal force, `lambda >= 0` in compression); nodes off the active set
+//! carry no force. The active set is found by the solver's active-set loop
+//! (`crate::solve::active_set`).
+//!
+//! Force on an active node `f = lambda n`; its tangent
+//! `K_c = -d f / d x = -lambda h t ⊗ t` (the curvature term: the penalty
+//! geometric term with `alpha g` replaced by `-lambda`), so that Newton
+//! stays quadratic on curved tools. The constraint rows of the
+//! saddle-point system use `d g / d x = n`.
+
+use super::augmented::normal_response;
+use super::penalty::Response;
+use super::ContactStatus;
+
+/// Response of a slave node with multiplier `lambda`, in the active set or
+/// not, unit normal `normal`, normal rate `normal_rate`, tributary area
+/// `tributary`. An active node is reported closed even if `lambda` is
+/// momentarily negative during the iterations (the active-set loop then
+/// releases it).
+pub fn respond(
+    active: bool,
+    lambda: f64,
+    tributary: f64,
+    normal: [f64; 2],
+    normal_rate: f64,
+) -> Response {
+    if !active {
+        return Response {
+            force: [0.0; 2],
+            stiffness: [[0.0; 2]; 2],
+            pressure: 0.0,
+            status: ContactStatus::Open,
+        };
+    }
+    normal_response(0.0, lambda, tributary, normal, normal_rate)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn active_node_carries_lambda_along_the_normal() {
+        let r = respond(true, 3.0, 1.5, [0.6, 0.8], 0.0);
+        assert_eq!(r.status, ContactStatus::Closed);
+        assert!((r.force[0] - 1.8).abs() < 1e-15 && (r.force[1] - 2.4).abs() < 1e-15);
+        assert_eq!(r.pressure, 2.0);
+        assert_eq!(r.stiffness, [[0.0; 2]; 2]);
+        let o = respond(false, 3.0, 1.5, [0.6, 0.8], 0.0);
+        assert_eq!((o.status, o.force), (ContactStatus::Open, [0.0; 2]));
+    }
+
+    #[test]
+    fn curvature_term_is_minus_lambda_h_tt() {
+        // normal (0, 1), tangent (1, 0): K = -lambda h e_x ⊗ e_x
+        let r = respond(true, 2.0, 1.0, [0.0, 1.0], 0.5);
+        assert_eq!(r.stiffness, [[-1.0, 0.0], [0.0, 0.0]]);
+    }
+}

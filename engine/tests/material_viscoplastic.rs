@@ -1,0 +1,113 @@
+//! Perzyna visco-plasticity (linear over-stress, `d ep/dt = <q - sigma_y>/eta`)
+//! at a material point in pure shear, against closed forms:
+//!
+//! - loading at a constant equivalent strain rate `r` from the yield point,
+//!   perfect plasticity: the over-stress `s = q - sigma_y` obeys
+//!   `ds/dt = 3 G (r - s/eta)`, so `s(t) = eta r (1 - exp(-3 G t / eta))`
+//!   (rate dependent: two rates, steady over-stress `eta r`);
+//! - relaxation at fixed strain with linear hardening `H`:
+//!   `s(t) = s0 exp(-(3 G + H) t / eta)`.
+//!
+//! Backward Euler in time: first-order convergence to the closed form is
+//! checked (halving `dt` halves the error).
+
+use ctc_engine::material::j2::Elastic;
+use ctc_engine::material::tensor::{deviator, norm2};
+use ctc_engine::material::{History, NonlinearLaw};
+use ctc_engine::model::{Hardening, Kinematics};
+
+const E: f64 = 200e3;
+const NU: f64 = 0.3;
+const ETA: f64 = 5e3;
+
+fn q_of(s: &[f64; 4]) -> f64 {
+    (1.5 * norm2(&deviator(s))).sqrt()
+}
+
+/// Pure shear with equivalent strain `eb`: tensor shear `sqrt(3) eb / 2`.
+fn shear(eb: f64) -> [f64; 4] {
+    [0.0, 0.0, 0.0, 3f64.sqrt() * eb / 2.0]
+}
+
+fn law(h: f64) -> NonlinearLaw {
+    NonlinearLaw::J2 {
+        elastic: Elastic::from_young(E, NU),
+        hardening: Hardening::Linear {
+            yield_stress: 250.0,
+            modulus: h,
+        },
+        viscosity: Some(ETA),
+    }
+}
+
+/// Max relative error of the over-stress during loading at rate `r` over
+/// `t_end`, with `n` increments.
+fn loading_error(r: f64, t_end: f64, n: usize) -> (f64, f64) {
+    let g = Elastic::from_young(E, NU).shear;
+    let law = law(0.0);
+    let e_yield = 250.0 / (3.0 * g);
+    let dt = t_end / n as f64;
+    let mut h = History::initial(Kinematics::Small);
+    let mut worst = 0.0f64;
+    let mut last = 0.0;
+    for k in 1..=n {
+        let t = k as f64 * dt;
+        let up = law.small(&shear(e_yield + r * t), &h, dt).unwrap();
+        h = up.history;
+        let s = q_of(&up.stress) - 250.0;
+        let exact = ETA * r * (1.0 - (-3.0 * g * t / ETA).exp());
+        worst = worst.max((s - exact).abs() / (ETA * r));
+        last = s;
+    }
+    (worst, last)
+}
+
+#[test]
+fn perzyna_constant_rate_loading_two_rates_matches_closed_form() {
+    let g = Elastic::from_young(E, NU).shear;
+    let tau = ETA / (3.0 * g); // relaxation time
+    for r in [1e-3 / tau * 0.01, 1e-3 / tau * 1.0] {
+        let t_end = 5.0 * tau;
+        let (e1, s1) = loading_error(r, t_end, 400);
+        let (e2, _) = loading_error(r, t_end, 800);
+        println!(
+            "rate {r:.3e}/time: over-stress at 5 tau {s1:.4e} (closed form {:.4e}), max error \
+             {e1:.2e} (400 incr.), {e2:.2e} (800 incr.), ratio {:.2}",
+            ETA * r * (1.0 - (-5f64).exp()),
+            e1 / e2
+        );
+        assert!(e1 < 2e-2, "{e1}");
+        assert!(
+            (e1 / e2 - 2.0).abs() < 0.1,
+            "first order in dt: {}",
+            e1 / e2
+        );
+    }
+}
+
+#[test]
+fn perzyna_relaxation_with_hardening_matches_closed_form() {
+    let g = Elastic::from_young(E, NU).shear;
+    let hmod = 2e4;
+    let law = law(hmod);
+    let tau = ETA / (3.0 * g + hmod);
+    let eb = 2.0 * 250.0 / (3.0 * g); // twice the yield strain, applied at once
+    for n in [200usize, 400] {
+        let dt = 5.0 * tau / n as f64;
+        let mut h = History::initial(Kinematics::Small);
+        // instantaneous loading over a tiny time: elastic trial, no flow
+        let up = law.small(&shear(eb), &h, 1e-12 * tau).unwrap();
+        h = up.history;
+        let s0 = q_of(&up.stress) - 250.0 - hmod * h.ep;
+        let mut worst = 0.0f64;
+        for k in 1..=n {
+            let up = law.small(&shear(eb), &h, dt).unwrap();
+            h = up.history;
+            let s = q_of(&up.stress) - 250.0 - hmod * h.ep;
+            let exact = s0 * (-(k as f64) * dt / tau).exp();
+            worst = worst.max((s - exact).abs() / s0);
+        }
+        println!("relaxation, {n} increments over 5 tau: s0 = {s0:.4e}, max error {worst:.2e}");
+        assert!(s0 > 240.0 && worst < 1e-2, "{s0} {worst}");
+    }
+}
