@@ -208,3 +208,40 @@ fn cylinder_on_block_penalty_penetrates_p_over_k_where_lagrange_does_not() {
         assert!((0.8..1.1).contains(&ratio), "k={k}: ratio {ratio}");
     }
 }
+
+#[test]
+fn hertz_cylinder_augmented_lagrangian_and_penalty_against_lagrange() {
+    let depth = 0.08;
+    let tol = 1e-6;
+    let (_, lag) = solve(
+        "hertz lagrange",
+        &hertz_disc(lagrange(false), 12, 32, depth, 2),
+    );
+    let l = lag.records.last().unwrap();
+    let p_lag = l.contact_force()[1];
+    let p0_lag = l.closed().iter().map(|c| c.pressure).fold(0.0, f64::max);
+    for newton in [false, true] {
+        let (summary, al) = solve(
+            "hertz AL",
+            &hertz_disc(augmented(2e3, tol, newton), 12, 32, depth, 2),
+        );
+        for (r, inc) in al.records.iter().zip(&summary.increments) {
+            assert!(r.max_penetration() < tol, "{:e}", r.max_penetration());
+            assert!(inc.contact_iterations >= 1);
+            let f = r.contact_force();
+            assert!((f[1] + r.reaction[1]).abs() <= 1e-8 * f[1].abs());
+        }
+        let p = al.records.last().unwrap().contact_force()[1];
+        println!("hertz AL (newton update: {newton}): P = {p:.7} vs Lagrange {p_lag:.7}");
+        // penetration < 1e-6 = 1.25e-5 of the indentation
+        assert!((p - p_lag).abs() <= 1e-4 * p_lag, "{p} vs {p_lag}");
+    }
+    // penalty: penetration ~ p / k, and softer than Lagrange
+    let k = 2e4;
+    let (_, pen) = solve("hertz penalty", &hertz_disc(penalty(k), 12, 32, depth, 2));
+    let last = pen.records.last().unwrap();
+    let ratio = last.max_penetration() / (p0_lag / k);
+    println!("hertz penalty k = {k:e}: penetration / (p0 / k) = {ratio:.3}");
+    assert!((0.8..1.1).contains(&ratio), "{ratio}");
+    assert!(last.contact_force()[1] < p_lag);
+}

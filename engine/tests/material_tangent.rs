@@ -98,8 +98,11 @@ fn history(finite: bool, a: f64, th: f64, ep: f64) -> History {
     }
 }
 
+/// Internal force and tangent of an element at a displacement.
+type ForceAndTangent<const ND: usize> = (SVector<f64, ND>, SMatrix<f64, ND, ND>);
+
 fn check<const ND: usize>(
-    eval: &dyn Fn(&SVector<f64, ND>, bool) -> (SVector<f64, ND>, SMatrix<f64, ND, ND>),
+    eval: &dyn Fn(&SVector<f64, ND>, bool) -> ForceAndTangent<ND>,
     u: &SVector<f64, ND>,
     what: &str,
 ) -> Result<f64, String> {

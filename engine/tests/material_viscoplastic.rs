@@ -111,3 +111,130 @@ fn perzyna_relaxation_with_hardening_matches_closed_form() {
         assert!(s0 > 240.0 && worst < 1e-2, "{s0} {worst}");
     }
 }
+
+mod through_the_solver {
+    //! The same Perzyna law through the full solver: one axisymmetric quad
+    //! (r0 = 1, h0 = 1, small strain) compressed at a constant rate by a
+    //! prescribed top displacement, at two rates. Uniaxial stress, perfect
+    //! plasticity: after yield at `t_y` the over-stress is
+    //! `s = eta rate (1 - exp(-E (t - t_y) / eta))`; the axial force is
+    //! `(sigma_y + s) pi`. Checks the time increment reaching the law.
+    use super::{E, ETA, NU};
+    use ctc_engine::mesh::{Cell, Mesh};
+    use ctc_engine::model::{
+        Analysis, AnalysisKind, Body, Dirichlet, Formulation, Hardening, Kinematics, Material,
+        MaterialLaw, Model, NewtonSettings, OutputRequest, Step, TimeFunction,
+    };
+    use ctc_engine::solve::{run, IncrementView, Observer};
+    use std::f64::consts::PI;
+
+    struct Force(Vec<(f64, f64)>);
+
+    impl Observer for Force {
+        fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
+            let fy: f64 = [0usize, 1].iter().map(|&n| v.reaction[n][1]).sum();
+            self.0.push((v.time, fy));
+            Ok(())
+        }
+    }
+
+    fn model(rate: f64, t_end: f64, increments: usize) -> Model {
+        let fix = |label: &str, nodes: Vec<usize>, component, value| Dirichlet {
+            label: label.into(),
+            nodes,
+            component,
+            value,
+        };
+        Model {
+            analysis: Analysis {
+                kind: AnalysisKind::Axisymmetric,
+                thickness: 1.0,
+            },
+            mesh: Mesh {
+                nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                cells: vec![Cell::quad(0, 1, 2, 3)],
+                ..Mesh::default()
+            },
+            bodies: vec![Body {
+                name: "b".into(),
+                nodes: 0..4,
+                cells: 0..1,
+                material: 0,
+                formulation: Formulation::Full,
+                kinematics: Kinematics::Small,
+            }],
+            materials: vec![Material {
+                name: "m".into(),
+                law: MaterialLaw::ElastoPlastic {
+                    young: E,
+                    poisson: NU,
+                    hardening: Hardening::Linear {
+                        yield_stress: 250.0,
+                        modulus: 0.0,
+                    },
+                    viscosity: Some(ETA),
+                },
+            }],
+            constraints: vec![
+                fix("bottom", vec![0, 1], 1, TimeFunction::Constant(0.0)),
+                fix("axis", vec![0, 3], 0, TimeFunction::Constant(0.0)),
+                fix(
+                    "top",
+                    vec![2, 3],
+                    1,
+                    TimeFunction::Ramp {
+                        t0: 0.0,
+                        t1: t_end,
+                        v0: 0.0,
+                        v1: -rate * t_end,
+                    },
+                ),
+            ],
+            loads: vec![],
+            tools: vec![],
+            contacts: vec![],
+            steps: vec![Step {
+                name: "s".into(),
+                t_start: 0.0,
+                t_end,
+                increments,
+                min_fraction: 1.0 / 64.0,
+                newton: NewtonSettings {
+                    tol: 1e-11,
+                    tol_displacement: 1e-11,
+                    max_iter: 20,
+                    line_search: true,
+                },
+            }],
+            output: OutputRequest::default(),
+        }
+    }
+
+    #[test]
+    fn perzyna_uniaxial_compression_at_two_rates_through_the_solver() {
+        let tau = ETA / E;
+        for rate in [1e-4 / tau, 1e-2 / tau] {
+            let t_y = 250.0 / (E * rate);
+            let t_end = t_y + 5.0 * tau;
+            let mut f = Force(Vec::new());
+            run(&model(rate, t_end, 400), &mut f).unwrap_or_else(|e| panic!("{}", e.message));
+            let mut worst = 0.0f64;
+            for &(t, fy) in &f.0 {
+                let s = if t <= t_y {
+                    E * rate * t - 250.0
+                } else {
+                    ETA * rate * (1.0 - (-(t - t_y) / tau).exp())
+                };
+                let exact = (250.0 + s) * PI;
+                worst = worst.max((fy - exact).abs() / (ETA * rate * PI));
+            }
+            let (t, fy) = *f.0.last().unwrap();
+            println!(
+                "rate {rate:.3e}: force at t = {t:.3e}: {fy:.6e} (closed form {:.6e}), max \
+                 over-stress error {worst:.2e} of eta*rate",
+                (250.0 + ETA * rate * (1.0 - (-(t - t_y) / tau).exp())) * PI
+            );
+            assert!(worst < 3e-2, "{worst}");
+        }
+    }
+}

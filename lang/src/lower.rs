@@ -783,6 +783,42 @@ mod tests {
     use super::*;
 
     #[test]
+    fn plastic_viscoplastic_and_finite_strain_lower_to_the_model() {
+        let text = "analysis { dimension = axisymmetric }\n\
+            material st { elastic { E = 200e3 nu = 0.3 }\n\
+              plastic { hardening = swift { K = 500 eps0 = 0.01 n = 0.2 } } viscoplastic { eta = 7 } }\n\
+            material ru { neo_hookean { E = 10 nu = 0.45 } }\n\
+            body b { mesh = rectangle { origin = (0, 0) size = (1, 1) divisions = (2, 2) } material = st kinematics = finite }\n\
+            body c { mesh = rectangle { origin = (0, 2) size = (1, 1) divisions = (2, 2) } material = ru kinematics = finite }\n\
+            body d { mesh = rectangle { origin = (0, 4) size = (1, 1) divisions = (2, 2) } material = st }\n\
+            fix b.bottom { ux uy }\nfix c.bottom { ux uy }\nfix d.bottom { ux uy }\n\
+            step s { time = 0 .. 1 }\n";
+        let model = crate::compile(&crate::Source::new("t.ctc", text)).unwrap();
+        assert_eq!(model.bodies[0].kinematics, m::Kinematics::Finite);
+        assert_eq!(model.bodies[2].kinematics, m::Kinematics::Small);
+        assert_eq!(
+            model.materials[model.bodies[0].material].law,
+            MaterialLaw::ElastoPlastic {
+                young: 200e3,
+                poisson: 0.3,
+                hardening: m::Hardening::Swift {
+                    k: 500.0,
+                    eps0: 0.01,
+                    n: 0.2
+                },
+                viscosity: Some(7.0),
+            }
+        );
+        assert_eq!(
+            model.materials[model.bodies[1].material].law,
+            MaterialLaw::NeoHookean {
+                young: 10.0,
+                poisson: 0.45
+            }
+        );
+    }
+
+    #[test]
     fn time_functions_ramp_spans_the_whole_analysis() {
         let f = TimeFn::Ramp {
             v0: 0.0,

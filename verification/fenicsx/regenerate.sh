@@ -13,13 +13,16 @@ OUT=${1:-verification/reference}
 FILTER=${2:-}
 PY=${FENICSX_PYTHON:-/usr/bin/python3}
 mkdir -p "$OUT"
-cargo run --quiet -p ctc-verification --example fenicsx_export -- "$OUT" >/dev/null
-for problem in "$OUT"/*.problem.json; do
+EXPORT=$(mktemp -d)
+trap 'rm -rf "$EXPORT"' EXIT
+cargo run --quiet -p ctc-verification --example fenicsx_export -- "$EXPORT" >/dev/null
+for problem in "$EXPORT"/*.problem.json; do
   case_name=$(basename "$problem" .problem.json)
   if [ -n "$FILTER" ] && [[ "$case_name" != *"$FILTER"* ]]; then
-    rm -f "$problem"
     continue
   fi
+  cp "$problem" "$OUT/"
   # FFCx logs its JIT compilation on stderr; keep only real errors visible.
-  "$PY" verification/fenicsx/solve.py "$problem" "$OUT/$case_name.json" 2> >(grep -v '^INFO:' >&2)
+  "$PY" verification/fenicsx/solve.py "$OUT/$case_name.problem.json" "$OUT/$case_name.json" \
+    2> >(grep -v '^INFO:' >&2)
 done

@@ -89,6 +89,10 @@ pub struct BenchReport {
     pub matrix_nonzeros: usize,
     /// Numeric Cholesky factorizations.
     pub cholesky_factorizations: usize,
+    /// Numeric L D L^T factorizations (indefinite tangent).
+    pub ldlt_factorizations: usize,
+    /// Most negative pivots met in one L D L^T factorization.
+    pub max_negative_pivots: usize,
     /// Numeric LU factorizations.
     pub lu_factorizations: usize,
     /// Deck compilation (parsing, mesh generation), seconds.
@@ -235,6 +239,8 @@ fn report_of(
         linear_solver: summary.linear_solver.clone(),
         matrix_nonzeros: summary.matrix_nonzeros,
         cholesky_factorizations: summary.cholesky_factorizations,
+        ldlt_factorizations: summary.ldlt_factorizations,
+        max_negative_pivots: summary.max_negative_pivots,
         lu_factorizations: summary.lu_factorizations,
         compile_time,
         wall_time,
@@ -280,10 +286,12 @@ impl fmt::Display for BenchReport {
         )?;
         writeln!(
             f,
-            "  linear solver  {} ({} nonzeros; {} Cholesky, {} LU factorizations)",
+            "  linear solver  {} ({} nonzeros; {} Cholesky, {} LDL^T (at most {} negative pivots), {} LU factorizations)",
             self.linear_solver,
             self.matrix_nonzeros,
             self.cholesky_factorizations,
+            self.ldlt_factorizations,
+            self.max_negative_pivots,
             self.lu_factorizations
         )?;
         writeln!(f, "  compile        {:>9.3} s", self.compile_time)?;

@@ -42,6 +42,11 @@ pub fn cases() -> Vec<FenicsxCase> {
             level: 0,
         },
         FenicsxCase {
+            name: "fenicsx_rigid_cylinder_level1",
+            deck: "cases/rigid_cylinder_block.ctc",
+            level: 1,
+        },
+        FenicsxCase {
             name: "fenicsx_lame_plane_strain",
             deck: "cases/lame_plane_strain.ctc",
             level: 0,
@@ -134,12 +139,16 @@ pub struct Comparison {
     /// Wall time of the FEniCSx solve (when the reference was generated),
     /// seconds.
     pub ref_time: f64,
+    /// Largest relative difference between the tributary areas DOLFINx
+    /// assembled and ctc's.
+    pub tributary_rel_diff: f64,
 }
 
 impl Comparison {
     /// Whether every difference is within `tol`.
     pub fn within(&self, tol: f64) -> bool {
         self.max_rel_displacement <= tol
+            && self.tributary_rel_diff <= tol
             && self.rel_total_force.is_none_or(|e| e <= tol)
             && self.max_rel_nodal_force.is_none_or(|e| e <= tol)
     }
@@ -281,6 +290,7 @@ pub fn compare_case(
         ref_iterations: reference.newton_iterations.iter().sum(),
         ctc_time,
         ref_time: reference.wall_time,
+        tributary_rel_diff: reference.tributary_max_rel_diff,
     })
 }
 

@@ -448,7 +448,9 @@ pub fn run_case(case: &StressCase) -> StressResult {
     };
     let mut watch = Watch::default();
     let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        ctc_engine::solve::run(&model, &mut watch).map(|_| ())
+        ctc_engine::solve::run(&model, &mut watch)
+            .map(|_| ())
+            .map_err(|e| e.message)
     }));
     result.seconds = started.elapsed().as_secs_f64();
     result.iterations = watch.capture.iterations;
@@ -464,7 +466,7 @@ pub fn run_case(case: &StressCase) -> StressResult {
             result.diagnosis = Some(format!("PANIC: {msg}"));
             return result;
         }
-        Ok(Err(e)) => result.diagnosis = Some(e.message),
+        Ok(Err(message)) => result.diagnosis = Some(message),
         Ok(Ok(())) => result.converged = true,
     }
     let Some(last) = &watch.capture.last else {

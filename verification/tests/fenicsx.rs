@@ -24,6 +24,11 @@ fn fenicsx_rigid_cylinder() {
 }
 
 #[test]
+fn fenicsx_rigid_cylinder_level1() {
+    check("fenicsx_rigid_cylinder_level1");
+}
+
+#[test]
 fn fenicsx_lame_plane_strain() {
     check("fenicsx_lame_plane_strain");
 }

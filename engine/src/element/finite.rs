@@ -190,3 +190,50 @@ impl<const NN: usize> FiniteElement<'_, NN> {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::{quad4, Section};
+    use crate::material::j2::Elastic;
+    use crate::model::Kinematics;
+
+    #[test]
+    fn fbar_removes_volumetric_locking_in_bending_near_incompressibility() {
+        // single square, bending mode u_x = xi eta; tangent at the reference state
+        let x = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let u = SVector::<f64, 8>::from_row_slice(&[1.0, 0.0, -1.0, 0.0, 1.0, 0.0, -1.0, 0.0]);
+        for kind in [AnalysisKind::PlaneStrain, AnalysisKind::Axisymmetric] {
+            let sec = Section {
+                kind,
+                thickness: 1.0,
+            };
+            let x = if kind == AnalysisKind::Axisymmetric {
+                x.map(|p| [p[0] + 1.0, p[1]])
+            } else {
+                x
+            };
+            let (pts, center) = quad4::reference_points(&x, &sec).unwrap();
+            let hist = [History::initial(Kinematics::Finite); 4];
+            let energy = |nu: f64, fbar: bool| {
+                let law = NonlinearLaw::Hencky {
+                    elastic: Elastic::from_young(1.0, nu),
+                };
+                let el = FiniteElement {
+                    points: &pts,
+                    center: fbar.then_some(&center),
+                    kind,
+                    law: &law,
+                    history: &hist,
+                    dt: 0.0,
+                };
+                let k = el.response(&SVector::zeros(), true).unwrap().0.stiffness;
+                (u.transpose() * k * u)[(0, 0)]
+            };
+            let full = energy(0.4999, false) / energy(0.3, false);
+            let fbar = energy(0.4999, true) / energy(0.3, true);
+            assert!(full > 100.0, "{kind:?} full: {full}");
+            assert!(fbar < 2.0, "{kind:?} F-bar: {fbar}");
+        }
+    }
+}

@@ -259,3 +259,75 @@ impl NonlinearLaw {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finite_laws_reduce_to_linear_elasticity_at_small_strain() {
+        let (e, nu) = (200e3, 0.3);
+        let elastic = Elastic::from_young(e, nu);
+        let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+        let mu = e / (2.0 * (1.0 + nu));
+        let g = [[2e-7, -1e-7], [3e-7, -4e-7]];
+        let f = Deformation {
+            f: [[1.0 + g[0][0], g[0][1]], [g[1][0], 1.0 + g[1][1]]],
+            f33: 1.0 + 1e-7,
+        };
+        let eps = [g[0][0], g[1][1], 1e-7, 0.5 * (g[0][1] + g[1][0])];
+        let tr = eps[0] + eps[1] + eps[2];
+        let linear = [
+            lambda * tr + 2.0 * mu * eps[0],
+            lambda * tr + 2.0 * mu * eps[1],
+            lambda * tr + 2.0 * mu * eps[2],
+            2.0 * mu * eps[3],
+        ];
+        let fin = Kinematics::Finite;
+        let laws = [
+            NonlinearLaw::NeoHookean { mu, lambda },
+            NonlinearLaw::Hencky { elastic },
+            NonlinearLaw::J2 {
+                elastic,
+                hardening: Hardening::Linear {
+                    yield_stress: 250.0,
+                    modulus: 0.0,
+                },
+                viscosity: None,
+            },
+        ];
+        for law in laws {
+            let s = law.finite(&f, &History::initial(fin), 0.0).unwrap().stress;
+            for k in 0..4 {
+                assert!(
+                    (s[k] - linear[k]).abs() < 1e-6 * 0.1,
+                    "{law:?} {s:?} {linear:?}"
+                );
+            }
+        }
+        // and the small-strain J2 law is linear elastic below yield
+        let j2 = laws[2];
+        let s = j2
+            .small(&eps, &History::initial(Kinematics::Small), 0.0)
+            .unwrap()
+            .stress;
+        for k in 0..4 {
+            assert!((s[k] - linear[k]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn neo_hookean_on_small_strain_body_is_rejected() {
+        let m = Material {
+            name: "rubber".into(),
+            law: MaterialLaw::NeoHookean {
+                young: 1.0,
+                poisson: 0.3,
+            },
+        };
+        let e = NonlinearLaw::build(&m, Kinematics::Small, AnalysisKind::PlaneStrain).unwrap_err();
+        assert!(e.contains("kinematics = finite"), "{e}");
+        let e = NonlinearLaw::build(&m, Kinematics::Finite, AnalysisKind::PlaneStress).unwrap_err();
+        assert!(e.contains("not supported yet"), "{e}");
+    }
+}

@@ -143,8 +143,13 @@ pub fn update_active_sets(
     pairs: &mut [PairState],
     contact: &[Vec<NodeContact>],
 ) -> SetChange {
-    let threshold = INTRODUCE_GAP * model_size(model);
     let mut change = SetChange::default();
+    let lagrange =
+        |c: &crate::model::ContactPair| matches!(c.method, ContactMethod::Lagrange { .. });
+    if !model.contacts.iter().any(lagrange) {
+        return change;
+    }
+    let threshold = INTRODUCE_GAP * model_size(model);
     for (pi, cp) in model.contacts.iter().enumerate() {
         if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
             continue;

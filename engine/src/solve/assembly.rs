@@ -211,3 +211,86 @@ fn add<const ND: usize>(
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::Cell;
+    use crate::model::{
+        Analysis, AnalysisKind, Body, Formulation, Hardening, Kinematics, Material, MaterialLaw,
+        OutputRequest,
+    };
+    use crate::solve::dofs::DofMap;
+
+    fn plastic_square() -> Model {
+        Model {
+            analysis: Analysis {
+                kind: AnalysisKind::PlaneStrain,
+                thickness: 1.0,
+            },
+            mesh: Mesh {
+                nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                cells: vec![Cell::quad(0, 1, 2, 3)],
+                ..Default::default()
+            },
+            bodies: vec![Body {
+                name: "sq".into(),
+                nodes: 0..4,
+                cells: 0..1,
+                material: 0,
+                formulation: Formulation::Full,
+                kinematics: Kinematics::Finite,
+            }],
+            materials: vec![Material {
+                name: "m".into(),
+                law: MaterialLaw::ElastoPlastic {
+                    young: 200e3,
+                    poisson: 0.3,
+                    hardening: Hardening::Linear {
+                        yield_stress: 250.0,
+                        modulus: 1000.0,
+                    },
+                    viscosity: None,
+                },
+            }],
+            constraints: vec![],
+            loads: vec![],
+            tools: vec![],
+            contacts: vec![],
+            steps: vec![],
+            output: OutputRequest::default(),
+        }
+    }
+
+    #[test]
+    fn integration_point_state_is_committed_only_on_commit_and_rolled_back() {
+        let model = plastic_square();
+        let dofs = DofMap::new(&model);
+        let scatter = Scatter::new(&model.mesh, &dofs).unwrap();
+        let mut asm = Assembler::new(&model).unwrap();
+        let mut f = vec![0.0; 8];
+        // stretch 5 % in x: plastic
+        let u = [[0.0, 0.0], [0.05, 0.0], [0.05, 0.0], [0.0, 0.0]];
+        asm.begin_increment(1.0);
+        asm.assemble(&model.mesh, &scatter, &u, &mut f, None)
+            .unwrap();
+        assert!(asm.trial[0].iter().all(|p| p.history.ep > 0.01));
+        assert!(asm.points()[0].iter().all(|p| p.history.ep == 0.0));
+        // a failed attempt is forgotten
+        asm.rollback();
+        assert!(asm.trial[0].iter().all(|p| p.history.ep == 0.0));
+        asm.begin_increment(1.0);
+        asm.assemble(&model.mesh, &scatter, &u, &mut f, None)
+            .unwrap();
+        let ep = asm.trial[0][0].history.ep;
+        asm.commit();
+        assert_eq!(asm.points()[0][0].history.ep, ep);
+        // small unloading (0.1 % < 2 sigma_y / E): elastic, ep unchanged
+        asm.begin_increment(2.0);
+        let back = [[0.0, 0.0], [0.049, 0.0], [0.049, 0.0], [0.0, 0.0]];
+        asm.assemble(&model.mesh, &scatter, &back, &mut f, None)
+            .unwrap();
+        assert_eq!(asm.trial[0][0].history.ep, ep);
+        assert!(!asm.symmetric() || asm.has_points());
+    }
+}

@@ -1,27 +1,46 @@
 //! Sparse direct solution of the free-free system with faer.
 //!
-//! The symbolic factorization (fill-reducing ordering, elimination tree,
+//! The symbolic factorization (fill-reducing AMD ordering, elimination tree,
 //! supernodes) depends only on the pattern, which is fixed for the run: it is
 //! computed on the first factorization and reused by every Newton
 //! iteration, so each iteration pays one numeric factorization and one
-//! triangular solve. Sparse Cholesky (`L L^T`, lower triangle) is tried
-//! first; if the tangent is not positive definite (a destabilizing contact
-//! tangent, or a body not yet held) the solver switches to sparse LU with
-//! partial pivoting (symbolic part also computed once) until
-//! [`LinearSolver::prefer_cholesky`] is called (at each new increment).
+//! triangular solve. The factor storage and the scratch memory are kept
+//! between iterations too.
+//!
+//! Order of attempts for each matrix:
+//! 1. sparse Cholesky `L L^T` (symmetric positive definite tangent);
+//! 2. if a pivot is not positive — a destabilizing contact tangent such as
+//!    the curvature term of a convex tool at a large trial penetration —
+//!    sparse `L D L^T` **on the same symbolic factorization** (no pivoting:
+//!    same cost as Cholesky); the number of negative pivots is recorded (it
+//!    counts the tangent's negative eigenvalues, like Abaqus' warning);
+//! 3. if `L D L^T` meets a zero pivot or produces non-finite values, sparse
+//!    LU with partial pivoting (symbolic part also computed once).
+//!
+//! The first method that worked is tried first at the next factorization;
+//! [`LinearSolver::prefer_cholesky`] goes back to Cholesky (each increment).
 
 use super::pattern::SparsePattern;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
+use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
+};
+use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
-use faer::{MatMut, Side};
+use faer::{Conj, MatMut, Par, Side};
 
 /// Which factorization is in use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Method {
     /// Sparse Cholesky (symmetric positive definite tangent).
     Cholesky,
-    /// Sparse LU (indefinite or unsymmetric tangent).
+    /// Sparse L D L^T without pivoting (symmetric indefinite tangent).
+    Ldlt,
+    /// Sparse LU (when L D L^T breaks down, or an unsymmetric tangent).
     Lu,
 }
 
@@ -30,15 +49,22 @@ impl Method {
     pub fn name(self) -> &'static str {
         match self {
             Method::Cholesky => "cholesky",
+            Method::Ldlt => "ldlt",
             Method::Lu => "lu",
         }
     }
 }
 
+/// What the last numeric factorization left behind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Factor {
     None,
-    Llt(Llt<usize, f64>),
-    Lu(Box<Lu<usize, f64>>),
+    /// `l_values` hold the Cholesky factor.
+    Llt,
+    /// `l_values` hold the L D L^T factor.
+    Ldlt,
+    /// `lu` holds the LU factors.
+    Lu,
 }
 
 /// A reusable sparse direct solver for one pattern.
@@ -46,10 +72,20 @@ pub struct LinearSolver {
     method: Method,
     /// Successful Cholesky factorizations.
     pub cholesky_count: usize,
+    /// Successful L D L^T factorizations.
+    pub ldlt_count: usize,
     /// Successful LU factorizations.
     pub lu_count: usize,
-    symbolic_llt: Option<SymbolicLlt<usize>>,
+    /// Negative pivots of the last L D L^T factorization (negative
+    /// eigenvalues of the tangent); 0 after Cholesky.
+    pub negative_pivots: usize,
+    /// Largest `negative_pivots` over the run.
+    pub max_negative_pivots: usize,
+    symbolic: Option<SymbolicCholesky<usize>>,
+    l_values: Vec<f64>,
+    scratch: Option<MemBuffer>,
     symbolic_lu: Option<SymbolicLu<usize>>,
+    lu: Option<Box<Lu<usize, f64>>>,
     factor: Factor,
 }
 
@@ -73,9 +109,15 @@ impl LinearSolver {
         LinearSolver {
             method: Method::Cholesky,
             cholesky_count: 0,
+            ldlt_count: 0,
             lu_count: 0,
-            symbolic_llt: None,
+            negative_pivots: 0,
+            max_negative_pivots: 0,
+            symbolic: None,
+            l_values: Vec::new(),
+            scratch: None,
             symbolic_lu: None,
+            lu: None,
             factor: Factor::None,
         }
     }
@@ -85,7 +127,7 @@ impl LinearSolver {
         self.method
     }
 
-    /// Tries Cholesky again at the next factorization (after a switch to LU).
+    /// Tries Cholesky again at the next factorization.
     pub fn prefer_cholesky(&mut self) {
         self.method = Method::Cholesky;
     }
@@ -97,7 +139,7 @@ impl LinearSolver {
     }
 
     /// Numerically factorizes the matrix with `pattern` and `values` (the
-    /// first `pattern.nnz()` entries are used).
+    /// first `pattern.nnz()` entries are used; both triangles stored).
     pub fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), String> {
         let n = pattern.n;
         self.factor = Factor::None;
@@ -107,25 +149,70 @@ impl LinearSolver {
         let symbolic =
             SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
         let mat = SparseColMatRef::new(symbolic, &values[..pattern.nnz()]);
-        if self.method == Method::Cholesky {
-            if self.symbolic_llt.is_none() {
-                self.symbolic_llt = Some(
-                    SymbolicLlt::try_new(symbolic, Side::Lower)
-                        .map_err(|e| format!("symbolic Cholesky factorization failed: {e:?}"))?,
-                );
+        if self.method != Method::Lu {
+            if self.symbolic.is_none() {
+                let sym = factorize_symbolic_cholesky(
+                    symbolic,
+                    Side::Lower,
+                    SymmetricOrdering::Amd,
+                    CholeskySymbolicParams::default(),
+                )
+                .map_err(|e| format!("symbolic Cholesky factorization failed: {e:?}"))?;
+                let req = sym
+                    .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+                    .or(sym.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()))
+                    .or(sym.solve_in_place_scratch::<f64>(1, Par::Seq));
+                self.l_values = vec![0.0; sym.len_val()];
+                self.scratch = Some(MemBuffer::new(req));
+                self.symbolic = Some(sym);
             }
-            let sym = self.symbolic_llt.clone().expect("set above");
-            match Llt::try_new_with_symbolic(sym, mat, Side::Lower) {
-                Ok(f) => {
-                    self.factor = Factor::Llt(f);
-                    self.cholesky_count += 1;
-                    return Ok(());
-                }
-                Err(_) => {
-                    // not positive definite: LU from now on
-                    self.method = Method::Lu;
-                }
+            let sym = self.symbolic.as_ref().expect("set above");
+            let stack = MemStack::new(self.scratch.as_mut().expect("set with the symbolic"));
+            if self.method == Method::Cholesky
+                && sym
+                    .factorize_numeric_llt(
+                        &mut self.l_values,
+                        mat,
+                        Side::Lower,
+                        LltRegularization::default(),
+                        Par::Seq,
+                        stack,
+                        Default::default(),
+                    )
+                    .is_ok()
+            {
+                self.factor = Factor::Llt;
+                self.negative_pivots = 0;
+                self.cholesky_count += 1;
+                return Ok(());
             }
+            // not positive definite: L D L^T on the same symbolic analysis
+            let stack = MemStack::new(self.scratch.as_mut().expect("set with the symbolic"));
+            let ldlt_ok = sym
+                .factorize_numeric_ldlt(
+                    &mut self.l_values,
+                    mat,
+                    Side::Lower,
+                    LdltRegularization::default(),
+                    Par::Seq,
+                    stack,
+                    Default::default(),
+                )
+                .is_ok();
+            let (negatives, smallest) = pivot_stats(sym, &self.l_values);
+            let largest_diagonal = max_abs_diagonal(pattern, values);
+            if ldlt_ok
+                && self.l_values.iter().all(|v| v.is_finite())
+                && smallest > SINGULAR_PIVOT * largest_diagonal
+            {
+                self.negative_pivots = negatives;
+                self.max_negative_pivots = self.max_negative_pivots.max(self.negative_pivots);
+                self.factor = Factor::Ldlt;
+                self.method = Method::Ldlt;
+                self.ldlt_count += 1;
+                return Ok(());
+            }
+            self.method = Method::Lu;
         }
         if self.symbolic_lu.is_none() {
             self.symbolic_lu = Some(
@@ -137,24 +224,99 @@ impl LinearSolver {
         let f = Lu::try_new_with_symbolic(sym, mat).map_err(|e| {
             format!("the stiffness matrix is singular (LU factorization failed: {e:?})")
         })?;
-        self.factor = Factor::Lu(Box::new(f));
+        self.lu = Some(Box::new(f));
+        self.factor = Factor::Lu;
         self.lu_count += 1;
         Ok(())
     }
 
     /// Solves `K x = b` in place with the last factorization.
-    pub fn solve(&self, rhs: &mut [f64]) {
+    pub fn solve(&mut self, rhs: &mut [f64]) {
         let n = rhs.len();
         if n == 0 {
             return;
         }
         let b = MatMut::from_column_major_slice_mut(rhs, n, 1);
-        match &self.factor {
-            Factor::Llt(f) => f.solve_in_place(b),
-            Factor::Lu(f) => f.solve_in_place(b),
+        match self.factor {
+            Factor::Llt | Factor::Ldlt => {
+                let sym = self.symbolic.as_ref().expect("factorized");
+                let stack = MemStack::new(self.scratch.as_mut().expect("factorized"));
+                if self.factor == Factor::Llt {
+                    LltRef::new(sym, &self.l_values).solve_in_place_with_conj(
+                        Conj::No,
+                        b,
+                        Par::Seq,
+                        stack,
+                    );
+                } else {
+                    LdltRef::new(sym, &self.l_values).solve_in_place_with_conj(
+                        Conj::No,
+                        b,
+                        Par::Seq,
+                        stack,
+                    );
+                }
+            }
+            Factor::Lu => self.lu.as_ref().expect("factorized").solve_in_place(b),
             Factor::None => panic!("LinearSolver::solve called before factorize"),
         }
     }
+}
+
+/// An L D L^T pivot smaller than this times the largest diagonal entry of
+/// the matrix means a (numerically) singular tangent — a body not held, a
+/// zero-energy mode: without pivoting the factors are then meaningless, and
+/// LU with partial pivoting takes over.
+const SINGULAR_PIVOT: f64 = 1e-12;
+
+/// Largest |K_jj| of a matrix given by its pattern and values.
+fn max_abs_diagonal(pattern: &SparsePattern, values: &[f64]) -> f64 {
+    let mut m = 0.0f64;
+    for j in 0..pattern.n {
+        for k in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+            if pattern.row_idx[k] == j {
+                m = m.max(values[k].abs());
+            }
+        }
+    }
+    m
+}
+
+/// Number of negative entries of D and the smallest |D_jj| in an L D L^T
+/// factor: D sits on the diagonal of the stored L (unit lower triangular) —
+/// first entry of each simplicial column, or the diagonal of each
+/// supernode's dense block.
+fn pivot_stats(sym: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, f64) {
+    use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+    let mut count = 0;
+    let mut smallest = f64::INFINITY;
+    let mut visit = |d: f64| {
+        if d < 0.0 {
+            count += 1;
+        }
+        smallest = smallest.min(d.abs());
+    };
+    match sym.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let col_ptr = s.col_ptr();
+            for j in 0..s.nrows() {
+                visit(values[col_ptr[j]]);
+            }
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            for k in 0..s.n_supernodes() {
+                let begin = s.supernode_begin()[k];
+                let end = s.supernode_end()[k];
+                let ncols = end - begin;
+                let nrows = ncols + (s.col_ptr_for_row_idx()[k + 1] - s.col_ptr_for_row_idx()[k]);
+                let start = s.col_ptr_for_val()[k];
+                for j in 0..ncols {
+                    visit(values[start + j * nrows + j]);
+                }
+            }
+        }
+    }
+    (count, smallest)
 }
 
 #[cfg(test)]
@@ -209,13 +371,15 @@ mod tests {
     }
 
     #[test]
-    fn indefinite_matrix_falls_back_to_lu() {
+    fn indefinite_matrix_uses_ldlt_and_counts_negative_eigenvalues() {
+        // eigenvalues 3, -1, -3: two negative pivots whatever the ordering
         let a = [[1.0, 2.0, 0.0], [2.0, 1.0, 0.0], [0.0, 0.0, -3.0]];
         let (p, v) = csc(&a);
         let mut s = LinearSolver::new();
         s.factorize(&p, &v).unwrap();
-        assert_eq!(s.method(), Method::Lu);
-        assert_eq!((s.cholesky_count, s.lu_count), (0, 1));
+        assert_eq!(s.method(), Method::Ldlt);
+        assert_eq!((s.cholesky_count, s.ldlt_count, s.lu_count), (0, 1, 0));
+        assert_eq!(s.negative_pivots, 2);
         let b = [1.0, -1.0, 2.0];
         let mut x = b;
         s.solve(&mut x);
@@ -226,7 +390,49 @@ mod tests {
         let (_, v2) = csc(&spd);
         s.factorize(&p, &v2).unwrap();
         assert_eq!(s.method(), Method::Cholesky);
-        assert_eq!((s.cholesky_count, s.lu_count), (1, 1));
+        assert_eq!((s.cholesky_count, s.ldlt_count, s.lu_count), (1, 1, 0));
+        assert_eq!(s.negative_pivots, 0);
+        assert_eq!(s.max_negative_pivots, 2);
+    }
+
+    #[test]
+    fn zero_pivot_without_pivoting_falls_back_to_lu() {
+        // L D L^T without pivoting meets a zero pivot; LU pivots it away
+        let a = [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        let (p, v) = csc_with_diagonal(&a);
+        let mut s = LinearSolver::new();
+        s.factorize(&p, &v).unwrap();
+        assert_eq!(s.method(), Method::Lu);
+        assert_eq!(s.lu_count, 1);
+        let b = [1.0, -1.0, 2.0];
+        let mut x = b;
+        s.solve(&mut x);
+        assert!(residual(&a, &x, &b) < 1e-14, "{x:?}");
+    }
+
+    /// Like [`csc`] but keeps explicit zeros on the diagonal (the engine's
+    /// pattern always has the diagonal).
+    fn csc_with_diagonal(a: &[[f64; 3]; 3]) -> (SparsePattern, Vec<f64>) {
+        let mut col_ptr = vec![0];
+        let mut row_idx = vec![];
+        let mut vals = vec![];
+        for j in 0..3 {
+            for (i, row) in a.iter().enumerate() {
+                if row[j] != 0.0 || i == j {
+                    row_idx.push(i);
+                    vals.push(row[j]);
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        (
+            SparsePattern {
+                n: 3,
+                col_ptr,
+                row_idx,
+            },
+            vals,
+        )
     }
 
     #[test]

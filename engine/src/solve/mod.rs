@@ -16,6 +16,10 @@
 //! - [`assembly`], [`loads`]: element loop and external forces;
 //! - [`newton`]: one increment (predictor with the prescribed increment,
 //!   line search, convergence, NaN and divergence detection);
+//! - [`active_set`]: contact iterations around the Newton loops (Lagrange
+//!   active set with a cycling guard, augmented-Lagrangian Uzawa updates);
+//! - [`saddle`]: the Lagrange-multiplier saddle-point system (sparse LU, or
+//!   the doubled-multiplier form by `L D L^T` without pivoting);
 //! - [`stepping`]: increments, cutback and grow-back.
 
 pub mod active_set;
@@ -159,6 +163,12 @@ pub struct RunSummary {
     pub linear_solver: String,
     /// Numeric Cholesky factorizations.
     pub cholesky_factorizations: usize,
+    /// Numeric L D L^T factorizations (symmetric indefinite tangent, e.g.
+    /// the curvature term of a convex tool at a large trial penetration).
+    pub ldlt_factorizations: usize,
+    /// Largest number of negative pivots met in an L D L^T factorization
+    /// (negative eigenvalues of the tangent).
+    pub max_negative_pivots: usize,
     /// Numeric LU factorizations (Cholesky is retried at each increment).
     pub lu_factorizations: usize,
     /// Symbolic factorizations of the Lagrange-multiplier saddle-point
@@ -248,7 +258,12 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, Run
     summary.timings.output = output;
     summary.newton_iterations = newton.iterations;
     summary.linear_solver = newton.linear_solver().to_string();
-    (summary.cholesky_factorizations, summary.lu_factorizations) = newton.factorizations();
+    (
+        summary.cholesky_factorizations,
+        summary.ldlt_factorizations,
+        summary.lu_factorizations,
+    ) = newton.factorizations();
+    summary.max_negative_pivots = newton.max_negative_pivots();
     (
         summary.saddle_symbolic_factorizations,
         summary.saddle_factorizations,

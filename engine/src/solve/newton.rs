@@ -263,18 +263,31 @@ impl<'m> Newton<'m> {
         Ok(newton)
     }
 
-    /// `lu` if any factorization of the run needed LU, else `cholesky`.
+    /// The most general factorization the run needed: `lu`, else `ldlt`,
+    /// else `cholesky`.
     pub fn linear_solver(&self) -> &'static str {
+        use super::linear::Method;
         if self.linear.lu_count > 0 {
-            super::linear::Method::Lu.name()
+            Method::Lu.name()
+        } else if self.linear.ldlt_count > 0 {
+            Method::Ldlt.name()
         } else {
-            super::linear::Method::Cholesky.name()
+            Method::Cholesky.name()
         }
     }
 
-    /// Numeric factorizations done (Cholesky, LU).
-    pub fn factorizations(&self) -> (usize, usize) {
-        (self.linear.cholesky_count, self.linear.lu_count)
+    /// Numeric factorizations done (Cholesky, L D L^T, LU).
+    pub fn factorizations(&self) -> (usize, usize, usize) {
+        (
+            self.linear.cholesky_count,
+            self.linear.ldlt_count,
+            self.linear.lu_count,
+        )
+    }
+
+    /// Largest number of negative pivots met in an L D L^T factorization.
+    pub fn max_negative_pivots(&self) -> usize {
+        self.linear.max_negative_pivots
     }
 
     /// Saddle-point factorizations (symbolic, numeric) of the Lagrange

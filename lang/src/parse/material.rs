@@ -1,5 +1,6 @@
 //! `material name { elastic { E = .. nu = .. } }`, or
-//! `neo_hookean { E = .. nu = .. }` instead of `elastic`, optionally with
+//! `neo_hookean { E = .. nu = .. }` (or `{ mu = .. kappa = .. }`) instead of
+//! `elastic`, optionally with
 //! `plastic { yield = ..  hardening = linear { H = .. } | swift { K = ..
 //! eps0 = ..  n = .. } | voce { sigma_inf = ..  delta = .. } }` and
 //! `viscoplastic { eta = .. }` (Perzyna); the reserved `thermal` block.
@@ -39,6 +40,53 @@ fn elastic(b: &Block, what: &str, diags: &mut Diags) -> Elastic {
         diags,
     );
     e.finish(diags);
+    Elastic {
+        young,
+        poisson,
+        span: b.span,
+    }
+}
+
+/// `neo_hookean { E = ..  nu = .. }` or `neo_hookean { mu = ..  kappa = .. }`
+/// (shear and bulk moduli, converted to `E = 9 kappa mu / (3 kappa + mu)`,
+/// `nu = (3 kappa - 2 mu) / (2 (3 kappa + mu))`).
+fn neo_hookean(b: &Block, diags: &mut Diags) -> Elastic {
+    let uses_moduli = b
+        .entries
+        .iter()
+        .any(|e| e.key.name == "mu" || e.key.name == "kappa");
+    if !uses_moduli {
+        return elastic(b, "neo_hookean", diags);
+    }
+    let mut e = Fields::new(b, "`neo_hookean` block", &["mu", "kappa"]);
+    let mu = e.number("mu", diags);
+    let kappa = e.number("kappa", diags);
+    e.require(&mu, "mu", b.span, "add the shear modulus `mu = ..`", diags);
+    e.require(
+        &kappa,
+        "kappa",
+        b.span,
+        "add the bulk modulus `kappa = ..`",
+        diags,
+    );
+    e.finish(diags);
+    let (mut young, mut poisson) = (None, None);
+    if let (Some(m), Some(k)) = (&mu, &kappa) {
+        if m.value > 0.0 && k.value > 0.0 {
+            let (mv, kv) = (m.value, k.value);
+            young = Some(Spanned::new(9.0 * kv * mv / (3.0 * kv + mv), m.span));
+            poisson = Some(Spanned::new(
+                (3.0 * kv - 2.0 * mv) / (2.0 * (3.0 * kv + mv)),
+                k.span,
+            ));
+        } else {
+            diags.push(Diagnostic::error(
+                "the moduli mu and kappa must be positive",
+                if m.value > 0.0 { k.span } else { m.span },
+                "must be > 0",
+            ));
+        }
+    }
     Elastic {
         young,
         poisson,
@@ -147,9 +195,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
     let elastic_block = f
         .block("elastic", diags)
         .map(|b| elastic(b, "elastic", diags));
-    let neo_hookean = f
-        .block("neo_hookean", diags)
-        .map(|b| elastic(b, "neo_hookean", diags));
+    let neo_hookean = f.block("neo_hookean", diags).map(|b| neo_hookean(b, diags));
     let plastic = f.block("plastic", diags).map(|b| {
         let mut p = Fields::new(b, "`plastic` block", &["yield", "hardening"]);
         let yield_stress = p.number("yield", diags);
@@ -258,6 +304,23 @@ mod tests {
         let deck = parse_ok("material rubber { neo_hookean { E = 10  nu = 0.45 } }");
         assert!(deck.materials[0].neo_hookean.is_some());
         assert!(deck.materials[0].elastic.is_none());
+    }
+
+    #[test]
+    fn neo_hookean_from_shear_and_bulk_moduli() {
+        let deck = parse_ok("material rubber { neo_hookean { mu = 3  kappa = 5 } }");
+        let e = deck.materials[0].neo_hookean.as_ref().unwrap();
+        let (young, nu) = (
+            e.young.as_ref().unwrap().value,
+            e.poisson.as_ref().unwrap().value,
+        );
+        // back to mu and kappa
+        assert!((young / (2.0 * (1.0 + nu)) - 3.0).abs() < 1e-12);
+        assert!((young / (3.0 * (1.0 - 2.0 * nu)) - 5.0).abs() < 1e-12);
+        assert_eq!(
+            parse_messages("material r { neo_hookean { mu = 3 } }"),
+            ["missing `kappa` in the `neo_hookean` block"]
+        );
     }
 
     #[test]
