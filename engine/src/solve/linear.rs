@@ -273,9 +273,10 @@ const SINGULAR_PIVOT: f64 = 1e-12;
 fn max_abs_diagonal(pattern: &SparsePattern, values: &[f64]) -> f64 {
     let mut m = 0.0f64;
     for j in 0..pattern.n {
-        for k in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
-            if pattern.row_idx[k] == j {
-                m = m.max(values[k].abs());
+        let range = pattern.col_ptr[j]..pattern.col_ptr[j + 1];
+        for (&i, v) in pattern.row_idx[range.clone()].iter().zip(&values[range]) {
+            if i == j {
+                m = m.max(v.abs());
             }
         }
     }
