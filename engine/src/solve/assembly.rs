@@ -9,6 +9,12 @@
 //! points the committed ones at a converged increment, and
 //! [`Assembler::begin_increment`] sets the time increment seen by
 //! rate-dependent laws.
+//!
+//! Small-strain linear elastic cells have a constant stiffness and
+//! `f_int = K_e u_e` exactly: their element matrices are computed once in
+//! [`Assembler::new`] and each assembly is a matrix-vector product and a
+//! scatter (the slow part of a linear contact iteration is then the
+//! factorization, as it should be).
 
 use super::pattern::{Scatter, NO_SLOT};
 use crate::element::recovery::{blocks_of, gather, nonlinear_points, CellBlock, NonlinearResponse};
@@ -33,7 +39,16 @@ pub struct Assembler {
     t_committed: f64,
     /// Time increment of the current attempt.
     dt: f64,
+    /// Element stiffness matrices (column-major) of the small-strain linear
+    /// elastic cells, concatenated.
+    linear_k: Vec<f64>,
+    /// Offset of each cell's matrix in `linear_k` (`NO_MATRIX` for cells
+    /// with a nonlinear law).
+    linear_offset: Vec<usize>,
 }
+
+/// Marks a cell without a cached stiffness matrix.
+const NO_MATRIX: usize = usize::MAX;
 
 impl Assembler {
     /// Builds the kernels of `model` (materials must be valid).
@@ -61,13 +76,17 @@ impl Assembler {
             }
         }
         let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
+        let section = Section::new(&model.analysis);
+        let (linear_k, linear_offset) = linear_matrices(&model.mesh, &blocks, &section)?;
         Ok(Assembler {
             blocks,
-            section: Section::new(&model.analysis),
+            section,
             trial: committed.clone(),
             committed,
             t_committed: t0,
             dt: 0.0,
+            linear_k,
+            linear_offset,
         })
     }
 
@@ -164,32 +183,69 @@ impl Assembler {
                     }
                     continue;
                 }
-                let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
-                match cell.kind {
-                    CellKind::Tri3 => {
-                        let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, u);
-                        let r = tri3::response(&x, &ue, &self.section, &block.law, with_tangent)
-                            .map_err(err)?;
-                        add(&r, cell.node_slice(), slots, f_int, values.as_deref_mut());
+                let nodes = cell.node_slice();
+                let nd = 2 * nodes.len();
+                let k = &self.linear_k[self.linear_offset[c]..][..nd * nd];
+                let mut ue = [0.0; 8];
+                for (a, &n) in nodes.iter().enumerate() {
+                    ue[2 * a] = u[n][0];
+                    ue[2 * a + 1] = u[n][1];
+                }
+                // f_e = K_e u_e (column-major K_e)
+                let mut fe = [0.0; 8];
+                for (j, &uj) in ue[..nd].iter().enumerate() {
+                    for (f, kij) in fe[..nd].iter_mut().zip(&k[j * nd..(j + 1) * nd]) {
+                        *f += kij * uj;
                     }
-                    CellKind::Quad4 => {
-                        let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, u);
-                        let r = quad4::response(
-                            &x,
-                            &ue,
-                            &self.section,
-                            block.formulation,
-                            &block.law,
-                            with_tangent,
-                        )
-                        .map_err(err)?;
-                        add(&r, cell.node_slice(), slots, f_int, values.as_deref_mut());
+                }
+                for (i, f) in fe[..nd].iter().enumerate() {
+                    f_int[2 * nodes[i / 2] + i % 2] += f;
+                }
+                if let Some(values) = values.as_deref_mut() {
+                    for (&slot, kij) in slots.iter().zip(k) {
+                        if slot != NO_SLOT {
+                            values[slot as usize] += kij;
+                        }
                     }
                 }
             }
         }
         Ok(())
     }
+}
+
+/// Element stiffness matrices of the small-strain linear elastic cells
+/// (column-major, concatenated) and each cell's offset (`NO_MATRIX` for the
+/// others).
+fn linear_matrices(
+    mesh: &Mesh,
+    blocks: &[CellBlock],
+    section: &Section,
+) -> Result<(Vec<f64>, Vec<usize>), String> {
+    let mut k = Vec::new();
+    let mut offset = vec![NO_MATRIX; mesh.cells.len()];
+    let zero = vec![[0.0; 2]; mesh.nodes.len()];
+    for block in blocks.iter().filter(|b| b.nonlinear.is_none()) {
+        for c in block.cells.clone() {
+            let cell = &mesh.cells[c];
+            let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
+            offset[c] = k.len();
+            match cell.kind {
+                CellKind::Tri3 => {
+                    let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, &zero);
+                    let r = tri3::response(&x, &ue, section, &block.law, true).map_err(err)?;
+                    k.extend_from_slice(r.stiffness.as_slice());
+                }
+                CellKind::Quad4 => {
+                    let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, &zero);
+                    let r = quad4::response(&x, &ue, section, block.formulation, &block.law, true)
+                        .map_err(err)?;
+                    k.extend_from_slice(r.stiffness.as_slice());
+                }
+            }
+        }
+    }
+    Ok((k, offset))
 }
 
 #[inline]
