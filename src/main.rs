@@ -37,12 +37,17 @@ enum Command {
         /// Print every Newton iteration (residual, displacement norm, line search).
         #[arg(short, long)]
         verbose: bool,
+        /// Continue a stopped run from the restart point (`restart.bin`) of
+        /// its output directory, appending to the same results.
+        #[arg(long)]
+        restart: bool,
     },
     /// Run the verification cases against their references.
     Verify {
         /// Only cases whose name contains this text.
         filter: Option<String>,
-        /// Write a Markdown report with plots into this directory.
+        /// Write a Markdown report with plots into this directory (with
+        /// --stress: the stress matrix as `stress.md`).
         #[arg(long)]
         report: Option<PathBuf>,
         /// Print the results as JSON instead of a table.
@@ -81,7 +86,8 @@ fn main() -> ExitCode {
             output,
             quiet,
             verbose,
-        } => run(&deck, output.as_deref(), quiet, verbose),
+            restart,
+        } => run(&deck, output.as_deref(), quiet, verbose, restart),
         Command::Verify {
             filter,
             report,
@@ -91,7 +97,7 @@ fn main() -> ExitCode {
             reduced,
         } => {
             if stress {
-                verify_stress(reduced, json)
+                verify_stress(reduced, json, report.as_deref())
             } else {
                 verify(filter, report, json, max_level)
             }
@@ -130,7 +136,13 @@ fn check(deck: &Path, explain: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn run(deck: &Path, output: Option<&Path>, quiet: bool, verbose: bool) -> Result<(), String> {
+fn run(
+    deck: &Path,
+    output: Option<&Path>,
+    quiet: bool,
+    verbose: bool,
+    restart: bool,
+) -> Result<(), String> {
     let model = compile(deck)?;
     let dir = match output {
         Some(d) => d.to_path_buf(),
@@ -142,14 +154,29 @@ fn run(deck: &Path, output: Option<&Path>, quiet: bool, verbose: bool) -> Result
             PathBuf::from("out").join(stem)
         }
     };
-    let mut writer = ctc_engine::output::ResultWriter::create(&dir, &model).map_err(|e| {
-        format!(
-            "error: cannot create output directory `{}`: {e}",
-            dir.display()
-        )
-    })?;
+    let (mut writer, from) = if restart {
+        let (w, cp) = ctc_engine::output::ResultWriter::resume(&dir, &model)
+            .map_err(|e| format!("error: {e}"))?;
+        if !quiet {
+            println!(
+                "restarting from increment {} (t = {}) in {}",
+                cp.increment,
+                cp.resume.time,
+                dir.display()
+            );
+        }
+        (w, Some(cp))
+    } else {
+        let w = ctc_engine::output::ResultWriter::create(&dir, &model).map_err(|e| {
+            format!(
+                "error: cannot create output directory `{}`: {e}",
+                dir.display()
+            )
+        })?;
+        (w, None)
+    };
     let mut observer = progress::Progress::new(&model, &mut writer, quiet, verbose);
-    let outcome = ctc_engine::solve::run(&model, &mut observer);
+    let outcome = ctc_engine::solve::run_from(&model, &mut observer, from.as_ref());
     observer.finish();
     let summary = match &outcome {
         Ok(s) => s.clone(),
@@ -209,8 +236,15 @@ fn verify(
     }
 }
 
-fn verify_stress(reduced: bool, json: bool) -> Result<(), String> {
+fn verify_stress(reduced: bool, json: bool, report_dir: Option<&Path>) -> Result<(), String> {
     let report = ctc_verification::run_stress(reduced);
+    if let Some(dir) = report_dir {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("error: cannot create `{}`: {e}", dir.display()))?;
+        let path = dir.join("stress.md");
+        std::fs::write(&path, report.markdown())
+            .map_err(|e| format!("error: cannot write `{}`: {e}", path.display()))?;
+    }
     if json {
         println!(
             "{}",

@@ -103,4 +103,15 @@ impl Observer for Progress<'_> {
         ));
         self.inner.cutback(reason, new_dt);
     }
+
+    fn wants_checkpoint(&self) -> bool {
+        self.inner.wants_checkpoint()
+    }
+
+    fn checkpoint(
+        &mut self,
+        checkpoint: &ctc_engine::solve::restart::Checkpoint,
+    ) -> Result<(), String> {
+        self.inner.checkpoint(checkpoint)
+    }
 }

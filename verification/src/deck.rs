@@ -32,6 +32,13 @@ impl DeckFile {
         self.deck.levels()
     }
 
+    /// The deck text at level `level` (errors name the deck).
+    pub fn render(&self, level: usize) -> Result<String, String> {
+        self.deck
+            .render(level)
+            .map_err(|e| format!("{}: {e}", self.path.display()))
+    }
+
     /// Renders and compiles level `level`. Errors carry the rendered
     /// diagnostics (file, line, caret) of `ctc-lang`.
     pub fn compile(&self, level: usize) -> Result<Model, String> {

@@ -36,12 +36,17 @@ pub mod markdown;
 pub mod measure;
 #[cfg(feature = "meshio")]
 pub mod meshio;
+pub mod method_plots;
+pub mod method_variant;
+pub mod methods;
+pub mod penalty;
 pub mod plot;
 pub mod profile;
 pub mod refine;
 pub mod report;
 pub mod runner;
 pub mod stress;
+pub mod studies;
 
 pub use bench::{run_bench, BenchOptions, BenchReport};
 pub use report::Report;
@@ -111,7 +116,17 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
             .collect(),
         cases_dir: dir.display().to_string(),
         wall_time: 0.0,
+        studies: None,
     };
+    // The method studies (comparison of the contact methods, penalty sweep
+    // and mesh scaling) belong to the written report.
+    if opts.report_dir.is_some() {
+        report.studies = Some(studies::run_studies(
+            opts.filter.as_deref(),
+            &dir,
+            &mut progress,
+        ));
+    }
     report.wall_time = start.elapsed().as_secs_f64();
     if let Some(out) = &opts.report_dir {
         write_report_dir(&report, out)?;
@@ -125,6 +140,9 @@ pub fn write_report_dir(report: &Report, dir: &Path) -> Result<(), String> {
     let mut plots = Vec::new();
     for c in &report.cases {
         plots.extend(plot::case_plots(c, dir)?);
+    }
+    if let Some(s) = &report.studies {
+        plots.extend(studies::study_plots(s, dir)?);
     }
     let md = markdown::markdown(report, &plots);
     std::fs::write(dir.join("report.md"), md)

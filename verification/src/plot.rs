@@ -62,7 +62,7 @@ pub fn case_plots(case: &CaseReport, dir: &Path) -> Result<Vec<PlotFile>, String
 }
 
 /// Colour of the i-th series.
-fn colour(i: usize) -> RGBColor {
+pub(crate) fn colour(i: usize) -> RGBColor {
     const C: [RGBColor; 6] = [
         RGBColor(31, 119, 180),
         RGBColor(255, 127, 14),
@@ -75,7 +75,7 @@ fn colour(i: usize) -> RGBColor {
 }
 
 /// Maps a plotters error to a message.
-fn err<E: std::fmt::Debug>(what: &Path) -> impl Fn(E) -> String + '_ {
+pub(crate) fn err<E: std::fmt::Debug>(what: &Path) -> impl Fn(E) -> String + '_ {
     move |e| format!("cannot draw {}: {e:?}", what.display())
 }
 
@@ -263,6 +263,8 @@ mod tests {
                 passed: true,
             }],
             failure: None,
+            max_penetration: 0.0,
+            contact_iterations: 0,
             profile: Some(ProfileData {
                 points: (0..20)
                     .map(|i| {

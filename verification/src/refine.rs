@@ -129,7 +129,7 @@ impl RefinableDeck {
 
 /// Byte offset of the `#` starting the comment of `line`, ignoring `#`
 /// inside double-quoted strings.
-fn comment_start(line: &str) -> Option<usize> {
+pub(crate) fn comment_start(line: &str) -> Option<usize> {
     let mut in_string = false;
     for (i, c) in line.char_indices() {
         match c {

@@ -52,6 +52,12 @@ pub struct LevelReport {
     pub failure: Option<String>,
     /// Contact pressure profile (contact cases).
     pub profile: Option<ProfileData>,
+    /// Largest penetration `max(0, -g)` at the last converged increment
+    /// (`IncrementRecord::max_penetration`, length).
+    pub max_penetration: f64,
+    /// Contact iterations of all converged increments: Lagrange active-set
+    /// changes plus augmented-Lagrangian (Uzawa) updates (0 for penalty).
+    pub contact_iterations: usize,
 }
 
 impl LevelReport {
@@ -150,12 +156,20 @@ pub struct Report {
     pub cases_dir: String,
     /// Wall time of the whole verification, seconds.
     pub wall_time: f64,
+    /// Method comparison, penalty sweep and penalty scaling (run with a
+    /// report directory only).
+    pub studies: Option<crate::studies::Studies>,
 }
 
 impl Report {
     /// Whether every case passed (and at least one ran).
     pub fn passed(&self) -> bool {
-        !self.cases.is_empty() && self.cases.iter().all(CaseReport::passed)
+        !self.cases.is_empty()
+            && self.cases.iter().all(CaseReport::passed)
+            && self
+                .studies
+                .as_ref()
+                .is_none_or(|s| s.failures().is_empty())
     }
 
     /// One line per failed check, level or case.
@@ -163,6 +177,9 @@ impl Report {
         let mut out = Vec::new();
         if self.cases.is_empty() {
             out.push("no case matched the filter".to_string());
+        }
+        if let Some(st) = &self.studies {
+            out.extend(st.failures());
         }
         for c in &self.cases {
             if let Some(f) = &c.failure {
@@ -291,6 +308,9 @@ impl Report {
             );
             let _ = writeln!(s);
         }
+        if let Some(st) = &self.studies {
+            s.push_str(&st.table());
+        }
         let n_pass = self.cases.iter().filter(|c| c.passed()).count();
         let _ = writeln!(
             s,
@@ -357,6 +377,8 @@ mod tests {
             }],
             failure: None,
             profile: None,
+            max_penetration: 0.0,
+            contact_iterations: 0,
         }
     }
 
@@ -375,6 +397,7 @@ mod tests {
             cases: vec![case(0.01)],
             cases_dir: ".".into(),
             wall_time: 0.1,
+            studies: None,
         };
         assert!(ok.passed());
         assert!(ok.failures().is_empty());

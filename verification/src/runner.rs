@@ -4,8 +4,9 @@
 
 use crate::capture::Capture;
 use crate::case::Case;
-use crate::deck::DeckFile;
+use crate::deck::{compile_text, DeckFile};
 use crate::measure::measure;
+use crate::method_variant::MethodVariant;
 use crate::report::{observed_rate, CaseReport, Judged, LevelReport, RateReport};
 use ctc_engine::solve::{run, RunSummary};
 use std::path::Path;
@@ -63,6 +64,17 @@ pub fn run_case(
 
 /// Runs one level of a case.
 pub fn run_level(case: &Case, deck: &DeckFile, level: usize) -> LevelReport {
+    run_level_with(case, deck, level, None)
+}
+
+/// Runs one level of a case with the deck's contact method replaced by
+/// `method` (`None`: as written), see [`MethodVariant`].
+pub fn run_level_with(
+    case: &Case,
+    deck: &DeckFile,
+    level: usize,
+    method: Option<&MethodVariant>,
+) -> LevelReport {
     let mut report = LevelReport {
         level,
         h: f64::NAN,
@@ -77,9 +89,18 @@ pub fn run_level(case: &Case, deck: &DeckFile, level: usize) -> LevelReport {
         values: Vec::new(),
         failure: None,
         profile: None,
+        max_penetration: 0.0,
+        contact_iterations: 0,
     };
     let t0 = Instant::now();
-    let model = match deck.compile(level) {
+    let compiled = match method {
+        None => deck.compile(level),
+        Some(m) => deck
+            .render(level)
+            .and_then(|text| m.apply(&text))
+            .and_then(|text| compile_text(&deck.path, &text)),
+    };
+    let model = match compiled {
         Ok(m) => m,
         Err(e) => {
             report.failure = Some(e);
@@ -146,6 +167,12 @@ fn fill_counts(report: &mut LevelReport, summary: &RunSummary) {
         .max()
         .unwrap_or(0);
     report.cutbacks = summary.cutbacks;
+    report.contact_iterations = summary
+        .increments
+        .iter()
+        .map(|i| i.contact_iterations)
+        .sum();
+    report.max_penetration = summary.increments.last().map_or(0.0, |i| i.max_penetration);
 }
 
 /// Observed rates between consecutive successful levels; the case's
@@ -225,6 +252,8 @@ mod tests {
             }],
             failure: None,
             profile: None,
+            max_penetration: 0.0,
+            contact_iterations: 0,
         }
     }
 

@@ -30,6 +30,43 @@ pub enum Expect {
     Converges,
     /// Either converge (then like `Converges`) or stop with a diagnosis.
     ConvergesOrDiagnoses,
+    /// Either converge (then like `Converges`) or stop with a diagnosis
+    /// whose likely cause contains the given text (e.g. a very stiff
+    /// penalty must be named as the cause).
+    ConvergesOrDiagnosesWith(&'static str),
+}
+
+/// Wall-time budget of one cell, seconds (dev profile). The solver's own
+/// limits (`max_iter`, cutbacks down to `min_increment`) bound every run;
+/// a cell over the budget is counted as a hang.
+pub const CELL_BUDGET_SECONDS: f64 = 60.0;
+
+/// How a cell ended, for the counts of the report.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Outcome {
+    /// Converged and met its expectation.
+    Converged,
+    /// Stopped with a diagnosis, as its expectation allows.
+    DiagnosedFail,
+    /// Did not meet its expectation (wrong answer, NaN, panic, missing or
+    /// wrong diagnosis).
+    Wrong,
+    /// Took longer than [`CELL_BUDGET_SECONDS`].
+    Hang,
+}
+
+/// Counts of the cells per [`Outcome`].
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Counts {
+    /// Converged (and right).
+    pub converged: usize,
+    /// Stopped with the expected diagnosis.
+    pub diagnosed_fail: usize,
+    /// Wrong answer or missing diagnosis.
+    pub wrong: usize,
+    /// Over the wall-time budget.
+    pub hang: usize,
 }
 
 /// One cell of the matrix.
@@ -99,10 +136,14 @@ pub struct StressResult {
     pub last_residuals: Vec<f64>,
     /// The solver's diagnosis when it stopped early, or the panic message.
     pub diagnosis: Option<String>,
+    /// The diagnosis' "likely cause" line, when it has one.
+    pub cause: Option<String>,
     /// Whether the expectation was met.
     pub ok: bool,
     /// Wall time, seconds.
     pub seconds: f64,
+    /// Converged / diagnosed-fail / wrong / hang.
+    pub outcome: Outcome,
 }
 
 /// The whole matrix.
@@ -113,9 +154,73 @@ pub struct StressReport {
 }
 
 impl StressReport {
-    /// True when every cell met its expectation.
+    /// True when every cell met its expectation within the time budget.
     pub fn passed(&self) -> bool {
-        self.cells.iter().all(|c| c.ok)
+        self.cells
+            .iter()
+            .all(|c| c.ok && c.outcome != Outcome::Hang)
+    }
+
+    /// Cells per outcome.
+    pub fn counts(&self) -> Counts {
+        let mut k = Counts::default();
+        for c in &self.cells {
+            match c.outcome {
+                Outcome::Converged => k.converged += 1,
+                Outcome::DiagnosedFail => k.diagnosed_fail += 1,
+                Outcome::Wrong => k.wrong += 1,
+                Outcome::Hang => k.hang += 1,
+            }
+        }
+        k
+    }
+
+    /// The counts line shown under the tables.
+    pub fn counts_line(&self) -> String {
+        let k = self.counts();
+        format!(
+            "{} cells: {} converged, {} diagnosed-fail, {} wrong, {} hang (budget {CELL_BUDGET_SECONDS} s per cell)",
+            self.cells.len(),
+            k.converged,
+            k.diagnosed_fail,
+            k.wrong,
+            k.hang
+        )
+    }
+
+    /// The matrix as a Markdown section (for the verification report:
+    /// `stress.md`).
+    pub fn markdown(&self) -> String {
+        let mut s = String::from("## Stress matrix (stiff and extreme cases)\n\n");
+        let _ = writeln!(s, "**{}**\n", self.counts_line());
+        s.push_str(
+            "| family | value | outcome | iterations | cutbacks | worst penetration | balance | error | time [s] | likely cause (failed cells) |\n\
+             |---|---|---|---:|---:|---:|---:|---:|---:|---|\n",
+        );
+        for c in &self.cells {
+            let err = c.error.map_or("-".to_string(), |e| format!("{e:.2e}"));
+            let cause = c
+                .cause
+                .as_deref()
+                .or(c.diagnosis.as_deref().filter(|_| !c.converged))
+                .unwrap_or("")
+                .replace('|', "\\|");
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {:.2e} | {:.1e} | {} | {:.3} | {} |",
+                c.family,
+                c.value,
+                outcome_name(c.outcome),
+                c.iterations,
+                c.cutbacks,
+                c.worst_penetration,
+                c.balance,
+                err,
+                c.seconds,
+                cause
+            );
+        }
+        s
     }
 
     /// A fixed-width table.
@@ -146,7 +251,11 @@ impl StressReport {
                 let first = d.lines().next().unwrap_or("");
                 let _ = writeln!(s, "{:<14} diagnosis: {first}", "");
             }
+            if let Some(cause) = &c.cause {
+                let _ = writeln!(s, "{:<14} {cause}", "");
+            }
         }
+        let _ = writeln!(s, "{}", self.counts_line());
         let failed = self.cells.iter().filter(|c| !c.ok).count();
         let _ = writeln!(
             s,
@@ -228,7 +337,7 @@ pub fn cases(reduced: bool) -> Vec<StressCase> {
         } else if f <= 1e4 {
             Expect::Accurate(0.15)
         } else {
-            Expect::ConvergesOrDiagnoses
+            Expect::ConvergesOrDiagnosesWith("penalty too high for this mesh")
         };
         v.push(StressCase {
             family: "penalty",
@@ -421,8 +530,48 @@ impl Observer for Watch {
     }
 }
 
+fn outcome_name(o: Outcome) -> &'static str {
+    match o {
+        Outcome::Converged => "converged",
+        Outcome::DiagnosedFail => "diagnosed-fail",
+        Outcome::Wrong => "WRONG",
+        Outcome::Hang => "HANG",
+    }
+}
+
+/// Whether a cell that stopped early met `expect` with `diagnosis`.
+fn diagnosis_meets(expect: Expect, diagnosis: Option<&str>) -> bool {
+    match (expect, diagnosis) {
+        (_, Some(d)) if d.starts_with("PANIC") => false,
+        (Expect::ConvergesOrDiagnoses, Some(_)) => true,
+        (Expect::ConvergesOrDiagnosesWith(text), Some(d)) => d
+            .lines()
+            .any(|l| l.trim_start().starts_with("likely cause:") && l.contains(text)),
+        _ => false,
+    }
+}
+
 /// Runs one cell. A panic is caught and reported as a failed cell.
 pub fn run_case(case: &StressCase) -> StressResult {
+    let mut r = run_case_inner(case);
+    r.cause = r.diagnosis.as_deref().and_then(|d| {
+        d.lines()
+            .find(|l| l.trim_start().starts_with("likely cause:"))
+            .map(|l| l.trim().to_string())
+    });
+    r.outcome = if r.seconds > CELL_BUDGET_SECONDS {
+        Outcome::Hang
+    } else if !r.ok {
+        Outcome::Wrong
+    } else if r.converged {
+        Outcome::Converged
+    } else {
+        Outcome::DiagnosedFail
+    };
+    r
+}
+
+fn run_case_inner(case: &StressCase) -> StressResult {
     let started = Instant::now();
     let mut result = StressResult {
         family: case.family.into(),
@@ -436,8 +585,10 @@ pub fn run_case(case: &StressCase) -> StressResult {
         error: None,
         last_residuals: Vec::new(),
         diagnosis: None,
+        cause: None,
         ok: false,
         seconds: 0.0,
+        outcome: Outcome::Wrong,
     };
     let model = match compile_text(Path::new("stress.ctc"), &case.deck) {
         Ok(m) => m,
@@ -470,9 +621,7 @@ pub fn run_case(case: &StressCase) -> StressResult {
         Ok(Ok(())) => result.converged = true,
     }
     let Some(last) = &watch.capture.last else {
-        result.ok = !result.converged
-            && result.diagnosis.is_some()
-            && case.expect == Expect::ConvergesOrDiagnoses;
+        result.ok = !result.converged && diagnosis_meets(case.expect, result.diagnosis.as_deref());
         return result;
     };
     result.last_residuals = last.residuals.clone();
@@ -534,10 +683,12 @@ pub fn run_case(case: &StressCase) -> StressResult {
     let within = |tol: f64| result.error.is_none_or(|e| e <= tol);
     result.ok = match case.expect {
         _ if !result.converged => {
-            case.expect == Expect::ConvergesOrDiagnoses && result.diagnosis.is_some() && finite
+            diagnosis_meets(case.expect, result.diagnosis.as_deref()) && finite
         }
         Expect::Accurate(tol) => finite && balanced && within(tol),
-        Expect::Converges | Expect::ConvergesOrDiagnoses => finite && balanced,
+        Expect::Converges | Expect::ConvergesOrDiagnoses | Expect::ConvergesOrDiagnosesWith(_) => {
+            finite && balanced
+        }
     };
     result
 }
@@ -546,5 +697,72 @@ pub fn run_case(case: &StressCase) -> StressResult {
 pub fn run_stress(reduced: bool) -> StressReport {
     StressReport {
         cells: cases(reduced).iter().map(run_case).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn penalty_1e6_e_over_h_stops_naming_the_penalty_and_a_remedy() {
+        let case = cases(false)
+            .into_iter()
+            .find(|c| c.family == "penalty" && c.value == "1e6 E/h")
+            .expect("cell");
+        let r = run_case(&case);
+        assert!(!r.converged);
+        let cause = r.cause.as_deref().unwrap_or("");
+        assert!(cause.contains("penalty too high for this mesh"), "{cause}");
+        assert!(cause.contains("chattering on nodes"), "{cause}");
+        let d = r.diagnosis.as_deref().unwrap();
+        assert!(d.contains("try stiffness <="), "{d}");
+        assert_eq!(r.outcome, Outcome::DiagnosedFail);
+        assert!(r.ok);
+    }
+
+    #[test]
+    fn a_generic_diagnosis_does_not_satisfy_a_specific_expectation() {
+        let want = Expect::ConvergesOrDiagnosesWith("penalty too high");
+        assert!(!diagnosis_meets(
+            want,
+            Some("could not advance\n  likely cause: other")
+        ));
+        assert!(diagnosis_meets(
+            want,
+            Some("could not advance\n  likely cause: penalty too high for this mesh")
+        ));
+        assert!(!diagnosis_meets(
+            Expect::ConvergesOrDiagnoses,
+            Some("PANIC: x")
+        ));
+        assert!(!diagnosis_meets(Expect::Converges, Some("stopped")));
+    }
+
+    #[test]
+    fn stress_markdown_shows_the_counts_and_every_cell() {
+        let report = StressReport {
+            cells: vec![StressResult {
+                family: "penalty".into(),
+                value: "1e8 E/h".into(),
+                expect: Expect::ConvergesOrDiagnoses,
+                converged: false,
+                iterations: 3,
+                cutbacks: 1,
+                worst_penetration: 0.0,
+                balance: f64::NAN,
+                error: None,
+                last_residuals: vec![],
+                diagnosis: Some("stopped".into()),
+                cause: Some("likely cause: a | b".into()),
+                ok: true,
+                seconds: 0.1,
+                outcome: Outcome::DiagnosedFail,
+            }],
+        };
+        let md = report.markdown();
+        assert!(md.contains("1 cells: 0 converged, 1 diagnosed-fail, 0 wrong, 0 hang"));
+        assert!(md.contains("| penalty | 1e8 E/h | diagnosed-fail |"));
+        assert!(md.contains("a \\| b"));
     }
 }

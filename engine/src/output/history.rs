@@ -80,6 +80,39 @@ impl HistoryWriter {
         Ok(HistoryWriter { file })
     }
 
+    /// Reopens an existing `history.csv` to continue a restarted run: keeps
+    /// the header and the first `rows` complete rows (rows written after
+    /// the restart point are dropped, the file is replaced atomically),
+    /// then appends. The header must be the one of `model`.
+    pub fn resume(path: &std::path::Path, model: &Model, rows: usize) -> std::io::Result<Self> {
+        let text = std::fs::read_to_string(path)?;
+        let mut lines = text.split_inclusive('\n');
+        let head = header(model);
+        if lines.next().map(str::trim_end) != Some(head.as_str()) {
+            return Err(std::io::Error::other(format!(
+                "{} does not belong to this deck (different header)",
+                path.display()
+            )));
+        }
+        let mut kept = format!("{head}\n");
+        for _ in 0..rows {
+            match lines.next() {
+                Some(l) if l.ends_with('\n') => kept.push_str(l),
+                _ => {
+                    return Err(std::io::Error::other(format!(
+                        "{} has fewer than the {rows} rows of the restart point",
+                        path.display()
+                    )))
+                }
+            }
+        }
+        super::atomic::write_atomic(path, kept.as_bytes())?;
+        let file = std::fs::OpenOptions::new().append(true).open(path)?;
+        Ok(HistoryWriter {
+            file: std::io::BufWriter::new(file),
+        })
+    }
+
     /// Writes and flushes one row.
     pub fn append(&mut self, values: &[f64]) -> std::io::Result<()> {
         let cols: Vec<String> = values.iter().map(|v| v.to_string()).collect();

@@ -9,10 +9,14 @@
 //! - `history.csv`: one row per converged increment (flushed each time);
 //! - `contact_<pair>_<NNNN>.csv`: the slave nodes of each pair at each
 //!   written increment;
-//! - `summary.json`: the run summary, written by [`ResultWriter::finish`].
+//! - `summary.json`: the run summary, written by [`ResultWriter::finish`];
+//! - `restart.bin`: the restart point of the last written increment
+//!   ([`crate::solve::restart`]); [`ResultWriter::resume`] continues a
+//!   stopped run in the same directory.
 //!
-//! VTU, PVD, contact CSV and summary files are replaced atomically (temporary
-//! file + rename).
+//! VTU, PVD, contact CSV, restart and summary files are replaced atomically
+//! (temporary file + rename); the restart file is written after the
+//! increment's other files, so it never points past what is on disk.
 
 pub mod atomic;
 pub mod contact_csv;
@@ -23,6 +27,7 @@ pub mod vtu;
 use crate::contact::NodeContact;
 use crate::element::recovery::nodal_fields_of_model_with_points;
 use crate::model::{Field, Model};
+use crate::solve::restart::{Checkpoint, RestartFile};
 use crate::solve::{IncrementView, Observer, RunSummary};
 use atomic::write_atomic;
 use history::HistoryWriter;
@@ -49,7 +54,13 @@ pub struct ResultWriter {
     history: HistoryWriter,
     pvd: Vec<(f64, String)>,
     pending: Option<Snapshot>,
+    /// Whether the last converged increment was written (a restart point
+    /// is written only then).
+    written_last: bool,
 }
+
+/// Name of the restart file in the result directory.
+pub const RESTART_FILE: &str = "restart.bin";
 
 impl ResultWriter {
     /// Creates `dir` (and parents) and prepares the writers for `model`.
@@ -62,7 +73,37 @@ impl ResultWriter {
             history,
             pvd: Vec::new(),
             pending: None,
+            written_last: false,
         })
+    }
+
+    /// Reopens `dir`, where a run of `model` stopped, to continue it from
+    /// its restart point: returns the writer (history truncated to the
+    /// restart point, PVD index as of the restart point) and the checkpoint
+    /// to pass to [`crate::solve::run_from`].
+    pub fn resume(dir: &Path, model: &Model) -> Result<(Self, Checkpoint), String> {
+        let file = RestartFile::read(&dir.join(RESTART_FILE))?;
+        if file.checkpoint.fingerprint != crate::solve::restart::fingerprint(model) {
+            return Err(format!(
+                "cannot restart from {}: it was written by a different model (the deck or a \
+                 mesh file changed since); run from the start",
+                dir.display()
+            ));
+        }
+        let history =
+            HistoryWriter::resume(&dir.join("history.csv"), model, file.checkpoint.increment)
+                .map_err(|e| format!("cannot restart from {}: {e}", dir.display()))?;
+        write_atomic(&dir.join("results.pvd"), pvd::pvd(&file.pvd).as_bytes())
+            .map_err(|e| format!("cannot rewrite results.pvd in {}: {e}", dir.display()))?;
+        let writer = ResultWriter {
+            dir: dir.to_path_buf(),
+            model: model.clone(),
+            history,
+            pvd: file.pvd,
+            pending: None,
+            written_last: true,
+        };
+        Ok((writer, file.checkpoint))
     }
 
     /// The result directory.
@@ -154,10 +195,29 @@ impl Observer for ResultWriter {
                 .is_some_and(|s| view.time >= s.t_end);
         if view.increment.is_multiple_of(every) || last {
             self.pending = None;
+            self.written_last = true;
             self.write_increment(&snap)
         } else {
             self.pending = Some(snap);
+            self.written_last = false;
             Ok(())
         }
+    }
+
+    fn wants_checkpoint(&self) -> bool {
+        self.written_last
+    }
+
+    fn checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), String> {
+        let file = RestartFile {
+            checkpoint: checkpoint.clone(),
+            pvd: self.pvd.clone(),
+        };
+        write_atomic(&self.dir.join(RESTART_FILE), &file.encode()).map_err(|e| {
+            format!(
+                "cannot write the restart file in {}: {e}",
+                self.dir.display()
+            )
+        })
     }
 }

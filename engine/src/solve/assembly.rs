@@ -117,6 +117,31 @@ impl Assembler {
         &self.committed
     }
 
+    /// Time of the committed integration points.
+    pub fn committed_time(&self) -> f64 {
+        self.t_committed
+    }
+
+    /// Replaces the committed (and trial) points and their time by those of
+    /// a restart point; the layout (cells, points per cell) must match.
+    pub fn restore(&mut self, points: &[Vec<MaterialPoint>], t: f64) -> Result<(), String> {
+        let same = points.len() == self.committed.len()
+            && points
+                .iter()
+                .zip(&self.committed)
+                .all(|(a, b)| a.len() == b.len());
+        if !same {
+            return Err("the restart point's integration points do not match the model".into());
+        }
+        for ((c, tr), p) in self.committed.iter_mut().zip(&mut self.trial).zip(points) {
+            c.copy_from_slice(p);
+            tr.copy_from_slice(p);
+        }
+        self.t_committed = t;
+        self.dt = 0.0;
+        Ok(())
+    }
+
     /// Whether the element tangent is symmetric (false with F-bar: finite
     /// strain with selective reduced quads).
     pub fn symmetric(&self) -> bool {

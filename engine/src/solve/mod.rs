@@ -25,11 +25,13 @@
 pub mod active_set;
 pub mod assembly;
 pub mod check;
+pub mod diagnosis;
 pub mod dofs;
 pub mod linear;
 pub mod loads;
 pub mod newton;
 pub mod pattern;
+pub mod restart;
 pub mod saddle;
 pub mod stepping;
 
@@ -94,6 +96,16 @@ pub trait Observer {
     }
     /// When an increment is cut back (why, new increment size).
     fn cutback(&mut self, _reason: &str, _new_dt: f64) {}
+    /// Whether [`Observer::checkpoint`] should be called (building a
+    /// checkpoint copies the state, so it is done only on request).
+    fn wants_checkpoint(&self) -> bool {
+        false
+    }
+    /// After each converged increment (after [`Observer::converged`]): the
+    /// state a restart continues from. An error aborts the run.
+    fn checkpoint(&mut self, _checkpoint: &restart::Checkpoint) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// Record of one converged increment in the run summary.
@@ -215,6 +227,19 @@ pub const AXISYMMETRIC_NOTE: &str =
 // The error carries the summary of the run so far (contract signature).
 #[allow(clippy::result_large_err)]
 pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, RunError> {
+    run_from(model, observer, None)
+}
+
+/// Like [`run`], but continues from the restart point `from` (a
+/// [`restart::Checkpoint`] of a run of the same model) when given: the
+/// increments that follow are the same, bit for bit, as in the
+/// uninterrupted run. The summary covers the continued part only.
+#[allow(clippy::result_large_err)]
+pub fn run_from(
+    model: &Model,
+    observer: &mut dyn Observer,
+    from: Option<&restart::Checkpoint>,
+) -> Result<RunSummary, RunError> {
     let start = Instant::now();
     let mut summary = RunSummary {
         nodes: model.mesh.nodes.len(),
@@ -238,16 +263,30 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, Run
         Ok(n) => n,
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
+    let mut newton = newton;
     summary.free_dofs = newton.dofs.n_free();
     summary.matrix_nonzeros = newton.nnz();
+    let mut increment = 0;
+    if let Some(cp) = from {
+        if cp.fingerprint != restart::fingerprint(model) {
+            let message = "cannot restart: the restart point was written by a different model \
+                           (the deck or a mesh file changed since); run from the start"
+                .to_string();
+            return Err(fail(summary, message));
+        }
+        if let Err(e) = newton.restore(cp) {
+            return Err(fail(summary, format!("cannot restart: {e}")));
+        }
+        increment = cp.increment;
+    }
     let mut driver = Driver {
         model,
         newton,
         observer,
         summary,
-        increment: 0,
+        increment,
     };
-    let result = stepping::drive(&model.steps, &mut driver);
+    let result = stepping::drive_from(&model.steps, &mut driver, from.map(|c| c.resume));
     let Driver {
         newton,
         mut summary,
@@ -283,7 +322,9 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, Run
             failure,
         }) => {
             let s = &model.steps[step];
-            let (cause, remedy) = failure.diagnose(&s.newton);
+            let (cause, remedy) =
+                diagnosis::contact_cause(newton.penalty_ratio().as_ref(), &newton.flips)
+                    .unwrap_or_else(|| failure.diagnose(&s.newton));
             let residuals: Vec<String> = failure
                 .residuals
                 .iter()
@@ -360,6 +401,17 @@ impl IncrementSolver for Driver<'_, '_> {
             contact_iterations: converged.contact_iterations,
             max_penetration: converged.max_penetration,
         });
+        r
+    }
+
+    fn checkpoint(&mut self, resume: &restart::Resume) -> Result<(), String> {
+        if !self.observer.wants_checkpoint() {
+            return Ok(());
+        }
+        let cp = self.newton.checkpoint(self.increment, *resume);
+        let start = Instant::now();
+        let r = self.observer.checkpoint(&cp);
+        self.summary.timings.output += start.elapsed().as_secs_f64();
         r
     }
 

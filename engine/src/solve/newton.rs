@@ -195,6 +195,9 @@ pub struct Newton<'m> {
     pub timings: Timings,
     /// Newton iterations done, all attempts included.
     pub iterations: usize,
+    /// Contact status flips in the failed attempts since the last
+    /// converged increment (diagnosis).
+    pub flips: super::diagnosis::FlipTracker,
 }
 
 impl std::fmt::Debug for Newton<'_> {
@@ -252,6 +255,7 @@ impl<'m> Newton<'m> {
             dofs,
             timings: Timings::default(),
             iterations: 0,
+            flips: Default::default(),
         };
         // element check in the reference configuration (inverted, off-axis cells)
         let mut f = std::mem::take(&mut newton.f_int);
@@ -331,11 +335,102 @@ impl<'m> Newton<'m> {
 
     /// Makes the current state the converged one.
     pub fn commit(&mut self) {
+        self.flips.clear();
         self.committed.copy_from_slice(&self.u);
         self.assembler.commit();
         for p in &mut self.pairs {
             p.commit();
         }
+    }
+
+    /// The committed state as a restart checkpoint (stepping fields from
+    /// the caller).
+    pub(super) fn checkpoint(
+        &self,
+        increment: usize,
+        resume: super::restart::Resume,
+    ) -> super::restart::Checkpoint {
+        super::restart::Checkpoint {
+            fingerprint: super::restart::fingerprint(self.model),
+            increment,
+            resume,
+            displacement: self.committed.clone(),
+            pairs: self
+                .pairs
+                .iter()
+                .map(|p| super::restart::PairHistory {
+                    entity: p.committed_entity.clone(),
+                    multiplier: p.committed_multiplier.clone(),
+                    active: p.committed_active.clone(),
+                })
+                .collect(),
+            points: self.assembler.points().to_vec(),
+            points_time: self.assembler.committed_time(),
+        }
+    }
+
+    /// The largest ratio of a penalty coefficient `alpha_eff` to the element
+    /// stiffness diagonal at its node, over the penalty and augmented
+    /// Lagrangian pairs at the last evaluated state (tangent of the last
+    /// iteration).
+    pub fn penalty_ratio(&self) -> Option<super::diagnosis::PenaltyRatio> {
+        let mut best: Option<super::diagnosis::PenaltyRatio> = None;
+        for (p, list) in self.contact.iter().enumerate() {
+            let cp = &self.model.contacts[p];
+            let stiffness = match cp.method {
+                ContactMethod::Penalty { stiffness, .. } => stiffness,
+                ContactMethod::AugmentedLagrange { penalty, .. } => penalty,
+                ContactMethod::Lagrange { .. } => continue,
+            };
+            for nc in list {
+                let Some(i) = cp.nodes.iter().position(|n| *n == nc.node) else {
+                    continue;
+                };
+                let trib = self.pairs[p].tributary.get(i).copied().unwrap_or(0.0);
+                let alpha = contact::penalty::effective_stiffness(&cp.method, trib);
+                let slots = self.scatter.node_slots(nc.node);
+                let k_elem = [0, 3]
+                    .iter()
+                    .zip([nc.stiffness[0][0], nc.stiffness[1][1]])
+                    .filter(|(s, _)| slots[**s] != NO_SLOT)
+                    .map(|(s, kc)| self.values[slots[*s] as usize] - kc)
+                    .fold(0.0, f64::max);
+                if k_elem <= 0.0 || !alpha.is_finite() {
+                    continue;
+                }
+                let ratio = alpha / k_elem;
+                if best.as_ref().is_none_or(|b| ratio > b.ratio) {
+                    best = Some(super::diagnosis::PenaltyRatio {
+                        ratio,
+                        node: nc.node,
+                        pair: cp.name.clone(),
+                        stiffness,
+                    });
+                }
+            }
+        }
+        best
+    }
+
+    /// Makes `cp` the committed (and current) state.
+    pub(super) fn restore(&mut self, cp: &super::restart::Checkpoint) -> Result<(), String> {
+        if cp.displacement.len() != self.u.len() || cp.pairs.len() != self.pairs.len() {
+            return Err("the restart point does not match the model (nodes or pairs)".into());
+        }
+        for (s, h) in self.pairs.iter_mut().zip(&cp.pairs) {
+            let n = s.committed_entity.len();
+            if h.entity.len() != n || h.multiplier.len() != n || h.active.len() != n {
+                return Err("the restart point does not match the model (slave nodes)".into());
+            }
+            s.committed_entity.clone_from(&h.entity);
+            s.committed_multiplier.clone_from(&h.multiplier);
+            s.committed_active.clone_from(&h.active);
+            s.rollback();
+        }
+        self.assembler.restore(&cp.points, cp.points_time)?;
+        self.committed.copy_from_slice(&cp.displacement);
+        self.u.copy_from_slice(&cp.displacement);
+        Ok(())
     }
 
     /// Returns to the last converged state.
@@ -568,6 +663,7 @@ impl<'m> Newton<'m> {
     ) -> Result<Converged, Failure> {
         let model = self.model;
         self.inner_updates = 0;
+        self.flips.start_attempt();
         let newton_update = model.contacts.iter().any(|c| {
             matches!(
                 c.method,
@@ -706,6 +802,7 @@ impl<'m> Newton<'m> {
             let dp_step = if first { dp_norm } else { 0.0 };
             let rel_du = ((s * du_norm).powi(2) + dp_step * dp_step).sqrt() / u_norm;
             residuals.push(ev.rel);
+            self.flips.record(&self.contact);
             let mut reported_du = rel_du;
             let mut converged = false;
             // Lagrange constraints: the gaps of the active nodes vanish too

@@ -9,6 +9,7 @@
 //! The last increment of a step ends exactly at `t_end`.
 
 use super::newton::{Converged, Failure};
+use super::restart::Resume;
 use crate::model::Step;
 
 /// Cutback factor.
@@ -37,6 +38,12 @@ pub trait IncrementSolver {
     /// Discards the last attempt (restores the last accepted state); the
     /// next attempt will use `new_dt`.
     fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64);
+    /// After an accepted increment, once the stepping state is updated:
+    /// `resume` is where a restart from this state continues. An error
+    /// aborts the run.
+    fn checkpoint(&mut self, _resume: &Resume) -> Result<(), String> {
+        Ok(())
+    }
 }
 
 /// Why stepping stopped.
@@ -61,13 +68,26 @@ pub enum StepError {
 
 /// Runs all `steps` with `solver`.
 pub fn drive(steps: &[Step], solver: &mut dyn IncrementSolver) -> Result<(), StepError> {
-    for (si, step) in steps.iter().enumerate() {
+    drive_from(steps, solver, None)
+}
+
+/// Runs `steps` with `solver` from the beginning, or from `from` (a
+/// restart point reported by [`IncrementSolver::checkpoint`]): the same
+/// sequence of attempts as the uninterrupted run.
+pub fn drive_from(
+    steps: &[Step],
+    solver: &mut dyn IncrementSolver,
+    from: Option<Resume>,
+) -> Result<(), StepError> {
+    let first = from.map_or(0, |r| r.step);
+    for (si, step) in steps.iter().enumerate().skip(first) {
         let dt0 = (step.t_end - step.t_start) / step.increments as f64;
         let min_dt = dt0 * step.min_fraction;
         let easy_iterations = (step.newton.max_iter / 2).max(1);
-        let mut t = step.t_start;
-        let mut dt = dt0;
-        let mut easy = 0;
+        let (mut t, mut dt, mut easy) = match from {
+            Some(r) if r.step == si => (r.time, r.dt, r.easy),
+            _ => (step.t_start, dt0, 0),
+        };
         while step.t_end - t > 1e-9 * dt0 {
             let mut cutbacks = 0;
             loop {
@@ -89,6 +109,25 @@ pub fn drive(steps: &[Step], solver: &mut dyn IncrementSolver) -> Result<(), Ste
                             dt = (dt * GROW).min(dt0);
                             easy = 0;
                         }
+                        let resume = if step.t_end - t > 1e-9 * dt0 {
+                            Resume {
+                                step: si,
+                                time: t,
+                                dt,
+                                easy,
+                            }
+                        } else {
+                            // the step is done: the next one starts afresh
+                            let next = steps.get(si + 1);
+                            Resume {
+                                step: si + 1,
+                                time: next.map_or(t, |s| s.t_start),
+                                dt: next
+                                    .map_or(0.0, |s| (s.t_end - s.t_start) / s.increments as f64),
+                                easy: 0,
+                            }
+                        };
+                        solver.checkpoint(&resume).map_err(StepError::Aborted)?;
                         break;
                     }
                     Err(failure) => {
@@ -226,6 +265,63 @@ mod tests {
         }
         assert_eq!(m.attempts.len(), 4);
         assert_eq!(m.rejected, vec![0.25, 0.125, 0.0625]);
+    }
+
+    /// Records the restart points reported by the stepper.
+    struct Recorder {
+        mock: Mock,
+        resumes: Vec<Resume>,
+    }
+
+    impl IncrementSolver for Recorder {
+        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+            self.mock.attempt(step, t)
+        }
+        fn accept(
+            &mut self,
+            s: usize,
+            t: f64,
+            dt: f64,
+            cutbacks: usize,
+            c: Converged,
+        ) -> Result<(), String> {
+            self.mock.accept(s, t, dt, cutbacks, c)
+        }
+        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
+            self.mock.reject(s, f, new_dt);
+        }
+        fn checkpoint(&mut self, resume: &Resume) -> Result<(), String> {
+            self.resumes.push(*resume);
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn resume_from_every_checkpoint_repeats_the_remaining_sequence() {
+        let second = Step {
+            t_start: 2.0,
+            t_end: 3.0,
+            ..step(1.0, 2, 1e-3)
+        };
+        let steps = [step(2.0, 2, 1e-3), second];
+        let mut full = Recorder {
+            mock: mock(0.3),
+            resumes: vec![],
+        };
+        drive(&steps, &mut full).unwrap();
+        assert_eq!(full.resumes.len(), full.mock.accepted.len());
+        assert_eq!(full.resumes.last().unwrap().step, 2);
+        for (k, r) in full.resumes.iter().enumerate() {
+            let mut m = mock(0.3);
+            m.t = r.time;
+            let mut rest = Recorder {
+                mock: m,
+                resumes: vec![],
+            };
+            drive_from(&steps, &mut rest, Some(*r)).unwrap();
+            assert_eq!(rest.mock.accepted, full.mock.accepted[k + 1..], "from {k}");
+            assert_eq!(rest.resumes, full.resumes[k + 1..], "from {k}");
+        }
     }
 
     #[test]

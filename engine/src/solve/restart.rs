@@ -1,0 +1,382 @@
+//! Restart points: everything needed to continue a run bit for bit from a
+//! converged increment, and its binary file format.
+//!
+//! A [`Checkpoint`] holds the stepping state (step, time, next increment
+//! size, easy-increment counter, increment counter), the committed nodal
+//! displacements, the committed contact history of every pair (search
+//! memory, multipliers, Lagrange active set), the committed integration
+//! points with the time they belong to, and a fingerprint of the model (a
+//! restart with a different deck is refused). [`RestartFile`] adds what the
+//! result writer needs to append to the same directory (the PVD entries).
+//!
+//! Format (`restart.bin`, little endian): the magic `CTCRST01`, then
+//! fields in a fixed order; every `f64` is stored as its 8 bytes, so the
+//! values read back are the values written, bit for bit.
+
+use crate::element::{MaterialPoint, PointState};
+use crate::material::History;
+use crate::model::Model;
+use std::path::Path;
+
+/// File magic and format version.
+const MAGIC: &[u8; 8] = b"CTCRST01";
+
+/// Where the stepper continues: the first increment to attempt.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Resume {
+    /// Step index (equal to the number of steps when the run is complete).
+    pub step: usize,
+    /// Time of the last converged state (start of the next increment).
+    pub time: f64,
+    /// Size of the next increment attempt.
+    pub dt: f64,
+    /// Consecutive easy increments counted towards growing `dt` back.
+    pub easy: usize,
+}
+
+/// Committed contact history of one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairHistory {
+    /// Per slave node: tool entity found at the last converged increment.
+    pub entity: Vec<Option<usize>>,
+    /// Per slave node: multiplier at the last converged increment.
+    pub multiplier: Vec<f64>,
+    /// Per slave node: Lagrange active set at the last converged increment.
+    pub active: Vec<bool>,
+}
+
+/// The state of a run at a converged increment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Checkpoint {
+    /// Fingerprint of the model ([`fingerprint`]).
+    pub fingerprint: u64,
+    /// Converged increments so far (the last one's number).
+    pub increment: usize,
+    /// Where the stepper continues.
+    pub resume: Resume,
+    /// Committed nodal displacements.
+    pub displacement: Vec<[f64; 2]>,
+    /// Committed contact history per pair.
+    pub pairs: Vec<PairHistory>,
+    /// Committed integration points per global cell (empty for linear cells).
+    pub points: Vec<Vec<MaterialPoint>>,
+    /// Time of the committed integration points (accumulated by the
+    /// assembler; kept as is for bit-for-bit rate-dependent updates).
+    pub points_time: f64,
+}
+
+/// A restart file: the solver checkpoint and the result writer's index.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RestartFile {
+    /// Solver and stepping state.
+    pub checkpoint: Checkpoint,
+    /// `results.pvd` entries (time, VTU file name) written so far.
+    pub pvd: Vec<(f64, String)>,
+}
+
+/// 64-bit FNV-1a hash of the model's full description (mesh, materials,
+/// loads, steps): two decks that lower to the same model have the same
+/// fingerprint.
+pub fn fingerprint(model: &Model) -> u64 {
+    let text = format!("{model:?}");
+    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
+/// Little-endian encoder.
+#[derive(Default)]
+struct Enc(Vec<u8>);
+
+impl Enc {
+    fn u64(&mut self, v: u64) {
+        self.0.extend_from_slice(&v.to_le_bytes());
+    }
+    fn usize(&mut self, v: usize) {
+        self.u64(v as u64);
+    }
+    fn f64(&mut self, v: f64) {
+        self.0.extend_from_slice(&v.to_bits().to_le_bytes());
+    }
+    fn f64s(&mut self, v: &[f64]) {
+        self.usize(v.len());
+        v.iter().for_each(|x| self.f64(*x));
+    }
+    fn str(&mut self, s: &str) {
+        self.usize(s.len());
+        self.0.extend_from_slice(s.as_bytes());
+    }
+}
+
+/// Little-endian decoder with bounds checks (a truncated or corrupted file
+/// gives an error, never a panic).
+struct Dec<'a> {
+    data: &'a [u8],
+    pos: usize,
+}
+
+impl Dec<'_> {
+    fn bytes(&mut self, n: usize) -> Result<&[u8], String> {
+        let end = self
+            .pos
+            .checked_add(n)
+            .filter(|e| *e <= self.data.len())
+            .ok_or_else(|| format!("restart file truncated at byte {}", self.pos))?;
+        let s = &self.data[self.pos..end];
+        self.pos = end;
+        Ok(s)
+    }
+    fn u64(&mut self) -> Result<u64, String> {
+        let b = self.bytes(8)?;
+        Ok(u64::from_le_bytes(b.try_into().map_err(|_| "bad u64")?))
+    }
+    fn usize(&mut self) -> Result<usize, String> {
+        let v = self.u64()?;
+        usize::try_from(v).map_err(|_| format!("restart file: value {v} out of range"))
+    }
+    /// A length, bounded by the bytes left (each element takes at least
+    /// `min_size` bytes).
+    fn len(&mut self, min_size: usize) -> Result<usize, String> {
+        let n = self.usize()?;
+        if n.saturating_mul(min_size.max(1)) > self.data.len() - self.pos {
+            return Err(format!(
+                "restart file corrupted: length {n} at byte {}",
+                self.pos
+            ));
+        }
+        Ok(n)
+    }
+    fn f64(&mut self) -> Result<f64, String> {
+        Ok(f64::from_bits(self.u64()?))
+    }
+    fn f64s(&mut self) -> Result<Vec<f64>, String> {
+        let n = self.len(8)?;
+        (0..n).map(|_| self.f64()).collect()
+    }
+    fn str(&mut self) -> Result<String, String> {
+        let n = self.len(1)?;
+        String::from_utf8(self.bytes(n)?.to_vec())
+            .map_err(|_| "restart file: invalid text".to_string())
+    }
+}
+
+impl RestartFile {
+    /// The file contents.
+    pub fn encode(&self) -> Vec<u8> {
+        let mut e = Enc::default();
+        e.0.extend_from_slice(MAGIC);
+        let c = &self.checkpoint;
+        e.u64(c.fingerprint);
+        e.usize(c.increment);
+        e.usize(c.resume.step);
+        e.f64(c.resume.time);
+        e.f64(c.resume.dt);
+        e.usize(c.resume.easy);
+        e.f64s(c.displacement.as_flattened());
+        e.usize(c.pairs.len());
+        for p in &c.pairs {
+            e.usize(p.entity.len());
+            for v in &p.entity {
+                e.u64(v.map_or(u64::MAX, |x| x as u64));
+            }
+            e.f64s(&p.multiplier);
+            e.usize(p.active.len());
+            e.0.extend(p.active.iter().map(|a| u8::from(*a)));
+        }
+        e.usize(c.points.len());
+        for cell in &c.points {
+            e.usize(cell.len());
+            for p in cell {
+                let s = &p.state;
+                let mut v = vec![s.position[0], s.position[1], s.volume];
+                v.extend(s.strain.iter());
+                v.extend(s.stress.iter());
+                v.push(p.history.ep);
+                v.extend(p.history.tensor);
+                v.iter().for_each(|x| e.f64(*x));
+            }
+        }
+        e.f64(c.points_time);
+        e.usize(self.pvd.len());
+        for (t, name) in &self.pvd {
+            e.f64(*t);
+            e.str(name);
+        }
+        e.0
+    }
+
+    /// Reads a file produced by [`RestartFile::encode`].
+    pub fn decode(data: &[u8]) -> Result<Self, String> {
+        if data.len() < MAGIC.len() || &data[..MAGIC.len()] != MAGIC {
+            return Err("not a ctc restart file (bad magic or version)".into());
+        }
+        let mut d = Dec {
+            data,
+            pos: MAGIC.len(),
+        };
+        let fingerprint = d.u64()?;
+        let increment = d.usize()?;
+        let resume = Resume {
+            step: d.usize()?,
+            time: d.f64()?,
+            dt: d.f64()?,
+            easy: d.usize()?,
+        };
+        let flat = d.f64s()?;
+        if flat.len() % 2 != 0 {
+            return Err("restart file corrupted: odd displacement count".into());
+        }
+        let displacement = flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
+        let np = d.len(24)?;
+        let mut pairs = Vec::with_capacity(np);
+        for _ in 0..np {
+            let n = d.len(8)?;
+            let entity = (0..n)
+                .map(|_| {
+                    d.u64().and_then(|v| {
+                        if v == u64::MAX {
+                            Ok(None)
+                        } else {
+                            usize::try_from(v)
+                                .map(Some)
+                                .map_err(|_| "bad entity".into())
+                        }
+                    })
+                })
+                .collect::<Result<Vec<_>, String>>()?;
+            let multiplier = d.f64s()?;
+            let na = d.len(1)?;
+            let active = d.bytes(na)?.iter().map(|b| *b != 0).collect();
+            pairs.push(PairHistory {
+                entity,
+                multiplier,
+                active,
+            });
+        }
+        let nc = d.len(8)?;
+        let mut points = Vec::with_capacity(nc);
+        for _ in 0..nc {
+            let n = d.len(16 * 8)?;
+            let mut cell = Vec::with_capacity(n);
+            for _ in 0..n {
+                let mut v = [0.0; 16];
+                for x in &mut v {
+                    *x = d.f64()?;
+                }
+                cell.push(MaterialPoint {
+                    state: PointState {
+                        position: [v[0], v[1]],
+                        volume: v[2],
+                        strain: crate::material::Strain::from_column_slice(&v[3..7]),
+                        stress: crate::material::Stress::from_column_slice(&v[7..11]),
+                    },
+                    history: History {
+                        ep: v[11],
+                        tensor: [v[12], v[13], v[14], v[15]],
+                    },
+                });
+            }
+            points.push(cell);
+        }
+        let points_time = d.f64()?;
+        let ne = d.len(16)?;
+        let mut pvd = Vec::with_capacity(ne);
+        for _ in 0..ne {
+            let t = d.f64()?;
+            pvd.push((t, d.str()?));
+        }
+        if d.pos != data.len() {
+            return Err(format!(
+                "restart file corrupted: {} trailing bytes",
+                data.len() - d.pos
+            ));
+        }
+        Ok(RestartFile {
+            checkpoint: Checkpoint {
+                fingerprint,
+                increment,
+                resume,
+                displacement,
+                pairs,
+                points,
+                points_time,
+            },
+            pvd,
+        })
+    }
+
+    /// Reads `path`.
+    pub fn read(path: &Path) -> Result<Self, String> {
+        let data = std::fs::read(path)
+            .map_err(|e| format!("cannot read restart file {}: {e}", path.display()))?;
+        Self::decode(&data).map_err(|e| format!("{}: {e}", path.display()))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn sample() -> RestartFile {
+        let point = MaterialPoint {
+            state: PointState {
+                position: [0.25, -1.0 / 3.0],
+                volume: 1e-300,
+                strain: crate::material::Strain::new(1.0, 2.0, f64::MIN_POSITIVE, -0.0),
+                stress: crate::material::Stress::new(0.1, 0.2, 0.3, 0.4),
+            },
+            history: History {
+                ep: 0.1 + 0.2,
+                tensor: [1.0, 1.0, 1.0, 0.0],
+            },
+        };
+        RestartFile {
+            checkpoint: Checkpoint {
+                fingerprint: 0xdead_beef_0123_4567,
+                increment: 7,
+                resume: Resume {
+                    step: 1,
+                    time: 0.1 + 0.2,
+                    dt: 1.0 / 3.0,
+                    easy: 1,
+                },
+                displacement: vec![[1e-17, -2.5], [std::f64::consts::PI, 0.0]],
+                pairs: vec![PairHistory {
+                    entity: vec![None, Some(3), Some(0)],
+                    multiplier: vec![0.0, 12.5, -1e-9],
+                    active: vec![false, true, true],
+                }],
+                points: vec![vec![], vec![point; 4]],
+                points_time: 0.30000000000000004,
+            },
+            pvd: vec![(0.5, "inc_0001.vtu".into()), (1.0, "inc_0002.vtu".into())],
+        }
+    }
+
+    #[test]
+    fn restart_file_round_trip_is_bit_exact() {
+        let s = sample();
+        let bytes = s.encode();
+        let back = RestartFile::decode(&bytes).unwrap();
+        assert_eq!(back, s);
+        assert_eq!(back.encode(), bytes);
+        assert_eq!(
+            back.checkpoint.resume.time.to_bits(),
+            (0.1f64 + 0.2).to_bits()
+        );
+    }
+
+    #[test]
+    fn truncated_or_foreign_restart_files_are_errors_not_panics() {
+        let bytes = sample().encode();
+        for n in 0..bytes.len() {
+            assert!(RestartFile::decode(&bytes[..n]).is_err(), "prefix {n}");
+        }
+        let mut extra = bytes.clone();
+        extra.push(0);
+        assert!(RestartFile::decode(&extra).is_err());
+        let mut bad = bytes;
+        bad[0] = b'X';
+        assert!(RestartFile::decode(&bad).unwrap_err().contains("magic"));
+    }
+}

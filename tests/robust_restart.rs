@@ -1,0 +1,181 @@
+//! Restart reproduces the uninterrupted run bit for bit (issue 10, "no data
+//! loss"): a deck is run uninterrupted; the same deck is run again and
+//! "killed" in-process after k converged increments (an observer returning
+//! an error, after the writer has written increment k but before its restart
+//! point: the restart continues from increment k - 1, the realistic case);
+//! the run is then continued from the directory's `restart.bin`. Every file
+//! of the two result directories (VTU of every increment, PVD index,
+//! history.csv, contact CSVs) must be byte-identical — values are printed
+//! in shortest round-trip form, so equal bytes mean equal bits — and the
+//! increment records (time, dt, iterations, residuals, cutbacks) of the
+//! continued increments must be equal.
+
+use ctc_engine::model::Model;
+use ctc_engine::output::ResultWriter;
+use ctc_engine::solve::restart::Checkpoint;
+use ctc_engine::solve::{self, IncrementView, IterationInfo, Observer, RunSummary};
+use std::path::Path;
+
+fn model_of(example: &str, edits: &[(&str, &str)]) -> Model {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("examples")
+        .join(example);
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{example}: `{from}` not found");
+        text = text.replace(from, to);
+    }
+    let source = ctc_lang::Source::new(&path, text);
+    ctc_lang::compile(&source).unwrap_or_else(|d| panic!("{}", d.render(&source)))
+}
+
+/// Forwards to the writer and fails after `stop_after` converged increments.
+struct Killer<'a> {
+    inner: &'a mut ResultWriter,
+    stop_after: usize,
+    seen: usize,
+}
+
+impl Observer for Killer<'_> {
+    fn iteration(&mut self, info: &IterationInfo) {
+        self.inner.iteration(info);
+    }
+    fn converged(&mut self, view: &IncrementView<'_>) -> Result<(), String> {
+        self.inner.converged(view)?;
+        self.seen += 1;
+        if self.seen >= self.stop_after {
+            return Err("killed".into());
+        }
+        Ok(())
+    }
+    fn cutback(&mut self, reason: &str, new_dt: f64) {
+        self.inner.cutback(reason, new_dt);
+    }
+    fn wants_checkpoint(&self) -> bool {
+        self.inner.wants_checkpoint()
+    }
+    fn checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), String> {
+        self.inner.checkpoint(checkpoint)
+    }
+}
+
+fn files(dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n != "summary.json" && n != "restart.bin")
+        .collect();
+    names.sort();
+    names
+}
+
+/// Runs the three phases and compares; returns (restart increment,
+/// increments of the full run).
+fn restart_matches(model: &Model, stop_after: usize) -> (usize, usize) {
+    let tmp = tempfile::tempdir().unwrap();
+    let full_dir = tmp.path().join("full");
+    let cut_dir = tmp.path().join("cut");
+
+    let mut w = ResultWriter::create(&full_dir, model).unwrap();
+    let full: RunSummary = solve::run(model, &mut w).expect("uninterrupted run");
+    w.finish(&full).unwrap();
+    assert!(full.increments.len() > stop_after, "deck too short");
+
+    let mut w = ResultWriter::create(&cut_dir, model).unwrap();
+    let mut killer = Killer {
+        inner: &mut w,
+        stop_after,
+        seen: 0,
+    };
+    let e = solve::run(model, &mut killer).unwrap_err();
+    assert!(e.message.contains("killed"), "{}", e.message);
+    drop(w); // no finish(): the process "died" here
+
+    let (mut w, cp) = ResultWriter::resume(&cut_dir, model).unwrap();
+    let from = cp.increment;
+    assert!(from < stop_after && from >= 1, "restart point {from}");
+    let rest = solve::run_from(model, &mut w, Some(&cp)).expect("restarted run");
+    w.finish(&rest).unwrap();
+    assert!(rest.completed);
+
+    // the continued increments are the uninterrupted ones, bit for bit
+    let tail = &full.increments[from..];
+    assert_eq!(rest.increments.len(), tail.len());
+    for (a, b) in rest.increments.iter().zip(tail) {
+        assert_eq!(a.increment, b.increment);
+        assert_eq!(a.time.to_bits(), b.time.to_bits());
+        assert_eq!(a.dt.to_bits(), b.dt.to_bits());
+        assert_eq!(a.iterations, b.iterations);
+        assert_eq!(a.cutbacks, b.cutbacks);
+        assert_eq!(a.active_contacts, b.active_contacts);
+        let bits = |r: &[f64]| r.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(
+            bits(&a.residuals),
+            bits(&b.residuals),
+            "increment {}",
+            a.increment
+        );
+        assert_eq!(a.max_penetration.to_bits(), b.max_penetration.to_bits());
+    }
+    // every result file identical
+    let names = files(&full_dir);
+    assert_eq!(names, files(&cut_dir));
+    assert!(names.iter().any(|n| n.ends_with(".vtu")));
+    for n in &names {
+        let a = std::fs::read(full_dir.join(n)).unwrap();
+        let b = std::fs::read(cut_dir.join(n)).unwrap();
+        assert!(a == b, "{n} differs after restart");
+    }
+    (from, full.increments.len())
+}
+
+#[test]
+fn restart_upsetting_plastic_with_cutbacks_matches_uninterrupted_run() {
+    // J2 finite strain + penalty contact; max_iter = 4 forces cutbacks, so
+    // the restart carries a reduced increment size and plastic history
+    let model = model_of(
+        "upsetting.ctc",
+        &[
+            ("increments = 10", "increments = 2"),
+            (
+                "newton { tol = 1e-10 }",
+                "newton { tol = 1e-10  max_iter = 4 }",
+            ),
+        ],
+    );
+    let (from, n) = restart_matches(&model, 6);
+    assert_eq!((from, n), (5, 12));
+}
+
+#[test]
+fn restart_hertz_lagrange_multipliers_match_uninterrupted_run() {
+    // Lagrange multipliers and active set carried over the restart
+    let model = model_of("hertz_cylinder_lagrange.ctc", &[]);
+    let (from, _) = restart_matches(&model, 3);
+    assert_eq!(from, 2);
+}
+
+#[test]
+fn restart_skin_pass_output_every_5_matches_uninterrupted_run() {
+    // output every 5 increments: the restart point is the last written
+    // increment (10), increments 11..12 are recomputed
+    let model = model_of("skin_pass.ctc", &[]);
+    let (from, n) = restart_matches(&model, 12);
+    assert_eq!((from, n), (10, 20));
+}
+
+#[test]
+fn restart_with_a_changed_deck_is_refused() {
+    let model = model_of("hertz_cylinder_lagrange.ctc", &[]);
+    let tmp = tempfile::tempdir().unwrap();
+    let mut w = ResultWriter::create(tmp.path(), &model).unwrap();
+    let mut killer = Killer {
+        inner: &mut w,
+        stop_after: 3,
+        seen: 0,
+    };
+    solve::run(&model, &mut killer).unwrap_err();
+    let other = model_of("hertz_cylinder_lagrange.ctc", &[("E = ", "E = 1")]);
+    let e = ResultWriter::resume(tmp.path(), &other).unwrap_err();
+    assert!(e.contains("different model"), "{e}");
+}
