@@ -21,8 +21,9 @@
 //! transition cuts are mirrored about the `mirror` angle, so a symmetric
 //! grading gives a mirror-symmetric mesh.
 
-use super::common::{polar_point, push_quad};
-use crate::mesh::{Cell, CellKind, Mesh};
+use super::common::{divisions, finite_point, node_budget, polar_point, positive, push_quad};
+use super::Grading;
+use crate::mesh::{Cell, CellKind, Mesh, MeshError};
 
 /// Merge divisions when the merged one is at most this times the radial
 /// spacing below the ring. Merging improves the aspect ratio of the cells
@@ -265,6 +266,46 @@ pub fn build(s: &Sector) -> SectorMesh {
         center: 0,
         rings,
     }
+}
+
+/// Checks the parameters shared by the half and quarter disc generators
+/// (`min_circumferential` divisions at least) and returns the ring radii
+/// (centre excluded, arc last) and the circumferential grading points in
+/// [0, 1].
+#[allow(clippy::too_many_arguments)]
+pub fn checked_rings(
+    name: &str,
+    center: [f64; 2],
+    radius: f64,
+    radial: usize,
+    circumferential: usize,
+    min_circumferential: usize,
+    radial_grading: Grading,
+    circumferential_grading: Grading,
+) -> Result<(Vec<f64>, Vec<f64>), MeshError> {
+    finite_point(name, "center", center)?;
+    positive(name, "radius", radius)?;
+    divisions(name, "radial", radial, 1)?;
+    divisions(
+        name,
+        "circumferential",
+        circumferential,
+        min_circumferential,
+    )?;
+    radial_grading.check(&format!("{name} radial grading"))?;
+    circumferential_grading.check(&format!("{name} circumferential grading"))?;
+    node_budget(
+        name,
+        circumferential
+            .checked_add(1)
+            .and_then(|c| c.checked_mul(radial))
+            .and_then(|c| c.checked_add(1)),
+    )?;
+    let radii = radial_grading.points(radial)[1..]
+        .iter()
+        .map(|t| radius * t)
+        .collect();
+    Ok((radii, circumferential_grading.points(circumferential)))
 }
 
 #[cfg(test)]

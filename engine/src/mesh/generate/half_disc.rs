@@ -1,10 +1,8 @@
 //! Half disc: polar structured with a triangle hub and coarsening towards the
 //! centre (see [`super::disc`]).
 
-use super::common::{
-    add_boundary, add_node, chain, divisions, finite_point, node_budget, positive,
-};
-use super::disc::{build, Sector};
+use super::common::{add_boundary, add_node, chain};
+use super::disc::{build, checked_rings, Sector};
 use super::Grading;
 use crate::mesh::{CellKind, Mesh, MeshError};
 
@@ -24,25 +22,16 @@ pub fn half_disc(
     upper: bool,
     kind: CellKind,
 ) -> Result<Mesh, MeshError> {
-    finite_point(NAME, "center", center)?;
-    positive(NAME, "radius", radius)?;
-    divisions(NAME, "radial", radial, 1)?;
-    divisions(NAME, "circumferential", circumferential, 2)?;
-    radial_grading.check("half_disc radial grading")?;
-    circumferential_grading.check("half_disc circumferential grading")?;
-    node_budget(
+    let (radii, t) = checked_rings(
         NAME,
-        circumferential
-            .checked_add(1)
-            .and_then(|c| c.checked_mul(radial))
-            .and_then(|c| c.checked_add(1)),
+        center,
+        radius,
+        radial,
+        circumferential,
+        2,
+        radial_grading,
+        circumferential_grading,
     )?;
-
-    let radii: Vec<f64> = radial_grading.points(radial)[1..]
-        .iter()
-        .map(|t| radius * t)
-        .collect();
-    let t = circumferential_grading.points(circumferential);
     let angles: Vec<f64> = if upper {
         t.iter().rev().map(|t| 180.0 - 180.0 * t).collect()
     } else {
