@@ -326,26 +326,7 @@ mod tests {
 
     /// Full-pattern CSC of a dense symmetric matrix.
     fn csc(a: &[[f64; 3]; 3]) -> (SparsePattern, Vec<f64>) {
-        let mut col_ptr = vec![0];
-        let mut row_idx = vec![];
-        let mut vals = vec![];
-        for j in 0..3 {
-            for (i, row) in a.iter().enumerate() {
-                if row[j] != 0.0 {
-                    row_idx.push(i);
-                    vals.push(row[j]);
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
-        (
-            SparsePattern {
-                n: 3,
-                col_ptr,
-                row_idx,
-            },
-            vals,
-        )
+        super::super::pattern::dense_to_csc(a, false)
     }
 
     fn residual(a: &[[f64; 3]; 3], x: &[f64], b: &[f64]) -> f64 {
@@ -414,26 +395,7 @@ mod tests {
     /// Like [`csc`] but keeps explicit zeros on the diagonal (the engine's
     /// pattern always has the diagonal).
     fn csc_with_diagonal(a: &[[f64; 3]; 3]) -> (SparsePattern, Vec<f64>) {
-        let mut col_ptr = vec![0];
-        let mut row_idx = vec![];
-        let mut vals = vec![];
-        for j in 0..3 {
-            for (i, row) in a.iter().enumerate() {
-                if row[j] != 0.0 || i == j {
-                    row_idx.push(i);
-                    vals.push(row[j]);
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
-        (
-            SparsePattern {
-                n: 3,
-                col_ptr,
-                row_idx,
-            },
-            vals,
-        )
+        super::super::pattern::dense_to_csc(a, true)
     }
 
     #[test]

@@ -180,6 +180,35 @@ impl Scatter {
     }
 }
 
+/// Test helper: CSC pattern and values of a small dense matrix; entries that
+/// are zero are left out, except on the diagonal when `keep_diagonal`.
+#[cfg(test)]
+pub(crate) fn dense_to_csc<const N: usize>(
+    a: &[[f64; N]; N],
+    keep_diagonal: bool,
+) -> (SparsePattern, Vec<f64>) {
+    let mut col_ptr = vec![0];
+    let mut row_idx = vec![];
+    let mut vals = vec![];
+    for j in 0..N {
+        for (i, row) in a.iter().enumerate() {
+            if row[j] != 0.0 || (keep_diagonal && i == j) {
+                row_idx.push(i);
+                vals.push(row[j]);
+            }
+        }
+        col_ptr.push(row_idx.len());
+    }
+    (
+        SparsePattern {
+            n: N,
+            col_ptr,
+            row_idx,
+        },
+        vals,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

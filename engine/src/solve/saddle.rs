@@ -361,26 +361,7 @@ mod tests {
     /// constraint `-u_1 = g`.
     fn chain() -> (SparsePattern, Vec<f64>) {
         let a = [[2.0, -1.0, 0.0], [-1.0, 2.0, -1.0], [0.0, -1.0, 2.0]];
-        let mut col_ptr = vec![0];
-        let mut row_idx = vec![];
-        let mut vals = vec![];
-        for j in 0..3 {
-            for (i, row) in a.iter().enumerate() {
-                if row[j] != 0.0 {
-                    row_idx.push(i);
-                    vals.push(row[j]);
-                }
-            }
-            col_ptr.push(row_idx.len());
-        }
-        (
-            SparsePattern {
-                n: 3,
-                col_ptr,
-                row_idx,
-            },
-            vals,
-        )
+        super::super::pattern::dense_to_csc(&a, false)
     }
 
     fn solve(form: LagrangeFormulation) -> (Vec<f64>, Vec<f64>, SaddleSolver) {
