@@ -432,7 +432,49 @@ pub enum MultiplierUpdate {
     Newton,
 }
 
-/// A body surface (slave nodes) against a rigid tool (master).
+/// Master side of a contact pair.
+#[derive(Debug, Clone, PartialEq)]
+pub enum ContactMaster {
+    /// A rigid analytical tool: index into `Model::tools`.
+    Tool(usize),
+    /// A boundary of a deformable body (node-to-segment contact). The slave
+    /// and master surfaces may be the same (self contact).
+    Surface {
+        /// Index into `Model::bodies`.
+        body: usize,
+        /// Master segments `[a, b]` (body on the left, outward normal to the
+        /// right of `a -> b`).
+        edges: Vec<[usize; 2]>,
+        /// The distinct nodes of `edges`, sorted.
+        nodes: Vec<usize>,
+    },
+}
+
+impl ContactMaster {
+    /// The tool index if the master is a rigid tool.
+    pub fn tool(&self) -> Option<usize> {
+        match self {
+            ContactMaster::Tool(t) => Some(*t),
+            ContactMaster::Surface { .. } => None,
+        }
+    }
+}
+
+/// Which surface plays master and which slave (seed, "Three usual
+/// strategies").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ContactStrategy {
+    /// One pass: slave nodes against master segments only.
+    #[default]
+    SinglePass,
+    /// Master and slave swapped from one increment to the next.
+    DoublePass,
+    /// Each surface master and slave at the same time.
+    ModifiedDoublePass,
+}
+
+/// A body surface (slave nodes) against a rigid tool or a deformable
+/// surface (master).
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactPair {
     /// Human-readable name, e.g. `disc.arc -> floor`.
@@ -444,8 +486,11 @@ pub struct ContactPair {
     pub edges: Vec<[usize; 2]>,
     /// Slave nodes: the distinct nodes of `edges`, sorted.
     pub nodes: Vec<usize>,
-    /// Index into `Model::tools`.
-    pub tool: usize,
+    /// What the slave nodes contact: a rigid tool or a deformable surface.
+    pub master: ContactMaster,
+    /// Single, double or modified double pass (deformable masters only;
+    /// rigid tools are always single pass, the tool being the master).
+    pub strategy: ContactStrategy,
     /// Normal enforcement.
     pub method: ContactMethod,
     /// Maximum gap `prof`: nodes farther than this from the tool create no

@@ -115,7 +115,8 @@ fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
             body: 0,
             edges: top,
             nodes: slave,
-            tool: 0,
+            master: ctc_engine::model::ContactMaster::Tool(0),
+            strategy: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 // k_n = 100 E / h: penalty gap ~ 1% of the element size

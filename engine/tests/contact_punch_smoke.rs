@@ -123,7 +123,8 @@ fn contact_punch_smoke_flat_polyline_punch_with_corners() {
             body: 0,
             edges: top,
             nodes: slave,
-            tool: 0,
+            master: ctc_engine::model::ContactMaster::Tool(0),
+            strategy: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e6,

@@ -358,7 +358,8 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         body: 0,
         edges,
         nodes: vec![0, 1, 2],
-        tool: 0,
+        master: ctc_engine::model::ContactMaster::Tool(0),
+        strategy: Default::default(),
         method: ContactMethod::Penalty {
             kind: PenaltyKind::Area,
             stiffness: 1e4,

@@ -152,7 +152,8 @@ fn upsetting(
             body: 0,
             edges: top_edges,
             nodes: top.clone(),
-            tool: 0,
+            master: ctc_engine::model::ContactMaster::Tool(0),
+            strategy: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 // small strain: the penalty penetration (lumped, slightly

@@ -18,9 +18,10 @@ use crate::source::Source;
 use crate::validate::{step_label, Need};
 use ctc_engine::mesh::Mesh;
 use ctc_engine::model::{
-    self as m, Analysis, AnalysisKind, ContactMethod, ContactPair, Dirichlet, Field, Formulation,
-    HistoryRequest, Load, Material, MaterialLaw, Model, NewtonSettings, OutputRequest, PenaltyKind,
-    RigidTool, Step, ToolGeometry, ToolMotion, ToolSide,
+    self as m, Analysis, AnalysisKind, ContactMaster, ContactMethod, ContactPair, ContactStrategy,
+    Dirichlet, Field, Formulation, HistoryRequest, Load, Material, MaterialLaw, Model,
+    NewtonSettings, OutputRequest, PenaltyKind, RigidTool, Step, ToolGeometry, ToolMotion,
+    ToolSide,
 };
 use sets::{resolve, Resolved};
 use std::collections::BTreeMap;
@@ -647,7 +648,8 @@ impl Lowerer<'_> {
                 body,
                 nodes: mesh::edge_nodes(&edges),
                 edges,
-                tool,
+                master: ContactMaster::Tool(tool),
+                strategy: ContactStrategy::SinglePass,
                 method,
                 prof: c.prof.as_ref().map(|p| p.value),
             });

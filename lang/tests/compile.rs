@@ -129,7 +129,7 @@ fn brief_deck_lowers_every_construct() {
         }
     );
     assert_eq!(m.contacts[1].prof, None);
-    assert_eq!(m.contacts[1].tool, 1);
+    assert_eq!(m.contacts[1].master.tool(), Some(1));
     // Steps: contiguous, defaults filled in.
     assert_eq!((m.steps[0].t_start, m.steps[0].t_end), (0.0, 1.0));
     assert_eq!((m.steps[1].t_start, m.steps[1].t_end), (1.0, 1.5));

@@ -195,7 +195,7 @@ pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
         };
         let tool = model
             .tools
-            .get(cp.tool)
+            .get(cp.master.tool().unwrap_or(usize::MAX))
             .ok_or_else(|| format!("contact '{}' has no tool", cp.name))?;
         let (kind_name, point, normal, radius) = match &tool.geometry {
             ToolGeometry::Plane { point, normal } => ("plane", *point, *normal, 0.0),

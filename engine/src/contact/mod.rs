@@ -21,6 +21,7 @@
 
 pub mod aabb;
 pub mod augmented;
+pub mod broad;
 pub mod geometry;
 pub mod lagrange;
 pub mod log;
@@ -64,6 +65,29 @@ pub struct NodeContact {
     pub status: ContactStatus,
     /// Index of the tool entity (segment, span) the node projects on.
     pub entity: usize,
+    /// Deformable master (node-to-segment): the segment's nodes and the
+    /// coupling terms. `None` against a rigid tool (then `force` and
+    /// `stiffness` are the whole contribution).
+    pub master: Option<MasterSegment>,
+}
+
+/// Master side of a node-to-segment contact element. Local dof order of
+/// the 6-vectors and 6x6 blocks: `[slave x, slave y, m1 x, m1 y, m2 x, m2 y]`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MasterSegment {
+    /// Global node numbers of the segment ends `m1 -> m2`.
+    pub nodes: [usize; 2],
+    /// Projection parameter of the slave node on the segment, in `[0, 1]`
+    /// (0 at `m1`).
+    pub xi: f64,
+    /// Forces exerted on `m1` and `m2` (with `NodeContact::force` they sum
+    /// to zero, and so does their moment).
+    pub forces: [[f64; 2]; 2],
+    /// Full tangent `-d f / d x` of the element (its slave-slave block
+    /// equals `NodeContact::stiffness`).
+    pub tangent: [[f64; 6]; 6],
+    /// `d g / d x` over the element dofs (the Lagrange constraint row).
+    pub gap_gradient: [f64; 6],
 }
 
 /// Persistent per-pair state kept by the solver between iterations
@@ -115,13 +139,14 @@ impl PairState {
             };
         };
         let n = cp.nodes.len();
-        let shape = match model.tools.get(cp.tool) {
+        let shape = match cp.master.tool().and_then(|t| model.tools.get(t)) {
             Some(tool) => {
                 ToolShape::new(&tool.geometry).map_err(|e| format!("tool '{}': {e}", tool.name))
             }
             None => Err(format!(
-                "contact pair '{}' refers to tool {} which does not exist",
-                cp.name, cp.tool
+                "contact pair '{}' has no rigid tool as master ({:?})",
+                cp.name,
+                cp.master.tool()
             )),
         };
         let (shape, error) = match shape {
@@ -186,7 +211,8 @@ pub fn evaluate_pair(
     if state.pair != Some(pair) || state.last_entity.len() != cp.nodes.len() {
         *state = PairState::new(model, pair);
     }
-    let (Some(shape), Some(tool)) = (state.shape.as_ref(), model.tools.get(cp.tool)) else {
+    let tool = cp.master.tool().and_then(|t| model.tools.get(t));
+    let (Some(shape), Some(tool)) = (state.shape.as_ref(), tool) else {
         return Vec::new();
     };
     let placement = Placement::at(&tool.motion, t);
@@ -242,6 +268,7 @@ pub fn evaluate_pair(
             pressure: r.pressure,
             status: r.status,
             entity: found.entity,
+            master: None,
         });
     }
     state.last_projection_tests = tests;

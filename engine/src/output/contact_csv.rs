@@ -78,7 +78,8 @@ pub(crate) mod tests {
                 body: 0,
                 edges: vec![[1, 2], [2, 0]],
                 nodes: vec![0, 1, 2],
-                tool: 0,
+                master: crate::model::ContactMaster::Tool(0),
+                strategy: Default::default(),
                 method: ContactMethod::Penalty {
                     kind: PenaltyKind::Nodal,
                     stiffness: 1.0,
@@ -104,6 +105,7 @@ pub(crate) mod tests {
                 ContactStatus::Open
             },
             entity: 0,
+            master: None,
         }
     }
 

@@ -369,6 +369,7 @@ mod tests {
                 ContactStatus::Open
             },
             entity: 0,
+            master: None,
         }
     }
 
@@ -400,7 +401,8 @@ mod tests {
                 body: 0,
                 edges: vec![[0, 1], [1, 2]],
                 nodes: vec![0, 1, 2],
-                tool: 0,
+                master: crate::model::ContactMaster::Tool(0),
+                strategy: Default::default(),
                 method,
                 prof: None,
             }],

@@ -111,7 +111,13 @@ pub fn check_model(model: &Model) -> Vec<String> {
         }
     }
     for c in &model.contacts {
-        if c.body >= model.bodies.len() || c.tool >= model.tools.len() {
+        let master_ok = match &c.master {
+            crate::model::ContactMaster::Tool(t) => *t < model.tools.len(),
+            crate::model::ContactMaster::Surface { body, edges, nodes } => {
+                *body < model.bodies.len() && edges.iter().flatten().chain(nodes).all(|&n| n < nn)
+            }
+        };
+        if c.body >= model.bodies.len() || !master_ok {
             errors.push(format!(
                 "contact `{}` refers to a missing body or tool",
                 c.name

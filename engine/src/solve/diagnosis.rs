@@ -161,6 +161,7 @@ mod tests {
                 ContactStatus::Open
             },
             entity: 0,
+            master: None,
         }
     }
 

@@ -105,7 +105,8 @@ fn pair(name: &str, edges: Vec<[usize; 2]>, method: ContactMethod) -> ContactPai
         body: 0,
         edges,
         nodes,
-        tool: 0,
+        master: ctc_engine::model::ContactMaster::Tool(0),
+        strategy: Default::default(),
         method,
         prof: None,
     }

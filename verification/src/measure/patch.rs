@@ -149,7 +149,8 @@ mod tests {
             body: 0,
             edges,
             nodes: nodes.clone(),
-            tool: 0,
+            master: ctc_engine::model::ContactMaster::Tool(0),
+            strategy: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e9,
@@ -179,6 +180,7 @@ mod tests {
                 pressure: patch.pressure(),
                 status: ContactStatus::Closed,
                 entity: 0,
+                master: None,
             })
             .collect::<Vec<_>>();
         let total: f64 = contact.iter().map(|c| c.force[1]).sum();
