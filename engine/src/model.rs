@@ -473,6 +473,18 @@ pub enum ContactStrategy {
     ModifiedDoublePass,
 }
 
+/// Local contact search test (seed, "Part I - Geometrical aspects").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum LocalSearch {
+    /// Metafor: the entity found at the last increment first, then its
+    /// neighbours, then the others (within the window `prof`).
+    #[default]
+    Memory,
+    /// Cast3M: a segment is a candidate only if the node lies in the circle
+    /// centred on the segment's midpoint through its ends.
+    Circle,
+}
+
 /// A body surface (slave nodes) against a rigid tool or a deformable
 /// surface (master).
 #[derive(Debug, Clone, PartialEq)]
@@ -491,6 +503,8 @@ pub struct ContactPair {
     /// Single, double or modified double pass (deformable masters only;
     /// rigid tools are always single pass, the tool being the master).
     pub strategy: ContactStrategy,
+    /// Local search test used to pick the candidate master entities.
+    pub search: LocalSearch,
     /// Normal enforcement.
     pub method: ContactMethod,
     /// Maximum gap `prof`: nodes farther than this from the tool create no

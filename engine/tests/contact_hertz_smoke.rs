@@ -117,6 +117,7 @@ fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
             nodes: slave,
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),
+            search: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 // k_n = 100 E / h: penalty gap ~ 1% of the element size

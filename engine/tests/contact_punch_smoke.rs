@@ -125,6 +125,7 @@ fn contact_punch_smoke_flat_polyline_punch_with_corners() {
             nodes: slave,
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),
+            search: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e6,

@@ -154,6 +154,7 @@ fn upsetting(
             nodes: top.clone(),
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),
+            search: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 // small strain: the penalty penetration (lumped, slightly

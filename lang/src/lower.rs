@@ -650,6 +650,7 @@ impl Lowerer<'_> {
                 edges,
                 master: ContactMaster::Tool(tool),
                 strategy: ContactStrategy::SinglePass,
+                search: Default::default(),
                 method,
                 prof: c.prof.as_ref().map(|p| p.value),
             });

@@ -80,6 +80,7 @@ pub(crate) mod tests {
                 nodes: vec![0, 1, 2],
                 master: crate::model::ContactMaster::Tool(0),
                 strategy: Default::default(),
+                search: Default::default(),
                 method: ContactMethod::Penalty {
                     kind: PenaltyKind::Nodal,
                     stiffness: 1.0,

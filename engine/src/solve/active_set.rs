@@ -403,6 +403,7 @@ mod tests {
                 nodes: vec![0, 1, 2],
                 master: crate::model::ContactMaster::Tool(0),
                 strategy: Default::default(),
+                search: Default::default(),
                 method,
                 prof: None,
             }],

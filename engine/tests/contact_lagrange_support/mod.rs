@@ -107,6 +107,7 @@ fn pair(name: &str, edges: Vec<[usize; 2]>, method: ContactMethod) -> ContactPai
         nodes,
         master: ctc_engine::model::ContactMaster::Tool(0),
         strategy: Default::default(),
+        search: Default::default(),
         method,
         prof: None,
     }

@@ -65,6 +65,7 @@ pub fn surface_model(
             nodes: slave,
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),
+            search: Default::default(),
             method,
             prof,
         }],

@@ -151,6 +151,7 @@ mod tests {
             nodes: nodes.clone(),
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),
+            search: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e9,
