@@ -17,6 +17,8 @@
 //! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
 //!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
 //! - [`tributary`]: tributary areas of slave nodes;
+//! - [`segment_search`]: candidate master segments of a deformable surface
+//!   (broad phase + memory or circle local test);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
@@ -29,6 +31,7 @@ pub mod motion;
 pub mod penalty;
 pub mod prof;
 pub mod search;
+pub mod segment_search;
 pub mod tributary;
 pub(crate) mod vec2;
 
