@@ -19,12 +19,15 @@
 //! - [`tributary`]: tributary areas of slave nodes;
 //! - [`segment_search`]: candidate master segments of a deformable surface
 //!   (broad phase + memory or circle local test);
+//! - [`jump`]: slave nodes that moved farther than `prof` relative to the
+//!   master in one increment (run warnings);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
 pub mod augmented;
 pub mod broad;
 pub mod geometry;
+pub mod jump;
 pub mod lagrange;
 pub mod log;
 pub mod motion;
@@ -230,7 +233,9 @@ pub fn evaluate_pair(
         };
         let xr = placement.to_reference(xn);
         let memory = state.last_entity[i];
-        let Some(found) = search::closest(shape, xr, prof, memory, guess, &mut tests) else {
+        let Some(found) =
+            search::closest_with(shape, xr, prof, memory, guess, cp.search, &mut tests)
+        else {
             continue;
         };
         state.last_entity[i] = Some(found.entity);

@@ -15,8 +15,20 @@
 //! closest candidate of the whole tool (smallest `|gap|`, ties: lowest
 //! entity index). `None` is returned only when no entity has a candidate
 //! within `window` and the memory entity gave none.
+//!
+//! Cast3M's circle test ([`LocalSearch::Circle`], [`closest_with`]): a
+//! polyline segment is projected only if the node lies in the circle
+//! centred on the segment's midpoint with radius `sqrt((L/2)^2 +
+//! window^2)` (it holds every point whose foot is inside the segment with
+//! `|gap| <= window`); the memory is then only an ordering hint. The result
+//! is the closest among the segments passing the test; a node in the fan of
+//! a kink may pass none, and a node deeper than the window is lost (no
+//! unconditional memory). Other tool shapes (arcs, circles, NURBS spans,
+//! planes) have no segment circle: the test is the memory one for them.
 
 use super::geometry::{Projection, ToolShape};
+use super::vec2::{dot, sub};
+use crate::model::LocalSearch;
 
 /// The closest entity of the tool to a node and the projection on it.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +63,8 @@ struct Scan<'a> {
     best: Option<Found>,
     /// Projections computed.
     tests: usize,
+    /// Whether the Cast3M circle test filters polyline segments.
+    circle: bool,
 }
 
 impl Scan<'_> {
@@ -69,6 +83,9 @@ impl Scan<'_> {
         if !unconditional && self.shape.bounding_box(e).distance(self.x) > r + 1e-12 * r {
             return false;
         }
+        if self.circle && !in_circle(self.shape, e, self.x, self.window) {
+            return false;
+        }
         self.tests += 1;
         if let Some(p) = self.shape.project(e, self.x) {
             if better(&p, e, &self.best) {
@@ -82,10 +99,26 @@ impl Scan<'_> {
     }
 }
 
+/// Cast3M circle test: whether `x` lies in the circle centred on polyline
+/// segment `e`'s midpoint with radius `sqrt((L/2)^2 + window^2)`; true for
+/// entities of other shapes (no segment circle).
+pub fn in_circle(shape: &ToolShape, e: usize, x: [f64; 2], window: f64) -> bool {
+    let ToolShape::Polyline(p) = shape else {
+        return true;
+    };
+    let (Some(&a), Some(&l)) = (p.points.get(e), p.lengths.get(e)) else {
+        return false;
+    };
+    let b = p.points[(e + 1) % p.points.len()];
+    let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let d = sub(x, mid);
+    dot(d, d) <= 0.25 * l * l + window * window
+}
+
 /// Closest entity to `x` (tool reference frame) within `window`, testing
 /// `memory` first (unconditionally), then its neighbours, then `guess` and
 /// its neighbours, then the rest. Adds the number of projections made to
-/// `tests`.
+/// `tests`. Same as [`closest_with`] with the memory test.
 pub fn closest(
     shape: &ToolShape,
     x: [f64; 2],
@@ -94,13 +127,29 @@ pub fn closest(
     guess: Option<usize>,
     tests: &mut usize,
 ) -> Option<Found> {
+    closest_with(shape, x, window, memory, guess, LocalSearch::Memory, tests)
+}
+
+/// [`closest`] with the local test `test`: [`LocalSearch::Memory`] as
+/// described there, or [`LocalSearch::Circle`] (module documentation).
+pub fn closest_with(
+    shape: &ToolShape,
+    x: [f64; 2],
+    window: f64,
+    memory: Option<usize>,
+    guess: Option<usize>,
+    test: LocalSearch,
+    tests: &mut usize,
+) -> Option<Found> {
     let count = shape.entity_count();
+    let circle = test == LocalSearch::Circle;
     let mut scan = Scan {
         shape,
         x,
         window,
         best: None,
         tests: 0,
+        circle,
     };
     // Priority entities (at most 6, kept in a small array: no allocation).
     let mut first = [usize::MAX; 6];
@@ -115,6 +164,8 @@ pub fn closest(
     };
     let memory = memory.filter(|&e| e < count);
     push(memory, &mut first);
+    // the circle test has no unconditional memory (ordering hint only)
+    let unconditional = memory.filter(|_| !circle);
     if let Some(m) = memory {
         let [a, b] = shape.neighbours(m);
         push(a, &mut first);
@@ -130,7 +181,7 @@ pub fn closest(
     let mut skipped_before_any = false;
     for (k, &e) in first.iter().enumerate() {
         let had = scan.best.is_some();
-        if !scan.consider(e, k == 0 && memory == Some(e)) && !had {
+        if !scan.consider(e, k == 0 && unconditional == Some(e)) && !had {
             skipped_before_any = true;
         }
     }
@@ -150,8 +201,8 @@ pub fn closest(
     // box is within the window (the radius never fell below it).
     if skipped_before_any && scan.radius() > window {
         for e in 0..count {
-            let done =
-                memory == Some(e) || shape.bounding_box(e).distance(x) <= window + 1e-12 * window;
+            let done = unconditional == Some(e)
+                || shape.bounding_box(e).distance(x) <= window + 1e-12 * window;
             if !done {
                 scan.consider(e, false);
             }
