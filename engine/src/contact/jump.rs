@@ -68,7 +68,7 @@ pub fn tool_jumps(
         let (r0, r1) = (p0.to_reference(a), p1.to_reference(b));
         let d = sub(r1, r0);
         let distance = norm(d);
-        if !(distance > prof) {
+        if !exceeds(distance, prof) {
             continue;
         }
         let mut tests = 0;
@@ -119,7 +119,7 @@ pub fn surface_jumps(
             continue;
         };
         let moved = sub(b, a);
-        if !(norm(moved) > prof) {
+        if !exceeds(norm(moved), prof) {
             continue;
         }
         exclude.clear();
@@ -153,13 +153,13 @@ pub fn surface_jumps(
         ];
         let d = sub(moved, master);
         let distance = norm(d);
-        if !(distance > prof) {
+        if !exceeds(distance, prof) {
             continue;
         }
         // outward normal of the segment (body on the left of m1 -> m2)
         let t = sub(m2b, m1b);
         let len = norm(t);
-        if !(len > 0.0) {
+        if !exceeds(len, 0.0) {
             continue;
         }
         let n = [t[1] / len, -t[0] / len];
@@ -173,6 +173,11 @@ pub fn surface_jumps(
         }
     }
     out
+}
+
+/// `a > b`, false when either is NaN.
+fn exceeds(a: f64, b: f64) -> bool {
+    a > b
 }
 
 /// One warning line for the jumps of pair `name` in an increment, or
