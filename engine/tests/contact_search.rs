@@ -7,7 +7,9 @@ mod contact_support;
 use contact_support::{nodal, surface_model};
 use ctc_engine::contact::geometry::ToolShape;
 use ctc_engine::contact::motion::Placement;
-use ctc_engine::contact::search::{brute_force, closest, closest_with, in_circle};
+use ctc_engine::contact::search::{
+    brute_force, closest, closest_in, closest_with, in_circle, Request, ToolGrid,
+};
 use ctc_engine::contact::{evaluate_pair, PairState};
 use ctc_engine::model::{AnalysisKind, LocalSearch, TimeFunction, ToolGeometry, ToolMotion};
 use proptest::prelude::*;
@@ -260,4 +262,32 @@ fn contact_circle_test_skips_segments_the_node_projects_past() {
         &mut b
     )
     .is_none());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+
+    /// The broad-phase search of a rigid tool returns what the entity loop
+    /// returns, for both local tests, with no more projections.
+    #[test]
+    fn contact_grid_search_matches_entity_loop(
+        which in 0usize..3,
+        x in -0.5f64..10.5,
+        y in -1.5f64..1.5,
+        window in 0.01f64..1.0,
+        memory in proptest::option::of(0usize..220),
+        guess in proptest::option::of(0usize..220),
+        circle in any::<bool>(),
+    ) {
+        let shape = &shapes()[which];
+        let grid = ToolGrid::new(shape);
+        let test = if circle { LocalSearch::Circle } else { LocalSearch::Memory };
+        let (mut nl, mut ng) = (0, 0);
+        let looped = closest_with(shape, [x, y], window, memory, guess, test, &mut nl);
+        let mut scratch = Vec::new();
+        let request = Request { x: [x, y], window, memory, guess, test };
+        let gridded = closest_in(shape, &grid, request, &mut scratch, &mut ng);
+        prop_assert_eq!(looped, gridded);
+        prop_assert!(ng <= nl, "grid {} projections, loop {}", ng, nl);
+    }
 }

@@ -130,6 +130,10 @@ pub struct PairState {
     pub active: Vec<bool>,
     /// Per slave node: active set at the last converged increment.
     pub committed_active: Vec<bool>,
+    /// Broad phase over the tool's entities (reference frame, built once).
+    pub tool_grid: search::ToolGrid,
+    /// Scratch list of broad-phase hits (reused by every search).
+    pub scratch: Vec<usize>,
 }
 
 impl PairState {
@@ -163,7 +167,6 @@ impl PairState {
             tributary: tributary::tributary_areas(model, pair),
             pair: Some(pair),
             prof: prof::effective_prof(model, pair),
-            shape,
             error,
             last_entity: vec![None; n],
             committed_entity: vec![None; n],
@@ -174,6 +177,12 @@ impl PairState {
             committed_multiplier: vec![0.0; n],
             active: vec![false; n],
             committed_active: vec![false; n],
+            tool_grid: shape
+                .as_ref()
+                .map(search::ToolGrid::new)
+                .unwrap_or_default(),
+            scratch: Vec::new(),
+            shape,
         }
     }
 
@@ -233,9 +242,20 @@ pub fn evaluate_pair(
         };
         let xr = placement.to_reference(xn);
         let memory = state.last_entity[i];
-        let Some(found) =
-            search::closest_with(shape, xr, prof, memory, guess, cp.search, &mut tests)
-        else {
+        let request = search::Request {
+            x: xr,
+            window: prof,
+            memory,
+            guess,
+            test: cp.search,
+        };
+        let Some(found) = search::closest_in(
+            shape,
+            &state.tool_grid,
+            request,
+            &mut state.scratch,
+            &mut tests,
+        ) else {
             continue;
         };
         state.last_entity[i] = Some(found.entity);

@@ -299,6 +299,13 @@ impl SurfaceSearch {
         let mut best: Option<SegmentHit> = None;
         let mut tests = 0;
         for &e in list {
+            // a box farther than the best distance cannot hold a closer point
+            if best
+                .as_ref()
+                .is_some_and(|b| self.boxes[e].distance(point) > b.distance)
+            {
+                continue;
+            }
             tests += 1;
             if let Some(h) = self.project(e, point) {
                 if best.as_ref().is_none_or(|b| better(&h, b)) {
