@@ -141,22 +141,32 @@ fn points(n: usize, h: f64, shift: f64, s: f64) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// Best-of-`reps` wall time of `f`, seconds, and its last result.
+/// Best wall time of `f` over at least `reps` runs, continued until the
+/// runs add up to [`BUDGET`] seconds (at most 1000 runs): the minimum is the
+/// run least disturbed by other processes. Returns it and the last result.
 fn timed<T>(reps: usize, mut f: impl FnMut() -> T) -> (f64, T) {
     let mut best = f64::INFINITY;
+    let mut total = 0.0;
+    let mut runs = 0;
     let mut last = None;
-    for _ in 0..reps.max(1) {
+    while runs < reps.max(1) || (total < BUDGET && runs < 1000) {
         let t = Instant::now();
         let r = f();
-        best = best.min(t.elapsed().as_secs_f64());
+        let dt = t.elapsed().as_secs_f64();
+        best = best.min(dt);
+        total += dt;
+        runs += 1;
         last = Some(r);
     }
-    (best, last.expect("at least one repetition"))
+    (best, last.expect("at least one run"))
 }
 
-/// Repetitions for size `n` (more for small sizes, for stable timings).
+/// Time spent repeating one measurement, seconds.
+const BUDGET: f64 = 0.25;
+
+/// Minimum repetitions for size `n`.
 fn reps(n: usize) -> usize {
-    (200_000 / n.max(1)).clamp(3, 200)
+    (20_000 / n.max(1)).clamp(3, 200)
 }
 
 /// Searches every point on a surface search; returns the segment found per
@@ -270,25 +280,23 @@ fn run_size(n: usize, brute_max: usize) -> SizeResult {
 
     // 5. brute force
     let brute = (n <= brute_max).then(|| {
-        let (time, found) = timed(reps.min(3), || {
+        let (time, found) = timed(1, || {
             p1.iter()
                 .map(|&p| s.nearest_brute_force(p, &[]).map(|h| h.segment))
                 .collect::<Vec<_>>()
         });
-        let count = |got: &[Option<usize>]| {
-            got.iter()
-                .zip(&found)
-                .zip(&p1)
-                .filter(|((g, b), p)| {
-                    // a brute-force hit beyond the window may be missed
-                    let within = b
-                        .and_then(|e| s.project(e, **p))
-                        .is_some_and(|h| h.distance <= prof);
-                    g != b && (within || g.is_some())
-                })
-                .count()
-        };
-        memory.mismatches = count(&moved);
+        // a brute-force hit beyond the window may be missed, nothing else
+        memory.mismatches = moved
+            .iter()
+            .zip(&found)
+            .zip(&p1)
+            .filter(|((g, b), p)| {
+                let within = b
+                    .and_then(|e| s.project(e, **p))
+                    .is_some_and(|h| h.distance <= prof);
+                g != b && (within || g.is_some())
+            })
+            .count();
         rigid.mismatches = rigid_found
             .iter()
             .zip(&moved)

@@ -347,7 +347,7 @@ impl SurfaceSearch {
         let xi = (dot(sub(point, a), d) / l2).clamp(0.0, 1.0);
         let foot = [a[0] + xi * d[0], a[1] + xi * d[1]];
         let r = sub(point, foot);
-        let distance = norm(r);
+        let distance = dot(r, r).sqrt();
         // outward normal (dy, -dx): the body is on the left of a -> b
         let side = r[0] * d[1] - r[1] * d[0];
         Some(SegmentHit {
