@@ -36,7 +36,7 @@
 
 use super::aabb::Aabb;
 use super::broad::BroadPhase;
-use super::vec2::{dot, norm, sub};
+use super::vec2::{dot, sub};
 use crate::model::LocalSearch;
 use std::cell::Cell;
 
@@ -161,7 +161,8 @@ impl SurfaceSearch {
                     self.ends[e] = [pa, pb];
                     self.boxes[e] = Aabb::around(&[pa, pb]);
                     let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                    self.circles[e] = (mid, 0.5 * norm(sub(pb, pa)));
+                    let d = sub(pb, pa);
+                    self.circles[e] = (mid, 0.5 * dot(d, d).sqrt());
                 }
                 None => {
                     self.ends[e] = [[f64::NAN; 2]; 2];
