@@ -17,6 +17,8 @@
 //! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
 //!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
 //! - [`tributary`]: tributary areas of slave nodes;
+//! - [`segment`], [`node_to_segment`]: deformable masters (node-to-segment
+//!   elements, single / double / modified double pass, self contact);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
@@ -26,9 +28,11 @@ pub mod geometry;
 pub mod lagrange;
 pub mod log;
 pub mod motion;
+pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;
 pub mod search;
+pub mod segment;
 pub mod tributary;
 pub(crate) mod vec2;
 
@@ -124,6 +128,12 @@ pub struct PairState {
     pub active: Vec<bool>,
     /// Per slave node: active set at the last converged increment.
     pub committed_active: Vec<bool>,
+    /// Slave nodes, sorted: `ContactPair::nodes`, plus the master surface's
+    /// nodes for the double-pass strategies. Every per-slave vector above is
+    /// in this order.
+    pub slaves: Vec<usize>,
+    /// Deformable master (node-to-segment): surfaces, strategy state.
+    pub surface: Option<node_to_segment::SurfacePair>,
 }
 
 impl PairState {
@@ -138,7 +148,9 @@ impl PairState {
                 ..PairState::default()
             };
         };
-        let n = cp.nodes.len();
+        let slaves = node_to_segment::slave_nodes(model, pair);
+        let n = slaves.len();
+        let surface = node_to_segment::prepare(model, pair, &slaves);
         let shape = match cp.master.tool().and_then(|t| model.tools.get(t)) {
             Some(tool) => {
                 ToolShape::new(&tool.geometry).map_err(|e| format!("tool '{}': {e}", tool.name))
@@ -151,10 +163,11 @@ impl PairState {
         };
         let (shape, error) = match shape {
             Ok(s) => (Some(s), None),
+            Err(_) if surface.is_some() => (None, None),
             Err(e) => (None, Some(e)),
         };
         PairState {
-            tributary: tributary::tributary_areas(model, pair),
+            tributary: node_to_segment::tributary_areas(model, pair, &slaves),
             pair: Some(pair),
             prof: prof::effective_prof(model, pair),
             shape,
@@ -168,6 +181,8 @@ impl PairState {
             committed_multiplier: vec![0.0; n],
             active: vec![false; n],
             committed_active: vec![false; n],
+            slaves,
+            surface,
         }
     }
 
@@ -186,6 +201,14 @@ impl PairState {
         self.committed_entity.clone_from(&self.last_entity);
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
+        if let Some(sp) = &mut self.surface {
+            sp.commit();
+        }
+    }
+
+    /// Index of slave node `node` in the per-slave vectors, if it is one.
+    pub fn slave_index(&self, node: usize) -> Option<usize> {
+        self.slaves.binary_search(&node).ok()
     }
 
     /// Called when an increment is cut back: restores the committed state.
@@ -193,6 +216,9 @@ impl PairState {
         self.last_entity.clone_from(&self.committed_entity);
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
+        if let Some(sp) = &mut self.surface {
+            sp.rollback();
+        }
     }
 }
 
@@ -208,8 +234,14 @@ pub fn evaluate_pair(
     let Some(cp) = model.contacts.get(pair) else {
         return Vec::new();
     };
-    if state.pair != Some(pair) || state.last_entity.len() != cp.nodes.len() {
+    if state.pair != Some(pair)
+        || state.last_entity.len() != state.slaves.len()
+        || state.slaves.len() < cp.nodes.len()
+    {
         *state = PairState::new(model, pair);
+    }
+    if state.surface.is_some() {
+        return node_to_segment::evaluate(model, pair, x, state);
     }
     let tool = cp.master.tool().and_then(|t| model.tools.get(t));
     let (Some(shape), Some(tool)) = (state.shape.as_ref(), tool) else {
