@@ -144,7 +144,7 @@ impl SurfacePair {
         match strategy {
             ContactStrategy::SinglePass => [true, false],
             ContactStrategy::DoublePass => {
-                let even = self.increments % 2 == 0;
+                let even = self.increments.is_multiple_of(2);
                 [even, !even]
             }
             ContactStrategy::ModifiedDoublePass => [true, true],

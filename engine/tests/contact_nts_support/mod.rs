@@ -301,3 +301,45 @@ pub fn pressure_deviation(contact: &[NodeContact], exact: f64) -> (f64, f64, f64
     let err = p.iter().map(|x| (x - exact).abs()).fold(0.0, f64::max) / exact;
     (mean, dev, err)
 }
+
+/// Nodal traction on the surface `edges` (plane strain, unit thickness):
+/// the total normal (y) contact force each node receives, as slave and as
+/// master end of other nodes' elements, divided by its tributary length.
+/// A uniform pressure `p` gives `p` at every node (consistent nodal
+/// forces of linear edges).
+pub fn nodal_traction(model: &Model, contact: &[NodeContact], edges: &[[usize; 2]]) -> Vec<f64> {
+    let nodes = nodes_of(edges);
+    let mut force = vec![0.0; nodes.len()];
+    let mut length = vec![0.0; nodes.len()];
+    for &[a, b] in edges {
+        let (pa, pb) = (model.mesh.nodes[a], model.mesh.nodes[b]);
+        let l = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
+        for n in [a, b] {
+            length[nodes.binary_search(&n).unwrap()] += 0.5 * l;
+        }
+    }
+    let mut add = |n: usize, f: [f64; 2]| {
+        if let Ok(i) = nodes.binary_search(&n) {
+            force[i] += f[1];
+        }
+    };
+    for c in contact {
+        add(c.node, c.force);
+        if let Some(m) = &c.master {
+            add(m.nodes[0], m.forces[0]);
+            add(m.nodes[1], m.forces[1]);
+        }
+    }
+    force
+        .iter()
+        .zip(&length)
+        .map(|(f, l)| f.abs() / l)
+        .collect()
+}
+
+/// (mean, max |t - mean| / mean) of nodal tractions.
+pub fn deviation(t: &[f64]) -> (f64, f64) {
+    let mean = t.iter().sum::<f64>() / t.len() as f64;
+    let dev = t.iter().map(|x| (x - mean).abs()).fold(0.0, f64::max) / mean;
+    (mean, dev)
+}
