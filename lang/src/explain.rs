@@ -324,6 +324,9 @@ pub fn explain(model: &Model) -> String {
                 c.nodes.len(),
                 plural(c.edges.len(), "edge", "edges")
             );
+            if let Some(line) = crate::explain_surface::describe(model, c) {
+                let _ = writeln!(o, "    {line}");
+            }
         }
     }
     // ------------------------------------------------------------ steps

@@ -341,6 +341,33 @@ pub struct Contact {
     pub reserved: Vec<Ident>,
     /// The whole item.
     pub span: Span,
+    /// Deformable master surface `body.set` (then `tool` holds its text
+    /// and span); `None` for a rigid tool.
+    pub master: Option<SetRef>,
+    /// `strategy = single_pass | double_pass | modified_double_pass`.
+    pub strategy: Option<Spanned<StrategyAst>>,
+    /// `search = memory | circle`.
+    pub search: Option<Spanned<SearchAst>>,
+}
+
+/// `strategy = ..` of a contact pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StrategyAst {
+    /// `single_pass`.
+    SinglePass,
+    /// `double_pass`.
+    DoublePass,
+    /// `modified_double_pass`.
+    ModifiedDoublePass,
+}
+
+/// `search = ..` of a contact pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SearchAst {
+    /// `memory` (Metafor).
+    Memory,
+    /// `circle` (Cast3M).
+    Circle,
 }
 
 /// `penalty` kinds.
