@@ -418,6 +418,16 @@ fn segments_of(pairs: &[(usize, usize)], node: usize) -> &[(usize, usize)] {
     &pairs[lo..hi]
 }
 
+/// Cast3M circle test for a segment `a -> b`: whether `point` lies in the
+/// circle centred on the midpoint with radius `sqrt((L/2)^2 + window^2)`
+/// (every point whose foot is inside the segment with `|gap| <= window`
+/// passes). Same test as [`SurfaceSearch::in_circle`].
+pub fn in_segment_circle(a: [f64; 2], b: [f64; 2], point: [f64; 2], window: f64) -> bool {
+    let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let (d, l) = (sub(point, mid), sub(b, a));
+    dot(d, d) <= 0.25 * dot(l, l) + window * window
+}
+
 /// Whether `a` beats `b`: smaller distance, then lower segment index.
 fn better(a: &SegmentHit, b: &SegmentHit) -> bool {
     a.distance < b.distance || (a.distance == b.distance && a.segment < b.segment)
