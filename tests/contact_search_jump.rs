@@ -76,3 +76,52 @@ fn contact_search_small_increments_find_the_contact_without_warning() {
     assert!(summary.increments.last().unwrap().active_contacts > 0);
     assert!(max_penetration > 0.0);
 }
+
+fn surface_deck(increments: usize) -> String {
+    format!(
+        r#"
+analysis {{ dimension = plane_strain }}
+material soft {{ elastic {{ E = 2e6  nu = 0 }} }}
+body base {{
+  mesh = rectangle {{ origin = (0, 0)  size = (1, 1)  divisions = (4, 2)  element = quad4 }}
+  material = soft
+}}
+body top {{
+  mesh = rectangle {{ origin = (0, 1.05)  size = (1, 1)  divisions = (3, 2)  element = quad4 }}
+  material = soft
+}}
+contact top.bottom -> base.top {{
+  method = penalty {{ kind = area  stiffness = 1e8 }}
+}}
+fix base.bottom {{ uy }}
+fix base.left {{ ux }}
+fix top.left {{ ux }}
+displace top.top {{ uy = ramp(0, -0.6) }}
+step press {{ time = 0 .. 1  increments = {increments} }}
+"#
+    )
+}
+
+fn run_surface(increments: usize) -> RunSummary {
+    let src = ctc_lang::Source::new("jump_surface.ctc", surface_deck(increments));
+    let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
+    ctc_engine::solve::run(&model, &mut Warnings::default()).unwrap()
+}
+
+#[test]
+fn contact_search_warns_when_a_body_jumps_into_a_deformable_master() {
+    // one increment: the top block lands 0.55 inside the base, deeper than
+    // node-to-segment accepts: missed, and said so
+    let summary = run_surface(1);
+    assert_eq!(summary.increments[0].active_contacts, 0);
+    assert_eq!(summary.warnings.len(), 1, "{:?}", summary.warnings);
+    assert!(
+        summary.warnings[0].contains("4 slave node(s) of contact `top.bottom -> base.top`"),
+        "{}",
+        summary.warnings[0]
+    );
+    // small increments: found, no warning
+    let summary = run_surface(30);
+    assert!(summary.warnings.is_empty(), "{:?}", summary.warnings);
+    assert!(summary.increments.last().unwrap().active_contacts > 0);
+}
