@@ -25,7 +25,7 @@ ROOT=$(cd "$HERE/../.." && pwd)
 OUT="$ROOT/target/speed/$SIZE"
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 mkdir -p "$OUT"
-rm -f "$OUT"/ctc_*.json "$OUT"/A_*.json "$OUT"/B_*.json "$OUT"/load.txt
+rm -f "$OUT"/ctc_*.json "$OUT"/ctc_*.cpu "$OUT"/A_*.json "$OUT"/B_*.json "$OUT"/load.txt
 
 cd "$ROOT"
 # one cargo invocation for both (separate ones unify features differently
@@ -38,7 +38,8 @@ PROBLEM="$OUT/bench_$SIZE.problem.json"
 load() { echo "$(date -u +%H:%M:%S) $1: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT/load.txt"; }
 for rep in $(seq 1 "$REPS"); do
   load "before ctc $rep"
-  "$CTC" bench --size "$SIZE" --json >"$OUT/ctc_$rep.json"
+  # CPU (user + sys) of the whole ctc process: an upper bound of its loop's
+  /usr/bin/time -f "%U %S" -o "$OUT/ctc_$rep.cpu" "$CTC" bench --size "$SIZE" --json >"$OUT/ctc_$rep.json"
   load "after ctc $rep / before A $rep"
   "$PY" "$HERE/speed.py" "$PROBLEM" "$OUT/A_$rep.json" --variant A 2>/dev/null | tail -n 1
   load "after A $rep / before B $rep"
