@@ -85,7 +85,8 @@ fn export_bench(size: &str, out: &std::path::Path) -> Result<(), String> {
     let problem = ctc_verification::fenicsx_export::export(&model, &name)?;
     let path = out.join(format!("{name}.problem.json"));
     let json = serde_json::to_string(&problem).map_err(|e| e.to_string())?;
-    std::fs::write(&path, json + "\n").map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    std::fs::write(&path, json + "\n")
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
     println!("{}", path.display());
     Ok(())
 }
