@@ -427,11 +427,13 @@ def solve_b(setup, package):
         contact_forms.append((dolfinx.fem.form(fc), pen, gap, c))
 
     timers = {"residual": 0.0, "jacobian": 0.0}
+    history = [[]]  # ||F|| at every residual evaluation, per increment
 
     class TimedProblem(dolfinx.fem.petsc.NonlinearProblem):
         def F(self, xv, bv):
             t0 = time.perf_counter()
             super().F(xv, bv)
+            history[-1].append(bv.norm())
             timers["residual"] += time.perf_counter() - t0
 
         def J(self, xv, Av):
@@ -463,6 +465,7 @@ def solve_b(setup, package):
         if not converged:
             raise RuntimeError(f"variant B, increment {k + 1}: no convergence")
         iterations.append(int(n_it))
+        history.append([])
     wall = time.perf_counter() - t_loop
     cpu = time.process_time() - c_loop
     ordering = mumps_ordering(ksp, package)
@@ -504,6 +507,7 @@ def solve_b(setup, package):
         "total_contact_force": forces,
         "peak_pressure": peaks,
         "peak_pressure_vertex": vertex_peaks,
+        "residual_norms": history[:-1],
     }
 
 
