@@ -17,6 +17,10 @@
 //! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
 //!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
 //! - [`tributary`]: tributary areas of slave nodes;
+//! - [`segment_search`]: candidate master segments of a deformable surface
+//!   (broad phase + memory or circle local test);
+//! - [`jump`]: slave nodes that moved farther than `prof` relative to the
+//!   master in one increment (run warnings);
 //! - [`segment`], [`node_to_segment`]: deformable masters (node-to-segment
 //!   elements, single / double / modified double pass, self contact);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
@@ -25,6 +29,7 @@ pub mod aabb;
 pub mod augmented;
 pub mod broad;
 pub mod geometry;
+pub mod jump;
 pub mod lagrange;
 pub mod log;
 pub mod motion;
@@ -32,6 +37,7 @@ pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;
 pub mod search;
+pub mod segment_search;
 pub mod segment;
 pub mod tributary;
 pub(crate) mod vec2;
@@ -128,6 +134,10 @@ pub struct PairState {
     pub active: Vec<bool>,
     /// Per slave node: active set at the last converged increment.
     pub committed_active: Vec<bool>,
+    /// Broad phase over the tool's entities (reference frame, built once).
+    pub tool_grid: search::ToolGrid,
+    /// Scratch list of broad-phase hits (reused by every search).
+    pub scratch: Vec<usize>,
     /// Slave nodes, sorted: `ContactPair::nodes`, plus the master surface's
     /// nodes for the double-pass strategies. Every per-slave vector above is
     /// in this order.
@@ -170,7 +180,6 @@ impl PairState {
             tributary: node_to_segment::tributary_areas(model, pair, &slaves),
             pair: Some(pair),
             prof: prof::effective_prof(model, pair),
-            shape,
             error,
             last_entity: vec![None; n],
             committed_entity: vec![None; n],
@@ -181,6 +190,12 @@ impl PairState {
             committed_multiplier: vec![0.0; n],
             active: vec![false; n],
             committed_active: vec![false; n],
+            tool_grid: shape
+                .as_ref()
+                .map(search::ToolGrid::new)
+                .unwrap_or_default(),
+            scratch: Vec::new(),
+            shape,
             slaves,
             surface,
         }
@@ -259,7 +274,20 @@ pub fn evaluate_pair(
         };
         let xr = placement.to_reference(xn);
         let memory = state.last_entity[i];
-        let Some(found) = search::closest(shape, xr, prof, memory, guess, &mut tests) else {
+        let request = search::Request {
+            x: xr,
+            window: prof,
+            memory,
+            guess,
+            test: cp.search,
+        };
+        let Some(found) = search::closest_in(
+            shape,
+            &state.tool_grid,
+            request,
+            &mut state.scratch,
+            &mut tests,
+        ) else {
             continue;
         };
         state.last_entity[i] = Some(found.entity);
