@@ -172,8 +172,15 @@ impl BroadPhase {
     /// Cell index of coordinate `v` along an axis of origin `o`.
     #[inline]
     fn index(&self, v: f64, o: f64) -> i64 {
-        // finite inputs; the cast saturates for absurd ratios
-        ((v - o) / self.cell).floor() as i64
+        // floor without the libm call (finite inputs; the cast saturates
+        // for absurd ratios)
+        let q = (v - o) / self.cell;
+        let k = q as i64;
+        if q < k as f64 {
+            k - 1
+        } else {
+            k
+        }
     }
 
     /// Cell range of a box and its number of cells (saturating), or `None`

@@ -37,8 +37,8 @@ pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;
 pub mod search;
-pub mod segment_search;
 pub mod segment;
+pub mod segment_search;
 pub mod tributary;
 pub(crate) mod vec2;
 

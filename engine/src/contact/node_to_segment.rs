@@ -53,8 +53,9 @@
 use super::aabb::Aabb;
 use super::broad::BroadPhase;
 use super::segment::SegmentProjection;
+use super::segment_search;
 use super::{augmented, lagrange, penalty, ContactStatus, MasterSegment, NodeContact, PairState};
-use crate::model::{ContactMaster, ContactMethod, ContactStrategy, Model};
+use crate::model::{ContactMaster, ContactMethod, ContactStrategy, LocalSearch, Model};
 
 /// Relative tolerance on `xi` for "inside the segment".
 const XI_TOL: f64 = 1e-10;
@@ -111,7 +112,10 @@ impl Surface {
         for &[a, b] in &self.edges {
             self.boxes.push(Aabb::around(&[x[a], x[b]]));
         }
-        self.grid = Some(BroadPhase::build(&self.boxes));
+        // rebuilt in place: no allocation once the sizes have settled
+        self.grid
+            .get_or_insert_with(BroadPhase::default)
+            .rebuild(&self.boxes, 0.0);
     }
 }
 
@@ -390,6 +394,14 @@ pub fn evaluate(
         if sp.self_contact {
             let ex = &sp.excluded[i];
             candidates.retain(|e| ex.binary_search(e).is_err());
+        }
+        // Cast3M's local test (`search = circle`): only the segments whose
+        // circle holds the node, memory included (see `segment_search`)
+        if cp.search == LocalSearch::Circle {
+            candidates.retain(|&e| {
+                let [a, b] = surface.edges[e];
+                segment_search::in_segment_circle(x[a], x[b], xs, prof)
+            });
         }
         let Some(k) = closest(surface, x, xs, &candidates, prof, &mut tests) else {
             state.last_entity[i] = None;

@@ -36,7 +36,7 @@
 
 use super::aabb::Aabb;
 use super::broad::BroadPhase;
-use super::vec2::{dot, norm, sub};
+use super::vec2::{dot, sub};
 use crate::model::LocalSearch;
 use std::cell::Cell;
 
@@ -161,7 +161,8 @@ impl SurfaceSearch {
                     self.ends[e] = [pa, pb];
                     self.boxes[e] = Aabb::around(&[pa, pb]);
                     let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                    self.circles[e] = (mid, 0.5 * norm(sub(pb, pa)));
+                    let d = sub(pb, pa);
+                    self.circles[e] = (mid, 0.5 * dot(d, d).sqrt());
                 }
                 None => {
                     self.ends[e] = [[f64::NAN; 2]; 2];
@@ -415,6 +416,16 @@ fn segments_of(pairs: &[(usize, usize)], node: usize) -> &[(usize, usize)] {
     let lo = pairs.partition_point(|p| p.0 < node);
     let hi = pairs.partition_point(|p| p.0 <= node);
     &pairs[lo..hi]
+}
+
+/// Cast3M circle test for a segment `a -> b`: whether `point` lies in the
+/// circle centred on the midpoint with radius `sqrt((L/2)^2 + window^2)`
+/// (every point whose foot is inside the segment with `|gap| <= window`
+/// passes). Same test as [`SurfaceSearch::in_circle`].
+pub fn in_segment_circle(a: [f64; 2], b: [f64; 2], point: [f64; 2], window: f64) -> bool {
+    let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let (d, l) = (sub(point, mid), sub(b, a));
+    dot(d, d) <= 0.25 * dot(l, l) + window * window
 }
 
 /// Whether `a` beats `b`: smaller distance, then lower segment index.
