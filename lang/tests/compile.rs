@@ -250,3 +250,32 @@ fn explain_leaves_out_what_a_scene_does_not_need() {
     assert!(!text.contains("loads:"));
     assert!(text.contains("unknowns: 8 displacement dofs (2 per node): 8 free, 0 prescribed"));
 }
+
+#[test]
+fn deformable_contact_lowers_to_a_surface_master_with_oriented_edges() {
+    use ctc_engine::model::{ContactMaster, ContactStrategy, LocalSearch};
+    let text = "analysis { dimension = plane_strain }\n\
+        material m { elastic { E = 1  nu = 0 } }\n\
+        body top { mesh = rectangle { origin = (0, 1)  size = (1, 1)  divisions = (3, 2) }  material = m }\n\
+        body base { mesh = rectangle { origin = (0, 0)  size = (1, 1)  divisions = (4, 2) }  material = m }\n\
+        contact top.bottom -> base.top { method = penalty { stiffness = 1 }  strategy = double_pass  search = circle }\n\
+        fix base.bottom { ux uy }\n\
+        displace top.top { uy = ramp(0, -0.1) }\n\
+        step s { time = 0 .. 1 }\n";
+    let src = ctc_lang::Source::new("deformable.ctc", text);
+    let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
+    let cp = &model.contacts[0];
+    assert_eq!(cp.name, "top.bottom -> base.top");
+    assert_eq!(cp.strategy, ContactStrategy::DoublePass);
+    assert_eq!(cp.search, LocalSearch::Circle);
+    let ContactMaster::Surface { body, edges, nodes } = &cp.master else {
+        panic!("surface master expected");
+    };
+    assert_eq!(model.bodies[*body].name, "base");
+    assert_eq!((edges.len(), nodes.len()), (4, 5));
+    // body on the left: the base's top edges walk towards -x (normal +y)
+    for &[a, b] in edges {
+        let (pa, pb) = (model.mesh.nodes[a], model.mesh.nodes[b]);
+        assert!(pb[0] < pa[0] && pa[1] == 1.0 && pb[1] == 1.0);
+    }
+}

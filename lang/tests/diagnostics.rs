@@ -64,6 +64,9 @@ decks!(
     axisymmetric_negative_radius,
     unterminated_string,
     comma_in_block,
+    contact_master_unknown_body,
+    contact_master_unknown_set,
+    contact_bad_strategy,
 );
 
 #[test]

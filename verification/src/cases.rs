@@ -28,6 +28,7 @@ pub fn all() -> Vec<Case> {
         lame_axisymmetric(),
         patch_plane_strain(),
         patch_axisymmetric(),
+        hertz_two_cylinders(),
     ]
 }
 
@@ -77,6 +78,42 @@ pub fn hertz_cylinder() -> Case {
             &[0.06, 0.03, 0.02, 0.02],
             &[0.05, 0.03, 0.02, 0.02],
             &[0.15, 0.08, 0.05, 0.03],
+            Some(0.7),
+        ),
+    }
+}
+
+/// Two identical elastic quarter cylinders pressed together (node-to-segment
+/// contact between deformable bodies, non-matching arcs).
+pub fn hertz_two_cylinders() -> Case {
+    Case {
+        name: "hertz_two_cylinders",
+        title:
+            "Hertz: two elastic cylinders, node-to-segment contact, plane strain (quarter models)",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
+        deck: "hertz_two_cylinders.ctc",
+        levels: 3,
+        // identical cylinders: a and p0 of one cylinder (E, nu, R) on a
+        // rigid plane under the same load
+        reference: Reference::HertzCylinder {
+            young: 1e3,
+            poisson: 0.3,
+            radius: 1.0,
+            pair: 0,
+            axis: 0.0,
+            half_model: true,
+            abscissa: Abscissa::Reference,
+        },
+        // Measured (levels 0-2): a 1.3e-2 1.0e-2 4.7e-3; a (moment) 2.6e-2
+        // 1.1e-2 3.6e-3; p0 2.6e-2 1.4e-2 7.3e-3; L2 8.5e-2 4.6e-2 2.4e-2
+        // (rate ~0.9). With non-matching arcs (gradings 0.02 / 0.03) a and
+        // L2 still converge but p0 plateaus at ~8 %: the single-pass
+        // patch-test defect at the axis node.
+        checks: hertz_checks(
+            &[0.03, 0.02, 0.01],
+            &[0.04, 0.02, 0.01],
+            &[0.04, 0.02, 0.012],
+            &[0.12, 0.07, 0.04],
             Some(0.7),
         ),
     }

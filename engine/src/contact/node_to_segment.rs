@@ -508,3 +508,86 @@ pub fn neighbourhood(state: &PairState, slave: usize, segment: usize, out: &mut 
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Master surface with a kink at node 1: segments 0 -> 1 -> 2 (body on
+    /// the left), the two segments at right angles.
+    fn kinked(concave: bool) -> (Surface, Vec<[f64; 2]>) {
+        // concave (re-entrant corner of the body): the body occupies
+        // x < 0 or y < 0; walk (1, 0) -> (0, 0) -> (0, 1)
+        // convex: the body occupies x < 0 and y < 0; walk (0, -1) -> (0, 0) -> (-1, 0)
+        let x = if concave {
+            vec![[1.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0; 2]]
+        } else {
+            vec![[0.0, -1.0], [0.0, 0.0], [-1.0, 0.0], [0.0; 2]]
+        };
+        (Surface::new(&[[0, 1], [1, 2]]), x)
+    }
+
+    #[test]
+    fn surface_neighbours_follow_the_walk() {
+        let s = Surface::new(&[[0, 1], [1, 2], [5, 6]]);
+        assert_eq!(s.prev, vec![None, Some(0), None]);
+        assert_eq!(s.next, vec![Some(1), None, None]);
+    }
+
+    #[test]
+    fn node_inside_a_concave_corner_is_not_lost() {
+        // projections on both segments fall outside them (the dead zone of
+        // the kink): the extended nearest segment keeps the contact
+        let (s, x) = kinked(true);
+        let mut tests = 0;
+        let k = closest(&s, &x, [-0.05, -0.03], &[0, 1], 0.5, &mut tests)
+            .expect("contact kept in the dead zone");
+        assert!(k.projection.gap < 0.0, "{k:?}");
+        assert!(k.projection.xi < 0.0 || k.projection.xi > 1.0);
+    }
+
+    #[test]
+    fn several_projections_keep_the_closest_and_convex_wedge_is_open() {
+        let (s, x) = kinked(false);
+        let mut tests = 0;
+        // inside the body near a convex corner: both projections inside
+        // their segments, the nearer face wins
+        let k = closest(&s, &x, [-0.1, -0.05], &[0, 1], 0.5, &mut tests).unwrap();
+        assert_eq!(k.segment, 1);
+        assert!((k.projection.gap + 0.05).abs() < 1e-15);
+        // outside, beyond the corner: extended lines give positive gaps
+        let k = closest(&s, &x, [0.1, 0.1], &[0, 1], 0.5, &mut tests).unwrap();
+        assert!(k.projection.gap > 0.0);
+        // outside, in front of one face: no false contact from the other
+        // face's extension
+        let k = closest(&s, &x, [0.05, -0.01], &[0, 1], 0.5, &mut tests).unwrap();
+        assert_eq!(k.segment, 0);
+        assert!((k.projection.gap - 0.05).abs() < 1e-15);
+    }
+
+    #[test]
+    fn free_end_extends_only_by_the_tolerance() {
+        let s = Surface::new(&[[0, 1]]);
+        let x = vec![[1.0, 0.0], [0.0, 0.0]];
+        let mut tests = 0;
+        assert!(closest(&s, &x, [-0.01, -0.001], &[0], 0.5, &mut tests).is_some());
+        assert!(closest(&s, &x, [-0.1, -0.001], &[0], 0.5, &mut tests).is_none());
+    }
+
+    #[test]
+    fn double_pass_swaps_sides_at_each_commit_and_rolls_back() {
+        let mut sp = SurfacePair::default();
+        let d = ContactStrategy::DoublePass;
+        assert_eq!(sp.slave_sides(d), [true, false]);
+        sp.commit();
+        assert_eq!(sp.slave_sides(d), [false, true]);
+        sp.increments += 1;
+        sp.rollback();
+        assert_eq!(sp.slave_sides(d), [false, true]);
+        assert_eq!(
+            sp.slave_sides(ContactStrategy::ModifiedDoublePass),
+            [true, true]
+        );
+        assert_eq!(sp.slave_sides(ContactStrategy::SinglePass), [true, false]);
+    }
+}

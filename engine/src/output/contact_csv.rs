@@ -3,6 +3,11 @@
 //! pressure, status (0 open or out of reach, 1 closed), force of the tool on
 //! the node (x, y; axisymmetric: totals over 2*pi). The gap is empty where
 //! the node is out of the search reach (`prof`).
+//!
+//! Deformable masters (node-to-segment) add the columns `master_1`,
+//! `master_2` (the segment's end nodes) and `xi` (projection parameter, 0
+//! at `master_1`), and list the master surface's nodes too when they act as
+//! slaves (double-pass strategies).
 
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::Model;
@@ -15,7 +20,17 @@ pub fn contact_csv(
     displacement: &[[f64; 2]],
     contact: &[NodeContact],
 ) -> String {
-    let nodes = &model.contacts[pair].nodes;
+    let surface = matches!(
+        model.contacts[pair].master,
+        crate::model::ContactMaster::Surface { .. }
+    );
+    let slaves;
+    let nodes = if surface {
+        slaves = crate::contact::node_to_segment::slave_nodes(model, pair);
+        &slaves
+    } else {
+        &model.contacts[pair].nodes
+    };
     let mut rows: Vec<(usize, [f64; 2], Option<&NodeContact>)> = nodes
         .iter()
         .map(|&n| {
@@ -29,7 +44,12 @@ pub fn contact_csv(
         })
         .collect();
     rows.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]).then(a.1[1].total_cmp(&b.1[1])));
-    let mut s = String::from("node,x,y,gap,pressure,status,force_x,force_y\n");
+    let mut s = String::from("node,x,y,gap,pressure,status,force_x,force_y");
+    s.push_str(if surface {
+        ",master_1,master_2,xi\n"
+    } else {
+        "\n"
+    });
     for (n, x, c) in rows {
         match c {
             Some(c) => {
@@ -37,14 +57,22 @@ pub fn contact_csv(
                     ContactStatus::Open => 0,
                     ContactStatus::Closed => 1,
                 };
-                let _ = writeln!(
+                let _ = write!(
                     s,
                     "{n},{},{},{},{},{st},{},{}",
                     x[0], x[1], c.gap, c.pressure, c.force[0], c.force[1]
                 );
+                match (&c.master, surface) {
+                    (Some(m), _) => {
+                        let _ = writeln!(s, ",{},{},{}", m.nodes[0], m.nodes[1], m.xi);
+                    }
+                    (None, true) => s.push_str(",,,\n"),
+                    (None, false) => s.push('\n'),
+                }
             }
             None => {
-                let _ = writeln!(s, "{n},{},{},,0,0,0,0", x[0], x[1]);
+                let _ = write!(s, "{n},{},{},,0,0,0,0", x[0], x[1]);
+                s.push_str(if surface { ",,,\n" } else { "\n" });
             }
         }
     }

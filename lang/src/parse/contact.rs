@@ -221,6 +221,33 @@ mod tests {
     }
 
     #[test]
+    fn deformable_master_with_strategy_and_search() {
+        let deck = parse_ok(
+            "contact top.bottom -> base.top {\n  method = penalty { stiffness = 1e8 }\n  strategy = modified_double_pass\n  search = circle\n}\ncontact ring.inner -> ring.inner { method = lagrange }",
+        );
+        let c = &deck.contacts[0];
+        let m = c.master.as_ref().expect("deformable master");
+        assert_eq!(m.body.name, "base");
+        assert!(matches!(&m.kind, SetRefKind::Named(n) if n.name == "top"));
+        assert_eq!(c.tool.name, "base.top");
+        assert_eq!(
+            c.strategy.as_ref().unwrap().value,
+            crate::ast::StrategyAst::ModifiedDoublePass
+        );
+        assert_eq!(
+            c.search.as_ref().unwrap().value,
+            crate::ast::SearchAst::Circle
+        );
+        let s = &deck.contacts[1];
+        assert_eq!(s.master.as_ref().unwrap().to_string(), "ring.inner");
+        assert!(s.strategy.is_none() && s.search.is_none());
+        // a rigid tool keeps its name and no master surface
+        let t = parse_ok("contact a.b -> punch { method = lagrange }");
+        assert!(t.contacts[0].master.is_none());
+        assert_eq!(t.contacts[0].tool.name, "punch");
+    }
+
+    #[test]
     fn lagrange_and_augmented_lagrange_methods() {
         let deck = parse_ok(
             "contact a.b -> t { method = lagrange { formulation = doubled } }\n\

@@ -117,7 +117,18 @@ pub fn measure(model: &Model, state: &FinalState, setup: &HertzSetup) -> Result<
             0.75 * std::f64::consts::PI
         };
     let p0 = profile.axis_pressure()?;
-    let reaction = total_reaction(state);
+    // against a rigid tool all reactions balance the contact force; between
+    // two deformable bodies only the slave body's reactions do (the master
+    // body's supports carry the opposite force)
+    let reaction = match model.contacts.get(setup.pair).map(|c| (&c.master, c.body)) {
+        Some((ctc_engine::model::ContactMaster::Surface { .. }, body)) => {
+            let nodes = model.bodies[body].nodes.clone();
+            state.reaction[nodes]
+                .iter()
+                .fold([0.0, 0.0], |s, r| [s[0] + r[0], s[1] + r[1]])
+        }
+        _ => total_reaction(state),
+    };
     let extent = (1.5 * a_ref).min(profile.points.last().map_or(0.0, |p| p.x));
     let l2 = profile.l2_error(&pressure, a_ref, p0_ref, extent);
     let values = vec![
