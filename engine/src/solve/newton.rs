@@ -189,6 +189,9 @@ pub struct Newton<'m> {
     target: Vec<f64>,
     dp: Vec<f64>,
     rhs: Vec<f64>,
+    /// Right-hand side of the current iteration before the solve
+    /// (`-r` at the start of the step), for the line-search energy test.
+    rhs0: Vec<f64>,
     base: Vec<f64>,
     x: Vec<[f64; 2]>,
     /// Wall time per phase.
@@ -255,6 +258,7 @@ impl<'m> Newton<'m> {
             target: vec![0.0; n_presc],
             dp: vec![0.0; n_presc],
             rhs: vec![0.0; n_free],
+            rhs0: vec![0.0; n_free],
             base: vec![0.0; n_free],
             x: model.mesh.nodes.clone(),
             dofs,
@@ -837,6 +841,10 @@ impl<'m> Newton<'m> {
             if first {
                 first_ref = ref_norm;
             }
+            if self.rhs0.len() != self.rhs.len() {
+                self.rhs0.resize(self.rhs.len(), 0.0);
+            }
+            self.rhs0.copy_from_slice(&self.rhs);
             self.factorize_solve(first).map_err(|mut f| {
                 f.residuals.clone_from(&residuals);
                 f
@@ -866,11 +874,21 @@ impl<'m> Newton<'m> {
                 .map_err(|f| with_residuals(f, &residuals))?;
             tangent_valid = true;
             let mut s = 1.0;
-            // line search when the full step increases the residual (and has not
-            // already reached the tolerance: no backtracking on round-off noise)
+            // Energy test along the step: phi'(s) = du . r(u + s du), with
+            // phi'(0) = -du . K du < 0. The full step is kept when
+            // phi'(1) < |phi'(0)| (the energy still decreases along the
+            // step: a contact closing under a full step raises ||r|| without
+            // making the step bad).
+            let slope0: f64 = self.rhs.iter().zip(&self.rhs0).map(|(d, r)| -d * r).sum();
+            let slope1: f64 = self.rhs.iter().zip(&self.r_free).map(|(d, r)| d * r).sum();
+            let energy_ok = slope0 < 0.0 && slope1.is_finite() && slope1 < -slope0;
+            // line search when the full step increases the residual and fails the
+            // energy test (and has not already reached the tolerance: no
+            // backtracking on round-off noise)
             // (not with Lagrange constraints: the multipliers are already updated)
             if settings.line_search
                 && !saddle_used
+                && !energy_ok
                 && ev.abs > ref_norm
                 && ev.rel > settings.tol
                 && ref_norm > 0.0
