@@ -653,6 +653,7 @@ impl Lowerer<'_> {
                 search: Default::default(),
                 method,
                 prof: c.prof.as_ref().map(|p| p.value),
+                friction: None,
             });
         }
         out

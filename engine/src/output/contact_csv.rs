@@ -86,6 +86,7 @@ pub(crate) mod tests {
                     stiffness: 1.0,
                 },
                 prof: None,
+                friction: None,
             }],
             steps: vec![],
             output: OutputRequest::default(),
@@ -107,6 +108,7 @@ pub(crate) mod tests {
             },
             entity: 0,
             master: None,
+            friction: Default::default(),
         }
     }
 

@@ -595,8 +595,12 @@ impl<'m> Newton<'m> {
             self.dlambda.push(v);
         }
         saddle.solve(&mut self.rhs, &mut self.dlambda);
-        for (&(p, i), dl) in self.constraints.owner.iter().zip(&self.dlambda) {
-            self.pairs[p].multiplier[i] += dl;
+        for (k, (&(p, i), dl)) in self.constraints.owner.iter().zip(&self.dlambda).enumerate() {
+            if self.constraints.tangential.get(k) == Some(&true) {
+                self.pairs[p].friction.multiplier[i] += dl;
+            } else {
+                self.pairs[p].multiplier[i] += dl;
+            }
         }
         self.timings.solve += mid.elapsed().as_secs_f64();
         Ok(())
@@ -681,7 +685,9 @@ impl<'m> Newton<'m> {
         // against the increment's initial out-of-balance force.
         let force_free_ok = self.saddle.is_some();
         let mut first_ref = 0.0;
-        if self.assembler.symmetric() {
+        // friction makes the contact tangent non-symmetric: LU
+        let friction = model.contacts.iter().any(|c| c.friction.is_some());
+        if self.assembler.symmetric() && !friction {
             self.linear.prefer_cholesky();
         } else {
             self.linear.require_lu();
