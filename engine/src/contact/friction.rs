@@ -88,6 +88,10 @@ pub struct FrictionState {
     pub anchor: Vec<Option<[f64; 2]>>,
     /// Stick point at the last converged increment.
     pub committed_anchor: Vec<Option<[f64; 2]>>,
+    /// Stick point the trial force is measured from: the committed one,
+    /// or, after an augmented-Lagrangian (Uzawa) update, the trial stick
+    /// point of that update (it goes with the multiplier shift).
+    pub base: Vec<Option<[f64; 2]>>,
     /// Tangential multiplier: `lambda_T` (Lagrange) or the shift
     /// `lambda_T*` (augmented Lagrangian), force units.
     pub multiplier: Vec<f64>,
@@ -115,6 +119,7 @@ impl FrictionState {
         FrictionState {
             anchor: vec![None; n],
             committed_anchor: vec![None; n],
+            base: vec![None; n],
             multiplier: vec![0.0; n],
             committed_multiplier: vec![0.0; n],
             sliding: vec![0.0; n],
@@ -128,6 +133,7 @@ impl FrictionState {
     /// Commits the trial state (converged increment).
     pub fn commit(&mut self) {
         self.committed_anchor.clone_from(&self.anchor);
+        self.base.clone_from(&self.anchor);
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_sliding.clone_from(&self.sliding);
         self.committed_position.clone_from(&self.position);
@@ -137,6 +143,7 @@ impl FrictionState {
     /// Restores the committed state (cutback).
     pub fn rollback(&mut self) {
         self.anchor.clone_from(&self.committed_anchor);
+        self.base.clone_from(&self.committed_anchor);
         self.multiplier.clone_from(&self.committed_multiplier);
         self.sliding.clone_from(&self.committed_sliding);
         self.position.clone_from(&self.committed_position);
@@ -154,6 +161,7 @@ impl FrictionState {
     /// Forgets node `i`'s contact history (it is open).
     fn release(&mut self, i: usize) {
         self.anchor[i] = None;
+        self.base[i] = None;
         self.multiplier[i] = 0.0;
         self.sliding[i] = 0.0;
     }
@@ -218,7 +226,7 @@ pub fn respond_tool(
         state.release(i);
         return NodeFriction::default();
     }
-    let anchor = match state.committed_anchor[i] {
+    let start = match state.committed_anchor[i] {
         Some(a) => a,
         None => {
             // first touch within this increment
@@ -242,8 +250,10 @@ pub fn respond_tool(
             }
         }
     };
+    let anchor = state.base[i].unwrap_or(start);
     let n = c.normal;
     let t = [n[1], -n[0]];
+    let t_ref = c.placement.rotate_back(t);
     let h = c.projection.normal_rate;
     let xa = c.placement.to_current(anchor);
     let d = sub(c.x, xa);
@@ -262,9 +272,14 @@ pub fn respond_tool(
         }
         ContactMethod::Penalty { .. } => coulomb.regularized(dot(t, d), 0.0),
     };
+    let mut tangential = tangential;
     let ds = tangential.friction.slip;
-    state.anchor[i] = Some(add(anchor, scale(ds, c.placement.rotate_back(t))));
+    state.anchor[i] = Some(add(anchor, scale(ds, t_ref)));
     let rt = tangential.friction.tangential_force;
+    // slip over the whole increment (the base may have moved with Uzawa)
+    let slip = ds + dot(t_ref, sub(anchor, start));
+    tangential.friction.slip = slip;
+    tangential.friction.dissipation = -rt * slip;
     let (tt, tn, nt) = (outer(t, t), outer(t, n), outer(n, t));
     let stick_term = tangential.stick_stiffness * (1.0 - h * dot(d, n));
     for a in 0..2 {
@@ -308,7 +323,8 @@ impl Coulomb {
         let alpha = self.tangential_stiffness;
         let limit = self.mu * self.normal_force;
         let trial = shift - alpha * gap;
-        if trial.abs() <= limit || alpha <= 0.0 {
+        // mu R_N = 0 slides freely (no stick stiffness from a zero cone)
+        if (trial.abs() <= limit && limit > 0.0) || alpha <= 0.0 {
             return Tangential {
                 friction: NodeFriction {
                     status: FrictionStatus::Stick,
@@ -378,7 +394,9 @@ pub fn stick_violation(contact: &[super::NodeContact]) -> f64 {
 }
 
 /// Uzawa update of the tangential multiplier shifts of an augmented
-/// Lagrangian pair: `lambda_T* <- R_T` at every closed node, 0 elsewhere.
+/// Lagrangian pair: `lambda_T* <- R_T` at every closed node, 0 elsewhere;
+/// the trial force is measured from the current trial stick point from
+/// then on (the shift carries the force accumulated up to it).
 pub fn uzawa_update(nodes: &[usize], contact: &[super::NodeContact], state: &mut FrictionState) {
     state.multiplier.iter_mut().for_each(|m| *m = 0.0);
     for c in contact {
@@ -387,6 +405,7 @@ pub fn uzawa_update(nodes: &[usize], contact: &[super::NodeContact], state: &mut
         }
         if let Ok(i) = nodes.binary_search(&c.node) {
             state.multiplier[i] = c.friction.tangential_force;
+            state.base[i] = state.anchor[i];
         }
     }
 }
