@@ -22,7 +22,11 @@ pub enum Drive {
     /// Horizontal displacement `d` of every node (rigid translation in x,
     /// uy free): every bottom node starts slipping at once.
     AllNodes(f64),
-    /// Horizontal force `q` (total) spread over every node.
+    /// Horizontal displacement `d` of every node above the base (the
+    /// contact nodes are free: a uniform shear of the first element row).
+    AboveBase(f64),
+    /// Horizontal force `q` (total) on the contact nodes, as a uniform
+    /// traction (end nodes take half).
     Force(f64),
 }
 
@@ -39,7 +43,7 @@ pub struct Block {
     pub friction_stiffness: Option<f64>,
     /// Elements along the slope and across the thickness.
     pub divisions: [usize; 2],
-    /// Weight (total, on the top nodes, vertical).
+    /// Weight (total, on the top nodes as a uniform traction, vertical).
     pub weight: f64,
     /// Second step.
     pub drive: Drive,
@@ -49,6 +53,8 @@ pub struct Block {
     /// go down by `squeeze` (step 1), then follow the slope (step 2, with a
     /// displacement drive `d`: up by `d tan(alpha)`).
     pub squeeze: Option<f64>,
+    /// Poisson's ratio of the block (E = 1e5).
+    pub poisson: f64,
 }
 
 impl Block {
@@ -67,6 +73,7 @@ impl Block {
             drive,
             increments: 4,
             squeeze: None,
+            poisson: 0.3,
         }
     }
 
@@ -116,15 +123,20 @@ impl Block {
         let mut constraints = Vec::new();
         let mut loads = Vec::new();
         match self.squeeze {
-            None => loads.push(Load::NodalForce {
-                label: "weight".into(),
-                nodes: top.clone(),
-                component: 1,
-                value: ramp(0.0, 1.0, -self.weight / top.len() as f64),
-            }),
+            None => {
+                // consistent with a uniform pressure: end nodes take half
+                for (k, nodes) in [(0.5, vec![top[0], top[nx]]), (1.0, top[1..nx].to_vec())] {
+                    loads.push(Load::NodalForce {
+                        label: "weight".into(),
+                        nodes,
+                        component: 1,
+                        value: ramp(0.0, 1.0, -k * self.weight / nx as f64),
+                    });
+                }
+            }
             Some(delta) => {
                 let d = match self.drive {
-                    Drive::LeftSide(d) | Drive::AllNodes(d) => d,
+                    Drive::LeftSide(d) | Drive::AllNodes(d) | Drive::AboveBase(d) => d,
                     Drive::Force(_) => 0.0,
                 };
                 constraints.push(Dirichlet {
@@ -152,12 +164,27 @@ impl Block {
                 component: 0,
                 value: ramp(1.0, 2.0, d),
             }),
-            Drive::Force(q) => loads.push(Load::NodalForce {
+            Drive::AboveBase(d) => constraints.push(Dirichlet {
                 label: "pull".into(),
-                nodes: all.clone(),
+                nodes: (nx + 1..nn).collect(),
                 component: 0,
-                value: ramp(1.0, 2.0, q / nn as f64),
+                value: ramp(1.0, 2.0, d),
             }),
+            Drive::Force(q) => {
+                // a uniform shear traction on the base: no tipping moment
+                let bottom: Vec<usize> = (0..=nx).map(|i| id(i, 0)).collect();
+                for (k, nodes) in [
+                    (0.5, vec![bottom[0], bottom[nx]]),
+                    (1.0, bottom[1..nx].to_vec()),
+                ] {
+                    loads.push(Load::NodalForce {
+                        label: "pull".into(),
+                        nodes,
+                        component: 0,
+                        value: ramp(1.0, 2.0, k * q / nx as f64),
+                    });
+                }
+            }
         }
         // the plane overlaps the block by 1e-6 at t = 0 so that contact is
         // closed from the first iteration on (the block has no other support)
@@ -186,7 +213,7 @@ impl Block {
                 name: "m".into(),
                 law: MaterialLaw::LinearElastic {
                     young: 1e5,
-                    poisson: 0.3,
+                    poisson: self.poisson,
                 },
             }],
             constraints,
