@@ -410,6 +410,50 @@ pub fn uzawa_update(nodes: &[usize], contact: &[super::NodeContact], state: &mut
     }
 }
 
+/// Per-node friction fields for output (nodes not in a frictional contact:
+/// zeros and status 0). A node in several pairs sums forces, slips and
+/// dissipations and keeps the highest status.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NodalFriction {
+    /// Tangential force.
+    pub force: Vec<f64>,
+    /// Slip increment.
+    pub slip: Vec<f64>,
+    /// 0 frictionless, 1 stick, 2 slip.
+    pub status: Vec<i32>,
+    /// Work dissipated over the increment.
+    pub dissipation: Vec<f64>,
+}
+
+/// Collects the friction fields of all pair evaluations on `nn` nodes.
+pub fn nodal_fields(nn: usize, contact: &[Vec<super::NodeContact>]) -> NodalFriction {
+    let mut out = NodalFriction {
+        force: vec![0.0; nn],
+        slip: vec![0.0; nn],
+        status: vec![0; nn],
+        dissipation: vec![0.0; nn],
+    };
+    for c in contact.iter().flatten() {
+        if c.node >= nn {
+            continue;
+        }
+        out.force[c.node] += c.friction.tangential_force;
+        out.slip[c.node] += c.friction.slip;
+        out.dissipation[c.node] += c.friction.dissipation;
+        out.status[c.node] = out.status[c.node].max(status_code(c.friction.status));
+    }
+    out
+}
+
+/// Output code of a status: 0 frictionless, 1 stick, 2 slip.
+pub fn status_code(s: FrictionStatus) -> i32 {
+    match s {
+        FrictionStatus::Frictionless => 0,
+        FrictionStatus::Stick => 1,
+        FrictionStatus::Slip => 2,
+    }
+}
+
 /// Frictional work dissipated over the increment by the nodes of one pair
 /// evaluation (axisymmetric: over 2*pi).
 pub fn pair_dissipation(contact: &[super::NodeContact]) -> f64 {

@@ -242,6 +242,7 @@ pub fn evaluate_pair(
     };
     let placement = Placement::at(&tool.motion, t);
     let prof = state.prof;
+    state.friction.impact = None;
     let mut tests = 0usize;
     let mut guess = None;
     let mut out = Vec::new();
