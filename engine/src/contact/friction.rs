@@ -71,6 +71,8 @@ pub struct NodeFriction {
     /// Slip increment `ds` along `t` since the last converged increment
     /// (0 while sticking).
     pub slip: f64,
+    /// `d g_T / d x` at the slave node (the Lagrange stick row).
+    pub gap_gradient: [f64; 2],
     /// Frictional work dissipated at this node over the increment,
     /// `-R_T ds = mu R_N |ds|` (>= 0 once the status loop has settled;
     /// axisymmetric: over 2*pi). This is the heat source of frictional
@@ -222,6 +224,7 @@ pub fn respond_tool(
     r: &mut Response,
 ) -> NodeFriction {
     state.position[i] = c.reference;
+    let mut impact = None;
     if r.status != ContactStatus::Closed {
         state.release(i);
         return NodeFriction::default();
@@ -236,8 +239,8 @@ pub fn respond_tool(
                 c.reference,
                 c.window,
             );
-            if let Some((tau, _)) = hit {
-                state.record_impact(tau);
+            if let Some(h) = hit {
+                state.record_impact(h.fraction);
             }
             match law.first_impact {
                 FirstImpact::Frictionless => {
@@ -246,7 +249,10 @@ pub fn respond_tool(
                     state.sliding[i] = 0.0;
                     return NodeFriction::default();
                 }
-                FirstImpact::Intersect => hit.map_or(c.projection.point, |(_, p)| p),
+                FirstImpact::Intersect => {
+                    impact = hit;
+                    hit.map_or(c.projection.point, |h| h.point)
+                }
             }
         }
     };
@@ -280,13 +286,30 @@ pub fn respond_tool(
     let slip = ds + dot(t_ref, sub(anchor, start));
     tangential.friction.slip = slip;
     tangential.friction.dissipation = -rt * slip;
-    let (tt, tn, nt) = (outer(t, t), outer(t, n), outer(n, t));
-    let stick_term = tangential.stick_stiffness * (1.0 - h * dot(d, n));
+    // d g_T / d x; in the increment of the first impact the stick point
+    // itself depends on x: X_a = X0 + tau (X - X0), with tau = g0 / (g0 - g)
+    // (exact for a plane), d tau / d x = tau / (g0 - g) n
+    let mut grad = scale(1.0 - h * dot(d, n), t);
+    if state.base[i].is_none() {
+        if let Some(hit) = impact.filter(|h| h.fraction > 0.0) {
+            let tau = hit.fraction;
+            let path = c
+                .placement
+                .rotate(sub(c.reference, state.committed_position[i]));
+            let dg = hit.start_gap - c.projection.gap;
+            if dg > 0.0 {
+                grad = sub(grad, add(scale(tau, t), scale(dot(t, path) * tau / dg, n)));
+            }
+        }
+    }
+    tangential.friction.gap_gradient = grad;
+    let (tg, tn, nt) = (outer(t, grad), outer(t, n), outer(n, t));
     for a in 0..2 {
         r.force[a] += rt * t[a];
         for b in 0..2 {
-            r.stiffness[a][b] +=
-                stick_term * tt[a][b] + tangential.slip_stiffness * tn[a][b] + rt * h * nt[a][b];
+            r.stiffness[a][b] += tangential.stick_stiffness * tg[a][b]
+                + tangential.slip_stiffness * tn[a][b]
+                + rt * h * nt[a][b];
         }
     }
     tangential.friction
@@ -332,6 +355,7 @@ impl Coulomb {
                     tangential_gap: gap,
                     slip: 0.0,
                     dissipation: 0.0,
+                    gap_gradient: [0.0; 2],
                 },
                 stick_stiffness: alpha,
                 slip_stiffness: 0.0,
@@ -347,6 +371,7 @@ impl Coulomb {
                 tangential_gap: gap,
                 slip,
                 dissipation: -rt * slip,
+                gap_gradient: [0.0; 2],
             },
             stick_stiffness: 0.0,
             slip_stiffness: self.mu * s * self.normal_stiffness,
@@ -364,6 +389,7 @@ impl Coulomb {
                 tangential_gap: gap,
                 slip: 0.0,
                 dissipation: 0.0,
+                gap_gradient: [0.0; 2],
             }
         } else {
             let rt = self.mu * self.normal_force * sliding;
@@ -373,6 +399,7 @@ impl Coulomb {
                 tangential_gap: gap,
                 slip: gap,
                 dissipation: -rt * gap,
+                gap_gradient: [0.0; 2],
             }
         };
         Tangential {
@@ -550,6 +577,56 @@ mod tests {
                         r0.stiffness[i][j]
                     );
                 }
+            }
+        }
+    }
+
+    /// In the increment of the first impact the stick point moves with the
+    /// node (constant-velocity intersection): the tangent includes it.
+    #[test]
+    fn first_impact_tangent_matches_finite_differences() {
+        let shape = ToolShape::new(&ToolGeometry::Plane {
+            point: [0.0, 0.0],
+            normal: [0.3, 1.0],
+        })
+        .unwrap();
+        let placement = Placement::identity();
+        let method = ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            stiffness: 100.0,
+        };
+        let eval = |x: [f64; 2]| {
+            let p = shape.project(0, x).unwrap();
+            let mut r = penalty::respond(&method, 1.0, p.gap, p.normal, p.normal_rate);
+            let mut st = FrictionState::new(vec![[0.0, 0.2]]);
+            let c = ToolContact {
+                shape: &shape,
+                placement: &placement,
+                x,
+                reference: x,
+                projection: &p,
+                normal: p.normal,
+                window: 1.0,
+            };
+            let f = respond_tool(&law(10.0), &method, 1.0, 0, &c, &mut st, &mut r);
+            (r, f)
+        };
+        let x = [0.08, -0.05];
+        let (r0, f0) = eval(x);
+        assert_eq!(f0.status, FrictionStatus::Stick);
+        let h = 1e-7;
+        for j in 0..2 {
+            let (mut xp, mut xm) = (x, x);
+            xp[j] += h;
+            xm[j] -= h;
+            let (fp, fm) = (eval(xp).0.force, eval(xm).0.force);
+            for i in 0..2 {
+                let fd = -(fp[i] - fm[i]) / (2.0 * h);
+                assert!(
+                    (fd - r0.stiffness[i][j]).abs() < 1e-5 * (1.0 + fd.abs()),
+                    "K[{i}][{j}]: fd {fd} vs {}",
+                    r0.stiffness[i][j]
+                );
             }
         }
     }

@@ -16,8 +16,8 @@
 //! A slipping node carries the force `mu lambda_N s t` with the current
 //! normal multiplier (its derivative with respect to `lambda_N` is not in the
 //! saddle-point matrix: within a Newton loop the slip force converges
-//! linearly, at the rate `mu`). The rows use `d g_T / d x = t` (the
-//! curvature part `h (d.n)` vanishes with the gap).
+//! linearly, at the rate `mu`). The rows use `d g_T / d x`
+//! ([`super::friction::NodeFriction::gap_gradient`]).
 
 use super::friction::FrictionStatus;
 use super::{ContactStatus, NodeContact, PairState};
@@ -50,7 +50,7 @@ pub fn add_rows(
             let Ok(i) = cp.nodes.binary_search(&nc.node) else {
                 continue;
             };
-            let t = [nc.normal[1], -nc.normal[0]];
+            let t = nc.friction.gap_gradient;
             let mut row = ConstraintRow {
                 entries: [(0, 0.0); 2],
                 len: 0,

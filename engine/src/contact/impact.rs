@@ -23,17 +23,28 @@ use super::search;
 /// Bisection steps of the rigid-tool intersection (`2^-40` of the path).
 const BISECTIONS: usize = 40;
 
+/// Where a node met a rigid tool along its path.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Impact {
+    /// Fraction `tau` of the increment.
+    pub fraction: f64,
+    /// The point reached, tool reference frame.
+    pub point: [f64; 2],
+    /// Gap at the start of the path (`<= 0`: it already penetrated).
+    pub start_gap: f64,
+}
+
 /// Fraction `tau` in `[0, 1]` of the straight path `x0 -> x1` (tool
 /// reference frame) at which the gap to `shape` vanishes, with the point
-/// reached: `(tau, x(tau))`. `tau = 0` when `x0` already penetrates; `None`
-/// when `x1` does not penetrate. `window` bounds the search (any positive
-/// length larger than the path and the gaps involved).
+/// reached. `tau = 0` when `x0` already penetrates; `None` when `x1` does
+/// not penetrate. `window` bounds the search (any positive length larger
+/// than the path and the gaps involved).
 pub fn tool_intersection(
     shape: &ToolShape,
     x0: [f64; 2],
     x1: [f64; 2],
     window: f64,
-) -> Option<(f64, [f64; 2])> {
+) -> Option<Impact> {
     let mut tests = 0;
     let gap = |x: [f64; 2], tests: &mut usize| {
         search::closest(shape, x, window, None, None, tests).map(|f| f.projection.gap)
@@ -42,10 +53,16 @@ pub fn tool_intersection(
     if gap(x1, &mut tests)? >= 0.0 {
         return None;
     }
-    match gap(x0, &mut tests) {
-        Some(g) if g > 0.0 => {}
-        _ => return Some((0.0, x0)),
-    }
+    let start_gap = match gap(x0, &mut tests) {
+        Some(g) if g > 0.0 => g,
+        g => {
+            return Some(Impact {
+                fraction: 0.0,
+                point: x0,
+                start_gap: g.unwrap_or(0.0),
+            })
+        }
+    };
     let (mut lo, mut hi) = (0.0, 1.0);
     for _ in 0..BISECTIONS {
         let mid = 0.5 * (lo + hi);
@@ -55,7 +72,11 @@ pub fn tool_intersection(
         }
     }
     let tau = 0.5 * (lo + hi);
-    Some((tau, at(tau)))
+    Some(Impact {
+        fraction: tau,
+        point: at(tau),
+        start_gap,
+    })
 }
 
 /// Constant-velocity intersection of a slave node with a deformable
@@ -143,13 +164,19 @@ mod tests {
         })
         .unwrap();
         // from y = 0.3 to y = -0.1 while moving right: meets at tau = 0.75
-        let (tau, x) = tool_intersection(&plane, [0.0, 0.3], [1.0, -0.1], 10.0).unwrap();
+        let hit = tool_intersection(&plane, [0.0, 0.3], [1.0, -0.1], 10.0).unwrap();
+        let (tau, x) = (hit.fraction, hit.point);
         assert!((tau - 0.75).abs() < 1e-11, "{tau}");
         assert!((x[0] - 0.75).abs() < 1e-11 && x[1].abs() < 1e-11);
+        assert!((hit.start_gap - 0.3).abs() < 1e-15);
         assert!(tool_intersection(&plane, [0.0, 0.3], [1.0, 0.1], 10.0).is_none());
         assert_eq!(
             tool_intersection(&plane, [0.0, -0.1], [1.0, -0.2], 10.0),
-            Some((0.0, [0.0, -0.1]))
+            Some(Impact {
+                fraction: 0.0,
+                point: [0.0, -0.1],
+                start_gap: -0.1
+            })
         );
     }
 
