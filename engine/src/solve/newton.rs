@@ -370,6 +370,7 @@ impl<'m> Newton<'m> {
                     entity: p.committed_entity.clone(),
                     multiplier: p.committed_multiplier.clone(),
                     active: p.committed_active.clone(),
+                    friction: p.friction.committed_values(),
                 })
                 .collect(),
             points: self.assembler.points().to_vec(),
@@ -433,6 +434,7 @@ impl<'m> Newton<'m> {
             s.committed_entity.clone_from(&h.entity);
             s.committed_multiplier.clone_from(&h.multiplier);
             s.committed_active.clone_from(&h.active);
+            s.friction.restore_committed(&h.friction)?;
             s.rollback();
         }
         self.assembler.restore(&cp.points, cp.points_time)?;
