@@ -341,6 +341,11 @@ impl<'m> Newton<'m> {
             .count()
     }
 
+    /// Nodal displacements of the last converged state.
+    pub(super) fn committed_displacement(&self) -> &[[f64; 2]] {
+        &self.committed
+    }
+
     /// Makes the current state the converged one.
     pub fn commit(&mut self) {
         self.flips.clear();
