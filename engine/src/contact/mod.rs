@@ -31,6 +31,7 @@ pub mod augmented;
 pub mod broad;
 pub mod friction;
 pub mod friction_lagrange;
+pub mod friction_segment;
 pub mod geometry;
 pub mod impact;
 pub mod jump;
