@@ -131,6 +131,100 @@ pub fn respond(
     })
 }
 
+/// A closed node-to-segment element as seen by the friction law.
+#[derive(Debug, Clone, Copy)]
+pub struct Element {
+    /// Slave index in the pair's per-slave vectors.
+    pub slave: usize,
+    /// Current slave position.
+    pub xs: [f64; 2],
+    /// Master segment nodes `m1 -> m2`.
+    pub nodes: [usize; 2],
+    /// Projection parameter of the slave node on the segment.
+    pub xi: f64,
+    /// Normal force `R_N >= 0` of the element.
+    pub normal_force: f64,
+    /// Open or closed.
+    pub status: super::ContactStatus,
+    /// Tributary area of the slave node.
+    pub tributary: f64,
+}
+
+/// Adds the friction forces and tangent of a node-to-segment element to
+/// its normal part (`forces`, `tangent` over `[x_s, x_1, x_2]`) and updates
+/// the trial friction state. The increment in which a node first touches
+/// is frictionless (its stick point is where it touches at the end of that
+/// increment). Lagrange multipliers: no friction (rejected by the deck
+/// validation).
+#[allow(clippy::too_many_arguments)]
+pub fn apply(
+    law: &crate::model::Friction,
+    method: &crate::model::ContactMethod,
+    reference: &[[f64; 2]],
+    x: &[[f64; 2]],
+    e: &Element,
+    state: &mut super::friction::FrictionState,
+    forces: &mut [f64; 6],
+    tangent: &mut [[f64; 6]; 6],
+) -> NodeFriction {
+    use crate::model::ContactMethod;
+    let i = e.slave;
+    if e.status != super::ContactStatus::Closed || i >= state.anchor.len() {
+        state.open(i, e.xs);
+        return NodeFriction::default();
+    }
+    let [m1, m2] = e.nodes;
+    let (Some(&r1), Some(&r2), Some(&x1), Some(&x2)) =
+        (reference.get(m1), reference.get(m2), x.get(m1), x.get(m2))
+    else {
+        return NodeFriction::default();
+    };
+    let Some(start) = state.committed_anchor[i] else {
+        // first touch: frictionless in this increment
+        state.anchor[i] = Some(reference_point([r1, r2], e.xi));
+        state.position[i] = e.xs;
+        return NodeFriction::default();
+    };
+    let anchor = state.base[i].unwrap_or(start);
+    let alpha_n = super::penalty::effective_stiffness(method, e.tributary);
+    let (shift, normal_shift) = match method {
+        ContactMethod::Penalty { .. } => (0.0, 0.0),
+        ContactMethod::AugmentedLagrange { .. } => {
+            // R_N = lambda* - alpha g: the shift follows from the force
+            (state.multiplier[i], f64::NAN)
+        }
+        ContactMethod::Lagrange { .. } => return NodeFriction::default(),
+    };
+    let _ = normal_shift;
+    // R_N(x) = R_N + alpha_N (g_now - g): pass the law through the current
+    // force (penalty and augmented Lagrangian alike)
+    let gap_now = {
+        let a = [x2[0] - x1[0], x2[1] - x1[1]];
+        let l = a[0].hypot(a[1]);
+        let n = [a[1] / l, -a[0] / l];
+        (e.xs[0] - x1[0]) * n[0] + (e.xs[1] - x1[1]) * n[1]
+    };
+    let seg = SegmentFriction {
+        mu: law.mu,
+        alpha_t: super::friction::tangential_stiffness(law, method, e.tributary),
+        shift,
+        normal_shift: e.normal_force + alpha_n * gap_now,
+        normal_stiffness: alpha_n,
+    };
+    let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor) else {
+        return NodeFriction::default();
+    };
+    for k in 0..6 {
+        forces[k] += r.forces[k];
+        for j in 0..6 {
+            tangent[k][j] += r.tangent[k][j];
+        }
+    }
+    state.anchor[i] = Some(r.anchor);
+    state.position[i] = e.xs;
+    r.friction
+}
+
 /// The reference point of the master surface at parameter `xi` of the
 /// reference segment `X_1 -> X_2` (the stick point of a first touch).
 pub fn reference_point(reference: [[f64; 2]; 2], xi: f64) -> [f64; 2] {
