@@ -187,15 +187,11 @@ pub fn apply(
     };
     let anchor = state.base[i].unwrap_or(start);
     let alpha_n = super::penalty::effective_stiffness(method, e.tributary);
-    let (shift, normal_shift) = match method {
-        ContactMethod::Penalty { .. } => (0.0, 0.0),
-        ContactMethod::AugmentedLagrange { .. } => {
-            // R_N = lambda* - alpha g: the shift follows from the force
-            (state.multiplier[i], f64::NAN)
-        }
+    let shift = match method {
+        ContactMethod::Penalty { .. } => 0.0,
+        ContactMethod::AugmentedLagrange { .. } => state.multiplier[i],
         ContactMethod::Lagrange { .. } => return NodeFriction::default(),
     };
-    let _ = normal_shift;
     // R_N(x) = R_N + alpha_N (g_now - g): pass the law through the current
     // force (penalty and augmented Lagrangian alike)
     let gap_now = {
@@ -214,10 +210,14 @@ pub fn apply(
     let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor) else {
         return NodeFriction::default();
     };
-    for k in 0..6 {
-        forces[k] += r.forces[k];
-        for j in 0..6 {
-            tangent[k][j] += r.tangent[k][j];
+    for ((f, row), (rf, rrow)) in forces
+        .iter_mut()
+        .zip(tangent.iter_mut())
+        .zip(r.forces.iter().zip(&r.tangent))
+    {
+        *f += rf;
+        for (k, rk) in row.iter_mut().zip(rrow) {
+            *k += rk;
         }
     }
     state.anchor[i] = Some(r.anchor);
