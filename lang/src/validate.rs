@@ -1009,6 +1009,37 @@ impl Checker<'_> {
                 Some(Method::Lagrange { .. }) | None => {}
             }
             self.must_be_positive(&c.prof, "prof");
+            if let Some(f) = &c.friction {
+                if let Some(mu) = f
+                    .value
+                    .mu
+                    .as_ref()
+                    .filter(|m| m.value < 0.0 || m.value.is_nan())
+                {
+                    self.err(Diagnostic::error(
+                        "friction coefficient `mu` must not be negative",
+                        mu.span,
+                        "must be >= 0",
+                    ));
+                }
+                self.must_be_positive(&f.value.stiffness, "friction stiffness");
+                if let (Some(_), Some(m)) = (&c.master, &c.method) {
+                    if matches!(m.value, Method::Lagrange { .. }) {
+                        self.err(
+                            Diagnostic::error(
+                                "Lagrange-multiplier friction against a deformable master is not \
+                                 supported yet",
+                                f.span,
+                                "not supported yet",
+                            )
+                            .with_help(
+                                "use `method = penalty { .. }` or `augmented_lagrange { .. }` \
+                                 (regularized friction) for contact between deformable bodies",
+                            ),
+                        );
+                    }
+                }
+            }
             if let (None, Some(st)) = (&c.master, &c.strategy) {
                 self.err(
                     Diagnostic::error(

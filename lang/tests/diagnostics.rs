@@ -67,6 +67,7 @@ decks!(
     contact_master_unknown_body,
     contact_master_unknown_set,
     contact_bad_strategy,
+    friction_bad_coulomb,
 );
 
 #[test]

@@ -405,11 +405,13 @@ pub fn evaluate(
         }
         let Some(k) = closest(surface, x, xs, &candidates, prof, &mut tests) else {
             state.last_entity[i] = None;
+            state.friction.open(i, xs);
             continue;
         };
         state.last_entity[i] = Some(k.segment);
         let p = k.projection;
         if p.gap > prof {
+            state.friction.open(i, xs);
             continue;
         }
         let [m1, m2] = surface.edges[k.segment];
@@ -435,7 +437,28 @@ pub fn evaluate(
             }
         };
         let rn = resp.force[0] * n[0] + resp.force[1] * n[1];
-        let (f, kt) = p.element(rn, dr_dg);
+        let (mut f, mut kt) = p.element(rn, dr_dg);
+        let friction = match &cp.friction {
+            Some(law) => super::friction_segment::apply(
+                law,
+                &cp.method,
+                &model.mesh.nodes,
+                x,
+                &super::friction_segment::Element {
+                    slave: i,
+                    xs,
+                    nodes: [m1, m2],
+                    xi: p.xi,
+                    normal_force: rn,
+                    status: resp.status,
+                    tributary,
+                },
+                &mut state.friction,
+                &mut f,
+                &mut kt,
+            ),
+            None => Default::default(),
+        };
         out.push(NodeContact {
             node,
             gap: p.gap,
@@ -452,6 +475,7 @@ pub fn evaluate(
                 tangent: kt,
                 gap_gradient: p.gap_gradient(),
             }),
+            friction,
         });
     }
     sp.candidates = candidates;

@@ -7,7 +7,10 @@
 //! Deformable masters (node-to-segment) add the columns `master_1`,
 //! `master_2` (the segment's end nodes) and `xi` (projection parameter, 0
 //! at `master_1`), and list the master surface's nodes too when they act as
-//! slaves (double-pass strategies).
+//! slaves (double-pass strategies). Pairs with friction have four more
+//! columns (after those): tangential force (along `t = (n_y, -n_x)`), slip
+//! increment, friction status (0 frictionless, 1 stick, 2 slip) and the
+//! frictional work of the increment.
 
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::Model;
@@ -44,9 +47,13 @@ pub fn contact_csv(
         })
         .collect();
     rows.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]).then(a.1[1].total_cmp(&b.1[1])));
+    let friction = model.contacts[pair].friction.is_some();
     let mut s = String::from("node,x,y,gap,pressure,status,force_x,force_y");
-    s.push_str(if surface {
-        ",master_1,master_2,xi\n"
+    if surface {
+        s.push_str(",master_1,master_2,xi");
+    }
+    s.push_str(if friction {
+        ",tangential_force,slip,friction_status,dissipation\n"
     } else {
         "\n"
     });
@@ -64,15 +71,30 @@ pub fn contact_csv(
                 );
                 match (&c.master, surface) {
                     (Some(m), _) => {
-                        let _ = writeln!(s, ",{},{},{}", m.nodes[0], m.nodes[1], m.xi);
+                        let _ = write!(s, ",{},{},{}", m.nodes[0], m.nodes[1], m.xi);
                     }
-                    (None, true) => s.push_str(",,,\n"),
-                    (None, false) => s.push('\n'),
+                    (None, true) => s.push_str(",,,"),
+                    (None, false) => {}
                 }
+                if friction {
+                    let f = &c.friction;
+                    let _ = write!(
+                        s,
+                        ",{},{},{},{}",
+                        f.tangential_force,
+                        f.slip,
+                        crate::contact::friction::status_code(f.status),
+                        f.dissipation
+                    );
+                }
+                s.push('\n');
             }
             None => {
                 let _ = write!(s, "{n},{},{},,0,0,0,0", x[0], x[1]);
-                s.push_str(if surface { ",,,\n" } else { "\n" });
+                if surface {
+                    s.push_str(",,,");
+                }
+                s.push_str(if friction { ",0,0,0,0\n" } else { "\n" });
             }
         }
     }
@@ -114,6 +136,7 @@ pub(crate) mod tests {
                     stiffness: 1.0,
                 },
                 prof: None,
+                friction: None,
             }],
             steps: vec![],
             output: OutputRequest::default(),
@@ -135,6 +158,7 @@ pub(crate) mod tests {
             },
             entity: 0,
             master: None,
+            friction: Default::default(),
         }
     }
 

@@ -184,6 +184,7 @@ pub fn patch(
             search: Default::default(),
             method,
             prof: None,
+            friction: None,
         }],
         steps: vec![Step {
             name: "press".into(),

@@ -1,0 +1,318 @@
+//! Coulomb friction on a node-to-segment element (deformable master): the
+//! regularized law of [`super::friction`] with the slip measured on the
+//! master segment.
+//!
+//! The stick point is a material point of the master surface, stored by
+//! its **reference** coordinates `X_a` (undeformed configuration). On the
+//! current segment `x_1 -> x_2` (reference `X_1 -> X_2`) it has the
+//! parameter `xi_a = (X_a - X_1) . (X_2 - X_1) / |X_2 - X_1|^2` (outside
+//! `[0, 1]` when the stick point lies on a neighbouring segment: the line
+//! is extended), so the tangential gap is the slip along the current
+//! segment, `g_T = (xi - xi_a) L = (x_s - x_1) . t - xi_a L`.
+//!
+//! Forces over `[x_s, x_1, x_2]`: `R_T [t, -(1 - xi) t, -xi t]` (the
+//! reaction acts at the projection point; forces balance, the moment is
+//! `g R_T`, of the order of the penalty penetration). The normal force is
+//! `R_N(x) = lambda* - alpha_N g` (penalty: `lambda* = 0`) or the Lagrange
+//! multiplier (constant). The exact 6x6 tangent `-d f / d x` (stick and
+//! slip, with the rotation and stretching of the segment and the motion of
+//! the projection point) is obtained with forward-mode dual numbers
+//! ([`crate::material::dual`]); it is not symmetric.
+
+use super::friction::{FrictionStatus, NodeFriction};
+use crate::material::dual::{Dual, Scalar};
+
+/// Six seeded directions: `[x_s, x_1, x_2]`.
+type D6 = Dual<6>;
+
+/// Inputs of the friction law on one element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentFriction {
+    /// Friction coefficient.
+    pub mu: f64,
+    /// Tangential penalty `alpha_T` (force per unit slip).
+    pub alpha_t: f64,
+    /// Tangential multiplier shift `lambda_T*` (augmented Lagrangian; 0 for
+    /// penalty).
+    pub shift: f64,
+    /// Normal force law: `R_N = normal_shift - normal_stiffness g` (penalty:
+    /// `0 - alpha_N g`; Lagrange: `lambda - 0 g`).
+    pub normal_shift: f64,
+    /// See `normal_shift`.
+    pub normal_stiffness: f64,
+}
+
+/// Friction contribution of one element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentResponse {
+    /// Status, force, gap, slip increment (along the current `t`) and work.
+    pub friction: NodeFriction,
+    /// Forces over `[x_s, x_1, x_2]`.
+    pub forces: [f64; 6],
+    /// `-d forces / d x` (6x6, not symmetric).
+    pub tangent: [[f64; 6]; 6],
+    /// New stick point (reference coordinates) after the return map.
+    pub anchor: [f64; 2],
+}
+
+/// Friction on the element `x_s` against `x_1 -> x_2` (current positions;
+/// `reference` = `[X_1, X_2]`), stick point `anchor` (reference frame).
+pub fn respond(
+    law: &SegmentFriction,
+    xs: [f64; 2],
+    x1: [f64; 2],
+    x2: [f64; 2],
+    reference: [[f64; 2]; 2],
+    anchor: [f64; 2],
+) -> Option<SegmentResponse> {
+    let v = |x: [f64; 2], k: usize| [D6::var(x[0], k), D6::var(x[1], k + 1)];
+    let (s, p1, p2) = (v(xs, 0), v(x1, 2), v(x2, 4));
+    let a = [p2[0] - p1[0], p2[1] - p1[1]];
+    let len = (a[0] * a[0] + a[1] * a[1]).sqrt();
+    if !(len.re() > 0.0 && len.re().is_finite()) {
+        return None;
+    }
+    let t = [a[0] / len, a[1] / len];
+    let n = [t[1], -t[0]];
+    let d = [s[0] - p1[0], s[1] - p1[1]];
+    let gap = d[0] * n[0] + d[1] * n[1];
+    let along = d[0] * t[0] + d[1] * t[1];
+    let xi = along / len;
+    // stick point parameter on the current segment (reference geometry)
+    let [r1, r2] = reference;
+    let ar = [r2[0] - r1[0], r2[1] - r1[1]];
+    let lr2 = ar[0] * ar[0] + ar[1] * ar[1];
+    if lr2 <= 0.0 {
+        return None;
+    }
+    let xi_a = ((anchor[0] - r1[0]) * ar[0] + (anchor[1] - r1[1]) * ar[1]) / lr2;
+    let gt = along - len * xi_a;
+    let rn = (gap * -law.normal_stiffness) + law.normal_shift;
+    let rn = if rn.re() > 0.0 { rn } else { D6::cst(0.0) };
+    let limit = rn * law.mu;
+    let trial = (gt * -law.alpha_t) + law.shift;
+    let (rt, status) = if trial.re().abs() <= limit.re() && limit.re() > 0.0 {
+        (trial, FrictionStatus::Stick)
+    } else {
+        (limit * trial.re().signum(), FrictionStatus::Slip)
+    };
+    let ds = if law.alpha_t > 0.0 {
+        (rt.re() - trial.re()) / law.alpha_t
+    } else {
+        0.0
+    };
+    let w = [D6::cst(1.0), (xi * -1.0) + 1.0, xi];
+    let sign = [1.0, -1.0, -1.0];
+    let mut forces = [0.0; 6];
+    let mut tangent = [[0.0; 6]; 6];
+    for node in 0..3 {
+        for c in 0..2 {
+            let f = rt * w[node] * t[c] * sign[node];
+            forces[2 * node + c] = f.re();
+            for (j, dj) in f.d.iter().enumerate() {
+                tangent[2 * node + c][j] = -dj;
+            }
+        }
+    }
+    // the stick point moves by the slip along the segment
+    let xi_new = xi_a + ds / len.re();
+    Some(SegmentResponse {
+        friction: NodeFriction {
+            status,
+            tangential_force: rt.re(),
+            tangential_gap: gt.re(),
+            slip: ds,
+            gap_gradient: [t[0].re(), t[1].re()],
+            dissipation: -rt.re() * ds,
+        },
+        forces,
+        tangent,
+        anchor: [r1[0] + xi_new * ar[0], r1[1] + xi_new * ar[1]],
+    })
+}
+
+/// A closed node-to-segment element as seen by the friction law.
+#[derive(Debug, Clone, Copy)]
+pub struct Element {
+    /// Slave index in the pair's per-slave vectors.
+    pub slave: usize,
+    /// Current slave position.
+    pub xs: [f64; 2],
+    /// Master segment nodes `m1 -> m2`.
+    pub nodes: [usize; 2],
+    /// Projection parameter of the slave node on the segment.
+    pub xi: f64,
+    /// Normal force `R_N >= 0` of the element.
+    pub normal_force: f64,
+    /// Open or closed.
+    pub status: super::ContactStatus,
+    /// Tributary area of the slave node.
+    pub tributary: f64,
+}
+
+/// Adds the friction forces and tangent of a node-to-segment element to
+/// its normal part (`forces`, `tangent` over `[x_s, x_1, x_2]`) and updates
+/// the trial friction state. The increment in which a node first touches
+/// is frictionless (its stick point is where it touches at the end of that
+/// increment). Lagrange multipliers: no friction (rejected by the deck
+/// validation).
+#[allow(clippy::too_many_arguments)]
+pub fn apply(
+    law: &crate::model::Friction,
+    method: &crate::model::ContactMethod,
+    reference: &[[f64; 2]],
+    x: &[[f64; 2]],
+    e: &Element,
+    state: &mut super::friction::FrictionState,
+    forces: &mut [f64; 6],
+    tangent: &mut [[f64; 6]; 6],
+) -> NodeFriction {
+    use crate::model::ContactMethod;
+    let i = e.slave;
+    if e.status != super::ContactStatus::Closed || i >= state.anchor.len() {
+        state.open(i, e.xs);
+        return NodeFriction::default();
+    }
+    let [m1, m2] = e.nodes;
+    let (Some(&r1), Some(&r2), Some(&x1), Some(&x2)) =
+        (reference.get(m1), reference.get(m2), x.get(m1), x.get(m2))
+    else {
+        return NodeFriction::default();
+    };
+    let Some(start) = state.committed_anchor[i] else {
+        // first touch: frictionless in this increment
+        state.anchor[i] = Some(reference_point([r1, r2], e.xi));
+        state.position[i] = e.xs;
+        return NodeFriction::default();
+    };
+    let anchor = state.base[i].unwrap_or(start);
+    let alpha_n = super::penalty::effective_stiffness(method, e.tributary);
+    let shift = match method {
+        ContactMethod::Penalty { .. } => 0.0,
+        ContactMethod::AugmentedLagrange { .. } => state.multiplier[i],
+        ContactMethod::Lagrange { .. } => return NodeFriction::default(),
+    };
+    // R_N(x) = R_N + alpha_N (g_now - g): pass the law through the current
+    // force (penalty and augmented Lagrangian alike)
+    let gap_now = {
+        let a = [x2[0] - x1[0], x2[1] - x1[1]];
+        let l = a[0].hypot(a[1]);
+        let n = [a[1] / l, -a[0] / l];
+        (e.xs[0] - x1[0]) * n[0] + (e.xs[1] - x1[1]) * n[1]
+    };
+    let seg = SegmentFriction {
+        mu: law.mu,
+        alpha_t: super::friction::tangential_stiffness(law, method, e.tributary),
+        shift,
+        normal_shift: e.normal_force + alpha_n * gap_now,
+        normal_stiffness: alpha_n,
+    };
+    let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor) else {
+        return NodeFriction::default();
+    };
+    for ((f, row), (rf, rrow)) in forces
+        .iter_mut()
+        .zip(tangent.iter_mut())
+        .zip(r.forces.iter().zip(&r.tangent))
+    {
+        *f += rf;
+        for (k, rk) in row.iter_mut().zip(rrow) {
+            *k += rk;
+        }
+    }
+    state.anchor[i] = Some(r.anchor);
+    state.position[i] = e.xs;
+    r.friction
+}
+
+/// The reference point of the master surface at parameter `xi` of the
+/// reference segment `X_1 -> X_2` (the stick point of a first touch).
+pub fn reference_point(reference: [[f64; 2]; 2], xi: f64) -> [f64; 2] {
+    let [r1, r2] = reference;
+    [r1[0] + xi * (r2[0] - r1[0]), r1[1] + xi * (r2[1] - r1[1])]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn law(mu: f64) -> SegmentFriction {
+        SegmentFriction {
+            mu,
+            alpha_t: 30.0,
+            shift: 0.0,
+            normal_shift: 0.0,
+            normal_stiffness: 100.0,
+        }
+    }
+
+    /// Forces balance; the tangent is minus the derivative of the forces
+    /// (central differences), in stick and in slip.
+    #[test]
+    fn segment_friction_balances_and_tangent_matches_finite_differences() {
+        let reference = [[0.0, 0.0], [1.0, 0.0]];
+        let (x1, x2) = ([0.01, -0.02], [1.03, 0.05]);
+        for (mu, anchor, status) in [
+            (0.5, [0.42, 0.0], FrictionStatus::Stick),
+            (0.2, [0.2, 0.0], FrictionStatus::Slip),
+        ] {
+            let xs = [0.45, 0.03];
+            let r = respond(&law(mu), xs, x1, x2, reference, anchor).unwrap();
+            assert_eq!(r.friction.status, status, "{:?}", r.friction);
+            for c in 0..2 {
+                let sum: f64 = (0..3).map(|k| r.forces[2 * k + c]).sum();
+                assert!(sum.abs() < 1e-14, "{sum}");
+            }
+            let x0 = [xs[0], xs[1], x1[0], x1[1], x2[0], x2[1]];
+            let eval = |x: [f64; 6]| {
+                respond(
+                    &law(mu),
+                    [x[0], x[1]],
+                    [x[2], x[3]],
+                    [x[4], x[5]],
+                    reference,
+                    anchor,
+                )
+                .unwrap()
+                .forces
+            };
+            let h = 1e-7;
+            for j in 0..6 {
+                let (mut xp, mut xm) = (x0, x0);
+                xp[j] += h;
+                xm[j] -= h;
+                let (fp, fm) = (eval(xp), eval(xm));
+                for i in 0..6 {
+                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
+                    assert!(
+                        (fd - r.tangent[i][j]).abs() < 1e-6 * (1.0 + fd.abs()),
+                        "mu {mu} K[{i}][{j}]: {fd} vs {}",
+                        r.tangent[i][j]
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn slip_moves_the_stick_point_along_the_master() {
+        let reference = [[0.0, 0.0], [2.0, 0.0]];
+        // undeformed master (free side y < 0), node 0.1 past its stick point,
+        // penetration 0.01
+        let r = respond(
+            &law(0.1),
+            [1.1, 0.01],
+            [0.0, 0.0],
+            [2.0, 0.0],
+            reference,
+            [1.0, 0.0],
+        )
+        .unwrap();
+        // R_N = 1, limit 0.1: slip, elastic part 0.1 / 30
+        assert_eq!(r.friction.status, FrictionStatus::Slip);
+        assert!((r.friction.tangential_force + 0.1).abs() < 1e-14);
+        let elastic = 0.1 / 30.0;
+        assert!((r.friction.slip - (0.1 - elastic)).abs() < 1e-14);
+        assert!((r.anchor[0] - (1.1 - elastic)).abs() < 1e-14);
+    }
+}
