@@ -179,3 +179,19 @@ fn restart_with_a_changed_deck_is_refused() {
     let e = ResultWriter::resume(tmp.path(), &other).unwrap_err();
     assert!(e.contains("different model"), "{e}");
 }
+
+#[test]
+fn restart_double_pass_resumes_with_the_right_slave_side() {
+    // double pass: the slave side alternates with the converged increments;
+    // the restart resumes the alternation from the checkpoint's count
+    let model = model_of(
+        "contact_patch.ctc",
+        &[
+            ("strategy = single_pass", "strategy = double_pass"),
+            ("stiffness = 1e10", "stiffness = 1e8"),
+            ("increments = 2", "increments = 4"),
+        ],
+    );
+    let (from, _) = restart_matches(&model, 3);
+    assert_eq!(from, 3);
+}

@@ -437,6 +437,9 @@ impl<'m> Newton<'m> {
             s.committed_entity.clone_from(&h.entity);
             s.committed_multiplier.clone_from(&h.multiplier);
             s.committed_active.clone_from(&h.active);
+            if let Some(sp) = &mut s.surface {
+                sp.restore(cp.increment);
+            }
             s.rollback();
         }
         self.assembler.restore(&cp.points, cp.points_time)?;
