@@ -177,7 +177,7 @@ impl BroadPhase {
         let q = (v - o) / self.cell;
         let k = q as i64;
         if q < k as f64 {
-            k - 1
+            k.saturating_sub(1)
         } else {
             k
         }
@@ -379,6 +379,17 @@ mod tests {
         for (p, r) in [([0.5, 0.0], 0.01), ([0.3, 0.05], 10.0), ([9.0, 9.0], 1.0)] {
             grid.query(p, r, &mut out);
             assert_eq!(out, brute(&boxes, p, r));
+        }
+    }
+
+    #[test]
+    fn only_unbounded_boxes() {
+        // a plane tool: one infinite box, no finite one to size the cells
+        let grid = BroadPhase::build(&[Aabb::everything()]);
+        let mut out = Vec::new();
+        for p in [[0.0, 0.0], [-1e300, 1e300], [3.0, -7.0]] {
+            grid.query(p, 0.1, &mut out);
+            assert_eq!(out, vec![0]);
         }
     }
 
