@@ -192,6 +192,9 @@ fn restart_double_pass_resumes_with_the_right_slave_side() {
             ("increments = 2", "increments = 4"),
         ],
     );
-    let (from, _) = restart_matches(&model, 3);
-    assert_eq!(from, 3);
+    // restart after 1 converged increment: the next one has the master
+    // surface as slave (odd count); a restart that forgot the count would
+    // redo the first side and differ
+    let (from, _) = restart_matches(&model, 2);
+    assert_eq!(from, 1);
 }

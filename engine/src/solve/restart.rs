@@ -19,7 +19,7 @@ use crate::model::Model;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST01";
+const MAGIC: &[u8; 8] = b"CTCRST02";
 
 /// Where the stepper continues: the first increment to attempt.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,6 +63,10 @@ pub struct Checkpoint {
     /// Time of the committed integration points (accumulated by the
     /// assembler; kept as is for bit-for-bit rate-dependent updates).
     pub points_time: f64,
+    /// Node couplings added to the sparsity pattern by node-to-segment
+    /// contact so far (the restarted run starts from the same pattern, so
+    /// its factorizations round identically).
+    pub couplings: Vec<(usize, usize)>,
 }
 
 /// A restart file: the solver checkpoint and the result writer's index.
@@ -202,6 +206,11 @@ impl RestartFile {
             e.f64(*t);
             e.str(name);
         }
+        e.usize(c.couplings.len());
+        for &(a, b) in &c.couplings {
+            e.usize(a);
+            e.usize(b);
+        }
         e.0
     }
 
@@ -285,6 +294,11 @@ impl RestartFile {
             let t = d.f64()?;
             pvd.push((t, d.str()?));
         }
+        let nk = d.len(16)?;
+        let mut couplings = Vec::with_capacity(nk);
+        for _ in 0..nk {
+            couplings.push((d.usize()?, d.usize()?));
+        }
         if d.pos != data.len() {
             return Err(format!(
                 "restart file corrupted: {} trailing bytes",
@@ -300,6 +314,7 @@ impl RestartFile {
                 pairs,
                 points,
                 points_time,
+                couplings,
             },
             pvd,
         })
@@ -348,6 +363,7 @@ mod tests {
                 }],
                 points: vec![vec![], vec![point; 4]],
                 points_time: 0.30000000000000004,
+                couplings: vec![(1, 7), (2, 9)],
             },
             pvd: vec![(0.5, "inc_0001.vtu".into()), (1.0, "inc_0002.vtu".into())],
         }
