@@ -22,7 +22,7 @@
 
 use super::geometry::ToolShape;
 use super::motion::Placement;
-use super::search;
+use super::search::{self, ToolGrid};
 use super::segment_search::SurfaceSearch;
 use super::vec2::{dot, norm, sub};
 use crate::model::{LocalSearch, Model};
@@ -38,14 +38,15 @@ pub struct Jump {
     pub normal: f64,
 }
 
-/// Jumps of the slave nodes of a rigid-tool pair between the state
+/// Jumps of the slave nodes of a rigid-tool pair (its shape and broad
+/// phase, [`ToolGrid`]) between the state
 /// `(x0, t0)` (start of the increment: current coordinates of all nodes and
 /// time) and `(x1, t1)` (end). `prof` is the pair's window. Ascending node
 /// order.
 pub fn tool_jumps(
     model: &Model,
     pair: usize,
-    shape: &ToolShape,
+    (shape, grid): (&ToolShape, &ToolGrid),
     prof: f64,
     (x0, t0): (&[[f64; 2]], f64),
     (x1, t1): (&[[f64; 2]], f64),
@@ -61,6 +62,7 @@ pub fn tool_jumps(
         Placement::at(&tool.motion, t0),
         Placement::at(&tool.motion, t1),
     );
+    let mut scratch = Vec::new();
     for &node in &cp.nodes {
         let (Some(&a), Some(&b)) = (x0.get(node), x1.get(node)) else {
             continue;
@@ -73,15 +75,14 @@ pub fn tool_jumps(
         }
         let mut tests = 0;
         let reach = distance * (1.0 + 1e-12);
-        let Some(found) = search::closest_with(
-            shape,
-            r1,
-            reach,
-            None,
-            None,
-            LocalSearch::Memory,
-            &mut tests,
-        ) else {
+        let request = search::Request {
+            x: r1,
+            window: reach,
+            memory: None,
+            guess: None,
+            test: LocalSearch::Memory,
+        };
+        let Some(found) = search::closest_in(shape, grid, request, &mut scratch, &mut tests) else {
             continue;
         };
         if found.projection.gap.abs() > reach {

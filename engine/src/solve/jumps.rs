@@ -39,7 +39,14 @@ pub fn increment_warnings(
         let prof = state.prof;
         let jumps: Vec<Jump> = match &cp.master {
             ContactMaster::Tool(_) => match state.shape.as_ref() {
-                Some(shape) => jump::tool_jumps(model, p, shape, prof, (&x0, t0), (&x1, t1)),
+                Some(shape) => jump::tool_jumps(
+                    model,
+                    p,
+                    (shape, &state.tool_grid),
+                    prof,
+                    (&x0, t0),
+                    (&x1, t1),
+                ),
                 None => Vec::new(),
             },
             ContactMaster::Surface { edges, .. } => {
