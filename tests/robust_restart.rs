@@ -187,3 +187,22 @@ fn restart_upsetting_with_friction_matches_uninterrupted_run() {
     let (from, _) = restart_matches(&model, 5);
     assert!(from >= 4, "{from}");
 }
+
+#[test]
+fn restart_double_pass_resumes_with_the_right_slave_side() {
+    // double pass: the slave side alternates with the converged increments;
+    // the restart resumes the alternation from the checkpoint's count
+    let model = model_of(
+        "contact_patch.ctc",
+        &[
+            ("strategy = single_pass", "strategy = double_pass"),
+            ("stiffness = 1e10", "stiffness = 1e8"),
+            ("increments = 2", "increments = 4"),
+        ],
+    );
+    // restart after 1 converged increment: the next one has the master
+    // surface as slave (odd count); a restart that forgot the count would
+    // redo the first side and differ
+    let (from, _) = restart_matches(&model, 2);
+    assert_eq!(from, 1);
+}

@@ -165,6 +165,13 @@ impl SurfacePair {
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
     }
+
+    /// Restart: `increments` converged increments were done (the restart
+    /// checkpoint's count), so the double pass resumes with the right side.
+    pub fn restore(&mut self, increments: usize) {
+        self.increments = increments;
+        self.committed_increments = increments;
+    }
 }
 
 /// Slave nodes of a pair (sorted): the deck's slave nodes, plus the master

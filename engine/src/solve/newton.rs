@@ -391,6 +391,7 @@ impl<'m> Newton<'m> {
                 .collect(),
             points: self.assembler.points().to_vec(),
             points_time: self.assembler.committed_time(),
+            couplings: self.couplings.clone(),
         }
     }
 
@@ -451,9 +452,18 @@ impl<'m> Newton<'m> {
             s.committed_multiplier.clone_from(&h.multiplier);
             s.committed_active.clone_from(&h.active);
             s.friction.restore_committed(&h.friction)?;
+            if let Some(sp) = &mut s.surface {
+                sp.restore(cp.increment);
+            }
             s.rollback();
         }
         self.assembler.restore(&cp.points, cp.points_time)?;
+        if !cp.couplings.is_empty() {
+            self.couplings.clone_from(&cp.couplings);
+            self.scatter = Scatter::with_couplings(&self.model.mesh, &self.dofs, &self.couplings)?;
+            self.values = vec![0.0; self.scatter.n_values()];
+            self.linear.reset_pattern();
+        }
         self.committed.copy_from_slice(&cp.displacement);
         self.u.copy_from_slice(&cp.displacement);
         Ok(())

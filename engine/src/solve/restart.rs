@@ -9,7 +9,7 @@
 //! restart with a different deck is refused). [`RestartFile`] adds what the
 //! result writer needs to append to the same directory (the PVD entries).
 //!
-//! Format (`restart.bin`, little endian): the magic `CTCRST01`, then
+//! Format (`restart.bin`, little endian): the magic `CTCRST03`, then
 //! fields in a fixed order; every `f64` is stored as its 8 bytes, so the
 //! values read back are the values written, bit for bit.
 
@@ -19,7 +19,7 @@ use crate::model::Model;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST02";
+const MAGIC: &[u8; 8] = b"CTCRST03";
 
 /// Where the stepper continues: the first increment to attempt.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -66,6 +66,10 @@ pub struct Checkpoint {
     /// Time of the committed integration points (accumulated by the
     /// assembler; kept as is for bit-for-bit rate-dependent updates).
     pub points_time: f64,
+    /// Node couplings added to the sparsity pattern by node-to-segment
+    /// contact so far (the restarted run starts from the same pattern, so
+    /// its factorizations round identically).
+    pub couplings: Vec<(usize, usize)>,
 }
 
 /// A restart file: the solver checkpoint and the result writer's index.
@@ -206,6 +210,11 @@ impl RestartFile {
             e.f64(*t);
             e.str(name);
         }
+        e.usize(c.couplings.len());
+        for &(a, b) in &c.couplings {
+            e.usize(a);
+            e.usize(b);
+        }
         e.0
     }
 
@@ -291,6 +300,11 @@ impl RestartFile {
             let t = d.f64()?;
             pvd.push((t, d.str()?));
         }
+        let nk = d.len(16)?;
+        let mut couplings = Vec::with_capacity(nk);
+        for _ in 0..nk {
+            couplings.push((d.usize()?, d.usize()?));
+        }
         if d.pos != data.len() {
             return Err(format!(
                 "restart file corrupted: {} trailing bytes",
@@ -306,6 +320,7 @@ impl RestartFile {
                 pairs,
                 points,
                 points_time,
+                couplings,
             },
             pvd,
         })
@@ -355,6 +370,7 @@ mod tests {
                 }],
                 points: vec![vec![], vec![point; 4]],
                 points_time: 0.30000000000000004,
+                couplings: vec![(1, 7), (2, 9)],
             },
             pvd: vec![(0.5, "inc_0001.vtu".into()), (1.0, "inc_0002.vtu".into())],
         }
