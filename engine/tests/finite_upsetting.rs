@@ -182,6 +182,7 @@ fn upsetting(
             },
         }],
         output: OutputRequest::default(),
+        thermal: None,
     };
     let mut rec = Record {
         top,

@@ -187,6 +187,7 @@ impl Lowerer<'_> {
             contacts,
             steps,
             output,
+            thermal: None,
         })
     }
 

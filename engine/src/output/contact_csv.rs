@@ -89,6 +89,7 @@ pub(crate) mod tests {
             }],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -28,6 +28,11 @@ pub fn header(model: &Model) -> String {
         cols.push(csv_field(&format!("{label}_x")));
         cols.push(csv_field(&format!("{label}_y")));
     }
+    if model.thermal.is_some() {
+        // appended by the writer from the thermal increment
+        cols.push("temperature_max".into());
+        cols.push("temperature_min".into());
+    }
     cols.join(",")
 }
 

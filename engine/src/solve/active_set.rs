@@ -409,6 +409,7 @@ mod tests {
             }],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -324,6 +324,17 @@ impl<'m> Newton<'m> {
         self.assembler.points()
     }
 
+    /// Sets the thermal strains (and temperature-dependent laws) of the
+    /// cells for the next increments (`crate::thermal::coupling`).
+    pub fn set_thermal_state(
+        &mut self,
+        strain: Vec<f64>,
+        laws: Vec<Option<crate::material::NonlinearLaw>>,
+    ) -> Result<(), String> {
+        self.assembler
+            .set_thermal_state(&self.model.mesh, strain, laws)
+    }
+
     /// Closed contact nodes at the last evaluated state.
     pub fn active_contacts(&self) -> usize {
         self.contact
@@ -516,7 +527,10 @@ impl<'m> Newton<'m> {
             fint2 += self.f_int[g] * self.f_int[g];
         }
         let abs = r2.sqrt();
-        let denom = (load2.sqrt() + react2.sqrt()).max(fint2.sqrt()).max(TINY);
+        let denom = (load2.sqrt() + react2.sqrt())
+            .max(fint2.sqrt())
+            .max(self.assembler.thermal_scale())
+            .max(TINY);
         Ok(Eval {
             abs,
             rel: abs / denom,

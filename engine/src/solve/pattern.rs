@@ -255,6 +255,7 @@ mod tests {
             contacts: vec![],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -167,6 +167,7 @@ pub fn cylinder_on_block(
         contacts: vec![pair("block.top -> punch", top, method)],
         steps: vec![step(increments)],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 
@@ -232,6 +233,7 @@ pub fn hertz_disc(
         contacts: vec![pair("disc.arc -> floor", arc, method)],
         steps: vec![step(increments)],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

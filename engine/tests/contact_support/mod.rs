@@ -71,6 +71,7 @@ pub fn surface_model(
         }],
         steps: vec![],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 
