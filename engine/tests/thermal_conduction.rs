@@ -55,7 +55,6 @@ fn scene(model: &Model, m: MaterialThermal, initial: f64) -> ThermalScene {
         fluxes: vec![],
         convection: vec![],
         contacts: vec![None; model.contacts.len()],
-        tool_temperatures: vec![None; model.tools.len()],
         scheme: CouplingScheme::Staggered,
     }
 }

@@ -124,6 +124,7 @@ mod tests {
             gap_conductivity: 0.03,
             gap_min: 1e-3,
             friction_split: 0.5,
+            tool_temperature: None,
         };
         let h = node_conductance(&s, &contact(ContactStatus::Closed, -1e-6, 100.0));
         assert!((h - 30.0).abs() < 1e-12);

@@ -141,12 +141,10 @@ pub fn contact_elements(
             continue;
         };
         let cp = &model.contacts[p];
-        let tool_temperature = match cp.master.tool() {
-            Some(tool) => match scene.tool_temperatures.get(tool) {
-                Some(Some(f)) => Some(f.eval(t)),
-                _ => continue, // adiabatic tool
-            },
-            None => None,
+        let tool_temperature = match (cp.master.tool(), &settings.tool_temperature) {
+            (Some(_), Some(f)) => Some(f.eval(t)),
+            (Some(_), None) => continue, // adiabatic tool
+            (None, _) => None,
         };
         for c in nodes {
             let Ok(i) = cp.nodes.binary_search(&c.node) else {

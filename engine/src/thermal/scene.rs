@@ -23,9 +23,6 @@ pub struct ThermalScene {
     /// Thermal contact settings per contact pair (index = `Model::contacts`);
     /// `None`: the pair exchanges no heat.
     pub contacts: Vec<Option<ContactThermal>>,
-    /// Temperature of each rigid tool (index = `Model::tools`); `None`: the
-    /// tool is adiabatic for thermal contact.
-    pub tool_temperatures: Vec<Option<TimeFunction>>,
     /// How mechanics and heat are coupled.
     pub scheme: CouplingScheme,
 }
@@ -132,6 +129,9 @@ pub struct ContactThermal {
     /// Fraction of the frictional heat that goes to the slave side, in
     /// [0, 1] (the rest goes to the master surface or the tool).
     pub friction_split: f64,
+    /// Temperature of the rigid tool of the pair (its own prescribed
+    /// temperature); `None` for a deformable master, or an adiabatic tool.
+    pub tool_temperature: Option<TimeFunction>,
 }
 
 /// Coupling scheme between mechanics and heat.

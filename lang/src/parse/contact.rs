@@ -32,7 +32,14 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
     let target = values::set_ref(item.target.as_ref()?, diags)?;
     let tool = item.names.into_iter().next()?;
     let block = item.block?;
-    let mut f = Fields::new(&block, "`contact` block", &["method", "prof", "friction"]);
+    let mut f = Fields::new(
+        &block,
+        "`contact` block",
+        &["method", "prof", "friction", "thermal"],
+    );
+    let thermal = f
+        .block("thermal", diags)
+        .map(|b| super::thermal::contact_block(b, diags));
     let method = f.value("method", diags).and_then(|v| method(v, diags));
     let prof = f.number("prof", diags);
     let reserved = f
@@ -55,6 +62,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         prof,
         reserved,
         span: item.span,
+        thermal,
     })
 }
 
