@@ -513,6 +513,40 @@ pub struct ContactPair {
     /// Maximum gap `prof`: nodes farther than this from the tool create no
     /// contact element. `None`: automatic (a multiple of the slave edge size).
     pub prof: Option<f64>,
+    /// Coulomb friction (`None`: frictionless).
+    pub friction: Option<Friction>,
+}
+
+/// Coulomb friction of a contact pair (seed, "Part III - Friction"). The
+/// tangential enforcement follows the pair's normal method: penalty
+/// (regularized Coulomb law, return map), Lagrange multipliers (stick/slip
+/// status loop) or augmented Lagrangian (tangential multiplier shift).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Friction {
+    /// Coulomb coefficient `mu >= 0`.
+    pub mu: f64,
+    /// Tangential penalty `alpha_T`, same units and kind (nodal or area) as
+    /// the normal penalty; `None`: `alpha_N / 10`. Unused by Lagrange
+    /// multipliers.
+    pub stiffness: Option<f64>,
+    /// Friction in the increment in which a node first touches.
+    pub first_impact: FirstImpact,
+    /// Cut an increment in which a node first touches at the fraction of
+    /// the increment where it meets the master (constant-velocity
+    /// intersection).
+    pub cut_at_impact: bool,
+}
+
+/// How friction treats the increment in which a node first touches.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FirstImpact {
+    /// No tangential force in that increment; the stick point is where the
+    /// node is at the end of it.
+    Frictionless,
+    /// The stick point is where the node met the master, found by the
+    /// constant-velocity intersection; friction acts from there on.
+    #[default]
+    Intersect,
 }
 
 /// Newton-Raphson settings of a step.

@@ -125,6 +125,7 @@ fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
                 stiffness: 100.0 * E / h_min,
             },
             prof: None,
+            friction: None,
         }],
         steps: vec![Step {
             name: "press".into(),

@@ -131,6 +131,7 @@ fn contact_punch_smoke_flat_polyline_punch_with_corners() {
                 stiffness: 1e6,
             },
             prof: None,
+            friction: None,
         }],
         steps: vec![Step {
             name: "press".into(),

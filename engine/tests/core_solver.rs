@@ -366,6 +366,7 @@ fn body_held_only_by_open_contact_falls_onto_it() {
             stiffness: 1e4,
         },
         prof: None,
+        friction: None,
     }];
     m.steps[0].increments = 2;
     let mut rec = Recorder::default();

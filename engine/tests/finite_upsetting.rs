@@ -167,6 +167,7 @@ fn upsetting(
                 },
             },
             prof: None,
+            friction: None,
         }],
         steps: vec![Step {
             name: "upset".into(),

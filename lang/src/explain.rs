@@ -324,6 +324,9 @@ pub fn explain(model: &Model) -> String {
                 c.nodes.len(),
                 plural(c.edges.len(), "edge", "edges")
             );
+            if let Some(f) = &c.friction {
+                let _ = writeln!(o, "    {}", friction_plan(f, &c.method));
+            }
         }
     }
     // ------------------------------------------------------------ steps
@@ -423,7 +426,9 @@ pub fn explain(model: &Model) -> String {
     }) {
         absent.push("viscoplasticity");
     }
-    absent.push("friction");
+    if model.contacts.iter().all(|c| c.friction.is_none()) {
+        absent.push("friction");
+    }
     match &model.thermal {
         None => absent.push("thermal unknowns"),
         Some(t) => {
@@ -450,6 +455,40 @@ pub fn explain(model: &Model) -> String {
     absent.push("inertia");
     let _ = writeln!(o, "not in this scene: {}", absent.join(", "));
     o
+}
+
+/// A pair's friction law in words.
+fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod) -> String {
+    let how = match method {
+        ContactMethod::Lagrange { .. } => {
+            "tangential Lagrange multipliers, stick/slip status loop".to_string()
+        }
+        _ => {
+            let shift = if matches!(method, ContactMethod::AugmentedLagrange { .. }) {
+                " plus a tangential multiplier shift (Uzawa)"
+            } else {
+                ""
+            };
+            match f.stiffness {
+                Some(s) => format!("penalty-regularized, alpha_T = {}{shift}", num(s)),
+                None => format!("penalty-regularized, alpha_T = alpha_N / 10{shift}"),
+            }
+        }
+    };
+    format!(
+        "friction: Coulomb mu = {} ({how}); first impact: {}{}",
+        num(f.mu),
+        match f.first_impact {
+            ctc_engine::model::FirstImpact::Intersect =>
+                "stick point where the node met the master",
+            ctc_engine::model::FirstImpact::Frictionless => "frictionless in that increment",
+        },
+        if f.cut_at_impact {
+            "; increments cut at the first impact"
+        } else {
+            ""
+        }
+    )
 }
 
 /// A body's kinematics in words.

@@ -665,6 +665,17 @@ impl Lowerer<'_> {
                 search: Default::default(),
                 method,
                 prof: c.prof.as_ref().map(|p| p.value),
+                friction: c.friction.as_ref().and_then(|f| {
+                    Some(m::Friction {
+                        mu: f.value.mu.as_ref()?.value,
+                        stiffness: f.value.stiffness.as_ref().map(|s| s.value),
+                        first_impact: match f.value.first_impact.as_ref().map(|v| v.value) {
+                            Some(ast::FirstImpactAst::Frictionless) => m::FirstImpact::Frictionless,
+                            _ => m::FirstImpact::Intersect,
+                        },
+                        cut_at_impact: f.value.cut_at_impact.as_ref().is_some_and(|v| v.value),
+                    })
+                }),
             });
         }
         out

@@ -1006,6 +1006,16 @@ impl Checker<'_> {
                 Some(Method::Lagrange { .. }) | None => {}
             }
             self.must_be_positive(&c.prof, "prof");
+            if let Some(f) = &c.friction {
+                if let Some(mu) = f.value.mu.as_ref().filter(|m| !(m.value >= 0.0)) {
+                    self.err(Diagnostic::error(
+                        "friction coefficient `mu` must not be negative",
+                        mu.span,
+                        "must be >= 0",
+                    ));
+                }
+                self.must_be_positive(&f.value.stiffness, "friction stiffness");
+            }
             for r in &c.reserved {
                 self.err(
                     Diagnostic::error(

@@ -17,12 +17,18 @@
 //! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
 //!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
 //! - [`tributary`]: tributary areas of slave nodes;
+//! - [`friction`], [`friction_lagrange`], [`impact`]: Coulomb friction
+//!   (return map, Lagrange stick/slip status loop) and the first impact
+//!   (constant-velocity intersection);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
 pub mod augmented;
 pub mod broad;
+pub mod friction;
+pub mod friction_lagrange;
 pub mod geometry;
+pub mod impact;
 pub mod lagrange;
 pub mod log;
 pub mod motion;
@@ -69,6 +75,9 @@ pub struct NodeContact {
     /// coupling terms. `None` against a rigid tool (then `force` and
     /// `stiffness` are the whole contribution).
     pub master: Option<MasterSegment>,
+    /// Tangential (friction) part: status, tangential force (included in
+    /// `force`), slip increment and dissipated work of the increment.
+    pub friction: friction::NodeFriction,
 }
 
 /// Master side of a node-to-segment contact element. Local dof order of
@@ -124,6 +133,8 @@ pub struct PairState {
     pub active: Vec<bool>,
     /// Per slave node: active set at the last converged increment.
     pub committed_active: Vec<bool>,
+    /// Friction history (stick points, tangential multipliers, statuses).
+    pub friction: friction::FrictionState,
 }
 
 impl PairState {
@@ -153,6 +164,17 @@ impl PairState {
             Ok(s) => (Some(s), None),
             Err(e) => (None, Some(e)),
         };
+        // reference-frame positions at t = 0 (start of the first impact path)
+        let placement = cp
+            .master
+            .tool()
+            .and_then(|t| model.tools.get(t))
+            .map_or(Placement::identity(), |t| Placement::at(&t.motion, 0.0));
+        let positions = cp
+            .nodes
+            .iter()
+            .map(|&k| placement.to_reference(model.mesh.nodes.get(k).copied().unwrap_or([0.0; 2])))
+            .collect();
         PairState {
             tributary: tributary::tributary_areas(model, pair),
             pair: Some(pair),
@@ -168,6 +190,7 @@ impl PairState {
             committed_multiplier: vec![0.0; n],
             active: vec![false; n],
             committed_active: vec![false; n],
+            friction: friction::FrictionState::new(positions),
         }
     }
 
@@ -186,6 +209,7 @@ impl PairState {
         self.committed_entity.clone_from(&self.last_entity);
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
+        self.friction.commit();
     }
 
     /// Called when an increment is cut back: restores the committed state.
@@ -193,6 +217,7 @@ impl PairState {
         self.last_entity.clone_from(&self.committed_entity);
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
+        self.friction.rollback();
     }
 }
 
@@ -217,6 +242,7 @@ pub fn evaluate_pair(
     };
     let placement = Placement::at(&tool.motion, t);
     let prof = state.prof;
+    state.friction.impact = None;
     let mut tests = 0usize;
     let mut guess = None;
     let mut out = Vec::new();
@@ -228,18 +254,20 @@ pub fn evaluate_pair(
         let xr = placement.to_reference(xn);
         let memory = state.last_entity[i];
         let Some(found) = search::closest(shape, xr, prof, memory, guess, &mut tests) else {
+            state.friction.open(i, xr);
             continue;
         };
         state.last_entity[i] = Some(found.entity);
         guess = Some(found.entity);
         let p = found.projection;
         if p.gap > prof {
+            state.friction.open(i, xr);
             continue;
         }
         let normal = placement.rotate(p.normal);
         let tributary = state.tributary.get(i).copied().unwrap_or(0.0);
         let lambda = state.multiplier.get(i).copied().unwrap_or(0.0);
-        let r = match &cp.method {
+        let mut r = match &cp.method {
             ContactMethod::Penalty { .. } => {
                 penalty::respond(&cp.method, tributary, p.gap, normal, p.normal_rate)
             }
@@ -259,6 +287,32 @@ pub fn evaluate_pair(
                 p.normal_rate,
             ),
         };
+        let friction = match &cp.friction {
+            Some(law) => {
+                let c = friction::ToolContact {
+                    shape,
+                    placement: &placement,
+                    x: xn,
+                    reference: xr,
+                    projection: &p,
+                    normal,
+                    window: prof.max(vec2::norm(vec2::sub(
+                        xr,
+                        state.friction.committed_position[i],
+                    ))) * 4.0,
+                };
+                friction::respond_tool(
+                    law,
+                    &cp.method,
+                    tributary,
+                    i,
+                    &c,
+                    &mut state.friction,
+                    &mut r,
+                )
+            }
+            None => friction::NodeFriction::default(),
+        };
         out.push(NodeContact {
             node,
             gap: p.gap,
@@ -269,6 +323,7 @@ pub fn evaluate_pair(
             status: r.status,
             entity: found.entity,
             master: None,
+            friction,
         });
     }
     state.last_projection_tests = tests;

@@ -2,7 +2,10 @@
 //! the surface (sorted by current x, then y): node, current x, y, gap,
 //! pressure, status (0 open or out of reach, 1 closed), force of the tool on
 //! the node (x, y; axisymmetric: totals over 2*pi). The gap is empty where
-//! the node is out of the search reach (`prof`).
+//! the node is out of the search reach (`prof`). Pairs with friction have
+//! four more columns: tangential force (along `t = (n_y, -n_x)`), slip
+//! increment, friction status (0 frictionless, 1 stick, 2 slip) and the
+//! frictional work of the increment.
 
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::Model;
@@ -29,7 +32,13 @@ pub fn contact_csv(
         })
         .collect();
     rows.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]).then(a.1[1].total_cmp(&b.1[1])));
-    let mut s = String::from("node,x,y,gap,pressure,status,force_x,force_y\n");
+    let friction = model.contacts[pair].friction.is_some();
+    let mut s = String::from("node,x,y,gap,pressure,status,force_x,force_y");
+    s.push_str(if friction {
+        ",tangential_force,slip,friction_status,dissipation\n"
+    } else {
+        "\n"
+    });
     for (n, x, c) in rows {
         match c {
             Some(c) => {
@@ -37,14 +46,27 @@ pub fn contact_csv(
                     ContactStatus::Open => 0,
                     ContactStatus::Closed => 1,
                 };
-                let _ = writeln!(
+                let _ = write!(
                     s,
                     "{n},{},{},{},{},{st},{},{}",
                     x[0], x[1], c.gap, c.pressure, c.force[0], c.force[1]
                 );
+                if friction {
+                    let f = &c.friction;
+                    let _ = write!(
+                        s,
+                        ",{},{},{},{}",
+                        f.tangential_force,
+                        f.slip,
+                        crate::contact::friction::status_code(f.status),
+                        f.dissipation
+                    );
+                }
+                s.push('\n');
             }
             None => {
-                let _ = writeln!(s, "{n},{},{},,0,0,0,0", x[0], x[1]);
+                let _ = write!(s, "{n},{},{},,0,0,0,0", x[0], x[1]);
+                s.push_str(if friction { ",0,0,0,0\n" } else { "\n" });
             }
         }
     }
@@ -86,6 +108,7 @@ pub(crate) mod tests {
                     stiffness: 1.0,
                 },
                 prof: None,
+                friction: None,
             }],
             steps: vec![],
             output: OutputRequest::default(),
@@ -108,6 +131,7 @@ pub(crate) mod tests {
             },
             entity: 0,
             master: None,
+            friction: Default::default(),
         }
     }
 

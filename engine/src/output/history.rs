@@ -1,7 +1,10 @@
 //! `history.csv`: one row per converged increment — the time, then two
 //! columns (x, y) per history request: reaction sums over a node set, mean
 //! displacement over a node set, total contact force of a pair (force of
-//! the tool on the body). Flushed after every row.
+//! the tool on the body). Then, for each pair with friction, the work
+//! dissipated by friction over the increment (`friction_work[<pair>]`;
+//! the cumulative work is the column's running sum, also in
+//! `summary.json`). Flushed after every row.
 
 use crate::contact::NodeContact;
 use crate::model::{HistoryRequest, Model};
@@ -27,6 +30,9 @@ pub fn header(model: &Model) -> String {
         };
         cols.push(csv_field(&format!("{label}_x")));
         cols.push(csv_field(&format!("{label}_y")));
+    }
+    for cp in model.contacts.iter().filter(|c| c.friction.is_some()) {
+        cols.push(csv_field(&format!("friction_work[{}]", cp.name)));
     }
     if model.thermal.is_some() {
         // appended by the writer from the thermal increment
@@ -66,6 +72,11 @@ pub fn row(
                 .unwrap_or([0.0, 0.0]),
         };
         out.extend(v);
+    }
+    for (cp, list) in model.contacts.iter().zip(contact) {
+        if cp.friction.is_some() {
+            out.push(crate::contact::friction::pair_dissipation(list));
+        }
     }
     out
 }

@@ -9,7 +9,10 @@
 //! `equivalent_plastic_strain` (with stress/strain/von_mises when a body is
 //! plastic: converged integration-point values, nodal averages), `reaction` (3 components), `contact_gap`, `contact_pressure`,
 //! `contact_status` (-1 not a slave node, 0 open or out of reach, 1 closed;
-//! the gap is 0 where no contact was evaluated). Cell data: `body` index.
+//! the gap is 0 where no contact was evaluated); with friction also
+//! `friction_force` (tangential force), `friction_slip` (slip increment),
+//! `friction_status` (0 frictionless, 1 stick, 2 slip) and
+//! `friction_dissipation` (work of the increment). Cell data: `body` index.
 
 use crate::contact::{ContactStatus, NodeContact};
 use crate::element::recovery::NodalFields;
@@ -208,6 +211,20 @@ pub fn vtu(d: &VtuData<'_>) -> String {
             pressure.iter(),
         );
         array(&mut s, "Int32", "contact_status", 1, "", status.iter());
+        if m.contacts.iter().any(|c| c.friction.is_some()) {
+            let f = crate::contact::friction::nodal_fields(nn, d.contact);
+            array(&mut s, "Float64", "friction_force", 1, "", f.force.iter());
+            array(&mut s, "Float64", "friction_slip", 1, "", f.slip.iter());
+            array(&mut s, "Int32", "friction_status", 1, "", f.status.iter());
+            array(
+                &mut s,
+                "Float64",
+                "friction_dissipation",
+                1,
+                "",
+                f.dissipation.iter(),
+            );
+        }
     }
     s.push_str("      </PointData>\n      <CellData>\n");
     let mut body = vec![-1i32; m.mesh.cells.len()];

@@ -26,7 +26,7 @@ use super::dofs::Dof;
 use super::newton::{Converged, Failure, FailureKind, Newton};
 use super::saddle::ConstraintRow;
 use super::Observer;
-use crate::contact::{augmented, penalty, ContactStatus, NodeContact, PairState};
+use crate::contact::{augmented, friction, penalty, ContactStatus, NodeContact, PairState};
 use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 
 /// Newton loops allowed per increment attempt (active-set changes plus
@@ -50,6 +50,9 @@ pub struct Constraints {
     /// Per constraint: prescribed dofs of the node (index into
     /// `DofMap::prescribed`) and the normal component `d g / d u_p`.
     pub prescribed: Vec<Vec<(usize, f64)>>,
+    /// Per constraint: a tangential (stick) row of Lagrange friction, its
+    /// multiplier being `PairState::friction.multiplier`.
+    pub tangential: Vec<bool>,
 }
 
 impl Constraints {
@@ -66,6 +69,7 @@ impl Constraints {
         self.gap.clear();
         self.owner.clear();
         self.prescribed.clear();
+        self.tangential.clear();
         for (pi, cp) in model.contacts.iter().enumerate() {
             if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
                 continue;
@@ -96,8 +100,10 @@ impl Constraints {
                 self.gap.push(nc.gap);
                 self.owner.push((pi, i));
                 self.prescribed.push(presc);
+                self.tangential.push(false);
             }
         }
+        crate::contact::friction_lagrange::add_rows(model, dofs, contact, self);
     }
 }
 
@@ -217,11 +223,13 @@ impl CyclingGuard {
     }
 }
 
-/// The active sets of all pairs, concatenated (for the cycling guard).
+/// The active sets of all pairs, concatenated (for the cycling guard),
+/// then the friction stick/slip statuses.
 pub fn active_key(pairs: &[PairState]) -> Vec<bool> {
     pairs
         .iter()
         .flat_map(|p| p.active.iter().copied())
+        .chain(crate::contact::friction_lagrange::status_key(pairs))
         .collect()
 }
 
@@ -243,7 +251,12 @@ pub fn uzawa_update(
         else {
             continue;
         };
-        if update != mode || constraint_violation(&contact[pi]) <= tolerance {
+        let violation = constraint_violation(&contact[pi]).max(if cp.friction.is_some() {
+            friction::stick_violation(&contact[pi])
+        } else {
+            0.0
+        });
+        if update != mode || violation <= tolerance {
             continue;
         }
         let state = &mut pairs[pi];
@@ -256,6 +269,9 @@ pub fn uzawa_update(
             next[i] = augmented::normal_force(alpha, state.multiplier[i], nc.gap);
         }
         state.multiplier = next;
+        if cp.friction.is_some() {
+            friction::uzawa_update(&cp.nodes, &contact[pi], &mut state.friction);
+        }
         updated = true;
     }
     updated
@@ -309,7 +325,17 @@ pub fn attempt(
         updates += conv.contact_iterations;
         residuals.extend_from_slice(&conv.residuals);
         let model = newton.model;
-        let change = update_active_sets(model, &mut newton.pairs, &newton.contact);
+        let mut change = update_active_sets(model, &mut newton.pairs, &newton.contact);
+        if change.is_empty() {
+            // friction loop (Lagrange stick/slip statuses) once the contact
+            // loop has settled
+            change.introduced = crate::contact::friction_lagrange::update_status(
+                model,
+                &mut newton.pairs,
+                &newton.contact,
+                INTRODUCE_GAP * model_size(model),
+            );
+        }
         if !change.is_empty() {
             updates += 1;
             if let Err(detail) = guard.visit(active_key(&newton.pairs), &change) {
@@ -370,6 +396,7 @@ mod tests {
             },
             entity: 0,
             master: None,
+            friction: Default::default(),
         }
     }
 
@@ -406,6 +433,7 @@ mod tests {
                 search: Default::default(),
                 method,
                 prof: None,
+                friction: None,
             }],
             steps: vec![],
             output: OutputRequest::default(),

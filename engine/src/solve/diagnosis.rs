@@ -162,6 +162,7 @@ mod tests {
             },
             entity: 0,
             master: None,
+            friction: Default::default(),
         }
     }
 

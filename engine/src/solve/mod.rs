@@ -138,6 +138,10 @@ pub struct IncrementRecord {
     /// Largest penetration `max(0, -g)` over all pairs at convergence
     /// (length).
     pub max_penetration: f64,
+    /// Work dissipated by friction over the increment, per contact pair
+    /// (empty without friction).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub friction_work: Vec<f64>,
     /// The heat step of the increment (thermal scenes only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal: Option<crate::thermal::solver::ThermalIncrement>,
@@ -206,6 +210,10 @@ pub struct RunSummary {
     pub completed: bool,
     /// Why the run stopped early, if it did.
     pub failure: Option<String>,
+    /// Work dissipated by friction over the run, per contact pair (pair
+    /// order of the model; empty without friction; axisymmetric: over 2*pi).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub friction_work: Vec<f64>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -391,6 +399,27 @@ struct Driver<'m, 'o> {
     thermal: Option<crate::thermal::coupling::Coupling>,
 }
 
+impl Driver<'_, '_> {
+    /// Friction work of the converged increment per pair, added to the
+    /// run totals (empty without friction).
+    fn friction_work(&mut self) -> Vec<f64> {
+        if self.model.contacts.iter().all(|c| c.friction.is_none()) {
+            return Vec::new();
+        }
+        let work: Vec<f64> = self
+            .newton
+            .contact
+            .iter()
+            .map(|l| crate::contact::friction::pair_dissipation(l))
+            .collect();
+        self.summary.friction_work.resize(work.len(), 0.0);
+        for (t, w) in self.summary.friction_work.iter_mut().zip(&work) {
+            *t += w;
+        }
+        work
+    }
+}
+
 impl IncrementSolver for Driver<'_, '_> {
     fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
         let settings = self.model.steps[step].newton;
@@ -448,6 +477,7 @@ impl IncrementSolver for Driver<'_, '_> {
         let start = Instant::now();
         let r = self.observer.converged(&view);
         self.summary.timings.output += start.elapsed().as_secs_f64();
+        let friction_work = self.friction_work();
         self.summary.increments.push(IncrementRecord {
             step: self.model.steps[step].name.clone(),
             increment: self.increment,
@@ -459,6 +489,7 @@ impl IncrementSolver for Driver<'_, '_> {
             active_contacts: converged.active_contacts,
             contact_iterations: converged.contact_iterations,
             max_penetration: converged.max_penetration,
+            friction_work,
             thermal: self.thermal.as_ref().map(|t| t.solver.last.clone()),
         });
         r
@@ -473,6 +504,10 @@ impl IncrementSolver for Driver<'_, '_> {
         let r = self.observer.checkpoint(&cp);
         self.summary.timings.output += start.elapsed().as_secs_f64();
         r
+    }
+
+    fn impact_fraction(&self) -> Option<f64> {
+        self.newton.impact_fraction()
     }
 
     fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64) {

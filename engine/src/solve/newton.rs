@@ -70,6 +70,10 @@ pub enum FailureKind {
     /// The Lagrange-multiplier active set came back to a set already met
     /// in the increment.
     ActiveSetCycling,
+    /// Not a failure: a node first touched its master within the
+    /// increment and the deck asks to cut the increment at that instant
+    /// (`cut_at_impact = true`).
+    ImpactCut,
 }
 
 /// A failed increment attempt.
@@ -138,6 +142,10 @@ impl Failure {
                 "use more `increments`; if it persists, use `augmented_lagrange` or \
                  `penalty` for this pair"
                     .into(),
+            ),
+            FailureKind::ImpactCut => (
+                "increments are cut at each first impact (`cut_at_impact = true`)".into(),
+                "set `cut_at_impact = false` or use more `increments`".into(),
             ),
             FailureKind::Element => (
                 "an element is inverted or degenerate (mesh or deformation)".into(),
@@ -609,8 +617,12 @@ impl<'m> Newton<'m> {
             self.dlambda.push(v);
         }
         saddle.solve(&mut self.rhs, &mut self.dlambda);
-        for (&(p, i), dl) in self.constraints.owner.iter().zip(&self.dlambda) {
-            self.pairs[p].multiplier[i] += dl;
+        for (k, (&(p, i), dl)) in self.constraints.owner.iter().zip(&self.dlambda).enumerate() {
+            if self.constraints.tangential.get(k) == Some(&true) {
+                self.pairs[p].friction.multiplier[i] += dl;
+            } else {
+                self.pairs[p].multiplier[i] += dl;
+            }
         }
         self.timings.solve += mid.elapsed().as_secs_f64();
         Ok(())
@@ -639,6 +651,19 @@ impl<'m> Newton<'m> {
         saddle.solve(&mut self.rhs, &mut dl);
         self.timings.solve += start.elapsed().as_secs_f64();
         Some(norm(&self.rhs))
+    }
+
+    /// Smallest fraction of the increment at which a node of a pair with
+    /// `cut_at_impact` first touched its master, at the last evaluation
+    /// (`None`: no such impact).
+    pub fn impact_fraction(&self) -> Option<f64> {
+        self.model
+            .contacts
+            .iter()
+            .zip(&self.pairs)
+            .filter(|(c, _)| c.friction.is_some_and(|f| f.cut_at_impact))
+            .filter_map(|(_, p)| p.friction.impact)
+            .reduce(f64::min)
     }
 
     /// Largest penetration over all pairs at the last evaluation.
@@ -695,7 +720,9 @@ impl<'m> Newton<'m> {
         // against the increment's initial out-of-balance force.
         let force_free_ok = self.saddle.is_some();
         let mut first_ref = 0.0;
-        if self.assembler.symmetric() {
+        // friction makes the contact tangent non-symmetric: LU
+        let friction = model.contacts.iter().any(|c| c.friction.is_some());
+        if self.assembler.symmetric() && !friction {
             self.linear.prefer_cholesky();
         } else {
             self.linear.require_lu();

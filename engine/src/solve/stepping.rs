@@ -44,7 +44,19 @@ pub trait IncrementSolver {
     fn checkpoint(&mut self, _resume: &Resume) -> Result<(), String> {
         Ok(())
     }
+    /// After a converged attempt: the fraction of the increment at which
+    /// a node first touched its master, when the deck asks to cut the
+    /// increment there (`None`: no cut).
+    fn impact_fraction(&self) -> Option<f64> {
+        None
+    }
 }
+
+/// Impact fractions outside `(IMPACT_MIN, IMPACT_MAX)` do not cut: an
+/// initial overlap (0) or an impact at the end of the increment.
+const IMPACT_MIN: f64 = 1e-6;
+/// See [`IMPACT_MIN`].
+const IMPACT_MAX: f64 = 0.99;
 
 /// Why stepping stopped.
 #[derive(Debug, Clone)]
@@ -90,6 +102,7 @@ pub fn drive_from(
         };
         while step.t_end - t > 1e-9 * dt0 {
             let mut cutbacks = 0;
+            let mut impact_cut = false;
             loop {
                 let remaining = step.t_end - t;
                 let (this_dt, t_new) = if dt >= remaining - 1e-6 * dt0 {
@@ -98,6 +111,25 @@ pub fn drive_from(
                     (dt, t + dt)
                 };
                 match solver.attempt(si, t_new) {
+                    Ok(conv)
+                        if !impact_cut
+                            && solver.impact_fraction().is_some_and(|tau| {
+                                tau > IMPACT_MIN && tau < IMPACT_MAX && this_dt * tau >= min_dt
+                            }) =>
+                    {
+                        // first impact inside the increment: redo it up to
+                        // the impact (once; the retry ends at the impact)
+                        let tau = solver.impact_fraction().unwrap_or(1.0);
+                        let new_dt = this_dt * tau;
+                        let failure = Failure {
+                            kind: super::newton::FailureKind::ImpactCut,
+                            residuals: conv.residuals,
+                            detail: format!("first impact at {tau:.4} of the increment"),
+                        };
+                        solver.reject(si, &failure, new_dt);
+                        dt = new_dt;
+                        impact_cut = true;
+                    }
                     Ok(conv) => {
                         let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
                         solver

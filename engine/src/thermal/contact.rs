@@ -110,6 +110,7 @@ mod tests {
             status,
             entity: 0,
             master: None,
+            friction: Default::default(),
         }
     }
 

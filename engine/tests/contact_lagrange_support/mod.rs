@@ -110,6 +110,7 @@ fn pair(name: &str, edges: Vec<[usize; 2]>, method: ContactMethod) -> ContactPai
         search: Default::default(),
         method,
         prof: None,
+        friction: None,
     }
 }
 

@@ -68,6 +68,7 @@ pub fn surface_model(
             search: Default::default(),
             method,
             prof,
+            friction: None,
         }],
         steps: vec![],
         output: OutputRequest::default(),

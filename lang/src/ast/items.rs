@@ -341,12 +341,36 @@ pub struct Contact {
     pub method: Option<Spanned<Method>>,
     /// `prof = ..`.
     pub prof: Option<Spanned<f64>>,
-    /// Reserved keys present (`friction`).
+    /// Reserved keys present (none at the moment).
     pub reserved: Vec<Ident>,
     /// The whole item.
     pub span: Span,
     /// `thermal { .. }`.
     pub thermal: Option<super::thermal::ContactThermal>,
+    /// `friction = coulomb { .. }`.
+    pub friction: Option<Spanned<FrictionAst>>,
+}
+
+/// `friction = coulomb { mu stiffness first_impact cut_at_impact }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FrictionAst {
+    /// Coulomb coefficient.
+    pub mu: Option<Spanned<f64>>,
+    /// Tangential penalty (default alpha_N / 10).
+    pub stiffness: Option<Spanned<f64>>,
+    /// `intersect` (default) or `frictionless`.
+    pub first_impact: Option<Spanned<FirstImpactAst>>,
+    /// Cut the increment at the first impact (default false).
+    pub cut_at_impact: Option<Spanned<bool>>,
+}
+
+/// `first_impact = ..` values.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FirstImpactAst {
+    /// `intersect`.
+    Intersect,
+    /// `frictionless`.
+    Frictionless,
 }
 
 /// `penalty` kinds.

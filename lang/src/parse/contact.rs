@@ -42,11 +42,10 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         .map(|b| super::thermal::contact_block(b, diags));
     let method = f.value("method", diags).and_then(|v| method(v, diags));
     let prof = f.number("prof", diags);
-    let reserved = f
-        .take_all(&["friction"])
-        .into_iter()
-        .map(|e| e.key.clone())
-        .collect();
+    let friction = f
+        .value("friction", diags)
+        .and_then(|v| super::friction::parse(v, diags));
+    let reserved = Vec::new();
     f.require(
         &method,
         "method",
@@ -63,6 +62,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         reserved,
         span: item.span,
         thermal,
+        friction,
     })
 }
 
@@ -243,14 +243,15 @@ mod tests {
     }
 
     #[test]
-    fn reserved_and_unknown_methods() {
+    fn friction_and_unknown_methods() {
         let deck =
             parse_ok("contact a.b -> t { method = lagrange  friction = coulomb { mu = 0.2 } }");
         assert!(matches!(
             &deck.contacts[0].method.as_ref().unwrap().value,
             Method::Lagrange { formulation: None }
         ));
-        assert_eq!(deck.contacts[0].reserved[0].name, "friction");
+        let f = &deck.contacts[0].friction.as_ref().unwrap().value;
+        assert_eq!(f.mu.as_ref().unwrap().value, 0.2);
         assert_eq!(
             parse_messages("contact a.b -> t { method = penalti { stiffness = 1 } }"),
             ["unknown contact method `penalti`"]

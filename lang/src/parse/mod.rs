@@ -16,6 +16,7 @@ pub mod boundary;
 pub mod contact;
 pub mod errors;
 pub mod fields;
+pub mod friction;
 pub mod load;
 pub mod material;
 pub mod output;

@@ -157,6 +157,7 @@ mod tests {
                 stiffness: 1e9,
             },
             prof: None,
+            friction: None,
         });
         let patch = PenaltyPatch {
             kind,
@@ -182,6 +183,7 @@ mod tests {
                 status: ContactStatus::Closed,
                 entity: 0,
                 master: None,
+                friction: Default::default(),
             })
             .collect::<Vec<_>>();
         let total: f64 = contact.iter().map(|c| c.force[1]).sum();
