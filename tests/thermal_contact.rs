@@ -87,3 +87,86 @@ fn case8_thermal_contact_block_on_tool_matches_the_closed_form_at_two_pressures(
     // two genuinely different conductances
     assert!(pressures[1] > 5.0 * pressures[0], "{pressures:?}");
 }
+
+const SLIDING_BLOCK: &str = r#"
+analysis { dimension = plane_strain }
+material m {
+  elastic { E = 1000  nu = 0.3 }
+  thermal { conductivity = 1  capacity = 2  density = 0.5 }
+}
+body block {
+  mesh = rectangle { origin = (0, 0)  size = (1, 1)  divisions = (4, 4)  element = quad4 }
+  material = m
+  thermal { initial = 20 }
+}
+tool floor = plane { point = (0, 0)  normal = (0, 1) }
+contact block.bottom -> floor {
+  method = penalty { kind = area  stiffness = 1e6 }
+  friction = coulomb { mu = 0.3  stiffness = 1e6 }
+  thermal { conductance = 0  tool_temperature = 20  friction_split = 0.75 }
+}
+displace block.top { uy = ramp(0, -0.01, 0, 1)  ux = ramp(0, 0.5, 1, 2) }
+step press { time = 0 .. 1  increments = 1  newton { tol = 1e-12  max_iter = 30 } }
+step slide { time = 1 .. 2  increments = 5  newton { tol = 1e-12  max_iter = 30 } }
+"#;
+
+/// Per increment: time, normal force, heat report, friction statuses.
+#[derive(Default)]
+struct Sliding {
+    rows: Vec<(
+        f64,
+        f64,
+        ctc_engine::thermal::solver::ThermalIncrement,
+        bool,
+    )>,
+}
+
+impl Observer for Sliding {
+    fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
+        let pair = &v.contact[0];
+        let normal: f64 = pair.iter().map(|c| c.force[1]).sum();
+        let all_slip = pair
+            .iter()
+            .all(|c| c.friction.status == ctc_engine::contact::friction::FrictionStatus::Slip);
+        self.rows
+            .push((v.time, normal, v.thermal.unwrap().clone(), all_slip));
+        Ok(())
+    }
+}
+
+#[test]
+fn case8_frictional_heating_of_a_sliding_block_equals_mu_rn_slip() {
+    let model = compile_text("sliding.ctc", SLIDING_BLOCK);
+    let mut probe = Sliding::default();
+    ctc_engine::solve::run(&model, &mut probe).unwrap();
+    let (mu, split, du) = (0.3, 0.75, 0.1);
+    let mut steady = 0;
+    for (k, (t, rn, heat, all_slip)) in probe.rows.iter().enumerate() {
+        // adiabatic block (zero conductance): what is generated is stored,
+        // to the round-off of the heat content rho c V T = 1 x 20
+        let scale = heat.friction.abs().max(1e-300);
+        assert!(
+            (heat.stored - heat.generated).abs() <= 1e-12 * 20.0,
+            "t = {t}: stored {} vs generated {}",
+            heat.stored,
+            heat.generated
+        );
+        // the slave (block) receives its share, the tool the rest
+        assert!((heat.generated - split * heat.friction).abs() <= 1e-12 * scale);
+        // steady sliding (every node slipping at the previous and this
+        // increment): each node slides by the top's increment exactly, so
+        // the heat is mu R_N du
+        if k >= 2 && *all_slip && probe.rows[k - 1].3 {
+            let expect = mu * rn * du;
+            let rel = (heat.friction - expect).abs() / expect;
+            eprintln!(
+                "frictional heating t = {t}: friction work {:.12e} vs mu R_N slip {expect:.12e} \
+                 (relative {rel:.1e}); stored heat {:.12e} = {split} x work",
+                heat.friction, heat.stored
+            );
+            assert!(rel < 1e-9, "t = {t}: {} vs {expect}", heat.friction);
+            steady += 1;
+        }
+    }
+    assert!(steady >= 3, "expected steady sliding increments");
+}

@@ -444,7 +444,6 @@ impl IncrementSolver for Driver<'_, '_> {
         if let (Some(th), Some(before)) = (self.thermal.as_mut(), before) {
             // staggered: heat on the converged mechanical state, then the
             // thermal strains of the next increment
-            let friction = vec![0.0; self.model.mesh.nodes.len()];
             th.heat_step(
                 self.model,
                 t,
@@ -452,7 +451,6 @@ impl IncrementSolver for Driver<'_, '_> {
                 &self.newton.contact,
                 &before,
                 self.newton.material_points(),
-                &friction,
             )
             .map_err(|e| format!("heat conduction at t = {t}: {e}"))?;
             th.solver.commit();
