@@ -197,9 +197,9 @@ impl ThermalSolver {
         self.apply_prescribed(scene, t);
         let mut dof = vec![NO_DOF; n];
         let mut nfree = 0;
-        for node in 0..n {
-            if self.active[node] && !self.prescribed[node] {
-                dof[node] = nfree;
+        for ((d, &active), &prescribed) in dof.iter_mut().zip(&self.active).zip(&self.prescribed) {
+            if active && !prescribed {
+                *d = nfree;
                 nfree += 1;
             }
         }
@@ -231,11 +231,10 @@ impl ThermalSolver {
                 }
             }
         }
-        for node in 0..n {
-            let d = dof[node];
-            if d != NO_DOF && self.capacity[node] > 0.0 {
-                add(node, node, self.capacity[node] * inv_dt, &mut rhs);
-                rhs[d] += self.capacity[node] * inv_dt * self.committed[node];
+        for (node, (&d, &cap)) in dof.iter().zip(&self.capacity).enumerate() {
+            if d != NO_DOF && cap > 0.0 {
+                add(node, node, cap * inv_dt, &mut rhs);
+                rhs[d] += cap * inv_dt * self.committed[node];
             }
         }
         // fluxes and convection
