@@ -74,6 +74,13 @@ enum Command {
         /// Print the results as JSON instead of a table.
         #[arg(long)]
         json: bool,
+        /// Run the contact search benchmark instead (n = 10^2 .. 10^5 contact
+        /// nodes against a surface of n segments).
+        #[arg(long)]
+        search: bool,
+        /// With --search: largest number of contact nodes.
+        #[arg(long, requires = "search", default_value_t = 100_000)]
+        max_nodes: usize,
     },
 }
 
@@ -106,7 +113,15 @@ fn main() -> ExitCode {
             size,
             increments,
             json,
-        } => bench(size, increments, json),
+            search,
+            max_nodes,
+        } => {
+            if search {
+                bench_search(max_nodes, json)
+            } else {
+                bench(size, increments, json)
+            }
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -258,6 +273,30 @@ fn verify_stress(reduced: bool, json: bool, report_dir: Option<&Path>) -> Result
     } else {
         Err("stress matrix: some cells did not meet their expectation (see above)".into())
     }
+}
+
+fn bench_search(max_nodes: usize, json: bool) -> Result<(), String> {
+    let defaults = ctc_verification::SearchBenchOptions::default();
+    let mut sizes: Vec<usize> = defaults
+        .sizes
+        .iter()
+        .copied()
+        .filter(|&n| n <= max_nodes)
+        .collect();
+    if sizes.is_empty() {
+        sizes.push(max_nodes.max(2));
+    }
+    let opts = ctc_verification::SearchBenchOptions { sizes, ..defaults };
+    let report = ctc_verification::run_search_bench(&opts);
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{report}");
+    }
+    Ok(())
 }
 
 fn bench(size: f64, increments: usize, json: bool) -> Result<(), String> {

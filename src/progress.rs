@@ -104,6 +104,11 @@ impl Observer for Progress<'_> {
         self.inner.cutback(reason, new_dt);
     }
 
+    fn warning(&mut self, message: &str) {
+        self.say(format!("  warning: {message}"));
+        self.inner.warning(message);
+    }
+
     fn wants_checkpoint(&self) -> bool {
         self.inner.wants_checkpoint()
     }

@@ -179,3 +179,11 @@ fn restart_with_a_changed_deck_is_refused() {
     let e = ResultWriter::resume(tmp.path(), &other).unwrap_err();
     assert!(e.contains("different model"), "{e}");
 }
+
+#[test]
+fn restart_upsetting_with_friction_matches_uninterrupted_run() {
+    // friction: stick points and slip history carried over the restart
+    let model = model_of("upsetting_friction.ctc", &[]);
+    let (from, _) = restart_matches(&model, 5);
+    assert!(from >= 4, "{from}");
+}

@@ -7,9 +7,11 @@ mod contact_support;
 use contact_support::{nodal, surface_model};
 use ctc_engine::contact::geometry::ToolShape;
 use ctc_engine::contact::motion::Placement;
-use ctc_engine::contact::search::{brute_force, closest};
+use ctc_engine::contact::search::{
+    brute_force, closest, closest_in, closest_with, in_circle, Request, ToolGrid,
+};
 use ctc_engine::contact::{evaluate_pair, PairState};
-use ctc_engine::model::{AnalysisKind, TimeFunction, ToolGeometry, ToolMotion};
+use ctc_engine::model::{AnalysisKind, LocalSearch, TimeFunction, ToolGeometry, ToolMotion};
 use proptest::prelude::*;
 
 fn wavy_die(n: usize) -> ToolGeometry {
@@ -180,4 +182,112 @@ fn contact_memory_commit_and_rollback() {
     assert_ne!(state.last_entity, first);
     state.rollback();
     assert_eq!(state.last_entity, first);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+
+    /// Cast3M circle test: the result is the closest of the polyline
+    /// segments whose circle holds the node, found whenever it is within
+    /// the window.
+    #[test]
+    fn contact_circle_search_matches_filtered_brute_force(
+        which in 0usize..3,
+        x in -0.5f64..10.5,
+        y in -1.5f64..1.5,
+        window in 0.01f64..1.0,
+        memory in proptest::option::of(0usize..220),
+    ) {
+        let shape = &shapes()[which];
+        let p = [x, y];
+        let mut ns = 0;
+        let s = closest_with(shape, p, window, memory, None, LocalSearch::Circle, &mut ns);
+        let mut best: Option<(usize, f64)> = None;
+        for e in 0..shape.entity_count() {
+            if !in_circle(shape, e, p, window) {
+                continue;
+            }
+            if let Some(q) = shape.project(e, p) {
+                if best.is_none_or(|b| q.gap.abs() < b.1.abs()) {
+                    best = Some((e, q.gap));
+                }
+            }
+        }
+        if let Some(s) = s {
+            let b = best.expect("a circle candidate exists");
+            prop_assert_eq!((s.entity, s.projection.gap), b);
+        }
+        if let Some(b) = best {
+            if b.1.abs() <= window {
+                prop_assert!(s.is_some(), "circle search missed {:?}", b);
+            }
+        }
+    }
+}
+
+#[test]
+fn contact_circle_test_skips_segments_the_node_projects_past() {
+    // Node past the end of segment 0 above a flat continuation: the memory
+    // test projects on both segments, the circle test only on segment 1.
+    let shape = ToolShape::new(&ToolGeometry::Polyline {
+        points: vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]],
+    })
+    .unwrap();
+    let p = [1.03, 0.01];
+    let (mut memory_tests, mut circle_tests) = (0, 0);
+    let m = closest(&shape, p, 0.05, None, None, &mut memory_tests).unwrap();
+    let c = closest_with(
+        &shape,
+        p,
+        0.05,
+        None,
+        None,
+        LocalSearch::Circle,
+        &mut circle_tests,
+    )
+    .unwrap();
+    assert_eq!((m.entity, c.entity), (1, 1));
+    assert_eq!((memory_tests, circle_tests), (2, 1));
+    // a node deeper than the window: the memory test still finds it
+    let deep = [0.5, -0.2];
+    let (mut a, mut b) = (0, 0);
+    assert!(closest(&shape, deep, 0.05, Some(0), None, &mut a).is_some());
+    assert!(closest_with(
+        &shape,
+        deep,
+        0.05,
+        Some(0),
+        None,
+        LocalSearch::Circle,
+        &mut b
+    )
+    .is_none());
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, .. ProptestConfig::default() })]
+
+    /// The broad-phase search of a rigid tool returns what the entity loop
+    /// returns, for both local tests, with no more projections.
+    #[test]
+    fn contact_grid_search_matches_entity_loop(
+        which in 0usize..3,
+        x in -0.5f64..10.5,
+        y in -1.5f64..1.5,
+        window in 0.01f64..1.0,
+        memory in proptest::option::of(0usize..220),
+        guess in proptest::option::of(0usize..220),
+        circle in any::<bool>(),
+    ) {
+        let shape = &shapes()[which];
+        let grid = ToolGrid::new(shape);
+        let test = if circle { LocalSearch::Circle } else { LocalSearch::Memory };
+        let (mut nl, mut ng) = (0, 0);
+        let looped = closest_with(shape, [x, y], window, memory, guess, test, &mut nl);
+        let mut scratch = Vec::new();
+        let request = Request { x: [x, y], window, memory, guess, test };
+        let gridded = closest_in(shape, &grid, request, &mut scratch, &mut ng);
+        prop_assert_eq!(looped, gridded);
+        prop_assert!(ng <= nl, "grid {} projections, loop {}", ng, nl);
+    }
 }

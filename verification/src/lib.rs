@@ -45,11 +45,13 @@ pub mod profile;
 pub mod refine;
 pub mod report;
 pub mod runner;
+pub mod search_bench;
 pub mod stress;
 pub mod studies;
 
 pub use bench::{run_bench, BenchOptions, BenchReport};
 pub use report::Report;
+pub use search_bench::{run_search_bench, SearchBenchOptions, SearchBenchReport};
 pub use stress::{run_stress, StressReport};
 
 use std::path::{Path, PathBuf};

@@ -1,160 +1,280 @@
-//! Broad phase of the contact search: a uniform bucket grid over the boxes
+//! Broad phase of the contact search: a hashed bucket grid over the boxes
 //! of the master entities (segments), rebuilt when the geometry moves.
 //!
 //! A query returns the entities whose box, inflated by `radius` (the search
 //! window `prof`), contains the point: the narrow phase (projection) then
-//! only runs on those. Building is `O(n)` (each box is registered in the
-//! cells it covers), a query visits the cells of one inflated point box.
-//! The cell size defaults to the mean box extent, so a box covers O(1)
-//! cells and a cell holds O(1) boxes for a surface mesh of even size.
+//! only runs on those.
+//!
+//! The grid is unbounded and *hashed*: cell `(i, j)` of side `cell` goes to
+//! bucket `morton(i, j) mod B` (see [`bucket`]), with `B` a power of two
+//! about the number of (box, cell) registrations. Memory and build time are therefore `O(n)`
+//! whatever the shape of the surface (a ring of `n` segments would need
+//! `O(n^2)` cells in a dense grid over its bounding box). Two cells sharing
+//! a bucket only cost a few extra box tests, never a wrong answer: every
+//! entry is checked against its box. The cell size is the larger of the
+//! mean box extent and the expected query radius, so a box covers O(1)
+//! cells, a cell holds O(1) boxes of a surface mesh of even size and a
+//! query visits O(1) cells: building is `O(n)` and a query `O(1)` (plus the
+//! sort of its few hits).
+//!
+//! Boxes covering more than [`MAX_COVER`] cells (one huge box among small
+//! ones, or an infinite one) are kept in a separate list tested by every
+//! query. A query whose window covers more cells than there are entities
+//! tests every box (brute force is cheaper then).
+//!
+//! [`BroadPhase::rebuild`] reuses the storage of the previous build, so the
+//! per-iteration rebuild of a moving surface does not allocate once the
+//! sizes have settled.
 
 use super::aabb::Aabb;
 
-/// Uniform grid of entity boxes.
-#[derive(Debug, Clone)]
+/// Hashed uniform grid of entity boxes.
+#[derive(Debug, Clone, Default)]
 pub struct BroadPhase {
-    /// Lower-left corner of the grid.
+    /// Grid origin (lower-left corner of the boxes' bounds).
     origin: [f64; 2],
     /// Cell size (same in x and y), > 0.
     cell: f64,
-    /// Number of cells in x and y.
-    dims: [usize; 2],
-    /// Start of each cell's entries in `entries` (`dims[0] * dims[1] + 1`).
-    start: Vec<usize>,
-    /// Entity indices, grouped by cell, ascending within a cell.
-    entries: Vec<usize>,
+    /// Bucket count minus one (bucket count is a power of two).
+    mask: usize,
+    /// Start of each bucket's entries in `entries` (`mask + 2` values).
+    start: Vec<u32>,
+    /// Entity indices grouped by bucket, ascending within a bucket.
+    entries: Vec<u32>,
+    /// Entities whose box covers too many cells (tested by every query).
+    oversize: Vec<usize>,
     /// The boxes the grid was built from.
     boxes: Vec<Aabb>,
 }
 
-/// Upper bound on the number of grid cells (memory guard for a few huge
-/// boxes among many small ones).
-const MAX_CELLS: usize = 1 << 22;
+/// Largest number of cells a box is registered in; bigger boxes go to the
+/// oversize list.
+pub const MAX_COVER: i64 = 64;
+
+/// Bucket of cell `(i, j)`: its Morton (Z-order) code, bits of `i` and `j`
+/// interleaved, modulo `B`. Cells close to each other in any direction get
+/// close buckets, so a query reads a few nearby runs of `start` and a
+/// surface searched (or rebuilt) in its own order walks the arrays almost
+/// sequentially (a random hash costs a cache miss per cell at 10^5
+/// segments). Cells farther apart than `sqrt(B)` cells may share a bucket:
+/// a few extra box tests, never a wrong answer.
+#[inline]
+fn bucket(i: i64, j: i64, mask: usize) -> usize {
+    (spread(i as u32) | (spread(j as u32) << 1)) as usize & mask
+}
+
+/// The bits of `v` moved to the even positions of a `u64`.
+#[inline]
+fn spread(v: u32) -> u64 {
+    let mut x = u64::from(v);
+    x = (x | (x << 16)) & 0x0000_FFFF_0000_FFFF;
+    x = (x | (x << 8)) & 0x00FF_00FF_00FF_00FF;
+    x = (x | (x << 4)) & 0x0F0F_0F0F_0F0F_0F0F;
+    x = (x | (x << 2)) & 0x3333_3333_3333_3333;
+    (x | (x << 1)) & 0x5555_5555_5555_5555
+}
 
 impl BroadPhase {
-    /// Builds the grid over `boxes` (finite boxes; an empty list gives an
-    /// empty grid).
+    /// Builds the grid over `boxes` (an empty list gives an empty grid).
     pub fn build(boxes: &[Aabb]) -> Self {
+        let mut grid = BroadPhase::default();
+        grid.rebuild(boxes, 0.0);
+        grid
+    }
+
+    /// Rebuilds the grid over `boxes`, reusing the storage of the previous
+    /// build. `radius` is the query radius expected (the search window);
+    /// the cell size is at least that, so a query visits at most 3x3 cells.
+    pub fn rebuild(&mut self, boxes: &[Aabb], radius: f64) {
+        self.boxes.clear();
+        self.boxes.extend_from_slice(boxes);
+        self.entries.clear();
+        self.oversize.clear();
         let mut bounds = Aabb {
             min: [f64::INFINITY; 2],
             max: [f64::NEG_INFINITY; 2],
         };
         let mut extent = 0.0;
+        let mut finite = 0usize;
         for b in boxes {
-            bounds.include(b.min);
-            bounds.include(b.max);
-            extent += (b.max[0] - b.min[0]).max(b.max[1] - b.min[1]);
+            if is_finite(b) {
+                bounds.include(b.min);
+                bounds.include(b.max);
+                extent += (b.max[0] - b.min[0]).max(b.max[1] - b.min[1]);
+                finite += 1;
+            }
         }
-        let finite = boxes
-            .iter()
-            .all(|b| b.min.iter().chain(&b.max).all(|v| v.is_finite()));
-        if boxes.is_empty() || !finite {
-            return BroadPhase {
-                origin: [0.0; 2],
-                cell: 1.0,
-                dims: [1, 1],
-                start: vec![0, boxes.len()],
-                entries: (0..boxes.len()).collect(),
-                boxes: boxes.to_vec(),
-            };
-        }
-        let span = (bounds.max[0] - bounds.min[0]).max(bounds.max[1] - bounds.min[1]);
-        let mut cell = (extent / boxes.len() as f64)
+        self.origin = if finite > 0 { bounds.min } else { [0.0; 2] };
+        let span = if finite > 0 {
+            (bounds.max[0] - bounds.min[0]).max(bounds.max[1] - bounds.min[1])
+        } else {
+            0.0
+        };
+        let radius = if radius.is_finite() {
+            radius.max(0.0)
+        } else {
+            0.0
+        };
+        self.cell = (extent / finite.max(1) as f64)
+            .max(radius)
             .max(span * 1e-9)
             .max(f64::MIN_POSITIVE);
-        let dims_for = |cell: f64| {
-            [
-                ((bounds.max[0] - bounds.min[0]) / cell) as usize + 1,
-                ((bounds.max[1] - bounds.min[1]) / cell) as usize + 1,
-            ]
-        };
-        let mut dims = dims_for(cell);
-        while dims[0].saturating_mul(dims[1]) > MAX_CELLS {
-            cell *= 2.0;
-            dims = dims_for(cell);
-        }
-        let mut grid = BroadPhase {
-            origin: bounds.min,
-            cell,
-            dims,
-            start: Vec::new(),
-            entries: Vec::new(),
-            boxes: boxes.to_vec(),
-        };
-        // counting sort of (cell, entity) pairs
-        let ncell = dims[0] * dims[1];
-        let mut count = vec![0usize; ncell + 1];
+        // count registrations to size the table; indices are stored as u32
+        // (beyond 2^26 boxes, every box is tested by every query)
+        let small = boxes.len() < u32::MAX as usize / MAX_COVER as usize;
+        let mut registrations = 0usize;
         for b in boxes {
-            let (lo, hi) = grid.cell_range(b.min, b.max);
-            for j in lo[1]..=hi[1] {
-                for i in lo[0]..=hi[0] {
-                    count[i + j * dims[0] + 1] += 1;
-                }
+            if let Some(n) = self.cover_count(b) {
+                registrations += n;
             }
         }
-        for k in 0..ncell {
-            count[k + 1] += count[k];
-        }
-        let mut fill = count.clone();
-        let mut entries = vec![0usize; count[ncell]];
+        // about one registration per bucket: small tables stay in cache
+        let buckets = registrations.max(8).next_power_of_two();
+        self.mask = buckets - 1;
+        self.start.clear();
+        self.start.resize(buckets + 1, 0);
+        // counting sort of (bucket, entity) pairs, fill pointers kept in
+        // `start` itself (no second table)
         for (e, b) in boxes.iter().enumerate() {
-            let (lo, hi) = grid.cell_range(b.min, b.max);
-            for j in lo[1]..=hi[1] {
-                for i in lo[0]..=hi[0] {
-                    let c = i + j * dims[0];
-                    entries[fill[c]] = e;
-                    fill[c] += 1;
+            match self.cover(b).filter(|_| small) {
+                Some((lo, hi)) => {
+                    for j in lo[1]..=hi[1] {
+                        for i in lo[0]..=hi[0] {
+                            self.start[bucket(i, j, self.mask) + 1] += 1;
+                        }
+                    }
+                }
+                None => self.oversize.push(e),
+            }
+        }
+        for k in 0..buckets {
+            self.start[k + 1] += self.start[k];
+        }
+        self.entries.resize(self.start[buckets] as usize, 0);
+        for (e, b) in boxes.iter().enumerate() {
+            if let Some((lo, hi)) = self.cover(b).filter(|_| small) {
+                for j in lo[1]..=hi[1] {
+                    for i in lo[0]..=hi[0] {
+                        let c = bucket(i, j, self.mask);
+                        self.entries[self.start[c] as usize] = e as u32;
+                        self.start[c] += 1;
+                    }
                 }
             }
         }
-        grid.start = count;
-        grid.entries = entries;
-        grid
+        // start[c] now holds the end of bucket c = the start of c + 1
+        for c in (0..buckets).rev() {
+            self.start[c + 1] = self.start[c];
+        }
+        self.start[0] = 0;
     }
 
-    /// Cell index range (clamped to the grid) covering the box `[min, max]`.
-    fn cell_range(&self, min: [f64; 2], max: [f64; 2]) -> ([usize; 2], [usize; 2]) {
-        let idx = |v: f64, o: f64, n: usize| -> usize {
-            let k = ((v - o) / self.cell).floor();
-            if k.is_nan() || k < 0.0 {
-                0
-            } else {
-                (k as usize).min(n - 1)
-            }
-        };
-        (
-            [
-                idx(min[0], self.origin[0], self.dims[0]),
-                idx(min[1], self.origin[1], self.dims[1]),
-            ],
-            [
-                idx(max[0], self.origin[0], self.dims[0]),
-                idx(max[1], self.origin[1], self.dims[1]),
-            ],
-        )
+    /// Cell index of coordinate `v` along an axis of origin `o`.
+    #[inline]
+    fn index(&self, v: f64, o: f64) -> i64 {
+        // finite inputs; the cast saturates for absurd ratios
+        ((v - o) / self.cell).floor() as i64
+    }
+
+    /// Cell range of a box and its number of cells (saturating), or `None`
+    /// if the box is not finite.
+    fn cells(&self, b: &Aabb) -> Option<([i64; 2], [i64; 2], i64)> {
+        if !is_finite(b) {
+            return None;
+        }
+        let lo = [
+            self.index(b.min[0], self.origin[0]),
+            self.index(b.min[1], self.origin[1]),
+        ];
+        let hi = [
+            self.index(b.max[0], self.origin[0]),
+            self.index(b.max[1], self.origin[1]),
+        ];
+        let nx = hi[0].saturating_sub(lo[0]).saturating_add(1);
+        let ny = hi[1].saturating_sub(lo[1]).saturating_add(1);
+        if nx <= 0 || ny <= 0 {
+            return None;
+        }
+        Some((lo, hi, nx.saturating_mul(ny)))
+    }
+
+    /// Cell range of a box, or `None` if it is not finite or covers more
+    /// than [`MAX_COVER`] cells.
+    fn cover(&self, b: &Aabb) -> Option<([i64; 2], [i64; 2])> {
+        self.cells(b)
+            .filter(|c| c.2 <= MAX_COVER)
+            .map(|(lo, hi, _)| (lo, hi))
+    }
+
+    /// Number of cells box `b` is registered in (`None`: oversize).
+    fn cover_count(&self, b: &Aabb) -> Option<usize> {
+        self.cover(b)
+            .map(|(lo, hi)| ((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1)) as usize)
     }
 
     /// Entities whose box inflated by `radius` contains `p`, ascending and
     /// without duplicates, written to `out` (cleared first).
     pub fn query(&self, p: [f64; 2], radius: f64, out: &mut Vec<usize>) {
         out.clear();
+        self.query_append(p, radius, out);
+    }
+
+    /// Like [`BroadPhase::query`] but appends to `out`: the appended part is
+    /// ascending and without duplicates (what `out` held before is kept and
+    /// not looked at).
+    pub fn query_append(&self, p: [f64; 2], radius: f64, out: &mut Vec<usize>) {
+        let base = out.len();
         if self.boxes.is_empty() || !(p[0].is_finite() && p[1].is_finite()) {
             return;
         }
-        let r = radius.max(0.0);
-        let (lo, hi) = self.cell_range([p[0] - r, p[1] - r], [p[0] + r, p[1] + r]);
-        for j in lo[1]..=hi[1] {
-            for i in lo[0]..=hi[0] {
-                let c = i + j * self.dims[0];
-                for &e in &self.entries[self.start[c]..self.start[c + 1]] {
+        let r = if radius.is_nan() {
+            0.0
+        } else {
+            radius.max(0.0)
+        };
+        let window = Aabb {
+            min: [p[0] - r, p[1] - r],
+            max: [p[0] + r, p[1] + r],
+        };
+        // visit the window's cells unless there are more of them than boxes
+        let limit = (self.boxes.len() as i64).max(MAX_COVER);
+        match self.cells(&window).filter(|c| c.2 <= limit) {
+            Some((lo, hi, _)) => {
+                for j in lo[1]..=hi[1] {
+                    for i in lo[0]..=hi[0] {
+                        let c = bucket(i, j, self.mask);
+                        let run = self.start[c] as usize..self.start[c + 1] as usize;
+                        for &e in &self.entries[run] {
+                            if self.boxes[e as usize].contains_within(p, r) {
+                                out.push(e as usize);
+                            }
+                        }
+                    }
+                }
+                for &e in &self.oversize {
                     if self.boxes[e].contains_within(p, r) {
                         out.push(e);
                     }
                 }
             }
+            None => {
+                for (e, b) in self.boxes.iter().enumerate() {
+                    if b.contains_within(p, r) {
+                        out.push(e);
+                    }
+                }
+            }
         }
-        out.sort_unstable();
-        out.dedup();
+        let tail = &mut out[base..];
+        tail.sort_unstable();
+        let mut kept = base;
+        for k in base..out.len() {
+            if kept == base || out[k] != out[kept - 1] {
+                out[kept] = out[k];
+                kept += 1;
+            }
+        }
+        out.truncate(kept);
     }
 
     /// Number of entities.
@@ -166,11 +286,22 @@ impl BroadPhase {
     pub fn is_empty(&self) -> bool {
         self.boxes.is_empty()
     }
+
+    /// Box of entity `e` as given to the last build.
+    pub fn bounding_box(&self, e: usize) -> Aabb {
+        self.boxes[e]
+    }
+}
+
+/// Whether every bound of `b` is finite.
+fn is_finite(b: &Aabb) -> bool {
+    b.min.iter().chain(&b.max).all(|v| v.is_finite())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn segment_boxes(n: usize) -> Vec<Aabb> {
         // a wavy open polyline of n segments
@@ -181,6 +312,12 @@ mod tests {
             })
             .collect();
         pts.windows(2).map(Aabb::around).collect()
+    }
+
+    fn brute(boxes: &[Aabb], p: [f64; 2], r: f64) -> Vec<usize> {
+        (0..boxes.len())
+            .filter(|&e| boxes[e].contains_within(p, r))
+            .collect()
     }
 
     #[test]
@@ -195,11 +332,104 @@ mod tests {
             ];
             let r = 0.003 * (k % 7) as f64;
             grid.query(p, r, &mut out);
-            let brute: Vec<usize> = (0..boxes.len())
-                .filter(|&e| boxes[e].contains_within(p, r))
-                .collect();
-            assert_eq!(out, brute, "point {p:?} radius {r}");
+            assert_eq!(out, brute(&boxes, p, r), "point {p:?} radius {r}");
         }
+    }
+
+    #[test]
+    fn ring_surface_uses_linear_storage() {
+        // a ring of 20000 segments: a dense grid over its bounding box would
+        // need ~4e7 cells; the hashed grid stays O(n)
+        let n = 20_000;
+        let pts: Vec<[f64; 2]> = (0..=n)
+            .map(|i| {
+                let a = std::f64::consts::TAU * i as f64 / n as f64;
+                [a.cos(), a.sin()]
+            })
+            .collect();
+        let boxes: Vec<Aabb> = pts.windows(2).map(Aabb::around).collect();
+        let grid = BroadPhase::build(&boxes);
+        assert!(grid.start.len() <= 8 * 4 * n + 2, "{}", grid.start.len());
+        let mut out = Vec::new();
+        for k in 0..200 {
+            let a = 0.0314 * k as f64;
+            let rad = 1.0 + 1e-4 * ((k % 5) as f64 - 2.0);
+            let p = [rad * a.cos(), rad * a.sin()];
+            grid.query(p, 2e-4, &mut out);
+            assert_eq!(out, brute(&boxes, p, 2e-4));
+            assert!(out.len() <= 8, "{} hits", out.len());
+        }
+    }
+
+    #[test]
+    fn oversize_infinite_and_huge_radius() {
+        let mut boxes = segment_boxes(50);
+        boxes.push(Aabb::around(&[[-5.0, -5.0], [5.0, 5.0]])); // huge
+        boxes.push(Aabb::everything()); // infinite
+        let mut grid = BroadPhase::default();
+        grid.rebuild(&boxes, 0.01);
+        let mut out = Vec::new();
+        for (p, r) in [([0.5, 0.0], 0.01), ([0.3, 0.05], 10.0), ([9.0, 9.0], 1.0)] {
+            grid.query(p, r, &mut out);
+            assert_eq!(out, brute(&boxes, p, r));
+        }
+    }
+
+    #[test]
+    fn query_append_keeps_prefix() {
+        let boxes = segment_boxes(20);
+        let grid = BroadPhase::build(&boxes);
+        let mut out = vec![99, 3];
+        grid.query_append([0.5, 0.1 * 3.5f64.sin()], 0.02, &mut out);
+        assert_eq!(&out[..2], &[99, 3]);
+        assert_eq!(
+            &out[2..],
+            &brute(&boxes, [0.5, 0.1 * 3.5f64.sin()], 0.02)[..]
+        );
+    }
+
+    #[test]
+    fn rebuild_reuses_storage() {
+        let boxes = segment_boxes(300);
+        let mut grid = BroadPhase::default();
+        grid.rebuild(&boxes, 0.0);
+        let caps = (
+            grid.start.capacity(),
+            grid.entries.capacity(),
+            grid.boxes.capacity(),
+        );
+        let ptrs = (
+            grid.start.as_ptr(),
+            grid.entries.as_ptr(),
+            grid.boxes.as_ptr(),
+        );
+        let moved: Vec<Aabb> = boxes
+            .iter()
+            .map(|b| Aabb {
+                min: [b.min[0] + 1e-4, b.min[1]],
+                max: [b.max[0] + 1e-4, b.max[1]],
+            })
+            .collect();
+        grid.rebuild(&moved, 0.0);
+        assert_eq!(
+            (
+                grid.start.capacity(),
+                grid.entries.capacity(),
+                grid.boxes.capacity()
+            ),
+            caps
+        );
+        assert_eq!(
+            (
+                grid.start.as_ptr(),
+                grid.entries.as_ptr(),
+                grid.boxes.as_ptr()
+            ),
+            ptrs
+        );
+        let mut out = Vec::new();
+        grid.query([0.5, 0.0], 0.05, &mut out);
+        assert_eq!(out, brute(&moved, [0.5, 0.0], 0.05));
     }
 
     #[test]
@@ -212,5 +442,30 @@ mod tests {
         assert_eq!(out, vec![0]);
         one.query([f64::NAN, 1.0], 1.0, &mut out);
         assert!(out.is_empty());
+        one.query([1.0, 1.0], f64::NAN, &mut out);
+        assert_eq!(out, vec![0]);
+        one.query([1.0, 1.0], f64::INFINITY, &mut out);
+        assert_eq!(out, vec![0]);
+    }
+
+    proptest! {
+        #[test]
+        fn random_boxes_match_brute_force(
+            raw in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, 0.0f64..0.3, 0.0f64..0.3), 0..80),
+            queries in proptest::collection::vec((-1.5f64..1.5, -1.5f64..1.5, 0.0f64..0.5), 1..20),
+            hint in 0.0f64..0.5,
+        ) {
+            let boxes: Vec<Aabb> = raw
+                .iter()
+                .map(|&(x, y, w, h)| Aabb { min: [x, y], max: [x + w, y + h] })
+                .collect();
+            let mut grid = BroadPhase::default();
+            grid.rebuild(&boxes, hint);
+            let mut out = Vec::new();
+            for &(x, y, r) in &queries {
+                grid.query([x, y], r, &mut out);
+                prop_assert_eq!(&out, &brute(&boxes, [x, y], r));
+            }
+        }
     }
 }

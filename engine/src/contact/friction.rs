@@ -152,6 +152,38 @@ impl FrictionState {
         self.impact = None;
     }
 
+    /// The committed state as numbers (restart files): per node the stick
+    /// point flag and coordinates, the multiplier, the Lagrange status and
+    /// the reference-frame position (7 values).
+    pub fn committed_values(&self) -> Vec<f64> {
+        let mut v = Vec::with_capacity(7 * self.committed_anchor.len());
+        for i in 0..self.committed_anchor.len() {
+            let a = self.committed_anchor[i];
+            v.push(if a.is_some() { 1.0 } else { 0.0 });
+            v.extend(a.unwrap_or([0.0; 2]));
+            v.push(self.committed_multiplier[i]);
+            v.push(self.committed_sliding[i]);
+            v.extend(self.committed_position[i]);
+        }
+        v
+    }
+
+    /// Restores the committed state from [`FrictionState::committed_values`]
+    /// (call `rollback` afterwards to make it the trial state too).
+    pub fn restore_committed(&mut self, v: &[f64]) -> Result<(), String> {
+        let n = self.committed_anchor.len();
+        if v.len() != 7 * n {
+            return Err("the restart point does not match the model (friction state)".into());
+        }
+        for (i, c) in v.chunks_exact(7).enumerate() {
+            self.committed_anchor[i] = (c[0] != 0.0).then_some([c[1], c[2]]);
+            self.committed_multiplier[i] = c[3];
+            self.committed_sliding[i] = c[4];
+            self.committed_position[i] = [c[5], c[6]];
+        }
+        Ok(())
+    }
+
     /// Node `i` is out of contact at reference-frame position `reference`.
     pub fn open(&mut self, i: usize, reference: [f64; 2]) {
         if let Some(p) = self.position.get_mut(i) {

@@ -20,6 +20,10 @@
 //! - [`friction`], [`friction_lagrange`], [`impact`]: Coulomb friction
 //!   (return map, Lagrange stick/slip status loop) and the first impact
 //!   (constant-velocity intersection);
+//! - [`segment_search`]: candidate master segments of a deformable surface
+//!   (broad phase + memory or circle local test);
+//! - [`jump`]: slave nodes that moved farther than `prof` relative to the
+//!   master in one increment (run warnings);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
@@ -29,12 +33,14 @@ pub mod friction;
 pub mod friction_lagrange;
 pub mod geometry;
 pub mod impact;
+pub mod jump;
 pub mod lagrange;
 pub mod log;
 pub mod motion;
 pub mod penalty;
 pub mod prof;
 pub mod search;
+pub mod segment_search;
 pub mod tributary;
 pub(crate) mod vec2;
 
@@ -135,6 +141,10 @@ pub struct PairState {
     pub committed_active: Vec<bool>,
     /// Friction history (stick points, tangential multipliers, statuses).
     pub friction: friction::FrictionState,
+    /// Broad phase over the tool's entities (reference frame, built once).
+    pub tool_grid: search::ToolGrid,
+    /// Scratch list of broad-phase hits (reused by every search).
+    pub scratch: Vec<usize>,
 }
 
 impl PairState {
@@ -179,7 +189,6 @@ impl PairState {
             tributary: tributary::tributary_areas(model, pair),
             pair: Some(pair),
             prof: prof::effective_prof(model, pair),
-            shape,
             error,
             last_entity: vec![None; n],
             committed_entity: vec![None; n],
@@ -191,6 +200,12 @@ impl PairState {
             active: vec![false; n],
             committed_active: vec![false; n],
             friction: friction::FrictionState::new(positions),
+            tool_grid: shape
+                .as_ref()
+                .map(search::ToolGrid::new)
+                .unwrap_or_default(),
+            scratch: Vec::new(),
+            shape,
         }
     }
 
@@ -253,7 +268,20 @@ pub fn evaluate_pair(
         };
         let xr = placement.to_reference(xn);
         let memory = state.last_entity[i];
-        let Some(found) = search::closest(shape, xr, prof, memory, guess, &mut tests) else {
+        let request = search::Request {
+            x: xr,
+            window: prof,
+            memory,
+            guess,
+            test: cp.search,
+        };
+        let Some(found) = search::closest_in(
+            shape,
+            &state.tool_grid,
+            request,
+            &mut state.scratch,
+            &mut tests,
+        ) else {
             state.friction.open(i, xr);
             continue;
         };

@@ -20,13 +20,16 @@
 //!   active set with a cycling guard, augmented-Lagrangian Uzawa updates);
 //! - [`saddle`]: the Lagrange-multiplier saddle-point system (sparse LU, or
 //!   the doubled-multiplier form by `L D L^T` without pivoting);
-//! - [`stepping`]: increments, cutback and grow-back.
+//! - [`stepping`]: increments, cutback and grow-back;
+//! - [`jumps`]: warnings for slave nodes that moved farther than the
+//!   contact search window in one increment.
 
 pub mod active_set;
 pub mod assembly;
 pub mod check;
 pub mod diagnosis;
 pub mod dofs;
+pub mod jumps;
 pub mod linear;
 pub mod loads;
 pub mod newton;
@@ -101,6 +104,9 @@ pub trait Observer {
     }
     /// When an increment is cut back (why, new increment size).
     fn cutback(&mut self, _reason: &str, _new_dt: f64) {}
+    /// A warning about a converged increment (also kept in
+    /// [`RunSummary::warnings`]).
+    fn warning(&mut self, _message: &str) {}
     /// Whether [`Observer::checkpoint`] should be called (building a
     /// checkpoint copies the state, so it is done only on request).
     fn wants_checkpoint(&self) -> bool {
@@ -214,6 +220,9 @@ pub struct RunSummary {
     /// order of the model; empty without friction; axisymmetric: over 2*pi).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub friction_work: Vec<f64>,
+    /// Warnings of converged increments (e.g. slave nodes that moved
+    /// farther than the contact search window in one increment).
+    pub warnings: Vec<String>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -435,6 +444,13 @@ impl IncrementSolver for Driver<'_, '_> {
         cutbacks: usize,
         converged: Converged,
     ) -> Result<(), String> {
+        let warnings = jumps::increment_warnings(
+            self.model,
+            &self.newton.pairs,
+            (self.newton.committed_displacement(), t - dt),
+            (&self.newton.u, t),
+            self.increment + 1,
+        );
         let before = self
             .thermal
             .as_ref()
@@ -490,6 +506,10 @@ impl IncrementSolver for Driver<'_, '_> {
             friction_work,
             thermal: self.thermal.as_ref().map(|t| t.solver.last.clone()),
         });
+        for w in warnings {
+            self.observer.warning(&w);
+            self.summary.warnings.push(w);
+        }
         r
     }
 

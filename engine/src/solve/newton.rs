@@ -352,6 +352,11 @@ impl<'m> Newton<'m> {
             .count()
     }
 
+    /// Nodal displacements of the last converged state.
+    pub(super) fn committed_displacement(&self) -> &[[f64; 2]] {
+        &self.committed
+    }
+
     /// Makes the current state the converged one.
     pub fn commit(&mut self) {
         self.flips.clear();
@@ -381,6 +386,7 @@ impl<'m> Newton<'m> {
                     entity: p.committed_entity.clone(),
                     multiplier: p.committed_multiplier.clone(),
                     active: p.committed_active.clone(),
+                    friction: p.friction.committed_values(),
                 })
                 .collect(),
             points: self.assembler.points().to_vec(),
@@ -444,6 +450,7 @@ impl<'m> Newton<'m> {
             s.committed_entity.clone_from(&h.entity);
             s.committed_multiplier.clone_from(&h.multiplier);
             s.committed_active.clone_from(&h.active);
+            s.friction.restore_committed(&h.friction)?;
             s.rollback();
         }
         self.assembler.restore(&cp.points, cp.points_time)?;

@@ -19,7 +19,7 @@ use crate::model::Model;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST01";
+const MAGIC: &[u8; 8] = b"CTCRST02";
 
 /// Where the stepper continues: the first increment to attempt.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -43,6 +43,9 @@ pub struct PairHistory {
     pub multiplier: Vec<f64>,
     /// Per slave node: Lagrange active set at the last converged increment.
     pub active: Vec<bool>,
+    /// Committed friction state, flattened
+    /// ([`crate::contact::friction::FrictionState::committed_values`]).
+    pub friction: Vec<f64>,
 }
 
 /// The state of a run at a converged increment.
@@ -182,6 +185,7 @@ impl RestartFile {
             e.f64s(&p.multiplier);
             e.usize(p.active.len());
             e.0.extend(p.active.iter().map(|a| u8::from(*a)));
+            e.f64s(&p.friction);
         }
         e.usize(c.points.len());
         for cell in &c.points {
@@ -247,10 +251,12 @@ impl RestartFile {
             let multiplier = d.f64s()?;
             let na = d.len(1)?;
             let active = d.bytes(na)?.iter().map(|b| *b != 0).collect();
+            let friction = d.f64s()?;
             pairs.push(PairHistory {
                 entity,
                 multiplier,
                 active,
+                friction,
             });
         }
         let nc = d.len(8)?;
@@ -345,6 +351,7 @@ mod tests {
                     entity: vec![None, Some(3), Some(0)],
                     multiplier: vec![0.0, 12.5, -1e-9],
                     active: vec![false, true, true],
+                    friction: vec![1.0, 0.5, -0.25, 3.0, -1.0, 0.1 + 0.2, 2.0],
                 }],
                 points: vec![vec![], vec![point; 4]],
                 points_time: 0.30000000000000004,
