@@ -23,6 +23,9 @@ struct Interface {
     force: f64,
     /// Temperature of the slave nodes of pair 0.
     slave_temperature: Vec<f64>,
+    /// Temperature of the master segment ends of pair 0 (deformable
+    /// masters).
+    master_temperature: Vec<f64>,
     /// Heat power into the slave side of pair 0.
     power: f64,
 }
@@ -34,6 +37,11 @@ impl Observer for Interface {
         self.pressure = pair.iter().map(|c| c.pressure).collect();
         self.force = pair.iter().map(|c| c.force[1]).sum();
         self.slave_temperature = pair.iter().map(|c| t[c.node]).collect();
+        self.master_temperature = pair
+            .iter()
+            .filter_map(|c| c.master.as_ref())
+            .flat_map(|m| [t[m.nodes[0]], t[m.nodes[1]]])
+            .collect();
         self.power = v.thermal.expect("thermal report").contact_power[0];
         Ok(())
     }
@@ -169,4 +177,59 @@ fn case8_frictional_heating_of_a_sliding_block_equals_mu_rn_slip() {
         }
     }
     assert!(steady >= 3, "expected steady sliding increments");
+}
+
+/// Runs the two-block case-8 deck with the top pushed down by `stroke`;
+/// returns the relative errors (flux, interface temperatures) and the
+/// pressure.
+fn case8_two_blocks(stroke: f64) -> (f64, f64, f64) {
+    let path =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("verification/cases/thermal_contact_blocks.ctc");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = text.replace("ramp(0, -0.01)", &format!("ramp(0, {})", -stroke));
+    let model = compile_text("case8_blocks.ctc", &text);
+    let mut probe = Interface::default();
+    ctc_engine::solve::run(&model, &mut probe).unwrap();
+    // the force of the base on the top block's slave nodes, width 1
+    let p = probe.force;
+    for pi in &probe.pressure {
+        assert!(
+            (pi - p).abs() < 1e-9 * p,
+            "non-uniform pressure {pi} vs {p}"
+        );
+    }
+    let (k1, l1, k2, l2, t_hot, t_cold) = (2.0, 1.0, 0.5, 1.5, 100.0, 20.0);
+    let h = 3.0 + 0.5 * p.sqrt();
+    let q = (t_hot - t_cold) / (l1 / k1 + 1.0 / h + l2 / k2);
+    let t_base = t_cold + q * l1 / k1;
+    let t_top = t_base + q / h;
+    // heat enters the top block's slave side from the base: power < 0
+    let flux_error = ((-probe.power) - q).abs() / q;
+    let slave = probe
+        .slave_temperature
+        .iter()
+        .map(|t| (t - t_top).abs() / (t_hot - t_cold));
+    let master = probe
+        .master_temperature
+        .iter()
+        .map(|t| (t - t_base).abs() / (t_hot - t_cold));
+    assert!(!probe.master_temperature.is_empty());
+    let t_error = slave.chain(master).fold(0.0, f64::max);
+    (flux_error, t_error, p)
+}
+
+#[test]
+fn case8_thermal_contact_two_blocks_matches_the_closed_form_at_two_pressures() {
+    let mut pressures = Vec::new();
+    for stroke in [0.01, 0.1] {
+        let (eq, et, p) = case8_two_blocks(stroke);
+        eprintln!(
+            "case 8 (two blocks, node-to-segment), p = {p:.6}: flux relative error {eq:.2e}, \
+             interface temperature relative error {et:.2e}"
+        );
+        assert!(eq <= 1e-8, "flux error {eq:e} at p = {p}");
+        assert!(et <= 1e-8, "interface temperature error {et:e} at p = {p}");
+        pressures.push(p);
+    }
+    assert!(pressures[1] > 5.0 * pressures[0], "{pressures:?}");
 }
