@@ -327,6 +327,9 @@ pub fn explain(model: &Model) -> String {
             if let Some(f) = &c.friction {
                 let _ = writeln!(o, "    {}", friction_plan(f, &c.method));
             }
+            if let Some(line) = crate::explain_surface::describe(model, c) {
+                let _ = writeln!(o, "    {line}");
+            }
         }
     }
     // ------------------------------------------------------------ steps

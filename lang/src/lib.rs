@@ -15,6 +15,7 @@
 pub mod ast;
 pub mod diagnostics;
 pub mod explain;
+pub mod explain_surface;
 pub mod lower;
 pub mod parse;
 pub mod source;

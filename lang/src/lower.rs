@@ -609,9 +609,31 @@ impl Lowerer<'_> {
             let Some(body) = bodies.iter().position(|b| b.name == c.target.body.name) else {
                 continue;
             };
-            let Some(tool) = tools.iter().position(|t| t.name == c.tool.name) else {
-                self.missing("the tool", c.tool.span);
-                continue;
+            let master = match &c.master {
+                Some(m) => {
+                    if self.body_failed(m) {
+                        continue;
+                    }
+                    let Some(mr) = self.resolve(m, Need::Edges, "contact master") else {
+                        continue;
+                    };
+                    let Some(mbody) = bodies.iter().position(|b| b.name == m.body.name) else {
+                        continue;
+                    };
+                    let medges = mr.edges.unwrap_or_default();
+                    ContactMaster::Surface {
+                        body: mbody,
+                        nodes: mesh::edge_nodes(&medges),
+                        edges: medges,
+                    }
+                }
+                None => {
+                    let Some(tool) = tools.iter().position(|t| t.name == c.tool.name) else {
+                        self.missing("the tool", c.tool.span);
+                        continue;
+                    };
+                    ContactMaster::Tool(tool)
+                }
             };
             let method = match c.method.as_ref().map(|m| &m.value) {
                 Some(Method::Penalty {
@@ -660,9 +682,18 @@ impl Lowerer<'_> {
                 body,
                 nodes: mesh::edge_nodes(&edges),
                 edges,
-                master: ContactMaster::Tool(tool),
-                strategy: ContactStrategy::SinglePass,
-                search: Default::default(),
+                master,
+                strategy: match c.strategy.as_ref().map(|s| s.value) {
+                    Some(ast::StrategyAst::DoublePass) => ContactStrategy::DoublePass,
+                    Some(ast::StrategyAst::ModifiedDoublePass) => {
+                        ContactStrategy::ModifiedDoublePass
+                    }
+                    _ => ContactStrategy::SinglePass,
+                },
+                search: match c.search.as_ref().map(|s| s.value) {
+                    Some(ast::SearchAst::Circle) => m::LocalSearch::Circle,
+                    _ => m::LocalSearch::Memory,
+                },
                 method,
                 prof: c.prof.as_ref().map(|p| p.value),
                 friction: c.friction.as_ref().and_then(|f| {

@@ -969,7 +969,10 @@ impl Checker<'_> {
         let mut seen: BTreeMap<String, Span> = BTreeMap::new();
         for c in &deck.contacts {
             self.set_ref(&c.target, Need::Edges, "contact");
-            if !tool_names.contains(&c.tool.name.as_str())
+            if let Some(m) = &c.master {
+                // deformable master surface: a boundary of a body
+                self.set_ref(m, Need::Edges, "contact master");
+            } else if !tool_names.contains(&c.tool.name.as_str())
                 && !deck.broken_named("tool", &c.tool.name)
             {
                 self.err(
@@ -1015,6 +1018,19 @@ impl Checker<'_> {
                     ));
                 }
                 self.must_be_positive(&f.value.stiffness, "friction stiffness");
+            }
+            if let (None, Some(st)) = (&c.master, &c.strategy) {
+                self.err(
+                    Diagnostic::error(
+                        "`strategy` applies to deformable masters only",
+                        st.span,
+                        "the master is a rigid tool",
+                    )
+                    .with_help(
+                        "a rigid tool is always the master (single pass); write the master as \
+                         `body.set` for contact between deformable bodies",
+                    ),
+                );
             }
             for r in &c.reserved {
                 self.err(

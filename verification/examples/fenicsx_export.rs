@@ -3,10 +3,24 @@
 //!
 //! Usage: `cargo run -p ctc-verification --example fenicsx_export -- OUT_DIR`
 //! (all committed cases), or `... -- OUT_DIR DECK LEVEL NAME` (one deck at a
-//! refinement level, e.g. for a timing comparison on a large mesh).
+//! refinement level, e.g. for a timing comparison on a large mesh), or
+//! `... -- --bench SIZE OUT_DIR` (the exact deck `ctc bench --size SIZE`
+//! runs, written by `run_bench` itself, exported as
+//! `OUT_DIR/bench_<SIZE>.problem.json`, with `OUT_DIR/bench_<SIZE>.ctc` and
+//! ctc's report `OUT_DIR/bench_<SIZE>.ctc.json`; used by
+//! `verification/fenicsx/speed.sh`).
 
 fn main() {
     let args: Vec<String> = std::env::args().collect();
+    if let [_, flag, size, out] = args.as_slice() {
+        if flag == "--bench" {
+            if let Err(e) = export_bench(size, std::path::Path::new(out)) {
+                eprintln!("error: {e}");
+                std::process::exit(1);
+            }
+            return;
+        }
+    }
     let out = args
         .get(1)
         .map(std::path::PathBuf::from)
@@ -41,4 +55,38 @@ fn main() {
             }
         }
     }
+}
+
+/// Runs `ctc bench --size SIZE` through `run_bench` (so the deck is the one
+/// the benchmark generates, penalty `10 E / h_min` included), keeps its
+/// deck and report, and exports the deck's problem.
+fn export_bench(size: &str, out: &std::path::Path) -> Result<(), String> {
+    let value: f64 = size
+        .parse()
+        .map_err(|_| format!("SIZE must be a number, got `{size}`"))?;
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let name = format!("bench_{size}");
+    let deck = out.join(format!("{name}.ctc"));
+    let opts = ctc_verification::BenchOptions {
+        size: value,
+        deck_out: Some(deck.clone()),
+        ..Default::default()
+    };
+    let report = ctc_verification::run_bench(&opts)?;
+    if let Some(failure) = &report.failure {
+        return Err(format!("ctc bench failed: {failure}"));
+    }
+    let report_path = out.join(format!("{name}.ctc.json"));
+    std::fs::write(&report_path, report.to_json() + "\n")
+        .map_err(|e| format!("cannot write {}: {e}", report_path.display()))?;
+    let text = std::fs::read_to_string(&deck)
+        .map_err(|e| format!("cannot read {}: {e}", deck.display()))?;
+    let model = ctc_verification::deck::compile_text(&deck, &text)?;
+    let problem = ctc_verification::fenicsx_export::export(&model, &name)?;
+    let path = out.join(format!("{name}.problem.json"));
+    let json = serde_json::to_string(&problem).map_err(|e| e.to_string())?;
+    std::fs::write(&path, json + "\n")
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+    println!("{}", path.display());
+    Ok(())
 }

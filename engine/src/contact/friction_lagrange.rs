@@ -52,7 +52,7 @@ pub fn add_rows(
             };
             let t = nc.friction.gap_gradient;
             let mut row = ConstraintRow {
-                entries: [(0, 0.0); 2],
+                entries: [(0, 0.0); 6],
                 len: 0,
             };
             let mut presc = Vec::new();

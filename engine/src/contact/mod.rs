@@ -24,6 +24,8 @@
 //!   (broad phase + memory or circle local test);
 //! - [`jump`]: slave nodes that moved farther than `prof` relative to the
 //!   master in one increment (run warnings);
+//! - [`segment`], [`node_to_segment`]: deformable masters (node-to-segment
+//!   elements, single / double / modified double pass, self contact);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod aabb;
@@ -37,9 +39,11 @@ pub mod jump;
 pub mod lagrange;
 pub mod log;
 pub mod motion;
+pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;
 pub mod search;
+pub mod segment;
 pub mod segment_search;
 pub mod tributary;
 pub(crate) mod vec2;
@@ -145,6 +149,12 @@ pub struct PairState {
     pub tool_grid: search::ToolGrid,
     /// Scratch list of broad-phase hits (reused by every search).
     pub scratch: Vec<usize>,
+    /// Slave nodes, sorted: `ContactPair::nodes`, plus the master surface's
+    /// nodes for the double-pass strategies. Every per-slave vector above is
+    /// in this order.
+    pub slaves: Vec<usize>,
+    /// Deformable master (node-to-segment): surfaces, strategy state.
+    pub surface: Option<node_to_segment::SurfacePair>,
 }
 
 impl PairState {
@@ -159,7 +169,9 @@ impl PairState {
                 ..PairState::default()
             };
         };
-        let n = cp.nodes.len();
+        let slaves = node_to_segment::slave_nodes(model, pair);
+        let n = slaves.len();
+        let surface = node_to_segment::prepare(model, pair, &slaves);
         let shape = match cp.master.tool().and_then(|t| model.tools.get(t)) {
             Some(tool) => {
                 ToolShape::new(&tool.geometry).map_err(|e| format!("tool '{}': {e}", tool.name))
@@ -172,6 +184,7 @@ impl PairState {
         };
         let (shape, error) = match shape {
             Ok(s) => (Some(s), None),
+            Err(_) if surface.is_some() => (None, None),
             Err(e) => (None, Some(e)),
         };
         // reference-frame positions at t = 0 (start of the first impact path)
@@ -186,7 +199,7 @@ impl PairState {
             .map(|&k| placement.to_reference(model.mesh.nodes.get(k).copied().unwrap_or([0.0; 2])))
             .collect();
         PairState {
-            tributary: tributary::tributary_areas(model, pair),
+            tributary: node_to_segment::tributary_areas(model, pair, &slaves),
             pair: Some(pair),
             prof: prof::effective_prof(model, pair),
             error,
@@ -206,6 +219,8 @@ impl PairState {
                 .unwrap_or_default(),
             scratch: Vec::new(),
             shape,
+            slaves,
+            surface,
         }
     }
 
@@ -225,6 +240,14 @@ impl PairState {
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
         self.friction.commit();
+        if let Some(sp) = &mut self.surface {
+            sp.commit();
+        }
+    }
+
+    /// Index of slave node `node` in the per-slave vectors, if it is one.
+    pub fn slave_index(&self, node: usize) -> Option<usize> {
+        self.slaves.binary_search(&node).ok()
     }
 
     /// Called when an increment is cut back: restores the committed state.
@@ -233,6 +256,9 @@ impl PairState {
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
         self.friction.rollback();
+        if let Some(sp) = &mut self.surface {
+            sp.rollback();
+        }
     }
 }
 
@@ -248,8 +274,14 @@ pub fn evaluate_pair(
     let Some(cp) = model.contacts.get(pair) else {
         return Vec::new();
     };
-    if state.pair != Some(pair) || state.last_entity.len() != cp.nodes.len() {
+    if state.pair != Some(pair)
+        || state.last_entity.len() != state.slaves.len()
+        || state.slaves.len() < cp.nodes.len()
+    {
         *state = PairState::new(model, pair);
+    }
+    if state.surface.is_some() {
+        return node_to_segment::evaluate(model, pair, x, state);
     }
     let tool = cp.master.tool().and_then(|t| model.tools.get(t));
     let (Some(shape), Some(tool)) = (state.shape.as_ref(), tool) else {

@@ -23,18 +23,24 @@ pub fn tributary_areas(model: &Model, pair: usize) -> Vec<f64> {
     let Some(cp) = model.contacts.get(pair) else {
         return Vec::new();
     };
-    let mut area = vec![0.0; cp.nodes.len()];
-    let index = |node: usize| cp.nodes.iter().position(|&n| n == node);
-    let sorted = cp.nodes.windows(2).all(|w| w[0] < w[1]);
+    edge_areas(model, &cp.edges, &cp.nodes)
+}
+
+/// Tributary area of each node of `nodes` from the edges `edges` (same
+/// rules; zero for a node on no edge).
+pub fn edge_areas(model: &Model, edges: &[[usize; 2]], nodes_of: &[usize]) -> Vec<f64> {
+    let mut area = vec![0.0; nodes_of.len()];
+    let index = |node: usize| nodes_of.iter().position(|&n| n == node);
+    let sorted = nodes_of.windows(2).all(|w| w[0] < w[1]);
     let find = |node: usize| {
         if sorted {
-            cp.nodes.binary_search(&node).ok()
+            nodes_of.binary_search(&node).ok()
         } else {
             index(node)
         }
     };
     let nodes = &model.mesh.nodes;
-    for &[a, b] in &cp.edges {
+    for &[a, b] in edges {
         let (Some(&pa), Some(&pb)) = (nodes.get(a), nodes.get(b)) else {
             continue;
         };

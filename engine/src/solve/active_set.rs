@@ -75,27 +75,42 @@ impl Constraints {
                 continue;
             }
             for nc in &contact[pi] {
-                let Ok(i) = cp.nodes.binary_search(&nc.node) else {
+                let Some(i) = pairs[pi].slave_index(nc.node) else {
                     continue;
                 };
                 if !pairs[pi].active.get(i).copied().unwrap_or(false) {
                     continue;
                 }
                 let mut row = ConstraintRow {
-                    entries: [(0, 0.0); 2],
+                    entries: [(0, 0.0); 6],
                     len: 0,
                 };
                 let mut presc = Vec::new();
-                for c in 0..2 {
-                    match dofs[2 * nc.node + c] {
-                        Dof::Free(f) => {
-                            row.entries[row.len] = (f, -nc.normal[c]);
-                            row.len += 1;
+                // d g / d x over the element nodes: the slave alone against a
+                // rigid tool, slave and master ends for node-to-segment
+                let (nodes, grad) = match &nc.master {
+                    None => (
+                        [nc.node, usize::MAX, usize::MAX],
+                        [nc.normal[0], nc.normal[1], 0.0, 0.0, 0.0, 0.0],
+                    ),
+                    Some(ms) => ([nc.node, ms.nodes[0], ms.nodes[1]], ms.gap_gradient),
+                };
+                for (k, &node) in nodes.iter().enumerate() {
+                    if node == usize::MAX {
+                        continue;
+                    }
+                    for c in 0..2 {
+                        match dofs[2 * node + c] {
+                            Dof::Free(f) => {
+                                row.entries[row.len] = (f, -grad[2 * k + c]);
+                                row.len += 1;
+                            }
+                            Dof::Prescribed(p) => presc.push((p, grad[2 * k + c])),
+                            Dof::Inactive => {}
                         }
-                        Dof::Prescribed(p) => presc.push((p, nc.normal[c])),
-                        Dof::Inactive => {}
                     }
                 }
+                row.entries[..row.len].sort_by_key(|e| e.0);
                 self.rows.push(row);
                 self.gap.push(nc.gap);
                 self.owner.push((pi, i));
@@ -161,9 +176,9 @@ pub fn update_active_sets(
             continue;
         }
         let state = &mut pairs[pi];
-        let mut seen = vec![false; cp.nodes.len()];
+        let mut seen = vec![false; state.slaves.len()];
         for nc in &contact[pi] {
-            let Ok(i) = cp.nodes.binary_search(&nc.node) else {
+            let Some(i) = state.slave_index(nc.node) else {
                 continue;
             };
             seen[i] = true;
@@ -183,7 +198,7 @@ pub fn update_active_sets(
             if !s && state.active[i] {
                 state.active[i] = false;
                 state.multiplier[i] = 0.0;
-                change.released.push(cp.nodes[i]);
+                change.released.push(state.slaves[i]);
             }
         }
     }
@@ -260,9 +275,9 @@ pub fn uzawa_update(
             continue;
         }
         let state = &mut pairs[pi];
-        let mut next = vec![0.0; cp.nodes.len()];
+        let mut next = vec![0.0; state.slaves.len()];
         for nc in &contact[pi] {
-            let Ok(i) = cp.nodes.binary_search(&nc.node) else {
+            let Some(i) = state.slave_index(nc.node) else {
                 continue;
             };
             let alpha = penalty::effective_stiffness(&cp.method, state.tributary[i]);

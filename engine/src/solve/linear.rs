@@ -138,6 +138,17 @@ impl LinearSolver {
         self.method = Method::Lu;
     }
 
+    /// Forgets the symbolic analyses: the next factorization recomputes them
+    /// (the sparsity pattern grew, e.g. new node-to-segment couplings).
+    pub fn reset_pattern(&mut self) {
+        self.symbolic = None;
+        self.l_values.clear();
+        self.scratch = None;
+        self.symbolic_lu = None;
+        self.lu = None;
+        self.factor = Factor::None;
+    }
+
     /// Numerically factorizes the matrix with `pattern` and `values` (the
     /// first `pattern.nnz()` entries are used; both triangles stored).
     pub fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), String> {

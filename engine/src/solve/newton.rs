@@ -206,6 +206,11 @@ pub struct Newton<'m> {
     /// Contact status flips in the failed attempts since the last
     /// converged increment (diagnosis).
     pub flips: super::diagnosis::FlipTracker,
+    /// Node couplings added to the sparsity pattern by node-to-segment
+    /// contact elements (sorted, kept for the rest of the run).
+    couplings: Vec<(usize, usize)>,
+    /// Times the sparsity pattern grew.
+    pub pattern_growths: usize,
 }
 
 impl std::fmt::Debug for Newton<'_> {
@@ -264,6 +269,8 @@ impl<'m> Newton<'m> {
             timings: Timings::default(),
             iterations: 0,
             flips: Default::default(),
+            couplings: Vec::new(),
+            pattern_growths: 0,
         };
         // element check in the reference configuration (inverted, off-axis cells)
         let mut f = std::mem::take(&mut newton.f_int);
@@ -408,7 +415,7 @@ impl<'m> Newton<'m> {
                 ContactMethod::Lagrange { .. } => continue,
             };
             for nc in list {
-                let Some(i) = cp.nodes.iter().position(|n| *n == nc.node) else {
+                let Some(i) = self.pairs[p].slave_index(nc.node) else {
                     continue;
                 };
                 let trib = self.pairs[p].tributary.get(i).copied().unwrap_or(0.0);
@@ -488,19 +495,59 @@ impl<'m> Newton<'m> {
                 for nc in &res {
                     self.f_c[2 * nc.node] += nc.force[0];
                     self.f_c[2 * nc.node + 1] += nc.force[1];
-                    if with_tangent {
-                        let slots = self.scatter.node_slots(nc.node);
-                        for b in 0..2 {
-                            for a in 0..2 {
-                                let s = slots[a + 2 * b];
-                                if s != NO_SLOT {
-                                    self.values[s as usize] += nc.stiffness[a][b];
+                    if let Some(ms) = &nc.master {
+                        for (m, f) in ms.nodes.iter().zip(&ms.forces) {
+                            self.f_c[2 * m] += f[0];
+                            self.f_c[2 * m + 1] += f[1];
+                        }
+                    }
+                }
+                self.contact[i] = res;
+            }
+            if with_tangent {
+                self.grow_pattern_for_contact().map_err(|detail| Failure {
+                    kind: FailureKind::Singular,
+                    residuals: Vec::new(),
+                    detail,
+                })?;
+                for res in &self.contact {
+                    for nc in res {
+                        match &nc.master {
+                            None => {
+                                let slots = self.scatter.node_slots(nc.node);
+                                for b in 0..2 {
+                                    for a in 0..2 {
+                                        let s = slots[a + 2 * b];
+                                        if s != NO_SLOT {
+                                            self.values[s as usize] += nc.stiffness[a][b];
+                                        }
+                                    }
+                                }
+                            }
+                            Some(ms) => {
+                                let nodes = [nc.node, ms.nodes[0], ms.nodes[1]];
+                                for (bj, &nb) in nodes.iter().enumerate() {
+                                    for (bi, &na) in nodes.iter().enumerate() {
+                                        let Some(slots) =
+                                            self.scatter.pair_slots(&self.dofs, na, nb)
+                                        else {
+                                            continue;
+                                        };
+                                        for b in 0..2 {
+                                            for a in 0..2 {
+                                                let s = slots[a + 2 * b];
+                                                if s != NO_SLOT {
+                                                    self.values[s as usize] +=
+                                                        ms.tangent[2 * bi + a][2 * bj + b];
+                                                }
+                                            }
+                                        }
+                                    }
                                 }
                             }
                         }
                     }
                 }
-                self.contact[i] = res;
             }
             if self.saddle.is_some() {
                 self.constraints
@@ -550,6 +597,60 @@ impl<'m> Newton<'m> {
             abs,
             rel: abs / denom,
         })
+    }
+
+    /// Grows the sparsity pattern when a node-to-segment element of the
+    /// last contact evaluation couples nodes that share no cell and are not
+    /// coupled yet: the slave is coupled to the whole neighbourhood of its
+    /// segment (see [`contact::node_to_segment::neighbourhood`]) so that the
+    /// pattern grows rarely; added couplings stay for the rest of the run.
+    /// Rebuilds the scatter map, resizes the value array (zeroed) and
+    /// resets the symbolic factorization.
+    fn grow_pattern_for_contact(&mut self) -> Result<(), String> {
+        let mut missing = false;
+        'scan: for res in &self.contact {
+            for nc in res {
+                if let Some(ms) = &nc.master {
+                    for m in ms.nodes {
+                        if self.scatter.pair_slots(&self.dofs, nc.node, m).is_none() {
+                            missing = true;
+                            break 'scan;
+                        }
+                    }
+                }
+            }
+        }
+        if !missing {
+            return Ok(());
+        }
+        let mut near = Vec::new();
+        for (p, res) in self.contact.iter().enumerate() {
+            for nc in res {
+                let Some(ms) = &nc.master else {
+                    continue;
+                };
+                near.clear();
+                near.extend(ms.nodes);
+                contact::node_to_segment::neighbourhood(
+                    &self.pairs[p],
+                    nc.node,
+                    nc.entity,
+                    &mut near,
+                );
+                for &m in &near {
+                    if m != nc.node {
+                        self.couplings.push((nc.node.min(m), nc.node.max(m)));
+                    }
+                }
+            }
+        }
+        self.couplings.sort_unstable();
+        self.couplings.dedup();
+        self.scatter = Scatter::with_couplings(&self.model.mesh, &self.dofs, &self.couplings)?;
+        self.values = vec![0.0; self.scatter.n_values()];
+        self.linear.reset_pattern();
+        self.pattern_growths += 1;
+        Ok(())
     }
 
     /// Sets the free dofs to `base + s * rhs` and, in the first iteration,

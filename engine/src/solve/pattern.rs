@@ -66,6 +66,17 @@ pub struct Scatter {
 impl Scatter {
     /// Builds the pattern and the scatter maps of `mesh` numbered by `dofs`.
     pub fn new(mesh: &Mesh, dofs: &DofMap) -> Result<Self, String> {
+        Self::with_couplings(mesh, dofs, &[])
+    }
+
+    /// Like [`Scatter::new`], with the extra node couplings `extra` (pairs
+    /// of nodes not sharing a cell, coupled by contact elements; both
+    /// orders are added).
+    pub fn with_couplings(
+        mesh: &Mesh,
+        dofs: &DofMap,
+        extra: &[(usize, usize)],
+    ) -> Result<Self, String> {
         let nn = mesh.nodes.len();
         // node adjacency (sorted, unique, including the node itself)
         let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nn];
@@ -75,6 +86,12 @@ impl Scatter {
                 for &b in ns {
                     adj[a].push(b as u32);
                 }
+            }
+        }
+        for &(a, b) in extra {
+            if a < nn && b < nn {
+                adj[a].extend([a as u32, b as u32]);
+                adj[b].extend([a as u32, b as u32]);
             }
         }
         for a in &mut adj {
@@ -169,6 +186,24 @@ impl Scatter {
     #[inline]
     pub fn node_slots(&self, n: usize) -> &[u32; 4] {
         &self.node_block[n]
+    }
+
+    /// Free-free slots of the 2x2 block coupling node `a` (rows) and node
+    /// `b` (columns), column-major; `NO_SLOT` for a prescribed or inactive
+    /// dof; `None` if a free-free entry is missing from the pattern.
+    pub fn pair_slots(&self, dofs: &DofMap, a: usize, b: usize) -> Option<[u32; 4]> {
+        if a == b {
+            return Some(self.node_block[a]);
+        }
+        let mut out = [NO_SLOT; 4];
+        for j in 0..2 {
+            for i in 0..2 {
+                if let (Dof::Free(r), Dof::Free(c)) = (dofs.dofs[2 * a + i], dofs.dofs[2 * b + j]) {
+                    out[i + 2 * j] = self.pattern.find(r, c)? as u32;
+                }
+            }
+        }
+        Some(out)
     }
 
     /// `out[i] += sum_p K_fp[i, p] dp[p]` for the `K_fp` part of `values`.

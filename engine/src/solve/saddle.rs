@@ -45,12 +45,15 @@ use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
-/// One constraint row: `G[k, dof] = coefficient` for up to two free dofs.
+/// One constraint row: `G[k, dof] = coefficient` for up to six free dofs
+/// (a slave node against a rigid tool: 2; node-to-segment: slave and the
+/// two master ends).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConstraintRow {
-    /// `(free dof, coefficient)` pairs; only the first `len` are used.
-    pub entries: [(usize, f64); 2],
-    /// Number of used entries (0..=2).
+    /// `(free dof, coefficient)` pairs, sorted by dof; only the first `len`
+    /// are used.
+    pub entries: [(usize, f64); 6],
+    /// Number of used entries (0..=6).
     pub len: usize,
 }
 
@@ -367,7 +370,7 @@ mod tests {
     fn solve(form: LagrangeFormulation) -> (Vec<f64>, Vec<f64>, SaddleSolver) {
         let (k, v) = chain();
         let rows = [ConstraintRow {
-            entries: [(1, -1.0), (0, 0.0)],
+            entries: [(1, -1.0), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0)],
             len: 1,
         }];
         let mut s = SaddleSolver::new(form);
@@ -397,7 +400,7 @@ mod tests {
     fn symbolic_factorization_reused_while_the_constraint_set_is_unchanged() {
         let (k, v) = chain();
         let rows = [ConstraintRow {
-            entries: [(0, -1.0), (2, 0.5)],
+            entries: [(0, -1.0), (2, 0.5), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0)],
             len: 2,
         }];
         for form in [LagrangeFormulation::Single, LagrangeFormulation::Doubled] {

@@ -349,6 +349,13 @@ pub struct Contact {
     pub thermal: Option<super::thermal::ContactThermal>,
     /// `friction = coulomb { .. }`.
     pub friction: Option<Spanned<FrictionAst>>,
+    /// Deformable master surface `body.set` (then `tool` holds its text
+    /// and span); `None` for a rigid tool.
+    pub master: Option<SetRef>,
+    /// `strategy = single_pass | double_pass | modified_double_pass`.
+    pub strategy: Option<Spanned<StrategyAst>>,
+    /// `search = memory | circle`.
+    pub search: Option<Spanned<SearchAst>>,
 }
 
 /// `friction = coulomb { mu stiffness first_impact cut_at_impact }`.
@@ -371,6 +378,26 @@ pub enum FirstImpactAst {
     Intersect,
     /// `frictionless`.
     Frictionless,
+}
+
+/// `strategy = ..` of a contact pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StrategyAst {
+    /// `single_pass`.
+    SinglePass,
+    /// `double_pass`.
+    DoublePass,
+    /// `modified_double_pass`.
+    ModifiedDoublePass,
+}
+
+/// `search = ..` of a contact pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SearchAst {
+    /// `memory` (Metafor).
+    Memory,
+    /// `circle` (Cast3M).
+    Circle,
 }
 
 /// `penalty` kinds.

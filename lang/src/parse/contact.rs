@@ -4,9 +4,12 @@ use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{Value, ValueKind};
-use crate::ast::{Contact, LagrangeFormulationAst, Method, MultiplierUpdateAst, PenaltyKindAst};
+use crate::ast::{
+    Contact, LagrangeFormulationAst, Method, MultiplierUpdateAst, PenaltyKindAst, SearchAst,
+    StrategyAst,
+};
 use crate::diagnostics::Diagnostic;
-use crate::span::Spanned;
+use crate::span::{Ident, Spanned};
 use crate::suggest::did_you_mean;
 
 /// Contact methods the language knows.
@@ -22,6 +25,15 @@ const FORMULATIONS: [(&str, LagrangeFormulationAst); 2] = [
     ("doubled", LagrangeFormulationAst::Doubled),
 ];
 
+const STRATEGIES: [(&str, StrategyAst); 3] = [
+    ("single_pass", StrategyAst::SinglePass),
+    ("double_pass", StrategyAst::DoublePass),
+    ("modified_double_pass", StrategyAst::ModifiedDoublePass),
+];
+
+const SEARCHES: [(&str, SearchAst); 2] =
+    [("memory", SearchAst::Memory), ("circle", SearchAst::Circle)];
+
 const UPDATES: [(&str, MultiplierUpdateAst); 2] = [
     ("converged", MultiplierUpdateAst::Converged),
     ("newton", MultiplierUpdateAst::Newton),
@@ -30,18 +42,29 @@ const UPDATES: [(&str, MultiplierUpdateAst); 2] = [
 /// Converts a `contact` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
     let target = values::set_ref(item.target.as_ref()?, diags)?;
-    let tool = item.names.into_iter().next()?;
+    // master: a tool name, or a deformable surface `body.set`
+    let (tool, master) = match &item.master {
+        Some(v) => {
+            let m = values::set_ref(v, diags)?;
+            (Ident::new(m.to_string(), m.span), Some(m))
+        }
+        None => (item.names.into_iter().next()?, None),
+    };
     let block = item.block?;
     let mut f = Fields::new(
         &block,
         "`contact` block",
-        &["method", "prof", "friction", "thermal"],
+        &[
+            "method", "prof", "friction", "strategy", "search", "thermal",
+        ],
     );
     let thermal = f
         .block("thermal", diags)
         .map(|b| super::thermal::contact_block(b, diags));
     let method = f.value("method", diags).and_then(|v| method(v, diags));
     let prof = f.number("prof", diags);
+    let strategy = f.choice("strategy", "contact strategy", &STRATEGIES, diags);
+    let search = f.choice("search", "contact search", &SEARCHES, diags);
     let friction = f
         .value("friction", diags)
         .and_then(|v| super::friction::parse(v, diags));
@@ -63,6 +86,9 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         span: item.span,
         thermal,
         friction,
+        master,
+        strategy,
+        search,
     })
 }
 

@@ -76,6 +76,9 @@ pub struct ItemParts {
     pub block: Option<Block>,
     /// The whole item.
     pub span: Span,
+    /// Contact master written as a set reference (`a.b -> body.set`); a
+    /// bare tool name goes to `names` instead.
+    pub master: Option<Value>,
 }
 
 impl ItemParts {
@@ -95,6 +98,18 @@ impl ItemParts {
                 Rule::call | Rule::path => parts.target = Some(syntax::value(p)),
                 Rule::value => parts.value = Some(syntax::value(p)),
                 Rule::block => parts.block = Some(syntax::block(p)),
+                Rule::master => {
+                    let Some(inner) = p.into_inner().next() else {
+                        continue;
+                    };
+                    let v = syntax::value(inner);
+                    match &v.kind {
+                        ValueKind::Path(path) if path.len() == 1 => {
+                            parts.names.push(path[0].clone())
+                        }
+                        _ => parts.master = Some(v),
+                    }
+                }
                 _ => {
                     parts.keyword = Span::of(p.as_span());
                     parts.keyword_text = p.as_str().to_string();

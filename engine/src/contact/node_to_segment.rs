@@ -1,0 +1,501 @@
+//! Contact between deformable bodies and self contact: node-to-segment
+//! elements (seed slides, "Contact between two deformable bodies / self
+//! contact", "Three usual strategies", "Part I - Geometrical aspects").
+//!
+//! A pair has two surfaces: side 0 (the deck's left of `->`) and side 1
+//! (the master surface, right of `->`). Each slave node is projected on
+//! the candidate segments of the opposite side (bucket-grid broad phase
+//! inflated by `prof`, plus the segment of the last evaluation and its
+//! neighbours, so a node that penetrated deeper than `prof` is not lost);
+//! the kept projection gives a 3-node element (slave, `m1`, `m2`) with the
+//! kinematics of [`super::segment`].
+//!
+//! Strategies ([`ContactStrategy`]):
+//! - single pass: side-0 nodes against side-1 segments;
+//! - double pass: the roles are swapped at every converged increment
+//!   (even increments: side 0 is slave; odd: side 1);
+//! - modified double pass: both directions at every evaluation. Each node
+//!   then carries **half** its tributary area, so that with the penalty
+//!   method a uniform pressure still gives the gap `p / k` and the
+//!   reported pressure (slave force / weighted area) is the contact
+//!   pressure; with Lagrange multipliers the constraints of the two passes
+//!   are redundant (over-constrained system, see the patch test).
+//!
+//! Self contact (same body and same surface on both sides): the surface's
+//! nodes against its own segments, excluding the segments that contain the
+//! node and the segments adjacent to those. Every node is slave and master
+//! at once, so the strategy is irrelevant (it is the modified double pass
+//! by construction, with full areas: two facing parts of the surface each
+//! push on the other with their own nodes).
+//!
+//! Choice of the projection (several projections, projection outside all
+//! segments while inside the body):
+//! 1. among the candidates whose projection falls inside the segment
+//!    (`0 <= xi <= 1`, with a round-off tolerance), the one with the
+//!    smallest `|g|` (the closest point), ties to the lower segment index;
+//! 2. otherwise (the node lies in the wedge in front of a kink, e.g. inside
+//!    the body at a concave corner where every projection falls outside),
+//!    the segment whose clamped closest point is nearest, **extended** past
+//!    its end: `g` and `xi` of the segment line, `xi` slightly outside
+//!    `[0, 1]`. This is the "projection outside the boundaries must be
+//!    allowed" of the seed; it replaces normal smoothing and keeps the exact
+//!    consistent tangent (the gap is still `(x_s - x_1) . n`). Extension is
+//!    allowed at an end shared with a neighbouring segment (a kink) only
+//!    when the node is in the kink's wedge (beyond the neighbour's near end
+//!    as well), and at a free end of the surface only by
+//!    [`FREE_END_XI`] segment lengths;
+//! 3. penetrations deeper than `max(prof, L)` are ignored (a node of the
+//!    far side of a thin body is not in contact with this face).
+//!
+//! The gap that decides contact is the one that gives the force and the
+//! reported pressure.
+
+use super::aabb::Aabb;
+use super::broad::BroadPhase;
+use super::segment::SegmentProjection;
+use super::{augmented, lagrange, penalty, ContactStatus, MasterSegment, NodeContact, PairState};
+use crate::model::{ContactMaster, ContactMethod, ContactStrategy, Model};
+
+/// Relative tolerance on `xi` for "inside the segment".
+const XI_TOL: f64 = 1e-10;
+
+/// How far (in segment lengths) a slave node may pass the free end of the
+/// master surface and keep the extended segment: iterates wobble around a
+/// node that sits exactly at the end (patch test corners).
+const FREE_END_XI: f64 = 0.02;
+
+/// One surface of a deformable pair.
+#[derive(Debug, Clone, Default)]
+pub struct Surface {
+    /// Segments `[a, b]` (body on the left).
+    pub edges: Vec<[usize; 2]>,
+    /// Per segment: the segment ending at its first node (previous one).
+    pub prev: Vec<Option<usize>>,
+    /// Per segment: the segment starting at its second node (next one).
+    pub next: Vec<Option<usize>>,
+    /// Broad phase over the segment boxes at the current coordinates.
+    grid: Option<BroadPhase>,
+    /// Scratch: segment boxes.
+    boxes: Vec<Aabb>,
+}
+
+impl Surface {
+    fn new(edges: &[[usize; 2]]) -> Self {
+        let mut prev = vec![None; edges.len()];
+        let mut next = vec![None; edges.len()];
+        // sorted (node, segment) lists: deterministic, no hash map
+        let mut starts: Vec<(usize, usize)> =
+            edges.iter().enumerate().map(|(e, s)| (s[0], e)).collect();
+        starts.sort_unstable();
+        for (e, s) in edges.iter().enumerate() {
+            let k = starts.partition_point(|&(n, _)| n < s[1]);
+            if let Some(&(n, f)) = starts.get(k) {
+                if n == s[1] && f != e {
+                    next[e] = Some(f);
+                    prev[f] = Some(e);
+                }
+            }
+        }
+        Surface {
+            edges: edges.to_vec(),
+            prev,
+            next,
+            grid: None,
+            boxes: Vec::with_capacity(edges.len()),
+        }
+    }
+
+    /// Rebuilds the broad phase at the current coordinates `x`.
+    fn update(&mut self, x: &[[f64; 2]]) {
+        self.boxes.clear();
+        for &[a, b] in &self.edges {
+            self.boxes.push(Aabb::around(&[x[a], x[b]]));
+        }
+        self.grid = Some(BroadPhase::build(&self.boxes));
+    }
+}
+
+/// Prepared data of a pair whose master is a deformable surface.
+#[derive(Debug, Clone, Default)]
+pub struct SurfacePair {
+    /// Side 0 (the deck's slave surface) and side 1 (its master surface).
+    pub sides: [Surface; 2],
+    /// Per slave index (`PairState::slaves`): the side the node belongs to.
+    pub side_of: Vec<u8>,
+    /// Self contact (both sides are the same surface).
+    pub self_contact: bool,
+    /// Per slave index, self contact only: segments excluded for the node
+    /// (its own and the adjacent ones), sorted.
+    pub excluded: Vec<Vec<usize>>,
+    /// Converged increments so far (double pass: parity picks the slave side).
+    pub increments: usize,
+    /// Converged increments at the last commit (rollback target).
+    committed_increments: usize,
+    /// Scratch: candidate segments of one query.
+    candidates: Vec<usize>,
+}
+
+impl SurfacePair {
+    /// Which sides act as slave now: `[side 0 is slave, side 1 is slave]`.
+    pub fn slave_sides(&self, strategy: ContactStrategy) -> [bool; 2] {
+        if self.self_contact {
+            return [true, false];
+        }
+        match strategy {
+            ContactStrategy::SinglePass => [true, false],
+            ContactStrategy::DoublePass => {
+                let even = self.increments.is_multiple_of(2);
+                [even, !even]
+            }
+            ContactStrategy::ModifiedDoublePass => [true, true],
+        }
+    }
+
+    /// Called when an increment has converged.
+    pub fn commit(&mut self) {
+        self.increments += 1;
+        self.committed_increments = self.increments;
+    }
+
+    /// Called when an increment is cut back.
+    pub fn rollback(&mut self) {
+        self.increments = self.committed_increments;
+    }
+}
+
+/// Slave nodes of a pair (sorted): the deck's slave nodes, plus the master
+/// surface's nodes for the double-pass strategies (not for self contact).
+pub fn slave_nodes(model: &Model, pair: usize) -> Vec<usize> {
+    let Some(cp) = model.contacts.get(pair) else {
+        return Vec::new();
+    };
+    let mut nodes = cp.nodes.clone();
+    if let ContactMaster::Surface {
+        nodes: master,
+        edges,
+        ..
+    } = &cp.master
+    {
+        let self_contact = edges == &cp.edges;
+        if !self_contact && cp.strategy != ContactStrategy::SinglePass {
+            nodes.extend(master);
+            nodes.sort_unstable();
+            nodes.dedup();
+        }
+    }
+    nodes
+}
+
+/// Prepares a deformable pair; `None` if the master is a rigid tool.
+pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePair> {
+    let cp = model.contacts.get(pair)?;
+    let ContactMaster::Surface { edges, .. } = &cp.master else {
+        return None;
+    };
+    let self_contact = edges == &cp.edges;
+    let sides = [Surface::new(&cp.edges), Surface::new(edges)];
+    let side_of = slaves
+        .iter()
+        .map(|n| u8::from(cp.nodes.binary_search(n).is_err()))
+        .collect();
+    let excluded = if self_contact {
+        let s = &sides[0];
+        slaves
+            .iter()
+            .map(|&node| {
+                let mut ex = Vec::new();
+                for (e, ed) in s.edges.iter().enumerate() {
+                    if ed.contains(&node) {
+                        ex.push(e);
+                        ex.extend(s.prev[e]);
+                        ex.extend(s.next[e]);
+                    }
+                }
+                ex.sort_unstable();
+                ex.dedup();
+                ex
+            })
+            .collect()
+    } else {
+        Vec::new()
+    };
+    Some(SurfacePair {
+        sides,
+        side_of,
+        self_contact,
+        excluded,
+        ..SurfacePair::default()
+    })
+}
+
+/// Tributary area of each slave node: the deck's slave edges for side-0
+/// nodes, the master edges for side-1 nodes; halved for the modified
+/// double pass (both passes carry the load).
+pub fn tributary_areas(model: &Model, pair: usize, slaves: &[usize]) -> Vec<f64> {
+    let Some(cp) = model.contacts.get(pair) else {
+        return Vec::new();
+    };
+    let ContactMaster::Surface { edges, .. } = &cp.master else {
+        return super::tributary::tributary_areas(model, pair);
+    };
+    let mut area = super::tributary::edge_areas(model, &cp.edges, slaves);
+    if edges != &cp.edges {
+        let side1: Vec<usize> = slaves
+            .iter()
+            .copied()
+            .filter(|n| cp.nodes.binary_search(n).is_err())
+            .collect();
+        let a1 = super::tributary::edge_areas(model, edges, &side1);
+        for (n, a) in side1.iter().zip(a1) {
+            if let Ok(i) = slaves.binary_search(n) {
+                area[i] = a;
+            }
+        }
+        if cp.strategy == ContactStrategy::ModifiedDoublePass {
+            for a in &mut area {
+                *a *= 0.5;
+            }
+        }
+    }
+    area
+}
+
+/// The projection kept for a slave node.
+#[derive(Debug, Clone, Copy)]
+struct Kept {
+    segment: usize,
+    projection: SegmentProjection,
+}
+
+/// Projects `xs` on the candidates of `surface` and keeps one projection
+/// (rules of the module documentation); `tests` counts projections.
+fn closest(
+    surface: &Surface,
+    x: &[[f64; 2]],
+    xs: [f64; 2],
+    candidates: &[usize],
+    depth: f64,
+    tests: &mut usize,
+) -> Option<Kept> {
+    let mut inside: Option<(f64, Kept)> = None;
+    let mut outside: Option<(f64, Kept)> = None;
+    for &e in candidates {
+        let [a, b] = surface.edges[e];
+        let Some(p) = SegmentProjection::new(xs, x[a], x[b]) else {
+            continue;
+        };
+        *tests += 1;
+        if p.gap < -depth.max(p.length) {
+            continue;
+        }
+        let k = Kept {
+            segment: e,
+            projection: p,
+        };
+        if (-XI_TOL..=1.0 + XI_TOL).contains(&p.xi) {
+            if inside.is_none_or(|(d, _)| p.gap.abs() < d) {
+                inside = Some((p.gap.abs(), k));
+            }
+            continue;
+        }
+        // beyond an end: at a kink only when the node is in the wedge of
+        // the kink (beyond the neighbour's near end too); at a free end of
+        // the surface only by the small tolerance `FREE_END_XI`
+        let neighbour = if p.xi < 0.0 {
+            surface.prev[e]
+        } else {
+            surface.next[e]
+        };
+        let allowed = match neighbour {
+            Some(f) => {
+                let [fa, fb] = surface.edges[f];
+                SegmentProjection::new(xs, x[fa], x[fb]).is_some_and(|q| {
+                    *tests += 1;
+                    if p.xi < 0.0 {
+                        q.xi > 1.0
+                    } else {
+                        q.xi < 0.0
+                    }
+                })
+            }
+            None => (-FREE_END_XI..=1.0 + FREE_END_XI).contains(&p.xi),
+        };
+        if !allowed {
+            continue;
+        }
+        let end = if p.xi < 0.0 { x[a] } else { x[b] };
+        let dist = (xs[0] - end[0]).hypot(xs[1] - end[1]);
+        if outside.is_none_or(|(d, _)| dist < d) {
+            outside = Some((dist, k));
+        }
+    }
+    inside.or(outside).map(|(_, k)| k)
+}
+
+/// Evaluates deformable pair `pair` at current coordinates `x`: one entry
+/// per slave node within `prof` of the opposite surface (or penetrating).
+pub fn evaluate(
+    model: &Model,
+    pair: usize,
+    x: &[[f64; 2]],
+    state: &mut PairState,
+) -> Vec<NodeContact> {
+    let mut out = Vec::new();
+    let Some(cp) = model.contacts.get(pair) else {
+        return out;
+    };
+    let Some(mut sp) = state.surface.take() else {
+        return out;
+    };
+    let active_sides = sp.slave_sides(cp.strategy);
+    let master_of = |side: u8| {
+        if sp.self_contact {
+            0
+        } else {
+            1 - side as usize
+        }
+    };
+    for s in 0..2 {
+        if (s == 0 && (active_sides[1] || sp.self_contact)) || (s == 1 && active_sides[0]) {
+            sp.sides[s].update(x);
+        }
+    }
+    let prof = state.prof;
+    let mut tests = 0usize;
+    let mut brute = 0usize;
+    let mut candidates = std::mem::take(&mut sp.candidates);
+    for (i, &node) in state.slaves.iter().enumerate() {
+        let side = sp.side_of[i];
+        if !active_sides[side as usize] {
+            continue;
+        }
+        let Some(&xs) = x.get(node) else {
+            continue;
+        };
+        let m = master_of(side);
+        let surface = &sp.sides[m];
+        brute += surface.edges.len();
+        candidates.clear();
+        if let Some(grid) = &surface.grid {
+            grid.query(xs, prof, &mut candidates);
+        }
+        // memory: the last segment and its neighbours are always tested
+        if let Some(e) = state.last_entity[i].filter(|&e| e < surface.edges.len()) {
+            candidates.push(e);
+            candidates.extend(surface.prev[e]);
+            candidates.extend(surface.next[e]);
+        }
+        candidates.sort_unstable();
+        candidates.dedup();
+        if sp.self_contact {
+            let ex = &sp.excluded[i];
+            candidates.retain(|e| ex.binary_search(e).is_err());
+        }
+        let Some(k) = closest(surface, x, xs, &candidates, prof, &mut tests) else {
+            state.last_entity[i] = None;
+            continue;
+        };
+        state.last_entity[i] = Some(k.segment);
+        let p = k.projection;
+        if p.gap > prof {
+            continue;
+        }
+        let [m1, m2] = surface.edges[k.segment];
+        let tributary = state.tributary.get(i).copied().unwrap_or(0.0);
+        let lambda = state.multiplier.get(i).copied().unwrap_or(0.0);
+        let n = p.normal;
+        let (resp, dr_dg) = match &cp.method {
+            ContactMethod::Penalty { .. } => {
+                let alpha = penalty::effective_stiffness(&cp.method, tributary);
+                let resp = penalty::respond(&cp.method, tributary, p.gap, n, 0.0);
+                let closed = resp.status == ContactStatus::Closed;
+                (resp, if closed { -alpha } else { 0.0 })
+            }
+            ContactMethod::Lagrange { .. } => {
+                let active = state.active.get(i).copied().unwrap_or(false);
+                (lagrange::respond(active, lambda, tributary, n, 0.0), 0.0)
+            }
+            ContactMethod::AugmentedLagrange { .. } => {
+                let alpha = penalty::effective_stiffness(&cp.method, tributary);
+                let resp = augmented::respond(alpha, lambda, tributary, p.gap, n, 0.0);
+                let closed = resp.status == ContactStatus::Closed;
+                (resp, if closed { -alpha } else { 0.0 })
+            }
+        };
+        let rn = resp.force[0] * n[0] + resp.force[1] * n[1];
+        let (f, kt) = p.element(rn, dr_dg);
+        out.push(NodeContact {
+            node,
+            gap: p.gap,
+            normal: n,
+            force: [f[0], f[1]],
+            stiffness: [[kt[0][0], kt[0][1]], [kt[1][0], kt[1][1]]],
+            pressure: resp.pressure,
+            status: resp.status,
+            entity: k.segment,
+            master: Some(MasterSegment {
+                nodes: [m1, m2],
+                xi: p.xi,
+                forces: [[f[2], f[3]], [f[4], f[5]]],
+                tangent: kt,
+                gap_gradient: p.gap_gradient(),
+            }),
+            // friction on deformable masters is wired in by the friction
+            // branch; frictionless until then
+            friction: Default::default(),
+        });
+    }
+    sp.candidates = candidates;
+    if super::log::debug_enabled() {
+        for c in &out {
+            if let Some(ms) = &c.master {
+                eprintln!(
+                    "[ctc contact] pair '{}': node {} -> segment {} {:?} xi {:.4} gap {:.4e} force {:?}",
+                    cp.name, c.node, c.entity, ms.nodes, ms.xi, c.gap, c.force
+                );
+            }
+        }
+    }
+    state.last_projection_tests = tests;
+    state.last_brute_force_tests = brute;
+    state.total_projection_tests += tests as u64;
+    state.surface = Some(sp);
+    out
+}
+
+/// Nodes of the master surface near segment `segment` of the side opposite
+/// to the slave `slave` (the segment, its neighbours and theirs): the
+/// solver couples the slave to all of them when it grows the sparsity
+/// pattern, so that sliding to a neighbouring segment does not grow it
+/// again.
+pub fn neighbourhood(state: &PairState, slave: usize, segment: usize, out: &mut Vec<usize>) {
+    let Some(sp) = &state.surface else {
+        return;
+    };
+    let Ok(i) = state.slaves.binary_search(&slave) else {
+        return;
+    };
+    let side = sp.side_of[i];
+    let m = if sp.self_contact {
+        0
+    } else {
+        1 - side as usize
+    };
+    let s = &sp.sides[m];
+    let mut segs = vec![segment];
+    for _ in 0..2 {
+        let mut more = Vec::new();
+        for &e in &segs {
+            more.extend(s.prev.get(e).copied().flatten());
+            more.extend(s.next.get(e).copied().flatten());
+        }
+        segs.extend(more);
+        segs.sort_unstable();
+        segs.dedup();
+    }
+    for e in segs {
+        if let Some(ed) = s.edges.get(e) {
+            out.extend_from_slice(ed);
+        }
+    }
+}
