@@ -1010,7 +1010,12 @@ impl Checker<'_> {
             }
             self.must_be_positive(&c.prof, "prof");
             if let Some(f) = &c.friction {
-                if let Some(mu) = f.value.mu.as_ref().filter(|m| !(m.value >= 0.0)) {
+                if let Some(mu) = f
+                    .value
+                    .mu
+                    .as_ref()
+                    .filter(|m| m.value.is_nan() || m.value < 0.0)
+                {
                     self.err(Diagnostic::error(
                         "friction coefficient `mu` must not be negative",
                         mu.span,

@@ -184,6 +184,7 @@ pub fn patch(
             search: Default::default(),
             method,
             prof: None,
+            friction: None,
         }],
         steps: vec![Step {
             name: "press".into(),
@@ -199,6 +200,7 @@ pub fn patch(
             },
         }],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 
