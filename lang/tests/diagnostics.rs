@@ -64,6 +64,7 @@ decks!(
     axisymmetric_negative_radius,
     unterminated_string,
     comma_in_block,
+    several_thermal_errors,
 );
 
 #[test]
