@@ -200,6 +200,16 @@ fn run(
     writer
         .finish(&summary)
         .map_err(|e| format!("error: cannot write summary.json: {e}"))?;
+    if model.thermal.is_some() {
+        // thermo-mechanical runs: force-stroke and temperature plots
+        match ctc_verification::history_plot::thermal_run_plots(&dir) {
+            Ok(files) if !quiet && !files.is_empty() => {
+                println!("plots: {} in {}", files.join(", "), dir.display())
+            }
+            Ok(_) => {}
+            Err(e) => eprintln!("warning: no plots: {e}"),
+        }
+    }
     match outcome {
         Ok(s) => {
             if !quiet {

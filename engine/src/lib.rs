@@ -5,7 +5,8 @@
 //! - [`element`] and [`material`]: element kernels and constitutive laws;
 //! - [`contact`]: rigid analytical tools, search, penalty enforcement;
 //! - [`solve`]: assembly, sparse linear solvers, the Newton loop, stepping;
-//! - [`output`]: VTU/PVD, CSV histories, JSON run summary.
+//! - [`output`]: VTU/PVD, CSV histories, JSON run summary;
+//! - [`thermal`]: heat conduction, thermal contact, thermo-mechanical coupling.
 
 pub mod contact;
 pub mod element;
@@ -14,3 +15,4 @@ pub mod mesh;
 pub mod model;
 pub mod output;
 pub mod solve;
+pub mod thermal;

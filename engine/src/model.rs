@@ -33,6 +33,9 @@ pub struct Model {
     pub steps: Vec<Step>,
     /// What to write, and how often.
     pub output: OutputRequest,
+    /// Heat conduction and thermo-mechanical coupling; `None` when the deck
+    /// has no `thermal` block (then there are no temperature unknowns).
+    pub thermal: Option<crate::thermal::ThermalScene>,
 }
 
 /// 2D kinematic assumption.

@@ -141,6 +141,7 @@ fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
             },
         }],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

@@ -147,6 +147,7 @@ fn contact_punch_smoke_flat_polyline_punch_with_corners() {
             },
         }],
         output: OutputRequest::default(),
+        thermal: None,
     };
     let mut last = Last::default();
     let summary = run(&model, &mut last).unwrap_or_else(|e| panic!("{}", e.message));

@@ -130,6 +130,7 @@ fn rotated_model(law: MaterialLaw, kind: AnalysisKind, rotate: bool, turns: usiz
         contacts: vec![],
         steps,
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

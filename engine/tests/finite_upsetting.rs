@@ -183,6 +183,7 @@ fn upsetting(
             },
         }],
         output: OutputRequest::default(),
+        thermal: None,
     };
     let mut rec = Record {
         top,

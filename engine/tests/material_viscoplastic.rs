@@ -207,6 +207,7 @@ mod through_the_solver {
                 },
             }],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

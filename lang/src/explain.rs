@@ -432,7 +432,22 @@ pub fn explain(model: &Model) -> String {
     if model.contacts.iter().all(|c| c.friction.is_none()) {
         absent.push("friction");
     }
-    absent.push("thermal unknowns");
+    match &model.thermal {
+        None => absent.push("thermal unknowns"),
+        Some(t) => {
+            let _ = writeln!(
+                o,
+                "heat: conduction on {} thermal material(s), {} prescribed temperature(s), \
+                 {} flux(es), {} convection(s), {} thermal contact pair(s); coupling: staggered \
+                 (isothermal split: mechanics at fixed temperature, then heat)",
+                t.materials.iter().flatten().count(),
+                t.temperatures.len(),
+                t.fluxes.len(),
+                t.convection.len(),
+                t.contacts.iter().flatten().count()
+            );
+        }
+    }
     if !model
         .bodies
         .iter()

@@ -11,6 +11,7 @@
 
 pub mod mesh;
 pub mod sets;
+pub mod thermal;
 
 use crate::ast::{self, Deck, Dimension, Method, PenaltyKindAst, Span, Spanned, TimeFn};
 use crate::diagnostics::Diagnostic;
@@ -176,6 +177,16 @@ impl Lowerer<'_> {
         let contacts = self.contacts(&bodies, &tools);
         let steps = self.steps();
         let output = self.output(&contacts);
+        let thermal = thermal::lower(
+            self.deck,
+            &self.mesh,
+            &self.body_nodes,
+            &bodies,
+            &materials,
+            &contacts,
+            self.window,
+            &mut self.diags,
+        );
         Some(Model {
             analysis: analysis?,
             mesh: std::mem::take(&mut self.mesh),
@@ -187,6 +198,7 @@ impl Lowerer<'_> {
             contacts,
             steps,
             output,
+            thermal,
         })
     }
 

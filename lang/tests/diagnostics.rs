@@ -68,6 +68,7 @@ decks!(
     contact_master_unknown_set,
     contact_bad_strategy,
     friction_bad_coulomb,
+    several_thermal_errors,
 );
 
 #[test]

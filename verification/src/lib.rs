@@ -32,6 +32,7 @@ pub mod cases;
 pub mod deck;
 pub mod fenicsx;
 pub mod fenicsx_export;
+pub mod history_plot;
 pub mod markdown;
 pub mod measure;
 #[cfg(feature = "meshio")]

@@ -65,7 +65,14 @@ fn deformation<T: Scalar, const NN: usize>(
 impl<const NN: usize> FiniteElement<'_, NN> {
     /// Internal force at displacement `u` (`2 NN` entries, scalar `T`) and
     /// the updated points.
-    fn forces<T: Scalar>(&self, u: &[T]) -> Result<(Vec<T>, Vec<MaterialPoint>), ElementError> {
+    fn forces<T: Scalar>(
+        &self,
+        u: &[T],
+        thermal_strain: f64,
+    ) -> Result<(Vec<T>, Vec<MaterialPoint>), ElementError> {
+        // multiplicative thermal split F = F_m theta: the law sees F / theta
+        // and tau = theta^3 tau_m (`crate::thermal::expansion`)
+        let theta = 1.0 + thermal_strain;
         let mut force = vec![T::cst(0.0); 2 * NN];
         let mut out = Vec::with_capacity(self.points.len());
         let axi = self.kind == AnalysisKind::Axisymmetric;
@@ -113,6 +120,18 @@ impl<const NN: usize> FiniteElement<'_, NN> {
                     }
                     (fb, j / j0)
                 }
+            };
+            let (fbar, scale) = if thermal_strain != 0.0 {
+                let mut fm = fbar;
+                for row in &mut fm.f {
+                    for v in row {
+                        *v = *v * (1.0 / theta);
+                    }
+                }
+                fm.f33 = fm.f33 * (1.0 / theta);
+                (fm, scale * (theta * theta * theta))
+            } else {
+                (fbar, scale)
             };
             let up = self
                 .law
@@ -166,6 +185,17 @@ impl<const NN: usize> FiniteElement<'_, NN> {
         u: &SVector<f64, ND>,
         with_tangent: bool,
     ) -> Result<(ElementResponse<ND>, Vec<MaterialPoint>), ElementError> {
+        self.response_with_thermal_strain(u, with_tangent, 0.0)
+    }
+
+    /// Like [`FiniteElement::response`], with the isotropic thermal strain
+    /// `thermal_strain` (multiplicative split, `crate::thermal::expansion`).
+    pub fn response_with_thermal_strain<const ND: usize>(
+        &self,
+        u: &SVector<f64, ND>,
+        with_tangent: bool,
+        thermal_strain: f64,
+    ) -> Result<(ElementResponse<ND>, Vec<MaterialPoint>), ElementError> {
         debug_assert_eq!(ND, 2 * NN);
         let mut r = ElementResponse {
             stiffness: nalgebra::SMatrix::<f64, ND, ND>::zeros(),
@@ -173,7 +203,7 @@ impl<const NN: usize> FiniteElement<'_, NN> {
         };
         if with_tangent {
             let ud: Vec<Dual<ND>> = (0..ND).map(|k| Dual::var(u[k], k)).collect();
-            let (f, pts) = self.forces(&ud)?;
+            let (f, pts) = self.forces(&ud, thermal_strain)?;
             for (i, fi) in f.iter().enumerate() {
                 r.force[i] = fi.v;
                 for j in 0..ND {
@@ -182,7 +212,7 @@ impl<const NN: usize> FiniteElement<'_, NN> {
             }
             Ok((r, pts))
         } else {
-            let (f, pts) = self.forces(u.as_slice())?;
+            let (f, pts) = self.forces(u.as_slice(), thermal_strain)?;
             for (i, fi) in f.iter().enumerate() {
                 r.force[i] = *fi;
             }

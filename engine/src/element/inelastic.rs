@@ -16,6 +16,7 @@ fn forces<T: Scalar, const ND: usize>(
     law: &NonlinearLaw,
     history: &[History],
     dt: f64,
+    thermal_strain: f64,
 ) -> Result<(Vec<T>, Vec<MaterialPoint>), ElementError> {
     let mut force = vec![T::cst(0.0); ND];
     let mut out = Vec::with_capacity(points.len());
@@ -29,7 +30,12 @@ fn forces<T: Scalar, const ND: usize>(
                 }
             }
         }
-        let tensor = [eps[0], eps[1], eps[2], eps[3] * 0.5];
+        let tensor = [
+            eps[0] - thermal_strain,
+            eps[1] - thermal_strain,
+            eps[2] - thermal_strain,
+            eps[3] * 0.5,
+        ];
         let up = law.small(&tensor, h, dt).map_err(ElementError::new)?;
         for (j, f) in force.iter_mut().enumerate() {
             let mut acc = T::cst(0.0);
@@ -70,13 +76,27 @@ pub fn response<const ND: usize>(
     dt: f64,
     with_tangent: bool,
 ) -> Result<(ElementResponse<ND>, Vec<MaterialPoint>), ElementError> {
+    response_with_thermal_strain(points, u, law, history, dt, with_tangent, 0.0)
+}
+
+/// Like [`response`], with the isotropic thermal strain `thermal_strain`
+/// taken out of the strain seen by the law (`crate::thermal::expansion`).
+pub fn response_with_thermal_strain<const ND: usize>(
+    points: &[IntegrationPoint<ND>],
+    u: &SVector<f64, ND>,
+    law: &NonlinearLaw,
+    history: &[History],
+    dt: f64,
+    with_tangent: bool,
+    thermal_strain: f64,
+) -> Result<(ElementResponse<ND>, Vec<MaterialPoint>), ElementError> {
     let mut r = ElementResponse {
         stiffness: nalgebra::SMatrix::<f64, ND, ND>::zeros(),
         force: SVector::<f64, ND>::zeros(),
     };
     if with_tangent {
         let ud: Vec<Dual<ND>> = (0..ND).map(|k| Dual::var(u[k], k)).collect();
-        let (f, pts) = forces(points, &ud, law, history, dt)?;
+        let (f, pts) = forces(points, &ud, law, history, dt, thermal_strain)?;
         for (i, fi) in f.iter().enumerate() {
             r.force[i] = fi.v;
             for j in 0..ND {
@@ -85,7 +105,7 @@ pub fn response<const ND: usize>(
         }
         Ok((r, pts))
     } else {
-        let (f, pts) = forces(points, u.as_slice(), law, history, dt)?;
+        let (f, pts) = forces(points, u.as_slice(), law, history, dt, thermal_strain)?;
         for (i, fi) in f.iter().enumerate() {
             r.force[i] = *fi;
         }

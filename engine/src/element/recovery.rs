@@ -120,6 +120,35 @@ pub fn nonlinear_points(
     dt: f64,
     with_tangent: bool,
 ) -> Result<(NonlinearResponse, Vec<MaterialPoint>), ElementError> {
+    nonlinear_points_thermal(
+        mesh,
+        c,
+        u,
+        section,
+        block,
+        law,
+        history,
+        dt,
+        with_tangent,
+        0.0,
+    )
+}
+
+/// Like [`nonlinear_points`], with the isotropic thermal strain
+/// `thermal_strain` of the cell (`crate::thermal::expansion`).
+#[allow(clippy::too_many_arguments)]
+pub fn nonlinear_points_thermal(
+    mesh: &Mesh,
+    c: usize,
+    u: &[[f64; 2]],
+    section: &Section,
+    block: &CellBlock,
+    law: &NonlinearLaw,
+    history: &[History],
+    dt: f64,
+    with_tangent: bool,
+    thermal_strain: f64,
+) -> Result<(NonlinearResponse, Vec<MaterialPoint>), ElementError> {
     let cell = &mesh.cells[c];
     let wrap = |e: ElementError| ElementError::new(format!("cell {c}: {}", e.message));
     let reduced = block.formulation == Formulation::SelectiveReduced;
@@ -127,15 +156,31 @@ pub fn nonlinear_points(
         (CellKind::Tri3, Kinematics::Small) => {
             let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, u);
             let pts = tri3::integration_points(&x, section).map_err(wrap)?;
-            let (r, p) =
-                inelastic::response(&pts, &ue, law, history, dt, with_tangent).map_err(wrap)?;
+            let (r, p) = inelastic::response_with_thermal_strain(
+                &pts,
+                &ue,
+                law,
+                history,
+                dt,
+                with_tangent,
+                thermal_strain,
+            )
+            .map_err(wrap)?;
             Ok((NonlinearResponse::Tri3(Box::new(r)), p))
         }
         (CellKind::Quad4, Kinematics::Small) => {
             let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, u);
             let pts = quad4::integration_points(&x, section, block.formulation).map_err(wrap)?;
-            let (r, p) =
-                inelastic::response(&pts, &ue, law, history, dt, with_tangent).map_err(wrap)?;
+            let (r, p) = inelastic::response_with_thermal_strain(
+                &pts,
+                &ue,
+                law,
+                history,
+                dt,
+                with_tangent,
+                thermal_strain,
+            )
+            .map_err(wrap)?;
             Ok((NonlinearResponse::Quad4(Box::new(r)), p))
         }
         (CellKind::Tri3, Kinematics::Finite) => {
@@ -149,7 +194,9 @@ pub fn nonlinear_points(
                 history,
                 dt,
             };
-            let (r, p) = el.response(&ue, with_tangent).map_err(wrap)?;
+            let (r, p) = el
+                .response_with_thermal_strain(&ue, with_tangent, thermal_strain)
+                .map_err(wrap)?;
             Ok((NonlinearResponse::Tri3(Box::new(r)), p))
         }
         (CellKind::Quad4, Kinematics::Finite) => {
@@ -163,7 +210,9 @@ pub fn nonlinear_points(
                 history,
                 dt,
             };
-            let (r, p) = el.response(&ue, with_tangent).map_err(wrap)?;
+            let (r, p) = el
+                .response_with_thermal_strain(&ue, with_tangent, thermal_strain)
+                .map_err(wrap)?;
             Ok((NonlinearResponse::Quad4(Box::new(r)), p))
         }
     }

@@ -140,6 +140,7 @@ pub(crate) mod tests {
             }],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

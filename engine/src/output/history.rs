@@ -34,6 +34,11 @@ pub fn header(model: &Model) -> String {
     for cp in model.contacts.iter().filter(|c| c.friction.is_some()) {
         cols.push(csv_field(&format!("friction_work[{}]", cp.name)));
     }
+    if model.thermal.is_some() {
+        // appended by the writer from the thermal increment
+        cols.push("temperature_max".into());
+        cols.push("temperature_min".into());
+    }
     cols.join(",")
 }
 

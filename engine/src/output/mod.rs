@@ -44,6 +44,8 @@ struct Snapshot {
     contact: Vec<Vec<NodeContact>>,
     /// Converged integration points of nonlinear bodies (may be empty).
     points: Vec<Vec<crate::element::MaterialPoint>>,
+    /// Nodal temperatures (thermal scenes only).
+    temperature: Option<Vec<f64>>,
 }
 
 /// Writes a run's results into a directory (an [`Observer`]).
@@ -147,6 +149,7 @@ impl ResultWriter {
             reaction: &snap.reaction,
             contact: &snap.contact,
             nodal: nodal.as_ref(),
+            temperature: snap.temperature.as_deref(),
         });
         let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
         write_atomic(&self.dir.join(&name), text.as_bytes()).map_err(io)?;
@@ -167,13 +170,16 @@ impl ResultWriter {
 
 impl Observer for ResultWriter {
     fn converged(&mut self, view: &IncrementView<'_>) -> Result<(), String> {
-        let row = history::row(
+        let mut row = history::row(
             view.model,
             view.time,
             view.displacement,
             view.reaction,
             view.contact,
         );
+        if let Some(t) = view.thermal {
+            row.extend([t.max_temperature, t.min_temperature]);
+        }
         self.history
             .append(&row)
             .map_err(|e| format!("cannot write history.csv in {}: {e}", self.dir.display()))?;
@@ -185,6 +191,7 @@ impl Observer for ResultWriter {
             reaction: view.reaction.to_vec(),
             contact: view.contact.to_vec(),
             points: view.points.to_vec(),
+            temperature: view.temperature.map(<[f64]>::to_vec),
         };
         let every = self.model.output.every.max(1);
         let last = view.step + 1 == self.model.steps.len()

@@ -41,6 +41,8 @@ pub struct VtuData<'a> {
     pub contact: &'a [Vec<NodeContact>],
     /// Recovered stress/strain (required when a stress/strain field is requested).
     pub nodal: Option<&'a NodalFields>,
+    /// Nodal temperatures (thermal scenes only; written whenever present).
+    pub temperature: Option<&'a [f64]>,
 }
 
 fn array<T: std::fmt::Display>(
@@ -117,6 +119,9 @@ pub fn vtu(d: &VtuData<'_>) -> String {
             "",
             d.displacement.iter().flat_map(|u| [u[0], u[1], 0.0]),
         );
+    }
+    if let Some(t) = d.temperature {
+        array(&mut s, "Float64", "temperature", 1, "", t.iter());
     }
     if let Some(nodal) = d.nodal {
         if has(Field::Stress) {
@@ -307,6 +312,7 @@ mod tests {
             reaction: &r,
             contact: &contacts,
             nodal: None,
+            temperature: None,
         });
         // node 3 is not a slave, node 1 is a slave out of reach, 0 open, 2 closed
         assert_eq!(values_of(&text, "contact_status"), ["0", "0", "1", "-1"]);

@@ -452,6 +452,7 @@ mod tests {
             }],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -17,7 +17,9 @@
 //! factorization, as it should be).
 
 use super::pattern::{Scatter, NO_SLOT};
-use crate::element::recovery::{blocks_of, gather, nonlinear_points, CellBlock, NonlinearResponse};
+use crate::element::recovery::{
+    blocks_of, gather, nonlinear_points_thermal, CellBlock, NonlinearResponse,
+};
 use crate::element::{quad4, tri3, ElementResponse, MaterialPoint, PointState, Section};
 use crate::material::History;
 use crate::mesh::{CellKind, Mesh};
@@ -45,6 +47,18 @@ pub struct Assembler {
     /// Offset of each cell's matrix in `linear_k` (`NO_MATRIX` for cells
     /// with a nonlinear law).
     linear_offset: Vec<usize>,
+    /// Thermal strain of each global cell (`crate::thermal::expansion`);
+    /// empty without thermal coupling.
+    thermal_strain: Vec<f64>,
+    /// Nodal force of a unit thermal strain of each small-strain linear
+    /// elastic cell (computed when thermal strains are first set).
+    thermal_unit: Vec<[f64; 8]>,
+    /// Law of each cell at its temperature (temperature-dependent
+    /// materials, `crate::thermal::properties`); empty otherwise.
+    cell_law: Vec<Option<crate::material::NonlinearLaw>>,
+    /// Norm of the element thermal forces `eps_th f_unit` (unassembled):
+    /// a force scale for the convergence test of thermally loaded bodies.
+    thermal_scale: f64,
 }
 
 /// Marks a cell without a cached stiffness matrix.
@@ -87,7 +101,53 @@ impl Assembler {
             dt: 0.0,
             linear_k,
             linear_offset,
+            thermal_strain: Vec::new(),
+            thermal_unit: Vec::new(),
+            cell_law: Vec::new(),
+            thermal_scale: 0.0,
         })
+    }
+
+    /// Sets the thermal state used by the next evaluations: the thermal
+    /// strain of each cell and, for temperature-dependent materials, the
+    /// law of each cell at its temperature (`None`: the body's law).
+    pub fn set_thermal_state(
+        &mut self,
+        mesh: &Mesh,
+        strain: Vec<f64>,
+        laws: Vec<Option<crate::material::NonlinearLaw>>,
+    ) -> Result<(), String> {
+        if self.thermal_unit.is_empty() && strain.iter().any(|e| *e != 0.0) {
+            let mut unit = vec![[0.0; 8]; mesh.cells.len()];
+            for block in &self.blocks {
+                for c in block.cells.clone() {
+                    unit[c] = crate::thermal::expansion::unit_thermal_force(
+                        mesh,
+                        c,
+                        &self.section,
+                        block.formulation,
+                        &block.law,
+                    )
+                    .map_err(|e| format!("cell {c}: {}", e.message))?;
+                }
+            }
+            self.thermal_unit = unit;
+        }
+        let mut scale2 = 0.0;
+        for (e, unit) in strain.iter().zip(&self.thermal_unit) {
+            scale2 += unit.iter().map(|f| (e * f) * (e * f)).sum::<f64>();
+        }
+        self.thermal_scale = scale2.sqrt();
+        self.thermal_strain = strain;
+        self.cell_law = laws;
+        Ok(())
+    }
+
+    /// Norm of the element thermal forces (0 without thermal strains): a
+    /// force scale for the relative residual (a freely expanding body has
+    /// no load and no reaction).
+    pub fn thermal_scale(&self) -> f64 {
+        self.thermal_scale
     }
 
     /// Starts an attempt to reach time `t` from the committed state.
@@ -174,10 +234,12 @@ impl Assembler {
             for c in block.cells.clone() {
                 let cell = &mesh.cells[c];
                 let slots = scatter.cell_slots(c);
+                let thermal_strain = self.thermal_strain.get(c).copied().unwrap_or(0.0);
                 if let Some(law) = &block.nonlinear {
+                    let law = self.cell_law.get(c).and_then(|l| l.as_ref()).unwrap_or(law);
                     let history: Vec<History> =
                         self.committed[c].iter().map(|p| p.history).collect();
-                    let (r, points) = nonlinear_points(
+                    let (r, points) = nonlinear_points_thermal(
                         mesh,
                         c,
                         u,
@@ -187,6 +249,7 @@ impl Assembler {
                         &history,
                         self.dt,
                         with_tangent,
+                        thermal_strain,
                     )
                     .map_err(|e| e.message)?;
                     self.trial[c].copy_from_slice(&points);
@@ -221,6 +284,12 @@ impl Assembler {
                 for (j, &uj) in ue[..nd].iter().enumerate() {
                     for (f, kij) in fe[..nd].iter_mut().zip(&k[j * nd..(j + 1) * nd]) {
                         *f += kij * uj;
+                    }
+                }
+                if thermal_strain != 0.0 {
+                    // sigma = D (B u - eps_th): f_int = K u - eps_th f_unit
+                    for (f, unit) in fe[..nd].iter_mut().zip(&self.thermal_unit[c]) {
+                        *f -= thermal_strain * unit;
                     }
                 }
                 for (i, f) in fe[..nd].iter().enumerate() {
@@ -340,6 +409,7 @@ mod tests {
             contacts: vec![],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -350,6 +350,7 @@ mod tests {
                 newton: NewtonSettings::default(),
             }],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -131,6 +131,7 @@ mod tests {
             contacts: vec![],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -78,6 +78,7 @@ mod tests {
             contacts: vec![],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -87,6 +87,11 @@ pub struct IncrementView<'a> {
     /// equivalent plastic strain); empty for small-strain linear elastic
     /// cells.
     pub points: &'a [Vec<crate::element::MaterialPoint>],
+    /// Nodal temperatures (thermal scenes only; 0 at nodes without
+    /// temperature).
+    pub temperature: Option<&'a [f64]>,
+    /// The heat step of the increment (thermal scenes only).
+    pub thermal: Option<&'a crate::thermal::solver::ThermalIncrement>,
 }
 
 /// Receives progress and converged states (writers, progress bars, tests).
@@ -143,6 +148,9 @@ pub struct IncrementRecord {
     /// (empty without friction).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub friction_work: Vec<f64>,
+    /// The heat step of the increment (thermal scenes only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub thermal: Option<crate::thermal::solver::ThermalIncrement>,
 }
 
 /// Wall time spent per phase, seconds.
@@ -201,6 +209,9 @@ pub struct RunSummary {
     pub saddle_factorizations: usize,
     /// Wall time per phase.
     pub timings: Timings,
+    /// Temperature unknowns (0: the scene has no thermal part).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub temperature_dofs: usize,
     /// Whether the whole analysis finished.
     pub completed: bool,
     /// Why the run stopped early, if it did.
@@ -212,6 +223,10 @@ pub struct RunSummary {
     /// Warnings of converged increments (e.g. slave nodes that moved
     /// farther than the contact search window in one increment).
     pub warnings: Vec<String>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }
 
 /// A run that stopped before the end: the summary up to the failure and a
@@ -281,6 +296,22 @@ pub fn run_from(
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
     let mut newton = newton;
+    let thermal = match crate::thermal::coupling::Coupling::new(model) {
+        Ok(t) => t,
+        Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
+    };
+    if let Some(th) = &thermal {
+        if from.is_some() {
+            let message = "cannot restart a thermo-mechanical run: restart points do not hold                            temperatures yet; run from the start"
+                .to_string();
+            return Err(fail(summary, message));
+        }
+        summary.temperature_dofs = th.solver.free_dofs();
+        let laws = th.cell_laws(model);
+        if let Err(e) = laws.and_then(|l| newton.set_thermal_state(th.thermal_strains(model), l)) {
+            return Err(fail(summary, format!("the model cannot be solved: {e}")));
+        }
+    }
     summary.free_dofs = newton.dofs.n_free();
     summary.matrix_nonzeros = newton.nnz();
     let mut increment = 0;
@@ -302,6 +333,7 @@ pub fn run_from(
         observer,
         summary,
         increment,
+        thermal,
     };
     let result = stepping::drive_from(&model.steps, &mut driver, from.map(|c| c.resume));
     let Driver {
@@ -372,6 +404,8 @@ struct Driver<'m, 'o> {
     observer: &'o mut dyn Observer,
     summary: RunSummary,
     increment: usize,
+    /// Heat conduction of a thermo-mechanical scene (staggered).
+    thermal: Option<crate::thermal::coupling::Coupling>,
 }
 
 impl Driver<'_, '_> {
@@ -417,8 +451,29 @@ impl IncrementSolver for Driver<'_, '_> {
             (&self.newton.u, t),
             self.increment + 1,
         );
+        let before = self
+            .thermal
+            .as_ref()
+            .map(|_| self.newton.material_points().to_vec());
         self.newton.commit();
         self.increment += 1;
+        if let (Some(th), Some(before)) = (self.thermal.as_mut(), before) {
+            // staggered: heat on the converged mechanical state, then the
+            // thermal strains of the next increment
+            th.heat_step(
+                self.model,
+                t,
+                dt,
+                &self.newton.contact,
+                &before,
+                self.newton.material_points(),
+            )
+            .map_err(|e| format!("heat conduction at t = {t}: {e}"))?;
+            th.solver.commit();
+            let laws = th.cell_laws(self.model)?;
+            self.newton
+                .set_thermal_state(th.thermal_strains(self.model), laws)?;
+        }
         let reaction = self.newton.reaction_field();
         let view = IncrementView {
             model: self.model,
@@ -430,6 +485,8 @@ impl IncrementSolver for Driver<'_, '_> {
             contact: &self.newton.contact,
             residuals: &converged.residuals,
             points: self.newton.material_points(),
+            temperature: self.thermal.as_ref().map(|t| &t.solver.temperature[..]),
+            thermal: self.thermal.as_ref().map(|t| &t.solver.last),
         };
         let start = Instant::now();
         let r = self.observer.converged(&view);
@@ -447,6 +504,7 @@ impl IncrementSolver for Driver<'_, '_> {
             contact_iterations: converged.contact_iterations,
             max_penetration: converged.max_penetration,
             friction_work,
+            thermal: self.thermal.as_ref().map(|t| t.solver.last.clone()),
         });
         for w in warnings {
             self.observer.warning(&w);

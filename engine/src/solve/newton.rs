@@ -343,6 +343,17 @@ impl<'m> Newton<'m> {
         self.assembler.points()
     }
 
+    /// Sets the thermal strains (and temperature-dependent laws) of the
+    /// cells for the next increments (`crate::thermal::coupling`).
+    pub fn set_thermal_state(
+        &mut self,
+        strain: Vec<f64>,
+        laws: Vec<Option<crate::material::NonlinearLaw>>,
+    ) -> Result<(), String> {
+        self.assembler
+            .set_thermal_state(&self.model.mesh, strain, laws)
+    }
+
     /// Closed contact nodes at the last evaluated state.
     pub fn active_contacts(&self) -> usize {
         self.contact
@@ -592,7 +603,10 @@ impl<'m> Newton<'m> {
             fint2 += self.f_int[g] * self.f_int[g];
         }
         let abs = r2.sqrt();
-        let denom = (load2.sqrt() + react2.sqrt()).max(fint2.sqrt()).max(TINY);
+        let denom = (load2.sqrt() + react2.sqrt())
+            .max(fint2.sqrt())
+            .max(self.assembler.thermal_scale())
+            .max(TINY);
         Ok(Eval {
             abs,
             rel: abs / denom,
@@ -830,7 +844,10 @@ impl<'m> Newton<'m> {
         let mut first_ref = 0.0;
         // friction makes the contact tangent non-symmetric: LU
         let friction = model.contacts.iter().any(|c| c.friction.is_some());
-        if self.assembler.symmetric() && !friction {
+        // a symmetric tangent derives from a potential: the line search's
+        // energy test applies (friction and non-symmetric laws: residual only)
+        let potential = self.assembler.symmetric() && !friction;
+        if potential {
             self.linear.prefer_cholesky();
         } else {
             self.linear.require_lu();
@@ -917,10 +934,10 @@ impl<'m> Newton<'m> {
             // phi'(0) = -du . K du < 0. The full step is kept when
             // phi'(1) < |phi'(0)| (the energy still decreases along the
             // step: a contact closing under a full step raises ||r|| without
-            // making the step bad).
+            // making the step bad). Only with a potential (symmetric tangent).
             let slope0: f64 = self.rhs.iter().zip(&self.rhs0).map(|(d, r)| -d * r).sum();
             let slope1: f64 = self.rhs.iter().zip(&self.r_free).map(|(d, r)| d * r).sum();
-            let energy_ok = slope0 < 0.0 && slope1.is_finite() && slope1 < -slope0;
+            let energy_ok = potential && slope0 < 0.0 && slope1.is_finite() && slope1 < -slope0;
             // line search when the full step increases the residual and fails the
             // energy test (and has not already reached the tolerance: no
             // backtracking on round-off noise)

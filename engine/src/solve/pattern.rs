@@ -290,6 +290,7 @@ mod tests {
             contacts: vec![],
             steps: vec![],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 

@@ -168,6 +168,7 @@ pub fn cylinder_on_block(
         contacts: vec![pair("block.top -> punch", top, method)],
         steps: vec![step(increments)],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 
@@ -233,6 +234,7 @@ pub fn hertz_disc(
         contacts: vec![pair("disc.arc -> floor", arc, method)],
         steps: vec![step(increments)],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

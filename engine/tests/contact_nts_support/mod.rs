@@ -200,6 +200,7 @@ pub fn patch(
             },
         }],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

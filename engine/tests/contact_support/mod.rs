@@ -72,6 +72,7 @@ pub fn surface_model(
         }],
         steps: vec![],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

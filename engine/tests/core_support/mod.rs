@@ -144,6 +144,7 @@ pub fn one_body(
         contacts: vec![],
         steps: vec![step(1)],
         output: OutputRequest::default(),
+        thermal: None,
     }
 }
 

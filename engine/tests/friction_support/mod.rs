@@ -262,6 +262,7 @@ impl Block {
                 },
             ],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 }

@@ -47,10 +47,12 @@ pub struct Material {
     pub plastic: Option<Plastic>,
     /// `viscoplastic { eta = .. }`.
     pub viscoplastic: Option<Viscoplastic>,
-    /// Reserved blocks present (`thermal`), by key.
+    /// Reserved blocks present, by key.
     pub reserved: Vec<Ident>,
     /// The whole item.
     pub span: Span,
+    /// `thermal { .. }`.
+    pub thermal: Option<super::thermal::MaterialThermal>,
 }
 
 /// `elastic { .. }`.
@@ -134,6 +136,8 @@ pub struct Body {
     pub kinematics: Option<Spanned<KinematicsKind>>,
     /// The whole item.
     pub span: Span,
+    /// `thermal { initial = .. }`.
+    pub thermal: Option<super::thermal::BodyThermal>,
 }
 
 /// `formulation` values.
@@ -341,6 +345,8 @@ pub struct Contact {
     pub reserved: Vec<Ident>,
     /// The whole item.
     pub span: Span,
+    /// `thermal { .. }`.
+    pub thermal: Option<super::thermal::ContactThermal>,
     /// `friction = coulomb { .. }`.
     pub friction: Option<Spanned<FrictionAst>>,
     /// Deformable master surface `body.set` (then `tool` holds its text

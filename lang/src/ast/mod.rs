@@ -3,10 +3,12 @@
 //!
 //! - [`syntax`]: the generic block/value syntax produced by the grammar;
 //! - [`values`]: points, set references, selections, time functions, gradings;
-//! - [`items`]: one node type per top-level construct.
+//! - [`items`]: one node type per top-level construct;
+//! - [`thermal`]: `thermal` blocks and thermal load items.
 
 pub mod items;
 pub mod syntax;
+pub mod thermal;
 pub mod values;
 
 pub use crate::span::{Ident, Span, Spanned};
@@ -38,6 +40,8 @@ pub struct Deck {
     pub outputs: Vec<Output>,
     /// Items that did not parse (already reported).
     pub broken: Vec<BrokenItem>,
+    /// `temperature`, `heat_flux` and `convection` items.
+    pub thermal_loads: Vec<thermal::ThermalLoad>,
 }
 
 impl Deck {

@@ -39,8 +39,11 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
     let mut f = Fields::new(
         &block,
         format!("body `{}`", name.name),
-        &["mesh", "material", "formulation", "kinematics"],
+        &["mesh", "material", "formulation", "kinematics", "thermal"],
     );
+    let thermal = f
+        .block("thermal", diags)
+        .map(|b| super::thermal::body_block(b, diags));
     let mesh = f.value("mesh", diags).and_then(|v| mesh(v, diags));
     let material = f.value("material", diags).and_then(|v| match &v.kind {
         ValueKind::Path(p) if p.len() == 1 => Some(p[0].clone()),
@@ -89,6 +92,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
         formulation,
         kinematics,
         span: item.span,
+        thermal,
     })
 }
 

@@ -54,8 +54,13 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
     let mut f = Fields::new(
         &block,
         "`contact` block",
-        &["method", "prof", "friction", "strategy", "search"],
+        &[
+            "method", "prof", "friction", "strategy", "search", "thermal",
+        ],
     );
+    let thermal = f
+        .block("thermal", diags)
+        .map(|b| super::thermal::contact_block(b, diags));
     let method = f.value("method", diags).and_then(|v| method(v, diags));
     let prof = f.number("prof", diags);
     let strategy = f.choice("strategy", "contact strategy", &STRATEGIES, diags);
@@ -79,6 +84,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         prof,
         reserved,
         span: item.span,
+        thermal,
         friction,
         master,
         strategy,

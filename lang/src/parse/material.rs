@@ -3,7 +3,8 @@
 //! `elastic`, optionally with
 //! `plastic { yield = ..  hardening = linear { H = .. } | swift { K = ..
 //! eps0 = ..  n = .. } | voce { sigma_inf = ..  delta = .. } }` and
-//! `viscoplastic { eta = .. }` (Perzyna); the reserved `thermal` block.
+//! `viscoplastic { eta = .. }` (Perzyna), and `thermal { .. }`
+//! ([`super::thermal`]).
 
 use super::fields::Fields;
 use super::values::Diags;
@@ -15,7 +16,7 @@ use crate::span::{Ident, Spanned};
 use crate::suggest::did_you_mean;
 
 /// Material blocks that parse but are not supported yet.
-pub const RESERVED: [&str; 1] = ["thermal"];
+pub const RESERVED: [&str; 0] = [];
 
 /// Hardening law names.
 pub const HARDENINGS: [&str; 3] = ["linear", "swift", "voce"];
@@ -222,6 +223,9 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         p.finish(diags);
         Viscoplastic { eta, span: b.span }
     });
+    let thermal = f
+        .block("thermal", diags)
+        .map(|b| super::thermal::material_block(b, diags));
     let reserved: Vec<_> = f
         .take_all(&RESERVED)
         .into_iter()
@@ -245,6 +249,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         viscoplastic,
         reserved,
         span: item.span,
+        thermal,
     })
 }
 
@@ -332,9 +337,12 @@ mod tests {
     }
 
     #[test]
-    fn reserved_thermal_block_parses_generically() {
-        let deck = parse_ok("material al { elastic { E = 70e3 nu = 0.33 }\n thermal { k = 1 } }");
-        assert_eq!(deck.materials[0].reserved[0].name, "thermal");
+    fn thermal_block_is_read() {
+        let deck = parse_ok(
+            "material al { elastic { E = 70e3 nu = 0.33 }\n thermal { conductivity = 1 } }",
+        );
+        assert!(deck.materials[0].thermal.is_some());
+        assert!(deck.materials[0].reserved.is_empty());
     }
 
     #[test]

@@ -23,6 +23,7 @@ pub mod output;
 pub mod set;
 pub mod step;
 pub mod syntax;
+pub mod thermal;
 pub mod tool;
 pub mod values;
 
@@ -184,6 +185,9 @@ fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
         Rule::force => load::parse(parts, LoadKind::Force, diags).map(|x| deck.loads.push(x)),
         Rule::step => step::parse(parts, diags).map(|x| deck.steps.push(x)),
         Rule::output => output::parse(parts, diags).map(|x| deck.outputs.push(x)),
+        _ if thermal::ITEMS.contains(&parts.keyword_text.as_str()) => {
+            thermal::item(parts, diags).map(|x| deck.thermal_loads.push(x))
+        }
         _ => {
             unknown_item(parts, deck, diags);
             Some(())

@@ -227,6 +227,7 @@ pub(crate) mod test_model {
                 newton: NewtonSettings::default(),
             }],
             output: OutputRequest::default(),
+            thermal: None,
         }
     }
 }

@@ -1,0 +1,218 @@
+//! Lowering the thermal constructs into `ctc_engine::thermal::ThermalScene`.
+//!
+//! A deck without any `thermal` block and without thermal load items
+//! lowers to `Model::thermal = None`: no temperature unknowns at all.
+//! Checks that need the whole scene are made here: a thermal body, load or
+//! contact needs a material with a `thermal` block; a thermal contact with a
+//! rigid tool needs the tool's temperature.
+
+use super::sets::resolve;
+use super::time_function;
+use crate::ast::thermal::{ConductanceAst, ThermalLoadKind};
+use crate::ast::Deck;
+use crate::diagnostics::Diagnostic;
+use crate::validate::Need;
+use ctc_engine::mesh::Mesh;
+use ctc_engine::model::{Body, ContactPair, Material};
+use ctc_engine::thermal::scene::{
+    Conductance, ContactThermal, Convection, CouplingScheme, HeatFlux, MaterialThermal,
+    PrescribedTemperature, ThermalScene,
+};
+use std::collections::BTreeMap;
+use std::ops::Range;
+
+/// Default Taylor-Quinney factor.
+pub const DEFAULT_TAYLOR_QUINNEY: f64 = 0.9;
+/// Default share of the frictional heat going to the slave side.
+pub const DEFAULT_FRICTION_SPLIT: f64 = 0.5;
+/// Default smallest gap in the gap conductance `k_gap / g`.
+pub const DEFAULT_GAP_MIN: f64 = 1e-9;
+
+/// Whether the deck uses heat at all.
+pub fn has_thermal(deck: &Deck) -> bool {
+    deck.materials.iter().any(|m| m.thermal.is_some())
+        || deck.bodies.iter().any(|b| b.thermal.is_some())
+        || deck.contacts.iter().any(|c| c.thermal.is_some())
+        || !deck.thermal_loads.is_empty()
+}
+
+/// The thermal scene of `deck` (`None` when it has no thermal construct).
+#[allow(clippy::too_many_arguments)]
+pub fn lower(
+    deck: &Deck,
+    mesh: &Mesh,
+    body_nodes: &BTreeMap<String, Range<usize>>,
+    bodies: &[Body],
+    materials: &[Material],
+    contacts: &[ContactPair],
+    window: (f64, f64),
+    diags: &mut Vec<Diagnostic>,
+) -> Option<ThermalScene> {
+    if !has_thermal(deck) {
+        return None;
+    }
+    let tf = |f: &crate::span::Spanned<crate::ast::TimeFn>| time_function(&f.value, window);
+    let materials_out: Vec<Option<MaterialThermal>> = materials
+        .iter()
+        .map(|m| {
+            let def = deck.materials.iter().find(|d| d.name.name == m.name)?;
+            let t = def.thermal.as_ref()?;
+            let v =
+                |x: &Option<crate::span::Spanned<f64>>, d: f64| x.as_ref().map_or(d, |x| x.value);
+            Some(MaterialThermal {
+                conductivity: v(&t.conductivity, 1.0),
+                capacity: v(&t.capacity, 0.0),
+                density: v(&t.density, 0.0),
+                expansion: v(&t.expansion, 0.0),
+                reference: v(&t.reference, 0.0),
+                taylor_quinney: v(&t.taylor_quinney, DEFAULT_TAYLOR_QUINNEY),
+                young_factor: t.young.as_ref().map(|s| s.value.clone()),
+                yield_factor: t.yield_factor.as_ref().map(|s| s.value.clone()),
+            })
+        })
+        .collect();
+    let thermal_body = |name: &str| {
+        bodies
+            .iter()
+            .find(|b| b.name == name)
+            .is_some_and(|b| materials_out[b.material].is_some())
+    };
+    let mut initial = vec![0.0; bodies.len()];
+    for b in &deck.bodies {
+        let Some(t) = &b.thermal else { continue };
+        let Some(i) = bodies.iter().position(|x| x.name == b.name.name) else {
+            continue;
+        };
+        if !thermal_body(&b.name.name) {
+            diags.push(
+                Diagnostic::error(
+                    format!(
+                        "body `{}` has a `thermal` block but its material has none",
+                        b.name.name
+                    ),
+                    t.span,
+                    "no thermal properties",
+                )
+                .with_help("add `thermal { conductivity = .. }` to the body's material"),
+            );
+        }
+        initial[i] = t.initial.as_ref().map_or(0.0, |x| x.value);
+    }
+    let mut scene = ThermalScene {
+        materials: materials_out.clone(),
+        initial,
+        temperatures: Vec::new(),
+        fluxes: Vec::new(),
+        convection: Vec::new(),
+        contacts: vec![None; contacts.len()],
+        scheme: CouplingScheme::Staggered,
+    };
+    for l in &deck.thermal_loads {
+        let word = match l.kind {
+            ThermalLoadKind::Temperature => "temperature",
+            ThermalLoadKind::HeatFlux => "heat_flux",
+            ThermalLoadKind::Convection => "convection",
+        };
+        if body_nodes.contains_key(&l.target.body.name) && !thermal_body(&l.target.body.name) {
+            diags.push(
+                Diagnostic::error(
+                    format!(
+                        "`{word}` on body `{}`, whose material has no `thermal` block",
+                        l.target.body.name
+                    ),
+                    l.target.span,
+                    "no temperature here",
+                )
+                .with_help("add `thermal { conductivity = .. }` to the body's material"),
+            );
+            continue;
+        }
+        let need = match l.kind {
+            ThermalLoadKind::Temperature => Need::Nodes,
+            _ => Need::Edges,
+        };
+        let r = match resolve(mesh, body_nodes, &l.target, need, word) {
+            Ok(r) => r,
+            Err(d) => {
+                diags.push(d);
+                continue;
+            }
+        };
+        let Some(value) = l.value.as_ref().map(tf) else {
+            continue;
+        };
+        let label = format!("{word} {}", l.target);
+        match l.kind {
+            ThermalLoadKind::Temperature => scene.temperatures.push(PrescribedTemperature {
+                label,
+                nodes: r.nodes,
+                value,
+            }),
+            ThermalLoadKind::HeatFlux => scene.fluxes.push(HeatFlux {
+                label,
+                edges: r.edges.unwrap_or_default(),
+                value,
+            }),
+            ThermalLoadKind::Convection => scene.convection.push(Convection {
+                label,
+                edges: r.edges.unwrap_or_default(),
+                film: l.film.as_ref().map_or(0.0, |h| h.value),
+                ambient: value,
+            }),
+        }
+    }
+    for c in &deck.contacts {
+        let Some(t) = &c.thermal else { continue };
+        let name = format!("{} -> {}", c.target, c.tool.name);
+        let Some(p) = contacts.iter().position(|x| x.name == name) else {
+            continue;
+        };
+        let pair = &contacts[p];
+        if !thermal_body(&bodies[pair.body].name) {
+            diags.push(
+                Diagnostic::error(
+                    format!(
+                        "contact `{name}` has a `thermal` block but body `{}` has no thermal \
+                         material",
+                        bodies[pair.body].name
+                    ),
+                    t.span,
+                    "no temperature on the slave side",
+                )
+                .with_help("add `thermal { conductivity = .. }` to the body's material"),
+            );
+            continue;
+        }
+        let tool_temperature = t.tool_temperature.as_ref().map(tf);
+        if pair.master.tool().is_some() && tool_temperature.is_none() {
+            diags.push(
+                Diagnostic::error(
+                    format!("thermal contact `{name}` with a rigid tool needs its temperature"),
+                    t.span,
+                    "missing `tool_temperature`",
+                )
+                .with_help("add e.g. `tool_temperature = 20` (a number or a time function)"),
+            );
+            continue;
+        }
+        let Some(law) = &t.conductance else { continue };
+        scene.contacts[p] = Some(ContactThermal {
+            conductance: match &law.value {
+                ConductanceAst::Power { h0, h1, n } => Conductance::Power {
+                    h0: *h0,
+                    h1: *h1,
+                    n: *n,
+                },
+                ConductanceAst::Table(points) => Conductance::Table(points.clone()),
+            },
+            gap_conductivity: t.gap_conductivity.as_ref().map_or(0.0, |x| x.value),
+            gap_min: t.gap_min.as_ref().map_or(DEFAULT_GAP_MIN, |x| x.value),
+            friction_split: t
+                .friction_split
+                .as_ref()
+                .map_or(DEFAULT_FRICTION_SPLIT, |x| x.value),
+            tool_temperature,
+        });
+    }
+    Some(scene)
+}

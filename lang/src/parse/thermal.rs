@@ -1,0 +1,403 @@
+//! Thermal constructs:
+//! - `material m { .. thermal { conductivity = ..  capacity = ..  density = ..
+//!   expansion = ..  reference = ..  taylor_quinney = ..  young = table(..)
+//!   yield = table(..) } }`;
+//! - `body b { .. thermal { initial = .. } }`;
+//! - `contact a.s -> t { .. thermal { conductance = h | power { h0 = .. h1 = ..
+//!   n = .. } | table((p, h), ..)  gap_conductivity = ..  gap_min = ..
+//!   friction_split = ..  tool_temperature = .. } }`;
+//! - items `temperature a.s { value = .. }`, `heat_flux a.s { q = .. }`,
+//!   `convection a.s { h = ..  ambient = .. }`.
+//!
+//! Ranges are checked here, where the spans are.
+
+use super::fields::Fields;
+use super::values::{self, Diags};
+use super::ItemParts;
+use crate::ast::syntax::{Block, Value, ValueKind};
+use crate::ast::thermal::{
+    BodyThermal, ConductanceAst, ContactThermal, MaterialThermal, ThermalLoad, ThermalLoadKind,
+};
+use crate::ast::TimeFn;
+use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
+
+/// Keywords of the thermal load items.
+pub const ITEMS: [&str; 3] = ["temperature", "heat_flux", "convection"];
+
+fn check(v: &Option<Spanned<f64>>, ok: impl Fn(f64) -> bool, what: &str, diags: &mut Diags) {
+    if let Some(x) = v {
+        if !(x.value.is_finite() && ok(x.value)) {
+            diags.push(Diagnostic::error(
+                format!("{what} (got {})", x.value),
+                x.span,
+                "out of range",
+            ));
+        }
+    }
+}
+
+/// A table of (x, y) points: `table((x, y), ..)` with increasing `x`, or a
+/// plain number (a constant).
+fn table(v: &Value, what: &str, diags: &mut Diags) -> Option<Spanned<Vec<(f64, f64)>>> {
+    let f = values::time_fn(v, diags)?;
+    let points = match &f.value {
+        TimeFn::Number(y) | TimeFn::Constant(y) => vec![(0.0, *y)],
+        TimeFn::Table(p) => p.iter().map(|s| s.value).collect(),
+        TimeFn::Ramp { .. } => {
+            diags.push(Diagnostic::error(
+                format!("{what} must be a number or `table((x, y), ..)`"),
+                v.span,
+                "a ramp is a function of time",
+            ));
+            return None;
+        }
+    };
+    if points.windows(2).any(|w| w[1].0 <= w[0].0) {
+        diags.push(Diagnostic::error(
+            format!("the points of {what} must have strictly increasing abscissas"),
+            v.span,
+            "not increasing",
+        ));
+        return None;
+    }
+    Some(Spanned::new(points, v.span))
+}
+
+/// The `thermal` block of a material.
+pub fn material_block(b: &Block, diags: &mut Diags) -> MaterialThermal {
+    let mut f = Fields::new(
+        b,
+        "material `thermal` block",
+        &[
+            "conductivity",
+            "capacity",
+            "density",
+            "expansion",
+            "reference",
+            "taylor_quinney",
+            "young",
+            "yield",
+        ],
+    );
+    let conductivity = f.number("conductivity", diags);
+    let capacity = f.number("capacity", diags);
+    let density = f.number("density", diags);
+    let expansion = f.number("expansion", diags);
+    let reference = f.number("reference", diags);
+    let taylor_quinney = f.number("taylor_quinney", diags);
+    let young = f
+        .value("young", diags)
+        .and_then(|v| table(v, "the `young` factor", diags));
+    let yield_factor = f
+        .value("yield", diags)
+        .and_then(|v| table(v, "the `yield` factor", diags));
+    f.require(
+        &conductivity,
+        "conductivity",
+        b.span,
+        "add the thermal conductivity, e.g. `conductivity = 50`",
+        diags,
+    );
+    f.finish(diags);
+    check(
+        &conductivity,
+        |x| x > 0.0,
+        "the conductivity must be > 0",
+        diags,
+    );
+    check(&capacity, |x| x >= 0.0, "the capacity must be >= 0", diags);
+    check(&density, |x| x >= 0.0, "the density must be >= 0", diags);
+    check(
+        &expansion,
+        |x| x >= 0.0,
+        "the expansion coefficient must be >= 0",
+        diags,
+    );
+    check(
+        &taylor_quinney,
+        |x| (0.0..=1.0).contains(&x),
+        "the Taylor-Quinney factor must be in [0, 1]",
+        diags,
+    );
+    for t in [&young, &yield_factor].into_iter().flatten() {
+        if t.value.iter().any(|p| !(p.1 > 0.0 && p.1.is_finite())) {
+            diags.push(Diagnostic::error(
+                "temperature factors must be > 0",
+                t.span,
+                "out of range",
+            ));
+        }
+    }
+    MaterialThermal {
+        conductivity,
+        capacity,
+        density,
+        expansion,
+        reference,
+        taylor_quinney,
+        young,
+        yield_factor,
+        span: b.span,
+    }
+}
+
+/// The `thermal` block of a body.
+pub fn body_block(b: &Block, diags: &mut Diags) -> BodyThermal {
+    let mut f = Fields::new(b, "body `thermal` block", &["initial"]);
+    let initial = f.number("initial", diags);
+    f.finish(diags);
+    BodyThermal {
+        initial,
+        span: b.span,
+    }
+}
+
+fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<ConductanceAst>> {
+    let law = match &v.kind {
+        ValueKind::Ctor { name, block } if name.name == "power" => {
+            let mut f = Fields::new(block, "`power` conductance", &["h0", "h1", "n"]);
+            let h0 = f.number("h0", diags);
+            let h1 = f.number("h1", diags);
+            let n = f.number("n", diags);
+            f.finish(diags);
+            check(&h0, |x| x >= 0.0, "h0 must be >= 0", diags);
+            check(&h1, |x| x >= 0.0, "h1 must be >= 0", diags);
+            check(&n, |x| x > 0.0, "the exponent n must be > 0", diags);
+            ConductanceAst::Power {
+                h0: h0.map_or(0.0, |x| x.value),
+                h1: h1.map_or(0.0, |x| x.value),
+                n: n.map_or(1.0, |x| x.value),
+            }
+        }
+        ValueKind::Number(_) => {
+            let h = values::number(v, diags)?;
+            check(
+                &Some(h.clone()),
+                |x| x >= 0.0,
+                "the conductance must be >= 0",
+                diags,
+            );
+            ConductanceAst::Power {
+                h0: h.value,
+                h1: 0.0,
+                n: 1.0,
+            }
+        }
+        _ => {
+            let t = table(v, "the conductance table", diags);
+            let Some(t) = t else {
+                diags.push(
+                    Diagnostic::error(
+                        "expected a conductance",
+                        v.span,
+                        "expected `h`, `power { h0 = ..  h1 = ..  n = .. }` or \
+                         `table((p, h), ..)`",
+                    )
+                    .with_help("e.g. `conductance = power { h0 = 1e3  h1 = 10  n = 1 }`"),
+                );
+                return None;
+            };
+            if t.value.iter().any(|p| p.1 < 0.0) {
+                diags.push(Diagnostic::error(
+                    "conductances must be >= 0",
+                    t.span,
+                    "out of range",
+                ));
+            }
+            ConductanceAst::Table(t.value)
+        }
+    };
+    Some(Spanned::new(law, v.span))
+}
+
+/// The `thermal` block of a contact.
+pub fn contact_block(b: &Block, diags: &mut Diags) -> ContactThermal {
+    let mut f = Fields::new(
+        b,
+        "contact `thermal` block",
+        &[
+            "conductance",
+            "gap_conductivity",
+            "gap_min",
+            "friction_split",
+            "tool_temperature",
+        ],
+    );
+    let conductance = f
+        .value("conductance", diags)
+        .and_then(|v| conductance(v, diags));
+    let gap_conductivity = f.number("gap_conductivity", diags);
+    let gap_min = f.number("gap_min", diags);
+    let friction_split = f.number("friction_split", diags);
+    let tool_temperature = f.time_fn("tool_temperature", diags);
+    f.require(
+        &conductance,
+        "conductance",
+        b.span,
+        "add e.g. `conductance = power { h0 = 1e3  h1 = 10  n = 1 }`",
+        diags,
+    );
+    f.finish(diags);
+    check(
+        &gap_conductivity,
+        |x| x >= 0.0,
+        "the gap conductivity must be >= 0",
+        diags,
+    );
+    check(&gap_min, |x| x > 0.0, "gap_min must be > 0", diags);
+    check(
+        &friction_split,
+        |x| (0.0..=1.0).contains(&x),
+        "friction_split must be in [0, 1]",
+        diags,
+    );
+    ContactThermal {
+        conductance,
+        gap_conductivity,
+        gap_min,
+        friction_split,
+        tool_temperature,
+        span: b.span,
+    }
+}
+
+/// A `temperature`, `heat_flux` or `convection` item.
+pub fn item(parts: ItemParts, diags: &mut Diags) -> Option<ThermalLoad> {
+    let kind = match parts.keyword_text.as_str() {
+        "temperature" => ThermalLoadKind::Temperature,
+        "heat_flux" => ThermalLoadKind::HeatFlux,
+        _ => ThermalLoadKind::Convection,
+    };
+    let word = parts.keyword_text.clone();
+    let Some(target) = parts.target.as_ref() else {
+        diags.push(Diagnostic::error(
+            format!("`{word}` needs a set, e.g. `{word} bar.left {{ .. }}`"),
+            parts.keyword,
+            "no set",
+        ));
+        return None;
+    };
+    let target = values::set_ref(target, diags)?;
+    let Some(block) = parts.block.as_ref() else {
+        diags.push(Diagnostic::error(
+            format!("`{word}` needs a block"),
+            parts.span,
+            "no block",
+        ));
+        return None;
+    };
+    let (value, film) = match kind {
+        ThermalLoadKind::Temperature => {
+            let mut f = Fields::new(block, "`temperature` item", &["value"]);
+            let v = f.time_fn("value", diags);
+            f.require(&v, "value", block.span, "add `value = 100`", diags);
+            f.finish(diags);
+            (v, None)
+        }
+        ThermalLoadKind::HeatFlux => {
+            let mut f = Fields::new(block, "`heat_flux` item", &["q"]);
+            let v = f.time_fn("q", diags);
+            f.require(
+                &v,
+                "q",
+                block.span,
+                "add the flux into the body `q = 1e3`",
+                diags,
+            );
+            f.finish(diags);
+            (v, None)
+        }
+        ThermalLoadKind::Convection => {
+            let mut f = Fields::new(block, "`convection` item", &["h", "ambient"]);
+            let h = f.number("h", diags);
+            let v = f.time_fn("ambient", diags);
+            f.require(
+                &h,
+                "h",
+                block.span,
+                "add the film coefficient `h = 10`",
+                diags,
+            );
+            f.require(
+                &v,
+                "ambient",
+                block.span,
+                "add the ambient temperature `ambient = 20`",
+                diags,
+            );
+            f.finish(diags);
+            check(&h, |x| x >= 0.0, "the film coefficient must be >= 0", diags);
+            (v, h)
+        }
+    };
+    Some(ThermalLoad {
+        kind,
+        target,
+        value,
+        film,
+        span: parts.span,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ast::thermal::{ConductanceAst, ThermalLoadKind};
+    use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn thermal_blocks_and_items_parse() {
+        let deck = parse_ok(
+            "material st { elastic { E = 1 nu = 0.3 }\n thermal { conductivity = 50 capacity = 460 density = 7.8e-9 expansion = 1.2e-5 young = table((20, 1), (600, 0.5)) } }\n\
+             contact b.bottom -> floor { method = penalty { stiffness = 1 }\n thermal { conductance = power { h0 = 1 h1 = 2 n = 0.5 } tool_temperature = 20 } }\n\
+             temperature b.left { value = ramp(0, 100) }\nheat_flux b.right { q = 5 }\nconvection b.top { h = 10 ambient = 20 }",
+        );
+        let t = deck.materials[0].thermal.as_ref().unwrap();
+        assert_eq!(t.conductivity.as_ref().unwrap().value, 50.0);
+        assert_eq!(
+            t.young.as_ref().unwrap().value,
+            vec![(20.0, 1.0), (600.0, 0.5)]
+        );
+        let c = deck.contacts[0].thermal.as_ref().unwrap();
+        assert_eq!(
+            c.conductance.as_ref().unwrap().value,
+            ConductanceAst::Power {
+                h0: 1.0,
+                h1: 2.0,
+                n: 0.5
+            }
+        );
+        let kinds: Vec<_> = deck.thermal_loads.iter().map(|l| l.kind).collect();
+        assert_eq!(
+            kinds,
+            [
+                ThermalLoadKind::Temperature,
+                ThermalLoadKind::HeatFlux,
+                ThermalLoadKind::Convection
+            ]
+        );
+    }
+
+    #[test]
+    fn thermal_mistakes_are_reported() {
+        assert_eq!(
+            parse_messages(
+                "material st { elastic { E = 1 nu = 0.3 } thermal { conductivity = -1 capacty = 1 } }"
+            ),
+            [
+                "unknown key `capacty` in the material `thermal` block",
+                "the conductivity must be > 0 (got -1)"
+            ]
+        );
+        assert_eq!(
+            parse_messages("convection b.top { ambient = 20 }"),
+            ["missing `h` in the `convection` item"]
+        );
+        assert_eq!(
+            parse_messages(
+                "contact b.s -> t { method = penalty { stiffness = 1 } thermal { conductance = 1 friction_split = 2 } }"
+            ),
+            ["friction_split must be in [0, 1] (got 2)"]
+        );
+    }
+}

@@ -1,0 +1,194 @@
+//! SVG line plots of a run's `history.csv` (one column against another):
+//! the force against the stroke and the temperature rise of the
+//! thermo-mechanical examples (`examples/shock_damper.ctc`,
+//! `examples/rivet_forming.ctc`).
+
+use crate::plot::colour;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// Columns of `history.csv` in `dir`: header names and rows of numbers.
+pub fn read_history(dir: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
+    let path = dir.join("history.csv");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut lines = text.lines();
+    let header = split_csv(lines.next().unwrap_or_default());
+    let rows = lines
+        .filter(|l| !l.trim().is_empty())
+        .map(|l| {
+            split_csv(l)
+                .iter()
+                .map(|v| v.parse::<f64>().map_err(|e| format!("{v}: {e}")))
+                .collect::<Result<Vec<f64>, String>>()
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok((header, rows))
+}
+
+/// Splits a CSV line (RFC 4180 quoting).
+fn split_csv(line: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                cur.push('"');
+                chars.next();
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(std::mem::take(&mut cur)),
+            _ => cur.push(c),
+        }
+    }
+    out.push(cur);
+    out
+}
+
+/// Writes `file` (SVG) in `dir`: column `y` (scaled by `y_scale`) against
+/// column `x` (scaled by `x_scale`) of the run in `dir`, starting from the
+/// point `(0, y0)` (none when `y0` is NaN).
+#[allow(clippy::too_many_arguments)]
+pub fn history_plot(
+    dir: &Path,
+    file: &str,
+    title: &str,
+    (x, x_scale, x_desc): (&str, f64, &str),
+    (y, y_scale, y_desc): (&str, f64, &str),
+    y0: f64,
+) -> Result<(), String> {
+    let (header, rows) = read_history(dir)?;
+    let col = |name: &str| {
+        header
+            .iter()
+            .position(|h| h == name)
+            .ok_or_else(|| format!("history.csv has no column `{name}` ({header:?})"))
+    };
+    let (ix, iy) = (col(x)?, col(y)?);
+    let mut points = if y0.is_nan() { vec![] } else { vec![(0.0, y0)] };
+    points.extend(rows.iter().map(|r| (r[ix] * x_scale, r[iy] * y_scale)));
+    let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(px, py) in &points {
+        x_lo = x_lo.min(px);
+        x_hi = x_hi.max(px);
+        y_lo = y_lo.min(py);
+        y_hi = y_hi.max(py);
+    }
+    let pad = |lo: f64, hi: f64| {
+        let d = (hi - lo).abs().max(1e-12) * 0.05;
+        (lo - d, hi + d)
+    };
+    let (x_lo, x_hi) = pad(x_lo, x_hi);
+    let (y_lo, y_hi) = pad(y_lo, y_hi);
+    let path = dir.join(file);
+    let root = SVGBackend::new(&path, (800, 560)).into_drawing_area();
+    let e = |e: DrawingAreaErrorKind<std::io::Error>| format!("cannot draw `{title}`: {e:?}");
+    root.fill(&WHITE).map_err(e)?;
+    let mut chart = ChartBuilder::on(&root)
+        .caption(title, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(70)
+        .build_cartesian_2d(x_lo..x_hi, y_lo..y_hi)
+        .map_err(e)?;
+    chart
+        .configure_mesh()
+        .x_desc(x_desc)
+        .y_desc(y_desc)
+        .draw()
+        .map_err(e)?;
+    let c = colour(0);
+    chart
+        .draw_series(LineSeries::new(points.clone(), c.stroke_width(2)))
+        .map_err(e)?;
+    chart
+        .draw_series(points.iter().map(move |&p| Circle::new(p, 3, c.filled())))
+        .map_err(e)?;
+    root.present().map_err(e)?;
+    Ok(())
+}
+
+/// Plots of a thermo-mechanical run in `dir` (called by `ctc run` for
+/// thermal scenes): `temperature.svg` (largest temperature against time)
+/// and, when the history has a `reaction(..)` and a `displacement(..)`
+/// column, `force_stroke.svg` (minus the first reaction's y component
+/// against minus the first displacement's y component: a push downwards).
+/// Returns the files written.
+pub fn thermal_run_plots(dir: &Path) -> Result<Vec<String>, String> {
+    let (header, _) = read_history(dir)?;
+    let mut files = Vec::new();
+    if header.iter().any(|h| h == "temperature_max") {
+        history_plot(
+            dir,
+            "temperature.svg",
+            "largest temperature",
+            ("time", 1.0, "time"),
+            ("temperature_max", 1.0, "max temperature"),
+            f64::NAN,
+        )?;
+        files.push("temperature.svg".to_string());
+    }
+    let find = |prefix: &str| {
+        header
+            .iter()
+            .find(|h| h.starts_with(prefix) && h.ends_with("_y"))
+            .cloned()
+    };
+    if let (Some(f), Some(u)) = (
+        find("reaction(").or_else(|| find("contact_force(")),
+        find("displacement("),
+    ) {
+        history_plot(
+            dir,
+            "force_stroke.svg",
+            "force against stroke",
+            (&u, -1.0, "stroke (-u_y)"),
+            (&f, -1.0, "force (-F_y)"),
+            0.0,
+        )?;
+        files.push("force_stroke.svg".to_string());
+    }
+    Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn csv_fields_with_quotes_and_arrows_split_right() {
+        assert_eq!(split_csv("time,\"a,b\",x -> y"), ["time", "a,b", "x -> y"]);
+    }
+
+    #[test]
+    fn a_history_column_plot_is_written() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("history.csv"),
+            "time,f_y,u_y,temperature_max\n0.5,-10,-1,21\n1,-30,-2,25\n",
+        )
+        .unwrap();
+        history_plot(
+            dir.path(),
+            "force.svg",
+            "force against stroke",
+            ("u_y", -1.0, "stroke"),
+            ("f_y", -1.0, "force"),
+            0.0,
+        )
+        .unwrap();
+        let svg = std::fs::read_to_string(dir.path().join("force.svg")).unwrap();
+        assert!(svg.contains("<polyline") || svg.contains("<path"), "{svg}");
+        assert!(history_plot(
+            dir.path(),
+            "x.svg",
+            "x",
+            ("nope", 1.0, "x"),
+            ("f_y", 1.0, "y"),
+            0.0
+        )
+        .is_err());
+    }
+}
