@@ -593,22 +593,32 @@ mod tests {
                 (r, f)
             };
             let x = [0.25, 0.96];
-            let (r0, f0) = eval(x);
+            let f0 = eval(x).1;
             assert_eq!(f0.status, expected, "mu = {mu}: {f0:?}");
-            let h = 1e-7;
-            for j in 0..2 {
-                let (mut xp, mut xm) = (x, x);
-                xp[j] += h;
-                xm[j] -= h;
-                let (fp, fm) = (eval(xp).0.force, eval(xm).0.force);
-                for i in 0..2 {
-                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
-                    assert!(
-                        (fd - r0.stiffness[i][j]).abs() < 1e-5 * (1.0 + fd.abs()),
-                        "mu {mu} K[{i}][{j}]: fd {fd} vs {}",
-                        r0.stiffness[i][j]
-                    );
-                }
+            assert_tangent_matches_fd(|x| eval(x).0, x, &format!("mu {mu}"));
+        }
+    }
+
+    /// `K = -d force / d x` of `eval` at `x` against central differences.
+    fn assert_tangent_matches_fd(
+        eval: impl Fn([f64; 2]) -> penalty::Response,
+        x: [f64; 2],
+        label: &str,
+    ) {
+        let k = eval(x).stiffness;
+        let h = 1e-7;
+        for j in 0..2 {
+            let (mut xp, mut xm) = (x, x);
+            xp[j] += h;
+            xm[j] -= h;
+            let (fp, fm) = (eval(xp).force, eval(xm).force);
+            for i in 0..2 {
+                let fd = -(fp[i] - fm[i]) / (2.0 * h);
+                assert!(
+                    (fd - k[i][j]).abs() < 1e-5 * (1.0 + fd.abs()),
+                    "{label} K[{i}][{j}]: fd {fd} vs {}",
+                    k[i][j]
+                );
             }
         }
     }
@@ -644,23 +654,8 @@ mod tests {
             (r, f)
         };
         let x = [0.08, -0.05];
-        let (r0, f0) = eval(x);
-        assert_eq!(f0.status, FrictionStatus::Stick);
-        let h = 1e-7;
-        for j in 0..2 {
-            let (mut xp, mut xm) = (x, x);
-            xp[j] += h;
-            xm[j] -= h;
-            let (fp, fm) = (eval(xp).0.force, eval(xm).0.force);
-            for i in 0..2 {
-                let fd = -(fp[i] - fm[i]) / (2.0 * h);
-                assert!(
-                    (fd - r0.stiffness[i][j]).abs() < 1e-5 * (1.0 + fd.abs()),
-                    "K[{i}][{j}]: fd {fd} vs {}",
-                    r0.stiffness[i][j]
-                );
-            }
-        }
+        assert_eq!(eval(x).1.status, FrictionStatus::Stick);
+        assert_tangent_matches_fd(|x| eval(x).0, x, "first impact");
     }
 
     #[test]
