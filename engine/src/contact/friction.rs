@@ -599,6 +599,21 @@ mod tests {
         }
     }
 
+    /// A plane tool through the origin with outward normal `normal`, at
+    /// rest, and a nodal penalty of 100.
+    fn plane_with_nodal_penalty(normal: [f64; 2]) -> (ToolShape, Placement, ContactMethod) {
+        let shape = ToolShape::new(&ToolGeometry::Plane {
+            point: [0.0, 0.0],
+            normal,
+        })
+        .unwrap();
+        let method = ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            stiffness: 100.0,
+        };
+        (shape, Placement::identity(), method)
+    }
+
     /// `K = -d force / d x` of `eval` at `x` against central differences.
     fn assert_tangent_matches_fd(
         eval: impl Fn([f64; 2]) -> penalty::Response,
@@ -627,16 +642,7 @@ mod tests {
     /// node (constant-velocity intersection): the tangent includes it.
     #[test]
     fn first_impact_tangent_matches_finite_differences() {
-        let shape = ToolShape::new(&ToolGeometry::Plane {
-            point: [0.0, 0.0],
-            normal: [0.3, 1.0],
-        })
-        .unwrap();
-        let placement = Placement::identity();
-        let method = ContactMethod::Penalty {
-            kind: PenaltyKind::Nodal,
-            stiffness: 100.0,
-        };
+        let (shape, placement, method) = plane_with_nodal_penalty([0.3, 1.0]);
         let eval = |x: [f64; 2]| {
             let p = shape.project(0, x).unwrap();
             let mut r = penalty::respond(&method, 1.0, p.gap, p.normal, p.normal_rate);
@@ -660,16 +666,7 @@ mod tests {
 
     #[test]
     fn first_impact_sets_the_stick_point_where_the_node_met_the_tool() {
-        let shape = ToolShape::new(&ToolGeometry::Plane {
-            point: [0.0, 0.0],
-            normal: [0.0, 1.0],
-        })
-        .unwrap();
-        let placement = Placement::identity();
-        let method = ContactMethod::Penalty {
-            kind: PenaltyKind::Nodal,
-            stiffness: 100.0,
-        };
+        let (shape, placement, method) = plane_with_nodal_penalty([0.0, 1.0]);
         // node from (0, 0.1) to (0.4, -0.1): meets the plane at x = 0.2
         let x = [0.4, -0.1];
         let p = shape.project(0, x).unwrap();
