@@ -55,6 +55,7 @@ fn run_case8(deck: &str, ramp: &str, stroke: f64) -> (Interface, f64) {
         .join("verification/cases")
         .join(deck);
     let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains(ramp), "{deck} has no `{ramp}` to replace");
     let text = text.replace(ramp, &format!("ramp(0, {})", -stroke));
     let model = compile_text(deck, &text);
     let mut probe = Interface::default();
