@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs what the `petsc` feature of ctc-petsc needs on Debian: the system
+# PETSc (real scalars, with Open MPI, MUMPS, hypre, ParMETIS) and libclang for
+# bindgen. Idempotent: a second run only checks that everything is there.
+#   bash petsc/install.sh
+set -euo pipefail
+
+packages=(libpetsc-real-dev libclang-dev clang pkg-config openmpi-bin libopenmpi-dev libmetis-dev)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if ((${#missing[@]})); then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  echo "installing: ${missing[*]}"
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -qq --no-install-recommends "${packages[@]}" >/dev/null
+fi
+
+# The feature finds PETSc through pkg-config (PETSc.pc) or PETSC_DIR.
+if ! pkg-config --exists PETSc && [ -z "${PETSC_DIR:-}" ]; then
+  echo "PETSc installed but not found by pkg-config; set PETSC_DIR" >&2
+  exit 1
+fi
+command -v mpirun >/dev/null
+echo "PETSc $(pkg-config --modversion PETSc 2>/dev/null || echo "at $PETSC_DIR") ready"

@@ -1,0 +1,113 @@
+//! The process-wide MPI + PETSc environment: one per process, alive for the
+//! whole run. MPI is started by rsmpi, then PETSc inside it (so PETSc does
+//! not finalize MPI); PETSc's error handler is replaced by the returning one,
+//! so a failing call gives a typed [`PetscError`] instead of a printed
+//! traceback.
+
+use crate::comm::Comm;
+use crate::error::PetscError;
+use crate::ffi;
+use std::ffi::{CStr, CString};
+
+/// Checks a `PetscErrorCode`: 0 is success, anything else becomes
+/// [`PetscError::Call`] with PETSc's text.
+pub fn check(call: &'static str, code: ffi::PetscErrorCode) -> Result<(), PetscError> {
+    if code == 0 {
+        return Ok(());
+    }
+    let mut text: *const std::os::raw::c_char = std::ptr::null();
+    // SAFETY: PetscErrorMessage only writes a pointer to a static string.
+    let message = unsafe {
+        if ffi::PetscErrorMessage(code, &mut text, std::ptr::null_mut()) == 0 && !text.is_null() {
+            CStr::from_ptr(text).to_string_lossy().into_owned()
+        } else {
+            String::from("unknown PETSc error")
+        }
+    };
+    Err(PetscError::Call {
+        call,
+        code,
+        message,
+    })
+}
+
+/// A started MPI + PETSc environment; dropping it finalizes PETSc, then MPI.
+pub struct Environment {
+    universe: mpi::environment::Universe,
+}
+
+impl Environment {
+    /// Starts MPI and PETSc and inserts `options` (PETSc command-line
+    /// syntax, e.g. `-ksp_type cg -pc_type gamg`) into the options database.
+    /// Fails if MPI was already started in this process.
+    pub fn initialize(options: &str) -> Result<Environment, PetscError> {
+        let universe = mpi::initialize()
+            .ok_or_else(|| PetscError::Init("MPI is already initialized".into()))?;
+        // SAFETY: MPI is initialized; PETSc is initialized once per process
+        // (the Universe above can only be had once).
+        unsafe {
+            check(
+                "PetscInitializeNoArguments",
+                ffi::PetscInitializeNoArguments(),
+            )?;
+            check(
+                "PetscPushErrorHandler",
+                ffi::PetscPushErrorHandler(
+                    Some(ffi::PetscReturnErrorHandler),
+                    std::ptr::null_mut(),
+                ),
+            )?;
+        }
+        let env = Environment { universe };
+        env.insert_options(options)?;
+        Ok(env)
+    }
+
+    /// Inserts options into PETSc's database (later ones win).
+    pub fn insert_options(&self, options: &str) -> Result<(), PetscError> {
+        if options.trim().is_empty() {
+            return Ok(());
+        }
+        let c = CString::new(options)
+            .map_err(|_| PetscError::Init("PETSc options contain a NUL byte".into()))?;
+        // SAFETY: PETSc is initialized; the string outlives the call.
+        unsafe {
+            check(
+                "PetscOptionsInsertString",
+                ffi::PetscOptionsInsertString(std::ptr::null_mut(), c.as_ptr()),
+            )
+        }
+    }
+
+    /// All the ranks of the run.
+    pub fn world(&self) -> Comm<'_> {
+        Comm::new(self.universe.world())
+    }
+
+    /// This process alone (a sequential PETSc object in a parallel run).
+    pub fn local(&self) -> Comm<'_> {
+        Comm::new(mpi::topology::SimpleCommunicator::self_comm())
+    }
+
+    /// Whether the PETSc build has an optional package (`hypre`, `mumps`, ...).
+    pub fn has_package(&self, name: &str) -> bool {
+        let Ok(c) = CString::new(name) else {
+            return false;
+        };
+        let mut has = ffi::PetscBool_PETSC_FALSE;
+        // SAFETY: PETSc is initialized; `has` is a valid out pointer.
+        let code = unsafe { ffi::PetscHasExternalPackage(c.as_ptr(), &mut has) };
+        code == 0 && has == ffi::PetscBool_PETSC_TRUE
+    }
+}
+
+impl Drop for Environment {
+    fn drop(&mut self) {
+        // SAFETY: every PETSc object is owned by a wrapper that borrows the
+        // environment's communicators, so they are destroyed before this.
+        unsafe {
+            ffi::PetscFinalize();
+        }
+        // then `universe` drops: MPI_Finalize
+    }
+}
