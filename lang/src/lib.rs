@@ -17,6 +17,7 @@ pub mod diagnostics;
 pub mod explain;
 pub mod explain_surface;
 pub mod lower;
+pub mod override_path;
 pub mod parse;
 pub mod source;
 pub mod span;

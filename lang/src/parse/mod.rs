@@ -82,7 +82,7 @@ pub struct ItemParts {
 }
 
 impl ItemParts {
-    fn of(pair: Pair<'_, Rule>) -> ItemParts {
+    pub(crate) fn of(pair: Pair<'_, Rule>) -> ItemParts {
         let mut parts = ItemParts {
             span: Span::of(pair.as_span()),
             ..ItemParts::default()
