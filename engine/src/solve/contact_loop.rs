@@ -288,43 +288,23 @@ mod tests {
 
     /// Three slave nodes on y = 0 against a floor, with `method`.
     fn model(method: ContactMethod) -> Model {
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]],
-                ..Mesh::default()
-            },
-            bodies: vec![],
-            materials: vec![],
-            constraints: vec![],
-            loads: vec![],
-            tools: vec![RigidTool {
-                name: "floor".into(),
-                geometry: ToolGeometry::Plane {
+        crate::testkit::ModelBuilder::plane_strain()
+            .elastic("m", 1.0, 0.3)
+            .body(
+                "s",
+                Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], vec![]),
+                "m",
+            )
+            .tool(
+                "floor",
+                ToolGeometry::Plane {
                     point: [0.0, 0.0],
                     normal: [0.0, 1.0],
                 },
-                motion: ToolMotion::fixed(),
-            }],
-            contacts: vec![ContactPair {
-                name: "s -> floor".into(),
-                body: 0,
-                edges: vec![[0, 1], [1, 2]],
-                nodes: vec![0, 1, 2],
-                master: crate::model::ContactMaster::Tool(0),
-                strategy: Default::default(),
-                search: Default::default(),
-                method,
-                prof: None,
-                friction: None,
-            }],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+                ToolMotion::fixed(),
+            )
+            .contact_tool("s -> floor", "s", vec![[0, 1], [1, 2]], "floor", method)
+            .build()
     }
 
     #[test]
