@@ -27,12 +27,14 @@ pub fn check(ctx: &mut Ctx<'_>) {
                     c.tool.span,
                     "no tool with this name",
                 )
-                .with_help(did_you_mean(&c.tool.name, &tool_names).unwrap_or_else(|| {
-                    format!(
+                .with_help(did_you_mean(&c.tool.name, &tool_names).unwrap_or_else(
+                    || {
+                        format!(
                         "define it, e.g. `tool {} = plane {{ point = (0, 0)  normal = (0, 1) }}`",
                         c.tool.name
                     )
-                })),
+                    },
+                )),
             );
         }
         let key = format!("{} -> {}", c.target, c.tool.name);
