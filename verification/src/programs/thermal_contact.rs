@@ -25,10 +25,15 @@ const EXACT: f64 = 1e-8;
 pub fn cases() -> Vec<VerifyCase> {
     // exact flux and temperatures; nodal pressures uniform to 1e-9
     let checks = || -> Vec<Check> {
-        let mut c: Vec<Check> = ["flux (low p)", "T_i (low p)", "flux (high p)", "T_i (high p)"]
-            .iter()
-            .map(|n| Check::new(Quantity::Named(n), &[EXACT]))
-            .collect();
+        let mut c: Vec<Check> = [
+            "flux (low p)",
+            "T_i (low p)",
+            "flux (high p)",
+            "T_i (high p)",
+        ]
+        .iter()
+        .map(|n| Check::new(Quantity::Named(n), &[EXACT]))
+        .collect();
         c.push(Check::new(Quantity::Named("p uniform"), &[1e-9]));
         c
     };
