@@ -1,6 +1,7 @@
 //! `ctc`: check, run, verify and benchmark `.ctc` contact decks.
 
 mod progress;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::path::{Path, PathBuf};
@@ -69,6 +70,39 @@ enum Command {
         #[arg(long, requires = "stress")]
         reduced: bool,
     },
+    /// Run a deck for every combination of varied values (penalty
+    /// sensitivity, mesh, material...), locally or as a Slurm job array,
+    /// and gather the key figures into one table and plot.
+    Sweep {
+        /// The `.ctc` deck (not needed with --gather).
+        #[arg(required_unless_present = "gather")]
+        deck: Option<PathBuf>,
+        /// `PATH = v1, v2, ..`: a deck value and the values it takes
+        /// (`contact.method.stiffness = 1e4, 1e5`, `contact[1]...`,
+        /// `material[steel].elastic.E = ..`, a `let` name). Several
+        /// --vary: the cartesian product.
+        #[arg(long = "vary", value_name = "PATH = VALUES")]
+        vary: Vec<String>,
+        /// Variants run at the same time (local sweep; default: the cores).
+        #[arg(long)]
+        workers: Option<usize>,
+        /// Write a Slurm job-array script (one variant per array task)
+        /// instead of running.
+        #[arg(long, conflicts_with = "gather")]
+        slurm: bool,
+        /// Only gather the results of a sweep directory into the table and plot.
+        #[arg(long, value_name = "DIR")]
+        gather: Option<PathBuf>,
+        /// Sweep directory (default: out/<deck name>_sweep).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Run only variant N in-process (what each worker and Slurm task does).
+        #[arg(long, hide = true)]
+        task: Option<usize>,
+        /// Print nothing but errors.
+        #[arg(short, long)]
+        quiet: bool,
+    },
     /// Run the performance benchmark (rigid cylinder on an elastic block).
     Bench {
         /// Problem size as a fraction of the full ~80k-dof mesh (0.1 = ~8k dofs).
@@ -119,6 +153,25 @@ fn main() -> ExitCode {
                 verify(filter, tags, report, json, max_level)
             }
         }
+        Command::Sweep {
+            deck,
+            vary,
+            workers,
+            slurm,
+            gather,
+            output,
+            task,
+            quiet,
+        } => sweep::command(sweep::Args {
+            deck,
+            vary,
+            workers,
+            slurm,
+            gather,
+            output,
+            task,
+            quiet,
+        }),
         Command::Bench {
             size,
             increments,
@@ -144,11 +197,20 @@ fn main() -> ExitCode {
     }
 }
 
+/// Reads a deck.
+fn read(deck: &Path) -> Result<ctc_lang::Source, String> {
+    ctc_lang::Source::read(deck)
+        .map_err(|e| format!("error: cannot read deck `{}`: {e}", deck.display()))
+}
+
 /// Reads and compiles a deck, rendering every diagnostic on failure.
 fn compile(deck: &Path) -> Result<ctc_engine::model::Model, String> {
-    let source = ctc_lang::Source::read(deck)
-        .map_err(|e| format!("error: cannot read deck `{}`: {e}", deck.display()))?;
-    ctc_lang::compile(&source).map_err(|diags| diags.render(&source))
+    compile_source(&read(deck)?)
+}
+
+/// Compiles a deck's text, rendering every diagnostic on failure.
+fn compile_source(source: &ctc_lang::Source) -> Result<ctc_engine::model::Model, String> {
+    ctc_lang::compile(source).map_err(|diags| diags.render(source))
 }
 
 fn check(deck: &Path, explain: bool) -> Result<(), String> {
@@ -161,6 +223,15 @@ fn check(deck: &Path, explain: bool) -> Result<(), String> {
     Ok(())
 }
 
+/// `out/<deck stem><suffix>`, the default output directory.
+fn default_output(deck: &Path, suffix: &str) -> PathBuf {
+    let stem = deck
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "run".into());
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
+}
+
 fn run(
     deck: &Path,
     output: Option<&Path>,
@@ -169,16 +240,19 @@ fn run(
     restart: bool,
 ) -> Result<(), String> {
     let model = compile(deck)?;
-    let dir = match output {
-        Some(d) => d.to_path_buf(),
-        None => {
-            let stem = deck
-                .file_stem()
-                .map(|s| s.to_string_lossy().into_owned())
-                .unwrap_or_else(|| "run".into());
-            PathBuf::from("out").join(stem)
-        }
-    };
+    let dir = output.map_or_else(|| default_output(deck, ""), Path::to_path_buf);
+    run_model(&model, &dir, quiet, verbose, restart)
+}
+
+/// Runs a compiled deck into `dir` (the body of `ctc run`, also each
+/// variant of `ctc sweep`).
+fn run_model(
+    model: &ctc_engine::model::Model,
+    dir: &Path,
+    quiet: bool,
+    verbose: bool,
+    restart: bool,
+) -> Result<(), String> {
     let (mut writer, from) = if restart {
         let (w, cp) = ctc_engine::output::ResultWriter::resume(&dir, &model)
             .map_err(|e| format!("error: {e}"))?;
