@@ -254,7 +254,7 @@ fn run_model(
     restart: bool,
 ) -> Result<(), String> {
     let (mut writer, from) = if restart {
-        let (w, cp) = ctc_engine::output::ResultWriter::resume(&dir, &model)
+        let (w, cp) = ctc_engine::output::ResultWriter::resume(dir, model)
             .map_err(|e| format!("error: {e}"))?;
         if !quiet {
             println!(
@@ -266,7 +266,7 @@ fn run_model(
         }
         (w, Some(cp))
     } else {
-        let w = ctc_engine::output::ResultWriter::create(&dir, &model).map_err(|e| {
+        let w = ctc_engine::output::ResultWriter::create(dir, model).map_err(|e| {
             format!(
                 "error: cannot create output directory `{}`: {e}",
                 dir.display()
@@ -274,8 +274,8 @@ fn run_model(
         })?;
         (w, None)
     };
-    let mut observer = progress::Progress::new(&model, &mut writer, quiet, verbose);
-    let outcome = ctc_engine::solve::run_from(&model, &mut observer, from.as_ref());
+    let mut observer = progress::Progress::new(model, &mut writer, quiet, verbose);
+    let outcome = ctc_engine::solve::run_from(model, &mut observer, from.as_ref());
     observer.finish();
     let summary = match &outcome {
         Ok(s) => s.clone(),
@@ -286,7 +286,7 @@ fn run_model(
         .map_err(|e| format!("error: cannot write summary.json: {e}"))?;
     if model.thermal.is_some() {
         // thermo-mechanical runs: force-stroke and temperature plots
-        match ctc_verification::history_plot::thermal_run_plots(&dir) {
+        match ctc_verification::history_plot::thermal_run_plots(dir) {
             Ok(files) if !quiet && !files.is_empty() => {
                 println!("plots: {} in {}", files.join(", "), dir.display())
             }

@@ -66,7 +66,7 @@ fn last_history(path: &Path) -> Vec<(String, f64)> {
     let Some(header) = lines.next() else {
         return Vec::new();
     };
-    let Some(last) = lines.last() else {
+    let Some(last) = lines.next_back() else {
         return Vec::new();
     };
     header
@@ -295,7 +295,7 @@ mod tests {
         );
         assert_eq!(r.max_penetration, Some(4e-3));
         assert_eq!(r.history[1], ("contact_force(b.s -> t)_y".to_string(), 2.5));
-        let t = csv(&[r.clone()]);
+        let t = csv(std::slice::from_ref(&r));
         let mut lines = t.lines();
         assert_eq!(
             lines.next().unwrap(),

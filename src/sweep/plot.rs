@@ -18,10 +18,13 @@ const COLOURS: [RGBColor; 6] = [
     RGBColor(140, 86, 75),
 ];
 
+/// How a panel reads its figure from a row.
+type Figure = Box<dyn Fn(&Row) -> Option<f64>>;
+
 /// A figure plotted against the varied value.
 struct Panel {
     title: String,
-    value: Box<dyn Fn(&Row) -> Option<f64>>,
+    value: Figure,
 }
 
 fn panels(rows: &[Row]) -> Vec<Panel> {
