@@ -16,7 +16,7 @@
 //! scatter (the slow part of a linear contact iteration is then the
 //! factorization, as it should be).
 
-use super::pattern::{Scatter, NO_SLOT};
+use super::linalg::{Scatter, NO_SLOT};
 use crate::element::kernel::{kernel_of, NonlinearInput};
 use crate::element::recovery::{blocks_of, cell_input, virgin, CellBlock};
 use crate::element::{ElementMatrix, MaterialPoint, Section};

@@ -80,6 +80,18 @@ impl DofMap {
         }
     }
 
+    /// Displacement components per node (the dimension; 2 today). New
+    /// code takes it from here rather than writing the literal.
+    pub fn components(&self) -> usize {
+        2
+    }
+
+    /// Global dof of component `component` of node `node`.
+    #[inline]
+    pub fn dof(&self, node: usize, component: usize) -> usize {
+        node * self.components() + component
+    }
+
     /// Number of free unknowns.
     pub fn n_free(&self) -> usize {
         self.free.len()

@@ -13,8 +13,8 @@
 //! summed by [`Scatter::add_fp_product`]), used to apply the increment of
 //! prescribed displacements in the Newton predictor.
 
-use super::dofs::{Dof, DofMap};
 use crate::mesh::Mesh;
+use crate::solve::dofs::{Dof, DofMap};
 
 /// Marks an element entry that has no slot (a prescribed row).
 pub const NO_SLOT: u32 = u32::MAX;
