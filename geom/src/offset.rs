@@ -26,6 +26,12 @@ const FOCAL: f64 = 1e-12;
 
 /// `dn/dx` at a surface foot with tangents `su`, `sv`, second derivatives
 /// `suu`, `suv`, `svv`, free-side unit normal `n` and signed gap `g`.
+///
+/// Computed in the orthonormal tangent frame `e1 = S_u / |S_u|`, `e2` from
+/// Gram–Schmidt on `S_v` (`[S_u S_v] = [e1 e2] T`, `T` upper triangular):
+/// `B_o = T^-T B T^-1` and `dn/dx = -E B_o (I - g B_o)^-1 E^T`, the same map
+/// as `-J A^-1 B (A - g B)^-1 J^T` but without inverting the metric, which
+/// is ill-conditioned near a pole.
 pub fn surface(
     su: Vec3,
     sv: Vec3,
@@ -35,21 +41,28 @@ pub fn surface(
     n: Vec3,
     g: f64,
 ) -> Option<Mat3> {
-    let a = Matrix2::new(su.dot(&su), su.dot(&sv), sv.dot(&su), sv.dot(&sv));
+    let lu = su.norm();
+    if !(lu > 0.0) {
+        return None;
+    }
+    let e1 = su / lu;
+    let t12 = sv.dot(&e1);
+    let perp = sv - e1 * t12;
+    let t22 = perp.norm();
+    if !(t22 > 1e-12 * lu.max(sv.norm())) {
+        return None;
+    }
+    let e2 = perp / t22;
     let b = Matrix2::new(n.dot(&suu), n.dot(&suv), n.dot(&suv), n.dot(&svv));
-    let det_a = a.determinant();
-    if !(det_a > FOCAL * a.norm_squared()) {
-        return None;
-    }
-    let m = a - b * g;
+    let t_inv = Matrix2::new(1.0 / lu, -t12 / (lu * t22), 0.0, 1.0 / t22);
+    let bo = t_inv.transpose() * b * t_inv;
+    let m = Matrix2::identity() - bo * g;
     let det_m = m.determinant();
-    if det_m.abs() <= FOCAL * det_a.abs() || !det_m.is_finite() {
+    if det_m.abs() <= FOCAL || !det_m.is_finite() {
         return None;
     }
-    let a_inv = a.try_inverse()?;
-    let m_inv = m.try_inverse()?;
-    let j = Matrix3x2::from_columns(&[su, sv]);
-    let w = -(j * a_inv * b * m_inv * j.transpose());
+    let e = Matrix3x2::from_columns(&[e1, e2]);
+    let w = -(e * bo * m.try_inverse()? * e.transpose());
     Some((w + w.transpose()) * 0.5)
 }
 

@@ -139,6 +139,7 @@ impl NurbsSurface {
         let mut f = r.norm_squared();
         let mut mu = 0.0;
         let mut iterations = 0;
+        let mut flips = 0;
         let mut state = self.state(&d, &r, uv, &dom, scale);
         while iterations < opts.max_iterations {
             if state.done {
@@ -188,6 +189,27 @@ impl NurbsSurface {
                 mu = if mu == 0.0 { 1e-6 } else { mu * 8.0 };
             }
             state = self.state(&d, &r, uv, &dom, scale);
+            if state.pole.is_some() && flips < 2 {
+                // Clamped at a pole with the minimum beyond it: cross the
+                // pole (half a turn in the closed direction).
+                let k = state.pole.unwrap_or(0);
+                let o = 1 - k;
+                let [a, b] = dom[o];
+                let trial = {
+                    let mut t = uv;
+                    t[o] = self.fold(o, uv[o] + 0.5 * (b - a)).0;
+                    t
+                };
+                let dt = self.eval(trial);
+                let rt = dt.p - x;
+                flips += 1;
+                uv = trial;
+                d = dt;
+                r = rt;
+                f = rt.norm_squared();
+                state = self.state(&d, &r, uv, &dom, scale);
+                continue;
+            }
             if !improved {
                 break;
             }
@@ -219,6 +241,7 @@ impl NurbsSurface {
         let tmax = d.su.norm().max(d.sv.norm());
         let mut free = [true; 2];
         let mut on_bound = false;
+        let mut pole = None;
         let mut residual: f64 = 0.0;
         for k in 0..2 {
             let t = tangents[k];
@@ -237,6 +260,10 @@ impl NurbsSurface {
                 if at_lo || at_hi {
                     free[k] = false;
                     on_bound = true;
+                    let e = usize::from(at_hi);
+                    if self.degenerate[k][e] && self.closed[1 - k] {
+                        pole = Some(k);
+                    }
                     continue;
                 }
             }
@@ -250,8 +277,9 @@ impl NurbsSurface {
         State {
             free,
             on_bound,
+            pole,
             residual,
-            done: residual <= 1e-15,
+            done: residual <= 1e-15 && pole.is_none(),
         }
     }
 }
@@ -262,6 +290,9 @@ struct State {
     free: [bool; 2],
     /// Whether a bound is active.
     on_bound: bool,
+    /// The direction clamped at a pole (a degenerate edge whose other
+    /// direction is closed) with the minimum beyond it.
+    pole: Option<usize>,
     /// Residual (sine).
     residual: f64,
     /// Round-off reached: stop.

@@ -130,9 +130,15 @@ impl NurbsSurface {
             t
         };
         let (gu, gv) = (grid(0), grid(1));
+        let dom = s.domain();
         let mut samples = Vec::with_capacity(gu.len() * gv.len());
-        for &v in &gv {
-            for &u in &gu {
+        for (jv, &v) in gv.iter().enumerate() {
+            for (iu, &u) in gu.iter().enumerate() {
+                // A degenerate edge (pole) is one point: one sample.
+                let on = |k: usize, t: f64| (0..2).any(|e| s.degenerate[k][e] && t == dom[k][e]);
+                if (on(0, u) && jv > 0) || (on(1, v) && iu > 0) {
+                    continue;
+                }
                 let uv = Vec2::new(u, v);
                 samples.push((uv, s.point(uv)));
             }
