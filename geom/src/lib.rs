@@ -38,6 +38,7 @@
 
 pub mod aabb;
 pub mod analytic;
+pub mod bench;
 pub mod brep;
 pub mod iges;
 pub mod nurbs;

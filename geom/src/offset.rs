@@ -42,14 +42,14 @@ pub fn surface(
     g: f64,
 ) -> Option<Mat3> {
     let lu = su.norm();
-    if !(lu > 0.0) {
+    if lu.is_nan() || lu <= 0.0 {
         return None;
     }
     let e1 = su / lu;
     let t12 = sv.dot(&e1);
     let perp = sv - e1 * t12;
     let t22 = perp.norm();
-    if !(t22 > 1e-12 * lu.max(sv.norm())) {
+    if t22.is_nan() || t22 <= 1e-12 * lu.max(sv.norm()) {
         return None;
     }
     let e2 = perp / t22;

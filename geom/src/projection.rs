@@ -58,8 +58,9 @@ pub struct Projection {
     /// Newton iterations spent (0 for closed forms).
     pub iterations: u32,
     /// Residual of the foot-point equations at the returned foot: the sine
-    /// of the angle between `x - point` and the tangent plane (0 for closed
-    /// forms, and when `x` lies on the surface).
+    /// of the angle between `x - point` and the tangent plane, or the
+    /// tangential offset over `1e-4` of the tool size for points nearer than
+    /// that (0 for closed forms).
     pub residual: f64,
 }
 

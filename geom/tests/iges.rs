@@ -91,7 +91,7 @@ proptest! {
     /// sphere to the projection tolerance (residual 1e-10: gap and foot to
     /// 1e-10 of the radius, curvature to 1e-8 relative).
     #[test]
-    fn sphere_from_iges_agrees_with_the_analytical_sphere(a in 0.0f64..3.14159, b in -3.14159f64..3.14159, d in 0.3f64..2.0, out in any::<bool>()) {
+    fn sphere_from_iges_agrees_with_the_analytical_sphere(a in 0.0f64..std::f64::consts::PI, b in -std::f64::consts::PI..std::f64::consts::PI, d in 0.3f64..2.0, out in any::<bool>()) {
         let (c, r) = (Vec3::new(1.0, -2.0, 0.5), 3.0);
         let file = iges::read(&sphere_file(c, r)).unwrap();
         let face = file.faces().unwrap().remove(0).face;

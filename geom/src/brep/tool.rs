@@ -9,7 +9,7 @@ use crate::trim::Containment;
 use crate::{offset, Aabb, FootKind, Mat3, Projection, ProjectionError, Vec2, Vec3};
 
 /// Tolerances and settings of a BREP tool.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct BrepOptions {
     /// Points closer than this (3D) are the same point: shared edges,
     /// vertices, degenerate (zero-length) edges. `None`: `1e-7` of the
@@ -20,16 +20,6 @@ pub struct BrepOptions {
     pub seam_tolerance: Option<f64>,
     /// Surface projection settings.
     pub projection: ProjectOptions,
-}
-
-impl Default for BrepOptions {
-    fn default() -> Self {
-        BrepOptions {
-            merge_tolerance: None,
-            seam_tolerance: None,
-            projection: ProjectOptions::default(),
-        }
-    }
 }
 
 /// A vertex: where edges of the tool end.

@@ -607,7 +607,7 @@ impl IgesFile {
                 let f = to2(Vec3::new(c.real("X3")?, c.real("Y3")?, zt));
                 let r = (s - cen).norm();
                 let r2 = (f - cen).norm();
-                if !(r > 0.0) || (r - r2).abs() > 1e-6 * r.max(r2) {
+                if r.is_nan() || r <= 0.0 || (r - r2).abs() > 1e-6 * r.max(r2) {
                     return Err(geo(format!("the arc's start and end are at different distances from its centre ({r} and {r2})")));
                 }
                 let a0 = (s.y - cen.y).atan2(s.x - cen.x);

@@ -43,6 +43,7 @@ pub fn find_span(n: usize, p: usize, u: f64, knots: &[f64]) -> usize {
 
 /// Basis functions of degree `p` on `span` at `u` and their derivatives up
 /// to order `nd <= 2`.
+#[allow(clippy::needless_range_loop)] // indices follow the algorithm's notation
 pub fn ders_basis(span: usize, u: f64, p: usize, nd: usize, knots: &[f64]) -> Ders {
     debug_assert!(p <= MAX_DEGREE && nd <= 2);
     let mut ndu = [[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1];

@@ -80,6 +80,7 @@ impl<const D: usize> NurbsCurve<D> {
 
     /// Point and derivatives at `t` (outside the range: the end pieces
     /// extended).
+    #[allow(clippy::needless_range_loop)] // indices follow the algorithm's notation
     pub fn eval(&self, t: f64) -> CurveDerivs<D> {
         let p = self.degree;
         let n = self.points.len();

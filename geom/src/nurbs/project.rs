@@ -18,9 +18,13 @@
 //! 4. **singular points**: a direction whose tangent vanishes (a degenerate
 //!    edge: the pole of a revolved surface) is frozen for the step and left
 //!    out of the residual, where `F_a = 0` holds identically;
-//! 5. **convergence** is measured by the residual `max_a |F_a| / (|S_a| |S - x|)`,
-//!    the sine of the angle between `x - S` and the tangent plane (or
-//!    `|S - x|` at round-off of the surface size: `x` on the surface); the
+//! 5. **convergence** is measured by the residual
+//!    `max_a |F_a| / (|S_a| max(|S - x|, 1e-4 L))` (`L` the size of the
+//!    control net): the sine of the angle between `x - S` and the tangent
+//!    plane, or, for a point within `1e-4 L` of the surface, the tangential
+//!    offset of the foot over `1e-4 L` (a sine there only measures
+//!    round-off); a step is accepted when `f` decreases, or stays within
+//!    its round-off while the residual decreases; the
 //!    iteration continues to round-off and the foot is accepted when the
 //!    residual is below [`ProjectOptions::tolerance`]; the closest accepted
 //!    foot over the seeds wins. No seed accepted:
@@ -33,8 +37,8 @@ use nalgebra::Matrix2;
 /// Settings of the projection.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ProjectOptions {
-    /// Accept a foot when the residual (sine of the angle between `x - S`
-    /// and the tangent plane) is below this.
+    /// Accept a foot when the residual (see the module doc: a sine, or a
+    /// relative tangential offset near the surface) is below this.
     pub tolerance: f64,
     /// Newton iterations per seed.
     pub max_iterations: u32,
@@ -167,8 +171,10 @@ impl NurbsSurface {
                 let ft = rt.norm_squared();
                 // Decrease of f, or (where f is flat to round-off, near a
                 // centre of curvature) of the residual at equal f.
+                // Round-off of f = |S - x|^2 (S is known to ~1e-16 of the size).
+                let noise = 4e-16 * scale * (f.sqrt() + 1e-16 * scale);
                 let accept = ft < f
-                    || (ft <= f * (1.0 + 1e-12)
+                    || (ft <= f + noise
                         && self.state(&dt, &rt, trial, &dom, scale).residual < state.residual);
                 if accept {
                     let moved = (dt.p - d.p).norm();
@@ -267,9 +273,7 @@ impl NurbsSurface {
                     continue;
                 }
             }
-            if dist > 0.0 {
-                residual = residual.max(gk.abs() / (tn * dist));
-            }
+            residual = residual.max(gk.abs() / (tn * dist.max(1e-4 * scale)));
         }
         if dist <= 1e-14 * scale {
             residual = 0.0;

@@ -49,6 +49,7 @@ pub struct NurbsSurface {
 
 impl NurbsSurface {
     /// Validates and builds a surface; errors say what is wrong.
+    #[allow(clippy::needless_range_loop)] // indices follow the algorithm's notation
     pub fn new(
         degree: [usize; 2],
         counts: [usize; 2],
@@ -178,6 +179,7 @@ impl NurbsSurface {
     }
 
     /// Point and derivatives up to order `nd` (the others are zero).
+    #[allow(clippy::needless_range_loop)] // indices follow the algorithm's notation
     pub fn eval_order(&self, uv: Vec2, nd: usize) -> SurfaceDerivs {
         let [p, q] = self.degree;
         let [nu, nv] = self.counts;

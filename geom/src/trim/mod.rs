@@ -27,7 +27,7 @@ impl Loop {
         for i in 0..n {
             let (e, s) = (curves[i].end(), curves[(i + 1) % n].start());
             let d = (e - s).norm();
-            if !(d <= gap) {
+            if d.is_nan() || d > gap {
                 return Err(format!(
                     "trimming loop: curve {} ends at ({}, {}) but curve {} starts at ({}, {}) \
                      ({d:.3e} apart, more than the tolerance {gap:.1e})",
