@@ -6,7 +6,8 @@
 //! - [`contact`]: rigid analytical tools, search, penalty enforcement;
 //! - [`solve`]: assembly, sparse linear solvers, the Newton loop, stepping;
 //! - [`output`]: VTU/PVD, CSV histories, JSON run summary;
-//! - [`thermal`]: heat conduction, thermal contact, thermo-mechanical coupling.
+//! - [`thermal`]: heat conduction, thermal contact, thermo-mechanical coupling;
+//! - [`testkit`]: the model builder and recording observer shared by tests.
 
 pub mod contact;
 pub mod element;
@@ -15,4 +16,5 @@ pub mod mesh;
 pub mod model;
 pub mod output;
 pub mod solve;
+pub mod testkit;
 pub mod thermal;

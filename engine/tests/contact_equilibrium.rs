@@ -4,14 +4,14 @@
 //! energy with respect to the tool's rigid motion (central differences on
 //! `ToolMotion`), so wrong normals, signs or motion transforms fail it.
 
-mod contact_support;
+mod support;
 
-use contact_support::{area, surface_model};
 use ctc_engine::contact::{
     evaluate_pair, pair_penalty_energy, pair_total_force, pair_total_moment, ContactStatus,
     PairState,
 };
 use ctc_engine::model::{AnalysisKind, Model, TimeFunction, ToolGeometry, ToolMotion, ToolSide};
+use support::contact::{area, surface_model};
 
 fn strip(n: usize) -> (Vec<[f64; 2]>, Vec<[usize; 2]>) {
     let nodes = (0..n)

@@ -2,12 +2,12 @@
 //! public `evaluate_pair`, against hand-computed values; moving and rotating
 //! tools; nodes on segment ends, at kinks and outside every entity.
 
-mod contact_support;
+mod support;
 
-use contact_support::{probe, probe_model};
 use ctc_engine::contact::ContactStatus;
 use ctc_engine::model::{TimeFunction, ToolGeometry, ToolMotion, ToolSide};
 use std::f64::consts::{FRAC_1_SQRT_2, FRAC_PI_2, PI};
+use support::contact::{probe, probe_model};
 
 fn close(a: f64, b: f64, tol: f64) -> bool {
     (a - b).abs() <= tol

@@ -7,12 +7,9 @@
 
 use ctc_engine::contact::{pair_total_force, ContactStatus, NodeContact};
 use ctc_engine::mesh::{Cell, Mesh};
-use ctc_engine::model::{
-    Analysis, AnalysisKind, Body, ContactMethod, ContactPair, Dirichlet, Formulation, Material,
-    MaterialLaw, Model, NewtonSettings, OutputRequest, PenaltyKind, RigidTool, Step, TimeFunction,
-    ToolGeometry, ToolMotion, ToolSide,
-};
+use ctc_engine::model::{ContactMethod, Model, PenaltyKind, ToolGeometry, ToolMotion, ToolSide};
 use ctc_engine::solve::{run, IncrementView, IterationInfo, Observer};
+use ctc_engine::testkit::{ramp, ModelBuilder};
 use std::f64::consts::PI;
 
 const E: f64 = 1000.0;
@@ -43,11 +40,7 @@ fn block(nx: usize, ny: usize) -> Mesh {
             ));
         }
     }
-    Mesh {
-        nodes,
-        cells,
-        ..Mesh::default()
-    }
+    Mesh::new(nodes, cells)
 }
 
 fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
@@ -58,91 +51,41 @@ fn model(nx: usize, ny: usize, depth: f64, increments: usize) -> Model {
         .into_iter()
         .filter(|e| mesh.nodes[e[0]][1] == 0.0 && mesh.nodes[e[1]][1] == 0.0)
         .collect();
-    let mut slave: Vec<usize> = top.iter().flat_map(|e| [e[0], e[1]]).collect();
-    slave.sort_unstable();
-    slave.dedup();
     let bottom: Vec<usize> = (0..=nx).collect();
     let h_min = mesh.nodes[nx / 2 + 1][0] - mesh.nodes[nx / 2][0];
-    let nn = mesh.nodes.len();
-    let fix = |c: usize| Dirichlet {
-        label: format!("fix bottom {c}"),
-        nodes: bottom.clone(),
-        component: c,
-        value: TimeFunction::Constant(0.0),
-    };
-    Model {
-        analysis: Analysis {
-            kind: AnalysisKind::PlaneStrain,
-            thickness: 1.0,
-        },
-        mesh,
-        bodies: vec![Body {
-            name: "block".into(),
-            nodes: 0..nn,
-            cells: 0..ncells,
-            material: 0,
-            formulation: Formulation::Full,
-            kinematics: Default::default(),
-        }],
-        materials: vec![Material {
-            name: "soft".into(),
-            law: MaterialLaw::LinearElastic {
-                young: E,
-                poisson: NU,
-            },
-        }],
-        constraints: vec![fix(0), fix(1)],
-        loads: vec![],
-        tools: vec![RigidTool {
-            name: "roller".into(),
-            geometry: ToolGeometry::Circle {
+    ModelBuilder::plane_strain()
+        .elastic("soft", E, NU)
+        .body("block", mesh, "soft")
+        .fix(bottom.clone(), 0)
+        .fix(bottom, 1)
+        .tool(
+            "roller",
+            ToolGeometry::Circle {
                 center: [0.0, R],
                 radius: R,
                 side: ToolSide::Outside,
             },
-            motion: ToolMotion {
-                uy: TimeFunction::Ramp {
-                    t0: 0.0,
-                    t1: 1.0,
-                    v0: 0.0,
-                    v1: -depth,
-                },
+            ToolMotion {
+                uy: ramp(0.0, 1.0, -depth),
                 ..ToolMotion::fixed()
             },
-        }],
-        contacts: vec![ContactPair {
-            name: "block.top -> roller".into(),
-            body: 0,
-            edges: top,
-            nodes: slave,
-            master: ctc_engine::model::ContactMaster::Tool(0),
-            strategy: Default::default(),
-            search: Default::default(),
-            method: ContactMethod::Penalty {
+        )
+        .contact_tool(
+            "block.top -> roller",
+            "block",
+            top,
+            "roller",
+            ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 // k_n = 100 E / h: penalty gap ~ 1% of the element size
                 // at p ~ E.
                 stiffness: 100.0 * E / h_min,
             },
-            prof: None,
-            friction: None,
-        }],
-        steps: vec![Step {
-            name: "press".into(),
-            t_start: 0.0,
-            t_end: 1.0,
-            increments,
-            min_fraction: 1.0 / 64.0,
-            newton: NewtonSettings {
-                tol: 1e-9,
-                tol_displacement: 1e-9,
-                max_iter: 25,
-                line_search: true,
-            },
-        }],
-        output: OutputRequest::default(),
-        thermal: None,
-    }
+        )
+        .step("press", 1.0, increments)
+        .min_fraction(1.0 / 64.0)
+        .tol(1e-9)
+        .build()
 }
 
 #[derive(Default)]

@@ -25,10 +25,11 @@
 //! -0.1: uniform pressure p = 0.1 / (2 / E + 1 / k) (1e5 for exact
 //! enforcement), sigma_yy = -p everywhere.
 
-mod contact_nts_support;
+mod support;
 
-use contact_nts_support::*;
 use ctc_engine::model::{ContactMethod, ContactStrategy};
+use support::nts::*;
+use support::solve;
 
 const STIFFNESS: f64 = 1e8;
 
@@ -54,27 +55,25 @@ fn run_case(method: ContactMethod, strategy: ContactStrategy) -> Result<Outcome,
     let model = patch(method.clone(), strategy, 4, 3, 2);
     let (summary, rec) = solve(&model)?;
     assert!(summary.completed);
-    let last = rec.records.last().expect("converged increments");
+    let last = rec.increments.last().expect("converged increments");
     // equilibrium of every contact element: net force zero
-    let net = last.net_contact_force();
-    let total = last.slave_force()[1].abs();
+    let net = last.net_contact_force(0);
+    let total = last.contact_force(0)[1].abs();
     assert!(
         net[0].abs() <= 1e-9 * total && net[1].abs() <= 1e-9 * total,
         "net contact force {net:?} (total {total})"
     );
-    let (_, deviation, error) = pressure_deviation(&last.contact, exact(&method));
+    let (_, deviation, error) = pressure_deviation(&last.contact[0], exact(&method));
     let top_edges = model.mesh.edge_sets["top.bottom"].clone();
     let base_edges = model.mesh.edge_sets["base.top"].clone();
-    let (_, top) =
-        contact_nts_support::deviation(&nodal_traction(&model, &last.contact, &top_edges));
-    let (_, base) =
-        contact_nts_support::deviation(&nodal_traction(&model, &last.contact, &base_edges));
+    let (_, top) = support::nts::deviation(&nodal_traction(&model, &last.contact[0], &top_edges));
+    let (_, base) = support::nts::deviation(&nodal_traction(&model, &last.contact[0], &base_edges));
     Ok(Outcome {
         top,
         base,
         deviation,
         error,
-        penetration: last.max_penetration(),
+        penetration: last.max_penetration(0),
         iterations: summary.increments.iter().map(|i| i.iterations).sum(),
     })
 }

@@ -10,12 +10,12 @@
 //! - nodal penalty alpha (force per unit gap): gap = -p A_node / alpha, so
 //!   halving h halves the gap, and halving alpha with h restores it.
 
-mod contact_support;
+mod support;
 
-use contact_support::{area, nodal, surface_model};
 use ctc_engine::contact::{evaluate_pair, PairState};
 use ctc_engine::model::{AnalysisKind, ContactMethod, ToolGeometry, ToolMotion};
 use std::f64::consts::PI;
+use support::contact::{area, nodal, surface_model};
 
 /// Consistent nodal loads of a uniform pressure `p` on the edges
 /// (2-point Gauss: exact for the linear x linear axisymmetric integrand).

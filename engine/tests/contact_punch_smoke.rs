@@ -7,12 +7,9 @@
 
 use ctc_engine::contact::{pair_total_force, ContactStatus, NodeContact};
 use ctc_engine::mesh::{Cell, Mesh};
-use ctc_engine::model::{
-    Analysis, AnalysisKind, Body, ContactMethod, ContactPair, Dirichlet, Formulation, Material,
-    MaterialLaw, Model, NewtonSettings, OutputRequest, PenaltyKind, RigidTool, Step, TimeFunction,
-    ToolGeometry, ToolMotion,
-};
+use ctc_engine::model::{ContactMethod, PenaltyKind, ToolGeometry, ToolMotion};
 use ctc_engine::solve::{run, IncrementView, Observer};
+use ctc_engine::testkit::{ramp, ModelBuilder};
 
 #[derive(Default)]
 struct Last {
@@ -56,99 +53,45 @@ fn contact_punch_smoke_flat_polyline_punch_with_corners() {
             ));
         }
     }
-    let mesh = Mesh {
-        nodes,
-        cells,
-        ..Mesh::default()
-    };
+    let mesh = Mesh::new(nodes, cells);
     let nc = mesh.cells.len();
-    let nn = mesh.nodes.len();
     let top: Vec<[usize; 2]> = mesh
         .boundary_edges(0..nc)
         .into_iter()
         .filter(|e| mesh.nodes[e[0]][1] == 0.0 && mesh.nodes[e[1]][1] == 0.0)
         .collect();
-    let mut slave: Vec<usize> = top.iter().flat_map(|e| [e[0], e[1]]).collect();
-    slave.sort_unstable();
-    slave.dedup();
     let bottom: Vec<usize> = (0..=nx).collect();
-    let fix = |c: usize| Dirichlet {
-        label: format!("fix bottom {c}"),
-        nodes: bottom.clone(),
-        component: c,
-        value: TimeFunction::Constant(0.0),
-    };
-    let model = Model {
-        analysis: Analysis {
-            kind: AnalysisKind::PlaneStrain,
-            thickness: 1.0,
-        },
-        mesh,
-        bodies: vec![Body {
-            name: "block".into(),
-            nodes: 0..nn,
-            cells: 0..nc,
-            material: 0,
-            formulation: Formulation::Full,
-            kinematics: Default::default(),
-        }],
-        materials: vec![Material {
-            name: "m".into(),
-            law: MaterialLaw::LinearElastic {
-                young: 1000.0,
-                poisson: 0.3,
-            },
-        }],
-        constraints: vec![fix(0), fix(1)],
-        loads: vec![],
-        tools: vec![RigidTool {
-            name: "punch".into(),
+    let model = ModelBuilder::plane_strain()
+        .elastic("m", 1000.0, 0.3)
+        .body("block", mesh, "m")
+        .fix(bottom.clone(), 0)
+        .fix(bottom, 1)
+        .tool(
+            "punch",
             // Down the right side, left along the face, up the left side:
             // free side (left of the walk) is outside the punch.
-            geometry: ToolGeometry::Polyline {
+            ToolGeometry::Polyline {
                 points: vec![[1.0, 1.0], [1.0, 0.0], [-1.0, 0.0], [-1.0, 1.0]],
             },
-            motion: ToolMotion {
-                uy: TimeFunction::Ramp {
-                    t0: 0.0,
-                    t1: 1.0,
-                    v0: 0.0,
-                    v1: -0.01,
-                },
+            ToolMotion {
+                uy: ramp(0.0, 1.0, -0.01),
                 ..ToolMotion::fixed()
             },
-        }],
-        contacts: vec![ContactPair {
-            name: "block.top -> punch".into(),
-            body: 0,
-            edges: top,
-            nodes: slave,
-            master: ctc_engine::model::ContactMaster::Tool(0),
-            strategy: Default::default(),
-            search: Default::default(),
-            method: ContactMethod::Penalty {
+        )
+        .contact_tool(
+            "block.top -> punch",
+            "block",
+            top,
+            "punch",
+            ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e6,
             },
-            prof: None,
-            friction: None,
-        }],
-        steps: vec![Step {
-            name: "press".into(),
-            t_start: 0.0,
-            t_end: 1.0,
-            increments: 2,
-            min_fraction: 1.0 / 64.0,
-            newton: NewtonSettings {
-                tol: 1e-9,
-                tol_displacement: 1e-9,
-                max_iter: 25,
-                line_search: true,
-            },
-        }],
-        output: OutputRequest::default(),
-        thermal: None,
-    };
+        )
+        .step("press", 1.0, 2)
+        .min_fraction(1.0 / 64.0)
+        .tol(1e-9)
+        .build();
     let mut last = Last::default();
     let summary = run(&model, &mut last).unwrap_or_else(|e| panic!("{}", e.message));
     for (k, r) in last.residuals.iter().enumerate() {

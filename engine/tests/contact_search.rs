@@ -2,9 +2,8 @@
 //! brute-force search finds, with far fewer projections; per-node memory is
 //! committed and rolled back with the increment.
 
-mod contact_support;
+mod support;
 
-use contact_support::{nodal, surface_model};
 use ctc_engine::contact::geometry::ToolShape;
 use ctc_engine::contact::motion::Placement;
 use ctc_engine::contact::search::{
@@ -13,6 +12,7 @@ use ctc_engine::contact::search::{
 use ctc_engine::contact::{evaluate_pair, PairState};
 use ctc_engine::model::{AnalysisKind, LocalSearch, TimeFunction, ToolGeometry, ToolMotion};
 use proptest::prelude::*;
+use support::contact::{nodal, surface_model};
 
 fn wavy_die(n: usize) -> ToolGeometry {
     let points = (0..=n)

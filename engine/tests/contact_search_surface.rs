@@ -4,11 +4,11 @@
 //! projections, and, having no memory, loses a node pushed deeper than
 //! `prof` that the memory test keeps.
 
-mod contact_nts_support;
+mod support;
 
-use contact_nts_support::*;
 use ctc_engine::contact::{evaluate_pair, PairState};
 use ctc_engine::model::{ContactStrategy, LocalSearch, Model};
+use support::nts::*;
 
 fn model(search: LocalSearch) -> Model {
     let mut m = patch(penalty(1e8), ContactStrategy::SinglePass, 4, 3, 1);

@@ -2,14 +2,14 @@
 //! differences of the force, for random penetrating nodes on every tool
 //! geometry (fixed, translated and rotated tools). Relative tolerance 1e-6.
 
-mod contact_support;
+mod support;
 
-use contact_support::{probe, probe_model, tangent_error};
 use ctc_engine::contact::geometry::nurbs::Nurbs;
 use ctc_engine::contact::motion::Placement;
 use ctc_engine::model::{Model, TimeFunction, ToolGeometry, ToolMotion, ToolSide};
 use proptest::prelude::*;
 use std::f64::consts::{FRAC_1_SQRT_2, PI, TAU};
+use support::contact::{probe, probe_model, tangent_error};
 
 const H: f64 = 1e-6;
 const TOL: f64 = 1e-6;

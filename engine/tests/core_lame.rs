@@ -15,14 +15,14 @@
 //! 0.6..0.9 on these meshes, 0.95 at 64 divisions), whereas the interior
 //! nodes converge at second order; the RMS error converges at >= 1.
 
-mod core_support;
+mod support;
 
-use core_support::*;
 use ctc_engine::element::recovery::nodal_fields_of_model;
 use ctc_engine::mesh::{Cell, Mesh};
 use ctc_engine::model::*;
 use ctc_engine::solve::run;
 use std::f64::consts::PI;
+use support::*;
 
 const A_IN: f64 = 1.0;
 const B_OUT: f64 = 2.0;
@@ -129,11 +129,7 @@ fn plane_strain(nr: usize, nu: f64, tri: bool, formulation: Formulation) -> Erro
             }
         }
     }
-    let mesh = Mesh {
-        nodes,
-        cells,
-        ..Default::default()
-    };
+    let mesh = Mesh::new(nodes, cells);
     let load = inner_pressure(&mesh, |p| p[0].hypot(p[1]));
     let mut model = one_body(AnalysisKind::PlaneStrain, mesh, E, nu, formulation);
     model.loads.push(load);

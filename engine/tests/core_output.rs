@@ -3,13 +3,13 @@
 //! and summary.json hold the run, and a failed run still leaves its last
 //! converged increment and a summary.
 
-mod core_support;
+mod support;
 
-use core_support::*;
 use ctc_engine::model::*;
 use ctc_engine::output::ResultWriter;
 use ctc_engine::solve::{run, IncrementView, Observer};
 use std::path::Path;
+use support::*;
 
 /// A parsed XML element.
 #[derive(Debug, Default)]

@@ -5,14 +5,14 @@
 //! strain `eps_rr = eps_tt = c`, `eps_zz = d`; a constant shear `gamma_rz`
 //! is *not* an equilibrium state there: `d sigma_rz / dr + sigma_rz / r != 0`).
 
-mod core_support;
+mod support;
 
-use core_support::*;
 use ctc_engine::element::recovery::{blocks_of, cell_states, nodal_fields_of_model};
 use ctc_engine::element::Section;
 use ctc_engine::material::{Constitutive, Strain};
 use ctc_engine::model::*;
 use ctc_engine::solve::run;
+use support::*;
 
 #[derive(Clone, Copy)]
 enum Element {

@@ -9,10 +9,10 @@
 use ctc_engine::element::MaterialPoint;
 use ctc_engine::mesh::{Cell, Mesh};
 use ctc_engine::model::{
-    Analysis, AnalysisKind, Body, Dirichlet, Formulation, Hardening, Kinematics, Material,
-    MaterialLaw, Model, NewtonSettings, OutputRequest, Step, TimeFunction,
+    AnalysisKind, Dirichlet, Hardening, Kinematics, MaterialLaw, Model, TimeFunction,
 };
 use ctc_engine::solve::{run, IncrementView, Observer};
+use ctc_engine::testkit::ModelBuilder;
 
 #[derive(Default)]
 struct Points(Vec<Vec<MaterialPoint>>);
@@ -77,61 +77,24 @@ fn rotated_model(law: MaterialLaw, kind: AnalysisKind, rotate: bool, turns: usiz
             });
         }
     }
-    let (nn, nc) = (nodes.len(), cells.len());
-    let newton = NewtonSettings {
-        tol: 1e-10,
-        tol_displacement: 1e-10,
-        max_iter: 25,
-        line_search: true,
-    };
-    let mut steps = vec![Step {
-        name: "stretch".into(),
-        t_start: 0.0,
-        t_end: 1.0,
-        increments: 4,
-        min_fraction: 1.0 / 64.0,
-        newton,
-    }];
+    let mut b = ModelBuilder::new(kind)
+        .material("m", law)
+        .body("b", Mesh::new(nodes, cells), "m")
+        .kinematics(Kinematics::Finite);
+    for c in constraints {
+        b = b.constraint(c);
+    }
+    b = b
+        .step("stretch", 1.0, 4)
+        .min_fraction(1.0 / 64.0)
+        .tol(1e-10);
     if rotate {
-        steps.push(Step {
-            name: "rotate".into(),
-            t_start: 1.0,
-            t_end: 2.0,
-            increments: turns,
-            min_fraction: 1.0 / 64.0,
-            newton,
-        });
+        b = b
+            .step("rotate", 2.0, turns)
+            .min_fraction(1.0 / 64.0)
+            .tol(1e-10);
     }
-    Model {
-        analysis: Analysis {
-            kind,
-            thickness: 1.0,
-        },
-        mesh: Mesh {
-            nodes,
-            cells,
-            ..Mesh::default()
-        },
-        bodies: vec![Body {
-            name: "b".into(),
-            nodes: 0..nn,
-            cells: 0..nc,
-            material: 0,
-            formulation: Formulation::Full,
-            kinematics: Kinematics::Finite,
-        }],
-        materials: vec![Material {
-            name: "m".into(),
-            law,
-        }],
-        constraints,
-        loads: vec![],
-        tools: vec![],
-        contacts: vec![],
-        steps,
-        output: OutputRequest::default(),
-        thermal: None,
-    }
+    b.build()
 }
 
 fn invariants(s: &[f64]) -> [f64; 3] {

@@ -22,11 +22,11 @@
 use ctc_engine::contact::pair_total_force;
 use ctc_engine::mesh::{Cell, Mesh};
 use ctc_engine::model::{
-    Analysis, AnalysisKind, Body, ContactMethod, ContactPair, Dirichlet, Formulation, Hardening,
-    Kinematics, Material, MaterialLaw, Model, NewtonSettings, OutputRequest, PenaltyKind,
-    RigidTool, Step, TimeFunction, ToolGeometry, ToolMotion,
+    ContactMethod, Formulation, Hardening, Kinematics, MaterialLaw, PenaltyKind, ToolGeometry,
+    ToolMotion,
 };
 use ctc_engine::solve::{run, IncrementView, Observer};
+use ctc_engine::testkit::{ramp, ModelBuilder};
 use std::f64::consts::PI;
 
 const E: f64 = 200e3;
@@ -81,81 +81,46 @@ fn upsetting(
             ));
         }
     }
-    let mesh = Mesh {
-        nodes,
-        cells,
-        ..Mesh::default()
-    };
-    let (nn, nc) = (mesh.nodes.len(), mesh.cells.len());
+    let mesh = Mesh::new(nodes, cells);
+    let nc = mesh.cells.len();
     let top_edges: Vec<[usize; 2]> = mesh
         .boundary_edges(0..nc)
         .into_iter()
         .filter(|e| mesh.nodes[e[0]][1] == hh && mesh.nodes[e[1]][1] == hh)
         .collect();
     let top: Vec<usize> = (0..=n).map(|i| id(i, n)).collect();
-    let model = Model {
-        analysis: Analysis {
-            kind: AnalysisKind::Axisymmetric,
-            thickness: 1.0,
-        },
-        mesh,
-        bodies: vec![Body {
-            name: "billet".into(),
-            nodes: 0..nn,
-            cells: 0..nc,
-            material: 0,
-            formulation,
-            kinematics,
-        }],
-        materials: vec![Material {
-            name: "steel".into(),
-            law: MaterialLaw::ElastoPlastic {
+    let model = ModelBuilder::axisymmetric()
+        .material(
+            "steel",
+            MaterialLaw::ElastoPlastic {
                 young: E,
                 poisson: NU,
                 hardening,
                 viscosity: None,
             },
-        }],
-        constraints: vec![
-            Dirichlet {
-                label: "symmetry plane".into(),
-                nodes: (0..=n).map(|i| id(i, 0)).collect(),
-                component: 1,
-                value: TimeFunction::Constant(0.0),
-            },
-            Dirichlet {
-                label: "axis".into(),
-                nodes: (0..=n).map(|j| id(0, j)).collect(),
-                component: 0,
-                value: TimeFunction::Constant(0.0),
-            },
-        ],
-        loads: vec![],
-        tools: vec![RigidTool {
-            name: "die".into(),
-            geometry: ToolGeometry::Plane {
+        )
+        .body("billet", mesh, "steel")
+        .formulation(formulation)
+        .kinematics(kinematics)
+        .fix((0..=n).map(|i| id(i, 0)).collect::<Vec<_>>(), 1)
+        .fix((0..=n).map(|j| id(0, j)).collect::<Vec<_>>(), 0)
+        .tool(
+            "die",
+            ToolGeometry::Plane {
                 point: [0.0, hh],
                 normal: [0.0, -1.0],
             },
-            motion: ToolMotion {
-                uy: TimeFunction::Ramp {
-                    t0: 0.0,
-                    t1: 1.0,
-                    v0: 0.0,
-                    v1: -travel,
-                },
+            ToolMotion {
+                uy: ramp(0.0, 1.0, -travel),
                 ..ToolMotion::fixed()
             },
-        }],
-        contacts: vec![ContactPair {
-            name: "billet.top -> die".into(),
-            body: 0,
-            edges: top_edges,
-            nodes: top.clone(),
-            master: ctc_engine::model::ContactMaster::Tool(0),
-            strategy: Default::default(),
-            search: Default::default(),
-            method: ContactMethod::Penalty {
+        )
+        .contact_tool(
+            "billet.top -> die",
+            "billet",
+            top_edges,
+            "die",
+            ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 // small strain: the penalty penetration (lumped, slightly
                 // non-uniform) perturbs the homogeneous state by ~ p / (alpha h):
@@ -166,25 +131,11 @@ fn upsetting(
                     1e7
                 },
             },
-            prof: None,
-            friction: None,
-        }],
-        steps: vec![Step {
-            name: "upset".into(),
-            t_start: 0.0,
-            t_end: 1.0,
-            increments,
-            min_fraction: 1.0 / 64.0,
-            newton: NewtonSettings {
-                tol: 1e-10,
-                tol_displacement: 1e-10,
-                max_iter: 25,
-                line_search: true,
-            },
-        }],
-        output: OutputRequest::default(),
-        thermal: None,
-    };
+        )
+        .step("upset", 1.0, increments)
+        .min_fraction(1.0 / 64.0)
+        .tol(1e-10)
+        .build();
     let mut rec = Record {
         top,
         ..Default::default()

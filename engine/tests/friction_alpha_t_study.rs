@@ -12,10 +12,10 @@
 //!
 //! Run with `--nocapture` for the table.
 
-mod friction_support;
+mod support;
 
 use ctc_engine::model::{ContactMethod, LagrangeFormulation, PenaltyKind};
-use friction_support::{solve, Block, Drive};
+use support::friction::{solve, Block, Drive};
 
 const MU: f64 = 0.3;
 const ALPHA_N: f64 = 1e7;

@@ -2,11 +2,11 @@
 //! first touches is cut at the fraction found by the constant-velocity
 //! intersection, so the accepted increment ends at the impact.
 
-mod friction_support;
+mod support;
 
 use ctc_engine::model::{Dirichlet, TimeFunction};
 use ctc_engine::solve::{run, IncrementView, Observer};
-use friction_support::{Block, Drive};
+use support::friction::{Block, Drive};
 
 #[derive(Default)]
 struct Times(Vec<f64>);

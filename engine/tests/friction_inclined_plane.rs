@@ -5,11 +5,11 @@
 //! `F / G = (tan a + mu) / (1 - mu tan a)` (0.412371 for mu = 0.3), for
 //! every normal method (penalty, augmented Lagrangian, Lagrange).
 
-mod friction_support;
+mod support;
 
 use ctc_engine::contact::friction::FrictionStatus;
 use ctc_engine::model::{ContactMethod, LagrangeFormulation, MultiplierUpdate, PenaltyKind};
-use friction_support::{count, solve, Block, Drive};
+use support::friction::{count, solve, Block, Drive};
 
 fn reference(mu: f64) -> f64 {
     (0.1 + mu) / (1.0 - mu * 0.1)

@@ -2,11 +2,11 @@
 //! plane with `N` and pulled tangentially with `Q` sticks for `Q < mu N` and
 //! slides for `Q > mu N`; the work dissipated by friction is `mu N x slip`.
 
-mod friction_support;
+mod support;
 
 use ctc_engine::contact::friction::FrictionStatus;
 use ctc_engine::model::{ContactMethod, LagrangeFormulation};
-use friction_support::{count, solve, Block, Drive};
+use support::friction::{count, solve, Block, Drive};
 
 const MU: f64 = 0.3;
 const N: f64 = 100.0;
@@ -62,7 +62,7 @@ fn pulled_block_energy(
     let (rec, _) = solve(&b).unwrap_or_else(|e| panic!("{e}"));
     let last = rec.rows.last().unwrap();
     let all_slip =
-        |r: &friction_support::Row| count(&r.contact, FrictionStatus::Slip) == r.contact.len();
+        |r: &support::friction::Row| count(&r.contact, FrictionStatus::Slip) == r.contact.len();
     assert!(all_slip(last));
     let n = match squeeze {
         Some(_) => -last.lift,

@@ -121,11 +121,9 @@ mod through_the_solver {
     //! `(sigma_y + s) pi`. Checks the time increment reaching the law.
     use super::{E, ETA, NU};
     use ctc_engine::mesh::{Cell, Mesh};
-    use ctc_engine::model::{
-        Analysis, AnalysisKind, Body, Dirichlet, Formulation, Hardening, Kinematics, Material,
-        MaterialLaw, Model, NewtonSettings, OutputRequest, Step, TimeFunction,
-    };
+    use ctc_engine::model::{Hardening, MaterialLaw, Model, NewtonSettings};
     use ctc_engine::solve::{run, IncrementView, Observer};
+    use ctc_engine::testkit::{ramp, ModelBuilder};
     use std::f64::consts::PI;
 
     struct Force(Vec<(f64, f64)>);
@@ -139,33 +137,10 @@ mod through_the_solver {
     }
 
     fn model(rate: f64, t_end: f64, increments: usize) -> Model {
-        let fix = |label: &str, nodes: Vec<usize>, component, value| Dirichlet {
-            label: label.into(),
-            nodes,
-            component,
-            value,
-        };
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::Axisymmetric,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-                cells: vec![Cell::quad(0, 1, 2, 3)],
-                ..Mesh::default()
-            },
-            bodies: vec![Body {
-                name: "b".into(),
-                nodes: 0..4,
-                cells: 0..1,
-                material: 0,
-                formulation: Formulation::Full,
-                kinematics: Kinematics::Small,
-            }],
-            materials: vec![Material {
-                name: "m".into(),
-                law: MaterialLaw::ElastoPlastic {
+        ModelBuilder::axisymmetric()
+            .material(
+                "m",
+                MaterialLaw::ElastoPlastic {
                     young: E,
                     poisson: NU,
                     hardening: Hardening::Linear {
@@ -174,41 +149,27 @@ mod through_the_solver {
                     },
                     viscosity: Some(ETA),
                 },
-            }],
-            constraints: vec![
-                fix("bottom", vec![0, 1], 1, TimeFunction::Constant(0.0)),
-                fix("axis", vec![0, 3], 0, TimeFunction::Constant(0.0)),
-                fix(
-                    "top",
-                    vec![2, 3],
-                    1,
-                    TimeFunction::Ramp {
-                        t0: 0.0,
-                        t1: t_end,
-                        v0: 0.0,
-                        v1: -rate * t_end,
-                    },
+            )
+            .body(
+                "b",
+                Mesh::new(
+                    vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                    vec![Cell::quad(0, 1, 2, 3)],
                 ),
-            ],
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![Step {
-                name: "s".into(),
-                t_start: 0.0,
-                t_end,
-                increments,
-                min_fraction: 1.0 / 64.0,
-                newton: NewtonSettings {
-                    tol: 1e-11,
-                    tol_displacement: 1e-11,
-                    max_iter: 20,
-                    line_search: true,
-                },
-            }],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+                "m",
+            )
+            .fix([0, 1], 1)
+            .fix([0, 3], 0)
+            .displace([2, 3], 1, ramp(0.0, t_end, -rate * t_end))
+            .step("s", t_end, increments)
+            .min_fraction(1.0 / 64.0)
+            .newton(NewtonSettings {
+                tol: 1e-11,
+                tol_displacement: 1e-11,
+                max_iter: 20,
+                line_search: true,
+            })
+            .build()
     }
 
     #[test]

@@ -1,15 +1,15 @@
 //! Heat conduction and thermal expansion against closed forms (hand-built
 //! models; the deck-level cases are in `tests/thermal_*.rs`).
 
-mod core_support;
+mod support;
 
-use core_support::{fix, grid, grid_node, one_body, step};
 use ctc_engine::model::*;
 use ctc_engine::solve::{run, IncrementView, Observer};
 use ctc_engine::thermal::scene::{
     CouplingScheme, HeatFlux, MaterialThermal, PrescribedTemperature, ThermalScene,
 };
 use std::f64::consts::PI;
+use support::{fix, grid, grid_node, one_body, step};
 
 /// Keeps the displacements, temperatures and thermal reports.
 #[derive(Default)]

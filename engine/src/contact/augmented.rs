@@ -17,9 +17,10 @@
 //! Multipliers are stored in force units (per node, axisymmetric: total
 //! over 2*pi).
 
-use super::penalty::Response;
+use super::penalty::{self, Response};
 use super::vec2::outer;
-use super::ContactStatus;
+use super::{friction, ContactStatus, NodeContact, PairState};
+use crate::model::{ContactMethod, Model, MultiplierUpdate};
 
 /// Normal force `R_N = max(0, lambda* - alpha g)` of a node.
 pub fn normal_force(alpha: f64, lambda_star: f64, gap: f64) -> f64 {
@@ -76,6 +77,70 @@ pub fn normal_response(
         pressure: if tributary > 0.0 { rn / tributary } else { 0.0 },
         status: ContactStatus::Closed,
     }
+}
+
+/// Uzawa update of the augmented-Lagrangian pairs whose update mode is
+/// `mode`: for a pair whose largest penetration exceeds its tolerance,
+/// `lambda* <- max(0, lambda* - alpha g)` at every evaluated node (0 at
+/// nodes out of the search window). Returns whether any pair was updated.
+pub fn uzawa_update(
+    model: &Model,
+    pairs: &mut [PairState],
+    contact: &[Vec<NodeContact>],
+    mode: MultiplierUpdate,
+) -> bool {
+    let mut updated = false;
+    for (pi, cp) in model.contacts.iter().enumerate() {
+        let ContactMethod::AugmentedLagrange {
+            tolerance, update, ..
+        } = cp.method
+        else {
+            continue;
+        };
+        let violation = constraint_violation(&contact[pi]).max(if cp.friction.is_some() {
+            friction::stick_violation(&contact[pi])
+        } else {
+            0.0
+        });
+        if update != mode || violation <= tolerance {
+            continue;
+        }
+        let state = &mut pairs[pi];
+        let mut next = vec![0.0; state.slaves.len()];
+        for nc in &contact[pi] {
+            let Some(i) = state.slave_index(nc.node) else {
+                continue;
+            };
+            let alpha = penalty::effective_stiffness(&cp.method, state.tributary[i]);
+            next[i] = normal_force(alpha, state.multiplier[i], nc.gap);
+        }
+        state.multiplier = next;
+        if cp.friction.is_some() {
+            friction::uzawa_update(&state.slaves, &contact[pi], &mut state.friction);
+        }
+        updated = true;
+    }
+    updated
+}
+
+/// Largest violation of the contact conditions over a pair's evaluated
+/// nodes: `|g|` where a force acts (closed: the gap should vanish, a force
+/// at a positive gap is an over-correction of `lambda*`), the penetration
+/// `max(0, -g)` elsewhere. The augmented-Lagrangian iterations stop when it
+/// is below the tolerance `gmax*`.
+pub fn constraint_violation(contact: &[NodeContact]) -> f64 {
+    contact
+        .iter()
+        .map(|c| match c.status {
+            ContactStatus::Closed => c.gap.abs(),
+            ContactStatus::Open => (-c.gap).max(0.0),
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Largest penetration `max(0, -g)` over a pair's evaluated nodes.
+pub fn max_penetration(contact: &[NodeContact]) -> f64 {
+    contact.iter().map(|c| -c.gap).fold(0.0, f64::max)
 }
 
 #[cfg(test)]

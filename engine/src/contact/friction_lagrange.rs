@@ -20,25 +20,19 @@
 //! ([`super::friction::NodeFriction::gap_gradient`]).
 
 use super::friction::FrictionStatus;
+use super::rows::{NodeRows, NodeTerm, RowKind};
 use super::{ContactStatus, NodeContact, PairState};
 use crate::model::{ContactMethod, Model};
-use crate::solve::active_set::Constraints;
-use crate::solve::dofs::Dof;
-use crate::solve::saddle::ConstraintRow;
 
 /// Whether pair `cp` uses Lagrange-multiplier friction.
 pub fn is_lagrange_friction(cp: &crate::model::ContactPair) -> bool {
     cp.friction.is_some() && matches!(cp.method, ContactMethod::Lagrange { .. })
 }
 
-/// Adds one tangential constraint row per sticking node of every
-/// Lagrange pair with friction (marked `tangential` in `constraints`).
-pub fn add_rows(
-    model: &Model,
-    dofs: &[Dof],
-    contact: &[Vec<NodeContact>],
-    constraints: &mut Constraints,
-) {
+/// Appends one tangential constraint row `d g_T / d x` per sticking node
+/// of every Lagrange pair with friction to `rows` (kind
+/// [`RowKind::Stick`]).
+pub fn stick_rows(model: &Model, contact: &[Vec<NodeContact>], rows: &mut NodeRows) {
     for (pi, cp) in model.contacts.iter().enumerate() {
         if !is_lagrange_friction(cp) {
             continue;
@@ -50,27 +44,20 @@ pub fn add_rows(
             let Ok(i) = cp.nodes.binary_search(&nc.node) else {
                 continue;
             };
-            let t = nc.friction.gap_gradient;
-            let mut row = ConstraintRow {
-                entries: [(0, 0.0); 6],
-                len: 0,
-            };
-            let mut presc = Vec::new();
-            for c in 0..2 {
-                match dofs[2 * nc.node + c] {
-                    Dof::Free(f) => {
-                        row.entries[row.len] = (f, -t[c]);
-                        row.len += 1;
-                    }
-                    Dof::Prescribed(p) => presc.push((p, t[c])),
-                    Dof::Inactive => {}
-                }
-            }
-            constraints.rows.push(row);
-            constraints.gap.push(nc.friction.tangential_gap);
-            constraints.owner.push((pi, i));
-            constraints.prescribed.push(presc);
-            constraints.tangential.push(true);
+            rows.push(
+                RowKind::Stick,
+                (pi, i),
+                nc.friction.tangential_gap,
+                nc.friction
+                    .gap_gradient
+                    .iter()
+                    .enumerate()
+                    .map(|(component, &coefficient)| NodeTerm {
+                        node: nc.node,
+                        component,
+                        coefficient,
+                    }),
+            );
         }
     }
 }

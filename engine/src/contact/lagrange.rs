@@ -3,17 +3,20 @@
 //! constraint `g(x) = 0` is enforced exactly by a multiplier `lambda` (the
 //! normal force, `lambda >= 0` in compression); nodes off the active set
 //! carry no force. The active set is found by the solver's active-set loop
-//! (`crate::solve::active_set`).
+//! (`crate::solve::contact_loop`).
 //!
 //! Force on an active node `f = lambda n`; its tangent
 //! `K_c = -d f / d x = -lambda h t ⊗ t` (the curvature term: the penalty
 //! geometric term with `alpha g` replaced by `-lambda`), so that Newton
 //! stays quadratic on curved tools. The constraint rows of the
-//! saddle-point system use `d g / d x = n`.
+//! saddle-point system use `d g / d x = n` ([`normal_rows`], in node terms;
+//! node-to-segment: `d g / d x` over the slave and the segment's ends).
 
 use super::augmented::normal_response;
 use super::penalty::Response;
-use super::ContactStatus;
+use super::rows::{NodeRows, NodeTerm, RowKind};
+use super::{ContactStatus, NodeContact, PairState};
+use crate::model::{ContactMethod, Model};
 
 /// Response of a slave node with multiplier `lambda`, in the active set or
 /// not, unit normal `normal`, normal rate `normal_rate`, tributary area
@@ -36,6 +39,60 @@ pub fn respond(
         };
     }
     normal_response(0.0, lambda, tributary, normal, normal_rate)
+}
+
+/// Appends the constraint row `d g / d x` of every active node of every
+/// Lagrange pair (evaluation `contact`, one list per pair) to `rows`.
+pub fn normal_rows(
+    model: &Model,
+    pairs: &[PairState],
+    contact: &[Vec<NodeContact>],
+    rows: &mut NodeRows,
+) {
+    for (pi, cp) in model.contacts.iter().enumerate() {
+        if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
+            continue;
+        }
+        for nc in &contact[pi] {
+            let Some(i) = pairs[pi].slave_index(nc.node) else {
+                continue;
+            };
+            if !pairs[pi].active.get(i).copied().unwrap_or(false) {
+                continue;
+            }
+            let dim = nc.normal.len();
+            match &nc.master {
+                // against a rigid tool: the slave alone, d g / d x = n
+                None => rows.push(
+                    RowKind::Normal,
+                    (pi, i),
+                    nc.gap,
+                    nc.normal
+                        .iter()
+                        .enumerate()
+                        .map(|(component, &coefficient)| NodeTerm {
+                            node: nc.node,
+                            component,
+                            coefficient,
+                        }),
+                ),
+                // node-to-segment: slave and master ends
+                Some(ms) => {
+                    let nodes = [nc.node, ms.nodes[0], ms.nodes[1]];
+                    rows.push(
+                        RowKind::Normal,
+                        (pi, i),
+                        nc.gap,
+                        (0..nodes.len() * dim).map(|k| NodeTerm {
+                            node: nodes[k / dim],
+                            component: k % dim,
+                            coefficient: ms.gap_gradient[k],
+                        }),
+                    );
+                }
+            }
+        }
+    }
 }
 
 #[cfg(test)]

@@ -16,6 +16,8 @@
 //! - [`penalty`]: force and consistent tangent;
 //! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
 //!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
+//!   [`rows`]: Lagrange constraint rows in node terms (the solver maps
+//!   them to dofs);
 //! - [`tributary`]: tributary areas of slave nodes;
 //! - [`friction`], [`friction_lagrange`], [`impact`]: Coulomb friction
 //!   (return map, Lagrange stick/slip status loop) and the first impact
@@ -43,6 +45,7 @@ pub mod motion;
 pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;
+pub mod rows;
 pub mod search;
 pub mod segment;
 pub mod segment_search;

@@ -363,11 +363,10 @@ mod tests {
     #[test]
     fn recovery_of_uniform_strain_on_mixed_mesh() {
         // a quad and a triangle; u = (0.01 x, -0.02 y): uniform strain everywhere
-        let mesh = Mesh {
-            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.2, 1.0], [0.0, 1.0], [2.0, 0.5]],
-            cells: vec![Cell::quad(0, 1, 2, 3), Cell::tri(1, 4, 2)],
-            ..Default::default()
-        };
+        let mesh = Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.2, 1.0], [0.0, 1.0], [2.0, 0.5]],
+            vec![Cell::quad(0, 1, 2, 3), Cell::tri(1, 4, 2)],
+        );
         let u: Vec<[f64; 2]> = mesh
             .nodes
             .iter()

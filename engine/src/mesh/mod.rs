@@ -118,6 +118,15 @@ impl std::fmt::Display for MeshError {
 impl std::error::Error for MeshError {}
 
 impl Mesh {
+    /// A mesh of `nodes` and `cells`, without sets.
+    pub fn new(nodes: Vec<[f64; 2]>, cells: Vec<Cell>) -> Self {
+        Mesh {
+            nodes,
+            cells,
+            ..Default::default()
+        }
+    }
+
     /// Boundary edges of the cells in `cells`, oriented with the body on the
     /// left (counter-clockwise cells), in a deterministic order.
     pub fn boundary_edges(&self, cells: std::ops::Range<usize>) -> Vec<[usize; 2]> {

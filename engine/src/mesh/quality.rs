@@ -121,17 +121,16 @@ mod tests {
 
     #[test]
     fn unit_square_and_equilateral_triangle_quality() {
-        let mesh = Mesh {
-            nodes: vec![
+        let mesh = Mesh::new(
+            vec![
                 [0.0, 0.0],
                 [1.0, 0.0],
                 [1.0, 1.0],
                 [0.0, 1.0],
                 [0.5, 3f64.sqrt() / 2.0],
             ],
-            cells: vec![Cell::quad(0, 1, 2, 3), Cell::tri(0, 1, 4)],
-            ..Default::default()
-        };
+            vec![Cell::quad(0, 1, 2, 3), Cell::tri(0, 1, 4)],
+        );
         let q = cell_quality(&mesh, &mesh.cells[0]);
         assert!((q.aspect_ratio - 1.0).abs() < 1e-15);
         assert!((q.min_angle - 90.0).abs() < 1e-12 && (q.max_angle - 90.0).abs() < 1e-12);
@@ -145,11 +144,10 @@ mod tests {
 
     #[test]
     fn clockwise_cell_has_negative_area_and_reflex_angles() {
-        let mesh = Mesh {
-            nodes: vec![[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]],
-            cells: vec![Cell::tri(0, 2, 1)],
-            ..Default::default()
-        };
+        let mesh = Mesh::new(
+            vec![[0.0, 0.0], [2.0, 0.0], [0.0, 1.0]],
+            vec![Cell::tri(0, 2, 1)],
+        );
         assert_eq!(cell_area(&mesh, &mesh.cells[0]), -1.0);
         assert!(cell_quality(&mesh, &mesh.cells[0]).max_angle > 180.0);
     }

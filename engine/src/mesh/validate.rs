@@ -262,11 +262,10 @@ mod tests {
     use crate::mesh::Cell;
 
     fn square() -> Mesh {
-        Mesh {
-            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-            cells: vec![Cell::quad(0, 1, 2, 3)],
-            ..Default::default()
-        }
+        Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            vec![Cell::quad(0, 1, 2, 3)],
+        )
     }
 
     #[test]

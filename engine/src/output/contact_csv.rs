@@ -108,40 +108,35 @@ pub(crate) mod tests {
     use crate::model::*;
 
     pub(crate) fn model_with_pair() -> Model {
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[2.0, 0.0], [0.0, 0.0], [1.0, 0.0], [1.0, 1.0]],
-                cells: vec![Cell::tri(1, 2, 3), Cell::tri(2, 0, 3)],
-                ..Default::default()
-            },
-            bodies: vec![],
-            materials: vec![],
-            constraints: vec![],
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![ContactPair {
-                name: "p".into(),
-                body: 0,
-                edges: vec![[1, 2], [2, 0]],
-                nodes: vec![0, 1, 2],
-                master: crate::model::ContactMaster::Tool(0),
-                strategy: Default::default(),
-                search: Default::default(),
-                method: ContactMethod::Penalty {
+        crate::testkit::ModelBuilder::plane_strain()
+            .elastic("m", 1.0, 0.3)
+            .body(
+                "b",
+                Mesh::new(
+                    vec![[2.0, 0.0], [0.0, 0.0], [1.0, 0.0], [1.0, 1.0]],
+                    vec![Cell::tri(1, 2, 3), Cell::tri(2, 0, 3)],
+                ),
+                "m",
+            )
+            .tool(
+                "t",
+                ToolGeometry::Plane {
+                    point: [0.0, 0.0],
+                    normal: [0.0, 1.0],
+                },
+                ToolMotion::fixed(),
+            )
+            .contact_tool(
+                "p",
+                "b",
+                vec![[1, 2], [2, 0]],
+                "t",
+                ContactMethod::Penalty {
                     kind: PenaltyKind::Nodal,
                     stiffness: 1.0,
                 },
-                prof: None,
-                friction: None,
-            }],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+            )
+            .build()
     }
 
     pub(crate) fn contact(node: usize, gap: f64, closed: bool) -> NodeContact {

@@ -16,7 +16,7 @@
 //! scatter (the slow part of a linear contact iteration is then the
 //! factorization, as it should be).
 
-use super::pattern::{Scatter, NO_SLOT};
+use super::linalg::{Scatter, NO_SLOT};
 use crate::element::recovery::{
     blocks_of, gather, nonlinear_points_thermal, CellBlock, NonlinearResponse,
 };
@@ -366,34 +366,14 @@ fn add<const ND: usize>(
 mod tests {
     use super::*;
     use crate::mesh::Cell;
-    use crate::model::{
-        Analysis, AnalysisKind, Body, Formulation, Hardening, Kinematics, Material, MaterialLaw,
-        OutputRequest,
-    };
+    use crate::model::{Hardening, Kinematics, MaterialLaw};
     use crate::solve::dofs::DofMap;
 
     fn plastic_square() -> Model {
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-                cells: vec![Cell::quad(0, 1, 2, 3)],
-                ..Default::default()
-            },
-            bodies: vec![Body {
-                name: "sq".into(),
-                nodes: 0..4,
-                cells: 0..1,
-                material: 0,
-                formulation: Formulation::Full,
-                kinematics: Kinematics::Finite,
-            }],
-            materials: vec![Material {
-                name: "m".into(),
-                law: MaterialLaw::ElastoPlastic {
+        crate::testkit::ModelBuilder::plane_strain()
+            .material(
+                "m",
+                MaterialLaw::ElastoPlastic {
                     young: 200e3,
                     poisson: 0.3,
                     hardening: Hardening::Linear {
@@ -402,15 +382,17 @@ mod tests {
                     },
                     viscosity: None,
                 },
-            }],
-            constraints: vec![],
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+            )
+            .body(
+                "sq",
+                Mesh::new(
+                    vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                    vec![Cell::quad(0, 1, 2, 3)],
+                ),
+                "m",
+            )
+            .kinematics(Kinematics::Finite)
+            .build()
     }
 
     #[test]

@@ -304,54 +304,20 @@ mod tests {
     use crate::model::*;
 
     fn square(kind: AnalysisKind, constraints: Vec<(usize, usize)>) -> Model {
-        Model {
-            analysis: Analysis {
-                kind,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]],
-                cells: vec![Cell::quad(0, 1, 2, 3)],
-                ..Default::default()
-            },
-            bodies: vec![Body {
-                name: "sq".into(),
-                nodes: 0..4,
-                cells: 0..1,
-                material: 0,
-                formulation: Formulation::Full,
-                kinematics: Default::default(),
-            }],
-            materials: vec![Material {
-                name: "m".into(),
-                law: MaterialLaw::LinearElastic {
-                    young: 1.0,
-                    poisson: 0.3,
-                },
-            }],
-            constraints: constraints
-                .into_iter()
-                .map(|(n, c)| Dirichlet {
-                    label: "fix".into(),
-                    nodes: vec![n],
-                    component: c,
-                    value: TimeFunction::Constant(0.0),
-                })
-                .collect(),
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![Step {
-                name: "s".into(),
-                t_start: 0.0,
-                t_end: 1.0,
-                increments: 1,
-                min_fraction: 0.5,
-                newton: NewtonSettings::default(),
-            }],
-            output: OutputRequest::default(),
-            thermal: None,
+        let mut b = crate::testkit::ModelBuilder::new(kind)
+            .elastic("m", 1.0, 0.3)
+            .body(
+                "sq",
+                Mesh::new(
+                    vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]],
+                    vec![Cell::quad(0, 1, 2, 3)],
+                ),
+                "m",
+            );
+        for (n, c) in constraints {
+            b = b.fix([n], c);
         }
+        b.step("s", 1.0, 1).min_fraction(0.5).build()
     }
 
     #[test]

@@ -1,12 +1,21 @@
-//! Contact health of a failed increment, turned into a likely cause and a
-//! remedy: nodes whose contact status flipped between Newton iterations
-//! (chattering) and the ratio of the penalty stiffness to the element
-//! stiffness at the contact nodes (a ratio far above ~1e4 makes the
+//! Why a run failed, in words: the likely cause and the remedy printed with
+//! the final error. First the contact health of the failed increment
+//! ([`contact_cause`]): nodes whose contact status flipped between Newton
+//! iterations (chattering) and the ratio of the penalty stiffness to the
+//! element stiffness at the contact nodes (a ratio far above ~1e4 makes the
 //! tangent ill-conditioned and the open/closed decision of a node flip on
-//! round-off-sized gaps).
+//! round-off-sized gaps); otherwise the failure's kind and residual history
+//! ([`failure_cause`]).
 
+use super::contact_assembly::ContactAssembly;
+use super::linalg::{Scatter, NO_SLOT};
+use super::newton::{Failure, FailureKind};
 use crate::contact::{ContactStatus, NodeContact};
+use crate::model::{ContactMethod, Model, NewtonSettings};
 use std::collections::{BTreeMap, BTreeSet};
+
+/// Floor of norms used as denominators.
+const TINY: f64 = 1e-300;
 
 /// Penalty-to-element stiffness ratio above which the penalty is named as
 /// the likely cause.
@@ -82,6 +91,54 @@ pub struct PenaltyRatio {
     pub stiffness: f64,
 }
 
+/// The largest ratio of a penalty coefficient `alpha_eff` to the element
+/// stiffness diagonal at its node, over the penalty and augmented
+/// Lagrangian pairs of `contacts` at its last evaluated state, with the
+/// tangent `values` of the last iteration (slots of `scatter`).
+pub fn penalty_ratio(
+    model: &Model,
+    contacts: &ContactAssembly,
+    scatter: &Scatter,
+    values: &[f64],
+) -> Option<PenaltyRatio> {
+    let mut best: Option<PenaltyRatio> = None;
+    for (p, list) in contacts.contact.iter().enumerate() {
+        let cp = &model.contacts[p];
+        let stiffness = match cp.method {
+            ContactMethod::Penalty { stiffness, .. } => stiffness,
+            ContactMethod::AugmentedLagrange { penalty, .. } => penalty,
+            ContactMethod::Lagrange { .. } => continue,
+        };
+        for nc in list {
+            let Some(i) = contacts.pairs[p].slave_index(nc.node) else {
+                continue;
+            };
+            let trib = contacts.pairs[p].tributary.get(i).copied().unwrap_or(0.0);
+            let alpha = crate::contact::penalty::effective_stiffness(&cp.method, trib);
+            let slots = scatter.node_slots(nc.node);
+            let k_elem = [0, 3]
+                .iter()
+                .zip([nc.stiffness[0][0], nc.stiffness[1][1]])
+                .filter(|(s, _)| slots[**s] != NO_SLOT)
+                .map(|(s, kc)| values[slots[*s] as usize] - kc)
+                .fold(0.0, f64::max);
+            if k_elem <= 0.0 || !alpha.is_finite() {
+                continue;
+            }
+            let ratio = alpha / k_elem;
+            if best.as_ref().is_none_or(|b| ratio > b.ratio) {
+                best = Some(PenaltyRatio {
+                    ratio,
+                    node: nc.node,
+                    pair: cp.name.clone(),
+                    stiffness,
+                });
+            }
+        }
+    }
+    best
+}
+
 /// Likely cause and remedy from the contact health, or `None` when the
 /// contact does not explain the failure.
 pub fn contact_cause(
@@ -140,6 +197,74 @@ pub fn contact_cause(
                 .into(),
         )),
         _ => None,
+    }
+}
+
+/// Likely cause and remedy of a failed increment when the contact health
+/// does not explain it (see [`contact_cause`]), from the failure's kind and
+/// residual history, for the final error message.
+pub fn failure_cause(failure: &Failure, settings: &NewtonSettings) -> (String, String) {
+    let last = failure.residuals.last().copied().unwrap_or(f64::NAN);
+    match failure.kind {
+        FailureKind::MaxIterations => {
+            let n = failure.residuals.len();
+            let stagnant = n >= 3
+                && last < 1e-9
+                && failure.residuals[n - 3..]
+                    .iter()
+                    .all(|r| *r < 1e3 * last.max(TINY));
+            if stagnant {
+                (
+                    format!(
+                        "the residual stagnates at {last:.1e}: tol = {:.0e} (or tol_displacement = \
+                         {:.0e}) is below what round-off allows for this problem",
+                        settings.tol, settings.tol_displacement
+                    ),
+                    "raise `newton { tol = .. }` (1e-8 is usual; 1e-10 for verification)".into(),
+                )
+            } else {
+                (
+                    "the increment is too large for the nonlinearity (contact status \
+                     changing back and forth, stiff penalty)"
+                        .into(),
+                    "use more `increments`, keep `line_search = true`, raise `max_iter`, or \
+                     lower the penalty stiffness"
+                        .into(),
+                )
+            }
+        }
+        FailureKind::Diverged => (
+            "the residual grows from iteration to iteration: the load or contact \
+             increment is too large, or the penalty stiffness is too high for the mesh"
+                .into(),
+            "use more `increments`, a smaller penalty stiffness, `line_search = true`".into(),
+        ),
+        FailureKind::NotFinite | FailureKind::Singular => (
+            "the stiffness matrix is singular or nearly so: a body (or part of one) can \
+             move rigidly (not enough `fix`/`displace`, or a body held only by a contact \
+             that is still open)"
+                .into(),
+            "constrain every rigid-body motion (e.g. `fix` one node in x), or start the \
+             contact closed"
+                .into(),
+        ),
+        FailureKind::ActiveSetCycling => (
+            "the contact active set cycles: nodes are introduced and released in turn \
+             (a node close to the contact boundary, or an increment too large for the \
+             change of contact zone)"
+                .into(),
+            "use more `increments`; if it persists, use `augmented_lagrange` or \
+             `penalty` for this pair"
+                .into(),
+        ),
+        FailureKind::ImpactCut => (
+            "increments are cut at each first impact (`cut_at_impact = true`)".into(),
+            "set `cut_at_impact = false` or use more `increments`".into(),
+        ),
+        FailureKind::Element => (
+            "an element is inverted or degenerate (mesh or deformation)".into(),
+            "check the mesh orientation and quality, or use smaller increments".into(),
+        ),
     }
 }
 

@@ -80,6 +80,18 @@ impl DofMap {
         }
     }
 
+    /// Displacement components per node (the dimension; 2 today). New
+    /// code takes it from here rather than writing the literal.
+    pub fn components(&self) -> usize {
+        2
+    }
+
+    /// Global dof of component `component` of node `node`.
+    #[inline]
+    pub fn dof(&self, node: usize, component: usize) -> usize {
+        node * self.components() + component
+    }
+
     /// Number of free unknowns.
     pub fn n_free(&self) -> usize {
         self.free.len()
@@ -100,39 +112,14 @@ mod tests {
     use crate::model::*;
 
     pub(crate) fn tiny_model() -> Model {
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [5.0, 5.0]],
-                cells: vec![Cell::quad(0, 1, 2, 3)],
-                ..Default::default()
-            },
-            bodies: vec![],
-            materials: vec![],
-            constraints: vec![
-                Dirichlet {
-                    label: "fix".into(),
-                    nodes: vec![0, 1],
-                    component: 1,
-                    value: TimeFunction::Constant(0.0),
-                },
-                Dirichlet {
-                    label: "move".into(),
-                    nodes: vec![1],
-                    component: 1,
-                    value: TimeFunction::Constant(2.0),
-                },
-            ],
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+        crate::testkit::ModelBuilder::plane_strain()
+            .mesh(Mesh::new(
+                vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [5.0, 5.0]],
+                vec![Cell::quad(0, 1, 2, 3)],
+            ))
+            .fix([0, 1], 1)
+            .displace([1], 1, TimeFunction::Constant(2.0))
+            .build()
     }
 
     #[test]

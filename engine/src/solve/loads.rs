@@ -61,25 +61,13 @@ mod tests {
     use crate::model::*;
 
     fn model(kind: AnalysisKind, loads: Vec<Load>) -> Model {
-        Model {
-            analysis: Analysis {
-                kind,
-                thickness: 2.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[1.0, 0.0], [3.0, 0.0], [3.0, 1.0]],
-                ..Default::default()
-            },
-            bodies: vec![],
-            materials: vec![],
-            constraints: vec![],
-            loads,
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
+        let mut b = crate::testkit::ModelBuilder::new(kind)
+            .thickness(2.0)
+            .mesh(Mesh::new(vec![[1.0, 0.0], [3.0, 0.0], [3.0, 1.0]], vec![]));
+        for l in loads {
+            b = b.load(l);
         }
+        b.build()
     }
 
     fn pressure(edges: Vec<[usize; 2]>, p: f64) -> Load {

@@ -9,33 +9,37 @@
 //! - [`check`]: the model is checked first, every problem reported at once
 //!   (indices, parameters, unheld bodies);
 //! - [`dofs`]: 2 dofs per node, free / prescribed (eliminated) / inactive;
-//! - [`pattern`]: CSC pattern of the free-free block built once per run and
-//!   the cell -> value-slot scatter map (assembly only adds numbers);
-//! - [`linear`]: faer sparse Cholesky with the symbolic factorization reused,
-//!   LU fallback for indefinite tangents;
+//! - [`linalg`]: the CSC pattern and scatter map ([`linalg::pattern`]),
+//!   `trait LinearSystem` (faer direct: Cholesky, `L D L^T`, LU) and
+//!   `trait SaddlePointSystem` (Lagrange multipliers);
 //! - [`assembly`], [`loads`]: element loop and external forces;
-//! - [`newton`]: one increment (predictor with the prescribed increment,
-//!   line search, convergence, NaN and divergence detection);
-//! - [`active_set`]: contact iterations around the Newton loops (Lagrange
-//!   active set with a cycling guard, augmented-Lagrangian Uzawa updates);
-//! - [`saddle`]: the Lagrange-multiplier saddle-point system (sparse LU, or
-//!   the doubled-multiplier form by `L D L^T` without pivoting);
+//! - [`contact_assembly`]: contact forces and tangent blocks into the
+//!   global system, pattern growth, Lagrange rows (the only place where
+//!   contact meets the dof numbering);
+//! - [`constraints`]: variable-length constraint rows in dof terms;
+//! - [`newton`]: one Newton loop (predictor with the prescribed increment,
+//!   line search, convergence, NaN and divergence detection, typed
+//!   failures, commit / rollback);
+//! - [`contact_loop`]: contact iterations around the Newton loops (Lagrange
+//!   active set with a cycling guard, augmented-Lagrangian Uzawa updates,
+//!   Lagrange friction statuses);
 //! - [`stepping`]: increments, cutback and grow-back;
+//! - [`diagnosis`]: the likely cause and remedy of a failed run;
 //! - [`jumps`]: warnings for slave nodes that moved farther than the
 //!   contact search window in one increment.
 
-pub mod active_set;
 pub mod assembly;
 pub mod check;
+pub mod constraints;
+pub mod contact_assembly;
+pub mod contact_loop;
 pub mod diagnosis;
 pub mod dofs;
 pub mod jumps;
-pub mod linear;
+pub mod linalg;
 pub mod loads;
 pub mod newton;
-pub mod pattern;
 pub mod restart;
-pub mod saddle;
 pub mod stepping;
 
 use crate::contact::NodeContact;
@@ -275,7 +279,7 @@ pub fn run_from(
     let start = Instant::now();
     let mut summary = RunSummary {
         nodes: model.mesh.nodes.len(),
-        linear_solver: linear::Method::Cholesky.name().to_string(),
+        linear_solver: linalg::direct::Method::Cholesky.name().to_string(),
         ..Default::default()
     };
     if model.analysis.kind == AnalysisKind::Axisymmetric {
@@ -345,13 +349,12 @@ pub fn run_from(
     summary.timings = newton.timings.clone();
     summary.timings.output = output;
     summary.newton_iterations = newton.iterations;
-    summary.linear_solver = newton.linear_solver().to_string();
-    (
-        summary.cholesky_factorizations,
-        summary.ldlt_factorizations,
-        summary.lu_factorizations,
-    ) = newton.factorizations();
-    summary.max_negative_pivots = newton.max_negative_pivots();
+    let stats = newton.factor_stats();
+    summary.linear_solver = stats.most_general().to_string();
+    summary.cholesky_factorizations = stats.cholesky;
+    summary.ldlt_factorizations = stats.ldlt;
+    summary.lu_factorizations = stats.lu;
+    summary.max_negative_pivots = stats.max_negative_pivots;
     (
         summary.saddle_symbolic_factorizations,
         summary.saddle_factorizations,
@@ -373,7 +376,7 @@ pub fn run_from(
             let s = &model.steps[step];
             let (cause, remedy) =
                 diagnosis::contact_cause(newton.penalty_ratio().as_ref(), &newton.flips)
-                    .unwrap_or_else(|| failure.diagnose(&s.newton));
+                    .unwrap_or_else(|| diagnosis::failure_cause(&failure, &s.newton));
             let residuals: Vec<String> = failure
                 .residuals
                 .iter()
@@ -417,7 +420,7 @@ impl Driver<'_, '_> {
         }
         let work: Vec<f64> = self
             .newton
-            .contact
+            .contact()
             .iter()
             .map(|l| crate::contact::friction::pair_dissipation(l))
             .collect();
@@ -432,8 +435,14 @@ impl Driver<'_, '_> {
 impl IncrementSolver for Driver<'_, '_> {
     fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
         let settings = self.model.steps[step].newton;
-        self.newton
-            .attempt(&settings, t, step, self.increment + 1, &mut *self.observer)
+        contact_loop::attempt(
+            &mut self.newton,
+            &settings,
+            t,
+            step,
+            self.increment + 1,
+            &mut *self.observer,
+        )
     }
 
     fn accept(
@@ -446,7 +455,7 @@ impl IncrementSolver for Driver<'_, '_> {
     ) -> Result<(), String> {
         let warnings = jumps::increment_warnings(
             self.model,
-            &self.newton.pairs,
+            self.newton.pairs(),
             (self.newton.committed_displacement(), t - dt),
             (&self.newton.u, t),
             self.increment + 1,
@@ -464,7 +473,7 @@ impl IncrementSolver for Driver<'_, '_> {
                 self.model,
                 t,
                 dt,
-                &self.newton.contact,
+                self.newton.contact(),
                 &before,
                 self.newton.material_points(),
             )
@@ -482,7 +491,7 @@ impl IncrementSolver for Driver<'_, '_> {
             time: t,
             displacement: &self.newton.u,
             reaction: &reaction,
-            contact: &self.newton.contact,
+            contact: self.newton.contact(),
             residuals: &converged.residuals,
             points: self.newton.material_points(),
             temperature: self.thermal.as_ref().map(|t| &t.solver.temperature[..]),

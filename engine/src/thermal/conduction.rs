@@ -83,11 +83,10 @@ mod tests {
 
     #[test]
     fn conduction_matrix_is_symmetric_with_zero_row_sums_and_exact_volume() {
-        let mesh = Mesh {
-            nodes: vec![[1.0, 0.0], [3.0, 0.5], [2.5, 2.0], [1.2, 1.5]],
-            cells: vec![Cell::quad(0, 1, 2, 3), Cell::tri(0, 1, 2)],
-            ..Default::default()
-        };
+        let mesh = Mesh::new(
+            vec![[1.0, 0.0], [3.0, 0.5], [2.5, 2.0], [1.2, 1.5]],
+            vec![Cell::quad(0, 1, 2, 3), Cell::tri(0, 1, 2)],
+        );
         for kind in [AnalysisKind::PlaneStrain, AnalysisKind::Axisymmetric] {
             for cell in &mesh.cells {
                 let c = cell_conduction(&mesh, cell, &section(kind), 3.0, 5.0).unwrap();
@@ -110,11 +109,10 @@ mod tests {
     fn linear_temperature_gives_the_exact_flux_on_a_rectangle() {
         // unit square, T = x: the nodal flux of K T is -k on the left
         // nodes and +k on the right ones (times thickness 2 / 2 per node)
-        let mesh = Mesh {
-            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-            cells: vec![Cell::quad(0, 1, 2, 3)],
-            ..Default::default()
-        };
+        let mesh = Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            vec![Cell::quad(0, 1, 2, 3)],
+        );
         let c = cell_conduction(
             &mesh,
             &mesh.cells[0],

@@ -308,11 +308,10 @@ mod tests {
     use ctc_engine::mesh::Cell;
 
     fn unit_square() -> Mesh {
-        let mut m = Mesh {
-            nodes: vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
-            cells: vec![Cell::quad(0, 1, 2, 3)],
-            ..Mesh::default()
-        };
+        let mut m = Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            vec![Cell::quad(0, 1, 2, 3)],
+        );
         m.edge_sets.insert("bottom".into(), vec![[0, 1]]);
         m.node_sets.insert("corner".into(), vec![2]);
         m

@@ -195,39 +195,10 @@ pub(crate) mod test_model {
 
     /// A one-body linear-elastic model on `mesh`, no loads, one step.
     pub fn one_body(mesh: Mesh, kind: AnalysisKind, young: f64, poisson: f64) -> Model {
-        let (n, c) = (mesh.nodes.len(), mesh.cells.len());
-        Model {
-            analysis: Analysis {
-                kind,
-                thickness: 1.0,
-            },
-            mesh,
-            bodies: vec![Body {
-                name: "b".into(),
-                nodes: 0..n,
-                cells: 0..c,
-                material: 0,
-                formulation: Formulation::Full,
-                kinematics: Default::default(),
-            }],
-            materials: vec![Material {
-                name: "m".into(),
-                law: MaterialLaw::LinearElastic { young, poisson },
-            }],
-            constraints: vec![],
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![Step {
-                name: "s".into(),
-                t_start: 0.0,
-                t_end: 1.0,
-                increments: 1,
-                min_fraction: 1.0 / 1024.0,
-                newton: NewtonSettings::default(),
-            }],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+        ctc_engine::testkit::ModelBuilder::new(kind)
+            .elastic("m", young, poisson)
+            .body("b", mesh, "m")
+            .step("s", 1.0, 1)
+            .build()
     }
 }

@@ -132,7 +132,7 @@ mod tests {
         })
         .unwrap();
         let mut model = one_body(mesh, analysis, 2e6, poisson);
-        let edges = model.mesh.edge_sets["bottom"].clone();
+        let edges = model.mesh.edge_sets["b.bottom"].clone();
         let mut nodes: Vec<usize> = edges.iter().flatten().copied().collect();
         nodes.sort_unstable();
         nodes.dedup();
@@ -187,7 +187,7 @@ mod tests {
             })
             .collect::<Vec<_>>();
         let total: f64 = contact.iter().map(|c| c.force[1]).sum();
-        let top = &model.mesh.node_sets["top"];
+        let top = &model.mesh.node_sets["b.top"];
         let mut reaction = vec![[0.0; 2]; model.mesh.nodes.len()];
         for &n in top {
             reaction[n][1] = -total / top.len() as f64;

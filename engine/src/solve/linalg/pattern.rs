@@ -13,8 +13,8 @@
 //! summed by [`Scatter::add_fp_product`]), used to apply the increment of
 //! prescribed displacements in the Newton predictor.
 
-use super::dofs::{Dof, DofMap};
 use crate::mesh::Mesh;
+use crate::solve::dofs::{Dof, DofMap};
 
 /// Marks an element entry that has no slot (a prescribed row).
 pub const NO_SLOT: u32 = u32::MAX;
@@ -252,13 +252,9 @@ mod tests {
 
     fn model() -> Model {
         // two quads side by side: 0-1-2 bottom, 3-4-5 top; node 0 fixed in x and y
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![
+        crate::testkit::ModelBuilder::plane_strain()
+            .mesh(Mesh::new(
+                vec![
                     [0.0, 0.0],
                     [1.0, 0.0],
                     [2.0, 0.0],
@@ -266,32 +262,11 @@ mod tests {
                     [1.0, 1.0],
                     [2.0, 1.0],
                 ],
-                cells: vec![Cell::quad(0, 1, 4, 3), Cell::quad(1, 2, 5, 4)],
-                ..Default::default()
-            },
-            bodies: vec![],
-            materials: vec![],
-            constraints: vec![
-                Dirichlet {
-                    label: "a".into(),
-                    nodes: vec![0],
-                    component: 0,
-                    value: TimeFunction::Constant(0.0),
-                },
-                Dirichlet {
-                    label: "b".into(),
-                    nodes: vec![0],
-                    component: 1,
-                    value: TimeFunction::Constant(0.0),
-                },
-            ],
-            loads: vec![],
-            tools: vec![],
-            contacts: vec![],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+                vec![Cell::quad(0, 1, 4, 3), Cell::quad(1, 2, 5, 4)],
+            ))
+            .fix([0], 0)
+            .fix([0], 1)
+            .build()
     }
 
     #[test]

@@ -1,17 +1,15 @@
-//! Shared builders for the contact integration tests: hand-made models with
-//! a row of slave nodes and one rigid tool.
-#![allow(dead_code)]
+//! A model whose single body is a row of slave nodes (no cells: enough for
+//! the contact kernels) against one rigid tool.
 
+use super::ModelBuilder;
 use ctc_engine::contact::{evaluate_pair, NodeContact, PairState};
 use ctc_engine::mesh::Mesh;
 use ctc_engine::model::{
-    Analysis, AnalysisKind, Body, ContactMethod, ContactPair, Formulation, Material, MaterialLaw,
-    Model, OutputRequest, PenaltyKind, RigidTool, ToolGeometry, ToolMotion,
+    AnalysisKind, ContactMethod, Model, PenaltyKind, ToolGeometry, ToolMotion,
 };
 
-/// A model whose single body is the slave surface `nodes` joined by edges
-/// `edges` (no cells: enough for contact kernels), against one tool.
-/// (One argument per `Model` ingredient the tests vary.)
+/// The slave surface `nodes` joined by `edges` against one tool.
+/// (One argument per model ingredient the tests vary.)
 #[allow(clippy::too_many_arguments)]
 pub fn surface_model(
     analysis: AnalysisKind,
@@ -23,56 +21,15 @@ pub fn surface_model(
     method: ContactMethod,
     prof: Option<f64>,
 ) -> Model {
-    let mut slave: Vec<usize> = edges.iter().flat_map(|e| [e[0], e[1]]).collect();
-    slave.sort_unstable();
-    slave.dedup();
-    let n = nodes.len();
-    Model {
-        analysis: Analysis {
-            kind: analysis,
-            thickness,
-        },
-        mesh: Mesh {
-            nodes,
-            ..Mesh::default()
-        },
-        bodies: vec![Body {
-            name: "body".into(),
-            nodes: 0..n,
-            cells: 0..0,
-            material: 0,
-            formulation: Formulation::Full,
-            kinematics: Default::default(),
-        }],
-        materials: vec![Material {
-            name: "m".into(),
-            law: MaterialLaw::LinearElastic {
-                young: 1.0,
-                poisson: 0.3,
-            },
-        }],
-        constraints: vec![],
-        loads: vec![],
-        tools: vec![RigidTool {
-            name: "tool".into(),
-            geometry,
-            motion,
-        }],
-        contacts: vec![ContactPair {
-            name: "body.surface -> tool".into(),
-            body: 0,
-            edges,
-            nodes: slave,
-            master: ctc_engine::model::ContactMaster::Tool(0),
-            strategy: Default::default(),
-            search: Default::default(),
-            method,
-            prof,
-            friction: None,
-        }],
-        steps: vec![],
-        output: OutputRequest::default(),
-        thermal: None,
+    let b = ModelBuilder::new(analysis)
+        .thickness(thickness)
+        .elastic("m", 1.0, 0.3)
+        .body("body", Mesh::new(nodes, vec![]), "m")
+        .tool("tool", geometry, motion)
+        .contact_tool("body.surface -> tool", "body", edges, "tool", method);
+    match prof {
+        Some(p) => b.prof(p).build(),
+        None => b.build(),
     }
 }
 

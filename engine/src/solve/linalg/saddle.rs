@@ -33,7 +33,9 @@
 //! while it is unchanged (same active set), recomputed otherwise.
 
 use super::pattern::SparsePattern;
+use super::{LinearError, SaddlePointSystem};
 use crate::model::LagrangeFormulation;
+use crate::solve::constraints::ConstraintRows;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::solvers::Solve;
@@ -44,25 +46,6 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::solvers::{Lu, SymbolicLu};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
-
-/// One constraint row: `G[k, dof] = coefficient` for up to six free dofs
-/// (a slave node against a rigid tool: 2; node-to-segment: slave and the
-/// two master ends).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ConstraintRow {
-    /// `(free dof, coefficient)` pairs, sorted by dof; only the first `len`
-    /// are used.
-    pub entries: [(usize, f64); 6],
-    /// Number of used entries (0..=6).
-    pub len: usize,
-}
-
-impl ConstraintRow {
-    /// The used entries, sorted by free dof.
-    pub fn entries(&self) -> &[(usize, f64)] {
-        &self.entries[..self.len]
-    }
-}
 
 enum Factor {
     None,
@@ -124,13 +107,13 @@ impl SaddleSolver {
 
     /// Assembles the saddle-point matrix from the free-free block
     /// (`k`, `k_values`) and the constraint rows, in the formulation's order.
-    fn assemble(&mut self, k: &SparsePattern, k_values: &[f64], rows: &[ConstraintRow]) {
+    fn assemble(&mut self, k: &SparsePattern, k_values: &[f64], rows: &ConstraintRows) {
         let n = k.n;
         let m = rows.len();
         // per free dof: constraints touching it (k ascending)
         let mut touching: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
         for (c, row) in rows.iter().enumerate() {
-            for &(dof, coef) in row.entries() {
+            for &(dof, coef) in row {
                 touching[dof].push((c, coef));
             }
         }
@@ -154,8 +137,8 @@ impl SaddleSolver {
                     }
                     col_ptr.push(row_idx.len());
                 }
-                for row in rows {
-                    for &(dof, coef) in row.entries() {
+                for row in rows.iter() {
+                    for &(dof, coef) in row {
                         push(dof, coef, &mut row_idx, &mut values);
                     }
                     col_ptr.push(row_idx.len());
@@ -177,7 +160,7 @@ impl SaddleSolver {
                     };
                     row_idx.push(first);
                     values.push(v_first);
-                    for &(dof, coef) in rows[c].entries() {
+                    for &(dof, coef) in rows.row(c) {
                         row_idx.push(m + dof);
                         values.push(coef);
                     }
@@ -231,8 +214,8 @@ impl SaddleSolver {
         &mut self,
         k: &SparsePattern,
         k_values: &[f64],
-        rows: &[ConstraintRow],
-    ) -> Result<(), String> {
+        rows: &ConstraintRows,
+    ) -> Result<(), LinearError> {
         self.factor = Factor::None;
         self.assemble(k, &k_values[..k.nnz()], rows);
         let p = &self.pattern;
@@ -245,13 +228,17 @@ impl SaddleSolver {
             LagrangeFormulation::Single => {
                 if self.symbolic_lu.is_none() {
                     self.symbolic_lu = Some(SymbolicLu::try_new(symbolic).map_err(|e| {
-                        format!("symbolic LU of the saddle-point system failed: {e:?}")
+                        LinearError::Symbolic(format!(
+                            "symbolic LU of the saddle-point system failed: {e:?}"
+                        ))
                     })?);
                     self.symbolic_count += 1;
                 }
                 let sym = self.symbolic_lu.clone().expect("set above");
                 let f = Lu::try_new_with_symbolic(sym, mat).map_err(|e| {
-                    format!("the saddle-point system is singular (LU failed: {e:?})")
+                    LinearError::Singular(format!(
+                        "the saddle-point system is singular (LU failed: {e:?})"
+                    ))
                 })?;
                 self.factor = Factor::Lu(Box::new(f));
             }
@@ -271,7 +258,9 @@ impl SaddleSolver {
                             CholeskySymbolicParams::default(),
                         )
                         .map_err(|e| {
-                            format!("symbolic LDL^T of the doubled system failed: {e:?}")
+                            LinearError::Symbolic(format!(
+                                "symbolic LDL^T of the doubled system failed: {e:?}"
+                            ))
                         })?,
                     );
                     self.symbolic_count += 1;
@@ -290,7 +279,11 @@ impl SaddleSolver {
                     MemStack::new(&mut buf),
                     Default::default(),
                 )
-                .map_err(|e| format!("LDL^T of the doubled saddle-point system failed: {e:?}"))?;
+                .map_err(|e| {
+                    LinearError::Singular(format!(
+                        "LDL^T of the doubled saddle-point system failed: {e:?}"
+                    ))
+                })?;
                 self.factor = Factor::Ldlt(l_values);
             }
         }
@@ -301,27 +294,31 @@ impl SaddleSolver {
     /// Solves with the last factorization: on entry `du` holds `-r_u` (free
     /// dofs) and `dl` holds `g` (one per constraint); on exit the
     /// corrections `du` and `dlambda`.
-    pub fn solve(&self, du: &mut [f64], dl: &mut [f64]) {
+    pub fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError> {
         let (n, m) = (self.n_free, self.m);
-        assert_eq!((du.len(), dl.len()), (n, m), "saddle solve: sizes");
+        if (du.len(), dl.len()) != (n, m) {
+            return Err(LinearError::NotFactorized);
+        }
         let mut x = match self.formulation {
             LagrangeFormulation::Single => [&du[..], &dl[..]].concat(),
             LagrangeFormulation::Doubled => [&dl[..], &du[..], &dl[..]].concat(),
         };
         if x.is_empty() {
-            return;
+            return Ok(());
         }
         let len = x.len();
         let b = MatMut::from_column_major_slice_mut(&mut x, len, 1);
         match &self.factor {
             Factor::Lu(f) => f.solve_in_place(b),
             Factor::Ldlt(values) => {
-                let sym = self.symbolic_ldlt.as_ref().expect("factorized");
+                let Some(sym) = self.symbolic_ldlt.as_ref() else {
+                    return Err(LinearError::NotFactorized);
+                };
                 let f = LdltRef::new(sym, values);
                 let mut buf = MemBuffer::new(sym.solve_in_place_scratch::<f64>(1, Par::Seq));
                 f.solve_in_place_with_conj(Conj::No, b, Par::Seq, MemStack::new(&mut buf));
             }
-            Factor::None => panic!("SaddleSolver::solve called before factorize"),
+            Factor::None => return Err(LinearError::NotFactorized),
         }
         match self.formulation {
             LagrangeFormulation::Single => {
@@ -335,6 +332,30 @@ impl SaddleSolver {
                 }
             }
         }
+        Ok(())
+    }
+}
+
+impl SaddlePointSystem for SaddleSolver {
+    fn factorize(
+        &mut self,
+        k: &SparsePattern,
+        k_values: &[f64],
+        rows: &ConstraintRows,
+    ) -> Result<(), LinearError> {
+        SaddleSolver::factorize(self, k, k_values, rows)
+    }
+
+    fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError> {
+        SaddleSolver::solve(self, du, dl)
+    }
+
+    fn factorized_rows(&self) -> Option<usize> {
+        (!matches!(self.factor, Factor::None)).then_some(self.m)
+    }
+
+    fn counts(&self) -> (usize, usize) {
+        (self.symbolic_count, self.numeric_count)
     }
 }
 
@@ -369,16 +390,14 @@ mod tests {
 
     fn solve(form: LagrangeFormulation) -> (Vec<f64>, Vec<f64>, SaddleSolver) {
         let (k, v) = chain();
-        let rows = [ConstraintRow {
-            entries: [(1, -1.0), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0)],
-            len: 1,
-        }];
+        let mut rows = ConstraintRows::default();
+        rows.push([(1, -1.0)]);
         let mut s = SaddleSolver::new(form);
         s.factorize(&k, &v, &rows).unwrap();
         // load f = (1, 0, 1): rhs -r = f; constraint -u1 = g = 0.5 -> u1 = -0.5
         let mut du = vec![1.0, 0.0, 1.0];
         let mut dl = vec![0.5];
-        s.solve(&mut du, &mut dl);
+        s.solve(&mut du, &mut dl).unwrap();
         (du, dl, s)
     }
 
@@ -399,17 +418,15 @@ mod tests {
     #[test]
     fn symbolic_factorization_reused_while_the_constraint_set_is_unchanged() {
         let (k, v) = chain();
-        let rows = [ConstraintRow {
-            entries: [(0, -1.0), (2, 0.5), (0, 0.0), (0, 0.0), (0, 0.0), (0, 0.0)],
-            len: 2,
-        }];
+        let mut rows = ConstraintRows::default();
+        rows.push([(0, -1.0), (2, 0.5)]);
         for form in [LagrangeFormulation::Single, LagrangeFormulation::Doubled] {
             let mut s = SaddleSolver::new(form);
             s.factorize(&k, &v, &rows).unwrap();
             let v2: Vec<f64> = v.iter().map(|x| 2.0 * x).collect();
             s.factorize(&k, &v2, &rows).unwrap();
             assert_eq!((s.symbolic_count, s.numeric_count), (1, 2));
-            s.factorize(&k, &v2, &[]).unwrap();
+            s.factorize(&k, &v2, &ConstraintRows::default()).unwrap();
             assert_eq!(
                 (s.symbolic_count, s.numeric_count, s.constraints()),
                 (2, 3, 0)

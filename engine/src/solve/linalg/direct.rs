@@ -19,8 +19,11 @@
 //!
 //! The first method that worked is tried first at the next factorization;
 //! [`LinearSolver::prefer_cholesky`] goes back to Cholesky (each increment).
+//!
+//! This is the [`LinearSystem`] of the default build (serial, direct).
 
 use super::pattern::SparsePattern;
+use super::{FactorStats, LinearError, LinearSystem};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -59,6 +62,8 @@ impl Method {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Factor {
     None,
+    /// The matrix has no rows (nothing to solve).
+    Empty,
     /// `l_values` hold the Cholesky factor.
     Llt,
     /// `l_values` hold the L D L^T factor.
@@ -151,10 +156,15 @@ impl LinearSolver {
 
     /// Numerically factorizes the matrix with `pattern` and `values` (the
     /// first `pattern.nnz()` entries are used; both triangles stored).
-    pub fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), String> {
+    pub fn factorize(
+        &mut self,
+        pattern: &SparsePattern,
+        values: &[f64],
+    ) -> Result<(), LinearError> {
         let n = pattern.n;
         self.factor = Factor::None;
         if n == 0 {
+            self.factor = Factor::Empty;
             return Ok(());
         }
         let symbolic =
@@ -168,7 +178,9 @@ impl LinearSolver {
                     SymmetricOrdering::Amd,
                     CholeskySymbolicParams::default(),
                 )
-                .map_err(|e| format!("symbolic Cholesky factorization failed: {e:?}"))?;
+                .map_err(|e| {
+                    LinearError::Symbolic(format!("symbolic Cholesky factorization failed: {e:?}"))
+                })?;
                 let req = sym
                     .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
                     .or(sym.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()))
@@ -226,14 +238,15 @@ impl LinearSolver {
             self.method = Method::Lu;
         }
         if self.symbolic_lu.is_none() {
-            self.symbolic_lu = Some(
-                SymbolicLu::try_new(symbolic)
-                    .map_err(|e| format!("symbolic LU factorization failed: {e:?}"))?,
-            );
+            self.symbolic_lu = Some(SymbolicLu::try_new(symbolic).map_err(|e| {
+                LinearError::Symbolic(format!("symbolic LU factorization failed: {e:?}"))
+            })?);
         }
         let sym = self.symbolic_lu.clone().expect("set above");
         let f = Lu::try_new_with_symbolic(sym, mat).map_err(|e| {
-            format!("the stiffness matrix is singular (LU factorization failed: {e:?})")
+            LinearError::Singular(format!(
+                "the stiffness matrix is singular (LU factorization failed: {e:?})"
+            ))
         })?;
         self.lu = Some(Box::new(f));
         self.factor = Factor::Lu;
@@ -241,17 +254,21 @@ impl LinearSolver {
         Ok(())
     }
 
-    /// Solves `K x = b` in place with the last factorization.
-    pub fn solve(&mut self, rhs: &mut [f64]) {
+    /// Solves `K x = b` in place with the last factorization
+    /// ([`LinearError::NotFactorized`] without one).
+    pub fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let n = rhs.len();
         if n == 0 {
-            return;
+            return Ok(());
         }
         let b = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.factor {
             Factor::Llt | Factor::Ldlt => {
-                let sym = self.symbolic.as_ref().expect("factorized");
-                let stack = MemStack::new(self.scratch.as_mut().expect("factorized"));
+                let (Some(sym), Some(scratch)) = (self.symbolic.as_ref(), self.scratch.as_mut())
+                else {
+                    return Err(LinearError::NotFactorized);
+                };
+                let stack = MemStack::new(scratch);
                 if self.factor == Factor::Llt {
                     LltRef::new(sym, &self.l_values).solve_in_place_with_conj(
                         Conj::No,
@@ -268,8 +285,48 @@ impl LinearSolver {
                     );
                 }
             }
-            Factor::Lu => self.lu.as_ref().expect("factorized").solve_in_place(b),
-            Factor::None => panic!("LinearSolver::solve called before factorize"),
+            Factor::Lu => match self.lu.as_ref() {
+                Some(lu) => lu.solve_in_place(b),
+                None => return Err(LinearError::NotFactorized),
+            },
+            Factor::None | Factor::Empty => return Err(LinearError::NotFactorized),
+        }
+        Ok(())
+    }
+}
+
+impl LinearSystem for LinearSolver {
+    fn set_symmetric(&mut self, symmetric: bool) {
+        if symmetric {
+            self.prefer_cholesky();
+        } else {
+            self.require_lu();
+        }
+    }
+
+    fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), LinearError> {
+        LinearSolver::factorize(self, pattern, values)
+    }
+
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
+        LinearSolver::solve(self, rhs)
+    }
+
+    fn is_factorized(&self) -> bool {
+        self.factor != Factor::None
+    }
+
+    fn reset_pattern(&mut self) {
+        LinearSolver::reset_pattern(self);
+    }
+
+    fn stats(&self) -> FactorStats {
+        FactorStats {
+            cholesky: self.cholesky_count,
+            ldlt: self.ldlt_count,
+            lu: self.lu_count,
+            negative_pivots: self.negative_pivots,
+            max_negative_pivots: self.max_negative_pivots,
         }
     }
 }
@@ -356,7 +413,7 @@ mod tests {
             s.factorize(&p, &v).unwrap();
             let b = [1.0, 2.0, 3.0];
             let mut x = b;
-            s.solve(&mut x);
+            s.solve(&mut x).unwrap();
             let a2 = a.map(|r| r.map(|x| x * scale));
             assert!(residual(&a2, &x, &b) < 1e-14);
         }
@@ -375,7 +432,7 @@ mod tests {
         assert_eq!(s.negative_pivots, 2);
         let b = [1.0, -1.0, 2.0];
         let mut x = b;
-        s.solve(&mut x);
+        s.solve(&mut x).unwrap();
         assert!(residual(&a, &x, &b) < 1e-14, "{x:?}");
         // back to Cholesky when asked, and it works on an SPD matrix again
         s.prefer_cholesky();
@@ -399,7 +456,7 @@ mod tests {
         assert_eq!(s.lu_count, 1);
         let b = [1.0, -1.0, 2.0];
         let mut x = b;
-        s.solve(&mut x);
+        s.solve(&mut x).unwrap();
         assert!(residual(&a, &x, &b) < 1e-14, "{x:?}");
     }
 
@@ -419,7 +476,7 @@ mod tests {
         s.factorize(&p, &v).unwrap();
         assert_eq!(s.method(), Method::Lu);
         let mut x = [1.0, 0.0, 1.0];
-        s.solve(&mut x);
+        s.solve(&mut x).unwrap();
         assert!(x.iter().any(|v| !v.is_finite()), "{x:?}");
     }
 }

@@ -1,17 +1,16 @@
-//! Shared builder of the friction tests: an elastic block (plane strain,
-//! quad4) resting on a rigid plane inclined at `alpha`, loaded by its
-//! weight, then pushed horizontally.
-#![allow(dead_code)]
+//! An elastic block (plane strain, quad4) resting on a rigid plane
+//! inclined at `alpha`, loaded by its weight, then pushed horizontally:
+//! the scene of the friction tests.
 
+use super::{ramp, ModelBuilder, Recorder};
 use ctc_engine::contact::friction::{pair_dissipation, FrictionStatus};
 use ctc_engine::contact::NodeContact;
 use ctc_engine::mesh::{Cell, Mesh};
 use ctc_engine::model::{
-    Analysis, AnalysisKind, Body, ContactMethod, ContactPair, Dirichlet, FirstImpact, Formulation,
-    Friction, Load, Material, MaterialLaw, Model, NewtonSettings, OutputRequest, PenaltyKind,
-    RigidTool, Step, TimeFunction, ToolGeometry, ToolMotion,
+    ContactMethod, Dirichlet, FirstImpact, Friction, Load, Model, NewtonSettings, PenaltyKind,
+    TimeFunction, ToolGeometry, ToolMotion,
 };
-use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
+use ctc_engine::solve::{run, RunSummary};
 
 /// How the block is driven in the second step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -102,31 +101,20 @@ impl Block {
             }
         }
         let nn = nodes.len();
-        let mesh = Mesh {
-            nodes,
-            cells,
-            ..Mesh::default()
-        };
-        let bottom: Vec<usize> = (0..=nx).map(|i| id(i, 0)).collect();
         let bottom_edges: Vec<[usize; 2]> = (0..nx).map(|i| [id(i, 0), id(i + 1, 0)]).collect();
         let top: Vec<usize> = (0..=nx).map(|i| id(i, ny)).collect();
         // the bottom-left node is a contact node: a prescribed ux there would
         // fight the stick constraint (over-constrained with multipliers)
         let left: Vec<usize> = (1..=ny).map(|j| id(0, j)).collect();
         let all: Vec<usize> = (0..nn).collect();
-        let ramp = |t0: f64, t1: f64, v1: f64| TimeFunction::Ramp {
-            t0,
-            t1,
-            v0: 0.0,
-            v1,
-        };
-        let mut constraints = Vec::new();
-        let mut loads = Vec::new();
+        let mut b = ModelBuilder::plane_strain()
+            .elastic("m", 1e5, self.poisson)
+            .body("block", Mesh::new(nodes, cells), "m");
         match self.squeeze {
             None => {
                 // consistent with a uniform pressure: end nodes take half
                 for (k, nodes) in [(0.5, vec![top[0], top[nx]]), (1.0, top[1..nx].to_vec())] {
-                    loads.push(Load::NodalForce {
+                    b = b.load(Load::NodalForce {
                         label: "weight".into(),
                         nodes,
                         component: 1,
@@ -139,7 +127,7 @@ impl Block {
                     Drive::LeftSide(d) | Drive::AllNodes(d) | Drive::AboveBase(d) => d,
                     Drive::Force(_) => 0.0,
                 };
-                constraints.push(Dirichlet {
+                b = b.constraint(Dirichlet {
                     label: "squeeze".into(),
                     nodes: top.clone(),
                     component: 1,
@@ -151,25 +139,12 @@ impl Block {
                 });
             }
         }
-        match self.drive {
-            Drive::LeftSide(d) => constraints.push(Dirichlet {
-                label: "push".into(),
-                nodes: left,
-                component: 0,
-                value: ramp(1.0, 2.0, d),
-            }),
-            Drive::AllNodes(d) => constraints.push(Dirichlet {
-                label: "pull".into(),
-                nodes: all,
-                component: 0,
-                value: ramp(1.0, 2.0, d),
-            }),
-            Drive::AboveBase(d) => constraints.push(Dirichlet {
-                label: "pull".into(),
-                nodes: (nx + 1..nn).collect(),
-                component: 0,
-                value: ramp(1.0, 2.0, d),
-            }),
+        b = match self.drive {
+            Drive::LeftSide(d) => b.displace(left, 0, ramp(1.0, 2.0, d)),
+            Drive::AllNodes(d) => b.displace(all, 0, ramp(1.0, 2.0, d)),
+            Drive::AboveBase(d) => {
+                b.displace((nx + 1..nn).collect::<Vec<_>>(), 0, ramp(1.0, 2.0, d))
+            }
             Drive::Force(q) => {
                 // a uniform shear traction on the base: no tipping moment
                 let bottom: Vec<usize> = (0..=nx).map(|i| id(i, 0)).collect();
@@ -177,15 +152,16 @@ impl Block {
                     (0.5, vec![bottom[0], bottom[nx]]),
                     (1.0, bottom[1..nx].to_vec()),
                 ] {
-                    loads.push(Load::NodalForce {
+                    b = b.load(Load::NodalForce {
                         label: "pull".into(),
                         nodes,
                         component: 0,
                         value: ramp(1.0, 2.0, k * q / nx as f64),
                     });
                 }
+                b
             }
-        }
+        };
         // the plane overlaps the block by 1e-6 at t = 0 so that contact is
         // closed from the first iteration on (the block has no other support)
         let n = [-s, c];
@@ -195,75 +171,35 @@ impl Block {
             max_iter: 30,
             line_search: true,
         };
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
+        b.tool(
+            "plane",
+            ToolGeometry::Plane {
+                point: [1e-6 * n[0], 1e-6 * n[1]],
+                normal: n,
             },
-            mesh,
-            bodies: vec![Body {
-                name: "block".into(),
-                nodes: 0..nn,
-                cells: 0..nx * ny,
-                material: 0,
-                formulation: Formulation::Full,
-                kinematics: Default::default(),
-            }],
-            materials: vec![Material {
-                name: "m".into(),
-                law: MaterialLaw::LinearElastic {
-                    young: 1e5,
-                    poisson: self.poisson,
-                },
-            }],
-            constraints,
-            loads,
-            tools: vec![RigidTool {
-                name: "plane".into(),
-                geometry: ToolGeometry::Plane {
-                    point: [1e-6 * n[0], 1e-6 * n[1]],
-                    normal: n,
-                },
-                motion: ToolMotion::fixed(),
-            }],
-            contacts: vec![ContactPair {
-                name: "block.bottom -> plane".into(),
-                body: 0,
-                edges: bottom_edges,
-                nodes: bottom,
-                master: ctc_engine::model::ContactMaster::Tool(0),
-                strategy: Default::default(),
-                search: Default::default(),
-                method: self.method.clone(),
-                prof: Some(0.1),
-                friction: Some(Friction {
-                    mu: self.mu,
-                    stiffness: self.friction_stiffness,
-                    first_impact: FirstImpact::Intersect,
-                    cut_at_impact: false,
-                }),
-            }],
-            steps: vec![
-                Step {
-                    name: "weight".into(),
-                    t_start: 0.0,
-                    t_end: 1.0,
-                    increments: 1,
-                    min_fraction: 1.0 / 64.0,
-                    newton,
-                },
-                Step {
-                    name: "push".into(),
-                    t_start: 1.0,
-                    t_end: 2.0,
-                    increments: self.increments,
-                    min_fraction: 1.0 / 64.0,
-                    newton,
-                },
-            ],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+            ToolMotion::fixed(),
+        )
+        .contact_tool(
+            "block.bottom -> plane",
+            "block",
+            bottom_edges,
+            "plane",
+            self.method.clone(),
+        )
+        .prof(0.1)
+        .friction(Friction {
+            mu: self.mu,
+            stiffness: self.friction_stiffness,
+            first_impact: FirstImpact::Intersect,
+            cut_at_impact: false,
+        })
+        .step("weight", 1.0, 1)
+        .min_fraction(1.0 / 64.0)
+        .newton(newton)
+        .step("push", 2.0, self.increments)
+        .min_fraction(1.0 / 64.0)
+        .newton(newton)
+        .build()
     }
 }
 
@@ -286,42 +222,47 @@ pub struct Row {
     pub residuals: Vec<f64>,
 }
 
-/// Records every converged increment.
+/// The converged increments of a run of the block.
 #[derive(Default)]
-pub struct Recorder {
+pub struct Rows {
     /// Rows.
     pub rows: Vec<Row>,
 }
 
-impl Observer for Recorder {
-    fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
-        let push = v.reaction.iter().map(|r| r[0]).sum::<f64>();
-        let lift = v.reaction.iter().map(|r| r[1]).sum::<f64>();
-        let contact = v.contact[0].clone();
-        let bottom_ux = contact
+impl Rows {
+    fn of(rec: &Recorder) -> Self {
+        let rows = rec
+            .increments
             .iter()
-            .map(|c| v.displacement[c.node][0])
-            .sum::<f64>()
-            / contact.len().max(1) as f64;
-        self.rows.push(Row {
-            time: v.time,
-            push,
-            lift,
-            dissipation: pair_dissipation(&contact),
-            contact,
-            bottom_ux,
-            residuals: v.residuals.to_vec(),
-        });
-        Ok(())
+            .map(|v| {
+                let [push, lift] = v.total_reaction();
+                let contact = v.contact[0].clone();
+                let bottom_ux = contact
+                    .iter()
+                    .map(|c| v.displacement[c.node][0])
+                    .sum::<f64>()
+                    / contact.len().max(1) as f64;
+                Row {
+                    time: v.time,
+                    push,
+                    lift,
+                    dissipation: pair_dissipation(&contact),
+                    contact,
+                    bottom_ux,
+                    residuals: v.residuals.clone(),
+                }
+            })
+            .collect();
+        Rows { rows }
     }
 }
 
 /// Runs `block`; the recorded increments and the summary, or the error.
-pub fn solve(block: &Block) -> Result<(Recorder, RunSummary), String> {
+pub fn solve(block: &Block) -> Result<(Rows, RunSummary), String> {
     let model = block.model();
     let mut rec = Recorder::default();
     let summary = run(&model, &mut rec).map_err(|e| e.message)?;
-    Ok((rec, summary))
+    Ok((Rows::of(&rec), summary))
 }
 
 /// Number of contact nodes in `status`.

@@ -17,17 +17,39 @@
 //! set comes back, the increment fails naming the nodes that flip, and the
 //! stepper cuts it back. With `update = newton` the augmented-Lagrangian
 //! multipliers are instead updated inside the Newton loop
-//! ([`Newton::uzawa_update`] called at every iteration).
+//! ([`crate::contact::augmented::uzawa_update`] called at every iteration).
+//!
+//! The loop drives a [`NewtonLoop`] (the solver of one Newton loop) and
+//! changes only the contact state it exposes: it never reaches into the
+//! Newton solver, and the Newton solver never calls back into it. The
+//! contact laws give their constraint rows in node terms
+//! ([`crate::contact::rows`]); only `contact_assembly` maps them to dofs.
 //!
 //! Sign convention: `lambda >= 0` is a compressive normal force; the force
 //! of the tool on a node is `lambda n`.
 
-use super::dofs::Dof;
-use super::newton::{Converged, Failure, FailureKind, Newton};
-use super::saddle::ConstraintRow;
+use super::newton::{Converged, Failure, FailureKind};
 use super::Observer;
-use crate::contact::{augmented, friction, penalty, ContactStatus, NodeContact, PairState};
+use crate::contact::augmented::uzawa_update;
+use crate::contact::{NodeContact, PairState};
 use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
+
+/// The solver of one Newton loop, as the contact loop sees it.
+pub trait NewtonLoop {
+    /// One Newton loop at time `t` with the Lagrange active sets and the
+    /// multipliers `lambda*` of `update = converged` pairs fixed.
+    fn newton_loop(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer,
+    ) -> Result<Converged, Failure>;
+    /// The model, the contact state of every pair and its evaluation at
+    /// the state the last Newton loop converged to.
+    fn contact_state(&mut self) -> (&Model, &mut [PairState], &[Vec<NodeContact>]);
+}
 
 /// Newton loops allowed per increment attempt (active-set changes plus
 /// Uzawa updates) before the attempt fails.
@@ -37,90 +59,6 @@ pub const MAX_CONTACT_ITERATIONS: usize = 50;
 /// size of the mesh (round-off level: a released node sitting exactly on
 /// the tool is not re-introduced by a gap of -1e-17).
 const INTRODUCE_GAP: f64 = 1e-14;
-
-/// Constraint rows of the active Lagrange nodes at the last evaluation.
-#[derive(Debug, Clone, Default)]
-pub struct Constraints {
-    /// Rows `G = -d g / d u_free` (one per active node).
-    pub rows: Vec<ConstraintRow>,
-    /// Gap of each constraint.
-    pub gap: Vec<f64>,
-    /// `(pair, slave index)` of each constraint.
-    pub owner: Vec<(usize, usize)>,
-    /// Per constraint: prescribed dofs of the node (index into
-    /// `DofMap::prescribed`) and the normal component `d g / d u_p`.
-    pub prescribed: Vec<Vec<(usize, f64)>>,
-    /// Per constraint: a tangential (stick) row of Lagrange friction, its
-    /// multiplier being `PairState::friction.multiplier`.
-    pub tangential: Vec<bool>,
-}
-
-impl Constraints {
-    /// Builds the rows of the active nodes of every Lagrange pair from the
-    /// contact evaluation `contact` (one list per pair).
-    pub fn build(
-        &mut self,
-        model: &Model,
-        dofs: &[Dof],
-        pairs: &[PairState],
-        contact: &[Vec<NodeContact>],
-    ) {
-        self.rows.clear();
-        self.gap.clear();
-        self.owner.clear();
-        self.prescribed.clear();
-        self.tangential.clear();
-        for (pi, cp) in model.contacts.iter().enumerate() {
-            if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
-                continue;
-            }
-            for nc in &contact[pi] {
-                let Some(i) = pairs[pi].slave_index(nc.node) else {
-                    continue;
-                };
-                if !pairs[pi].active.get(i).copied().unwrap_or(false) {
-                    continue;
-                }
-                let mut row = ConstraintRow {
-                    entries: [(0, 0.0); 6],
-                    len: 0,
-                };
-                let mut presc = Vec::new();
-                // d g / d x over the element nodes: the slave alone against a
-                // rigid tool, slave and master ends for node-to-segment
-                let (nodes, grad) = match &nc.master {
-                    None => (
-                        [nc.node, usize::MAX, usize::MAX],
-                        [nc.normal[0], nc.normal[1], 0.0, 0.0, 0.0, 0.0],
-                    ),
-                    Some(ms) => ([nc.node, ms.nodes[0], ms.nodes[1]], ms.gap_gradient),
-                };
-                for (k, &node) in nodes.iter().enumerate() {
-                    if node == usize::MAX {
-                        continue;
-                    }
-                    for c in 0..2 {
-                        match dofs[2 * node + c] {
-                            Dof::Free(f) => {
-                                row.entries[row.len] = (f, -grad[2 * k + c]);
-                                row.len += 1;
-                            }
-                            Dof::Prescribed(p) => presc.push((p, grad[2 * k + c])),
-                            Dof::Inactive => {}
-                        }
-                    }
-                }
-                row.entries[..row.len].sort_by_key(|e| e.0);
-                self.rows.push(row);
-                self.gap.push(nc.gap);
-                self.owner.push((pi, i));
-                self.prescribed.push(presc);
-                self.tangential.push(false);
-            }
-        }
-        crate::contact::friction_lagrange::add_rows(model, dofs, contact, self);
-    }
-}
 
 /// What an active-set update changed: global nodes introduced and released.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -248,75 +186,11 @@ pub fn active_key(pairs: &[PairState]) -> Vec<bool> {
         .collect()
 }
 
-/// Uzawa update of the augmented-Lagrangian pairs whose update mode is
-/// `mode`: for a pair whose largest penetration exceeds its tolerance,
-/// `lambda* <- max(0, lambda* - alpha g)` at every evaluated node (0 at
-/// nodes out of the search window). Returns whether any pair was updated.
-pub fn uzawa_update(
-    model: &Model,
-    pairs: &mut [PairState],
-    contact: &[Vec<NodeContact>],
-    mode: MultiplierUpdate,
-) -> bool {
-    let mut updated = false;
-    for (pi, cp) in model.contacts.iter().enumerate() {
-        let ContactMethod::AugmentedLagrange {
-            tolerance, update, ..
-        } = cp.method
-        else {
-            continue;
-        };
-        let violation = constraint_violation(&contact[pi]).max(if cp.friction.is_some() {
-            friction::stick_violation(&contact[pi])
-        } else {
-            0.0
-        });
-        if update != mode || violation <= tolerance {
-            continue;
-        }
-        let state = &mut pairs[pi];
-        let mut next = vec![0.0; state.slaves.len()];
-        for nc in &contact[pi] {
-            let Some(i) = state.slave_index(nc.node) else {
-                continue;
-            };
-            let alpha = penalty::effective_stiffness(&cp.method, state.tributary[i]);
-            next[i] = augmented::normal_force(alpha, state.multiplier[i], nc.gap);
-        }
-        state.multiplier = next;
-        if cp.friction.is_some() {
-            friction::uzawa_update(&state.slaves, &contact[pi], &mut state.friction);
-        }
-        updated = true;
-    }
-    updated
-}
-
-/// Largest violation of the contact conditions over a pair's evaluated
-/// nodes: `|g|` where a force acts (closed: the gap should vanish, a force
-/// at a positive gap is an over-correction of `lambda*`), the penetration
-/// `max(0, -g)` elsewhere. The augmented-Lagrangian iterations stop when it
-/// is below the tolerance `gmax*`.
-pub fn constraint_violation(contact: &[NodeContact]) -> f64 {
-    contact
-        .iter()
-        .map(|c| match c.status {
-            ContactStatus::Closed => c.gap.abs(),
-            ContactStatus::Open => (-c.gap).max(0.0),
-        })
-        .fold(0.0, f64::max)
-}
-
-/// Largest penetration `max(0, -g)` over a pair's evaluated nodes.
-pub fn max_penetration(contact: &[NodeContact]) -> f64 {
-    contact.iter().map(|c| -c.gap).fold(0.0, f64::max)
-}
-
 /// Solves one increment attempt: Newton loops until the Lagrange active
 /// sets are stable and the augmented-Lagrangian penetrations are below
 /// their tolerances (a single Newton loop for penalty-only models).
 pub fn attempt(
-    newton: &mut Newton<'_>,
+    solver: &mut dyn NewtonLoop,
     settings: &NewtonSettings,
     t: f64,
     step: usize,
@@ -326,10 +200,10 @@ pub fn attempt(
     let mut residuals: Vec<f64> = Vec::new();
     let mut iterations = 0;
     let mut updates = 0;
-    let mut guard = CyclingGuard::new(active_key(&newton.pairs));
+    let mut guard = CyclingGuard::new(active_key(solver.contact_state().1));
     for _ in 0..MAX_CONTACT_ITERATIONS {
-        let conv = newton
-            .attempt_newton(settings, t, step, increment, observer)
+        let conv = solver
+            .newton_loop(settings, t, step, increment, observer)
             .map_err(|mut f| {
                 let mut r = residuals.clone();
                 r.append(&mut f.residuals);
@@ -339,21 +213,21 @@ pub fn attempt(
         iterations += conv.iterations;
         updates += conv.contact_iterations;
         residuals.extend_from_slice(&conv.residuals);
-        let model = newton.model;
-        let mut change = update_active_sets(model, &mut newton.pairs, &newton.contact);
+        let (model, pairs, contact) = solver.contact_state();
+        let mut change = update_active_sets(model, pairs, contact);
         if change.is_empty() {
             // friction loop (Lagrange stick/slip statuses) once the contact
             // loop has settled
             change.introduced = crate::contact::friction_lagrange::update_status(
                 model,
-                &mut newton.pairs,
-                &newton.contact,
+                pairs,
+                contact,
                 INTRODUCE_GAP * model_size(model),
             );
         }
         if !change.is_empty() {
             updates += 1;
-            if let Err(detail) = guard.visit(active_key(&newton.pairs), &change) {
+            if let Err(detail) = guard.visit(active_key(pairs), &change) {
                 return Err(Failure {
                     kind: FailureKind::ActiveSetCycling,
                     residuals,
@@ -362,12 +236,7 @@ pub fn attempt(
             }
             continue;
         }
-        if uzawa_update(
-            model,
-            &mut newton.pairs,
-            &newton.contact,
-            MultiplierUpdate::Converged,
-        ) {
+        if uzawa_update(model, pairs, contact, MultiplierUpdate::Converged) {
             updates += 1;
             continue;
         }
@@ -392,6 +261,8 @@ pub fn attempt(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::contact::augmented::{constraint_violation, max_penetration};
+    use crate::contact::ContactStatus;
     use crate::contact::NodeContact;
     use crate::mesh::Mesh;
     use crate::model::*;
@@ -417,43 +288,23 @@ mod tests {
 
     /// Three slave nodes on y = 0 against a floor, with `method`.
     fn model(method: ContactMethod) -> Model {
-        Model {
-            analysis: Analysis {
-                kind: AnalysisKind::PlaneStrain,
-                thickness: 1.0,
-            },
-            mesh: Mesh {
-                nodes: vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]],
-                ..Mesh::default()
-            },
-            bodies: vec![],
-            materials: vec![],
-            constraints: vec![],
-            loads: vec![],
-            tools: vec![RigidTool {
-                name: "floor".into(),
-                geometry: ToolGeometry::Plane {
+        crate::testkit::ModelBuilder::plane_strain()
+            .elastic("m", 1.0, 0.3)
+            .body(
+                "s",
+                Mesh::new(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]], vec![]),
+                "m",
+            )
+            .tool(
+                "floor",
+                ToolGeometry::Plane {
                     point: [0.0, 0.0],
                     normal: [0.0, 1.0],
                 },
-                motion: ToolMotion::fixed(),
-            }],
-            contacts: vec![ContactPair {
-                name: "s -> floor".into(),
-                body: 0,
-                edges: vec![[0, 1], [1, 2]],
-                nodes: vec![0, 1, 2],
-                master: crate::model::ContactMaster::Tool(0),
-                strategy: Default::default(),
-                search: Default::default(),
-                method,
-                prof: None,
-                friction: None,
-            }],
-            steps: vec![],
-            output: OutputRequest::default(),
-            thermal: None,
-        }
+                ToolMotion::fixed(),
+            )
+            .contact_tool("s -> floor", "s", vec![[0, 1], [1, 2]], "floor", method)
+            .build()
     }
 
     #[test]

@@ -1,0 +1,225 @@
+//! Contact in the global system: evaluation of every pair at the current
+//! configuration, scatter of the contact forces and tangent blocks into the
+//! global vectors and matrix, growth of the sparsity pattern when contact
+//! couples nodes that share no cell, and the Lagrange constraint rows.
+//!
+//! The contact laws (`crate::contact`) work in node terms: a
+//! [`NodeContact`] gives the force on its slave node, the forces on its
+//! master nodes and the tangent over those nodes; a Lagrange law gives its
+//! constraint rows as `(node, component, d g / d x)`
+//! ([`crate::contact::rows::NodeRows`]). This module is the only place that
+//! maps nodes to dofs for contact (through [`DofMap`] and [`Scatter`]).
+//! The number of components per node is the dof map's (the length of the
+//! nodal arrays), not a literal.
+
+use super::constraints::Constraints;
+use super::dofs::DofMap;
+use super::linalg::{Scatter, NO_SLOT};
+use crate::contact::rows::NodeRows;
+use crate::contact::{self, ContactStatus, NodeContact, PairState};
+use crate::model::Model;
+
+/// Contact state of a run and its last evaluation.
+#[derive(Debug, Clone)]
+pub struct ContactAssembly {
+    /// Contact state of each pair (search history, multipliers, active set,
+    /// friction history).
+    pub pairs: Vec<PairState>,
+    /// Evaluation of each pair at the last evaluated state.
+    pub contact: Vec<Vec<NodeContact>>,
+    /// Lagrange constraints of the last evaluation, in dof terms.
+    pub constraints: Constraints,
+    /// Lagrange constraint rows of the last evaluation, in node terms.
+    rows: NodeRows,
+    /// Current nodal coordinates (scratch).
+    x: Vec<[f64; 2]>,
+    /// Node couplings added to the sparsity pattern by node-to-segment
+    /// contact elements (sorted, kept for the rest of the run).
+    pub couplings: Vec<(usize, usize)>,
+    /// Times the sparsity pattern grew.
+    pub pattern_growths: usize,
+}
+
+impl ContactAssembly {
+    /// The pairs of `model` in their reference configuration.
+    pub fn new(model: &Model) -> Self {
+        ContactAssembly {
+            pairs: (0..model.contacts.len())
+                .map(|i| PairState::new(model, i))
+                .collect(),
+            contact: vec![Vec::new(); model.contacts.len()],
+            constraints: Constraints::default(),
+            rows: NodeRows::default(),
+            x: model.mesh.nodes.clone(),
+            couplings: Vec::new(),
+            pattern_growths: 0,
+        }
+    }
+
+    /// Evaluates every pair at displacements `u` and time `t` and adds the
+    /// contact forces (slave and master nodes) to `f_c` (global dofs).
+    pub fn evaluate(
+        &mut self,
+        model: &Model,
+        dofs: &DofMap,
+        u: &[[f64; 2]],
+        t: f64,
+        f_c: &mut [f64],
+    ) {
+        for ((x, x0), u) in self.x.iter_mut().zip(&model.mesh.nodes).zip(u) {
+            for ((xc, x0c), uc) in x.iter_mut().zip(x0).zip(u) {
+                *xc = x0c + uc;
+            }
+        }
+        for (i, state) in self.pairs.iter_mut().enumerate() {
+            let res = contact::evaluate_pair(model, i, &self.x, t, state);
+            for nc in &res {
+                for (c, f) in nc.force.iter().enumerate() {
+                    f_c[dofs.dof(nc.node, c)] += f;
+                }
+                if let Some(ms) = &nc.master {
+                    for (&m, f) in ms.nodes.iter().zip(&ms.forces) {
+                        for (c, fc) in f.iter().enumerate() {
+                            f_c[dofs.dof(m, c)] += fc;
+                        }
+                    }
+                }
+            }
+            self.contact[i] = res;
+        }
+    }
+
+    /// Adds the contact tangent blocks of the last evaluation to the matrix
+    /// `values` (slots of `scatter`); entries missing from the pattern are
+    /// skipped (grow the pattern first, [`ContactAssembly::grow_pattern`]).
+    pub fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap, values: &mut [f64]) {
+        let nc_dim = dofs.components();
+        for res in &self.contact {
+            for nc in res {
+                match &nc.master {
+                    None => {
+                        let slots = scatter.node_slots(nc.node);
+                        for b in 0..nc_dim {
+                            for a in 0..nc_dim {
+                                let s = slots[a + nc_dim * b];
+                                if s != NO_SLOT {
+                                    values[s as usize] += nc.stiffness[a][b];
+                                }
+                            }
+                        }
+                    }
+                    Some(ms) => {
+                        let nodes = [nc.node, ms.nodes[0], ms.nodes[1]];
+                        for (bj, &nb) in nodes.iter().enumerate() {
+                            for (bi, &na) in nodes.iter().enumerate() {
+                                let Some(slots) = scatter.pair_slots(dofs, na, nb) else {
+                                    continue;
+                                };
+                                for b in 0..nc_dim {
+                                    for a in 0..nc_dim {
+                                        let s = slots[a + nc_dim * b];
+                                        if s != NO_SLOT {
+                                            values[s as usize] +=
+                                                ms.tangent[nc_dim * bi + a][nc_dim * bj + b];
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Grows the sparsity pattern when a node-to-segment element of the
+    /// last evaluation couples nodes that share no cell and are not coupled
+    /// yet: the slave is coupled to the whole neighbourhood of its segment
+    /// (see [`contact::node_to_segment::neighbourhood`]) so that the pattern
+    /// grows rarely; added couplings stay for the rest of the run. Returns
+    /// the new scatter map when the pattern grew (the caller resizes the
+    /// value array and resets the linear system's symbolic analysis).
+    pub fn grow_pattern(
+        &mut self,
+        model: &Model,
+        dofs: &DofMap,
+        scatter: &Scatter,
+    ) -> Result<Option<Scatter>, String> {
+        let missing = self.contact.iter().flatten().any(|nc| {
+            nc.master.as_ref().is_some_and(|ms| {
+                ms.nodes
+                    .iter()
+                    .any(|&m| scatter.pair_slots(dofs, nc.node, m).is_none())
+            })
+        });
+        if !missing {
+            return Ok(None);
+        }
+        let mut near = Vec::new();
+        for (p, res) in self.contact.iter().enumerate() {
+            for nc in res {
+                let Some(ms) = &nc.master else {
+                    continue;
+                };
+                near.clear();
+                near.extend(ms.nodes);
+                contact::node_to_segment::neighbourhood(
+                    &self.pairs[p],
+                    nc.node,
+                    nc.entity,
+                    &mut near,
+                );
+                for &m in &near {
+                    if m != nc.node {
+                        self.couplings.push((nc.node.min(m), nc.node.max(m)));
+                    }
+                }
+            }
+        }
+        self.couplings.sort_unstable();
+        self.couplings.dedup();
+        let grown = Scatter::with_couplings(&model.mesh, dofs, &self.couplings)?;
+        self.pattern_growths += 1;
+        Ok(Some(grown))
+    }
+
+    /// Builds the Lagrange constraints of the last evaluation: normal rows
+    /// of the active nodes, then stick rows of Lagrange friction.
+    pub fn build_constraints(&mut self, model: &Model, dofs: &DofMap) {
+        self.rows.clear();
+        contact::lagrange::normal_rows(model, &self.pairs, &self.contact, &mut self.rows);
+        contact::friction_lagrange::stick_rows(model, &self.contact, &mut self.rows);
+        self.constraints.build(&self.rows, dofs);
+    }
+
+    /// Closed contact nodes at the last evaluation.
+    pub fn active_contacts(&self) -> usize {
+        self.contact
+            .iter()
+            .flatten()
+            .filter(|c| c.status == ContactStatus::Closed)
+            .count()
+    }
+
+    /// Largest penetration over all pairs at the last evaluation.
+    pub fn max_penetration(&self) -> f64 {
+        self.contact
+            .iter()
+            .map(|c| contact::augmented::max_penetration(c))
+            .fold(0.0, f64::max)
+    }
+
+    /// Commits the contact history of a converged increment.
+    pub fn commit(&mut self) {
+        for p in &mut self.pairs {
+            p.commit();
+        }
+    }
+
+    /// Restores the contact history of the last converged increment.
+    pub fn rollback(&mut self) {
+        for p in &mut self.pairs {
+            p.rollback();
+        }
+    }
+}

@@ -1,0 +1,127 @@
+//! Linear algebra of the solver, behind two traits so that the Newton loop
+//! never names a library:
+//!
+//! - [`LinearSystem`]: the free-free tangent `K du = -r` on a fixed sparsity
+//!   pattern. Factorize once per Newton iteration, solve one or more
+//!   right-hand sides with that factorization, reuse the symbolic analysis
+//!   while the pattern is unchanged, report negative pivots, fall back to a
+//!   more general factorization on its own. Today: [`direct::LinearSolver`]
+//!   (faer: Cholesky, then `L D L^T`, then LU). A PETSc implementation
+//!   (KSP/PC, MPI) plugs in here (`Newton::with_linear_system`).
+//! - [`SaddlePointSystem`]: the Lagrange-multiplier system
+//!   `[K G^T; G 0]` built from the tangent and variable-length constraint
+//!   rows ([`crate::solve::constraints::ConstraintRows`]). Today:
+//!   [`saddle::SaddleSolver`] (faer LU, or `L D L^T` of the doubled form).
+//!
+//! Contract shared by both: `solve` uses the last successful `factorize`;
+//! without one (never factorized, the last factorization failed, or the
+//! pattern was reset since) it returns [`LinearError::NotFactorized`]
+//! instead of panicking, and the Newton loop only calls it when it holds a
+//! factorization of the current pattern.
+//!
+//! [`pattern`] holds the CSC pattern and the scatter map (dof-numbering
+//! aware: element and contact blocks -> value slots).
+
+pub mod direct;
+pub mod pattern;
+pub mod saddle;
+
+pub use pattern::{Scatter, SparsePattern, NO_SLOT};
+
+use super::constraints::ConstraintRows;
+
+/// Why a factorization or a solve failed.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LinearError {
+    /// The symbolic analysis (ordering, elimination tree) failed.
+    Symbolic(String),
+    /// The numeric factorization failed: the matrix is singular.
+    Singular(String),
+    /// `solve` without a factorization of the current pattern.
+    NotFactorized,
+}
+
+impl std::fmt::Display for LinearError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            LinearError::Symbolic(s) | LinearError::Singular(s) => f.write_str(s),
+            LinearError::NotFactorized => f.write_str(
+                "internal: a linear solve was requested without a factorization of the current \
+                 matrix pattern",
+            ),
+        }
+    }
+}
+
+impl std::error::Error for LinearError {}
+
+/// Counters of a linear system over the run (written to `summary.json`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FactorStats {
+    /// Successful Cholesky factorizations.
+    pub cholesky: usize,
+    /// Successful `L D L^T` factorizations (symmetric indefinite).
+    pub ldlt: usize,
+    /// Successful LU factorizations.
+    pub lu: usize,
+    /// Negative pivots of the last factorization (negative eigenvalues of
+    /// a symmetric tangent; 0 after Cholesky).
+    pub negative_pivots: usize,
+    /// Largest `negative_pivots` over the run.
+    pub max_negative_pivots: usize,
+}
+
+impl FactorStats {
+    /// The most general factorization the run needed: `lu`, else `ldlt`,
+    /// else `cholesky`.
+    pub fn most_general(&self) -> &'static str {
+        if self.lu > 0 {
+            direct::Method::Lu.name()
+        } else if self.ldlt > 0 {
+            direct::Method::Ldlt.name()
+        } else {
+            direct::Method::Cholesky.name()
+        }
+    }
+}
+
+/// The free-free tangent system `K x = b` on a sparsity pattern that
+/// changes rarely (contact couplings).
+pub trait LinearSystem {
+    /// Whether the next matrices are symmetric (a potential: symmetric
+    /// factorizations are tried first) or not (friction, F-bar: a general
+    /// one is used).
+    fn set_symmetric(&mut self, symmetric: bool);
+    /// Numeric factorization of the matrix with `pattern` and `values`
+    /// (the first `pattern.nnz()` values are used, both triangles stored).
+    fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), LinearError>;
+    /// Solves `K x = b` in place with the last factorization.
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinearError>;
+    /// Whether `solve` has a factorization to use.
+    fn is_factorized(&self) -> bool;
+    /// The pattern changed: forget the symbolic analyses and the
+    /// factorization.
+    fn reset_pattern(&mut self);
+    /// Counters.
+    fn stats(&self) -> FactorStats;
+}
+
+/// The Lagrange-multiplier saddle-point system built from the tangent and
+/// the constraint rows.
+pub trait SaddlePointSystem {
+    /// Assembles and factorizes `[K G^T; G 0]` from the free-free block
+    /// (`k`, `k_values`) and the rows `G`.
+    fn factorize(
+        &mut self,
+        k: &SparsePattern,
+        k_values: &[f64],
+        rows: &ConstraintRows,
+    ) -> Result<(), LinearError>;
+    /// On entry `du = -r_u` and `dl = g`; on exit the corrections.
+    fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError>;
+    /// Number of constraint rows of the last factorization (`None`: no
+    /// factorization at hand).
+    fn factorized_rows(&self) -> Option<usize>;
+    /// Symbolic and numeric factorizations computed.
+    fn counts(&self) -> (usize, usize);
+}

@@ -1,0 +1,55 @@
+//! Why an increment attempt failed: a typed taxonomy ([`FailureKind`]) that
+//! callers decide on (the stepper cuts back; under MPI every rank must
+//! agree on the kind), the residual history of the attempt and a sentence
+//! for the user. The words of the final diagnosis (likely cause, remedy)
+//! are in [`crate::solve::diagnosis`].
+
+/// Why an increment failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum FailureKind {
+    /// `max_iter` iterations without convergence.
+    MaxIterations,
+    /// The residual grew over several consecutive iterations.
+    Diverged,
+    /// NaN or infinity in the solution or the residual.
+    NotFinite,
+    /// The linear system could not be factorized.
+    Singular,
+    /// An element could not be evaluated.
+    Element,
+    /// The Lagrange-multiplier active set came back to a set already met
+    /// in the increment.
+    ActiveSetCycling,
+    /// Not a failure: a node first touched its master within the
+    /// increment and the deck asks to cut the increment at that instant
+    /// (`cut_at_impact = true`).
+    ImpactCut,
+}
+
+/// A failed increment attempt.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// Category.
+    pub kind: FailureKind,
+    /// Relative residuals of the attempt, one per completed iteration.
+    pub residuals: Vec<f64>,
+    /// What happened, in words.
+    pub detail: String,
+}
+
+impl Failure {
+    /// A failure of `kind` with no residual history yet.
+    pub fn new(kind: FailureKind, detail: impl Into<String>) -> Self {
+        Failure {
+            kind,
+            residuals: Vec::new(),
+            detail: detail.into(),
+        }
+    }
+
+    /// The same failure with the residual history `residuals`.
+    pub fn with_residuals(mut self, residuals: &[f64]) -> Self {
+        self.residuals = residuals.to_vec();
+        self
+    }
+}

@@ -1,0 +1,631 @@
+//! Newton-Raphson iterations of one increment (seed flowchart):
+//! contact search and forces -> internal forces -> residual
+//! `r = f_int - f_ext - f_contact` on the free dofs -> tangent
+//! `K = K_int + K_contact` -> solve -> update, with a line search, NaN/inf
+//! and divergence detection.
+//!
+//! Predictor: the first iteration starts from the last converged state and
+//! applies the whole increment of prescribed displacements `dp` through the
+//! tangent, `K_ff du = -(r_f + K_fp dp)`, so a linear problem is solved
+//! exactly by one iteration. A linear elastic increment takes one
+//! factorization, one solve plus one back-substitution (the estimate of the
+//! next correction, [`convergence`]), and two residual evaluations.
+//!
+//! One concept per file:
+//! - this file: the loop ([`Newton::newton_loop`]), the evaluation of the
+//!   residual and tangent, the linear solves;
+//! - [`convergence`]: the convergence and divergence tests;
+//! - [`line_search`]: the energy test and backtracking;
+//! - [`failure`]: the typed failure taxonomy;
+//! - [`state`]: commit / rollback / restart of the solution state.
+//!
+//! Contact enters through [`ContactAssembly`] (forces, tangent blocks,
+//! pattern growth, Lagrange rows); the contact loop around the Newton loops
+//! (active set, Uzawa, friction statuses) is `solve::contact_loop`, which
+//! drives this solver through [`NewtonLoop`].
+
+pub mod convergence;
+pub mod failure;
+pub mod line_search;
+pub mod state;
+
+pub use convergence::Converged;
+pub use failure::{Failure, FailureKind};
+
+use super::assembly::Assembler;
+use super::contact_assembly::ContactAssembly;
+use super::contact_loop::NewtonLoop;
+use super::dofs::{Dof, DofMap};
+use super::linalg::direct::LinearSolver;
+use super::linalg::saddle::SaddleSolver;
+use super::linalg::{FactorStats, LinearSystem, SaddlePointSystem, Scatter};
+use super::loads::external_forces;
+use super::{IterationInfo, Observer, Timings};
+use crate::contact::rows::RowKind;
+use crate::contact::{self, NodeContact, PairState};
+use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
+use convergence::{norm, Criteria, DivergenceMonitor, Eval, TINY};
+use std::time::Instant;
+
+/// The Newton solver of a model: numbering, pattern, factorization and the
+/// evolving state.
+pub struct Newton<'m> {
+    pub(super) model: &'m Model,
+    /// Dof numbering.
+    pub dofs: DofMap,
+    scatter: Scatter,
+    assembler: Assembler,
+    /// The tangent system (faer direct by default).
+    linear: Box<dyn LinearSystem>,
+    /// Current nodal displacements.
+    pub u: Vec<[f64; 2]>,
+    committed: Vec<[f64; 2]>,
+    /// Contact pairs: state, last evaluation, Lagrange constraints, pattern
+    /// couplings.
+    pub(super) contacts: ContactAssembly,
+    /// Saddle-point solver (models with a Lagrange-multiplier pair).
+    saddle: Option<Box<dyn SaddlePointSystem>>,
+    /// Multiplier corrections of the last saddle-point solve.
+    dlambda: Vec<f64>,
+    /// Augmented-Lagrangian updates made inside the current Newton loop.
+    inner_updates: usize,
+    values: Vec<f64>,
+    f_int: Vec<f64>,
+    f_ext: Vec<f64>,
+    f_c: Vec<f64>,
+    r_free: Vec<f64>,
+    reactions: Vec<f64>,
+    target: Vec<f64>,
+    dp: Vec<f64>,
+    rhs: Vec<f64>,
+    /// Right-hand side of the current iteration before the solve
+    /// (`-r` at the start of the step), for the line-search energy test.
+    rhs0: Vec<f64>,
+    base: Vec<f64>,
+    /// Wall time per phase.
+    pub timings: Timings,
+    /// Newton iterations done, all attempts included.
+    pub iterations: usize,
+    /// Contact status flips in the failed attempts since the last
+    /// converged increment (diagnosis).
+    pub flips: super::diagnosis::FlipTracker,
+}
+
+impl std::fmt::Debug for Newton<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Newton")
+            .field("free_dofs", &self.dofs.n_free())
+            .field("nnz", &self.scatter.pattern.nnz())
+            .finish()
+    }
+}
+
+impl<'m> Newton<'m> {
+    /// Numbers the dofs, builds the sparse pattern and checks every element
+    /// of the (checked) `model` in its reference configuration; the tangent
+    /// is solved by the default direct solver.
+    pub fn new(model: &'m Model) -> Result<Self, String> {
+        Self::with_linear_system(model, Box::new(LinearSolver::new()))
+    }
+
+    /// Like [`Newton::new`] with the tangent solved by `linear`.
+    pub fn with_linear_system(
+        model: &'m Model,
+        linear: Box<dyn LinearSystem>,
+    ) -> Result<Self, String> {
+        let nn = model.mesh.nodes.len();
+        let dofs = DofMap::new(model);
+        let scatter = Scatter::new(&model.mesh, &dofs)?;
+        let assembler = Assembler::new(model)?;
+        let n_free = dofs.n_free();
+        let n_presc = dofs.prescribed.len();
+        let n_dofs = dofs.dofs.len();
+        let mut newton = Newton {
+            model,
+            values: vec![0.0; scatter.n_values()],
+            scatter,
+            assembler,
+            linear,
+            u: vec![[0.0; 2]; nn],
+            committed: vec![[0.0; 2]; nn],
+            contacts: ContactAssembly::new(model),
+            saddle: model.contacts.iter().find_map(|c| match c.method {
+                ContactMethod::Lagrange { formulation } => {
+                    Some(Box::new(SaddleSolver::new(formulation)) as Box<dyn SaddlePointSystem>)
+                }
+                _ => None,
+            }),
+            dlambda: Vec::new(),
+            inner_updates: 0,
+            f_int: vec![0.0; n_dofs],
+            f_ext: vec![0.0; n_dofs],
+            f_c: vec![0.0; n_dofs],
+            r_free: vec![0.0; n_free],
+            reactions: vec![0.0; n_presc],
+            target: vec![0.0; n_presc],
+            dp: vec![0.0; n_presc],
+            rhs: vec![0.0; n_free],
+            rhs0: vec![0.0; n_free],
+            base: vec![0.0; n_free],
+            dofs,
+            timings: Timings::default(),
+            iterations: 0,
+            flips: Default::default(),
+        };
+        // element check in the reference configuration (inverted, off-axis cells)
+        let mut f = std::mem::take(&mut newton.f_int);
+        let r = newton
+            .assembler
+            .assemble(&model.mesh, &newton.scatter, &newton.u, &mut f, None);
+        newton.f_int = f;
+        r?;
+        Ok(newton)
+    }
+
+    /// Counters of the tangent's factorizations.
+    pub fn factor_stats(&self) -> FactorStats {
+        self.linear.stats()
+    }
+
+    /// Saddle-point factorizations (symbolic, numeric) of the Lagrange
+    /// multiplier systems; the symbolic one is recomputed only when the
+    /// active set changes.
+    pub fn saddle_factorizations(&self) -> (usize, usize) {
+        self.saddle.as_ref().map_or((0, 0), |s| s.counts())
+    }
+
+    /// Number of nonzeros of the free-free matrix (both triangles).
+    pub fn nnz(&self) -> usize {
+        self.scatter.pattern.nnz()
+    }
+
+    /// Times the sparsity pattern grew (node-to-segment couplings).
+    pub fn pattern_growths(&self) -> usize {
+        self.contacts.pattern_growths
+    }
+
+    /// Reaction forces per node at the last evaluated state (zero except at
+    /// prescribed dofs).
+    pub fn reaction_field(&self) -> Vec<[f64; 2]> {
+        let nc = self.dofs.components();
+        let mut out = vec![[0.0; 2]; self.u.len()];
+        for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
+            out[p.dof / nc][p.dof % nc] = *r;
+        }
+        out
+    }
+
+    /// Committed integration points per global cell (bodies with nonlinear
+    /// laws; empty for small-strain linear elastic cells).
+    pub fn material_points(&self) -> &[Vec<crate::element::MaterialPoint>] {
+        self.assembler.points()
+    }
+
+    /// Sets the thermal strains (and temperature-dependent laws) of the
+    /// cells for the next increments (`crate::thermal::coupling`).
+    pub fn set_thermal_state(
+        &mut self,
+        strain: Vec<f64>,
+        laws: Vec<Option<crate::material::NonlinearLaw>>,
+    ) -> Result<(), String> {
+        self.assembler
+            .set_thermal_state(&self.model.mesh, strain, laws)
+    }
+
+    /// Contact evaluation of each pair at the last evaluated state.
+    pub fn contact(&self) -> &[Vec<NodeContact>] {
+        &self.contacts.contact
+    }
+
+    /// Contact state of each pair.
+    pub fn pairs(&self) -> &[PairState] {
+        &self.contacts.pairs
+    }
+
+    /// Closed contact nodes at the last evaluated state.
+    pub fn active_contacts(&self) -> usize {
+        self.contacts.active_contacts()
+    }
+
+    /// The largest ratio of a penalty coefficient to the element stiffness
+    /// at its node (see [`super::diagnosis::penalty_ratio`]).
+    pub fn penalty_ratio(&self) -> Option<super::diagnosis::PenaltyRatio> {
+        super::diagnosis::penalty_ratio(self.model, &self.contacts, &self.scatter, &self.values)
+    }
+
+    /// Smallest fraction of the increment at which a node of a pair with
+    /// `cut_at_impact` first touched its master, at the last evaluation
+    /// (`None`: no such impact).
+    pub fn impact_fraction(&self) -> Option<f64> {
+        self.model
+            .contacts
+            .iter()
+            .zip(&self.contacts.pairs)
+            .filter(|(c, _)| c.friction.is_some_and(|f| f.cut_at_impact))
+            .filter_map(|(_, p)| p.friction.impact)
+            .reduce(f64::min)
+    }
+
+    /// Largest penetration over all pairs at the last evaluation.
+    pub fn max_penetration(&self) -> f64 {
+        self.contacts.max_penetration()
+    }
+
+    /// Contact, internal forces and residual at the current `u` and time
+    /// `t`; the tangent too if `with_tangent`.
+    fn evaluate(&mut self, t: f64, with_tangent: bool) -> Result<Eval, Failure> {
+        let model = self.model;
+        let zeroing = Instant::now();
+        if with_tangent {
+            self.values.fill(0.0);
+        }
+        let start = Instant::now();
+        self.timings.assembly += (start - zeroing).as_secs_f64();
+        self.f_c.fill(0.0);
+        if !model.contacts.is_empty() {
+            self.contacts
+                .evaluate(model, &self.dofs, &self.u, t, &mut self.f_c);
+            if with_tangent {
+                let grown = self
+                    .contacts
+                    .grow_pattern(model, &self.dofs, &self.scatter)
+                    .map_err(|detail| Failure::new(FailureKind::Singular, detail))?;
+                if let Some(scatter) = grown {
+                    self.scatter = scatter;
+                    self.values = vec![0.0; self.scatter.n_values()];
+                    self.linear.reset_pattern();
+                }
+                self.contacts
+                    .add_tangent(&self.scatter, &self.dofs, &mut self.values);
+            }
+            if self.saddle.is_some() {
+                self.contacts.build_constraints(model, &self.dofs);
+            }
+        }
+        let mid = Instant::now();
+        self.timings.contact += (mid - start).as_secs_f64();
+        let values = if with_tangent {
+            Some(&mut self.values[..])
+        } else {
+            None
+        };
+        let assembled =
+            self.assembler
+                .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
+        self.timings.assembly += mid.elapsed().as_secs_f64();
+        assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
+        let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
+        for (g, role) in self.dofs.dofs.iter().enumerate() {
+            let r = self.f_int[g] - self.f_ext[g] - self.f_c[g];
+            match *role {
+                Dof::Free(i) => {
+                    self.r_free[i] = r;
+                    r2 += r * r;
+                }
+                Dof::Prescribed(p) => {
+                    self.reactions[p] = r;
+                    react2 += r * r;
+                }
+                Dof::Inactive => continue,
+            }
+            let l = self.f_ext[g] + self.f_c[g];
+            load2 += l * l;
+            fint2 += self.f_int[g] * self.f_int[g];
+        }
+        let abs = r2.sqrt();
+        let denom = (load2.sqrt() + react2.sqrt())
+            .max(fint2.sqrt())
+            .max(self.assembler.thermal_scale())
+            .max(TINY);
+        Ok(Eval {
+            abs,
+            rel: abs / denom,
+        })
+    }
+
+    /// Sets the free dofs to `base + s * rhs` and, in the first iteration,
+    /// the prescribed dofs to their target values.
+    fn set_state(&mut self, s: f64, prescribed: bool) {
+        let u = self.u.as_flattened_mut();
+        for ((&g, b), d) in self.dofs.free.iter().zip(&self.base).zip(&self.rhs) {
+            u[g] = b + s * d;
+        }
+        if prescribed {
+            for (p, v) in self.dofs.prescribed.iter().zip(&self.target) {
+                u[p.dof] = *v;
+            }
+        }
+    }
+
+    /// Factorizes and solves for the correction in `rhs`: the tangent alone,
+    /// or, when Lagrange constraints are active, the saddle-point system
+    /// (then `dlambda` receives the multiplier corrections, applied to the
+    /// pairs at once). `first`: the prescribed increment enters the
+    /// constraint right-hand side.
+    fn factorize_solve(&mut self, first: bool) -> Result<(), Failure> {
+        self.dlambda.clear();
+        let constraints = &self.contacts.constraints;
+        let Some(saddle) = self.saddle.as_mut().filter(|_| !constraints.is_empty()) else {
+            let start = Instant::now();
+            let r = self.linear.factorize(&self.scatter.pattern, &self.values);
+            let mid = Instant::now();
+            self.timings.factorization += (mid - start).as_secs_f64();
+            r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
+            let r = self.linear.solve(&mut self.rhs);
+            self.timings.solve += mid.elapsed().as_secs_f64();
+            return r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()));
+        };
+        let start = Instant::now();
+        let r = saddle.factorize(&self.scatter.pattern, &self.values, &constraints.rows);
+        let mid = Instant::now();
+        self.timings.factorization += (mid - start).as_secs_f64();
+        r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
+        // G du = g + (d g / d u_p) dp
+        for (k, g) in constraints.gap.iter().enumerate() {
+            let mut v = *g;
+            if first {
+                for &(p, n) in constraints.prescribed.row(k) {
+                    v += n * self.dp[p];
+                }
+            }
+            self.dlambda.push(v);
+        }
+        saddle
+            .solve(&mut self.rhs, &mut self.dlambda)
+            .map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
+        let pairs = &mut self.contacts.pairs;
+        for ((&(p, i), kind), dl) in constraints
+            .owner
+            .iter()
+            .zip(&constraints.kind)
+            .zip(&self.dlambda)
+        {
+            match kind {
+                RowKind::Stick => pairs[p].friction.multiplier[i] += dl,
+                RowKind::Normal => pairs[p].multiplier[i] += dl,
+            }
+        }
+        self.timings.solve += mid.elapsed().as_secs_f64();
+        Ok(())
+    }
+
+    /// Next correction `(du, dlambda)` for the current residual estimated
+    /// with the factorization at hand; `None` when there is none for the
+    /// current system: the constraint set changed since that
+    /// factorization, or the sparsity pattern grew (the factorization was
+    /// dropped with the old pattern).
+    fn next_correction_norm(&mut self, saddle_used: bool) -> Option<f64> {
+        for (d, r) in self.rhs.iter_mut().zip(&self.r_free) {
+            *d = -r;
+        }
+        let constraints = &self.contacts.constraints;
+        if !saddle_used {
+            if !constraints.is_empty() || !self.linear.is_factorized() {
+                return None;
+            }
+            let start = Instant::now();
+            let solved = self.linear.solve(&mut self.rhs);
+            self.timings.solve += start.elapsed().as_secs_f64();
+            return solved.ok().map(|()| norm(&self.rhs));
+        }
+        let saddle = self.saddle.as_ref()?;
+        if saddle.factorized_rows() != Some(constraints.len()) {
+            return None;
+        }
+        let start = Instant::now();
+        let mut dl = constraints.gap.clone();
+        let solved = saddle.solve(&mut self.rhs, &mut dl);
+        self.timings.solve += start.elapsed().as_secs_f64();
+        solved.ok().map(|()| norm(&self.rhs))
+    }
+}
+
+impl NewtonLoop for Newton<'_> {
+    fn contact_state(&mut self) -> (&Model, &mut [PairState], &[Vec<NodeContact>]) {
+        (self.model, &mut self.contacts.pairs, &self.contacts.contact)
+    }
+
+    /// One Newton loop at time `t` with the Lagrange active sets and the
+    /// multipliers `lambda*` of `update = converged` pairs fixed.
+    fn newton_loop(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer,
+    ) -> Result<Converged, Failure> {
+        let model = self.model;
+        self.inner_updates = 0;
+        self.flips.start_attempt();
+        let newton_update = model.contacts.iter().any(|c| {
+            matches!(
+                c.method,
+                ContactMethod::AugmentedLagrange {
+                    update: MultiplierUpdate::Newton,
+                    ..
+                }
+            )
+        });
+        let mut criteria = Criteria::new(settings, self.saddle.is_some());
+        // friction makes the contact tangent non-symmetric: LU
+        let friction = model.contacts.iter().any(|c| c.friction.is_some());
+        // a symmetric tangent derives from a potential: the line search's
+        // energy test applies (friction and non-symmetric laws: residual only)
+        let potential = self.assembler.symmetric() && !friction;
+        self.linear.set_symmetric(potential);
+        external_forces(model, t, &mut self.f_ext);
+        self.assembler.begin_increment(t);
+        self.dofs.prescribed_values(model, t, &mut self.target);
+        {
+            let u = self.u.as_flattened();
+            for ((d, p), v) in self
+                .dp
+                .iter_mut()
+                .zip(&self.dofs.prescribed)
+                .zip(&self.target)
+            {
+                *d = v - u[p.dof];
+            }
+        }
+        let dp_norm = norm(&self.dp);
+        let mut residuals: Vec<f64> = Vec::new();
+        let mut divergence = DivergenceMonitor::default();
+        let mut tangent_valid = false;
+        for k in 1..=settings.max_iter {
+            let first = k == 1;
+            // 1. residual and tangent at the current state
+            if !tangent_valid {
+                self.evaluate(t, true)
+                    .map_err(|f| f.with_residuals(&residuals))?;
+            }
+            self.iterations += 1;
+            // 2. right-hand side -(r_f + K_fp dp)
+            self.rhs.copy_from_slice(&self.r_free);
+            if first {
+                self.scatter
+                    .add_fp_product(&self.values, &self.dp, &mut self.rhs);
+            }
+            for v in &mut self.rhs {
+                *v = -*v;
+            }
+            let ref_norm = norm(&self.rhs);
+            if first {
+                criteria.first_ref = ref_norm;
+            }
+            if self.rhs0.len() != self.rhs.len() {
+                self.rhs0.resize(self.rhs.len(), 0.0);
+            }
+            self.rhs0.copy_from_slice(&self.rhs);
+            // 3. solve for the correction
+            self.factorize_solve(first)
+                .map_err(|f| f.with_residuals(&residuals))?;
+            let saddle_used = !self.dlambda.is_empty();
+            let du_norm = norm(&self.rhs);
+            if !du_norm.is_finite() {
+                return Err(Failure::new(
+                    FailureKind::NotFinite,
+                    format!("iteration {k}: the displacement correction is not finite"),
+                )
+                .with_residuals(&residuals));
+            }
+            {
+                let u = self.u.as_flattened();
+                for (b, &g) in self.base.iter_mut().zip(&self.dofs.free) {
+                    *b = u[g];
+                }
+            }
+            // 4. update, residual at the full step, line search
+            self.set_state(1.0, first);
+            let mut ev = self
+                .evaluate(t, true)
+                .map_err(|f| f.with_residuals(&residuals))?;
+            tangent_valid = true;
+            let mut s = 1.0;
+            let energy_ok =
+                line_search::energy_decreases(potential, &self.rhs, &self.rhs0, &self.r_free);
+            if settings.line_search
+                && !saddle_used
+                && !energy_ok
+                && ev.abs > ref_norm
+                && ev.rel > settings.tol
+                && ref_norm > 0.0
+                && ev.abs.is_finite()
+            {
+                let found = line_search::backtrack(ref_norm, ev, |trial| {
+                    self.set_state(trial, first);
+                    self.evaluate(t, false)
+                        .map_err(|f| f.with_residuals(&residuals))
+                })?;
+                s = found.s;
+                ev = found.eval;
+                if found.last_trial != s {
+                    self.set_state(s, first);
+                    ev = self
+                        .evaluate(t, s == 1.0)
+                        .map_err(|f| f.with_residuals(&residuals))?;
+                    tangent_valid = s == 1.0;
+                } else {
+                    tangent_valid = false;
+                }
+            }
+            // 5. convergence
+            let u_norm = norm(self.u.as_flattened()).max(TINY);
+            let dp_step = if first { dp_norm } else { 0.0 };
+            let rel_du = convergence::relative_correction(s, du_norm, dp_step, u_norm);
+            residuals.push(ev.rel);
+            self.flips.record(&self.contacts.contact);
+            let mut reported_du = rel_du;
+            let mut converged = false;
+            let gap_ok = criteria.gaps_small(norm(&self.contacts.constraints.gap), u_norm);
+            if criteria.residual_small(ev) && gap_ok {
+                if criteria.correction_small(rel_du) {
+                    converged = true;
+                } else if let Some(next) = self.next_correction_norm(saddle_used) {
+                    // next correction estimated with the factorization at hand
+                    reported_du = next / u_norm;
+                    converged = criteria.correction_small(reported_du);
+                }
+            }
+            let active_contacts = self.active_contacts();
+            observer.iteration(&IterationInfo {
+                step,
+                increment,
+                iteration: k,
+                residual: ev.rel,
+                displacement: reported_du,
+                step_length: s,
+                active_contacts,
+            });
+            if !ev.rel.is_finite() {
+                return Err(Failure::new(
+                    FailureKind::NotFinite,
+                    format!("iteration {k}: the residual is not finite"),
+                )
+                .with_residuals(&residuals));
+            }
+            // augmented Lagrangian, `update = newton`: lambda* updated inside
+            // the loop while a penetration exceeds its tolerance
+            let updated = newton_update
+                && contact::augmented::uzawa_update(
+                    model,
+                    &mut self.contacts.pairs,
+                    &self.contacts.contact,
+                    MultiplierUpdate::Newton,
+                );
+            if updated {
+                self.inner_updates += 1;
+                converged = false;
+                tangent_valid = false;
+            }
+            if converged {
+                return Ok(Converged {
+                    iterations: k,
+                    residuals,
+                    active_contacts,
+                    contact_iterations: self.inner_updates,
+                    max_penetration: self.max_penetration(),
+                });
+            }
+            // a multiplier update changes the problem: no divergence test
+            if divergence.diverges(&residuals, updated) {
+                return Err(Failure::new(
+                    FailureKind::Diverged,
+                    format!(
+                        "the residual grew in {} consecutive iterations (iteration {k})",
+                        convergence::DIVERGENCE_GROWTHS
+                    ),
+                )
+                .with_residuals(&residuals));
+            }
+        }
+        Err(Failure::new(
+            FailureKind::MaxIterations,
+            format!(
+                "no convergence in max_iter = {} iterations",
+                settings.max_iter
+            ),
+        )
+        .with_residuals(&residuals))
+    }
+}
