@@ -474,3 +474,61 @@ fn mutation_sweep_outcomes() {
         "the sweep must reach both outcomes"
     );
 }
+
+/// A bounded surface (143) with its boundary entity (141, type 1: model and
+/// parameter-space curves), written with the raw-entity writer: a square
+/// outer boundary walked in reverse (sense 2) and a hole.
+#[test]
+fn a_bounded_surface_143_with_141_boundaries() {
+    let mut w = Writer::new("ctc-geom test: 143/141");
+    let s = w.add_surface(&build::plane_patch(
+        Vec3::zeros(),
+        Vec3::x() * 4.0,
+        Vec3::y() * 2.0,
+    ));
+    let v = Vec2::new;
+    let square = [
+        TrimCurve::line(v(0.1, 0.1), v(0.1, 0.9)).unwrap(),
+        TrimCurve::line(v(0.1, 0.9), v(0.9, 0.9)).unwrap(),
+        TrimCurve::line(v(0.9, 0.9), v(0.9, 0.1)).unwrap(),
+        TrimCurve::line(v(0.9, 0.1), v(0.1, 0.1)).unwrap(),
+    ];
+    let parts: Vec<usize> = square.iter().map(|c| w.add_trim_curve(c)).collect();
+    let outer_param = w.add_composite(&parts);
+    let hole_param =
+        w.add_trim_curve(&TrimCurve::arc(v(0.5, 0.5), 0.2, 0.0, std::f64::consts::TAU).unwrap());
+    // 141: type 1, preferred 1, surface, one curve: (model curve 0, sense, 1 parameter curve).
+    let outer = w.add_raw(
+        141,
+        &[1, 1, s as i64, 1, 0, 2, 1, outer_param as i64],
+        &[],
+        None,
+    );
+    let hole = w.add_raw(
+        141,
+        &[1, 1, s as i64, 1, 0, 1, 1, hole_param as i64],
+        &[],
+        None,
+    );
+    w.add_raw(143, &[0, s as i64, 2, outer as i64, hole as i64], &[], None);
+    let file = iges::read(&w.finish()).unwrap();
+    let faces = file.faces().unwrap();
+    assert_eq!(faces.len(), 1);
+    assert_eq!(faces[0].kind, 143);
+    let b = faces[0].face.boundary.as_ref().unwrap();
+    assert_eq!((b.outer.curves.len(), b.holes.len()), (4, 1));
+    // Sense 2 reversed the walk: the first curve now runs (0.1, 0.1) -> (0.9, 0.1).
+    assert!((b.outer.curves[0].start() - v(0.1, 0.1)).norm() < 1e-15);
+    assert!((b.outer.curves[0].end() - v(0.9, 0.1)).norm() < 1e-15);
+    assert_eq!(b.classify(v(0.2, 0.5)).0, Containment::Inside);
+    assert_eq!(b.classify(v(0.5, 0.5)).0, Containment::Outside);
+    assert_eq!(b.classify(v(0.95, 0.5)).0, Containment::Outside);
+    // A 141 of type 0 (model-space curves only) is refused, naming it.
+    let mut w = Writer::new("type 0");
+    let s = w.add_surface(&build::plane_patch(Vec3::zeros(), Vec3::x(), Vec3::y()));
+    let b0 = w.add_raw(141, &[0, 1, s as i64, 0], &[], None);
+    w.add_raw(143, &[0, s as i64, 1, b0 as i64], &[], None);
+    let e = iges::read(&w.finish()).unwrap().faces().unwrap_err();
+    assert_eq!(e.kind, IgesErrorKind::Unsupported);
+    assert!(e.to_string().contains("entity 141"), "{e}");
+}
