@@ -100,7 +100,7 @@ impl NurbsSurface {
             }
         }
         let nearest_sample = nearest.first().map_or(f64::INFINITY, |(d, _)| d.sqrt());
-        let scale = self.bounding_box().diagonal().max(f64::MIN_POSITIVE);
+        let scale = self.size;
         let seeds = hint.into_iter().chain(nearest.iter().map(|(_, uv)| *uv));
         let mut best: Option<SurfaceFoot> = None;
         let mut worst = (f64::INFINITY, Vec2::zeros());

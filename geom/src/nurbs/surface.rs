@@ -45,6 +45,8 @@ pub struct NurbsSurface {
     /// Seeds of the projection: a grid of `(u, v, S(u, v))`, `degree + 1`
     /// intervals per knot span and direction.
     pub samples: Vec<(Vec2, Vec3)>,
+    /// Diagonal of the control net's box (the length scale of tolerances).
+    pub size: f64,
 }
 
 impl NurbsSurface {
@@ -96,8 +98,10 @@ impl NurbsSurface {
             closed: [false; 2],
             degenerate: [[false; 2]; 2],
             samples: Vec::new(),
+            size: 0.0,
         };
-        let tol = 1e-10 * s.bounding_box().diagonal().max(f64::MIN_POSITIVE);
+        s.size = s.bounding_box().diagonal().max(f64::MIN_POSITIVE);
+        let tol = 1e-10 * s.size;
         let [nu, nv] = counts;
         let row = |s: &NurbsSurface, dir: usize, k: usize| -> Vec<Vec3> {
             if dir == 0 {
