@@ -204,6 +204,35 @@ fn cube(outside: bool) -> BrepTool {
     t
 }
 
+/// A cylinder of radius 1 and height 2 (a revolved vertical line: `u`
+/// along the axis, `v` around, closed in `v`) trimmed to `u` in [0.2, 0.8]
+/// by a loop that runs along the parameter seam `v = 0` and back along
+/// `v = 1`: those two coedges are one seam, not edges of the tool.
+fn seamed_cylinder() -> BrepTool {
+    let line = NurbsCurve::new(
+        1,
+        vec![0.0, 0.0, 1.0, 1.0],
+        vec![Vec3::new(1.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 2.0)],
+        vec![1.0, 1.0],
+    )
+    .unwrap();
+    let s = build::revolve(&line).unwrap();
+    let v = Vec2::new;
+    let outer = Loop::new(
+        vec![
+            TrimCurve::line(v(0.2, 0.0), v(0.8, 0.0)).unwrap(),
+            TrimCurve::line(v(0.8, 0.0), v(0.8, 1.0)).unwrap(),
+            TrimCurve::line(v(0.8, 1.0), v(0.2, 1.0)).unwrap(),
+            TrimCurve::line(v(0.2, 1.0), v(0.2, 0.0)).unwrap(),
+        ],
+        1e-12,
+    )
+    .unwrap();
+    // S_u x S_v points inwards: free space outside is orientation -1.
+    let face = Face::new(s, Some(Boundary::new(outer, Vec::new())), -1.0);
+    BrepTool::new(vec![face], BrepOptions::default()).unwrap()
+}
+
 fn brep(tool: &BrepTool) -> impl Fn(&Vec3) -> Result<Projection, ProjectionError> + '_ {
     move |x| tool.project(x, &mut SearchState::new(), &mut Counters::default())
 }
@@ -313,6 +342,12 @@ fn coverage_and_worst_errors() {
     )
     .unwrap();
     let (cube_out, cube_in) = (cube(true), cube(false));
+    let seamed = seamed_cylinder();
+    let seams = seamed.coedges.iter().filter(|c| c.seam).count();
+    assert_eq!(
+        seams, 2,
+        "the loop's two sides of the parameter seam are one seam"
+    );
     let sphere = Analytic::Sphere(Sphere::new(Vec3::zeros(), 1.0, Side::Outside).unwrap());
     let cone = Analytic::Cone(Cone::new(Vec3::zeros(), Vec3::z(), 0.5, Side::Inside).unwrap());
     let torus =
@@ -376,6 +411,12 @@ fn coverage_and_worst_errors() {
             "revolved, pole + seam",
             Box::new(brep(&dome)),
             [-2.0, 2.0, -2.0, 2.0, -1.0, 3.0],
+            &[FootKind::Interior, FootKind::Edge],
+        ),
+        (
+            "trimmed cylinder, seam in the loop",
+            Box::new(brep(&seamed)),
+            [-2.0, 2.0, -2.0, 2.0, -0.5, 2.5],
             &[FootKind::Interior, FootKind::Edge],
         ),
         (
