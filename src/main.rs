@@ -46,6 +46,12 @@ enum Command {
     Verify {
         /// Only cases whose name contains this text.
         filter: Option<String>,
+        /// List the cases (name, levels, tags, tolerances) instead of running them.
+        #[arg(long)]
+        list: bool,
+        /// Only cases with this tag (repeat for several: all must match).
+        #[arg(long = "tag", value_name = "TAG")]
+        tags: Vec<String>,
         /// Write a Markdown report with plots into this directory (with
         /// --stress: the stress matrix as `stress.md`).
         #[arg(long)]
@@ -104,16 +110,20 @@ fn main() -> ExitCode {
         } => run(&deck, output.as_deref(), quiet, verbose, restart),
         Command::Verify {
             filter,
+            list,
+            tags,
             report,
             json,
             max_level,
             stress,
             reduced,
         } => {
-            if stress {
+            if list {
+                verify_list(filter.as_deref(), &tags, json)
+            } else if stress {
                 verify_stress(reduced, json, report.as_deref())
             } else {
-                verify(filter, report, json, max_level)
+                verify(filter, tags, report, json, max_level)
             }
         }
         Command::Bench {
@@ -243,14 +253,33 @@ fn run(
     }
 }
 
+fn verify_list(filter: Option<&str>, tags: &[String], json: bool) -> Result<(), String> {
+    let rows = ctc_verification::registry::list(filter, tags);
+    if json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", ctc_verification::registry::list_table(&rows));
+        println!("tags: {}", ctc_verification::registry::tags().join(", "));
+    }
+    if rows.is_empty() {
+        return Err("no case matches".into());
+    }
+    Ok(())
+}
+
 fn verify(
     filter: Option<String>,
+    tags: Vec<String>,
     report: Option<PathBuf>,
     json: bool,
     max_level: Option<usize>,
 ) -> Result<(), String> {
     let opts = ctc_verification::VerifyOptions {
         filter,
+        tags,
         report_dir: report,
         max_level,
         progress: true,

@@ -2,7 +2,15 @@
 //!
 //! ```text
 //! text --pest (ctc.pest)--> generic syntax --parse/<construct>.rs--> typed AST (spans)
-//!      --validate.rs--> all semantic errors at once --lower.rs--> ctc_engine::model::Model
+//!      --validate/<construct>.rs--> all semantic errors at once
+//!      --lower/<construct>.rs--> ctc_engine::model::Model
+//! ```
+//!
+//! Key tables ([`keys`]) and the mesh generator registry ([`generators`])
+//! describe what each block accepts, once, for the parser, validation,
+//! lowering and the keyword reference.
+//!
+//! ```text
 //! ```
 //!
 //! - [`compile`]: parse + validate + lower; the model, or every diagnostic;
@@ -16,6 +24,8 @@ pub mod ast;
 pub mod diagnostics;
 pub mod explain;
 pub mod explain_surface;
+pub mod generators;
+pub mod keys;
 pub mod lower;
 pub mod parse;
 pub mod source;

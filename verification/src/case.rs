@@ -51,6 +51,10 @@ pub enum Quantity {
     /// sigma_yy at every integration point against `-p`:
     /// `max |s_yy + p| / p`; computed shown at the worst point.
     PatchStress,
+    /// A quantity of a program case ([`crate::registry::ProgramCase`]),
+    /// named in its table (e.g. "F/G mu=0.3"); its normalisation is
+    /// documented with the case.
+    Named(&'static str),
 }
 
 impl Quantity {
@@ -69,6 +73,7 @@ impl Quantity {
             Quantity::PatchGap => "gap = -p/k",
             Quantity::PatchDisplacement => "u linear",
             Quantity::PatchStress => "s_yy uniform",
+            Quantity::Named(n) => n,
         }
     }
 }
@@ -183,6 +188,8 @@ pub struct Case {
     pub source: &'static str,
     /// Deck file name, relative to the cases directory.
     pub deck: &'static str,
+    /// Tags `ctc verify --tag` selects on (method, physics, reference kind).
+    pub tags: &'static [&'static str],
     /// Number of refinement levels `ctc verify` runs by default (the deck
     /// may define more).
     pub levels: usize,

@@ -60,6 +60,14 @@ pub fn hertz_cylinder() -> Case {
         title: "Hertz: elastic cylinder on a rigid plane, plane strain (quarter model)",
         source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3",
         deck: "hertz_cylinder.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+            "rate",
+        ],
         levels: 4,
         reference: Reference::HertzCylinder {
             young: 1e3,
@@ -92,6 +100,15 @@ pub fn hertz_two_cylinders() -> Case {
             "Hertz: two elastic cylinders, node-to-segment contact, plane strain (quarter models)",
         source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
         deck: "hertz_two_cylinders.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "node_to_segment",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+            "rate",
+        ],
         levels: 3,
         // identical cylinders: a and p0 of one cylinder (E, nu, R) on a
         // rigid plane under the same load
@@ -126,6 +143,7 @@ pub fn rigid_cylinder() -> Case {
         title: "Hertz: rigid cylinder tool pushed into an elastic block, plane strain (half model)",
         source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3",
         deck: "rigid_cylinder_block.ctc",
+        tags: &["contact", "hertz", "penalty", "plane_strain", "closed_form"],
         levels: 4,
         reference: Reference::HertzCylinder {
             young: 1e3,
@@ -160,6 +178,14 @@ pub fn hertz_sphere() -> Case {
         title: "Hertz: elastic sphere on a rigid plane, axisymmetric",
         source: "VERIFICATION-CASES.md §2; Johnson, Contact Mechanics §4.2",
         deck: "hertz_sphere.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "penalty",
+            "axisymmetric",
+            "closed_form",
+            "rate",
+        ],
         levels: 4,
         reference: Reference::HertzSphere {
             young: 1e3,
@@ -199,6 +225,7 @@ pub fn lame_plane_strain() -> Case {
         title: "Lamé: thick cylinder under internal pressure, plane strain (quarter ring)",
         source: "Timoshenko & Goodier, Theory of Elasticity §33",
         deck: "lame_plane_strain.ctc",
+        tags: &["elasticity", "lame", "plane_strain", "closed_form", "rate"],
         levels: 4,
         reference: Reference::Lame {
             cylinder: pipe(EndCondition::PlaneStrain),
@@ -221,6 +248,7 @@ pub fn lame_axisymmetric() -> Case {
         title: "Lamé: thick cylinder under internal pressure, axisymmetric, open ends",
         source: "Timoshenko & Goodier, Theory of Elasticity §33",
         deck: "lame_axisymmetric.ctc",
+        tags: &["elasticity", "lame", "axisymmetric", "closed_form", "rate"],
         levels: 4,
         reference: Reference::Lame {
             cylinder: pipe(EndCondition::OpenEnds),
@@ -270,6 +298,7 @@ pub fn patch_plane_strain() -> Case {
         title: "Contact patch test: block on a rigid plane, area penalty, plane strain tri3",
         source: "VERIFICATION-CASES.md §3, §7",
         deck: "patch_plane_strain.ctc",
+        tags: &["contact", "patch", "penalty", "plane_strain", "exact"],
         levels: 2,
         reference: Reference::Patch {
             patch: patch_plane_strain_patch(),
@@ -286,6 +315,7 @@ pub fn patch_axisymmetric() -> Case {
         title: "Contact patch test: cylinder on a rigid plane, area penalty, axisymmetric quad4",
         source: "VERIFICATION-CASES.md §3, §7",
         deck: "patch_axisymmetric.ctc",
+        tags: &["contact", "patch", "penalty", "axisymmetric", "exact"],
         levels: 2,
         reference: Reference::Patch {
             patch: PenaltyPatch {

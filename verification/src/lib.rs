@@ -15,7 +15,9 @@
 //! - [`refine`]: refinement markers of decks; [`deck`]: read and compile;
 //! - [`capture`]: observer keeping the final state; [`profile`]: contact
 //!   pressure profile and the half-width estimator; [`measure`]: quantities;
-//! - [`case`]: what a case is; [`cases`]: the catalogue;
+//! - [`case`]: what a deck case is; [`cases`]: the deck cases;
+//!   [`programs`]: the program cases; [`registry`]: every case of
+//!   `ctc verify` with its tags, tolerances and levels;
 //! - [`runner`]: levels, judging, rates; [`report`]: tables and JSON;
 //! - [`plot`], [`markdown`]: the report directory; [`bench`]: the benchmark;
 //! - [`fenicsx_export`], [`fenicsx`]: FEniCSx reference solutions on the
@@ -43,7 +45,9 @@ pub mod methods;
 pub mod penalty;
 pub mod plot;
 pub mod profile;
+pub mod programs;
 pub mod refine;
+pub mod registry;
 pub mod report;
 pub mod runner;
 pub mod search_bench;
@@ -75,6 +79,8 @@ pub struct VerifyOptions {
     pub cases_dir: Option<PathBuf>,
     /// Print one line per finished level to stderr.
     pub progress: bool,
+    /// Run only the cases carrying every one of these tags.
+    pub tags: Vec<String>,
 }
 
 /// Environment variable overriding the cases directory (for a `ctc`
@@ -108,14 +114,14 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
             eprintln!("{line}");
         }
     };
-    let cases: Vec<_> = cases::all()
+    let cases: Vec<_> = registry::all()
         .into_iter()
-        .filter(|c| c.matches(opts.filter.as_deref()))
+        .filter(|c| c.matches(opts.filter.as_deref(), &opts.tags))
         .collect();
     let mut report = Report {
         cases: cases
             .iter()
-            .map(|c| runner::run_case(c, &dir, opts.max_level, &mut progress))
+            .map(|c| c.run(&dir, opts.max_level, &mut progress))
             .collect(),
         cases_dir: dir.display().to_string(),
         wall_time: 0.0,
@@ -123,7 +129,7 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
     };
     // The method studies (comparison of the contact methods, penalty sweep
     // and mesh scaling) belong to the written report.
-    if opts.report_dir.is_some() {
+    if opts.report_dir.is_some() && opts.tags.is_empty() {
         report.studies = Some(studies::run_studies(
             opts.filter.as_deref(),
             &dir,

@@ -3,9 +3,9 @@
 //! observed convergence rates.
 
 use crate::capture::Capture;
-use crate::case::Case;
+use crate::case::{Case, Check};
 use crate::deck::{compile_text, DeckFile};
-use crate::measure::measure;
+use crate::measure::{measure, Value};
 use crate::method_variant::MethodVariant;
 use crate::report::{observed_rate, CaseReport, Judged, LevelReport, RateReport};
 use ctc_engine::solve::{run, RunSummary};
@@ -130,29 +130,33 @@ pub fn run_level_with(
         Ok(m) => {
             report.h = m.h;
             report.profile = m.profile;
-            report.values = m
-                .values
-                .into_iter()
-                .map(|v| {
-                    let tolerance = case
-                        .checks
-                        .iter()
-                        .find(|c| c.quantity == v.quantity)
-                        .map(|c| c.tolerance_at(level));
-                    Judged {
-                        passed: tolerance.is_none_or(|t| v.error <= t),
-                        quantity: v.quantity,
-                        reference: v.reference,
-                        computed: v.computed,
-                        error: v.error,
-                        tolerance,
-                    }
-                })
-                .collect();
+            report.values = judge(&case.checks, level, m.values);
         }
         Err(e) => report.failure = Some(format!("measurement: {e}")),
     }
     report
+}
+
+/// Judges measured values against the tolerances of `checks` at `level`
+/// (a value without a check is reported, not judged).
+pub fn judge(checks: &[Check], level: usize, values: Vec<Value>) -> Vec<Judged> {
+    values
+        .into_iter()
+        .map(|v| {
+            let tolerance = checks
+                .iter()
+                .find(|c| c.quantity == v.quantity)
+                .map(|c| c.tolerance_at(level));
+            Judged {
+                passed: tolerance.is_none_or(|t| v.error <= t),
+                quantity: v.quantity,
+                reference: v.reference,
+                computed: v.computed,
+                error: v.error,
+                tolerance,
+            }
+        })
+        .collect()
 }
 
 /// Copies the iteration counts of a run summary.
@@ -179,6 +183,16 @@ fn fill_counts(report: &mut LevelReport, summary: &RunSummary) {
 /// minimum rate is checked on the last pair when it reaches the case's
 /// default finest level (a run limited by `max_level` reports rates only).
 pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
+    rates_of(&case.checks, case.levels, levels)
+}
+
+/// [`rates`] for any case: `checks` carry the minimum rates, judged on the
+/// last pair once level `default_levels - 1` is reached.
+pub fn rates_of(
+    checks: &[Check],
+    default_levels: usize,
+    levels: &[LevelReport],
+) -> Vec<RateReport> {
     let ok: Vec<&LevelReport> = levels.iter().filter(|l| l.failure.is_none()).collect();
     let mut out = Vec::new();
     let quantities: Vec<_> = {
@@ -193,7 +207,7 @@ pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
         qs
     };
     for q in quantities {
-        let check = case.checks.iter().find(|c| c.quantity == q);
+        let check = checks.iter().find(|c| c.quantity == q);
         for (i, w) in ok.windows(2).enumerate() {
             let (Some(e1), Some(e2)) = (w[0].error_of(q), w[1].error_of(q)) else {
                 continue;
@@ -201,7 +215,7 @@ pub fn rates(case: &Case, levels: &[LevelReport]) -> Vec<RateReport> {
             let rate = observed_rate(e1, e2, w[0].h, w[1].h);
             // Judged on the last pair, and only once the case's default
             // finest level is reached: coarser pairs are pre-asymptotic.
-            let last = i + 2 == ok.len() && w[1].level + 1 >= case.levels;
+            let last = i + 2 == ok.len() && w[1].level + 1 >= default_levels;
             let min_rate = if last {
                 check.and_then(|c| c.min_rate)
             } else {
@@ -263,6 +277,7 @@ mod tests {
             title: "t",
             source: "s",
             deck: "d.ctc",
+            tags: &[],
             levels,
             reference: Reference::Patch {
                 patch: crate::cases::patch_plane_strain_patch(),

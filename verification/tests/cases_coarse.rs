@@ -14,7 +14,7 @@ fn verification_cases_coarsest_level() {
     })
     .expect("verification runs");
     println!("{}", report.table());
-    assert_eq!(report.cases.len(), ctc_verification::cases::all().len());
+    assert_eq!(report.cases.len(), ctc_verification::registry::all().len());
     assert!(
         report.passed(),
         "failures:\n{}",

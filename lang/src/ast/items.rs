@@ -5,7 +5,9 @@
 //! a node (the missing field has already been reported) and later checks
 //! keep running.
 
-use super::values::{Grading, IntPair, Pair, Point, SetRef, TimeFn};
+use super::settings::Settings;
+use super::values::{Point, SetRef, TimeFn};
+use crate::generators::GeneratorDef;
 use crate::span::{Ident, Span, Spanned};
 
 /// `analysis { .. }`.
@@ -72,14 +74,14 @@ pub struct Plastic {
     /// `yield`: initial yield stress (not with `swift`).
     pub yield_stress: Option<Spanned<f64>>,
     /// `hardening = ..` (absent: perfect plasticity).
-    pub hardening: Option<Spanned<HardeningAst>>,
+    pub hardening: Option<Spanned<Hardening>>,
     /// The `plastic` block.
     pub span: Span,
 }
 
 /// Isotropic hardening laws of the deck.
 #[derive(Debug, Clone, PartialEq)]
-pub enum HardeningAst {
+pub enum Hardening {
     /// `linear { H = .. }`.
     Linear {
         /// `H`: plastic modulus.
@@ -149,15 +151,6 @@ pub enum FormulationKind {
     SelectiveReduced,
 }
 
-/// `element` values of mesh generators.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum ElementKind {
-    /// `tri3`.
-    Tri3,
-    /// `quad4`.
-    Quad4,
-}
-
 /// Where a body's mesh comes from.
 #[derive(Debug, Clone, PartialEq)]
 pub enum MeshDef {
@@ -172,64 +165,10 @@ pub enum MeshDef {
 pub struct Generator {
     /// The generator name as written (`rectangle`, ...).
     pub name: Ident,
-    /// Its settings.
-    pub kind: GeneratorKind,
-    /// `element = tri3 | quad4`.
-    pub element: Option<Spanned<ElementKind>>,
-}
-
-/// Settings of each generator.
-#[derive(Debug, Clone, PartialEq)]
-pub enum GeneratorKind {
-    /// `rectangle { origin size divisions grading }`.
-    Rectangle {
-        /// Lower-left corner (default (0, 0)).
-        origin: Option<Point>,
-        /// Width and height.
-        size: Option<Pair>,
-        /// Divisions along x and y.
-        divisions: Option<IntPair>,
-        /// Gradings along x and y.
-        grading: Option<Spanned<[Spanned<Grading>; 2]>>,
-    },
-    /// `half_disc { .. }` or `quarter_disc { .. }`.
-    Disc {
-        /// `true` for `quarter_disc`.
-        quarter: bool,
-        /// Centre.
-        center: Option<Point>,
-        /// Radius.
-        radius: Option<Spanned<f64>>,
-        /// Radial divisions.
-        radial: Option<Spanned<i64>>,
-        /// Circumferential divisions.
-        circumferential: Option<Spanned<i64>>,
-        /// Radial grading.
-        radial_grading: Option<Spanned<Grading>>,
-        /// Circumferential grading.
-        circumferential_grading: Option<Spanned<Grading>>,
-        /// Upper (`true`) or lower half/quarter.
-        upper: Option<Spanned<bool>>,
-    },
-    /// `annulus { .. }`.
-    Annulus {
-        /// Centre.
-        center: Option<Point>,
-        /// Inner radius.
-        inner: Option<Spanned<f64>>,
-        /// Outer radius.
-        outer: Option<Spanned<f64>>,
-        /// Start angle, degrees (default 0).
-        start: Option<Spanned<f64>>,
-        /// End angle, degrees (default 360).
-        end: Option<Spanned<f64>>,
-        /// Radial divisions.
-        radial: Option<Spanned<i64>>,
-        /// Circumferential divisions.
-        circumferential: Option<Spanned<i64>>,
-        /// Radial grading.
-        radial_grading: Option<Spanned<Grading>>,
-    },
+    /// Its registry entry ([`crate::generators`]).
+    pub def: &'static GeneratorDef,
+    /// The keys given, read through the entry's key table.
+    pub settings: Settings,
 }
 
 /// `set name = ref`.
@@ -348,32 +287,32 @@ pub struct Contact {
     /// `thermal { .. }`.
     pub thermal: Option<super::thermal::ContactThermal>,
     /// `friction = coulomb { .. }`.
-    pub friction: Option<Spanned<FrictionAst>>,
+    pub friction: Option<Spanned<Friction>>,
     /// Deformable master surface `body.set` (then `tool` holds its text
     /// and span); `None` for a rigid tool.
     pub master: Option<SetRef>,
     /// `strategy = single_pass | double_pass | modified_double_pass`.
-    pub strategy: Option<Spanned<StrategyAst>>,
+    pub strategy: Option<Spanned<Strategy>>,
     /// `search = memory | circle`.
-    pub search: Option<Spanned<SearchAst>>,
+    pub search: Option<Spanned<Search>>,
 }
 
 /// `friction = coulomb { mu stiffness first_impact cut_at_impact }`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FrictionAst {
+pub struct Friction {
     /// Coulomb coefficient.
     pub mu: Option<Spanned<f64>>,
     /// Tangential penalty (default alpha_N / 10).
     pub stiffness: Option<Spanned<f64>>,
     /// `intersect` (default) or `frictionless`.
-    pub first_impact: Option<Spanned<FirstImpactAst>>,
+    pub first_impact: Option<Spanned<FirstImpact>>,
     /// Cut the increment at the first impact (default false).
     pub cut_at_impact: Option<Spanned<bool>>,
 }
 
 /// `first_impact = ..` values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum FirstImpactAst {
+pub enum FirstImpact {
     /// `intersect`.
     Intersect,
     /// `frictionless`.
@@ -382,7 +321,7 @@ pub enum FirstImpactAst {
 
 /// `strategy = ..` of a contact pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum StrategyAst {
+pub enum Strategy {
     /// `single_pass`.
     SinglePass,
     /// `double_pass`.
@@ -393,7 +332,7 @@ pub enum StrategyAst {
 
 /// `search = ..` of a contact pair.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SearchAst {
+pub enum Search {
     /// `memory` (Metafor).
     Memory,
     /// `circle` (Cast3M).
@@ -402,7 +341,7 @@ pub enum SearchAst {
 
 /// `penalty` kinds.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PenaltyKindAst {
+pub enum PenaltyKind {
     /// `nodal`.
     Nodal,
     /// `area`.
@@ -415,31 +354,31 @@ pub enum Method {
     /// `penalty { kind stiffness }`.
     Penalty {
         /// Nodal or area (default area).
-        kind: Option<Spanned<PenaltyKindAst>>,
+        kind: Option<Spanned<PenaltyKind>>,
         /// Penalty coefficient.
         stiffness: Option<Spanned<f64>>,
     },
     /// `lagrange { formulation }`.
     Lagrange {
         /// `single` (default) or `doubled`.
-        formulation: Option<Spanned<LagrangeFormulationAst>>,
+        formulation: Option<Spanned<LagrangeFormulation>>,
     },
     /// `augmented_lagrange { kind penalty tolerance update }`.
     AugmentedLagrange {
         /// Nodal or area (default area).
-        kind: Option<Spanned<PenaltyKindAst>>,
+        kind: Option<Spanned<PenaltyKind>>,
         /// Penalty coefficient alpha.
         penalty: Option<Spanned<f64>>,
         /// Largest accepted penetration.
         tolerance: Option<Spanned<f64>>,
         /// `converged` (default) or `newton`.
-        update: Option<Spanned<MultiplierUpdateAst>>,
+        update: Option<Spanned<MultiplierUpdate>>,
     },
 }
 
 /// `lagrange { formulation = .. }` values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum LagrangeFormulationAst {
+pub enum LagrangeFormulation {
     /// `single`: `[K G^T; G 0]`.
     Single,
     /// `doubled`: multipliers `lambda1, q, lambda2`.
@@ -448,7 +387,7 @@ pub enum LagrangeFormulationAst {
 
 /// `augmented_lagrange { update = .. }` values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MultiplierUpdateAst {
+pub enum MultiplierUpdate {
     /// After each converged Newton loop.
     Converged,
     /// At every Newton iteration.

@@ -4,9 +4,11 @@
 //! - [`syntax`]: the generic block/value syntax produced by the grammar;
 //! - [`values`]: points, set references, selections, time functions, gradings;
 //! - [`items`]: one node type per top-level construct;
+//! - [`settings`]: values read through a key table (mesh generators);
 //! - [`thermal`]: `thermal` blocks and thermal load items.
 
 pub mod items;
+pub mod settings;
 pub mod syntax;
 pub mod thermal;
 pub mod values;

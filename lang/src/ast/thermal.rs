@@ -39,15 +39,17 @@ pub struct BodyThermal {
 
 /// Contact conductance law.
 #[derive(Debug, Clone, PartialEq)]
-pub enum ConductanceAst {
-    /// `conductance = h` or `power { h0 = .. h1 = .. n = .. }`.
+pub enum Conductance {
+    /// `conductance = h`: constant.
+    Constant(Spanned<f64>),
+    /// `power { h0 = .. h1 = .. n = .. }`: `h0 + h1 p^n`.
     Power {
-        /// `h0`.
-        h0: f64,
-        /// `h1`.
-        h1: f64,
-        /// `n`.
-        n: f64,
+        /// `h0` (default 0).
+        h0: Option<Spanned<f64>>,
+        /// `h1` (default 0).
+        h1: Option<Spanned<f64>>,
+        /// `n` (default 1).
+        n: Option<Spanned<f64>>,
     },
     /// `conductance = table((p, h), ..)`.
     Table(Vec<(f64, f64)>),
@@ -57,7 +59,7 @@ pub enum ConductanceAst {
 #[derive(Debug, Clone, PartialEq)]
 pub struct ContactThermal {
     /// `conductance = ..` (required).
-    pub conductance: Option<Spanned<ConductanceAst>>,
+    pub conductance: Option<Spanned<Conductance>>,
     /// `gap_conductivity = k_gap` (default 0: no heat across an open gap).
     pub gap_conductivity: Option<Spanned<f64>>,
     /// `gap_min = g_min` (default 1e-6 x the pair's scale... fixed 1e-9).

@@ -1,138 +1,22 @@
-//! Building each body's mesh (generator or gmsh file), checking it, and
-//! appending it to the global mesh with qualified set names.
+//! Building each body's mesh (a registry generator — [`crate::generators`]
+//! — or a gmsh file), checking it, and appending it to the global mesh with
+//! qualified set names.
 
-use crate::ast::{ElementKind, Generator, GeneratorKind, Grading, MeshDef};
+use crate::ast::settings::SettingValue;
+use crate::ast::{Generator, MeshDef};
 use crate::diagnostics::Diagnostic;
 use crate::source::Source;
 use crate::span::{Span, Spanned};
-use ctc_engine::mesh::generate::{self, MeshSpec};
-use ctc_engine::mesh::{gmsh, validate, CellKind, Mesh};
+use ctc_engine::mesh::{gmsh, validate, Mesh, MeshError};
 use std::collections::BTreeSet;
 use std::ops::Range;
 
 /// At most this many mesh check errors are listed per body.
 const MAX_MESH_ERRORS: usize = 5;
 
-fn grading(g: &Option<Spanned<Grading>>) -> generate::Grading {
-    match g.as_ref().map(|g| &g.value) {
-        None | Some(Grading::Uniform) => generate::Grading::Uniform,
-        Some(Grading::Geometric(r)) => generate::Grading::Geometric { ratio: r.value },
-        Some(Grading::Center(r)) => generate::Grading::Center { ratio: r.value },
-    }
-}
-
-fn count(x: &Option<Spanned<i64>>) -> usize {
-    x.as_ref().map_or(1, |v| v.value.max(1) as usize)
-}
-
-/// The engine's [`MeshSpec`] for a validated generator.
-pub fn spec(g: &Generator) -> MeshSpec {
-    let kind = match g.element.as_ref().map(|e| e.value) {
-        Some(ElementKind::Tri3) => CellKind::Tri3,
-        _ => CellKind::Quad4,
-    };
-    let pt = |p: &Option<Spanned<[f64; 2]>>| p.as_ref().map_or([0.0, 0.0], |p| p.value);
-    let val = |x: &Option<Spanned<f64>>, d: f64| x.as_ref().map_or(d, |x| x.value);
-    match &g.kind {
-        GeneratorKind::Rectangle {
-            origin,
-            size,
-            divisions,
-            grading: gr,
-        } => MeshSpec::Rectangle {
-            origin: pt(origin),
-            size: size
-                .as_ref()
-                .map_or([1.0, 1.0], |s| [s.value[0].value, s.value[1].value]),
-            divisions: divisions.as_ref().map_or([1, 1], |d| {
-                [
-                    d.value[0].value.max(1) as usize,
-                    d.value[1].value.max(1) as usize,
-                ]
-            }),
-            grading: match gr {
-                Some(gr) => [
-                    grading(&Some(gr.value[0].clone())),
-                    grading(&Some(gr.value[1].clone())),
-                ],
-                None => [generate::Grading::Uniform, generate::Grading::Uniform],
-            },
-            kind,
-        },
-        GeneratorKind::Disc {
-            quarter,
-            center,
-            radius,
-            radial,
-            circumferential,
-            radial_grading,
-            circumferential_grading,
-            upper,
-        } => {
-            let (center, radius) = (pt(center), val(radius, 1.0));
-            let (radial, circumferential) = (count(radial), count(circumferential));
-            let radial_grading = grading(radial_grading);
-            let circumferential_grading = grading(circumferential_grading);
-            let upper = upper.as_ref().is_some_and(|u| u.value);
-            if *quarter {
-                MeshSpec::QuarterDisc {
-                    center,
-                    radius,
-                    radial,
-                    circumferential,
-                    radial_grading,
-                    circumferential_grading,
-                    upper,
-                    kind,
-                }
-            } else {
-                MeshSpec::HalfDisc {
-                    center,
-                    radius,
-                    radial,
-                    circumferential,
-                    radial_grading,
-                    circumferential_grading,
-                    upper,
-                    kind,
-                }
-            }
-        }
-        GeneratorKind::Annulus {
-            center,
-            inner,
-            outer,
-            start,
-            end,
-            radial,
-            circumferential,
-            radial_grading,
-        } => MeshSpec::Annulus {
-            center: pt(center),
-            inner: val(inner, 1.0),
-            outer: val(outer, 2.0),
-            start_angle: val(start, 0.0),
-            end_angle: val(end, 360.0),
-            radial: count(radial),
-            circumferential: count(circumferential),
-            radial_grading: grading(radial_grading),
-            kind,
-        },
-    }
-}
-
 /// Builds (generates or reads) and checks the mesh of body `body`.
 pub fn build(body: &str, mesh: &Spanned<MeshDef>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
-    let m = match &mesh.value {
-        MeshDef::Generator(g) => generate::generate(&spec(g)).map_err(|e| {
-            vec![Diagnostic::error(
-                format!("cannot generate the mesh of body `{body}`: {}", e.message),
-                mesh.span,
-                "mesh generation failed",
-            )]
-        })?,
-        MeshDef::File(f) => read_file(f, src)?,
-    };
+    let m = make(body, mesh, src)?;
     if m.cells.is_empty() {
         return Err(vec![Diagnostic::error(
             format!("the mesh of body `{body}` has no cells"),
@@ -165,6 +49,35 @@ pub fn build(body: &str, mesh: &Spanned<MeshDef>, src: &Source) -> Result<Mesh, 
         return Err(out);
     }
     Ok(m)
+}
+
+/// Generates or reads a mesh (without checking it): a generator's input
+/// meshes first, in key order.
+fn make(body: &str, mesh: &Spanned<MeshDef>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
+    match &mesh.value {
+        MeshDef::Generator(g) => {
+            let inputs = inputs(body, g, src)?;
+            (g.def.build)(&g.settings, &inputs).map_err(|e: MeshError| {
+                vec![Diagnostic::error(
+                    format!("cannot generate the mesh of body `{body}`: {}", e.message),
+                    mesh.span,
+                    "mesh generation failed",
+                )]
+            })
+        }
+        MeshDef::File(f) => read_file(f, src),
+    }
+}
+
+/// The built input meshes of a generator (its keys of type mesh).
+fn inputs(body: &str, g: &Generator, src: &Source) -> Result<Vec<Mesh>, Vec<Diagnostic>> {
+    let mut out = Vec::new();
+    for s in &g.settings.entries {
+        if let SettingValue::Mesh(m) = &s.value.value {
+            out.push(make(body, m, src)?);
+        }
+    }
+    Ok(out)
 }
 
 fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {

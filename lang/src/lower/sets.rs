@@ -3,7 +3,7 @@
 //! that a selection is not empty and has edges where edges are needed.
 
 use super::mesh::edge_nodes;
-use crate::ast::{num, Selection, SetRef, SetRefKind};
+use crate::ast::{self, num, Selection, SetRef, SetRefKind};
 use crate::diagnostics::Diagnostic;
 use crate::suggest::did_you_mean;
 use crate::validate::Need;
@@ -170,6 +170,40 @@ pub fn resolve(
         }
     };
     Ok(resolved)
+}
+
+/// Deck `set` items become `body.name` sets of the global mesh, in order.
+impl super::Lowerer<'_> {
+    pub(super) fn sets(&mut self) {
+        for s in &self.deck.sets {
+            if self.has_error_in(s.span) || !self.body_nodes.contains_key(&s.target.body.name) {
+                // Already reported (or its body's mesh failed).
+                self.skipped_sets.push(s.name.name.clone());
+                continue;
+            }
+            let Some(r) = self.resolve(&s.target, Need::Nodes, "set") else {
+                self.skipped_sets.push(s.name.name.clone());
+                continue;
+            };
+            let key = format!("{}.{}", s.target.body.name, s.name.name);
+            if let Some(edges) = r.edges {
+                self.mesh.edge_sets.insert(key.clone(), edges);
+            }
+            self.mesh.node_sets.insert(key, r.nodes);
+        }
+    }
+
+    /// Whether references to this body must be skipped: it has no mesh
+    /// (its mesh failed, or it is unknown, both already reported).
+    pub(super) fn body_failed(&mut self, r: &ast::SetRef) -> bool {
+        if self.body_nodes.contains_key(&r.body.name) {
+            return false;
+        }
+        if !self.deck.bodies.iter().any(|b| b.name.name == r.body.name) {
+            self.missing("the body", r.body.span);
+        }
+        true
+    }
 }
 
 #[cfg(test)]

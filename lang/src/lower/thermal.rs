@@ -8,7 +8,7 @@
 
 use super::sets::resolve;
 use super::time_function;
-use crate::ast::thermal::{ConductanceAst, ThermalLoadKind};
+use crate::ast::thermal::{self as ast, ThermalLoadKind};
 use crate::ast::Deck;
 use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
@@ -198,12 +198,22 @@ pub fn lower(
         let Some(law) = &t.conductance else { continue };
         scene.contacts[p] = Some(ContactThermal {
             conductance: match &law.value {
-                ConductanceAst::Power { h0, h1, n } => Conductance::Power {
-                    h0: *h0,
-                    h1: *h1,
-                    n: *n,
+                ast::Conductance::Constant(h) => Conductance::Power {
+                    h0: h.value,
+                    h1: 0.0,
+                    n: 1.0,
                 },
-                ConductanceAst::Table(points) => Conductance::Table(points.clone()),
+                ast::Conductance::Power { h0, h1, n } => {
+                    let v = |x: &Option<crate::span::Spanned<f64>>, d: f64| {
+                        x.as_ref().map_or(d, |x| x.value)
+                    };
+                    Conductance::Power {
+                        h0: v(h0, 0.0),
+                        h1: v(h1, 0.0),
+                        n: v(n, 1.0),
+                    }
+                }
+                ast::Conductance::Table(points) => Conductance::Table(points.clone()),
             },
             gap_conductivity: t.gap_conductivity.as_ref().map_or(0.0, |x| x.value),
             gap_min: t.gap_min.as_ref().map_or(DEFAULT_GAP_MIN, |x| x.value),

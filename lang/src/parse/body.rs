@@ -2,18 +2,15 @@
 //! generators.
 
 use super::fields::Fields;
-use super::values::{self, Diags};
+use super::settings;
+use super::values::Diags;
 use super::ItemParts;
 use crate::ast::syntax::{Block, Value, ValueKind};
-use crate::ast::{
-    Body, ElementKind, FormulationKind, Generator, GeneratorKind, KinematicsKind, MeshDef,
-};
+use crate::ast::{Body, FormulationKind, Generator, KinematicsKind, MeshDef};
 use crate::diagnostics::Diagnostic;
+use crate::generators;
 use crate::span::{Ident, Spanned};
 use crate::suggest::did_you_mean;
-
-/// Names of the built-in mesh generators.
-pub const GENERATORS: [&str; 4] = ["rectangle", "half_disc", "quarter_disc", "annulus"];
 
 /// `kinematics` keywords.
 const KINEMATICS: [(&str, KinematicsKind); 2] = [
@@ -26,11 +23,14 @@ const FORMULATIONS: [(&str, FormulationKind); 2] = [
     ("selective_reduced", FormulationKind::SelectiveReduced),
 ];
 
-const ELEMENTS: [(&str, ElementKind); 2] =
-    [("tri3", ElementKind::Tri3), ("quad4", ElementKind::Quad4)];
-
-const MESH_HELP: &str = "expected `rectangle { .. }`, `half_disc { .. }`, `quarter_disc { .. }`, \
-`annulus { .. }` or `file \"part.msh\"`";
+/// "expected `rectangle { .. }`, .. or `file "part.msh"`", from the registry.
+fn mesh_help() -> String {
+    let gens: Vec<String> = generators::names()
+        .iter()
+        .map(|n| format!("`{n} {{ .. }}`"))
+        .collect();
+    format!("expected {} or `file \"part.msh\"`", gens.join(", "))
+}
 
 /// Converts a `body` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
@@ -96,8 +96,9 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
     })
 }
 
-/// `mesh = generator { .. }` or `mesh = file "path"`.
-fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
+/// `mesh = generator { .. }` or `mesh = file "path"` (also the value of a
+/// generator key of type mesh).
+pub fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
     match &v.kind {
         ValueKind::CtorStr {
             name,
@@ -107,12 +108,12 @@ fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
             MeshDef::File(Spanned::new(text.clone(), *text_span)),
             v.span,
         )),
-        ValueKind::Ctor { name, block } if GENERATORS.contains(&name.name.as_str()) => {
+        ValueKind::Ctor { name, block } if generators::find(&name.name).is_some() => {
             generator(name, block, diags)
                 .map(|g| Spanned::new(MeshDef::Generator(Box::new(g)), v.span))
         }
         ValueKind::Ctor { name, .. } | ValueKind::CtorStr { name, .. } => {
-            let mut options = GENERATORS.to_vec();
+            let mut options = generators::names();
             options.push("file");
             diags.push(
                 Diagnostic::error(
@@ -120,11 +121,11 @@ fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
                     name.span,
                     "not a mesh generator",
                 )
-                .with_help(did_you_mean(&name.name, &options).unwrap_or(MESH_HELP.into())),
+                .with_help(did_you_mean(&name.name, &options).unwrap_or_else(mesh_help)),
             );
             None
         }
-        ValueKind::Path(p) if p.len() == 1 && GENERATORS.contains(&p[0].name.as_str()) => {
+        ValueKind::Path(p) if p.len() == 1 && generators::find(&p[0].name).is_some() => {
             diags.push(Diagnostic::error(
                 format!("the `{}` generator needs its settings", p[0].name),
                 v.span,
@@ -139,176 +140,34 @@ fn mesh(v: &Value, diags: &mut Diags) -> Option<Spanned<MeshDef>> {
                     v.span,
                     "expected a mesh generator or a file",
                 )
-                .with_help(MESH_HELP),
+                .with_help(mesh_help()),
             );
             None
         }
     }
 }
 
+/// A generator's block, read through its registry entry's keys.
 fn generator(name: &Ident, block: &Block, diags: &mut Diags) -> Option<Generator> {
-    let what = format!("`{}` mesh", name.name);
-    let at = name.span;
-    let (kind, element) = match name.name.as_str() {
-        "rectangle" => {
-            let mut f = Fields::new(
-                block,
-                what,
-                &["origin", "size", "divisions", "grading", "element"],
-            );
-            let origin = f.point("origin", diags);
-            let size = f.pair("size", diags);
-            let divisions = f
-                .value("divisions", diags)
-                .and_then(|v| values::int_pair(v, diags));
-            let grading = f.value("grading", diags).and_then(|v| {
-                let [a, b] = values::pair_of(v, "a pair of gradings `(x, y)`", diags)?;
-                let ga = values::grading(a, diags);
-                let gb = values::grading(b, diags);
-                Some(Spanned::new([ga?, gb?], v.span))
-            });
-            let element = f.choice("element", "element", &ELEMENTS, diags);
-            f.require(&size, "size", at, "add `size = (width, height)`", diags);
-            f.require(
-                &divisions,
-                "divisions",
-                at,
-                "add `divisions = (nx, ny)`",
-                diags,
-            );
-            f.finish(diags);
-            (
-                GeneratorKind::Rectangle {
-                    origin,
-                    size,
-                    divisions,
-                    grading,
-                },
-                element,
-            )
-        }
-        "half_disc" | "quarter_disc" => {
-            let mut f = Fields::new(
-                block,
-                what,
-                &[
-                    "center",
-                    "radius",
-                    "radial",
-                    "circumferential",
-                    "radial_grading",
-                    "circumferential_grading",
-                    "upper",
-                    "element",
-                ],
-            );
-            let center = f.point("center", diags);
-            let radius = f.number("radius", diags);
-            let radial = f.integer("radial", diags);
-            let circumferential = f.integer("circumferential", diags);
-            let radial_grading = f.grading("radial_grading", diags);
-            let circumferential_grading = f.grading("circumferential_grading", diags);
-            let upper = f.boolean("upper", diags);
-            let element = f.choice("element", "element", &ELEMENTS, diags);
-            f.require(&center, "center", at, "add `center = (x, y)`", diags);
-            f.require(&radius, "radius", at, "add `radius = ..`", diags);
-            f.require(
-                &radial,
-                "radial",
-                at,
-                "add `radial = <radial divisions>`",
-                diags,
-            );
-            f.require(
-                &circumferential,
-                "circumferential",
-                at,
-                "add `circumferential = <divisions along the arc>`",
-                diags,
-            );
-            f.finish(diags);
-            (
-                GeneratorKind::Disc {
-                    quarter: name.name == "quarter_disc",
-                    center,
-                    radius,
-                    radial,
-                    circumferential,
-                    radial_grading,
-                    circumferential_grading,
-                    upper,
-                },
-                element,
-            )
-        }
-        _ => {
-            let mut f = Fields::new(
-                block,
-                what,
-                &[
-                    "center",
-                    "inner",
-                    "outer",
-                    "start",
-                    "end",
-                    "radial",
-                    "circumferential",
-                    "radial_grading",
-                    "element",
-                ],
-            );
-            let center = f.point("center", diags);
-            let inner = f.number("inner", diags);
-            let outer = f.number("outer", diags);
-            let start = f.number("start", diags);
-            let end = f.number("end", diags);
-            let radial = f.integer("radial", diags);
-            let circumferential = f.integer("circumferential", diags);
-            let radial_grading = f.grading("radial_grading", diags);
-            let element = f.choice("element", "element", &ELEMENTS, diags);
-            f.require(&center, "center", at, "add `center = (x, y)`", diags);
-            f.require(&inner, "inner", at, "add `inner = <inner radius>`", diags);
-            f.require(&outer, "outer", at, "add `outer = <outer radius>`", diags);
-            f.require(
-                &radial,
-                "radial",
-                at,
-                "add `radial = <radial divisions>`",
-                diags,
-            );
-            f.require(
-                &circumferential,
-                "circumferential",
-                at,
-                "add `circumferential = <divisions along the arc>`",
-                diags,
-            );
-            f.finish(diags);
-            (
-                GeneratorKind::Annulus {
-                    center,
-                    inner,
-                    outer,
-                    start,
-                    end,
-                    radial,
-                    circumferential,
-                    radial_grading,
-                },
-                element,
-            )
-        }
-    };
+    let def = generators::find(&name.name)?;
+    let settings = settings::read(
+        block,
+        format!("`{}` mesh", name.name),
+        def.keys,
+        name.span,
+        diags,
+    );
     Some(Generator {
         name: name.clone(),
-        kind,
-        element,
+        def,
+        settings,
     })
 }
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::{ElementKind, FormulationKind, GeneratorKind, Grading, MeshDef};
+    use crate::ast::settings::SettingValue;
+    use crate::ast::{FormulationKind, Grading, MeshDef};
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -327,22 +186,15 @@ mod tests {
         let MeshDef::Generator(g) = &b.mesh.as_ref().unwrap().value else {
             panic!()
         };
-        assert_eq!(g.element.as_ref().unwrap().value, ElementKind::Quad4);
-        let GeneratorKind::Rectangle {
-            origin,
-            size,
-            divisions,
-            grading,
-        } = &g.kind
-        else {
-            panic!()
-        };
-        assert_eq!(origin.as_ref().unwrap().value, [-4.0, -4.0]);
-        assert_eq!(size.as_ref().unwrap().value[0].value, 8.0);
-        assert_eq!(divisions.as_ref().unwrap().value[1].value, 20);
-        let g = &grading.as_ref().unwrap().value;
-        assert!(matches!(&g[0].value, Grading::Center(r) if r.value == 4.0));
-        assert!(matches!(&g[1].value, Grading::Geometric(r) if r.value == 0.2));
+        assert_eq!(g.def.name, "rectangle");
+        let s = &g.settings;
+        assert_eq!(s.choice("element", g.def.keys), Some("quad4"));
+        assert_eq!(s.pair("origin", g.def.keys), Some([-4.0, -4.0]));
+        assert_eq!(s.pair("size", g.def.keys), Some([8.0, 4.0]));
+        assert_eq!(s.integers("divisions"), Some(vec![40, 20]));
+        let g = s.gradings("grading", 2);
+        assert!(matches!(&g[0], Grading::Center(r) if r.value == 4.0));
+        assert!(matches!(&g[1], Grading::Geometric(r) if r.value == 0.2));
     }
 
     #[test]
@@ -369,7 +221,17 @@ mod tests {
         let MeshDef::Generator(g) = &deck.bodies[1].mesh.as_ref().unwrap().value else {
             panic!()
         };
-        assert!(matches!(g.kind, GeneratorKind::Disc { quarter: true, .. }));
+        assert_eq!(g.def.name, "quarter_disc");
+        assert_eq!(g.settings.bool("upper", g.def.keys), Some(true));
+        // defaults come from the key table
+        let MeshDef::Generator(g) = &deck.bodies[2].mesh.as_ref().unwrap().value else {
+            panic!()
+        };
+        assert_eq!(g.settings.choice("element", g.def.keys), Some("quad4"));
+        assert!(matches!(
+            g.settings.get("end").unwrap().value.value,
+            SettingValue::Number(x) if x == 90.0
+        ));
     }
 
     #[test]
@@ -386,6 +248,12 @@ mod tests {
                 "body b { mesh = rectangle { size = (1, 1) divisons = (2, 2) } material = m }"
             ),
             ["unknown key `divisons` in the `rectangle` mesh"]
+        );
+        assert_eq!(
+            parse_messages(
+                "body b { mesh = rectangle { size = (1, 1, 1) divisions = (2, 2) } material = m }"
+            ),
+            ["expected a pair `(a, b)`, found a tuple of 3"]
         );
     }
 }

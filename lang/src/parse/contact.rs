@@ -5,8 +5,7 @@ use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{Value, ValueKind};
 use crate::ast::{
-    Contact, LagrangeFormulationAst, Method, MultiplierUpdateAst, PenaltyKindAst, SearchAst,
-    StrategyAst,
+    Contact, LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind, Search, Strategy,
 };
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
@@ -15,28 +14,25 @@ use crate::suggest::did_you_mean;
 /// Contact methods the language knows.
 pub const METHODS: [&str; 3] = ["penalty", "lagrange", "augmented_lagrange"];
 
-const KINDS: [(&str, PenaltyKindAst); 2] = [
-    ("nodal", PenaltyKindAst::Nodal),
-    ("area", PenaltyKindAst::Area),
+const KINDS: [(&str, PenaltyKind); 2] =
+    [("nodal", PenaltyKind::Nodal), ("area", PenaltyKind::Area)];
+
+const FORMULATIONS: [(&str, LagrangeFormulation); 2] = [
+    ("single", LagrangeFormulation::Single),
+    ("doubled", LagrangeFormulation::Doubled),
 ];
 
-const FORMULATIONS: [(&str, LagrangeFormulationAst); 2] = [
-    ("single", LagrangeFormulationAst::Single),
-    ("doubled", LagrangeFormulationAst::Doubled),
+const STRATEGIES: [(&str, Strategy); 3] = [
+    ("single_pass", Strategy::SinglePass),
+    ("double_pass", Strategy::DoublePass),
+    ("modified_double_pass", Strategy::ModifiedDoublePass),
 ];
 
-const STRATEGIES: [(&str, StrategyAst); 3] = [
-    ("single_pass", StrategyAst::SinglePass),
-    ("double_pass", StrategyAst::DoublePass),
-    ("modified_double_pass", StrategyAst::ModifiedDoublePass),
-];
+const SEARCHES: [(&str, Search); 2] = [("memory", Search::Memory), ("circle", Search::Circle)];
 
-const SEARCHES: [(&str, SearchAst); 2] =
-    [("memory", SearchAst::Memory), ("circle", SearchAst::Circle)];
-
-const UPDATES: [(&str, MultiplierUpdateAst); 2] = [
-    ("converged", MultiplierUpdateAst::Converged),
-    ("newton", MultiplierUpdateAst::Newton),
+const UPDATES: [(&str, MultiplierUpdate); 2] = [
+    ("converged", MultiplierUpdate::Converged),
+    ("newton", MultiplierUpdate::Newton),
 ];
 
 /// Converts a `contact` item.
@@ -203,9 +199,7 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::{
-        LagrangeFormulationAst, Method, MultiplierUpdateAst, PenaltyKindAst, SetRefKind,
-    };
+    use crate::ast::{LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind, SetRefKind};
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -219,7 +213,7 @@ mod tests {
         assert_eq!(c.prof.as_ref().unwrap().value, 0.5);
         match &c.method.as_ref().unwrap().value {
             Method::Penalty { kind, stiffness } => {
-                assert_eq!(kind.as_ref().unwrap().value, PenaltyKindAst::Nodal);
+                assert_eq!(kind.as_ref().unwrap().value, PenaltyKind::Nodal);
                 assert_eq!(stiffness.as_ref().unwrap().value, 1e4);
             }
             m => panic!("{m:?}"),
@@ -238,12 +232,9 @@ mod tests {
         assert_eq!(c.tool.name, "base.top");
         assert_eq!(
             c.strategy.as_ref().unwrap().value,
-            crate::ast::StrategyAst::ModifiedDoublePass
+            crate::ast::Strategy::ModifiedDoublePass
         );
-        assert_eq!(
-            c.search.as_ref().unwrap().value,
-            crate::ast::SearchAst::Circle
-        );
+        assert_eq!(c.search.as_ref().unwrap().value, crate::ast::Search::Circle);
         let s = &deck.contacts[1];
         assert_eq!(s.master.as_ref().unwrap().to_string(), "ring.inner");
         assert!(s.strategy.is_none() && s.search.is_none());
@@ -263,7 +254,7 @@ mod tests {
         );
         assert!(matches!(
             &deck.contacts[0].method.as_ref().unwrap().value,
-            Method::Lagrange { formulation: Some(f) } if f.value == LagrangeFormulationAst::Doubled
+            Method::Lagrange { formulation: Some(f) } if f.value == LagrangeFormulation::Doubled
         ));
         assert!(matches!(
             &deck.contacts[1].method.as_ref().unwrap().value,
@@ -276,10 +267,10 @@ mod tests {
                 tolerance,
                 update,
             } => {
-                assert_eq!(kind.as_ref().unwrap().value, PenaltyKindAst::Nodal);
+                assert_eq!(kind.as_ref().unwrap().value, PenaltyKind::Nodal);
                 assert_eq!(penalty.as_ref().unwrap().value, 1e3);
                 assert_eq!(tolerance.as_ref().unwrap().value, 1e-6);
-                assert_eq!(update.as_ref().unwrap().value, MultiplierUpdateAst::Newton);
+                assert_eq!(update.as_ref().unwrap().value, MultiplierUpdate::Newton);
             }
             m => panic!("{m:?}"),
         }

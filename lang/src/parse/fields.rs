@@ -9,6 +9,7 @@ use super::values::{self, Diags};
 use crate::ast::syntax::{Block, Entry, EntryBody, Value};
 use crate::ast::{Grading, Pair, Point, TimeFn};
 use crate::diagnostics::Diagnostic;
+use crate::keys::Key;
 use crate::span::{Span, Spanned};
 use crate::suggest::{closest, one_of};
 
@@ -17,19 +18,29 @@ pub struct Fields<'b> {
     /// How the block is called in messages, e.g. "`elastic` block".
     what: String,
     entries: &'b [Entry],
-    known: &'static [&'static str],
+    known: Vec<&'static str>,
     used: Vec<bool>,
 }
 
 impl<'b> Fields<'b> {
     /// Starts reading `block`, whose accepted keys are `known`.
-    pub fn new(block: &'b Block, what: impl Into<String>, known: &'static [&'static str]) -> Self {
+    pub fn new(block: &'b Block, what: impl Into<String>, known: &[&'static str]) -> Self {
         Fields {
             what: what.into(),
             entries: &block.entries,
-            known,
+            known: known.to_vec(),
             used: vec![false; block.entries.len()],
         }
+    }
+
+    /// Starts reading `block` through a key table.
+    pub fn keyed(block: &'b Block, what: impl Into<String>, keys: &[Key]) -> Self {
+        Self::new(block, what, &crate::keys::names(keys))
+    }
+
+    /// How the block is called in messages.
+    pub fn what(&self) -> &str {
+        &self.what
     }
 
     /// The first entry with `key`; later entries with the same key are
@@ -177,7 +188,7 @@ impl<'b> Fields<'b> {
         self.entries.iter().any(|e| {
             e.key.name == key
                 || (!self.known.contains(&e.key.name.as_str())
-                    && closest(&e.key.name, self.known).as_deref() == Some(key))
+                    && closest(&e.key.name, &self.known).as_deref() == Some(key))
         })
     }
 
@@ -208,10 +219,10 @@ impl<'b> Fields<'b> {
             if *used {
                 continue;
             }
-            let help = match closest(&e.key.name, self.known) {
+            let help = match closest(&e.key.name, &self.known) {
                 Some(c) => format!("did you mean `{c}`?"),
                 None if self.known.is_empty() => format!("the {} takes no keys", self.what),
-                None => format!("expected {}", one_of(self.known)),
+                None => format!("expected {}", one_of(&self.known)),
             };
             diags.push(
                 Diagnostic::error(

@@ -13,7 +13,7 @@
 use super::fields::Fields;
 use super::values::Diags;
 use crate::ast::syntax::{Value, ValueKind};
-use crate::ast::{FirstImpactAst, FrictionAst};
+use crate::ast::{FirstImpact, Friction};
 use crate::diagnostics::Diagnostic;
 use crate::span::Spanned;
 use crate::suggest::did_you_mean;
@@ -21,13 +21,13 @@ use crate::suggest::did_you_mean;
 /// Friction laws the language knows.
 pub const LAWS: [&str; 1] = ["coulomb"];
 
-const FIRST_IMPACT: [(&str, FirstImpactAst); 2] = [
-    ("intersect", FirstImpactAst::Intersect),
-    ("frictionless", FirstImpactAst::Frictionless),
+const FIRST_IMPACT: [(&str, FirstImpact); 2] = [
+    ("intersect", FirstImpact::Intersect),
+    ("frictionless", FirstImpact::Frictionless),
 ];
 
 /// Converts the value of `friction = ..`.
-pub fn parse(v: &Value, diags: &mut Diags) -> Option<Spanned<FrictionAst>> {
+pub fn parse(v: &Value, diags: &mut Diags) -> Option<Spanned<Friction>> {
     let (name, block) = match &v.kind {
         ValueKind::Ctor { name, block } => (name, block),
         ValueKind::Path(p) if p.len() == 1 && p[0].name == "coulomb" => {
@@ -84,7 +84,7 @@ pub fn parse(v: &Value, diags: &mut Diags) -> Option<Spanned<FrictionAst>> {
     );
     f.finish(diags);
     Some(Spanned::new(
-        FrictionAst {
+        Friction {
             mu,
             stiffness,
             first_impact,
@@ -96,7 +96,7 @@ pub fn parse(v: &Value, diags: &mut Diags) -> Option<Spanned<FrictionAst>> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::FirstImpactAst;
+    use crate::ast::FirstImpact;
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -110,7 +110,7 @@ mod tests {
         assert_eq!(f.stiffness.as_ref().unwrap().value, 1e5);
         assert_eq!(
             f.first_impact.as_ref().unwrap().value,
-            FirstImpactAst::Frictionless
+            FirstImpact::Frictionless
         );
         assert!(f.cut_at_impact.as_ref().unwrap().value);
         assert!(deck.contacts[0].reserved.is_empty());

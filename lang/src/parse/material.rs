@@ -10,7 +10,7 @@ use super::fields::Fields;
 use super::values::Diags;
 use super::ItemParts;
 use crate::ast::syntax::{Block, Value, ValueKind};
-use crate::ast::{Elastic, HardeningAst, Material, Plastic, Viscoplastic};
+use crate::ast::{Elastic, Hardening, Material, Plastic, Viscoplastic};
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
 use crate::suggest::did_you_mean;
@@ -95,7 +95,7 @@ fn neo_hookean(b: &Block, diags: &mut Diags) -> Elastic {
     }
 }
 
-fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<HardeningAst>> {
+fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
     let (name, block): (&Ident, &Block) = match &v.kind {
         ValueKind::Ctor { name, block } => (name, block),
         other => {
@@ -120,7 +120,7 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<HardeningAst>> {
                 diags,
             );
             f.finish(diags);
-            HardeningAst::Linear { modulus }
+            Hardening::Linear { modulus }
         }
         "swift" => {
             let mut f = Fields::new(block, "`swift` hardening", &["K", "eps0", "n"]);
@@ -137,7 +137,7 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<HardeningAst>> {
             f.require(&eps0, "eps0", name.span, "add `eps0 = ..`", diags);
             f.require(&n, "n", name.span, "add `n = ..`", diags);
             f.finish(diags);
-            HardeningAst::Swift { k, eps0, n }
+            Hardening::Swift { k, eps0, n }
         }
         "voce" => {
             let mut f = Fields::new(block, "`voce` hardening", &["sigma_inf", "delta"]);
@@ -158,7 +158,7 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<HardeningAst>> {
                 diags,
             );
             f.finish(diags);
-            HardeningAst::Voce { sigma_inf, delta }
+            Hardening::Voce { sigma_inf, delta }
         }
         other => {
             diags.push(
@@ -255,7 +255,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::HardeningAst;
+    use crate::ast::Hardening;
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -280,12 +280,12 @@ mod tests {
         assert_eq!(p.yield_stress.as_ref().unwrap().value, 250.0);
         assert!(matches!(
             &p.hardening.as_ref().unwrap().value,
-            HardeningAst::Linear { modulus: Some(h) } if h.value == 1000.0
+            Hardening::Linear { modulus: Some(h) } if h.value == 1000.0
         ));
         let m = &deck.materials[1];
         assert!(matches!(
             &m.plastic.as_ref().unwrap().hardening.as_ref().unwrap().value,
-            HardeningAst::Swift { n: Some(n), .. } if n.value == 0.2
+            Hardening::Swift { n: Some(n), .. } if n.value == 0.2
         ));
         assert_eq!(
             m.viscoplastic.as_ref().unwrap().eta.as_ref().unwrap().value,
@@ -300,7 +300,7 @@ mod tests {
                 .as_ref()
                 .unwrap()
                 .value,
-            HardeningAst::Voce { .. }
+            Hardening::Voce { .. }
         ));
     }
 

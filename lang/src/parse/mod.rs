@@ -21,6 +21,7 @@ pub mod load;
 pub mod material;
 pub mod output;
 pub mod set;
+pub mod settings;
 pub mod step;
 pub mod syntax;
 pub mod thermal;

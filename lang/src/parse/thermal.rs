@@ -9,14 +9,14 @@
 //! - items `temperature a.s { value = .. }`, `heat_flux a.s { q = .. }`,
 //!   `convection a.s { h = ..  ambient = .. }`.
 //!
-//! Ranges are checked here, where the spans are.
+//! Ranges are checked by validation ([`crate::validate::thermal`]).
 
 use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{Block, Value, ValueKind};
 use crate::ast::thermal::{
-    BodyThermal, ConductanceAst, ContactThermal, MaterialThermal, ThermalLoad, ThermalLoadKind,
+    BodyThermal, Conductance, ContactThermal, MaterialThermal, ThermalLoad, ThermalLoadKind,
 };
 use crate::ast::TimeFn;
 use crate::diagnostics::Diagnostic;
@@ -24,18 +24,6 @@ use crate::span::Spanned;
 
 /// Keywords of the thermal load items.
 pub const ITEMS: [&str; 3] = ["temperature", "heat_flux", "convection"];
-
-fn check(v: &Option<Spanned<f64>>, ok: impl Fn(f64) -> bool, what: &str, diags: &mut Diags) {
-    if let Some(x) = v {
-        if !(x.value.is_finite() && ok(x.value)) {
-            diags.push(Diagnostic::error(
-                format!("{what} (got {})", x.value),
-                x.span,
-                "out of range",
-            ));
-        }
-    }
-}
 
 /// A table of (x, y) points: `table((x, y), ..)` with increasing `x`, or a
 /// plain number (a constant).
@@ -53,14 +41,6 @@ fn table(v: &Value, what: &str, diags: &mut Diags) -> Option<Spanned<Vec<(f64, f
             return None;
         }
     };
-    if points.windows(2).any(|w| w[1].0 <= w[0].0) {
-        diags.push(Diagnostic::error(
-            format!("the points of {what} must have strictly increasing abscissas"),
-            v.span,
-            "not increasing",
-        ));
-        return None;
-    }
     Some(Spanned::new(points, v.span))
 }
 
@@ -100,35 +80,6 @@ pub fn material_block(b: &Block, diags: &mut Diags) -> MaterialThermal {
         diags,
     );
     f.finish(diags);
-    check(
-        &conductivity,
-        |x| x > 0.0,
-        "the conductivity must be > 0",
-        diags,
-    );
-    check(&capacity, |x| x >= 0.0, "the capacity must be >= 0", diags);
-    check(&density, |x| x >= 0.0, "the density must be >= 0", diags);
-    check(
-        &expansion,
-        |x| x >= 0.0,
-        "the expansion coefficient must be >= 0",
-        diags,
-    );
-    check(
-        &taylor_quinney,
-        |x| (0.0..=1.0).contains(&x),
-        "the Taylor-Quinney factor must be in [0, 1]",
-        diags,
-    );
-    for t in [&young, &yield_factor].into_iter().flatten() {
-        if t.value.iter().any(|p| !(p.1 > 0.0 && p.1.is_finite())) {
-            diags.push(Diagnostic::error(
-                "temperature factors must be > 0",
-                t.span,
-                "out of range",
-            ));
-        }
-    }
     MaterialThermal {
         conductivity,
         capacity,
@@ -153,7 +104,7 @@ pub fn body_block(b: &Block, diags: &mut Diags) -> BodyThermal {
     }
 }
 
-fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<ConductanceAst>> {
+fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<Conductance>> {
     let law = match &v.kind {
         ValueKind::Ctor { name, block } if name.name == "power" => {
             let mut f = Fields::new(block, "`power` conductance", &["h0", "h1", "n"]);
@@ -161,29 +112,9 @@ fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<ConductanceAst>> 
             let h1 = f.number("h1", diags);
             let n = f.number("n", diags);
             f.finish(diags);
-            check(&h0, |x| x >= 0.0, "h0 must be >= 0", diags);
-            check(&h1, |x| x >= 0.0, "h1 must be >= 0", diags);
-            check(&n, |x| x > 0.0, "the exponent n must be > 0", diags);
-            ConductanceAst::Power {
-                h0: h0.map_or(0.0, |x| x.value),
-                h1: h1.map_or(0.0, |x| x.value),
-                n: n.map_or(1.0, |x| x.value),
-            }
+            Conductance::Power { h0, h1, n }
         }
-        ValueKind::Number(_) => {
-            let h = values::number(v, diags)?;
-            check(
-                &Some(h.clone()),
-                |x| x >= 0.0,
-                "the conductance must be >= 0",
-                diags,
-            );
-            ConductanceAst::Power {
-                h0: h.value,
-                h1: 0.0,
-                n: 1.0,
-            }
-        }
+        ValueKind::Number(_) => Conductance::Constant(values::number(v, diags)?),
         _ => {
             let t = table(v, "the conductance table", diags);
             let Some(t) = t else {
@@ -198,14 +129,7 @@ fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<ConductanceAst>> 
                 );
                 return None;
             };
-            if t.value.iter().any(|p| p.1 < 0.0) {
-                diags.push(Diagnostic::error(
-                    "conductances must be >= 0",
-                    t.span,
-                    "out of range",
-                ));
-            }
-            ConductanceAst::Table(t.value)
+            Conductance::Table(t.value)
         }
     };
     Some(Spanned::new(law, v.span))
@@ -239,19 +163,6 @@ pub fn contact_block(b: &Block, diags: &mut Diags) -> ContactThermal {
         diags,
     );
     f.finish(diags);
-    check(
-        &gap_conductivity,
-        |x| x >= 0.0,
-        "the gap conductivity must be >= 0",
-        diags,
-    );
-    check(&gap_min, |x| x > 0.0, "gap_min must be > 0", diags);
-    check(
-        &friction_split,
-        |x| (0.0..=1.0).contains(&x),
-        "friction_split must be in [0, 1]",
-        diags,
-    );
     ContactThermal {
         conductance,
         gap_conductivity,
@@ -327,7 +238,6 @@ pub fn item(parts: ItemParts, diags: &mut Diags) -> Option<ThermalLoad> {
                 diags,
             );
             f.finish(diags);
-            check(&h, |x| x >= 0.0, "the film coefficient must be >= 0", diags);
             (v, h)
         }
     };
@@ -342,7 +252,7 @@ pub fn item(parts: ItemParts, diags: &mut Diags) -> Option<ThermalLoad> {
 
 #[cfg(test)]
 mod tests {
-    use crate::ast::thermal::{ConductanceAst, ThermalLoadKind};
+    use crate::ast::thermal::{Conductance, ThermalLoadKind};
     use crate::parse::test_support::{parse_messages, parse_ok};
 
     #[test]
@@ -359,14 +269,11 @@ mod tests {
             vec![(20.0, 1.0), (600.0, 0.5)]
         );
         let c = deck.contacts[0].thermal.as_ref().unwrap();
-        assert_eq!(
-            c.conductance.as_ref().unwrap().value,
-            ConductanceAst::Power {
-                h0: 1.0,
-                h1: 2.0,
-                n: 0.5
-            }
-        );
+        let Conductance::Power { h0, h1, n } = &c.conductance.as_ref().unwrap().value else {
+            panic!()
+        };
+        let v = |x: &Option<crate::span::Spanned<f64>>| x.as_ref().map(|x| x.value);
+        assert_eq!((v(h0), v(h1), v(n)), (Some(1.0), Some(2.0), Some(0.5)));
         let kinds: Vec<_> = deck.thermal_loads.iter().map(|l| l.kind).collect();
         assert_eq!(
             kinds,
@@ -384,20 +291,11 @@ mod tests {
             parse_messages(
                 "material st { elastic { E = 1 nu = 0.3 } thermal { conductivity = -1 capacty = 1 } }"
             ),
-            [
-                "unknown key `capacty` in the material `thermal` block",
-                "the conductivity must be > 0 (got -1)"
-            ]
+            ["unknown key `capacty` in the material `thermal` block"]
         );
         assert_eq!(
             parse_messages("convection b.top { ambient = 20 }"),
             ["missing `h` in the `convection` item"]
-        );
-        assert_eq!(
-            parse_messages(
-                "contact b.s -> t { method = penalty { stiffness = 1 } thermal { conductance = 1 friction_split = 2 } }"
-            ),
-            ["friction_split must be in [0, 1] (got 2)"]
         );
     }
 }

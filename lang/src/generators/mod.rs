@@ -1,0 +1,218 @@
+//! The mesh generator registry: each built-in generator is one
+//! declarative [`GeneratorDef`] — its keys (types, defaults, ranges,
+//! dimensions, meaning), the named sets it produces, the rules that relate
+//! its keys, and the function that builds the mesh. Parsing
+//! ([`crate::parse::body`]), validation ([`crate::validate::bodies`]),
+//! lowering ([`crate::lower::mesh`]) and the keyword reference all read the
+//! entry, so a new generator is one file here plus one line in
+//! [`REGISTRY`].
+//!
+//! Points and tuples declare their number of components
+//! ([`crate::keys::Components`]), and a key of type
+//! [`crate::keys::KeyType::Mesh`] takes another mesh as input (built first
+//! and handed to [`GeneratorDef::build`] in key order): the shape a 3D
+//! extrusion or revolution of a 2D mesh needs.
+
+pub mod annulus;
+pub mod disc;
+pub mod rectangle;
+
+use crate::ast::settings::Settings;
+use crate::ast::Generator;
+use crate::keys::{Default, Key, KeyType};
+use crate::validate::Ctx;
+use ctc_engine::mesh::{CellKind, Mesh, MeshError};
+use std::collections::BTreeMap;
+use std::fmt;
+
+/// Whether a set provides edges (and their nodes) or only nodes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SetKind {
+    /// Boundary edges and their nodes.
+    Edges,
+    /// Nodes only.
+    Nodes,
+}
+
+/// A named set a generator creates.
+#[derive(Debug, Clone, Copy)]
+pub struct SetDecl {
+    /// Name (referenced as `body.name`).
+    pub name: &'static str,
+    /// Edges or nodes.
+    pub kind: SetKind,
+    /// What it is.
+    pub doc: &'static str,
+    /// Present only when this holds (e.g. `start`/`end` of a partial ring).
+    pub when: Option<fn(&Settings) -> bool>,
+}
+
+impl SetDecl {
+    /// A set always present.
+    pub const fn new(name: &'static str, kind: SetKind, doc: &'static str) -> SetDecl {
+        SetDecl {
+            name,
+            kind,
+            doc,
+            when: None,
+        }
+    }
+
+    /// A set present only when `when` holds.
+    pub const fn when(mut self, when: fn(&Settings) -> bool) -> SetDecl {
+        self.when = Some(when);
+        self
+    }
+}
+
+/// One built-in mesh generator.
+pub struct GeneratorDef {
+    /// Name in the deck (`mesh = <name> { .. }`).
+    pub name: &'static str,
+    /// What it meshes (one line).
+    pub doc: &'static str,
+    /// Its keys, in the order they are read and documented.
+    pub keys: &'static [Key],
+    /// The sets it creates.
+    pub sets: &'static [SetDecl],
+    /// Whether further sets are known only once the mesh is built (the
+    /// sets of an input mesh): then any set name is accepted by validation
+    /// and checked against the built mesh.
+    pub open_sets: bool,
+    /// Rules relating its keys, beyond each key's range (those are checked
+    /// from the table).
+    pub check: fn(&Generator, &mut Ctx<'_>),
+    /// Number of cells it will make (checked against
+    /// [`crate::validate::MAX_CELLS`] before anything is built).
+    pub cells: fn(&Settings) -> i64,
+    /// Builds the mesh from validated settings; `inputs` are the built
+    /// meshes of its [`KeyType::Mesh`] keys, in key order.
+    pub build: fn(&Settings, &[Mesh]) -> Result<Mesh, MeshError>,
+}
+
+impl fmt::Debug for GeneratorDef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "GeneratorDef({})", self.name)
+    }
+}
+
+impl PartialEq for GeneratorDef {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name
+    }
+}
+
+impl GeneratorDef {
+    /// The sets this generator creates with `settings`, plus the built-in
+    /// `boundary` and `all`; `None` when they are only known once built.
+    pub fn set_kinds(&self, settings: &Settings) -> Option<BTreeMap<String, SetKind>> {
+        if self.open_sets {
+            return None;
+        }
+        let mut m = BTreeMap::new();
+        for s in self.sets {
+            if s.when.is_none_or(|w| w(settings)) {
+                m.insert(s.name.to_string(), s.kind);
+            }
+        }
+        add_builtin_sets(&mut m);
+        Some(m)
+    }
+
+    /// The cell kind of the `element` key.
+    pub fn cell_kind(&self, settings: &Settings) -> CellKind {
+        match settings.choice("element", self.keys) {
+            Some("tri3") => CellKind::Tri3,
+            _ => CellKind::Quad4,
+        }
+    }
+}
+
+/// Adds the sets every body has: `boundary` (edges) and `all` (nodes).
+pub fn add_builtin_sets(m: &mut BTreeMap<String, SetKind>) {
+    m.insert("boundary".to_string(), SetKind::Edges);
+    m.insert("all".to_string(), SetKind::Nodes);
+}
+
+/// Every built-in generator, in the order they are listed to users.
+pub static REGISTRY: &[&GeneratorDef] = &[
+    &rectangle::RECTANGLE,
+    &disc::HALF_DISC,
+    &disc::QUARTER_DISC,
+    &annulus::ANNULUS,
+];
+
+/// The generator called `name`.
+pub fn find(name: &str) -> Option<&'static GeneratorDef> {
+    REGISTRY.iter().copied().find(|g| g.name == name)
+}
+
+/// The names of all generators.
+pub fn names() -> Vec<&'static str> {
+    REGISTRY.iter().map(|g| g.name).collect()
+}
+
+/// The `element = tri3 | quad4` key every planar generator has.
+pub const ELEMENT: Key = Key::new(
+    "element",
+    KeyType::Choice(&["tri3", "quad4"]),
+    "cell type: linear triangles or bilinear quadrilaterals",
+)
+.default(Default::Choice("quad4"));
+
+/// A division count as the engine takes it (at least 1).
+pub fn count(n: Option<i64>) -> usize {
+    n.map_or(1, |v| v.max(1) as usize)
+}
+
+/// The engine grading of a deck grading.
+pub fn grading(g: &crate::ast::Grading) -> ctc_engine::mesh::generate::Grading {
+    use crate::ast::Grading as G;
+    use ctc_engine::mesh::generate::Grading as E;
+    match g {
+        G::Uniform => E::Uniform,
+        G::Geometric(r) => E::Geometric { ratio: r.value },
+        G::Center(r) => E::Center { ratio: r.value },
+    }
+}
+
+/// Product of division counts, saturating, for [`GeneratorDef::cells`].
+pub fn cell_product(counts: impl IntoIterator<Item = i64>) -> i64 {
+    counts
+        .into_iter()
+        .fold(1i64, |c, n| c.saturating_mul(n.max(1)))
+}
+
+/// A required value missing after validation (cannot happen on a valid
+/// deck; reported instead of panicking).
+pub fn missing(generator: &str, key: &str) -> MeshError {
+    MeshError::new(format!(
+        "internal: `{key}` of the `{generator}` generator is missing after validation"
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn registry_names_are_unique_and_every_entry_documents_its_keys() {
+        let mut names = names();
+        let n = names.len();
+        names.sort_unstable();
+        names.dedup();
+        assert_eq!(names.len(), n);
+        for g in REGISTRY {
+            assert!(!g.doc.is_empty(), "{}", g.name);
+            for k in g.keys {
+                assert!(!k.doc.is_empty(), "{}.{}", g.name, k.name);
+            }
+            let mut keys = crate::keys::names(g.keys);
+            keys.sort_unstable();
+            let before = keys.len();
+            keys.dedup();
+            assert_eq!(keys.len(), before, "{}: duplicate key", g.name);
+            assert!(g.set_kinds(&Settings::default()).is_some() || g.open_sets);
+        }
+    }
+}

@@ -1,0 +1,47 @@
+//! `pressure` and `force` -> `model::Load`.
+
+use super::Lowerer;
+use crate::ast;
+use crate::validate::Need;
+use ctc_engine::model::Load;
+
+impl Lowerer<'_> {
+    pub(super) fn loads(&mut self) -> Vec<Load> {
+        let mut out = Vec::new();
+        for l in &self.deck.loads {
+            if self.has_error_in(l.span) || self.body_failed(&l.target) {
+                continue;
+            }
+            match l.kind {
+                ast::LoadKind::Pressure => {
+                    let Some(r) = self.resolve(&l.target, Need::Edges, "pressure") else {
+                        continue;
+                    };
+                    let label = format!("pressure {}", l.target);
+                    for (_, f) in &l.values {
+                        out.push(Load::Pressure {
+                            label: label.clone(),
+                            edges: r.edges.clone().unwrap_or_default(),
+                            value: self.tf(f),
+                        });
+                    }
+                }
+                ast::LoadKind::Force => {
+                    let Some(r) = self.resolve(&l.target, Need::Nodes, "force") else {
+                        continue;
+                    };
+                    let label = format!("force {}", l.target);
+                    for (c, f) in &l.values {
+                        out.push(Load::NodalForce {
+                            label: label.clone(),
+                            nodes: r.nodes.clone(),
+                            component: c.map_or(0, |c| c.index()),
+                            value: self.tf(f),
+                        });
+                    }
+                }
+            }
+        }
+        out
+    }
+}

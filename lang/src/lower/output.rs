@@ -1,0 +1,80 @@
+//! The `output` block -> `model::OutputRequest`.
+
+use super::Lowerer;
+use crate::ast;
+use crate::validate::Need;
+use ctc_engine::model::{ContactPair, Field, HistoryRequest, OutputRequest};
+
+impl Lowerer<'_> {
+    pub(super) fn output(&mut self, contacts: &[ContactPair]) -> OutputRequest {
+        let Some(o) = self.deck.outputs.first() else {
+            return OutputRequest::default();
+        };
+        let mut out = OutputRequest::default();
+        if let Some(e) = &o.every {
+            out.every = e.value.max(1) as usize;
+        }
+        if let Some(fields) = &o.fields {
+            let mut list: Vec<Field> = Vec::new();
+            for f in &fields.value {
+                let field = match f.value {
+                    ast::FieldName::Displacement => Field::Displacement,
+                    ast::FieldName::Stress => Field::Stress,
+                    ast::FieldName::Strain => Field::Strain,
+                    ast::FieldName::VonMises => Field::VonMises,
+                    ast::FieldName::Reaction => Field::Reaction,
+                    ast::FieldName::Contact => Field::Contact,
+                };
+                if !list.contains(&field) {
+                    list.push(field);
+                }
+            }
+            out.fields = list;
+        }
+        for h in o.history.iter().flatten() {
+            if self.has_error_in(h.span) {
+                continue;
+            }
+            match &h.value {
+                ast::History::Reaction(r) | ast::History::Displacement(r) => {
+                    if self.body_failed(r) {
+                        continue;
+                    }
+                    let is_reaction = matches!(h.value, ast::History::Reaction(_));
+                    let word = if is_reaction {
+                        "reaction"
+                    } else {
+                        "displacement"
+                    };
+                    let Some(res) = self.resolve(r, Need::Nodes, word) else {
+                        continue;
+                    };
+                    let label = format!("{word}({r})");
+                    out.history.push(if is_reaction {
+                        HistoryRequest::Reaction {
+                            label,
+                            nodes: res.nodes,
+                        }
+                    } else {
+                        HistoryRequest::Displacement {
+                            label,
+                            nodes: res.nodes,
+                        }
+                    });
+                }
+                ast::History::ContactForce(r, tool) => {
+                    let name = format!("{r} -> {}", tool.name);
+                    match contacts.iter().position(|c| c.name == name) {
+                        Some(pair) => out.history.push(HistoryRequest::ContactForce {
+                            label: format!("contact_force({name})"),
+                            pair,
+                        }),
+                        None if self.body_failed(r) => {}
+                        None => self.missing("the contact pair", h.span),
+                    }
+                }
+            }
+        }
+        out
+    }
+}

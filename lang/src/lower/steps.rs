@@ -1,0 +1,57 @@
+//! `step` items -> `model::Step` (chained exactly in time, Newton defaults filled in).
+
+use super::{Lowerer, DEFAULT_MIN_FRACTION};
+use crate::validate::step_label;
+use ctc_engine::model::{NewtonSettings, Step};
+
+impl Lowerer<'_> {
+    pub(super) fn steps(&mut self) -> Vec<Step> {
+        let mut out = Vec::new();
+        for (i, s) in self.deck.steps.iter().enumerate() {
+            if self.has_error_in(s.span) {
+                continue;
+            }
+            let Some(t) = &s.time else {
+                self.missing("the step time", s.keyword);
+                continue;
+            };
+            let mut newton = NewtonSettings::default();
+            if let Some(n) = &s.newton {
+                if let Some(x) = &n.tol {
+                    newton.tol = x.value;
+                }
+                if let Some(x) = &n.tol_displacement {
+                    newton.tol_displacement = x.value;
+                }
+                if let Some(x) = &n.max_iter {
+                    newton.max_iter = x.value.max(1) as usize;
+                }
+                if let Some(x) = &n.line_search {
+                    newton.line_search = x.value;
+                }
+            }
+            let name = s
+                .name
+                .as_ref()
+                .map(|n| n.name.clone())
+                .unwrap_or_else(|| step_label(s, i).replace(' ', "_"));
+            // Contiguity was validated; chain exactly so no rounding gap remains.
+            let t_start = match out.last() {
+                Some(Step { t_end, .. }) => *t_end,
+                None => t.value[0].value,
+            };
+            out.push(Step {
+                name,
+                t_start,
+                t_end: t.value[1].value,
+                increments: s.increments.as_ref().map_or(1, |n| n.value.max(1) as usize),
+                min_fraction: s
+                    .min_increment
+                    .as_ref()
+                    .map_or(DEFAULT_MIN_FRACTION, |x| x.value),
+                newton,
+            });
+        }
+        out
+    }
+}

@@ -1,0 +1,78 @@
+//! Rules of the `analysis` block.
+
+use super::Ctx;
+use crate::ast::{Analysis, Dimension, Span};
+use crate::diagnostics::Diagnostic;
+
+/// Checks the `analysis` block.
+pub fn check(ctx: &mut Ctx<'_>) {
+    exactly_one(ctx);
+    let Some(a) = ctx.deck.analysis.first() else {
+        return;
+    };
+    three_d_not_supported_yet(a, ctx);
+    thickness_only_in_plane_analyses(a, ctx);
+}
+
+/// A deck has exactly one `analysis` block.
+pub fn exactly_one(ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    if deck.analysis.is_empty() && !deck.has_broken("analysis") {
+        ctx.err(
+            Diagnostic::error(
+                "the deck has no `analysis` block",
+                Span::new(0, 0),
+                "expected an `analysis` block",
+            )
+            .with_help(
+                "add `analysis { dimension = plane_strain }` (or `plane_stress`, `axisymmetric`)",
+            ),
+        );
+    }
+    for extra in deck.analysis.iter().skip(1) {
+        let line = ctx.line(deck.analysis[0].keyword);
+        ctx.err(
+            Diagnostic::error(
+                "more than one `analysis` block",
+                extra.keyword,
+                "second `analysis` block",
+            )
+            .with_help(format!("the first one is on line {line}; merge them")),
+        );
+    }
+}
+
+/// `dimension = 3d` is reserved.
+pub fn three_d_not_supported_yet(a: &Analysis, ctx: &mut Ctx<'_>) {
+    if let Some(d) = a
+        .dimension
+        .as_ref()
+        .filter(|d| d.value == Dimension::ThreeD)
+    {
+        ctx.err(
+            Diagnostic::error(
+                "3d analyses are not supported yet",
+                d.span,
+                "not supported yet",
+            )
+            .with_help("use `plane_strain`, `plane_stress` or `axisymmetric`"),
+        );
+    }
+}
+
+/// `thickness` is positive, and ignored (warning) in axisymmetric analyses.
+pub fn thickness_only_in_plane_analyses(a: &Analysis, ctx: &mut Ctx<'_>) {
+    let Some(t) = &a.thickness else { return };
+    if a.dimension.as_ref().map(|d| d.value) == Some(Dimension::Axisymmetric) {
+        ctx.err(
+            Diagnostic::warning(
+                "`thickness` is ignored in axisymmetric analyses",
+                t.span,
+                "ignored",
+            )
+            .with_help("axisymmetric results are totals over the full 2*pi; remove `thickness`"),
+        );
+    } else {
+        ctx.must_be_positive(&a.thickness, "thickness");
+    }
+}

@@ -1,0 +1,122 @@
+//! Rules of `contact` items: the slave surface and the master (tool or
+//! body surface), duplicate pairs, method and friction parameters,
+//! combinations not supported yet.
+
+use super::{sets, Ctx, Need};
+use crate::ast::{Method, Span};
+use crate::diagnostics::Diagnostic;
+use crate::suggest::did_you_mean;
+use std::collections::BTreeMap;
+
+/// Checks every contact pair.
+pub fn check(ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    let tool_names: Vec<&str> = deck.tools.iter().map(|t| t.name.name.as_str()).collect();
+    let mut seen: BTreeMap<String, Span> = BTreeMap::new();
+    for c in &deck.contacts {
+        sets::set_ref(&c.target, Need::Edges, "contact", ctx);
+        if let Some(m) = &c.master {
+            // deformable master surface: a boundary of a body
+            sets::set_ref(m, Need::Edges, "contact master", ctx);
+        } else if !tool_names.contains(&c.tool.name.as_str())
+            && !deck.broken_named("tool", &c.tool.name)
+        {
+            ctx.err(
+                Diagnostic::error(
+                    format!("unknown tool `{}`", c.tool.name),
+                    c.tool.span,
+                    "no tool with this name",
+                )
+                .with_help(did_you_mean(&c.tool.name, &tool_names).unwrap_or_else(
+                    || {
+                        format!(
+                        "define it, e.g. `tool {} = plane {{ point = (0, 0)  normal = (0, 1) }}`",
+                        c.tool.name
+                    )
+                    },
+                )),
+            );
+        }
+        let key = format!("{} -> {}", c.target, c.tool.name);
+        if let Some(first) = seen.get(&key) {
+            let line = ctx.line(*first);
+            ctx.err(
+                Diagnostic::error(
+                    format!("contact pair `{key}` is defined twice"),
+                    c.target.span.to(c.tool.span),
+                    "duplicate pair",
+                )
+                .with_help(format!("the first definition is on line {line}")),
+            );
+        } else {
+            seen.insert(key, c.target.span);
+        }
+        match c.method.as_ref().map(|m| &m.value) {
+            Some(Method::Penalty { stiffness, .. }) => {
+                ctx.must_be_positive(stiffness, "penalty stiffness")
+            }
+            Some(Method::AugmentedLagrange {
+                penalty, tolerance, ..
+            }) => {
+                ctx.must_be_positive(penalty, "augmented Lagrangian penalty");
+                ctx.must_be_positive(tolerance, "augmented Lagrangian tolerance");
+            }
+            Some(Method::Lagrange { .. }) | None => {}
+        }
+        ctx.must_be_positive(&c.prof, "prof");
+        if let Some(f) = &c.friction {
+            if let Some(mu) = f
+                .value
+                .mu
+                .as_ref()
+                .filter(|m| m.value < 0.0 || m.value.is_nan())
+            {
+                ctx.err(Diagnostic::error(
+                    "friction coefficient `mu` must not be negative",
+                    mu.span,
+                    "must be >= 0",
+                ));
+            }
+            ctx.must_be_positive(&f.value.stiffness, "friction stiffness");
+            if let (Some(_), Some(m)) = (&c.master, &c.method) {
+                if matches!(m.value, Method::Lagrange { .. }) {
+                    ctx.err(
+                        Diagnostic::error(
+                            "Lagrange-multiplier friction against a deformable master is not \
+                                 supported yet",
+                            f.span,
+                            "not supported yet",
+                        )
+                        .with_help(
+                            "use `method = penalty { .. }` or `augmented_lagrange { .. }` \
+                                 (regularized friction) for contact between deformable bodies",
+                        ),
+                    );
+                }
+            }
+        }
+        if let (None, Some(st)) = (&c.master, &c.strategy) {
+            ctx.err(
+                Diagnostic::error(
+                    "`strategy` applies to deformable masters only",
+                    st.span,
+                    "the master is a rigid tool",
+                )
+                .with_help(
+                    "a rigid tool is always the master (single pass); write the master as \
+                         `body.set` for contact between deformable bodies",
+                ),
+            );
+        }
+        for r in &c.reserved {
+            ctx.err(
+                Diagnostic::error(
+                    format!("`{}` is not supported yet", r.name),
+                    r.span,
+                    "not supported yet",
+                )
+                .with_help("contact is frictionless for now"),
+            );
+        }
+    }
+}

@@ -1,0 +1,277 @@
+//! Rules of `material` items: elastic constants, the combination of laws,
+//! hardening parameters, and whether a material is used.
+
+use super::Ctx;
+use crate::ast::{num, Hardening, Material};
+use crate::diagnostics::Diagnostic;
+
+/// Checks every material.
+pub fn check(ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    ctx.names_are_unique(deck.materials.iter().map(|m| &m.name), "material");
+    for m in &deck.materials {
+        reserved_blocks_not_supported(m, ctx);
+        one_elastic_law(m, ctx);
+        no_plasticity_on_neo_hookean(m, ctx);
+        viscoplastic_needs_plastic(m, ctx);
+        if let Some(v) = &m.viscoplastic {
+            ctx.must_be_positive(&v.eta, "the viscosity eta");
+        }
+        yield_stress_fits_hardening(m, ctx);
+        hardening_in_range(m, ctx);
+        if m.elastic.is_none() && m.neo_hookean.is_none() {
+            continue;
+        }
+        young_is_positive(m, ctx);
+        poisson_in_range(m, ctx);
+        is_used(m, ctx);
+    }
+}
+
+/// Reserved material blocks are reported as not supported yet.
+pub fn reserved_blocks_not_supported(m: &Material, ctx: &mut Ctx<'_>) {
+    for r in &m.reserved {
+        ctx.err(
+            Diagnostic::error(
+                format!("`{}` materials are not supported yet", r.name),
+                r.span,
+                "not supported yet",
+            )
+            .with_help("use `elastic`, `neo_hookean`, `plastic` and `viscoplastic` blocks"),
+        );
+    }
+}
+
+/// Either `elastic` or `neo_hookean`, not both.
+pub fn one_elastic_law(m: &Material, ctx: &mut Ctx<'_>) {
+    if let (Some(n), Some(_)) = (&m.neo_hookean, &m.elastic) {
+        ctx.err(
+            Diagnostic::error(
+                "a material has either `elastic` or `neo_hookean`, not both",
+                n.span,
+                "second elastic law",
+            )
+            .with_help("remove one of the two blocks"),
+        );
+    }
+}
+
+/// Plasticity is built on Hencky elasticity, not on Neo-Hookean.
+pub fn no_plasticity_on_neo_hookean(m: &Material, ctx: &mut Ctx<'_>) {
+    if let (Some(_), Some(p)) = (&m.neo_hookean, &m.plastic) {
+        ctx.err(
+            Diagnostic::error(
+                "plasticity on a Neo-Hookean material is not supported yet",
+                p.span,
+                "not supported yet",
+            )
+            .with_help(
+                "use `elastic { .. }` with `plastic { .. }` (Hencky elasticity at finite strain)",
+            ),
+        );
+    }
+}
+
+/// Perzyna viscoplasticity needs the static yield stress and hardening.
+pub fn viscoplastic_needs_plastic(m: &Material, ctx: &mut Ctx<'_>) {
+    if let (Some(v), None) = (&m.viscoplastic, &m.plastic) {
+        ctx.err(
+            Diagnostic::error(
+                "`viscoplastic` needs a `plastic` block (the static yield stress and hardening)",
+                v.span,
+                "no `plastic` block",
+            )
+            .with_help("add e.g. `plastic { yield = 250  hardening = linear { H = 1000 } }`"),
+        );
+    }
+}
+
+/// `yield` is given (and positive) except with Swift hardening, where the
+/// initial yield stress is `K eps0^n`.
+pub fn yield_stress_fits_hardening(m: &Material, ctx: &mut Ctx<'_>) {
+    let Some(p) = &m.plastic else { return };
+    let swift = matches!(
+        p.hardening.as_ref().map(|h| &h.value),
+        Some(Hardening::Swift { .. })
+    );
+    match (&p.yield_stress, swift) {
+        (Some(y), true) => ctx.err(
+            Diagnostic::error(
+                "`yield` is not used with Swift hardening",
+                y.span,
+                "the initial yield stress is K eps0^n",
+            )
+            .with_help("remove `yield` (or use `linear` / `voce` hardening)"),
+        ),
+        (None, false) => ctx.err(
+            Diagnostic::error(
+                "missing `yield` in the `plastic` block",
+                p.span,
+                "no yield stress",
+            )
+            .with_help("add the initial yield stress, e.g. `yield = 250`"),
+        ),
+        _ => ctx.must_be_positive(&p.yield_stress, "the yield stress"),
+    }
+}
+
+/// Hardening parameters: `H >= 0`; Swift `K, eps0 > 0`, `n` in [0, 1];
+/// Voce `delta > 0`, `sigma_inf >= yield`.
+pub fn hardening_in_range(m: &Material, ctx: &mut Ctx<'_>) {
+    let Some(p) = &m.plastic else { return };
+    let Some(h) = &p.hardening else { return };
+    match &h.value {
+        Hardening::Linear { modulus } => {
+            if let Some(v) = modulus.as_ref().filter(|v| v.value < 0.0) {
+                ctx.err(
+                    Diagnostic::error("the hardening modulus H must be >= 0", v.span, "negative")
+                        .with_help(
+                            "softening is not supported: it makes the solution mesh dependent",
+                        ),
+                );
+            }
+        }
+        Hardening::Swift { k, eps0, n } => {
+            ctx.must_be_positive(k, "Swift K");
+            ctx.must_be_positive(eps0, "Swift eps0");
+            if let Some(v) = n.as_ref().filter(|v| !(0.0..=1.0).contains(&v.value)) {
+                ctx.err(Diagnostic::error(
+                    "Swift n must lie in [0, 1]",
+                    v.span,
+                    format!("n = {}", num(v.value)),
+                ));
+            }
+        }
+        Hardening::Voce { sigma_inf, delta } => {
+            ctx.must_be_positive(delta, "Voce delta");
+            if let (Some(si), Some(y)) = (sigma_inf, &p.yield_stress) {
+                if si.value < y.value {
+                    ctx.err(Diagnostic::error(
+                        "Voce sigma_inf must be at least the yield stress",
+                        si.span,
+                        format!("sigma_inf = {} < yield = {}", num(si.value), num(y.value)),
+                    ));
+                }
+            }
+        }
+    }
+}
+
+/// The elastic law of a material (`elastic` or `neo_hookean`).
+fn elastic(m: &Material) -> Option<&crate::ast::Elastic> {
+    m.elastic.as_ref().or(m.neo_hookean.as_ref())
+}
+
+/// `E > 0`.
+pub fn young_is_positive(m: &Material, ctx: &mut Ctx<'_>) {
+    if let Some(e) = elastic(m) {
+        ctx.must_be_positive(&e.young, "Young's modulus E");
+    }
+}
+
+/// `-1 < nu < 0.5`.
+pub fn poisson_in_range(m: &Material, ctx: &mut Ctx<'_>) {
+    let Some(nu) = elastic(m)
+        .and_then(|e| e.poisson.as_ref())
+        .filter(|nu| !(nu.value > -1.0 && nu.value < 0.5))
+    else {
+        return;
+    };
+    let help = if nu.value == 0.5 {
+        "nu = 0.5 is incompressible, which a displacement formulation cannot represent; \
+         use e.g. nu = 0.499 with `formulation = selective_reduced`"
+    } else {
+        "Poisson's ratio of an isotropic elastic material lies strictly between -1 and 0.5"
+    };
+    ctx.err(
+        Diagnostic::error(
+            "Poisson's ratio nu must lie in (-1, 0.5)",
+            nu.span,
+            format!("nu = {}", num(nu.value)),
+        )
+        .with_help(help),
+    );
+}
+
+/// Warning for a material no body uses (unless a body names an unknown
+/// material or none, which probably meant this one).
+pub fn is_used(m: &Material, ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    let used = deck
+        .bodies
+        .iter()
+        .any(|b| b.material.as_ref().is_some_and(|n| n.name == m.name.name));
+    let dangling = deck.bodies.iter().any(|b| {
+        b.material
+            .as_ref()
+            .is_some_and(|n| !deck.materials.iter().any(|m| m.name.name == n.name))
+    });
+    let unassigned = deck.bodies.iter().any(|b| b.material.is_none());
+    if !used && !dangling && !unassigned && !deck.has_broken("body") {
+        ctx.err(Diagnostic::warning(
+            format!("material `{}` is not used by any body", m.name.name),
+            m.name.span,
+            "unused",
+        ));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::{material_messages, messages_of};
+
+    #[test]
+    fn plastic_and_finite_strain_decks_validate() {
+        let ok = [
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 hardening = linear { H = 1000 } }", ""),
+            ("axisymmetric", "elastic { E = 200e3 nu = 0.3 } plastic { hardening = swift { K = 500 eps0 = 0.01 n = 0.2 } }", "kinematics = finite"),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 200 hardening = voce { sigma_inf = 300 delta = 5 } } viscoplastic { eta = 10 }", "kinematics = finite"),
+            ("plane_strain", "neo_hookean { E = 10 nu = 0.45 }", "kinematics = finite"),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 }", ""),
+        ];
+        for (dim, m, b) in ok {
+            assert!(
+                material_messages(dim, m, b).is_empty(),
+                "{m}: {:?}",
+                material_messages(dim, m, b)
+            );
+        }
+    }
+
+    #[test]
+    fn unsupported_or_inconsistent_plasticity_is_explained() {
+        let el = "elastic { E = 200e3 nu = 0.3 }";
+        let cases = [
+            ("plane_stress", format!("{el} plastic {{ yield = 250 }}"), "", "plasticity in plane stress is not supported yet"),
+            ("plane_stress", el.to_string(), "kinematics = finite", "finite strain in plane stress is not supported yet"),
+            ("plane_strain", "neo_hookean { E = 10 nu = 0.4 }".to_string(), "", "material `m` is Neo-Hookean, a finite-strain law: body `b` needs `kinematics = finite`"),
+            ("plane_strain", format!("{el} plastic {{ yield = 250 hardening = swift {{ K = 500 eps0 = 0.01 n = 0.2 }} }}"), "", "`yield` is not used with Swift hardening"),
+            ("plane_strain", format!("{el} plastic {{ hardening = linear {{ H = 1 }} }}"), "", "missing `yield` in the `plastic` block"),
+            ("plane_strain", format!("{el} viscoplastic {{ eta = 1 }}"), "", "`viscoplastic` needs a `plastic` block (the static yield stress and hardening)"),
+            ("plane_strain", format!("{el} plastic {{ yield = 250 hardening = voce {{ sigma_inf = 100 delta = 1 }} }}"), "", "Voce sigma_inf must be at least the yield stress"),
+            ("plane_strain", format!("{el} plastic {{ yield = 250 hardening = swift {{ K = 5 eps0 = 0.01 n = 2 }} }}"), "", "`yield` is not used with Swift hardening"),
+        ];
+        for (dim, m, b, expected) in cases {
+            let got = material_messages(dim, &m, b);
+            assert!(got.iter().any(|g| g == expected), "{m}: {got:?}");
+        }
+        let got = material_messages(
+            "plane_strain",
+            &format!("{el} plastic {{ hardening = swift {{ K = 5 eps0 = 0.01 n = 2 }} }}"),
+            "",
+        );
+        assert_eq!(got, ["Swift n must lie in [0, 1]"]);
+    }
+
+    #[test]
+    fn out_of_range_material_values() {
+        let text = "analysis { dimension = plane_strain }\nmaterial m { elastic { E = 0 nu = 0.5 } }\nbody b { mesh = rectangle { size = (1, 1) divisions = (1, 1) } material = m }\nstep { time = 0 .. 1 }";
+        assert_eq!(
+            messages_of(text),
+            [
+                "Young's modulus E must be positive",
+                "Poisson's ratio nu must lie in (-1, 0.5)"
+            ]
+        );
+    }
+}

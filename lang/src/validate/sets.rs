@@ -1,0 +1,156 @@
+//! Rules of `set` items and of set references anywhere in the deck.
+
+use super::{Ctx, Need, SetKind};
+use crate::ast::{SetRef, SetRefKind};
+use crate::diagnostics::Diagnostic;
+use crate::suggest::did_you_mean;
+
+/// Checks every `set` item (in deck order: a set is known to the items
+/// after it) and records it on its body.
+pub fn check(ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    for s in &deck.sets {
+        let ok = set_ref(&s.target, Need::Nodes, "set", ctx);
+        let Some(info) = ctx.bodies.get(&s.target.body.name) else {
+            ctx.orphan_sets.push(s.name.name.clone());
+            continue;
+        };
+        let name = &s.name.name;
+        let clash = info.deck_sets.contains_key(name)
+            || info.sets.as_ref().is_some_and(|m| m.contains_key(name));
+        if clash {
+            // rule: a set name is defined once per body
+            let what = if matches!(name.as_str(), "boundary" | "all") {
+                format!("`{name}` is a built-in set of every body")
+            } else {
+                format!("body `{}` already has a set `{name}`", s.target.body.name)
+            };
+            ctx.err(
+                Diagnostic::error(
+                    format!("set `{}.{name}` is defined twice", s.target.body.name),
+                    s.name.span,
+                    what,
+                )
+                .with_help("choose another name"),
+            );
+            continue;
+        }
+        let kind = match &s.target.kind {
+            SetRefKind::Edges(_) => SetKind::Edges,
+            // Unknown kind (set of a mesh file): be permissive here, the
+            // lowering checks it against the mesh.
+            SetRefKind::Named(_) => ok.unwrap_or(SetKind::Edges),
+            _ => SetKind::Nodes,
+        };
+        if let Some(info) = ctx.bodies.get_mut(&s.target.body.name) {
+            info.deck_sets.insert(name.clone(), kind);
+        }
+    }
+}
+
+/// A set reference names a known body and one of its sets, with edges
+/// where `need` asks for them; returns the kind of the set when known.
+/// `user` names the item in messages.
+pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<SetKind> {
+    let deck = ctx.deck;
+    let body = &r.body.name;
+    let Some(info) = ctx.bodies.get(body) else {
+        if !deck.broken_named("body", body) {
+            let names: Vec<&str> = deck.bodies.iter().map(|b| b.name.name.as_str()).collect();
+            ctx.err(
+                Diagnostic::error(
+                    format!("unknown body `{body}`"),
+                    r.body.span,
+                    "no body with this name",
+                )
+                .with_help_opt(did_you_mean(body, &names)),
+            );
+        }
+        return None;
+    };
+    let kind = match &r.kind {
+        SetRefKind::Nodes(_) | SetRefKind::Node(_) => Some(SetKind::Nodes),
+        SetRefKind::Edges(_) => Some(SetKind::Edges),
+        SetRefKind::Named(n) => {
+            let found = info
+                .deck_sets
+                .get(&n.name)
+                .or_else(|| info.sets.as_ref().and_then(|m| m.get(&n.name)))
+                .copied();
+            match (&info.sets, found) {
+                (_, Some(k)) => Some(k),
+                (None, None) => None,
+                (Some(_), None) if ctx.orphan_sets.contains(&n.name) => None,
+                (Some(known), None) => {
+                    let mut names: Vec<&str> = known.keys().map(String::as_str).collect();
+                    names.extend(info.deck_sets.keys().map(String::as_str));
+                    let d = Diagnostic::error(
+                        format!("body `{body}` has no set `{}`", n.name),
+                        n.span,
+                        "no set with this name",
+                    )
+                    .with_help(did_you_mean(&n.name, &names).unwrap_or_else(|| {
+                        format!("its sets are {}", crate::suggest::one_of(&names))
+                    }));
+                    ctx.err(d);
+                    return None;
+                }
+            }
+        }
+    };
+    if need == Need::Edges && kind == Some(SetKind::Nodes) {
+        let help = match &r.kind {
+            SetRefKind::Nodes(s) => {
+                format!("select boundary edges with `{body}.edges({})`", s.value)
+            }
+            _ => format!("use a set with edges, e.g. `{body}.boundary` or `{body}.edges(..)`"),
+        };
+        ctx.err(
+            Diagnostic::error(
+                format!("`{user}` needs boundary edges, but `{r}` is a set of nodes"),
+                r.span,
+                "nodes only",
+            )
+            .with_help(help),
+        );
+    }
+    kind
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    #[test]
+    fn unknown_names_with_suggestions() {
+        let m = messages("set s = blok.nodes(x = 0)\ndisplace block.tpo { uy = -1 }\ncontact block.top -> punh { method = penalty { stiffness = 1 } }\ntool punch = circle { center = (0, 2) radius = 1 }");
+        assert_eq!(
+            m,
+            [
+                "unknown body `blok`",
+                "unknown tool `punh`",
+                "body `block` has no set `tpo`"
+            ]
+        );
+    }
+
+    #[test]
+    fn edges_needed_for_pressure_and_contact() {
+        let m = messages("pressure block.nodes(y = 1) { p = 1 }\npressure block.corner_tl { p = 1 }\npressure block.edges(y = 1) { p = 1 }");
+        assert_eq!(
+            m,
+            [
+                "`pressure` needs boundary edges, but `block.nodes(y = 1)` is a set of nodes",
+                "`pressure` needs boundary edges, but `block.corner_tl` is a set of nodes"
+            ]
+        );
+    }
+
+    #[test]
+    fn deck_sets_are_known_to_later_references() {
+        let m = messages(
+            "set clamp = block.edges(y = 0)\npressure block.clamp { p = 1 }\nset clamp = block.top",
+        );
+        assert_eq!(m, ["set `block.clamp` is defined twice"]);
+    }
+}

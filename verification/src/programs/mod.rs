@@ -1,0 +1,56 @@
+//! Program cases of the registry ([`crate::registry::CaseKind::Program`]):
+//! verification problems that are not a single refinable deck against a
+//! closed form — several runs per level, load histories, energy balances,
+//! comparisons with other codes. Each file opens with its reference and
+//! registers its cases in [`all`]; the cargo tests run the same entries.
+
+pub mod thermal_contact;
+
+use crate::case::Quantity;
+use crate::measure::Value;
+use crate::registry::VerifyCase;
+use ctc_engine::model::Model;
+use std::path::{Path, PathBuf};
+
+/// Every program case, in report order.
+pub fn all() -> Vec<VerifyCase> {
+    thermal_contact::cases()
+}
+
+/// The verification decks' directory (`cases/` of this crate).
+pub fn cases_dir() -> PathBuf {
+    crate::default_cases_dir()
+}
+
+/// Reads `cases/<name>`.
+pub fn read_case_deck(name: &str) -> Result<(PathBuf, String), String> {
+    let path = cases_dir().join(name);
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    Ok((path, text))
+}
+
+/// Compiles deck text (diagnostics rendered into the error).
+pub fn compile(path: &Path, text: &str) -> Result<Model, String> {
+    crate::deck::compile_text(path, text)
+}
+
+/// A measured value with its relative error against `reference`.
+pub fn value(name: &'static str, computed: f64, reference: f64) -> Value {
+    Value {
+        quantity: Quantity::Named(name),
+        reference: Some(reference),
+        computed,
+        error: crate::measure::relative_error(computed, reference),
+    }
+}
+
+/// A value that is an error itself (no reference).
+pub fn error(name: &'static str, error: f64) -> Value {
+    Value {
+        quantity: Quantity::Named(name),
+        reference: None,
+        computed: error,
+        error,
+    }
+}
