@@ -36,11 +36,18 @@ pub struct Diagnostic {
     pub label: String,
     /// An optional suggestion, e.g. "did you mean `steel`?".
     pub help: Option<String>,
-    /// Other spans the message is about, each with its label (the operands
-    /// of a bad expression), underlined with `-`.
-    pub secondary: Vec<(Span, String)>,
-    /// Extra lines (`= note: ..`), e.g. an include chain.
-    pub notes: Vec<String>,
+    /// Secondary labels and notes, in the order added.
+    pub extra: Vec<Extra>,
+}
+
+/// What a diagnostic may add to its primary label.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Extra {
+    /// Another span the message is about, with its label (the operands of
+    /// a bad expression), underlined with `-`.
+    Label(Span, String),
+    /// A line `= note: ..`, e.g. an include chain.
+    Note(String),
 }
 
 impl Diagnostic {
@@ -52,8 +59,7 @@ impl Diagnostic {
             span,
             label: label.into(),
             help: None,
-            secondary: Vec::new(),
-            notes: Vec::new(),
+            extra: Vec::new(),
         }
     }
 
@@ -65,8 +71,7 @@ impl Diagnostic {
             span,
             label: label.into(),
             help: None,
-            secondary: Vec::new(),
-            notes: Vec::new(),
+            extra: Vec::new(),
         }
     }
 
@@ -78,13 +83,13 @@ impl Diagnostic {
 
     /// Adds a secondary span with its label.
     pub fn with_secondary(mut self, span: Span, label: impl Into<String>) -> Self {
-        self.secondary.push((span, label.into()));
+        self.extra.push(Extra::Label(span, label.into()));
         self
     }
 
     /// Adds a note line.
     pub fn with_note(mut self, note: impl Into<String>) -> Self {
-        self.notes.push(note.into());
+        self.extra.push(Extra::Note(note.into()));
         self
     }
 
@@ -285,7 +290,10 @@ fn render_one(d: &Diagnostic, src: &Source, _index: &LineIndex<'_>, out: &mut St
     let _ = writeln!(out, "{pad}--> {}:{line}:{col}", path.display());
     let _ = writeln!(out, "{pad} |");
     underline(&index, start, end, '^', &d.label, &pad, true, out);
-    for (span, label) in &d.secondary {
+    for (span, label) in d.extra.iter().filter_map(|e| match e {
+        Extra::Label(s, l) => Some((s, l)),
+        Extra::Note(_) => None,
+    }) {
         let (sf, s) = src.locate(span.start.min(src.text.len()));
         if sf != file {
             continue;
@@ -313,7 +321,10 @@ fn render_one(d: &Diagnostic, src: &Source, _index: &LineIndex<'_>, out: &mut St
             ppath.display()
         );
     }
-    for n in &d.notes {
+    for n in d.extra.iter().filter_map(|e| match e {
+        Extra::Note(n) => Some(n),
+        Extra::Label(..) => None,
+    }) {
         let _ = writeln!(out, "{pad} = note: {n}");
     }
 }

@@ -245,7 +245,7 @@ fn binary(
         BinOp::Mul => Quantity {
             value: a.value * b.value,
             dim: match (a.dim, b.dim) {
-                (Some(x), Some(y)) => Some(x.mul(y)),
+                (Some(x), Some(y)) => Some(x.times(y)),
                 (x, y) => x.or(y),
             },
         },
@@ -260,9 +260,9 @@ fn binary(
             Quantity {
                 value: a.value / b.value,
                 dim: match (a.dim, b.dim) {
-                    (Some(x), Some(y)) => Some(x.div(y)),
+                    (Some(x), Some(y)) => Some(x.per(y)),
                     (Some(x), None) => Some(x),
-                    (None, Some(y)) => Some(Exponents::NONE.div(y)),
+                    (None, Some(y)) => Some(Exponents::NONE.per(y)),
                     (None, None) => None,
                 },
             }

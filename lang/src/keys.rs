@@ -224,14 +224,14 @@ impl Dim {
             Dim::Force => Exponents::FORCE,
             Dim::Temperature => k,
             Dim::Density => Exponents::mlt(1, -3, 0),
-            Dim::Conductivity => Exponents::POWER.div(Exponents::LENGTH).div(k),
-            Dim::SpecificHeat => Exponents::ENERGY.div(Exponents::MASS).div(k),
-            Dim::Expansion => Exponents::NONE.div(k),
-            Dim::Viscosity => Exponents::STRESS.mul(Exponents::TIME),
-            Dim::PenaltyArea => Exponents::STRESS.div(Exponents::LENGTH),
-            Dim::PenaltyNodal => Exponents::FORCE.div(Exponents::LENGTH),
-            Dim::HeatTransfer => Exponents::POWER.div(Exponents::LENGTH.pow(2)).div(k),
-            Dim::HeatFlux => Exponents::POWER.div(Exponents::LENGTH.pow(2)),
+            Dim::Conductivity => Exponents::POWER.per(Exponents::LENGTH).per(k),
+            Dim::SpecificHeat => Exponents::ENERGY.per(Exponents::MASS).per(k),
+            Dim::Expansion => Exponents::NONE.per(k),
+            Dim::Viscosity => Exponents::STRESS.times(Exponents::TIME),
+            Dim::PenaltyArea => Exponents::STRESS.per(Exponents::LENGTH),
+            Dim::PenaltyNodal => Exponents::FORCE.per(Exponents::LENGTH),
+            Dim::HeatTransfer => Exponents::POWER.per(Exponents::LENGTH.pow(2)).per(k),
+            Dim::HeatFlux => Exponents::POWER.per(Exponents::LENGTH.pow(2)),
         })
     }
 }

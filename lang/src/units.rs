@@ -70,7 +70,7 @@ impl Exponents {
     };
 
     /// `self * other`.
-    pub fn mul(self, o: Exponents) -> Exponents {
+    pub fn times(self, o: Exponents) -> Exponents {
         Exponents {
             m: self.m + o.m,
             l: self.l + o.l,
@@ -81,8 +81,8 @@ impl Exponents {
     }
 
     /// `self / other`.
-    pub fn div(self, o: Exponents) -> Exponents {
-        self.mul(o.pow(-1))
+    pub fn per(self, o: Exponents) -> Exponents {
+        self.times(o.pow(-1))
     }
 
     /// `self ^ n`.
@@ -260,7 +260,7 @@ pub fn parse(text: &str) -> Result<Unit, String> {
         }
         let power = i8::try_from(power).map_err(|_| format!("{name}^{power}"))?;
         unit.scale *= a.scale.powi(power as i32);
-        unit.dim = unit.dim.mul(a.dim.pow(power));
+        unit.dim = unit.dim.times(a.dim.pow(power));
         match after.chars().next() {
             None => break,
             Some('/') => divide = true,
