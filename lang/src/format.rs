@@ -78,23 +78,17 @@ pub fn format(text: &str) -> Result<String, String> {
     let mut last_end: Option<usize> = None;
     for item in deck.into_inner().filter(|p| p.as_rule() != Rule::EOI) {
         let start = item.as_span().start();
-        // comments before the item, and a blank line where there was one
-        let blank = last_end.is_some_and(|e| p.src[e..start].matches('\n').count() >= 2);
-        if blank {
+        // comments before the item, then a blank line where there was one
+        let prev = p.flush_comments(start, 0, last_end);
+        if prev.is_some_and(|e| p.src[e..start].matches('\n').count() >= 2) {
             p.blank_line();
         }
-        p.flush_comments(start, 0, last_end);
         p.item(item.clone());
         last_end = Some(item.as_span().end());
         p.trailing_comment(item.as_span().end());
         p.newline();
     }
-    let end = text.len();
-    let had_blank = last_end.is_some_and(|e| p.src[e..].matches('\n').count() >= 2);
-    if had_blank && p.next < p.comments.len() {
-        p.blank_line();
-    }
-    p.flush_comments(end, 0, last_end);
+    p.flush_comments(text.len(), 0, last_end);
     let mut out = p.out.trim_end().to_string();
     out.push('\n');
     if out.trim().is_empty() {
@@ -127,8 +121,14 @@ impl Printer<'_> {
     }
 
     /// Writes every comment before `before` on its own line(s), keeping a
-    /// blank line between comment groups separated by one in the source.
-    fn flush_comments(&mut self, before: usize, depth: usize, mut last: Option<usize>) {
+    /// blank line where the source had one before it; returns where the
+    /// last thing written ends in the source (`last` if nothing).
+    fn flush_comments(
+        &mut self,
+        before: usize,
+        depth: usize,
+        mut last: Option<usize>,
+    ) -> Option<usize> {
         while self.next < self.comments.len() && self.comments[self.next].at < before {
             let c = self.comments[self.next].clone();
             if let Some(l) = last {
@@ -143,6 +143,7 @@ impl Printer<'_> {
             last = Some(c.at + c.text.len());
             self.next += 1;
         }
+        last
     }
 
     /// A comment on the same line after `after`, appended.
@@ -262,12 +263,12 @@ impl Printer<'_> {
         self.newline();
         for e in block.into_inner() {
             let start = e.as_span().start();
-            if let Some(l) = last {
+            let prev = self.flush_comments(start, depth + 1, last);
+            if let Some(l) = prev {
                 if self.src[l..start].matches('\n').count() >= 2 && !self.out.ends_with("{\n") {
                     self.blank_line();
                 }
             }
-            self.flush_comments(start, depth + 1, last);
             self.indent(depth + 1);
             let e_end = e.as_span().end();
             self.entry(e, depth + 1);
