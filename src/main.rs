@@ -104,6 +104,13 @@ enum Command {
         /// With --search: largest number of contact nodes.
         #[arg(long, requires = "search", default_value_t = 100_000)]
         max_nodes: usize,
+        /// Run the projection robustness benchmark instead (random points
+        /// against a revolved NURBS surface with a pole and a periodic seam).
+        #[arg(long, conflicts_with = "search")]
+        projection: bool,
+        /// With --projection: number of random points.
+        #[arg(long, requires = "projection", default_value_t = 1_000_000)]
+        points: usize,
     },
 }
 
@@ -144,8 +151,12 @@ fn main() -> ExitCode {
             json,
             search,
             max_nodes,
+            projection,
+            points,
         } => {
-            if search {
+            if projection {
+                bench_projection(points, json)
+            } else if search {
                 bench_search(max_nodes, json)
             } else {
                 bench(size, increments, json)
@@ -394,6 +405,41 @@ fn bench_search(max_nodes: usize, json: bool) -> Result<(), String> {
         );
     } else {
         print!("{report}");
+    }
+    Ok(())
+}
+
+fn bench_projection(points: usize, json: bool) -> Result<(), String> {
+    if points == 0 {
+        return Err("bench --projection: --points must be at least 1".into());
+    }
+    let figures = ctc_geom::bench::run(points);
+    if json {
+        let rows: Vec<serde_json::Value> = figures
+            .iter()
+            .map(|f| {
+                serde_json::json!({
+                    "seeds": f.mode,
+                    "points": f.points,
+                    "converged": f.converged,
+                    "wrong_minimum": f.wrong_minimum,
+                    "max_distance_error": f.max_distance_error,
+                    "mean_newton_iterations": f.mean_iterations,
+                    "max_newton_iterations": f.max_iterations,
+                    "ns_per_projection": f.ns_per_projection,
+                })
+            })
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?
+        );
+    } else {
+        println!("projection on a revolved NURBS dome (pole at the top, periodic seam, free edge), {points} random points");
+        println!("{}", ctc_geom::bench::HEADER);
+        for f in &figures {
+            println!("{f}");
+        }
     }
     Ok(())
 }
