@@ -69,6 +69,23 @@ enum Command {
         #[arg(long, requires = "stress")]
         reduced: bool,
     },
+    /// Print the keyword reference: every item, block and key (type,
+    /// default, range, dimension, meaning). Without an item: the index.
+    Doc {
+        /// An item (`contact`, `material`, ...), `mesh`, a generator, or `units`.
+        item: Option<String>,
+        /// Print the whole reference as Markdown (docs/DECK.md).
+        #[arg(long)]
+        markdown: bool,
+    },
+    /// Rewrite decks in the canonical layout (comments kept).
+    Fmt {
+        /// The decks.
+        decks: Vec<PathBuf>,
+        /// Only check: exit 1 if a deck is not formatted.
+        #[arg(long)]
+        check: bool,
+    },
     /// Run the performance benchmark (rigid cylinder on an elastic block).
     Bench {
         /// Problem size as a fraction of the full ~80k-dof mesh (0.1 = ~8k dofs).
@@ -126,6 +143,8 @@ fn main() -> ExitCode {
                 verify(filter, tags, report, json, max_level)
             }
         }
+        Command::Doc { item, markdown } => doc(item.as_deref(), markdown),
+        Command::Fmt { decks, check } => fmt(&decks, check),
         Command::Bench {
             size,
             increments,
@@ -250,6 +269,47 @@ fn run(
             e.message,
             dir.display()
         )),
+    }
+}
+
+fn doc(item: Option<&str>, markdown: bool) -> Result<(), String> {
+    let text = if markdown {
+        ctc_lang::reference::markdown()
+    } else {
+        ctc_lang::reference::doc(item).map_err(|e| format!("error: {e}"))?
+    };
+    print!("{text}");
+    Ok(())
+}
+
+fn fmt(decks: &[PathBuf], check: bool) -> Result<(), String> {
+    if decks.is_empty() {
+        return Err("error: name the decks to format, e.g. `ctc fmt examples/*.ctc`".into());
+    }
+    let mut unformatted = Vec::new();
+    for d in decks {
+        let text = std::fs::read_to_string(d)
+            .map_err(|e| format!("error: cannot read deck `{}`: {e}", d.display()))?;
+        let out = ctc_lang::format::format(&text).map_err(|e| {
+            format!(
+                "error: `{}` does not parse ({e}); run `ctc check` on it",
+                d.display()
+            )
+        })?;
+        if out != text {
+            if check {
+                unformatted.push(d.display().to_string());
+            } else {
+                std::fs::write(d, &out)
+                    .map_err(|e| format!("error: cannot write `{}`: {e}", d.display()))?;
+                println!("formatted {}", d.display());
+            }
+        }
+    }
+    if unformatted.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("not formatted: {}", unformatted.join(", ")))
     }
 }
 

@@ -81,7 +81,9 @@ fn inputs(body: &str, g: &Generator, src: &Source) -> Result<Vec<Mesh>, Vec<Diag
 }
 
 fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
-    let path = src.directory().join(&f.value);
+    // relative to the file the mesh is written in (an included file's own
+    // directory)
+    let path = src.directory_at(f.span.start).join(&f.value);
     let bytes = std::fs::read(&path).map_err(|e| {
         let label = match e.kind() {
             std::io::ErrorKind::NotFound => "file not found".to_string(),
