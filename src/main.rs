@@ -103,6 +103,23 @@ enum Command {
         #[arg(short, long)]
         quiet: bool,
     },
+    /// Print the keyword reference: every item, block and key (type,
+    /// default, range, dimension, meaning). Without an item: the index.
+    Doc {
+        /// An item (`contact`, `material`, ...), `mesh`, a generator, or `units`.
+        item: Option<String>,
+        /// Print the whole reference as Markdown (docs/DECK.md).
+        #[arg(long)]
+        markdown: bool,
+    },
+    /// Rewrite decks in the canonical layout (comments kept).
+    Fmt {
+        /// The decks.
+        decks: Vec<PathBuf>,
+        /// Only check: exit 1 if a deck is not formatted.
+        #[arg(long)]
+        check: bool,
+    },
     /// Run the performance benchmark (rigid cylinder on an elastic block).
     Bench {
         /// Problem size as a fraction of the full ~80k-dof mesh (0.1 = ~8k dofs).
@@ -121,6 +138,13 @@ enum Command {
         /// With --search: largest number of contact nodes.
         #[arg(long, requires = "search", default_value_t = 100_000)]
         max_nodes: usize,
+        /// Run the projection robustness benchmark instead (random points
+        /// against a revolved NURBS surface with a pole and a periodic seam).
+        #[arg(long, conflicts_with = "search")]
+        projection: bool,
+        /// With --projection: number of random points.
+        #[arg(long, requires = "projection", default_value_t = 1_000_000)]
+        points: usize,
     },
 }
 
@@ -172,14 +196,20 @@ fn main() -> ExitCode {
             task,
             quiet,
         }),
+        Command::Doc { item, markdown } => doc(item.as_deref(), markdown),
+        Command::Fmt { decks, check } => fmt(&decks, check),
         Command::Bench {
             size,
             increments,
             json,
             search,
             max_nodes,
+            projection,
+            points,
         } => {
-            if search {
+            if projection {
+                bench_projection(points, json)
+            } else if search {
                 bench_search(max_nodes, json)
             } else {
                 bench(size, increments, json)
@@ -316,6 +346,47 @@ fn run_model(
     }
 }
 
+fn doc(item: Option<&str>, markdown: bool) -> Result<(), String> {
+    let text = if markdown {
+        ctc_lang::reference::markdown()
+    } else {
+        ctc_lang::reference::doc(item).map_err(|e| format!("error: {e}"))?
+    };
+    print!("{text}");
+    Ok(())
+}
+
+fn fmt(decks: &[PathBuf], check: bool) -> Result<(), String> {
+    if decks.is_empty() {
+        return Err("error: name the decks to format, e.g. `ctc fmt examples/*.ctc`".into());
+    }
+    let mut unformatted = Vec::new();
+    for d in decks {
+        let text = std::fs::read_to_string(d)
+            .map_err(|e| format!("error: cannot read deck `{}`: {e}", d.display()))?;
+        let out = ctc_lang::format::format(&text).map_err(|e| {
+            format!(
+                "error: `{}` does not parse ({e}); run `ctc check` on it",
+                d.display()
+            )
+        })?;
+        if out != text {
+            if check {
+                unformatted.push(d.display().to_string());
+            } else {
+                std::fs::write(d, &out)
+                    .map_err(|e| format!("error: cannot write `{}`: {e}", d.display()))?;
+                println!("formatted {}", d.display());
+            }
+        }
+    }
+    if unformatted.is_empty() {
+        Ok(())
+    } else {
+        Err(format!("not formatted: {}", unformatted.join(", ")))
+    }
+}
+
 fn verify_list(filter: Option<&str>, tags: &[String], json: bool) -> Result<(), String> {
     let rows = ctc_verification::registry::list(filter, tags);
     if json {
@@ -408,6 +479,41 @@ fn bench_search(max_nodes: usize, json: bool) -> Result<(), String> {
         );
     } else {
         print!("{report}");
+    }
+    Ok(())
+}
+
+fn bench_projection(points: usize, json: bool) -> Result<(), String> {
+    if points == 0 {
+        return Err("bench --projection: --points must be at least 1".into());
+    }
+    let figures = ctc_geom::bench::run(points);
+    if json {
+        let rows: Vec<serde_json::Value> = figures
+            .iter()
+            .map(|f| {
+                serde_json::json!({
+                    "seeds": f.mode,
+                    "points": f.points,
+                    "converged": f.converged,
+                    "wrong_minimum": f.wrong_minimum,
+                    "max_distance_error": f.max_distance_error,
+                    "mean_newton_iterations": f.mean_iterations,
+                    "max_newton_iterations": f.max_iterations,
+                    "ns_per_projection": f.ns_per_projection,
+                })
+            })
+            .collect();
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?
+        );
+    } else {
+        println!("projection on a revolved NURBS dome (pole at the top, periodic seam, free edge), {points} random points");
+        println!("{}", ctc_geom::bench::HEADER);
+        for f in &figures {
+            println!("{f}");
+        }
     }
     Ok(())
 }

@@ -36,6 +36,18 @@ pub struct Diagnostic {
     pub label: String,
     /// An optional suggestion, e.g. "did you mean `steel`?".
     pub help: Option<String>,
+    /// Secondary labels and notes, in the order added.
+    pub extra: Vec<Extra>,
+}
+
+/// What a diagnostic may add to its primary label.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum Extra {
+    /// Another span the message is about, with its label (the operands of
+    /// a bad expression), underlined with `-`.
+    Label(Span, String),
+    /// A line `= note: ..`, e.g. an include chain.
+    Note(String),
 }
 
 impl Diagnostic {
@@ -47,6 +59,7 @@ impl Diagnostic {
             span,
             label: label.into(),
             help: None,
+            extra: Vec::new(),
         }
     }
 
@@ -58,12 +71,25 @@ impl Diagnostic {
             span,
             label: label.into(),
             help: None,
+            extra: Vec::new(),
         }
     }
 
     /// Adds a help line.
     pub fn with_help(mut self, help: impl Into<String>) -> Self {
         self.help = Some(help.into());
+        self
+    }
+
+    /// Adds a secondary span with its label.
+    pub fn with_secondary(mut self, span: Span, label: impl Into<String>) -> Self {
+        self.extra.push(Extra::Label(span, label.into()));
+        self
+    }
+
+    /// Adds a note line.
+    pub fn with_note(mut self, note: impl Into<String>) -> Self {
+        self.extra.push(Extra::Note(note.into()));
         self
     }
 
@@ -245,41 +271,104 @@ fn display_width(s: &str) -> usize {
     s.chars().map(|c| if c == '\t' { 4 } else { 1 }).sum()
 }
 
-fn render_one(d: &Diagnostic, src: &Source, index: &LineIndex<'_>, out: &mut String) {
+fn render_one(d: &Diagnostic, src: &Source, _index: &LineIndex<'_>, out: &mut String) {
     let kind = match d.severity {
         Severity::Error => "error",
         Severity::Warning => "warning",
     };
     let _ = writeln!(out, "{kind}: {}", d.message);
-    let start = index.clamp(d.span.start);
-    let end = index.clamp(d.span.end.max(d.span.start));
+    let (file, start) = src.locate(d.span.start.min(src.text.len()));
+    let f = &src.files[file];
+    let index = LineIndex::new(&f.text);
+    let start = index.clamp(start);
+    // the end in the same file (a span never crosses files in practice)
+    let end = index.clamp(start + d.span.end.saturating_sub(d.span.start));
     let (line, col) = index.line_col(start);
-    let line_text = index.line_text(line - 1);
     let gutter = line.to_string().len();
     let pad = " ".repeat(gutter);
-    let _ = writeln!(out, "{pad}--> {}:{line}:{col}", src.path.display());
+    let path = if file == 0 { &src.path } else { &f.path };
+    let _ = writeln!(out, "{pad}--> {}:{line}:{col}", path.display());
     let _ = writeln!(out, "{pad} |");
-    let _ = writeln!(out, "{line} | {}", line_text.replace('\t', "    "));
-    // Caret under the part of the span that lies on its first line.
-    let line_start = start - (col_bytes(index, start));
-    let before = &src.text[line_start..start];
-    let line_end = line_start + line_text.len();
-    let under_end = end.min(line_end).max(start);
-    let under = &src.text[start..under_end];
-    let carets = display_width(under).max(1);
-    let mut caret_line = format!(
-        "{pad} | {}{}",
-        " ".repeat(display_width(before)),
-        "^".repeat(carets)
-    );
-    if !d.label.is_empty() {
-        caret_line.push(' ');
-        caret_line.push_str(&d.label);
+    underline(&index, start, end, '^', &d.label, &pad, true, out);
+    for (span, label) in d.extra.iter().filter_map(|e| match e {
+        Extra::Label(s, l) => Some((s, l)),
+        Extra::Note(_) => None,
+    }) {
+        let (sf, s) = src.locate(span.start.min(src.text.len()));
+        if sf != file {
+            continue;
+        }
+        let s = index.clamp(s);
+        let e = index.clamp(s + span.end.saturating_sub(span.start));
+        let same_line = index.line_of(s) == index.line_of(start);
+        underline(&index, s, e, '-', label, &pad, !same_line, out);
     }
-    let _ = writeln!(out, "{}", caret_line.trim_end());
     if let Some(help) = &d.help {
         let _ = writeln!(out, "{pad} = help: {help}");
     }
+    for (parent, at) in src.include_chain(file) {
+        let pi = LineIndex::new(&src.files[parent].text);
+        let (l, c) = pi.line_col(at);
+        let ppath = if parent == 0 {
+            &src.path
+        } else {
+            &src.files[parent].path
+        };
+        let _ = writeln!(
+            out,
+            "{pad} = note: `{}` is included from {}:{l}:{c}",
+            f.path.display(),
+            ppath.display()
+        );
+    }
+    for n in d.extra.iter().filter_map(|e| match e {
+        Extra::Note(n) => Some(n),
+        Extra::Label(..) => None,
+    }) {
+        let _ = writeln!(out, "{pad} = note: {n}");
+    }
+}
+
+/// The source line of `start` (when `with_line`) and a line of `mark`
+/// under `start..end` (clipped to that line), followed by `label`.
+#[allow(clippy::too_many_arguments)]
+fn underline(
+    index: &LineIndex<'_>,
+    start: usize,
+    end: usize,
+    mark: char,
+    label: &str,
+    pad: &str,
+    with_line: bool,
+    out: &mut String,
+) {
+    let line = index.line_of(start);
+    let line_text = index.line_text(line);
+    if with_line {
+        let _ = writeln!(
+            out,
+            "{:>w$} | {}",
+            line + 1,
+            line_text.replace('\t', "    "),
+            w = pad.len()
+        );
+    }
+    let line_start = start - col_bytes(index, start);
+    let before = &index.text[line_start..start];
+    let line_end = line_start + line_text.len();
+    let under_end = end.min(line_end).max(start);
+    let under = &index.text[start..under_end];
+    let n = display_width(under).max(1);
+    let mut caret_line = format!(
+        "{pad} | {}{}",
+        " ".repeat(display_width(before)),
+        mark.to_string().repeat(n)
+    );
+    if !label.is_empty() {
+        caret_line.push(' ');
+        caret_line.push_str(label);
+    }
+    let _ = writeln!(out, "{}", caret_line.trim_end());
 }
 
 /// Number of bytes between the start of the line and `offset`.

@@ -19,6 +19,7 @@
 //! assert_eq!(CENTER.ty.describe(), "a point `(x, y)`");
 //! ```
 
+use crate::units::Exponents;
 use std::fmt;
 
 /// How many components a point or tuple has.
@@ -147,6 +148,8 @@ impl fmt::Display for Range {
 /// The physical dimension of a key's value (what its unit measures).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Dim {
+    /// Not declared: a number with a unit keeps its own dimension.
+    Any,
     /// A pure number (count, ratio, exponent, coefficient).
     None,
     /// Length.
@@ -159,19 +162,77 @@ pub enum Dim {
     Stress,
     /// Time.
     Time,
+    /// Force.
+    Force,
+    /// Temperature.
+    Temperature,
+    /// Mass density.
+    Density,
+    /// Thermal conductivity (W/(m K)).
+    Conductivity,
+    /// Specific heat capacity (J/(kg K)).
+    SpecificHeat,
+    /// Thermal expansion coefficient (1/K).
+    Expansion,
+    /// Viscosity of a Perzyna law (stress x time).
+    Viscosity,
+    /// Area penalty (stress / length).
+    PenaltyArea,
+    /// Nodal penalty (force / length).
+    PenaltyNodal,
+    /// Heat transfer coefficient (W/(m^2 K)).
+    HeatTransfer,
+    /// Heat flux (W/m^2).
+    HeatFlux,
 }
 
 impl Dim {
     /// The dimension in words, for the keyword reference.
     pub fn describe(self) -> &'static str {
         match self {
+            Dim::Any => "any",
             Dim::None => "-",
             Dim::Length => "length",
             Dim::AngleDegrees => "angle (degrees)",
             Dim::AngleRadians => "angle (radians)",
             Dim::Stress => "stress",
             Dim::Time => "time",
+            Dim::Force => "force",
+            Dim::Temperature => "temperature",
+            Dim::Density => "density",
+            Dim::Conductivity => "conductivity",
+            Dim::SpecificHeat => "specific heat",
+            Dim::Expansion => "1/temperature",
+            Dim::Viscosity => "stress x time",
+            Dim::PenaltyArea => "stress/length",
+            Dim::PenaltyNodal => "force/length",
+            Dim::HeatTransfer => "power/(area temperature)",
+            Dim::HeatFlux => "power/area",
         }
+    }
+
+    /// The exponents of the dimension (`None` for [`Dim::Any`]).
+    pub fn exponents(self) -> Option<Exponents> {
+        let k = Exponents::TEMPERATURE;
+        Some(match self {
+            Dim::Any => return None,
+            Dim::None => Exponents::NONE,
+            Dim::Length => Exponents::LENGTH,
+            Dim::AngleDegrees | Dim::AngleRadians => Exponents::ANGLE,
+            Dim::Stress => Exponents::STRESS,
+            Dim::Time => Exponents::TIME,
+            Dim::Force => Exponents::FORCE,
+            Dim::Temperature => k,
+            Dim::Density => Exponents::mlt(1, -3, 0),
+            Dim::Conductivity => Exponents::POWER.per(Exponents::LENGTH).per(k),
+            Dim::SpecificHeat => Exponents::ENERGY.per(Exponents::MASS).per(k),
+            Dim::Expansion => Exponents::NONE.per(k),
+            Dim::Viscosity => Exponents::STRESS.times(Exponents::TIME),
+            Dim::PenaltyArea => Exponents::STRESS.per(Exponents::LENGTH),
+            Dim::PenaltyNodal => Exponents::FORCE.per(Exponents::LENGTH),
+            Dim::HeatTransfer => Exponents::POWER.per(Exponents::LENGTH.pow(2)).per(k),
+            Dim::HeatFlux => Exponents::POWER.per(Exponents::LENGTH.pow(2)),
+        })
     }
 }
 
@@ -230,7 +291,7 @@ pub struct Key {
     /// Names of the value (or of each component of a tuple) in range
     /// diagnostics, e.g. `["width", "height"]`; empty: the key's name.
     pub labels: &'static [&'static str],
-    /// Physical dimension.
+    /// Physical dimension ([`Dim::Any`] when not declared).
     pub dim: Dim,
 }
 
@@ -245,7 +306,7 @@ impl Key {
             default: Default::None,
             range: Range::Any,
             labels: &[],
-            dim: Dim::None,
+            dim: Dim::Any,
         }
     }
 

@@ -24,14 +24,19 @@ pub mod ast;
 pub mod diagnostics;
 pub mod explain;
 pub mod explain_surface;
+pub mod expr;
+pub mod format;
 pub mod generators;
 pub mod keys;
 pub mod lower;
 pub mod override_path;
 pub mod parse;
+pub mod reference;
 pub mod source;
 pub mod span;
 pub mod suggest;
+pub mod tables;
+pub mod units;
 pub mod validate;
 
 pub use diagnostics::{Diagnostic, Diagnostics, Severity};
@@ -54,6 +59,7 @@ pub struct Compilation {
 /// Parses, validates and lowers a deck, collecting every diagnostic.
 pub fn check(src: &Source) -> Compilation {
     let (deck, mut diags) = parse::parse(&src.text);
+    diags.extend(src.include_errors.iter().cloned());
     diags.extend(validate::validate(&deck, &src.text));
     let (model, lowered) = lower::lower(&deck, src, &diags);
     diags.extend(lowered);

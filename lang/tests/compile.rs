@@ -161,9 +161,10 @@ fn generators_tools_and_mesh_files_lower() {
     let names: Vec<&str> = m.materials.iter().map(|x| x.name.as_str()).collect();
     assert_eq!(names, ["rubber", "steel"]);
     assert_eq!(m.bodies[1].material, 1);
-    assert!(m.mesh.cells[m.bodies[1].cells.clone()]
-        .iter()
-        .all(|c| c.kind == CellKind::Tri3));
+    assert!(m.bodies[1]
+        .cells
+        .clone()
+        .all(|c| m.mesh.cells.kind(c) == CellKind::Tri3));
     // The gmsh body: 6 nodes, 2 quads, physical groups as qualified sets.
     let strip = &m.bodies[3];
     assert_eq!(strip.nodes.len(), 6);
@@ -278,4 +279,51 @@ fn deformable_contact_lowers_to_a_surface_master_with_oriented_edges() {
         let (pa, pb) = (model.mesh.nodes[a], model.mesh.nodes[b]);
         assert!(pb[0] < pa[0] && pa[1] == 1.0 && pb[1] == 1.0);
     }
+}
+
+/// Parameters, arithmetic, units (mm_N_s), an include, a set union and
+/// quoted gmsh group names, lowered to the same numbers a user would type.
+#[test]
+fn parametric_deck_with_units_include_and_unions() {
+    let src = deck("parametric");
+    assert!(src.include_errors.is_empty(), "{:?}", src.include_errors);
+    let c = check(&src);
+    let m = c
+        .model
+        .as_ref()
+        .unwrap_or_else(|| panic!("{}", c.diagnostics.render(&src)));
+    // E = 210 GPa in MPa (the stress unit of mm_N_s)
+    let MaterialLaw::LinearElastic { young, poisson } = m.materials[0].law else {
+        panic!("{:?}", m.materials[0].law)
+    };
+    assert!((young - 210e3).abs() < 1e-9 * 210e3, "{young}");
+    assert_eq!(poisson, 0.3);
+    // radius R = 8 mm, n = 8 radial divisions: the disc's lowest node at y = 0
+    let disc = &m.bodies[0];
+    let ymin = m.mesh.nodes[disc.nodes.clone()]
+        .iter()
+        .map(|p| p[1])
+        .fold(f64::INFINITY, f64::min);
+    assert!(ymin.abs() < 1e-12, "{ymin}");
+    // stiffness = 10 E / (R / n) = 10 x 210e3 / 1 mm
+    match &m.contacts[0].method {
+        ContactMethod::Penalty { stiffness, .. } => {
+            assert!((stiffness - 2.1e6).abs() < 1e-6 * 2.1e6, "{stiffness}")
+        }
+        other => panic!("{other:?}"),
+    }
+    // the union of the two quoted gmsh groups: all 6 nodes of the strip
+    assert_eq!(m.mesh.node_sets["lug.clamp"].len(), 6);
+    assert_eq!(m.mesh.edge_sets["lug.clamp"].len(), 4);
+    // ramp(0, -d), d = R / 100 = 0.08 mm
+    let uy = m
+        .constraints
+        .iter()
+        .find(|d| d.label == "displace disc.flat")
+        .unwrap();
+    let TimeFunction::Ramp { t0, t1, v0, v1 } = uy.value else {
+        panic!("{:?}", uy.value)
+    };
+    assert_eq!((t0, t1, v0), (0.0, 1.0, 0.0));
+    assert!((v1 + 0.08).abs() < 1e-15, "{v1}");
 }

@@ -17,6 +17,8 @@ pub struct Analysis {
     pub dimension: Option<Spanned<Dimension>>,
     /// `thickness = ..`.
     pub thickness: Option<Spanned<f64>>,
+    /// `units = SI | mm_N_s | ..`: the unit system of every number.
+    pub units: Option<Spanned<&'static str>>,
     /// The `analysis` keyword.
     pub keyword: Span,
     /// The whole item.
@@ -34,6 +36,17 @@ pub enum Dimension {
     Axisymmetric,
     /// `3d` (reserved, not supported yet).
     ThreeD,
+}
+
+/// `let name = expression`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Let {
+    /// The parameter.
+    pub name: Ident,
+    /// Its expression (evaluated when parsed).
+    pub value: super::syntax::Value,
+    /// The whole item.
+    pub span: Span,
 }
 
 /// `material name { .. }`.

@@ -44,6 +44,8 @@ pub struct Deck {
     pub broken: Vec<BrokenItem>,
     /// `temperature`, `heat_flux` and `convection` items.
     pub thermal_loads: Vec<thermal::ThermalLoad>,
+    /// `let` parameters, in deck order.
+    pub lets: Vec<Let>,
 }
 
 impl Deck {

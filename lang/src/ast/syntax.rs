@@ -84,6 +84,57 @@ pub enum ValueKind {
     List(Vec<Value>),
     /// `a .. b`.
     Range(Box<Value>, Box<Value>),
+    /// `210 GPa`: a number with a unit.
+    Quantity {
+        /// The number.
+        value: f64,
+        /// The unit as written (`GPa`, `N/mm^2`, `/s`).
+        unit: String,
+        /// Where the unit is written.
+        unit_span: Span,
+    },
+    /// `a + b`, `a - b`, `a * b`, `a / b`, `a ^ b` (also set unions and
+    /// differences `a.top + a.side`).
+    Binary {
+        /// The operator.
+        op: BinOp,
+        /// Left operand.
+        lhs: Box<Value>,
+        /// Right operand.
+        rhs: Box<Value>,
+        /// Where the operator is written.
+        op_span: Span,
+    },
+    /// `-a`.
+    Neg(Box<Value>),
+}
+
+/// Binary operators.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`.
+    Add,
+    /// `-`.
+    Sub,
+    /// `*`.
+    Mul,
+    /// `/`.
+    Div,
+    /// `^`.
+    Pow,
+}
+
+impl BinOp {
+    /// The operator as written.
+    pub fn symbol(self) -> &'static str {
+        match self {
+            BinOp::Add => "+",
+            BinOp::Sub => "-",
+            BinOp::Mul => "*",
+            BinOp::Div => "/",
+            BinOp::Pow => "^",
+        }
+    }
 }
 
 impl ValueKind {
@@ -100,6 +151,8 @@ impl ValueKind {
             ValueKind::Tuple(_) => "a tuple",
             ValueKind::List(_) => "a list",
             ValueKind::Range(..) => "a range",
+            ValueKind::Quantity { .. } => "a number with a unit",
+            ValueKind::Binary { .. } | ValueKind::Neg(_) => "an expression",
         }
     }
 }
@@ -124,10 +177,26 @@ pub enum ArgKind {
     Arrow(Value, Ident),
 }
 
-/// Joins a dotted path back into text (`block.top`).
+/// Joins a dotted path back into text (`block.top`; parts that are not
+/// plain names are quoted: `lug."Hole Edge"`).
 pub fn path_text(path: &[Ident]) -> String {
     path.iter()
-        .map(|i| i.name.as_str())
+        .map(|i| quoted_name(&i.name))
         .collect::<Vec<_>>()
         .join(".")
+}
+
+/// A name as a deck writes it: bare if it is a plain identifier, else in
+/// quotes.
+pub fn quoted_name(name: &str) -> String {
+    let plain = name
+        .chars()
+        .next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_');
+    if plain {
+        name.to_string()
+    } else {
+        format!("\"{name}\"")
+    }
 }

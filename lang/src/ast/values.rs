@@ -36,6 +36,9 @@ pub enum SetRefKind {
     Node(Spanned<Selection>),
     /// `body.edges(..)`: boundary edges with both nodes selected.
     Edges(Spanned<Selection>),
+    /// `a.top + a.side - a.corner`: a union and difference of references
+    /// to the same body, left to right (`true`: added, `false`: removed).
+    Combination(Vec<(bool, SetRef)>),
 }
 
 /// A geometric selection, as written.
@@ -77,7 +80,21 @@ impl fmt::Display for Selection {
 impl fmt::Display for SetRef {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.kind {
-            SetRefKind::Named(n) => write!(f, "{}.{}", self.body, n),
+            SetRefKind::Named(n) => write!(
+                f,
+                "{}.{}",
+                self.body,
+                crate::ast::syntax::quoted_name(&n.name)
+            ),
+            SetRefKind::Combination(terms) => {
+                for (i, (add, t)) in terms.iter().enumerate() {
+                    if i > 0 {
+                        f.write_str(if *add { " + " } else { " - " })?;
+                    }
+                    write!(f, "{t}")?;
+                }
+                Ok(())
+            }
             SetRefKind::Nodes(s) => write!(f, "{}.nodes({})", self.body, s.value),
             SetRefKind::Node(s) => write!(f, "{}.node({})", self.body, s.value),
             SetRefKind::Edges(s) => write!(f, "{}.edges({})", self.body, s.value),

@@ -81,7 +81,9 @@ fn inputs(body: &str, g: &Generator, src: &Source) -> Result<Vec<Mesh>, Vec<Diag
 }
 
 fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
-    let path = src.directory().join(&f.value);
+    // relative to the file the mesh is written in (an included file's own
+    // directory)
+    let path = src.directory_at(f.span.start).join(&f.value);
     let bytes = std::fs::read(&path).map_err(|e| {
         let label = match e.kind() {
             std::io::ErrorKind::NotFound => "file not found".to_string(),
@@ -154,13 +156,7 @@ pub fn append(global: &mut Mesh, body: &str, m: Mesh, at: Span) -> (Placed, Vec<
     let cell_off = global.cells.len();
     let n_nodes = m.nodes.len();
     global.nodes.extend_from_slice(&m.nodes);
-    for c in &m.cells {
-        let mut c = *c;
-        for n in c.nodes.iter_mut() {
-            *n += node_off;
-        }
-        global.cells.push(c);
-    }
+    global.cells.extend_shifted(&m.cells, node_off);
     let cells = cell_off..global.cells.len();
     for name in ["boundary", "all"] {
         if m.node_sets.contains_key(name) || m.edge_sets.contains_key(name) {
@@ -239,7 +235,7 @@ mod tests {
         assert_eq!(a.nodes, 0..4);
         assert_eq!(b.nodes, 4..8);
         assert_eq!(b.cells, 1..2);
-        assert_eq!(g.cells[1].nodes, [4, 5, 6, 7]);
+        assert_eq!(g.cells.nodes(1), &[4, 5, 6, 7]);
         assert_eq!(g.edge_sets["b.bottom"], vec![[4, 5]]);
         assert_eq!(g.node_sets["b.bottom"], vec![4, 5]);
         assert_eq!(g.node_sets["b.corner"], vec![6]);

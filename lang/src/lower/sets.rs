@@ -83,7 +83,11 @@ pub fn resolve(
             "use a set with edges, e.g. `{body}.boundary` or `{body}.edges(..)`"
         ))
     };
+    if let SetRefKind::Combination(terms) = &r.kind {
+        return combine(mesh, bodies, r, terms, need, user);
+    }
     let resolved = match &r.kind {
+        SetRefKind::Combination(_) => unreachable!("handled above"),
         SetRefKind::Named(n) => {
             let key = format!("{body}.{}", n.name);
             let edges = mesh.edge_sets.get(&key).cloned();
@@ -206,6 +210,67 @@ impl super::Lowerer<'_> {
     }
 }
 
+/// Resolves `a + b - c`: nodes of the added terms minus those of the
+/// removed ones; edges likewise when every term has edges.
+fn combine(
+    mesh: &Mesh,
+    bodies: &BTreeMap<String, Range<usize>>,
+    r: &SetRef,
+    terms: &[(bool, SetRef)],
+    need: Need,
+    user: &str,
+) -> Result<Resolved, Diagnostic> {
+    let mut nodes: Vec<usize> = Vec::new();
+    let mut removed: Vec<usize> = Vec::new();
+    let mut edges: Option<Vec<[usize; 2]>> = Some(Vec::new());
+    let mut removed_edges: Vec<[usize; 2]> = Vec::new();
+    for (add, t) in terms {
+        let x = resolve(mesh, bodies, t, Need::Nodes, user)?;
+        if *add {
+            nodes.extend(&x.nodes);
+            match (&mut edges, x.edges) {
+                (Some(e), Some(te)) => e.extend(te),
+                _ => edges = None,
+            }
+        } else {
+            removed.extend(&x.nodes);
+            match x.edges {
+                Some(te) => removed_edges.extend(te),
+                None => edges = None,
+            }
+        }
+    }
+    removed.sort_unstable();
+    nodes.sort_unstable();
+    nodes.dedup();
+    nodes.retain(|n| removed.binary_search(n).is_err());
+    let edges = edges.map(|mut e| {
+        let mut seen = std::collections::BTreeSet::new();
+        e.retain(|x| !removed_edges.contains(x) && seen.insert(*x));
+        e
+    });
+    if need == Need::Edges && edges.is_none() {
+        return Err(Diagnostic::error(
+            format!("`{user}` needs boundary edges, but `{r}` is a set of nodes"),
+            r.span,
+            "nodes only",
+        )
+        .with_help("every set of the combination must have edges"));
+    }
+    let nodes = match &edges {
+        Some(e) => edge_nodes(e),
+        None => nodes,
+    };
+    if nodes.is_empty() {
+        return Err(Diagnostic::error(
+            format!("set `{r}` is empty"),
+            r.span,
+            "no nodes left",
+        ));
+    }
+    Ok(Resolved { nodes, edges })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -233,7 +298,7 @@ mod tests {
 
     fn res(text: &str, need: Need) -> Result<Resolved, Diagnostic> {
         let (g, bodies) = rectangle();
-        let mut d = Vec::new();
+        let mut d = crate::parse::values::Diags::new();
         let r = set_ref(&value_of(text), &mut d).expect("a set reference");
         resolve(&g, &bodies, &r, need, "test")
     }

@@ -4,6 +4,7 @@ use super::fields::Fields;
 use super::values::Diags;
 use super::ItemParts;
 use crate::ast::{Analysis, Dimension};
+use crate::span::Spanned;
 
 /// Accepted `dimension` values.
 pub const DIMENSIONS: [(&str, Dimension); 4] = [
@@ -13,12 +14,33 @@ pub const DIMENSIONS: [(&str, Dimension); 4] = [
     ("3d", Dimension::ThreeD),
 ];
 
+/// The unit system of an `analysis` pair (`units = SI`), read before the
+/// rest of the deck; an unknown name is reported by [`parse`].
+pub fn unit_system(
+    pair: pest::iterators::Pair<'_, super::Rule>,
+) -> Option<&'static crate::units::System> {
+    let parts = super::ItemParts::of(pair);
+    let block = parts.block?;
+    block.entries.iter().find_map(|e| match &e.body {
+        crate::ast::syntax::EntryBody::Assign(v) => match &v.kind {
+            crate::ast::syntax::ValueKind::Path(p) if e.key.name == "units" && p.len() == 1 => {
+                crate::units::system(&p[0].name)
+            }
+            _ => None,
+        },
+        _ => None,
+    })
+}
+
 /// Converts an `analysis` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Analysis> {
     let block = item.block?;
-    let mut f = Fields::new(&block, "`analysis` block", &["dimension", "thickness"]);
+    let mut f = Fields::keyed(&block, "`analysis` block", &crate::tables::ANALYSIS);
     let dimension = f.choice("dimension", "dimension", &DIMENSIONS, diags);
     let thickness = f.number("thickness", diags);
+    let systems: Vec<(&str, &'static crate::units::System)> =
+        crate::units::SYSTEMS.iter().map(|s| (s.name, s)).collect();
+    let units = f.choice("units", "unit system", &systems, diags);
     f.require(
         &dimension,
         "dimension",
@@ -30,6 +52,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Analysis> {
     Some(Analysis {
         dimension,
         thickness,
+        units: units.map(|u| Spanned::new(u.value.name, u.span)),
         keyword: item.keyword,
         span: item.span,
     })

@@ -36,10 +36,10 @@ fn mesh_help() -> String {
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Body> {
     let name = item.name?;
     let block = item.block?;
-    let mut f = Fields::new(
+    let mut f = Fields::keyed(
         &block,
         format!("body `{}`", name.name),
-        &["mesh", "material", "formulation", "kinematics", "thermal"],
+        &crate::tables::BODY,
     );
     let thermal = f
         .block("thermal", diags)

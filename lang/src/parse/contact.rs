@@ -47,13 +47,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         None => (item.names.into_iter().next()?, None),
     };
     let block = item.block?;
-    let mut f = Fields::new(
-        &block,
-        "`contact` block",
-        &[
-            "method", "prof", "friction", "strategy", "search", "thermal",
-        ],
-    );
+    let mut f = Fields::keyed(&block, "`contact` block", &crate::tables::CONTACT);
     let thermal = f
         .block("thermal", diags)
         .map(|b| super::thermal::contact_block(b, diags));
@@ -111,7 +105,7 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
                 ));
                 return None;
             };
-            let mut f = Fields::new(block, "`penalty` block", &["kind", "stiffness"]);
+            let mut f = Fields::keyed(block, "`penalty` block", &crate::tables::PENALTY);
             let kind = f.choice("kind", "penalty kind", &KINDS, diags);
             let stiffness = f.number("stiffness", diags);
             f.require(
@@ -127,7 +121,7 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
         "lagrange" => {
             let formulation = match block {
                 Some(block) => {
-                    let mut f = Fields::new(block, "`lagrange` block", &["formulation"]);
+                    let mut f = Fields::keyed(block, "`lagrange` block", &crate::tables::LAGRANGE);
                     let formulation =
                         f.choice("formulation", "Lagrange formulation", &FORMULATIONS, diags);
                     f.finish(diags);
@@ -146,10 +140,10 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
                 ));
                 return None;
             };
-            let mut f = Fields::new(
+            let mut f = Fields::keyed(
                 block,
                 "`augmented_lagrange` block",
-                &["kind", "penalty", "tolerance", "update"],
+                &crate::tables::AUGMENTED_LAGRANGE,
             );
             let kind = f.choice("kind", "penalty kind", &KINDS, diags);
             let penalty = f.number("penalty", diags);

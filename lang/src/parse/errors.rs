@@ -109,6 +109,11 @@ pub fn expected_words(
             item = true;
             continue;
         }
+        // operators and units may always follow a number: listing them
+        // would hide what is missing
+        if matches!(tok, "+" | "-" | "*" | "/" | "^") || crate::units::find(tok).is_some() {
+            continue;
+        }
         let continuation = chars.len() == 1
             && chars
                 .iter()

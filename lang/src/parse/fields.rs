@@ -9,7 +9,7 @@ use super::values::{self, Diags};
 use crate::ast::syntax::{Block, Entry, EntryBody, Value};
 use crate::ast::{Grading, Pair, Point, TimeFn};
 use crate::diagnostics::Diagnostic;
-use crate::keys::Key;
+use crate::keys::{Dim, Key};
 use crate::span::{Span, Spanned};
 use crate::suggest::{closest, one_of};
 
@@ -19,6 +19,8 @@ pub struct Fields<'b> {
     what: String,
     entries: &'b [Entry],
     known: Vec<&'static str>,
+    /// Dimensions of the keys of a key table (empty: not declared).
+    dims: Vec<(&'static str, Dim)>,
     used: Vec<bool>,
 }
 
@@ -29,13 +31,22 @@ impl<'b> Fields<'b> {
             what: what.into(),
             entries: &block.entries,
             known: known.to_vec(),
+            dims: Vec::new(),
             used: vec![false; block.entries.len()],
         }
     }
 
-    /// Starts reading `block` through a key table.
+    /// Starts reading `block` through a key table (numbers are checked
+    /// against the keys' dimensions).
     pub fn keyed(block: &'b Block, what: impl Into<String>, keys: &[Key]) -> Self {
-        Self::new(block, what, &crate::keys::names(keys))
+        let mut f = Self::new(block, what, &crate::keys::names(keys));
+        f.dims = keys.iter().map(|k| (k.name, k.dim)).collect();
+        f
+    }
+
+    /// The declared dimension of `key`.
+    pub fn dim(&self, key: &str) -> Option<Dim> {
+        self.dims.iter().find(|(k, _)| *k == key).map(|(_, d)| *d)
     }
 
     /// How the block is called in messages.
@@ -118,7 +129,7 @@ impl<'b> Fields<'b> {
     /// `key = <number>`.
     pub fn number(&mut self, key: &str, diags: &mut Diags) -> Option<Spanned<f64>> {
         let v = self.value(key, diags)?;
-        values::number(v, diags)
+        values::number_of(v, self.dim(key), &format!("`{key}`"), diags)
     }
 
     /// `key = <whole number>`.
@@ -148,7 +159,7 @@ impl<'b> Fields<'b> {
     /// `key = <time function>`.
     pub fn time_fn(&mut self, key: &str, diags: &mut Diags) -> Option<Spanned<TimeFn>> {
         let v = self.value(key, diags)?;
-        values::time_fn(v, diags)
+        values::time_fn_of(v, self.dim(key), diags)
     }
 
     /// `key = <grading>`.
@@ -213,10 +224,15 @@ impl<'b> Fields<'b> {
         }
     }
 
-    /// Reports every entry no one asked for as an unknown key.
+    /// Reports every entry no one asked for as an unknown key (a bare word
+    /// right after a number on its line is an unknown unit: `E = 210 GPaa`).
     pub fn finish(self, diags: &mut Diags) {
-        for (e, used) in self.entries.iter().zip(&self.used) {
+        for (i, (e, used)) in self.entries.iter().zip(&self.used).enumerate() {
             if *used {
+                continue;
+            }
+            if let Some(d) = unknown_unit(self.entries, i) {
+                diags.push(d);
                 continue;
             }
             let help = match closest(&e.key.name, &self.known) {
@@ -234,6 +250,36 @@ impl<'b> Fields<'b> {
             );
         }
     }
+}
+
+/// `key = <number> word`: `word` was meant as a unit.
+fn unknown_unit(entries: &[Entry], i: usize) -> Option<Diagnostic> {
+    let e = &entries[i];
+    if !matches!(e.body, EntryBody::Flag) || i == 0 {
+        return None;
+    }
+    let EntryBody::Assign(v) = &entries[i - 1].body else {
+        return None;
+    };
+    let numeric = matches!(
+        v.kind,
+        crate::ast::syntax::ValueKind::Number(_) | crate::ast::syntax::ValueKind::Quantity { .. }
+    );
+    // on the same line, separated by blanks only
+    let gap = e.key.span.start.checked_sub(v.span.end)?;
+    if !numeric || gap == 0 || gap > 4 {
+        return None;
+    }
+    let names: Vec<&str> = crate::units::ATOMS.iter().map(|a| a.name).collect();
+    let suggestion = closest(&e.key.name, &names)?;
+    Some(
+        Diagnostic::error(
+            format!("unknown unit `{}`", e.key.name),
+            e.key.span,
+            "not a unit",
+        )
+        .with_help(format!("did you mean `{suggestion}`?")),
+    )
 }
 
 #[cfg(test)]

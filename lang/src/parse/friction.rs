@@ -61,11 +61,7 @@ pub fn parse(v: &Value, diags: &mut Diags) -> Option<Spanned<Friction>> {
         );
         return None;
     }
-    let mut f = Fields::new(
-        block,
-        "`coulomb` block",
-        &["mu", "stiffness", "first_impact", "cut_at_impact"],
-    );
+    let mut f = Fields::keyed(block, "`coulomb` block", &crate::tables::COULOMB);
     let mu = f.number("mu", diags);
     let stiffness = f.number("stiffness", diags);
     let first_impact = f.choice(

@@ -23,7 +23,7 @@ pub const HARDENINGS: [&str; 3] = ["linear", "swift", "voce"];
 
 /// `E` and `nu` of an `elastic` or `neo_hookean` block.
 fn elastic(b: &Block, what: &str, diags: &mut Diags) -> Elastic {
-    let mut e = Fields::new(b, format!("`{what}` block"), &["E", "nu"]);
+    let mut e = Fields::keyed(b, format!("`{what}` block"), &crate::tables::ELASTIC);
     let young = e.number("E", diags);
     let poisson = e.number("nu", diags);
     e.require(
@@ -59,7 +59,7 @@ fn neo_hookean(b: &Block, diags: &mut Diags) -> Elastic {
     if !uses_moduli {
         return elastic(b, "neo_hookean", diags);
     }
-    let mut e = Fields::new(b, "`neo_hookean` block", &["mu", "kappa"]);
+    let mut e = Fields::keyed(b, "`neo_hookean` block", &crate::tables::NEO_HOOKEAN_MODULI);
     let mu = e.number("mu", diags);
     let kappa = e.number("kappa", diags);
     e.require(&mu, "mu", b.span, "add the shear modulus `mu = ..`", diags);
@@ -110,7 +110,11 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
     };
     let law = match name.name.as_str() {
         "linear" => {
-            let mut f = Fields::new(block, "`linear` hardening", &["H"]);
+            let mut f = Fields::keyed(
+                block,
+                "`linear` hardening",
+                &crate::tables::LINEAR_HARDENING,
+            );
             let modulus = f.number("H", diags);
             f.require(
                 &modulus,
@@ -123,7 +127,7 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
             Hardening::Linear { modulus }
         }
         "swift" => {
-            let mut f = Fields::new(block, "`swift` hardening", &["K", "eps0", "n"]);
+            let mut f = Fields::keyed(block, "`swift` hardening", &crate::tables::SWIFT_HARDENING);
             let k = f.number("K", diags);
             let eps0 = f.number("eps0", diags);
             let n = f.number("n", diags);
@@ -140,7 +144,7 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
             Hardening::Swift { k, eps0, n }
         }
         "voce" => {
-            let mut f = Fields::new(block, "`voce` hardening", &["sigma_inf", "delta"]);
+            let mut f = Fields::keyed(block, "`voce` hardening", &crate::tables::VOCE_HARDENING);
             let sigma_inf = f.number("sigma_inf", diags);
             let delta = f.number("delta", diags);
             f.require(
@@ -182,23 +186,17 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
     let name = item.name?;
     let block = item.block?;
-    let mut f = Fields::new(
+    let mut f = Fields::keyed(
         &block,
         format!("material `{}`", name.name),
-        &[
-            "elastic",
-            "neo_hookean",
-            "plastic",
-            "viscoplastic",
-            "thermal",
-        ],
+        &crate::tables::MATERIAL,
     );
     let elastic_block = f
         .block("elastic", diags)
         .map(|b| elastic(b, "elastic", diags));
     let neo_hookean = f.block("neo_hookean", diags).map(|b| neo_hookean(b, diags));
     let plastic = f.block("plastic", diags).map(|b| {
-        let mut p = Fields::new(b, "`plastic` block", &["yield", "hardening"]);
+        let mut p = Fields::keyed(b, "`plastic` block", &crate::tables::PLASTIC);
         let yield_stress = p.number("yield", diags);
         let hardening = p
             .value("hardening", diags)
@@ -211,7 +209,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         }
     });
     let viscoplastic = f.block("viscoplastic", diags).map(|b| {
-        let mut p = Fields::new(b, "`viscoplastic` block", &["eta"]);
+        let mut p = Fields::keyed(b, "`viscoplastic` block", &crate::tables::VISCOPLASTIC);
         let eta = p.number("eta", diags);
         p.require(
             &eta,

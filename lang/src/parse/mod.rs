@@ -54,6 +54,9 @@ pub const ITEM_KEYWORDS: [&str; 12] = [
     "force", "step", "output",
 ];
 
+/// Keywords that start a chunk of error recovery besides the items.
+pub const CHUNK_KEYWORDS: [&str; 5] = ["let", "include", "temperature", "heat_flux", "convection"];
+
 /// Deepest bracket nesting accepted (deeper decks are certainly mistakes,
 /// and recursion depth must stay bounded).
 pub const MAX_NESTING: usize = 32;
@@ -96,7 +99,7 @@ impl ItemParts {
                     parts.keyword_text = p.as_str().to_string();
                 }
                 Rule::name => parts.names.push(syntax::ident(p)),
-                Rule::call | Rule::path => parts.target = Some(syntax::value(p)),
+                Rule::call | Rule::path | Rule::set_expr => parts.target = Some(syntax::value(p)),
                 Rule::value => parts.value = Some(syntax::value(p)),
                 Rule::block => parts.block = Some(syntax::block(p)),
                 Rule::master => {
@@ -126,25 +129,41 @@ impl ItemParts {
 /// understood) and the diagnostics found on the way.
 pub fn parse(text: &str) -> (Deck, Vec<Diagnostic>) {
     let mut deck = Deck::default();
-    let mut diags = Vec::new();
+    let mut diags = Diags::new();
     if let Some(d) = nesting_error(text) {
         return (deck, vec![d]);
     }
     match CtcParser::parse(Rule::deck, text) {
         Ok(pairs) => {
-            for pair in pairs.flatten().filter(|p| is_item(p.as_rule())) {
-                convert_item(pair, &mut deck, &mut diags);
-            }
+            let items: Vec<Pair<'_, Rule>> =
+                pairs.flatten().filter(|p| is_item(p.as_rule())).collect();
+            convert_items(items, &mut deck, &mut diags);
         }
         Err(whole) => recover(text, &whole, &mut deck, &mut diags),
     }
-    (deck, diags)
+    (deck, diags.into_vec())
+}
+
+/// Converts items in deck order, except that the unit system of the
+/// `analysis` block is read first (every number of the deck is in it).
+fn convert_items(items: Vec<Pair<'_, Rule>>, deck: &mut Deck, diags: &mut Diags) {
+    if diags.env.system.is_none() {
+        diags.env.system = items
+            .iter()
+            .filter(|p| p.as_rule() == Rule::analysis)
+            .find_map(|p| analysis::unit_system(p.clone()));
+    }
+    for pair in items {
+        convert_item(pair, deck, diags);
+    }
 }
 
 fn is_item(rule: Rule) -> bool {
     matches!(
         rule,
-        Rule::analysis
+        Rule::let_item
+            | Rule::include_item
+            | Rule::analysis
             | Rule::material
             | Rule::body
             | Rule::set
@@ -163,6 +182,12 @@ fn is_item(rule: Rule) -> bool {
 /// Converts one item pair into the deck.
 fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
     let rule = pair.as_rule();
+    match rule {
+        Rule::let_item => return let_item(pair, deck, diags),
+        // the included text follows the statement (inserted by `Source`)
+        Rule::include_item => return,
+        _ => {}
+    }
     let parts = ItemParts::of(pair);
     let broken = BrokenItem {
         keyword: parts.keyword_text.clone(),
@@ -197,6 +222,47 @@ fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
     if ok.is_none() {
         deck.broken.push(broken);
     }
+}
+
+/// `let name = expression`: evaluates the expression now (parameters are
+/// known to the items after it) and records it.
+fn let_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
+    let span = Span::of(pair.as_span());
+    let mut inner = pair.into_inner().skip(1);
+    let (Some(n), Some(v)) = (inner.next(), inner.next()) else {
+        return;
+    };
+    let name = syntax::ident(n);
+    let value = syntax::value(v);
+    if let Some(first) = deck.lets.iter().find(|l| l.name.name == name.name) {
+        diags.push(
+            Diagnostic::error(
+                format!("parameter `{}` is defined twice", name.name),
+                name.span,
+                "second definition",
+            )
+            .with_secondary(first.name.span, "first definition")
+            .with_help("a parameter is defined once; rename one of them"),
+        );
+        return;
+    }
+    if crate::expr::RESERVED.contains(&name.name.as_str()) {
+        diags.push(
+            Diagnostic::error(
+                format!("`{}` is a built-in name", name.name),
+                name.span,
+                "reserved",
+            )
+            .with_help("choose another parameter name"),
+        );
+        return;
+    }
+    let (env, out) = diags.split();
+    let q = crate::expr::eval(&value, env, out);
+    if let Some(q) = q {
+        diags.env.params.push((name.clone(), q));
+    }
+    deck.lets.push(crate::ast::Let { name, value, span });
 }
 
 /// `materal steel { .. }`: an unknown item keyword.
@@ -238,9 +304,9 @@ fn recover(text: &str, whole: &pest::error::Error<Rule>, deck: &mut Deck, diags:
         let padded = pad(text, start, end);
         match CtcParser::parse(Rule::items, &padded) {
             Ok(pairs) => {
-                for pair in pairs.flatten().filter(|p| is_item(p.as_rule())) {
-                    convert_item(pair, deck, diags);
-                }
+                let items: Vec<Pair<'_, Rule>> =
+                    pairs.flatten().filter(|p| is_item(p.as_rule())).collect();
+                convert_items(items, deck, diags);
             }
             Err(e) => {
                 failed += 1;
@@ -296,7 +362,7 @@ pub fn chunks(text: &str) -> Vec<(usize, usize)> {
             .chars()
             .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
             .collect();
-        if ITEM_KEYWORDS.contains(&word.as_str()) {
+        if ITEM_KEYWORDS.contains(&word.as_str()) || CHUNK_KEYWORDS.contains(&word.as_str()) {
             let after = trimmed[word.len()..].trim_start();
             if !after.starts_with('=') && offset + indent > 0 {
                 starts.push(offset + indent);

@@ -24,7 +24,7 @@ const HISTORIES: [&str; 3] = ["reaction", "displacement", "contact_force"];
 /// Converts an `output` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Output> {
     let block = item.block?;
-    let mut f = Fields::new(&block, "`output` block", &["every", "fields", "history"]);
+    let mut f = Fields::keyed(&block, "`output` block", &crate::tables::OUTPUT);
     let every = f.integer("every", diags);
     let fields = f.value("fields", diags).and_then(|v| {
         let items = values::list(v, "a list of fields `[displacement, stress, ..]`", diags)?;

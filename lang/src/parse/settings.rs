@@ -69,11 +69,16 @@ fn tuple<'v>(
     }
 }
 
+/// A number of `key`'s dimension.
+fn number(v: &Value, key: &Key, diags: &mut Diags) -> Option<Spanned<f64>> {
+    values::number_of(v, Some(key.dim), &format!("`{}`", key.name), diags)
+}
+
 /// Reads one value by its key's type.
 pub fn setting(v: &Value, key: &Key, diags: &mut Diags) -> Option<Spanned<SettingValue>> {
     let expected = key.ty.describe();
     let value = match key.ty {
-        KeyType::Number => SettingValue::Number(values::number(v, diags)?.value),
+        KeyType::Number => SettingValue::Number(number(v, key, diags)?.value),
         KeyType::Integer => SettingValue::Integer(values::integer(v, diags)?.value),
         KeyType::Bool => SettingValue::Bool(values::boolean(v, diags)?.value),
         KeyType::Choice(names) => {
@@ -85,13 +90,13 @@ pub fn setting(v: &Value, key: &Key, diags: &mut Diags) -> Option<Spanned<Settin
             let items = tuple(v, c, &expected, diags)?;
             let mut xs = Vec::new();
             for x in items {
-                xs.push(values::number(x, diags)?);
+                xs.push(number(x, key, diags)?);
             }
             SettingValue::Numbers(xs)
         }
         KeyType::Numbers(c) => {
             let items = tuple(v, c, &expected, diags)?;
-            let xs: Vec<_> = items.iter().map(|x| values::number(x, diags)).collect();
+            let xs: Vec<_> = items.iter().map(|x| number(x, key, diags)).collect();
             SettingValue::Numbers(xs.into_iter().collect::<Option<Vec<_>>>()?)
         }
         KeyType::Integers(c) => {

@@ -15,11 +15,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
         Some(n) => format!("step `{}`", n.name),
         None => "`step` block".to_string(),
     };
-    let mut f = Fields::new(
-        &block,
-        what,
-        &["time", "increments", "min_increment", "newton"],
-    );
+    let mut f = Fields::keyed(&block, what, &crate::tables::STEP);
     let time = f.value("time", diags).and_then(|v| match &v.kind {
         ValueKind::Range(a, b) => {
             let t0 = values::number(a, diags);
@@ -41,11 +37,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
     let increments = f.integer("increments", diags);
     let min_increment = f.number("min_increment", diags);
     let newton = f.block("newton", diags).map(|b| {
-        let mut n = Fields::new(
-            b,
-            "`newton` block",
-            &["tol", "tol_displacement", "max_iter", "line_search"],
-        );
+        let mut n = Fields::keyed(b, "`newton` block", &crate::tables::NEWTON);
         let out = Newton {
             tol: n.number("tol", diags),
             tol_displacement: n.number("tol_displacement", diags),

@@ -46,19 +46,10 @@ fn table(v: &Value, what: &str, diags: &mut Diags) -> Option<Spanned<Vec<(f64, f
 
 /// The `thermal` block of a material.
 pub fn material_block(b: &Block, diags: &mut Diags) -> MaterialThermal {
-    let mut f = Fields::new(
+    let mut f = Fields::keyed(
         b,
         "material `thermal` block",
-        &[
-            "conductivity",
-            "capacity",
-            "density",
-            "expansion",
-            "reference",
-            "taylor_quinney",
-            "young",
-            "yield",
-        ],
+        &crate::tables::MATERIAL_THERMAL,
     );
     let conductivity = f.number("conductivity", diags);
     let capacity = f.number("capacity", diags);
@@ -95,7 +86,7 @@ pub fn material_block(b: &Block, diags: &mut Diags) -> MaterialThermal {
 
 /// The `thermal` block of a body.
 pub fn body_block(b: &Block, diags: &mut Diags) -> BodyThermal {
-    let mut f = Fields::new(b, "body `thermal` block", &["initial"]);
+    let mut f = Fields::keyed(b, "body `thermal` block", &crate::tables::BODY_THERMAL);
     let initial = f.number("initial", diags);
     f.finish(diags);
     BodyThermal {
@@ -107,7 +98,11 @@ pub fn body_block(b: &Block, diags: &mut Diags) -> BodyThermal {
 fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<Conductance>> {
     let law = match &v.kind {
         ValueKind::Ctor { name, block } if name.name == "power" => {
-            let mut f = Fields::new(block, "`power` conductance", &["h0", "h1", "n"]);
+            let mut f = Fields::keyed(
+                block,
+                "`power` conductance",
+                &crate::tables::POWER_CONDUCTANCE,
+            );
             let h0 = f.number("h0", diags);
             let h1 = f.number("h1", diags);
             let n = f.number("n", diags);
@@ -137,16 +132,10 @@ fn conductance(v: &Value, diags: &mut Diags) -> Option<Spanned<Conductance>> {
 
 /// The `thermal` block of a contact.
 pub fn contact_block(b: &Block, diags: &mut Diags) -> ContactThermal {
-    let mut f = Fields::new(
+    let mut f = Fields::keyed(
         b,
         "contact `thermal` block",
-        &[
-            "conductance",
-            "gap_conductivity",
-            "gap_min",
-            "friction_split",
-            "tool_temperature",
-        ],
+        &crate::tables::CONTACT_THERMAL,
     );
     let conductance = f
         .value("conductance", diags)

@@ -25,7 +25,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
     let motion_block: Option<&Block>;
     let geometry = match kind.name.as_str() {
         "plane" => {
-            let mut f = Fields::new(&block, what, &["point", "normal", "motion"]);
+            let mut f = Fields::keyed(&block, what, &crate::tables::PLANE);
             let point = f.point("point", diags);
             let normal = f.point("normal", diags);
             motion_block = f.block("motion", diags);
@@ -41,7 +41,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
             ToolGeometry::Plane { point, normal }
         }
         "polyline" => {
-            let mut f = Fields::new(&block, what, &["points", "motion"]);
+            let mut f = Fields::keyed(&block, what, &crate::tables::POLYLINE);
             let points = f
                 .value("points", diags)
                 .and_then(|v| values::point_list(v, diags));
@@ -57,11 +57,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
             ToolGeometry::Polyline { points }
         }
         "arc" => {
-            let mut f = Fields::new(
-                &block,
-                what,
-                &["center", "radius", "start", "end", "motion"],
-            );
+            let mut f = Fields::keyed(&block, what, &crate::tables::ARC);
             let center = f.point("center", diags);
             let radius = f.number("radius", diags);
             let start = f.number("start", diags);
@@ -86,7 +82,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
             }
         }
         "circle" => {
-            let mut f = Fields::new(&block, what, &["center", "radius", "side", "motion"]);
+            let mut f = Fields::keyed(&block, what, &crate::tables::CIRCLE);
             let center = f.point("center", diags);
             let radius = f.number("radius", diags);
             let side = f.choice("side", "side", &SIDES, diags);
@@ -101,11 +97,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
             }
         }
         "nurbs" => {
-            let mut f = Fields::new(
-                &block,
-                what,
-                &["degree", "points", "weights", "knots", "motion"],
-            );
+            let mut f = Fields::keyed(&block, what, &crate::tables::NURBS);
             let degree = f.integer("degree", diags);
             let points = f
                 .value("points", diags)
@@ -154,7 +146,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
         }
     };
     let motion = motion_block.map(|b| {
-        let mut f = Fields::new(b, "`motion` block", &["ux", "uy", "rotation", "center"]);
+        let mut f = Fields::keyed(b, "`motion` block", &crate::tables::MOTION);
         let m = Motion {
             ux: f.time_fn("ux", diags),
             uy: f.time_fn("uy", diags),

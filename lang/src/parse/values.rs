@@ -4,14 +4,53 @@
 //! Every function returns `None` after pushing a diagnostic when the value
 //! has the wrong shape, so that callers simply skip the field.
 
-use crate::ast::syntax::{path_text, Arg, ArgKind, Value, ValueKind};
+use crate::ast::syntax::{path_text, Arg, ArgKind, BinOp, Value, ValueKind};
 use crate::ast::{Grading, Point, Selection, SetRef, SetRefKind, TimeFn};
 use crate::diagnostics::Diagnostic;
+use crate::expr::Env;
+use crate::keys::Dim;
 use crate::span::{Ident, Span, Spanned};
 use crate::suggest::{did_you_mean, one_of};
 
-/// Diagnostics sink used by all conversions.
-pub type Diags = Vec<Diagnostic>;
+/// The diagnostics sink of all conversions, with the environment of
+/// expressions (`let` parameters, the unit system) they evaluate in.
+/// Dereferences to the list of diagnostics.
+#[derive(Debug, Clone, Default)]
+pub struct Diags {
+    list: Vec<Diagnostic>,
+    /// Parameters and unit system (see [`crate::expr`]).
+    pub env: Env,
+}
+
+impl Diags {
+    /// No diagnostics, an empty environment.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The diagnostics.
+    pub fn into_vec(self) -> Vec<Diagnostic> {
+        self.list
+    }
+
+    /// The environment and the diagnostics, borrowed separately.
+    pub fn split(&mut self) -> (&mut Env, &mut Vec<Diagnostic>) {
+        (&mut self.env, &mut self.list)
+    }
+}
+
+impl std::ops::Deref for Diags {
+    type Target = Vec<Diagnostic>;
+    fn deref(&self) -> &Vec<Diagnostic> {
+        &self.list
+    }
+}
+
+impl std::ops::DerefMut for Diags {
+    fn deref_mut(&mut self) -> &mut Vec<Diagnostic> {
+        &mut self.list
+    }
+}
 
 fn wrong(v: &Value, expected: &str, diags: &mut Diags) {
     diags.push(Diagnostic::error(
@@ -21,8 +60,20 @@ fn wrong(v: &Value, expected: &str, diags: &mut Diags) {
     ));
 }
 
-/// A finite number.
+/// A finite number (an expression, possibly with units), of a key whose
+/// dimension is not declared.
 pub fn number(v: &Value, diags: &mut Diags) -> Option<Spanned<f64>> {
+    number_of(v, None, "this value", diags)
+}
+
+/// A finite number of dimension `dim` (for a key called `what` in
+/// messages), converted into the deck's unit system.
+pub fn number_of(
+    v: &Value,
+    dim: Option<Dim>,
+    what: &str,
+    diags: &mut Diags,
+) -> Option<Spanned<f64>> {
     match v.kind {
         ValueKind::Number(x) if x.is_finite() => Some(Spanned::new(x, v.span)),
         ValueKind::Number(_) => {
@@ -33,6 +84,12 @@ pub fn number(v: &Value, diags: &mut Diags) -> Option<Spanned<f64>> {
             ));
             None
         }
+        ValueKind::Quantity { .. }
+        | ValueKind::Binary { .. }
+        | ValueKind::Neg(_)
+        | ValueKind::Call { .. } => evaluate(v, dim, what, diags),
+        ValueKind::Path(ref p) if p.len() == 1 => evaluate(v, dim, what, diags),
+        ValueKind::Tuple(ref items) if items.len() == 1 => evaluate(v, dim, what, diags),
         _ => {
             wrong(v, "a number", diags);
             None
@@ -40,9 +97,17 @@ pub fn number(v: &Value, diags: &mut Diags) -> Option<Spanned<f64>> {
     }
 }
 
+fn evaluate(v: &Value, dim: Option<Dim>, what: &str, diags: &mut Diags) -> Option<Spanned<f64>> {
+    let (env, out) = diags.split();
+    let q = crate::expr::eval(v, env, out)?;
+    let expected = dim.and_then(Dim::exponents);
+    let degrees = dim == Some(Dim::AngleDegrees);
+    crate::expr::in_system(q, expected, degrees, what, v.span, env, out)
+}
+
 /// A whole number (written without fraction, e.g. `20`, `1e3`).
 pub fn integer(v: &Value, diags: &mut Diags) -> Option<Spanned<i64>> {
-    let x = number(v, diags)?;
+    let x = number_of(v, Some(Dim::None), "a count", diags)?;
     if x.value.fract() != 0.0 || x.value.abs() > 9.0e15 {
         diags.push(Diagnostic::error(
             format!("expected a whole number, found `{}`", x.value),
@@ -220,8 +285,25 @@ const TIME_FN_HELP: &str = "a time function is a number, `constant(v)`, `ramp(v0
 /// A time function: a number, `constant(v)`, `ramp(v0, v1)`,
 /// `ramp(v0, v1, t0, t1)` or `table((t, v), ..)`.
 pub fn time_fn(v: &Value, diags: &mut Diags) -> Option<Spanned<TimeFn>> {
-    if let ValueKind::Number(_) = v.kind {
-        return number(v, diags).map(|x| Spanned::new(TimeFn::Number(x.value), v.span));
+    time_fn_of(v, None, diags)
+}
+
+/// A time function whose values have dimension `dim` (a number, an
+/// expression, or `constant`/`ramp`/`table` of them).
+pub fn time_fn_of(v: &Value, dim: Option<Dim>, diags: &mut Diags) -> Option<Spanned<TimeFn>> {
+    let num = |x: &Value, diags: &mut Diags| number_of(x, dim, "this value", diags);
+    let is_number = match &v.kind {
+        ValueKind::Number(_)
+        | ValueKind::Quantity { .. }
+        | ValueKind::Binary { .. }
+        | ValueKind::Neg(_) => true,
+        ValueKind::Path(p) => p.len() == 1,
+        ValueKind::Tuple(items) => items.len() == 1,
+        ValueKind::Call { path, .. } => path.len() == 1 && crate::expr::is_function(&path[0].name),
+        _ => false,
+    };
+    if is_number {
+        return num(v, diags).map(|x| Spanned::new(TimeFn::Number(x.value), v.span));
     }
     let Some((name, args)) = simple_call(v) else {
         diags.push(
@@ -241,14 +323,25 @@ pub fn time_fn(v: &Value, diags: &mut Diags) -> Option<Spanned<TimeFn>> {
                 arity(name, v.span, args.len(), "1 argument", diags);
                 return None;
             }
-            TimeFn::Constant(number(args[0], diags)?.value)
+            TimeFn::Constant(num(args[0], diags)?.value)
         }
         "ramp" => {
             if args.len() != 2 && args.len() != 4 {
                 arity(name, v.span, args.len(), "2 or 4 arguments", diags);
                 return None;
             }
-            let nums: Vec<Option<Spanned<f64>>> = args.iter().map(|a| number(a, diags)).collect();
+            let nums: Vec<Option<Spanned<f64>>> = args
+                .iter()
+                .enumerate()
+                .map(|(i, a)| {
+                    // the window (t0, t1) is a time
+                    if i >= 2 {
+                        number_of(a, Some(Dim::Time), "a time", diags)
+                    } else {
+                        num(a, diags)
+                    }
+                })
+                .collect();
             let nums: Option<Vec<Spanned<f64>>> = nums.into_iter().collect();
             let nums = nums?;
             TimeFn::Ramp {
@@ -265,8 +358,8 @@ pub fn time_fn(v: &Value, diags: &mut Diags) -> Option<Spanned<TimeFn>> {
             let mut pts = Vec::new();
             for a in args {
                 let [t, x] = pair_of(a, "a point `(t, v)`", diags)?;
-                let t = number(t, diags)?;
-                let x = number(x, diags)?;
+                let t = number_of(t, Some(Dim::Time), "a time", diags)?;
+                let x = num(x, diags)?;
                 pts.push(Spanned::new((t.value, x.value), a.span));
             }
             TimeFn::Table(pts)
@@ -344,8 +437,77 @@ const SETREF_HELP: &str = "a set reference is `body.set`, `body.nodes(x = ..)`, 
 or `body.edges(..)`";
 
 /// A set reference: `body.set`, `body.nodes(..)`, `body.node(near(..))`,
-/// `body.edges(..)`.
+/// `body.edges(..)`, or a union / difference of references to one body
+/// (`a.top + a.side - a.corner_tl`).
 pub fn set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
+    if let ValueKind::Binary { op, .. } = &v.kind {
+        if matches!(op, BinOp::Add | BinOp::Sub) {
+            return set_combination(v, diags);
+        }
+    }
+    if let ValueKind::Tuple(items) = &v.kind {
+        if items.len() == 1 {
+            return set_ref(&items[0], diags);
+        }
+    }
+    single_set_ref(v, diags)
+}
+
+/// Flattens `a + b - c` into signed terms.
+fn set_terms<'v>(v: &'v Value, add: bool, out: &mut Vec<(bool, &'v Value)>) {
+    match &v.kind {
+        ValueKind::Binary {
+            op: op @ (BinOp::Add | BinOp::Sub),
+            lhs,
+            rhs,
+            ..
+        } => {
+            set_terms(lhs, add, out);
+            set_terms(rhs, if *op == BinOp::Add { add } else { !add }, out);
+        }
+        ValueKind::Tuple(items) if items.len() == 1 => set_terms(&items[0], add, out),
+        _ => out.push((add, v)),
+    }
+}
+
+fn set_combination(v: &Value, diags: &mut Diags) -> Option<SetRef> {
+    let mut terms = Vec::new();
+    set_terms(v, true, &mut terms);
+    let refs: Vec<Option<(bool, SetRef)>> = terms
+        .iter()
+        .map(|(add, t)| single_set_ref(t, diags).map(|r| (*add, r)))
+        .collect();
+    let refs: Vec<(bool, SetRef)> = refs.into_iter().collect::<Option<_>>()?;
+    let body = refs[0].1.body.clone();
+    if let Some((_, other)) = refs.iter().find(|(_, r)| r.body.name != body.name) {
+        diags.push(
+            Diagnostic::error(
+                "a set combines sets of one body",
+                other.body.span,
+                format!("body `{}`, not `{}`", other.body.name, body.name),
+            )
+            .with_secondary(refs[0].1.body.span, format!("body `{}`", body.name))
+            .with_help("combine sets of the same body; each body needs its own item"),
+        );
+        return None;
+    }
+    if !refs[0].0 {
+        diags.push(Diagnostic::error(
+            "a set combination starts with the set to remove from",
+            v.span,
+            "starts with `-`",
+        ));
+        return None;
+    }
+    Some(SetRef {
+        body,
+        kind: SetRefKind::Combination(refs),
+        span: v.span,
+    })
+}
+
+/// A set reference that is not a combination.
+fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
     let bad = |diags: &mut Diags, found: &str| {
         diags.push(
             Diagnostic::error(

@@ -52,6 +52,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
 /// where `need` asks for them; returns the kind of the set when known.
 /// `user` names the item in messages.
 pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<SetKind> {
+    if let SetRefKind::Combination(terms) = &r.kind {
+        return combination(r, terms, need, user, ctx);
+    }
     let deck = ctx.deck;
     let body = &r.body.name;
     let Some(info) = ctx.bodies.get(body) else {
@@ -71,6 +74,7 @@ pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<
     let kind = match &r.kind {
         SetRefKind::Nodes(_) | SetRefKind::Node(_) => Some(SetKind::Nodes),
         SetRefKind::Edges(_) => Some(SetKind::Edges),
+        SetRefKind::Combination(_) => None,
         SetRefKind::Named(n) => {
             let found = info
                 .deck_sets
@@ -115,6 +119,47 @@ pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<
         );
     }
     kind
+}
+
+/// A union / difference: every term must exist; it has edges when every
+/// term has edges (removing a node set leaves nodes only).
+fn combination(
+    r: &SetRef,
+    terms: &[(bool, SetRef)],
+    need: Need,
+    user: &str,
+    ctx: &mut Ctx<'_>,
+) -> Option<SetKind> {
+    let mut kinds = Vec::new();
+    for (_, t) in terms {
+        kinds.push(set_ref(t, Need::Nodes, user, ctx));
+    }
+    if kinds.iter().any(Option::is_none) {
+        return None;
+    }
+    let kind = if kinds.iter().all(|k| *k == Some(SetKind::Edges)) {
+        SetKind::Edges
+    } else {
+        SetKind::Nodes
+    };
+    if need == Need::Edges && kind == SetKind::Nodes {
+        let (_, nodes_only) = terms
+            .iter()
+            .zip(&kinds)
+            .find(|(_, k)| **k == Some(SetKind::Nodes))
+            .map(|(t, _)| t)
+            .expect("a node-only term");
+        ctx.err(
+            Diagnostic::error(
+                format!("`{user}` needs boundary edges, but `{r}` is a set of nodes"),
+                r.span,
+                "nodes only",
+            )
+            .with_secondary(nodes_only.span, "a set of nodes")
+            .with_help("every set of the combination must have edges"),
+        );
+    }
+    Some(kind)
 }
 
 #[cfg(test)]

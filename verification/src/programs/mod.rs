@@ -4,7 +4,10 @@
 //! comparisons with other codes. Each file opens with its reference and
 //! registers its cases in [`all`]; the cargo tests run the same entries.
 
+pub mod cattaneo;
+pub mod fenicsx;
 pub mod thermal_contact;
+pub mod thermal_coupling;
 
 use crate::case::Quantity;
 use crate::measure::Value;
@@ -14,7 +17,16 @@ use std::path::{Path, PathBuf};
 
 /// Every program case, in report order.
 pub fn all() -> Vec<VerifyCase> {
-    thermal_contact::cases()
+    let mut v = thermal_contact::cases();
+    v.extend(thermal_coupling::cases());
+    v.extend(cattaneo::cases());
+    v.extend(fenicsx::cases());
+    v
+}
+
+/// The example decks' directory (`examples/` of the repository).
+pub fn examples_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../examples")
 }
 
 /// The verification decks' directory (`cases/` of this crate).

@@ -21,11 +21,11 @@
 
 use super::corner::{corner, end_cap};
 use super::{finite, Projection};
-use crate::contact::aabb::Aabb;
 use crate::contact::vec2::{cross, dot, left, norm, scale, sub, unit};
+use crate::geom::Aabb;
 
 /// Highest supported degree (keeps the basis evaluation on the stack).
-pub const MAX_DEGREE: usize = 15;
+pub const MAX_DEGREE: usize = ctc_geom::nurbs::basis::MAX_DEGREE;
 
 /// A NURBS curve prepared for projection.
 #[derive(Debug, Clone, PartialEq)]
@@ -43,7 +43,7 @@ pub struct Nurbs {
     /// Whether the curve's end point coincides with its start point.
     pub closed: bool,
     /// Bounding box of each span (convex hull of its control points).
-    boxes: Vec<Aabb>,
+    boxes: Vec<Aabb<2>>,
     /// One-sided unit normal at the start of each span.
     start_normals: Vec<[f64; 2]>,
     /// One-sided unit normal at the end of each span.
@@ -183,7 +183,7 @@ impl Nurbs {
     }
 
     /// Bounding box of span `s`.
-    pub fn bounding_box(&self, s: usize) -> Aabb {
+    pub fn bounding_box(&self, s: usize) -> Aabb<2> {
         self.boxes[s]
     }
 
@@ -400,70 +400,10 @@ impl Nurbs {
 }
 
 /// Basis functions of degree `p` and their first two derivatives at `u`
-/// for knot span `k` (Piegl & Tiller, algorithm A2.3):
+/// for knot span `k` (Piegl & Tiller, algorithm A2.3, from `ctc-geom`):
 /// `ders[d][j]` is the `d`-th derivative of `N_{k-p+j, p}(u)`.
 fn basis_derivatives(k: usize, u: f64, p: usize, knots: &[f64]) -> [[f64; MAX_DEGREE + 1]; 3] {
-    const M: usize = MAX_DEGREE + 1;
-    let mut ndu = [[0.0f64; M]; M];
-    let mut left = [0.0f64; M];
-    let mut right = [0.0f64; M];
-    ndu[0][0] = 1.0;
-    for j in 1..=p {
-        left[j] = u - knots[k + 1 - j];
-        right[j] = knots[k + j] - u;
-        let mut saved = 0.0;
-        for r in 0..j {
-            ndu[j][r] = right[r + 1] + left[j - r];
-            let temp = ndu[r][j - 1] / ndu[j][r];
-            ndu[r][j] = saved + right[r + 1] * temp;
-            saved = left[j - r] * temp;
-        }
-        ndu[j][j] = saved;
-    }
-    let mut ders = [[0.0f64; M]; 3];
-    for j in 0..=p {
-        ders[0][j] = ndu[j][p];
-    }
-    let nd = 2.min(p);
-    let mut a = [[0.0f64; M]; 2];
-    for r in 0..=p {
-        let (mut s1, mut s2) = (0usize, 1usize);
-        a[0][0] = 1.0;
-        for kk in 1..=nd {
-            let mut d = 0.0;
-            let rk = r as isize - kk as isize;
-            let pk = p - kk;
-            if r >= kk {
-                a[s2][0] = a[s1][0] / ndu[pk + 1][rk as usize];
-                d = a[s2][0] * ndu[rk as usize][pk];
-            }
-            let j1: usize = if rk >= -1 { 1 } else { (-rk) as usize };
-            let j2: usize = if r as isize - 1 <= pk as isize {
-                kk - 1
-            } else {
-                p - r
-            };
-            for j in j1..=j2 {
-                let idx = (rk + j as isize) as usize;
-                a[s2][j] = (a[s1][j] - a[s1][j - 1]) / ndu[pk + 1][idx];
-                d += a[s2][j] * ndu[idx][pk];
-            }
-            if r <= pk {
-                a[s2][kk] = -a[s1][kk - 1] / ndu[pk + 1][r];
-                d += a[s2][kk] * ndu[r][pk];
-            }
-            ders[kk][r] = d;
-            std::mem::swap(&mut s1, &mut s2);
-        }
-    }
-    let mut factor = p as f64;
-    for (kk, row) in ders.iter_mut().enumerate().skip(1).take(nd) {
-        for v in row.iter_mut().take(p + 1) {
-            *v *= factor;
-        }
-        factor *= (p - kk) as f64;
-    }
-    ders
+    ctc_geom::nurbs::basis::ders_basis(k, u, p, 2, knots)
 }
 
 #[cfg(test)]

@@ -1,0 +1,627 @@
+//! The key tables of every block of the deck language (mesh generators
+//! have theirs in [`crate::generators`]). The parser reads each block
+//! through its table (`Fields::keyed`), so the keyword reference printed
+//! by `ctc doc` and `docs/DECK.md` ([`crate::reference`]) is the parser's
+//! own list of keys, types, defaults, ranges and dimensions.
+
+use crate::keys::{Components, Default, Dim, Key, KeyType, Range};
+
+const P2: Components = Components::Two;
+
+/// `analysis { .. }`.
+pub static ANALYSIS: [Key; 3] = [
+    Key::new(
+        "dimension",
+        KeyType::Choice(&["plane_strain", "plane_stress", "axisymmetric", "3d"]),
+        "kind of analysis (axisymmetric: x = r, y = z, forces are totals over 2 pi; 3d reserved)",
+    )
+    .required("add `dimension = plane_strain` (or `plane_stress`, `axisymmetric`)"),
+    Key::new(
+        "thickness",
+        KeyType::Number,
+        "out-of-plane thickness (plane analyses)",
+    )
+    .default(Default::Number(1.0))
+    .range(Range::Positive)
+    .dim(Dim::Length),
+    Key::new(
+        "units",
+        KeyType::Choice(&["SI", "mm_N_s", "mm_kg_ms", "m_kg_s"]),
+        "unit system of every number; numbers with a unit (`210 GPa`) are converted into it",
+    ),
+];
+
+/// `elastic { .. }` and `neo_hookean { .. }` of a material.
+pub static ELASTIC: [Key; 2] = [
+    Key::new("E", KeyType::Number, "Young's modulus")
+        .required("add Young's modulus, e.g. `E = 210e3`")
+        .range(Range::Positive)
+        .dim(Dim::Stress),
+    Key::new("nu", KeyType::Number, "Poisson's ratio, in (-1, 0.5)")
+        .required("add Poisson's ratio, e.g. `nu = 0.3`")
+        .dim(Dim::None),
+];
+
+/// `neo_hookean { mu kappa }` (instead of `E nu`).
+pub static NEO_HOOKEAN_MODULI: [Key; 2] = [
+    Key::new("mu", KeyType::Number, "shear modulus")
+        .required("add the shear modulus `mu = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Stress),
+    Key::new("kappa", KeyType::Number, "bulk modulus")
+        .required("add the bulk modulus `kappa = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Stress),
+];
+
+/// `plastic { .. }`.
+pub static PLASTIC: [Key; 2] = [
+    Key::new(
+        "yield",
+        KeyType::Number,
+        "initial yield stress (not with `swift`)",
+    )
+    .range(Range::Positive)
+    .dim(Dim::Stress),
+    Key::new(
+        "hardening",
+        KeyType::Choice(&[
+            "linear { H }",
+            "swift { K eps0 n }",
+            "voce { sigma_inf delta }",
+        ]),
+        "isotropic hardening law (absent: perfect plasticity)",
+    ),
+];
+
+/// `linear { H }` hardening.
+pub static LINEAR_HARDENING: [Key; 1] = [Key::new("H", KeyType::Number, "plastic modulus")
+    .required("add the plastic modulus `H = ..`")
+    .range(Range::NonNegative)
+    .dim(Dim::Stress)];
+
+/// `swift { K eps0 n }` hardening: `sigma_y = K (eps0 + ep)^n`.
+pub static SWIFT_HARDENING: [Key; 3] = [
+    Key::new("K", KeyType::Number, "strength coefficient")
+        .required("add `K = ..` (sigma_y = K (eps0 + ep)^n)")
+        .range(Range::Positive)
+        .dim(Dim::Stress),
+    Key::new("eps0", KeyType::Number, "pre-strain")
+        .required("add `eps0 = ..`")
+        .range(Range::Positive)
+        .dim(Dim::None),
+    Key::new("n", KeyType::Number, "hardening exponent")
+        .required("add `n = ..`")
+        .range(Range::Closed(0.0, 1.0))
+        .dim(Dim::None),
+];
+
+/// `voce { sigma_inf delta }` hardening.
+pub static VOCE_HARDENING: [Key; 2] = [
+    Key::new("sigma_inf", KeyType::Number, "saturation stress (>= yield)")
+        .required("add the saturation stress `sigma_inf = ..`")
+        .dim(Dim::Stress),
+    Key::new("delta", KeyType::Number, "saturation rate")
+        .required("add the saturation rate `delta = ..`")
+        .range(Range::Positive)
+        .dim(Dim::None),
+];
+
+/// `viscoplastic { eta }` (Perzyna).
+pub static VISCOPLASTIC: [Key; 1] = [Key::new("eta", KeyType::Number, "Perzyna viscosity")
+    .required("add the Perzyna viscosity `eta = ..` (stress x time)")
+    .range(Range::Positive)
+    .dim(Dim::Viscosity)];
+
+/// `material NAME { .. }`.
+pub static MATERIAL: [Key; 5] = [
+    Key::new(
+        "elastic",
+        KeyType::Choice(&["{ E nu }"]),
+        "small-strain (Hencky at finite strain) elasticity",
+    ),
+    Key::new(
+        "neo_hookean",
+        KeyType::Choice(&["{ E nu }", "{ mu kappa }"]),
+        "Neo-Hookean hyperelasticity (needs `kinematics = finite`)",
+    ),
+    Key::new(
+        "plastic",
+        KeyType::Choice(&["{ yield hardening }"]),
+        "J2 plasticity",
+    ),
+    Key::new(
+        "viscoplastic",
+        KeyType::Choice(&["{ eta }"]),
+        "Perzyna viscoplasticity (with `plastic`)",
+    ),
+    Key::new(
+        "thermal",
+        KeyType::Choice(&["{ .. }"]),
+        "thermal properties (only decks with heat)",
+    ),
+];
+
+/// `body NAME { .. }`.
+pub static BODY: [Key; 5] = [
+    Key::new(
+        "mesh",
+        KeyType::Mesh,
+        "a generator (`rectangle { .. }`, ...) or `file \"part.msh\"` (gmsh, relative to the deck)",
+    )
+    .required("add e.g. `mesh = rectangle { size = (1, 1)  divisions = (10, 10) }`"),
+    Key::new(
+        "material",
+        KeyType::Choice(&["NAME"]),
+        "name of a `material`",
+    )
+    .required("add `material = <name of a material>`"),
+    Key::new(
+        "formulation",
+        KeyType::Choice(&["full", "selective_reduced"]),
+        "quad4 integration: full, or B-bar (small strain) / F-bar (finite strain)",
+    )
+    .default(Default::Choice("full")),
+    Key::new(
+        "kinematics",
+        KeyType::Choice(&["small", "finite"]),
+        "small strain, or total Lagrangian finite strain",
+    )
+    .default(Default::Choice("small")),
+    Key::new(
+        "thermal",
+        KeyType::Choice(&["{ initial }"]),
+        "initial temperature",
+    ),
+];
+
+/// `tool NAME = plane { .. }`.
+pub static PLANE: [Key; 3] = [
+    Key::new("point", KeyType::Point(P2), "a point of the line")
+        .required("add `point = (x, y)`")
+        .dim(Dim::Length),
+    Key::new(
+        "normal",
+        KeyType::Point(P2),
+        "normal towards the free side (nonzero)",
+    )
+    .required("add `normal = (nx, ny)` pointing to the free side"),
+    MOTION_KEY,
+];
+
+/// `tool NAME = polyline { .. }`.
+pub static POLYLINE: [Key; 2] = [
+    Key::new(
+        "points",
+        KeyType::Numbers(Components::Analysis),
+        "vertices `[(x0, y0), (x1, y1), ..]`; the free side is on the left of the walk",
+    )
+    .required("add `points = [(x0, y0), (x1, y1), ..]`")
+    .dim(Dim::Length),
+    MOTION_KEY,
+];
+
+/// `tool NAME = arc { .. }`.
+pub static ARC: [Key; 5] = [
+    Key::new("center", KeyType::Point(P2), "centre")
+        .required("add `center = (x, y)`")
+        .dim(Dim::Length),
+    Key::new("radius", KeyType::Number, "radius")
+        .required("add `radius = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    Key::new("start", KeyType::Number, "start angle")
+        .required("add `start = <angle in degrees>`")
+        .dim(Dim::AngleDegrees),
+    Key::new("end", KeyType::Number, "end angle (|end - start| <= 360)")
+        .required("add `end = <angle in degrees>`")
+        .dim(Dim::AngleDegrees),
+    MOTION_KEY,
+];
+
+/// `tool NAME = circle { .. }`.
+pub static CIRCLE: [Key; 4] = [
+    Key::new("center", KeyType::Point(P2), "centre")
+        .required("add `center = (x, y)`")
+        .dim(Dim::Length),
+    Key::new("radius", KeyType::Number, "radius")
+        .required("add `radius = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    Key::new(
+        "side",
+        KeyType::Choice(&["outside", "inside"]),
+        "where the bodies are",
+    )
+    .default(Default::Choice("outside")),
+    MOTION_KEY,
+];
+
+/// `tool NAME = nurbs { .. }`.
+pub static NURBS: [Key; 5] = [
+    Key::new("degree", KeyType::Integer, "polynomial degree")
+        .required("add `degree = 2` (or another degree >= 1)")
+        .range(Range::AtLeast(1)),
+    Key::new(
+        "points",
+        KeyType::Numbers(Components::Analysis),
+        "control points `[(x, y), ..]`",
+    )
+    .required("add `points = [(x0, y0), ..]` (the control points)")
+    .dim(Dim::Length),
+    Key::new(
+        "weights",
+        KeyType::Numbers(Components::Analysis),
+        "one positive weight per point",
+    )
+    .dim(Dim::None),
+    Key::new(
+        "knots",
+        KeyType::Numbers(Components::Analysis),
+        "non-decreasing knot vector (points + degree + 1); default open uniform",
+    ),
+    MOTION_KEY,
+];
+
+/// The `motion { .. }` key of every tool.
+const MOTION_KEY: Key = Key::new(
+    "motion",
+    KeyType::Choice(&["{ ux uy rotation center }"]),
+    "rigid motion: rotate about `center`, then translate",
+);
+
+/// `motion { .. }` of a tool.
+pub static MOTION: [Key; 4] = [
+    Key::new("ux", KeyType::Number, "translation along x (time function)").dim(Dim::Length),
+    Key::new("uy", KeyType::Number, "translation along y (time function)").dim(Dim::Length),
+    Key::new(
+        "rotation",
+        KeyType::Number,
+        "rotation, counter-clockwise (time function)",
+    )
+    .dim(Dim::AngleRadians),
+    Key::new(
+        "center",
+        KeyType::Point(P2),
+        "centre of rotation (default: the tool's reference point)",
+    )
+    .dim(Dim::Length),
+];
+
+/// `contact SLAVE -> MASTER { .. }`.
+pub static CONTACT: [Key; 6] = [
+    Key::new(
+        "method",
+        KeyType::Choice(&[
+            "penalty { .. }",
+            "lagrange { .. }",
+            "augmented_lagrange { .. }",
+        ]),
+        "enforcement of the normal contact condition",
+    )
+    .required("add `method = penalty { stiffness = .. }`"),
+    Key::new(
+        "prof",
+        KeyType::Number,
+        "search depth: nodes farther than this from the master are out of reach",
+    )
+    .range(Range::Positive)
+    .dim(Dim::Length),
+    Key::new(
+        "friction",
+        KeyType::Choice(&["coulomb { .. }"]),
+        "friction law (absent: frictionless)",
+    ),
+    Key::new(
+        "strategy",
+        KeyType::Choice(&["single_pass", "double_pass", "modified_double_pass"]),
+        "which side is the slave (deformable masters only)",
+    )
+    .default(Default::Choice("single_pass")),
+    Key::new(
+        "search",
+        KeyType::Choice(&["memory", "circle"]),
+        "local search of node-to-segment contact (Metafor memory, Cast3M circle)",
+    )
+    .default(Default::Choice("memory")),
+    Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),
+];
+
+/// `penalty { .. }`.
+pub static PENALTY: [Key; 2] = [
+    Key::new(
+        "kind",
+        KeyType::Choice(&["area", "nodal"]),
+        "area: pressure = stiffness x penetration (stiffness per area); nodal: force",
+    )
+    .default(Default::Choice("area")),
+    Key::new("stiffness", KeyType::Number, "penalty coefficient")
+        .required("add `stiffness = <penalty coefficient>`")
+        .range(Range::Positive),
+];
+
+/// `lagrange { .. }`.
+pub static LAGRANGE: [Key; 1] = [Key::new(
+    "formulation",
+    KeyType::Choice(&["single", "doubled"]),
+    "saddle point [K G^T; G 0], or doubled multipliers (lambda1, q, lambda2)",
+)
+.default(Default::Choice("single"))];
+
+/// `augmented_lagrange { .. }`.
+pub static AUGMENTED_LAGRANGE: [Key; 4] = [
+    Key::new(
+        "kind",
+        KeyType::Choice(&["area", "nodal"]),
+        "as for `penalty`",
+    )
+    .default(Default::Choice("area")),
+    Key::new("penalty", KeyType::Number, "penalty coefficient alpha")
+        .required("add `penalty = <penalty coefficient>`")
+        .range(Range::Positive),
+    Key::new("tolerance", KeyType::Number, "largest accepted penetration")
+        .required("add `tolerance = <largest accepted penetration>`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    Key::new(
+        "update",
+        KeyType::Choice(&["converged", "newton"]),
+        "Uzawa update after each converged Newton loop, or at every iteration",
+    )
+    .default(Default::Choice("converged")),
+];
+
+/// `friction = coulomb { .. }`.
+pub static COULOMB: [Key; 4] = [
+    Key::new("mu", KeyType::Number, "friction coefficient")
+        .required("add `mu = <friction coefficient>`")
+        .range(Range::NonNegative)
+        .dim(Dim::None),
+    Key::new(
+        "stiffness",
+        KeyType::Number,
+        "tangential penalty alpha_T (kind of the normal penalty; default alpha_N / 10)",
+    )
+    .range(Range::Positive),
+    Key::new(
+        "first_impact",
+        KeyType::Choice(&["intersect", "frictionless"]),
+        "stick point at first touch: the constant-velocity intersection, or no friction in that increment",
+    )
+    .default(Default::Choice("intersect")),
+    Key::new(
+        "cut_at_impact",
+        KeyType::Bool,
+        "cut an increment at the fraction where a node first touches",
+    )
+    .default(Default::Bool(false)),
+];
+
+/// `thermal { .. }` of a material.
+pub static MATERIAL_THERMAL: [Key; 8] = [
+    Key::new("conductivity", KeyType::Number, "thermal conductivity")
+        .required("add the thermal conductivity, e.g. `conductivity = 50`")
+        .range(Range::Positive)
+        .dim(Dim::Conductivity),
+    Key::new(
+        "capacity",
+        KeyType::Number,
+        "specific heat (rho c = 0: steady conduction)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::SpecificHeat),
+    Key::new("density", KeyType::Number, "mass density")
+        .default(Default::Number(0.0))
+        .range(Range::NonNegative)
+        .dim(Dim::Density),
+    Key::new(
+        "expansion",
+        KeyType::Number,
+        "thermal expansion coefficient",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Expansion),
+    Key::new(
+        "reference",
+        KeyType::Number,
+        "temperature of zero thermal strain",
+    )
+    .default(Default::Number(0.0))
+    .dim(Dim::Temperature),
+    Key::new(
+        "taylor_quinney",
+        KeyType::Number,
+        "share of plastic work turned into heat",
+    )
+    .default(Default::Number(0.9))
+    .range(Range::Closed(0.0, 1.0))
+    .dim(Dim::None),
+    Key::new(
+        "young",
+        KeyType::Number,
+        "factor of E: a number or `table((T, factor), ..)`",
+    )
+    .range(Range::Positive)
+    .dim(Dim::None),
+    Key::new(
+        "yield",
+        KeyType::Number,
+        "factor of the flow stress: a number or `table((T, factor), ..)`",
+    )
+    .range(Range::Positive)
+    .dim(Dim::None),
+];
+
+/// `thermal { .. }` of a body.
+pub static BODY_THERMAL: [Key; 1] = [Key::new("initial", KeyType::Number, "initial temperature")
+    .default(Default::Number(0.0))
+    .dim(Dim::Temperature)];
+
+/// `thermal { .. }` of a contact.
+pub static CONTACT_THERMAL: [Key; 5] = [
+    Key::new(
+        "conductance",
+        KeyType::Choice(&["h", "power { h0 h1 n }", "table((p, h), ..)"]),
+        "closed-gap conductance: constant, h0 + h1 p^n, or a table of the pressure",
+    )
+    .required("add e.g. `conductance = power { h0 = 1e3  h1 = 10  n = 1 }`"),
+    Key::new(
+        "gap_conductivity",
+        KeyType::Number,
+        "open gap: conductance k_gap / max(g, gap_min)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Conductivity),
+    Key::new(
+        "gap_min",
+        KeyType::Number,
+        "smallest gap of the gap conductance",
+    )
+    .default(Default::Number(1e-9))
+    .range(Range::Positive)
+    .dim(Dim::Length),
+    Key::new(
+        "friction_split",
+        KeyType::Number,
+        "share of the frictional heat going to the slave",
+    )
+    .default(Default::Number(0.5))
+    .range(Range::Closed(0.0, 1.0))
+    .dim(Dim::None),
+    Key::new(
+        "tool_temperature",
+        KeyType::Number,
+        "temperature of a rigid tool (time function; required with a tool)",
+    )
+    .dim(Dim::Temperature),
+];
+
+/// `power { .. }` conductance.
+pub static POWER_CONDUCTANCE: [Key; 3] = [
+    Key::new("h0", KeyType::Number, "conductance at zero pressure")
+        .default(Default::Number(0.0))
+        .range(Range::NonNegative)
+        .dim(Dim::HeatTransfer),
+    Key::new("h1", KeyType::Number, "coefficient of p^n")
+        .default(Default::Number(0.0))
+        .range(Range::NonNegative),
+    Key::new("n", KeyType::Number, "exponent")
+        .default(Default::Number(1.0))
+        .range(Range::Positive)
+        .dim(Dim::None),
+];
+
+/// `step NAME { .. }`.
+pub static STEP: [Key; 4] = [
+    Key::new(
+        "time",
+        KeyType::Numbers(P2),
+        "time range `t0 .. t1` (steps follow each other)",
+    )
+    .required("add e.g. `time = 0 .. 1`")
+    .dim(Dim::Time),
+    Key::new("increments", KeyType::Integer, "number of equal increments")
+        .default(Default::Integer(1))
+        .range(Range::AtLeast(1)),
+    Key::new(
+        "min_increment",
+        KeyType::Number,
+        "smallest cutback increment as a fraction of the initial one, in (0, 1]",
+    )
+    .default(Default::Number(1.0 / 1024.0))
+    .dim(Dim::None),
+    Key::new(
+        "newton",
+        KeyType::Choice(&["{ tol tol_displacement max_iter line_search }"]),
+        "Newton settings",
+    ),
+];
+
+/// `newton { .. }` of a step.
+pub static NEWTON: [Key; 4] = [
+    Key::new("tol", KeyType::Number, "relative residual tolerance")
+        .default(Default::Number(1e-8))
+        .range(Range::Positive)
+        .dim(Dim::None),
+    Key::new(
+        "tol_displacement",
+        KeyType::Number,
+        "relative displacement-correction tolerance",
+    )
+    .default(Default::Number(1e-8))
+    .range(Range::Positive)
+    .dim(Dim::None),
+    Key::new("max_iter", KeyType::Integer, "iterations before a cutback")
+        .default(Default::Integer(25))
+        .range(Range::AtLeast(1)),
+    Key::new("line_search", KeyType::Bool, "backtracking line search").default(Default::Bool(true)),
+];
+
+/// `output { .. }`.
+pub static OUTPUT: [Key; 3] = [
+    Key::new(
+        "every",
+        KeyType::Integer,
+        "write fields every n converged increments",
+    )
+    .default(Default::Integer(1))
+    .range(Range::AtLeast(1)),
+    Key::new(
+        "fields",
+        KeyType::Choice(&[
+            "displacement",
+            "stress",
+            "strain",
+            "von_mises",
+            "reaction",
+            "contact",
+        ]),
+        "list of VTU fields `[displacement, stress, ..]`",
+    ),
+    Key::new(
+        "history",
+        KeyType::Choice(&[
+            "reaction(set)",
+            "displacement(set)",
+            "contact_force(set -> master)",
+        ]),
+        "list of history.csv columns",
+    ),
+];
+
+/// Every table with the block it describes, for the keyword reference
+/// and for the tests that the parser accepts exactly these keys.
+pub static ALL: &[(&str, &[Key])] = &[
+    ("analysis", &ANALYSIS),
+    ("material", &MATERIAL),
+    ("material.elastic", &ELASTIC),
+    ("material.neo_hookean", &ELASTIC),
+    ("material.neo_hookean (moduli)", &NEO_HOOKEAN_MODULI),
+    ("material.plastic", &PLASTIC),
+    ("material.plastic.hardening = linear", &LINEAR_HARDENING),
+    ("material.plastic.hardening = swift", &SWIFT_HARDENING),
+    ("material.plastic.hardening = voce", &VOCE_HARDENING),
+    ("material.viscoplastic", &VISCOPLASTIC),
+    ("material.thermal", &MATERIAL_THERMAL),
+    ("body", &BODY),
+    ("body.thermal", &BODY_THERMAL),
+    ("tool = plane", &PLANE),
+    ("tool = polyline", &POLYLINE),
+    ("tool = arc", &ARC),
+    ("tool = circle", &CIRCLE),
+    ("tool = nurbs", &NURBS),
+    ("tool.motion", &MOTION),
+    ("contact", &CONTACT),
+    ("contact.method = penalty", &PENALTY),
+    ("contact.method = lagrange", &LAGRANGE),
+    ("contact.method = augmented_lagrange", &AUGMENTED_LAGRANGE),
+    ("contact.friction = coulomb", &COULOMB),
+    ("contact.thermal", &CONTACT_THERMAL),
+    ("contact.thermal.conductance = power", &POWER_CONDUCTANCE),
+    ("step", &STEP),
+    ("step.newton", &NEWTON),
+    ("output", &OUTPUT),
+];
