@@ -1,5 +1,6 @@
 //! ctc-engine: the finite-element engine of ctc.
 //!
+//! - [`geom`]: points, node blocks, the dimension bound, boxes, rotations;
 //! - [`model`]: the lowered scene a deck compiles into;
 //! - [`mesh`]: storage, generators, gmsh import, selections, checks;
 //! - [`element`] and [`material`]: element kernels and constitutive laws;
@@ -11,6 +12,7 @@
 
 pub mod contact;
 pub mod element;
+pub mod geom;
 pub mod material;
 pub mod mesh;
 pub mod model;

@@ -10,13 +10,15 @@
 use crate::mesh::Mesh;
 use std::ops::Range;
 
-/// A complete, validated problem ready to be solved.
+/// A complete, validated problem ready to be solved, in dimension `D`
+/// (2: planar analyses, 3: solid). `Model` without a parameter is the
+/// planar model.
 #[derive(Debug, Clone)]
-pub struct Model {
+pub struct Model<const D: usize = 2> {
     /// Kinematic assumption of the 2D analysis and out-of-plane thickness.
     pub analysis: Analysis,
     /// Nodes, cells and named sets of every body, globally numbered.
-    pub mesh: Mesh,
+    pub mesh: Mesh<D>,
     /// The deformable bodies, in deck order.
     pub bodies: Vec<Body>,
     /// Materials referenced by bodies (index = `Body::material`).
@@ -38,7 +40,7 @@ pub struct Model {
     pub thermal: Option<crate::thermal::ThermalScene>,
 }
 
-/// 2D kinematic assumption.
+/// Kinematic assumption: a planar embedding (2D) or the solid (3D).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AnalysisKind {
@@ -49,6 +51,8 @@ pub enum AnalysisKind {
     /// x is the radius r >= 0, y is the axis z; hoop strain u_r / r.
     /// Forces, reactions and contact forces are totals over the full 2*pi.
     Axisymmetric,
+    /// Three-dimensional solid (x, y, z): no embedding.
+    Solid,
 }
 
 /// Analysis settings.

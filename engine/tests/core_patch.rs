@@ -86,7 +86,7 @@ fn patch(kind: AnalysisKind, element: Element) -> (f64, f64, f64) {
     let blocks = blocks_of(&model).unwrap();
     let law = &blocks[0].law;
     let (_, eps) = exact(kind, [1.0, 0.0]);
-    let eps = Strain::from(eps);
+    let eps = Strain::from([eps[0], eps[1], eps[2], eps[3], 0.0, 0.0]);
     let sigma = law.stress(&eps);
     let full_eps = law.complete_strain(&eps);
     let smax = sigma.amax();

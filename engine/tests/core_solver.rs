@@ -233,12 +233,8 @@ fn unconstrained_rotation_is_reported_before_solving() {
 #[test]
 fn inverted_cell_is_reported_with_its_number() {
     let mut m = plate(1);
-    m.mesh.cells[5] = Cell::quad(
-        m.mesh.cells[5].nodes[0],
-        m.mesh.cells[5].nodes[3],
-        m.mesh.cells[5].nodes[2],
-        m.mesh.cells[5].nodes[1],
-    );
+    // clockwise: nodes 1 and 3 swapped
+    m.mesh.cells.nodes_mut(5).swap(1, 3);
     let e = run(&m, &mut Recorder::default()).unwrap_err();
     assert!(
         e.message.contains("cell 5") && e.message.contains("counter-clockwise"),

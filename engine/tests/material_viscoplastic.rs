@@ -20,13 +20,13 @@ const E: f64 = 200e3;
 const NU: f64 = 0.3;
 const ETA: f64 = 5e3;
 
-fn q_of(s: &[f64; 4]) -> f64 {
+fn q_of(s: &[f64; 6]) -> f64 {
     (1.5 * norm2(&deviator(s))).sqrt()
 }
 
 /// Pure shear with equivalent strain `eb`: tensor shear `sqrt(3) eb / 2`.
-fn shear(eb: f64) -> [f64; 4] {
-    [0.0, 0.0, 0.0, 3f64.sqrt() * eb / 2.0]
+fn shear(eb: f64) -> [f64; 6] {
+    [0.0, 0.0, 0.0, 3f64.sqrt() * eb / 2.0, 0.0, 0.0]
 }
 
 fn law(h: f64) -> NonlinearLaw {

@@ -267,11 +267,11 @@ mod mesh {
         let cells: BTreeSet<_> = m
             .cells
             .iter()
-            .map(|c| key(c.node_slice().iter().map(|&n| m.nodes[n]).collect()))
+            .map(|c| key(c.nodes.iter().map(|&n| m.nodes[n]).collect()))
             .collect();
         for c in &m.cells {
             let mirrored = key(c
-                .node_slice()
+                .nodes
                 .iter()
                 .map(|&n| [1.0 - m.nodes[n][0], m.nodes[n][1]])
                 .collect());
@@ -307,8 +307,8 @@ mod mesh {
                 .count();
             let s = summary(&m).unwrap();
             let arc: BTreeSet<usize> = m.node_sets["arc"].iter().copied().collect();
-            let near_pole = |c: &&ctc_engine::mesh::Cell| {
-                c.node_slice()
+            let near_pole = |c: &ctc_engine::mesh::CellRef| {
+                c.nodes
                     .iter()
                     .all(|&n| m.nodes[n][0].hypot(m.nodes[n][1]) < a)
             };
@@ -316,10 +316,10 @@ mod mesh {
             let near: Vec<_> = m.cells.iter().filter(near_pole).collect();
             let surface: Vec<_> = near
                 .iter()
-                .filter(|c| c.node_slice().iter().any(|n| arc.contains(n)))
+                .filter(|c| c.nodes.iter().any(|n| arc.contains(n)))
                 .collect();
-            let q_near: Vec<_> = near.iter().map(|c| cell_quality(&m, c)).collect();
-            let q_surf: Vec<_> = surface.iter().map(|c| cell_quality(&m, c)).collect();
+            let q_near: Vec<_> = near.iter().map(|c| cell_quality(&m, *c)).collect();
+            let q_surf: Vec<_> = surface.iter().map(|c| cell_quality(&m, **c)).collect();
             let max_ar = |q: &[ctc_engine::mesh::quality::CellQuality]| {
                 q.iter().map(|q| q.aspect_ratio).fold(0.0, f64::max)
             };
@@ -385,7 +385,7 @@ mod mesh {
             .collect();
         let worst = hub
             .iter()
-            .map(|c| cell_quality(&m, c).min_angle)
+            .map(|c| cell_quality(&m, *c).min_angle)
             .fold(180.0, f64::min);
         println!(
             "hub: {} triangles, smallest angle {worst:.1} deg",

@@ -81,7 +81,9 @@ mod mesh {
         // the clockwise quad 20 50 60 30 is reversed
         assert_eq!(
             a.cells,
-            vec![Cell::quad(0, 1, 4, 3), Cell::quad(1, 2, 5, 4)]
+            [Cell::quad(0, 1, 4, 3), Cell::quad(1, 2, 5, 4)]
+                .into_iter()
+                .collect()
         );
         // lines oriented with the body on the left whatever their file direction
         assert_eq!(a.edge_sets["top"], vec![[4, 3], [5, 4]]);

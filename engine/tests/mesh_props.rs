@@ -36,7 +36,7 @@ mod mesh {
                 let n = m.nodes.len();
                 prop_assert!(!m.cells.is_empty());
                 for c in &m.cells {
-                    prop_assert!(c.node_slice().iter().all(|&k| k < n));
+                    prop_assert!(c.nodes.iter().all(|&k| k < n));
                     prop_assert!(cell_area(&m, c) >= 0.0);
                 }
                 for s in m.node_sets.values() {

@@ -84,13 +84,19 @@ pub fn explain(model: &Model) -> String {
                 "  forces, reactions and contact forces are totals over the full 2*pi"
             );
         }
+        AnalysisKind::Solid => {
+            let _ = writeln!(o, "analysis: 3d solid (x, y, z)");
+        }
     }
     // ------------------------------------------------------------ bodies
     let _ = writeln!(o, "bodies: {}", model.bodies.len());
     for b in &model.bodies {
-        let cells = &model.mesh.cells[b.cells.clone()];
-        let tri = cells.iter().filter(|c| c.kind == CellKind::Tri3).count();
-        let quad = cells.len() - tri;
+        let tri = b
+            .cells
+            .clone()
+            .filter(|&c| model.mesh.cells.kind(c) == CellKind::Tri3)
+            .count();
+        let quad = b.cells.len() - tri;
         let mut kinds = Vec::new();
         if quad > 0 {
             kinds.push(format!("{quad} quad4"));
@@ -110,7 +116,7 @@ pub fn explain(model: &Model) -> String {
             "  {}: {}, {} ({}), {formulation}",
             b.name,
             plural(b.nodes.len(), "node", "nodes"),
-            plural(cells.len(), "cell", "cells"),
+            plural(b.cells.len(), "cell", "cells"),
             kinds.join(" + ")
         );
         if let Some(m) = model.materials.get(b.material) {

@@ -124,15 +124,19 @@ pub fn increment_times(model: &Model) -> Vec<f64> {
 /// Exports `model` as the problem of case `case`. Errors name the feature
 /// the reference scripts do not support.
 pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
-    let analysis =
-        match model.analysis.kind {
-            AnalysisKind::PlaneStrain => "plane_strain",
-            AnalysisKind::Axisymmetric => "axisymmetric",
-            AnalysisKind::PlaneStress => return Err(
+    let analysis = match model.analysis.kind {
+        AnalysisKind::PlaneStrain => "plane_strain",
+        AnalysisKind::Axisymmetric => "axisymmetric",
+        AnalysisKind::PlaneStress => {
+            return Err(
                 "FEniCSx export: plane stress is not supported (plane strain and axisymmetric are)"
                     .into(),
-            ),
-        };
+            )
+        }
+        AnalysisKind::Solid => {
+            return Err("FEniCSx export: 3D solids are not supported (planar cases only)".into())
+        }
+    };
     let [body] = model.bodies.as_slice() else {
         return Err(format!(
             "FEniCSx export: exactly one body is supported, the model has {}",
@@ -251,12 +255,7 @@ pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
         poisson,
         cell_kind: cell_kind.into(),
         nodes: model.mesh.nodes.clone(),
-        cells: model
-            .mesh
-            .cells
-            .iter()
-            .map(|c| c.node_slice().to_vec())
-            .collect(),
+        cells: model.mesh.cells.iter().map(|c| c.nodes.to_vec()).collect(),
         times,
         newton_tol: step.newton.tol,
         newton_max_iter: step.newton.max_iter,

@@ -178,11 +178,11 @@ pub fn compare_vtu(path: &Path, state: &WrittenState<'_>) -> Result<CrossCheck, 
     } else {
         for (i, ((t, nodes), cell)) in read_cells.iter().zip(&model.mesh.cells).enumerate() {
             check.compared += 1;
-            if *t != vtu_type(cell.kind) || nodes.as_slice() != cell.node_slice() {
+            if *t != vtu_type(cell.kind) || nodes.as_slice() != cell.nodes {
                 check.mismatches.push(format!(
                     "cell {i}: meshio read {t} {nodes:?}, ctc has {} {:?}",
                     vtu_type(cell.kind),
-                    cell.node_slice()
+                    cell.nodes
                 ));
             }
         }
@@ -315,7 +315,7 @@ pub fn compare_gmsh(path: &Path, mesh: &Mesh) -> Result<CrossCheck, String> {
         .cells
         .iter()
         .map(|c| {
-            let corners: Vec<[f64; 2]> = c.node_slice().iter().map(|&i| mesh.nodes[i]).collect();
+            let corners: Vec<[f64; 2]> = c.nodes.iter().map(|&i| mesh.nodes[i]).collect();
             canonical_cell(&corners)
         })
         .collect();

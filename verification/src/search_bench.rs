@@ -311,10 +311,7 @@ fn run_size(n: usize, brute_max: usize) -> SizeResult {
                     .filter(|&e| c.in_circle(e, **p, prof))
                     .filter_map(|e| c.project(e, **p))
                     .filter(|h| {
-                        let b = ctc_engine::contact::aabb::Aabb::around(&[
-                            x1[h.segment + 1],
-                            x1[h.segment],
-                        ]);
+                        let b = ctc_engine::geom::Aabb::around(&[x1[h.segment + 1], x1[h.segment]]);
                         b.contains_within(**p, prof)
                     })
                     .min_by(|a, b| {

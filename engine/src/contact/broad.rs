@@ -26,7 +26,7 @@
 //! per-iteration rebuild of a moving surface does not allocate once the
 //! sizes have settled.
 
-use super::aabb::Aabb;
+use crate::geom::Aabb;
 
 /// Hashed uniform grid of entity boxes.
 #[derive(Debug, Clone, Default)]
@@ -44,7 +44,7 @@ pub struct BroadPhase {
     /// Entities whose box covers too many cells (tested by every query).
     oversize: Vec<usize>,
     /// The boxes the grid was built from.
-    boxes: Vec<Aabb>,
+    boxes: Vec<Aabb<2>>,
 }
 
 /// Largest number of cells a box is registered in; bigger boxes go to the
@@ -60,23 +60,12 @@ pub const MAX_COVER: i64 = 64;
 /// a few extra box tests, never a wrong answer.
 #[inline]
 fn bucket(i: i64, j: i64, mask: usize) -> usize {
-    (spread(i as u32) | (spread(j as u32) << 1)) as usize & mask
-}
-
-/// The bits of `v` moved to the even positions of a `u64`.
-#[inline]
-fn spread(v: u32) -> u64 {
-    let mut x = u64::from(v);
-    x = (x | (x << 16)) & 0x0000_FFFF_0000_FFFF;
-    x = (x | (x << 8)) & 0x00FF_00FF_00FF_00FF;
-    x = (x | (x << 4)) & 0x0F0F_0F0F_0F0F_0F0F;
-    x = (x | (x << 2)) & 0x3333_3333_3333_3333;
-    (x | (x << 1)) & 0x5555_5555_5555_5555
+    crate::geom::morton::encode([i, j]) as usize & mask
 }
 
 impl BroadPhase {
     /// Builds the grid over `boxes` (an empty list gives an empty grid).
-    pub fn build(boxes: &[Aabb]) -> Self {
+    pub fn build(boxes: &[Aabb<2>]) -> Self {
         let mut grid = BroadPhase::default();
         grid.rebuild(boxes, 0.0);
         grid
@@ -85,7 +74,7 @@ impl BroadPhase {
     /// Rebuilds the grid over `boxes`, reusing the storage of the previous
     /// build. `radius` is the query radius expected (the search window);
     /// the cell size is at least that, so a query visits at most 3x3 cells.
-    pub fn rebuild(&mut self, boxes: &[Aabb], radius: f64) {
+    pub fn rebuild(&mut self, boxes: &[Aabb<2>], radius: f64) {
         self.boxes.clear();
         self.boxes.extend_from_slice(boxes);
         self.entries.clear();
@@ -97,7 +86,7 @@ impl BroadPhase {
         let mut extent = 0.0;
         let mut finite = 0usize;
         for b in boxes {
-            if is_finite(b) {
+            if b.is_finite() {
                 bounds.include(b.min);
                 bounds.include(b.max);
                 extent += (b.max[0] - b.min[0]).max(b.max[1] - b.min[1]);
@@ -185,8 +174,8 @@ impl BroadPhase {
 
     /// Cell range of a box and its number of cells (saturating), or `None`
     /// if the box is not finite.
-    fn cells(&self, b: &Aabb) -> Option<([i64; 2], [i64; 2], i64)> {
-        if !is_finite(b) {
+    fn cells(&self, b: &Aabb<2>) -> Option<([i64; 2], [i64; 2], i64)> {
+        if !b.is_finite() {
             return None;
         }
         let lo = [
@@ -207,14 +196,14 @@ impl BroadPhase {
 
     /// Cell range of a box, or `None` if it is not finite or covers more
     /// than [`MAX_COVER`] cells.
-    fn cover(&self, b: &Aabb) -> Option<([i64; 2], [i64; 2])> {
+    fn cover(&self, b: &Aabb<2>) -> Option<([i64; 2], [i64; 2])> {
         self.cells(b)
             .filter(|c| c.2 <= MAX_COVER)
             .map(|(lo, hi, _)| (lo, hi))
     }
 
     /// Number of cells box `b` is registered in (`None`: oversize).
-    fn cover_count(&self, b: &Aabb) -> Option<usize> {
+    fn cover_count(&self, b: &Aabb<2>) -> Option<usize> {
         self.cover(b)
             .map(|(lo, hi)| ((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1)) as usize)
     }
@@ -295,14 +284,9 @@ impl BroadPhase {
     }
 
     /// Box of entity `e` as given to the last build.
-    pub fn bounding_box(&self, e: usize) -> Aabb {
+    pub fn bounding_box(&self, e: usize) -> Aabb<2> {
         self.boxes[e]
     }
-}
-
-/// Whether every bound of `b` is finite.
-fn is_finite(b: &Aabb) -> bool {
-    b.min.iter().chain(&b.max).all(|v| v.is_finite())
 }
 
 #[cfg(test)]
@@ -310,7 +294,7 @@ mod tests {
     use super::*;
     use proptest::prelude::*;
 
-    fn segment_boxes(n: usize) -> Vec<Aabb> {
+    fn segment_boxes(n: usize) -> Vec<Aabb<2>> {
         // a wavy open polyline of n segments
         let pts: Vec<[f64; 2]> = (0..=n)
             .map(|i| {
@@ -321,7 +305,7 @@ mod tests {
         pts.windows(2).map(Aabb::around).collect()
     }
 
-    fn brute(boxes: &[Aabb], p: [f64; 2], r: f64) -> Vec<usize> {
+    fn brute(boxes: &[Aabb<2>], p: [f64; 2], r: f64) -> Vec<usize> {
         (0..boxes.len())
             .filter(|&e| boxes[e].contains_within(p, r))
             .collect()
@@ -354,7 +338,7 @@ mod tests {
                 [a.cos(), a.sin()]
             })
             .collect();
-        let boxes: Vec<Aabb> = pts.windows(2).map(Aabb::around).collect();
+        let boxes: Vec<Aabb<2>> = pts.windows(2).map(Aabb::around).collect();
         let grid = BroadPhase::build(&boxes);
         assert!(grid.start.len() <= 8 * 4 * n + 2, "{}", grid.start.len());
         let mut out = Vec::new();
@@ -372,7 +356,7 @@ mod tests {
     fn oversize_infinite_and_huge_radius() {
         let mut boxes = segment_boxes(50);
         boxes.push(Aabb::around(&[[-5.0, -5.0], [5.0, 5.0]])); // huge
-        boxes.push(Aabb::everything()); // infinite
+        boxes.push(Aabb::<2>::everything()); // infinite
         let mut grid = BroadPhase::default();
         grid.rebuild(&boxes, 0.01);
         let mut out = Vec::new();
@@ -385,7 +369,7 @@ mod tests {
     #[test]
     fn only_unbounded_boxes() {
         // a plane tool: one infinite box, no finite one to size the cells
-        let grid = BroadPhase::build(&[Aabb::everything()]);
+        let grid = BroadPhase::build(&[Aabb::<2>::everything()]);
         let mut out = Vec::new();
         for p in [[0.0, 0.0], [-1e300, 1e300], [3.0, -7.0]] {
             grid.query(p, 0.1, &mut out);
@@ -421,7 +405,7 @@ mod tests {
             grid.entries.as_ptr(),
             grid.boxes.as_ptr(),
         );
-        let moved: Vec<Aabb> = boxes
+        let moved: Vec<Aabb<2>> = boxes
             .iter()
             .map(|b| Aabb {
                 min: [b.min[0] + 1e-4, b.min[1]],
@@ -473,7 +457,7 @@ mod tests {
             queries in proptest::collection::vec((-1.5f64..1.5, -1.5f64..1.5, 0.0f64..0.5), 1..20),
             hint in 0.0f64..0.5,
         ) {
-            let boxes: Vec<Aabb> = raw
+            let boxes: Vec<Aabb<2>> = raw
                 .iter()
                 .map(|&(x, y, w, h)| Aabb { min: [x, y], max: [x + w, y + h] })
                 .collect();

@@ -30,7 +30,6 @@
 //!   elements, single / double / modified double pass, self contact);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
-pub mod aabb;
 pub mod augmented;
 pub mod broad;
 pub mod friction;

@@ -50,11 +50,11 @@
 //! The gap that decides contact is the one that gives the force and the
 //! reported pressure.
 
-use super::aabb::Aabb;
 use super::broad::BroadPhase;
 use super::segment::SegmentProjection;
 use super::segment_search;
 use super::{augmented, lagrange, penalty, ContactStatus, MasterSegment, NodeContact, PairState};
+use crate::geom::Aabb;
 use crate::model::{ContactMaster, ContactMethod, ContactStrategy, LocalSearch, Model};
 
 /// Relative tolerance on `xi` for "inside the segment".
@@ -77,7 +77,7 @@ pub struct Surface {
     /// Broad phase over the segment boxes at the current coordinates.
     grid: Option<BroadPhase>,
     /// Scratch: segment boxes.
-    boxes: Vec<Aabb>,
+    boxes: Vec<Aabb<2>>,
 }
 
 impl Surface {

@@ -34,9 +34,9 @@
 //! projection on the candidates and returns the exact closest segment
 //! (tested against [`SurfaceSearch::nearest_brute_force`]).
 
-use super::aabb::Aabb;
 use super::broad::BroadPhase;
 use super::vec2::{dot, sub};
+use crate::geom::Aabb;
 use crate::model::LocalSearch;
 use std::cell::Cell;
 
@@ -86,7 +86,7 @@ pub struct SurfaceSearch {
     /// `(node, segment)` pairs sorted by node: the segments of a node.
     node_segments: Vec<(usize, usize)>,
     /// Segment boxes at the current coordinates.
-    boxes: Vec<Aabb>,
+    boxes: Vec<Aabb<2>>,
     /// Segment midpoints and half lengths (circle test).
     circles: Vec<([f64; 2], f64)>,
     /// Current segment end coordinates.

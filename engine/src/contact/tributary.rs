@@ -46,7 +46,7 @@ pub fn edge_areas(model: &Model, edges: &[[usize; 2]], nodes_of: &[usize]) -> Ve
         };
         let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
         let (wa, wb) = match model.analysis.kind {
-            AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress => {
+            AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress | AnalysisKind::Solid => {
                 let w = 0.5 * len * model.analysis.thickness;
                 (w, w)
             }

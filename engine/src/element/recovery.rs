@@ -1,28 +1,30 @@
-//! Recovery of nodal stress and strain for output.
+//! Recovery of nodal stress and strain for output, and the per-body view of
+//! the element kernels (law, formulation, kinematics of each block of
+//! cells).
 //!
-//! Integration point values are extrapolated to the element's nodes (quad4:
-//! bilinear through the 2x2 Gauss points; tri3: the constant value), then
-//! averaged over the elements sharing each node (unweighted, as Abaqus
-//! does). Von Mises is computed from the averaged stress.
+//! Integration point values are extrapolated to the element's nodes
+//! (multilinear through the Gauss points of quad4 and hex8; the constant
+//! value of tri3 and tet4), then averaged over the elements sharing each
+//! node (unweighted, as Abaqus does). Von Mises is computed from the
+//! averaged stress.
 
-use super::finite::FiniteElement;
-use super::{
-    inelastic, quad4, tri3, ElementError, ElementResponse, MaterialPoint, PointState, Section,
-};
+use super::kernel::{kernel_of, NonlinearInput};
+use super::{ElementError, ElementMatrix, MaterialPoint, PointState, Section};
+use crate::geom::{Dimension, Point};
 use crate::material::{self, History, LinearElastic, NonlinearLaw};
-use crate::mesh::{CellKind, Mesh};
+use crate::mesh::Mesh;
 use crate::model::{Formulation, Kinematics, Model};
-use nalgebra::SVector;
+use nalgebra::{Const, SVector};
 use std::ops::Range;
 
 /// Nodal fields for output; nodes not attached to any cell get zeros.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodalFields {
-    /// Stress `[xx, yy, zz, xy]` per node (`zz` is the hoop stress for
-    /// axisymmetric analyses).
-    pub stress: Vec<[f64; 4]>,
-    /// Strain `[xx, yy, zz, xy]` per node (engineering shear).
-    pub strain: Vec<[f64; 4]>,
+    /// Stress `[xx, yy, zz, xy, xz, yz]` per node (`zz` is the hoop stress
+    /// for axisymmetric analyses).
+    pub stress: Vec<[f64; 6]>,
+    /// Strain `[xx, yy, zz, xy, xz, yz]` per node (engineering shear).
+    pub strain: Vec<[f64; 6]>,
     /// Von Mises stress per node (of the averaged stress).
     pub von_mises: Vec<f64>,
     /// Equivalent plastic strain per node (nodal average of the
@@ -36,19 +38,19 @@ pub struct NodalFields {
 pub struct CellBlock {
     /// Global cell numbers.
     pub cells: Range<usize>,
-    /// Constitutive law of the block.
+    /// Small-strain linear elastic law of the block (for nonlinear
+    /// materials, their initial elastic response).
     pub law: LinearElastic,
-    /// Quadrilateral integration.
+    /// Full or selective reduced integration (B-bar / F-bar).
     pub formulation: Formulation,
     /// Small or finite strain.
     pub kinematics: Kinematics,
-    /// The full law when it is not small-strain linear elasticity (then
-    /// `law` is only its initial elastic response).
+    /// The full law when it is not small-strain linear elasticity.
     pub nonlinear: Option<NonlinearLaw>,
 }
 
 /// One block per body of `model`.
-pub fn blocks_of(model: &Model) -> Result<Vec<CellBlock>, String> {
+pub fn blocks_of<const D: usize>(model: &Model<D>) -> Result<Vec<CellBlock>, String> {
     model
         .bodies
         .iter()
@@ -70,233 +72,136 @@ pub fn blocks_of(model: &Model) -> Result<Vec<CellBlock>, String> {
         .collect()
 }
 
+/// Reference coordinates and displacements of the nodes of cell `c`.
+pub fn cell_input<const D: usize>(
+    mesh: &Mesh<D>,
+    c: usize,
+    u: &[[f64; D]],
+) -> (Vec<Point<D>>, Vec<Point<D>>) {
+    let nodes = mesh.cells.nodes(c);
+    (
+        nodes
+            .iter()
+            .map(|&n| Point::<D>::from(mesh.nodes[n]))
+            .collect(),
+        nodes.iter().map(|&n| Point::<D>::from(u[n])).collect(),
+    )
+}
+
+fn wrap(c: usize) -> impl Fn(ElementError) -> ElementError {
+    move |e| ElementError::new(format!("cell {c}: {}", e.message))
+}
+
 /// Integration point states of cell `c` for nodal displacements `u`.
 /// History-dependent laws are evaluated from the virgin state (exact for
 /// elastic and hyperelastic laws; for plasticity use the points stored by
 /// the solver, [`nodal_fields_from_points`]).
-pub fn cell_states(
-    mesh: &Mesh,
+pub fn cell_states<const D: usize>(
+    mesh: &Mesh<D>,
     c: usize,
-    u: &[[f64; 2]],
+    u: &[[f64; D]],
     section: &Section,
     block: &CellBlock,
-) -> Result<Vec<PointState>, ElementError> {
+) -> Result<Vec<PointState>, ElementError>
+where
+    Const<D>: Dimension<D>,
+{
+    let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(wrap(c))?;
+    let (x, ue) = cell_input(mesh, c, u);
     if let Some(law) = &block.nonlinear {
-        let history = vec![History::initial(block.kinematics); 4];
-        return Ok(
-            nonlinear_points(mesh, c, u, section, block, law, &history, 0.0, false)?
-                .1
-                .iter()
-                .map(|p| p.state)
-                .collect(),
-        );
-    }
-    let cell = &mesh.cells[c];
-    let wrap = |e: ElementError| ElementError::new(format!("cell {c}: {}", e.message));
-    match cell.kind {
-        CellKind::Tri3 => {
-            let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, u);
-            tri3::states(&x, &ue, section, &block.law).map_err(wrap)
-        }
-        CellKind::Quad4 => {
-            let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, u);
-            quad4::states(&x, &ue, section, block.formulation, &block.law).map_err(wrap)
-        }
-    }
-}
-
-/// Element forces (and tangent if `with_tangent`) of cell `c` of a block
-/// with a nonlinear law: the element's dofs in order, the response as a
-/// dense row-major `nd x nd` matrix and the updated points.
-#[allow(clippy::too_many_arguments)]
-pub fn nonlinear_points(
-    mesh: &Mesh,
-    c: usize,
-    u: &[[f64; 2]],
-    section: &Section,
-    block: &CellBlock,
-    law: &NonlinearLaw,
-    history: &[History],
-    dt: f64,
-    with_tangent: bool,
-) -> Result<(NonlinearResponse, Vec<MaterialPoint>), ElementError> {
-    nonlinear_points_thermal(
-        mesh,
-        c,
-        u,
-        section,
-        block,
-        law,
-        history,
-        dt,
-        with_tangent,
-        0.0,
-    )
-}
-
-/// Like [`nonlinear_points`], with the isotropic thermal strain
-/// `thermal_strain` of the cell (`crate::thermal::expansion`).
-#[allow(clippy::too_many_arguments)]
-pub fn nonlinear_points_thermal(
-    mesh: &Mesh,
-    c: usize,
-    u: &[[f64; 2]],
-    section: &Section,
-    block: &CellBlock,
-    law: &NonlinearLaw,
-    history: &[History],
-    dt: f64,
-    with_tangent: bool,
-    thermal_strain: f64,
-) -> Result<(NonlinearResponse, Vec<MaterialPoint>), ElementError> {
-    let cell = &mesh.cells[c];
-    let wrap = |e: ElementError| ElementError::new(format!("cell {c}: {}", e.message));
-    let reduced = block.formulation == Formulation::SelectiveReduced;
-    match (cell.kind, block.kinematics) {
-        (CellKind::Tri3, Kinematics::Small) => {
-            let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, u);
-            let pts = tri3::integration_points(&x, section).map_err(wrap)?;
-            let (r, p) = inelastic::response_with_thermal_strain(
-                &pts,
-                &ue,
-                law,
-                history,
-                dt,
-                with_tangent,
-                thermal_strain,
+        let history = vec![History::initial(block.kinematics); kernel.point_count()];
+        let mut states = vec![virgin(block.kinematics); kernel.point_count()];
+        let mut out = ElementMatrix::default();
+        kernel
+            .nonlinear(
+                &NonlinearInput {
+                    x: &x,
+                    u: &ue,
+                    section,
+                    formulation: block.formulation,
+                    kinematics: block.kinematics,
+                    law,
+                    history: &history,
+                    dt: 0.0,
+                    thermal_strain: 0.0,
+                    with_tangent: false,
+                },
+                &mut out,
+                &mut states,
             )
-            .map_err(wrap)?;
-            Ok((NonlinearResponse::Tri3(Box::new(r)), p))
-        }
-        (CellKind::Quad4, Kinematics::Small) => {
-            let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, u);
-            let pts = quad4::integration_points(&x, section, block.formulation).map_err(wrap)?;
-            let (r, p) = inelastic::response_with_thermal_strain(
-                &pts,
-                &ue,
-                law,
-                history,
-                dt,
-                with_tangent,
-                thermal_strain,
-            )
-            .map_err(wrap)?;
-            Ok((NonlinearResponse::Quad4(Box::new(r)), p))
-        }
-        (CellKind::Tri3, Kinematics::Finite) => {
-            let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, u);
-            let pts = tri3::reference_points(&x, section).map_err(wrap)?;
-            let el = FiniteElement {
-                points: &pts,
-                center: None,
-                kind: section.kind,
-                law,
-                history,
-                dt,
-            };
-            let (r, p) = el
-                .response_with_thermal_strain(&ue, with_tangent, thermal_strain)
-                .map_err(wrap)?;
-            Ok((NonlinearResponse::Tri3(Box::new(r)), p))
-        }
-        (CellKind::Quad4, Kinematics::Finite) => {
-            let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, u);
-            let (pts, center) = quad4::reference_points(&x, section).map_err(wrap)?;
-            let el = FiniteElement {
-                points: &pts,
-                center: reduced.then_some(&center),
-                kind: section.kind,
-                law,
-                history,
-                dt,
-            };
-            let (r, p) = el
-                .response_with_thermal_strain(&ue, with_tangent, thermal_strain)
-                .map_err(wrap)?;
-            Ok((NonlinearResponse::Quad4(Box::new(r)), p))
-        }
+            .map_err(wrap(c))?;
+        return Ok(states.iter().map(|p| p.state).collect());
     }
+    kernel
+        .linear_states(&x, &ue, section, block.formulation, &block.law)
+        .map_err(wrap(c))
 }
 
-/// Element response of a nonlinear kernel, by element type.
-#[derive(Debug, Clone)]
-pub enum NonlinearResponse {
-    /// A triangle.
-    Tri3(Box<ElementResponse<6>>),
-    /// A quadrilateral.
-    Quad4(Box<ElementResponse<8>>),
-}
-
-/// Coordinates and displacements of a cell's nodes.
-pub fn gather<const NN: usize, const ND: usize>(
-    mesh: &Mesh,
-    nodes: &[usize; 4],
-    u: &[[f64; 2]],
-) -> ([[f64; 2]; NN], SVector<f64, ND>) {
-    let mut x = [[0.0; 2]; NN];
-    let mut ue = SVector::<f64, ND>::zeros();
-    for i in 0..NN {
-        x[i] = mesh.nodes[nodes[i]];
-        ue[2 * i] = u[nodes[i]][0];
-        ue[2 * i + 1] = u[nodes[i]][1];
+/// A material point in the virgin state of `kinematics` (zero stress).
+pub fn virgin(kinematics: Kinematics) -> MaterialPoint {
+    MaterialPoint {
+        state: PointState {
+            position: [0.0; 3],
+            volume: 0.0,
+            strain: Default::default(),
+            stress: Default::default(),
+        },
+        history: History::initial(kinematics),
     }
-    (x, ue)
 }
 
 /// Nodal-averaged stress, strain and von Mises for displacements `u`.
-pub fn nodal_fields(
-    mesh: &Mesh,
+pub fn nodal_fields<const D: usize>(
+    mesh: &Mesh<D>,
     blocks: &[CellBlock],
     section: &Section,
-    u: &[[f64; 2]],
-) -> Result<NodalFields, ElementError> {
+    u: &[[f64; D]],
+) -> Result<NodalFields, ElementError>
+where
+    Const<D>: Dimension<D>,
+{
     nodal_fields_from_points(mesh, blocks, section, u, &[])
 }
+
+/// Values packed per point for the recovery: stress, strain, `ep`.
+const WIDTH: usize = 13;
 
 /// Nodal-averaged stress, strain, von Mises and equivalent plastic strain:
 /// cells with stored integration points (`points[c]` non-empty, the
 /// solver's converged state of history-dependent laws) use them; the others
 /// are evaluated from `u`.
-pub fn nodal_fields_from_points(
-    mesh: &Mesh,
+pub fn nodal_fields_from_points<const D: usize>(
+    mesh: &Mesh<D>,
     blocks: &[CellBlock],
     section: &Section,
-    u: &[[f64; 2]],
+    u: &[[f64; D]],
     points: &[Vec<MaterialPoint>],
-) -> Result<NodalFields, ElementError> {
+) -> Result<NodalFields, ElementError>
+where
+    Const<D>: Dimension<D>,
+{
     let nn = mesh.nodes.len();
-    let mut sum = vec![[0.0f64; 9]; nn];
+    let mut sum = vec![[0.0f64; WIDTH]; nn];
     let mut count = vec![0u32; nn];
+    let mut packed = Vec::new();
     for block in blocks {
         for c in block.cells.clone() {
-            let packed: Vec<[f64; 9]> = match points.get(c).filter(|p| !p.is_empty()) {
-                Some(stored) => stored
-                    .iter()
-                    .map(|p| {
-                        let mut v = [0.0; 9];
-                        v[..4].copy_from_slice(p.state.stress.as_slice());
-                        v[4..8].copy_from_slice(p.state.strain.as_slice());
-                        v[8] = p.history.ep;
-                        v
-                    })
-                    .collect(),
+            packed.clear();
+            let mut pack = |s: &PointState, ep: f64| {
+                packed.extend_from_slice(s.stress.as_slice());
+                packed.extend_from_slice(s.strain.as_slice());
+                packed.push(ep);
+            };
+            match points.get(c).filter(|p| !p.is_empty()) {
+                Some(stored) => stored.iter().for_each(|p| pack(&p.state, p.history.ep)),
                 None => cell_states(mesh, c, u, section, block)?
                     .iter()
-                    .map(|s| {
-                        let mut v = [0.0; 9];
-                        v[..4].copy_from_slice(s.stress.as_slice());
-                        v[4..8].copy_from_slice(s.strain.as_slice());
-                        v
-                    })
-                    .collect(),
-            };
-            let cell = &mesh.cells[c];
-            let nodal: Vec<[f64; 9]> = match cell.kind {
-                CellKind::Tri3 => tri3::extrapolate(&packed).to_vec(),
-                CellKind::Quad4 => quad4::extrapolate(&packed).to_vec(),
-            };
-            for (node, v) in cell.node_slice().iter().zip(nodal) {
-                for k in 0..9 {
+                    .for_each(|s| pack(s, 0.0)),
+            }
+            let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(wrap(c))?;
+            let nodal = kernel.extrapolate(&packed, WIDTH);
+            for (node, v) in mesh.cells.nodes(c).iter().zip(nodal.chunks(WIDTH)) {
+                for k in 0..WIDTH {
                     sum[*node][k] += v[k];
                 }
                 count[*node] += 1;
@@ -307,8 +212,8 @@ pub fn nodal_fields_from_points(
         .iter()
         .any(|b| matches!(b.nonlinear, Some(NonlinearLaw::J2 { .. })));
     let mut out = NodalFields {
-        stress: vec![[0.0; 4]; nn],
-        strain: vec![[0.0; 4]; nn],
+        stress: vec![[0.0; 6]; nn],
+        strain: vec![[0.0; 6]; nn],
         von_mises: vec![0.0; nn],
         equivalent_plastic_strain: if plastic { vec![0.0; nn] } else { Vec::new() },
     };
@@ -317,13 +222,13 @@ pub fn nodal_fields_from_points(
             continue;
         }
         let w = 1.0 / count[n] as f64;
-        for k in 0..4 {
+        for k in 0..6 {
             out.stress[n][k] = sum[n][k] * w;
-            out.strain[n][k] = sum[n][k + 4] * w;
+            out.strain[n][k] = sum[n][k + 6] * w;
         }
         if plastic {
-            // bilinear extrapolation can undershoot: ep is never negative
-            out.equivalent_plastic_strain[n] = (sum[n][8] * w).max(0.0);
+            // multilinear extrapolation can undershoot: ep is never negative
+            out.equivalent_plastic_strain[n] = (sum[n][12] * w).max(0.0);
         }
         out.von_mises[n] = material::von_mises(&SVector::from(out.stress[n]));
     }
@@ -331,18 +236,27 @@ pub fn nodal_fields_from_points(
 }
 
 /// [`nodal_fields`] for a whole model.
-pub fn nodal_fields_of_model(model: &Model, u: &[[f64; 2]]) -> Result<NodalFields, String> {
+pub fn nodal_fields_of_model<const D: usize>(
+    model: &Model<D>,
+    u: &[[f64; D]],
+) -> Result<NodalFields, String>
+where
+    Const<D>: Dimension<D>,
+{
     let blocks = blocks_of(model)?;
     nodal_fields(&model.mesh, &blocks, &Section::new(&model.analysis), u).map_err(|e| e.message)
 }
 
 /// [`nodal_fields_from_points`] for a whole model and the solver's
 /// converged integration points ([`crate::solve::IncrementView::points`]).
-pub fn nodal_fields_of_model_with_points(
-    model: &Model,
-    u: &[[f64; 2]],
+pub fn nodal_fields_of_model_with_points<const D: usize>(
+    model: &Model<D>,
+    u: &[[f64; D]],
     points: &[Vec<MaterialPoint>],
-) -> Result<NodalFields, String> {
+) -> Result<NodalFields, String>
+where
+    Const<D>: Dimension<D>,
+{
     let blocks = blocks_of(model)?;
     nodal_fields_from_points(
         &model.mesh,

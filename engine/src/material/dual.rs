@@ -39,6 +39,14 @@ pub trait Scalar:
     fn sqrt(self) -> Self;
     /// Real power.
     fn powf(self, p: f64) -> Self;
+    /// Number of derivative directions (0 for `f64`).
+    const DIRECTIONS: usize;
+    /// Derivative along direction `k < DIRECTIONS`.
+    fn direction(&self, k: usize) -> f64;
+    /// The number with value `v` and derivative `d(k)` along each
+    /// direction `k` (a matrix function applies its own chain rule, e.g.
+    /// `crate::material::tensor::isotropic`).
+    fn from_parts(v: f64, d: impl FnMut(usize) -> f64) -> Self;
 }
 
 impl Scalar for f64 {
@@ -59,6 +67,13 @@ impl Scalar for f64 {
     }
     fn powf(self, p: f64) -> Self {
         f64::powf(self, p)
+    }
+    const DIRECTIONS: usize = 0;
+    fn direction(&self, _k: usize) -> f64 {
+        0.0
+    }
+    fn from_parts(v: f64, _d: impl FnMut(usize) -> f64) -> Self {
+        v
     }
 }
 
@@ -202,6 +217,17 @@ impl<const N: usize> Scalar for Dual<N> {
     }
     fn powf(self, p: f64) -> Self {
         self.chain(self.v.powf(p), p * self.v.powf(p - 1.0))
+    }
+    const DIRECTIONS: usize = N;
+    fn direction(&self, k: usize) -> f64 {
+        self.d[k]
+    }
+    fn from_parts(v: f64, mut d: impl FnMut(usize) -> f64) -> Self {
+        let mut out = [0.0; N];
+        for (k, x) in out.iter_mut().enumerate() {
+            *x = d(k);
+        }
+        Dual { v, d: out }
     }
 }
 

@@ -39,7 +39,14 @@ impl Elastic {
         let p = trace(e) * self.bulk;
         let s = deviator(e);
         let g2 = 2.0 * self.shear;
-        [p + s[0] * g2, p + s[1] * g2, p + s[2] * g2, s[3] * g2]
+        [
+            p + s[0] * g2,
+            p + s[1] * g2,
+            p + s[2] * g2,
+            s[3] * g2,
+            s[4] * g2,
+            s[5] * g2,
+        ]
     }
 }
 
@@ -126,16 +133,18 @@ pub fn radial_return<T: Scalar>(
     let factor = -(dg_t * (3.0 * g)) / q + 1.0;
     let p = tr * elastic.bulk;
     let g2 = 2.0 * g;
-    let s = [
-        dev[0] * factor * g2,
-        dev[1] * factor * g2,
-        dev[2] * factor * g2,
-        dev[3] * factor * g2,
-    ];
+    let s = dev.map(|d| d * factor * g2);
     let m = tr / 3.0;
-    let elastic_strain = [m + s[0] / g2, m + s[1] / g2, m + s[2] / g2, s[3] / g2];
+    let elastic_strain = [
+        m + s[0] / g2,
+        m + s[1] / g2,
+        m + s[2] / g2,
+        s[3] / g2,
+        s[4] / g2,
+        s[5] / g2,
+    ];
     Ok(Returned {
-        stress: [p + s[0], p + s[1], p + s[2], s[3]],
+        stress: [p + s[0], p + s[1], p + s[2], s[3], s[4], s[5]],
         elastic_strain,
         ep: ep_n + dg,
         dgamma: dg,
@@ -154,7 +163,7 @@ mod tests {
             eps0: 0.01,
             n: 0.2,
         };
-        let e = [0.01, -0.004, -0.003, 0.002];
+        let e = [0.01, -0.004, -0.003, 0.002, -0.001, 0.003];
         let r = radial_return(&el, &h, &e, 0.02, None).unwrap();
         assert!(r.dgamma > 0.0);
         let q = (1.5 * norm2(&deviator(&r.stress))).sqrt();

@@ -20,7 +20,7 @@
 
 use super::dual::Scalar;
 use super::j2::{radial_return, Elastic};
-use super::tensor::{exp, log, Deformation, Sym};
+use super::tensor::{constant, exp, log, values, Deformation, Sym};
 use crate::model::{AnalysisKind, Hardening, Kinematics, Material, MaterialLaw};
 
 /// Internal variables of one integration point.
@@ -28,8 +28,8 @@ use crate::model::{AnalysisKind, Hardening, Kinematics, Material, MaterialLaw};
 pub struct History {
     /// Equivalent plastic strain.
     pub ep: f64,
-    /// Small strain: plastic strain `[xx, yy, zz, xy]` (tensor shear).
-    /// Finite strain: `C_p^-1 = (F_p^T F_p)^-1` `[xx, yy, zz, xy]`.
+    /// Small strain: plastic strain `[xx, yy, zz, xy, xz, yz]` (tensor
+    /// shear). Finite strain: `C_p^-1 = (F_p^T F_p)^-1`.
     pub tensor: Sym<f64>,
 }
 
@@ -39,8 +39,8 @@ impl History {
         History {
             ep: 0.0,
             tensor: match kinematics {
-                Kinematics::Small => [0.0; 4],
-                Kinematics::Finite => [1.0, 1.0, 1.0, 0.0],
+                Kinematics::Small => [0.0; 6],
+                Kinematics::Finite => [1.0, 1.0, 1.0, 0.0, 0.0, 0.0],
             },
         }
     }
@@ -174,12 +174,9 @@ impl NonlinearLaw {
                 viscosity,
             } => {
                 let p = &h.tensor;
-                let e_tr = [eps[0] - p[0], eps[1] - p[1], eps[2] - p[2], eps[3] - p[3]];
+                let e_tr: Sym<T> = std::array::from_fn(|k| eps[k] - p[k]);
                 let r = radial_return(elastic, hardening, &e_tr, h.ep, viscosity.map(|v| (v, dt)))?;
-                let mut tensor = [0.0; 4];
-                for k in 0..4 {
-                    tensor[k] = eps[k].re() - r.elastic_strain[k].re();
-                }
+                let tensor = std::array::from_fn(|k| eps[k].re() - r.elastic_strain[k].re());
                 Ok(PointUpdate {
                     stress: r.stress,
                     history: History { ep: r.ep, tensor },
@@ -207,7 +204,7 @@ impl NonlinearLaw {
         }
         match self {
             NonlinearLaw::NeoHookean { mu, lambda } => {
-                let b = f.push(&[T::cst(1.0), T::cst(1.0), T::cst(1.0), T::cst(0.0)]);
+                let b = f.left_cauchy_green();
                 let p = j.ln() * *lambda;
                 Ok(PointUpdate {
                     stress: [
@@ -215,14 +212,15 @@ impl NonlinearLaw {
                         (b[1] - 1.0) * *mu + p,
                         (b[2] - 1.0) * *mu + p,
                         b[3] * *mu,
+                        b[4] * *mu,
+                        b[5] * *mu,
                     ],
                     history: *h,
                 })
             }
             NonlinearLaw::Hencky { elastic } => {
-                let b = f.push(&[T::cst(1.0), T::cst(1.0), T::cst(1.0), T::cst(0.0)]);
-                let l = log(&b);
-                let e = [l[0] * 0.5, l[1] * 0.5, l[2] * 0.5, l[3] * 0.5];
+                let b = f.left_cauchy_green();
+                let e = log(&b).map(|l| l * 0.5);
                 Ok(PointUpdate {
                     stress: elastic.stress(&e),
                     history: *h,
@@ -233,23 +231,14 @@ impl NonlinearLaw {
                 hardening,
                 viscosity,
             } => {
-                let c = &h.tensor;
-                let cp = [T::cst(c[0]), T::cst(c[1]), T::cst(c[2]), T::cst(c[3])];
-                let be = f.push(&cp);
-                let l = log(&be);
-                let e_tr = [l[0] * 0.5, l[1] * 0.5, l[2] * 0.5, l[3] * 0.5];
+                let be = f.push(&constant(&h.tensor));
+                let e_tr = log(&be).map(|l| l * 0.5);
                 let r = radial_return(elastic, hardening, &e_tr, h.ep, viscosity.map(|v| (v, dt)))?;
                 let tensor = if r.dgamma > 0.0 {
-                    let e = r.elastic_strain;
-                    let be_new = exp(&[
-                        2.0 * e[0].re(),
-                        2.0 * e[1].re(),
-                        2.0 * e[2].re(),
-                        2.0 * e[3].re(),
-                    ]);
+                    let be_new = exp(&values(&r.elastic_strain).map(|e| 2.0 * e));
                     f.re().inverse().push(&be_new)
                 } else {
-                    *c
+                    h.tensor
                 };
                 Ok(PointUpdate {
                     stress: r.stress,
@@ -270,19 +259,25 @@ mod tests {
         let elastic = Elastic::from_young(e, nu);
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         let mu = e / (2.0 * (1.0 + nu));
-        let g = [[2e-7, -1e-7], [3e-7, -4e-7]];
-        let f = Deformation {
-            f: [[1.0 + g[0][0], g[0][1]], [g[1][0], 1.0 + g[1][1]]],
-            f33: 1.0 + 1e-7,
-        };
-        let eps = [g[0][0], g[1][1], 1e-7, 0.5 * (g[0][1] + g[1][0])];
-        let tr = eps[0] + eps[1] + eps[2];
-        let linear = [
-            lambda * tr + 2.0 * mu * eps[0],
-            lambda * tr + 2.0 * mu * eps[1],
-            lambda * tr + 2.0 * mu * eps[2],
-            2.0 * mu * eps[3],
+        let g = [
+            [2e-7, -1e-7, 0.5e-7],
+            [3e-7, -4e-7, 1e-7],
+            [-2e-7, 0.0, 1e-7],
         ];
+        let f = Deformation {
+            f: std::array::from_fn(|i| {
+                std::array::from_fn(|j| if i == j { 1.0 } else { 0.0 } + g[i][j])
+            }),
+        };
+        let eps: Sym<f64> = crate::material::tensor::PAIRS.map(|(i, j)| 0.5 * (g[i][j] + g[j][i]));
+        let tr = eps[0] + eps[1] + eps[2];
+        let linear: Sym<f64> = std::array::from_fn(|k| {
+            if k < 3 {
+                lambda * tr + 2.0 * mu * eps[k]
+            } else {
+                2.0 * mu * eps[k]
+            }
+        });
         let fin = Kinematics::Finite;
         let laws = [
             NonlinearLaw::NeoHookean { mu, lambda },
@@ -298,7 +293,7 @@ mod tests {
         ];
         for law in laws {
             let s = law.finite(&f, &History::initial(fin), 0.0).unwrap().stress;
-            for k in 0..4 {
+            for k in 0..6 {
                 assert!(
                     (s[k] - linear[k]).abs() < 1e-6 * 0.1,
                     "{law:?} {s:?} {linear:?}"
@@ -311,7 +306,7 @@ mod tests {
             .small(&eps, &History::initial(Kinematics::Small), 0.0)
             .unwrap()
             .stress;
-        for k in 0..4 {
+        for k in 0..6 {
             assert!((s[k] - linear[k]).abs() < 1e-12);
         }
     }

@@ -1,64 +1,70 @@
-//! Isotropic small-strain linear elasticity for plane strain, plane stress
-//! and axisymmetric analyses.
+//! Isotropic small-strain linear elasticity: the 3D modulus, and its
+//! plane-stress condensation for planar analyses
+//! (`crate::element::planar`).
 
 use super::{Constitutive, Strain, Stress, Tangent};
 use crate::model::AnalysisKind;
 
-/// Isotropic linear elasticity with its 4x4 modulus for one 2D kind.
+/// Isotropic linear elasticity with its 6x6 modulus for one analysis kind.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LinearElastic {
     /// Young's modulus.
     pub young: f64,
     /// Poisson's ratio.
     pub poisson: f64,
-    /// The 2D kind the modulus is built for.
+    /// The analysis kind the modulus is built for.
     pub kind: AnalysisKind,
-    /// Modulus `D` in `[xx, yy, zz, xy]` Voigt notation (engineering shear).
+    /// Modulus `D` in `[xx, yy, zz, xy, xz, yz]` Voigt notation
+    /// (engineering shear).
     pub d: Tangent,
 }
 
+/// Checks Young's modulus and Poisson's ratio; explains what is wrong.
+pub fn check_young_poisson(young: f64, poisson: f64) -> Result<(), String> {
+    if !(young.is_finite() && young > 0.0) {
+        return Err(format!("Young's modulus must be > 0 (got {young})"));
+    }
+    if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
+        return Err(format!(
+            "Poisson's ratio must be in (-1, 0.5) (got {poisson}); for near-incompressible \
+             materials use e.g. 0.4999 with formulation = selective_reduced"
+        ));
+    }
+    Ok(())
+}
+
+/// The isotropic 3D modulus of `young` and `poisson` (engineering shear).
+pub fn isotropic_modulus(young: f64, poisson: f64) -> Tangent {
+    let (e, nu) = (young, poisson);
+    let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
+    let mu = e / (2.0 * (1.0 + nu));
+    let mut d = Tangent::zeros();
+    for i in 0..3 {
+        for j in 0..3 {
+            d[(i, j)] = lambda;
+        }
+        d[(i, i)] = lambda + 2.0 * mu;
+        d[(i + 3, i + 3)] = mu;
+    }
+    d
+}
+
 impl LinearElastic {
-    /// The law with modulus `young` > 0 and Poisson's ratio in (-1, 0.5).
-    ///
-    /// - plane strain and axisymmetric: the 3D isotropic modulus restricted
-    ///   to `[xx, yy, zz, xy]` (plane strain elements have `eps_zz = 0`, so
-    ///   `sigma_zz = lambda (eps_xx + eps_yy)`; axisymmetric elements feed the
-    ///   hoop strain into `zz`);
-    /// - plane stress: the reduced modulus with a zero `zz` row and column
-    ///   (`sigma_zz = 0`).
+    /// The law with modulus `young` > 0 and Poisson's ratio in (-1, 0.5):
+    /// the 3D isotropic modulus (solid, plane strain and axisymmetric
+    /// analyses: their elements feed `eps_zz = 0` or the hoop strain into
+    /// `zz`), or its plane-stress condensation (`sigma_zz = 0`,
+    /// `crate::element::planar::plane_stress_modulus`).
     pub fn new(young: f64, poisson: f64, kind: AnalysisKind) -> Result<Self, String> {
-        if !(young.is_finite() && young > 0.0) {
-            return Err(format!("Young's modulus must be > 0 (got {young})"));
-        }
-        if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
-            return Err(format!(
-                "Poisson's ratio must be in (-1, 0.5) (got {poisson}); for near-incompressible \
-                 materials use e.g. 0.4999 with formulation = selective_reduced"
-            ));
-        }
-        let (e, nu) = (young, poisson);
-        let mut d = Tangent::zeros();
-        match kind {
-            AnalysisKind::PlaneStrain | AnalysisKind::Axisymmetric => {
-                let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
-                let mu = e / (2.0 * (1.0 + nu));
-                for i in 0..3 {
-                    for j in 0..3 {
-                        d[(i, j)] = lambda;
-                    }
-                    d[(i, i)] = lambda + 2.0 * mu;
-                }
-                d[(3, 3)] = mu;
-            }
+        check_young_poisson(young, poisson)?;
+        let d = match kind {
             AnalysisKind::PlaneStress => {
-                let c = e / (1.0 - nu * nu);
-                d[(0, 0)] = c;
-                d[(1, 1)] = c;
-                d[(0, 1)] = c * nu;
-                d[(1, 0)] = c * nu;
-                d[(3, 3)] = c * (1.0 - nu) / 2.0;
+                crate::element::planar::plane_stress_modulus(young, poisson)
             }
-        }
+            AnalysisKind::PlaneStrain | AnalysisKind::Axisymmetric | AnalysisKind::Solid => {
+                isotropic_modulus(young, poisson)
+            }
+        };
         Ok(LinearElastic {
             young,
             poisson,
@@ -80,8 +86,7 @@ impl Constitutive for LinearElastic {
     fn complete_strain(&self, strain: &Strain) -> Strain {
         let mut full = *strain;
         if self.kind == AnalysisKind::PlaneStress {
-            let nu = self.poisson;
-            full[2] = -nu / (1.0 - nu) * (strain[0] + strain[1]);
+            full[2] = crate::element::planar::plane_stress_zz(self.poisson, strain);
         }
         full
     }
@@ -95,11 +100,15 @@ mod tests {
         (a - b).abs() / b.abs().max(1e-300)
     }
 
+    fn strain(v: [f64; 6]) -> Strain {
+        Strain::from(v)
+    }
+
     #[test]
     fn plane_strain_uniaxial_strain_gives_lame_stresses() {
         let (e, nu) = (200.0, 0.3);
         let law = LinearElastic::new(e, nu, AnalysisKind::PlaneStrain).unwrap();
-        let s = law.stress(&Strain::new(1e-3, 0.0, 0.0, 0.0));
+        let s = law.stress(&strain([1e-3, 0.0, 0.0, 0.0, 0.0, 0.0]));
         let lambda = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu));
         let mu = e / (2.0 * (1.0 + nu));
         assert!(rel(s[0], (lambda + 2.0 * mu) * 1e-3) < 1e-14);
@@ -113,7 +122,7 @@ mod tests {
         let (e, nu) = (70.0, 0.25);
         let law = LinearElastic::new(e, nu, AnalysisKind::PlaneStress).unwrap();
         // uniaxial stress state: eps_xx = s/E, eps_yy = -nu s/E
-        let eps = Strain::new(2.0 / e, -nu * 2.0 / e, 0.0, 0.0);
+        let eps = strain([2.0 / e, -nu * 2.0 / e, 0.0, 0.0, 0.0, 0.0]);
         let s = law.stress(&eps);
         assert!(rel(s[0], 2.0) < 1e-14);
         assert!(s[1].abs() < 1e-14 && s[2] == 0.0);
@@ -122,21 +131,20 @@ mod tests {
     }
 
     #[test]
-    fn axisymmetric_hydrostatic_strain_gives_bulk_modulus() {
+    fn hydrostatic_strain_gives_bulk_modulus_and_shears_the_shear_modulus() {
         let (e, nu) = (1.0, 0.2);
-        let law = LinearElastic::new(e, nu, AnalysisKind::Axisymmetric).unwrap();
-        let s = law.stress(&Strain::new(1.0, 1.0, 1.0, 0.0));
-        let k = e / (3.0 * (1.0 - 2.0 * nu));
-        for i in 0..3 {
-            assert!(rel(s[i], 3.0 * k) < 1e-14);
+        for kind in [AnalysisKind::Axisymmetric, AnalysisKind::Solid] {
+            let law = LinearElastic::new(e, nu, kind).unwrap();
+            let s = law.stress(&strain([1.0, 1.0, 1.0, 0.0, 0.0, 0.0]));
+            let k = e / (3.0 * (1.0 - 2.0 * nu));
+            for i in 0..3 {
+                assert!(rel(s[i], 3.0 * k) < 1e-14);
+            }
         }
-    }
-
-    #[test]
-    fn shear_modulus_uses_engineering_shear_strain() {
-        let law = LinearElastic::new(2.6, 0.3, AnalysisKind::PlaneStress).unwrap();
-        let s = law.stress(&Strain::new(0.0, 0.0, 0.0, 1.0));
-        assert!(rel(s[3], 1.0) < 1e-14); // G = E / (2 (1 + nu)) = 1
+        let law = LinearElastic::new(2.6, 0.3, AnalysisKind::Solid).unwrap();
+        let s = law.stress(&strain([0.0, 0.0, 0.0, 1.0, 2.0, 3.0]));
+        // G = E / (2 (1 + nu)) = 1, engineering shear
+        assert!(rel(s[3], 1.0) < 1e-14 && rel(s[4], 2.0) < 1e-14 && rel(s[5], 3.0) < 1e-14);
     }
 
     #[test]

@@ -1,14 +1,16 @@
-//! Constitutive laws.
+//! Constitutive laws, always three-dimensional.
 //!
-//! All 2D kinds share one 4-component Voigt notation, ordered
-//! `[xx, yy, zz, xy]`:
-//! - strain: `[eps_xx, eps_yy, eps_zz, gamma_xy]` with the **engineering**
-//!   shear `gamma_xy = 2 eps_xy`;
-//! - stress: `[sigma_xx, sigma_yy, sigma_zz, sigma_xy]`.
+//! One 6-component Voigt notation, ordered `[xx, yy, zz, xy, xz, yz]`:
+//! - strain: `[eps_xx, eps_yy, eps_zz, gamma_xy, gamma_xz, gamma_yz]` with
+//!   the **engineering** shears `gamma_ij = 2 eps_ij`;
+//! - stress: `[sigma_xx, .., sigma_xy, sigma_xz, sigma_yz]`.
 //!
-//! `zz` is the out-of-plane component (plane strain: `eps_zz = 0`; plane
-//! stress: `sigma_zz = 0`) and, for axisymmetric analyses (x = r, y = z), the
-//! hoop component `theta theta`.
+//! Planar analyses embed into these tensors (`crate::element::planar`):
+//! their `xz`, `yz` components vanish, `zz` is the out-of-plane component
+//! (plane strain: `eps_zz = 0`; plane stress: `sigma_zz = 0`) or, for
+//! axisymmetric analyses (x = r, y = z), the hoop component
+//! `theta theta`. The first four components are those of the planar
+//! outputs.
 //!
 //! A law maps a strain to a stress and a consistent tangent `d sigma / d eps`,
 //! so that elements compute `f_int = int B^T sigma` and `K = int B^T D B`
@@ -27,14 +29,14 @@ pub use linear_elastic::LinearElastic;
 use crate::model::{AnalysisKind, Material, MaterialLaw};
 use nalgebra::{SMatrix, SVector};
 
-/// Strain in Voigt notation `[xx, yy, zz, xy]` (engineering shear).
-pub type Strain = SVector<f64, 4>;
-/// Stress in Voigt notation `[xx, yy, zz, xy]`.
-pub type Stress = SVector<f64, 4>;
-/// Tangent modulus `d sigma / d eps` (4x4).
-pub type Tangent = SMatrix<f64, 4, 4>;
+/// Strain in Voigt notation `[xx, yy, zz, xy, xz, yz]` (engineering shear).
+pub type Strain = SVector<f64, 6>;
+/// Stress in Voigt notation `[xx, yy, zz, xy, xz, yz]`.
+pub type Stress = SVector<f64, 6>;
+/// Tangent modulus `d sigma / d eps` (6x6).
+pub type Tangent = SMatrix<f64, 6, 6>;
 
-/// A small-strain constitutive law for a given 2D kind.
+/// A small-strain constitutive law for a given analysis kind.
 pub trait Constitutive {
     /// Stress for the kinematic strain `strain` (for plane stress the `zz`
     /// entry of `strain` is ignored; the law enforces `sigma_zz = 0`).
@@ -47,10 +49,14 @@ pub trait Constitutive {
     fn complete_strain(&self, strain: &Strain) -> Strain;
 }
 
-/// Von Mises equivalent stress of `[xx, yy, zz, xy]`.
+/// Von Mises equivalent stress of `[xx, yy, zz, xy, xz, yz]`.
 pub fn von_mises(s: &Stress) -> f64 {
-    let (xx, yy, zz, xy) = (s[0], s[1], s[2], s[3]);
-    (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2)) + 3.0 * xy * xy).sqrt()
+    let (xx, yy, zz) = (s[0], s[1], s[2]);
+    (0.5 * ((xx - yy).powi(2) + (yy - zz).powi(2) + (zz - xx).powi(2))
+        + 3.0 * s[3] * s[3]
+        + 3.0 * s[4] * s[4]
+        + 3.0 * s[5] * s[5])
+        .sqrt()
 }
 
 /// Builds the (small-strain, linear) elastic law of `material` for
@@ -73,11 +79,11 @@ mod tests {
 
     #[test]
     fn von_mises_of_uniaxial_and_pure_shear() {
-        let uni = Stress::new(3.0, 0.0, 0.0, 0.0);
+        let uni = Stress::from([3.0, 0.0, 0.0, 0.0, 0.0, 0.0]);
         assert!((von_mises(&uni) - 3.0).abs() < 1e-14);
-        let shear = Stress::new(0.0, 0.0, 0.0, 2.0);
+        let shear = Stress::from([0.0, 0.0, 0.0, 0.0, 0.0, 2.0]);
         assert!((von_mises(&shear) - 2.0 * 3f64.sqrt()).abs() < 1e-14);
-        let hydro = Stress::new(-5.0, -5.0, -5.0, 0.0);
+        let hydro = Stress::from([-5.0, -5.0, -5.0, 0.0, 0.0, 0.0]);
         assert!(von_mises(&hydro).abs() < 1e-14);
     }
 

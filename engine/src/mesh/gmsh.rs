@@ -250,7 +250,7 @@ $Elements\n3\n1 1 2 1 1 1 2\n2 2 2 2 1 1 3 2\n3 2 2 2 1 1 4 3\n$EndElements\n";
         assert_eq!(m.nodes.len(), 4);
         assert_eq!(m.cells.len(), 2);
         // the first triangle was clockwise in the file
-        assert_eq!(m.cells[0].node_slice(), &[0, 1, 2]);
+        assert_eq!(m.cells.nodes(0), &[0, 1, 2]);
         assert_eq!(m.edge_sets["bottom"], vec![[0, 1]]);
         assert_eq!(m.node_sets["bottom"], vec![0, 1]);
         assert_eq!(m.node_sets["body"], vec![0, 1, 2, 3]);

@@ -1,82 +1,50 @@
-//! Mesh storage: nodes, cells and named node / edge sets.
+//! Mesh storage: nodes, cells and named node / edge / face sets, in 2D
+//! (planar) or 3D (solid).
 //!
 //! Conventions (relied upon by elements, loads and contact):
-//! - cells are counter-clockwise (positive area);
+//! - planar cells are counter-clockwise (positive area); solid cells follow
+//!   the gmsh node order with a positive volume;
 //! - boundary edges `[a, b]` are oriented with the body on their **left**,
-//!   so the outward normal of edge a->b is `(dy, -dx) / len`.
+//!   so the outward normal of edge a->b is `(dy, -dx) / len`; boundary faces
+//!   are counter-clockwise seen from outside (outward normal by the
+//!   right-hand rule, `crate::geom::Dimension::facet_normal`).
+//!
+//! - [`cell`]: cell kinds and the compressed-row cell storage;
+//! - [`facet`]: boundary edges and faces;
+//! - [`generate`]: built-in generators; [`gmsh`]: the gmsh reader;
+//! - [`select`]: geometric selections; [`validate`], [`quality`]: checks.
 
+pub mod cell;
+pub mod facet;
 pub mod generate;
 pub mod gmsh;
 pub mod quality;
 pub mod select;
 pub mod validate;
 
+pub use cell::{Cell, CellKind, CellRef, Cells};
+pub use facet::Facet;
+
 use std::collections::BTreeMap;
 
-/// Cell topology.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum CellKind {
-    /// 3-node linear triangle.
-    Tri3,
-    /// 4-node bilinear quadrilateral.
-    Quad4,
-}
-
-impl CellKind {
-    /// Number of nodes of the cell.
-    pub fn node_count(self) -> usize {
-        match self {
-            CellKind::Tri3 => 3,
-            CellKind::Quad4 => 4,
-        }
-    }
-}
-
-/// One cell. For `Tri3` only the first three entries of `nodes` are used
-/// (the fourth repeats the third).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct Cell {
-    /// Topology.
-    pub kind: CellKind,
-    /// Node numbers, counter-clockwise.
-    pub nodes: [usize; 4],
-}
-
-impl Cell {
-    /// A counter-clockwise triangle.
-    pub fn tri(a: usize, b: usize, c: usize) -> Self {
-        Cell {
-            kind: CellKind::Tri3,
-            nodes: [a, b, c, c],
-        }
-    }
-
-    /// A counter-clockwise quadrilateral.
-    pub fn quad(a: usize, b: usize, c: usize, d: usize) -> Self {
-        Cell {
-            kind: CellKind::Quad4,
-            nodes: [a, b, c, d],
-        }
-    }
-
-    /// The node numbers actually used by this cell.
-    pub fn node_slice(&self) -> &[usize] {
-        &self.nodes[..self.kind.node_count()]
-    }
-}
-
-/// A 2D mesh with named sets.
+/// A mesh of dimension `D` (2: planar, 3: solid) with named sets.
+/// Node coordinates are stored as plain arrays (`crate::geom::Point` is
+/// their nalgebra view for computation). `Mesh` without a parameter is the
+/// planar mesh.
 #[derive(Debug, Clone, Default, PartialEq)]
-pub struct Mesh {
-    /// Node coordinates (x, y) — (r, z) for axisymmetric analyses.
-    pub nodes: Vec<[f64; 2]>,
+pub struct Mesh<const D: usize = 2> {
+    /// Node coordinates (x, y[, z]) — (r, z) for axisymmetric analyses.
+    pub nodes: Vec<[f64; D]>,
     /// Cells.
-    pub cells: Vec<Cell>,
+    pub cells: Cells,
     /// Named node sets (sorted, unique node numbers).
     pub node_sets: BTreeMap<String, Vec<usize>>,
-    /// Named boundary edge sets (edges oriented with the body on the left).
+    /// Named boundary edge sets of planar meshes (edges oriented with the
+    /// body on the left); empty for solid meshes.
     pub edge_sets: BTreeMap<String, Vec<[usize; 2]>>,
+    /// Named boundary face sets of solid meshes (faces counter-clockwise
+    /// seen from outside); empty for planar meshes.
+    pub face_sets: BTreeMap<String, Vec<Facet>>,
 }
 
 /// An error in building, reading or checking a mesh.
@@ -117,22 +85,67 @@ impl std::fmt::Display for MeshError {
 
 impl std::error::Error for MeshError {}
 
-impl Mesh {
+impl<const D: usize> Mesh<D> {
     /// A mesh of `nodes` and `cells`, without sets.
-    pub fn new(nodes: Vec<[f64; 2]>, cells: Vec<Cell>) -> Self {
+    pub fn new(nodes: Vec<[f64; D]>, cells: Vec<Cell>) -> Self {
         Mesh {
             nodes,
-            cells,
+            cells: cells.into_iter().collect(),
             ..Default::default()
         }
     }
 
+    /// Coordinates of the nodes of cell `c`, as points.
+    pub fn cell_points(&self, c: usize) -> Vec<crate::geom::Point<D>> {
+        self.cells
+            .nodes(c)
+            .iter()
+            .map(|&n| crate::geom::Point::<D>::from(self.nodes[n]))
+            .collect()
+    }
+
+    /// The boundary facets (edges in 2D, faces in 3D) of the cells in
+    /// `cells`: the cell faces that belong to one cell only, with the
+    /// outward node order of their cell, in a deterministic order (sorted
+    /// by their sorted node lists).
+    pub fn boundary_facets(&self, cells: std::ops::Range<usize>) -> Vec<Facet> {
+        let mut count: BTreeMap<Vec<usize>, (usize, Facet)> = BTreeMap::new();
+        for c in cells {
+            let cell = self.cells.get(c);
+            for face in cell.kind.faces() {
+                let nodes: Vec<usize> = face.iter().map(|&a| cell.nodes[a]).collect();
+                let mut key = nodes.clone();
+                key.sort_unstable();
+                count.entry(key).or_insert((0, Facet::new(&nodes))).0 += 1;
+            }
+        }
+        count
+            .into_values()
+            .filter(|(k, _)| *k == 1)
+            .map(|(_, f)| f)
+            .collect()
+    }
+
+    /// The facets of set `name`: the edge set of a planar mesh or the face
+    /// set of a solid mesh.
+    pub fn facet_set(&self, name: &str) -> Option<Vec<Facet>> {
+        if D == 2 {
+            self.edge_sets
+                .get(name)
+                .map(|e| e.iter().map(|&[a, b]| Facet::new(&[a, b])).collect())
+        } else {
+            self.face_sets.get(name).cloned()
+        }
+    }
+}
+
+impl Mesh<2> {
     /// Boundary edges of the cells in `cells`, oriented with the body on the
     /// left (counter-clockwise cells), in a deterministic order.
     pub fn boundary_edges(&self, cells: std::ops::Range<usize>) -> Vec<[usize; 2]> {
         let mut count: BTreeMap<(usize, usize), (usize, [usize; 2])> = BTreeMap::new();
-        for c in &self.cells[cells] {
-            let n = c.node_slice();
+        for c in cells {
+            let n = self.cells.nodes(c);
             for i in 0..n.len() {
                 let (a, b) = (n[i], n[(i + 1) % n.len()]);
                 let key = (a.min(b), a.max(b));

@@ -4,7 +4,7 @@
 //! lists of the same kind are cut after [`MAX_REPORTED`] entries with a
 //! count of the rest).
 
-use super::quality::cell_area;
+use super::quality::polygon_area;
 use super::{Mesh, MeshError};
 use std::collections::HashMap;
 
@@ -51,12 +51,19 @@ impl Drop for Report<'_> {
     }
 }
 
+/// `(x, y[, z])` of a point, for messages.
+fn coords<const D: usize>(p: &[f64; D]) -> String {
+    let c: Vec<String> = p.iter().map(|v| v.to_string()).collect();
+    format!("({})", c.join(", "))
+}
+
 /// Checks a body's mesh: at least one cell; node numbers of cells and sets
-/// in range; finite coordinates; positive cell areas (counter-clockwise) and
-/// convex quadrilaterals; no coincident nodes (within
-/// [`DUPLICATE_TOLERANCE`] x the bounding-box diagonal); no nodes outside
-/// every cell. Returns all problems found.
-pub fn check(mesh: &Mesh) -> Result<(), Vec<MeshError>> {
+/// in range; finite coordinates; positive cell areas (counter-clockwise)
+/// and convex quadrilaterals in 2D, positive volumes and positive corner
+/// Jacobians in 3D; no coincident nodes (within [`DUPLICATE_TOLERANCE`] x
+/// the bounding-box diagonal); no nodes outside every cell. Returns all
+/// problems found.
+pub fn check<const D: usize>(mesh: &Mesh<D>) -> Result<(), Vec<MeshError>> {
     let mut errors = Vec::new();
     let n = mesh.nodes.len();
     if mesh.cells.is_empty() {
@@ -66,10 +73,10 @@ pub fn check(mesh: &Mesh) -> Result<(), Vec<MeshError>> {
     {
         let mut r = Report::new(&mut errors, "non-finite coordinates");
         for (i, p) in mesh.nodes.iter().enumerate() {
-            if !p[0].is_finite() || !p[1].is_finite() {
+            if !p.iter().all(|v| v.is_finite()) {
                 r.push(format!(
-                    "node {i} has a non-finite coordinate ({}, {})",
-                    p[0], p[1]
+                    "node {i} has a non-finite coordinate {}",
+                    coords(p)
                 ));
             }
         }
@@ -79,7 +86,15 @@ pub fn check(mesh: &Mesh) -> Result<(), Vec<MeshError>> {
     {
         let mut r = Report::new(&mut errors, "out-of-range node numbers");
         for (c, cell) in mesh.cells.iter().enumerate() {
-            for &k in cell.node_slice() {
+            if cell.kind.dimension() != D {
+                r.push(format!(
+                    "cell {c} is a {} cell in a {D}D mesh",
+                    cell.kind.name()
+                ));
+                cell_ok[c] = false;
+                continue;
+            }
+            for &k in cell.nodes {
                 if k >= n {
                     r.push(format!(
                         "cell {c} refers to node {k}, but the mesh has {n} nodes"
@@ -103,26 +118,35 @@ pub fn check(mesh: &Mesh) -> Result<(), Vec<MeshError>> {
                 ));
             }
         }
+        for (name, set) in &mesh.face_sets {
+            if let Some(f) = set.iter().find(|f| f.nodes().iter().any(|&k| k >= n)) {
+                r.push(format!(
+                    "face set '{name}' refers to face {:?}, but the mesh has {n} nodes",
+                    f.nodes()
+                ));
+            }
+        }
     }
 
-    check_areas(mesh, &cell_ok, &mut errors);
+    if D == 2 {
+        check_areas(mesh, &cell_ok, &mut errors);
+    } else {
+        check_volumes(mesh, &cell_ok, &mut errors);
+    }
     check_duplicates(mesh, &mut errors);
 
     {
         let mut used = vec![false; n];
-        for cell in &mesh.cells {
-            for &k in cell.node_slice() {
-                if k < n {
-                    used[k] = true;
-                }
+        for &k in mesh.cells.all_nodes() {
+            if k < n {
+                used[k] = true;
             }
         }
         let mut r = Report::new(&mut errors, "unused nodes");
         for (i, _) in used.iter().enumerate().filter(|(_, u)| !**u) {
-            let p = mesh.nodes[i];
             r.push(format!(
-                "node {i} at ({}, {}) belongs to no cell",
-                p[0], p[1]
+                "node {i} at {} belongs to no cell",
+                coords(&mesh.nodes[i])
             ));
         }
     }
@@ -134,17 +158,28 @@ pub fn check(mesh: &Mesh) -> Result<(), Vec<MeshError>> {
     }
 }
 
+fn node_list(nodes: &[usize]) -> String {
+    nodes
+        .iter()
+        .map(|k| k.to_string())
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
 /// Signed areas and, for quadrilaterals, the corner Jacobians (a
 /// non-convex quad has a negative Jacobian at its re-entrant corner even
 /// when its area is positive).
-fn check_areas(mesh: &Mesh, cell_ok: &[bool], errors: &mut Vec<MeshError>) {
+fn check_areas<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut Vec<MeshError>) {
     let mut r = Report::new(errors, "inverted or degenerate cells");
     for (c, cell) in mesh.cells.iter().enumerate() {
         if !cell_ok[c] {
             continue;
         }
-        let nodes = cell.node_slice();
-        let pts: Vec<[f64; 2]> = nodes.iter().map(|&k| mesh.nodes[k]).collect();
+        let nodes = cell.nodes;
+        let pts: Vec<[f64; 2]> = nodes
+            .iter()
+            .map(|&k| [mesh.nodes[k][0], mesh.nodes[k][1]])
+            .collect();
         if pts.iter().flatten().any(|v| !v.is_finite()) {
             continue;
         }
@@ -154,17 +189,10 @@ fn check_areas(mesh: &Mesh, cell_ok: &[bool], errors: &mut Vec<MeshError>) {
                 (q[0] - p[0]).hypot(q[1] - p[1])
             })
             .fold(0.0, f64::max);
-        let area = cell_area(mesh, cell);
+        let area = polygon_area(&pts);
         let tiny = 1e-12 * longest * longest;
-        let kind = match cell.kind {
-            super::CellKind::Tri3 => "tri3",
-            super::CellKind::Quad4 => "quad4",
-        };
-        let list = nodes
-            .iter()
-            .map(|k| k.to_string())
-            .collect::<Vec<_>>()
-            .join(" ");
+        let kind = cell.kind.name();
+        let list = node_list(nodes);
         if area.abs() <= tiny {
             r.push(format!(
                 "cell {c} ({kind}, nodes {list}) has zero area ({area:e}): degenerate"
@@ -190,25 +218,79 @@ fn check_areas(mesh: &Mesh, cell_ok: &[bool], errors: &mut Vec<MeshError>) {
     }
 }
 
+/// Signed volumes and the Jacobian at every corner of solid cells (an
+/// inverted or twisted hexahedron has a non-positive Jacobian at some
+/// corner even when its volume is positive).
+fn check_volumes<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut Vec<MeshError>) {
+    let mut r = Report::new(errors, "inverted or degenerate cells");
+    for (c, cell) in mesh.cells.iter().enumerate() {
+        if !cell_ok[c] {
+            continue;
+        }
+        let pts: Vec<&[f64]> = cell.nodes.iter().map(|&k| &mesh.nodes[k][..]).collect();
+        if pts.iter().any(|p| p.iter().any(|v| !v.is_finite())) {
+            continue;
+        }
+        let Some((corners, volume)) = crate::element::reference::corner_jacobians(cell.kind, &pts)
+        else {
+            continue;
+        };
+        let mut longest: f64 = 0.0;
+        for face in cell.kind.faces() {
+            for i in 0..face.len() {
+                let (p, q) = (pts[face[i]], pts[face[(i + 1) % face.len()]]);
+                let l = (0..D).map(|k| (q[k] - p[k]).powi(2)).sum::<f64>().sqrt();
+                longest = longest.max(l);
+            }
+        }
+        let tiny = 1e-12 * longest.powi(3);
+        let kind = cell.kind.name();
+        let list = node_list(cell.nodes);
+        if volume.abs() <= tiny {
+            r.push(format!(
+                "cell {c} ({kind}, nodes {list}) has zero volume ({volume:e}): degenerate"
+            ));
+        } else if volume < 0.0 {
+            r.push(format!(
+                "cell {c} ({kind}, nodes {list}) has negative volume {volume:e}: inverted (the \
+                 node order must follow gmsh's)"
+            ));
+        } else if let Some(i) = corners.iter().position(|&j| j <= tiny) {
+            r.push(format!(
+                "cell {c} ({kind}, nodes {list}) is inverted or twisted at node {}: its Jacobian \
+                 is not positive there",
+                cell.nodes[i]
+            ));
+        }
+    }
+}
+
 /// Coincident nodes through a hash grid with cells of the tolerance size:
-/// each node is compared with the nodes of its own and the 8 neighbouring
-/// grid cells only.
-fn check_duplicates(mesh: &Mesh, errors: &mut Vec<MeshError>) {
+/// each node is compared with the nodes of its own and the `3^D - 1`
+/// neighbouring grid cells only.
+fn check_duplicates<const D: usize>(mesh: &Mesh<D>, errors: &mut Vec<MeshError>) {
     let finite: Vec<usize> = (0..mesh.nodes.len())
         .filter(|&i| mesh.nodes[i].iter().all(|v| v.is_finite()))
         .collect();
     if finite.len() < 2 {
         return;
     }
-    let mut lo = [f64::INFINITY; 2];
-    let mut hi = [f64::NEG_INFINITY; 2];
+    let mut lo = [f64::INFINITY; D];
+    let mut hi = [f64::NEG_INFINITY; D];
     for &i in &finite {
-        for d in 0..2 {
+        for d in 0..D {
             lo[d] = lo[d].min(mesh.nodes[i][d]);
             hi[d] = hi[d].max(mesh.nodes[i][d]);
         }
     }
-    let diagonal = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let dist = |p: &[f64; D], q: &[f64; D]| -> f64 {
+        if D == 2 {
+            (p[0] - q[0]).hypot(p[1] - q[1])
+        } else {
+            (0..D).map(|k| (p[k] - q[k]).powi(2)).sum::<f64>().sqrt()
+        }
+    };
+    let diagonal = dist(&hi, &lo);
     let tol = DUPLICATE_TOLERANCE * diagonal;
     let mut r = Report::new(errors, "coincident node pairs");
     if tol == 0.0 || !tol.is_finite() {
@@ -216,43 +298,45 @@ fn check_duplicates(mesh: &Mesh, errors: &mut Vec<MeshError>) {
         if tol == 0.0 {
             for &j in &finite[1..] {
                 r.push(format!(
-                    "nodes {} and {j} coincide at ({}, {})",
-                    finite[0], mesh.nodes[j][0], mesh.nodes[j][1]
+                    "nodes {} and {j} coincide at {}",
+                    finite[0],
+                    coords(&mesh.nodes[j])
                 ));
             }
         }
         return;
     }
-    let key = |p: [f64; 2]| -> (i64, i64) {
-        (
-            ((p[0] - lo[0]) / tol).floor() as i64,
-            ((p[1] - lo[1]) / tol).floor() as i64,
-        )
+    let key = |p: &[f64; D]| -> [i64; D] {
+        std::array::from_fn(|k| ((p[k] - lo[k]) / tol).floor() as i64)
     };
-    let mut grid: HashMap<(i64, i64), Vec<usize>> = HashMap::new();
+    let neighbours = 3usize.pow(D as u32);
+    let mut grid: HashMap<[i64; D], Vec<usize>> = HashMap::new();
     for &i in &finite {
-        let p = mesh.nodes[i];
-        let (kx, ky) = key(p);
+        let p = &mesh.nodes[i];
+        let k = key(p);
         let mut first: Option<usize> = None;
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                if let Some(list) = grid.get(&(kx.saturating_add(dx), ky.saturating_add(dy))) {
-                    for &j in list {
-                        let q = mesh.nodes[j];
-                        if (p[0] - q[0]).hypot(p[1] - q[1]) <= tol {
-                            first = Some(first.map_or(j, |f: usize| f.min(j)));
-                        }
+        for m in 0..neighbours {
+            let mut cell = k;
+            let mut code = m;
+            for c in cell.iter_mut() {
+                *c = c.saturating_add((code % 3) as i64 - 1);
+                code /= 3;
+            }
+            if let Some(list) = grid.get(&cell) {
+                for &j in list {
+                    if dist(p, &mesh.nodes[j]) <= tol {
+                        first = Some(first.map_or(j, |f: usize| f.min(j)));
                     }
                 }
             }
         }
         if let Some(j) = first {
             r.push(format!(
-                "nodes {j} and {i} coincide at ({}, {}) (distance <= {tol:e})",
-                p[0], p[1]
+                "nodes {j} and {i} coincide at {} (distance <= {tol:e})",
+                coords(p)
             ));
         }
-        grid.entry((kx, ky)).or_default().push(i);
+        grid.entry(k).or_default().push(i);
     }
 }
 
@@ -366,8 +450,60 @@ mod tests {
     }
 
     #[test]
+    fn solid_cells_inverted_twisted_degenerate_and_duplicates_reported() {
+        let cube: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+            [1.0, 1.0, 1.0],
+            [0.0, 1.0, 1.0],
+        ];
+        let ok = Mesh::new(cube.clone(), vec![Cell::hex([0, 1, 2, 3, 4, 5, 6, 7])]);
+        assert_eq!(check(&ok), Ok(()));
+        let mut m = Mesh::new(cube, vec![Cell::hex([0, 1, 2, 3, 4, 5, 6, 7])]);
+        m.cells.push(Cell::tet([0, 2, 1, 4])); // inverted
+        m.cells.push(Cell::tet([0, 1, 2, 3])); // flat
+        m.nodes.push([0.2, 0.2, 0.2]); // 8: node 6 pushed through the cube
+        m.cells.push(Cell::hex([0, 1, 2, 3, 4, 5, 8, 7])); // positive volume, inverted corner
+        m.nodes.push([1.0, 1.0, 1.0 + 1e-15]); // 9: duplicate of 6
+        let text: Vec<String> = check(&m)
+            .unwrap_err()
+            .iter()
+            .map(|e| e.message.clone())
+            .collect();
+        assert!(
+            text.iter()
+                .any(|t| t.contains("cell 1") && t.contains("inverted")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter()
+                .any(|t| t.contains("cell 2") && t.contains("degenerate")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter()
+                .any(|t| t.contains("cell 3") && t.contains("twisted")),
+            "{text:?}"
+        );
+        assert!(
+            text.iter().any(|t| t.contains("nodes 6 and 9 coincide")),
+            "{text:?}"
+        );
+        let planar_in_3d = Mesh::<3>::new(vec![[0.0; 3]; 3], vec![Cell::tri(0, 1, 2)]);
+        let text = check(&planar_in_3d).unwrap_err();
+        assert!(
+            text[0].message.contains("tri3 cell in a 3D mesh"),
+            "{text:?}"
+        );
+    }
+
+    #[test]
     fn empty_mesh_reported() {
-        let errs = check(&Mesh::default()).unwrap_err();
+        let errs = check(&Mesh::<2>::default()).unwrap_err();
         assert!(errs[0].message.contains("no cells"));
     }
 }

@@ -131,7 +131,7 @@ pub fn vtu(d: &VtuData<'_>) -> String {
                 "stress",
                 4,
                 TENSOR_NAMES,
-                nodal.stress.iter().flatten(),
+                nodal.stress.iter().flat_map(|v| v[..4].iter()),
             );
         }
         if has(Field::Strain) {
@@ -141,7 +141,7 @@ pub fn vtu(d: &VtuData<'_>) -> String {
                 "strain",
                 4,
                 TENSOR_NAMES,
-                nodal.strain.iter().flatten(),
+                nodal.strain.iter().flat_map(|v| v[..4].iter()),
             );
         }
         if has(Field::VonMises) {
@@ -252,10 +252,7 @@ pub fn vtu(d: &VtuData<'_>) -> String {
         "connectivity",
         1,
         "",
-        m.mesh
-            .cells
-            .iter()
-            .flat_map(|c| c.node_slice().iter().copied()),
+        m.mesh.cells.iter().flat_map(|c| c.nodes.iter().copied()),
     );
     array(
         &mut s,
@@ -277,6 +274,8 @@ pub fn vtu(d: &VtuData<'_>) -> String {
         m.mesh.cells.iter().map(|c| match c.kind {
             CellKind::Tri3 => 5u8,
             CellKind::Quad4 => 9u8,
+            CellKind::Tet4 => 10u8,
+            CellKind::Hex8 => 12u8,
         }),
     );
     s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");

@@ -17,17 +17,18 @@
 //! factorization, as it should be).
 
 use super::linalg::{Scatter, NO_SLOT};
-use crate::element::recovery::{
-    blocks_of, gather, nonlinear_points_thermal, CellBlock, NonlinearResponse,
-};
-use crate::element::{quad4, tri3, ElementResponse, MaterialPoint, PointState, Section};
+use crate::element::kernel::{kernel_of, NonlinearInput};
+use crate::element::recovery::{blocks_of, cell_input, virgin, CellBlock};
+use crate::element::{ElementMatrix, MaterialPoint, Section};
+use crate::geom::{Dimension, Point};
 use crate::material::History;
-use crate::mesh::{CellKind, Mesh};
+use crate::mesh::Mesh;
 use crate::model::Model;
+use nalgebra::Const;
 
-/// The element kernels of a model.
+/// The element kernels of a model of dimension `D`.
 #[derive(Debug, Clone)]
-pub struct Assembler {
+pub struct Assembler<const D: usize = 2> {
     /// One block of cells per body, with its law and formulation.
     pub blocks: Vec<CellBlock>,
     /// Cross-section (kind, thickness).
@@ -41,8 +42,8 @@ pub struct Assembler {
     t_committed: f64,
     /// Time increment of the current attempt.
     dt: f64,
-    /// Element stiffness matrices (column-major) of the small-strain linear
-    /// elastic cells, concatenated.
+    /// Element stiffness matrices (column-major, element dof order
+    /// `a D + c`) of the small-strain linear elastic cells, concatenated.
     linear_k: Vec<f64>,
     /// Offset of each cell's matrix in `linear_k` (`NO_MATRIX` for cells
     /// with a nonlinear law).
@@ -52,40 +53,37 @@ pub struct Assembler {
     thermal_strain: Vec<f64>,
     /// Nodal force of a unit thermal strain of each small-strain linear
     /// elastic cell (computed when thermal strains are first set).
-    thermal_unit: Vec<[f64; 8]>,
+    thermal_unit: Vec<Vec<Point<D>>>,
     /// Law of each cell at its temperature (temperature-dependent
     /// materials, `crate::thermal::properties`); empty otherwise.
     cell_law: Vec<Option<crate::material::NonlinearLaw>>,
     /// Norm of the element thermal forces `eps_th f_unit` (unassembled):
     /// a force scale for the convergence test of thermally loaded bodies.
     thermal_scale: f64,
+    /// Element force and tangent of the last nonlinear cell (reused).
+    scratch: ElementMatrix<D>,
 }
 
 /// Marks a cell without a cached stiffness matrix.
 const NO_MATRIX: usize = usize::MAX;
 
-impl Assembler {
+/// Most dofs of a cell (a 27-node hexahedron).
+const MAX_DOFS: usize = 81;
+
+impl<const D: usize> Assembler<D>
+where
+    Const<D>: Dimension<D>,
+{
     /// Builds the kernels of `model` (materials must be valid).
-    pub fn new(model: &Model) -> Result<Self, String> {
+    pub fn new(model: &Model<D>) -> Result<Self, String> {
         let blocks = blocks_of(model)?;
         let mut committed = vec![Vec::new(); model.mesh.cells.len()];
         for b in &blocks {
             if b.nonlinear.is_some() {
                 for c in b.cells.clone() {
-                    let n = match model.mesh.cells[c].kind {
-                        CellKind::Tri3 => 1,
-                        CellKind::Quad4 => 4,
-                    };
-                    let virgin = MaterialPoint {
-                        state: PointState {
-                            position: [0.0; 2],
-                            volume: 0.0,
-                            strain: Default::default(),
-                            stress: Default::default(),
-                        },
-                        history: History::initial(b.kinematics),
-                    };
-                    committed[c] = vec![virgin; n];
+                    let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
+                        .map_err(|e| format!("cell {c}: {}", e.message))?;
+                    committed[c] = vec![virgin(b.kinematics); kernel.point_count()];
                 }
             }
         }
@@ -105,6 +103,7 @@ impl Assembler {
             thermal_unit: Vec::new(),
             cell_law: Vec::new(),
             thermal_scale: 0.0,
+            scratch: ElementMatrix::default(),
         })
     }
 
@@ -113,12 +112,12 @@ impl Assembler {
     /// law of each cell at its temperature (`None`: the body's law).
     pub fn set_thermal_state(
         &mut self,
-        mesh: &Mesh,
+        mesh: &Mesh<D>,
         strain: Vec<f64>,
         laws: Vec<Option<crate::material::NonlinearLaw>>,
     ) -> Result<(), String> {
         if self.thermal_unit.is_empty() && strain.iter().any(|e| *e != 0.0) {
-            let mut unit = vec![[0.0; 8]; mesh.cells.len()];
+            let mut unit = vec![Vec::new(); mesh.cells.len()];
             for block in &self.blocks {
                 for c in block.cells.clone() {
                     unit[c] = crate::thermal::expansion::unit_thermal_force(
@@ -135,7 +134,11 @@ impl Assembler {
         }
         let mut scale2 = 0.0;
         for (e, unit) in strain.iter().zip(&self.thermal_unit) {
-            scale2 += unit.iter().map(|f| (e * f) * (e * f)).sum::<f64>();
+            scale2 += unit
+                .iter()
+                .flat_map(|f| f.iter())
+                .map(|f| (e * f) * (e * f))
+                .sum::<f64>();
         }
         self.thermal_scale = scale2.sqrt();
         self.thermal_strain = strain;
@@ -203,7 +206,7 @@ impl Assembler {
     }
 
     /// Whether the element tangent is symmetric (false with F-bar: finite
-    /// strain with selective reduced quads).
+    /// strain with selective reduced integration).
     pub fn symmetric(&self) -> bool {
         !self.blocks.iter().any(|b| {
             b.nonlinear.is_some()
@@ -217,14 +220,14 @@ impl Assembler {
         self.blocks.iter().any(|b| b.nonlinear.is_some())
     }
 
-    /// Internal forces `f_int` (2 per node, overwritten) at displacements
+    /// Internal forces `f_int` (`D` per node, overwritten) at displacements
     /// `u`, and, if `values` is given, the tangent (the caller zeroes
     /// `values`; element entries are added).
     pub fn assemble(
         &mut self,
-        mesh: &Mesh,
+        mesh: &Mesh<D>,
         scatter: &Scatter,
-        u: &[[f64; 2]],
+        u: &[[f64; D]],
         f_int: &mut [f64],
         mut values: Option<&mut [f64]>,
     ) -> Result<(), String> {
@@ -232,55 +235,46 @@ impl Assembler {
         let with_tangent = values.is_some();
         for block in &self.blocks {
             for c in block.cells.clone() {
-                let cell = &mesh.cells[c];
+                let nodes = mesh.cells.nodes(c);
                 let slots = scatter.cell_slots(c);
                 let thermal_strain = self.thermal_strain.get(c).copied().unwrap_or(0.0);
                 if let Some(law) = &block.nonlinear {
                     let law = self.cell_law.get(c).and_then(|l| l.as_ref()).unwrap_or(law);
                     let history: Vec<History> =
                         self.committed[c].iter().map(|p| p.history).collect();
-                    let (r, points) = nonlinear_points_thermal(
-                        mesh,
-                        c,
-                        u,
-                        &self.section,
-                        block,
-                        law,
-                        &history,
-                        self.dt,
-                        with_tangent,
-                        thermal_strain,
-                    )
-                    .map_err(|e| e.message)?;
-                    self.trial[c].copy_from_slice(&points);
-                    match &r {
-                        NonlinearResponse::Tri3(r) => add(
-                            r.as_ref(),
-                            cell.node_slice(),
-                            slots,
-                            f_int,
-                            values.as_deref_mut(),
-                        ),
-                        NonlinearResponse::Quad4(r) => add(
-                            r.as_ref(),
-                            cell.node_slice(),
-                            slots,
-                            f_int,
-                            values.as_deref_mut(),
-                        ),
-                    }
+                    let kernel = kernel_of::<D>(mesh.cells.kind(c))
+                        .map_err(|e| format!("cell {c}: {}", e.message))?;
+                    let (x, ue) = cell_input(mesh, c, u);
+                    kernel
+                        .nonlinear(
+                            &NonlinearInput {
+                                x: &x,
+                                u: &ue,
+                                section: &self.section,
+                                formulation: block.formulation,
+                                kinematics: block.kinematics,
+                                law,
+                                history: &history,
+                                dt: self.dt,
+                                thermal_strain,
+                                with_tangent,
+                            },
+                            &mut self.scratch,
+                            &mut self.trial[c],
+                        )
+                        .map_err(|e| format!("cell {c}: {}", e.message))?;
+                    add(&self.scratch, nodes, slots, f_int, values.as_deref_mut());
                     continue;
                 }
-                let nodes = cell.node_slice();
-                let nd = 2 * nodes.len();
+                let nd = D * nodes.len();
+                assert!(nd <= MAX_DOFS, "a cell has more than {MAX_DOFS} dofs");
                 let k = &self.linear_k[self.linear_offset[c]..][..nd * nd];
-                let mut ue = [0.0; 8];
+                let mut ue = [0.0; MAX_DOFS];
                 for (a, &n) in nodes.iter().enumerate() {
-                    ue[2 * a] = u[n][0];
-                    ue[2 * a + 1] = u[n][1];
+                    ue[D * a..D * (a + 1)].copy_from_slice(&u[n]);
                 }
                 // f_e = K_e u_e (column-major K_e)
-                let mut fe = [0.0; 8];
+                let mut fe = [0.0; MAX_DOFS];
                 for (j, &uj) in ue[..nd].iter().enumerate() {
                     for (f, kij) in fe[..nd].iter_mut().zip(&k[j * nd..(j + 1) * nd]) {
                         *f += kij * uj;
@@ -288,12 +282,12 @@ impl Assembler {
                 }
                 if thermal_strain != 0.0 {
                     // sigma = D (B u - eps_th): f_int = K u - eps_th f_unit
-                    for (f, unit) in fe[..nd].iter_mut().zip(&self.thermal_unit[c]) {
-                        *f -= thermal_strain * unit;
+                    for (i, f) in fe[..nd].iter_mut().enumerate() {
+                        *f -= thermal_strain * self.thermal_unit[c][i / D][i % D];
                     }
                 }
                 for (i, f) in fe[..nd].iter().enumerate() {
-                    f_int[2 * nodes[i / 2] + i % 2] += f;
+                    f_int[D * nodes[i / D] + i % D] += f;
                 }
                 if let Some(values) = values.as_deref_mut() {
                     for (&slot, kij) in slots.iter().zip(k) {
@@ -311,30 +305,39 @@ impl Assembler {
 /// Element stiffness matrices of the small-strain linear elastic cells
 /// (column-major, concatenated) and each cell's offset (`NO_MATRIX` for the
 /// others).
-fn linear_matrices(
-    mesh: &Mesh,
+fn linear_matrices<const D: usize>(
+    mesh: &Mesh<D>,
     blocks: &[CellBlock],
     section: &Section,
-) -> Result<(Vec<f64>, Vec<usize>), String> {
+) -> Result<(Vec<f64>, Vec<usize>), String>
+where
+    Const<D>: Dimension<D>,
+{
     let mut k = Vec::new();
     let mut offset = vec![NO_MATRIX; mesh.cells.len()];
-    let zero = vec![[0.0; 2]; mesh.nodes.len()];
+    let mut out = ElementMatrix::<D>::default();
     for block in blocks.iter().filter(|b| b.nonlinear.is_none()) {
         for c in block.cells.clone() {
-            let cell = &mesh.cells[c];
             let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
+            let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(err)?;
+            let x = mesh.cell_points(c);
+            let zero = vec![Point::<D>::zeros(); x.len()];
+            kernel
+                .linear(
+                    &x,
+                    &zero,
+                    section,
+                    block.formulation,
+                    &block.law,
+                    true,
+                    &mut out,
+                )
+                .map_err(err)?;
             offset[c] = k.len();
-            match cell.kind {
-                CellKind::Tri3 => {
-                    let (x, ue) = gather::<3, 6>(mesh, &cell.nodes, &zero);
-                    let r = tri3::response(&x, &ue, section, &block.law, true).map_err(err)?;
-                    k.extend_from_slice(r.stiffness.as_slice());
-                }
-                CellKind::Quad4 => {
-                    let (x, ue) = gather::<4, 8>(mesh, &cell.nodes, &zero);
-                    let r = quad4::response(&x, &ue, section, block.formulation, &block.law, true)
-                        .map_err(err)?;
-                    k.extend_from_slice(r.stiffness.as_slice());
+            let nd = D * x.len();
+            for j in 0..nd {
+                for i in 0..nd {
+                    k.push(out.entry(i, j));
                 }
             }
         }
@@ -343,20 +346,23 @@ fn linear_matrices(
 }
 
 #[inline]
-fn add<const ND: usize>(
-    r: &ElementResponse<ND>,
+fn add<const D: usize>(
+    r: &ElementMatrix<D>,
     nodes: &[usize],
     slots: &[u32],
     f_int: &mut [f64],
     values: Option<&mut [f64]>,
 ) {
-    for (i, f) in r.force.iter().enumerate() {
-        f_int[2 * nodes[i / 2] + i % 2] += f;
+    for (f, &n) in r.force.iter().zip(nodes) {
+        for c in 0..D {
+            f_int[D * n + c] += f[c];
+        }
     }
     if let Some(values) = values {
-        for (&slot, k) in slots.iter().zip(r.stiffness.as_slice()) {
+        let nd = D * nodes.len();
+        for (e, &slot) in slots.iter().enumerate() {
             if slot != NO_SLOT {
-                values[slot as usize] += k;
+                values[slot as usize] += r.entry(e % nd, e / nd);
             }
         }
     }

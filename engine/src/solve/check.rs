@@ -28,7 +28,7 @@ pub fn check_model(model: &Model) -> Vec<String> {
         ));
     }
     for (c, cell) in model.mesh.cells.iter().enumerate() {
-        if let Some(&n) = cell.node_slice().iter().find(|&&n| n >= nn) {
+        if let Some(&n) = cell.nodes.iter().find(|&&n| n >= nn) {
             errors.push(format!(
                 "cell {c} refers to node {n}, but the mesh has {nn} nodes"
             ));

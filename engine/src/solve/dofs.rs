@@ -45,7 +45,7 @@ impl DofMap {
         let nn = model.mesh.nodes.len();
         let mut active = vec![false; nn];
         for c in &model.mesh.cells {
-            for &n in c.node_slice() {
+            for &n in c.nodes {
                 active[n] = true;
             }
         }

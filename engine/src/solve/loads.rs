@@ -39,7 +39,9 @@ pub fn external_forces(model: &Model, t: f64, f: &mut [f64]) {
                             let c = 2.0 * std::f64::consts::PI * p / 6.0;
                             (c * (2.0 * xa[0] + xb[0]), c * (xa[0] + 2.0 * xb[0]))
                         }
-                        AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress => {
+                        AnalysisKind::PlaneStrain
+                        | AnalysisKind::PlaneStress
+                        | AnalysisKind::Solid => {
                             let c = 0.5 * p * model.analysis.thickness;
                             (c, c)
                         }

@@ -9,7 +9,7 @@
 //! restart with a different deck is refused). [`RestartFile`] adds what the
 //! result writer needs to append to the same directory (the PVD entries).
 //!
-//! Format (`restart.bin`, little endian): the magic `CTCRST03`, then
+//! Format (`restart.bin`, little endian): the magic `CTCRST04`, then
 //! fields in a fixed order; every `f64` is stored as its 8 bytes, so the
 //! values read back are the values written, bit for bit.
 
@@ -19,7 +19,11 @@ use crate::model::Model;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST03";
+const MAGIC: &[u8; 8] = b"CTCRST04";
+
+/// Values stored per integration point: position (3), volume, strain (6),
+/// stress (6), equivalent plastic strain, internal tensor (6).
+const POINT_VALUES: usize = 23;
 
 /// Where the stepper continues: the first increment to attempt.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -196,7 +200,8 @@ impl RestartFile {
             e.usize(cell.len());
             for p in cell {
                 let s = &p.state;
-                let mut v = vec![s.position[0], s.position[1], s.volume];
+                let mut v = s.position.to_vec();
+                v.push(s.volume);
                 v.extend(s.strain.iter());
                 v.extend(s.stress.iter());
                 v.push(p.history.ep);
@@ -271,23 +276,23 @@ impl RestartFile {
         let nc = d.len(8)?;
         let mut points = Vec::with_capacity(nc);
         for _ in 0..nc {
-            let n = d.len(16 * 8)?;
+            let n = d.len(POINT_VALUES * 8)?;
             let mut cell = Vec::with_capacity(n);
             for _ in 0..n {
-                let mut v = [0.0; 16];
+                let mut v = [0.0; POINT_VALUES];
                 for x in &mut v {
                     *x = d.f64()?;
                 }
                 cell.push(MaterialPoint {
                     state: PointState {
-                        position: [v[0], v[1]],
-                        volume: v[2],
-                        strain: crate::material::Strain::from_column_slice(&v[3..7]),
-                        stress: crate::material::Stress::from_column_slice(&v[7..11]),
+                        position: [v[0], v[1], v[2]],
+                        volume: v[3],
+                        strain: crate::material::Strain::from_column_slice(&v[4..10]),
+                        stress: crate::material::Stress::from_column_slice(&v[10..16]),
                     },
                     history: History {
-                        ep: v[11],
-                        tensor: [v[12], v[13], v[14], v[15]],
+                        ep: v[16],
+                        tensor: std::array::from_fn(|k| v[17 + k]),
                     },
                 });
             }
@@ -341,14 +346,21 @@ mod tests {
     fn sample() -> RestartFile {
         let point = MaterialPoint {
             state: PointState {
-                position: [0.25, -1.0 / 3.0],
+                position: [0.25, -1.0 / 3.0, 0.0],
                 volume: 1e-300,
-                strain: crate::material::Strain::new(1.0, 2.0, f64::MIN_POSITIVE, -0.0),
-                stress: crate::material::Stress::new(0.1, 0.2, 0.3, 0.4),
+                strain: crate::material::Strain::from([
+                    1.0,
+                    2.0,
+                    f64::MIN_POSITIVE,
+                    -0.0,
+                    0.5,
+                    1e-7,
+                ]),
+                stress: crate::material::Stress::from([0.1, 0.2, 0.3, 0.4, -0.5, 7.0]),
             },
             history: History {
                 ep: 0.1 + 0.2,
-                tensor: [1.0, 1.0, 1.0, 0.0],
+                tensor: [1.0, 1.0, 1.0, 0.0, 0.0, 0.0],
             },
         };
         RestartFile {

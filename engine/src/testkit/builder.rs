@@ -40,14 +40,22 @@ pub fn ramp(t0: f64, t1: f64, v1: f64) -> TimeFunction {
     }
 }
 
-/// Builds a [`Model`] step by step; see the module documentation.
+/// Builds a [`Model`] of dimension `D` step by step; see the module
+/// documentation.
 #[derive(Debug, Clone)]
-pub struct ModelBuilder {
+pub struct ModelBuilder<const D: usize = 2> {
     /// The model built so far.
-    model: Model,
+    model: Model<D>,
 }
 
-impl ModelBuilder {
+impl ModelBuilder<3> {
+    /// An empty solid (3D) model.
+    pub fn solid() -> Self {
+        Self::new(AnalysisKind::Solid)
+    }
+}
+
+impl<const D: usize> ModelBuilder<D> {
     /// An empty model of analysis `kind`, unit thickness.
     pub fn new(kind: AnalysisKind) -> Self {
         ModelBuilder {
@@ -70,6 +78,16 @@ impl ModelBuilder {
         }
     }
 
+    /// Face set `name` (qualified, `body.set`) of the mesh built so far.
+    pub fn face_set(&self, name: &str) -> Vec<crate::mesh::Facet> {
+        self.model
+            .mesh
+            .face_sets
+            .get(name)
+            .unwrap_or_else(|| panic!("test kit: no face set `{name}`"))
+            .clone()
+    }
+
     /// An empty plane-strain model.
     pub fn plane_strain() -> Self {
         Self::new(AnalysisKind::PlaneStrain)
@@ -87,7 +105,7 @@ impl ModelBuilder {
 
     /// The model built so far (e.g. to read the qualified sets of the
     /// bodies already added).
-    pub fn model(&self) -> &Model {
+    pub fn model(&self) -> &Model<D> {
         &self.model
     }
 
@@ -157,25 +175,19 @@ impl ModelBuilder {
 
     /// Replaces the global mesh by `mesh`, bodies left out (for kernels that
     /// need nodes and cells but no body).
-    pub fn mesh(mut self, mesh: Mesh) -> Self {
+    pub fn mesh(mut self, mesh: Mesh<D>) -> Self {
         self.model.mesh = mesh;
         self
     }
 
     /// Appends body `name` made of all of `mesh`, of material `material`
     /// (full integration, small strain).
-    pub fn body(mut self, name: &str, mesh: Mesh, material: &str) -> Self {
+    pub fn body(mut self, name: &str, mesh: Mesh<D>, material: &str) -> Self {
         let material = self.material_index(material);
         let global = &mut self.model.mesh;
         let (n0, c0) = (global.nodes.len(), global.cells.len());
         global.nodes.extend_from_slice(&mesh.nodes);
-        for c in &mesh.cells {
-            let mut c = *c;
-            for n in &mut c.nodes {
-                *n += n0;
-            }
-            global.cells.push(c);
-        }
+        global.cells.extend_shifted(&mesh.cells, n0);
         for (k, v) in &mesh.node_sets {
             global
                 .node_sets
@@ -185,6 +197,12 @@ impl ModelBuilder {
             global.edge_sets.insert(
                 format!("{name}.{k}"),
                 v.iter().map(|e| [e[0] + n0, e[1] + n0]).collect(),
+            );
+        }
+        for (k, v) in &mesh.face_sets {
+            global.face_sets.insert(
+                format!("{name}.{k}"),
+                v.iter().map(|f| f.shifted(n0)).collect(),
             );
         }
         self.model.bodies.push(Body {
@@ -438,7 +456,7 @@ impl ModelBuilder {
     }
 
     /// The model.
-    pub fn build(self) -> Model {
+    pub fn build(self) -> Model<D> {
         self.model
     }
 }
@@ -483,7 +501,7 @@ mod tests {
         assert_eq!(m.bodies[1].cells, 1..2);
         assert_eq!(m.bodies[1].kinematics, Kinematics::Finite);
         assert_eq!(m.bodies[0].kinematics, Kinematics::Small);
-        assert_eq!(m.mesh.cells[1].nodes, [4, 5, 6, 7]);
+        assert_eq!(m.mesh.cells.nodes(1), &[4, 5, 6, 7]);
         assert_eq!(m.contacts[0].nodes, vec![4, 5]);
         assert_eq!(m.contacts[0].body, 1);
         assert!(matches!(

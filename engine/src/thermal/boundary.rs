@@ -14,7 +14,7 @@ use std::f64::consts::PI;
 pub fn edge_weights(pa: [f64; 2], pb: [f64; 2], kind: AnalysisKind, thickness: f64) -> [f64; 2] {
     let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
     match kind {
-        AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress => {
+        AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress | AnalysisKind::Solid => {
             let w = 0.5 * len * thickness;
             [w, w]
         }
@@ -32,7 +32,7 @@ pub fn edge_weights(pa: [f64; 2], pb: [f64; 2], kind: AnalysisKind, thickness: f
 pub fn edge_mass(pa: [f64; 2], pb: [f64; 2], kind: AnalysisKind, thickness: f64) -> [[f64; 2]; 2] {
     let len = (pb[0] - pa[0]).hypot(pb[1] - pa[1]);
     match kind {
-        AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress => {
+        AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress | AnalysisKind::Solid => {
             let d = len * thickness / 3.0;
             let o = len * thickness / 6.0;
             [[d, o], [o, d]]

@@ -1,4 +1,5 @@
-//! Heat conduction element kernels (tri3, quad4; plane and axisymmetric):
+//! Heat conduction element kernels (every cell kind; plane, axisymmetric
+//! and solid):
 //! conductivity matrix `K_e = sum k grad(N_a) . grad(N_b) dV` and lumped
 //! (row-sum) capacity `C_a = sum rho c N_a dV`, with the same integration
 //! points and volume weights as the mechanical elements (`dV = w det(J) t`
@@ -7,71 +8,63 @@
 //! The capacity is lumped so that the implicit (backward Euler) transient
 //! respects the discrete maximum principle on reasonable meshes.
 
-use crate::element::{quad4, tri3, ElementError, RefPoint, Section};
-use crate::mesh::{Cell, CellKind, Mesh};
+use crate::element::{kernel_of, ElementError, Section};
+use crate::geom::Dimension;
+use crate::mesh::Mesh;
+use nalgebra::Const;
 
-/// Conductivity and lumped capacity of one cell (4 nodes at most; a
-/// triangle uses the leading 3x3 block).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// Conductivity and lumped capacity of one cell.
+#[derive(Debug, Clone, PartialEq)]
 pub struct CellConduction {
     /// Number of nodes of the cell.
     pub nodes: usize,
-    /// Conductivity matrix (row-major).
-    pub conductivity: [[f64; 4]; 4],
+    /// Conductivity matrix, `conductivity[a][b]`.
+    pub conductivity: Vec<Vec<f64>>,
     /// Lumped capacity per node (`rho c` times the nodal volume share).
-    pub capacity: [f64; 4],
+    pub capacity: Vec<f64>,
     /// Volume share of each node (`sum N_a dV`): distributes volumetric
     /// heat sources.
-    pub volume: [f64; 4],
+    pub volume: Vec<f64>,
 }
 
-fn integrate<const NN: usize>(points: &[RefPoint<NN>], k: f64, rho_c: f64) -> CellConduction {
+/// Conduction matrices of cell `c` (reference configuration) for
+/// conductivity `k` and volumetric capacity `rho_c`.
+pub fn cell_conduction<const D: usize>(
+    mesh: &Mesh<D>,
+    c: usize,
+    section: &Section,
+    k: f64,
+    rho_c: f64,
+) -> Result<CellConduction, ElementError>
+where
+    Const<D>: Dimension<D>,
+{
+    let kernel = kernel_of::<D>(mesh.cells.kind(c))?;
+    let points = kernel.shape_points(&mesh.cell_points(c), section)?;
+    let nn = kernel.node_count();
     let mut out = CellConduction {
-        nodes: NN,
-        conductivity: [[0.0; 4]; 4],
-        capacity: [0.0; 4],
-        volume: [0.0; 4],
+        nodes: nn,
+        conductivity: vec![vec![0.0; nn]; nn],
+        capacity: vec![0.0; nn],
+        volume: vec![0.0; nn],
     };
-    for p in points {
-        for a in 0..NN {
-            for b in 0..NN {
-                let g = p.dndx[a][0] * p.dndx[b][0] + p.dndx[a][1] * p.dndx[b][1];
+    for p in &points {
+        for a in 0..nn {
+            for b in 0..nn {
+                let g: f64 = (0..D).map(|k| p.dndx[a][k] * p.dndx[b][k]).sum();
                 out.conductivity[a][b] += k * g * p.volume;
             }
             out.volume[a] += p.n[a] * p.volume;
             out.capacity[a] += rho_c * p.n[a] * p.volume;
         }
     }
-    out
-}
-
-/// Conduction matrices of `cell` (reference configuration) for
-/// conductivity `k` and volumetric capacity `rho_c`.
-pub fn cell_conduction(
-    mesh: &Mesh,
-    cell: &Cell,
-    section: &Section,
-    k: f64,
-    rho_c: f64,
-) -> Result<CellConduction, ElementError> {
-    let at = |i: usize| mesh.nodes[cell.nodes[i]];
-    match cell.kind {
-        CellKind::Tri3 => {
-            let x = [at(0), at(1), at(2)];
-            let pts = tri3::reference_points(&x, section)?;
-            Ok(integrate(&pts, k, rho_c))
-        }
-        CellKind::Quad4 => {
-            let x = [at(0), at(1), at(2), at(3)];
-            let (pts, _) = quad4::reference_points(&x, section)?;
-            Ok(integrate(&pts, k, rho_c))
-        }
-    }
+    Ok(out)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::Cell;
     use crate::model::AnalysisKind;
 
     fn section(kind: AnalysisKind) -> Section {
@@ -88,7 +81,7 @@ mod tests {
             vec![Cell::quad(0, 1, 2, 3), Cell::tri(0, 1, 2)],
         );
         for kind in [AnalysisKind::PlaneStrain, AnalysisKind::Axisymmetric] {
-            for cell in &mesh.cells {
+            for cell in 0..mesh.cells.len() {
                 let c = cell_conduction(&mesh, cell, &section(kind), 3.0, 5.0).unwrap();
                 let n = c.nodes;
                 for a in 0..n {
@@ -113,14 +106,7 @@ mod tests {
             vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
             vec![Cell::quad(0, 1, 2, 3)],
         );
-        let c = cell_conduction(
-            &mesh,
-            &mesh.cells[0],
-            &section(AnalysisKind::PlaneStrain),
-            3.0,
-            0.0,
-        )
-        .unwrap();
+        let c = cell_conduction(&mesh, 0, &section(AnalysisKind::PlaneStrain), 3.0, 0.0).unwrap();
         let t = [0.0, 1.0, 1.0, 0.0];
         let f: Vec<f64> = (0..4)
             .map(|a| (0..4).map(|b| c.conductivity[a][b] * t[b]).sum())

@@ -25,7 +25,6 @@ use super::solver::{ThermalIncrement, ThermalSolver};
 use crate::contact::{tributary::tributary_areas, NodeContact};
 use crate::element::MaterialPoint;
 use crate::material::{von_mises, NonlinearLaw};
-use crate::mesh::CellKind;
 use crate::model::Model;
 
 /// The thermal side of a coupled run.
@@ -208,25 +207,6 @@ pub fn friction_heat(
     total
 }
 
-/// Shape function values of a cell's nodes at its integration points
-/// (tri3: centroid; quad4: 2x2 Gauss points ordered like the nodes).
-fn point_shapes(kind: CellKind, point: usize) -> [f64; 4] {
-    match kind {
-        CellKind::Tri3 => [1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0, 0.0],
-        CellKind::Quad4 => {
-            let g = 1.0 / 3f64.sqrt();
-            let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
-            let (xp, yp) = corners[point % 4];
-            let (xi, eta) = (xp * g, yp * g);
-            let mut n = [0.0; 4];
-            for (a, (xa, ya)) in corners.iter().enumerate() {
-                n[a] = 0.25 * (1.0 + xa * xi) * (1.0 + ya * eta);
-            }
-            n
-        }
-    }
-}
-
 /// Plastic dissipation turned into heat during the increment, added to the
 /// nodal sources `out` (energy); returns the total.
 pub fn plastic_heat(
@@ -248,7 +228,7 @@ pub fn plastic_heat(
             let (Some(b), Some(a)) = (before.get(c), after.get(c)) else {
                 continue;
             };
-            let cell = &model.mesh.cells[c];
+            let cell = model.mesh.cells.get(c);
             for (k, (pb, pa)) in b.iter().zip(a).enumerate() {
                 let dep = pa.history.ep - pb.history.ep;
                 if dep <= 0.0 {
@@ -257,8 +237,8 @@ pub fn plastic_heat(
                 let q = von_mises(&pa.state.stress);
                 let heat = m.taylor_quinney * q * dep * pa.state.volume;
                 total += heat;
-                let n = point_shapes(cell.kind, k);
-                for (na, &node) in n.iter().zip(cell.node_slice()) {
+                let n = crate::element::reference::quadrature_shape(cell.kind, k);
+                for (na, &node) in n.iter().zip(cell.nodes) {
                     out[node] += na * heat;
                 }
             }

@@ -2,7 +2,7 @@
 //! `eps_th = alpha (T - T_ref)` of each cell (nodal temperatures averaged
 //! over the cell), taken out of the mechanical strain.
 //!
-//! - small strain, nonlinear laws: the law sees `eps - eps_th [1, 1, 1, 0]`;
+//! - small strain, nonlinear laws: the law sees `eps - eps_th [1, 1, 1, 0, 0, 0]`;
 //! - finite strain: multiplicative split `F = F_m (1 + eps_th)`: the law sees
 //!   `F_m = F / (1 + eps_th)` and the Kirchhoff stress scales by
 //!   `(1 + eps_th)^3` (`element::finite`);
@@ -14,10 +14,12 @@
 //! strain body carries `sigma_zz = -E alpha dT` when also held in-plane.
 
 use super::scene::ThermalScene;
-use crate::element::{quad4, tri3, ElementError, IntegrationPoint, Section};
+use crate::element::{kernel_of, ElementError, Section};
+use crate::geom::{Dimension, Point};
 use crate::material::LinearElastic;
-use crate::mesh::{CellKind, Mesh};
+use crate::mesh::Mesh;
 use crate::model::{Formulation, Model};
+use nalgebra::Const;
 
 /// Thermal strain of every cell for nodal temperatures `temperature`
 /// (0 in cells whose material has no thermal block).
@@ -31,7 +33,7 @@ pub fn cell_thermal_strains(model: &Model, scene: &ThermalScene, temperature: &[
             continue;
         }
         for c in body.cells.clone() {
-            let nodes = model.mesh.cells[c].node_slice();
+            let nodes = model.mesh.cells.nodes(c);
             let mean = nodes.iter().map(|&n| temperature[n]).sum::<f64>() / nodes.len() as f64;
             out[c] = m.expansion * (mean - m.reference);
         }
@@ -47,46 +49,29 @@ pub fn cell_temperatures(model: &Model, scene: &ThermalScene, temperature: &[f64
             continue;
         }
         for c in body.cells.clone() {
-            let nodes = model.mesh.cells[c].node_slice();
+            let nodes = model.mesh.cells.nodes(c);
             out[c] = nodes.iter().map(|&n| temperature[n]).sum::<f64>() / nodes.len() as f64;
         }
     }
     out
 }
 
-fn force_of<const ND: usize>(points: &[IntegrationPoint<ND>], law: &LinearElastic) -> [f64; 8] {
-    let eps = crate::material::Strain::from([1.0, 1.0, 1.0, 0.0]);
-    let sigma = law.d * eps;
-    let mut f = [0.0; 8];
-    for p in points {
-        let bt = p.b.transpose() * sigma;
-        for (j, fj) in f.iter_mut().enumerate().take(ND) {
-            *fj += bt[j] * p.volume;
-        }
-    }
-    f
-}
-
-/// `sum B^T D [1, 1, 1, 0] dV` of a small-strain linear elastic cell: the
-/// nodal force of a unit thermal strain (element dof order).
-pub fn unit_thermal_force(
-    mesh: &Mesh,
+/// `sum B^T D [1, 1, 1, 0, 0, 0] dV` of a small-strain linear elastic
+/// cell: the nodal force of a unit thermal strain.
+pub fn unit_thermal_force<const D: usize>(
+    mesh: &Mesh<D>,
     c: usize,
     section: &Section,
     formulation: Formulation,
     law: &LinearElastic,
-) -> Result<[f64; 8], ElementError> {
-    let cell = &mesh.cells[c];
-    let at = |i: usize| mesh.nodes[cell.nodes[i]];
-    match cell.kind {
-        CellKind::Tri3 => {
-            let pts = tri3::integration_points(&[at(0), at(1), at(2)], section)?;
-            Ok(force_of(&pts, law))
-        }
-        CellKind::Quad4 => {
-            let pts =
-                quad4::integration_points(&[at(0), at(1), at(2), at(3)], section, formulation)?;
-            Ok(force_of(&pts, law))
-        }
-    }
+) -> Result<Vec<Point<D>>, ElementError>
+where
+    Const<D>: Dimension<D>,
+{
+    kernel_of::<D>(mesh.cells.kind(c))?.thermal_unit_force(
+        &mesh.cell_points(c),
+        section,
+        formulation,
+        law,
+    )
 }

@@ -99,16 +99,15 @@ impl ThermalSolver {
                 temperature[node] = t0;
             }
             for c in body.cells.clone() {
-                let cell = &model.mesh.cells[c];
                 let m = cell_conduction(
                     &model.mesh,
-                    cell,
+                    c,
                     &section,
                     mat.conductivity,
                     mat.density * mat.capacity,
                 )
                 .map_err(|e| format!("thermal cell {c}: {}", e.message))?;
-                for (a, &node) in cell.node_slice().iter().enumerate() {
+                for (a, &node) in model.mesh.cells.nodes(c).iter().enumerate() {
                     capacity[node] += m.capacity[a];
                     nodal_volume[node] += m.volume[a];
                 }
@@ -224,7 +223,7 @@ impl ThermalSolver {
         };
         // conduction and capacity
         for (c, m) in &self.cells {
-            let nodes = model.mesh.cells[*c].node_slice();
+            let nodes = model.mesh.cells.nodes(*c);
             for (a, &na) in nodes.iter().enumerate() {
                 for (b, &nb) in nodes.iter().enumerate() {
                     add(na, nb, m.conductivity[a][b], &mut rhs);

@@ -156,13 +156,7 @@ pub fn append(global: &mut Mesh, body: &str, m: Mesh, at: Span) -> (Placed, Vec<
     let cell_off = global.cells.len();
     let n_nodes = m.nodes.len();
     global.nodes.extend_from_slice(&m.nodes);
-    for c in &m.cells {
-        let mut c = *c;
-        for n in c.nodes.iter_mut() {
-            *n += node_off;
-        }
-        global.cells.push(c);
-    }
+    global.cells.extend_shifted(&m.cells, node_off);
     let cells = cell_off..global.cells.len();
     for name in ["boundary", "all"] {
         if m.node_sets.contains_key(name) || m.edge_sets.contains_key(name) {
@@ -241,7 +235,7 @@ mod tests {
         assert_eq!(a.nodes, 0..4);
         assert_eq!(b.nodes, 4..8);
         assert_eq!(b.cells, 1..2);
-        assert_eq!(g.cells[1].nodes, [4, 5, 6, 7]);
+        assert_eq!(g.cells.nodes(1), &[4, 5, 6, 7]);
         assert_eq!(g.edge_sets["b.bottom"], vec![[4, 5]]);
         assert_eq!(g.node_sets["b.bottom"], vec![4, 5]);
         assert_eq!(g.node_sets["b.corner"], vec![6]);

@@ -63,7 +63,7 @@ pub fn measure(
             let states =
                 cell_states(&model.mesh, c, u, &section, block).map_err(|e| e.to_string())?;
             for s in states {
-                let p = s.position;
+                let p = [s.position[0], s.position[1]];
                 let hoop = if axisymmetric {
                     s.stress[2]
                 } else {

@@ -167,7 +167,7 @@ pub fn max_cell_edge(model: &Model) -> f64 {
     let nodes = &model.mesh.nodes;
     let mut h: f64 = 0.0;
     for c in &model.mesh.cells {
-        let n = c.node_slice();
+        let n = c.nodes;
         for i in 0..n.len() {
             let (a, b) = (nodes[n[i]], nodes[n[(i + 1) % n.len()]]);
             h = h.max(((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt());

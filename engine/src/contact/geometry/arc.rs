@@ -6,8 +6,8 @@
 use super::circle::radial_projection;
 use super::corner::end_cap;
 use super::{finite, Projection};
-use crate::contact::aabb::Aabb;
 use crate::contact::vec2::add;
+use crate::geom::Aabb;
 use std::f64::consts::{FRAC_PI_2, TAU};
 
 /// A circular arc prepared for projection.
@@ -62,7 +62,7 @@ impl Arc {
     }
 
     /// Exact bounding box (end points and the axis extremes inside the sweep).
-    pub fn bounding_box(&self) -> Aabb {
+    pub fn bounding_box(&self) -> Aabb<2> {
         let end = self.start + self.sweep;
         let mut b = Aabb::around(&[self.point_at(self.start), self.point_at(end)]);
         for k in 0..4 {

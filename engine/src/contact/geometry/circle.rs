@@ -2,8 +2,8 @@
 //! the body inside).
 
 use super::{finite, Projection};
-use crate::contact::aabb::Aabb;
 use crate::contact::vec2::{add, norm, scale, sub};
+use crate::geom::Aabb;
 use crate::model::ToolSide;
 
 /// A circle with the free side outside or inside.
@@ -39,7 +39,7 @@ impl Circle {
     }
 
     /// Bounding box of the disc.
-    pub fn bounding_box(&self) -> Aabb {
+    pub fn bounding_box(&self) -> Aabb<2> {
         let r = self.radius;
         Aabb {
             min: [self.center[0] - r, self.center[1] - r],

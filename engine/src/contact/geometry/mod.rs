@@ -31,7 +31,7 @@ pub mod nurbs;
 pub mod plane;
 pub mod polyline;
 
-use crate::contact::aabb::Aabb;
+use crate::geom::Aabb;
 use crate::model::ToolGeometry;
 
 /// Where on the entity the closest point lies.
@@ -157,9 +157,9 @@ impl ToolShape {
     }
 
     /// Bounding box of entity `e` in the reference frame.
-    pub fn bounding_box(&self, e: usize) -> Aabb {
+    pub fn bounding_box(&self, e: usize) -> Aabb<2> {
         match self {
-            ToolShape::Plane(_) => Aabb::everything(),
+            ToolShape::Plane(_) => Aabb::<2>::everything(),
             ToolShape::Polyline(p) => p.bounding_box(e),
             ToolShape::Arc(a) => a.bounding_box(),
             ToolShape::Circle(c) => c.bounding_box(),

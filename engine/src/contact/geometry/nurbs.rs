@@ -21,8 +21,8 @@
 
 use super::corner::{corner, end_cap};
 use super::{finite, Projection};
-use crate::contact::aabb::Aabb;
 use crate::contact::vec2::{cross, dot, left, norm, scale, sub, unit};
+use crate::geom::Aabb;
 
 /// Highest supported degree (keeps the basis evaluation on the stack).
 pub const MAX_DEGREE: usize = ctc_geom::nurbs::basis::MAX_DEGREE;
@@ -43,7 +43,7 @@ pub struct Nurbs {
     /// Whether the curve's end point coincides with its start point.
     pub closed: bool,
     /// Bounding box of each span (convex hull of its control points).
-    boxes: Vec<Aabb>,
+    boxes: Vec<Aabb<2>>,
     /// One-sided unit normal at the start of each span.
     start_normals: Vec<[f64; 2]>,
     /// One-sided unit normal at the end of each span.
@@ -183,7 +183,7 @@ impl Nurbs {
     }
 
     /// Bounding box of span `s`.
-    pub fn bounding_box(&self, s: usize) -> Aabb {
+    pub fn bounding_box(&self, s: usize) -> Aabb<2> {
         self.boxes[s]
     }
 

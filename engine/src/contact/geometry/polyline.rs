@@ -22,8 +22,8 @@
 
 use super::corner::{corner, end_cap};
 use super::{finite, Foot, Projection};
-use crate::contact::aabb::Aabb;
 use crate::contact::vec2::{add, cross, dot, left, norm, scale, sub};
+use crate::geom::Aabb;
 
 /// A polyline prepared for projection.
 #[derive(Debug, Clone, PartialEq)]
@@ -116,7 +116,7 @@ impl Polyline {
     }
 
     /// Bounding box of segment `i`.
-    pub fn bounding_box(&self, i: usize) -> Aabb {
+    pub fn bounding_box(&self, i: usize) -> Aabb<2> {
         let (a, b) = self.ends(i);
         Aabb::around(&[a, b])
     }

@@ -1,7 +1,7 @@
 //! Helpers shared by the generators: input checks, exact polar points,
 //! quad splitting and named boundary sets.
 
-use crate::mesh::{Cell, CellKind, Mesh, MeshError};
+use crate::mesh::{Cell, CellKind, Cells, Mesh, MeshError};
 
 /// Largest number of nodes a generator accepts: a 2D body beyond this is
 /// almost certainly a typo in the divisions, and would exhaust memory.
@@ -77,10 +77,11 @@ pub fn polar_point(center: [f64; 2], r: f64, deg: f64) -> [f64; 2] {
 
 /// Appends the counter-clockwise quad `a b c d` as one `Quad4` or as two
 /// `Tri3` cut along the diagonal `a-c` (`diagonal_ac`) or `b-d`.
-pub fn push_quad(cells: &mut Vec<Cell>, kind: CellKind, n: [usize; 4], diagonal_ac: bool) {
+/// (Planar generators produce `Tri3` or `Quad4`; any other kind is a
+/// programming error.)
+pub fn push_quad(cells: &mut Cells, kind: CellKind, n: [usize; 4], diagonal_ac: bool) {
     let [a, b, c, d] = n;
     match kind {
-        CellKind::Quad4 => cells.push(Cell::quad(a, b, c, d)),
         CellKind::Tri3 if diagonal_ac => {
             cells.push(Cell::tri(a, b, c));
             cells.push(Cell::tri(a, c, d));
@@ -89,6 +90,7 @@ pub fn push_quad(cells: &mut Vec<Cell>, kind: CellKind, n: [usize; 4], diagonal_
             cells.push(Cell::tri(a, b, d));
             cells.push(Cell::tri(b, c, d));
         }
+        _ => cells.push(Cell::quad(a, b, c, d)),
     }
 }
 
@@ -128,17 +130,17 @@ mod tests {
 
     #[test]
     fn push_quad_splits_counter_clockwise() {
-        let mut cells = Vec::new();
+        let mut cells = Cells::new();
         push_quad(&mut cells, CellKind::Tri3, [0, 1, 2, 3], true);
         push_quad(&mut cells, CellKind::Tri3, [0, 1, 2, 3], false);
-        assert_eq!(
-            cells,
-            vec![
-                Cell::tri(0, 1, 2),
-                Cell::tri(0, 2, 3),
-                Cell::tri(0, 1, 3),
-                Cell::tri(1, 2, 3)
-            ]
-        );
+        let want: Cells = [
+            Cell::tri(0, 1, 2),
+            Cell::tri(0, 2, 3),
+            Cell::tri(0, 1, 3),
+            Cell::tri(1, 2, 3),
+        ]
+        .into_iter()
+        .collect();
+        assert_eq!(cells, want);
     }
 }

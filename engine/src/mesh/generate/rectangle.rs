@@ -86,7 +86,7 @@ mod tests {
         mesh.cells
             .iter()
             .map(|c| {
-                let n = c.node_slice();
+                let n = c.nodes;
                 (0..n.len())
                     .map(|k| {
                         let p = mesh.nodes[n[k]];
@@ -111,7 +111,7 @@ mod tests {
         .unwrap();
         assert_eq!(m.nodes.len(), 6);
         assert_eq!(m.cells.len(), 2);
-        assert_eq!(m.cells[0].nodes, [0, 1, 4, 3]);
+        assert_eq!(m.cells.nodes(0), &[0, 1, 4, 3]);
         assert_eq!(m.edge_sets["bottom"], vec![[0, 1], [1, 2]]);
         assert_eq!(m.edge_sets["right"], vec![[2, 5]]);
         assert_eq!(m.edge_sets["top"], vec![[5, 4], [4, 3]]);
@@ -144,17 +144,17 @@ mod tests {
         let all: Vec<_> = m
             .cells
             .iter()
-            .map(|c| key(c.node_slice().iter().map(|&n| m.nodes[n]).collect()))
+            .map(|c| key(c.nodes.iter().map(|&n| m.nodes[n]).collect()))
             .collect();
         for c in &m.cells {
             let mirrored = key(c
-                .node_slice()
+                .nodes
                 .iter()
                 .map(|&n| [-m.nodes[n][0], m.nodes[n][1]])
                 .collect());
             assert!(all.contains(&mirrored));
             let flipped = key(c
-                .node_slice()
+                .nodes
                 .iter()
                 .map(|&n| [m.nodes[n][0], -m.nodes[n][1]])
                 .collect());

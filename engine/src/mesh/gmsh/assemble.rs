@@ -116,7 +116,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     // every cell edge: undirected key -> (count, direction in its first cell)
     let mut edges: HashMap<(usize, usize), (usize, [usize; 2])> = HashMap::new();
     for c in &mesh.cells {
-        let n = c.node_slice();
+        let n = c.nodes;
         for i in 0..n.len() {
             let (a, b) = (n[i], n[(i + 1) % n.len()]);
             edges.entry((a.min(b), a.max(b))).or_insert((0, [a, b])).0 += 1;

@@ -203,6 +203,7 @@ impl LinearSolver {
                         Default::default(),
                     )
                     .is_ok()
+                && numerically_regular(sym, &self.l_values, pattern, values)
             {
                 self.factor = Factor::Llt;
                 self.negative_pivots = 0;
@@ -337,6 +338,20 @@ impl LinearSystem for LinearSolver {
 /// LU with partial pivoting takes over.
 const SINGULAR_PIVOT: f64 = 1e-12;
 
+/// Whether a Cholesky factor `L` is numerically regular: a singular
+/// tangent (a body not held) can pass `L L^T` with a round-off pivot
+/// `L_jj^2 ~ 1e-16 max |K_jj|`, whose solve is meaningless; such a factor
+/// is refused like an L D L^T one with a pivot below [`SINGULAR_PIVOT`].
+fn numerically_regular(
+    sym: &SymbolicCholesky<usize>,
+    l_values: &[f64],
+    pattern: &SparsePattern,
+    values: &[f64],
+) -> bool {
+    let (_, smallest) = pivot_stats(sym, l_values);
+    smallest * smallest > SINGULAR_PIVOT * max_abs_diagonal(pattern, values)
+}
+
 /// Largest |K_jj| of a matrix given by its pattern and values.
 fn max_abs_diagonal(pattern: &SparsePattern, values: &[f64]) -> f64 {
     let mut m = 0.0f64;
@@ -418,6 +433,23 @@ mod tests {
             assert!(residual(&a2, &x, &b) < 1e-14);
         }
         assert_eq!(s.method(), Method::Cholesky);
+    }
+
+    #[test]
+    fn singular_matrix_passing_cholesky_by_round_off_goes_to_lu() {
+        // a 2-spring chain held nowhere, perturbed so that the last pivot is
+        // a positive round-off number: Cholesky would succeed
+        let k = 1e3;
+        let a = [
+            [k, -k, 0.0],
+            [-k, 2.0 * k, -k],
+            [0.0, -k, k * (1.0 + 1e-15)],
+        ];
+        let (p, v) = csc(&a);
+        let mut s = LinearSolver::new();
+        let r = s.factorize(&p, &v);
+        assert_eq!(s.cholesky_count, 0, "{r:?}");
+        assert_ne!(s.method(), Method::Cholesky);
     }
 
     #[test]

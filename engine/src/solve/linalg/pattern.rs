@@ -81,7 +81,7 @@ impl Scatter {
         // node adjacency (sorted, unique, including the node itself)
         let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nn];
         for c in &mesh.cells {
-            let ns = c.node_slice();
+            let ns = c.nodes;
             for &a in ns {
                 for &b in ns {
                     adj[a].push(b as u32);
@@ -141,7 +141,7 @@ impl Scatter {
         cell_offset.push(0);
         let mut slots = Vec::new();
         for c in &mesh.cells {
-            let ns = c.node_slice();
+            let ns = c.nodes;
             let nd = 2 * ns.len();
             for j in 0..nd {
                 for i in 0..nd {
@@ -291,7 +291,7 @@ mod tests {
         let mut values = vec![0.0; s.n_values()];
         let mut dense = vec![vec![0.0; 12]; 12];
         for (c, cell) in m.mesh.cells.iter().enumerate() {
-            let ns = cell.node_slice();
+            let ns = cell.nodes;
             for (e, &slot) in s.cell_slots(c).iter().enumerate() {
                 let (i, j) = (e % 8, e / 8);
                 let v = (i * 8 + j) as f64 + 1.0;
