@@ -199,16 +199,7 @@ impl VerifyCase {
                 }
                 Err(e) => l.failure = Some(e),
             }
-            progress(&format!(
-                "{} level {level}: {:.2} s{}",
-                self.name,
-                l.solve_time,
-                match (&l.failure, l.passed()) {
-                    (Some(f), _) => format!(" -- FAILED: {}", f.lines().next().unwrap_or("")),
-                    (None, true) => " -- pass".to_string(),
-                    (None, false) => " -- FAIL".to_string(),
-                }
-            ));
+            progress(&runner::progress_line(self.name, &l));
             report.levels.push(l);
         }
         report.rates = runner::rates_of(&self.checks, self.levels, &report.levels);

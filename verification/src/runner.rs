@@ -44,22 +44,28 @@ pub fn run_case(
     };
     for level in 0..count {
         let l = run_level(case, &deck, level);
-        progress(&format!(
-            "{} level {level}: {} dofs, {} Newton iterations, {:.2} s{}",
-            case.name,
-            l.free_dofs,
-            l.newton_total,
-            l.solve_time,
-            match (&l.failure, l.passed()) {
-                (Some(f), _) => format!(" -- FAILED: {}", f.lines().next().unwrap_or("")),
-                (None, true) => " -- pass".to_string(),
-                (None, false) => " -- FAIL".to_string(),
-            }
-        ));
+        progress(&progress_line(case.name, &l));
         report.levels.push(l);
     }
     report.rates = rates(case, &report.levels);
     report
+}
+
+/// The progress line of a finished level: dofs, Newton iterations, time,
+/// verdict.
+pub fn progress_line(name: &str, l: &LevelReport) -> String {
+    format!(
+        "{name} level {}: {} dofs, {} Newton iterations, {:.2} s{}",
+        l.level,
+        l.free_dofs,
+        l.newton_total,
+        l.solve_time,
+        match (&l.failure, l.passed()) {
+            (Some(f), _) => format!(" -- FAILED: {}", f.lines().next().unwrap_or("")),
+            (None, true) => " -- pass".to_string(),
+            (None, false) => " -- FAIL".to_string(),
+        }
+    )
 }
 
 /// Runs one level of a case.

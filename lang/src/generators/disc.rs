@@ -47,43 +47,28 @@ const UPPER: Key = Key::new(
 )
 .default(Default::Bool(false));
 
+/// The keys of a disc whose arc has `min` divisions at least.
+const fn disc_keys(span: &'static str, min: i64) -> [Key; 8] {
+    [
+        CENTER,
+        RADIUS,
+        RADIAL,
+        Key::new("circumferential", KeyType::Integer, span)
+            .required("add `circumferential = <divisions along the arc>`")
+            .range(Range::AtLeast(min))
+            .labels(&["circumferential divisions"]),
+        RADIAL_GRADING,
+        CIRCUMFERENTIAL_GRADING,
+        UPPER,
+        ELEMENT,
+    ]
+}
+
 /// The keys of `half_disc`.
-pub static HALF_KEYS: [Key; 8] = [
-    CENTER,
-    RADIUS,
-    RADIAL,
-    Key::new(
-        "circumferential",
-        KeyType::Integer,
-        "divisions along the half circle",
-    )
-    .required("add `circumferential = <divisions along the arc>`")
-    .range(Range::AtLeast(2))
-    .labels(&["circumferential divisions"]),
-    RADIAL_GRADING,
-    CIRCUMFERENTIAL_GRADING,
-    UPPER,
-    ELEMENT,
-];
+pub static HALF_KEYS: [Key; 8] = disc_keys("divisions along the half circle", 2);
 
 /// The keys of `quarter_disc`.
-pub static QUARTER_KEYS: [Key; 8] = [
-    CENTER,
-    RADIUS,
-    RADIAL,
-    Key::new(
-        "circumferential",
-        KeyType::Integer,
-        "divisions along the quarter circle",
-    )
-    .required("add `circumferential = <divisions along the arc>`")
-    .range(Range::AtLeast(1))
-    .labels(&["circumferential divisions"]),
-    RADIAL_GRADING,
-    CIRCUMFERENTIAL_GRADING,
-    UPPER,
-    ELEMENT,
-];
+pub static QUARTER_KEYS: [Key; 8] = disc_keys("divisions along the quarter circle", 1);
 
 /// `half_disc`.
 pub static HALF_DISC: GeneratorDef = GeneratorDef {
