@@ -265,11 +265,23 @@ fn check_element<const D: usize>(
     let x = shape(reference, &d.a, &d.jitter, d.scale);
     // small strain: displacements of the order of the yield strain times
     // the size (plastic with the histories above); finite: large
-    let u: Vec<Point<D>> = displacement::<D>(&d.grad, reference.len())
-        .into_iter()
-        .map(|p| p * d.scale)
-        .collect();
     let finite = kinematics == Kinematics::Finite;
+    let nodal = displacement::<D>(&d.grad, reference.len());
+    let u: Vec<Point<D>> = if finite {
+        // a large homogeneous gradient H (|H_ij| <= 0.25: by Gershgorin every
+        // eigenvalue of I + H has real part >= 1 - 0.25 (D - 1) - 0.25 > 0,
+        // so no draw inverts the cell) plus a nodal perturbation of a tenth
+        // of it: independent nodal displacements of 0.25 x size invert
+        // distorted tets
+        let h = nalgebra::SMatrix::<f64, D, D>::from_fn(|i, j| d.grad[D * i + j]);
+        let centroid = x.iter().fold(Point::<D>::zeros(), |s, p| s + p) / x.len() as f64;
+        x.iter()
+            .zip(&nodal)
+            .map(|(p, n)| h * (p - centroid) + n * (0.1 * d.scale))
+            .collect()
+    } else {
+        nodal.into_iter().map(|p| p * d.scale).collect()
+    };
     let mut worst = 0.0f64;
     for (name, law) in laws() {
         if !finite
