@@ -288,6 +288,10 @@ proptest! {
         let request = Request { x: [x, y], window, memory, guess, test };
         let gridded = closest_in(shape, &grid, request, &mut scratch, &mut ng);
         prop_assert_eq!(looped, gridded);
-        prop_assert!(ng <= nl, "grid {} projections, loop {}", ng, nl);
+        // a priority entity pruned at the window radius is projected by the
+        // grid once a deeper candidate widens the radius; the loop visits in
+        // index order and may prune differently: a few projections at most
+        // more than the loop (six priority entities)
+        prop_assert!(ng <= nl + 6, "grid {} projections, loop {}", ng, nl);
     }
 }

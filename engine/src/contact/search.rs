@@ -266,10 +266,17 @@ pub fn closest_in(
         circle,
     };
     let (first, nfirst, unconditional) = priority(shape, req.memory, req.guess, circle);
-    let first = &first[..nfirst];
-    for (k, &e) in first.iter().enumerate() {
-        scan.consider(e, k == 0 && unconditional == Some(e));
+    // a priority entity pruned at the first radius may still be the
+    // closest once the radius grows: only the ones projected are skipped below
+    let mut projected = [usize::MAX; 6];
+    let mut nprojected = 0;
+    for (k, &e) in first[..nfirst].iter().enumerate() {
+        if scan.consider(e, k == 0 && unconditional == Some(e)) {
+            projected[nprojected] = e;
+            nprojected += 1;
+        }
     }
+    let first = &projected[..nprojected];
     // every entity not returned has its box beyond the query radius; when
     // the best candidate found is farther than that (the first candidate of
     // a node farther than the window), query again with its distance
