@@ -140,6 +140,8 @@ fn vtu_type(kind: CellKind) -> &'static str {
     match kind {
         CellKind::Tri3 => "triangle",
         CellKind::Quad4 => "quad",
+        CellKind::Tet4 => "tetra",
+        CellKind::Hex8 => "hexahedron",
     }
 }
 
