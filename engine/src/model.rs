@@ -480,6 +480,18 @@ pub enum ContactStrategy {
     ModifiedDoublePass,
 }
 
+/// Discretization of the contact between deformable bodies.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ContactFormulation {
+    /// One constraint per slave node against the master point under it.
+    #[default]
+    NodeToSegment,
+    /// Mortar segment-to-segment: the gap integrated against the slave
+    /// shape functions (weighted gaps, `D` and `M` matrices), see
+    /// `crate::contact::mortar`.
+    Mortar,
+}
+
 /// Local contact search test (seed, "Part I - Geometrical aspects").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LocalSearch {
@@ -512,6 +524,8 @@ pub struct ContactPair {
     pub strategy: ContactStrategy,
     /// Local search test used to pick the candidate master entities.
     pub search: LocalSearch,
+    /// Node-to-segment or mortar segment-to-segment (deformable masters).
+    pub formulation: ContactFormulation,
     /// Normal enforcement.
     pub method: ContactMethod,
     /// Maximum gap `prof`: nodes farther than this from the tool create no

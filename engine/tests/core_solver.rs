@@ -352,6 +352,7 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         master: ctc_engine::model::ContactMaster::Tool(0),
         strategy: Default::default(),
         search: Default::default(),
+        formulation: Default::default(),
         method: ContactMethod::Penalty {
             kind: PenaltyKind::Area,
             stiffness: 1e4,

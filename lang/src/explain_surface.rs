@@ -1,7 +1,9 @@
 //! `ctc check --explain`: the line describing a contact pair whose master
 //! is a deformable surface (node-to-segment contact).
 
-use ctc_engine::model::{ContactMaster, ContactPair, ContactStrategy, LocalSearch, Model};
+use ctc_engine::model::{
+    ContactFormulation, ContactMaster, ContactPair, ContactStrategy, LocalSearch, Model,
+};
 
 /// One line about a deformable master (strategy, search, self contact);
 /// `None` for a rigid tool.
@@ -20,6 +22,16 @@ pub fn describe(model: &Model, c: &ContactPair) -> Option<String> {
         return Some(format!(
             "self contact (node-to-segment) on body `{body}`: each node against the surface's \
              segments except its own and the adjacent ones; {search}"
+        ));
+    }
+    if c.formulation == ContactFormulation::Mortar {
+        return Some(format!(
+            "deformable master: {} segments and {} nodes of body `{body}`, mortar \
+             segment-to-segment (slave segments cut against the projected master segments, \
+             weighted gap per slave node decides contact, gives force and pressure; \
+             unsymmetric tangent: LU)",
+            edges.len(),
+            nodes.len()
         ));
     }
     let strategy = match c.strategy {

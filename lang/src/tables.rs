@@ -289,7 +289,7 @@ pub static MOTION: [Key; 4] = [
 ];
 
 /// `contact SLAVE -> MASTER { .. }`.
-pub static CONTACT: [Key; 6] = [
+pub static CONTACT: [Key; 7] = [
     Key::new(
         "method",
         KeyType::Choice(&[
@@ -324,6 +324,13 @@ pub static CONTACT: [Key; 6] = [
         "local search of node-to-segment contact (Metafor memory, Cast3M circle)",
     )
     .default(Default::Choice("memory")),
+    Key::new(
+        "formulation",
+        KeyType::Choice(&["node_to_segment", "mortar"]),
+        "contact between deformable bodies: node-to-segment elements, or mortar \
+         segment-to-segment (weighted gaps; single pass, penalty or augmented Lagrangian)",
+    )
+    .default(Default::Choice("node_to_segment")),
     Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),
 ];
 

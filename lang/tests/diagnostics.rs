@@ -67,6 +67,7 @@ decks!(
     contact_master_unknown_body,
     contact_master_unknown_set,
     contact_bad_strategy,
+    contact_mortar_unsupported,
     friction_bad_coulomb,
     several_thermal_errors,
     expr_division_by_zero,

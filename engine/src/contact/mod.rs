@@ -28,6 +28,8 @@
 //!   master in one increment (run warnings);
 //! - [`segment`], [`node_to_segment`]: deformable masters (node-to-segment
 //!   elements, single / double / modified double pass, self contact);
+//! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
+//!   and `M`, segmentation; penalty and augmented Lagrangian);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod augmented;
@@ -40,6 +42,7 @@ pub mod impact;
 pub mod jump;
 pub mod lagrange;
 pub mod log;
+pub mod mortar;
 pub mod motion;
 pub mod node_to_segment;
 pub mod penalty;
@@ -51,7 +54,7 @@ pub mod segment_search;
 pub mod tributary;
 pub(crate) mod vec2;
 
-use crate::model::{ContactMethod, Model};
+use crate::model::{ContactFormulation, ContactMethod, Model};
 use geometry::ToolShape;
 use motion::Placement;
 
@@ -158,6 +161,10 @@ pub struct PairState {
     pub slaves: Vec<usize>,
     /// Deformable master (node-to-segment): surfaces, strategy state.
     pub surface: Option<node_to_segment::SurfacePair>,
+    /// Mortar pairs: the coupling rows of the latest evaluation (the solver
+    /// scatters these instead of the `NodeContact` forces); `None` for
+    /// node-to-segment and rigid tools.
+    pub couplings: Option<Vec<mortar::Coupling>>,
 }
 
 impl PairState {
@@ -222,6 +229,8 @@ impl PairState {
             scratch: Vec::new(),
             shape,
             slaves,
+            couplings: (cp.formulation == ContactFormulation::Mortar && surface.is_some())
+                .then(Vec::new),
             surface,
         }
     }
@@ -281,6 +290,9 @@ pub fn evaluate_pair(
         || state.slaves.len() < cp.nodes.len()
     {
         *state = PairState::new(model, pair);
+    }
+    if state.couplings.is_some() {
+        return mortar::evaluate(model, pair, x, state);
     }
     if state.surface.is_some() {
         return node_to_segment::evaluate(model, pair, x, state);

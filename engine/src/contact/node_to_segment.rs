@@ -75,7 +75,7 @@ pub struct Surface {
     /// Per segment: the segment starting at its second node (next one).
     pub next: Vec<Option<usize>>,
     /// Broad phase over the segment boxes at the current coordinates.
-    grid: Option<BroadPhase>,
+    pub(crate) grid: Option<BroadPhase>,
     /// Scratch: segment boxes.
     boxes: Vec<Aabb<2>>,
 }
@@ -107,7 +107,7 @@ impl Surface {
     }
 
     /// Rebuilds the broad phase at the current coordinates `x`.
-    fn update(&mut self, x: &[[f64; 2]]) {
+    pub(crate) fn update(&mut self, x: &[[f64; 2]]) {
         self.boxes.clear();
         for &[a, b] in &self.edges {
             self.boxes.push(Aabb::around(&[x[a], x[b]]));
@@ -136,7 +136,7 @@ pub struct SurfacePair {
     /// Converged increments at the last commit (rollback target).
     committed_increments: usize,
     /// Scratch: candidate segments of one query.
-    candidates: Vec<usize>,
+    pub(crate) candidates: Vec<usize>,
 }
 
 impl SurfacePair {

@@ -73,6 +73,19 @@ impl ContactAssembly {
         }
         for (i, state) in self.pairs.iter_mut().enumerate() {
             let res = contact::evaluate_pair(model, i, &self.x, t, state);
+            // mortar: the coupling rows carry the forces (the node entries
+            // repeat their sums at the slave nodes, for output)
+            if let Some(rows) = &state.couplings {
+                for c in rows {
+                    for (k, &n) in c.nodes.iter().enumerate() {
+                        for comp in 0..dofs.components() {
+                            f_c[dofs.dof(n, comp)] += c.force[dofs.components() * k + comp];
+                        }
+                    }
+                }
+                self.contact[i] = res;
+                continue;
+            }
             for nc in &res {
                 for (c, f) in nc.force.iter().enumerate() {
                     f_c[dofs.dof(nc.node, c)] += f;
@@ -94,7 +107,13 @@ impl ContactAssembly {
     /// skipped (grow the pattern first, [`ContactAssembly::grow_pattern`]).
     pub fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap, values: &mut [f64]) {
         let nc_dim = dofs.components();
-        for res in &self.contact {
+        for (res, state) in self.contact.iter().zip(&self.pairs) {
+            if let Some(rows) = &state.couplings {
+                for c in rows {
+                    add_coupling(c, scatter, dofs, values);
+                }
+                continue;
+            }
             for nc in res {
                 match &nc.master {
                     None => {
@@ -152,9 +171,33 @@ impl ContactAssembly {
                     .any(|&m| scatter.pair_slots(dofs, nc.node, m).is_none())
             })
         });
-        if !missing {
+        let rows = || {
+            self.pairs
+                .iter()
+                .filter_map(|s| s.couplings.as_ref())
+                .flatten()
+        };
+        let missing_rows = rows().any(|c| {
+            c.nodes.iter().any(|&a| {
+                c.nodes
+                    .iter()
+                    .any(|&b| scatter.pair_slots(dofs, a, b).is_none())
+            })
+        });
+        if !missing && !missing_rows {
             return Ok(None);
         }
+        let mut extra = Vec::new();
+        for c in rows() {
+            for &a in &c.nodes {
+                for &b in &c.nodes {
+                    if a < b {
+                        extra.push((a, b));
+                    }
+                }
+            }
+        }
+        self.couplings.extend(extra);
         let mut near = Vec::new();
         for (p, res) in self.contact.iter().enumerate() {
             for nc in res {
@@ -220,6 +263,32 @@ impl ContactAssembly {
     pub fn rollback(&mut self) {
         for p in &mut self.pairs {
             p.rollback();
+        }
+    }
+}
+
+/// Adds the tangent of one mortar coupling row (any number of nodes).
+fn add_coupling(
+    c: &contact::mortar::Coupling,
+    scatter: &Scatter,
+    dofs: &DofMap,
+    values: &mut [f64],
+) {
+    let dim = dofs.components();
+    let nd = dim * c.nodes.len();
+    for (bj, &nb) in c.nodes.iter().enumerate() {
+        for (bi, &na) in c.nodes.iter().enumerate() {
+            let Some(slots) = scatter.pair_slots(dofs, na, nb) else {
+                continue;
+            };
+            for b in 0..dim {
+                for a in 0..dim {
+                    let s = slots[a + dim * b];
+                    if s != NO_SLOT {
+                        values[s as usize] += c.tangent[(dim * bi + a) * nd + dim * bj + b];
+                    }
+                }
+            }
         }
     }
 }

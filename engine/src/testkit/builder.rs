@@ -320,6 +320,7 @@ impl<const D: usize> ModelBuilder<D> {
             master: ContactMaster::Tool(usize::MAX),
             strategy: ContactStrategy::default(),
             search: LocalSearch::default(),
+            formulation: crate::model::ContactFormulation::default(),
             method: ContactMethod::Penalty {
                 kind: crate::model::PenaltyKind::Area,
                 stiffness: 1.0,
@@ -373,6 +374,12 @@ impl<const D: usize> ModelBuilder<D> {
             .contacts
             .last_mut()
             .expect("test kit: add a contact pair first")
+    }
+
+    /// Formulation of the last pair (node-to-segment or mortar).
+    pub fn formulation_of_pair(mut self, formulation: crate::model::ContactFormulation) -> Self {
+        self.last_pair().formulation = formulation;
+        self
     }
 
     /// Coulomb friction of the last pair.

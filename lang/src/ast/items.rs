@@ -308,6 +308,17 @@ pub struct Contact {
     pub strategy: Option<Spanned<Strategy>>,
     /// `search = memory | circle`.
     pub search: Option<Spanned<Search>>,
+    /// `formulation = node_to_segment | mortar`.
+    pub formulation: Option<Spanned<ContactFormulation>>,
+}
+
+/// `formulation = ..` of a contact pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactFormulation {
+    /// `node_to_segment`.
+    NodeToSegment,
+    /// `mortar`.
+    Mortar,
 }
 
 /// `friction = coulomb { mu stiffness first_impact cut_at_impact }`.

@@ -97,6 +97,10 @@ impl Lowerer<'_> {
                     Some(ast::Strategy::ModifiedDoublePass) => ContactStrategy::ModifiedDoublePass,
                     _ => ContactStrategy::SinglePass,
                 },
+                formulation: match c.formulation.as_ref().map(|s| s.value) {
+                    Some(ast::ContactFormulation::Mortar) => m::ContactFormulation::Mortar,
+                    _ => m::ContactFormulation::NodeToSegment,
+                },
                 search: match c.search.as_ref().map(|s| s.value) {
                     Some(ast::Search::Circle) => m::LocalSearch::Circle,
                     _ => m::LocalSearch::Memory,

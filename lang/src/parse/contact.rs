@@ -5,7 +5,8 @@ use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{Value, ValueKind};
 use crate::ast::{
-    Contact, LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind, Search, Strategy,
+    Contact, ContactFormulation, LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind,
+    Search, Strategy,
 };
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
@@ -26,6 +27,11 @@ const STRATEGIES: [(&str, Strategy); 3] = [
     ("single_pass", Strategy::SinglePass),
     ("double_pass", Strategy::DoublePass),
     ("modified_double_pass", Strategy::ModifiedDoublePass),
+];
+
+const CONTACT_FORMULATIONS: [(&str, ContactFormulation); 2] = [
+    ("node_to_segment", ContactFormulation::NodeToSegment),
+    ("mortar", ContactFormulation::Mortar),
 ];
 
 const SEARCHES: [(&str, Search); 2] = [("memory", Search::Memory), ("circle", Search::Circle)];
@@ -55,6 +61,12 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
     let prof = f.number("prof", diags);
     let strategy = f.choice("strategy", "contact strategy", &STRATEGIES, diags);
     let search = f.choice("search", "contact search", &SEARCHES, diags);
+    let formulation = f.choice(
+        "formulation",
+        "contact formulation",
+        &CONTACT_FORMULATIONS,
+        diags,
+    );
     let friction = f
         .value("friction", diags)
         .and_then(|v| super::friction::parse(v, diags));
@@ -79,6 +91,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         master,
         strategy,
         search,
+        formulation,
     })
 }
 

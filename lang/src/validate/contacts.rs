@@ -108,6 +108,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
                 ),
             );
         }
+        mortar_supported(c, ctx);
         for r in &c.reserved {
             ctx.err(
                 Diagnostic::error(
@@ -118,5 +119,78 @@ pub fn check(ctx: &mut Ctx<'_>) {
                 .with_help("contact is frictionless for now"),
             );
         }
+    }
+}
+
+/// `formulation = mortar`: a deformable master other than the slave
+/// surface, single pass, penalty or augmented Lagrangian, frictionless.
+fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
+    let Some(f) = c
+        .formulation
+        .as_ref()
+        .filter(|f| f.value == crate::ast::ContactFormulation::Mortar)
+    else {
+        return;
+    };
+    let mut refuse = |what: &str, span: Span, help: &str| {
+        ctx.err(
+            Diagnostic::error(
+                format!("mortar contact {what}"),
+                span,
+                "not supported with mortar",
+            )
+            .with_secondary(f.span, "mortar chosen here")
+            .with_help(help.to_string()),
+        );
+    };
+    match &c.master {
+        None => refuse(
+            "needs a deformable master surface",
+            c.tool.span,
+            "write the master as `body.set`, or drop `formulation = mortar` (a rigid tool is \
+             always node-to-tool)",
+        ),
+        Some(m) if m.to_string() == c.target.to_string() => refuse(
+            "of a surface with itself (self contact) is not supported yet",
+            m.span,
+            "use `formulation = node_to_segment` for self contact",
+        ),
+        Some(_) => {}
+    }
+    if let Some(st) = c
+        .strategy
+        .as_ref()
+        .filter(|s| s.value != crate::ast::Strategy::SinglePass)
+    {
+        refuse(
+            "is single pass (the integration side is the slave)",
+            st.span,
+            "remove `strategy`, or use `formulation = node_to_segment` for double passes",
+        );
+    }
+    if let Some(m) = c
+        .method
+        .as_ref()
+        .filter(|m| matches!(m.value, Method::Lagrange { .. }))
+    {
+        refuse(
+            "with Lagrange multipliers is not supported yet",
+            m.span,
+            "use `method = penalty { .. }` or `augmented_lagrange { .. }`",
+        );
+    }
+    if c.thermal.is_some() {
+        refuse(
+            "with thermal contact is not supported yet",
+            c.target.span,
+            "use `formulation = node_to_segment` for thermal contact",
+        );
+    }
+    if let Some(fr) = &c.friction {
+        refuse(
+            "with friction is not supported yet",
+            fr.span,
+            "mortar contact is frictionless for now; use `formulation = node_to_segment`",
+        );
     }
 }

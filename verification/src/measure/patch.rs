@@ -152,6 +152,7 @@ mod tests {
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),
             search: Default::default(),
+            formulation: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e9,

@@ -448,8 +448,10 @@ impl NewtonLoop for Newton<'_> {
             )
         });
         let mut criteria = Criteria::new(settings, self.saddle.is_some());
-        // friction makes the contact tangent non-symmetric: LU
-        let friction = model.contacts.iter().any(|c| c.friction.is_some());
+        // friction and mortar make the contact tangent non-symmetric: LU
+        let friction = model.contacts.iter().any(|c| {
+            c.friction.is_some() || c.formulation == crate::model::ContactFormulation::Mortar
+        });
         // a symmetric tangent derives from a potential: the line search's
         // energy test applies (friction and non-symmetric laws: residual only)
         let potential = self.assembler.symmetric() && !friction;
