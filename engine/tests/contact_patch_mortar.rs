@@ -78,8 +78,8 @@ fn forces(model: &Model, x: &[[f64; 2]], v: &[[f64; 2]]) -> (Vec<f64>, Vec<f64>,
             for i in 0..2 {
                 f[2 * na + i] += c.force[2 * a + i];
                 for (b, &nb) in c.nodes.iter().enumerate() {
-                    for j in 0..2 {
-                        kv[2 * na + i] += c.tangent[(2 * a + i) * nd + 2 * b + j] * v[nb][j];
+                    for (j, vj) in v[nb].iter().enumerate() {
+                        kv[2 * na + i] += c.tangent[(2 * a + i) * nd + 2 * b + j] * vj;
                     }
                 }
             }

@@ -84,7 +84,7 @@ pub fn segment_pair(x: [[f64; 2]; 4], weight: Weight) -> Option<MortarSegment> {
     let [xa, xb, xc, xd] = p;
     let e = sub(xb, xa);
     let len = dot(e, e).sqrt();
-    if !(len.v > 0.0) {
+    if len.v.is_nan() || len.v <= 0.0 {
         return None;
     }
     let t = [e[0] / len, e[1] / len];
@@ -93,12 +93,13 @@ pub fn segment_pair(x: [[f64; 2]; 4], weight: Weight) -> Option<MortarSegment> {
     let xi_d = dot(sub(xd, xa), t) / len;
     let em = sub(xd, xc);
     let len_m = dot(em, em).sqrt().v;
-    if !((xi_c.v - xi_d.v) * len.v > MIN_PROJECTED * len_m) {
+    let projected = (xi_c.v - xi_d.v) * len.v;
+    if projected.is_nan() || projected <= MIN_PROJECTED * len_m {
         return None;
     }
     let lo = xi_d.max(Ad8::cst(0.0));
     let hi = xi_c.min(Ad8::cst(1.0));
-    if !(hi.v > lo.v) {
+    if hi.v.is_nan() || hi.v <= lo.v {
         return None;
     }
     let dc = dot(sub(xc, xa), n);

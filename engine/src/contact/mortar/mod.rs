@@ -197,7 +197,7 @@ pub fn evaluate(
             }
         }
         let support = state.tributary.get(i).copied().unwrap_or(0.0);
-        if !(area > 1e-12 * support) || !(support > 0.0) {
+        if area.is_nan() || area <= 1e-12 * support || support.is_nan() || support <= 0.0 {
             continue;
         }
         let gap = g / area;
