@@ -101,7 +101,10 @@ impl StaWriter {
     }
 
     /// Writes the line of a converged increment.
-    pub fn increment(&mut self, view: &IncrementView<'_>) -> std::io::Result<()> {
+    pub fn increment<const D: usize>(
+        &mut self,
+        view: &IncrementView<'_, D>,
+    ) -> std::io::Result<()> {
         let step = &view.model.steps[view.step];
         if self.last_step != Some(view.step) {
             writeln!(self.file, "# step {} `{}`", view.step + 1, step.name)?;

@@ -2,11 +2,12 @@
 //! raw, zlib) by default, ASCII with `output { format = ascii }` (the
 //! storage is [`super::encode`]; [`super::vtu_read`] reads either back).
 //!
-//! Points are the reference coordinates (z = 0); ParaView's "Warp By
-//! Vector" on `displacement` shows the deformed shape. Point data, as
-//! requested: `displacement` (3 components, z = 0), `stress` and `strain`
-//! (4 components named xx, yy, zz, xy; zz is the hoop component for
-//! axisymmetric runs; strain shear is engineering `gamma_xy`; finite-strain
+//! Points are the reference coordinates (z = 0 for planar models);
+//! ParaView's "Warp By Vector" on `displacement` shows the deformed shape.
+//! Point data, as requested: `displacement` (3 components, z = 0 when
+//! planar), `stress` and `strain` (planar: 4 components named xx, yy, zz,
+//! xy; zz is the hoop component for axisymmetric runs; solid: 6 components
+//! xx, yy, zz, xy, xz, yz; strain shear is engineering; finite-strain
 //! bodies: Cauchy stress and logarithmic strain), `von_mises`,
 //! `equivalent_plastic_strain` (with stress/strain/von_mises when a body is
 //! plastic: converged integration-point values, nodal averages), `reaction` (3 components), `contact_gap`, `contact_pressure`,
@@ -28,11 +29,11 @@ use crate::mesh::CellKind;
 use crate::model::{AnalysisKind, Field, Model};
 use std::fmt::Write;
 
-/// What one VTU file shows.
+/// What one VTU file shows (a model of dimension `D`).
 #[derive(Debug)]
-pub struct VtuData<'a> {
+pub struct VtuData<'a, const D: usize = 2> {
     /// The model (mesh, bodies, contact pairs).
-    pub model: &'a Model,
+    pub model: &'a Model<D>,
     /// Step name, for the header comment.
     pub step: &'a str,
     /// Increment number.
@@ -42,9 +43,9 @@ pub struct VtuData<'a> {
     /// Fields to write.
     pub fields: &'a [Field],
     /// Nodal displacements.
-    pub displacement: &'a [[f64; 2]],
+    pub displacement: &'a [[f64; D]],
     /// Nodal reactions.
-    pub reaction: &'a [[f64; 2]],
+    pub reaction: &'a [[f64; D]],
     /// Contact evaluation per pair.
     pub contact: &'a [Vec<NodeContact>],
     /// Recovered stress/strain (required when a stress/strain field is requested).
@@ -58,23 +59,44 @@ pub struct VtuData<'a> {
 const TENSOR_NAMES: &str =
     " ComponentName0=\"xx\" ComponentName1=\"yy\" ComponentName2=\"zz\" ComponentName3=\"xy\"";
 
+/// Component names of the 6-component (solid) tensors, in the engine's
+/// Voigt order.
+const TENSOR_NAMES_3D: &str = " ComponentName0=\"xx\" ComponentName1=\"yy\" \
+     ComponentName2=\"zz\" ComponentName3=\"xy\" ComponentName4=\"xz\" ComponentName5=\"yz\"";
+
+/// `[v_x, v_y, v_z]` of a nodal vector (z = 0 in 2D).
+fn xyz<const D: usize>(v: &[f64; D]) -> [f64; 3] {
+    std::array::from_fn(|k| if k < D { v[k] } else { 0.0 })
+}
+
 /// Indentation of a data array.
 const IN: &str = "        ";
 
 /// The VTU file's bytes.
-pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
+pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
     let m = d.model;
+    // planar: xx yy zz xy; solid: all six
+    let (tensor_comps, tensor_names) = if D == 3 {
+        (6, TENSOR_NAMES_3D)
+    } else {
+        (4, TENSOR_NAMES)
+    };
     let nn = m.mesh.nodes.len();
     let mut s = String::with_capacity(4096);
     let mut a = Arrays::new(d.encoding);
     s.push_str("<?xml version=\"1.0\"?>\n");
     let _ = writeln!(
         s,
-        "<!-- ctc results: step `{}`, increment {}, time {}. Stress/strain components xx, yy, zz, xy \
+        "<!-- ctc results: step `{}`, increment {}, time {}. Stress/strain components {} \
          (engineering shear strain). -->",
         d.step.replace("--", "- -"),
         d.increment,
-        fmt_f64(d.time)
+        fmt_f64(d.time),
+        if D == 3 {
+            "xx, yy, zz, xy, xz, yz"
+        } else {
+            "xx, yy, zz, xy"
+        }
     );
     if m.analysis.kind == AnalysisKind::Axisymmetric {
         let _ = writeln!(s, "<!-- {} -->", crate::solve::AXISYMMETRIC_NOTE);
@@ -121,7 +143,7 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
             "displacement",
             3,
             "",
-            d.displacement.iter().flat_map(|u| [u[0], u[1], 0.0]),
+            d.displacement.iter().flat_map(xyz),
         );
     }
     if let Some(t) = d.temperature {
@@ -133,9 +155,12 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
                 &mut s,
                 IN,
                 "stress",
-                4,
-                TENSOR_NAMES,
-                nodal.stress.iter().flat_map(|v| v[..4].iter().copied()),
+                tensor_comps,
+                tensor_names,
+                nodal
+                    .stress
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
             );
         }
         if has(Field::Strain) {
@@ -143,9 +168,12 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
                 &mut s,
                 IN,
                 "strain",
-                4,
-                TENSOR_NAMES,
-                nodal.strain.iter().flat_map(|v| v[..4].iter().copied()),
+                tensor_comps,
+                tensor_names,
+                nodal
+                    .strain
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
             );
         }
         if has(Field::VonMises) {
@@ -179,7 +207,7 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
             "reaction",
             3,
             "",
-            d.reaction.iter().flat_map(|r| [r[0], r[1], 0.0]),
+            d.reaction.iter().flat_map(xyz),
         );
     }
     if has(Field::Contact) {
@@ -232,9 +260,12 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
                 &mut s,
                 IN,
                 "stress",
-                4,
-                TENSOR_NAMES,
-                cells.stress.iter().flat_map(|v| v[..4].iter().copied()),
+                tensor_comps,
+                tensor_names,
+                cells
+                    .stress
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
             );
         }
         if has(Field::Strain) {
@@ -242,9 +273,12 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
                 &mut s,
                 IN,
                 "strain",
-                4,
-                TENSOR_NAMES,
-                cells.strain.iter().flat_map(|v| v[..4].iter().copied()),
+                tensor_comps,
+                tensor_names,
+                cells
+                    .strain
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
             );
         }
         if has(Field::VonMises) {
@@ -277,7 +311,7 @@ pub fn vtu(d: &VtuData<'_>) -> Vec<u8> {
         "coordinates",
         3,
         "",
-        m.mesh.nodes.iter().flat_map(|p| [p[0], p[1], 0.0]),
+        m.mesh.nodes.iter().flat_map(xyz),
     );
     s.push_str("      </Points>\n      <Cells>\n");
     a.array(

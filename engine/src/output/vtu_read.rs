@@ -342,6 +342,8 @@ fn uncompressed(data: &[u8], size: usize) -> Option<Vec<u8>> {
     Some(data.get(size..size.checked_add(n)?)?.to_vec())
 }
 
+// the byte types make `len % 1` in the macro
+#[allow(clippy::modulo_one)]
 fn decode(ty: &str, raw: &[u8]) -> Result<Vec<f64>, String> {
     macro_rules! le {
         ($t:ty) => {{

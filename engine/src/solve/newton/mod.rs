@@ -33,36 +33,43 @@ pub use convergence::Converged;
 pub use failure::{Failure, FailureKind};
 
 use super::assembly::Assembler;
-use super::contact_assembly::ContactAssembly;
 use super::contact_loop::NewtonLoop;
 use super::dofs::{Dof, DofMap};
 use super::linalg::direct::LinearSolver;
 use super::linalg::saddle::SaddleSolver;
 use super::linalg::{FactorStats, LinearSystem, SaddlePointSystem, Scatter};
 use super::loads::external_forces;
+use super::scene::ContactScene;
 use super::{IterationInfo, Observer, Timings};
-use crate::contact::rows::RowKind;
-use crate::contact::{self, NodeContact, PairState};
+use crate::contact::{NodeContact, PairState};
+use crate::geom::Dimension;
 use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 use convergence::{norm, Criteria, DivergenceMonitor, Eval, TINY};
+use nalgebra::Const;
 use std::time::Instant;
 
-/// The Newton solver of a model: numbering, pattern, factorization and the
-/// evolving state.
-pub struct Newton<'m> {
-    pub(super) model: &'m Model,
+/// The contact scene of dimension `D` ([`Dimension::Contact`]).
+pub type ContactOf<const D: usize> = <Const<D> as Dimension<D>>::Contact;
+
+/// The Newton solver of a model of dimension `D`: numbering, pattern,
+/// factorization and the evolving state.
+pub struct Newton<'m, const D: usize = 2>
+where
+    Const<D>: Dimension<D>,
+{
+    pub(super) model: &'m Model<D>,
     /// Dof numbering.
-    pub dofs: DofMap,
+    pub dofs: DofMap<D>,
     scatter: Scatter,
-    assembler: Assembler,
+    assembler: Assembler<D>,
     /// The tangent system (faer direct by default).
     linear: Box<dyn LinearSystem>,
     /// Current nodal displacements.
-    pub u: Vec<[f64; 2]>,
-    committed: Vec<[f64; 2]>,
+    pub u: Vec<[f64; D]>,
+    committed: Vec<[f64; D]>,
     /// Contact pairs: state, last evaluation, Lagrange constraints, pattern
-    /// couplings.
-    pub(super) contacts: ContactAssembly,
+    /// couplings (`crate::solve::scene`).
+    pub(super) contacts: ContactOf<D>,
     /// Saddle-point solver (models with a Lagrange-multiplier pair).
     saddle: Option<Box<dyn SaddlePointSystem>>,
     /// Multiplier corrections of the last saddle-point solve.
@@ -91,7 +98,10 @@ pub struct Newton<'m> {
     pub flips: super::diagnosis::FlipTracker,
 }
 
-impl std::fmt::Debug for Newton<'_> {
+impl<const D: usize> std::fmt::Debug for Newton<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Newton")
             .field("free_dofs", &self.dofs.n_free())
@@ -100,17 +110,20 @@ impl std::fmt::Debug for Newton<'_> {
     }
 }
 
-impl<'m> Newton<'m> {
+impl<'m, const D: usize> Newton<'m, D>
+where
+    Const<D>: Dimension<D>,
+{
     /// Numbers the dofs, builds the sparse pattern and checks every element
     /// of the (checked) `model` in its reference configuration; the tangent
     /// is solved by the default direct solver.
-    pub fn new(model: &'m Model) -> Result<Self, String> {
+    pub fn new(model: &'m Model<D>) -> Result<Self, String> {
         Self::with_linear_system(model, Box::new(LinearSolver::new()))
     }
 
     /// Like [`Newton::new`] with the tangent solved by `linear`.
     pub fn with_linear_system(
-        model: &'m Model,
+        model: &'m Model<D>,
         linear: Box<dyn LinearSystem>,
     ) -> Result<Self, String> {
         let nn = model.mesh.nodes.len();
@@ -126,9 +139,9 @@ impl<'m> Newton<'m> {
             scatter,
             assembler,
             linear,
-            u: vec![[0.0; 2]; nn],
-            committed: vec![[0.0; 2]; nn],
-            contacts: ContactAssembly::new(model),
+            u: vec![[0.0; D]; nn],
+            committed: vec![[0.0; D]; nn],
+            contacts: ContactOf::<D>::new(model),
             saddle: model.contacts.iter().find_map(|c| match c.method {
                 ContactMethod::Lagrange { formulation } => {
                     Some(Box::new(SaddleSolver::new(formulation)) as Box<dyn SaddlePointSystem>)
@@ -181,14 +194,14 @@ impl<'m> Newton<'m> {
 
     /// Times the sparsity pattern grew (node-to-segment couplings).
     pub fn pattern_growths(&self) -> usize {
-        self.contacts.pattern_growths
+        self.contacts.pattern_growths()
     }
 
     /// Reaction forces per node at the last evaluated state (zero except at
     /// prescribed dofs).
-    pub fn reaction_field(&self) -> Vec<[f64; 2]> {
+    pub fn reaction_field(&self) -> Vec<[f64; D]> {
         let nc = self.dofs.components();
-        let mut out = vec![[0.0; 2]; self.u.len()];
+        let mut out = vec![[0.0; D]; self.u.len()];
         for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
             out[p.dof / nc][p.dof % nc] = *r;
         }
@@ -214,12 +227,12 @@ impl<'m> Newton<'m> {
 
     /// Contact evaluation of each pair at the last evaluated state.
     pub fn contact(&self) -> &[Vec<NodeContact>] {
-        &self.contacts.contact
+        self.contacts.contact()
     }
 
-    /// Contact state of each pair.
-    pub fn pairs(&self) -> &[PairState] {
-        &self.contacts.pairs
+    /// The contact scene (state of every pair, last evaluation).
+    pub fn contacts(&self) -> &ContactOf<D> {
+        &self.contacts
     }
 
     /// Closed contact nodes at the last evaluated state.
@@ -230,20 +243,15 @@ impl<'m> Newton<'m> {
     /// The largest ratio of a penalty coefficient to the element stiffness
     /// at its node (see [`super::diagnosis::penalty_ratio`]).
     pub fn penalty_ratio(&self) -> Option<super::diagnosis::PenaltyRatio> {
-        super::diagnosis::penalty_ratio(self.model, &self.contacts, &self.scatter, &self.values)
+        self.contacts
+            .penalty_ratio(self.model, &self.scatter, &self.values)
     }
 
     /// Smallest fraction of the increment at which a node of a pair with
     /// `cut_at_impact` first touched its master, at the last evaluation
     /// (`None`: no such impact).
     pub fn impact_fraction(&self) -> Option<f64> {
-        self.model
-            .contacts
-            .iter()
-            .zip(&self.contacts.pairs)
-            .filter(|(c, _)| c.friction.is_some_and(|f| f.cut_at_impact))
-            .filter_map(|(_, p)| p.friction.impact)
-            .reduce(f64::min)
+        self.contacts.impact_fraction(self.model)
     }
 
     /// Largest penetration over all pairs at the last evaluation.
@@ -344,7 +352,7 @@ impl<'m> Newton<'m> {
     /// constraint right-hand side.
     fn factorize_solve(&mut self, first: bool) -> Result<(), Failure> {
         self.dlambda.clear();
-        let constraints = &self.contacts.constraints;
+        let constraints = self.contacts.constraints();
         let Some(saddle) = self.saddle.as_mut().filter(|_| !constraints.is_empty()) else {
             let start = Instant::now();
             let r = self.linear.factorize(&self.scatter.pattern, &self.values);
@@ -373,18 +381,7 @@ impl<'m> Newton<'m> {
         saddle
             .solve(&mut self.rhs, &mut self.dlambda)
             .map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
-        let pairs = &mut self.contacts.pairs;
-        for ((&(p, i), kind), dl) in constraints
-            .owner
-            .iter()
-            .zip(&constraints.kind)
-            .zip(&self.dlambda)
-        {
-            match kind {
-                RowKind::Stick => pairs[p].friction.multiplier[i] += dl,
-                RowKind::Normal => pairs[p].multiplier[i] += dl,
-            }
-        }
+        self.contacts.apply_multiplier_corrections(&self.dlambda);
         self.timings.solve += mid.elapsed().as_secs_f64();
         Ok(())
     }
@@ -398,7 +395,7 @@ impl<'m> Newton<'m> {
         for (d, r) in self.rhs.iter_mut().zip(&self.r_free) {
             *d = -r;
         }
-        let constraints = &self.contacts.constraints;
+        let constraints = self.contacts.constraints();
         if !saddle_used {
             if !constraints.is_empty() || !self.linear.is_factorized() {
                 return None;
@@ -420,13 +417,11 @@ impl<'m> Newton<'m> {
     }
 }
 
-impl NewtonLoop for Newton<'_> {
+impl NewtonLoop for Newton<'_, 2> {
     fn contact_state(&mut self) -> (&Model, &mut [PairState], &[Vec<NodeContact>]) {
         (self.model, &mut self.contacts.pairs, &self.contacts.contact)
     }
 
-    /// One Newton loop at time `t` with the Lagrange active sets and the
-    /// multipliers `lambda*` of `update = converged` pairs fixed.
     fn newton_loop(
         &mut self,
         settings: &NewtonSettings,
@@ -434,6 +429,24 @@ impl NewtonLoop for Newton<'_> {
         step: usize,
         increment: usize,
         observer: &mut dyn Observer,
+    ) -> Result<Converged, Failure> {
+        Newton::newton_loop(self, settings, t, step, increment, observer)
+    }
+}
+
+impl<const D: usize> Newton<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
+    /// One Newton loop at time `t` with the Lagrange active sets and the
+    /// multipliers `lambda*` of `update = converged` pairs fixed.
+    pub fn newton_loop(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer<D>,
     ) -> Result<Converged, Failure> {
         let model = self.model;
         self.inner_updates = 0;
@@ -554,10 +567,10 @@ impl NewtonLoop for Newton<'_> {
             let dp_step = if first { dp_norm } else { 0.0 };
             let rel_du = convergence::relative_correction(s, du_norm, dp_step, u_norm);
             residuals.push(ev.rel);
-            self.flips.record(&self.contacts.contact);
+            self.flips.record(self.contacts.contact());
             let mut reported_du = rel_du;
             let mut converged = false;
-            let gap_ok = criteria.gaps_small(norm(&self.contacts.constraints.gap), u_norm);
+            let gap_ok = criteria.gaps_small(norm(&self.contacts.constraints().gap), u_norm);
             if criteria.residual_small(ev) && gap_ok {
                 if criteria.correction_small(rel_du) {
                     converged = true;
@@ -586,13 +599,7 @@ impl NewtonLoop for Newton<'_> {
             }
             // augmented Lagrangian, `update = newton`: lambda* updated inside
             // the loop while a penetration exceeds its tolerance
-            let updated = newton_update
-                && contact::augmented::uzawa_update(
-                    model,
-                    &mut self.contacts.pairs,
-                    &self.contacts.contact,
-                    MultiplierUpdate::Newton,
-                );
+            let updated = newton_update && self.contacts.newton_multiplier_update(model);
             if updated {
                 self.inner_updates += 1;
                 converged = false;
