@@ -29,6 +29,8 @@ pub fn all() -> Vec<Case> {
         patch_plane_strain(),
         patch_axisymmetric(),
         hertz_two_cylinders(),
+        hertz_two_cylinders_mortar(),
+        hertz_two_cylinders_nts_nonmatching(),
     ]
 }
 
@@ -132,6 +134,84 @@ pub fn hertz_two_cylinders() -> Case {
             &[0.04, 0.02, 0.012],
             &[0.12, 0.07, 0.04],
             Some(0.7),
+        ),
+    }
+}
+
+/// The reference of the two-cylinder cases.
+fn two_cylinders_reference() -> Reference {
+    Reference::HertzCylinder {
+        young: 1e3,
+        poisson: 0.3,
+        radius: 1.0,
+        pair: 0,
+        axis: 0.0,
+        half_model: true,
+        abscissa: Abscissa::Reference,
+    }
+}
+
+/// Two identical elastic quarter cylinders on non-matching arcs, mortar
+/// segment-to-segment contact.
+pub fn hertz_two_cylinders_mortar() -> Case {
+    Case {
+        name: "hertz_two_cylinders_mortar",
+        title: "Hertz: two elastic cylinders, non-matching arcs, mortar contact, plane strain",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
+        deck: "hertz_two_cylinders_mortar.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "mortar",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+            "rate",
+        ],
+        levels: 3,
+        reference: two_cylinders_reference(),
+        // Measured (levels 0-2): a 7.6e-2 3.6e-2 1.5e-2; a (moment) 5.6e-2
+        // 1.8e-2 5.9e-3; p0 2.35e-1 5.0e-2 3.4e-2 (high: the nodal
+        // multipliers of standard shape functions are the consistent L2
+        // projection of the traction, D^-1 f, which amplifies node-to-node
+        // noise; dual multipliers are the remedy, not done); L2 2.4e-1
+        // 9.7e-2 5.0e-2. The 2 % p0 target of issue 18 is not met yet.
+        checks: hertz_checks(
+            &[0.1, 0.05, 0.025],
+            &[0.08, 0.03, 0.015],
+            &[0.3, 0.07, 0.045],
+            &[0.3, 0.12, 0.065],
+            None,
+        ),
+    }
+}
+
+/// The same deck with node-to-segment contact (guarded, not improved).
+pub fn hertz_two_cylinders_nts_nonmatching() -> Case {
+    Case {
+        name: "hertz_two_cylinders_nts_nonmatching",
+        title: "Hertz: two elastic cylinders, non-matching arcs, node-to-segment (single pass)",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
+        deck: "hertz_two_cylinders_nts_nonmatching.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "node_to_segment",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+        ],
+        levels: 3,
+        reference: two_cylinders_reference(),
+        // Measured (levels 0-2): a 4.0e-2 2.5e-2 1.0e-2; a (moment) 2.7e-2
+        // 1.0e-2 3.7e-3; p0 8.9e-2 8.5e-2 8.4e-2 (the plateau, low); L2
+        // 8.6e-2 4.8e-2 2.7e-2
+        checks: hertz_checks(
+            &[0.05, 0.03, 0.015],
+            &[0.04, 0.015, 0.006],
+            &[0.11, 0.1, 0.1],
+            &[0.11, 0.06, 0.035],
+            None,
         ),
     }
 }
