@@ -98,8 +98,10 @@ impl Observer for Progress<'_> {
     }
 
     fn cutback(&mut self, reason: &str, new_dt: f64) {
+        // one line: the reason already holds what failed and the residual
+        // range (the whole sequence is in summary.json `cutback_log`)
         self.say(format!(
-            "  cutback: {reason}; retrying with dt = {new_dt:.3e}"
+            "  cutback: {reason}; retrying with dt = {new_dt:.2e}"
         ));
         self.inner.cutback(reason, new_dt);
     }
