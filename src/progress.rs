@@ -11,8 +11,8 @@ use std::io::IsTerminal;
 const TICKS: u64 = 1000;
 
 /// An observer that reports progress and forwards to an inner observer.
-pub struct Progress<'a> {
-    inner: &'a mut dyn Observer,
+pub struct Progress<'a, const D: usize = 2> {
+    inner: &'a mut dyn Observer<D>,
     bar: Option<ProgressBar>,
     quiet: bool,
     verbose: bool,
@@ -20,9 +20,14 @@ pub struct Progress<'a> {
     t1: f64,
 }
 
-impl<'a> Progress<'a> {
+impl<'a, const D: usize> Progress<'a, D> {
     /// Progress over the time span of `model`'s steps.
-    pub fn new(model: &Model, inner: &'a mut dyn Observer, quiet: bool, verbose: bool) -> Self {
+    pub fn new(
+        model: &Model<D>,
+        inner: &'a mut dyn Observer<D>,
+        quiet: bool,
+        verbose: bool,
+    ) -> Self {
         let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
         let t1 = model.steps.last().map_or(1.0, |s| s.t_end);
         let bar = if !quiet && !verbose && std::io::stderr().is_terminal() {
@@ -62,7 +67,7 @@ impl<'a> Progress<'a> {
     }
 }
 
-impl Observer for Progress<'_> {
+impl<const D: usize> Observer<D> for Progress<'_, D> {
     fn iteration(&mut self, info: &IterationInfo) {
         if self.verbose {
             self.say(format!(
@@ -77,7 +82,7 @@ impl Observer for Progress<'_> {
         self.inner.iteration(info);
     }
 
-    fn converged(&mut self, view: &IncrementView<'_>) -> Result<(), String> {
+    fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
         let step = &view.model.steps[view.step].name;
         let line = format!(
             "step {step}  increment {:>3}  t = {:<10.4e} iterations {:>2}  residual {:.2e}",
@@ -117,7 +122,7 @@ impl Observer for Progress<'_> {
 
     fn checkpoint(
         &mut self,
-        checkpoint: &ctc_engine::solve::restart::Checkpoint,
+        checkpoint: &ctc_engine::solve::restart::Checkpoint<D>,
     ) -> Result<(), String> {
         self.inner.checkpoint(checkpoint)
     }

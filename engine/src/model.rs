@@ -260,6 +260,19 @@ pub enum Load {
         /// Pressure as a function of time.
         value: TimeFunction,
     },
+    /// Follower-free pressure on boundary faces of a solid (3D) mesh
+    /// (positive pushes into the body, against the outward normal), in the
+    /// reference configuration: consistent nodal forces
+    /// `f_a = -p int N_a n dA` (tri3 faces: 1-point exact, quad4 faces: 2x2
+    /// Gauss).
+    FacetPressure {
+        /// Human-readable origin.
+        label: String,
+        /// Boundary faces, counter-clockwise seen from outside.
+        facets: Vec<crate::mesh::Facet>,
+        /// Pressure as a function of time.
+        value: TimeFunction,
+    },
     /// A force applied at each listed node (Abaqus CLOAD semantics: the value
     /// is per node; axisymmetric: total over the ring).
     NodalForce {

@@ -173,6 +173,18 @@ pub fn explain(model: &Model) -> String {
                         plural(edges.len(), "edge", "edges")
                     );
                 }
+                Load::FacetPressure {
+                    label,
+                    facets,
+                    value,
+                } => {
+                    let _ = writeln!(
+                        o,
+                        "  {label}: p = {} on {} (positive pushes into the body)",
+                        time_function(value),
+                        plural(facets.len(), "face", "faces")
+                    );
+                }
                 Load::NodalForce {
                     label,
                     nodes,

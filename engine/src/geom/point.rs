@@ -20,6 +20,13 @@ pub trait Dimension<const D: usize>: DimName + DimMin<Self, Output = Self> {
     /// `"2d"` or `"3d"` (deck spelling).
     const NAME: &'static str;
 
+    /// Contact in this dimension, as the solver sees it
+    /// (`crate::solve::scene`).
+    type Contact: crate::solve::scene::ContactScene<D>;
+
+    /// The thermal coupling in this dimension (`crate::solve::scene`).
+    type Heat: crate::solve::scene::HeatCoupling<D>;
+
     /// Unit normal of the facet spanned by the `D - 1` tangent vectors
     /// `tangents` (the columns of the facet's Jacobian), oriented so that
     /// the body is on the side the facet's node order sees it: in 2D the
@@ -37,6 +44,8 @@ pub trait Dimension<const D: usize>: DimName + DimMin<Self, Output = Self> {
 
 impl Dimension<2> for Const<2> {
     const NAME: &'static str = "2d";
+    type Contact = crate::solve::contact_assembly::ContactAssembly;
+    type Heat = crate::thermal::coupling::Coupling;
 
     fn facet_normal(tangents: &[Point<2>]) -> Option<(Point<2>, f64)> {
         let t = tangents.first()?;
@@ -55,6 +64,8 @@ impl Dimension<2> for Const<2> {
 
 impl Dimension<3> for Const<3> {
     const NAME: &'static str = "3d";
+    type Contact = crate::solve::scene::NoContact;
+    type Heat = crate::solve::scene::NoHeat;
 
     fn facet_normal(tangents: &[Point<3>]) -> Option<(Point<3>, f64)> {
         let (a, b) = (tangents.first()?, tangents.get(1)?);

@@ -1,4 +1,6 @@
-//! Built-in structured mesh generators.
+//! Built-in structured mesh generators: planar ones through [`MeshSpec`],
+//! solid (3D) ones in [`solid`] (brick, tube sector, spherical shell
+//! octant; hex8 or tet4).
 //!
 //! Each generator returns a single-body [`Mesh`] with counter-clockwise
 //! cells, named node sets and boundary edge sets (edges oriented with the
@@ -14,6 +16,7 @@ mod grading;
 mod half_disc;
 mod quarter_disc;
 mod rectangle;
+pub mod solid;
 
 pub use common::MAX_NODES;
 pub use grading::RATIO_RANGE;

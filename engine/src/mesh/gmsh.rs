@@ -32,6 +32,7 @@
 mod assemble;
 mod cursor;
 mod raw;
+mod solid;
 mod v2;
 mod v41;
 
@@ -51,9 +52,36 @@ enum Version {
 /// edge sets (and node sets), of dimension 0 node sets; cells are the 2D
 /// triangles and quadrangles. Errors carry the 1-based line number.
 pub fn parse(text: &str) -> Result<Mesh, MeshError> {
+    let (raw, eof) = read_raw(text, false)?;
+    assemble::assemble(raw, eof)
+}
+
+/// Parses the text of a `.msh` file as a solid (3D) mesh: cells are the
+/// tetrahedra (type 4) and hexahedra (type 5), re-oriented to a positive
+/// volume; physical groups of dimension 2 become face sets (each triangle
+/// or quadrangle matched to the cell face it lies on, in that cell's
+/// outward order; a group with a face interior to the mesh is an error)
+/// with their node sets, of dimension 3 the node set of their cells, of
+/// dimension 0 or 1 node sets. Errors carry the 1-based line number.
+pub fn parse_solid(text: &str) -> Result<Mesh<3>, MeshError> {
+    let (raw, eof) = read_raw(text, true)?;
+    solid::assemble(raw, eof)
+}
+
+/// Like [`parse_bytes`] for a solid mesh ([`parse_solid`]).
+pub fn parse_solid_bytes(bytes: &[u8]) -> Result<Mesh<3>, MeshError> {
+    let text = utf8(bytes)?;
+    parse_solid(text)
+}
+
+/// The sections of a `.msh` text and its last line.
+fn read_raw(text: &str, solid: bool) -> Result<(RawMesh, usize), MeshError> {
     let mut c = Cursor::new(text);
     let version = header(&mut c)?;
-    let mut raw = RawMesh::default();
+    let mut raw = RawMesh {
+        solid,
+        ..Default::default()
+    };
     let mut entities = v41::EntityPhysicals::new();
     while let Some((tok, line)) = c.next_token() {
         let Some(name) = tok.strip_prefix('$') else {
@@ -109,14 +137,19 @@ pub fn parse(text: &str) -> Result<Mesh, MeshError> {
             _ => skip(&mut c, name, line)?,
         }
     }
-    assemble::assemble(raw, c.line())
+    Ok((raw, c.line()))
 }
 
 /// Parses a `.msh` file's bytes: like [`parse`], but recognises binary
 /// files before requiring UTF-8 text, and reports invalid bytes by line.
 pub fn parse_bytes(bytes: &[u8]) -> Result<Mesh, MeshError> {
+    parse(utf8(bytes)?)
+}
+
+/// The text of a `.msh` file, or why it is not text.
+fn utf8(bytes: &[u8]) -> Result<&str, MeshError> {
     match std::str::from_utf8(bytes) {
-        Ok(text) => parse(text),
+        Ok(text) => Ok(text),
         Err(e) => {
             let valid = &bytes[..e.valid_up_to()];
             // a binary file has a readable header: let `header` explain

@@ -1,5 +1,5 @@
-//! `history.csv`: one row per converged increment — the time, then two
-//! columns (x, y) per history request: reaction sums over a node set, mean
+//! `history.csv`: one row per converged increment — the time, then `D`
+//! columns (x, y[, z]) per history request: reaction sums over a node set, mean
 //! displacement over a node set, total contact force of a pair (force of
 //! the tool on the body). Then, for each pair with friction, the work
 //! dissipated by friction over the increment (`friction_work[<pair>]`;
@@ -20,7 +20,7 @@ pub fn csv_field(s: &str) -> String {
 }
 
 /// The header row for `model`'s history requests.
-pub fn header(model: &Model) -> String {
+pub fn header<const D: usize>(model: &Model<D>) -> String {
     let mut cols = vec!["time".to_string()];
     for h in &model.output.history {
         let label = match h {
@@ -28,8 +28,9 @@ pub fn header(model: &Model) -> String {
             | HistoryRequest::Displacement { label, .. }
             | HistoryRequest::ContactForce { label, .. } => label,
         };
-        cols.push(csv_field(&format!("{label}_x")));
-        cols.push(csv_field(&format!("{label}_y")));
+        for axis in ["x", "y", "z"].iter().take(D) {
+            cols.push(csv_field(&format!("{label}_{axis}")));
+        }
     }
     for cp in model.contacts.iter().filter(|c| c.friction.is_some()) {
         cols.push(csv_field(&format!("friction_work[{}]", cp.name)));
@@ -43,33 +44,38 @@ pub fn header(model: &Model) -> String {
 }
 
 /// The values of one row.
-pub fn row(
-    model: &Model,
+pub fn row<const D: usize>(
+    model: &Model<D>,
     time: f64,
-    displacement: &[[f64; 2]],
-    reaction: &[[f64; 2]],
+    displacement: &[[f64; D]],
+    reaction: &[[f64; D]],
     contact: &[Vec<NodeContact>],
 ) -> Vec<f64> {
     let mut out = vec![time];
+    let sum = |nodes: &[usize], v: &[[f64; D]]| {
+        nodes.iter().fold([0.0; D], |mut a, &n| {
+            for (ac, vc) in a.iter_mut().zip(&v[n]) {
+                *ac += vc;
+            }
+            a
+        })
+    };
     for h in &model.output.history {
         let v = match h {
-            HistoryRequest::Reaction { nodes, .. } => nodes.iter().fold([0.0, 0.0], |a, &n| {
-                [a[0] + reaction[n][0], a[1] + reaction[n][1]]
-            }),
+            HistoryRequest::Reaction { nodes, .. } => sum(nodes, reaction),
             HistoryRequest::Displacement { nodes, .. } => {
-                let s = nodes.iter().fold([0.0, 0.0], |a, &n| {
-                    [a[0] + displacement[n][0], a[1] + displacement[n][1]]
-                });
                 let k = nodes.len().max(1) as f64;
-                [s[0] / k, s[1] / k]
+                sum(nodes, displacement).map(|s| s / k)
             }
-            HistoryRequest::ContactForce { pair, .. } => contact
-                .get(*pair)
-                .map(|l| {
-                    l.iter()
-                        .fold([0.0, 0.0], |a, c| [a[0] + c.force[0], a[1] + c.force[1]])
-                })
-                .unwrap_or([0.0, 0.0]),
+            HistoryRequest::ContactForce { pair, .. } => {
+                let mut a = [0.0; D];
+                for c in contact.get(*pair).into_iter().flatten() {
+                    for (ac, fc) in a.iter_mut().zip(&c.force) {
+                        *ac += fc;
+                    }
+                }
+                a
+            }
         };
         out.extend(v);
     }
@@ -89,7 +95,10 @@ pub struct HistoryWriter {
 
 impl HistoryWriter {
     /// Creates the file and writes the header.
-    pub fn create(path: &std::path::Path, model: &Model) -> std::io::Result<Self> {
+    pub fn create<const D: usize>(
+        path: &std::path::Path,
+        model: &Model<D>,
+    ) -> std::io::Result<Self> {
         let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
         writeln!(file, "{}", header(model))?;
         file.flush()?;
@@ -100,7 +109,11 @@ impl HistoryWriter {
     /// the header and the first `rows` complete rows (rows written after
     /// the restart point are dropped, the file is replaced atomically),
     /// then appends. The header must be the one of `model`.
-    pub fn resume(path: &std::path::Path, model: &Model, rows: usize) -> std::io::Result<Self> {
+    pub fn resume<const D: usize>(
+        path: &std::path::Path,
+        model: &Model<D>,
+        rows: usize,
+    ) -> std::io::Result<Self> {
         let text = std::fs::read_to_string(path)?;
         let mut lines = text.split_inclusive('\n');
         let head = header(model);

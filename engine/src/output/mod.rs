@@ -26,21 +26,24 @@ pub mod vtu;
 
 use crate::contact::NodeContact;
 use crate::element::recovery::nodal_fields_of_model_with_points;
+use crate::geom::Dimension;
 use crate::model::{Field, Model};
 use crate::solve::restart::{Checkpoint, RestartFile};
+use crate::solve::scene::ContactScene;
 use crate::solve::{IncrementView, Observer, RunSummary};
 use atomic::write_atomic;
 use history::HistoryWriter;
+use nalgebra::Const;
 use std::path::{Path, PathBuf};
 
 /// A converged increment kept until it is written.
 #[derive(Debug, Clone)]
-struct Snapshot {
+struct Snapshot<const D: usize> {
     step: usize,
     increment: usize,
     time: f64,
-    displacement: Vec<[f64; 2]>,
-    reaction: Vec<[f64; 2]>,
+    displacement: Vec<[f64; D]>,
+    reaction: Vec<[f64; D]>,
     contact: Vec<Vec<NodeContact>>,
     /// Converged integration points of nonlinear bodies (may be empty).
     points: Vec<Vec<crate::element::MaterialPoint>>,
@@ -48,14 +51,15 @@ struct Snapshot {
     temperature: Option<Vec<f64>>,
 }
 
-/// Writes a run's results into a directory (an [`Observer`]).
+/// Writes a run's results into a directory (an [`Observer`]) for a model
+/// of dimension `D`.
 #[derive(Debug)]
-pub struct ResultWriter {
+pub struct ResultWriter<const D: usize = 2> {
     dir: PathBuf,
-    model: Model,
+    model: Model<D>,
     history: HistoryWriter,
     pvd: Vec<(f64, String)>,
-    pending: Option<Snapshot>,
+    pending: Option<Snapshot<D>>,
     /// Whether the last converged increment was written (a restart point
     /// is written only then).
     written_last: bool,
@@ -64,9 +68,12 @@ pub struct ResultWriter {
 /// Name of the restart file in the result directory.
 pub const RESTART_FILE: &str = "restart.bin";
 
-impl ResultWriter {
+impl<const D: usize> ResultWriter<D>
+where
+    Const<D>: Dimension<D>,
+{
     /// Creates `dir` (and parents) and prepares the writers for `model`.
-    pub fn create(dir: &Path, model: &Model) -> std::io::Result<Self> {
+    pub fn create(dir: &Path, model: &Model<D>) -> std::io::Result<Self> {
         std::fs::create_dir_all(dir)?;
         let history = HistoryWriter::create(&dir.join("history.csv"), model)?;
         Ok(ResultWriter {
@@ -83,8 +90,8 @@ impl ResultWriter {
     /// its restart point: returns the writer (history truncated to the
     /// restart point, PVD index as of the restart point) and the checkpoint
     /// to pass to [`crate::solve::run_from`].
-    pub fn resume(dir: &Path, model: &Model) -> Result<(Self, Checkpoint), String> {
-        let file = RestartFile::read(&dir.join(RESTART_FILE))?;
+    pub fn resume(dir: &Path, model: &Model<D>) -> Result<(Self, Checkpoint<D>), String> {
+        let file = RestartFile::<D>::read(&dir.join(RESTART_FILE))?;
         if file.checkpoint.fingerprint != crate::solve::restart::fingerprint(model) {
             return Err(format!(
                 "cannot restart from {}: it was written by a different model (the deck or a \
@@ -123,7 +130,7 @@ impl ResultWriter {
         write_atomic(&self.dir.join("summary.json"), text.as_bytes())
     }
 
-    fn write_increment(&mut self, snap: &Snapshot) -> Result<(), String> {
+    fn write_increment(&mut self, snap: &Snapshot<D>) -> Result<(), String> {
         let model = &self.model;
         let fields = &model.output.fields;
         let needs_recovery = fields
@@ -154,7 +161,12 @@ impl ResultWriter {
         let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
         write_atomic(&self.dir.join(&name), text.as_bytes()).map_err(io)?;
         for (p, list) in snap.contact.iter().enumerate() {
-            let csv = contact_csv::contact_csv(model, p, &snap.displacement, list);
+            let csv = <Const<D> as Dimension<D>>::Contact::contact_csv(
+                model,
+                p,
+                &snap.displacement,
+                list,
+            );
             let file = format!("contact_{p}_{:04}.csv", snap.increment);
             write_atomic(&self.dir.join(file), csv.as_bytes()).map_err(io)?;
         }
@@ -168,8 +180,11 @@ impl ResultWriter {
     }
 }
 
-impl Observer for ResultWriter {
-    fn converged(&mut self, view: &IncrementView<'_>) -> Result<(), String> {
+impl<const D: usize> Observer<D> for ResultWriter<D>
+where
+    Const<D>: Dimension<D>,
+{
+    fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
         let mut row = history::row(
             view.model,
             view.time,
@@ -215,7 +230,7 @@ impl Observer for ResultWriter {
         self.written_last
     }
 
-    fn checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), String> {
+    fn checkpoint(&mut self, checkpoint: &Checkpoint<D>) -> Result<(), String> {
         let file = RestartFile {
             checkpoint: checkpoint.clone(),
             pvd: self.pvd.clone(),

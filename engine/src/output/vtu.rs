@@ -1,10 +1,11 @@
 //! VTK XML unstructured grid (`.vtu`, ASCII) of one increment.
 //!
-//! Points are the reference coordinates (z = 0); ParaView's "Warp By
-//! Vector" on `displacement` shows the deformed shape. Point data, as
-//! requested: `displacement` (3 components, z = 0), `stress` and `strain`
-//! (4 components named xx, yy, zz, xy; zz is the hoop component for
-//! axisymmetric runs; strain shear is engineering `gamma_xy`; finite-strain
+//! Points are the reference coordinates (z = 0 for planar models);
+//! ParaView's "Warp By Vector" on `displacement` shows the deformed shape.
+//! Point data, as requested: `displacement` (3 components, z = 0 when
+//! planar), `stress` and `strain` (planar: 4 components named xx, yy, zz,
+//! xy; zz is the hoop component for axisymmetric runs; solid: 6 components
+//! xx, yy, zz, xy, xz, yz; strain shear is engineering; finite-strain
 //! bodies: Cauchy stress and logarithmic strain), `von_mises`,
 //! `equivalent_plastic_strain` (with stress/strain/von_mises when a body is
 //! plastic: converged integration-point values, nodal averages), `reaction` (3 components), `contact_gap`, `contact_pressure`,
@@ -20,11 +21,11 @@ use crate::mesh::CellKind;
 use crate::model::{AnalysisKind, Field, Model};
 use std::fmt::Write;
 
-/// What one VTU file shows.
+/// What one VTU file shows (a model of dimension `D`).
 #[derive(Debug)]
-pub struct VtuData<'a> {
+pub struct VtuData<'a, const D: usize = 2> {
     /// The model (mesh, bodies, contact pairs).
-    pub model: &'a Model,
+    pub model: &'a Model<D>,
     /// Step name, for the header comment.
     pub step: &'a str,
     /// Increment number.
@@ -34,9 +35,9 @@ pub struct VtuData<'a> {
     /// Fields to write.
     pub fields: &'a [Field],
     /// Nodal displacements.
-    pub displacement: &'a [[f64; 2]],
+    pub displacement: &'a [[f64; D]],
     /// Nodal reactions.
-    pub reaction: &'a [[f64; 2]],
+    pub reaction: &'a [[f64; D]],
     /// Contact evaluation per pair.
     pub contact: &'a [Vec<NodeContact>],
     /// Recovered stress/strain (required when a stress/strain field is requested).
@@ -72,19 +73,40 @@ fn array<T: std::fmt::Display>(
 const TENSOR_NAMES: &str =
     " ComponentName0=\"xx\" ComponentName1=\"yy\" ComponentName2=\"zz\" ComponentName3=\"xy\"";
 
+/// Component names of the 6-component (solid) tensors, in the engine's
+/// Voigt order.
+const TENSOR_NAMES_3D: &str = " ComponentName0=\"xx\" ComponentName1=\"yy\" \
+     ComponentName2=\"zz\" ComponentName3=\"xy\" ComponentName4=\"xz\" ComponentName5=\"yz\"";
+
+/// `[v_x, v_y, v_z]` of a nodal vector (z = 0 in 2D).
+fn xyz<const D: usize>(v: &[f64; D]) -> [f64; 3] {
+    std::array::from_fn(|k| if k < D { v[k] } else { 0.0 })
+}
+
 /// The VTU text.
-pub fn vtu(d: &VtuData<'_>) -> String {
+pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
     let m = d.model;
+    // planar: xx yy zz xy; solid: all six
+    let (tensor_comps, tensor_names) = if D == 3 {
+        (6, TENSOR_NAMES_3D)
+    } else {
+        (4, TENSOR_NAMES)
+    };
     let nn = m.mesh.nodes.len();
     let mut s = String::with_capacity(256 * nn + 1024);
     s.push_str("<?xml version=\"1.0\"?>\n");
     let _ = writeln!(
         s,
-        "<!-- ctc results: step `{}`, increment {}, time {}. Stress/strain components xx, yy, zz, xy \
+        "<!-- ctc results: step `{}`, increment {}, time {}. Stress/strain components {} \
          (engineering shear strain). -->",
         d.step.replace("--", "- -"),
         d.increment,
-        d.time
+        d.time,
+        if D == 3 {
+            "xx, yy, zz, xy, xz, yz"
+        } else {
+            "xx, yy, zz, xy"
+        }
     );
     if m.analysis.kind == AnalysisKind::Axisymmetric {
         let _ = writeln!(s, "<!-- {} -->", crate::solve::AXISYMMETRIC_NOTE);
@@ -117,7 +139,7 @@ pub fn vtu(d: &VtuData<'_>) -> String {
             "displacement",
             3,
             "",
-            d.displacement.iter().flat_map(|u| [u[0], u[1], 0.0]),
+            d.displacement.iter().flat_map(xyz),
         );
     }
     if let Some(t) = d.temperature {
@@ -129,9 +151,9 @@ pub fn vtu(d: &VtuData<'_>) -> String {
                 &mut s,
                 "Float64",
                 "stress",
-                4,
-                TENSOR_NAMES,
-                nodal.stress.iter().flat_map(|v| v[..4].iter()),
+                tensor_comps,
+                tensor_names,
+                nodal.stress.iter().flat_map(|v| v[..tensor_comps].iter()),
             );
         }
         if has(Field::Strain) {
@@ -139,9 +161,9 @@ pub fn vtu(d: &VtuData<'_>) -> String {
                 &mut s,
                 "Float64",
                 "strain",
-                4,
-                TENSOR_NAMES,
-                nodal.strain.iter().flat_map(|v| v[..4].iter()),
+                tensor_comps,
+                tensor_names,
+                nodal.strain.iter().flat_map(|v| v[..tensor_comps].iter()),
             );
         }
         if has(Field::VonMises) {
@@ -175,7 +197,7 @@ pub fn vtu(d: &VtuData<'_>) -> String {
             "reaction",
             3,
             "",
-            d.reaction.iter().flat_map(|r| [r[0], r[1], 0.0]),
+            d.reaction.iter().flat_map(xyz),
         );
     }
     if has(Field::Contact) {
@@ -243,7 +265,7 @@ pub fn vtu(d: &VtuData<'_>) -> String {
         "coordinates",
         3,
         "",
-        m.mesh.nodes.iter().flat_map(|p| [p[0], p[1], 0.0]),
+        m.mesh.nodes.iter().flat_map(xyz),
     );
     s.push_str("      </Points>\n      <Cells>\n");
     array(

@@ -3,8 +3,11 @@
 
 use crate::model::{AnalysisKind, HistoryRequest, Load, Model};
 
+/// The valid components in words, by dimension (2, 3).
+const COMPONENTS: [&str; 2] = ["0 (x) or 1 (y)", "0 (x), 1 (y) or 2 (z)"];
+
 /// Returns every problem found in `model` (empty when it can be solved).
-pub fn check_model(model: &Model) -> Vec<String> {
+pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
     let mut errors = Vec::new();
     let nn = model.mesh.nodes.len();
     let nc = model.mesh.cells.len();
@@ -15,13 +18,16 @@ pub fn check_model(model: &Model) -> Vec<String> {
         .mesh
         .nodes
         .iter()
-        .position(|p| !(p[0].is_finite() && p[1].is_finite()))
+        .position(|p| !p.iter().all(|x| x.is_finite()))
     {
         errors.push(format!("node {n} has a non-finite coordinate"));
     }
-    if model.analysis.kind != AnalysisKind::Axisymmetric
-        && !(model.analysis.thickness.is_finite() && model.analysis.thickness > 0.0)
-    {
+    let has_thickness = matches!(
+        model.analysis.kind,
+        AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress
+    );
+    let thickness_ok = model.analysis.thickness.is_finite() && model.analysis.thickness > 0.0;
+    if has_thickness && !thickness_ok {
         errors.push(format!(
             "thickness must be > 0 (got {})",
             model.analysis.thickness
@@ -71,10 +77,12 @@ pub fn check_model(model: &Model) -> Vec<String> {
         }
     }
     for d in &model.constraints {
-        if d.component > 1 {
+        if d.component >= D {
             errors.push(format!(
-                "`{}`: component {} is not 0 (x) or 1 (y)",
-                d.label, d.component
+                "`{}`: component {} is not {}",
+                d.label,
+                d.component,
+                COMPONENTS[D - 2]
             ));
         }
         if let Some(n) = d.nodes.iter().find(|&&n| n >= nn) {
@@ -92,9 +100,10 @@ pub fn check_model(model: &Model) -> Vec<String> {
                 component,
                 ..
             } => {
-                if *component > 1 {
+                if *component >= D {
                     errors.push(format!(
-                        "`{label}`: component {component} is not 0 (x) or 1 (y)"
+                        "`{label}`: component {component} is not {}",
+                        COMPONENTS[D - 2]
                     ));
                 }
                 if let Some(n) = nodes.iter().find(|&&n| n >= nn) {
@@ -106,6 +115,27 @@ pub fn check_model(model: &Model) -> Vec<String> {
             Load::Pressure { label, edges, .. } => {
                 if let Some(e) = edges.iter().find(|e| e[0] >= nn || e[1] >= nn) {
                     errors.push(format!("`{label}` refers to edge {e:?} outside the mesh"));
+                }
+                if D != 2 {
+                    errors.push(format!(
+                        "`{label}`: pressure on edges needs a planar model; a solid takes \
+                         pressure on faces"
+                    ));
+                }
+            }
+            Load::FacetPressure { label, facets, .. } => {
+                if let Some(f) = facets.iter().find(|f| {
+                    f.nodes().iter().any(|&n| n >= nn) || !(3..=4).contains(&f.nodes().len())
+                }) {
+                    errors.push(format!(
+                        "`{label}` refers to face {:?}: outside the mesh or not a 3- or 4-node face",
+                        f.nodes()
+                    ));
+                }
+                if D != 3 {
+                    errors.push(format!(
+                        "`{label}`: pressure on faces needs a solid (3D) model"
+                    ));
                 }
             }
         }
@@ -133,6 +163,13 @@ pub fn check_model(model: &Model) -> Vec<String> {
                 c.name
             ));
         }
+    }
+    if D == 3 && !(model.contacts.is_empty() && model.tools.is_empty()) {
+        errors.push(
+            "contact and rigid tools are not available in 3D analyses yet (the 3D contact \
+             issue): remove the `tool` and `contact` blocks"
+                .to_string(),
+        );
     }
     if model.steps.is_empty() {
         errors.push("the model has no step: nothing to solve".to_string());
@@ -176,9 +213,9 @@ pub fn check_model(model: &Model) -> Vec<String> {
         .iter()
         .map(|d| (d.label.as_str(), &d.value))
         .chain(model.loads.iter().map(|l| match l {
-            Load::NodalForce { label, value, .. } | Load::Pressure { label, value, .. } => {
-                (label.as_str(), value)
-            }
+            Load::NodalForce { label, value, .. }
+            | Load::Pressure { label, value, .. }
+            | Load::FacetPressure { label, value, .. } => (label.as_str(), value),
         }));
     for (label, f) in functions {
         times.truncate(2 * model.steps.len());
@@ -218,8 +255,9 @@ pub fn check_model(model: &Model) -> Vec<String> {
 
 /// Bodies that nothing holds: their constrained dofs leave a rigid-body
 /// motion free (plane: translations x, y and the in-plane rotation;
-/// axisymmetric: the translation along the axis), and no chain of contact
-/// pairs links them to a support.
+/// axisymmetric: the translation along the axis; solid: three
+/// translations and three rotations), and no chain of contact pairs links
+/// them to a support.
 ///
 /// Each constrained dof `(node, c)` constrains the rigid velocity
 /// `(a, b, w)` through the row `[1, 0, -y]` (c = 0) or `[0, 1, x]`
@@ -238,10 +276,10 @@ pub fn check_model(model: &Model) -> Vec<String> {
 ///   has no support is reported with its free motions (a body that is only
 ///   the master of a pair with a held slave is supported through that
 ///   pair).
-fn unheld_bodies(model: &Model) -> Vec<String> {
+fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
     let mut errors = Vec::new();
     let nb = model.bodies.len();
-    let mut constrained = vec![[false; 2]; model.mesh.nodes.len()];
+    let mut constrained = vec![[false; D]; model.mesh.nodes.len()];
     for d in &model.constraints {
         for &n in &d.nodes {
             constrained[n][d.component] = true;
@@ -284,7 +322,7 @@ fn unheld_bodies(model: &Model) -> Vec<String> {
     // free even with every frictionless tool contact closed: certainly singular
     let mut sliding = vec![Vec::new(); nb];
     for (b, body) in model.bodies.iter().enumerate() {
-        if on_tool[b] && !tool_friction[b] && !free[b].is_empty() {
+        if D == 2 && on_tool[b] && !tool_friction[b] && !free[b].is_empty() {
             sliding[b] = free_motions(model, body, &constrained, &tool_rows[b]);
         }
     }
@@ -339,9 +377,14 @@ fn unheld_bodies(model: &Model) -> Vec<String> {
 }
 
 /// The unit normal of tool `tool` at the closest point of each of `nodes`
-/// at the start of the analysis: (node position, normal).
-fn tool_normals(model: &Model, tool: usize, nodes: &[usize]) -> Vec<([f64; 2], [f64; 2])> {
-    let Some(t) = model.tools.get(tool) else {
+/// at the start of the analysis: (node position, normal); planar models
+/// only (the rigid tools are planar curves).
+fn tool_normals<const D: usize>(
+    model: &Model<D>,
+    tool: usize,
+    nodes: &[usize],
+) -> Vec<([f64; 2], [f64; 2])> {
+    let Some(t) = model.tools.get(tool).filter(|_| D == 2) else {
         return vec![];
     };
     let Ok(shape) = crate::contact::geometry::ToolShape::new(&t.geometry) else {
@@ -353,7 +396,8 @@ fn tool_normals(model: &Model, tool: usize, nodes: &[usize]) -> Vec<([f64; 2], [
     nodes
         .iter()
         .filter_map(|&n| {
-            let x = model.mesh.nodes[n];
+            let p = model.mesh.nodes[n];
+            let x = [p[0], p[1]];
             let found =
                 crate::contact::search::brute_force(&shape, placement.to_reference(x), &mut tests)?;
             Some((x, placement.rotate(found.projection.normal)))
@@ -362,19 +406,22 @@ fn tool_normals(model: &Model, tool: usize, nodes: &[usize]) -> Vec<([f64; 2], [
 }
 
 /// The rigid-body motions that the `fix`/`displace` conditions of `body`
-/// and the contact normals `normals` (position, unit normal) leave free
-/// (empty: held; a body without nodes is held).
-fn free_motions(
-    model: &Model,
+/// and the contact normals `normals` (position, unit normal; planar) leave
+/// free (empty: held; a body without nodes is held).
+fn free_motions<const D: usize>(
+    model: &Model<D>,
     body: &crate::model::Body,
-    constrained: &[[bool; 2]],
+    constrained: &[[bool; D]],
     normals: &[([f64; 2], [f64; 2])],
 ) -> Vec<&'static str> {
     if body.nodes.is_empty() {
         return vec![];
     }
-    let axi = model.analysis.kind == AnalysisKind::Axisymmetric;
     let pts = &model.mesh.nodes[body.nodes.clone()];
+    if D == 3 {
+        return free_solid_motions(pts, &constrained[body.nodes.clone()]);
+    }
+    let axi = model.analysis.kind == AnalysisKind::Axisymmetric;
     let k = pts.len() as f64;
     let c = pts
         .iter()
@@ -426,6 +473,70 @@ fn free_motions(
             }
         })
         .collect()
+}
+
+/// The rigid motions of a solid body (3 translations, 3 rotations) its
+/// constrained dofs leave free: the velocity `a + w x (p - c)` has rows
+/// `[e_c, (p - c) x e_c]` per constrained component `c`; a null direction
+/// of their Gram matrix is named by its largest part.
+fn free_solid_motions<const D: usize>(
+    pts: &[[f64; D]],
+    constrained: &[[bool; D]],
+) -> Vec<&'static str> {
+    let k = pts.len() as f64;
+    let mut c = [0.0; 3];
+    for p in pts {
+        for (ci, pi) in c.iter_mut().zip(p) {
+            *ci += pi / k;
+        }
+    }
+    let size = pts
+        .iter()
+        .map(|p| (0..D).map(|i| (p[i] - c[i]).powi(2)).sum::<f64>().sqrt())
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let mut g = nalgebra::Matrix6::<f64>::zeros();
+    for (p, held) in pts.iter().zip(constrained) {
+        let x = [
+            (p[0] - c[0]) / size,
+            (p[1] - c[1]) / size,
+            (p[2 % D] - c[2 % D]) / size,
+        ];
+        let rows = [
+            [1.0, 0.0, 0.0, 0.0, x[2], -x[1]],
+            [0.0, 1.0, 0.0, -x[2], 0.0, x[0]],
+            [0.0, 0.0, 1.0, x[1], -x[0], 0.0],
+        ];
+        for (comp, row) in rows.iter().enumerate().take(D) {
+            if held[comp] {
+                let r = nalgebra::Vector6::from(*row);
+                g += r * r.transpose();
+            }
+        }
+    }
+    let eig = g.symmetric_eigen();
+    let max = eig.eigenvalues.max().max(f64::MIN_POSITIVE);
+    const NAMES: [&str; 6] = [
+        "translate along x",
+        "translate along y",
+        "translate along z",
+        "rotate about x",
+        "rotate about y",
+        "rotate about z",
+    ];
+    let mut free: Vec<&str> = (0..6)
+        .filter(|&i| eig.eigenvalues[i] <= 1e-10 * max)
+        .map(|i| {
+            let v = eig.eigenvectors.column(i);
+            let j = (0..6)
+                .max_by(|&a, &b| v[a].abs().total_cmp(&v[b].abs()))
+                .unwrap_or(0);
+            NAMES[j]
+        })
+        .collect();
+    free.sort_unstable();
+    free.dedup();
+    free
 }
 
 #[cfg(test)]

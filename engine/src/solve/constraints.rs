@@ -104,7 +104,7 @@ impl Constraints {
     }
 
     /// Maps the node-term rows of the contact laws to dof terms.
-    pub fn build(&mut self, rows: &NodeRows, dofs: &DofMap) {
+    pub fn build<const D: usize>(&mut self, rows: &NodeRows, dofs: &DofMap<D>) {
         self.rows.clear();
         self.prescribed.clear();
         self.gap.clear();

@@ -1,5 +1,5 @@
-//! Degree-of-freedom numbering: two dofs per node (`2 n + c`, c = 0 for x
-//! (or r), 1 for y (or z)), split into free dofs (the unknowns, numbered in
+//! Degree-of-freedom numbering: `D` dofs per node (`D n + c`, c = 0 for x
+//! (or r), 1 for y (or z), 2 for z in 3D), split into free dofs (the unknowns, numbered in
 //! node order), prescribed dofs (Dirichlet data, eliminated from the
 //! matrix) and inactive dofs (nodes attached to no cell, e.g. unused points
 //! of a gmsh file: no unknown, no reaction).
@@ -20,17 +20,18 @@ pub enum Dof {
 /// A prescribed dof and the constraint that sets it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct PrescribedDof {
-    /// Global dof `2 node + component`.
+    /// Global dof `D node + component`.
     pub dof: usize,
     /// Index into `Model::constraints` (the last one in deck order wins
     /// when several prescribe the same dof).
     pub constraint: usize,
 }
 
-/// The dof numbering of a model.
+/// The dof numbering of a model of dimension `D` (`DofMap` without a
+/// parameter is the planar one).
 #[derive(Debug, Clone)]
-pub struct DofMap {
-    /// Role of each global dof (`2 * nodes` entries).
+pub struct DofMap<const D: usize = 2> {
+    /// Role of each global dof (`D * nodes` entries).
     pub dofs: Vec<Dof>,
     /// Global dof of each free unknown.
     pub free: Vec<usize>,
@@ -38,10 +39,10 @@ pub struct DofMap {
     pub prescribed: Vec<PrescribedDof>,
 }
 
-impl DofMap {
+impl<const D: usize> DofMap<D> {
     /// Numbers the dofs of `model`; nodes and components of constraints must
     /// be valid (see `check::check_model`).
-    pub fn new(model: &Model) -> Self {
+    pub fn new(model: &Model<D>) -> Self {
         let nn = model.mesh.nodes.len();
         let mut active = vec![false; nn];
         for c in &model.mesh.cells {
@@ -49,17 +50,17 @@ impl DofMap {
                 active[n] = true;
             }
         }
-        let mut constraint_of: Vec<Option<usize>> = vec![None; 2 * nn];
+        let mut constraint_of: Vec<Option<usize>> = vec![None; D * nn];
         for (k, d) in model.constraints.iter().enumerate() {
             for &n in &d.nodes {
-                constraint_of[2 * n + d.component] = Some(k);
+                constraint_of[D * n + d.component] = Some(k);
             }
         }
-        let mut dofs = vec![Dof::Inactive; 2 * nn];
+        let mut dofs = vec![Dof::Inactive; D * nn];
         let mut free = Vec::new();
         let mut prescribed = Vec::new();
         for (g, role) in dofs.iter_mut().enumerate() {
-            if !active[g / 2] {
+            if !active[g / D] {
                 continue;
             }
             *role = match constraint_of[g] {
@@ -80,10 +81,10 @@ impl DofMap {
         }
     }
 
-    /// Displacement components per node (the dimension; 2 today). New
-    /// code takes it from here rather than writing the literal.
+    /// Displacement components per node (the dimension `D`). New code
+    /// takes it from here rather than writing the literal.
     pub fn components(&self) -> usize {
-        2
+        D
     }
 
     /// Global dof of component `component` of node `node`.
@@ -98,7 +99,7 @@ impl DofMap {
     }
 
     /// Prescribed values at time `t` (one per prescribed dof).
-    pub fn prescribed_values(&self, model: &Model, t: f64, out: &mut [f64]) {
+    pub fn prescribed_values(&self, model: &Model<D>, t: f64, out: &mut [f64]) {
         for (o, p) in out.iter_mut().zip(&self.prescribed) {
             *o = model.constraints[p.constraint].value.eval(t);
         }

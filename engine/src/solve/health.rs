@@ -38,7 +38,7 @@ pub struct RunHealth {
 
 impl RunHealth {
     /// Nothing recorded yet, for the pairs of `model`.
-    pub fn new(model: &Model) -> Self {
+    pub fn new<const D: usize>(model: &Model<D>) -> Self {
         RunHealth {
             pairs: vec![PairHealth::default(); model.contacts.len()],
             increments: 0,
@@ -46,7 +46,12 @@ impl RunHealth {
     }
 
     /// Records the converged state at time `t`.
-    pub fn record(&mut self, model: &Model, contact: &[Vec<NodeContact>], t: f64) {
+    pub fn record<const D: usize>(
+        &mut self,
+        model: &Model<D>,
+        contact: &[Vec<NodeContact>],
+        t: f64,
+    ) {
         self.increments += 1;
         let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
         for ((h, list), cp) in self.pairs.iter_mut().zip(contact).zip(&model.contacts) {
@@ -75,7 +80,7 @@ impl RunHealth {
     }
 
     /// The warnings of the run so far.
-    pub fn warnings(&self, model: &Model) -> Vec<String> {
+    pub fn warnings<const D: usize>(&self, model: &Model<D>) -> Vec<String> {
         let mut out = Vec::new();
         if self.increments == 0 {
             return out;
@@ -134,7 +139,7 @@ impl RunHealth {
 
 /// Mean length of the slave edges at `node` in the reference mesh (0:
 /// none).
-fn element_size(model: &Model, edges: &[[usize; 2]], node: usize) -> f64 {
+fn element_size<const D: usize>(model: &Model<D>, edges: &[[usize; 2]], node: usize) -> f64 {
     let p = &model.mesh.nodes;
     let (sum, n) = edges
         .iter()
@@ -156,8 +161,11 @@ fn element_size(model: &Model, edges: &[[usize; 2]], node: usize) -> f64 {
 /// pointing into the body, `side = inside` for `outside`): the run then
 /// fails with "chattering" or inverted elements. Reported before the
 /// first increment (console, `summary.json` warnings) and by `ctc check`.
-pub fn start_inside(model: &Model) -> Vec<String> {
+pub fn start_inside<const D: usize>(model: &Model<D>) -> Vec<String> {
     let mut out = Vec::new();
+    if D != 2 {
+        return out;
+    }
     let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
     for cp in &model.contacts {
         let ContactMaster::Tool(i) = cp.master else {
@@ -174,7 +182,8 @@ pub fn start_inside(model: &Model) -> Vec<String> {
         let (mut inside, mut deep) = (0usize, 0usize);
         let mut deepest: Option<(f64, usize, f64)> = None;
         for &n in &cp.nodes {
-            let x = model.mesh.nodes[n];
+            let p = model.mesh.nodes[n];
+            let x = [p[0], p[1]];
             let Some(found) =
                 crate::contact::search::brute_force(&shape, placement.to_reference(x), &mut tests)
             else {

@@ -8,8 +8,9 @@
 
 use crate::model::{AnalysisKind, Load, Model};
 
-/// Writes the external forces of `model` at time `t` into `f` (2 per node).
-pub fn external_forces(model: &Model, t: f64, f: &mut [f64]) {
+/// Writes the external forces of `model` at time `t` into `f` (`D` per
+/// node).
+pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64]) {
     f.fill(0.0);
     let nodes = &model.mesh.nodes;
     for load in &model.loads {
@@ -22,7 +23,16 @@ pub fn external_forces(model: &Model, t: f64, f: &mut [f64]) {
             } => {
                 let v = value.eval(t);
                 for &n in set {
-                    f[2 * n + component] += v;
+                    f[D * n + component] += v;
+                }
+            }
+            Load::FacetPressure { facets, value, .. } => {
+                let p = value.eval(t);
+                if p == 0.0 {
+                    continue;
+                }
+                for facet in facets {
+                    facet_pressure(nodes, facet.nodes(), p, f);
                 }
             }
             Load::Pressure { edges, value, .. } => {
@@ -47,12 +57,60 @@ pub fn external_forces(model: &Model, t: f64, f: &mut [f64]) {
                         }
                     };
                     for k in 0..2 {
-                        f[2 * a + k] += wa * n[k];
-                        f[2 * b + k] += wb * n[k];
+                        f[D * a + k] += wa * n[k];
+                        f[D * b + k] += wb * n[k];
                     }
                 }
             }
         }
+    }
+}
+
+/// `[x, y, z]` of a node (z = 0 in 2D).
+fn xyz<const D: usize>(p: &[f64; D]) -> [f64; 3] {
+    std::array::from_fn(|k| if k < D { p[k] } else { 0.0 })
+}
+
+/// Adds the consistent nodal forces `-p int N_a n dA` of a pressure `p` on
+/// the face `face` (3 or 4 nodes, counter-clockwise seen from outside) of a
+/// solid mesh: `n dA = (dx/dxi x dx/deta) dxi deta`, 1-point (tri3, exact:
+/// the area over 3 on each node) or 2x2 Gauss (quad4) quadrature.
+fn facet_pressure<const D: usize>(nodes: &[[f64; D]], face: &[usize], p: f64, f: &mut [f64]) {
+    use crate::element::reference::{Quad4, ReferenceCell, Tri3};
+    fn add<const D: usize, const NN: usize, C: ReferenceCell<2, NN>>(
+        nodes: &[[f64; D]],
+        face: &[usize],
+        p: f64,
+        f: &mut [f64],
+    ) {
+        for (xi, w) in C::QUADRATURE {
+            let (n, g) = (C::shape(xi), C::gradients(xi));
+            let mut t = [[0.0; 3]; 2];
+            for (a, &node) in face.iter().enumerate() {
+                let x = xyz(&nodes[node]);
+                for (k, tk) in t.iter_mut().enumerate() {
+                    for c in 0..3 {
+                        tk[c] += g[a][k] * x[c];
+                    }
+                }
+            }
+            let [t1, t2] = t;
+            let area_normal = [
+                t1[1] * t2[2] - t1[2] * t2[1],
+                t1[2] * t2[0] - t1[0] * t2[2],
+                t1[0] * t2[1] - t1[1] * t2[0],
+            ];
+            for (a, &node) in face.iter().enumerate() {
+                for c in 0..D {
+                    f[D * node + c] -= p * w * n[a] * area_normal[c];
+                }
+            }
+        }
+    }
+    match face.len() {
+        3 => add::<D, 3, Tri3>(nodes, face, p, f),
+        4 => add::<D, 4, Quad4>(nodes, face, p, f),
+        _ => {}
     }
 }
 
@@ -111,6 +169,38 @@ mod tests {
         assert!((total - 8.0 * std::f64::consts::PI).abs() < 1e-12);
         // consistent split: (2 r_a + r_b) / 6 vs (r_a + 2 r_b) / 6 times 2 pi L
         assert!((f[1] - 2.0 * std::f64::consts::PI * 2.0 * 5.0 / 6.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn facet_pressure_on_a_face_totals_p_times_area_along_the_inward_normal() {
+        // a quad face z = 0 of area 6, clockwise seen from +z (so the
+        // outward normal is -z: the body lies above), and a triangle of the
+        // same plane: p pushes +z, totals p A
+        let nodes = vec![
+            [0.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [3.0, 2.0, 0.0],
+            [3.0, 0.0, 0.0],
+        ];
+        let mut m = crate::testkit::ModelBuilder::<3>::solid()
+            .mesh(Mesh::new(nodes, vec![]))
+            .build();
+        m.loads.push(Load::FacetPressure {
+            label: "p".into(),
+            facets: vec![
+                crate::mesh::Facet::new(&[0, 1, 2, 3]),
+                crate::mesh::Facet::new(&[0, 1, 2]),
+            ],
+            value: TimeFunction::Constant(2.0),
+        });
+        let mut f = vec![0.0; 12];
+        external_forces(&m, 0.0, &mut f);
+        let fz: f64 = (0..4).map(|a| f[3 * a + 2]).sum();
+        assert!((fz - 2.0 * (6.0 + 3.0)).abs() < 1e-12, "{f:?}");
+        // quad: a quarter on each node; triangle: a third on each of its nodes
+        assert!((f[3 * 3 + 2] - 3.0).abs() < 1e-12);
+        assert!((f[2] - (3.0 + 2.0)).abs() < 1e-12);
+        assert!((0..4).all(|a| f[3 * a].abs() < 1e-14 && f[3 * a + 1].abs() < 1e-14));
     }
 
     #[test]

@@ -8,7 +8,7 @@
 //!
 //! - [`check`]: the model is checked first, every problem reported at once
 //!   (indices, parameters, unheld bodies);
-//! - [`dofs`]: 2 dofs per node, free / prescribed (eliminated) / inactive;
+//! - [`dofs`]: `D` dofs per node, free / prescribed (eliminated) / inactive;
 //! - [`linalg`]: the CSC pattern and scatter map ([`linalg::pattern`]),
 //!   `trait LinearSystem` (faer direct: Cholesky, `L D L^T`, LU) and
 //!   `trait SaddlePointSystem` (Lagrange multipliers);
@@ -24,6 +24,8 @@
 //!   active set with a cycling guard, augmented-Lagrangian Uzawa updates,
 //!   Lagrange friction statuses);
 //! - [`stepping`]: increments, cutback and grow-back;
+//! - [`scene`]: the seams of the dimension-generic solver (contact scene,
+//!   heat coupling; 3D has neither yet);
 //! - [`diagnosis`]: the likely cause and remedy of a failed run;
 //! - [`jumps`]: warnings for slave nodes that moved farther than the
 //!   contact search window in one increment;
@@ -43,11 +45,15 @@ pub mod linalg;
 pub mod loads;
 pub mod newton;
 pub mod restart;
+pub mod scene;
 pub mod stepping;
 
 use crate::contact::NodeContact;
+use crate::geom::Dimension;
 use crate::model::{AnalysisKind, Model};
-use newton::{Converged, Failure, Newton};
+use nalgebra::Const;
+use newton::{ContactOf, Converged, Failure, Newton};
+use scene::{ContactScene, HeatCoupling};
 use std::time::Instant;
 use stepping::{IncrementSolver, StepError};
 
@@ -70,11 +76,12 @@ pub struct IterationInfo {
     pub active_contacts: usize,
 }
 
-/// What observers see of a converged increment.
+/// What observers see of a converged increment of a model of dimension
+/// `D`.
 #[derive(Debug)]
-pub struct IncrementView<'a> {
+pub struct IncrementView<'a, const D: usize = 2> {
     /// The model being solved.
-    pub model: &'a Model,
+    pub model: &'a Model<D>,
     /// Step index (0-based).
     pub step: usize,
     /// Converged increment number in the run (1-based).
@@ -82,10 +89,11 @@ pub struct IncrementView<'a> {
     /// Time at the end of the increment.
     pub time: f64,
     /// Nodal displacements.
-    pub displacement: &'a [[f64; 2]],
+    pub displacement: &'a [[f64; D]],
     /// Nodal reaction forces (non-zero only at constrained dofs).
-    pub reaction: &'a [[f64; 2]],
-    /// Contact evaluation of each pair at the converged state.
+    pub reaction: &'a [[f64; D]],
+    /// Contact evaluation of each pair at the converged state (empty in
+    /// 3D until the 3D contact issue).
     pub contact: &'a [Vec<NodeContact>],
     /// Relative residual after each Newton iteration of this increment.
     pub residuals: &'a [f64],
@@ -101,12 +109,13 @@ pub struct IncrementView<'a> {
     pub thermal: Option<&'a crate::thermal::solver::ThermalIncrement>,
 }
 
-/// Receives progress and converged states (writers, progress bars, tests).
-pub trait Observer {
+/// Receives progress and converged states (writers, progress bars, tests)
+/// of a run of dimension `D` (`Observer` without a parameter: planar).
+pub trait Observer<const D: usize = 2> {
     /// After each Newton iteration.
     fn iteration(&mut self, _info: &IterationInfo) {}
     /// After each converged increment; an error aborts the run.
-    fn converged(&mut self, _view: &IncrementView<'_>) -> Result<(), String> {
+    fn converged(&mut self, _view: &IncrementView<'_, D>) -> Result<(), String> {
         Ok(())
     }
     /// When an increment is cut back: why, in one line (what failed, the
@@ -124,7 +133,7 @@ pub trait Observer {
     }
     /// After each converged increment (after [`Observer::converged`]): the
     /// state a restart continues from. An error aborts the run.
-    fn checkpoint(&mut self, _checkpoint: &restart::Checkpoint) -> Result<(), String> {
+    fn checkpoint(&mut self, _checkpoint: &restart::Checkpoint<D>) -> Result<(), String> {
         Ok(())
     }
 }
@@ -296,7 +305,13 @@ pub const AXISYMMETRIC_NOTE: &str =
 /// step is solved increment by increment (see [`stepping`] and [`newton`]).
 // The error carries the summary of the run so far (contract signature).
 #[allow(clippy::result_large_err)]
-pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, RunError> {
+pub fn run<const D: usize>(
+    model: &Model<D>,
+    observer: &mut dyn Observer<D>,
+) -> Result<RunSummary, RunError>
+where
+    Const<D>: Dimension<D>,
+{
     run_from(model, observer, None)
 }
 
@@ -305,11 +320,14 @@ pub fn run(model: &Model, observer: &mut dyn Observer) -> Result<RunSummary, Run
 /// increments that follow are the same, bit for bit, as in the
 /// uninterrupted run. The summary covers the continued part only.
 #[allow(clippy::result_large_err)]
-pub fn run_from(
-    model: &Model,
-    observer: &mut dyn Observer,
-    from: Option<&restart::Checkpoint>,
-) -> Result<RunSummary, RunError> {
+pub fn run_from<const D: usize>(
+    model: &Model<D>,
+    observer: &mut dyn Observer<D>,
+    from: Option<&restart::Checkpoint<D>>,
+) -> Result<RunSummary, RunError>
+where
+    Const<D>: Dimension<D>,
+{
     let start = Instant::now();
     let mut summary = RunSummary {
         nodes: model.mesh.nodes.len(),
@@ -334,7 +352,7 @@ pub fn run_from(
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
     let mut newton = newton;
-    let thermal = match crate::thermal::coupling::Coupling::new(model) {
+    let thermal = match <Const<D> as Dimension<D>>::Heat::new(model) {
         Ok(t) => t,
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
@@ -344,7 +362,7 @@ pub fn run_from(
                 .to_string();
             return Err(fail(summary, message));
         }
-        summary.temperature_dofs = th.solver.free_dofs();
+        summary.temperature_dofs = th.free_dofs();
         let laws = th.cell_laws(model);
         if let Err(e) = laws.and_then(|l| newton.set_thermal_state(th.thermal_strains(model), l)) {
             return Err(fail(summary, format!("the model cannot be solved: {e}")));
@@ -466,33 +484,34 @@ pub fn run_from(
 }
 
 /// Glue between the stepper, the Newton solver, the observer and the summary.
-struct Driver<'m, 'o> {
-    model: &'m Model,
-    newton: Newton<'m>,
-    observer: &'o mut dyn Observer,
+struct Driver<'m, 'o, const D: usize>
+where
+    Const<D>: Dimension<D>,
+{
+    model: &'m Model<D>,
+    newton: Newton<'m, D>,
+    observer: &'o mut dyn Observer<D>,
     summary: RunSummary,
     increment: usize,
     /// Heat conduction of a thermo-mechanical scene (staggered).
-    thermal: Option<crate::thermal::coupling::Coupling>,
+    thermal: Option<<Const<D> as Dimension<D>>::Heat>,
     /// Time of the last converged state and time of the last attempt.
     attempt_span: (f64, f64),
     /// Contact health over the converged increments (warnings at the end).
     health: health::RunHealth,
 }
 
-impl Driver<'_, '_> {
+impl<const D: usize> Driver<'_, '_, D>
+where
+    Const<D>: Dimension<D>,
+{
     /// Friction work of the converged increment per pair, added to the
     /// run totals (empty without friction).
     fn friction_work(&mut self) -> Vec<f64> {
         if self.model.contacts.iter().all(|c| c.friction.is_none()) {
             return Vec::new();
         }
-        let work: Vec<f64> = self
-            .newton
-            .contact()
-            .iter()
-            .map(|l| crate::contact::friction::pair_dissipation(l))
-            .collect();
+        let work: Vec<f64> = self.newton.contacts().friction_work();
         self.summary.friction_work.resize(work.len(), 0.0);
         for (t, w) in self.summary.friction_work.iter_mut().zip(&work) {
             *t += w;
@@ -501,11 +520,14 @@ impl Driver<'_, '_> {
     }
 }
 
-impl IncrementSolver for Driver<'_, '_> {
+impl<const D: usize> IncrementSolver for Driver<'_, '_, D>
+where
+    Const<D>: Dimension<D>,
+{
     fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
         self.attempt_span.1 = t;
         let settings = self.model.steps[step].newton;
-        contact_loop::attempt(
+        ContactOf::<D>::attempt(
             &mut self.newton,
             &settings,
             t,
@@ -524,9 +546,8 @@ impl IncrementSolver for Driver<'_, '_> {
         converged: Converged,
     ) -> Result<(), String> {
         self.attempt_span.0 = t;
-        let warnings = jumps::increment_warnings(
+        let warnings = self.newton.contacts().increment_warnings(
             self.model,
-            self.newton.pairs(),
             (self.newton.committed_displacement(), t - dt),
             (&self.newton.u, t),
             self.increment + 1,
@@ -548,9 +569,7 @@ impl IncrementSolver for Driver<'_, '_> {
                 self.newton.contact(),
                 &before,
                 self.newton.material_points(),
-            )
-            .map_err(|e| format!("heat conduction at t = {t}: {e}"))?;
-            th.solver.commit();
+            )?;
             let laws = th.cell_laws(self.model)?;
             self.newton
                 .set_thermal_state(th.thermal_strains(self.model), laws)?;
@@ -566,8 +585,8 @@ impl IncrementSolver for Driver<'_, '_> {
             contact: self.newton.contact(),
             residuals: &converged.residuals,
             points: self.newton.material_points(),
-            temperature: self.thermal.as_ref().map(|t| &t.solver.temperature[..]),
-            thermal: self.thermal.as_ref().map(|t| &t.solver.last),
+            temperature: self.thermal.as_ref().map(|t| t.temperature()),
+            thermal: self.thermal.as_ref().map(|t| t.last()),
         };
         let start = Instant::now();
         let r = self.observer.converged(&view);
@@ -588,7 +607,7 @@ impl IncrementSolver for Driver<'_, '_> {
             residual_floor,
             at_floor,
             friction_work,
-            thermal: self.thermal.as_ref().map(|t| t.solver.last.clone()),
+            thermal: self.thermal.as_ref().map(|t| t.last().clone()),
         });
         for w in warnings {
             self.observer.warning(&w);

@@ -9,9 +9,10 @@
 //! restart with a different deck is refused). [`RestartFile`] adds what the
 //! result writer needs to append to the same directory (the PVD entries).
 //!
-//! Format (`restart.bin`, little endian): the magic `CTCRST04`, then
-//! fields in a fixed order; every `f64` is stored as its 8 bytes, so the
-//! values read back are the values written, bit for bit.
+//! Format (`restart.bin`, little endian): the magic `CTCRST05`, the
+//! dimension (2 or 3; a restart file is read only by a model of the same
+//! dimension), then fields in a fixed order; every `f64` is stored as its 8
+//! bytes, so the values read back are the values written, bit for bit.
 
 use crate::element::{MaterialPoint, PointState};
 use crate::material::History;
@@ -19,7 +20,7 @@ use crate::model::Model;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST04";
+const MAGIC: &[u8; 8] = b"CTCRST05";
 
 /// Values stored per integration point: position (3), volume, strain (6),
 /// stress (6), equivalent plastic strain, internal tensor (6).
@@ -52,9 +53,9 @@ pub struct PairHistory {
     pub friction: Vec<f64>,
 }
 
-/// The state of a run at a converged increment.
+/// The state of a run of dimension `D` at a converged increment.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Checkpoint {
+pub struct Checkpoint<const D: usize = 2> {
     /// Fingerprint of the model ([`fingerprint`]).
     pub fingerprint: u64,
     /// Converged increments so far (the last one's number).
@@ -62,7 +63,7 @@ pub struct Checkpoint {
     /// Where the stepper continues.
     pub resume: Resume,
     /// Committed nodal displacements.
-    pub displacement: Vec<[f64; 2]>,
+    pub displacement: Vec<[f64; D]>,
     /// Committed contact history per pair.
     pub pairs: Vec<PairHistory>,
     /// Committed integration points per global cell (empty for linear cells).
@@ -78,9 +79,9 @@ pub struct Checkpoint {
 
 /// A restart file: the solver checkpoint and the result writer's index.
 #[derive(Debug, Clone, PartialEq)]
-pub struct RestartFile {
+pub struct RestartFile<const D: usize = 2> {
     /// Solver and stepping state.
-    pub checkpoint: Checkpoint,
+    pub checkpoint: Checkpoint<D>,
     /// `results.pvd` entries (time, VTU file name) written so far.
     pub pvd: Vec<(f64, String)>,
 }
@@ -88,7 +89,7 @@ pub struct RestartFile {
 /// 64-bit FNV-1a hash of the model's full description (mesh, materials,
 /// loads, steps): two decks that lower to the same model have the same
 /// fingerprint.
-pub fn fingerprint(model: &Model) -> u64 {
+pub fn fingerprint<const D: usize>(model: &Model<D>) -> u64 {
     let text = format!("{model:?}");
     text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
         (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
@@ -171,11 +172,12 @@ impl Dec<'_> {
     }
 }
 
-impl RestartFile {
+impl<const D: usize> RestartFile<D> {
     /// The file contents.
     pub fn encode(&self) -> Vec<u8> {
         let mut e = Enc::default();
         e.0.extend_from_slice(MAGIC);
+        e.usize(D);
         let c = &self.checkpoint;
         e.u64(c.fingerprint);
         e.usize(c.increment);
@@ -232,6 +234,12 @@ impl RestartFile {
             data,
             pos: MAGIC.len(),
         };
+        let dimension = d.usize()?;
+        if dimension != D {
+            return Err(format!(
+                "the restart file was written by a {dimension}D run, this model is {D}D"
+            ));
+        }
         let fingerprint = d.u64()?;
         let increment = d.usize()?;
         let resume = Resume {
@@ -241,10 +249,17 @@ impl RestartFile {
             easy: d.usize()?,
         };
         let flat = d.f64s()?;
-        if flat.len() % 2 != 0 {
-            return Err("restart file corrupted: odd displacement count".into());
+        if flat.len() % D != 0 {
+            return Err(
+                "restart file corrupted: displacement count not a multiple of the \
+                        dimension"
+                    .into(),
+            );
         }
-        let displacement = flat.chunks_exact(2).map(|c| [c[0], c[1]]).collect();
+        let displacement = flat
+            .chunks_exact(D)
+            .map(|c| std::array::from_fn(|k| c[k]))
+            .collect();
         let np = d.len(24)?;
         let mut pairs = Vec::with_capacity(np);
         for _ in 0..np {
@@ -402,16 +417,43 @@ mod tests {
     }
 
     #[test]
+    fn a_solid_restart_file_carries_its_dimension() {
+        let s = sample();
+        let c = &s.checkpoint;
+        let solid = RestartFile::<3> {
+            checkpoint: Checkpoint {
+                fingerprint: c.fingerprint,
+                increment: c.increment,
+                resume: c.resume,
+                displacement: vec![[1e-17, -2.5, 0.1 + 0.2], [0.0, -0.0, 7.0]],
+                pairs: Vec::new(),
+                points: c.points.clone(),
+                points_time: c.points_time,
+                couplings: Vec::new(),
+            },
+            pvd: s.pvd.clone(),
+        };
+        let bytes = solid.encode();
+        assert_eq!(RestartFile::<3>::decode(&bytes).unwrap(), solid);
+        let e = RestartFile::<2>::decode(&bytes).unwrap_err();
+        assert!(e.contains("3D run, this model is 2D"), "{e}");
+        let e = RestartFile::<3>::decode(&s.encode()).unwrap_err();
+        assert!(e.contains("2D run"), "{e}");
+    }
+
+    #[test]
     fn truncated_or_foreign_restart_files_are_errors_not_panics() {
         let bytes = sample().encode();
         for n in 0..bytes.len() {
-            assert!(RestartFile::decode(&bytes[..n]).is_err(), "prefix {n}");
+            assert!(RestartFile::<2>::decode(&bytes[..n]).is_err(), "prefix {n}");
         }
         let mut extra = bytes.clone();
         extra.push(0);
-        assert!(RestartFile::decode(&extra).is_err());
+        assert!(RestartFile::<2>::decode(&extra).is_err());
         let mut bad = bytes;
         bad[0] = b'X';
-        assert!(RestartFile::decode(&bad).unwrap_err().contains("magic"));
+        assert!(RestartFile::<2>::decode(&bad)
+            .unwrap_err()
+            .contains("magic"));
     }
 }

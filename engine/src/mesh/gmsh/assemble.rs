@@ -97,7 +97,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     for (i, n) in raw.nodes.iter().enumerate() {
         if new_of[i].is_some() {
             new_of[i] = Some(mesh.nodes.len());
-            mesh.nodes.push(n.xy);
+            mesh.nodes.push([n.xyz[0], n.xyz[1]]);
         }
     }
     let renum = |p: usize| new_of[p].expect("cell nodes are numbered");

@@ -14,16 +14,29 @@ pub enum ElementType {
     Triangle,
     /// gmsh type 3, 4-node quadrangle.
     Quadrangle,
+    /// gmsh type 4, 4-node tetrahedron (solid meshes only).
+    Tetrahedron,
+    /// gmsh type 5, 8-node hexahedron (solid meshes only).
+    Hexahedron,
 }
 
 impl ElementType {
-    /// The supported type of gmsh type number `t`, or why it is not.
-    pub fn from_gmsh(t: i64) -> Result<Self, String> {
+    /// The supported type of gmsh type number `t` in a planar (`solid =
+    /// false`) or solid mesh, or why it is not.
+    pub fn from_gmsh(t: i64, solid: bool) -> Result<Self, String> {
         Ok(match t {
             15 => ElementType::Point,
             1 => ElementType::Line,
             2 => ElementType::Triangle,
             3 => ElementType::Quadrangle,
+            4 if solid => ElementType::Tetrahedron,
+            5 if solid => ElementType::Hexahedron,
+            11 | 12 | 17 | 29..=35 | 92 | 93 if solid => return Err(higher_order(t, "solid")),
+            6 | 7 | 13 | 14 | 18 | 19 if solid => {
+                return Err(format!(
+                    "element type {t} (prism or pyramid) is not supported: ctc reads tetrahedra (4) and hexahedra (5)"
+                ))
+            }
             8 | 26..=28 => return Err(higher_order(t, "line")),
             9 | 20..=25 => return Err(higher_order(t, "triangle")),
             10 | 16 | 36 | 37 => return Err(higher_order(t, "quadrangle")),
@@ -46,7 +59,8 @@ impl ElementType {
             ElementType::Point => 1,
             ElementType::Line => 2,
             ElementType::Triangle => 3,
-            ElementType::Quadrangle => 4,
+            ElementType::Quadrangle | ElementType::Tetrahedron => 4,
+            ElementType::Hexahedron => 8,
         }
     }
 
@@ -56,6 +70,7 @@ impl ElementType {
             ElementType::Point => 0,
             ElementType::Line => 1,
             ElementType::Triangle | ElementType::Quadrangle => 2,
+            ElementType::Tetrahedron | ElementType::Hexahedron => 3,
         }
     }
 }
@@ -72,8 +87,8 @@ fn higher_order(t: i64, shape: &str) -> String {
 pub struct RawNode {
     /// gmsh node tag.
     pub tag: u64,
-    /// x, y (z ignored).
-    pub xy: [f64; 2],
+    /// x, y, z (planar meshes ignore z).
+    pub xyz: [f64; 3],
     /// Line of its coordinates.
     pub line: usize,
 }
@@ -84,7 +99,7 @@ pub struct RawElement {
     /// Topology.
     pub kind: ElementType,
     /// gmsh node tags (first `kind.nodes()` used).
-    pub nodes: [u64; 4],
+    pub nodes: [u64; 8],
     /// Physical group tags it belongs to (of dimension `kind.dim()`).
     pub physicals: Vec<i64>,
     /// Line of the element.
@@ -104,4 +119,7 @@ pub struct RawMesh {
     pub has_nodes: bool,
     /// Whether an `$Elements` section was read.
     pub has_elements: bool,
+    /// Whether the mesh is read as a solid (3D) one: tetrahedra and
+    /// hexahedra are its cells.
+    pub solid: bool,
 }

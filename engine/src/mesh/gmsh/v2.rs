@@ -25,10 +25,10 @@ pub fn nodes(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
         let line = c.line();
         let x = c.f64("the node's x")?;
         let y = c.f64("the node's y")?;
-        c.f64("the node's z")?;
+        let z = c.f64("the node's z")?;
         raw.nodes.push(RawNode {
             tag,
-            xy: [x, y],
+            xyz: [x, y, z],
             line,
         });
     }
@@ -42,7 +42,7 @@ pub fn elements(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
         c.tag("an element tag")?;
         let line = c.line();
         let t = c.i64("the element type")?;
-        let kind = ElementType::from_gmsh(t).map_err(|m| MeshError::at_line(line, m))?;
+        let kind = ElementType::from_gmsh(t, raw.solid).map_err(|m| MeshError::at_line(line, m))?;
         let ntags = c.usize("the number of element tags")?;
         let mut physicals = Vec::new();
         for k in 0..ntags {
@@ -51,7 +51,7 @@ pub fn elements(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
                 physicals.push(v);
             }
         }
-        let mut nodes = [0u64; 4];
+        let mut nodes = [0u64; 8];
         for slot in nodes.iter_mut().take(kind.nodes()) {
             *slot = c.tag("a node tag of the element")?;
         }

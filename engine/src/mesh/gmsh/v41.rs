@@ -104,13 +104,13 @@ pub fn nodes(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
             let x = c.f64("the node's x")?;
             let line = c.line();
             let y = c.f64("the node's y")?;
-            c.f64("the node's z")?;
+            let z = c.f64("the node's z")?;
             for _ in 0..extra {
                 c.f64("a parametric coordinate")?;
             }
             raw.nodes.push(RawNode {
                 tag,
-                xy: [x, y],
+                xyz: [x, y, z],
                 line,
             });
         }
@@ -142,7 +142,8 @@ pub fn elements(
         let block_line = c.line();
         let entity = c.i64("the entity tag")?;
         let t = c.i64("the element type")?;
-        let kind = ElementType::from_gmsh(t).map_err(|m| MeshError::at_line(block_line, m))?;
+        let kind =
+            ElementType::from_gmsh(t, raw.solid).map_err(|m| MeshError::at_line(block_line, m))?;
         if kind.dim() != dim {
             return Err(MeshError::at_line(
                 block_line,
@@ -157,7 +158,7 @@ pub fn elements(
         for _ in 0..n {
             c.tag("an element tag")?;
             let line = c.line();
-            let mut nodes = [0u64; 4];
+            let mut nodes = [0u64; 8];
             for slot in nodes.iter_mut().take(kind.nodes()) {
                 *slot = c.tag("a node tag of the element")?;
             }

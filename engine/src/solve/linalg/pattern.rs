@@ -19,6 +19,9 @@ use crate::solve::dofs::{Dof, DofMap};
 /// Marks an element entry that has no slot (a prescribed row).
 pub const NO_SLOT: u32 = u32::MAX;
 
+/// Entries of the largest node block (3 x 3).
+pub const MAX_BLOCK: usize = 9;
+
 /// Compressed sparse column pattern of a square matrix.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct SparsePattern {
@@ -55,8 +58,11 @@ pub struct Scatter {
     cell_offset: Vec<usize>,
     /// Per cell, per local entry `i + j * ndof` (column-major): value slot.
     slots: Vec<u32>,
-    /// Per node, slots of its 2x2 self block (column-major), for contact.
-    node_block: Vec<[u32; 4]>,
+    /// Components per node (the dimension of the dof map).
+    dim: usize,
+    /// Per node, slots of its `dim x dim` self block (column-major,
+    /// `dim * dim` entries per node), for contact.
+    node_block: Vec<u32>,
     /// Free row of each `K_fp` slot.
     fp_row: Vec<u32>,
     /// Prescribed column (index into `DofMap::prescribed`) of each `K_fp` slot.
@@ -65,16 +71,16 @@ pub struct Scatter {
 
 impl Scatter {
     /// Builds the pattern and the scatter maps of `mesh` numbered by `dofs`.
-    pub fn new(mesh: &Mesh, dofs: &DofMap) -> Result<Self, String> {
+    pub fn new<const D: usize>(mesh: &Mesh<D>, dofs: &DofMap<D>) -> Result<Self, String> {
         Self::with_couplings(mesh, dofs, &[])
     }
 
     /// Like [`Scatter::new`], with the extra node couplings `extra` (pairs
     /// of nodes not sharing a cell, coupled by contact elements; both
     /// orders are added).
-    pub fn with_couplings(
-        mesh: &Mesh,
-        dofs: &DofMap,
+    pub fn with_couplings<const D: usize>(
+        mesh: &Mesh<D>,
+        dofs: &DofMap<D>,
         extra: &[(usize, usize)],
     ) -> Result<Self, String> {
         let nn = mesh.nodes.len();
@@ -103,9 +109,9 @@ impl Scatter {
         col_ptr.push(0usize);
         let mut row_idx = Vec::new();
         for &g in &dofs.free {
-            for &m in &adj[g / 2] {
-                for c in 0..2 {
-                    if let Dof::Free(i) = dofs.dofs[2 * m as usize + c] {
+            for &m in &adj[g / D] {
+                for c in 0..D {
+                    if let Dof::Free(i) = dofs.dofs[D * m as usize + c] {
                         row_idx.push(i);
                     }
                 }
@@ -142,22 +148,22 @@ impl Scatter {
         let mut slots = Vec::new();
         for c in &mesh.cells {
             let ns = c.nodes;
-            let nd = 2 * ns.len();
+            let nd = D * ns.len();
             for j in 0..nd {
                 for i in 0..nd {
-                    slots.push(slot_of(2 * ns[i / 2] + i % 2, 2 * ns[j / 2] + j % 2)?);
+                    slots.push(slot_of(D * ns[i / D] + i % D, D * ns[j / D] + j % D)?);
                 }
             }
             cell_offset.push(slots.len());
         }
-        let mut node_block = vec![[NO_SLOT; 4]; nn];
-        for (node, block) in node_block.iter_mut().enumerate() {
+        let mut node_block = vec![NO_SLOT; D * D * nn];
+        for (node, block) in node_block.chunks_exact_mut(D * D).enumerate() {
             if adj[node].is_empty() {
                 continue;
             }
-            for j in 0..2 {
-                for i in 0..2 {
-                    block[i + 2 * j] = slot_of(2 * node + i, 2 * node + j)?;
+            for j in 0..D {
+                for i in 0..D {
+                    block[i + D * j] = slot_of(D * node + i, D * node + j)?;
                 }
             }
         }
@@ -165,6 +171,7 @@ impl Scatter {
             pattern,
             cell_offset,
             slots,
+            dim: D,
             node_block,
             fp_row,
             fp_col,
@@ -182,24 +189,32 @@ impl Scatter {
         &self.slots[self.cell_offset[c]..self.cell_offset[c + 1]]
     }
 
-    /// Slots of node `n`'s 2x2 self block, column-major (`a + 2 b`).
+    /// Slots of node `n`'s `D x D` self block, column-major (`a + D b`).
     #[inline]
-    pub fn node_slots(&self, n: usize) -> &[u32; 4] {
-        &self.node_block[n]
+    pub fn node_slots(&self, n: usize) -> &[u32] {
+        let dd = self.dim * self.dim;
+        &self.node_block[n * dd..(n + 1) * dd]
     }
 
-    /// Free-free slots of the 2x2 block coupling node `a` (rows) and node
-    /// `b` (columns), column-major; `NO_SLOT` for a prescribed or inactive
-    /// dof; `None` if a free-free entry is missing from the pattern.
-    pub fn pair_slots(&self, dofs: &DofMap, a: usize, b: usize) -> Option<[u32; 4]> {
+    /// Free-free slots of the `D x D` block coupling node `a` (rows) and
+    /// node `b` (columns), column-major (`i + D j`, the first `D * D`
+    /// entries); `NO_SLOT` for a prescribed or inactive dof; `None` if a
+    /// free-free entry is missing from the pattern.
+    pub fn pair_slots<const D: usize>(
+        &self,
+        dofs: &DofMap<D>,
+        a: usize,
+        b: usize,
+    ) -> Option<[u32; MAX_BLOCK]> {
+        let mut out = [NO_SLOT; MAX_BLOCK];
         if a == b {
-            return Some(self.node_block[a]);
+            out[..D * D].copy_from_slice(self.node_slots(a));
+            return Some(out);
         }
-        let mut out = [NO_SLOT; 4];
-        for j in 0..2 {
-            for i in 0..2 {
-                if let (Dof::Free(r), Dof::Free(c)) = (dofs.dofs[2 * a + i], dofs.dofs[2 * b + j]) {
-                    out[i + 2 * j] = self.pattern.find(r, c)? as u32;
+        for j in 0..D {
+            for i in 0..D {
+                if let (Dof::Free(r), Dof::Free(c)) = (dofs.dofs[D * a + i], dofs.dofs[D * b + j]) {
+                    out[i + D * j] = self.pattern.find(r, c)? as u32;
                 }
             }
         }

@@ -33,40 +33,47 @@ pub use convergence::Converged;
 pub use failure::{Failure, FailureKind};
 
 use super::assembly::Assembler;
-use super::contact_assembly::ContactAssembly;
 use super::contact_loop::NewtonLoop;
 use super::dofs::{Dof, DofMap};
 use super::linalg::direct::LinearSolver;
 use super::linalg::saddle::SaddleSolver;
 use super::linalg::{FactorStats, LinearError, LinearSystem, SaddlePointSystem, Scatter, ZeroMode};
 use super::loads::external_forces;
+use super::scene::ContactScene;
 use super::{IterationInfo, Observer, Timings};
-use crate::contact::rows::RowKind;
-use crate::contact::{self, NodeContact, PairState};
+use crate::contact::{NodeContact, PairState};
+use crate::geom::Dimension;
 use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 use convergence::{norm, Criteria, DivergenceMonitor, Eval, TINY};
+use nalgebra::Const;
 use std::time::Instant;
 
 /// Halvings of a Newton step that inverts an element before the increment
 /// is given up (and cut back): down to 1/1024 of the step.
 pub const VALID_HALVINGS: i32 = 10;
 
-/// The Newton solver of a model: numbering, pattern, factorization and the
-/// evolving state.
-pub struct Newton<'m> {
-    pub(super) model: &'m Model,
+/// The contact scene of dimension `D` ([`Dimension::Contact`]).
+pub type ContactOf<const D: usize> = <Const<D> as Dimension<D>>::Contact;
+
+/// The Newton solver of a model of dimension `D`: numbering, pattern,
+/// factorization and the evolving state.
+pub struct Newton<'m, const D: usize = 2>
+where
+    Const<D>: Dimension<D>,
+{
+    pub(super) model: &'m Model<D>,
     /// Dof numbering.
-    pub dofs: DofMap,
+    pub dofs: DofMap<D>,
     scatter: Scatter,
-    assembler: Assembler,
+    assembler: Assembler<D>,
     /// The tangent system (faer direct by default).
     linear: Box<dyn LinearSystem>,
     /// Current nodal displacements.
-    pub u: Vec<[f64; 2]>,
-    committed: Vec<[f64; 2]>,
+    pub u: Vec<[f64; D]>,
+    committed: Vec<[f64; D]>,
     /// Contact pairs: state, last evaluation, Lagrange constraints, pattern
-    /// couplings.
-    pub(super) contacts: ContactAssembly,
+    /// couplings (`crate::solve::scene`).
+    pub(super) contacts: ContactOf<D>,
     /// Saddle-point solver (models with a Lagrange-multiplier pair).
     saddle: Option<Box<dyn SaddlePointSystem>>,
     /// Multiplier corrections of the last saddle-point solve.
@@ -108,7 +115,10 @@ pub struct Newton<'m> {
     model_size: f64,
 }
 
-impl std::fmt::Debug for Newton<'_> {
+impl<const D: usize> std::fmt::Debug for Newton<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Newton")
             .field("free_dofs", &self.dofs.n_free())
@@ -117,17 +127,20 @@ impl std::fmt::Debug for Newton<'_> {
     }
 }
 
-impl<'m> Newton<'m> {
+impl<'m, const D: usize> Newton<'m, D>
+where
+    Const<D>: Dimension<D>,
+{
     /// Numbers the dofs, builds the sparse pattern and checks every element
     /// of the (checked) `model` in its reference configuration; the tangent
     /// is solved by the default direct solver.
-    pub fn new(model: &'m Model) -> Result<Self, String> {
+    pub fn new(model: &'m Model<D>) -> Result<Self, String> {
         Self::with_linear_system(model, Box::new(LinearSolver::new()))
     }
 
     /// Like [`Newton::new`] with the tangent solved by `linear`.
     pub fn with_linear_system(
-        model: &'m Model,
+        model: &'m Model<D>,
         linear: Box<dyn LinearSystem>,
     ) -> Result<Self, String> {
         let nn = model.mesh.nodes.len();
@@ -143,9 +156,9 @@ impl<'m> Newton<'m> {
             scatter,
             assembler,
             linear,
-            u: vec![[0.0; 2]; nn],
-            committed: vec![[0.0; 2]; nn],
-            contacts: ContactAssembly::new(model),
+            u: vec![[0.0; D]; nn],
+            committed: vec![[0.0; D]; nn],
+            contacts: ContactOf::<D>::new(model),
             saddle: model.contacts.iter().find_map(|c| match c.method {
                 ContactMethod::Lagrange { formulation } => {
                     Some(Box::new(SaddleSolver::new(formulation)) as Box<dyn SaddlePointSystem>)
@@ -174,14 +187,14 @@ impl<'m> Newton<'m> {
             zero_mode: (None, false),
             model_size: 0.0,
         };
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
-            for c in 0..2 {
+            for c in 0..D {
                 lo[c] = lo[c].min(p[c]);
                 hi[c] = hi[c].max(p[c]);
             }
         }
-        let size = (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+        let size = (0..D).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
         newton.model_size = if size.is_finite() { size } else { 0.0 };
         let mut contact_node = vec![false; nn];
         for c in &model.contacts {
@@ -229,14 +242,14 @@ impl<'m> Newton<'m> {
 
     /// Times the sparsity pattern grew (node-to-segment couplings).
     pub fn pattern_growths(&self) -> usize {
-        self.contacts.pattern_growths
+        self.contacts.pattern_growths()
     }
 
     /// Reaction forces per node at the last evaluated state (zero except at
     /// prescribed dofs).
-    pub fn reaction_field(&self) -> Vec<[f64; 2]> {
+    pub fn reaction_field(&self) -> Vec<[f64; D]> {
         let nc = self.dofs.components();
-        let mut out = vec![[0.0; 2]; self.u.len()];
+        let mut out = vec![[0.0; D]; self.u.len()];
         for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
             out[p.dof / nc][p.dof % nc] = *r;
         }
@@ -262,12 +275,12 @@ impl<'m> Newton<'m> {
 
     /// Contact evaluation of each pair at the last evaluated state.
     pub fn contact(&self) -> &[Vec<NodeContact>] {
-        &self.contacts.contact
+        self.contacts.contact()
     }
 
-    /// Contact state of each pair.
-    pub fn pairs(&self) -> &[PairState] {
-        &self.contacts.pairs
+    /// The contact scene (state of every pair, last evaluation).
+    pub fn contacts(&self) -> &ContactOf<D> {
+        &self.contacts
     }
 
     /// Closed contact nodes at the last evaluated state.
@@ -278,20 +291,15 @@ impl<'m> Newton<'m> {
     /// The largest ratio of a penalty coefficient to the element stiffness
     /// at its node (see [`super::diagnosis::penalty_ratio`]).
     pub fn penalty_ratio(&self) -> Option<super::diagnosis::PenaltyRatio> {
-        super::diagnosis::penalty_ratio(self.model, &self.contacts, &self.scatter, &self.values)
+        self.contacts
+            .penalty_ratio(self.model, &self.scatter, &self.values)
     }
 
     /// Smallest fraction of the increment at which a node of a pair with
     /// `cut_at_impact` first touched its master, at the last evaluation
     /// (`None`: no such impact).
     pub fn impact_fraction(&self) -> Option<f64> {
-        self.model
-            .contacts
-            .iter()
-            .zip(&self.contacts.pairs)
-            .filter(|(c, _)| c.friction.is_some_and(|f| f.cut_at_impact))
-            .filter_map(|(_, p)| p.friction.impact)
-            .reduce(f64::min)
+        self.contacts.impact_fraction(self.model)
     }
 
     /// The round-off floor of the relative residual at the last evaluation
@@ -438,7 +446,7 @@ impl<'m> Newton<'m> {
     /// constraint right-hand side.
     fn factorize_solve(&mut self, first: bool) -> Result<(), Failure> {
         self.dlambda.clear();
-        let constraints = &self.contacts.constraints;
+        let constraints = self.contacts.constraints();
         let Some(saddle) = self.saddle.as_mut().filter(|_| !constraints.is_empty()) else {
             let start = Instant::now();
             let r = self.linear.factorize(&self.scatter.pattern, &self.values);
@@ -473,18 +481,7 @@ impl<'m> Newton<'m> {
         saddle
             .solve(&mut self.rhs, &mut self.dlambda)
             .map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
-        let pairs = &mut self.contacts.pairs;
-        for ((&(p, i), kind), dl) in constraints
-            .owner
-            .iter()
-            .zip(&constraints.kind)
-            .zip(&self.dlambda)
-        {
-            match kind {
-                RowKind::Stick => pairs[p].friction.multiplier[i] += dl,
-                RowKind::Normal => pairs[p].multiplier[i] += dl,
-            }
-        }
+        self.contacts.apply_multiplier_corrections(&self.dlambda);
         self.timings.solve += mid.elapsed().as_secs_f64();
         Ok(())
     }
@@ -582,7 +579,7 @@ impl<'m> Newton<'m> {
         for (d, r) in self.rhs.iter_mut().zip(&self.r_free) {
             *d = -r;
         }
-        let constraints = &self.contacts.constraints;
+        let constraints = self.contacts.constraints();
         if !saddle_used {
             if !constraints.is_empty() || !self.linear.is_factorized() {
                 return None;
@@ -604,11 +601,27 @@ impl<'m> Newton<'m> {
     }
 }
 
-impl NewtonLoop for Newton<'_> {
+impl NewtonLoop for Newton<'_, 2> {
     fn contact_state(&mut self) -> (&Model, &mut [PairState], &[Vec<NodeContact>]) {
         (self.model, &mut self.contacts.pairs, &self.contacts.contact)
     }
 
+    fn newton_loop(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer,
+    ) -> Result<Converged, Failure> {
+        Newton::newton_loop(self, settings, t, step, increment, observer)
+    }
+}
+
+impl<const D: usize> Newton<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
     /// One Newton loop at time `t` with the Lagrange active sets and the
     /// multipliers `lambda*` of `update = converged` pairs fixed.
     ///
@@ -618,13 +631,13 @@ impl NewtonLoop for Newton<'_> {
     /// along the mode would be arbitrary), and a loop that fails after
     /// meeting one fails as singular, naming the mode's node and dof (the
     /// other symptoms, residuals of 1e-14 that "grow", follow from it).
-    fn newton_loop(
+    pub fn newton_loop(
         &mut self,
         settings: &NewtonSettings,
         t: f64,
         step: usize,
         increment: usize,
-        observer: &mut dyn Observer,
+        observer: &mut dyn Observer<D>,
     ) -> Result<Converged, Failure> {
         self.zero_mode = (None, false);
         let result = self.newton_iterations(settings, t, step, increment, observer);
@@ -637,17 +650,15 @@ impl NewtonLoop for Newton<'_> {
             (r, _) => r,
         }
     }
-}
 
-impl Newton<'_> {
-    /// The iterations of [`NewtonLoop::newton_loop`].
+    /// The iterations of [`Newton::newton_loop`].
     fn newton_iterations(
         &mut self,
         settings: &NewtonSettings,
         t: f64,
         step: usize,
         increment: usize,
-        observer: &mut dyn Observer,
+        observer: &mut dyn Observer<D>,
     ) -> Result<Converged, Failure> {
         let model = self.model;
         self.inner_updates = 0;
@@ -787,10 +798,10 @@ impl Newton<'_> {
             let dp_step = if first { dp_norm } else { 0.0 };
             let rel_du = convergence::relative_correction(s, du_norm, dp_step, u_norm);
             residuals.push(ev.rel);
-            self.flips.record(&self.contacts.contact);
+            self.flips.record(self.contacts.contact());
             let mut reported_du = rel_du;
             let mut converged = false;
-            let gap_ok = criteria.gaps_small(norm(&self.contacts.constraints.gap), u_norm);
+            let gap_ok = criteria.gaps_small(norm(&self.contacts.constraints().gap), u_norm);
             if criteria.residual_small(ev) && gap_ok {
                 // at the round-off floor the next correction is the response
                 // to round-off: nothing more accurate exists
@@ -823,13 +834,7 @@ impl Newton<'_> {
             }
             // augmented Lagrangian, `update = newton`: lambda* updated inside
             // the loop while a penetration exceeds its tolerance
-            let updated = newton_update
-                && contact::augmented::uzawa_update(
-                    model,
-                    &mut self.contacts.pairs,
-                    &self.contacts.contact,
-                    MultiplierUpdate::Newton,
-                );
+            let updated = newton_update && self.contacts.newton_multiplier_update(model);
             if updated {
                 self.inner_updates += 1;
                 converged = false;

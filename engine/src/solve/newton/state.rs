@@ -5,12 +5,18 @@
 //! write and read it as a restart point.
 
 use super::Newton;
+use crate::geom::Dimension;
 use crate::solve::linalg::Scatter;
-use crate::solve::restart::{self, Checkpoint, PairHistory, Resume};
+use crate::solve::restart::{self, Checkpoint, Resume};
+use crate::solve::scene::ContactScene;
+use nalgebra::Const;
 
-impl Newton<'_> {
+impl<const D: usize> Newton<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
     /// Nodal displacements of the last converged state.
-    pub(crate) fn committed_displacement(&self) -> &[[f64; 2]] {
+    pub(crate) fn committed_displacement(&self) -> &[[f64; D]] {
         &self.committed
     }
 
@@ -31,51 +37,29 @@ impl Newton<'_> {
 
     /// The committed state as a restart checkpoint (stepping fields from
     /// the caller).
-    pub(crate) fn checkpoint(&self, increment: usize, resume: Resume) -> Checkpoint {
+    pub(crate) fn checkpoint(&self, increment: usize, resume: Resume) -> Checkpoint<D> {
+        let (pairs, couplings) = self.contacts.history();
         Checkpoint {
             fingerprint: restart::fingerprint(self.model),
             increment,
             resume,
             displacement: self.committed.clone(),
-            pairs: self
-                .contacts
-                .pairs
-                .iter()
-                .map(|p| PairHistory {
-                    entity: p.committed_entity.clone(),
-                    multiplier: p.committed_multiplier.clone(),
-                    active: p.committed_active.clone(),
-                    friction: p.friction.committed_values(),
-                })
-                .collect(),
+            pairs,
             points: self.assembler.points().to_vec(),
             points_time: self.assembler.committed_time(),
-            couplings: self.contacts.couplings.clone(),
+            couplings,
         }
     }
 
     /// Makes `cp` the committed (and current) state.
-    pub(crate) fn restore(&mut self, cp: &Checkpoint) -> Result<(), String> {
-        if cp.displacement.len() != self.u.len() || cp.pairs.len() != self.contacts.pairs.len() {
+    pub(crate) fn restore(&mut self, cp: &Checkpoint<D>) -> Result<(), String> {
+        if cp.displacement.len() != self.u.len() {
             return Err("the restart point does not match the model (nodes or pairs)".into());
         }
-        for (s, h) in self.contacts.pairs.iter_mut().zip(&cp.pairs) {
-            let n = s.committed_entity.len();
-            if h.entity.len() != n || h.multiplier.len() != n || h.active.len() != n {
-                return Err("the restart point does not match the model (slave nodes)".into());
-            }
-            s.committed_entity.clone_from(&h.entity);
-            s.committed_multiplier.clone_from(&h.multiplier);
-            s.committed_active.clone_from(&h.active);
-            s.friction.restore_committed(&h.friction)?;
-            if let Some(sp) = &mut s.surface {
-                sp.restore(cp.increment);
-            }
-            s.rollback();
-        }
+        self.contacts.restore(&cp.pairs, cp.increment)?;
         self.assembler.restore(&cp.points, cp.points_time)?;
         if !cp.couplings.is_empty() {
-            self.contacts.couplings.clone_from(&cp.couplings);
+            self.contacts.set_couplings(&cp.couplings);
             self.scatter = Scatter::with_couplings(&self.model.mesh, &self.dofs, &cp.couplings)?;
             self.values = vec![0.0; self.scatter.n_values()];
             self.linear.reset_pattern();

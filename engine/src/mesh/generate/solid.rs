@@ -1,0 +1,489 @@
+//! Solid (3D) structured generators: a graded brick, a sector of a tube
+//! and an octant of a spherical shell, in hex8 (or tet4: each hexahedron
+//! split into six tetrahedra around its main diagonal, the Kuhn split,
+//! conforming between neighbours).
+//!
+//! Sets: the boundary faces of the mesh are classified by the surface they
+//! lie on (a face belongs to a set when all its nodes do); each face set
+//! comes with the node set of the same name.
+
+use super::common::{divisions, node_budget, positive};
+use super::Grading;
+use crate::mesh::{Cell, CellKind, Facet, Mesh, MeshError};
+use std::collections::BTreeMap;
+
+/// The six Kuhn tetrahedra of a hexahedron (gmsh order `0..8`), each a
+/// path 0 -> 6 along the axes in one order, positively oriented.
+const KUHN: [[usize; 4]; 6] = [
+    [0, 1, 2, 6],
+    [0, 2, 3, 6],
+    [0, 3, 7, 6],
+    [0, 7, 4, 6],
+    [0, 4, 5, 6],
+    [0, 5, 1, 6],
+];
+
+/// A structured block of `n[0] x n[1] x n[2]` hexahedra whose node `(i, j,
+/// k)` is at `place(i, j, k)`; nodes at the same position (a collapsed or
+/// closed block) are merged. Returns the mesh without sets.
+fn block(
+    generator: &str,
+    n: [usize; 3],
+    kind: CellKind,
+    place: impl Fn(usize, usize, usize) -> [f64; 3],
+) -> Result<Mesh<3>, MeshError> {
+    let count = (n[0] + 1)
+        .checked_mul(n[1] + 1)
+        .and_then(|v| v.checked_mul(n[2] + 1));
+    node_budget(generator, count)?;
+    if !matches!(kind, CellKind::Hex8 | CellKind::Tet4) {
+        return Err(MeshError::new(format!(
+            "{generator}: cells must be hex8 or tet4, got {}",
+            kind.name()
+        )));
+    }
+    let mut mesh = Mesh::<3>::default();
+    let mut index = vec![0usize; count.unwrap_or(0)];
+    let mut seen: BTreeMap<[u64; 3], usize> = BTreeMap::new();
+    let id = |i: usize, j: usize, k: usize| (k * (n[1] + 1) + j) * (n[0] + 1) + i;
+    for k in 0..=n[2] {
+        for j in 0..=n[1] {
+            for i in 0..=n[0] {
+                let p = place(i, j, k);
+                if !p.iter().all(|v| v.is_finite()) {
+                    return Err(MeshError::new(format!(
+                        "{generator}: a node position is not finite; check the sizes"
+                    )));
+                }
+                // -0.0 and 0.0 are the same point
+                let key = p.map(|v| (v + 0.0).to_bits());
+                let next = mesh.nodes.len();
+                let node = *seen.entry(key).or_insert(next);
+                if node == next {
+                    mesh.nodes.push(p);
+                }
+                index[id(i, j, k)] = node;
+            }
+        }
+    }
+    for k in 0..n[2] {
+        for j in 0..n[1] {
+            for i in 0..n[0] {
+                let h = [
+                    index[id(i, j, k)],
+                    index[id(i + 1, j, k)],
+                    index[id(i + 1, j + 1, k)],
+                    index[id(i, j + 1, k)],
+                    index[id(i, j, k + 1)],
+                    index[id(i + 1, j, k + 1)],
+                    index[id(i + 1, j + 1, k + 1)],
+                    index[id(i, j + 1, k + 1)],
+                ];
+                match kind {
+                    CellKind::Tet4 => {
+                        for t in KUHN {
+                            mesh.cells.push(Cell::tet(t.map(|a| h[a])));
+                        }
+                    }
+                    _ => mesh.cells.push(Cell::hex(h)),
+                }
+            }
+        }
+    }
+    Ok(mesh)
+}
+
+/// Adds the face set `name` (and its node set): the boundary faces all of
+/// whose nodes satisfy `on`.
+fn add_face_set(
+    mesh: &mut Mesh<3>,
+    boundary: &[Facet],
+    name: &str,
+    on: impl Fn(&[f64; 3]) -> bool,
+) {
+    let faces: Vec<Facet> = boundary
+        .iter()
+        .filter(|f| f.nodes().iter().all(|&n| on(&mesh.nodes[n])))
+        .copied()
+        .collect();
+    let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+    nodes.sort_unstable();
+    nodes.dedup();
+    mesh.node_sets.insert(name.to_string(), nodes);
+    mesh.face_sets.insert(name.to_string(), faces);
+}
+
+/// Tolerance for classifying boundary nodes on a surface of a body of size
+/// `size`.
+fn tol(size: f64) -> f64 {
+    1e-9 * size
+}
+
+/// The brick `[x0, x0 + a] x [y0, y0 + b] x [z0, z0 + c]` with `divisions`
+/// along x, y, z and a grading per axis. Sets (faces and nodes): `xmin`,
+/// `xmax`, `ymin`, `ymax`, `zmin`, `zmax`; node set `origin` (the corner at
+/// `origin`).
+pub fn brick(
+    origin: [f64; 3],
+    size: [f64; 3],
+    n: [usize; 3],
+    grading: [Grading; 3],
+    kind: CellKind,
+) -> Result<Mesh<3>, MeshError> {
+    const G: &str = "box";
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        positive(G, &format!("size along {axis}"), size[k])?;
+        divisions(G, axis, n[k], 1)?;
+        grading[k].check(&format!("{G}: grading along {axis}"))?;
+        if !origin[k].is_finite() {
+            return Err(MeshError::new(format!("{G}: the origin must be finite")));
+        }
+    }
+    let t: Vec<Vec<f64>> = (0..3).map(|k| grading[k].points(n[k])).collect();
+    let coord = |k: usize, i: usize| {
+        if i == n[k] {
+            origin[k] + size[k]
+        } else {
+            origin[k] + size[k] * t[k][i]
+        }
+    };
+    let mut mesh = block(G, n, kind, |i, j, k| {
+        [coord(0, i), coord(1, j), coord(2, k)]
+    })?;
+    let boundary = mesh.boundary_facets(0..mesh.cells.len());
+    let e = tol(size.iter().copied().fold(0.0, f64::max));
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let (lo, hi) = (origin[k], origin[k] + size[k]);
+        add_face_set(&mut mesh, &boundary, &format!("{axis}min"), |p| {
+            (p[k] - lo).abs() <= e
+        });
+        add_face_set(&mut mesh, &boundary, &format!("{axis}max"), |p| {
+            (p[k] - hi).abs() <= e
+        });
+    }
+    mesh.node_sets.insert("origin".into(), vec![0]);
+    Ok(mesh)
+}
+
+/// A sector of the tube `inner <= r <= outer` about the z axis, from angle
+/// 0 to `angle` degrees (in (0, 360]; 360 closes the ring), `0 <= z <=
+/// height`; `n` = (radial, circumferential, axial) divisions. Sets: `inner`,
+/// `outer`, `zmin`, `zmax`, and for an open sector `start` (the plane
+/// through the x axis) and `end`.
+pub fn tube(
+    inner: f64,
+    outer: f64,
+    angle: f64,
+    height: f64,
+    n: [usize; 3],
+    radial_grading: Grading,
+    kind: CellKind,
+) -> Result<Mesh<3>, MeshError> {
+    const G: &str = "tube";
+    positive(G, "inner radius", inner)?;
+    positive(G, "height", height)?;
+    if !(outer.is_finite() && outer > inner) {
+        return Err(MeshError::new(format!(
+            "{G}: outer radius {outer} must be larger than the inner radius {inner}"
+        )));
+    }
+    if !(angle > 0.0 && angle <= 360.0) {
+        return Err(MeshError::new(format!(
+            "{G}: angle {angle} must be in (0, 360] degrees"
+        )));
+    }
+    divisions(G, "radial", n[0], 1)?;
+    divisions(
+        G,
+        "circumferential",
+        n[1],
+        if angle == 360.0 { 3 } else { 1 },
+    )?;
+    divisions(G, "axial", n[2], 1)?;
+    radial_grading.check(&format!("{G}: radial grading"))?;
+    let t = radial_grading.points(n[0]);
+    let closed = angle == 360.0;
+    let mut mesh = block(G, n, kind, |i, j, k| {
+        let r = if i == n[0] {
+            outer
+        } else {
+            inner + (outer - inner) * t[i]
+        };
+        let j = if closed && j == n[1] { 0 } else { j };
+        let (c, s) = super::common::cos_sin_deg(angle * j as f64 / n[1] as f64);
+        let z = if k == n[2] {
+            height
+        } else {
+            height * k as f64 / n[2] as f64
+        };
+        [r * c, r * s, z]
+    })?;
+    let boundary = mesh.boundary_facets(0..mesh.cells.len());
+    let e = tol(outer.max(height));
+    let radius = |p: &[f64; 3]| p[0].hypot(p[1]);
+    add_face_set(&mut mesh, &boundary, "inner", |p| {
+        (radius(p) - inner).abs() <= e
+    });
+    add_face_set(&mut mesh, &boundary, "outer", |p| {
+        (radius(p) - outer).abs() <= e
+    });
+    add_face_set(&mut mesh, &boundary, "zmin", |p| p[2].abs() <= e);
+    add_face_set(&mut mesh, &boundary, "zmax", |p| (p[2] - height).abs() <= e);
+    if !closed {
+        let (c, s) = super::common::cos_sin_deg(angle);
+        add_face_set(&mut mesh, &boundary, "start", |p| {
+            p[1].abs() <= e && p[0] >= -e
+        });
+        add_face_set(&mut mesh, &boundary, "end", |p| {
+            (p[0] * s - p[1] * c).abs() <= e
+        });
+    }
+    Ok(mesh)
+}
+
+/// The octant `x, y, z >= 0` of the spherical shell `inner <= r <= outer`,
+/// hex-structured as a cubed sphere: the three faces `x = 1`, `y = 1`,
+/// `z = 1` of the unit cube, each with `tangential x tangential` divisions,
+/// projected radially (no degenerate cell at the poles), and `radial`
+/// layers. Sets: `inner`, `outer`, and the symmetry planes `xmin` (x = 0),
+/// `ymin`, `zmin`.
+pub fn sphere_octant(
+    inner: f64,
+    outer: f64,
+    radial: usize,
+    tangential: usize,
+    radial_grading: Grading,
+    kind: CellKind,
+) -> Result<Mesh<3>, MeshError> {
+    const G: &str = "sphere_octant";
+    positive(G, "inner radius", inner)?;
+    if !(outer.is_finite() && outer > inner) {
+        return Err(MeshError::new(format!(
+            "{G}: outer radius {outer} must be larger than the inner radius {inner}"
+        )));
+    }
+    divisions(G, "radial", radial, 1)?;
+    divisions(G, "tangential", tangential, 1)?;
+    radial_grading.check(&format!("{G}: radial grading"))?;
+    let t = radial_grading.points(radial);
+    let m = tangential;
+    // patch p: the cube face where axis p is 1; (u, v) along the next two
+    // axes, ordered so that (u, v, r) is right-handed for every patch
+    let mut mesh = Mesh::<3>::default();
+    let mut seen: BTreeMap<[u64; 3], usize> = BTreeMap::new();
+    for p in 0..3 {
+        let (a, b) = ((p + 1) % 3, (p + 2) % 3);
+        let patch = block(G, [m, m, radial], kind, |i, j, k| {
+            // equiangular parameters keep the cells even
+            let angle = |i: usize| (std::f64::consts::FRAC_PI_4 * i as f64 / m as f64).tan();
+            let mut q = [0.0; 3];
+            q[p] = 1.0;
+            q[a] = if i == m { 1.0 } else { angle(i) };
+            q[b] = if j == m { 1.0 } else { angle(j) };
+            let len = (q[0] * q[0] + q[1] * q[1] + q[2] * q[2]).sqrt();
+            let r = if k == radial {
+                outer
+            } else {
+                inner + (outer - inner) * t[k]
+            };
+            // exact zeros stay zeros: the symmetry planes are exact
+            q.map(|c| r * c / len)
+        })?;
+        // merge the patch into the octant (shared seams)
+        let mut map = Vec::with_capacity(patch.nodes.len());
+        for x in &patch.nodes {
+            let key = x.map(|v| (v + 0.0).to_bits());
+            let next = mesh.nodes.len();
+            let node = *seen.entry(key).or_insert(next);
+            if node == next {
+                mesh.nodes.push(*x);
+            }
+            map.push(node);
+        }
+        for c in patch.cells.iter() {
+            let nodes: Vec<usize> = c.nodes.iter().map(|&n| map[n]).collect();
+            mesh.cells.push_nodes(c.kind, &nodes);
+        }
+    }
+    // seams computed by different formulas: merge nodes that coincide to
+    // round-off (the seam x = y of patch z meets patch x's edge)
+    merge_close_nodes(&mut mesh, tol(outer));
+    let boundary = mesh.boundary_facets(0..mesh.cells.len());
+    let e = tol(outer);
+    let radius = |p: &[f64; 3]| (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+    add_face_set(&mut mesh, &boundary, "inner", |p| {
+        (radius(p) - inner).abs() <= e * 10.0
+    });
+    add_face_set(&mut mesh, &boundary, "outer", |p| {
+        (radius(p) - outer).abs() <= e * 10.0
+    });
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        add_face_set(&mut mesh, &boundary, &format!("{axis}min"), |p| {
+            p[k].abs() <= e
+        });
+    }
+    Ok(mesh)
+}
+
+/// Merges nodes closer than `tol` (grid hashing; the first node of a group
+/// is kept, the cells renumbered, unused nodes dropped in order).
+fn merge_close_nodes(mesh: &mut Mesh<3>, tol: f64) {
+    let h = 4.0 * tol;
+    let cell = |p: &[f64; 3]| p.map(|v| (v / h).floor() as i64);
+    let mut grid: BTreeMap<[i64; 3], Vec<usize>> = BTreeMap::new();
+    let mut target: Vec<usize> = (0..mesh.nodes.len()).collect();
+    for (n, p) in mesh.nodes.iter().enumerate() {
+        let c = cell(p);
+        let mut found = None;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    if let Some(list) = grid.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
+                        for &m in list {
+                            let q = &mesh.nodes[m];
+                            let d2: f64 = (0..3).map(|k| (p[k] - q[k]).powi(2)).sum();
+                            if d2 <= tol * tol {
+                                found = Some(m);
+                                break 'search;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        match found {
+            Some(m) => target[n] = m,
+            None => grid.entry(c).or_default().push(n),
+        }
+    }
+    let mut new_index = vec![usize::MAX; mesh.nodes.len()];
+    let mut nodes = Vec::new();
+    for n in 0..mesh.nodes.len() {
+        if target[n] == n {
+            new_index[n] = nodes.len();
+            nodes.push(mesh.nodes[n]);
+        }
+    }
+    for c in 0..mesh.cells.len() {
+        for v in mesh.cells.nodes_mut(c) {
+            *v = new_index[target[*v]];
+        }
+    }
+    mesh.nodes = nodes;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::validate;
+
+    fn volume(m: &Mesh<3>) -> f64 {
+        m.cells
+            .iter()
+            .map(|c| crate::mesh::quality::cell_measure(m, c))
+            .sum()
+    }
+
+    #[test]
+    fn brick_hex_and_tet_fill_the_box_with_valid_cells_and_six_face_sets() {
+        for kind in [CellKind::Hex8, CellKind::Tet4] {
+            let g = [
+                Grading::Uniform,
+                Grading::Geometric { ratio: 2.0 },
+                Grading::Uniform,
+            ];
+            let m = brick([1.0, 0.0, -1.0], [2.0, 1.0, 3.0], [2, 3, 2], g, kind).unwrap();
+            assert_eq!(m.nodes.len(), 3 * 4 * 3);
+            let per = if kind == CellKind::Hex8 { 1 } else { 6 };
+            assert_eq!(m.cells.len(), 12 * per);
+            validate::check(&m).unwrap();
+            assert!((volume(&m) - 6.0).abs() < 1e-12);
+            // every boundary face is in exactly one of the six sets
+            let total: usize = m.face_sets.values().map(Vec::len).sum();
+            assert_eq!(total, m.boundary_facets(0..m.cells.len()).len());
+            let quads = 2 * (2 * 3 + 3 * 2 + 2 * 2);
+            let faces_per_quad = if kind == CellKind::Hex8 { 1 } else { 2 };
+            assert_eq!(total, quads * faces_per_quad);
+            assert_eq!(m.node_sets["xmin"].len(), 4 * 3);
+            assert_eq!(m.nodes[m.node_sets["origin"][0]], [1.0, 0.0, -1.0]);
+        }
+    }
+
+    #[test]
+    fn tube_sector_and_sphere_octant_are_valid_with_their_volumes() {
+        use std::f64::consts::PI;
+        let m = tube(
+            1.0,
+            2.0,
+            90.0,
+            0.5,
+            [3, 8, 1],
+            Grading::Uniform,
+            CellKind::Hex8,
+        )
+        .unwrap();
+        validate::check(&m).unwrap();
+        // chords: the polygonal sector is slightly smaller than the exact one
+        let exact = PI / 4.0 * 3.0 * 0.5;
+        assert!((volume(&m) - exact).abs() / exact < 0.01, "{}", volume(&m));
+        assert!(m.face_sets.contains_key("start") && m.face_sets.contains_key("end"));
+        let ring = tube(
+            1.0,
+            2.0,
+            360.0,
+            0.5,
+            [1, 6, 1],
+            Grading::Uniform,
+            CellKind::Tet4,
+        )
+        .unwrap();
+        validate::check(&ring).unwrap();
+        assert_eq!(ring.nodes.len(), 2 * 6 * 2);
+        for kind in [CellKind::Hex8, CellKind::Tet4] {
+            let s = sphere_octant(1.0, 2.0, 2, 3, Grading::Uniform, kind).unwrap();
+            validate::check(&s).unwrap();
+            let exact = PI / 6.0 * (8.0 - 1.0);
+            assert!((volume(&s) - exact).abs() / exact < 0.05, "{}", volume(&s));
+            // nodes: 3 patches of 4 x 4 per layer, seams shared (3 edges of
+            // 4, the corner once): 3 * 16 - 3 * 4 + 1 = 37 per layer
+            assert_eq!(s.nodes.len(), 37 * 3);
+            let inner = &s.node_sets["inner"];
+            assert_eq!(inner.len(), 37);
+            for &n in inner {
+                let p = s.nodes[n];
+                let r = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+                assert!((r - 1.0).abs() < 1e-12);
+            }
+            for axis in ["xmin", "ymin", "zmin"] {
+                assert!(!s.face_sets[axis].is_empty());
+            }
+        }
+    }
+
+    #[test]
+    fn bad_solid_specs_are_errors() {
+        let g = [Grading::Uniform; 3];
+        assert!(brick([0.0; 3], [1.0, 0.0, 1.0], [1, 1, 1], g, CellKind::Hex8).is_err());
+        assert!(brick([0.0; 3], [1.0; 3], [1, 0, 1], g, CellKind::Hex8).is_err());
+        assert!(brick([0.0; 3], [1.0; 3], [1, 1, 1], g, CellKind::Quad4).is_err());
+        assert!(brick(
+            [0.0; 3],
+            [1.0; 3],
+            [100_000, 100_000, 10],
+            g,
+            CellKind::Hex8
+        )
+        .is_err());
+        assert!(tube(
+            2.0,
+            1.0,
+            90.0,
+            1.0,
+            [1, 1, 1],
+            Grading::Uniform,
+            CellKind::Hex8
+        )
+        .is_err());
+        assert!(sphere_octant(1.0, 2.0, 0, 1, Grading::Uniform, CellKind::Hex8).is_err());
+    }
+}

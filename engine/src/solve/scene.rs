@@ -1,0 +1,533 @@
+//! The seams of the dimension-generic solver: what contact and heat
+//! conduction give the Newton loop, whatever the dimension.
+//!
+//! The Newton solver ([`super::newton::Newton`]), the driver ([`super::run`])
+//! and the restart points are generic over the dimension `D`; contact and
+//! the thermal coupling reach them only through the two traits here, chosen
+//! per dimension by [`crate::geom::Dimension`] (`type Contact`, `type Heat`):
+//!
+//! - [`ContactScene`]: contact forces, tangent blocks, pattern growth,
+//!   Lagrange rows, the contact loop around the Newton loops, contact
+//!   history for restarts. 2D: [`ContactAssembly`] (rigid tools and
+//!   node-to-segment, every method); 3D: [`NoContact`] until the 3D contact
+//!   issue (`check_model` refuses tools and contact pairs in 3D).
+//! - [`HeatCoupling`]: the staggered heat step. 2D:
+//!   [`crate::thermal::coupling::Coupling`]; 3D: [`NoHeat`] (a 3D deck with a
+//!   thermal part is refused with a message).
+
+use super::constraints::Constraints;
+use super::contact_assembly::ContactAssembly;
+use super::diagnosis::PenaltyRatio;
+use super::dofs::DofMap;
+use super::linalg::Scatter;
+use super::newton::{Converged, Failure, Newton};
+use super::restart::PairHistory;
+use super::Observer;
+use crate::contact::rows::RowKind;
+use crate::contact::NodeContact;
+use crate::element::MaterialPoint;
+use crate::geom::Dimension;
+use crate::material::NonlinearLaw;
+use crate::model::{Model, MultiplierUpdate, NewtonSettings};
+use crate::thermal::solver::ThermalIncrement;
+use nalgebra::Const;
+
+/// Contact as the solver sees it, in dimension `D`.
+pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
+    /// The pairs of `model` in their reference configuration.
+    fn new(model: &Model<D>) -> Self;
+    /// Evaluates every pair at displacements `u` and time `t`; adds the
+    /// contact forces to `f_c` (global dofs).
+    fn evaluate(
+        &mut self,
+        model: &Model<D>,
+        dofs: &DofMap<D>,
+        u: &[[f64; D]],
+        t: f64,
+        f_c: &mut [f64],
+    );
+    /// The new scatter map when the last evaluation couples nodes missing
+    /// from the pattern of `scatter`.
+    fn grow_pattern(
+        &mut self,
+        model: &Model<D>,
+        dofs: &DofMap<D>,
+        scatter: &Scatter,
+    ) -> Result<Option<Scatter>, String>;
+    /// Adds the contact tangent of the last evaluation to `values`.
+    fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap<D>, values: &mut [f64]);
+    /// Builds the Lagrange constraints of the last evaluation.
+    fn build_constraints(&mut self, model: &Model<D>, dofs: &DofMap<D>);
+    /// The Lagrange constraints of the last evaluation, in dof terms.
+    fn constraints(&self) -> &Constraints;
+    /// Adds the multiplier corrections of a saddle-point solve (one per
+    /// constraint row) to the multipliers they belong to.
+    fn apply_multiplier_corrections(&mut self, dlambda: &[f64]);
+    /// Augmented Lagrangian with `update = newton`: updates the
+    /// multipliers inside the Newton loop; whether any changed.
+    fn newton_multiplier_update(&mut self, model: &Model<D>) -> bool;
+    /// Contact evaluation of each pair at the last evaluated state (empty
+    /// without contact).
+    fn contact(&self) -> &[Vec<NodeContact>];
+    /// Closed contact nodes at the last evaluation.
+    fn active_contacts(&self) -> usize;
+    /// Largest penetration at the last evaluation.
+    fn max_penetration(&self) -> f64;
+    /// Commits the contact history of a converged increment.
+    fn commit(&mut self);
+    /// Restores the contact history of the last converged increment.
+    fn rollback(&mut self);
+    /// Times the sparsity pattern grew.
+    fn pattern_growths(&self) -> usize;
+    /// The largest penalty / element stiffness ratio (diagnosis).
+    fn penalty_ratio(
+        &self,
+        model: &Model<D>,
+        scatter: &Scatter,
+        values: &[f64],
+    ) -> Option<PenaltyRatio>;
+    /// Smallest fraction of the increment at which a node of a pair with
+    /// `cut_at_impact` first touched its master.
+    fn impact_fraction(&self, model: &Model<D>) -> Option<f64>;
+    /// Warnings for slave nodes that moved farther than the search window
+    /// in the increment from `(u0, t0)` to `(u1, t1)`.
+    fn increment_warnings(
+        &self,
+        model: &Model<D>,
+        before: (&[[f64; D]], f64),
+        after: (&[[f64; D]], f64),
+        increment: usize,
+    ) -> Vec<String>;
+    /// Friction work of the last evaluation, per pair.
+    fn friction_work(&self) -> Vec<f64>;
+    /// Committed contact history per pair and the pattern couplings (for a
+    /// restart point).
+    fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>);
+    /// Restores the committed history of a restart point written after
+    /// increment `increment`.
+    fn restore(&mut self, pairs: &[PairHistory], increment: usize) -> Result<(), String>;
+    /// Sets the pattern couplings of a restart point.
+    fn set_couplings(&mut self, couplings: &[(usize, usize)]);
+    /// The contact CSV of pair `pair` (`crate::output::contact_csv`).
+    fn contact_csv(
+        model: &Model<D>,
+        pair: usize,
+        displacement: &[[f64; D]],
+        contact: &[NodeContact],
+    ) -> String;
+    /// One increment attempt: the Newton loops of `newton` inside the
+    /// contact loop (Lagrange active set, Uzawa updates).
+    fn attempt(
+        newton: &mut Newton<'_, D>,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer<D>,
+    ) -> Result<Converged, Failure>
+    where
+        Const<D>: Dimension<D>;
+}
+
+impl ContactScene<2> for ContactAssembly {
+    fn new(model: &Model) -> Self {
+        ContactAssembly::new(model)
+    }
+
+    fn evaluate(&mut self, model: &Model, dofs: &DofMap, u: &[[f64; 2]], t: f64, f_c: &mut [f64]) {
+        ContactAssembly::evaluate(self, model, dofs, u, t, f_c);
+    }
+
+    fn grow_pattern(
+        &mut self,
+        model: &Model,
+        dofs: &DofMap,
+        scatter: &Scatter,
+    ) -> Result<Option<Scatter>, String> {
+        ContactAssembly::grow_pattern(self, model, dofs, scatter)
+    }
+
+    fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap, values: &mut [f64]) {
+        ContactAssembly::add_tangent(self, scatter, dofs, values);
+    }
+
+    fn build_constraints(&mut self, model: &Model, dofs: &DofMap) {
+        ContactAssembly::build_constraints(self, model, dofs);
+    }
+
+    fn constraints(&self) -> &Constraints {
+        &self.constraints
+    }
+
+    fn apply_multiplier_corrections(&mut self, dlambda: &[f64]) {
+        let pairs = &mut self.pairs;
+        for ((&(p, i), kind), dl) in self
+            .constraints
+            .owner
+            .iter()
+            .zip(&self.constraints.kind)
+            .zip(dlambda)
+        {
+            match kind {
+                RowKind::Stick => pairs[p].friction.multiplier[i] += dl,
+                RowKind::Normal => pairs[p].multiplier[i] += dl,
+            }
+        }
+    }
+
+    fn newton_multiplier_update(&mut self, model: &Model) -> bool {
+        crate::contact::augmented::uzawa_update(
+            model,
+            &mut self.pairs,
+            &self.contact,
+            MultiplierUpdate::Newton,
+        )
+    }
+
+    fn contact(&self) -> &[Vec<NodeContact>] {
+        &self.contact
+    }
+
+    fn active_contacts(&self) -> usize {
+        ContactAssembly::active_contacts(self)
+    }
+
+    fn max_penetration(&self) -> f64 {
+        ContactAssembly::max_penetration(self)
+    }
+
+    fn commit(&mut self) {
+        ContactAssembly::commit(self);
+    }
+
+    fn rollback(&mut self) {
+        ContactAssembly::rollback(self);
+    }
+
+    fn pattern_growths(&self) -> usize {
+        self.pattern_growths
+    }
+
+    fn penalty_ratio(
+        &self,
+        model: &Model,
+        scatter: &Scatter,
+        values: &[f64],
+    ) -> Option<PenaltyRatio> {
+        super::diagnosis::penalty_ratio(model, self, scatter, values)
+    }
+
+    fn impact_fraction(&self, model: &Model) -> Option<f64> {
+        model
+            .contacts
+            .iter()
+            .zip(&self.pairs)
+            .filter(|(c, _)| c.friction.is_some_and(|f| f.cut_at_impact))
+            .filter_map(|(_, p)| p.friction.impact)
+            .reduce(f64::min)
+    }
+
+    fn increment_warnings(
+        &self,
+        model: &Model,
+        before: (&[[f64; 2]], f64),
+        after: (&[[f64; 2]], f64),
+        increment: usize,
+    ) -> Vec<String> {
+        super::jumps::increment_warnings(model, &self.pairs, before, after, increment)
+    }
+
+    fn friction_work(&self) -> Vec<f64> {
+        self.contact
+            .iter()
+            .map(|l| crate::contact::friction::pair_dissipation(l))
+            .collect()
+    }
+
+    fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>) {
+        let pairs = self
+            .pairs
+            .iter()
+            .map(|p| PairHistory {
+                entity: p.committed_entity.clone(),
+                multiplier: p.committed_multiplier.clone(),
+                active: p.committed_active.clone(),
+                friction: p.friction.committed_values(),
+            })
+            .collect();
+        (pairs, self.couplings.clone())
+    }
+
+    fn restore(&mut self, pairs: &[PairHistory], increment: usize) -> Result<(), String> {
+        if pairs.len() != self.pairs.len() {
+            return Err("the restart point does not match the model (nodes or pairs)".into());
+        }
+        for (s, h) in self.pairs.iter_mut().zip(pairs) {
+            let n = s.committed_entity.len();
+            if h.entity.len() != n || h.multiplier.len() != n || h.active.len() != n {
+                return Err("the restart point does not match the model (slave nodes)".into());
+            }
+            s.committed_entity.clone_from(&h.entity);
+            s.committed_multiplier.clone_from(&h.multiplier);
+            s.committed_active.clone_from(&h.active);
+            s.friction.restore_committed(&h.friction)?;
+            if let Some(sp) = &mut s.surface {
+                sp.restore(increment);
+            }
+            s.rollback();
+        }
+        Ok(())
+    }
+
+    fn set_couplings(&mut self, couplings: &[(usize, usize)]) {
+        self.couplings = couplings.to_vec();
+    }
+
+    fn contact_csv(
+        model: &Model,
+        pair: usize,
+        displacement: &[[f64; 2]],
+        contact: &[NodeContact],
+    ) -> String {
+        crate::output::contact_csv::contact_csv(model, pair, displacement, contact)
+    }
+
+    fn attempt(
+        newton: &mut Newton<'_, 2>,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer<2>,
+    ) -> Result<Converged, Failure> {
+        super::contact_loop::attempt(newton, settings, t, step, increment, observer)
+    }
+}
+
+/// No contact: a solid (3D) model until the 3D contact issue.
+#[derive(Debug, Clone, Default)]
+pub struct NoContact {
+    constraints: Constraints,
+}
+
+impl<const D: usize> ContactScene<D> for NoContact {
+    fn new(_: &Model<D>) -> Self {
+        NoContact::default()
+    }
+
+    fn evaluate(&mut self, _: &Model<D>, _: &DofMap<D>, _: &[[f64; D]], _: f64, _: &mut [f64]) {}
+
+    fn grow_pattern(
+        &mut self,
+        _: &Model<D>,
+        _: &DofMap<D>,
+        _: &Scatter,
+    ) -> Result<Option<Scatter>, String> {
+        Ok(None)
+    }
+
+    fn add_tangent(&self, _: &Scatter, _: &DofMap<D>, _: &mut [f64]) {}
+
+    fn build_constraints(&mut self, _: &Model<D>, _: &DofMap<D>) {}
+
+    fn constraints(&self) -> &Constraints {
+        &self.constraints
+    }
+
+    fn apply_multiplier_corrections(&mut self, _: &[f64]) {}
+
+    fn newton_multiplier_update(&mut self, _: &Model<D>) -> bool {
+        false
+    }
+
+    fn contact(&self) -> &[Vec<NodeContact>] {
+        &[]
+    }
+
+    fn active_contacts(&self) -> usize {
+        0
+    }
+
+    fn max_penetration(&self) -> f64 {
+        0.0
+    }
+
+    fn commit(&mut self) {}
+
+    fn rollback(&mut self) {}
+
+    fn pattern_growths(&self) -> usize {
+        0
+    }
+
+    fn penalty_ratio(&self, _: &Model<D>, _: &Scatter, _: &[f64]) -> Option<PenaltyRatio> {
+        None
+    }
+
+    fn impact_fraction(&self, _: &Model<D>) -> Option<f64> {
+        None
+    }
+
+    fn increment_warnings(
+        &self,
+        _: &Model<D>,
+        _: (&[[f64; D]], f64),
+        _: (&[[f64; D]], f64),
+        _: usize,
+    ) -> Vec<String> {
+        Vec::new()
+    }
+
+    fn friction_work(&self) -> Vec<f64> {
+        Vec::new()
+    }
+
+    fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>) {
+        (Vec::new(), Vec::new())
+    }
+
+    fn restore(&mut self, pairs: &[PairHistory], _: usize) -> Result<(), String> {
+        if pairs.is_empty() {
+            Ok(())
+        } else {
+            Err("the restart point does not match the model (contact pairs)".into())
+        }
+    }
+
+    fn set_couplings(&mut self, _: &[(usize, usize)]) {}
+
+    fn contact_csv(_: &Model<D>, _: usize, _: &[[f64; D]], _: &[NodeContact]) -> String {
+        String::new()
+    }
+
+    fn attempt(
+        newton: &mut Newton<'_, D>,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer<D>,
+    ) -> Result<Converged, Failure>
+    where
+        Const<D>: Dimension<D>,
+    {
+        newton.newton_loop(settings, t, step, increment, observer)
+    }
+}
+
+/// The thermal side of a coupled run, as the driver sees it.
+pub trait HeatCoupling<const D: usize>: Sized {
+    /// The coupling of `model`, `None` when the scene has no thermal part.
+    fn new(model: &Model<D>) -> Result<Option<Self>, String>;
+    /// Temperature unknowns.
+    fn free_dofs(&self) -> usize;
+    /// Thermal strain of every cell at the committed temperatures.
+    fn thermal_strains(&self, model: &Model<D>) -> Vec<f64>;
+    /// Law of each cell at its committed temperature (empty when no
+    /// material is temperature dependent).
+    fn cell_laws(&self, model: &Model<D>) -> Result<Vec<Option<NonlinearLaw>>, String>;
+    /// Heat step of the increment ending at `t` on the converged state,
+    /// then commits the temperatures.
+    fn heat_step(
+        &mut self,
+        model: &Model<D>,
+        t: f64,
+        dt: f64,
+        contact: &[Vec<NodeContact>],
+        before: &[Vec<MaterialPoint>],
+        after: &[Vec<MaterialPoint>],
+    ) -> Result<(), String>;
+    /// Nodal temperatures.
+    fn temperature(&self) -> &[f64];
+    /// The last heat step.
+    fn last(&self) -> &ThermalIncrement;
+}
+
+impl HeatCoupling<2> for crate::thermal::coupling::Coupling {
+    fn new(model: &Model) -> Result<Option<Self>, String> {
+        crate::thermal::coupling::Coupling::new(model)
+    }
+
+    fn free_dofs(&self) -> usize {
+        self.solver.free_dofs()
+    }
+
+    fn thermal_strains(&self, model: &Model) -> Vec<f64> {
+        crate::thermal::coupling::Coupling::thermal_strains(self, model)
+    }
+
+    fn cell_laws(&self, model: &Model) -> Result<Vec<Option<NonlinearLaw>>, String> {
+        crate::thermal::coupling::Coupling::cell_laws(self, model)
+    }
+
+    fn heat_step(
+        &mut self,
+        model: &Model,
+        t: f64,
+        dt: f64,
+        contact: &[Vec<NodeContact>],
+        before: &[Vec<MaterialPoint>],
+        after: &[Vec<MaterialPoint>],
+    ) -> Result<(), String> {
+        crate::thermal::coupling::Coupling::heat_step(self, model, t, dt, contact, before, after)
+            .map_err(|e| format!("heat conduction at t = {t}: {e}"))?;
+        self.solver.commit();
+        Ok(())
+    }
+
+    fn temperature(&self) -> &[f64] {
+        &self.solver.temperature
+    }
+
+    fn last(&self) -> &ThermalIncrement {
+        &self.solver.last
+    }
+}
+
+/// No heat conduction: solid (3D) models, until thermal 3D.
+#[derive(Debug, Clone, Copy)]
+pub enum NoHeat {}
+
+impl<const D: usize> HeatCoupling<D> for NoHeat {
+    fn new(model: &Model<D>) -> Result<Option<Self>, String> {
+        match model.thermal {
+            Some(_) => Err(format!(
+                "heat conduction is not available in {D}D analyses yet: remove the `thermal` \
+                 blocks and thermal loads"
+            )),
+            None => Ok(None),
+        }
+    }
+
+    fn free_dofs(&self) -> usize {
+        match *self {}
+    }
+
+    fn thermal_strains(&self, _: &Model<D>) -> Vec<f64> {
+        match *self {}
+    }
+
+    fn cell_laws(&self, _: &Model<D>) -> Result<Vec<Option<NonlinearLaw>>, String> {
+        match *self {}
+    }
+
+    fn heat_step(
+        &mut self,
+        _: &Model<D>,
+        _: f64,
+        _: f64,
+        _: &[Vec<NodeContact>],
+        _: &[Vec<MaterialPoint>],
+        _: &[Vec<MaterialPoint>],
+    ) -> Result<(), String> {
+        match *self {}
+    }
+
+    fn temperature(&self) -> &[f64] {
+        match *self {}
+    }
+
+    fn last(&self) -> &ThermalIncrement {
+        match *self {}
+    }
+}
