@@ -8,6 +8,7 @@ pub mod cattaneo;
 pub mod fenicsx;
 pub mod thermal_contact;
 pub mod thermal_coupling;
+pub mod upsetting;
 
 use crate::case::Quantity;
 use crate::measure::Value;
@@ -20,6 +21,7 @@ pub fn all() -> Vec<VerifyCase> {
     let mut v = thermal_contact::cases();
     v.extend(thermal_coupling::cases());
     v.extend(cattaneo::cases());
+    v.extend(upsetting::cases());
     v.extend(fenicsx::cases());
     v
 }
