@@ -245,6 +245,19 @@ fn compile_source(source: &ctc_lang::Source) -> Result<ctc_engine::model::Model,
 
 fn check(deck: &Path, explain: bool) -> Result<(), String> {
     let model = compile(deck)?;
+    // the checks `ctc run` makes before solving (rigid-body modes left free
+    // by the conditions and the contact pairs, indices, settings)
+    let errors = ctc_engine::solve::check::check_model(&model);
+    if !errors.is_empty() {
+        return Err(format!(
+            "error: {}: the model cannot be solved:\n  - {}",
+            deck.display(),
+            errors.join("\n  - ")
+        ));
+    }
+    for w in ctc_engine::solve::health::start_inside(&model) {
+        eprintln!("warning: {w}");
+    }
     if explain {
         print!("{}", ctc_lang::explain(&model));
     } else {
