@@ -6,6 +6,7 @@
 
 pub mod cattaneo;
 pub mod fenicsx;
+pub mod solid;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 
@@ -21,6 +22,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(thermal_coupling::cases());
     v.extend(cattaneo::cases());
     v.extend(fenicsx::cases());
+    v.extend(solid::cases());
     v
 }
 
