@@ -310,11 +310,20 @@ where
                 dir.display()
             )
         })?;
+        if !quiet && w.removed() > 0 {
+            println!(
+                "removed {} result file(s) of a previous run in {}",
+                w.removed(),
+                dir.display()
+            );
+        }
         (w, None)
     };
     let mut observer = progress::Progress::new(model, &mut writer, quiet, verbose);
     let outcome = ctc_engine::solve::run_from(model, &mut observer, from.as_ref());
     observer.finish();
+    let figures = observer.figures().clone();
+    drop(observer);
     let summary = match &outcome {
         Ok(s) => s.clone(),
         Err(e) => e.summary.clone(),
@@ -343,6 +352,9 @@ where
                     s.timings.total,
                     dir.display()
                 );
+                for line in figures.lines() {
+                    println!("{line}");
+                }
             }
             Ok(())
         }

@@ -1,6 +1,8 @@
 //! Progress reporting of `ctc run`: a progress bar over the analysis time on
-//! a terminal, plain lines otherwise, nothing with `-q`. Wraps the result
-//! writer so both see every converged increment.
+//! a terminal (with the estimated time left), plain lines otherwise,
+//! nothing with `-q`. Wraps the result writer so both see every converged
+//! increment, and keeps the key figures of the run for the end summary
+//! ([`Progress::figures`]).
 
 use ctc_engine::model::Model;
 use ctc_engine::solve::{IncrementView, IterationInfo, Observer};
@@ -18,6 +20,43 @@ pub struct Progress<'a, const D: usize = 2> {
     verbose: bool,
     t0: f64,
     t1: f64,
+    figures: Figures,
+}
+
+/// Key figures of a run, for the end summary.
+#[derive(Debug, Clone, Default)]
+pub struct Figures {
+    /// Largest contact pressure over the run and its time.
+    pub peak_pressure: Option<(f64, f64)>,
+    /// Largest penetration over the run and its time.
+    pub max_penetration: Option<(f64, f64)>,
+    /// History columns (`history.csv` names) and their last values.
+    pub last_history: Vec<(String, f64)>,
+    /// Warnings of converged increments.
+    pub warnings: usize,
+}
+
+impl Figures {
+    /// The summary lines (`ctc run` prints them after `done:`).
+    pub fn lines(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        if let Some((p, t)) = self.peak_pressure {
+            out.push(format!("  peak contact pressure {p:.6e} at t = {t}"));
+        }
+        if let Some((g, t)) = self.max_penetration {
+            out.push(format!("  max penetration       {g:.6e} at t = {t}"));
+        }
+        for (name, v) in &self.last_history {
+            out.push(format!("  {name} = {v:.6e} (end)"));
+        }
+        if self.warnings > 0 {
+            out.push(format!(
+                "  {} warning(s): see above and summary.json",
+                self.warnings
+            ));
+        }
+        out
+    }
 }
 
 impl<'a, const D: usize> Progress<'a, D> {
@@ -33,7 +72,7 @@ impl<'a, const D: usize> Progress<'a, D> {
         let bar = if !quiet && !verbose && std::io::stderr().is_terminal() {
             let bar = ProgressBar::with_draw_target(Some(TICKS), ProgressDrawTarget::stderr());
             if let Ok(style) = ProgressStyle::with_template(
-                "{spinner} [{elapsed_precise}] {bar:40} {percent:>3}% {msg}",
+                "{spinner} [{elapsed_precise}] {bar:40} {percent:>3}% eta {eta} {msg}",
             ) {
                 bar.set_style(style);
             }
@@ -48,7 +87,13 @@ impl<'a, const D: usize> Progress<'a, D> {
             verbose,
             t0,
             t1,
+            figures: Figures::default(),
         }
+    }
+
+    /// The key figures seen so far.
+    pub fn figures(&self) -> &Figures {
+        &self.figures
     }
 
     /// Clears the progress bar.
@@ -64,6 +109,35 @@ impl<'a, const D: usize> Progress<'a, D> {
             None if !self.quiet => println!("{line}"),
             None => {}
         }
+    }
+}
+
+impl<const D: usize> Progress<'_, D> {
+    fn record(&mut self, view: &IncrementView<'_, D>) {
+        let f = &mut self.figures;
+        for c in view.contact.iter().flatten() {
+            if c.pressure > f.peak_pressure.map_or(0.0, |p| p.0) {
+                f.peak_pressure = Some((c.pressure, view.time));
+            }
+            if -c.gap > f.max_penetration.map_or(0.0, |p| p.0) {
+                f.max_penetration = Some((-c.gap, view.time));
+            }
+        }
+        let names = ctc_engine::output::history::header(view.model);
+        let row = ctc_engine::output::history::row(
+            view.model,
+            view.time,
+            view.displacement,
+            view.reaction,
+            view.contact,
+        );
+        f.last_history = names
+            .split(',')
+            .zip(row)
+            .skip(1)
+            .filter(|(n, _)| !n.starts_with("friction_work"))
+            .map(|(n, v)| (n.to_string(), v))
+            .collect();
     }
 }
 
@@ -83,6 +157,7 @@ impl<const D: usize> Observer<D> for Progress<'_, D> {
     }
 
     fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
+        self.record(view);
         let step = &view.model.steps[view.step].name;
         let line = format!(
             "step {step}  increment {:>3}  t = {:<10.4e} iterations {:>2}  residual {:.2e}",
@@ -110,6 +185,7 @@ impl<const D: usize> Observer<D> for Progress<'_, D> {
     }
 
     fn warning(&mut self, message: &str) {
+        self.figures.warnings += 1;
         self.say(format!("  warning: {message}"));
         self.inner.warning(message);
     }

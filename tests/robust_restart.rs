@@ -63,7 +63,7 @@ fn files(dir: &Path) -> Vec<String> {
     let mut names: Vec<String> = std::fs::read_dir(dir)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|n| n != "summary.json" && n != "restart.bin")
+        .filter(|n| n != "summary.json" && n != "restart.bin" && n != "progress.sta")
         .collect();
     names.sort();
     names
@@ -126,6 +126,19 @@ fn restart_matches(model: &Model, stop_after: usize) -> (usize, usize) {
         let b = std::fs::read(cut_dir.join(n)).unwrap();
         assert!(a == b, "{n} differs after restart");
     }
+    // the progress log has the same increment lines (comments say where
+    // the run restarted, and wall times differ)
+    let lines = |d: &Path| -> Vec<String> {
+        std::fs::read_to_string(d.join("progress.sta"))
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#'))
+            .map(String::from)
+            .collect()
+    };
+    let sta = lines(&full_dir);
+    assert_eq!(sta.len(), full.increments.len());
+    assert_eq!(sta, lines(&cut_dir));
     (from, full.increments.len())
 }
 

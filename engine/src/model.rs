@@ -671,6 +671,19 @@ pub struct OutputRequest {
     pub fields: Vec<Field>,
     /// Histories written to `history.csv`.
     pub history: Vec<HistoryRequest>,
+    /// How VTU files store their arrays.
+    pub format: VtuFormat,
+}
+
+/// How VTU files store their data arrays (`output { format = .. }`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VtuFormat {
+    /// Appended raw binary, zlib-compressed (ParaView's own layout).
+    #[default]
+    Binary,
+    /// Inline text, numbers in their shortest round-trip form.
+    Ascii,
 }
 
 impl Default for OutputRequest {
@@ -679,6 +692,7 @@ impl Default for OutputRequest {
             every: 1,
             fields: vec![Field::Displacement, Field::Stress, Field::Reaction],
             history: Vec::new(),
+            format: VtuFormat::Binary,
         }
     }
 }

@@ -6,6 +6,7 @@
 mod support;
 
 use ctc_engine::model::*;
+use ctc_engine::output::vtu_read::{Section, Vtu};
 use ctc_engine::output::ResultWriter;
 use ctc_engine::solve::{run, IncrementView, Observer};
 use std::path::Path;
@@ -132,10 +133,16 @@ fn parse_xml(s: &str) -> Result<Element, String> {
 }
 
 /// Parses a VTU file and checks its structure against the model; returns
-/// the names of its point data arrays.
+/// the names of its point data arrays. The XML part (before the appended
+/// binary data, if any) must be well-formed; every array is decoded by
+/// `vtu_read` and must have the model's sizes and finite values.
 fn check_vtu(path: &Path, model: &Model) -> Vec<String> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let root = parse_xml(&text).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let bytes = std::fs::read(path).unwrap();
+    let xml = match bytes.windows(13).position(|w| w == b"<AppendedData") {
+        Some(end) => format!("{}</VTKFile>", std::str::from_utf8(&bytes[..end]).unwrap()),
+        None => String::from_utf8(bytes.clone()).unwrap(),
+    };
+    let root = parse_xml(&xml).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     assert_eq!(root.name, "VTKFile");
     assert_eq!(root.attr("type"), Some("UnstructuredGrid"));
     let piece = root.all("Piece");
@@ -149,27 +156,26 @@ fn check_vtu(path: &Path, model: &Model) -> Vec<String> {
         piece[0].attr("NumberOfCells"),
         Some(nc.to_string().as_str())
     );
-    let count = |e: &Element| e.text.split_whitespace().count();
-    let mut names = Vec::new();
-    for pd in piece[0].all("PointData") {
-        for a in pd.all("DataArray") {
-            let comps: usize = a.attr("NumberOfComponents").unwrap().parse().unwrap();
-            assert_eq!(count(a), comps * nn, "array {:?}", a.attr("Name"));
-            for v in a.text.split_whitespace() {
-                let x: f64 = v.parse().unwrap_or_else(|_| panic!("not a number: {v}"));
-                assert!(x.is_finite());
-            }
-            names.push(a.attr("Name").unwrap().to_string());
-        }
+    let vtu = Vtu::read(&bytes).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert_eq!((vtu.points, vtu.cells), (nn, nc));
+    for a in vtu
+        .arrays
+        .iter()
+        .filter(|a| a.section == Section::PointData)
+    {
+        assert_eq!(a.values.len(), a.components * nn, "array {}", a.name);
+        assert!(a.values.iter().all(|x| x.is_finite()), "array {}", a.name);
     }
-    let points = &piece[0].all("Points")[0].all("DataArray")[0];
-    assert_eq!(count(points), 3 * nn);
-    let cells = piece[0].all("Cells")[0].all("DataArray");
+    let len = |s: Section, name: &str| vtu.array(s, name).unwrap().values.len();
+    assert_eq!(len(Section::Points, "coordinates"), 3 * nn);
     let conn: usize = model.mesh.cells.iter().map(|c| c.kind.node_count()).sum();
-    assert_eq!(count(cells[0]), conn);
-    assert_eq!(count(cells[1]), nc);
-    assert_eq!(count(cells[2]), nc);
-    names
+    assert_eq!(len(Section::Cells, "connectivity"), conn);
+    assert_eq!(len(Section::Cells, "offsets"), nc);
+    assert_eq!(len(Section::Cells, "types"), nc);
+    vtu.names(Section::PointData)
+        .into_iter()
+        .map(String::from)
+        .collect()
 }
 
 /// Parses results.pvd: the listed (time, file) pairs.
@@ -251,6 +257,7 @@ fn plate() -> Model {
                 nodes: right,
             },
         ],
+        ..OutputRequest::default()
     };
     m
 }
@@ -282,8 +289,10 @@ fn output_files_vtu_pvd_history_summary() {
         names,
         ["displacement", "stress", "strain", "von_mises", "reaction"]
     );
-    let vtu = std::fs::read_to_string(dir.path().join("inc_0004.vtu")).unwrap();
+    let bytes = std::fs::read(dir.path().join("inc_0004.vtu")).unwrap();
+    let vtu = String::from_utf8_lossy(&bytes);
     assert!(vtu.contains("ComponentName0=\"xx\"") && vtu.contains("ComponentName3=\"xy\""));
+    assert!(vtu.contains("format=\"appended\"") && !vtu.contains("format=\"ascii\""));
     // history: header + one row per increment; reactions balance the pull (4 x 0.5)
     let hist = std::fs::read_to_string(dir.path().join("history.csv")).unwrap();
     let lines: Vec<&str> = hist.lines().collect();
@@ -314,6 +323,47 @@ fn output_files_vtu_pvd_history_summary() {
         let name = e.unwrap().file_name().into_string().unwrap();
         assert!(!name.ends_with(".tmp"), "{name}");
     }
+}
+
+/// The same run written in binary (the default) and in ASCII: every array
+/// reads back to the same bits, and the binary file is smaller.
+#[test]
+fn binary_and_ascii_vtu_hold_the_same_values() {
+    let mut sizes = Vec::new();
+    let mut files = Vec::new();
+    for format in [VtuFormat::Binary, VtuFormat::Ascii] {
+        let dir = tempfile::tempdir().unwrap();
+        let mut m = plate();
+        m.output.format = format;
+        let mut w = ResultWriter::create(dir.path(), &m).unwrap();
+        let s = run(&m, &mut w).unwrap();
+        w.finish(&s).unwrap();
+        let path = dir.path().join("inc_0004.vtu");
+        check_vtu(&path, &m);
+        sizes.push(std::fs::metadata(&path).unwrap().len());
+        files.push(Vtu::read_file(&path).unwrap());
+    }
+    let (binary, ascii) = (&files[0], &files[1]);
+    assert_eq!(binary.arrays.len(), ascii.arrays.len());
+    for (b, a) in binary.arrays.iter().zip(&ascii.arrays) {
+        assert_eq!(
+            (b.format.as_str(), a.format.as_str()),
+            ("appended", "ascii")
+        );
+        assert_eq!(
+            (&b.name, b.section, b.components),
+            (&a.name, a.section, a.components)
+        );
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&b.values), bits(&a.values), "{}", b.name);
+    }
+    assert_eq!(binary.field("TIME").unwrap().values, [1.0]);
+    assert!(
+        sizes[0] < sizes[1],
+        "binary {} B, ascii {} B",
+        sizes[0],
+        sizes[1]
+    );
 }
 
 #[test]
@@ -367,8 +417,8 @@ fn axisymmetric_outputs_say_forces_are_totals_over_two_pi() {
     let mut w = ResultWriter::create(dir.path(), &m).unwrap();
     let s = run(&m, &mut w).unwrap();
     w.finish(&s).unwrap();
-    let vtu = std::fs::read_to_string(dir.path().join("inc_0001.vtu")).unwrap();
-    assert!(vtu.contains("totals over the full 2*pi"));
+    let bytes = std::fs::read(dir.path().join("inc_0001.vtu")).unwrap();
+    assert!(String::from_utf8_lossy(&bytes).contains("totals over the full 2*pi"));
     let names = check_vtu(&dir.path().join("inc_0001.vtu"), &m);
     assert_eq!(
         names,
@@ -380,7 +430,9 @@ fn axisymmetric_outputs_say_forces_are_totals_over_two_pi() {
         ]
     );
     // no contact pair: every node is "not a slave" (-1)
-    assert!(vtu.contains("-1 -1 -1"));
+    let read = Vtu::read(&bytes).unwrap();
+    let status = &read.point("contact_status").unwrap().values;
+    assert!(status.iter().all(|&s| s == -1.0), "{status:?}");
     let summary = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
     assert!(summary.contains("totals over the full 2*pi"));
 }

@@ -390,7 +390,12 @@ pub fn explain(model: &Model) -> String {
         .collect();
     let _ = writeln!(
         o,
-        "output: VTU every {} (and the last), fields {}",
+        "output: VTU{} every {} (and the last), fields {}",
+        if out.format == ctc_engine::model::VtuFormat::Ascii {
+            " (ascii)"
+        } else {
+            ""
+        },
         plural(out.every, "increment", "increments"),
         if fields.is_empty() {
             "none".to_string()

@@ -314,11 +314,17 @@ pub fn conventions_markdown() -> String {
          ## Output files\n\n\
          | file | content |\n| --- | --- |\n\
          | `results.pvd` | the increments written, with their times |\n\
-         | `inc_NNNN.vtu` | fields at an increment: displacement, stress, strain, von_mises, reaction, contact (status, gap, pressure, friction), temperature |\n\
+         | `inc_NNNN.vtu` | fields at an increment (binary, appended raw zlib, by default; `output { format = ascii }` for text): point data displacement, stress, strain, von_mises, equivalent_plastic_strain, reaction, contact (status, gap, pressure, friction), temperature; cell data body and the integration-point means of stress, strain, von_mises, equivalent_plastic_strain; field data TIME, CYCLE (increment) |\n\
          | `history.csv` | one row per converged increment: time, history requests (x, y), friction work per pair, temperatures |\n\
          | `contact_<pair>_<inc>.csv` | slave nodes along the surface: node, x, y, gap, pressure, status, force_x, force_y (+ master_1, master_2, xi; + tangential_force, slip, friction_status, dissipation) |\n\
          | `summary.json` | increments, residual sequences, timings, factorizations, warnings, friction work, heat |\n\
-         | `restart.bin` | restart point (`ctc run --restart`) |\n\n",
+         | `restart.bin` | restart point (`ctc run --restart`) |\n\
+         | `progress.sta` | one line per converged increment: step, increment, attempts, Newton iterations, total and step time, dt, closed contact nodes, max penetration, residual; the last line says how the run ended |\n\n\
+         Numbers in CSV, PVD and ASCII VTU files are in their shortest round-trip form \
+         (`0.1`, `3.5e-300`); times on the increment grid are `t_start + n dt` computed \
+         as such (`0.3`, not `0.30000000000000004`). A run into an existing directory \
+         first removes the files above left by a previous run (`inc_*.vtu`, \
+         `contact_*_*.csv`, ..), and no other file.\n\n",
     );
     s
 }
@@ -356,6 +362,7 @@ pub fn doc(name: Option<&str>) -> Result<String, String> {
         }
         s.push_str("  mesh         mesh generators (`ctc doc rectangle`, ...)\n");
         s.push_str("  units        unit systems, units, sign conventions, status codes, outputs\n");
+        s.push_str("  status       the same (status codes, output files)\n");
         return Ok(s);
     };
     if let Some(i) = item(name) {
@@ -367,12 +374,12 @@ pub fn doc(name: Option<&str>) -> Result<String, String> {
     if let Some(g) = crate::generators::find(name) {
         return Ok(generator_markdown(g));
     }
-    if name == "units" || name == "conventions" {
+    if ["units", "conventions", "status", "outputs"].contains(&name) {
         return Ok(conventions_markdown());
     }
     let mut names: Vec<&str> = ITEMS.iter().map(|i| i.name).collect();
     names.extend(crate::generators::names());
-    names.extend(["mesh", "units"]);
+    names.extend(["mesh", "units", "status", "outputs"]);
     Err(format!(
         "no item `{name}`{}",
         crate::suggest::did_you_mean(name, &names).map_or(String::new(), |d| format!("; {d}"))

@@ -561,7 +561,7 @@ pub static NEWTON: [Key; 4] = [
 ];
 
 /// `output { .. }`.
-pub static OUTPUT: [Key; 3] = [
+pub static OUTPUT: [Key; 4] = [
     Key::new(
         "every",
         KeyType::Integer,
@@ -590,6 +590,12 @@ pub static OUTPUT: [Key; 3] = [
         ]),
         "list of history.csv columns",
     ),
+    Key::new(
+        "format",
+        KeyType::Choice(&["binary", "ascii"]),
+        "how VTU files store their arrays: appended raw binary, zlib-compressed, or inline text",
+    )
+    .default(Default::Choice("binary")),
 ];
 
 /// Every table with the block it describes, for the keyword reference

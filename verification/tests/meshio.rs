@@ -30,10 +30,12 @@ impl Observer for Both {
     }
 }
 
-/// Runs the rigid-cylinder case (all output fields) into `dir`; returns
-/// the model, the final state and the path of the last VTU file.
+/// Runs the rigid-cylinder case (all output fields, VTU `format`) into
+/// `dir`; returns the model, the final state and the path of the last VTU
+/// file.
 fn rigid_cylinder_run(
     dir: &Path,
+    format: &str,
 ) -> (
     ctc_engine::model::Model,
     ctc_verification::capture::FinalState,
@@ -42,7 +44,7 @@ fn rigid_cylinder_run(
     let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rigid_cylinder_block.ctc");
     let text = std::fs::read_to_string(&deck).unwrap().replace(
         "fields = [displacement, stress, contact]",
-        "fields = [displacement, stress, strain, von_mises, reaction, contact]",
+        &format!("fields = [displacement, stress, strain, von_mises, reaction, contact]\n  format = {format}"),
     );
     assert!(
         text.contains("reaction, contact]"),
@@ -63,8 +65,18 @@ fn rigid_cylinder_run(
 
 #[test]
 fn meshio_reads_back_ctc_vtu_rigid_cylinder() {
+    for format in ["binary", "ascii"] {
+        meshio_reads_back(format);
+    }
+}
+
+/// meshio reads the VTU of `format` (binary: appended raw zlib) exactly.
+fn meshio_reads_back(format: &str) {
     let dir = tempfile::tempdir().unwrap();
-    let (model, state, vtu) = rigid_cylinder_run(dir.path());
+    let (model, state, vtu) = rigid_cylinder_run(dir.path(), format);
+    let head = std::fs::read(&vtu).unwrap();
+    let appended = head.windows(13).any(|w| w == b"<AppendedData");
+    assert_eq!(appended, format == "binary", "{format}");
     let check = compare_vtu(
         &vtu,
         &WrittenState {
@@ -75,7 +87,7 @@ fn meshio_reads_back_ctc_vtu_rigid_cylinder() {
         },
     )
     .unwrap();
-    eprintln!("compared {} values", check.compared);
+    eprintln!("{format}: compared {} values", check.compared);
     assert!(check.passed(), "{:#?}", check.mismatches);
     // points x3, cells, displacement x2, reaction x2, 3 contact fields
     let n = model.mesh.nodes.len();
@@ -88,7 +100,8 @@ fn meshio_reads_back_ctc_vtu_rigid_cylinder() {
 #[test]
 fn meshio_detects_corrupted_vtu() {
     let dir = tempfile::tempdir().unwrap();
-    let (model, state, vtu) = rigid_cylinder_run(dir.path());
+    // the text of an ASCII file is edited
+    let (model, state, vtu) = rigid_cylinder_run(dir.path(), "ascii");
     let text = std::fs::read_to_string(&vtu).unwrap();
     // Change one displacement value of the last node in the file's text.
     let start = text.find("Name=\"displacement\"").unwrap();

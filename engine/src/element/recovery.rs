@@ -6,7 +6,8 @@
 //! (multilinear through the Gauss points of quad4 and hex8; the constant
 //! value of tri3 and tet4), then averaged over the elements sharing each
 //! node (unweighted, as Abaqus does). Von Mises is computed from the
-//! averaged stress.
+//! averaged stress. Besides, each cell gets the volume-weighted mean of its
+//! integration points ([`CellFields`]: element values, not smoothed).
 
 use super::kernel::{kernel_of, NonlinearInput};
 use super::{ElementError, ElementMatrix, MaterialPoint, PointState, Section};
@@ -30,6 +31,24 @@ pub struct NodalFields {
     /// Equivalent plastic strain per node (nodal average of the
     /// integration points; zero for elastic bodies). Empty when no body of
     /// the model is plastic.
+    pub equivalent_plastic_strain: Vec<f64>,
+    /// Per cell: the mean of its integration points weighted by their
+    /// volumes (no extrapolation, no averaging across cells: the element
+    /// values, discontinuous between cells). Cells of no body get zeros.
+    pub cells: CellFields,
+}
+
+/// Integration-point averages per cell (see [`NodalFields::cells`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct CellFields {
+    /// Stress `[xx, yy, zz, xy, xz, yz]` per cell.
+    pub stress: Vec<[f64; 6]>,
+    /// Strain per cell (engineering shear).
+    pub strain: Vec<[f64; 6]>,
+    /// Von Mises stress of each integration point, averaged like the
+    /// stress (not the von Mises of the mean stress).
+    pub von_mises: Vec<f64>,
+    /// Equivalent plastic strain per cell; empty when no body is plastic.
     pub equivalent_plastic_strain: Vec<f64>,
 }
 
@@ -181,22 +200,41 @@ where
     Const<D>: Dimension<D>,
 {
     let nn = mesh.nodes.len();
+    let nc = mesh.cells.len();
     let mut sum = vec![[0.0f64; WIDTH]; nn];
     let mut count = vec![0u32; nn];
     let mut packed = Vec::new();
+    let mut weights = Vec::new();
+    let mut cell_sum = vec![[0.0f64; WIDTH + 1]; nc];
     for block in blocks {
         for c in block.cells.clone() {
             packed.clear();
+            weights.clear();
             let mut pack = |s: &PointState, ep: f64| {
                 packed.extend_from_slice(s.stress.as_slice());
                 packed.extend_from_slice(s.strain.as_slice());
                 packed.push(ep);
+                weights.push(s.volume);
             };
             match points.get(c).filter(|p| !p.is_empty()) {
                 Some(stored) => stored.iter().for_each(|p| pack(&p.state, p.history.ep)),
                 None => cell_states(mesh, c, u, section, block)?
                     .iter()
                     .for_each(|s| pack(s, 0.0)),
+            }
+            if let Some(acc) = cell_sum.get_mut(c) {
+                // volume weights; equal weights if the volumes are not known
+                let total: f64 = weights.iter().sum();
+                let equal = total.is_nan() || total <= 0.0;
+                let n = weights.len().max(1) as f64;
+                for (p, &wp) in packed.chunks(WIDTH).zip(&weights) {
+                    let w = if equal { 1.0 / n } else { wp / total };
+                    for k in 0..WIDTH {
+                        acc[k] += w * p[k];
+                    }
+                    let stress: [f64; 6] = std::array::from_fn(|k| p[k]);
+                    acc[WIDTH] += w * material::von_mises(&SVector::from(stress));
+                }
             }
             let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(wrap(c))?;
             let nodal = kernel.extrapolate(&packed, WIDTH);
@@ -216,6 +254,22 @@ where
         strain: vec![[0.0; 6]; nn],
         von_mises: vec![0.0; nn],
         equivalent_plastic_strain: if plastic { vec![0.0; nn] } else { Vec::new() },
+        cells: CellFields {
+            stress: cell_sum
+                .iter()
+                .map(|a| std::array::from_fn(|k| a[k]))
+                .collect(),
+            strain: cell_sum
+                .iter()
+                .map(|a| std::array::from_fn(|k| a[k + 6]))
+                .collect(),
+            von_mises: cell_sum.iter().map(|a| a[WIDTH]).collect(),
+            equivalent_plastic_strain: if plastic {
+                cell_sum.iter().map(|a| a[12]).collect()
+            } else {
+                Vec::new()
+            },
+        },
     };
     for n in 0..nn {
         if count[n] == 0 {
@@ -311,5 +365,51 @@ mod tests {
             let vm = (sxx * sxx - sxx * syy + syy * syy).sqrt();
             assert!((f.von_mises[n] - vm).abs() < 1e-12);
         }
+        // the cell values are the same uniform state
+        let vm = (sxx * sxx - sxx * syy + syy * syy).sqrt();
+        for c in 0..2 {
+            assert!((f.cells.stress[c][0] - sxx).abs() < 1e-12);
+            assert!((f.cells.stress[c][1] - syy).abs() < 1e-12);
+            assert!((f.cells.strain[c][2] - ezz).abs() < 1e-14);
+            assert!((f.cells.von_mises[c] - vm).abs() < 1e-12);
+        }
+        assert!(f.cells.equivalent_plastic_strain.is_empty());
+    }
+
+    #[test]
+    fn cell_values_are_integration_point_means_not_nodal_averages() {
+        // unit square, u_x = 0.01 x y: eps_xx = 0.01 y varies across the
+        // cell; the cell mean is its centre value, the top nodes get the
+        // value extrapolated to y = 1
+        let mesh = Mesh::new(
+            vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+            vec![Cell::quad(0, 1, 2, 3)],
+        );
+        let u: Vec<[f64; 2]> = mesh
+            .nodes
+            .iter()
+            .map(|p| [0.01 * p[0] * p[1], 0.0])
+            .collect();
+        let law = LinearElastic::new(100.0, 0.0, AnalysisKind::PlaneStress).unwrap();
+        let blocks = [CellBlock {
+            cells: 0..1,
+            law,
+            formulation: Formulation::Full,
+            kinematics: Kinematics::Small,
+            nonlinear: None,
+        }];
+        let sec = Section {
+            kind: AnalysisKind::PlaneStress,
+            thickness: 1.0,
+        };
+        let f = nodal_fields(&mesh, &blocks, &sec, &u).unwrap();
+        assert!(
+            (f.cells.strain[0][0] - 0.005).abs() < 1e-15,
+            "{:?}",
+            f.cells.strain[0]
+        );
+        assert!((f.cells.stress[0][0] - 0.5).abs() < 1e-12);
+        assert!((f.strain[2][0] - 0.01).abs() < 1e-14, "{:?}", f.strain[2]);
+        assert!(f.strain[0][0].abs() < 1e-14);
     }
 }

@@ -12,6 +12,7 @@
 //! increment, friction status (0 frictionless, 1 stick, 2 slip) and the
 //! frictional work of the increment.
 
+use super::encode::Shortest as N;
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::Model;
 use std::fmt::Write;
@@ -67,11 +68,16 @@ pub fn contact_csv(
                 let _ = write!(
                     s,
                     "{n},{},{},{},{},{st},{},{}",
-                    x[0], x[1], c.gap, c.pressure, c.force[0], c.force[1]
+                    N(x[0]),
+                    N(x[1]),
+                    N(c.gap),
+                    N(c.pressure),
+                    N(c.force[0]),
+                    N(c.force[1])
                 );
                 match (&c.master, surface) {
                     (Some(m), _) => {
-                        let _ = write!(s, ",{},{},{}", m.nodes[0], m.nodes[1], m.xi);
+                        let _ = write!(s, ",{},{},{}", m.nodes[0], m.nodes[1], N(m.xi));
                     }
                     (None, true) => s.push_str(",,,"),
                     (None, false) => {}
@@ -81,16 +87,16 @@ pub fn contact_csv(
                     let _ = write!(
                         s,
                         ",{},{},{},{}",
-                        f.tangential_force,
-                        f.slip,
+                        N(f.tangential_force),
+                        N(f.slip),
                         crate::contact::friction::status_code(f.status),
-                        f.dissipation
+                        N(f.dissipation)
                     );
                 }
                 s.push('\n');
             }
             None => {
-                let _ = write!(s, "{n},{},{},,0,0,0,0", x[0], x[1]);
+                let _ = write!(s, "{n},{},{},,0,0,0,0", N(x[0]), N(x[1]));
                 if surface {
                     s.push_str(",,,");
                 }
@@ -171,5 +177,9 @@ pub(crate) mod tests {
         assert_eq!(lines[2], "0,2,0,0.2,0,0,0,0");
         assert_eq!(lines[3], "2,2.5,-0.1,-0.1,0.5,1,0,1");
         assert_eq!(lines.len(), 4);
+        // tiny numbers in exponent form, not hundreds of digits
+        let list = vec![contact(2, -3.5940786e-300, true)];
+        let csv = contact_csv(&m, 0, &u, &list);
+        assert!(csv.contains(",-3.5940786e-300,"), "{csv}");
     }
 }

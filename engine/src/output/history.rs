@@ -142,9 +142,10 @@ impl HistoryWriter {
         })
     }
 
-    /// Writes and flushes one row.
+    /// Writes and flushes one row (numbers in their shortest round-trip
+    /// form, [`super::encode::fmt_f64`]).
     pub fn append(&mut self, values: &[f64]) -> std::io::Result<()> {
-        let cols: Vec<String> = values.iter().map(|v| v.to_string()).collect();
+        let cols: Vec<String> = values.iter().map(|&v| super::encode::fmt_f64(v)).collect();
         writeln!(self.file, "{}", cols.join(","))?;
         self.file.flush()
     }

@@ -10,9 +10,19 @@
 //! - `contact_<pair>_<NNNN>.csv`: the slave nodes of each pair at each
 //!   written increment;
 //! - `summary.json`: the run summary, written by [`ResultWriter::finish`];
+//! - `progress.sta`: one line per converged increment (step, increment,
+//!   attempts, Newton iterations, total and step time, increment size,
+//!   closed contact nodes, largest penetration, last residual), flushed
+//!   each time, like Abaqus' `.sta` file; the last line says how the run
+//!   ended ([`sta`]);
 //! - `restart.bin`: the restart point of the last written increment
 //!   ([`crate::solve::restart`]); [`ResultWriter::resume`] continues a
 //!   stopped run in the same directory.
+//!
+//! A run into an existing directory first removes the files a previous
+//! run left there under these names ([`is_result_file`]: a stale
+//! `inc_0042.vtu` of a longer run would otherwise sit beside the new ones);
+//! other files are left alone.
 //!
 //! VTU, PVD, contact CSV, restart and summary files are replaced atomically
 //! (temporary file + rename); the restart file is written after the
@@ -20,9 +30,12 @@
 
 pub mod atomic;
 pub mod contact_csv;
+pub mod encode;
 pub mod history;
 pub mod pvd;
+pub mod sta;
 pub mod vtu;
+pub mod vtu_read;
 
 use crate::contact::NodeContact;
 use crate::element::recovery::nodal_fields_of_model_with_points;
@@ -63,19 +76,79 @@ pub struct ResultWriter<const D: usize = 2> {
     /// Whether the last converged increment was written (a restart point
     /// is written only then).
     written_last: bool,
+    /// Files of a previous run removed by [`ResultWriter::create`].
+    removed: usize,
+    /// `progress.sta`.
+    sta: sta::StaWriter,
+}
+
+/// Whether `name` is a file that a run writes into its result directory
+/// (or the temporary of one): `inc_<n>.vtu`, `contact_<pair>_<n>.csv`,
+/// `results.pvd`, `history.csv`, `summary.json`, `restart.bin`,
+/// `progress.sta`.
+pub fn is_result_file(name: &str) -> bool {
+    let name = match name.strip_prefix('.').and_then(|n| n.strip_suffix(".tmp")) {
+        Some(inner) => inner,
+        None => name,
+    };
+    let digits = |s: &str| !s.is_empty() && s.bytes().all(|b| b.is_ascii_digit());
+    if let Some(n) = name
+        .strip_prefix("inc_")
+        .and_then(|n| n.strip_suffix(".vtu"))
+    {
+        return digits(n);
+    }
+    if let Some(rest) = name
+        .strip_prefix("contact_")
+        .and_then(|n| n.strip_suffix(".csv"))
+    {
+        return rest
+            .split_once('_')
+            .is_some_and(|(p, n)| digits(p) && digits(n));
+    }
+    [
+        "results.pvd",
+        "history.csv",
+        "summary.json",
+        RESTART_FILE,
+        STA_FILE,
+    ]
+    .contains(&name)
+}
+
+/// Removes the result files ([`is_result_file`]) in `dir`; returns how
+/// many.
+fn remove_stale(dir: &Path) -> std::io::Result<usize> {
+    let mut names: Vec<PathBuf> = Vec::new();
+    for e in std::fs::read_dir(dir)? {
+        let e = e?;
+        if e.file_type()?.is_file() && e.file_name().to_str().is_some_and(is_result_file) {
+            names.push(e.path());
+        }
+    }
+    for p in &names {
+        std::fs::remove_file(p)?;
+    }
+    Ok(names.len())
 }
 
 /// Name of the restart file in the result directory.
 pub const RESTART_FILE: &str = "restart.bin";
 
+/// Name of the one-line-per-increment progress log.
+pub const STA_FILE: &str = "progress.sta";
+
 impl<const D: usize> ResultWriter<D>
 where
     Const<D>: Dimension<D>,
 {
-    /// Creates `dir` (and parents) and prepares the writers for `model`.
+    /// Creates `dir` (and parents), removes the result files of a previous
+    /// run in it, and prepares the writers for `model`.
     pub fn create(dir: &Path, model: &Model<D>) -> std::io::Result<Self> {
         std::fs::create_dir_all(dir)?;
+        let removed = remove_stale(dir)?;
         let history = HistoryWriter::create(&dir.join("history.csv"), model)?;
+        let sta = sta::StaWriter::create(&dir.join(STA_FILE))?;
         Ok(ResultWriter {
             dir: dir.to_path_buf(),
             model: model.clone(),
@@ -83,7 +156,15 @@ where
             pvd: Vec::new(),
             pending: None,
             written_last: false,
+            removed,
+            sta,
         })
+    }
+
+    /// How many result files of a previous run [`ResultWriter::create`]
+    /// removed.
+    pub fn removed(&self) -> usize {
+        self.removed
     }
 
     /// Reopens `dir`, where a run of `model` stopped, to continue it from
@@ -104,6 +185,12 @@ where
                 .map_err(|e| format!("cannot restart from {}: {e}", dir.display()))?;
         write_atomic(&dir.join("results.pvd"), pvd::pvd(&file.pvd).as_bytes())
             .map_err(|e| format!("cannot rewrite results.pvd in {}: {e}", dir.display()))?;
+        let sta = sta::StaWriter::resume(
+            &dir.join(STA_FILE),
+            file.checkpoint.increment,
+            file.checkpoint.resume.time,
+        )
+        .map_err(|e| format!("cannot reopen {STA_FILE} in {}: {e}", dir.display()))?;
         let writer = ResultWriter {
             dir: dir.to_path_buf(),
             model: model.clone(),
@@ -111,6 +198,8 @@ where
             pvd: file.pvd,
             pending: None,
             written_last: true,
+            removed: 0,
+            sta,
         };
         Ok((writer, file.checkpoint))
     }
@@ -126,6 +215,7 @@ where
         if let Some(snap) = self.pending.take() {
             self.write_increment(&snap).map_err(std::io::Error::other)?;
         }
+        self.sta.finish(summary)?;
         let text = serde_json::to_string_pretty(summary).map_err(std::io::Error::other)?;
         write_atomic(&self.dir.join("summary.json"), text.as_bytes())
     }
@@ -146,7 +236,7 @@ where
             None
         };
         let name = format!("inc_{:04}.vtu", snap.increment);
-        let text = vtu::vtu(&vtu::VtuData {
+        let bytes = vtu::vtu(&vtu::VtuData {
             model,
             step: model.steps.get(snap.step).map_or("", |s| s.name.as_str()),
             increment: snap.increment,
@@ -157,9 +247,10 @@ where
             contact: &snap.contact,
             nodal: nodal.as_ref(),
             temperature: snap.temperature.as_deref(),
+            encoding: model.output.format,
         });
         let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
-        write_atomic(&self.dir.join(&name), text.as_bytes()).map_err(io)?;
+        write_atomic(&self.dir.join(&name), &bytes).map_err(io)?;
         for (p, list) in snap.contact.iter().enumerate() {
             let csv = <Const<D> as Dimension<D>>::Contact::contact_csv(
                 model,
@@ -198,6 +289,9 @@ where
         self.history
             .append(&row)
             .map_err(|e| format!("cannot write history.csv in {}: {e}", self.dir.display()))?;
+        self.sta
+            .increment(view)
+            .map_err(|e| format!("cannot write {STA_FILE} in {}: {e}", self.dir.display()))?;
         let snap = Snapshot {
             step: view.step,
             increment: view.increment,
@@ -226,6 +320,10 @@ where
         }
     }
 
+    fn cutback(&mut self, _reason: &str, _new_dt: f64) {
+        self.sta.cutback();
+    }
+
     fn wants_checkpoint(&self) -> bool {
         self.written_last
     }
@@ -241,5 +339,78 @@ where
                 self.dir.display()
             )
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn result_files_are_recognised_by_name() {
+        for ours in [
+            "inc_0001.vtu",
+            "inc_12345.vtu",
+            "contact_0_0003.csv",
+            "contact_12_0003.csv",
+            "results.pvd",
+            "history.csv",
+            "summary.json",
+            "restart.bin",
+            "progress.sta",
+            ".inc_0002.vtu.tmp",
+            ".summary.json.tmp",
+        ] {
+            assert!(is_result_file(ours), "{ours}");
+        }
+        for theirs in [
+            "inc_.vtu",
+            "inc_final.vtu",
+            "inc_0001.vtu.bak",
+            "contact_a_0001.csv",
+            "contact_0001.csv",
+            "notes.txt",
+            "deck.ctc",
+            "history.csv.old",
+            "plot.svg",
+            ".notes.tmp",
+        ] {
+            assert!(!is_result_file(theirs), "{theirs}");
+        }
+    }
+
+    #[test]
+    fn a_new_run_removes_the_files_of_the_previous_one_only() {
+        let dir = tempfile::tempdir().unwrap();
+        for f in [
+            "inc_0007.vtu",
+            "contact_0_0007.csv",
+            "restart.bin",
+            "notes.txt",
+            "inc_final.vtu",
+        ] {
+            std::fs::write(dir.path().join(f), "old").unwrap();
+        }
+        std::fs::create_dir(dir.path().join("inc_0001.vtu")).unwrap();
+        let model = crate::output::contact_csv::tests::model_with_pair();
+        let w = ResultWriter::create(dir.path(), &model).unwrap();
+        assert_eq!(w.removed(), 3);
+        let mut left: Vec<String> = std::fs::read_dir(dir.path())
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        left.sort();
+        // a directory is never removed; history.csv and progress.sta are
+        // the new run's
+        assert_eq!(
+            left,
+            [
+                "history.csv",
+                "inc_0001.vtu",
+                "inc_final.vtu",
+                "notes.txt",
+                "progress.sta"
+            ]
+        );
     }
 }

@@ -11,7 +11,8 @@ pub fn pvd(entries: &[(f64, String)]) -> String {
     for (t, file) in entries {
         let _ = writeln!(
             s,
-            "    <DataSet timestep=\"{t}\" group=\"\" part=\"0\" file=\"{file}\"/>"
+            "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{file}\"/>",
+            super::encode::fmt_f64(*t)
         );
     }
     s.push_str("  </Collection>\n</VTKFile>\n");

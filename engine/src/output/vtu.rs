@@ -1,4 +1,6 @@
-//! VTK XML unstructured grid (`.vtu`, ASCII) of one increment.
+//! VTK XML unstructured grid (`.vtu`) of one increment: binary (appended
+//! raw, zlib) by default, ASCII with `output { format = ascii }` (the
+//! storage is [`super::encode`]; [`super::vtu_read`] reads either back).
 //!
 //! Points are the reference coordinates (z = 0 for planar models);
 //! ParaView's "Warp By Vector" on `displacement` shows the deformed shape.
@@ -13,8 +15,14 @@
 //! the gap is 0 where no contact was evaluated); with friction also
 //! `friction_force` (tangential force), `friction_slip` (slip increment),
 //! `friction_status` (0 frictionless, 1 stick, 2 slip) and
-//! `friction_dissipation` (work of the increment). Cell data: `body` index.
+//! `friction_dissipation` (work of the increment). Cell data: `body` index,
+//! and with the same names as the point data `stress`, `strain`,
+//! `von_mises`, `equivalent_plastic_strain`: the volume-weighted mean of
+//! each cell's integration points (element values, not smoothed; the von
+//! Mises mean is of the points' von Mises stresses).
+//! Field data: `TIME` and `CYCLE` (the increment number).
 
+use super::encode::{fmt_f64, Arrays, Encoding};
 use crate::contact::{ContactStatus, NodeContact};
 use crate::element::recovery::NodalFields;
 use crate::mesh::CellKind;
@@ -44,30 +52,8 @@ pub struct VtuData<'a, const D: usize = 2> {
     pub nodal: Option<&'a NodalFields>,
     /// Nodal temperatures (thermal scenes only; written whenever present).
     pub temperature: Option<&'a [f64]>,
-}
-
-fn array<T: std::fmt::Display>(
-    s: &mut String,
-    ty: &str,
-    name: &str,
-    comps: usize,
-    extra: &str,
-    values: impl Iterator<Item = T>,
-) {
-    let _ = writeln!(
-        s,
-        "        <DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\"{extra} format=\"ascii\">"
-    );
-    let per_line = 3 * comps.max(1);
-    for (i, v) in values.enumerate() {
-        if i % per_line == 0 {
-            s.push_str(if i == 0 { "          " } else { "\n          " });
-        } else {
-            s.push(' ');
-        }
-        let _ = write!(s, "{v}");
-    }
-    s.push_str("\n        </DataArray>\n");
+    /// How the arrays are stored.
+    pub encoding: Encoding,
 }
 
 const TENSOR_NAMES: &str =
@@ -83,8 +69,11 @@ fn xyz<const D: usize>(v: &[f64; D]) -> [f64; 3] {
     std::array::from_fn(|k| if k < D { v[k] } else { 0.0 })
 }
 
-/// The VTU text.
-pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
+/// Indentation of a data array.
+const IN: &str = "        ";
+
+/// The VTU file's bytes.
+pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
     let m = d.model;
     // planar: xx yy zz xy; solid: all six
     let (tensor_comps, tensor_names) = if D == 3 {
@@ -93,7 +82,8 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
         (4, TENSOR_NAMES)
     };
     let nn = m.mesh.nodes.len();
-    let mut s = String::with_capacity(256 * nn + 1024);
+    let mut s = String::with_capacity(4096);
+    let mut a = Arrays::new(d.encoding);
     s.push_str("<?xml version=\"1.0\"?>\n");
     let _ = writeln!(
         s,
@@ -101,7 +91,7 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
          (engineering shear strain). -->",
         d.step.replace("--", "- -"),
         d.increment,
-        d.time,
+        fmt_f64(d.time),
         if D == 3 {
             "xx, yy, zz, xy, xz, yz"
         } else {
@@ -111,16 +101,30 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
     if m.analysis.kind == AnalysisKind::Axisymmetric {
         let _ = writeln!(s, "<!-- {} -->", crate::solve::AXISYMMETRIC_NOTE);
     }
-    s.push_str(
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
-         header_type=\"UInt64\">\n  <UnstructuredGrid>\n",
-    );
     let _ = writeln!(
         s,
-        "    <FieldData>\n      <DataArray type=\"Float64\" Name=\"TIME\" NumberOfTuples=\"1\" \
-         format=\"ascii\">{}</DataArray>\n    </FieldData>",
-        d.time
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
+         header_type=\"UInt64\"{}>\n  <UnstructuredGrid>",
+        a.compressor_attribute()
     );
+    s.push_str("    <FieldData>\n");
+    a.array(
+        &mut s,
+        "      ",
+        "TIME",
+        0,
+        " NumberOfTuples=\"1\"",
+        [d.time],
+    );
+    a.array(
+        &mut s,
+        "      ",
+        "CYCLE",
+        0,
+        " NumberOfTuples=\"1\"",
+        [d.increment as i64],
+    );
+    s.push_str("    </FieldData>\n");
     let _ = writeln!(
         s,
         "    <Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{}\">",
@@ -133,9 +137,9 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
         s.push_str("      <PointData>\n");
     }
     if has(Field::Displacement) {
-        array(
+        a.array(
             &mut s,
-            "Float64",
+            IN,
             "displacement",
             3,
             "",
@@ -143,57 +147,63 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
         );
     }
     if let Some(t) = d.temperature {
-        array(&mut s, "Float64", "temperature", 1, "", t.iter());
+        a.array(&mut s, IN, "temperature", 1, "", t.iter().copied());
     }
     if let Some(nodal) = d.nodal {
         if has(Field::Stress) {
-            array(
+            a.array(
                 &mut s,
-                "Float64",
+                IN,
                 "stress",
                 tensor_comps,
                 tensor_names,
-                nodal.stress.iter().flat_map(|v| v[..tensor_comps].iter()),
+                nodal
+                    .stress
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
             );
         }
         if has(Field::Strain) {
-            array(
+            a.array(
                 &mut s,
-                "Float64",
+                IN,
                 "strain",
                 tensor_comps,
                 tensor_names,
-                nodal.strain.iter().flat_map(|v| v[..tensor_comps].iter()),
+                nodal
+                    .strain
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
             );
         }
         if has(Field::VonMises) {
-            array(
+            a.array(
                 &mut s,
-                "Float64",
+                IN,
                 "von_mises",
                 1,
                 "",
-                nodal.von_mises.iter(),
+                nodal.von_mises.iter().copied(),
             );
         }
         // written whenever a body is plastic and stresses are requested
         if !nodal.equivalent_plastic_strain.is_empty()
             && (has(Field::Stress) || has(Field::VonMises) || has(Field::Strain))
         {
-            array(
+            a.array(
                 &mut s,
-                "Float64",
+                IN,
                 "equivalent_plastic_strain",
                 1,
                 "",
-                nodal.equivalent_plastic_strain.iter(),
+                nodal.equivalent_plastic_strain.iter().copied(),
             );
         }
     }
     if has(Field::Reaction) {
-        array(
+        a.array(
             &mut s,
-            "Float64",
+            IN,
             "reaction",
             3,
             "",
@@ -223,29 +233,15 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
                 }
             }
         }
-        array(&mut s, "Float64", "contact_gap", 1, "", gap.iter());
-        array(
-            &mut s,
-            "Float64",
-            "contact_pressure",
-            1,
-            "",
-            pressure.iter(),
-        );
-        array(&mut s, "Int32", "contact_status", 1, "", status.iter());
+        a.array(&mut s, IN, "contact_gap", 1, "", gap);
+        a.array(&mut s, IN, "contact_pressure", 1, "", pressure);
+        a.array(&mut s, IN, "contact_status", 1, "", status);
         if m.contacts.iter().any(|c| c.friction.is_some()) {
             let f = crate::contact::friction::nodal_fields(nn, d.contact);
-            array(&mut s, "Float64", "friction_force", 1, "", f.force.iter());
-            array(&mut s, "Float64", "friction_slip", 1, "", f.slip.iter());
-            array(&mut s, "Int32", "friction_status", 1, "", f.status.iter());
-            array(
-                &mut s,
-                "Float64",
-                "friction_dissipation",
-                1,
-                "",
-                f.dissipation.iter(),
-            );
+            a.array(&mut s, IN, "friction_force", 1, "", f.force);
+            a.array(&mut s, IN, "friction_slip", 1, "", f.slip);
+            a.array(&mut s, IN, "friction_status", 1, "", f.status);
+            a.array(&mut s, IN, "friction_dissipation", 1, "", f.dissipation);
         }
     }
     s.push_str("      </PointData>\n      <CellData>\n");
@@ -257,39 +253,92 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
             }
         }
     }
-    array(&mut s, "Int32", "body", 1, "", body.iter());
+    a.array(&mut s, IN, "body", 1, "", body);
+    if let Some(cells) = d.nodal.map(|n| &n.cells) {
+        if has(Field::Stress) {
+            a.array(
+                &mut s,
+                IN,
+                "stress",
+                tensor_comps,
+                tensor_names,
+                cells
+                    .stress
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
+            );
+        }
+        if has(Field::Strain) {
+            a.array(
+                &mut s,
+                IN,
+                "strain",
+                tensor_comps,
+                tensor_names,
+                cells
+                    .strain
+                    .iter()
+                    .flat_map(|v| v[..tensor_comps].iter().copied()),
+            );
+        }
+        if has(Field::VonMises) {
+            a.array(
+                &mut s,
+                IN,
+                "von_mises",
+                1,
+                "",
+                cells.von_mises.iter().copied(),
+            );
+        }
+        if !cells.equivalent_plastic_strain.is_empty()
+            && (has(Field::Stress) || has(Field::VonMises) || has(Field::Strain))
+        {
+            a.array(
+                &mut s,
+                IN,
+                "equivalent_plastic_strain",
+                1,
+                "",
+                cells.equivalent_plastic_strain.iter().copied(),
+            );
+        }
+    }
     s.push_str("      </CellData>\n      <Points>\n");
-    array(
+    a.array(
         &mut s,
-        "Float64",
+        IN,
         "coordinates",
         3,
         "",
         m.mesh.nodes.iter().flat_map(xyz),
     );
     s.push_str("      </Points>\n      <Cells>\n");
-    array(
+    a.array(
         &mut s,
-        "Int64",
+        IN,
         "connectivity",
         1,
         "",
-        m.mesh.cells.iter().flat_map(|c| c.nodes.iter().copied()),
+        m.mesh
+            .cells
+            .iter()
+            .flat_map(|c| c.nodes.iter().map(|&n| n as i64)),
     );
-    array(
+    a.array(
         &mut s,
-        "Int64",
+        IN,
         "offsets",
         1,
         "",
-        m.mesh.cells.iter().scan(0usize, |o, c| {
-            *o += c.kind.node_count();
+        m.mesh.cells.iter().scan(0i64, |o, c| {
+            *o += c.kind.node_count() as i64;
             Some(*o)
         }),
     );
-    array(
+    a.array(
         &mut s,
-        "UInt8",
+        IN,
         "types",
         1,
         "",
@@ -300,14 +349,15 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> String {
             CellKind::Hex8 => 12u8,
         }),
     );
-    s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n</VTKFile>\n");
-    s
+    s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n");
+    a.finish(s)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::output::contact_csv::tests::{contact, model_with_pair};
+    use crate::output::vtu_read::{Section, Vtu};
 
     fn values_of<'a>(text: &'a str, name: &str) -> Vec<&'a str> {
         let start = text.find(&format!("Name=\"{name}\"")).unwrap();
@@ -317,13 +367,12 @@ mod tests {
         body[open..close].split_whitespace().collect()
     }
 
-    #[test]
-    fn vtu_contact_status_gap_pressure_and_cells() {
+    fn file(encoding: Encoding) -> Vec<u8> {
         let m = model_with_pair();
-        let u = vec![[0.0; 2]; 4];
+        let u = vec![[0.0, 0.1], [0.5, -0.25], [1e-300, 0.0], [0.0, 3.0]];
         let r = vec![[0.0; 2]; 4];
         let contacts = vec![vec![contact(2, -0.1, true), contact(0, 0.2, false)]];
-        let text = vtu(&VtuData {
+        vtu(&VtuData {
             model: &m,
             step: "a--b",
             increment: 3,
@@ -334,20 +383,70 @@ mod tests {
             contact: &contacts,
             nodal: None,
             temperature: None,
-        });
+            encoding,
+        })
+    }
+
+    #[test]
+    fn vtu_contact_status_gap_pressure_and_cells() {
+        let bytes = file(Encoding::Ascii);
+        let text = std::str::from_utf8(&bytes).unwrap();
         // node 3 is not a slave, node 1 is a slave out of reach, 0 open, 2 closed
-        assert_eq!(values_of(&text, "contact_status"), ["0", "0", "1", "-1"]);
-        assert_eq!(values_of(&text, "contact_gap"), ["0.2", "0", "-0.1", "0"]);
-        assert_eq!(values_of(&text, "contact_pressure"), ["0", "0", "0.5", "0"]);
+        assert_eq!(values_of(text, "contact_status"), ["0", "0", "1", "-1"]);
+        assert_eq!(values_of(text, "contact_gap"), ["0.2", "0", "-0.1", "0"]);
+        assert_eq!(values_of(text, "contact_pressure"), ["0", "0", "0.5", "0"]);
         assert_eq!(
-            values_of(&text, "connectivity"),
+            values_of(text, "connectivity"),
             ["1", "2", "3", "2", "0", "3"]
         );
-        assert_eq!(values_of(&text, "offsets"), ["3", "6"]);
-        assert_eq!(values_of(&text, "types"), ["5", "5"]);
-        assert_eq!(values_of(&text, "displacement").len(), 12);
+        assert_eq!(values_of(text, "offsets"), ["3", "6"]);
+        assert_eq!(values_of(text, "types"), ["5", "5"]);
+        // shortest round-trip numbers, exponents for tiny ones
+        assert_eq!(
+            values_of(text, "displacement"),
+            ["0", "0.1", "0", "0.5", "-0.25", "0", "1e-300", "0", "0", "0", "3", "0"]
+        );
         // comments may not contain "--"
         let comment = &text[text.find("<!--").unwrap() + 4..text.find("-->").unwrap()];
         assert!(!comment.contains("--"), "{comment}");
+    }
+
+    #[test]
+    fn binary_and_ascii_files_read_back_the_same() {
+        let binary = Vtu::read(&file(Encoding::Binary)).unwrap();
+        let ascii = Vtu::read(&file(Encoding::Ascii)).unwrap();
+        assert_eq!((binary.points, binary.cells), (4, 2));
+        assert_eq!(binary.arrays.len(), ascii.arrays.len());
+        for (b, t) in binary.arrays.iter().zip(&ascii.arrays) {
+            assert_eq!(
+                (b.format.as_str(), t.format.as_str()),
+                ("appended", "ascii")
+            );
+            assert_eq!(
+                (&b.name, &b.ty, b.components),
+                (&t.name, &t.ty, t.components)
+            );
+            assert_eq!(b.values, t.values, "{}", b.name);
+        }
+        assert_eq!(binary.field("TIME").unwrap().values, [0.5]);
+        assert_eq!(binary.field("CYCLE").unwrap().values, [3.0]);
+        assert_eq!(binary.cell("body").unwrap().values.len(), 2);
+        assert_eq!(
+            binary.point("displacement").unwrap().values[6..9],
+            [1e-300, 0.0, 0.0]
+        );
+        assert_eq!(
+            binary.names(Section::Cells),
+            ["connectivity", "offsets", "types"]
+        );
+        // the XML part names the compressor; the binary data follows it
+        let bytes = file(Encoding::Binary);
+        let head = &bytes[..bytes
+            .windows(13)
+            .position(|w| w == b"<AppendedData")
+            .unwrap()];
+        let head = std::str::from_utf8(head).unwrap();
+        assert!(head.contains("compressor=\"vtkZLibDataCompressor\""));
+        assert!(bytes.ends_with(b"</AppendedData>\n</VTKFile>\n"));
     }
 }

@@ -6,7 +6,11 @@
 //! below `min_fraction` of the initial size the run stops with a diagnosis.
 //! After two consecutive easy increments (first attempt, at most half of
 //! `max_iter` iterations) the size grows by 1.5, never above the initial one.
-//! The last increment of a step ends exactly at `t_end`.
+//! The last increment of a step ends exactly at `t_end`. Times on the
+//! step's grid (multiples of 2^-20 of the initial size, which cutbacks and
+//! grow-backs stay on for 20 levels) are computed as
+//! `t_start + (t_end - t_start) * n / increments`, not by summing the
+//! increments: `0.3`, not `0.30000000000000004`.
 
 use super::newton::{Converged, Failure};
 use super::restart::Resume;
@@ -108,7 +112,7 @@ pub fn drive_from(
                 let (this_dt, t_new) = if dt >= remaining - 1e-6 * dt0 {
                     (remaining, step.t_end)
                 } else {
-                    (dt, t + dt)
+                    (dt, grid_time(step, t + dt))
                 };
                 match solver.attempt(si, t_new) {
                     Ok(conv)
@@ -185,6 +189,34 @@ pub fn drive_from(
     Ok(())
 }
 
+/// The position of `t` on the grid of step `step` in units of its
+/// initial increment, when `t` is within round-off of a grid point.
+fn grid_units(step: &Step, t: f64) -> Option<f64> {
+    const FINE: f64 = (1u64 << 20) as f64;
+    let n = step.increments.max(1) as f64;
+    let span = step.t_end - step.t_start;
+    if span.is_nan() || span <= 0.0 {
+        return None;
+    }
+    let u = (t - step.t_start) * n / span;
+    let q = (u * FINE).round() / FINE;
+    ((u - q).abs() <= 1e-11 * u.abs().max(1.0)).then_some(q)
+}
+
+/// `t` of step `step`, snapped to the step's grid when it is within
+/// round-off of it (see the module notes); other times unchanged.
+pub fn grid_time(step: &Step, t: f64) -> f64 {
+    let n = step.increments.max(1) as f64;
+    grid_units(step, t).map_or(t, |q| step.t_start + (step.t_end - step.t_start) * q / n)
+}
+
+/// The time since the start of step `step` at analysis time `t`, computed
+/// on the grid like [`grid_time`] (`0.3`, not `1.3 - 1.0`).
+pub fn step_time(step: &Step, t: f64) -> f64 {
+    let n = step.increments.max(1) as f64;
+    grid_units(step, t).map_or(t - step.t_start, |q| (step.t_end - step.t_start) * q / n)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -245,6 +277,34 @@ mod tests {
             min_fraction,
             newton: NewtonSettings::default(),
         }
+    }
+
+    #[test]
+    fn times_are_on_the_grid_not_sums_of_increments() {
+        // 10 increments of 0.1: 0.1 + 0.1 + 0.1 is 0.30000000000000004
+        let mut m = mock(1.0);
+        drive(&[step(1.0, 10, 1e-3)], &mut m).unwrap();
+        let times: Vec<String> = m.accepted.iter().map(|a| a.0.to_string()).collect();
+        let expected: Vec<String> = (1..=10).map(|k| (k as f64 / 10.0).to_string()).collect();
+        assert_eq!(times, expected);
+        // cutbacks and grow-backs (0.05, 0.075, 0.0375, ..): every time is
+        // exactly k / (10 * 2^20), the correctly rounded grid value
+        let mut m = mock(0.06);
+        drive(&[step(1.0, 10, 1e-3)], &mut m).unwrap();
+        assert!(m.accepted.len() > 10);
+        let grid = 10.0 * (1u64 << 20) as f64;
+        for a in &m.accepted {
+            let k = (a.0 * grid).round();
+            assert_eq!(a.0, k / grid, "{:?}", m.accepted);
+        }
+        assert!(m.accepted.iter().any(|a| a.0 == 0.15), "{:?}", m.accepted);
+        // a second step from 1 to 2 in thirds
+        let mut s2 = step(2.0, 3, 1e-3);
+        s2.t_start = 1.0;
+        assert_eq!(grid_time(&s2, 1.0 + 1.0 / 3.0 + 1.0 / 3.0), 1.0 + 2.0 / 3.0);
+        assert_eq!(step_time(&s2, 1.0 + 1.0 / 3.0 + 1.0 / 3.0), 2.0 / 3.0);
+        // off-grid times (an impact cut) are kept
+        assert_eq!(grid_time(&s2, 1.123456789), 1.123456789);
     }
 
     fn mock(max_dt: f64) -> Mock {

@@ -528,6 +528,15 @@ pub enum FieldName {
     Contact,
 }
 
+/// `output { format = .. }`: how VTU files store their arrays.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OutputFormat {
+    /// `binary`: appended raw, zlib-compressed (the default).
+    Binary,
+    /// `ascii`: inline text.
+    Ascii,
+}
+
 /// History requests as written.
 #[derive(Debug, Clone, PartialEq)]
 pub enum History {
@@ -548,6 +557,8 @@ pub struct Output {
     pub fields: Option<Spanned<Vec<Spanned<FieldName>>>>,
     /// `history = [..]`.
     pub history: Option<Vec<Spanned<History>>>,
+    /// `format = binary | ascii`.
+    pub format: Option<Spanned<OutputFormat>>,
     /// The `output` keyword.
     pub keyword: Span,
     /// The whole item.

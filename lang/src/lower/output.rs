@@ -3,7 +3,7 @@
 use super::Lowerer;
 use crate::ast;
 use crate::validate::Need;
-use ctc_engine::model::{ContactPair, Field, HistoryRequest, OutputRequest};
+use ctc_engine::model::{ContactPair, Field, HistoryRequest, OutputRequest, VtuFormat};
 
 impl Lowerer<'_> {
     pub(super) fn output(&mut self, contacts: &[ContactPair]) -> OutputRequest {
@@ -13,6 +13,12 @@ impl Lowerer<'_> {
         let mut out = OutputRequest::default();
         if let Some(e) = &o.every {
             out.every = e.value.max(1) as usize;
+        }
+        if let Some(f) = &o.format {
+            out.format = match f.value {
+                ast::OutputFormat::Binary => VtuFormat::Binary,
+                ast::OutputFormat::Ascii => VtuFormat::Ascii,
+            };
         }
         if let Some(fields) = &o.fields {
             let mut list: Vec<Field> = Vec::new();

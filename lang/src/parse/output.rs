@@ -1,10 +1,10 @@
-//! `output { every = n  fields = [..]  history = [..] }`.
+//! `output { every = n  fields = [..]  history = [..]  format = binary | ascii }`.
 
 use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{ArgKind, Value, ValueKind};
-use crate::ast::{FieldName, History, Output};
+use crate::ast::{FieldName, History, Output, OutputFormat};
 use crate::diagnostics::Diagnostic;
 use crate::span::Spanned;
 use crate::suggest::did_you_mean;
@@ -17,6 +17,12 @@ pub const FIELDS: [(&str, FieldName); 6] = [
     ("von_mises", FieldName::VonMises),
     ("reaction", FieldName::Reaction),
     ("contact", FieldName::Contact),
+];
+
+/// VTU formats.
+pub const FORMATS: [(&str, OutputFormat); 2] = [
+    ("binary", OutputFormat::Binary),
+    ("ascii", OutputFormat::Ascii),
 ];
 
 const HISTORIES: [&str; 3] = ["reaction", "displacement", "contact_force"];
@@ -38,11 +44,13 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Output> {
         let items = values::list(v, "a list of histories `[reaction(body.set), ..]`", diags)?;
         Some(items.iter().filter_map(|x| history(x, diags)).collect())
     });
+    let format = f.choice("format", "VTU format", &FORMATS, diags);
     f.finish(diags);
     Some(Output {
         every,
         fields,
         history,
+        format,
         keyword: item.keyword,
         span: item.span,
     })
@@ -120,10 +128,24 @@ mod tests {
             o.fields.as_ref().unwrap().value[3].value,
             FieldName::VonMises
         );
+        assert!(o.format.is_none());
         let h = o.history.as_ref().unwrap();
         assert!(matches!(&h[0].value, History::Reaction(r) if r.to_string() == "block.bottom"));
         assert!(
             matches!(&h[2].value, History::ContactForce(r, t) if r.to_string() == "block.top" && t.name == "punch")
+        );
+    }
+
+    #[test]
+    fn output_format() {
+        let deck = parse_ok("output { format = ascii }");
+        assert_eq!(
+            deck.outputs[0].format.as_ref().unwrap().value,
+            crate::ast::OutputFormat::Ascii
+        );
+        assert_eq!(
+            parse_messages("output { format = binry }"),
+            ["unknown VTU format `binry`"]
         );
     }
 
