@@ -242,6 +242,24 @@ fn compile_source(source: &ctc_lang::Source) -> Result<ctc_engine::model::Model,
 fn check(deck: &Path, explain: bool) -> Result<(), String> {
     let source = read(deck)?;
     let model = ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source))?;
+    // the checks `ctc run` makes before solving (rigid-body modes left free
+    // by the conditions and the contact pairs, indices, settings)
+    let errors = match &model {
+        AnyModel::D2(m) => ctc_engine::solve::check::check_model(m),
+        AnyModel::D3(m) => ctc_engine::solve::check::check_model(m),
+    };
+    if !errors.is_empty() {
+        return Err(format!(
+            "error: {}: the model cannot be solved:\n  - {}",
+            deck.display(),
+            errors.join("\n  - ")
+        ));
+    }
+    if let AnyModel::D2(m) = &model {
+        for w in ctc_engine::solve::health::start_inside(m) {
+            eprintln!("warning: {w}");
+        }
+    }
     if explain {
         match &model {
             AnyModel::D2(m) => print!("{}", ctc_lang::explain(m)),

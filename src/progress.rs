@@ -178,8 +178,10 @@ impl<const D: usize> Observer<D> for Progress<'_, D> {
     }
 
     fn cutback(&mut self, reason: &str, new_dt: f64) {
+        // one line: the reason already holds what failed and the residual
+        // range (the whole sequence is in summary.json `cutback_log`)
         self.say(format!(
-            "  cutback: {reason}; retrying with dt = {new_dt:.3e}"
+            "  cutback: {reason}; retrying with dt = {new_dt:.2e}"
         ));
         self.inner.cutback(reason, new_dt);
     }

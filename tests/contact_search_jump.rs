@@ -55,8 +55,14 @@ fn contact_search_warns_when_the_tool_jumps_past_the_surface() {
     assert!(summary.completed);
     // the blade ended 0.05 inside the block, deeper than prof: missed
     assert_eq!(summary.increments[0].active_contacts, 0);
-    assert_eq!(summary.warnings.len(), 1, "{:?}", summary.warnings);
+    // the jump, then (after the run) the pair that never closed
+    assert_eq!(summary.warnings.len(), 2, "{:?}", summary.warnings);
     assert_eq!(seen, summary.warnings);
+    assert!(
+        summary.warnings[1].starts_with("contact pair `block.top -> blade` never closed"),
+        "{:?}",
+        summary.warnings
+    );
     let w = &summary.warnings[0];
     // the 5 top nodes (y = 0) of the 5 x 3 node grid: 10..=14
     assert!(

@@ -371,13 +371,30 @@ fn output_after_failure_keeps_last_converged_increment_and_summary() {
     let dir = tempfile::tempdir().unwrap();
     let mut m = plate();
     m.output.every = 100;
+    // the second step pulls further (the first one is unchanged)
+    let Load::NodalForce { nodes, .. } = m.loads[0].clone() else {
+        unreachable!()
+    };
+    m.loads.push(Load::NodalForce {
+        label: "pull more".into(),
+        nodes,
+        component: 1,
+        value: TimeFunction::Ramp {
+            t0: 1.0,
+            t1: 2.0,
+            v0: 0.0,
+            v1: 0.5,
+        },
+    });
     m.steps = vec![step(2), {
         let mut s = step(2);
         s.name = "impossible".into();
         s.t_start = 1.0;
         s.t_end = 2.0;
-        s.newton.tol = 1e-30;
-        s.newton.max_iter = 2;
+        // one iteration whose next correction must vanish exactly: a
+        // correction at round-off (1e-16) never meets 1e-30
+        s.newton.tol_displacement = 1e-30;
+        s.newton.max_iter = 1;
         s.min_fraction = 0.5;
         s
     }];

@@ -199,15 +199,17 @@ fn newton_linear_problem_takes_one_iteration_per_increment() {
 fn cutbacks_exhausted_reports_step_time_residuals_and_remedy() {
     let mut m = plate(2);
     m.steps[0].name = "press".into();
-    m.steps[0].newton.tol = 1e-30; // below round-off: cannot converge
-    m.steps[0].newton.max_iter = 3;
+    // one iteration, whose next correction (round-off, 1e-16) must be
+    // below 1e-30: never converges
+    m.steps[0].newton.tol_displacement = 1e-30;
+    m.steps[0].newton.max_iter = 1;
     m.steps[0].min_fraction = 0.25;
     let mut rec = Recorder::default();
     let e = run(&m, &mut rec).unwrap_err();
     println!("{}", e.message);
     assert!(e.message.contains("step `press`"), "{}", e.message);
     assert!(e.message.contains("t = 0"), "{}", e.message);
-    assert!(e.message.contains("round-off"), "{}", e.message);
+    assert!(e.message.contains("max_iter = 1"), "{}", e.message);
     assert!(e.message.contains("remedy"), "{}", e.message);
     assert!(e.message.contains("1.250e-1"), "{}", e.message); // smallest dt: 0.5 * 0.25
     assert!(!e.summary.completed);
@@ -218,7 +220,30 @@ fn cutbacks_exhausted_reports_step_time_residuals_and_remedy() {
     assert_eq!(rec.cutbacks[0].1, 0.25);
     assert_eq!(rec.cutbacks[1].1, 0.125);
     assert!(rec.increments.is_empty());
-    assert_eq!(e.summary.newton_iterations, 9);
+    assert_eq!(e.summary.newton_iterations, 3);
+    assert_eq!(e.summary.cutback_log.len(), 2);
+    assert_eq!(e.summary.cutback_log[1].to, 0.25);
+}
+
+/// Issue 14, item 6: a tolerance below what round-off allows (tol =
+/// tol_displacement = 1e-30) used to stall until the increment was cut back
+/// to the minimum; the residual reaches its round-off floor (4 eps |K| |u|)
+/// and the increment converges there, flagged in the summary.
+#[test]
+fn tolerance_below_round_off_converges_on_the_floor() {
+    let mut m = plate(2);
+    m.steps[0].newton.tol = 1e-30;
+    m.steps[0].newton.tol_displacement = 1e-30;
+    let s = run(&m, &mut Recorder::default()).unwrap();
+    assert_eq!(s.cutbacks, 0);
+    for inc in &s.increments {
+        assert!(inc.at_floor, "{inc:?}");
+        assert!(
+            inc.residual_floor > 0.0 && inc.residual_floor < 1e-12,
+            "{inc:?}"
+        );
+        assert!(*inc.residuals.last().unwrap() > 1e-30, "{inc:?}");
+    }
 }
 
 #[test]

@@ -264,6 +264,11 @@ pub fn explain(model: &Model) -> String {
                 ),
             };
             let _ = writeln!(o, "  {}: {g}", t.name);
+            let _ = writeln!(
+                o,
+                "    free side (where bodies may be): {}",
+                ctc_engine::solve::health::free_side_rule(&t.geometry)
+            );
             let m = &t.motion;
             if is_zero(&m.ux) && is_zero(&m.uy) && is_zero(&m.rotation) {
                 let _ = writeln!(o, "    fixed");

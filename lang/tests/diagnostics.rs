@@ -78,6 +78,7 @@ decks!(
     expr_unknown_parameter,
     include_cycle,
     include_error_inside,
+    contact_misspelled_gmsh_group,
     include_missing,
     quoted_set_unknown,
     union_nodes_as_edges,

@@ -49,7 +49,11 @@ fn split_csv(line: &str) -> Vec<String> {
 
 /// Writes `file` (SVG) in `dir`: column `y` (scaled by `y_scale`) against
 /// column `x` (scaled by `x_scale`) of the run in `dir`, starting from the
-/// point `(0, y0)` (none when `y0` is NaN).
+/// point `(0, y0)` (none when `y0` is NaN). Returns whether the plot was
+/// written: a history without a finite point (a run that stopped before
+/// its first converged increment) or whose values span no drawable range
+/// gives no plot, never a hang (the axis ranges are always finite and
+/// wide enough for their key points, see [`axis_range`]).
 #[allow(clippy::too_many_arguments)]
 pub fn history_plot(
     dir: &Path,
@@ -58,7 +62,7 @@ pub fn history_plot(
     (x, x_scale, x_desc): (&str, f64, &str),
     (y, y_scale, y_desc): (&str, f64, &str),
     y0: f64,
-) -> Result<(), String> {
+) -> Result<bool, String> {
     let (header, rows) = read_history(dir)?;
     let col = |name: &str| {
         header
@@ -67,8 +71,16 @@ pub fn history_plot(
             .ok_or_else(|| format!("history.csv has no column `{name}` ({header:?})"))
     };
     let (ix, iy) = (col(x)?, col(y)?);
+    if rows.is_empty() {
+        return Ok(false);
+    }
     let mut points = if y0.is_nan() { vec![] } else { vec![(0.0, y0)] };
-    points.extend(rows.iter().map(|r| (r[ix] * x_scale, r[iy] * y_scale)));
+    points.extend(
+        rows.iter()
+            .filter(|r| r.len() > ix.max(iy))
+            .map(|r| (r[ix] * x_scale, r[iy] * y_scale)),
+    );
+    points.retain(|p| p.0.is_finite() && p.1.is_finite());
     let (mut x_lo, mut x_hi, mut y_lo, mut y_hi) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for &(px, py) in &points {
         x_lo = x_lo.min(px);
@@ -76,12 +88,10 @@ pub fn history_plot(
         y_lo = y_lo.min(py);
         y_hi = y_hi.max(py);
     }
-    let pad = |lo: f64, hi: f64| {
-        let d = (hi - lo).abs().max(1e-12) * 0.05;
-        (lo - d, hi + d)
+    let (Some((x_lo, x_hi)), Some((y_lo, y_hi))) = (axis_range(x_lo, x_hi), axis_range(y_lo, y_hi))
+    else {
+        return Ok(false);
     };
-    let (x_lo, x_hi) = pad(x_lo, x_hi);
-    let (y_lo, y_hi) = pad(y_lo, y_hi);
     let path = dir.join(file);
     let root = SVGBackend::new(&path, (800, 560)).into_drawing_area();
     let e = |e: DrawingAreaErrorKind<std::io::Error>| format!("cannot draw `{title}`: {e:?}");
@@ -107,7 +117,31 @@ pub fn history_plot(
         .draw_series(points.iter().map(move |&p| Circle::new(p, 3, c.filled())))
         .map_err(e)?;
     root.present().map_err(e)?;
-    Ok(())
+    Ok(true)
+}
+
+/// The padded axis range of values between `lo` and `hi`, or `None` when
+/// there is nothing drawable (no value: `lo > hi`; non-finite bounds or
+/// span). A range narrower than `1e-6` of its magnitude is widened to it:
+/// plotters steps its key points from `lo` to `hi` and a step below the
+/// spacing of floating-point numbers there never reaches `hi`.
+pub fn axis_range(lo: f64, hi: f64) -> Option<(f64, f64)> {
+    if !(lo.is_finite() && hi.is_finite() && lo <= hi) {
+        return None;
+    }
+    let magnitude = lo.abs().max(hi.abs());
+    if magnitude > 1e300 {
+        return None;
+    }
+    let min_span = (1e-6 * magnitude).max(1e-12);
+    let (lo, hi) = if hi - lo < min_span {
+        let mid = 0.5 * (lo + hi);
+        (mid - 0.5 * min_span, mid + 0.5 * min_span)
+    } else {
+        (lo, hi)
+    };
+    let d = 0.05 * (hi - lo);
+    Some((lo - d, hi + d))
 }
 
 /// Plots of a thermo-mechanical run in `dir` (called by `ctc run` for
@@ -115,19 +149,21 @@ pub fn history_plot(
 /// and, when the history has a `reaction(..)` and a `displacement(..)`
 /// column, `force_stroke.svg` (minus the first reaction's y component
 /// against minus the first displacement's y component: a push downwards).
-/// Returns the files written.
+/// Returns the files written (none for an empty history: a run that
+/// stopped before its first converged increment).
 pub fn thermal_run_plots(dir: &Path) -> Result<Vec<String>, String> {
     let (header, _) = read_history(dir)?;
     let mut files = Vec::new();
-    if header.iter().any(|h| h == "temperature_max") {
-        history_plot(
+    if header.iter().any(|h| h == "temperature_max")
+        && history_plot(
             dir,
             "temperature.svg",
             "largest temperature",
             ("time", 1.0, "time"),
             ("temperature_max", 1.0, "max temperature"),
             f64::NAN,
-        )?;
+        )?
+    {
         files.push("temperature.svg".to_string());
     }
     let find = |prefix: &str| {
@@ -140,15 +176,16 @@ pub fn thermal_run_plots(dir: &Path) -> Result<Vec<String>, String> {
         find("reaction(").or_else(|| find("contact_force(")),
         find("displacement("),
     ) {
-        history_plot(
+        if history_plot(
             dir,
             "force_stroke.svg",
             "force against stroke",
             (&u, -1.0, "stroke (-u_y)"),
             (&f, -1.0, "force (-F_y)"),
             0.0,
-        )?;
-        files.push("force_stroke.svg".to_string());
+        )? {
+            files.push("force_stroke.svg".to_string());
+        }
     }
     Ok(files)
 }
@@ -170,7 +207,7 @@ mod tests {
             "time,f_y,u_y,temperature_max\n0.5,-10,-1,21\n1,-30,-2,25\n",
         )
         .unwrap();
-        history_plot(
+        assert!(history_plot(
             dir.path(),
             "force.svg",
             "force against stroke",
@@ -178,7 +215,7 @@ mod tests {
             ("f_y", -1.0, "force"),
             0.0,
         )
-        .unwrap();
+        .unwrap());
         let svg = std::fs::read_to_string(dir.path().join("force.svg")).unwrap();
         assert!(svg.contains("<polyline") || svg.contains("<path"), "{svg}");
         assert!(history_plot(
@@ -190,5 +227,24 @@ mod tests {
             0.0
         )
         .is_err());
+    }
+
+    #[test]
+    fn an_empty_or_degenerate_history_gives_no_plot_and_returns() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(dir.path().join("history.csv"), "time,temperature_max\n").unwrap();
+        assert_eq!(thermal_run_plots(dir.path()).unwrap(), Vec::<String>::new());
+        assert!(!dir.path().join("temperature.svg").exists());
+        // one row, a value far above its spread, NaN: drawn or skipped, never a hang
+        std::fs::write(
+            dir.path().join("history.csv"),
+            "time,temperature_max\n1,1e6\n2,NaN\n",
+        )
+        .unwrap();
+        assert_eq!(thermal_run_plots(dir.path()).unwrap(), ["temperature.svg"]);
+        assert_eq!(axis_range(f64::MAX, f64::MIN), None);
+        assert_eq!(axis_range(0.0, f64::INFINITY), None);
+        let (lo, hi) = axis_range(1e6, 1e6).unwrap();
+        assert!(hi - lo >= 1.0 && lo < 1e6 && hi > 1e6, "{lo} {hi}");
     }
 }

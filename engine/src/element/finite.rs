@@ -93,7 +93,7 @@ impl<const D: usize, const NN: usize> FiniteElement<'_, D, NN> {
                 let j0 = deformation(c, u, hoop).det();
                 if j0.re() <= 0.0 || !j0.re().is_finite() {
                     return Err(ElementError::new(format!(
-                        "inverted element (det F = {:e} at the centre)",
+                        "inverted element (det F = {:.2e} at the centre)",
                         j0.re()
                     )));
                 }
@@ -106,7 +106,7 @@ impl<const D: usize, const NN: usize> FiniteElement<'_, D, NN> {
             let j = f.det();
             if j.re() <= 0.0 || !j.re().is_finite() {
                 return Err(ElementError::new(format!(
-                    "inverted element (det F = {:e} at {})",
+                    "inverted element (det F = {:.2e} at {})",
                     j.re(),
                     at(&p.position)
                 )));

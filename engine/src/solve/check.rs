@@ -255,93 +255,224 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
 
 /// Bodies that nothing holds: their constrained dofs leave a rigid-body
 /// motion free (plane: translations x, y and the in-plane rotation;
-/// axisymmetric: the translation along the axis), and no contact pair
-/// involves them.
+/// axisymmetric: the translation along the axis; solid: three
+/// translations and three rotations), and no chain of contact pairs links
+/// them to a support.
 ///
 /// Each constrained dof `(node, c)` constrains the rigid velocity
 /// `(a, b, w)` through the row `[1, 0, -y]` (c = 0) or `[0, 1, x]`
 /// (c = 1); the motion is held when these rows have full rank.
+///
+/// Contact holds only once closed, so it is given the benefit of the
+/// doubt, but it must lead somewhere and can hold only along its normals:
+/// - a frictionless pair against a rigid tool adds, for every slave node,
+///   the row of the tool's normal at its closest point (start of the
+///   analysis), as if every node were closed: a body still free with all
+///   of them (a block on a frictionless flat floor with nothing holding
+///   it in x) is reported; a pair with friction may hold every motion;
+/// - the bodies linked by node-to-segment pairs (slave and master, either
+///   side) form groups, and a group is supported when one of its bodies is
+///   held by its own conditions or by a tool as above. A body whose group
+///   has no support is reported with its free motions (a body that is only
+///   the master of a pair with a held slave is supported through that
+///   pair).
 fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
     let mut errors = Vec::new();
-    let axi = model.analysis.kind == AnalysisKind::Axisymmetric;
+    let nb = model.bodies.len();
     let mut constrained = vec![[false; D]; model.mesh.nodes.len()];
     for d in &model.constraints {
         for &n in &d.nodes {
             constrained[n][d.component] = true;
         }
     }
-    for (b, body) in model.bodies.iter().enumerate() {
-        if model.contacts.iter().any(|c| c.body == b) || body.nodes.is_empty() {
-            continue;
+    let free: Vec<Vec<&str>> = model
+        .bodies
+        .iter()
+        .map(|body| free_motions(model, body, &constrained, &[]))
+        .collect();
+    // groups of bodies linked by contact pairs (union-find)
+    let mut parent: Vec<usize> = (0..nb).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
         }
-        let pts = &model.mesh.nodes[body.nodes.clone()];
-        if D == 3 {
-            let free = free_solid_motions(pts, &constrained[body.nodes.clone()]);
-            if !free.is_empty() {
-                errors.push(unheld_message(&body.name, &free));
-            }
-            continue;
-        }
-        let k = pts.len() as f64;
-        let c = pts
-            .iter()
-            .fold([0.0, 0.0], |a, p| [a[0] + p[0] / k, a[1] + p[1] / k]);
-        let size = pts
-            .iter()
-            .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
-            .fold(0.0, f64::max)
-            .max(f64::MIN_POSITIVE);
-        let mut g = nalgebra::Matrix3::<f64>::zeros();
-        for n in body.nodes.clone() {
-            let (x, y) = (
-                (pts[n - body.nodes.start][0] - c[0]) / size,
-                (pts[n - body.nodes.start][1] - c[1]) / size,
-            );
-            for (comp, row) in [(0, [1.0, 0.0, -y]), (1, [0.0, 1.0, x])] {
-                if constrained[n][comp] {
-                    let r = nalgebra::Vector3::from(row);
-                    g += r * r.transpose();
+        i
+    }
+    // normals of the rigid tools at the slave nodes; friction may hold all
+    let mut tool_rows: Vec<Vec<([f64; 2], [f64; 2])>> = vec![Vec::new(); nb];
+    let mut tool_friction = vec![false; nb];
+    let mut on_tool = vec![false; nb];
+    for c in &model.contacts {
+        match &c.master {
+            crate::model::ContactMaster::Tool(t) => {
+                on_tool[c.body] = true;
+                if c.friction.is_some_and(|f| f.mu > 0.0) {
+                    tool_friction[c.body] = true;
+                } else {
+                    tool_rows[c.body].extend(tool_normals(model, *t, &c.nodes));
                 }
             }
-        }
-        let free: Vec<&str> = if axi {
-            if g[(1, 1)] > 0.0 {
-                vec![]
-            } else {
-                vec!["translate along the axis (y)"]
+            crate::model::ContactMaster::Surface { body, .. } => {
+                let (a, b) = (root(&mut parent, c.body), root(&mut parent, *body));
+                parent[a] = b;
             }
-        } else {
-            let eig = g.symmetric_eigen();
-            let max = eig.eigenvalues.max().max(f64::MIN_POSITIVE);
-            (0..3)
-                .filter(|&i| eig.eigenvalues[i] <= 1e-10 * max)
-                .map(|i| {
-                    let v = eig.eigenvectors.column(i);
-                    if v[2].abs() > 0.5 {
-                        "rotate"
-                    } else if v[0].abs() > v[1].abs() {
-                        "translate along x"
-                    } else {
-                        "translate along y"
-                    }
-                })
-                .collect()
-        };
-        if !free.is_empty() {
-            errors.push(unheld_message(&body.name, &free));
         }
+    }
+    // free even with every frictionless tool contact closed: certainly singular
+    let mut sliding = vec![Vec::new(); nb];
+    for (b, body) in model.bodies.iter().enumerate() {
+        if D == 2 && on_tool[b] && !tool_friction[b] && !free[b].is_empty() {
+            sliding[b] = free_motions(model, body, &constrained, &tool_rows[b]);
+        }
+    }
+    let mut supported = vec![false; nb];
+    for b in 0..nb {
+        if free[b].is_empty() || (on_tool[b] && sliding[b].is_empty()) {
+            let r = root(&mut parent, b);
+            supported[r] = true;
+        }
+    }
+    for (b, body) in model.bodies.iter().enumerate() {
+        if free[b].is_empty() || supported[root(&mut parent, b)] {
+            continue;
+        }
+        if !sliding[b].is_empty() {
+            errors.push(format!(
+                "body `{}` is free to {} even with every node of its contact pairs with tools \
+                 closed (a frictionless contact holds only along the tool's normals, and its \
+                 `fix`/`displace` conditions do not hold the rest: the stiffness matrix would \
+                 be singular); constrain that motion (e.g. `fix` one node in x) or give the \
+                 pair friction",
+                body.name,
+                sliding[b].join(" and ")
+            ));
+            continue;
+        }
+        let linked: Vec<&str> = (0..nb)
+            .filter(|&o| o != b && root(&mut parent, o) == root(&mut parent, b))
+            .map(|o| model.bodies[o].name.as_str())
+            .collect();
+        let contact = if linked.is_empty() {
+            "no contact pair involves it".to_string()
+        } else {
+            format!(
+                "its contact pairs link it only to bodies that are not held either ({})",
+                linked
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        errors.push(format!(
+            "body `{}` is free to {} (a rigid-body motion: the stiffness matrix would be \
+             singular): its `fix`/`displace` conditions do not hold it and {contact}; \
+             constrain e.g. one node in x and y and a second node in the other direction",
+            body.name,
+            free[b].join(" and ")
+        ));
     }
     errors
 }
 
-fn unheld_message(body: &str, free: &[&str]) -> String {
-    format!(
-        "body `{body}` is free to {} (a rigid-body motion: the stiffness matrix would be \
-         singular): its `fix`/`displace` conditions do not hold it and no contact pair \
-         involves it; constrain e.g. one node in x and y and a second node in the \
-         other direction",
-        free.join(" and ")
-    )
+/// The unit normal of tool `tool` at the closest point of each of `nodes`
+/// at the start of the analysis: (node position, normal); planar models
+/// only (the rigid tools are planar curves).
+fn tool_normals<const D: usize>(
+    model: &Model<D>,
+    tool: usize,
+    nodes: &[usize],
+) -> Vec<([f64; 2], [f64; 2])> {
+    let Some(t) = model.tools.get(tool).filter(|_| D == 2) else {
+        return vec![];
+    };
+    let Ok(shape) = crate::contact::geometry::ToolShape::new(&t.geometry) else {
+        return vec![];
+    };
+    let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
+    let placement = crate::contact::motion::Placement::at(&t.motion, t0);
+    let mut tests = 0;
+    nodes
+        .iter()
+        .filter_map(|&n| {
+            let p = model.mesh.nodes[n];
+            let x = [p[0], p[1]];
+            let found =
+                crate::contact::search::brute_force(&shape, placement.to_reference(x), &mut tests)?;
+            Some((x, placement.rotate(found.projection.normal)))
+        })
+        .collect()
+}
+
+/// The rigid-body motions that the `fix`/`displace` conditions of `body`
+/// and the contact normals `normals` (position, unit normal; planar) leave
+/// free (empty: held; a body without nodes is held).
+fn free_motions<const D: usize>(
+    model: &Model<D>,
+    body: &crate::model::Body,
+    constrained: &[[bool; D]],
+    normals: &[([f64; 2], [f64; 2])],
+) -> Vec<&'static str> {
+    if body.nodes.is_empty() {
+        return vec![];
+    }
+    let pts = &model.mesh.nodes[body.nodes.clone()];
+    if D == 3 {
+        return free_solid_motions(pts, &constrained[body.nodes.clone()]);
+    }
+    let axi = model.analysis.kind == AnalysisKind::Axisymmetric;
+    let k = pts.len() as f64;
+    let c = pts
+        .iter()
+        .fold([0.0, 0.0], |a, p| [a[0] + p[0] / k, a[1] + p[1] / k]);
+    let size = pts
+        .iter()
+        .map(|p| (p[0] - c[0]).hypot(p[1] - c[1]))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let mut g = nalgebra::Matrix3::<f64>::zeros();
+    for n in body.nodes.clone() {
+        let (x, y) = (
+            (pts[n - body.nodes.start][0] - c[0]) / size,
+            (pts[n - body.nodes.start][1] - c[1]) / size,
+        );
+        for (comp, row) in [(0, [1.0, 0.0, -y]), (1, [0.0, 1.0, x])] {
+            if constrained[n][comp] {
+                let r = nalgebra::Vector3::from(row);
+                g += r * r.transpose();
+            }
+        }
+    }
+    for (p, nrm) in normals {
+        let (x, y) = ((p[0] - c[0]) / size, (p[1] - c[1]) / size);
+        let r = nalgebra::Vector3::new(nrm[0], nrm[1], nrm[1] * x - nrm[0] * y);
+        g += r * r.transpose();
+    }
+    if axi {
+        // a condition adds 1; normals add n_y^2 (a wall parallel to the
+        // axis holds nothing along it)
+        return if g[(1, 1)] > 1e-8 {
+            vec![]
+        } else {
+            vec!["translate along the axis (y)"]
+        };
+    }
+    let eig = g.symmetric_eigen();
+    let max = eig.eigenvalues.max().max(f64::MIN_POSITIVE);
+    (0..3)
+        .filter(|&i| eig.eigenvalues[i] <= 1e-10 * max)
+        .map(|i| {
+            let v = eig.eigenvectors.column(i);
+            if v[2].abs() > 0.5 {
+                "rotate"
+            } else if v[0].abs() > v[1].abs() {
+                "translate along x"
+            } else {
+                "translate along y"
+            }
+        })
+        .collect()
 }
 
 /// The rigid motions of a solid body (3 translations, 3 rotations) its

@@ -202,37 +202,44 @@ pub fn contact_cause(
 
 /// Likely cause and remedy of a failed increment when the contact health
 /// does not explain it (see [`contact_cause`]), from the failure's kind and
-/// residual history, for the final error message.
-pub fn failure_cause(failure: &Failure, settings: &NewtonSettings) -> (String, String) {
+/// residual history, for the final error message. `floor` is the round-off
+/// floor of the relative residual at the last evaluation
+/// (`newton::convergence`; 0: unknown).
+pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -> (String, String) {
     let last = failure.residuals.last().copied().unwrap_or(f64::NAN);
     match failure.kind {
-        FailureKind::MaxIterations => {
-            let n = failure.residuals.len();
-            let stagnant = n >= 3
-                && last < 1e-9
-                && failure.residuals[n - 3..]
-                    .iter()
-                    .all(|r| *r < 1e3 * last.max(TINY));
-            if stagnant {
-                (
-                    format!(
-                        "the residual stagnates at {last:.1e}: tol = {:.0e} (or tol_displacement = \
-                         {:.0e}) is below what round-off allows for this problem",
-                        settings.tol, settings.tol_displacement
-                    ),
-                    "raise `newton { tol = .. }` (1e-8 is usual; 1e-10 for verification)".into(),
+        FailureKind::MaxIterations | FailureKind::Diverged if stagnates(&failure.residuals) => {
+            let floor_text = if floor > 0.0 {
+                format!(
+                    " ({:.1}x the round-off floor {floor:.1e} = 4 eps |K| |x| / force scale: the \
+                     residual cannot be computed more accurately)",
+                    last / floor
                 )
             } else {
-                (
-                    "the increment is too large for the nonlinearity (contact status \
-                     changing back and forth, stiff penalty)"
-                        .into(),
-                    "use more `increments`, keep `line_search = true`, raise `max_iter`, or \
-                     lower the penalty stiffness"
-                        .into(),
-                )
-            }
+                String::new()
+            };
+            (
+                format!(
+                    "the residual stagnates at {last:.1e}{floor_text}: tol = {:.0e} (or \
+                     tol_displacement = {:.0e}) is below what round-off allows for this problem; \
+                     more increments do not lower it",
+                    settings.tol, settings.tol_displacement
+                ),
+                format!(
+                    "raise `newton {{ tol = .. }}` to {:.0e} or more (1e-8 is usual), or lower a \
+                     very stiff penalty (the floor grows with it)",
+                    (10.0 * last).max(settings.tol)
+                ),
+            )
         }
+        FailureKind::MaxIterations => (
+            "the increment is too large for the nonlinearity (contact status \
+             changing back and forth, stiff penalty)"
+                .into(),
+            "use more `increments`, keep `line_search = true`, raise `max_iter`, or \
+             lower the penalty stiffness"
+                .into(),
+        ),
         FailureKind::Diverged => (
             "the residual grows from iteration to iteration: the load or contact \
              increment is too large, or the penalty stiffness is too high for the mesh"
@@ -266,6 +273,14 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings) -> (String, S
             "check the mesh orientation and quality, or use smaller increments".into(),
         ),
     }
+}
+
+/// Whether a residual history stagnates at round-off level: the last
+/// three within a factor 1e3 of the last one, below 1e-9.
+pub fn stagnates(residuals: &[f64]) -> bool {
+    let n = residuals.len();
+    let last = residuals.last().copied().unwrap_or(f64::NAN);
+    n >= 3 && last < 1e-9 && residuals[n - 3..].iter().all(|r| *r < 1e3 * last.max(TINY))
 }
 
 #[cfg(test)]
@@ -333,5 +348,31 @@ mod tests {
         // a moderate penalty without chattering does not explain a failure
         let soft = PenaltyRatio { ratio: 10.0, ..r };
         assert!(contact_cause(Some(&soft), &FlipTracker::default()).is_none());
+    }
+
+    #[test]
+    fn a_residual_stalled_at_round_off_names_the_floor_not_more_increments() {
+        let f = Failure::new(FailureKind::MaxIterations, "no convergence")
+            .with_residuals(&[1e-3, 2e-10, 3e-10, 2.5e-10]);
+        let settings = NewtonSettings {
+            tol: 1e-12,
+            ..NewtonSettings::default()
+        };
+        let (cause, remedy) = failure_cause(&f, &settings, 1e-10);
+        assert!(cause.contains("stagnates at 2.5e-10"), "{cause}");
+        assert!(
+            cause.contains("2.5x the round-off floor 1.0e-10"),
+            "{cause}"
+        );
+        assert!(cause.contains("more increments do not lower it"), "{cause}");
+        assert!(
+            remedy.contains("tol = .. }` to ") && remedy.contains("e-9 or more"),
+            "{remedy}"
+        );
+        assert!(!remedy.contains("increments"), "{remedy}");
+        // growth at round-off level is stagnation too (not "diverging")
+        let grew =
+            Failure::new(FailureKind::Diverged, "grew").with_residuals(&[1e-14, 2e-14, 4e-14]);
+        assert!(failure_cause(&grew, &settings, 0.0).0.contains("stagnates"));
     }
 }

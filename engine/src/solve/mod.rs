@@ -28,7 +28,9 @@
 //!   heat coupling; 3D has neither yet);
 //! - [`diagnosis`]: the likely cause and remedy of a failed run;
 //! - [`jumps`]: warnings for slave nodes that moved farther than the
-//!   contact search window in one increment.
+//!   contact search window in one increment;
+//! - [`health`]: warnings after the run (a pair that never closed,
+//!   penetrations large against the element size or the tool's travel).
 
 pub mod assembly;
 pub mod check;
@@ -37,6 +39,7 @@ pub mod contact_assembly;
 pub mod contact_loop;
 pub mod diagnosis;
 pub mod dofs;
+pub mod health;
 pub mod jumps;
 pub mod linalg;
 pub mod loads;
@@ -115,7 +118,10 @@ pub trait Observer<const D: usize = 2> {
     fn converged(&mut self, _view: &IncrementView<'_, D>) -> Result<(), String> {
         Ok(())
     }
-    /// When an increment is cut back (why, new increment size).
+    /// When an increment is cut back: why, in one line (what failed, the
+    /// number of iterations and the first and last residuals to three
+    /// significant digits; the full sequence is in
+    /// [`RunSummary::cutback_log`]), and the new increment size.
     fn cutback(&mut self, _reason: &str, _new_dt: f64) {}
     /// A warning about a converged increment (also kept in
     /// [`RunSummary::warnings`]).
@@ -157,6 +163,13 @@ pub struct IncrementRecord {
     /// Largest penetration `max(0, -g)` over all pairs at convergence
     /// (length).
     pub max_penetration: f64,
+    /// Round-off floor of the relative residual at convergence
+    /// (`4 eps || |K| |x| ||` over the force scale, see
+    /// `newton::convergence`).
+    pub residual_floor: f64,
+    /// Whether the increment converged on its floor (the residual could
+    /// not be computed more accurately than `tol` asks).
+    pub at_floor: bool,
     /// Work dissipated by friction over the increment, per contact pair
     /// (empty without friction).
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -164,6 +177,24 @@ pub struct IncrementRecord {
     /// The heat step of the increment (thermal scenes only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal: Option<crate::thermal::solver::ThermalIncrement>,
+}
+
+/// Record of one failed increment attempt (a cutback) in the run summary.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct CutbackRecord {
+    /// Step name.
+    pub step: String,
+    /// Time of the last converged state the attempt started from.
+    pub from: f64,
+    /// Time the attempt tried to reach.
+    pub to: f64,
+    /// Size of the next attempt.
+    pub new_dt: f64,
+    /// What failed, in words.
+    pub reason: String,
+    /// Relative residual after each iteration of the failed attempt (all
+    /// Newton loops of the attempt).
+    pub residuals: Vec<f64>,
 }
 
 /// Wall time spent per phase, seconds.
@@ -201,6 +232,9 @@ pub struct RunSummary {
     pub newton_iterations: usize,
     /// Total cutbacks.
     pub cutbacks: usize,
+    /// Every cutback: the failed attempt, its reason and its full residual
+    /// sequence (the console shows one line each).
+    pub cutback_log: Vec<CutbackRecord>,
     /// Linear solver used (`cholesky`, or `lu` if any factorization needed
     /// LU because the tangent was not positive definite).
     pub linear_solver: String,
@@ -349,6 +383,13 @@ where
         }
         increment = cp.increment;
     }
+    if from.is_none() {
+        // slave nodes inside a tool at the start: a reversed side?
+        for w in health::start_inside(model) {
+            observer.warning(&w);
+            summary.warnings.push(w);
+        }
+    }
     let mut driver = Driver {
         model,
         newton,
@@ -356,13 +397,27 @@ where
         summary,
         increment,
         thermal,
+        health: health::RunHealth::new(model),
+        attempt_span: (
+            from.map_or_else(
+                || model.steps.first().map_or(0.0, |s| s.t_start),
+                |c| c.resume.time,
+            ),
+            0.0,
+        ),
     };
     let result = stepping::drive_from(&model.steps, &mut driver, from.map(|c| c.resume));
     let Driver {
         newton,
         mut summary,
+        observer,
+        health,
         ..
     } = driver;
+    for w in health.warnings(model) {
+        observer.warning(&w);
+        summary.warnings.push(w);
+    }
     let output = summary.timings.output;
     summary.timings = newton.timings.clone();
     summary.timings.output = output;
@@ -392,9 +447,19 @@ where
             failure,
         }) => {
             let s = &model.steps[step];
-            let (cause, remedy) =
+            // a singular tangent (its zero pivot names the free motion) and a
+            // residual stalled at round-off are not the contact's doing;
+            // otherwise the contact health first
+            let (cause, remedy) = if failure.kind == newton::FailureKind::Singular
+                || diagnosis::stagnates(&failure.residuals)
+            {
+                diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
+            } else {
                 diagnosis::contact_cause(newton.penalty_ratio().as_ref(), &newton.flips)
-                    .unwrap_or_else(|| diagnosis::failure_cause(&failure, &s.newton));
+                    .unwrap_or_else(|| {
+                        diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
+                    })
+            };
             let residuals: Vec<String> = failure
                 .residuals
                 .iter()
@@ -430,6 +495,10 @@ where
     increment: usize,
     /// Heat conduction of a thermo-mechanical scene (staggered).
     thermal: Option<<Const<D> as Dimension<D>>::Heat>,
+    /// Time of the last converged state and time of the last attempt.
+    attempt_span: (f64, f64),
+    /// Contact health over the converged increments (warnings at the end).
+    health: health::RunHealth,
 }
 
 impl<const D: usize> Driver<'_, '_, D>
@@ -456,6 +525,7 @@ where
     Const<D>: Dimension<D>,
 {
     fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+        self.attempt_span.1 = t;
         let settings = self.model.steps[step].newton;
         ContactOf::<D>::attempt(
             &mut self.newton,
@@ -475,6 +545,7 @@ where
         cutbacks: usize,
         converged: Converged,
     ) -> Result<(), String> {
+        self.attempt_span.0 = t;
         let warnings = self.newton.contacts().increment_warnings(
             self.model,
             (self.newton.committed_displacement(), t - dt),
@@ -487,6 +558,7 @@ where
             .map(|_| self.newton.material_points().to_vec());
         self.newton.commit();
         self.increment += 1;
+        self.health.record(self.model, self.newton.contact(), t);
         if let (Some(th), Some(before)) = (self.thermal.as_mut(), before) {
             // staggered: heat on the converged mechanical state, then the
             // thermal strains of the next increment
@@ -520,6 +592,7 @@ where
         let r = self.observer.converged(&view);
         self.summary.timings.output += start.elapsed().as_secs_f64();
         let friction_work = self.friction_work();
+        let (residual_floor, at_floor) = self.newton.residual_floor();
         self.summary.increments.push(IncrementRecord {
             step: self.model.steps[step].name.clone(),
             increment: self.increment,
@@ -531,6 +604,8 @@ where
             active_contacts: converged.active_contacts,
             contact_iterations: converged.contact_iterations,
             max_penetration: converged.max_penetration,
+            residual_floor,
+            at_floor,
             friction_work,
             thermal: self.thermal.as_ref().map(|t| t.last().clone()),
         });
@@ -559,10 +634,45 @@ where
     fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64) {
         self.newton.rollback();
         self.summary.cutbacks += 1;
+        let name = &self.model.steps[step].name;
+        let (from, to) = self.attempt_span;
         let reason = format!(
-            "step `{}`: {} (residuals: {:?}); retrying with dt = {new_dt:.3e}",
-            self.model.steps[step].name, failure.detail, failure.residuals
+            "step `{name}`, t = {} -> {}: {}{}",
+            sig3(from),
+            sig3(to),
+            failure.detail,
+            residual_range(&failure.residuals)
         );
         self.observer.cutback(&reason, new_dt);
+        self.summary.cutback_log.push(CutbackRecord {
+            step: name.clone(),
+            from,
+            to,
+            new_dt,
+            reason: failure.detail.clone(),
+            residuals: failure.residuals.clone(),
+        });
+    }
+}
+
+/// `x` to three significant digits (`1.25e-2`; plain for 0).
+fn sig3(x: f64) -> String {
+    if x == 0.0 {
+        "0".into()
+    } else {
+        format!("{x:.2e}")
+    }
+}
+
+/// ` (N iterations, residual r_first -> r_last)`: the residual history of
+/// a failed attempt in a few characters (the sequence is in the summary).
+fn residual_range(residuals: &[f64]) -> String {
+    match residuals {
+        [] => String::new(),
+        [r] => format!(" (1 iteration, residual {r:.2e})"),
+        [a, .., b] => format!(
+            " ({} iterations, residual {a:.2e} -> {b:.2e})",
+            residuals.len()
+        ),
     }
 }

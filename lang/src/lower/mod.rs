@@ -97,12 +97,14 @@ struct Lowerer<'a> {
     /// containing one are skipped, and anything they would have provided
     /// is silently missing.
     prior: Vec<Span>,
-    /// Whether there were earlier errors at all.
-    prior_errors: bool,
     /// Names of deck `set`s that could not be built (already reported):
     /// references to them are skipped silently.
     skipped_sets: Vec<String>,
     diags: Vec<Diagnostic>,
+    /// Internal errors (something validation guarantees is missing), kept
+    /// apart: they reach the user only when no other error explains them
+    /// ([`Lowerer::missing`]).
+    internal: Vec<Diagnostic>,
     mesh: Mesh,
     /// The global mesh of a `3d` analysis (`mesh` stays empty then).
     mesh3: Mesh<3>,
@@ -135,9 +137,9 @@ pub fn lower(
         deck,
         src,
         prior,
-        prior_errors,
         skipped_sets: Vec::new(),
         diags: Vec::new(),
+        internal: Vec::new(),
         mesh: Mesh::default(),
         mesh3: Mesh::default(),
         solid: deck
@@ -149,7 +151,12 @@ pub fn lower(
         window: analysis_window(deck),
     };
     let model = l.run();
-    let has_errors = prior_errors || l.diags.iter().any(Diagnostic::is_error);
+    let mut has_errors = prior_errors || l.diags.iter().any(Diagnostic::is_error);
+    if !has_errors && !l.internal.is_empty() {
+        // nothing else explains the missing piece: a genuine internal error
+        l.diags.append(&mut l.internal);
+        has_errors = true;
+    }
     (model.filter(|_| !has_errors), l.diags)
 }
 
@@ -162,16 +169,17 @@ impl Lowerer<'_> {
     }
 
     /// Records that something validation guarantees is missing. Only an
-    /// internal error when there were no earlier errors (otherwise the
-    /// earlier error explains it).
+    /// internal error when no other error was found, before lowering or
+    /// during it, in any item, before or after this one (otherwise that
+    /// error explains it: a contact pair dropped for a misspelled gmsh
+    /// group is missing for its `contact_force` history): the decision is
+    /// taken once lowering is over ([`lower`]).
     pub(super) fn missing(&mut self, what: &str, span: Span) {
-        if !self.prior_errors {
-            self.diags.push(Diagnostic::error(
-                format!("internal: {what} is missing after validation"),
-                span,
-                "please report this deck",
-            ));
-        }
+        self.internal.push(Diagnostic::error(
+            format!("internal: {what} is missing after validation"),
+            span,
+            "please report this deck",
+        ));
     }
 
     pub(super) fn tf(&self, f: &Spanned<TimeFn>) -> m::TimeFunction {

@@ -9,6 +9,7 @@ pub mod fenicsx;
 pub mod solid;
 pub mod thermal_contact;
 pub mod thermal_coupling;
+pub mod upsetting;
 
 use crate::case::Quantity;
 use crate::measure::Value;
@@ -21,6 +22,7 @@ pub fn all() -> Vec<VerifyCase> {
     let mut v = thermal_contact::cases();
     v.extend(thermal_coupling::cases());
     v.extend(cattaneo::cases());
+    v.extend(upsetting::cases());
     v.extend(fenicsx::cases());
     v.extend(solid::cases());
     v

@@ -23,7 +23,7 @@
 //! This is the [`LinearSystem`] of the default build (serial, direct).
 
 use super::pattern::SparsePattern;
-use super::{FactorStats, LinearError, LinearSystem};
+use super::{FactorStats, LinearError, LinearSystem, ZeroMode};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
@@ -92,6 +92,8 @@ pub struct LinearSolver {
     symbolic_lu: Option<SymbolicLu<usize>>,
     lu: Option<Box<Lu<usize, f64>>>,
     factor: Factor,
+    /// The zero-energy mode of the last matrix, if it was singular.
+    zero_mode: Option<ZeroMode>,
 }
 
 impl std::fmt::Debug for LinearSolver {
@@ -124,6 +126,7 @@ impl LinearSolver {
             symbolic_lu: None,
             lu: None,
             factor: Factor::None,
+            zero_mode: None,
         }
     }
 
@@ -163,6 +166,7 @@ impl LinearSolver {
     ) -> Result<(), LinearError> {
         let n = pattern.n;
         self.factor = Factor::None;
+        self.zero_mode = None;
         if n == 0 {
             self.factor = Factor::Empty;
             return Ok(());
@@ -236,6 +240,12 @@ impl LinearSolver {
                 self.ldlt_count += 1;
                 return Ok(());
             }
+            // a round-off pivot: a singular matrix (a zero-energy mode: kept
+            // for the caller, who decides; LU still gives the step a body
+            // held by a contact about to close needs), or an indefinite one
+            // that needs pivoting (LU below)
+            let scratch = self.scratch.as_mut().expect("set with the symbolic");
+            self.zero_mode = zero_mode(sym, &self.l_values, pattern, values, scratch);
             self.method = Method::Lu;
         }
         if self.symbolic_lu.is_none() {
@@ -317,6 +327,10 @@ impl LinearSystem for LinearSolver {
         self.factor != Factor::None
     }
 
+    fn zero_mode(&self) -> Option<&ZeroMode> {
+        self.zero_mode.as_ref()
+    }
+
     fn reset_pattern(&mut self) {
         LinearSolver::reset_pattern(self);
     }
@@ -352,6 +366,91 @@ fn numerically_regular(
     smallest * smallest > SINGULAR_PIVOT * max_abs_diagonal(pattern, values)
 }
 
+/// A mode `v` with `||K v|| <= ZERO_MODE * ||diag(K) v||` certifies that a
+/// symmetric matrix is singular (Jacobi-scaled: a stiff penalty beside soft
+/// elements is not mistaken for a zero-energy mode, whose ratio is at
+/// round-off level, ~1e-14).
+pub const ZERO_MODE: f64 = 1e-9;
+
+/// One step of inverse iteration with an `L D L^T` factor that met a
+/// round-off pivot: `x = (L D L^T)^-1 b` for a fixed, deterministic `b` is
+/// dominated by the mode of the tiny pivot; it is a zero-energy mode of `K`
+/// when `||K x|| <= ZERO_MODE ||diag(K) x||` (`None`: no such mode, the
+/// matrix needs pivoting instead).
+fn zero_mode(
+    sym: &SymbolicCholesky<usize>,
+    l_values: &[f64],
+    pattern: &SparsePattern,
+    values: &[f64],
+    scratch: &mut MemBuffer,
+) -> Option<ZeroMode> {
+    let n = pattern.n;
+    // refactorized with round-off (or exactly zero) pivots replaced by a
+    // tiny positive one (faer's dynamic regularization, the signs of the
+    // other pivots kept): the solve then amplifies their modes instead of
+    // producing infinities
+    let floor = SINGULAR_PIVOT * max_abs_diagonal(pattern, values);
+    let signs: Vec<i8> = pivot_slots(sym)
+        .into_iter()
+        .map(|k| if l_values[k] < -floor { -1 } else { 1 })
+        .collect();
+    let symbolic =
+        SymbolicSparseColMatRef::new_checked(n, n, &pattern.col_ptr, None, &pattern.row_idx);
+    let mat = SparseColMatRef::new(symbolic, &values[..pattern.nnz()]);
+    let mut regular = vec![0.0; l_values.len()];
+    sym.factorize_numeric_ldlt(
+        &mut regular,
+        mat,
+        Side::Lower,
+        LdltRegularization {
+            dynamic_regularization_signs: Some(&signs),
+            dynamic_regularization_delta: floor,
+            dynamic_regularization_epsilon: floor,
+        },
+        Par::Seq,
+        MemStack::new(scratch),
+        Default::default(),
+    )
+    .ok()?;
+    // fixed pseudo-random right-hand side (Weyl sequence): deterministic
+    let mut x: Vec<f64> = (0..n)
+        .map(|i| ((i as f64 * 0.618_033_988_749_895).fract() - 0.5) + 1e-3)
+        .collect();
+    let b = MatMut::from_column_major_slice_mut(&mut x, n, 1);
+    LdltRef::new(sym, &regular).solve_in_place_with_conj(
+        Conj::No,
+        b,
+        Par::Seq,
+        MemStack::new(scratch),
+    );
+    let big = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    if !big.is_finite() || big == 0.0 {
+        return None;
+    }
+    for v in &mut x {
+        *v /= big;
+    }
+    let mut kx = vec![0.0; n];
+    let mut dx2 = 0.0;
+    for (j, xj) in x.iter().enumerate() {
+        let range = pattern.col_ptr[j]..pattern.col_ptr[j + 1];
+        for (&i, k) in pattern.row_idx[range.clone()].iter().zip(&values[range]) {
+            kx[i] += k * xj;
+            if i == j {
+                dx2 += (k * xj).powi(2);
+            }
+        }
+    }
+    let kx_norm = kx.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let ratio = kx_norm / dx2.sqrt().max(f64::MIN_POSITIVE);
+    if ratio.is_nan() || ratio > ZERO_MODE {
+        return None;
+    }
+    let dof = x.iter().position(|v| v.abs() >= 0.99)?;
+    let rows = (0..n).filter(|&i| x[i].abs() >= 0.1).collect();
+    Some(ZeroMode { dof, rows, ratio })
+}
+
 /// Largest |K_jj| of a matrix given by its pattern and values.
 fn max_abs_diagonal(pattern: &SparsePattern, values: &[f64]) -> f64 {
     let mut m = 0.0f64;
@@ -367,25 +466,30 @@ fn max_abs_diagonal(pattern: &SparsePattern, values: &[f64]) -> f64 {
 }
 
 /// Number of negative entries of D and the smallest |D_jj| in an L D L^T
-/// factor: D sits on the diagonal of the stored L (unit lower triangular) —
-/// first entry of each simplicial column, or the diagonal of each
-/// supernode's dense block.
+/// factor (see [`pivot_slots`]).
 fn pivot_stats(sym: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, f64) {
-    use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
     let mut count = 0;
     let mut smallest = f64::INFINITY;
-    let mut visit = |d: f64| {
+    for k in pivot_slots(sym) {
+        let d = values[k];
         if d < 0.0 {
             count += 1;
         }
         smallest = smallest.min(d.abs());
-    };
+    }
+    (count, smallest)
+}
+
+/// Where D sits in the stored values of an L D L^T factor: on the
+/// diagonal of the stored L (unit lower triangular) — first entry of each
+/// simplicial column, or the diagonal of each supernode's dense block.
+fn pivot_slots(sym: &SymbolicCholesky<usize>) -> Vec<usize> {
+    use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+    let mut out = Vec::with_capacity(sym.nrows());
     match sym.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let col_ptr = s.col_ptr();
-            for j in 0..s.nrows() {
-                visit(values[col_ptr[j]]);
-            }
+            out.extend((0..s.nrows()).map(|j| col_ptr[j]));
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
             for k in 0..s.n_supernodes() {
@@ -394,13 +498,11 @@ fn pivot_stats(sym: &SymbolicCholesky<usize>, values: &[f64]) -> (usize, f64) {
                 let ncols = end - begin;
                 let nrows = ncols + (s.col_ptr_for_row_idx()[k + 1] - s.col_ptr_for_row_idx()[k]);
                 let start = s.col_ptr_for_val()[k];
-                for j in 0..ncols {
-                    visit(values[start + j * nrows + j]);
-                }
+                out.extend((0..ncols).map(|j| start + j * nrows + j));
             }
         }
     }
-    (count, smallest)
+    out
 }
 
 #[cfg(test)]
@@ -450,6 +552,10 @@ mod tests {
         let r = s.factorize(&p, &v);
         assert_eq!(s.cholesky_count, 0, "{r:?}");
         assert_ne!(s.method(), Method::Cholesky);
+        // the zero-energy mode (1, 1, 1) is found: every dof, the first named
+        let m = s.zero_mode.clone().expect("a zero-energy mode");
+        assert_eq!((m.dof, m.rows), (0, vec![0, 1, 2]));
+        assert!(m.ratio < 1e-10, "{}", m.ratio);
     }
 
     #[test]
@@ -499,16 +605,35 @@ mod tests {
     }
 
     #[test]
-    fn singular_matrix_is_reported() {
+    fn singular_matrix_is_reported_with_its_zero_energy_mode() {
+        // an exactly zero pivot: mode (1, -1, 0)
         let a = [[1.0, 1.0, 0.0], [1.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
         let (p, v) = csc(&a);
         let mut s = LinearSolver::new();
-        // faer's LU accepts the exactly zero pivot: the solution is then
-        // non-finite, which the Newton loop reports as a singular system
+        // LU still factorizes (an exact zero pivot: a non-finite solution,
+        // which the Newton loop reports), the mode is kept for the caller
         s.factorize(&p, &v).unwrap();
         assert_eq!(s.method(), Method::Lu);
-        let mut x = [1.0, 0.0, 1.0];
+        let m = s.zero_mode.clone().expect("a zero-energy mode");
+        assert_eq!((m.dof, m.rows.clone()), (0, vec![0, 1]));
+        // a regular matrix clears it
+        let spd = [[4.0, 1.0, 0.0], [1.0, 4.0, 0.0], [0.0, 0.0, 3.0]];
+        let (p2, v2) = csc(&spd);
+        s.prefer_cholesky();
+        s.factorize(&p2, &v2).unwrap();
+        assert!(s.zero_mode.is_none());
+        // a regular but badly scaled matrix (pivot 1e-14 of the largest
+        // diagonal: refused by Cholesky and L D L^T) is not mistaken for a
+        // singular one: its "mode" e_3 has ||K v|| = ||diag(K) v||
+        let k = 1e12;
+        let a = [[k, 0.0, 0.0], [0.0, k, 1.0], [0.0, 1.0, 1e-2]];
+        let (p, v) = csc(&a);
+        let mut s = LinearSolver::new();
+        s.factorize(&p, &v).unwrap();
+        assert!(s.zero_mode.is_none());
+        let b = [1.0, 1.0, 1.0];
+        let mut x = b;
         s.solve(&mut x).unwrap();
-        assert!(x.iter().any(|v| !v.is_finite()), "{x:?}");
+        assert!(residual(&a, &x, &b) < 1e-3, "{x:?}");
     }
 }

@@ -39,12 +39,38 @@ pub enum LinearError {
     Singular(String),
     /// `solve` without a factorization of the current pattern.
     NotFactorized,
+    /// The (symmetric) matrix is singular: `L D L^T` met a pivot at
+    /// round-off level, and one step of inverse iteration with that factor
+    /// gives a vector `v` with `||K v|| <= ZERO_MODE * ||diag(K) v||`, a
+    /// zero-energy mode (a rigid-body motion nothing holds); raised by the
+    /// Newton loop from [`LinearSystem::zero_mode`].
+    ZeroPivot(ZeroMode),
+}
+
+/// A zero-energy mode of a singular matrix (see [`LinearError::ZeroPivot`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ZeroMode {
+    /// The row (free dof) with the largest component of the mode (the
+    /// first within 1 % of it).
+    pub dof: usize,
+    /// Rows where the mode is at least a tenth of its largest component.
+    pub rows: Vec<usize>,
+    /// `||K v|| / ||diag(K) v||`.
+    pub ratio: f64,
 }
 
 impl std::fmt::Display for LinearError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             LinearError::Symbolic(s) | LinearError::Singular(s) => f.write_str(s),
+            LinearError::ZeroPivot(m) => write!(
+                f,
+                "the stiffness matrix is singular: a zero pivot, free dof {} (a zero-energy mode \
+                 over {} dofs, ||K v|| / ||diag(K) v|| = {:.1e})",
+                m.dof,
+                m.rows.len(),
+                m.ratio
+            ),
             LinearError::NotFactorized => f.write_str(
                 "internal: a linear solve was requested without a factorization of the current \
                  matrix pattern",
@@ -102,6 +128,13 @@ pub trait LinearSystem {
     /// The pattern changed: forget the symbolic analyses and the
     /// factorization.
     fn reset_pattern(&mut self);
+    /// The zero-energy mode of the last factorized matrix when it was
+    /// singular (found by [`direct::LinearSolver`] from a round-off pivot;
+    /// the factorization may still have succeeded by pivoting, and the
+    /// caller decides). `None`: regular, or not known.
+    fn zero_mode(&self) -> Option<&ZeroMode> {
+        None
+    }
     /// Counters.
     fn stats(&self) -> FactorStats;
 }

@@ -11,6 +11,13 @@
 //! not with Lagrange constraints: the multipliers are already updated), the
 //! step is halved up to [`LINE_SEARCH_HALVINGS`] times until the residual
 //! is below the one at the start of the step; the best trial is kept.
+//!
+//! Before both: a full step that inverts an element (finite strain, a
+//! trial iterate overshooting under a punch) is halved along the Newton
+//! direction until every element is valid (`Newton::backtrack_to_valid`,
+//! at most `VALID_HALVINGS` times), and the search above continues from
+//! there (invalid trials are never kept). Only when no valid step exists
+//! does the increment fail and get cut back.
 
 use super::convergence::Eval;
 use super::failure::Failure;
@@ -76,6 +83,8 @@ mod tests {
         let f = |s: f64| Eval {
             abs: (1.0 - 2.0 * s).abs() * 4.0 + 1.0,
             rel: 0.0,
+            floor: 0.0,
+            scale: 1.0,
         };
         let mut trials = Vec::new();
         let b = backtrack(2.0, f(1.0), |s| {

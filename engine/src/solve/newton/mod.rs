@@ -37,7 +37,7 @@ use super::contact_loop::NewtonLoop;
 use super::dofs::{Dof, DofMap};
 use super::linalg::direct::LinearSolver;
 use super::linalg::saddle::SaddleSolver;
-use super::linalg::{FactorStats, LinearSystem, SaddlePointSystem, Scatter};
+use super::linalg::{FactorStats, LinearError, LinearSystem, SaddlePointSystem, Scatter, ZeroMode};
 use super::loads::external_forces;
 use super::scene::ContactScene;
 use super::{IterationInfo, Observer, Timings};
@@ -47,6 +47,10 @@ use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 use convergence::{norm, Criteria, DivergenceMonitor, Eval, TINY};
 use nalgebra::Const;
 use std::time::Instant;
+
+/// Halvings of a Newton step that inverts an element before the increment
+/// is given up (and cut back): down to 1/1024 of the step.
+pub const VALID_HALVINGS: i32 = 10;
 
 /// The contact scene of dimension `D` ([`Dimension::Contact`]).
 pub type ContactOf<const D: usize> = <Const<D> as Dimension<D>>::Contact;
@@ -96,6 +100,19 @@ where
     /// Contact status flips in the failed attempts since the last
     /// converged increment (diagnosis).
     pub flips: super::diagnosis::FlipTracker,
+    /// Round-off floor of the residual at the last tangent evaluation
+    /// (absolute, see [`convergence`]).
+    floor: f64,
+    /// The last evaluation of the residual.
+    last_eval: Option<Eval>,
+    /// Free dofs of contact nodes (their gaps are computed from the
+    /// coordinates: see [`Newton::round_off_floor`]).
+    contact_dof: Vec<bool>,
+    /// The first zero-energy mode of a tangent met in the current Newton
+    /// loop, and whether the last factorized tangent had one.
+    zero_mode: (Option<ZeroMode>, bool),
+    /// Diagonal of the mesh's bounding box (round-off floor).
+    model_size: f64,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -164,7 +181,38 @@ where
             timings: Timings::default(),
             iterations: 0,
             flips: Default::default(),
+            floor: 0.0,
+            last_eval: None,
+            contact_dof: Vec::new(),
+            zero_mode: (None, false),
+            model_size: 0.0,
         };
+        let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
+        for p in &model.mesh.nodes {
+            for c in 0..D {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        let size = (0..D).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+        newton.model_size = if size.is_finite() { size } else { 0.0 };
+        let mut contact_node = vec![false; nn];
+        for c in &model.contacts {
+            let master = match &c.master {
+                crate::model::ContactMaster::Surface { nodes, .. } => &nodes[..],
+                crate::model::ContactMaster::Tool(_) => &[],
+            };
+            for &n in c.nodes.iter().chain(master) {
+                contact_node[n] = true;
+            }
+        }
+        let nc = newton.dofs.components();
+        newton.contact_dof = newton
+            .dofs
+            .free
+            .iter()
+            .map(|&g| contact_node[g / nc])
+            .collect();
         // element check in the reference configuration (inverted, off-axis cells)
         let mut f = std::mem::take(&mut newton.f_int);
         let r = newton
@@ -254,6 +302,45 @@ where
         self.contacts.impact_fraction(self.model)
     }
 
+    /// The round-off floor of the relative residual at the last evaluation
+    /// (`FLOOR_FACTOR eps || |K| |x| ||` over the force scale), and whether
+    /// the residual was at it.
+    pub fn residual_floor(&self) -> (f64, bool) {
+        self.last_eval
+            .map_or((0.0, false), |e| (e.rel_floor(), e.at_floor()))
+    }
+
+    /// `FLOOR_FACTOR eps || |K| |x| ||` with the current tangent values,
+    /// `x` the coordinates `X + u` at contact nodes (a gap is a difference
+    /// of coordinates) and the displacements `u` elsewhere (an element
+    /// force is a function of the displacement gradient). A displacement
+    /// counts at most as the committed one plus the size of the model: an
+    /// iterate running away along a zero-energy mode (a block pulled above
+    /// its friction limit) must not raise the floor to its own size.
+    fn round_off_floor(&self) -> f64 {
+        let nc = self.dofs.components();
+        let u = self.u.as_flattened();
+        let committed = self.committed.as_flattened();
+        let nodes = &self.model.mesh.nodes;
+        let p = &self.scatter.pattern;
+        let mut y = vec![0.0; p.n];
+        for (j, &g) in self.dofs.free.iter().enumerate() {
+            let d = u[g].abs().min(committed[g].abs() + self.model_size);
+            let x = if self.contact_dof[j] {
+                nodes[g / nc][g % nc].abs() + d
+            } else {
+                d
+            };
+            if x == 0.0 {
+                continue;
+            }
+            for k in p.col_ptr[j]..p.col_ptr[j + 1] {
+                y[p.row_idx[k]] += self.values[k].abs() * x;
+            }
+        }
+        convergence::FLOOR_FACTOR * f64::EPSILON * norm(&y)
+    }
+
     /// Largest penetration over all pairs at the last evaluation.
     pub fn max_penetration(&self) -> f64 {
         self.contacts.max_penetration()
@@ -325,10 +412,17 @@ where
             .max(fint2.sqrt())
             .max(self.assembler.thermal_scale())
             .max(TINY);
-        Ok(Eval {
+        if with_tangent {
+            self.floor = self.round_off_floor();
+        }
+        let ev = Eval {
             abs,
             rel: abs / denom,
-        })
+            floor: self.floor,
+            scale: denom,
+        };
+        self.last_eval = Some(ev);
+        Ok(ev)
     }
 
     /// Sets the free dofs to `base + s * rhs` and, in the first iteration,
@@ -358,11 +452,17 @@ where
             let r = self.linear.factorize(&self.scatter.pattern, &self.values);
             let mid = Instant::now();
             self.timings.factorization += (mid - start).as_secs_f64();
-            r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
+            r.map_err(|e| self.linear_failure(e))?;
+            let mode = self.linear.zero_mode().cloned();
+            self.zero_mode.1 = mode.is_some();
+            if self.zero_mode.0.is_none() {
+                self.zero_mode.0 = mode;
+            }
             let r = self.linear.solve(&mut self.rhs);
             self.timings.solve += mid.elapsed().as_secs_f64();
             return r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()));
         };
+        self.zero_mode.1 = false;
         let start = Instant::now();
         let r = saddle.factorize(&self.scatter.pattern, &self.values, &constraints.rows);
         let mid = Instant::now();
@@ -384,6 +484,90 @@ where
         self.contacts.apply_multiplier_corrections(&self.dlambda);
         self.timings.solve += mid.elapsed().as_secs_f64();
         Ok(())
+    }
+
+    /// Halves the Newton step (from `base` along `rhs`) until every element
+    /// is valid again, at most [`VALID_HALVINGS`] times: the step length
+    /// reached and the evaluation there (tangent included), or `failure`
+    /// (the invalid element of the full step) when even the smallest step
+    /// inverts an element.
+    fn backtrack_to_valid(
+        &mut self,
+        t: f64,
+        first: bool,
+        failure: Failure,
+    ) -> Result<(f64, Eval), Failure> {
+        for h in 1..=VALID_HALVINGS {
+            let s = 0.5f64.powi(h);
+            self.set_state(s, first);
+            match self.evaluate(t, true) {
+                Ok(ev) => return Ok((s, ev)),
+                Err(f) if f.kind == FailureKind::Element => continue,
+                Err(f) => return Err(f),
+            }
+        }
+        Err(Failure::new(
+            failure.kind,
+            format!(
+                "{} (also at 1/{} of the Newton step)",
+                failure.detail,
+                1u32 << VALID_HALVINGS
+            ),
+        ))
+    }
+
+    /// The failure of a factorization, in words: a zero-energy mode is named
+    /// by its node, body and component, and the direction of the motion.
+    fn linear_failure(&self, e: LinearError) -> Failure {
+        let LinearError::ZeroPivot(mode) = &e else {
+            return Failure::new(FailureKind::Singular, e.to_string());
+        };
+        let nc = self.dofs.components();
+        let model = self.model;
+        let body_of = |node: usize| {
+            model
+                .bodies
+                .iter()
+                .find(|b| b.nodes.contains(&node))
+                .map_or("?", |b| b.name.as_str())
+        };
+        let g = self.dofs.free[mode.dof];
+        let (node, c) = (g / nc, g % nc);
+        let p = model.mesh.nodes[node];
+        let mut nodes: Vec<usize> = mode.rows.iter().map(|&i| self.dofs.free[i] / nc).collect();
+        nodes.dedup();
+        let mut bodies: Vec<&str> = nodes.iter().map(|&n| body_of(n)).collect();
+        bodies.sort_unstable();
+        bodies.dedup();
+        let mut comps = [0usize; 2];
+        for &i in &mode.rows {
+            comps[self.dofs.free[i] % nc] += 1;
+        }
+        let along = match comps {
+            [_, 0] => "along x",
+            [0, _] => "along y",
+            _ => "in x and y (a rotation, or a mechanism)",
+        };
+        Failure::new(
+            FailureKind::Singular,
+            format!(
+                "the stiffness matrix is singular: a zero pivot at node {node} ({:.4}, {:.4}) of \
+                 body `{}`, dof {}; its zero-energy mode moves {} node(s) of {} {along} \
+                 (||K v|| / ||diag(K) v|| = {:.1e}): a rigid-body motion that no `fix` / \
+                 `displace` condition and no closed contact holds",
+                p[0],
+                p[1],
+                body_of(node),
+                ["ux", "uy", "uz"][c.min(2)],
+                nodes.len(),
+                bodies
+                    .iter()
+                    .map(|b| format!("`{b}`"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                mode.ratio
+            ),
+        )
     }
 
     /// Next correction `(du, dlambda)` for the current residual estimated
@@ -440,7 +624,35 @@ where
 {
     /// One Newton loop at time `t` with the Lagrange active sets and the
     /// multipliers `lambda*` of `update = converged` pairs fixed.
+    ///
+    /// A singular tangent (a zero-energy mode, [`LinearSystem::zero_mode`])
+    /// is still solved (LU: a body held only by a contact about to close
+    /// falls onto it), but the loop never converges on one (the motion
+    /// along the mode would be arbitrary), and a loop that fails after
+    /// meeting one fails as singular, naming the mode's node and dof (the
+    /// other symptoms, residuals of 1e-14 that "grow", follow from it).
     pub fn newton_loop(
+        &mut self,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer<D>,
+    ) -> Result<Converged, Failure> {
+        self.zero_mode = (None, false);
+        let result = self.newton_iterations(settings, t, step, increment, observer);
+        match (result, self.zero_mode.0.clone()) {
+            (Err(f), Some(mode)) if f.kind != FailureKind::Singular => {
+                let mut singular = self.linear_failure(LinearError::ZeroPivot(mode));
+                singular.detail = format!("{}; then: {}", singular.detail, f.detail);
+                Err(singular.with_residuals(&f.residuals))
+            }
+            (r, _) => r,
+        }
+    }
+
+    /// The iterations of [`Newton::newton_loop`].
+    fn newton_iterations(
         &mut self,
         settings: &NewtonSettings,
         t: f64,
@@ -528,13 +740,23 @@ where
                     *b = u[g];
                 }
             }
-            // 4. update, residual at the full step, line search
+            // 4. update, residual at the full step, line search; a full step
+            // that inverts an element is backtracked along the Newton
+            // direction until every element is valid (before any cutback)
             self.set_state(1.0, first);
-            let mut ev = self
-                .evaluate(t, true)
-                .map_err(|f| f.with_residuals(&residuals))?;
-            tangent_valid = true;
             let mut s = 1.0;
+            let mut ev = match self.evaluate(t, true) {
+                Ok(ev) => ev,
+                Err(f) if f.kind == FailureKind::Element && settings.line_search => {
+                    let (valid, ev) = self
+                        .backtrack_to_valid(t, first, f)
+                        .map_err(|f| f.with_residuals(&residuals))?;
+                    s = valid;
+                    ev
+                }
+                Err(f) => return Err(f.with_residuals(&residuals)),
+            };
+            tangent_valid = true;
             let energy_ok =
                 line_search::energy_decreases(potential, &self.rhs, &self.rhs0, &self.r_free);
             if settings.line_search
@@ -545,19 +767,28 @@ where
                 && ref_norm > 0.0
                 && ev.abs.is_finite()
             {
+                let s0 = s;
                 let found = line_search::backtrack(ref_norm, ev, |trial| {
-                    self.set_state(trial, first);
-                    self.evaluate(t, false)
-                        .map_err(|f| f.with_residuals(&residuals))
+                    self.set_state(s0 * trial, first);
+                    match self.evaluate(t, false) {
+                        // an invalid trial is never kept: the search goes on
+                        Err(f) if f.kind == FailureKind::Element => Ok(Eval {
+                            abs: f64::INFINITY,
+                            rel: f64::INFINITY,
+                            floor: 0.0,
+                            scale: 1.0,
+                        }),
+                        r => r.map_err(|f| f.with_residuals(&residuals)),
+                    }
                 })?;
-                s = found.s;
+                s = s0 * found.s;
                 ev = found.eval;
-                if found.last_trial != s {
+                if found.last_trial != found.s {
                     self.set_state(s, first);
                     ev = self
-                        .evaluate(t, s == 1.0)
+                        .evaluate(t, found.s == 1.0)
                         .map_err(|f| f.with_residuals(&residuals))?;
-                    tangent_valid = s == 1.0;
+                    tangent_valid = found.s == 1.0;
                 } else {
                     tangent_valid = false;
                 }
@@ -572,7 +803,11 @@ where
             let mut converged = false;
             let gap_ok = criteria.gaps_small(norm(&self.contacts.constraints().gap), u_norm);
             if criteria.residual_small(ev) && gap_ok {
-                if criteria.correction_small(rel_du) {
+                // at the round-off floor the next correction is the response
+                // to round-off: nothing more accurate exists
+                if criteria.correction_small(rel_du)
+                    || (ev.at_floor() && !saddle_used && rel_du <= convergence::FLOOR_SETTLED)
+                {
                     converged = true;
                 } else if let Some(next) = self.next_correction_norm(saddle_used) {
                     // next correction estimated with the factorization at hand
@@ -605,6 +840,14 @@ where
                 converged = false;
                 tangent_valid = false;
             }
+            if converged && self.zero_mode.1 {
+                // converged with a singular tangent: the motion along its
+                // zero-energy mode is arbitrary
+                let mode = self.zero_mode.0.clone().expect("recorded with the flag");
+                return Err(self
+                    .linear_failure(LinearError::ZeroPivot(mode))
+                    .with_residuals(&residuals));
+            }
             if converged {
                 return Ok(Converged {
                     iterations: k,
@@ -615,7 +858,7 @@ where
                 });
             }
             // a multiplier update changes the problem: no divergence test
-            if divergence.diverges(&residuals, updated) {
+            if divergence.diverges(&residuals, updated, ev.rel_floor()) {
                 return Err(Failure::new(
                     FailureKind::Diverged,
                     format!(

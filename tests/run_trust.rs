@@ -1,0 +1,379 @@
+//! Trust at run time (issue 14): decks that made `ctc run` panic, hang, or
+//! say the wrong thing, each run through the CLI binary with a time limit
+//! (`tests/decks/*.ctc`). Every run must end, with a clear message and the
+//! right exit code.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+/// What a finished `ctc` process printed.
+struct Outcome {
+    success: bool,
+    stdout: String,
+    stderr: String,
+}
+
+fn deck(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/decks")
+        .join(name)
+}
+
+/// Runs `ctc args..`, killing it (and failing the test) after `limit`.
+fn ctc(args: &[&std::ffi::OsStr], limit: Duration) -> Outcome {
+    let out_dir = tempfile::tempdir().unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_ctc"))
+        .args(args)
+        .current_dir(out_dir.path())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("ctc starts");
+    let start = Instant::now();
+    loop {
+        if let Some(_status) = child.try_wait().unwrap() {
+            let out = child.wait_with_output().unwrap();
+            return Outcome {
+                success: out.status.success(),
+                stdout: String::from_utf8_lossy(&out.stdout).into_owned(),
+                stderr: String::from_utf8_lossy(&out.stderr).into_owned(),
+            };
+        }
+        if start.elapsed() > limit {
+            child.kill().ok();
+            child.wait().ok();
+            panic!("ctc {args:?} did not end within {limit:?}");
+        }
+        std::thread::sleep(Duration::from_millis(50));
+    }
+}
+
+/// `ctc run DECK -o DIR`, limited to `limit`.
+fn run(name: &str, dir: &Path, extra: &[&str], limit: Duration) -> Outcome {
+    let d = deck(name);
+    let mut args: Vec<&std::ffi::OsStr> = vec!["run".as_ref(), d.as_os_str(), "-o".as_ref()];
+    args.push(dir.as_os_str());
+    args.extend(extra.iter().map(std::ffi::OsStr::new));
+    ctc(&args, limit)
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    let text = std::fs::read_to_string(dir.join("summary.json")).expect("summary.json");
+    serde_json::from_str(&text).expect("summary.json is JSON")
+}
+
+/// Item 2: a thermal run failing before its first converged increment
+/// wrote summary.json and then spun in the plot of the empty history.
+#[test]
+fn thermal_run_failing_before_its_first_increment_ends() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "thermal_fails_first_increment.ctc",
+        dir.path(),
+        &[],
+        Duration::from_secs(60),
+    );
+    assert!(!o.success, "{}", o.stdout);
+    assert!(
+        o.stderr.contains("the analysis stopped before the end"),
+        "{}",
+        o.stderr
+    );
+    let s = summary(dir.path());
+    assert_eq!(s["completed"], false);
+    assert_eq!(s["increments"].as_array().map(Vec::len), Some(0));
+    assert!(!dir.path().join("temperature.svg").exists());
+    assert!(!dir.path().join("force_stroke.svg").exists());
+}
+
+/// Last value of column `col` of `history.csv` in `dir`.
+fn last_history(dir: &Path, col: &str) -> f64 {
+    let text = std::fs::read_to_string(dir.join("history.csv")).expect("history.csv");
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let i = header
+        .iter()
+        .position(|h| h.trim_matches('"') == col)
+        .unwrap_or_else(|| panic!("no column {col} in {header:?}"));
+    let last = lines.rfind(|l| !l.trim().is_empty()).unwrap();
+    last.split(',').nth(i).unwrap().parse().unwrap()
+}
+
+/// Item 4: a body that is only the master of a contact pair, held in y by
+/// that contact alone, was refused as free to translate.
+#[test]
+fn master_only_body_is_supported_through_its_contact_pair() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "master_only_supported.ctc",
+        dir.path(),
+        &["-q"],
+        Duration::from_secs(120),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    // the reaction under the base balances the pressure 10 on a width of 1
+    let r = last_history(dir.path(), "reaction(base.bottom)_y");
+    assert!((r - 10.0).abs() < 1e-6, "reaction {r}");
+}
+
+/// Item 4 (the other side): bodies linked only to each other by contact,
+/// neither held nor touching a tool, are reported, both of them, by `ctc
+/// check` (item 9: the rigid-body check runs in `ctc check` too).
+#[test]
+fn contact_group_without_support_is_reported_by_check_and_run() {
+    let d = deck("unsupported_contact_group.ctc");
+    let o = ctc(&["check".as_ref(), d.as_os_str()], Duration::from_secs(60));
+    assert!(!o.success, "{}", o.stdout);
+    for body in ["`base`", "`top`"] {
+        assert!(
+            o.stderr
+                .contains(&format!("body {body} is free to translate along y")),
+            "{}",
+            o.stderr
+        );
+    }
+    assert!(
+        o.stderr
+            .contains("link it only to bodies that are not held either"),
+        "{}",
+        o.stderr
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "unsupported_contact_group.ctc",
+        dir.path(),
+        &["-q"],
+        Duration::from_secs(60),
+    );
+    assert!(!o.success);
+    assert!(
+        o.stderr.contains("free to translate along y"),
+        "{}",
+        o.stderr
+    );
+}
+
+/// Item 9: a singular tangent with contact present is found by its zero
+/// pivot, named by node, body and dof, with the direction of the free
+/// motion; the diagnosis does not blame the penalty.
+#[test]
+fn singular_tangent_with_contact_names_the_zero_pivot() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "singular_with_contact.ctc",
+        dir.path(),
+        &["-q"],
+        Duration::from_secs(120),
+    );
+    assert!(!o.success, "{}", o.stdout);
+    let e = &o.stderr;
+    assert!(e.contains("a zero pivot at node"), "{e}");
+    assert!(e.contains("of body `top`, dof ux"), "{e}");
+    assert!(e.contains("node(s) of `top` along x"), "{e}");
+    assert!(!e.contains("penalty too high"), "{e}");
+    assert!(
+        e.contains("likely cause: the stiffness matrix is singular"),
+        "{e}"
+    );
+}
+
+/// Item 9: the rigid-body check of `ctc check` counts what frictionless
+/// contact with a tool can hold (its normals): a block on a flat floor with
+/// nothing holding it in x is reported before any solve.
+#[test]
+fn check_reports_a_body_sliding_freely_on_a_frictionless_tool() {
+    let d = deck("sliding_on_frictionless_floor.ctc");
+    let o = ctc(&["check".as_ref(), d.as_os_str()], Duration::from_secs(60));
+    assert!(!o.success, "{}", o.stdout);
+    assert!(
+        o.stderr
+            .contains("body `block` is free to translate along x even with every node"),
+        "{}",
+        o.stderr
+    );
+}
+
+/// Item 12: a pair that never closes and a penetration of most of the
+/// tool's travel (E and the penalty in mixed units) are warned about after
+/// the run, on the console and in summary.json.
+#[test]
+fn silent_contact_problems_are_warned_about_after_the_run() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "silent_contact.ctc",
+        dir.path(),
+        &[],
+        Duration::from_secs(120),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    let s = summary(dir.path());
+    let warnings: Vec<String> = s["warnings"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|w| w.as_str().unwrap().to_string())
+        .collect();
+    assert_eq!(warnings.len(), 2, "{warnings:?}");
+    assert!(
+        warnings[0].starts_with("contact pair `block.top -> punch`: a penetration of")
+            && warnings[0].contains("of the tool's travel 1.000e-1")
+            && warnings[0].contains("same units"),
+        "{warnings:?}"
+    );
+    assert!(
+        warnings[1].starts_with("contact pair `block.top -> lid` never closed"),
+        "{warnings:?}"
+    );
+    for w in &warnings {
+        assert!(o.stdout.contains(&format!("warning: {w}")), "{}", o.stdout);
+    }
+}
+
+/// Item 10: slave nodes that start inside a tool are reported before any
+/// solve, with the hint that the tool's side may be reversed, and
+/// `--explain` says which side of each tool is free.
+#[test]
+fn slave_nodes_starting_inside_a_reversed_tool_are_reported() {
+    let d = deck("reversed_polyline.ctc");
+    let o = ctc(
+        &["check".as_ref(), "--explain".as_ref(), d.as_os_str()],
+        Duration::from_secs(60),
+    );
+    assert!(o.success, "{}", o.stderr);
+    assert!(
+        o.stderr.contains(
+            "warning: contact pair `block.bottom -> floor`: 5 of 5 slave nodes start inside tool \
+             `floor` (deepest 1.000e-2"
+        ) && o.stderr.contains("is the tool's side reversed?"),
+        "{}",
+        o.stderr
+    );
+    assert!(
+        o.stdout.contains(
+            "free side (where bodies may be): the free side of a polyline is on the left of its walk"
+        ),
+        "{}",
+        o.stdout
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "reversed_polyline.ctc",
+        dir.path(),
+        &[],
+        Duration::from_secs(120),
+    );
+    let s = summary(dir.path());
+    assert!(
+        s["warnings"][0]
+            .as_str()
+            .unwrap()
+            .contains("is the tool's side reversed?"),
+        "{}{}",
+        o.stdout,
+        o.stderr
+    );
+}
+
+/// Item 6: a stiff penalty (k = 1e10 against a plane, E = 2.1e5) puts the
+/// round-off floor of the residual above `tol = 1e-12`: the run used to
+/// stall there and stop at t = 0. It converges on the floor, reports it,
+/// and the contact force balances the reaction.
+#[test]
+fn stiff_penalty_converges_on_the_round_off_floor_and_reports_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "stiff_penalty_floor.ctc",
+        dir.path(),
+        &["-q"],
+        Duration::from_secs(120),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    let s = summary(dir.path());
+    assert_eq!(s["cutbacks"], 0);
+    let last = s["increments"].as_array().unwrap().last().unwrap().clone();
+    let floor = last["residual_floor"].as_f64().unwrap();
+    // 4 eps k |x| over the contact force: ~1e-9, far above tol = 1e-12
+    assert!(floor > 1e-11 && floor < 1e-7, "{floor}");
+    assert_eq!(last["at_floor"], true);
+    let residual = last["residuals"]
+        .as_array()
+        .unwrap()
+        .last()
+        .unwrap()
+        .as_f64()
+        .unwrap();
+    assert!(residual <= floor && residual > 1e-12, "{residual} {floor}");
+    let reaction = last_history(dir.path(), "reaction(block.bottom)_y");
+    let contact = last_history(dir.path(), "contact_force(block.top -> lid)_y");
+    assert!(reaction > 1e3, "{reaction}");
+    assert!(
+        (reaction + contact).abs() < 1e-8 * reaction,
+        "{reaction} {contact}"
+    );
+}
+
+/// Item 7: trial iterates that invert elements under a punch are
+/// backtracked along the Newton direction instead of cutting the increment
+/// back. Measured on this deck: 58 Newton iterations and 2 cutbacks
+/// before, 29 and none after.
+#[test]
+fn finite_strain_indentation_backtracks_instead_of_cutting_back() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "neo_hooke_indentation.ctc",
+        dir.path(),
+        &["-v"],
+        Duration::from_secs(300),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    let s = summary(dir.path());
+    assert_eq!(s["cutbacks"], 0, "{}", o.stdout);
+    assert_eq!(s["increments"].as_array().unwrap().len(), 4);
+    let iterations = s["newton_iterations"].as_u64().unwrap();
+    assert!(iterations < 40, "{iterations} Newton iterations");
+    // some iterations took a shortened step
+    assert!(
+        o.stdout
+            .lines()
+            .any(|l| l.contains("iter") && l.contains("step 0.")),
+        "{}",
+        o.stdout
+    );
+}
+
+/// Item 13: a cutback is one console line (what failed, the iteration
+/// count, first and last residual to 3 significant digits, the new size);
+/// the full residual sequence is in summary.json `cutback_log`.
+#[test]
+fn a_cutback_is_one_short_console_line_with_the_sequence_in_the_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "singular_with_contact.ctc",
+        dir.path(),
+        &[],
+        Duration::from_secs(120),
+    );
+    assert!(!o.success);
+    let lines: Vec<&str> = o.stdout.lines().filter(|l| l.contains("cutback")).collect();
+    assert!(!lines.is_empty(), "{}", o.stdout);
+    for l in &lines {
+        assert_eq!(l.matches("retrying with dt").count(), 1, "{l}");
+        assert!(
+            l.trim_start()
+                .starts_with("cutback: step `press`, t = 0 -> "),
+            "{l}"
+        );
+    }
+    assert!(
+        lines[0].ends_with("retrying with dt = 2.50e-1"),
+        "{}",
+        lines[0]
+    );
+    let s = summary(dir.path());
+    let log = s["cutback_log"].as_array().unwrap();
+    assert_eq!(log.len(), lines.len());
+    assert_eq!(log[0]["to"], 0.5);
+    assert_eq!(log[0]["new_dt"], 0.25);
+    assert!(log[0]["reason"].as_str().unwrap().contains("zero pivot"));
+}
