@@ -7,6 +7,7 @@
 pub mod cattaneo;
 pub mod fenicsx;
 pub mod mortar;
+pub mod solid;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod upsetting;
@@ -25,6 +26,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(upsetting::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());
+    v.extend(solid::cases());
     v
 }
 
