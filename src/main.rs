@@ -4,6 +4,7 @@ mod progress;
 mod sweep;
 
 use clap::{Parser, Subcommand};
+use ctc_engine::model::AnyModel;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
@@ -233,21 +234,20 @@ fn read(deck: &Path) -> Result<ctc_lang::Source, String> {
         .map_err(|e| format!("error: cannot read deck `{}`: {e}", deck.display()))
 }
 
-/// Reads and compiles a deck, rendering every diagnostic on failure.
-fn compile(deck: &Path) -> Result<ctc_engine::model::Model, String> {
-    compile_source(&read(deck)?)
-}
-
 /// Compiles a deck's text, rendering every diagnostic on failure.
 fn compile_source(source: &ctc_lang::Source) -> Result<ctc_engine::model::Model, String> {
     ctc_lang::compile(source).map_err(|diags| diags.render(source))
 }
 
 fn check(deck: &Path, explain: bool) -> Result<(), String> {
-    let model = compile(deck)?;
+    let source = read(deck)?;
+    let model = ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source))?;
     // the checks `ctc run` makes before solving (rigid-body modes left free
     // by the conditions and the contact pairs, indices, settings)
-    let errors = ctc_engine::solve::check::check_model(&model);
+    let errors = match &model {
+        AnyModel::D2(m) => ctc_engine::solve::check::check_model(m),
+        AnyModel::D3(m) => ctc_engine::solve::check::check_model(m),
+    };
     if !errors.is_empty() {
         return Err(format!(
             "error: {}: the model cannot be solved:\n  - {}",
@@ -255,11 +255,16 @@ fn check(deck: &Path, explain: bool) -> Result<(), String> {
             errors.join("\n  - ")
         ));
     }
-    for w in ctc_engine::solve::health::start_inside(&model) {
-        eprintln!("warning: {w}");
+    if let AnyModel::D2(m) = &model {
+        for w in ctc_engine::solve::health::start_inside(m) {
+            eprintln!("warning: {w}");
+        }
     }
     if explain {
-        print!("{}", ctc_lang::explain(&model));
+        match &model {
+            AnyModel::D2(m) => print!("{}", ctc_lang::explain(m)),
+            AnyModel::D3(m) => print!("{}", ctc_lang::explain::explain_solid(m)),
+        }
     } else {
         println!("{}: ok", deck.display());
     }
@@ -282,20 +287,28 @@ fn run(
     verbose: bool,
     restart: bool,
 ) -> Result<(), String> {
-    let model = compile(deck)?;
+    let source = read(deck)?;
+    let model = ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source))?;
     let dir = output.map_or_else(|| default_output(deck, ""), Path::to_path_buf);
-    run_model(&model, &dir, quiet, verbose, restart)
+    // the dimension is chosen once, here
+    match &model {
+        AnyModel::D2(m) => run_model(m, &dir, quiet, verbose, restart),
+        AnyModel::D3(m) => run_model(m, &dir, quiet, verbose, restart),
+    }
 }
 
 /// Runs a compiled deck into `dir` (the body of `ctc run`, also each
 /// variant of `ctc sweep`).
-fn run_model(
-    model: &ctc_engine::model::Model,
+fn run_model<const D: usize>(
+    model: &ctc_engine::model::Model<D>,
     dir: &Path,
     quiet: bool,
     verbose: bool,
     restart: bool,
-) -> Result<(), String> {
+) -> Result<(), String>
+where
+    nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
+{
     let (mut writer, from) = if restart {
         let (w, cp) = ctc_engine::output::ResultWriter::resume(dir, model)
             .map_err(|e| format!("error: {e}"))?;

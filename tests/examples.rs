@@ -2,8 +2,10 @@
 //! matches the reviewed snapshot (increments, iterations, contact state,
 //! resultant forces to 4 significant digits).
 
-use ctc_engine::model::Model;
+use ctc_engine::geom::Dimension;
+use ctc_engine::model::{AnyModel, Model};
 use ctc_engine::solve::{IncrementView, Observer};
+use nalgebra::Const;
 use std::path::{Path, PathBuf};
 
 /// Rounds to `digits` significant digits (for snapshots).
@@ -22,14 +24,15 @@ struct Probe {
     lines: Vec<String>,
 }
 
-impl Observer for Probe {
-    fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
-        let mut reaction = [0.0; 2];
+impl<const D: usize> Observer<D> for Probe {
+    fn converged(&mut self, v: &IncrementView<'_, D>) -> Result<(), String> {
+        let mut reaction = [0.0; D];
         let mut reaction_abs = 0.0f64;
         for r in v.reaction {
-            reaction[0] += r[0];
-            reaction[1] += r[1];
-            reaction_abs += r[0].abs() + r[1].abs();
+            for k in 0..D {
+                reaction[k] += r[k];
+            }
+            reaction_abs += r.iter().map(|x| x.abs()).sum::<f64>();
         }
         let mut contact = [0.0; 2];
         let mut closed = 0;
@@ -54,17 +57,23 @@ impl Observer for Probe {
         let umax = v
             .displacement
             .iter()
-            .map(|u| u[0].hypot(u[1]))
+            .map(|u| {
+                if D == 2 {
+                    u[0].hypot(u[1])
+                } else {
+                    u.iter().map(|x| x * x).sum::<f64>().sqrt()
+                }
+            })
             .fold(0.0, f64::max);
+        let reaction: Vec<String> = reaction.iter().map(|r| clean(*r).to_string()).collect();
         self.lines.push(format!(
-            "inc {} t={} iters={} closed={} |u|max={} reaction=({}, {}) contact=({}, {})",
+            "inc {} t={} iters={} closed={} |u|max={} reaction=({}) contact=({}, {})",
             v.increment,
             sig(v.time, 6),
             v.residuals.len(),
             closed,
             sig(umax, 4),
-            clean(reaction[0]),
-            clean(reaction[1]),
+            reaction.join(", "),
             clean(contact[0]),
             clean(contact[1]),
         ));
@@ -83,9 +92,9 @@ fn examples() -> Vec<PathBuf> {
     decks
 }
 
-fn compile(path: &Path) -> Model {
+fn compile(path: &Path) -> AnyModel {
     let src = ctc_lang::Source::read(path).expect("readable deck");
-    match ctc_lang::compile(&src) {
+    match ctc_lang::compile_any(&src) {
         Ok(m) => m,
         Err(d) => panic!("{}", d.render(&src)),
     }
@@ -123,24 +132,38 @@ fn every_example_runs_and_matches_its_summary_snapshot() {
     let decks = examples();
     assert!(decks.len() >= 3, "expected the example decks");
     for deck in decks {
-        let model = compile(&deck);
-        let dir = tempfile::tempdir().unwrap();
-        let mut writer = ctc_engine::output::ResultWriter::create(dir.path(), &model).unwrap();
-        let mut probe = Probe::default();
-        struct Both<'a>(&'a mut Probe, &'a mut ctc_engine::output::ResultWriter);
-        impl Observer for Both<'_> {
-            fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
-                self.0.converged(v)?;
-                self.1.converged(v)
-            }
-        }
-        let summary = ctc_engine::solve::run(&model, &mut Both(&mut probe, &mut writer))
-            .unwrap_or_else(|e| panic!("{}: {}", deck.display(), e.message));
-        writer.finish(&summary).unwrap();
-        assert!(summary.completed);
-        assert!(dir.path().join("results.pvd").exists());
-        assert!(dir.path().join("summary.json").exists());
+        let lines = match compile(&deck) {
+            AnyModel::D2(m) => run_example(&deck, &m),
+            AnyModel::D3(m) => run_example(&deck, &m),
+        };
         let name = deck.file_stem().unwrap().to_string_lossy().into_owned();
-        insta::assert_snapshot!(format!("summary_{name}"), probe.lines.join("\n"));
+        insta::assert_snapshot!(format!("summary_{name}"), lines.join("\n"));
     }
+}
+
+/// Runs one example deck into a temporary directory; the probe's lines.
+fn run_example<const D: usize>(deck: &Path, model: &Model<D>) -> Vec<String>
+where
+    Const<D>: Dimension<D>,
+{
+    let dir = tempfile::tempdir().unwrap();
+    let mut writer = ctc_engine::output::ResultWriter::create(dir.path(), model).unwrap();
+    let mut probe = Probe::default();
+    struct Both<'a, const D: usize>(&'a mut Probe, &'a mut ctc_engine::output::ResultWriter<D>);
+    impl<const D: usize> Observer<D> for Both<'_, D>
+    where
+        Const<D>: Dimension<D>,
+    {
+        fn converged(&mut self, v: &IncrementView<'_, D>) -> Result<(), String> {
+            self.0.converged(v)?;
+            self.1.converged(v)
+        }
+    }
+    let summary = ctc_engine::solve::run(model, &mut Both(&mut probe, &mut writer))
+        .unwrap_or_else(|e| panic!("{}: {}", deck.display(), e.message));
+    writer.finish(&summary).unwrap();
+    assert!(summary.completed);
+    assert!(dir.path().join("results.pvd").exists());
+    assert!(dir.path().join("summary.json").exists());
+    probe.lines
 }

@@ -40,6 +40,16 @@ pub struct Model<const D: usize = 2> {
     pub thermal: Option<crate::thermal::ThermalScene>,
 }
 
+/// A model of either dimension: what lowering a deck gives (the dimension
+/// is chosen once, at the top, and every caller matches once).
+#[derive(Debug, Clone)]
+pub enum AnyModel {
+    /// A planar model (plane strain, plane stress, axisymmetric).
+    D2(Model<2>),
+    /// A solid (3D) model.
+    D3(Model<3>),
+}
+
 /// Kinematic assumption: a planar embedding (2D) or the solid (3D).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]

@@ -605,6 +605,96 @@ fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
     }
 }
 
+/// The plan of a lowered solid (3D) scene: mesh, bodies, conditions,
+/// loads and steps (`ctc check --explain` of a `3d` deck).
+pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
+    let mut o = String::new();
+    let _ = writeln!(o, "analysis: 3d solid (x, y, z)");
+    let _ = writeln!(
+        o,
+        "mesh: {} nodes, {} cells",
+        model.mesh.nodes.len(),
+        model.mesh.cells.len()
+    );
+    for b in &model.bodies {
+        let mut kinds: Vec<&str> = b
+            .cells
+            .clone()
+            .map(|c| model.mesh.cells.kind(c).name())
+            .collect();
+        kinds.sort_unstable();
+        kinds.dedup();
+        let _ = writeln!(
+            o,
+            "  body {}: {} nodes, {} cells ({}), material {}, {:?} kinematics",
+            b.name,
+            b.nodes.len(),
+            b.cells.len(),
+            kinds.join(", "),
+            model.materials[b.material].name,
+            b.kinematics
+        );
+    }
+    let _ = writeln!(o, "boundary conditions: {}", model.constraints.len());
+    for d in &model.constraints {
+        let _ = writeln!(
+            o,
+            "  {}: u{} = {} on {}",
+            d.label,
+            ["x", "y", "z"][d.component.min(2)],
+            time_function(&d.value),
+            plural(d.nodes.len(), "node", "nodes")
+        );
+    }
+    let _ = writeln!(o, "loads: {}", model.loads.len());
+    for l in &model.loads {
+        match l {
+            Load::FacetPressure {
+                label,
+                facets,
+                value,
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: p = {} on {} (positive pushes into the body)",
+                    time_function(value),
+                    plural(facets.len(), "face", "faces")
+                );
+            }
+            Load::NodalForce {
+                label,
+                nodes,
+                component: c,
+                value,
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: f{} = {} per node, on {}",
+                    ["x", "y", "z"][(*c).min(2)],
+                    time_function(value),
+                    plural(nodes.len(), "node", "nodes")
+                );
+            }
+            Load::Pressure { label, .. } => {
+                let _ = writeln!(o, "  {label}: pressure on edges (planar only)");
+            }
+        }
+    }
+    let _ = writeln!(o, "steps: {}", model.steps.len());
+    for s in &model.steps {
+        let _ = writeln!(
+            o,
+            "  {}: t = {} .. {} in {} increments",
+            s.name, s.t_start, s.t_end, s.increments
+        );
+    }
+    let _ = writeln!(
+        o,
+        "not in this scene: rigid tools, contact, heat conduction (3d)"
+    );
+    o
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -44,14 +44,17 @@ pub use explain::explain;
 pub use source::Source;
 pub use span::Span;
 
-use ctc_engine::model::Model;
+use ctc_engine::model::{AnyModel, Model};
 
 /// The outcome of checking a deck: the model when there is no error, and
 /// every diagnostic (errors and warnings) in deck order.
 #[derive(Debug, Clone)]
 pub struct Compilation {
-    /// The lowered scene, `None` if there is at least one error.
+    /// The lowered planar scene, `None` if there is at least one error or
+    /// the analysis is `3d`.
     pub model: Option<Model>,
+    /// The lowered solid scene of a `3d` analysis without error.
+    pub solid: Option<Model<3>>,
     /// All errors and warnings, sorted by position in the deck.
     pub diagnostics: Diagnostics,
 }
@@ -70,7 +73,27 @@ pub fn check(src: &Source) -> Compilation {
     } else {
         model
     };
-    Compilation { model, diagnostics }
+    let (model, solid) = match model {
+        Some(AnyModel::D2(m)) => (Some(m), None),
+        Some(AnyModel::D3(m)) => (None, Some(m)),
+        None => (None, None),
+    };
+    Compilation {
+        model,
+        solid,
+        diagnostics,
+    }
+}
+
+/// Parses, validates and lowers a deck of either dimension: the planar or
+/// solid model, or every diagnostic.
+pub fn compile_any(src: &Source) -> Result<AnyModel, Diagnostics> {
+    let c = check(src);
+    match (c.model, c.solid) {
+        (Some(m), _) => Ok(AnyModel::D2(m)),
+        (None, Some(m)) => Ok(AnyModel::D3(m)),
+        (None, None) => Err(c.diagnostics),
+    }
 }
 
 /// Parses, validates and lowers a deck into the engine's [`Model`].
@@ -79,9 +102,18 @@ pub fn check(src: &Source) -> Compilation {
 /// them).
 pub fn compile(src: &Source) -> Result<Model, Diagnostics> {
     let c = check(src);
-    match c.model {
-        Some(m) => Ok(m),
-        None => Err(c.diagnostics),
+    match (c.model, c.solid) {
+        (Some(m), _) => Ok(m),
+        (None, Some(_)) => {
+            let mut d = c.diagnostics;
+            d.0.push(Diagnostic::error(
+                "the deck is a 3d analysis, and this command takes planar decks only",
+                Span::new(0, 0),
+                "3d deck",
+            ));
+            Err(d)
+        }
+        (None, None) => Err(c.diagnostics),
     }
 }
 

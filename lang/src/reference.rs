@@ -247,6 +247,7 @@ pub fn generator_markdown(g: &GeneratorDef) -> String {
         let kind = match set.kind {
             crate::generators::SetKind::Edges => "edges",
             crate::generators::SetKind::Nodes => "nodes",
+            crate::generators::SetKind::Faces => "faces",
         };
         let _ = write!(s, " `{}` ({kind}: {})", set.name, set.doc);
         s.push(';');

@@ -13,7 +13,7 @@ pub static ANALYSIS: [Key; 3] = [
     Key::new(
         "dimension",
         KeyType::Choice(&["plane_strain", "plane_stress", "axisymmetric", "3d"]),
-        "kind of analysis (axisymmetric: x = r, y = z, forces are totals over 2 pi; 3d reserved)",
+        "kind of analysis (axisymmetric: x = r, y = z, forces are totals over 2 pi; 3d: solid x, y, z, no contact or heat yet)",
     )
     .required("add `dimension = plane_strain` (or `plane_stress`, `axisymmetric`)"),
     Key::new(

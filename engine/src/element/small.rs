@@ -8,8 +8,10 @@
 //! differentiation through the return mapping.
 //!
 //! B-bar (`formulation = selective_reduced`): the dilatation of `B` is
-//! replaced by its value at the cell centre for every law and analysis
-//! (the deviatoric part keeps full integration, so no hourglass mode).
+//! replaced by its value at the cell centre in planar analyses (for a
+//! bilinear quad that is its cell average) and by its volume average
+//! (mean dilatation) in solids; the deviatoric part keeps full
+//! integration, so no hourglass mode.
 
 use super::geometry::{centre_point, quadrature_points, ShapePoint};
 use super::reference::ReferenceCell;
@@ -93,14 +95,34 @@ pub fn strain_points<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
 where
     Const<D>: Dimension<D>,
 {
+    let points = quadrature_points::<D, NN, C>(x, section)?;
     let centre = match formulation {
+        Formulation::SelectiveReduced if C::QUADRATURE.len() > 1 && D == 3 => {
+            // solid: the mean dilatation (volume average of B over the
+            // cell), which passes the patch test on distorted hexahedra
+            // (their centre value does not: the adjugate of J is quadratic)
+            let mut mean = [BBlock::<D>::zeros(); NN];
+            let mut volume = 0.0;
+            for p in &points {
+                let b = strain_displacement(p, section)?;
+                for (m, ba) in mean.iter_mut().zip(&b) {
+                    *m += ba * p.volume;
+                }
+                volume += p.volume;
+            }
+            for m in &mut mean {
+                *m /= volume;
+            }
+            Some(mean)
+        }
         Formulation::SelectiveReduced if C::QUADRATURE.len() > 1 => {
+            // planar quads: the centre value equals the cell average
             let c = centre_point::<D, NN, C>(x, section)?;
             Some(strain_displacement(&c, section)?)
         }
         _ => None,
     };
-    quadrature_points::<D, NN, C>(x, section)?
+    points
         .iter()
         .map(|p| {
             let mut b = strain_displacement(p, section)?;

@@ -34,7 +34,7 @@ pub enum Dimension {
     PlaneStress,
     /// `axisymmetric`.
     Axisymmetric,
-    /// `3d` (reserved, not supported yet).
+    /// `3d`: a solid (x, y, z), no contact or heat conduction yet.
     ThreeD,
 }
 
@@ -414,14 +414,17 @@ pub enum Component {
     X,
     /// `uy` (y, or z in axisymmetric).
     Y,
+    /// `uz` (3d analyses only).
+    Z,
 }
 
 impl Component {
-    /// 0 for x, 1 for y.
+    /// 0 for x, 1 for y, 2 for z.
     pub fn index(self) -> usize {
         match self {
             Component::X => 0,
             Component::Y => 1,
+            Component::Z => 2,
         }
     }
 }

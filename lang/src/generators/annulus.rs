@@ -1,6 +1,8 @@
 //! `annulus { .. }`: an annular sector (or full ring) of structured cells.
 
-use super::{cell_product, count, grading, missing, GeneratorDef, SetDecl, SetKind, ELEMENT};
+use super::{
+    cell_product, count, grading, missing, Build, GeneratorDef, SetDecl, SetKind, ELEMENT,
+};
 use crate::ast::settings::Settings;
 use crate::ast::{num, Generator};
 use crate::diagnostics::Diagnostic;
@@ -77,7 +79,7 @@ pub static ANNULUS: GeneratorDef = GeneratorDef {
     open_sets: false,
     check,
     cells,
-    build,
+    build: Build::Planar(build),
 };
 
 /// Start and end angles (defaults 0 and 360).

@@ -1,7 +1,9 @@
 //! `half_disc { .. }` and `quarter_disc { .. }`: polar-structured discs
 //! (straight rays, a triangle fan at the centre, 2:1 ring coarsening).
 
-use super::{cell_product, count, grading, missing, GeneratorDef, SetDecl, SetKind, ELEMENT};
+use super::{
+    cell_product, count, grading, missing, Build, GeneratorDef, SetDecl, SetKind, ELEMENT,
+};
 use crate::ast::settings::Settings;
 use crate::ast::Generator;
 use crate::keys::{Components, Default, Dim, Key, KeyType, Range};
@@ -83,7 +85,7 @@ pub static HALF_DISC: GeneratorDef = GeneratorDef {
     open_sets: false,
     check: no_rules,
     cells,
-    build: build_half,
+    build: Build::Planar(build_half),
 };
 
 /// `quarter_disc`.
@@ -101,7 +103,7 @@ pub static QUARTER_DISC: GeneratorDef = GeneratorDef {
     open_sets: false,
     check: no_rules,
     cells,
-    build: build_quarter,
+    build: Build::Planar(build_quarter),
 };
 
 /// The discs' keys need no rule beyond their ranges.

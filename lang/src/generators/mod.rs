@@ -16,6 +16,7 @@
 pub mod annulus;
 pub mod disc;
 pub mod rectangle;
+pub mod solid;
 
 use crate::ast::settings::Settings;
 use crate::ast::Generator;
@@ -32,6 +33,9 @@ pub enum SetKind {
     Edges,
     /// Nodes only.
     Nodes,
+    /// Boundary faces of a solid mesh and their nodes (they play the
+    /// role edges play in planar meshes: pressure, contact).
+    Faces,
 }
 
 /// A named set a generator creates.
@@ -87,7 +91,23 @@ pub struct GeneratorDef {
     pub cells: fn(&Settings) -> i64,
     /// Builds the mesh from validated settings; `inputs` are the built
     /// meshes of its [`KeyType::Mesh`] keys, in key order.
-    pub build: fn(&Settings, &[Mesh]) -> Result<Mesh, MeshError>,
+    pub build: Build,
+}
+
+/// How a generator builds its mesh: planar (2D analyses) or solid (`3d`).
+#[derive(Clone, Copy)]
+pub enum Build {
+    /// A planar mesh.
+    Planar(fn(&Settings, &[Mesh]) -> Result<Mesh, MeshError>),
+    /// A solid (3D) mesh.
+    Solid(fn(&Settings, &[Mesh]) -> Result<Mesh<3>, MeshError>),
+}
+
+impl Build {
+    /// Whether the generator makes a solid mesh.
+    pub fn is_solid(&self) -> bool {
+        matches!(self, Build::Solid(_))
+    }
 }
 
 impl fmt::Debug for GeneratorDef {
@@ -140,6 +160,9 @@ pub static REGISTRY: &[&GeneratorDef] = &[
     &disc::HALF_DISC,
     &disc::QUARTER_DISC,
     &annulus::ANNULUS,
+    &solid::BOX,
+    &solid::TUBE,
+    &solid::SPHERE_OCTANT,
 ];
 
 /// The generator called `name`.

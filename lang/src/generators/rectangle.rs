@@ -1,7 +1,9 @@
 //! `rectangle { origin size divisions grading element }`: an axis-aligned
 //! rectangle of structured cells.
 
-use super::{cell_product, count, grading, missing, GeneratorDef, SetDecl, SetKind, ELEMENT};
+use super::{
+    cell_product, count, grading, missing, Build, GeneratorDef, SetDecl, SetKind, ELEMENT,
+};
 use crate::ast::settings::Settings;
 use crate::ast::Generator;
 use crate::keys::{Components, Default, Dim, Key, KeyType, Range};
@@ -65,7 +67,7 @@ pub static RECTANGLE: GeneratorDef = GeneratorDef {
     open_sets: false,
     check: no_rules,
     cells,
-    build,
+    build: Build::Planar(build),
 };
 
 /// The rectangle's keys need no rule beyond their ranges.

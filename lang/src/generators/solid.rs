@@ -3,9 +3,7 @@
 //! accepted only in `dimension = 3d` analyses (and the planar generators
 //! only in planar ones).
 
-use super::{
-    cell_product, count, grading, missing, Build, GeneratorDef, SetDecl, SetKind,
-};
+use super::{cell_product, count, grading, missing, Build, GeneratorDef, SetDecl, SetKind};
 use crate::ast::settings::Settings;
 use crate::ast::Generator;
 use crate::keys::{Components, Default, Dim, Key, KeyType, Range};
@@ -102,7 +100,8 @@ fn tet_factor(s: &Settings, keys: &[Key]) -> i64 {
 }
 
 fn box_cells(s: &Settings) -> i64 {
-    cell_product(s.integers("divisions").unwrap_or_default()).saturating_mul(tet_factor(s, &BOX_KEYS))
+    cell_product(s.integers("divisions").unwrap_or_default())
+        .saturating_mul(tet_factor(s, &BOX_KEYS))
 }
 
 fn triple(v: Option<Vec<f64>>) -> Option<[f64; 3]> {
@@ -139,9 +138,13 @@ pub static TUBE_KEYS: [Key; 7] = [
         .required("add `outer = <radius>`")
         .range(Range::Positive)
         .dim(Dim::Length),
-    Key::new("angle", KeyType::Number, "sector angle from the x axis about z, degrees (360: a ring)")
-        .default(Default::Number(360.0))
-        .range(Range::Positive),
+    Key::new(
+        "angle",
+        KeyType::Number,
+        "sector angle from the x axis about z, degrees (360: a ring)",
+    )
+    .default(Default::Number(360.0))
+    .range(Range::Positive),
     Key::new("height", KeyType::Number, "length along z from z = 0")
         .required("add `height = <length>`")
         .range(Range::Positive)
@@ -158,9 +161,13 @@ pub static TUBE_KEYS: [Key; 7] = [
         "circumferential divisions",
         "axial divisions",
     ]),
-    Key::new("radial_grading", KeyType::Grading, "spacing of the radial divisions")
-        .default(Default::Uniform)
-        .range(Range::Positive),
+    Key::new(
+        "radial_grading",
+        KeyType::Grading,
+        "spacing of the radial divisions",
+    )
+    .default(Default::Uniform)
+    .range(Range::Positive),
     SOLID_ELEMENT,
 ];
 
@@ -175,8 +182,14 @@ pub static TUBE: GeneratorDef = GeneratorDef {
         SetDecl::new("outer", SetKind::Faces, "faces at r = outer"),
         SetDecl::new("zmin", SetKind::Faces, "faces at z = 0"),
         SetDecl::new("zmax", SetKind::Faces, "faces at z = height"),
-        SetDecl::new("start", SetKind::Faces, "faces at theta = 0 (open sectors)").when(open_sector),
-        SetDecl::new("end", SetKind::Faces, "faces at theta = angle (open sectors)").when(open_sector),
+        SetDecl::new("start", SetKind::Faces, "faces at theta = 0 (open sectors)")
+            .when(open_sector),
+        SetDecl::new(
+            "end",
+            SetKind::Faces,
+            "faces at theta = angle (open sectors)",
+        )
+        .when(open_sector),
     ],
     open_sets: false,
     check: no_rules,
@@ -189,7 +202,8 @@ fn open_sector(s: &Settings) -> bool {
 }
 
 fn tube_cells(s: &Settings) -> i64 {
-    cell_product(s.integers("divisions").unwrap_or_default()).saturating_mul(tet_factor(s, &TUBE_KEYS))
+    cell_product(s.integers("divisions").unwrap_or_default())
+        .saturating_mul(tet_factor(s, &TUBE_KEYS))
 }
 
 fn build_tube(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
@@ -222,12 +236,20 @@ pub static SPHERE_KEYS: [Key; 6] = [
     Key::new("radial", KeyType::Integer, "radial divisions")
         .required("add `radial = <divisions>`")
         .range(Range::AtLeast(1)),
-    Key::new("tangential", KeyType::Integer, "divisions along each edge of the three cube-sphere patches")
-        .required("add `tangential = <divisions>`")
-        .range(Range::AtLeast(1)),
-    Key::new("radial_grading", KeyType::Grading, "spacing of the radial divisions")
-        .default(Default::Uniform)
-        .range(Range::Positive),
+    Key::new(
+        "tangential",
+        KeyType::Integer,
+        "divisions along each edge of the three cube-sphere patches",
+    )
+    .required("add `tangential = <divisions>`")
+    .range(Range::AtLeast(1)),
+    Key::new(
+        "radial_grading",
+        KeyType::Grading,
+        "spacing of the radial divisions",
+    )
+    .default(Default::Uniform)
+    .range(Range::Positive),
     SOLID_ELEMENT,
 ];
 

@@ -14,13 +14,14 @@ impl Lowerer<'_> {
             Some(Dimension::PlaneStrain) => AnalysisKind::PlaneStrain,
             Some(Dimension::PlaneStress) => AnalysisKind::PlaneStress,
             Some(Dimension::Axisymmetric) => AnalysisKind::Axisymmetric,
-            _ => {
+            Some(Dimension::ThreeD) => AnalysisKind::Solid,
+            None => {
                 self.missing("a supported dimension", a.keyword);
                 return None;
             }
         };
         let thickness = match kind {
-            AnalysisKind::Axisymmetric => 1.0,
+            AnalysisKind::Axisymmetric | AnalysisKind::Solid => 1.0,
             _ => a.thickness.as_ref().map_or(1.0, |t| t.value),
         };
         Some(Analysis { kind, thickness })

@@ -39,7 +39,7 @@ impl Lowerer<'_> {
                         }
                     }
                 }
-                let comp = if component == 0 { "ux" } else { "uy" };
+                let comp = ["ux", "uy", "uz"][component.min(2)];
                 for (other, count) in clashes {
                     self.diags.push(
                         Diagnostic::warning(

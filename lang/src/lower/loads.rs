@@ -18,6 +18,16 @@ impl Lowerer<'_> {
                         continue;
                     };
                     let label = format!("pressure {}", l.target);
+                    if self.solid {
+                        for (_, f) in &l.values {
+                            out.push(Load::FacetPressure {
+                                label: label.clone(),
+                                facets: r.faces.clone().unwrap_or_default(),
+                                value: self.tf(f),
+                            });
+                        }
+                        continue;
+                    }
                     for (_, f) in &l.values {
                         out.push(Load::Pressure {
                             label: label.clone(),

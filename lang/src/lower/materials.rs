@@ -22,22 +22,38 @@ impl Lowerer<'_> {
             if self.has_error_in(mesh_def.span) {
                 continue;
             }
-            let built = match mesh::build(&b.name.name, mesh_def, self.src) {
-                Ok(mesh) => mesh,
-                Err(ds) => {
-                    self.diags.extend(ds);
-                    continue;
+            let placed = if self.solid {
+                match mesh::build_solid(&b.name.name, mesh_def, self.src) {
+                    Ok(m) => {
+                        let (placed, warnings) =
+                            mesh::append_solid(&mut self.mesh3, &b.name.name, m, mesh_def.span);
+                        self.diags.extend(warnings);
+                        placed
+                    }
+                    Err(ds) => {
+                        self.diags.extend(ds);
+                        continue;
+                    }
                 }
+            } else {
+                let built = match mesh::build(&b.name.name, mesh_def, self.src) {
+                    Ok(mesh) => mesh,
+                    Err(ds) => {
+                        self.diags.extend(ds);
+                        continue;
+                    }
+                };
+                if axisymmetric {
+                    if let Some(d) = mesh::negative_radius(&b.name.name, &built, mesh_def.span) {
+                        self.diags.push(d);
+                        continue;
+                    }
+                }
+                let (placed, warnings) =
+                    mesh::append(&mut self.mesh, &b.name.name, built, mesh_def.span);
+                self.diags.extend(warnings);
+                placed
             };
-            if axisymmetric {
-                if let Some(d) = mesh::negative_radius(&b.name.name, &built, mesh_def.span) {
-                    self.diags.push(d);
-                    continue;
-                }
-            }
-            let (placed, warnings) =
-                mesh::append(&mut self.mesh, &b.name.name, built, mesh_def.span);
-            self.diags.extend(warnings);
             self.body_nodes
                 .insert(b.name.name.clone(), placed.nodes.clone());
             let material = match self.material_index(b, &mut materials) {

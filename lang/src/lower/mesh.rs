@@ -5,6 +5,7 @@
 use crate::ast::settings::SettingValue;
 use crate::ast::{Generator, MeshDef};
 use crate::diagnostics::Diagnostic;
+use crate::generators::Build;
 use crate::source::Source;
 use crate::span::{Span, Spanned};
 use ctc_engine::mesh::{gmsh, validate, Mesh, MeshError};
@@ -17,13 +18,67 @@ const MAX_MESH_ERRORS: usize = 5;
 /// Builds (generates or reads) and checks the mesh of body `body`.
 pub fn build(body: &str, mesh: &Spanned<MeshDef>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
     let m = make(body, mesh, src)?;
+    checked(
+        body,
+        mesh,
+        m,
+        "gmsh files must contain 2D triangles or quadrangles",
+    )
+}
+
+/// Builds (generates or reads) and checks the solid mesh of body `body`
+/// (a `3d` analysis).
+pub fn build_solid(
+    body: &str,
+    mesh: &Spanned<MeshDef>,
+    src: &Source,
+) -> Result<Mesh<3>, Vec<Diagnostic>> {
+    let fail = |message: String, label: &str| vec![Diagnostic::error(message, mesh.span, label)];
+    let m = match &mesh.value {
+        MeshDef::Generator(g) => match g.def.build {
+            Build::Solid(f) => f(&g.settings, &[]).map_err(|e: MeshError| {
+                fail(
+                    format!("cannot generate the mesh of body `{body}`: {}", e.message),
+                    "mesh generation failed",
+                )
+            })?,
+            Build::Planar(_) => {
+                return Err(fail(
+                    format!(
+                        "`{}` makes a planar mesh, but the analysis is 3d",
+                        g.name.name
+                    ),
+                    "wrong dimension",
+                ))
+            }
+        },
+        MeshDef::File(f) => {
+            let bytes = read_bytes(f, src)?;
+            gmsh::parse_solid_bytes(&bytes).map_err(|e| file_error(f, e))?
+        }
+    };
+    checked(
+        body,
+        mesh,
+        m,
+        "gmsh files of 3d analyses must contain tetrahedra or hexahedra",
+    )
+}
+
+/// The mesh checks shared by both dimensions.
+fn checked<const D: usize>(
+    body: &str,
+    mesh: &Spanned<MeshDef>,
+    m: Mesh<D>,
+    empty_help: &str,
+) -> Result<Mesh<D>, Vec<Diagnostic>> {
     if m.cells.is_empty() {
         return Err(vec![Diagnostic::error(
             format!("the mesh of body `{body}` has no cells"),
             mesh.span,
             "empty mesh",
         )
-        .with_help("gmsh files must contain 2D triangles or quadrangles")]);
+        .with_help(empty_help)]);
     }
     if let Err(errors) = validate::check(&m) {
         let n = errors.len();
@@ -57,7 +112,17 @@ fn make(body: &str, mesh: &Spanned<MeshDef>, src: &Source) -> Result<Mesh, Vec<D
     match &mesh.value {
         MeshDef::Generator(g) => {
             let inputs = inputs(body, g, src)?;
-            (g.def.build)(&g.settings, &inputs).map_err(|e: MeshError| {
+            let Build::Planar(build) = g.def.build else {
+                return Err(vec![Diagnostic::error(
+                    format!(
+                        "`{}` makes a solid (3D) mesh, but the analysis is planar",
+                        g.name.name
+                    ),
+                    mesh.span,
+                    "wrong dimension",
+                )]);
+            };
+            build(&g.settings, &inputs).map_err(|e: MeshError| {
                 vec![Diagnostic::error(
                     format!("cannot generate the mesh of body `{body}`: {}", e.message),
                     mesh.span,
@@ -81,6 +146,25 @@ fn inputs(body: &str, g: &Generator, src: &Source) -> Result<Vec<Mesh>, Vec<Diag
 }
 
 fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>> {
+    let bytes = read_bytes(f, src)?;
+    gmsh::parse_bytes(&bytes).map_err(|e| file_error(f, e))
+}
+
+/// A mesh file error at the file name.
+fn file_error(f: &Spanned<String>, e: MeshError) -> Vec<Diagnostic> {
+    let at = match e.line {
+        Some(l) => format!(", line {l}"),
+        None => String::new(),
+    };
+    vec![Diagnostic::error(
+        format!("error in mesh file `{}`{at}: {}", f.value, e.message),
+        f.span,
+        "in this mesh file",
+    )]
+}
+
+/// The bytes of a mesh file (relative to the deck's directory).
+fn read_bytes(f: &Spanned<String>, src: &Source) -> Result<Vec<u8>, Vec<Diagnostic>> {
     // relative to the file the mesh is written in (an included file's own
     // directory)
     let path = src.directory_at(f.span.start).join(&f.value);
@@ -99,17 +183,7 @@ fn read_file(f: &Spanned<String>, src: &Source) -> Result<Mesh, Vec<Diagnostic>>
             path.display()
         ))]
     })?;
-    gmsh::parse_bytes(&bytes).map_err(|e| {
-        let at = match e.line {
-            Some(l) => format!(", line {l}"),
-            None => String::new(),
-        };
-        vec![Diagnostic::error(
-            format!("error in mesh file `{}`{at}: {}", f.value, e.message),
-            f.span,
-            "in this mesh file",
-        )]
-    })
+    Ok(bytes)
 }
 
 /// For axisymmetric analyses (x = r): an error if the mesh reaches x < 0
@@ -203,6 +277,73 @@ pub fn append(global: &mut Mesh, body: &str, m: Mesh, at: Span) -> (Placed, Vec<
         },
         warnings,
     )
+}
+
+/// Appends the solid mesh `m` of body `body` to `global`: node and cell
+/// numbers offset, sets renamed `body.set` (face sets with their node
+/// sets), and the built-in sets `body.boundary` (every boundary face, in
+/// outward order) and `body.all` added.
+pub fn append_solid(
+    global: &mut Mesh<3>,
+    body: &str,
+    m: Mesh<3>,
+    at: Span,
+) -> (Placed, Vec<Diagnostic>) {
+    let mut warnings = Vec::new();
+    let node_off = global.nodes.len();
+    let cell_off = global.cells.len();
+    let n_nodes = m.nodes.len();
+    global.nodes.extend_from_slice(&m.nodes);
+    global.cells.extend_shifted(&m.cells, node_off);
+    let cells = cell_off..global.cells.len();
+    for name in ["boundary", "all"] {
+        if m.node_sets.contains_key(name) || m.face_sets.contains_key(name) {
+            warnings.push(Diagnostic::warning(
+                format!("the mesh of body `{body}` has its own set `{name}`; the built-in `{body}.{name}` replaces it"),
+                at,
+                "shadowed set",
+            ));
+        }
+    }
+    for (name, nodes) in &m.node_sets {
+        let mut v: Vec<usize> = nodes.iter().map(|n| n + node_off).collect();
+        v.sort_unstable();
+        v.dedup();
+        global.node_sets.insert(format!("{body}.{name}"), v);
+    }
+    for (name, faces) in &m.face_sets {
+        let v: Vec<ctc_engine::mesh::Facet> = faces.iter().map(|f| f.shifted(node_off)).collect();
+        let key = format!("{body}.{name}");
+        global
+            .node_sets
+            .entry(key.clone())
+            .or_insert_with(|| facet_nodes(&v));
+        global.face_sets.insert(key, v);
+    }
+    let boundary = global.boundary_facets(cells.clone());
+    global
+        .node_sets
+        .insert(format!("{body}.boundary"), facet_nodes(&boundary));
+    global
+        .face_sets
+        .insert(format!("{body}.boundary"), boundary);
+    global.node_sets.insert(
+        format!("{body}.all"),
+        (node_off..node_off + n_nodes).collect(),
+    );
+    (
+        Placed {
+            nodes: node_off..node_off + n_nodes,
+            cells,
+        },
+        warnings,
+    )
+}
+
+/// The distinct nodes of `facets`, sorted.
+pub fn facet_nodes(facets: &[ctc_engine::mesh::Facet]) -> Vec<usize> {
+    let set: BTreeSet<usize> = facets.iter().flat_map(|f| f.nodes().to_vec()).collect();
+    set.into_iter().collect()
 }
 
 /// The distinct nodes of `edges`, sorted.

@@ -33,7 +33,7 @@ use crate::diagnostics::Diagnostic;
 use crate::source::Source;
 use crate::validate::Need;
 use ctc_engine::mesh::Mesh;
-use ctc_engine::model::{self as m, Model};
+use ctc_engine::model::{self as m, AnyModel, Model};
 use sets::{resolve, Resolved};
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -106,6 +106,10 @@ struct Lowerer<'a> {
     /// ([`Lowerer::missing`]).
     internal: Vec<Diagnostic>,
     mesh: Mesh,
+    /// The global mesh of a `3d` analysis (`mesh` stays empty then).
+    mesh3: Mesh<3>,
+    /// Whether the analysis is `3d`.
+    solid: bool,
     /// Body name -> global node range.
     body_nodes: BTreeMap<String, Range<usize>>,
     window: (f64, f64),
@@ -117,7 +121,11 @@ struct Lowerer<'a> {
 /// together with a misspelled material), but returns no model.
 /// Returns the model if there were no errors at all, and the diagnostics
 /// found here.
-pub fn lower(deck: &Deck, src: &Source, prior: &[Diagnostic]) -> (Option<Model>, Vec<Diagnostic>) {
+pub fn lower(
+    deck: &Deck,
+    src: &Source,
+    prior: &[Diagnostic],
+) -> (Option<AnyModel>, Vec<Diagnostic>) {
     let prior_errors = prior.iter().any(Diagnostic::is_error);
     // Deck-level errors ("no analysis block") sit at 0..0 and concern no item.
     let prior: Vec<Span> = prior
@@ -133,6 +141,12 @@ pub fn lower(deck: &Deck, src: &Source, prior: &[Diagnostic]) -> (Option<Model>,
         diags: Vec::new(),
         internal: Vec::new(),
         mesh: Mesh::default(),
+        mesh3: Mesh::default(),
+        solid: deck
+            .analysis
+            .first()
+            .and_then(|a| a.dimension.as_ref())
+            .is_some_and(|d| d.value == ast::Dimension::ThreeD),
         body_nodes: BTreeMap::new(),
         window: analysis_window(deck),
     };
@@ -173,7 +187,12 @@ impl Lowerer<'_> {
     }
 
     pub(super) fn resolve(&mut self, r: &ast::SetRef, need: Need, user: &str) -> Option<Resolved> {
-        match resolve(&self.mesh, &self.body_nodes, r, need, user) {
+        let resolved = if self.solid {
+            sets::resolve_solid(&self.mesh3, &self.body_nodes, r, need, user)
+        } else {
+            resolve(&self.mesh, &self.body_nodes, r, need, user)
+        };
+        match resolved {
             Ok(x) => Some(x),
             Err(d) => {
                 let cascade = matches!(&r.kind, ast::SetRefKind::Named(n) if self.skipped_sets.contains(&n.name));
@@ -185,12 +204,30 @@ impl Lowerer<'_> {
         }
     }
 
-    fn run(&mut self) -> Option<Model> {
+    fn run(&mut self) -> Option<AnyModel> {
         let analysis = self.analysis();
         let (bodies, materials) = self.bodies();
         self.sets();
         let constraints = self.constraints();
         let loads = self.loads();
+        if self.solid {
+            // no tools, contact or heat in 3d yet (refused by validation)
+            let steps = self.steps();
+            let output = self.output(&[]);
+            return Some(AnyModel::D3(Model {
+                analysis: analysis?,
+                mesh: std::mem::take(&mut self.mesh3),
+                bodies,
+                materials,
+                constraints,
+                loads,
+                tools: Vec::new(),
+                contacts: Vec::new(),
+                steps,
+                output,
+                thermal: None,
+            }));
+        }
         let tools = self.tools();
         let contacts = self.contacts(&bodies, &tools);
         let steps = self.steps();
@@ -205,7 +242,7 @@ impl Lowerer<'_> {
             self.window,
             &mut self.diags,
         );
-        Some(Model {
+        Some(AnyModel::D2(Model {
             analysis: analysis?,
             mesh: std::mem::take(&mut self.mesh),
             bodies,
@@ -217,7 +254,7 @@ impl Lowerer<'_> {
             steps,
             output,
             thermal,
-        })
+        }))
     }
 }
 

@@ -19,6 +19,8 @@ pub struct Resolved {
     pub nodes: Vec<usize>,
     /// Boundary edges, when the reference designates edges.
     pub edges: Option<Vec<[usize; 2]>>,
+    /// Boundary faces (solid meshes), when the reference designates faces.
+    pub faces: Option<Vec<ctc_engine::mesh::Facet>>,
 }
 
 /// The engine selection for a selection written in the deck (box corners
@@ -129,7 +131,11 @@ pub fn resolve(
                             "no nodes in this set",
                         ));
                     }
-                    Resolved { nodes, edges }
+                    Resolved {
+                        nodes,
+                        edges,
+                        faces: None,
+                    }
                 }
             }
         }
@@ -147,7 +153,11 @@ pub fn resolve(
                 )
                 .with_help(extent(mesh, body, range)));
             }
-            Resolved { nodes, edges: None }
+            Resolved {
+                nodes,
+                edges: None,
+                faces: None,
+            }
         }
         SetRefKind::Edges(s) => {
             let boundary = mesh
@@ -170,6 +180,7 @@ pub fn resolve(
             Resolved {
                 nodes: edge_nodes(&edges),
                 edges: Some(edges),
+                faces: None,
             }
         }
     };
@@ -190,6 +201,13 @@ impl super::Lowerer<'_> {
                 continue;
             };
             let key = format!("{}.{}", s.target.body.name, s.name.name);
+            if self.solid {
+                if let Some(faces) = r.faces {
+                    self.mesh3.face_sets.insert(key.clone(), faces);
+                }
+                self.mesh3.node_sets.insert(key, r.nodes);
+                continue;
+            }
             if let Some(edges) = r.edges {
                 self.mesh.edge_sets.insert(key.clone(), edges);
             }
@@ -208,6 +226,170 @@ impl super::Lowerer<'_> {
         }
         true
     }
+}
+
+/// Resolves `r` in the solid mesh of a `3d` analysis: named sets (node
+/// sets, face sets), unions / differences of them, and the node selections
+/// `nodes(x = ..)`, `nodes(y = ..)`; other selections are planar-only.
+pub fn resolve_solid(
+    mesh: &Mesh<3>,
+    bodies: &BTreeMap<String, Range<usize>>,
+    r: &SetRef,
+    need: Need,
+    user: &str,
+) -> Result<Resolved, Diagnostic> {
+    use ctc_engine::mesh::Facet;
+    let body = &r.body.name;
+    let Some(range) = bodies.get(body) else {
+        let names: Vec<&str> = bodies.keys().map(String::as_str).collect();
+        return Err(Diagnostic::error(
+            format!("unknown body `{body}`"),
+            r.body.span,
+            "no body with this name",
+        )
+        .with_help_opt(did_you_mean(body, &names)));
+    };
+    let needs_faces = |what: &str| {
+        Diagnostic::error(
+            format!("`{user}` needs boundary faces, but `{r}` is a set of nodes"),
+            r.span,
+            what.to_string(),
+        )
+        .with_help(format!("use a set with faces, e.g. `{body}.boundary`"))
+    };
+    let resolved =
+        match &r.kind {
+            SetRefKind::Named(n) => {
+                let key = format!("{body}.{}", n.name);
+                let faces = mesh.face_sets.get(&key).cloned();
+                let nodes = mesh.node_sets.get(&key).cloned();
+                if nodes.is_none() && faces.is_none() {
+                    let prefix = format!("{body}.");
+                    let mut names: Vec<&str> = mesh
+                        .node_sets
+                        .keys()
+                        .chain(mesh.face_sets.keys())
+                        .filter_map(|k| k.strip_prefix(&prefix))
+                        .collect();
+                    names.sort_unstable();
+                    names.dedup();
+                    return Err(Diagnostic::error(
+                        format!("body `{body}` has no set `{}`", n.name),
+                        n.span,
+                        "no set with this name",
+                    )
+                    .with_help(did_you_mean(&n.name, &names).unwrap_or_else(|| {
+                        format!("its sets are {}", crate::suggest::one_of(&names))
+                    })));
+                }
+                let nodes = match (nodes, &faces) {
+                    (Some(n), _) => n,
+                    (None, Some(f)) => super::mesh::facet_nodes(f),
+                    (None, None) => Vec::new(),
+                };
+                Resolved {
+                    nodes,
+                    edges: None,
+                    faces,
+                }
+            }
+            SetRefKind::Combination(terms) => {
+                let mut nodes: Vec<usize> = Vec::new();
+                let mut removed: Vec<usize> = Vec::new();
+                let mut faces: Option<Vec<Facet>> = Some(Vec::new());
+                let mut removed_faces: Vec<Facet> = Vec::new();
+                for (add, t) in terms {
+                    let x = resolve_solid(mesh, bodies, t, Need::Nodes, user)?;
+                    if *add {
+                        nodes.extend(&x.nodes);
+                        match (&mut faces, x.faces) {
+                            (Some(f), Some(tf)) => f.extend(tf),
+                            _ => faces = None,
+                        }
+                    } else {
+                        removed.extend(&x.nodes);
+                        match x.faces {
+                            Some(tf) => removed_faces.extend(tf),
+                            None => faces = None,
+                        }
+                    }
+                }
+                removed.sort_unstable();
+                nodes.sort_unstable();
+                nodes.dedup();
+                nodes.retain(|n| removed.binary_search(n).is_err());
+                let faces = faces.map(|mut f| {
+                    let mut seen = std::collections::BTreeSet::new();
+                    f.retain(|x| !removed_faces.contains(x) && seen.insert(*x));
+                    f
+                });
+                let nodes = match &faces {
+                    Some(f) => super::mesh::facet_nodes(f),
+                    None => nodes,
+                };
+                Resolved {
+                    nodes,
+                    edges: None,
+                    faces,
+                }
+            }
+            SetRefKind::Nodes(s) | SetRefKind::Node(s) => {
+                let (axis, value) = match &s.value {
+                    Selection::X(x) => (0, *x),
+                    Selection::Y(y) => (1, *y),
+                    _ => {
+                        return Err(Diagnostic::error(
+                            format!("selection `{r}` is planar-only"),
+                            s.span,
+                            "not available in 3d analyses",
+                        )
+                        .with_help("use `nodes(x = ..)`, `nodes(y = ..)` or a named set"))
+                    }
+                };
+                let tol = 1e-9 * solid_size(mesh, range).max(f64::MIN_POSITIVE);
+                let nodes: Vec<usize> = range
+                    .clone()
+                    .filter(|&n| (mesh.nodes[n][axis] - value).abs() <= tol)
+                    .collect();
+                Resolved {
+                    nodes,
+                    edges: None,
+                    faces: None,
+                }
+            }
+            SetRefKind::Edges(s) => {
+                return Err(Diagnostic::error(
+                    format!("selection `{r}` is planar-only"),
+                    s.span,
+                    "no edges in 3d analyses",
+                )
+                .with_help(format!("use a named face set, e.g. `{body}.boundary`")));
+            }
+        };
+    if need == Need::Edges && resolved.faces.is_none() {
+        return Err(needs_faces("nodes only"));
+    }
+    if resolved.nodes.is_empty() {
+        return Err(Diagnostic::error(
+            format!("set `{r}` is empty"),
+            r.span,
+            "no nodes in this set",
+        ));
+    }
+    Ok(resolved)
+}
+
+/// Bounding-box diagonal of a body's nodes.
+fn solid_size(mesh: &Mesh<3>, nodes: &Range<usize>) -> f64 {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in &mesh.nodes[nodes.clone()] {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// Resolves `a + b - c`: nodes of the added terms minus those of the
@@ -268,7 +450,11 @@ fn combine(
             "no nodes left",
         ));
     }
-    Ok(Resolved { nodes, edges })
+    Ok(Resolved {
+        nodes,
+        edges,
+        faces: None,
+    })
 }
 
 #[cfg(test)]

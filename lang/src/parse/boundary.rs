@@ -9,7 +9,11 @@ use crate::span::Spanned;
 use crate::suggest::did_you_mean;
 
 /// Displacement component keys.
-pub const COMPONENTS: [(&str, Component); 2] = [("ux", Component::X), ("uy", Component::Y)];
+pub const COMPONENTS: [(&str, Component); 3] = [
+    ("ux", Component::X),
+    ("uy", Component::Y),
+    ("uz", Component::Z),
+];
 
 /// The component named `key`, or a diagnostic with a suggestion.
 pub fn component(key: &crate::span::Ident, context: &str, diags: &mut Diags) -> Option<Component> {
@@ -20,9 +24,9 @@ pub fn component(key: &crate::span::Ident, context: &str, diags: &mut Diags) -> 
         Diagnostic::error(
             format!("unknown component `{}` in `{context}`", key.name),
             key.span,
-            "expected `ux` or `uy`",
+            "expected `ux`, `uy` or `uz`",
         )
-        .with_help_opt(did_you_mean(&key.name, ["ux", "uy"])),
+        .with_help_opt(did_you_mean(&key.name, ["ux", "uy", "uz"])),
     );
     None
 }
@@ -145,8 +149,8 @@ mod tests {
     #[test]
     fn boundary_mistakes() {
         assert_eq!(
-            parse_messages("fix a.b { uz }"),
-            ["unknown component `uz` in `fix`"]
+            parse_messages("fix a.b { uw }"),
+            ["unknown component `uw` in `fix`"]
         );
         assert_eq!(
             parse_messages("fix a.b { ux = 1 }"),

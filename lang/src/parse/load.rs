@@ -15,7 +15,11 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
         LoadKind::Pressure => ("pressure", &[("p", None)]),
         LoadKind::Force => (
             "force",
-            &[("fx", Some(Component::X)), ("fy", Some(Component::Y))],
+            &[
+                ("fx", Some(Component::X)),
+                ("fy", Some(Component::Y)),
+                ("fz", Some(Component::Z)),
+            ],
         ),
     };
     let names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
@@ -101,8 +105,8 @@ mod tests {
     #[test]
     fn load_mistakes() {
         assert_eq!(
-            parse_messages("force a.b { fz = 1 }"),
-            ["unknown key `fz` in `force`"]
+            parse_messages("force a.b { fw = 1 }"),
+            ["unknown key `fw` in `force`"]
         );
         assert_eq!(
             parse_messages("pressure a.b { }"),

@@ -10,8 +10,17 @@ pub fn check(ctx: &mut Ctx<'_>) {
     let Some(a) = ctx.deck.analysis.first() else {
         return;
     };
-    three_d_not_supported_yet(a, ctx);
+    three_d_has_no_contact_or_heat_yet(a, ctx);
     thickness_only_in_plane_analyses(a, ctx);
+}
+
+/// Whether the deck's analysis is `3d`.
+pub fn is_solid(ctx: &Ctx<'_>) -> bool {
+    ctx.deck
+        .analysis
+        .first()
+        .and_then(|a| a.dimension.as_ref())
+        .is_some_and(|d| d.value == Dimension::ThreeD)
 }
 
 /// A deck has exactly one `analysis` block.
@@ -42,21 +51,45 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
     }
 }
 
-/// `dimension = 3d` is reserved.
-pub fn three_d_not_supported_yet(a: &Analysis, ctx: &mut Ctx<'_>) {
-    if let Some(d) = a
+/// `dimension = 3d` solves solids without rigid tools, contact or heat
+/// conduction (the 3D contact and thermal issues).
+pub fn three_d_has_no_contact_or_heat_yet(a: &Analysis, ctx: &mut Ctx<'_>) {
+    let Some(d) = a
         .dimension
         .as_ref()
         .filter(|d| d.value == Dimension::ThreeD)
-    {
+    else {
+        return;
+    };
+    let deck = ctx.deck;
+    let mut refuse = |what: &str, span: Span| {
         ctx.err(
             Diagnostic::error(
-                "3d analyses are not supported yet",
-                d.span,
-                "not supported yet",
+                format!("{what} in 3d analyses are not supported yet"),
+                span,
+                "not supported in 3d yet",
             )
-            .with_help("use `plane_strain`, `plane_stress` or `axisymmetric`"),
+            .with_help(format!(
+                "the analysis is `{}`: remove it, or use a planar analysis",
+                "3d"
+            )),
         );
+    };
+    let _ = d;
+    for m in deck.materials.iter().filter(|m| m.thermal.is_some()) {
+        refuse("thermal material properties", m.span);
+    }
+    for b in deck.bodies.iter().filter(|b| b.thermal.is_some()) {
+        refuse("thermal body blocks", b.span);
+    }
+    for t in &deck.tools {
+        refuse("rigid tools", t.span);
+    }
+    for c in &deck.contacts {
+        refuse("contact pairs", c.span);
+    }
+    for l in &deck.thermal_loads {
+        refuse("thermal loads", l.span);
     }
 }
 

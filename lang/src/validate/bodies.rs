@@ -24,6 +24,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         material_exists(b, ctx);
         let mut sets = None;
         if let Some(MeshDef::Generator(g)) = b.mesh.as_ref().map(|m| &m.value) {
+            generator_fits_dimension(g, dim, ctx);
             generator_settings_valid(g, ctx);
             sets = g.def.set_kinds(&g.settings);
             selective_reduced_needs_quads(b, g, ctx);
@@ -132,6 +133,47 @@ pub fn material_exists(b: &Body, ctx: &mut Ctx<'_>) {
             )
         })),
     );
+}
+
+/// Solid generators in `3d` analyses, planar ones in planar analyses.
+pub fn generator_fits_dimension(g: &Generator, dim: Option<Dimension>, ctx: &mut Ctx<'_>) {
+    let Some(dim) = dim else { return };
+    let solid = dim == Dimension::ThreeD;
+    if g.def.build.is_solid() == solid {
+        return;
+    }
+    let names = |want: bool| -> String {
+        crate::generators::REGISTRY
+            .iter()
+            .filter(|d| d.build.is_solid() == want)
+            .map(|d| format!("`{}`", d.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let (message, help) = if solid {
+        (
+            format!(
+                "`{}` makes a planar mesh, but the analysis is 3d",
+                g.name.name
+            ),
+            format!(
+                "use a solid generator ({}) or a gmsh file of tetrahedra / hexahedra",
+                names(true)
+            ),
+        )
+    } else {
+        (
+            format!(
+                "`{}` makes a solid (3D) mesh, but the analysis is planar",
+                g.name.name
+            ),
+            format!(
+                "use `dimension = 3d`, or a planar generator ({})",
+                names(false)
+            ),
+        )
+    };
+    ctx.err(Diagnostic::error(message, g.name.span, "wrong dimension").with_help(help));
 }
 
 /// A generator's settings: the ranges of its key table, its own rules,

@@ -12,7 +12,10 @@ pub fn check(ctx: &mut Ctx<'_>) {
             LoadKind::Force => (Need::Nodes, "force"),
         };
         sets::set_ref(&l.target, need, user, ctx);
-        for (_, f) in &l.values {
+        for (c, f) in &l.values {
+            if let Some(c) = c {
+                super::boundaries::z_only_in_3d(*c, "fz", f.span, ctx);
+            }
             time_fns::ramp_and_table_times_increase(f, ctx);
         }
     }

@@ -139,6 +139,8 @@ fn combination(
     }
     let kind = if kinds.iter().all(|k| *k == Some(SetKind::Edges)) {
         SetKind::Edges
+    } else if kinds.iter().all(|k| *k == Some(SetKind::Faces)) {
+        SetKind::Faces
     } else {
         SetKind::Nodes
     };

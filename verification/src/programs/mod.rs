@@ -6,6 +6,7 @@
 
 pub mod cattaneo;
 pub mod fenicsx;
+pub mod solid;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod upsetting;
@@ -23,6 +24,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(cattaneo::cases());
     v.extend(upsetting::cases());
     v.extend(fenicsx::cases());
+    v.extend(solid::cases());
     v
 }
 

@@ -1,0 +1,311 @@
+//! Solid (3D) verification cases, tag `3d`.
+//!
+//! - `lame_sphere_3d_hex8`, `lame_sphere_3d_tet4`: Lamé's thick-walled
+//!   sphere under internal pressure (Timoshenko and Goodier, Theory of
+//!   Elasticity, 3rd ed., §137): `a = 1`, `b = 2`, `p = 100`, `E = 210e3`,
+//!   `nu = 0.3`;
+//!   `u_r = p a^3 / (E (b^3 - a^3)) ((1 - 2 nu) r + (1 + nu) b^3 / (2 r^2))`,
+//!   `s_tt = p a^3 / (b^3 - a^3) (1 + b^3 / (2 r^3))`. The octant
+//!   `x, y, z >= 0` (cubed-sphere hex8 mesh, or its Kuhn split into tet4),
+//!   symmetry `u_n = 0` on the three coordinate planes, pressure on the
+//!   inner faces. Measured: `max |u_r - u_r,exact|` over the inner nodes /
+//!   `u_r,exact(a)`, and the hoop stress `(tr s - e_r.s.e_r) / 2` at every
+//!   integration point against `s_tt(r)` / `s_tt(a)`; rates under
+//!   refinement (tangential and radial divisions doubled).
+//!
+//!   ```text
+//!        z        three cube-sphere patches (x = 1, y = 1, z = 1 faces of
+//!        |___     the unit cube projected radially), `radial` layers
+//!       /  _ \    between r = 1 and r = 2
+//!      /  / | |
+//!     o--x  y
+//!   ```
+//!
+//! - `lame_cylinder_3d_vs_axi`: the same cylinder as
+//!   `examples/lame_cylinder_axi.ctc` (a = 1, b = 2, p = 100, plane strain
+//!   along the axis) as a 90 degree hex8 sector of a tube against the
+//!   axisymmetric run with the same radial divisions: the inner radial
+//!   displacement of the two (relative difference) and of the 3D run
+//!   against Lamé.
+
+use super::{error, value};
+use crate::case::{Check, Quantity};
+use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
+use ctc_engine::element::recovery::{blocks_of, cell_states};
+use ctc_engine::element::Section;
+use ctc_engine::geom::Dimension;
+use ctc_engine::mesh::generate::{solid, Grading};
+use ctc_engine::mesh::{CellKind, Mesh};
+use ctc_engine::model::{Model, TimeFunction};
+use ctc_engine::solve::{self, IncrementView, Observer, RunSummary};
+use ctc_engine::testkit::ModelBuilder;
+use nalgebra::Const;
+
+const A: f64 = 1.0;
+const B: f64 = 2.0;
+const P: f64 = 100.0;
+const E: f64 = 210e3;
+const NU: f64 = 0.3;
+
+/// Sphere levels: (radial, tangential) divisions.
+const SPHERE_LEVELS: [(usize, usize); 4] = [(2, 2), (4, 4), (8, 8), (16, 16)];
+/// Cylinder levels: (radial, circumferential) divisions of the 90 degree
+/// sector.
+const CYLINDER_LEVELS: [(usize, usize); 3] = [(4, 6), (8, 12), (16, 24)];
+
+/// The registry entries.
+pub fn cases() -> Vec<VerifyCase> {
+    let case = |name, title, checks, run: fn(usize) -> Result<ProgramLevel, String>| VerifyCase {
+        name,
+        title,
+        source: "Timoshenko & Goodier, Theory of Elasticity §137 (thick spherical shell)",
+        tags: &["3d", "elasticity", "closed_form", "convergence", "pressure"],
+        levels: 3,
+        checks,
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: SPHERE_LEVELS.len(),
+            run,
+        }),
+    };
+    vec![
+        case(
+            "lame_sphere_3d_hex8",
+            "Lamé thick sphere, internal pressure, hex8 octant: u_r and hoop stress rates",
+            // measured (levels 0-3): u_r 1.45e-1 4.58e-2 1.29e-2 3.47e-3
+            // (rates 1.67 1.83 1.89), hoop at the points 1.97e-1 1.72e-1
+            // 1.10e-1 6.18e-2 (rates 0.19 0.65 0.83)
+            vec![
+                Check::new(Quantity::Named("u_r(a)"), &[0.15, 0.06, 0.02, 0.005])
+                    .with_min_rate(1.5),
+                Check::new(Quantity::Named("s_tt points"), &[0.25, 0.2, 0.13, 0.08])
+                    .with_min_rate(0.6),
+            ],
+            |l| sphere(l, CellKind::Hex8),
+        ),
+        case(
+            "lame_sphere_3d_tet4",
+            "Lamé thick sphere, internal pressure, tet4 octant: u_r and hoop stress rates",
+            // measured (levels 0-3, the Kuhn split of the same hexahedra,
+            // stiffer): u_r 3.34e-1 1.64e-1 6.29e-2 2.08e-2 (rates 1.03
+            // 1.38 1.60), hoop 3.37e-1 3.48e-1 2.50e-1 1.53e-1 (rates -0.04
+            // 0.47 0.71)
+            vec![
+                Check::new(Quantity::Named("u_r(a)"), &[0.4, 0.2, 0.08, 0.03]).with_min_rate(1.3),
+                Check::new(Quantity::Named("s_tt points"), &[0.4, 0.4, 0.3, 0.2])
+                    .with_min_rate(0.4),
+            ],
+            |l| sphere(l, CellKind::Tet4),
+        ),
+        VerifyCase {
+            name: "lame_cylinder_3d_vs_axi",
+            title: "Lamé cylinder: 90 degree hex8 sector in 3D against the axisymmetric run",
+            source: "Timoshenko & Goodier §29; examples/lame_cylinder_axi.ctc",
+            tags: &[
+                "3d",
+                "axisymmetric",
+                "elasticity",
+                "closed_form",
+                "cross_check",
+            ],
+            levels: 2,
+            checks: vec![
+                Check::new(Quantity::Named("u_r(a) 3d vs axi"), &[0.02, 0.005, 0.002]),
+                Check::new(Quantity::Named("u_r(a) 3d"), &[0.03, 0.01, 0.003]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: CYLINDER_LEVELS.len(),
+                run: cylinder,
+            }),
+        },
+    ]
+}
+
+/// The last converged state of a run.
+#[derive(Default)]
+struct Last<const D: usize> {
+    u: Vec<[f64; D]>,
+}
+
+impl<const D: usize> Observer<D> for Last<D> {
+    fn converged(&mut self, v: &IncrementView<'_, D>) -> Result<(), String> {
+        self.u = v.displacement.to_vec();
+        Ok(())
+    }
+}
+
+fn solve<const D: usize>(model: &Model<D>) -> Result<(RunSummary, Last<D>), String>
+where
+    Const<D>: Dimension<D>,
+{
+    let mut last = Last::default();
+    let s = solve::run(model, &mut last).map_err(|e| e.message)?;
+    Ok((s, last))
+}
+
+fn level_of<const D: usize>(summary: &RunSummary, model: &Model<D>, h: f64) -> ProgramLevel {
+    ProgramLevel {
+        values: Vec::new(),
+        h,
+        nodes: model.mesh.nodes.len(),
+        free_dofs: summary.free_dofs,
+        increments: summary.increments.len(),
+        newton_total: summary.newton_iterations,
+        newton_max: summary
+            .increments
+            .iter()
+            .map(|i| i.iterations)
+            .max()
+            .unwrap_or(0),
+        cutbacks: summary.cutbacks,
+    }
+}
+
+fn sphere_ur(r: f64) -> f64 {
+    P * A.powi(3) / (E * (B.powi(3) - A.powi(3)))
+        * ((1.0 - 2.0 * NU) * r + (1.0 + NU) * B.powi(3) / (2.0 * r * r))
+}
+
+fn sphere_hoop(r: f64) -> f64 {
+    P * A.powi(3) / (B.powi(3) - A.powi(3)) * (1.0 + B.powi(3) / (2.0 * r.powi(3)))
+}
+
+/// The octant model: symmetry planes and inner pressure.
+fn sphere_model(mesh: Mesh<3>) -> Model<3> {
+    let mut b = ModelBuilder::solid()
+        .elastic("steel", E, NU)
+        .body("shell", mesh, "steel");
+    let set = |b: &ModelBuilder<3>, name: &str| b.node_set(&format!("shell.{name}"));
+    for (c, plane) in ["xmin", "ymin", "zmin"].iter().enumerate() {
+        let nodes = set(&b, plane);
+        b = b.fix(nodes, c);
+    }
+    let inner = b.face_set("shell.inner");
+    b.load(ctc_engine::model::Load::FacetPressure {
+        label: "pressure shell.inner".into(),
+        facets: inner,
+        value: TimeFunction::Constant(P),
+    })
+    .step("load", 1.0, 1)
+    .build()
+}
+
+fn sphere(level: usize, kind: CellKind) -> Result<ProgramLevel, String> {
+    let (radial, tangential) = SPHERE_LEVELS[level];
+    let mesh = solid::sphere_octant(A, B, radial, tangential, Grading::Uniform, kind)
+        .map_err(|e| e.message)?;
+    let model = sphere_model(mesh);
+    let (summary, last) = solve(&model)?;
+    let mut worst_u: f64 = 0.0;
+    let inner = model.mesh.node_sets["shell.inner"].clone();
+    for &n in &inner {
+        let x = model.mesh.nodes[n];
+        let r = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+        let u = last.u[n];
+        let ur = (u[0] * x[0] + u[1] * x[1] + u[2] * x[2]) / r;
+        worst_u = worst_u.max((ur - sphere_ur(r)).abs());
+    }
+    let blocks = blocks_of(&model)?;
+    let section = Section::new(&model.analysis);
+    let mut worst_s: f64 = 0.0;
+    for c in 0..model.mesh.cells.len() {
+        for p in
+            cell_states(&model.mesh, c, &last.u, &section, &blocks[0]).map_err(|e| e.message)?
+        {
+            let x = p.position;
+            let r = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+            let e = [x[0] / r, x[1] / r, x[2] / r];
+            let s = p.stress;
+            let srr = s[0] * e[0] * e[0]
+                + s[1] * e[1] * e[1]
+                + s[2] * e[2] * e[2]
+                + 2.0 * (s[3] * e[0] * e[1] + s[4] * e[0] * e[2] + s[5] * e[1] * e[2]);
+            let hoop = 0.5 * (s[0] + s[1] + s[2] - srr);
+            worst_s = worst_s.max((hoop - sphere_hoop(r)).abs());
+        }
+    }
+    let mut out = level_of(&summary, &model, (B - A) / radial as f64);
+    out.values = vec![
+        error("u_r(a)", worst_u / sphere_ur(A)),
+        error("s_tt points", worst_s / sphere_hoop(A)),
+    ];
+    Ok(out)
+}
+
+fn cylinder_ur(r: f64) -> f64 {
+    (1.0 + NU) * A * A * P / (E * (B * B - A * A)) * ((1.0 - 2.0 * NU) * r + B * B / r)
+}
+
+fn cylinder(level: usize) -> Result<ProgramLevel, String> {
+    let (radial, circ) = CYLINDER_LEVELS[level];
+    let height = 0.25;
+    // 3D: 90 degree sector, plane strain along z
+    let mesh = solid::tube(
+        A,
+        B,
+        90.0,
+        height,
+        [radial, circ, 1],
+        Grading::Uniform,
+        CellKind::Hex8,
+    )
+    .map_err(|e| e.message)?;
+    let mut b = ModelBuilder::solid()
+        .elastic("steel", E, NU)
+        .body("tube", mesh, "steel");
+    for (name, c) in [("start", 1), ("end", 0), ("zmin", 2), ("zmax", 2)] {
+        let nodes = b.node_set(&format!("tube.{name}"));
+        b = b.fix(nodes, c);
+    }
+    let inner = b.face_set("tube.inner");
+    let model3 = b
+        .load(ctc_engine::model::Load::FacetPressure {
+            label: "pressure tube.inner".into(),
+            facets: inner,
+            value: TimeFunction::Constant(P),
+        })
+        .step("load", 1.0, 1)
+        .build();
+    let (s3, l3) = solve(&model3)?;
+    // the mean u_r of the inner nodes (the chord nodes of the faceted bore)
+    let inner3 = &model3.mesh.node_sets["tube.inner"];
+    let ur3 = inner3
+        .iter()
+        .map(|&n| {
+            let x = model3.mesh.nodes[n];
+            let r = x[0].hypot(x[1]);
+            (l3.u[n][0] * x[0] + l3.u[n][1] * x[1]) / r
+        })
+        .sum::<f64>()
+        / inner3.len() as f64;
+    // axisymmetric with the same radial divisions
+    let rect =
+        ctc_engine::mesh::generate::generate(&ctc_engine::mesh::generate::MeshSpec::Rectangle {
+            origin: [A, 0.0],
+            size: [B - A, height],
+            divisions: [radial, 1],
+            grading: [Grading::Uniform, Grading::Uniform],
+            kind: CellKind::Quad4,
+        })
+        .map_err(|e| e.message)?;
+    let mut b = ModelBuilder::axisymmetric()
+        .elastic("steel", E, NU)
+        .body("tube", rect, "steel");
+    for name in ["bottom", "top"] {
+        let nodes = b.node_set(&format!("tube.{name}"));
+        b = b.fix(nodes, 1);
+    }
+    let left = b.edge_set("tube.left");
+    let axi = b
+        .pressure(left, TimeFunction::Constant(P))
+        .step("load", 1.0, 1)
+        .build();
+    let (_, la) = solve(&axi)?;
+    let left_nodes = &axi.mesh.node_sets["tube.left"];
+    let ur_axi = left_nodes.iter().map(|&n| la.u[n][0]).sum::<f64>() / left_nodes.len() as f64;
+    let mut out = level_of(&s3, &model3, (B - A) / radial as f64);
+    out.values = vec![
+        value("u_r(a) 3d vs axi", ur3, ur_axi),
+        value("u_r(a) 3d", ur3, cylinder_ur(A)),
+    ];
+    Ok(out)
+}
