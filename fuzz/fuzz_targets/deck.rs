@@ -8,7 +8,7 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    let src = ctc_lang::Source::new("fuzz.ctc", &text);
+    let src = ctc_lang::Source::new("fuzz.ctc", text.into_owned());
     let compiled = ctc_lang::check(&src);
     let _ = compiled.diagnostics.render(&src);
     if let Some(model) = compiled.model {
