@@ -172,15 +172,11 @@ fn shape(reference: &[[f64; 3]], d: &Draw) -> Vec<Point<3>> {
         .iter()
         .enumerate()
         .map(|(n, c)| {
-            let mut p = Point::<3>::zeros();
-            for i in 0..3 {
-                p[i] = c[i] + d.jitter[3 * n + i];
-                for j in 0..3 {
-                    p[i] += d.a[3 * i + j] * c[j];
-                }
-                p[i] = p[i] * d.scale + d.shift[i];
-            }
-            p
+            Point::<3>::from_fn(|i, _| {
+                let mapped =
+                    c[i] + d.jitter[3 * n + i] + (0..3).map(|j| d.a[3 * i + j] * c[j]).sum::<f64>();
+                mapped * d.scale + d.shift[i]
+            })
         })
         .collect()
 }
@@ -313,6 +309,11 @@ fn symmetric(kinematics: Kinematics, formulation: Formulation) -> bool {
 
 const TOL: f64 = 1e-10;
 
+/// `v <= TOL` (false for NaN).
+fn within(v: f64) -> bool {
+    v <= TOL
+}
+
 /// Checks every law on one element; returns the worst defects.
 fn check(
     kernel: &dyn CellKernel<3>,
@@ -340,10 +341,10 @@ fn check(
             "{} {formulation:?} {kinematics:?} {name}: {e:?}",
             kernel.kind().name()
         );
-        if !(e.translation <= TOL && e.rotation <= TOL) {
+        if !(within(e.translation) && within(e.rotation)) {
             return Err(format!("rigid mode not in the null space: {what}"));
         }
-        if symmetric(kinematics, formulation) && !(e.asymmetry <= TOL) {
+        if symmetric(kinematics, formulation) && !within(e.asymmetry) {
             return Err(format!("tangent not symmetric: {what}"));
         }
         worst.translation = worst.translation.max(e.translation);
