@@ -505,7 +505,7 @@ fn free_side_here(tool: &ctc_engine::model::RigidTool, nodes: &[[f64; 2]]) -> St
     let (a, b) = (pts[k], pts[k + 1]);
     let d = [b[0] - a[0], b[1] - a[1]];
     let l = d[0].hypot(d[1]);
-    if !(l > 0.0) {
+    if l.is_nan() || l <= 0.0 {
         return "free side at t = 0: undefined (zero-length piece)".into();
     }
     let n = [-d[1] / l, d[0] / l];
