@@ -412,7 +412,10 @@ fn punch_over_an_interior_master_node_converges_without_cycling() {
     let (o, out) = run_text(
         mortar_dir.path(),
         "mortar.ctc",
-        &text.replace("stiffness = 1e7 }", "stiffness = 1e7 }  formulation = mortar"),
+        &text.replace(
+            "stiffness = 1e7 }",
+            "stiffness = 1e7 }  formulation = mortar",
+        ),
     );
     assert!(o.success, "{}{}", o.stdout, o.stderr);
     let reference = last_history(&out, "contact_force(punch.bottom -> block.top)_y");

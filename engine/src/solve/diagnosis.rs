@@ -438,7 +438,10 @@ mod tests {
         assert!(t.chattering().is_empty());
         let s = t.entity_switches();
         assert_eq!(s.len(), 1);
-        assert_eq!((s[0].node, s[0].count, s[0].entities.clone()), (158, 3, vec![7, 8]));
+        assert_eq!(
+            (s[0].node, s[0].count, s[0].entities.clone()),
+            (158, 3, vec![7, 8])
+        );
         let (cause, remedy) = contact_cause(None, &t, &|_| "punch -> block".into()).unwrap();
         assert!(cause.starts_with("no contact status changes"), "{cause}");
         assert!(cause.contains("158 (3x, segments [7, 8])"), "{cause}");
