@@ -91,7 +91,7 @@ impl SegmentProjection {
         let xv = if xi_end < 0.5 { x1 } else { x2 };
         let d = sub(xs, xv);
         let r = d[0].hypot(d[1]);
-        if !(r > 1e-12 * line.length) {
+        if r.is_nan() || r <= 1e-12 * line.length {
             return None;
         }
         let s = if line.gap < 0.0 { -1.0 } else { 1.0 };
