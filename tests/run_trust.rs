@@ -442,3 +442,77 @@ fn punch_over_an_interior_master_node_converges_without_cycling() {
         );
     }
 }
+
+/// Coordinates `(x, y)` of the points of a VTU file.
+fn vtu_points(path: &Path) -> Vec<[f64; 2]> {
+    let bytes = std::fs::read(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let v = ctc_engine::output::vtu_read::Vtu::read(&bytes).unwrap();
+    let c = &v.array(ctc_engine::output::vtu_read::Section::Points, "coordinates");
+    c.unwrap().values.chunks(3).map(|p| [p[0], p[1]]).collect()
+}
+
+/// Item 10: each rigid tool's geometry is written at every written
+/// increment (`tool_<k>_NNNN.vtu`), listed in results.pvd as its own block
+/// (part k + 1), at its current position: the circle punch moves down by
+/// `uy(t) = -0.05 t`, the fixed floor and wall do not move; `--explain`
+/// says where each tool's free side is.
+#[test]
+fn rigid_tools_are_written_into_the_results_and_move_with_their_motion() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = run(
+        "tool_geometry_output.ctc",
+        dir.path(),
+        &["-q"],
+        Duration::from_secs(120),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    let pvd = std::fs::read_to_string(dir.path().join("results.pvd")).unwrap();
+    for inc in [1, 2] {
+        for (k, part) in [(0, 1), (1, 2), (2, 3)] {
+            let line = format!("part=\"{part}\" file=\"tool_{k}_{inc:04}.vtu\"");
+            assert!(pvd.contains(&line), "{line} missing from\n{pvd}");
+        }
+        assert!(pvd.contains(&format!("part=\"0\" file=\"inc_{inc:04}.vtu\"")));
+    }
+    // the punch (a circle of radius 1 about (1, 2)) at t = 0.5 and t = 1
+    let (a, b) = (
+        vtu_points(&dir.path().join("tool_0_0001.vtu")),
+        vtu_points(&dir.path().join("tool_0_0002.vtu")),
+    );
+    assert_eq!(a.len(), b.len());
+    assert!(a.len() > 8);
+    for (p, q) in a.iter().zip(&b) {
+        assert!((p[0] - q[0]).abs() < 1e-12, "{p:?} {q:?}");
+        assert!((p[1] - q[1] - 0.025).abs() < 1e-12, "{p:?} {q:?}");
+        let r = (q[0] - 1.0).hypot(q[1] - (2.0 - 0.05));
+        assert!((r - 1.0).abs() < 1e-12, "{q:?}");
+    }
+    // the floor: a segment on y = 0 over the block's extent (x in 0..2)
+    let f = vtu_points(&dir.path().join("tool_1_0002.vtu"));
+    assert_eq!(f.len(), 2);
+    assert!(f.iter().all(|p| p[1].abs() < 1e-12));
+    assert!(f[0][0] < 0.0 && f[1][0] > 2.0, "{f:?}");
+    // the wall does not move
+    assert_eq!(
+        vtu_points(&dir.path().join("tool_2_0001.vtu")),
+        [[2.5, -1.0], [2.5, 2.0]]
+    );
+    let d = deck("tool_geometry_output.ctc");
+    let o = ctc(
+        &["check".as_ref(), "--explain".as_ref(), d.as_os_str()],
+        Duration::from_secs(60),
+    );
+    assert!(o.success, "{}", o.stderr);
+    for line in [
+        "this circle's free side is outside (`side = outside`)",
+        "free side at t = 0: at (1, 0) the normal into free space is (0, 1) (+y (above))",
+        "free side at t = 0: at (2.5, 0.5) the normal into free space is (-1, 0) (-x (to the \
+         left))",
+    ] {
+        assert!(
+            o.stdout.contains(line),
+            "`{line}` missing from\n{}",
+            o.stdout
+        );
+    }
+}

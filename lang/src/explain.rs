@@ -269,6 +269,10 @@ pub fn explain(model: &Model) -> String {
                 "    free side (where bodies may be): {}",
                 ctc_engine::solve::health::free_side_rule(&t.geometry)
             );
+            if !matches!(t.geometry, ToolGeometry::Circle { .. }) {
+                // (a circle's side is stated by the rule above)
+                let _ = writeln!(o, "    {}", free_side_here(t, &model.mesh.nodes));
+            }
             let m = &t.motion;
             if is_zero(&m.ux) && is_zero(&m.uy) && is_zero(&m.rotation) {
                 let _ = writeln!(o, "    fixed");
@@ -486,6 +490,49 @@ pub fn explain(model: &Model) -> String {
     absent.push("inertia");
     let _ = writeln!(o, "not in this scene: {}", absent.join(", "));
     o
+}
+
+/// Where the free side of `tool` is at t = 0, concretely: the walk's
+/// middle point and the normal there pointing into free space (the
+/// geometry written to `tool_<k>_NNNN.vtu`, free side on the left).
+fn free_side_here(tool: &ctc_engine::model::RigidTool, nodes: &[[f64; 2]]) -> String {
+    let extent = ctc_engine::output::tool_vtu::extent(nodes, &vec![[0.0; 2]; nodes.len()]);
+    let pts = ctc_engine::output::tool_vtu::current_points(tool, 0.0, extent);
+    if pts.len() < 2 {
+        return "free side at t = 0: undefined (empty geometry)".into();
+    }
+    let k = (pts.len() - 1) / 2;
+    let (a, b) = (pts[k], pts[k + 1]);
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l = d[0].hypot(d[1]);
+    if l.is_nan() || l <= 0.0 {
+        return "free side at t = 0: undefined (zero-length piece)".into();
+    }
+    let n = [-d[1] / l, d[0] / l];
+    let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let word = if n[1] >= n[0].abs() {
+        "+y (above)"
+    } else if -n[1] >= n[0].abs() {
+        "-y (below)"
+    } else if n[0] > 0.0 {
+        "+x (to the right)"
+    } else {
+        "-x (to the left)"
+    };
+    // four significant digits: a place and a direction, not data
+    let r4 = |v: f64| {
+        if v.abs() < 1e-12 {
+            return 0.0;
+        }
+        let e = 10f64.powi(3 - v.abs().log10().floor() as i32);
+        (v * e).round() / e
+    };
+    format!(
+        "free side at t = 0: at {} the normal into free space is {} ({word}); a slave \
+         node on the other side starts inside the tool",
+        point([r4(mid[0]), r4(mid[1])]),
+        point([r4(n[0]), r4(n[1])])
+    )
 }
 
 /// A pair's friction law in words.
