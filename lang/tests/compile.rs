@@ -364,9 +364,9 @@ fn cylinder_generator_lowers_a_quarter_o_grid_with_its_face_sets() {
         );
     }
     let bad = Source::new("cylinder.ctc", text("45"));
-    let err = ctc_lang::compile_any(&bad)
-        .err()
-        .expect("45 degrees is refused");
+    let Err(err) = ctc_lang::compile_any(&bad) else {
+        panic!("45 degrees is refused");
+    };
     let rendered = err.render(&bad);
     assert!(rendered.contains("90, 180, 270 or 360"), "{rendered}");
 }
