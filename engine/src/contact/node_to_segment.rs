@@ -138,6 +138,12 @@ pub struct SurfacePair {
     pub increments: usize,
     /// Converged increments at the last commit (rollback target).
     committed_increments: usize,
+    /// Current coordinates of every node at the latest evaluation.
+    pub positions: Vec<[f64; 2]>,
+    /// Coordinates at the last converged increment (the start of the
+    /// constant-velocity path of a first impact,
+    /// [`crate::model::FirstImpact::Intersect`]).
+    pub committed_positions: Vec<[f64; 2]>,
     /// Scratch: candidate segments of one query.
     pub(crate) candidates: Vec<usize>,
 }
@@ -162,18 +168,23 @@ impl SurfacePair {
     pub fn commit(&mut self) {
         self.increments += 1;
         self.committed_increments = self.increments;
+        self.committed_positions.clone_from(&self.positions);
     }
 
     /// Called when an increment is cut back.
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
+        self.positions.clone_from(&self.committed_positions);
     }
 
     /// Restart: `increments` converged increments were done (the restart
-    /// checkpoint's count), so the double pass resumes with the right side.
-    pub fn restore(&mut self, increments: usize) {
+    /// checkpoint's count), so the double pass resumes with the right side;
+    /// `positions` are the committed coordinates of every node.
+    pub fn restore(&mut self, increments: usize, positions: &[[f64; 2]]) {
         self.increments = increments;
         self.committed_increments = increments;
+        self.committed_positions = positions.to_vec();
+        self.positions = positions.to_vec();
     }
 }
 
@@ -238,6 +249,8 @@ pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePa
         side_of,
         self_contact,
         excluded,
+        positions: model.mesh.nodes.clone(),
+        committed_positions: model.mesh.nodes.clone(),
         ..SurfacePair::default()
     })
 }
@@ -388,6 +401,9 @@ pub fn evaluate(
     let mut tests = 0usize;
     let mut brute = 0usize;
     let mut candidates = std::mem::take(&mut sp.candidates);
+    sp.positions.clear();
+    sp.positions.extend_from_slice(x);
+    state.friction.impact = None;
     for (i, &node) in state.slaves.iter().enumerate() {
         let side = sp.side_of[i];
         if !active_sides[side as usize] {
@@ -464,6 +480,7 @@ pub fn evaluate(
                 &cp.method,
                 &model.mesh.nodes,
                 x,
+                &sp.committed_positions,
                 &super::friction_segment::Element {
                     slave: i,
                     xs,
