@@ -562,7 +562,10 @@ fn lagrange_punch_converges_with_nodal_smoothing_and_faceted_is_diagnosed() {
     assert!(o.success);
     let penalty = last_history(pdir.path(), "contact_force(punch.bottom -> block.top)_y");
     let rel = (lagrange - penalty) / lagrange;
-    assert!(rel > 0.0 && rel < 0.03, "lagrange {lagrange} penalty {penalty}");
+    assert!(
+        rel > 0.0 && rel < 0.03,
+        "lagrange {lagrange} penalty {penalty}"
+    );
     // faceted: fails, and says why (no status change: segment switches)
     let text = std::fs::read_to_string(deck("punch_on_block_nonmatching_lagrange.ctc")).unwrap();
     let fdir = tempfile::tempdir().unwrap();
@@ -629,5 +632,99 @@ fn lagrange_two_cylinders_converge_with_nodal_smoothing_like_penalty() {
     assert!(
         (p_lagrange - p_penalty).abs() < 0.01 * p_lagrange,
         "{p_lagrange} {p_penalty}"
+    );
+}
+
+/// The last `reaction(upper.top)` (x, y) of a run of `text` (a deck).
+fn final_reaction(text: &str) -> [f64; 2] {
+    let tmp = tempfile::tempdir().unwrap();
+    let d = tmp.path().join("deck.ctc");
+    std::fs::write(&d, text).unwrap();
+    let out = tmp.path().join("out");
+    let o = ctc(
+        &[
+            "run".as_ref(),
+            d.as_os_str(),
+            "-q".as_ref(),
+            "-o".as_ref(),
+            out.as_os_str(),
+        ],
+        Duration::from_secs(120),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    [
+        last_history(&out, "reaction(upper.top)_x"),
+        last_history(&out, "reaction(upper.top)_y"),
+    ]
+}
+
+/// Item 11: the first touch of a node-to-segment pair follows
+/// `first_impact = intersect` (the stick point is where the node met the
+/// moving segment) instead of being frictionless, so the result no longer
+/// depends on the first increment's size. Two blocks touching at t = 0,
+/// pressed and sheared at once (an elastic stick interface: the solution
+/// is path independent): 1 and 4 increments give the same forces; with
+/// `first_impact = frictionless` (what node-to-segment pairs did before)
+/// the shear force differs by most of its value. With an initial gap of
+/// 0.002 (touch at t = 0.2), 5 and 10 increments agree too.
+#[test]
+fn first_impact_intersect_makes_node_to_segment_friction_independent_of_the_first_increment() {
+    let text = std::fs::read_to_string(deck("touching_blocks_friction.ctc")).unwrap();
+    let with = |n: usize, impact: &str, gap: bool| {
+        let mut t = text
+            .replace("increments = 4", &format!("increments = {n}"))
+            .replace(
+                "first_impact = intersect",
+                &format!("first_impact = {impact}"),
+            );
+        if gap {
+            t = t.replace("origin = (0.5, 0)", "origin = (0.5, 0.002)");
+        }
+        final_reaction(&t)
+    };
+    let rel = |a: [f64; 2], b: [f64; 2]| {
+        let scale = b[0].hypot(b[1]);
+        [(a[0] - b[0]).abs() / scale, (a[1] - b[1]).abs() / scale]
+    };
+    let (one, four) = (with(1, "intersect", false), with(4, "intersect", false));
+    let d = rel(one, four);
+    eprintln!("intersect, touching: 1 vs 4 increments: {one:?} {four:?} rel {d:?}");
+    assert!(
+        four[0] > 0.05 * four[1].abs(),
+        "a real shear force: {four:?}"
+    );
+    assert!(d[0] < 1e-9 && d[1] < 1e-9, "{d:?}");
+    let (one, four) = (
+        with(1, "frictionless", false),
+        with(4, "frictionless", false),
+    );
+    let d = rel(one, four);
+    eprintln!("frictionless, touching: 1 vs 4 increments: {one:?} {four:?} rel {d:?}");
+    assert!(
+        d[0] > 0.01,
+        "the old behaviour depends on the increment: {d:?}"
+    );
+    let (five, ten) = (with(5, "intersect", true), with(10, "intersect", true));
+    let d = rel(five, ten);
+    eprintln!("intersect, gap 0.002: 5 vs 10 increments: {five:?} {ten:?} rel {d:?}");
+    assert!(d[0] < 1e-9 && d[1] < 1e-9, "{d:?}");
+    let (five, ten) = (
+        with(5, "frictionless", true),
+        with(10, "frictionless", true),
+    );
+    let d = rel(five, ten);
+    eprintln!("frictionless, gap 0.002: 5 vs 10 increments: {five:?} {ten:?} rel {d:?}");
+    assert!(d[0] > 0.005, "{d:?}");
+    // --explain says what happens at the first touch of this pair
+    let d = deck("touching_blocks_friction.ctc");
+    let o = ctc(
+        &["check".as_ref(), "--explain".as_ref(), d.as_os_str()],
+        Duration::from_secs(60),
+    );
+    assert!(
+        o.stdout
+            .contains("first impact: stick point where the node met the master segment"),
+        "{}",
+        o.stdout
     );
 }

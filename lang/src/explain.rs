@@ -352,7 +352,11 @@ pub fn explain(model: &Model) -> String {
                 plural(c.edges.len(), "edge", "edges")
             );
             if let Some(f) = &c.friction {
-                let _ = writeln!(o, "    {}", friction_plan(f, &c.method));
+                let _ = writeln!(
+                    o,
+                    "    {}",
+                    friction_plan(f, &c.method, c.master.tool().is_some())
+                );
             }
             if let Some(line) = crate::explain_surface::describe(model, c) {
                 let _ = writeln!(o, "    {line}");
@@ -536,7 +540,7 @@ fn free_side_here(tool: &ctc_engine::model::RigidTool, nodes: &[[f64; 2]]) -> St
 }
 
 /// A pair's friction law in words.
-fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod) -> String {
+fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod, tool: bool) -> String {
     let how = match method {
         ContactMethod::Lagrange { .. } => {
             "tangential Lagrange multipliers, stick/slip status loop".to_string()
@@ -558,7 +562,14 @@ fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod) -> Str
         num(f.mu),
         match f.first_impact {
             ctc_engine::model::FirstImpact::Intersect =>
-                "stick point where the node met the master",
+                if tool {
+                    "stick point where the node met the tool (its straight path from the last \
+                     converged increment, in the tool's frame), friction from there on"
+                } else {
+                    "stick point where the node met the master segment (node and segment ends \
+                     moving at constant velocity from the last converged increment; a node \
+                     touching at the start sticks where it was), friction from there on"
+                },
             ctc_engine::model::FirstImpact::Frictionless => "frictionless in that increment",
         },
         if f.cut_at_impact {

@@ -56,9 +56,9 @@
 use super::broad::BroadPhase;
 use super::segment::SegmentProjection;
 use super::segment_search;
+use super::smoothing;
 use super::{augmented, lagrange, penalty, ContactStatus, MasterSegment, NodeContact, PairState};
 use crate::geom::Aabb;
-use super::smoothing;
 use crate::model::{
     ContactMaster, ContactMethod, ContactStrategy, LocalSearch, Model, NormalSmoothing,
 };
@@ -141,6 +141,12 @@ pub struct SurfacePair {
     pub increments: usize,
     /// Converged increments at the last commit (rollback target).
     committed_increments: usize,
+    /// Current coordinates of every node at the latest evaluation.
+    pub positions: Vec<[f64; 2]>,
+    /// Coordinates at the last converged increment (the start of the
+    /// constant-velocity path of a first impact,
+    /// [`crate::model::FirstImpact::Intersect`]).
+    pub committed_positions: Vec<[f64; 2]>,
     /// Scratch: candidate segments of one query.
     pub(crate) candidates: Vec<usize>,
 }
@@ -165,18 +171,23 @@ impl SurfacePair {
     pub fn commit(&mut self) {
         self.increments += 1;
         self.committed_increments = self.increments;
+        self.committed_positions.clone_from(&self.positions);
     }
 
     /// Called when an increment is cut back.
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
+        self.positions.clone_from(&self.committed_positions);
     }
 
     /// Restart: `increments` converged increments were done (the restart
-    /// checkpoint's count), so the double pass resumes with the right side.
-    pub fn restore(&mut self, increments: usize) {
+    /// checkpoint's count), so the double pass resumes with the right side;
+    /// `positions` are the committed coordinates of every node.
+    pub fn restore(&mut self, increments: usize, positions: &[[f64; 2]]) {
         self.increments = increments;
         self.committed_increments = increments;
+        self.committed_positions = positions.to_vec();
+        self.positions = positions.to_vec();
     }
 }
 
@@ -241,6 +252,8 @@ pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePa
         side_of,
         self_contact,
         excluded,
+        positions: model.mesh.nodes.clone(),
+        committed_positions: model.mesh.nodes.clone(),
         ..SurfacePair::default()
     })
 }
@@ -415,7 +428,11 @@ fn closest_smoothed(
         let Some(xi) = smoothing::project(&p, line.xi.clamp(0.0, 1.0)) else {
             continue;
         };
-        let lo = if far[0].is_some() { -XI_TOL } else { -FREE_END_XI };
+        let lo = if far[0].is_some() {
+            -XI_TOL
+        } else {
+            -FREE_END_XI
+        };
         let hi = if far[1].is_some() {
             1.0 + XI_TOL
         } else {
@@ -435,11 +452,7 @@ fn closest_smoothed(
     let (_, e, xi) = best?;
     let (pts, far) = patch_points(surface, x, xs, e);
     let d = smoothing::differentiate(pts, far[0].is_some(), far[1].is_some(), xi)?;
-    Some(SmoothKept {
-        segment: e,
-        far,
-        d,
-    })
+    Some(SmoothKept { segment: e, far, d })
 }
 
 /// Evaluates deformable pair `pair` at current coordinates `x`: one entry
@@ -479,6 +492,9 @@ pub fn evaluate(
     if let Some(c) = &mut couplings {
         c.clear();
     }
+    sp.positions.clear();
+    sp.positions.extend_from_slice(x);
+    state.friction.impact = None;
     for (i, &node) in state.slaves.iter().enumerate() {
         let side = sp.side_of[i];
         if !active_sides[side as usize] {
@@ -577,6 +593,7 @@ pub fn evaluate(
                 &cp.method,
                 &model.mesh.nodes,
                 x,
+                &sp.committed_positions,
                 &super::friction_segment::Element {
                     slave: i,
                     xs,

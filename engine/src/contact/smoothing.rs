@@ -294,7 +294,10 @@ mod tests {
         let p2 = Patch::new([xs, a, v, b, [-2.0, 0.4]], true, true).unwrap();
         let xi1 = project(&p1, 0.5).unwrap();
         let xi2 = project(&p2, 0.5).unwrap();
-        assert!((xi1 - 1.0).abs() < 1e-12 && xi2.abs() < 1e-12, "{xi1} {xi2}");
+        assert!(
+            (xi1 - 1.0).abs() < 1e-12 && xi2.abs() < 1e-12,
+            "{xi1} {xi2}"
+        );
         let (g1, n1) = p1.gap(xi1);
         let (g2, n2) = p2.gap(xi2);
         assert!((g1 - 0.05).abs() < 1e-12 && (g2 - 0.05).abs() < 1e-12);
