@@ -143,7 +143,7 @@ impl<T: Scalar> Patch<T> {
     pub fn new(x: [V<T>; 5], has0: bool, has3: bool) -> Option<Self> {
         let [xs, x0, x1, x2, x3] = x;
         let d = sub(x2, x1);
-        if !(dot(d, d).val() > 0.0) {
+        if dot(d, d).val().is_nan() || dot(d, d).val() <= 0.0 {
             return None;
         }
         let nu1 = nodal(has0.then_some(x0), x1, Some(x2))?;
