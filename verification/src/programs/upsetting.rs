@@ -10,8 +10,9 @@
 //! The rigid-plastic formula of case 6, `F = sigma_f(ln(h0/h)) pi r0^2 h0 /
 //! h`, is judged too (within 1-2 %: it neglects the elastic strain).
 //! `upsetting_small_strain`: the same scene at small strain (B-bar), 1 %
-//! compression, against the uniaxial closed form `sigma = sigma_y + E_t (eps
-//! - sigma_y / E)`, `E_t = E H / (E + H)`, on the reference area.
+//! compression, against the uniaxial closed form
+//! `sigma = sigma_y + E_t (eps - sigma_y / E)`, `E_t = E H / (E + H)`, on
+//! the reference area.
 //! Source: Simo & Hughes, Computational Inelasticity §9 (finite) and §2.2
 //! (small-strain uniaxial). `verification/tests/upsetting.rs` runs these
 //! entries.
