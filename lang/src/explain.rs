@@ -269,6 +269,10 @@ pub fn explain(model: &Model) -> String {
                 "    free side (where bodies may be): {}",
                 ctc_engine::solve::health::free_side_rule(&t.geometry)
             );
+            if !matches!(t.geometry, ToolGeometry::Circle { .. }) {
+                // (a circle's side is stated by the rule above)
+                let _ = writeln!(o, "    {}", free_side_here(t, &model.mesh.nodes));
+            }
             let m = &t.motion;
             if is_zero(&m.ux) && is_zero(&m.uy) && is_zero(&m.rotation) {
                 let _ = writeln!(o, "    fixed");
@@ -348,7 +352,11 @@ pub fn explain(model: &Model) -> String {
                 plural(c.edges.len(), "edge", "edges")
             );
             if let Some(f) = &c.friction {
-                let _ = writeln!(o, "    {}", friction_plan(f, &c.method));
+                let _ = writeln!(
+                    o,
+                    "    {}",
+                    friction_plan(f, &c.method, c.master.tool().is_some())
+                );
             }
             if let Some(line) = crate::explain_surface::describe(model, c) {
                 let _ = writeln!(o, "    {line}");
@@ -488,8 +496,51 @@ pub fn explain(model: &Model) -> String {
     o
 }
 
+/// Where the free side of `tool` is at t = 0, concretely: the walk's
+/// middle point and the normal there pointing into free space (the
+/// geometry written to `tool_<k>_NNNN.vtu`, free side on the left).
+fn free_side_here(tool: &ctc_engine::model::RigidTool, nodes: &[[f64; 2]]) -> String {
+    let extent = ctc_engine::output::tool_vtu::extent(nodes, &vec![[0.0; 2]; nodes.len()]);
+    let pts = ctc_engine::output::tool_vtu::current_points(tool, 0.0, extent);
+    if pts.len() < 2 {
+        return "free side at t = 0: undefined (empty geometry)".into();
+    }
+    let k = (pts.len() - 1) / 2;
+    let (a, b) = (pts[k], pts[k + 1]);
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let l = d[0].hypot(d[1]);
+    if l.is_nan() || l <= 0.0 {
+        return "free side at t = 0: undefined (zero-length piece)".into();
+    }
+    let n = [-d[1] / l, d[0] / l];
+    let mid = [0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])];
+    let word = if n[1] >= n[0].abs() {
+        "+y (above)"
+    } else if -n[1] >= n[0].abs() {
+        "-y (below)"
+    } else if n[0] > 0.0 {
+        "+x (to the right)"
+    } else {
+        "-x (to the left)"
+    };
+    // four significant digits: a place and a direction, not data
+    let r4 = |v: f64| {
+        if v.abs() < 1e-12 {
+            return 0.0;
+        }
+        let e = 10f64.powi(3 - v.abs().log10().floor() as i32);
+        (v * e).round() / e
+    };
+    format!(
+        "free side at t = 0: at {} the normal into free space is {} ({word}); a slave \
+         node on the other side starts inside the tool",
+        point([r4(mid[0]), r4(mid[1])]),
+        point([r4(n[0]), r4(n[1])])
+    )
+}
+
 /// A pair's friction law in words.
-fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod) -> String {
+fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod, tool: bool) -> String {
     let how = match method {
         ContactMethod::Lagrange { .. } => {
             "tangential Lagrange multipliers, stick/slip status loop".to_string()
@@ -511,7 +562,14 @@ fn friction_plan(f: &ctc_engine::model::Friction, method: &ContactMethod) -> Str
         num(f.mu),
         match f.first_impact {
             ctc_engine::model::FirstImpact::Intersect =>
-                "stick point where the node met the master",
+                if tool {
+                    "stick point where the node met the tool (its straight path from the last \
+                     converged increment, in the tool's frame), friction from there on"
+                } else {
+                    "stick point where the node met the master segment (node and segment ends \
+                     moving at constant velocity from the last converged increment; a node \
+                     touching at the start sticks where it was), friction from there on"
+                },
             ctc_engine::model::FirstImpact::Frictionless => "frictionless in that increment",
         },
         if f.cut_at_impact {

@@ -313,7 +313,8 @@ pub fn conventions_markdown() -> String {
          | exit code of `ctc run` / `ctc check` | 0 success, 1 deck error or run stopped |\n\n\
          ## Output files\n\n\
          | file | content |\n| --- | --- |\n\
-         | `results.pvd` | the increments written, with their times |\n\
+         | `results.pvd` | the increments written, with their times; the bodies are part 0, rigid tool `k` part `k + 1` |\n\
+         | `tool_<k>_NNNN.vtu` | rigid tool `k` at its current position at an increment: line cells walked with the free side on their left, cell data free_side (unit normal into free space; planes are cut to the bodies' extent); field data TIME, CYCLE, TOOL. Points are current coordinates: warp only the bodies' block by displacement |\n\
          | `inc_NNNN.vtu` | fields at an increment (binary, appended raw zlib, by default; `output { format = ascii }` for text): point data displacement, stress, strain, von_mises, equivalent_plastic_strain, reaction, contact (status, gap, pressure, friction), temperature; cell data body and the integration-point means of stress, strain, von_mises, equivalent_plastic_strain; field data TIME, CYCLE (increment) |\n\
          | `history.csv` | one row per converged increment: time, history requests (x, y), friction work per pair, temperatures |\n\
          | `contact_<pair>_<inc>.csv` | slave nodes along the surface: node, x, y, gap, pressure, status, force_x, force_y (+ master_1, master_2, xi; + tangential_force, slip, friction_status, dissipation) |\n\

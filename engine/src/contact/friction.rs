@@ -201,7 +201,7 @@ impl FrictionState {
     }
 
     /// Records a first impact at fraction `tau`.
-    fn record_impact(&mut self, tau: f64) {
+    pub(crate) fn record_impact(&mut self, tau: f64) {
         self.impact = Some(self.impact.map_or(tau, |t| t.min(tau)));
     }
 }

@@ -17,7 +17,9 @@
 //! multiplier (constant). The exact 6x6 tangent `-d f / d x` (stick and
 //! slip, with the rotation and stretching of the segment and the motion of
 //! the projection point) is obtained with forward-mode dual numbers
-//! ([`crate::material::dual`]); it is not symmetric.
+//! ([`crate::material::dual`]); it is not symmetric. In the increment of
+//! a first impact the stick point's parameter depends on `x`
+//! (`anchor_rate`, its derivative), which the tangent includes.
 
 use super::friction::{FrictionStatus, NodeFriction};
 use crate::material::dual::{Dual, Scalar};
@@ -64,6 +66,7 @@ pub fn respond(
     x2: [f64; 2],
     reference: [[f64; 2]; 2],
     anchor: [f64; 2],
+    anchor_rate: Option<[f64; 6]>,
 ) -> Option<SegmentResponse> {
     let v = |x: [f64; 2], k: usize| [D6::var(x[0], k), D6::var(x[1], k + 1)];
     let (s, p1, p2) = (v(xs, 0), v(x1, 2), v(x2, 4));
@@ -85,8 +88,14 @@ pub fn respond(
     if lr2 <= 0.0 {
         return None;
     }
-    let xi_a = ((anchor[0] - r1[0]) * ar[0] + (anchor[1] - r1[1]) * ar[1]) / lr2;
+    let xi_a_value = ((anchor[0] - r1[0]) * ar[0] + (anchor[1] - r1[1]) * ar[1]) / lr2;
+    // in the increment of a first impact the stick point depends on x
+    let xi_a = match anchor_rate {
+        Some(d) => D6 { v: xi_a_value, d },
+        None => D6::cst(xi_a_value),
+    };
     let gt = along - len * xi_a;
+    let xi_a = xi_a_value;
     let rn = (gap * -law.normal_stiffness) + law.normal_shift;
     let rn = if rn.re() > 0.0 { rn } else { D6::cst(0.0) };
     let limit = rn * law.mu;
@@ -152,9 +161,17 @@ pub struct Element {
 
 /// Adds the friction forces and tangent of a node-to-segment element to
 /// its normal part (`forces`, `tangent` over `[x_s, x_1, x_2]`) and updates
-/// the trial friction state. The increment in which a node first touches
-/// is frictionless (its stick point is where it touches at the end of that
-/// increment). Lagrange multipliers: no friction (rejected by the deck
+/// the trial friction state. In the increment in which a node first
+/// touches, with `first_impact = intersect` (the default) the stick point
+/// is where the node met the segment: the node and the segment's ends move
+/// at constant velocity from their converged positions `committed` to `x`
+/// ([`super::impact::segment_intersection`]; a node that already touched
+/// or penetrated at the start sticks where it was), and friction acts on
+/// the rest of the increment; with `first_impact = frictionless` that
+/// increment has no tangential force and the stick point is where the node
+/// is at its end. The stick point is held fixed within a Newton iteration
+/// (its dependence on `x` is left out of the tangent, in that increment
+/// only). Lagrange multipliers: no friction (rejected by the deck
 /// validation).
 #[allow(clippy::too_many_arguments)]
 pub fn apply(
@@ -162,6 +179,7 @@ pub fn apply(
     method: &crate::model::ContactMethod,
     reference: &[[f64; 2]],
     x: &[[f64; 2]],
+    committed: &[[f64; 2]],
     e: &Element,
     state: &mut super::friction::FrictionState,
     forces: &mut [f64; 6],
@@ -179,11 +197,31 @@ pub fn apply(
     else {
         return NodeFriction::default();
     };
-    let Some(start) = state.committed_anchor[i] else {
-        // first touch: frictionless in this increment
-        state.anchor[i] = Some(reference_point([r1, r2], e.xi));
-        state.position[i] = e.xs;
-        return NodeFriction::default();
+    let mut anchor_rate = None;
+    let start = match state.committed_anchor[i] {
+        Some(a) => a,
+        None => {
+            let s0 = state.committed_position[i];
+            let ends = (committed.get(m1), committed.get(m2));
+            let hit = first_impact(s0, e.xs, ends, (x1, x2));
+            if let Some((tau, _)) = hit {
+                state.record_impact(tau);
+            }
+            match (law.first_impact, hit) {
+                (crate::model::FirstImpact::Intersect, Some((tau, xi))) => {
+                    if tau > 0.0 {
+                        anchor_rate = Some(impact_rate(s0, ends, [e.xs, x1, x2], xi));
+                    }
+                    reference_point([r1, r2], xi)
+                }
+                _ => {
+                    // frictionless in this increment
+                    state.anchor[i] = Some(reference_point([r1, r2], e.xi));
+                    state.position[i] = e.xs;
+                    return NodeFriction::default();
+                }
+            }
+        }
     };
     let anchor = state.base[i].unwrap_or(start);
     let alpha_n = super::penalty::effective_stiffness(method, e.tributary);
@@ -207,7 +245,9 @@ pub fn apply(
         normal_shift: e.normal_force + alpha_n * gap_now,
         normal_stiffness: alpha_n,
     };
-    let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor) else {
+    // the Uzawa base (augmented Lagrangian) is a fixed stick point
+    let anchor_rate = anchor_rate.filter(|_| state.base[i].is_none());
+    let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor, anchor_rate) else {
         return NodeFriction::default();
     };
     for ((f, row), (rf, rrow)) in forces
@@ -223,6 +263,62 @@ pub fn apply(
     state.anchor[i] = Some(r.anchor);
     state.position[i] = e.xs;
     r.friction
+}
+
+/// Where, in the increment, a slave node going `s0 -> s1` met the segment
+/// whose ends go `a0 -> a1`, `b0 -> b1` (all at constant velocity): the
+/// fraction `tau` and the segment parameter there. A node already on or
+/// behind the segment's line at the start (gap <= 0, projection on the
+/// segment) met it at `tau = 0` where it was. `None` when the ends' start
+/// positions are unknown or the node never crossed the segment.
+fn first_impact(
+    s0: [f64; 2],
+    s1: [f64; 2],
+    start: (Option<&[f64; 2]>, Option<&[f64; 2]>),
+    end: ([f64; 2], [f64; 2]),
+) -> Option<(f64, f64)> {
+    let (Some(&a0), Some(&b0)) = start else {
+        return None;
+    };
+    let (a1, b1) = end;
+    let e = [b0[0] - a0[0], b0[1] - a0[1]];
+    let l2 = e[0] * e[0] + e[1] * e[1];
+    if l2 > 0.0 {
+        let d = [s0[0] - a0[0], s0[1] - a0[1]];
+        let xi = (d[0] * e[0] + d[1] * e[1]) / l2;
+        // body on the left of a -> b: gap = d . (e_y, -e_x) / |e|
+        let gap = (d[0] * e[1] - d[1] * e[0]) / l2.sqrt();
+        if gap <= 0.0 && (0.0..=1.0).contains(&xi) {
+            return Some((0.0, xi));
+        }
+    }
+    super::impact::segment_intersection([s0, s1], [a0, a1], [b0, b1])
+}
+
+/// `d xi / d [x_s, x_1, x_2]` of the segment parameter where the node met
+/// the segment ([`first_impact`]) by central differences (step `1e-7`
+/// of the segment's length; one-sided where the path leaves the segment,
+/// 0 where it is undefined): the stick point of a first impact moves with
+/// the end positions, and Newton needs that rate to converge quadratically.
+fn impact_rate(
+    s0: [f64; 2],
+    ends: (Option<&[f64; 2]>, Option<&[f64; 2]>),
+    x: [[f64; 2]; 3],
+    xi: f64,
+) -> [f64; 6] {
+    let len = (x[2][0] - x[1][0]).hypot(x[2][1] - x[1][1]);
+    let h = 1e-7 * len.max(f64::MIN_POSITIVE);
+    let at = |j: usize, dh: f64| {
+        let mut y = x;
+        y[j / 2][j % 2] += dh;
+        first_impact(s0, y[0], ends, (y[1], y[2])).map(|(_, xi)| xi)
+    };
+    std::array::from_fn(|j| match (at(j, h), at(j, -h)) {
+        (Some(p), Some(m)) => (p - m) / (2.0 * h),
+        (Some(p), None) => (p - xi) / h,
+        (None, Some(m)) => (xi - m) / h,
+        (None, None) => 0.0,
+    })
 }
 
 /// The reference point of the master surface at parameter `xi` of the
@@ -257,7 +353,7 @@ mod tests {
             (0.2, [0.2, 0.0], FrictionStatus::Slip),
         ] {
             let xs = [0.45, 0.03];
-            let r = respond(&law(mu), xs, x1, x2, reference, anchor).unwrap();
+            let r = respond(&law(mu), xs, x1, x2, reference, anchor, None).unwrap();
             assert_eq!(r.friction.status, status, "{:?}", r.friction);
             for c in 0..2 {
                 let sum: f64 = (0..3).map(|k| r.forces[2 * k + c]).sum();
@@ -272,6 +368,7 @@ mod tests {
                     [x[4], x[5]],
                     reference,
                     anchor,
+                    None,
                 )
                 .unwrap()
                 .forces
@@ -295,6 +392,41 @@ mod tests {
     }
 
     #[test]
+    fn first_impact_is_where_the_node_met_the_segment_or_where_it_touched() {
+        // segment (0,0) -> (-2,0): body below, free side above; the node
+        // falls from y = 0.3 to -0.1 while moving from x = -1 to -0.6:
+        // it crosses y = 0 at tau = 0.75, x = -0.7, xi = 0.35
+        let (tau, xi) = first_impact(
+            [-1.0, 0.3],
+            [-0.6, -0.1],
+            (Some(&[0.0, 0.0]), Some(&[-2.0, 0.0])),
+            ([0.0, 0.0], [-2.0, 0.0]),
+        )
+        .unwrap();
+        assert!((tau - 0.75).abs() < 1e-14 && (xi - 0.35).abs() < 1e-14);
+        // a node touching at the start sticks where it was
+        let (tau, xi) = first_impact(
+            [-0.5, 0.0],
+            [-0.3, -0.01],
+            (Some(&[0.0, 0.0]), Some(&[-2.0, 0.0])),
+            ([0.0, 0.0], [-2.0, 0.0]),
+        )
+        .unwrap();
+        assert_eq!((tau, xi), (0.0, 0.25));
+        // unknown start positions: no impact point
+        assert!(first_impact([0.0; 2], [0.0; 2], (None, None), ([0.0; 2], [1.0, 0.0])).is_none());
+        // the rate of xi with the node's end x is tau-independent here:
+        // x_hit = x0 + tau (x1 - x0), tau fixed by y: d xi / d x1 = -tau / 2
+        let r = impact_rate(
+            [-1.0, 0.3],
+            (Some(&[0.0, 0.0]), Some(&[-2.0, 0.0])),
+            [[-0.6, -0.1], [0.0, 0.0], [-2.0, 0.0]],
+            0.35,
+        );
+        assert!((r[0] + 0.375).abs() < 1e-6, "{r:?}");
+    }
+
+    #[test]
     fn slip_moves_the_stick_point_along_the_master() {
         let reference = [[0.0, 0.0], [2.0, 0.0]];
         // undeformed master (free side y < 0), node 0.1 past its stick point,
@@ -306,6 +438,7 @@ mod tests {
             [2.0, 0.0],
             reference,
             [1.0, 0.0],
+            None,
         )
         .unwrap();
         // R_N = 1, limit 0.1: slip, elastic part 0.1 / 30

@@ -35,15 +35,18 @@
 //!    smallest `|g|` (the closest point), ties to the lower segment index;
 //! 2. otherwise (the node lies in the wedge in front of a kink, e.g. inside
 //!    the body at a concave corner where every projection falls outside),
-//!    the segment whose clamped closest point is nearest, **extended** past
-//!    its end: `g` and `xi` of the segment line, `xi` slightly outside
-//!    `[0, 1]`. This is the "projection outside the boundaries must be
-//!    allowed" of the seed; it replaces normal smoothing and keeps the exact
-//!    consistent tangent (the gap is still `(x_s - x_1) . n`). Extension is
-//!    allowed at an end shared with a neighbouring segment (a kink) only
-//!    when the node is in the kink's wedge (beyond the neighbour's near end
-//!    as well), and at a free end of the surface only by
-//!    [`FREE_END_XI`] segment lengths;
+//!    the kink's vertex: the signed distance to it
+//!    ([`SegmentProjection::corner`], the vertex as a circle of radius 0,
+//!    like the corners of rigid tools), whose normal turns continuously
+//!    from one segment's normal to the other's across the wedge. (Keeping
+//!    the nearer segment's line instead made the normal jump at the
+//!    wedge's bisector: a slave node exactly above an interior master node
+//!    of a flat interface, pressed into a valley, switched segments at
+//!    every iteration, a 2-cycle of the force direction, issue 14 item
+//!    5.) The vertex is used only when the node is in the kink's wedge
+//!    (beyond the neighbour's near end as well). At a free end of the
+//!    surface the segment is **extended** past its end (`g` and `xi` of the
+//!    segment line) only by [`FREE_END_XI`] segment lengths;
 //! 3. penetrations deeper than `max(prof, L)` are ignored (a node of the
 //!    far side of a thin body is not in contact with this face).
 //!
@@ -135,6 +138,12 @@ pub struct SurfacePair {
     pub increments: usize,
     /// Converged increments at the last commit (rollback target).
     committed_increments: usize,
+    /// Current coordinates of every node at the latest evaluation.
+    pub positions: Vec<[f64; 2]>,
+    /// Coordinates at the last converged increment (the start of the
+    /// constant-velocity path of a first impact,
+    /// [`crate::model::FirstImpact::Intersect`]).
+    pub committed_positions: Vec<[f64; 2]>,
     /// Scratch: candidate segments of one query.
     pub(crate) candidates: Vec<usize>,
 }
@@ -159,18 +168,23 @@ impl SurfacePair {
     pub fn commit(&mut self) {
         self.increments += 1;
         self.committed_increments = self.increments;
+        self.committed_positions.clone_from(&self.positions);
     }
 
     /// Called when an increment is cut back.
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
+        self.positions.clone_from(&self.committed_positions);
     }
 
     /// Restart: `increments` converged increments were done (the restart
-    /// checkpoint's count), so the double pass resumes with the right side.
-    pub fn restore(&mut self, increments: usize) {
+    /// checkpoint's count), so the double pass resumes with the right side;
+    /// `positions` are the committed coordinates of every node.
+    pub fn restore(&mut self, increments: usize, positions: &[[f64; 2]]) {
         self.increments = increments;
         self.committed_increments = increments;
+        self.committed_positions = positions.to_vec();
+        self.positions = positions.to_vec();
     }
 }
 
@@ -235,6 +249,8 @@ pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePa
         side_of,
         self_contact,
         excluded,
+        positions: model.mesh.nodes.clone(),
+        committed_positions: model.mesh.nodes.clone(),
         ..SurfacePair::default()
     })
 }
@@ -336,6 +352,16 @@ fn closest(
         }
         let end = if p.xi < 0.0 { x[a] } else { x[b] };
         let dist = (xs[0] - end[0]).hypot(xs[1] - end[1]);
+        // in the wedge of a kink the closest point of the surface is the
+        // vertex: the distance to it (continuous across the wedge, the
+        // same from both segments); a node on the vertex keeps the line
+        let k = match neighbour {
+            Some(_) => Kept {
+                projection: SegmentProjection::corner(xs, x[a], x[b], p.xi).unwrap_or(p),
+                ..k
+            },
+            None => k,
+        };
         if outside.is_none_or(|(d, _)| dist < d) {
             outside = Some((dist, k));
         }
@@ -375,6 +401,9 @@ pub fn evaluate(
     let mut tests = 0usize;
     let mut brute = 0usize;
     let mut candidates = std::mem::take(&mut sp.candidates);
+    sp.positions.clear();
+    sp.positions.extend_from_slice(x);
+    state.friction.impact = None;
     for (i, &node) in state.slaves.iter().enumerate() {
         let side = sp.side_of[i];
         if !active_sides[side as usize] {
@@ -451,6 +480,7 @@ pub fn evaluate(
                 &cp.method,
                 &model.mesh.nodes,
                 x,
+                &sp.committed_positions,
                 &super::friction_segment::Element {
                     slave: i,
                     xs,
@@ -574,7 +604,16 @@ mod tests {
         let k = closest(&s, &x, [-0.05, -0.03], &[0, 1], 0.5, &mut tests)
             .expect("contact kept in the dead zone");
         assert!(k.projection.gap < 0.0, "{k:?}");
-        assert!(k.projection.xi < 0.0 || k.projection.xi > 1.0);
+        // the vertex: gap = minus the distance to it, normal towards it
+        assert!(k.projection.corner, "{k:?}");
+        let r = 0.05f64.hypot(0.03);
+        assert!((k.projection.gap + r).abs() < 1e-15, "{k:?}");
+        let n = k.projection.normal;
+        assert!((n[0] - 0.05 / r).abs() < 1e-15 && (n[1] - 0.03 / r).abs() < 1e-15);
+        // the same answer from either segment (continuous across the wedge)
+        let k1 = closest(&s, &x, [-0.05, -0.03], &[1, 0], 0.5, &mut tests).unwrap();
+        assert_eq!(k1.projection.gap, k.projection.gap);
+        assert_eq!(k1.projection.normal, k.projection.normal);
     }
 
     #[test]

@@ -45,6 +45,10 @@ pub struct SegmentProjection {
     pub tangent: [f64; 2],
     /// Current length `L` of the segment.
     pub length: f64,
+    /// The projection is the segment's end at `xi` (0 or 1), a master
+    /// vertex seen as a circle of radius 0: `g = s |x_s - x_v|`, `n =
+    /// s (x_s - x_v) / |x_s - x_v|` (see [`SegmentProjection::corner`]).
+    pub corner: bool,
 }
 
 impl SegmentProjection {
@@ -65,6 +69,40 @@ impl SegmentProjection {
             normal: n,
             tangent: t,
             length,
+            corner: false,
+        })
+    }
+
+    /// The end `x_v` of segment `x1 -> x2` at `xi_end` (0: `x1`, 1: `x2`)
+    /// as the closest point of `xs`: a master vertex (kink) treated as a
+    /// circle of radius 0, the distance function of the polyline in the
+    /// wedge of a kink where no projection falls inside a segment. The gap
+    /// is `g = s r`, `r = |x_s - x_v|`, `s` the side of the segment's line
+    /// the node is on; the normal `n = s (x_s - x_v) / r` turns
+    /// continuously from one segment's normal to the other's across the
+    /// wedge, so gap and normal are continuous at the vertex (no jump of
+    /// the force direction between the two segments). `G = [n, -n]` on
+    /// `[x_s, x_v]` and `H = s t t^T / r` (`t` perpendicular to `n`) on the
+    /// slave-slave and vertex-vertex blocks, minus that on the cross blocks.
+    /// `None` when the node is on the vertex (within round-off of the
+    /// segment length) or the segment is degenerate.
+    pub fn corner(xs: [f64; 2], x1: [f64; 2], x2: [f64; 2], xi_end: f64) -> Option<Self> {
+        let line = SegmentProjection::new(xs, x1, x2)?;
+        let xv = if xi_end < 0.5 { x1 } else { x2 };
+        let d = sub(xs, xv);
+        let r = d[0].hypot(d[1]);
+        if r.is_nan() || r <= 1e-12 * line.length {
+            return None;
+        }
+        let s = if line.gap < 0.0 { -1.0 } else { 1.0 };
+        let n = [s * d[0] / r, s * d[1] / r];
+        Some(SegmentProjection {
+            gap: s * r,
+            xi: if xi_end < 0.5 { 0.0 } else { 1.0 },
+            normal: n,
+            tangent: [-n[1], n[0]],
+            length: line.length,
+            corner: true,
         })
     }
 
@@ -84,6 +122,21 @@ impl SegmentProjection {
     /// `H = d2g/dx2` (6x6, symmetric), see the module documentation.
     pub fn gap_hessian(&self) -> [[f64; 6]; 6] {
         let (n, t) = (self.normal, self.tangent);
+        if self.corner {
+            // g = s r: d2g/dxs2 = s (I - e e^T) / r = t t^T / g
+            let v = if self.xi < 0.5 { 1 } else { 2 };
+            let mut h = [[0.0; 6]; 6];
+            for (bi, si) in [(0, 1.0), (v, -1.0)] {
+                for (bj, sj) in [(0, 1.0), (v, -1.0)] {
+                    for a in 0..2 {
+                        for b in 0..2 {
+                            h[2 * bi + a][2 * bj + b] = si * sj * t[a] * t[b] / self.gap;
+                        }
+                    }
+                }
+            }
+            return h;
+        }
         let (w1, w2) = (1.0 - self.xi, self.xi);
         let tv = [t[0], t[1], -w1 * t[0], -w1 * t[1], -w2 * t[0], -w2 * t[1]];
         let n0 = [0.0, 0.0, -n[0], -n[1], n[0], n[1]];
@@ -199,6 +252,39 @@ mod tests {
                 for i in 0..6 {
                     let fd = (gp[i] - gm[i]) / (2.0 * e);
                     prop_assert!((fd - h[i][j]).abs() < 1e-6, "H{i}{j}: {fd} vs {}", h[i][j]);
+                }
+            }
+        }
+
+        #[test]
+        fn corner_gap_gradient_and_hessian_match_finite_differences(
+            x in element_coords(), end in 0usize..2
+        ) {
+            let corner = |x: &[f64; 6]| {
+                let (s, a, b) = split(x);
+                SegmentProjection::corner(s, a, b, end as f64)
+            };
+            let Some(p) = corner(&x) else { return Ok(()); };
+            // away from the vertex (the distance is smooth there)
+            prop_assume!(p.gap.abs() > 1e-3);
+            let g = p.gap_gradient();
+            let h = p.gap_hessian();
+            let e = 1e-7;
+            for j in 0..6 {
+                let (mut xp, mut xm) = (x, x);
+                xp[j] += e;
+                xm[j] -= e;
+                let (Some(cp), Some(cm)) = (corner(&xp), corner(&xm)) else { continue; };
+                if cp.gap.signum() != cm.gap.signum() {
+                    continue;
+                }
+                let fd = (cp.gap - cm.gap) / (2.0 * e);
+                prop_assert!((fd - g[j]).abs() < 1e-6, "dg/dx{j}: {fd} vs {}", g[j]);
+                let (gp, gm) = (cp.gap_gradient(), cm.gap_gradient());
+                for i in 0..6 {
+                    let fd = (gp[i] - gm[i]) / (2.0 * e);
+                    prop_assert!((fd - h[i][j]).abs() < 1e-4 * (1.0 + h[i][j].abs()),
+                        "H{i}{j}: {fd} vs {}", h[i][j]);
                 }
             }
         }

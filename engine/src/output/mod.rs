@@ -4,8 +4,10 @@
 //! Files in the result directory:
 //! - `inc_NNNN.vtu`: every `output.every` converged increments and always
 //!   the last one of the analysis (and, on failure, the last converged one);
+//! - `tool_<k>_NNNN.vtu`: the current geometry of rigid tool `k` at each
+//!   written increment ([`tool_vtu`]);
 //! - `results.pvd`: the time series, rewritten after each VTU, so a killed
-//!   run leaves a valid index;
+//!   run leaves a valid index; the bodies are part 0, tool `k` part `k + 1`;
 //! - `history.csv`: one row per converged increment (flushed each time);
 //! - `contact_<pair>_<NNNN>.csv`: the slave nodes of each pair at each
 //!   written increment;
@@ -34,6 +36,7 @@ pub mod encode;
 pub mod history;
 pub mod pvd;
 pub mod sta;
+pub mod tool_vtu;
 pub mod vtu;
 pub mod vtu_read;
 
@@ -83,7 +86,8 @@ pub struct ResultWriter<const D: usize = 2> {
 }
 
 /// Whether `name` is a file that a run writes into its result directory
-/// (or the temporary of one): `inc_<n>.vtu`, `contact_<pair>_<n>.csv`,
+/// (or the temporary of one): `inc_<n>.vtu`, `tool_<k>_<n>.vtu`,
+/// `contact_<pair>_<n>.csv`,
 /// `results.pvd`, `history.csv`, `summary.json`, `restart.bin`,
 /// `progress.sta`.
 pub fn is_result_file(name: &str) -> bool {
@@ -98,13 +102,15 @@ pub fn is_result_file(name: &str) -> bool {
     {
         return digits(n);
     }
-    if let Some(rest) = name
-        .strip_prefix("contact_")
-        .and_then(|n| n.strip_suffix(".csv"))
-    {
-        return rest
-            .split_once('_')
-            .is_some_and(|(p, n)| digits(p) && digits(n));
+    for (prefix, suffix) in [("contact_", ".csv"), ("tool_", ".vtu")] {
+        if let Some(rest) = name
+            .strip_prefix(prefix)
+            .and_then(|n| n.strip_suffix(suffix))
+        {
+            return rest
+                .split_once('_')
+                .is_some_and(|(p, n)| digits(p) && digits(n));
+        }
     }
     [
         "results.pvd",
@@ -262,6 +268,22 @@ where
             write_atomic(&self.dir.join(file), csv.as_bytes()).map_err(io)?;
         }
         self.pvd.push((snap.time, name));
+        if !model.tools.is_empty() {
+            let extent = tool_vtu::extent(&model.mesh.nodes, &snap.displacement);
+            for (k, tool) in model.tools.iter().enumerate() {
+                let file = tool_vtu::file_name(k, snap.increment);
+                let bytes = tool_vtu::tool_vtu(
+                    tool,
+                    k,
+                    snap.time,
+                    snap.increment,
+                    extent,
+                    model.output.format,
+                );
+                write_atomic(&self.dir.join(&file), &bytes).map_err(io)?;
+                self.pvd.push((snap.time, file));
+            }
+        }
         write_atomic(
             &self.dir.join("results.pvd"),
             pvd::pvd(&self.pvd).as_bytes(),
@@ -353,6 +375,8 @@ mod tests {
             "inc_12345.vtu",
             "contact_0_0003.csv",
             "contact_12_0003.csv",
+            "tool_0_0003.vtu",
+            ".tool_1_0012.vtu.tmp",
             "results.pvd",
             "history.csv",
             "summary.json",
@@ -369,6 +393,8 @@ mod tests {
             "inc_0001.vtu.bak",
             "contact_a_0001.csv",
             "contact_0001.csv",
+            "tool_0001.vtu",
+            "tool_a_0001.vtu",
             "notes.txt",
             "deck.ctc",
             "history.csv.old",

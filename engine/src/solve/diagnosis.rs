@@ -27,25 +27,67 @@ pub const RATIO_SUGGESTED: f64 = 1e3;
 const LISTED: usize = 8;
 
 /// Counts contact status flips per node between consecutive Newton
-/// iterations, over the failed attempts since the last converged increment.
+/// iterations, over the failed attempts since the last converged increment,
+/// and the switches of a closed node from one master entity (segment) to
+/// another with its status unchanged (the normal of a faceted master jumps
+/// at a vertex: a 2-cycle without any status change).
 #[derive(Debug, Clone, Default)]
 pub struct FlipTracker {
     /// Closed nodes at the previous iteration of the current attempt.
     prev: Option<BTreeSet<usize>>,
     /// Flips per node.
     flips: BTreeMap<usize, usize>,
+    /// Master entity of each closed node (deformable masters) at the
+    /// previous iteration: node -> (pair, entity).
+    prev_entity: BTreeMap<usize, (usize, usize)>,
+    /// Entity switches per node: (pair, count, entities met).
+    switches: BTreeMap<usize, (usize, usize, BTreeSet<usize>)>,
+}
+
+/// A closed node that changed master entity between iterations.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct EntitySwitch {
+    /// Global node number.
+    pub node: usize,
+    /// Contact pair index.
+    pub pair: usize,
+    /// Switches counted.
+    pub count: usize,
+    /// Master entities (segments) the node went to and fro between.
+    pub entities: Vec<usize>,
 }
 
 impl FlipTracker {
     /// A new attempt starts (from the converged state).
     pub fn start_attempt(&mut self) {
         self.prev = None;
+        self.prev_entity.clear();
     }
 
     /// An increment converged: forget everything.
     pub fn clear(&mut self) {
         self.prev = None;
         self.flips.clear();
+        self.prev_entity.clear();
+        self.switches.clear();
+    }
+
+    /// Closed nodes that switched master entity at least twice with their
+    /// status unchanged, most switches first.
+    pub fn entity_switches(&self) -> Vec<EntitySwitch> {
+        let mut v: Vec<EntitySwitch> = self
+            .switches
+            .iter()
+            .filter(|(_, (_, c, _))| *c >= 2)
+            .map(|(n, (p, c, e))| EntitySwitch {
+                node: *n,
+                pair: *p,
+                count: *c,
+                entities: e.iter().copied().collect(),
+            })
+            .collect();
+        v.sort_by(|a, b| b.count.cmp(&a.count).then(a.node.cmp(&b.node)));
+        v
     }
 
     /// Records the statuses of one iteration.
@@ -62,6 +104,25 @@ impl FlipTracker {
             }
         }
         self.prev = Some(closed);
+        let mut now = BTreeMap::new();
+        for (p, list) in contact.iter().enumerate() {
+            for c in list {
+                if c.status == ContactStatus::Closed && c.master.is_some() {
+                    now.insert(c.node, (p, c.entity));
+                }
+            }
+        }
+        for (n, &(p, e)) in &now {
+            if let Some(&(q, f)) = self.prev_entity.get(n) {
+                if q == p && f != e {
+                    let s = self.switches.entry(*n).or_insert((p, 0, BTreeSet::new()));
+                    s.1 += 1;
+                    s.2.insert(e);
+                    s.2.insert(f);
+                }
+            }
+        }
+        self.prev_entity = now;
     }
 
     /// Nodes that flipped at least twice (node, flips), most flips first.
@@ -140,12 +201,14 @@ pub fn penalty_ratio(
 }
 
 /// Likely cause and remedy from the contact health, or `None` when the
-/// contact does not explain the failure.
+/// contact does not explain the failure. `pair_name` names pair `i`.
 pub fn contact_cause(
     ratio: Option<&PenaltyRatio>,
     flips: &FlipTracker,
+    pair_name: &dyn Fn(usize) -> String,
 ) -> Option<(String, String)> {
     let chatter = flips.chattering();
+    let switches = flips.entity_switches();
     let nodes = |v: &[(usize, usize)]| {
         let list: Vec<String> = v
             .iter()
@@ -196,6 +259,36 @@ pub fn contact_cause(
              `method = augmented_lagrange` for this pair"
                 .into(),
         )),
+        _ if !switches.is_empty() => {
+            let first = &switches[0];
+            let list: Vec<String> = switches
+                .iter()
+                .take(LISTED)
+                .map(|s| format!("{} ({}x, segments {:?})", s.node, s.count, s.entities))
+                .collect();
+            let more = switches.len().saturating_sub(LISTED);
+            let more = if more > 0 {
+                format!(", and {more} more")
+            } else {
+                String::new()
+            };
+            Some((
+                format!(
+                    "no contact status changes, but closed slave nodes go back and forth between \
+                     master segments (pair `{}`): nodes [{}{more}]; the normal of a faceted \
+                     master surface jumps at the vertex between two segments (a slave node \
+                     over a master node), so the contact force changes direction from one \
+                     iteration to the next",
+                    pair_name(first.pair),
+                    list.join(", ")
+                ),
+                format!(
+                    "set `smoothing = nodal` in the contact block of pair `{}` (a normal \
+                     continuous across the master nodes), or refine the master surface",
+                    pair_name(first.pair)
+                ),
+            ))
+        }
         _ => None,
     }
 }
@@ -233,8 +326,8 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
             )
         }
         FailureKind::MaxIterations => (
-            "the increment is too large for the nonlinearity (contact status \
-             changing back and forth, stiff penalty)"
+            "the increment is too large for the nonlinearity (no contact node changed \
+             status back and forth; a large load or contact change, a stiff penalty)"
                 .into(),
             "use more `increments`, keep `line_search = true`, raise `max_iter`, or \
              lower the penalty stiffness"
@@ -323,6 +416,44 @@ mod tests {
     }
 
     #[test]
+    fn a_node_switching_master_segments_without_status_change_is_named() {
+        // issue 14 item 5: node 158 over master node 144 alternates between
+        // segments 7 and 8, closed throughout
+        let on = |entity| NodeContact {
+            entity,
+            master: Some(crate::contact::MasterSegment {
+                nodes: [144, 145],
+                xi: 1.0,
+                forces: [[0.0; 2]; 2],
+                tangent: [[0.0; 6]; 6],
+                gap_gradient: [0.0; 6],
+            }),
+            ..nc(158, true)
+        };
+        let mut t = FlipTracker::default();
+        t.start_attempt();
+        for e in [7, 8, 7, 8] {
+            t.record(&[vec![on(e), nc(3, true)]]);
+        }
+        assert!(t.chattering().is_empty());
+        let s = t.entity_switches();
+        assert_eq!(s.len(), 1);
+        assert_eq!(
+            (s[0].node, s[0].count, s[0].entities.clone()),
+            (158, 3, vec![7, 8])
+        );
+        let (cause, remedy) = contact_cause(None, &t, &|_| "punch -> block".into()).unwrap();
+        assert!(cause.starts_with("no contact status changes"), "{cause}");
+        assert!(cause.contains("158 (3x, segments [7, 8])"), "{cause}");
+        assert!(!cause.contains("chattering"), "{cause}");
+        assert!(remedy.contains("smoothing = nodal"), "{remedy}");
+        // a new attempt does not count a switch against the last iteration
+        t.start_attempt();
+        t.record(&[vec![on(9)]]);
+        assert_eq!(t.entity_switches()[0].count, 3);
+    }
+
+    #[test]
     fn penalty_1e6_times_element_stiffness_is_named_with_a_remedy() {
         let mut t = FlipTracker::default();
         t.record(&[vec![nc(7, true)]]);
@@ -334,7 +465,7 @@ mod tests {
             pair: "top-punch".into(),
             stiffness: 2.5e10,
         };
-        let (cause, remedy) = contact_cause(Some(&r), &t).unwrap();
+        let (cause, remedy) = contact_cause(Some(&r), &t, &|_| "p".into()).unwrap();
         assert!(
             cause.starts_with("penalty too high for this mesh"),
             "{cause}"
@@ -347,7 +478,7 @@ mod tests {
         assert!(remedy.contains("augmented_lagrange"));
         // a moderate penalty without chattering does not explain a failure
         let soft = PenaltyRatio { ratio: 10.0, ..r };
-        assert!(contact_cause(Some(&soft), &FlipTracker::default()).is_none());
+        assert!(contact_cause(Some(&soft), &FlipTracker::default(), &|_| "p".into()).is_none());
     }
 
     #[test]

@@ -455,7 +455,13 @@ where
             {
                 diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
             } else {
-                diagnosis::contact_cause(newton.penalty_ratio().as_ref(), &newton.flips)
+                let name = |i: usize| {
+                    model
+                        .contacts
+                        .get(i)
+                        .map_or_else(|| format!("{i}"), |c| c.name.clone())
+                };
+                diagnosis::contact_cause(newton.penalty_ratio().as_ref(), &newton.flips, &name)
                     .unwrap_or_else(|| {
                         diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
                     })

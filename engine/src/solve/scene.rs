@@ -104,8 +104,14 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     /// restart point).
     fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>);
     /// Restores the committed history of a restart point written after
-    /// increment `increment`.
-    fn restore(&mut self, pairs: &[PairHistory], increment: usize) -> Result<(), String>;
+    /// increment `increment`, whose committed nodal coordinates are
+    /// `positions`.
+    fn restore(
+        &mut self,
+        pairs: &[PairHistory],
+        increment: usize,
+        positions: &[[f64; D]],
+    ) -> Result<(), String>;
     /// Sets the pattern couplings of a restart point.
     fn set_couplings(&mut self, couplings: &[(usize, usize)]);
     /// The contact CSV of pair `pair` (`crate::output::contact_csv`).
@@ -258,7 +264,12 @@ impl ContactScene<2> for ContactAssembly {
         (pairs, self.couplings.clone())
     }
 
-    fn restore(&mut self, pairs: &[PairHistory], increment: usize) -> Result<(), String> {
+    fn restore(
+        &mut self,
+        pairs: &[PairHistory],
+        increment: usize,
+        positions: &[[f64; 2]],
+    ) -> Result<(), String> {
         if pairs.len() != self.pairs.len() {
             return Err("the restart point does not match the model (nodes or pairs)".into());
         }
@@ -272,7 +283,7 @@ impl ContactScene<2> for ContactAssembly {
             s.committed_active.clone_from(&h.active);
             s.friction.restore_committed(&h.friction)?;
             if let Some(sp) = &mut s.surface {
-                sp.restore(increment);
+                sp.restore(increment, positions);
             }
             s.rollback();
         }
@@ -386,7 +397,7 @@ impl<const D: usize> ContactScene<D> for NoContact {
         (Vec::new(), Vec::new())
     }
 
-    fn restore(&mut self, pairs: &[PairHistory], _: usize) -> Result<(), String> {
+    fn restore(&mut self, pairs: &[PairHistory], _: usize, _: &[[f64; D]]) -> Result<(), String> {
         if pairs.is_empty() {
             Ok(())
         } else {

@@ -11,11 +11,14 @@
 //! - [`recorder`]: [`Recorder`], an observer keeping every converged
 //!   increment, iteration, cutback and warning, and [`solve`];
 //! - [`grid`]: structured (optionally jittered) meshes and mesh merging;
+//! - [`solid`]: the 3D patch and objectivity scenes (cargo tests and
+//!   `ctc verify` run the same function);
 //! - [`Rng`]: a deterministic xorshift generator.
 
 pub mod builder;
 pub mod grid;
 pub mod recorder;
+pub mod solid;
 
 pub use builder::{ramp, ModelBuilder};
 pub use recorder::{solve, Increment, Recorder};

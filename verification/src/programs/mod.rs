@@ -8,6 +8,7 @@ pub mod cattaneo;
 pub mod fenicsx;
 pub mod mortar;
 pub mod solid;
+pub mod solid_patch;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod upsetting;
@@ -27,6 +28,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());
     v.extend(solid::cases());
+    v.extend(solid_patch::cases());
     v
 }
 

@@ -21,6 +21,14 @@
 //!     o--x  y
 //!   ```
 //!
+//! - `incompressible_sphere_3d`: the same sphere at `nu = 0.4999` (Hughes,
+//!   The Finite Element Method, §4.4: B-bar / mean dilatation): hex8 full
+//!   integration (locks), hex8 B-bar (small strain, linear), hex8 F-bar
+//!   (finite strain, Neo-Hooke with the same small-strain constants; `p / E
+//!   = 5e-4`, so the geometric nonlinearity is below the discretization
+//!   error) and tet4 (locks, no remedy in one tet4): u_r and hoop errors of
+//!   each, and the ratio of the B-bar to the full u_r error.
+//!
 //! - `lame_cylinder_3d_vs_axi`: the same cylinder as
 //!   `examples/lame_cylinder_axi.ctc` (a = 1, b = 2, p = 100, plane strain
 //!   along the axis) as a 90 degree hex8 sector of a tube against the
@@ -36,7 +44,7 @@ use ctc_engine::element::Section;
 use ctc_engine::geom::Dimension;
 use ctc_engine::mesh::generate::{solid, Grading};
 use ctc_engine::mesh::{CellKind, Mesh};
-use ctc_engine::model::{Model, TimeFunction};
+use ctc_engine::model::{Formulation, Kinematics, MaterialLaw, Model, TimeFunction};
 use ctc_engine::solve::{self, IncrementView, Observer, RunSummary};
 use ctc_engine::testkit::ModelBuilder;
 use nalgebra::Const;
@@ -97,6 +105,41 @@ pub fn cases() -> Vec<VerifyCase> {
             |l| sphere(l, CellKind::Tet4),
         ),
         VerifyCase {
+            name: "incompressible_sphere_3d",
+            title: "Lamé sphere at nu = 0.4999: hex8 full vs B-bar vs F-bar, and tet4 (locking table)",
+            source: "Timoshenko & Goodier §137; Hughes, The Finite Element Method §4.4 (B-bar, mean dilatation)",
+            tags: &["3d", "elasticity", "closed_form", "locking", "pressure"],
+            levels: 3,
+            checks: vec![
+                // measured (levels 0-2, 2x2x3 .. 8x8x3 x 8 cells): full hex8
+                // locks: u_r 0.995 0.981 0.928, hoop 4.66 11.9 26.2 (the
+                // pressure oscillates and grows under refinement); B-bar u_r
+                // 9.33e-2 2.86e-2 8.15e-3 (rates 1.70 1.81), hoop 0.160
+                // 0.090 0.050 (0.84 0.85); F-bar (Neo-Hooke, finite) u_r
+                // 9.97e-2 3.02e-2 8.53e-3 (1.72 1.83), hoop 0.144 0.080
+                // 0.050 (0.84 0.69); tet4 locks: u_r 0.590 0.561 0.557, hoop
+                // 2.71 4.65 7.58; B-bar / full u_r error 9.4e-2 2.9e-2 8.8e-3
+                Check::new(Quantity::Named("hex8 full u_r(a)"), &[1.0]),
+                Check::new(Quantity::Named("hex8 full s_tt"), &[6.0, 15.0, 35.0]),
+                Check::new(Quantity::Named("hex8 B-bar u_r(a)"), &[0.12, 0.04, 0.012, 0.004])
+                    .with_min_rate(1.5),
+                Check::new(Quantity::Named("hex8 B-bar s_tt"), &[0.2, 0.12, 0.07, 0.04])
+                    .with_min_rate(0.6),
+                Check::new(Quantity::Named("hex8 F-bar u_r(a)"), &[0.12, 0.04, 0.012, 0.004])
+                    .with_min_rate(1.5),
+                Check::new(Quantity::Named("hex8 F-bar s_tt"), &[0.2, 0.12, 0.07, 0.04])
+                    .with_min_rate(0.5),
+                Check::new(Quantity::Named("tet4 u_r(a)"), &[0.7]),
+                Check::new(Quantity::Named("tet4 s_tt"), &[4.0, 6.0, 10.0, 16.0]),
+                // B-bar is at least 7x (level 0) to 70x (level 2) closer
+                Check::new(Quantity::Named("B-bar / full u_r error"), &[0.15, 0.05, 0.015, 0.005]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: SPHERE_LEVELS.len(),
+                run: incompressible_sphere,
+            }),
+        },
+        VerifyCase {
             name: "lame_cylinder_3d_vs_axi",
             title: "Lamé cylinder: 90 degree hex8 sector in 3D against the axisymmetric run",
             source: "Timoshenko & Goodier §29; examples/lame_cylinder_axi.ctc",
@@ -124,11 +167,13 @@ pub fn cases() -> Vec<VerifyCase> {
 #[derive(Default)]
 struct Last<const D: usize> {
     u: Vec<[f64; D]>,
+    points: Vec<Vec<ctc_engine::element::MaterialPoint>>,
 }
 
 impl<const D: usize> Observer<D> for Last<D> {
     fn converged(&mut self, v: &IncrementView<'_, D>) -> Result<(), String> {
         self.u = v.displacement.to_vec();
+        self.points = v.points.to_vec();
         Ok(())
     }
 }
@@ -160,20 +205,45 @@ fn level_of<const D: usize>(summary: &RunSummary, model: &Model<D>, h: f64) -> P
     }
 }
 
-fn sphere_ur(r: f64) -> f64 {
+fn sphere_ur(r: f64, nu: f64) -> f64 {
     P * A.powi(3) / (E * (B.powi(3) - A.powi(3)))
-        * ((1.0 - 2.0 * NU) * r + (1.0 + NU) * B.powi(3) / (2.0 * r * r))
+        * ((1.0 - 2.0 * nu) * r + (1.0 + nu) * B.powi(3) / (2.0 * r * r))
 }
 
 fn sphere_hoop(r: f64) -> f64 {
     P * A.powi(3) / (B.powi(3) - A.powi(3)) * (1.0 + B.powi(3) / (2.0 * r.powi(3)))
 }
 
+/// How the sphere is discretized: cell, law, formulation, kinematics.
+#[derive(Debug, Clone)]
+struct Technology {
+    kind: CellKind,
+    law: MaterialLaw,
+    formulation: Formulation,
+    kinematics: Kinematics,
+}
+
+impl Technology {
+    fn linear(kind: CellKind, nu: f64, formulation: Formulation) -> Self {
+        Technology {
+            kind,
+            law: MaterialLaw::LinearElastic {
+                young: E,
+                poisson: nu,
+            },
+            formulation,
+            kinematics: Kinematics::Small,
+        }
+    }
+}
+
 /// The octant model: symmetry planes and inner pressure.
-fn sphere_model(mesh: Mesh<3>) -> Model<3> {
+fn sphere_model(mesh: Mesh<3>, tech: &Technology) -> Model<3> {
     let mut b = ModelBuilder::solid()
-        .elastic("steel", E, NU)
-        .body("shell", mesh, "steel");
+        .material("steel", tech.law.clone())
+        .body("shell", mesh, "steel")
+        .formulation(tech.formulation)
+        .kinematics(tech.kinematics);
     let set = |b: &ModelBuilder<3>, name: &str| b.node_set(&format!("shell.{name}"));
     for (c, plane) in ["xmin", "ymin", "zmin"].iter().enumerate() {
         let nodes = set(&b, plane);
@@ -189,11 +259,20 @@ fn sphere_model(mesh: Mesh<3>) -> Model<3> {
     .build()
 }
 
-fn sphere(level: usize, kind: CellKind) -> Result<ProgramLevel, String> {
+/// The sphere errors of one level: (u_r(a), hoop at the points), relative
+/// to the exact values at `r = a`.
+struct SphereErrors {
+    ur: f64,
+    hoop: f64,
+    summary: RunSummary,
+    model: Model<3>,
+}
+
+fn sphere_errors(level: usize, tech: &Technology, nu: f64) -> Result<SphereErrors, String> {
     let (radial, tangential) = SPHERE_LEVELS[level];
-    let mesh = solid::sphere_octant(A, B, radial, tangential, Grading::Uniform, kind)
+    let mesh = solid::sphere_octant(A, B, radial, tangential, Grading::Uniform, tech.kind)
         .map_err(|e| e.message)?;
-    let model = sphere_model(mesh);
+    let model = sphere_model(mesh, tech);
     let (summary, last) = solve(&model)?;
     let mut worst_u: f64 = 0.0;
     let inner = model.mesh.node_sets["shell.inner"].clone();
@@ -202,15 +281,21 @@ fn sphere(level: usize, kind: CellKind) -> Result<ProgramLevel, String> {
         let r = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
         let u = last.u[n];
         let ur = (u[0] * x[0] + u[1] * x[1] + u[2] * x[2]) / r;
-        worst_u = worst_u.max((ur - sphere_ur(r)).abs());
+        worst_u = worst_u.max((ur - sphere_ur(r, nu)).abs());
     }
     let blocks = blocks_of(&model)?;
     let section = Section::new(&model.analysis);
     let mut worst_s: f64 = 0.0;
     for c in 0..model.mesh.cells.len() {
-        for p in
-            cell_states(&model.mesh, c, &last.u, &section, &blocks[0]).map_err(|e| e.message)?
-        {
+        let stored = last.points.get(c).filter(|p| !p.is_empty());
+        let states = match stored {
+            Some(points) => points.iter().map(|p| p.state).collect(),
+            None => {
+                cell_states(&model.mesh, c, &last.u, &section, &blocks[0]).map_err(|e| e.message)?
+            }
+        };
+        for p in states {
+            // the current position at finite strain differs by O(p/E)
             let x = p.position;
             let r = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
             let e = [x[0] / r, x[1] / r, x[2] / r];
@@ -223,11 +308,86 @@ fn sphere(level: usize, kind: CellKind) -> Result<ProgramLevel, String> {
             worst_s = worst_s.max((hoop - sphere_hoop(r)).abs());
         }
     }
-    let mut out = level_of(&summary, &model, (B - A) / radial as f64);
-    out.values = vec![
-        error("u_r(a)", worst_u / sphere_ur(A)),
-        error("s_tt points", worst_s / sphere_hoop(A)),
-    ];
+    Ok(SphereErrors {
+        ur: worst_u / sphere_ur(A, nu),
+        hoop: worst_s / sphere_hoop(A),
+        summary,
+        model,
+    })
+}
+
+fn sphere(level: usize, kind: CellKind) -> Result<ProgramLevel, String> {
+    let e = sphere_errors(level, &Technology::linear(kind, NU, Formulation::Full), NU)?;
+    let (radial, _) = SPHERE_LEVELS[level];
+    let mut out = level_of(&e.summary, &e.model, (B - A) / radial as f64);
+    out.values = vec![error("u_r(a)", e.ur), error("s_tt points", e.hoop)];
+    Ok(out)
+}
+
+/// Poisson's ratio of the near-incompressible sphere.
+const NU_INCOMPRESSIBLE: f64 = 0.4999;
+
+/// The near-incompressible table: (u_r name, hoop name, technology).
+fn incompressible_technologies() -> Vec<(&'static str, &'static str, Technology)> {
+    let nu = NU_INCOMPRESSIBLE;
+    vec![
+        (
+            "hex8 full u_r(a)",
+            "hex8 full s_tt",
+            Technology::linear(CellKind::Hex8, nu, Formulation::Full),
+        ),
+        (
+            "hex8 B-bar u_r(a)",
+            "hex8 B-bar s_tt",
+            Technology::linear(CellKind::Hex8, nu, Formulation::SelectiveReduced),
+        ),
+        (
+            "hex8 F-bar u_r(a)",
+            "hex8 F-bar s_tt",
+            Technology {
+                kind: CellKind::Hex8,
+                law: MaterialLaw::NeoHookean {
+                    young: E,
+                    poisson: nu,
+                },
+                formulation: Formulation::SelectiveReduced,
+                kinematics: Kinematics::Finite,
+            },
+        ),
+        (
+            "tet4 u_r(a)",
+            "tet4 s_tt",
+            Technology::linear(CellKind::Tet4, nu, Formulation::Full),
+        ),
+    ]
+}
+
+fn incompressible_sphere(level: usize) -> Result<ProgramLevel, String> {
+    let (radial, _) = SPHERE_LEVELS[level];
+    let mut out: Option<ProgramLevel> = None;
+    let mut ur = Vec::new();
+    let mut values = Vec::new();
+    for (u_name, s_name, tech) in incompressible_technologies() {
+        let e = sphere_errors(level, &tech, NU_INCOMPRESSIBLE)?;
+        values.push(error(u_name, e.ur));
+        values.push(error(s_name, e.hoop));
+        ur.push(e.ur);
+        let l = level_of(&e.summary, &e.model, (B - A) / radial as f64);
+        out = Some(match out {
+            None => l,
+            Some(mut o) => {
+                o.increments += l.increments;
+                o.newton_total += l.newton_total;
+                o.newton_max = o.newton_max.max(l.newton_max);
+                o.cutbacks += l.cutbacks;
+                o
+            }
+        });
+    }
+    // locking: B-bar against full integration of the same hexahedra
+    values.push(error("B-bar / full u_r error", ur[1] / ur[0]));
+    let mut out = out.ok_or("no technology")?;
+    out.values = values;
     Ok(out)
 }
 

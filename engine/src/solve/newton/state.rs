@@ -56,7 +56,15 @@ where
         if cp.displacement.len() != self.u.len() {
             return Err("the restart point does not match the model (nodes or pairs)".into());
         }
-        self.contacts.restore(&cp.pairs, cp.increment)?;
+        let positions: Vec<[f64; D]> = self
+            .model
+            .mesh
+            .nodes
+            .iter()
+            .zip(&cp.displacement)
+            .map(|(x, u)| std::array::from_fn(|c| x[c] + u[c]))
+            .collect();
+        self.contacts.restore(&cp.pairs, cp.increment, &positions)?;
         self.assembler.restore(&cp.points, cp.points_time)?;
         if !cp.couplings.is_empty() {
             self.contacts.set_couplings(&cp.couplings);
