@@ -327,3 +327,46 @@ fn parametric_deck_with_units_include_and_unions() {
     assert_eq!((t0, t1, v0), (0.0, 1.0, 0.0));
     assert!((v1 + 0.08).abs() < 1e-15, "{v1}");
 }
+
+/// The `cylinder` generator from a deck: a 90 degree O-grid sector lowers
+/// to the solid mesh of `solid::cylinder` with its face sets, and an angle
+/// that is not whole quarters is a located error naming the rule.
+#[test]
+fn cylinder_generator_lowers_a_quarter_o_grid_with_its_face_sets() {
+    let text = |angle: &str| {
+        format!(
+            "analysis {{ dimension = 3d }}\n\
+             material m {{ elastic {{ E = 1  nu = 0.3 }} }}\n\
+             body c {{ mesh = cylinder {{ radius = 1  angle = {angle}  height = 0.5  divisions = (3, 2, 2) }}  material = m }}\n\
+             fix c.zmin {{ uz }}\n\
+             fix c.start {{ uy }}\n\
+             fix c.end {{ ux }}\n\
+             pressure c.outer {{ p = ramp(0, 1) }}\n\
+             step s {{ time = 0 .. 1 }}\n"
+        )
+    };
+    let src = Source::new("cylinder.ctc", text("90"));
+    let model = match ctc_lang::compile_any(&src) {
+        Ok(ctc_engine::model::AnyModel::D3(m)) => m,
+        Ok(_) => panic!("a 3d deck lowers to D3"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    let expected =
+        ctc_engine::mesh::generate::solid::cylinder(1.0, 90.0, 0.5, [3, 2, 2], CellKind::Hex8)
+            .unwrap();
+    assert_eq!(model.mesh.nodes, expected.nodes);
+    assert_eq!(model.mesh.cells.len(), 3 * (3 + 2 * 2) * 2);
+    for set in ["outer", "zmin", "zmax", "start", "end"] {
+        assert_eq!(
+            model.mesh.node_sets[&format!("c.{set}")],
+            expected.node_sets[set],
+            "{set}"
+        );
+    }
+    let bad = Source::new("cylinder.ctc", text("45"));
+    let Err(err) = ctc_lang::compile_any(&bad) else {
+        panic!("45 degrees is refused");
+    };
+    let rendered = err.render(&bad);
+    assert!(rendered.contains("90, 180, 270 or 360"), "{rendered}");
+}

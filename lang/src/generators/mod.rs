@@ -162,6 +162,7 @@ pub static REGISTRY: &[&GeneratorDef] = &[
     &annulus::ANNULUS,
     &solid::BOX,
     &solid::TUBE,
+    &solid::CYLINDER,
     &solid::SPHERE_OCTANT,
 ];
 

@@ -1,4 +1,4 @@
-//! Solid (3D) generators: `box`, `tube` and `sphere_octant`
+//! Solid (3D) generators: `box`, `tube`, `cylinder` and `sphere_octant`
 //! (`ctc_engine::mesh::generate::solid`), hex8 or tet4 cells. They are
 //! accepted only in `dimension = 3d` analyses (and the planar generators
 //! only in planar ones).
@@ -220,6 +220,97 @@ fn build_tube(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
         [count(Some(d[0])), count(Some(d[1])), count(Some(d[2]))],
         grading(&s.grading("radial_grading")),
         solid_kind(s, &TUBE_KEYS),
+    )
+}
+
+/// The keys of `cylinder`.
+pub static CYLINDER_KEYS: [Key; 5] = [
+    Key::new("radius", KeyType::Number, "radius")
+        .required("add `radius = <radius>`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    Key::new(
+        "angle",
+        KeyType::Number,
+        "sector angle from the x axis about z, degrees: 90, 180, 270 or 360",
+    )
+    .default(Default::Number(360.0))
+    .range(Range::Positive),
+    Key::new("height", KeyType::Number, "length along z from z = 0")
+        .required("add `height = <length>`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    Key::new(
+        "divisions",
+        KeyType::Integers(Components::Three),
+        "core (cells along each edge of the square core of a quarter), ring (cells from \
+         the core to the surface) and axial divisions",
+    )
+    .required("add `divisions = (core, ring, axial)`")
+    .range(Range::AtLeast(1))
+    .labels(&["core divisions", "ring divisions", "axial divisions"]),
+    SOLID_ELEMENT,
+];
+
+/// `cylinder`.
+pub static CYLINDER: GeneratorDef = GeneratorDef {
+    name: "cylinder",
+    doc: "solid cylinder r <= radius about the z axis, 0 <= z <= height (or a sector of whole \
+          quarters), hex-structured with an O-grid: a square core of half the radius and a \
+          ring blended to the surface, no degenerate cell on the axis (3d analyses)",
+    keys: &CYLINDER_KEYS,
+    sets: &[
+        SetDecl::new("outer", SetKind::Faces, "faces at r = radius"),
+        SetDecl::new("zmin", SetKind::Faces, "faces at z = 0"),
+        SetDecl::new("zmax", SetKind::Faces, "faces at z = height"),
+        SetDecl::new("start", SetKind::Faces, "faces at theta = 0 (open sectors)")
+            .when(open_cylinder),
+        SetDecl::new(
+            "end",
+            SetKind::Faces,
+            "faces at theta = angle (open sectors)",
+        )
+        .when(open_cylinder),
+    ],
+    open_sets: false,
+    check: no_rules,
+    cells: cylinder_cells,
+    build: Build::Solid(build_cylinder),
+};
+
+fn open_cylinder(s: &Settings) -> bool {
+    s.number("angle", &CYLINDER_KEYS).is_none_or(|a| a < 360.0)
+}
+
+fn cylinder_cells(s: &Settings) -> i64 {
+    let d = s.integers("divisions").unwrap_or_default();
+    let get = |k: usize| d.get(k).copied().unwrap_or(1);
+    let quarters = s
+        .number("angle", &CYLINDER_KEYS)
+        .map_or(4, |a| ((a / 90.0).round() as i64).clamp(1, 4));
+    // per quarter and layer: core m^2 plus two rings of m x ring cells
+    let (m, ring) = (get(0), get(1));
+    m.saturating_mul(m.saturating_add(ring.saturating_mul(2)))
+        .saturating_mul(get(2))
+        .saturating_mul(quarters)
+        .saturating_mul(tet_factor(s, &CYLINDER_KEYS))
+}
+
+fn build_cylinder(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    let num = |k: &str| {
+        s.number(k, &CYLINDER_KEYS)
+            .ok_or_else(|| missing("cylinder", k))
+    };
+    let d = s
+        .integers("divisions")
+        .filter(|d| d.len() == 3)
+        .ok_or_else(|| missing("cylinder", "divisions"))?;
+    solid::cylinder(
+        num("radius")?,
+        num("angle")?,
+        num("height")?,
+        [count(Some(d[0])), count(Some(d[1])), count(Some(d[2]))],
+        solid_kind(s, &CYLINDER_KEYS),
     )
 }
 

@@ -12,6 +12,7 @@ pub mod solid_patch;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod upsetting;
+pub mod upsetting_3d;
 
 use crate::case::Quantity;
 use crate::measure::Value;
@@ -29,6 +30,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(mortar::cases());
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
+    v.extend(upsetting_3d::cases());
     v
 }
 

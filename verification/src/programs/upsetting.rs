@@ -34,10 +34,10 @@ const E: f64 = 200e3;
 const NU: f64 = 0.3;
 
 #[derive(Default)]
-struct Record {
-    top: Vec<usize>,
+pub(crate) struct Record {
+    pub(crate) top: Vec<usize>,
     /// (height, force, residuals)
-    rows: Vec<(f64, f64, Vec<f64>)>,
+    pub(crate) rows: Vec<(f64, f64, Vec<f64>)>,
 }
 
 impl Observer for Record {
@@ -55,7 +55,7 @@ impl Observer for Record {
     }
 }
 
-fn upsetting(
+pub(crate) fn upsetting(
     hardening: Hardening,
     formulation: Formulation,
     kinematics: Kinematics,
@@ -149,7 +149,7 @@ fn upsetting(
 }
 
 /// Axial stress magnitude with the elastic strain: s = sigma_f(eps - s/E).
-fn axial_stress(h: &Hardening, eps: f64) -> f64 {
+pub(crate) fn axial_stress(h: &Hardening, eps: f64) -> f64 {
     let mut s = h.flow_stress(eps);
     for _ in 0..100 {
         let r = s - h.flow_stress((eps - s / E).max(0.0));

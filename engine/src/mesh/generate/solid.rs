@@ -1,5 +1,5 @@
-//! Solid (3D) structured generators: a graded brick, a sector of a tube
-//! and an octant of a spherical shell, in hex8 (or tet4: each hexahedron
+//! Solid (3D) structured generators: a graded brick, a sector of a tube,
+//! a solid cylinder (O-grid) and an octant of a spherical shell, in hex8 (or tet4: each hexahedron
 //! split into six tetrahedra around its main diagonal, the Kuhn split,
 //! conforming between neighbours).
 //!
@@ -325,6 +325,112 @@ pub fn sphere_octant(
     Ok(mesh)
 }
 
+/// A solid cylinder `r <= radius` about the z axis, `0 <= z <= height`,
+/// hex-structured with an O-grid: in each quarter a square core `[0, c]^2`
+/// (`c = radius / 2`) of `n[0] x n[0]` cells and a ring of `n[0] x n[1]`
+/// cells on each of the core's two outer edges, blended linearly from the
+/// edge to the arc (no degenerate cell on the axis); `n[2]` axial
+/// divisions. `angle` (degrees) is 90, 180, 270 or 360: that many quarters
+/// from the x axis. Sets: `outer`, `zmin`, `zmax`, and for an open sector
+/// `start` (the plane through the positive x axis) and `end`.
+pub fn cylinder(
+    radius: f64,
+    angle: f64,
+    height: f64,
+    n: [usize; 3],
+    kind: CellKind,
+) -> Result<Mesh<3>, MeshError> {
+    const G: &str = "cylinder";
+    positive(G, "radius", radius)?;
+    positive(G, "height", height)?;
+    let quarters = angle / 90.0;
+    if !(quarters == quarters.round() && (1.0..=4.0).contains(&quarters)) {
+        return Err(MeshError::new(format!(
+            "{G}: angle {angle} must be 90, 180, 270 or 360 degrees (whole quarters of the O-grid)"
+        )));
+    }
+    divisions(G, "core", n[0], 1)?;
+    divisions(G, "ring", n[1], 1)?;
+    divisions(G, "axial", n[2], 1)?;
+    let quarters = quarters as usize;
+    let (m, nr) = (n[0], n[1]);
+    let c = 0.5 * radius;
+    let z = |k: usize| {
+        if k == n[2] {
+            height
+        } else {
+            height * k as f64 / n[2] as f64
+        }
+    };
+    let frac = |i: usize, m: usize| if i == m { 1.0 } else { i as f64 / m as f64 };
+    // one quarter: core, ring on x = c, ring on y = c; (i, j, k) right-handed
+    let core = block(G, [m, m, n[2]], kind, |i, j, k| {
+        [c * frac(i, m), c * frac(j, m), z(k)]
+    })?;
+    let ring_x = block(G, [nr, m, n[2]], kind, |i, j, k| {
+        let t = frac(i, nr);
+        let (co, si) = super::common::cos_sin_deg(45.0 * frac(j, m));
+        let edge = [c, c * frac(j, m)];
+        [
+            (1.0 - t) * edge[0] + t * radius * co,
+            (1.0 - t) * edge[1] + t * radius * si,
+            z(k),
+        ]
+    })?;
+    // i along x and j outwards, like the core: the Kuhn split of tet4
+    // conforms across every seam (each face diagonal runs from the corner
+    // nearest the axis and z = 0 to the opposite one on both sides)
+    let ring_y = block(G, [m, nr, n[2]], kind, |i, j, k| {
+        let t = frac(j, nr);
+        let (co, si) = super::common::cos_sin_deg(90.0 - 45.0 * frac(i, m));
+        let edge = [c * frac(i, m), c];
+        [
+            (1.0 - t) * edge[0] + t * radius * co,
+            (1.0 - t) * edge[1] + t * radius * si,
+            z(k),
+        ]
+    })?;
+    let mut mesh = Mesh::<3>::default();
+    for q in 0..quarters {
+        // rotation by q quarter turns: (x, y) -> (-y, x), exact
+        let turn = |p: [f64; 3]| {
+            let mut p = p;
+            for _ in 0..q {
+                p = [-p[1], p[0], p[2]];
+            }
+            p
+        };
+        for part in [&core, &ring_x, &ring_y] {
+            let base = mesh.nodes.len();
+            mesh.nodes.extend(part.nodes.iter().map(|&p| turn(p)));
+            for cell in part.cells.iter() {
+                let nodes: Vec<usize> = cell.nodes.iter().map(|&v| base + v).collect();
+                mesh.cells.push_nodes(cell.kind, &nodes);
+            }
+        }
+    }
+    node_budget(G, Some(mesh.nodes.len()))?;
+    merge_close_nodes(&mut mesh, tol(radius.max(height)));
+    let boundary = mesh.boundary_facets(0..mesh.cells.len());
+    let e = tol(radius.max(height));
+    let r = |p: &[f64; 3]| p[0].hypot(p[1]);
+    add_face_set(&mut mesh, &boundary, "outer", |p| {
+        (r(p) - radius).abs() <= e
+    });
+    add_face_set(&mut mesh, &boundary, "zmin", |p| p[2].abs() <= e);
+    add_face_set(&mut mesh, &boundary, "zmax", |p| (p[2] - height).abs() <= e);
+    if quarters < 4 {
+        let (co, si) = super::common::cos_sin_deg(angle);
+        add_face_set(&mut mesh, &boundary, "start", |p| {
+            p[1].abs() <= e && p[0] >= -e
+        });
+        add_face_set(&mut mesh, &boundary, "end", |p| {
+            (p[0] * si - p[1] * co).abs() <= e && p[0] * co + p[1] * si >= -e
+        });
+    }
+    Ok(mesh)
+}
+
 /// Merges nodes closer than `tol` (grid hashing; the first node of a group
 /// is kept, the cells renumbered, unused nodes dropped in order).
 fn merge_close_nodes(mesh: &mut Mesh<3>, tol: f64) {
@@ -458,6 +564,52 @@ mod tests {
                 assert!(!s.face_sets[axis].is_empty());
             }
         }
+    }
+
+    #[test]
+    fn cylinder_o_grid_quarters_are_valid_conforming_and_fill_the_disc() {
+        use std::f64::consts::PI;
+        let (m, nr, nz) = (3, 2, 2);
+        // nodes per layer of one quarter: core + two rings, minus the shared
+        // core edges, the shared ring edge, plus the corner counted thrice
+        let quarter = (m + 1) * (m + 1) + 2 * (nr + 1) * (m + 1) - 2 * (m + 1) - (nr + 1) + 1;
+        for kind in [CellKind::Hex8, CellKind::Tet4] {
+            for (angle, quarters) in [(90.0, 1), (180.0, 2), (360.0, 4)] {
+                let c = cylinder(2.0, angle, 1.5, [m, nr, nz], kind).unwrap();
+                validate::check(&c).unwrap();
+                let per_layer = if quarters == 4 {
+                    4 * quarter - 4 * (m + nr + 1) + 1
+                } else {
+                    quarters * quarter - (quarters - 1) * (m + nr + 1)
+                };
+                assert_eq!(c.nodes.len(), per_layer * (nz + 1), "{angle} {kind:?}");
+                // chords of 2 m segments per quarter: inscribed polygon area
+                let segments = (2 * m * quarters) as f64;
+                let theta = angle.to_radians() / segments;
+                let exact = 0.5 * segments * 4.0 * theta.sin() * 1.5;
+                let v = volume(&c);
+                assert!(
+                    (v - exact).abs() / exact < 1e-12,
+                    "{angle} {kind:?}: {v} vs {exact}"
+                );
+                assert!(v < PI * 4.0 * 1.5 * quarters as f64 / 4.0);
+                // every outer node on the radius; the face sets cover the boundary
+                for &n in &c.node_sets["outer"] {
+                    assert!((c.nodes[n][0].hypot(c.nodes[n][1]) - 2.0).abs() < 1e-12);
+                }
+                let faces: usize = c.face_sets.values().map(Vec::len).sum();
+                assert_eq!(faces, c.boundary_facets(0..c.cells.len()).len(), "{angle}");
+                assert_eq!(c.face_sets.contains_key("start"), quarters < 4);
+                if quarters == 2 {
+                    // the end of a half cylinder is the plane y = 0, x <= 0
+                    for &n in &c.node_sets["end"] {
+                        assert!(c.nodes[n][1] == 0.0 && c.nodes[n][0] <= 0.0);
+                    }
+                }
+            }
+        }
+        assert!(cylinder(1.0, 45.0, 1.0, [2, 2, 2], CellKind::Hex8).is_err());
+        assert!(cylinder(1.0, 90.0, 1.0, [0, 2, 2], CellKind::Hex8).is_err());
     }
 
     #[test]
