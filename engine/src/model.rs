@@ -515,6 +515,19 @@ pub enum ContactFormulation {
     Mortar,
 }
 
+/// Master normal of node-to-segment contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum NormalSmoothing {
+    /// The faceted surface: each segment's own normal (kinks are circles
+    /// of radius 0).
+    #[default]
+    None,
+    /// Nodal normals (the unit mean of the adjacent segment normals)
+    /// interpolated along each segment, normalized: one continuous normal
+    /// field (`crate::contact::smoothing`).
+    Nodal,
+}
+
 /// Local contact search test (seed, "Part I - Geometrical aspects").
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum LocalSearch {
@@ -549,6 +562,8 @@ pub struct ContactPair {
     pub search: LocalSearch,
     /// Node-to-segment or mortar segment-to-segment (deformable masters).
     pub formulation: ContactFormulation,
+    /// Master normal of node-to-segment pairs (deformable masters).
+    pub smoothing: NormalSmoothing,
     /// Normal enforcement.
     pub method: ContactMethod,
     /// Maximum gap `prof`: nodes farther than this from the tool create no

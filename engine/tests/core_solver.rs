@@ -378,6 +378,7 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         strategy: Default::default(),
         search: Default::default(),
         formulation: Default::default(),
+        smoothing: Default::default(),
         method: ContactMethod::Penalty {
             kind: PenaltyKind::Area,
             stiffness: 1e4,

@@ -46,9 +46,19 @@ pub fn describe(model: &Model, c: &ContactPair) -> Option<String> {
              may over-constrain with Lagrange multipliers)"
         }
     };
+    let normal = match c.smoothing {
+        ctc_engine::model::NormalSmoothing::None => {
+            "faceted master normal (a kink's vertex is a circle of radius 0)"
+        }
+        ctc_engine::model::NormalSmoothing::Nodal => {
+            "nodal normal smoothing (unit mean nodal normals interpolated along each segment, \
+             continuous across the master nodes; the element reaches the neighbouring \
+             segments' far nodes; unsymmetric tangent: LU)"
+        }
+    };
     Some(format!(
         "deformable master: {} segments and {} nodes of body `{body}`, node-to-segment \
-         elements (slave, m1, m2); {strategy}; {search}",
+         elements (slave, m1, m2); {strategy}; {normal}; {search}",
         edges.len(),
         nodes.len()
     ))

@@ -289,7 +289,7 @@ pub static MOTION: [Key; 4] = [
 ];
 
 /// `contact SLAVE -> MASTER { .. }`.
-pub static CONTACT: [Key; 7] = [
+pub static CONTACT: [Key; 8] = [
     Key::new(
         "method",
         KeyType::Choice(&[
@@ -331,6 +331,14 @@ pub static CONTACT: [Key; 7] = [
          segment-to-segment (weighted gaps; single pass, penalty or augmented Lagrangian)",
     )
     .default(Default::Choice("node_to_segment")),
+    Key::new(
+        "smoothing",
+        KeyType::Choice(&["none", "nodal"]),
+        "master normal of node-to-segment contact: none (faceted, exact segment normals) or \
+         nodal (averaged nodal normals interpolated along each segment: continuous across the \
+         master nodes)",
+    )
+    .default(Default::Choice("none")),
     Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),
 ];
 

@@ -68,6 +68,7 @@ decks!(
     contact_master_unknown_set,
     contact_bad_strategy,
     contact_mortar_unsupported,
+    contact_smoothing_unsupported,
     friction_bad_coulomb,
     several_thermal_errors,
     expr_division_by_zero,

@@ -31,6 +31,7 @@ pub fn all() -> Vec<Case> {
         hertz_two_cylinders(),
         hertz_two_cylinders_mortar(),
         hertz_two_cylinders_nts_nonmatching(),
+        hertz_two_cylinders_nts_smoothed(),
     ]
 }
 
@@ -206,6 +207,39 @@ pub fn hertz_two_cylinders_nts_nonmatching() -> Case {
         // Measured (levels 0-2): a 4.0e-2 2.5e-2 1.0e-2; a (moment) 2.7e-2
         // 1.0e-2 3.7e-3; p0 8.9e-2 8.5e-2 8.4e-2 (the plateau, low); L2
         // 8.6e-2 4.8e-2 2.7e-2
+        checks: hertz_checks(
+            &[0.05, 0.03, 0.015],
+            &[0.04, 0.015, 0.006],
+            &[0.11, 0.1, 0.1],
+            &[0.11, 0.06, 0.035],
+            None,
+        ),
+    }
+}
+
+/// The same deck, node-to-segment double pass with nodal normal smoothing.
+pub fn hertz_two_cylinders_nts_smoothed() -> Case {
+    Case {
+        name: "hertz_two_cylinders_nts_smoothed",
+        title: "Hertz: two elastic cylinders, non-matching arcs, node-to-segment double pass, \
+                nodal normal smoothing",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
+        deck: "hertz_two_cylinders_nts_smoothed.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "node_to_segment",
+            "smoothing",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+        ],
+        levels: 3,
+        reference: two_cylinders_reference(),
+        // Measured (levels 0-2): a 4.0e-2 2.5e-2 1.0e-2; a (moment) 2.7e-2
+        // 1.1e-2 3.7e-3; p0 8.9e-2 8.5e-2 8.3e-2 (the plateau of the
+        // unsmoothed case: the patch-test defect, not the normal); L2 8.6e-2
+        // 4.8e-2 2.7e-2; Newton 33 / 36 / 51
         checks: hertz_checks(
             &[0.05, 0.03, 0.015],
             &[0.04, 0.015, 0.006],

@@ -61,6 +61,23 @@ pub fn normal_rows(
                 continue;
             }
             let dim = nc.normal.len();
+            // smoothed node-to-segment: the row over the coupling's nodes
+            if let Some(rows_of_pair) = &pairs[pi].couplings {
+                if let Ok(k) = rows_of_pair.binary_search_by_key(&nc.node, |c| c.slave) {
+                    let c = &rows_of_pair[k];
+                    rows.push(
+                        RowKind::Normal,
+                        (pi, i),
+                        nc.gap,
+                        (0..c.gap_gradient.len()).map(|k| NodeTerm {
+                            node: c.nodes[k / dim],
+                            component: k % dim,
+                            coefficient: c.gap_gradient[k],
+                        }),
+                    );
+                }
+                continue;
+            }
             match &nc.master {
                 // against a rigid tool: the slave alone, d g / d x = n
                 None => rows.push(

@@ -28,6 +28,7 @@
 //!   master in one increment (run warnings);
 //! - [`segment`], [`node_to_segment`]: deformable masters (node-to-segment
 //!   elements, single / double / modified double pass, self contact);
+//!   [`smoothing`]: the nodal normal field of `smoothing = nodal`;
 //! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
 //!   and `M`, segmentation; penalty and augmented Lagrangian);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
@@ -51,10 +52,11 @@ pub mod rows;
 pub mod search;
 pub mod segment;
 pub mod segment_search;
+pub mod smoothing;
 pub mod tributary;
 pub(crate) mod vec2;
 
-use crate::model::{ContactFormulation, ContactMethod, Model};
+use crate::model::{ContactFormulation, ContactMethod, Model, NormalSmoothing};
 use geometry::ToolShape;
 use motion::Placement;
 
@@ -161,8 +163,9 @@ pub struct PairState {
     pub slaves: Vec<usize>,
     /// Deformable master (node-to-segment): surfaces, strategy state.
     pub surface: Option<node_to_segment::SurfacePair>,
-    /// Mortar pairs: the coupling rows of the latest evaluation (the solver
-    /// scatters these instead of the `NodeContact` forces); `None` for
+    /// Mortar pairs and smoothed node-to-segment pairs: the coupling rows
+    /// of the latest evaluation (the solver scatters these instead of the
+    /// `NodeContact` forces), in slave order; `None` for faceted
     /// node-to-segment and rigid tools.
     pub couplings: Option<Vec<mortar::Coupling>>,
 }
@@ -229,8 +232,10 @@ impl PairState {
             scratch: Vec::new(),
             shape,
             slaves,
-            couplings: (cp.formulation == ContactFormulation::Mortar && surface.is_some())
-                .then(Vec::new),
+            couplings: ((cp.formulation == ContactFormulation::Mortar
+                || cp.smoothing == NormalSmoothing::Nodal)
+                && surface.is_some())
+            .then(Vec::new),
             surface,
         }
     }
@@ -291,7 +296,7 @@ pub fn evaluate_pair(
     {
         *state = PairState::new(model, pair);
     }
-    if state.couplings.is_some() {
+    if state.couplings.is_some() && cp.formulation == ContactFormulation::Mortar {
         return mortar::evaluate(model, pair, x, state);
     }
     if state.surface.is_some() {

@@ -56,9 +56,12 @@
 use super::broad::BroadPhase;
 use super::segment::SegmentProjection;
 use super::segment_search;
+use super::smoothing;
 use super::{augmented, lagrange, penalty, ContactStatus, MasterSegment, NodeContact, PairState};
 use crate::geom::Aabb;
-use crate::model::{ContactMaster, ContactMethod, ContactStrategy, LocalSearch, Model};
+use crate::model::{
+    ContactMaster, ContactMethod, ContactStrategy, LocalSearch, Model, NormalSmoothing,
+};
 
 /// Relative tolerance on `xi` for "inside the segment".
 const XI_TOL: f64 = 1e-10;
@@ -369,6 +372,89 @@ fn closest(
     inside.or(outside).map(|(_, k)| k)
 }
 
+/// A smoothed projection (`smoothing = nodal`) and the far nodes of the
+/// neighbouring segments its nodal normals depend on.
+#[derive(Debug, Clone, Copy)]
+struct SmoothKept {
+    segment: usize,
+    far: [Option<usize>; 2],
+    d: smoothing::Smoothed,
+}
+
+/// The coordinates `[x_s, x_0, x_1, x_2, x_3]` of segment `e` of `surface`
+/// and the far nodes `x_0`, `x_3` (if the neighbours exist).
+fn patch_points(
+    surface: &Surface,
+    x: &[[f64; 2]],
+    xs: [f64; 2],
+    e: usize,
+) -> ([[f64; 2]; 5], [Option<usize>; 2]) {
+    let [a, b] = surface.edges[e];
+    let far0 = surface.prev[e].map(|f| surface.edges[f][0]);
+    let far3 = surface.next[e].map(|f| surface.edges[f][1]);
+    let pts = [
+        xs,
+        far0.map_or(x[a], |n| x[n]),
+        x[a],
+        x[b],
+        far3.map_or(x[b], |n| x[n]),
+    ];
+    (pts, [far0, far3])
+}
+
+/// Smoothed projection of `xs` on the candidates (the nodal normal field
+/// of [`smoothing`]): among the projections inside their segment (past a
+/// free end only by [`FREE_END_XI`]), the smallest `|g|`, ties to the
+/// lower segment index; `None` when no projection falls inside (the caller
+/// then keeps the faceted projection).
+fn closest_smoothed(
+    surface: &Surface,
+    x: &[[f64; 2]],
+    xs: [f64; 2],
+    candidates: &[usize],
+    depth: f64,
+    tests: &mut usize,
+) -> Option<SmoothKept> {
+    let mut best: Option<(f64, usize, f64)> = None;
+    for &e in candidates {
+        let (pts, far) = patch_points(surface, x, xs, e);
+        let Some(line) = SegmentProjection::new(xs, pts[2], pts[3]) else {
+            continue;
+        };
+        let Some(p) = smoothing::Patch::new(pts, far[0].is_some(), far[1].is_some()) else {
+            continue;
+        };
+        *tests += 1;
+        let Some(xi) = smoothing::project(&p, line.xi.clamp(0.0, 1.0)) else {
+            continue;
+        };
+        let lo = if far[0].is_some() {
+            -XI_TOL
+        } else {
+            -FREE_END_XI
+        };
+        let hi = if far[1].is_some() {
+            1.0 + XI_TOL
+        } else {
+            1.0 + FREE_END_XI
+        };
+        if !(lo..=hi).contains(&xi) {
+            continue;
+        }
+        let gap = p.gap(xi).0;
+        if gap < -depth.max(line.length) {
+            continue;
+        }
+        if best.is_none_or(|(d, _, _)| gap.abs() < d) {
+            best = Some((gap.abs(), e, xi));
+        }
+    }
+    let (_, e, xi) = best?;
+    let (pts, far) = patch_points(surface, x, xs, e);
+    let d = smoothing::differentiate(pts, far[0].is_some(), far[1].is_some(), xi)?;
+    Some(SmoothKept { segment: e, far, d })
+}
+
 /// Evaluates deformable pair `pair` at current coordinates `x`: one entry
 /// per slave node within `prof` of the opposite surface (or penetrating).
 pub fn evaluate(
@@ -401,6 +487,11 @@ pub fn evaluate(
     let mut tests = 0usize;
     let mut brute = 0usize;
     let mut candidates = std::mem::take(&mut sp.candidates);
+    let smooth = cp.smoothing == NormalSmoothing::Nodal;
+    let mut couplings = state.couplings.take();
+    if let Some(c) = &mut couplings {
+        c.clear();
+    }
     sp.positions.clear();
     sp.positions.extend_from_slice(x);
     state.friction.impact = None;
@@ -439,25 +530,43 @@ pub fn evaluate(
                 segment_search::in_segment_circle(x[a], x[b], xs, prof)
             });
         }
-        let Some(k) = closest(surface, x, xs, &candidates, prof, &mut tests) else {
+        let smoothed = if smooth {
+            closest_smoothed(surface, x, xs, &candidates, prof, &mut tests)
+        } else {
+            None
+        };
+        let kept = match &smoothed {
+            Some(s) => {
+                let [a, b] = surface.edges[s.segment];
+                SegmentProjection::new(xs, x[a], x[b]).map(|projection| Kept {
+                    segment: s.segment,
+                    projection,
+                })
+            }
+            None => closest(surface, x, xs, &candidates, prof, &mut tests),
+        };
+        let Some(k) = kept else {
             state.last_entity[i] = None;
             state.friction.open(i, xs);
             continue;
         };
         state.last_entity[i] = Some(k.segment);
         let p = k.projection;
-        if p.gap > prof {
+        let (gap, n) = match &smoothed {
+            Some(s) => (s.d.gap.v, s.d.normal),
+            None => (p.gap, p.normal),
+        };
+        if gap > prof {
             state.friction.open(i, xs);
             continue;
         }
         let [m1, m2] = surface.edges[k.segment];
         let tributary = state.tributary.get(i).copied().unwrap_or(0.0);
         let lambda = state.multiplier.get(i).copied().unwrap_or(0.0);
-        let n = p.normal;
         let (resp, dr_dg) = match &cp.method {
             ContactMethod::Penalty { .. } => {
                 let alpha = penalty::effective_stiffness(&cp.method, tributary);
-                let resp = penalty::respond(&cp.method, tributary, p.gap, n, 0.0);
+                let resp = penalty::respond(&cp.method, tributary, gap, n, 0.0);
                 let closed = resp.status == ContactStatus::Closed;
                 (resp, if closed { -alpha } else { 0.0 })
             }
@@ -467,13 +576,17 @@ pub fn evaluate(
             }
             ContactMethod::AugmentedLagrange { .. } => {
                 let alpha = penalty::effective_stiffness(&cp.method, tributary);
-                let resp = augmented::respond(alpha, lambda, tributary, p.gap, n, 0.0);
+                let resp = augmented::respond(alpha, lambda, tributary, gap, n, 0.0);
                 let closed = resp.status == ContactStatus::Closed;
                 (resp, if closed { -alpha } else { 0.0 })
             }
         };
         let rn = resp.force[0] * n[0] + resp.force[1] * n[1];
-        let (mut f, mut kt) = p.element(rn, dr_dg);
+        let (mut f, mut kt) = match &smoothed {
+            // the 6-dof blocks are filled from the smoothed element below
+            Some(_) => ([0.0; 6], [[0.0; 6]; 6]),
+            None => p.element(rn, dr_dg),
+        };
         let friction = match &cp.friction {
             Some(law) => super::friction_segment::apply(
                 law,
@@ -485,7 +598,7 @@ pub fn evaluate(
                     slave: i,
                     xs,
                     nodes: [m1, m2],
-                    xi: p.xi,
+                    xi: smoothed.as_ref().map_or(p.xi, |s| s.d.xi),
                     normal_force: rn,
                     status: resp.status,
                     tributary,
@@ -496,9 +609,66 @@ pub fn evaluate(
             ),
             None => Default::default(),
         };
+        let mut gap_gradient = p.gap_gradient();
+        if let (Some(s), Some(rows)) = (&smoothed, couplings.as_mut()) {
+            // f = R B + friction, K = -dR/dg B (dg/dx)^T - R dB/dx + friction
+            // over [x_s, x_0, x_1, x_2, x_3]; the friction blocks sit at the
+            // slave and the segment ends
+            let far = s.far;
+            let local = [Some(node), far[0], Some(m1), Some(m2), far[1]];
+            let mut nodes: Vec<usize> = local.iter().flatten().copied().collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            let pos = |k: usize| local[k].and_then(|n| nodes.binary_search(&n).ok());
+            let nd = 2 * nodes.len();
+            let mut force = vec![0.0; nd];
+            let mut tangent = vec![0.0; nd * nd];
+            let mut row = vec![0.0; nd];
+            let g = &s.d.gap;
+            for a in 0..smoothing::N {
+                let Some(pa) = pos(a / 2) else { continue };
+                let ra = 2 * pa + a % 2;
+                force[ra] += rn * s.d.b[a].v;
+                row[ra] += s.d.b[a].v;
+                for c in 0..smoothing::N {
+                    let Some(pc) = pos(c / 2) else { continue };
+                    let rc = 2 * pc + c % 2;
+                    tangent[ra * nd + rc] += -dr_dg * s.d.b[a].v * g.d[c] - rn * s.d.b[a].d[c];
+                }
+            }
+            // friction (6 dofs: slave, m1, m2 = local 0, 2, 3)
+            let six = [0usize, 1, 4, 5, 6, 7];
+            for (a6, &a) in six.iter().enumerate() {
+                let Some(pa) = pos(a / 2) else { continue };
+                let ra = 2 * pa + a % 2;
+                force[ra] += f[a6];
+                for (c6, &c) in six.iter().enumerate() {
+                    let Some(pc) = pos(c / 2) else { continue };
+                    tangent[ra * nd + 2 * pc + c % 2] += kt[a6][c6];
+                }
+            }
+            // the 6-dof view, for output and the search (the full element
+            // is the coupling)
+            for (a6, &a) in six.iter().enumerate() {
+                f[a6] += rn * s.d.b[a].v;
+                gap_gradient[a6] = s.d.b[a].v;
+                for (c6, &c) in six.iter().enumerate() {
+                    kt[a6][c6] += -dr_dg * s.d.b[a].v * g.d[c] - rn * s.d.b[a].d[c];
+                }
+            }
+            if resp.status == ContactStatus::Closed {
+                rows.push(super::mortar::Coupling {
+                    nodes,
+                    force,
+                    tangent,
+                    slave: node,
+                    gap_gradient: row,
+                });
+            }
+        }
         out.push(NodeContact {
             node,
-            gap: p.gap,
+            gap,
             normal: n,
             force: [f[0], f[1]],
             stiffness: [[kt[0][0], kt[0][1]], [kt[1][0], kt[1][1]]],
@@ -507,15 +677,16 @@ pub fn evaluate(
             entity: k.segment,
             master: Some(MasterSegment {
                 nodes: [m1, m2],
-                xi: p.xi,
+                xi: smoothed.as_ref().map_or(p.xi, |s| s.d.xi),
                 forces: [[f[2], f[3]], [f[4], f[5]]],
                 tangent: kt,
-                gap_gradient: p.gap_gradient(),
+                gap_gradient,
             }),
             friction,
         });
     }
     sp.candidates = candidates;
+    state.couplings = couplings;
     if super::log::debug_enabled() {
         for c in &out {
             if let Some(ms) = &c.master {

@@ -321,6 +321,7 @@ impl<const D: usize> ModelBuilder<D> {
             strategy: ContactStrategy::default(),
             search: LocalSearch::default(),
             formulation: crate::model::ContactFormulation::default(),
+            smoothing: crate::model::NormalSmoothing::default(),
             method: ContactMethod::Penalty {
                 kind: crate::model::PenaltyKind::Area,
                 stiffness: 1.0,
@@ -379,6 +380,12 @@ impl<const D: usize> ModelBuilder<D> {
     /// Formulation of the last pair (node-to-segment or mortar).
     pub fn formulation_of_pair(mut self, formulation: crate::model::ContactFormulation) -> Self {
         self.last_pair().formulation = formulation;
+        self
+    }
+
+    /// Master normal smoothing of the last pair.
+    pub fn smoothing_of_pair(mut self, smoothing: crate::model::NormalSmoothing) -> Self {
+        self.last_pair().smoothing = smoothing;
         self
     }
 

@@ -310,6 +310,17 @@ pub struct Contact {
     pub search: Option<Spanned<Search>>,
     /// `formulation = node_to_segment | mortar`.
     pub formulation: Option<Spanned<ContactFormulation>>,
+    /// `smoothing = none | nodal`.
+    pub smoothing: Option<Spanned<Smoothing>>,
+}
+
+/// `smoothing = ..` of a node-to-segment pair.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Smoothing {
+    /// `none`: the faceted master surface.
+    None,
+    /// `nodal`: nodal normals interpolated along the segments.
+    Nodal,
 }
 
 /// `formulation = ..` of a contact pair.

@@ -101,6 +101,10 @@ impl Lowerer<'_> {
                     Some(ast::ContactFormulation::Mortar) => m::ContactFormulation::Mortar,
                     _ => m::ContactFormulation::NodeToSegment,
                 },
+                smoothing: match c.smoothing.as_ref().map(|s| s.value) {
+                    Some(ast::Smoothing::Nodal) => m::NormalSmoothing::Nodal,
+                    _ => m::NormalSmoothing::None,
+                },
                 search: match c.search.as_ref().map(|s| s.value) {
                     Some(ast::Search::Circle) => m::LocalSearch::Circle,
                     _ => m::LocalSearch::Memory,

@@ -6,7 +6,7 @@ use super::ItemParts;
 use crate::ast::syntax::{Value, ValueKind};
 use crate::ast::{
     Contact, ContactFormulation, LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind,
-    Search, Strategy,
+    Search, Smoothing, Strategy,
 };
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
@@ -33,6 +33,8 @@ const CONTACT_FORMULATIONS: [(&str, ContactFormulation); 2] = [
     ("node_to_segment", ContactFormulation::NodeToSegment),
     ("mortar", ContactFormulation::Mortar),
 ];
+
+const SMOOTHINGS: [(&str, Smoothing); 2] = [("none", Smoothing::None), ("nodal", Smoothing::Nodal)];
 
 const SEARCHES: [(&str, Search); 2] = [("memory", Search::Memory), ("circle", Search::Circle)];
 
@@ -67,6 +69,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         &CONTACT_FORMULATIONS,
         diags,
     );
+    let smoothing = f.choice("smoothing", "normal smoothing", &SMOOTHINGS, diags);
     let friction = f
         .value("friction", diags)
         .and_then(|v| super::friction::parse(v, diags));
@@ -92,6 +95,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Contact> {
         strategy,
         search,
         formulation,
+        smoothing,
     })
 }
 

@@ -109,6 +109,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
             );
         }
         mortar_supported(c, ctx);
+        smoothing_supported(c, ctx);
         for r in &c.reserved {
             ctx.err(
                 Diagnostic::error(
@@ -119,6 +120,63 @@ pub fn check(ctx: &mut Ctx<'_>) {
                 .with_help("contact is frictionless for now"),
             );
         }
+    }
+}
+
+/// `smoothing = nodal`: a deformable master, node-to-segment, not the
+/// doubled Lagrange form (its `L D L^T` needs a symmetric tangent; the
+/// smoothed element's is not).
+fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
+    let Some(s) = c
+        .smoothing
+        .as_ref()
+        .filter(|s| s.value == crate::ast::Smoothing::Nodal)
+    else {
+        return;
+    };
+    let mut refuse = |what: &str, span: Span, help: &str| {
+        ctx.err(
+            Diagnostic::error(
+                format!("normal smoothing {what}"),
+                span,
+                "not supported with `smoothing = nodal`",
+            )
+            .with_secondary(s.span, "smoothing chosen here")
+            .with_help(help.to_string()),
+        );
+    };
+    if c.master.is_none() {
+        refuse(
+            "needs a deformable master surface",
+            c.tool.span,
+            "rigid tools have their exact geometry (arcs, NURBS): drop `smoothing`, or write \
+             the master as `body.set`",
+        );
+    }
+    if let Some(f) = c
+        .formulation
+        .as_ref()
+        .filter(|f| f.value == crate::ast::ContactFormulation::Mortar)
+    {
+        refuse(
+            "is for node-to-segment contact",
+            f.span,
+            "drop `smoothing` (mortar integrates the gap along the slave surface)",
+        );
+    }
+    if let Some(m) = c.method.as_ref().filter(|m| {
+        matches!(
+            &m.value,
+            Method::Lagrange { formulation: Some(f) }
+                if f.value == crate::ast::LagrangeFormulation::Doubled
+        )
+    }) {
+        refuse(
+            "with doubled Lagrange multipliers is not supported (its L D L^T factorization \
+             needs a symmetric tangent)",
+            m.span,
+            "use `method = lagrange { }` (single multipliers, LU)",
+        );
     }
 }
 

@@ -153,6 +153,7 @@ mod tests {
             strategy: Default::default(),
             search: Default::default(),
             formulation: Default::default(),
+            smoothing: Default::default(),
             method: ContactMethod::Penalty {
                 kind: PenaltyKind::Area,
                 stiffness: 1e9,

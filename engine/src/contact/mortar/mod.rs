@@ -51,6 +51,11 @@ pub struct Coupling {
     pub force: Vec<f64>,
     /// `-d force / d x`, row-major `2n x 2n` in the same order.
     pub tangent: Vec<f64>,
+    /// Smoothed node-to-segment rows: the slave node of the row.
+    pub slave: usize,
+    /// Smoothed node-to-segment rows: `d g / d x` over the nodes (the
+    /// Lagrange constraint row); empty for mortar rows.
+    pub gap_gradient: Vec<f64>,
 }
 
 /// One mortar segment seen from one of its two slave nodes.
@@ -240,6 +245,8 @@ pub fn evaluate(
                 nodes: nodes.clone(),
                 force,
                 tangent,
+                slave: node,
+                gap_gradient: Vec::new(),
             });
         }
         out.push(NodeContact {

@@ -674,8 +674,11 @@ where
         });
         let mut criteria = Criteria::new(settings, self.saddle.is_some());
         // friction and mortar make the contact tangent non-symmetric: LU
+        // (and so does the nodal normal smoothing of node-to-segment pairs)
         let friction = model.contacts.iter().any(|c| {
-            c.friction.is_some() || c.formulation == crate::model::ContactFormulation::Mortar
+            c.friction.is_some()
+                || c.formulation == crate::model::ContactFormulation::Mortar
+                || c.smoothing == crate::model::NormalSmoothing::Nodal
         });
         // a symmetric tangent derives from a potential: the line search's
         // energy test applies (friction and non-symmetric laws: residual only)
