@@ -318,6 +318,15 @@ fn output_files_vtu_pvd_history_summary() {
     assert_eq!(json["increments"].as_array().unwrap().len(), 4);
     assert_eq!(json["linear_solver"], "cholesky");
     assert!(json["timings"]["factorization"].as_f64().unwrap() >= 0.0);
+    // the factorization's size: L holds at least the lower triangle
+    let (nnz, free) = (
+        json["matrix_nonzeros"].as_u64().unwrap(),
+        json["free_dofs"].as_u64().unwrap(),
+    );
+    let factor = json["factor_nonzeros"].as_u64().unwrap();
+    assert!(factor >= (nnz + free) / 2, "{factor} vs {nnz}");
+    assert!(json["factor_fill"].as_f64().unwrap() >= 1.0);
+    assert!(json["factor_bytes"].as_u64().unwrap() >= 8 * factor);
     // no temporary files left behind
     for e in std::fs::read_dir(dir.path()).unwrap() {
         let name = e.unwrap().file_name().into_string().unwrap();

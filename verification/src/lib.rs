@@ -51,6 +51,7 @@ pub mod registry;
 pub mod report;
 pub mod runner;
 pub mod search_bench;
+pub mod solid_bench;
 pub mod stress;
 pub mod studies;
 

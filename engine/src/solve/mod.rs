@@ -223,6 +223,14 @@ pub struct RunSummary {
     pub free_dofs: usize,
     /// Stored entries of the free-free stiffness matrix (both triangles).
     pub matrix_nonzeros: usize,
+    /// Entries of the sparse Cholesky factor `L` (AMD ordering, diagonal
+    /// included); 0 when no symmetric factorization ran.
+    pub factor_nonzeros: usize,
+    /// Fill: `factor_nonzeros` over the entries of the lower triangle of
+    /// the matrix, `(matrix_nonzeros + free_dofs) / 2`.
+    pub factor_fill: f64,
+    /// Bytes of the factorization (values of `L` plus numeric scratch).
+    pub factor_bytes: usize,
     /// Conventions a reader of the results must know (e.g. axisymmetric
     /// forces are totals over 2*pi).
     pub notes: Vec<String>,
@@ -428,6 +436,14 @@ where
     summary.ldlt_factorizations = stats.ldlt;
     summary.lu_factorizations = stats.lu;
     summary.max_negative_pivots = stats.max_negative_pivots;
+    summary.factor_nonzeros = stats.factor_nonzeros;
+    summary.factor_bytes = stats.factor_bytes;
+    let lower = (summary.matrix_nonzeros + summary.free_dofs) / 2;
+    summary.factor_fill = if lower > 0 {
+        stats.factor_nonzeros as f64 / lower as f64
+    } else {
+        0.0
+    };
     (
         summary.saddle_symbolic_factorizations,
         summary.saddle_factorizations,

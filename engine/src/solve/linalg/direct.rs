@@ -342,6 +342,9 @@ impl LinearSystem for LinearSolver {
             lu: self.lu_count,
             negative_pivots: self.negative_pivots,
             max_negative_pivots: self.max_negative_pivots,
+            factor_nonzeros: self.l_values.len(),
+            factor_bytes: self.l_values.len() * std::mem::size_of::<f64>()
+                + self.scratch.as_ref().map_or(0, |b| b.len()),
         }
     }
 }

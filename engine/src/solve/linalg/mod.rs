@@ -95,6 +95,13 @@ pub struct FactorStats {
     pub negative_pivots: usize,
     /// Largest `negative_pivots` over the run.
     pub max_negative_pivots: usize,
+    /// Stored entries of the Cholesky / `L D L^T` factor `L` (diagonal
+    /// included) of the fill-reducing ordering; 0 before the first
+    /// factorization or when only LU ran.
+    pub factor_nonzeros: usize,
+    /// Bytes held by the factorization: the values of `L` and the numeric
+    /// scratch (the symbolic structure, a few index arrays, is not counted).
+    pub factor_bytes: usize,
 }
 
 impl FactorStats {
