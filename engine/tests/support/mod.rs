@@ -3,12 +3,11 @@
 //! - here: one-body models, Newton settings, constraints;
 //! - [`contact`]: a row of slave nodes against one rigid tool (kernels);
 //! - [`lagrange`]: a rigid cylinder on a block, the Hertz half disc;
-//! - [`nts`]: two stacked blocks for the node-to-segment patch test;
-//! - [`friction`]: a block on an inclined rigid plane.
+//! - [`nts`]: two stacked blocks for the node-to-segment patch test
+//!   (the friction block lives in `ctc_verification::programs::friction_block`).
 #![allow(dead_code, unused_imports)]
 
 pub mod contact;
-pub mod friction;
 pub mod lagrange;
 pub mod nts;
 

@@ -2,7 +2,7 @@
 //! of their mesh generators (ranges from the generator's key table, then
 //! the generator's own rules, then the cell budget).
 
-use super::{ranges, BodyInfo, Ctx, MAX_CELLS};
+use super::{cell_limit, ranges, BodyInfo, Ctx};
 use crate::ast::{Body, Dimension, FormulationKind, Generator, KinematicsKind, MeshDef, Span};
 use crate::diagnostics::Diagnostic;
 use crate::generators::add_builtin_sets;
@@ -177,19 +177,20 @@ pub fn generator_fits_dimension(g: &Generator, dim: Option<Dimension>, ctx: &mut
 }
 
 /// A generator's settings: the ranges of its key table, its own rules,
-/// and at most [`MAX_CELLS`] cells.
+/// and at most [`super::cell_limit`] cells ([`super::MAX_CELLS`]).
 pub fn generator_settings_valid(g: &Generator, ctx: &mut Ctx<'_>) {
     ranges::settings_in_range(&g.settings, g.def.keys, ctx);
     (g.def.check)(g, ctx);
     let cells = (g.def.cells)(&g.settings);
-    if cells > MAX_CELLS {
+    let limit = cell_limit();
+    if cells > limit {
         ctx.err(
             Diagnostic::error(
                 format!("the `{}` mesh would have {cells} cells", g.name.name),
                 g.name.span,
                 "too many cells",
             )
-            .with_help(format!("at most {MAX_CELLS} cells per generated mesh")),
+            .with_help(format!("at most {limit} cells per generated mesh")),
         );
     }
 }

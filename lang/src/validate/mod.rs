@@ -32,8 +32,30 @@ use crate::diagnostics::{Diagnostic, LineIndex};
 pub use crate::generators::SetKind;
 use std::collections::BTreeMap;
 
-/// Maximum number of cells a generator may be asked for.
+/// Maximum number of cells a generator may be asked for (the default of
+/// [`cell_limit`]).
 pub const MAX_CELLS: i64 = 4_000_000;
+
+/// The cell limit per generated mesh in force ([`set_cell_limit`]).
+static CELL_LIMIT: std::sync::atomic::AtomicI64 = std::sync::atomic::AtomicI64::new(MAX_CELLS);
+
+/// The most cells a generated mesh may have: [`MAX_CELLS`] unless an
+/// embedding program lowered it with [`set_cell_limit`].
+pub fn cell_limit() -> i64 {
+    CELL_LIMIT.load(std::sync::atomic::Ordering::Relaxed)
+}
+
+/// Lowers (or restores) the per-mesh cell limit for the whole process,
+/// clamped to `1..=MAX_CELLS`: decks above it get the "too many cells"
+/// diagnostic instead of a mesh. For programs that compile many untrusted
+/// decks quickly (the cargo-fuzz `deck` target uses 20 000, see
+/// `fuzz/README.md`); `ctc` itself never calls it.
+pub fn set_cell_limit(cells: i64) {
+    CELL_LIMIT.store(
+        cells.clamp(1, MAX_CELLS),
+        std::sync::atomic::Ordering::Relaxed,
+    );
+}
 
 /// What a reference is used for.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -6,6 +6,8 @@
 
 pub mod cattaneo;
 pub mod fenicsx;
+pub mod friction;
+pub mod friction_block;
 pub mod mortar;
 pub mod solid;
 pub mod solid_patch;
@@ -24,6 +26,7 @@ use std::path::{Path, PathBuf};
 pub fn all() -> Vec<VerifyCase> {
     let mut v = thermal_contact::cases();
     v.extend(thermal_coupling::cases());
+    v.extend(friction::cases());
     v.extend(cattaneo::cases());
     v.extend(upsetting::cases());
     v.extend(fenicsx::cases());

@@ -1,8 +1,16 @@
 //! An elastic block (plane strain, quad4) resting on a rigid plane
 //! inclined at `alpha`, loaded by its weight, then pushed horizontally:
-//! the scene of the friction tests.
+//! the scene of the friction cases ([`super::friction`]: inclined plane,
+//! stick/slip, tangential penalty, first impact).
+//!
+//! ```text
+//!          weight (or squeeze)
+//!        +-----------+
+//!  push->|   block   |  1 x 0.5, E = 1e5
+//!        +-----------+
+//!   ////// plane inclined at alpha //////
+//! ```
 
-use super::{ramp, ModelBuilder, Recorder};
 use ctc_engine::contact::friction::{pair_dissipation, FrictionStatus};
 use ctc_engine::contact::NodeContact;
 use ctc_engine::mesh::{Cell, Mesh};
@@ -11,6 +19,7 @@ use ctc_engine::model::{
     TimeFunction, ToolGeometry, ToolMotion,
 };
 use ctc_engine::solve::{run, RunSummary};
+use ctc_engine::testkit::{ramp, ModelBuilder, Recorder};
 
 /// How the block is driven in the second step.
 #[derive(Debug, Clone, Copy, PartialEq)]
