@@ -222,6 +222,23 @@ pub fn find(name: &str) -> Option<VerifyCase> {
     all().into_iter().find(|c| c.name == name)
 }
 
+/// Runs the case `name` on its default levels as a cargo test does: prints
+/// every value of the finest level, panics unless the case passes its own
+/// tolerances, and returns the report for further checks.
+pub fn run_passing(name: &str) -> CaseReport {
+    let case = find(name).unwrap_or_else(|| panic!("no case {name}"));
+    let report = case.run(&crate::default_cases_dir(), None, &mut |l| eprintln!("{l}"));
+    let level = report.levels.last().expect("one level");
+    for v in &level.values {
+        println!(
+            "{name}: {} = {:.9e} (reference {:?}, error {:.2e}, tolerance {:?})",
+            v.quantity, v.computed, v.reference, v.error, v.tolerance
+        );
+    }
+    assert!(report.passed(), "{report:#?}");
+    report
+}
+
 /// Every tag used, sorted.
 pub fn tags() -> Vec<&'static str> {
     let mut t: Vec<&'static str> = all().iter().flat_map(|c| c.tags.iter().copied()).collect();
