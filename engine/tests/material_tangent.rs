@@ -12,73 +12,12 @@ use ctc_engine::element::kernel::{HEX8, QUAD4, TET4, TRI3};
 use ctc_engine::element::recovery::virgin;
 use ctc_engine::element::{CellKernel, ElementMatrix, NonlinearInput, Section};
 use ctc_engine::geom::Point;
-use ctc_engine::material::j2::Elastic;
 use ctc_engine::material::tensor::{exp, Deformation};
 use ctc_engine::material::{History, NonlinearLaw};
-use ctc_engine::model::{AnalysisKind, Formulation, Hardening, Kinematics};
+use ctc_engine::model::{AnalysisKind, Formulation, Kinematics};
+use ctc_engine::testkit::laws::nonlinear_laws;
 use nalgebra::DMatrix;
 use proptest::prelude::*;
-
-fn laws() -> Vec<(&'static str, NonlinearLaw)> {
-    let elastic = Elastic::from_young(200e3, 0.3);
-    let j2 = |hardening, viscosity| NonlinearLaw::J2 {
-        elastic,
-        hardening,
-        viscosity,
-    };
-    vec![
-        (
-            "neo_hookean",
-            NonlinearLaw::NeoHookean {
-                mu: 80e3,
-                lambda: 120e3,
-            },
-        ),
-        ("hencky", NonlinearLaw::Hencky { elastic }),
-        (
-            "j2_linear",
-            j2(
-                Hardening::Linear {
-                    yield_stress: 250.0,
-                    modulus: 1000.0,
-                },
-                None,
-            ),
-        ),
-        (
-            "j2_swift",
-            j2(
-                Hardening::Swift {
-                    k: 500.0,
-                    eps0: 0.01,
-                    n: 0.2,
-                },
-                None,
-            ),
-        ),
-        (
-            "j2_voce",
-            j2(
-                Hardening::Voce {
-                    yield_stress: 200.0,
-                    sigma_inf: 400.0,
-                    delta: 10.0,
-                },
-                None,
-            ),
-        ),
-        (
-            "perzyna",
-            j2(
-                Hardening::Linear {
-                    yield_stress: 250.0,
-                    modulus: 1000.0,
-                },
-                Some(2000.0),
-            ),
-        ),
-    ]
-}
 
 /// A plastic history: an isochoric plastic log strain (deviatoric, built
 /// from the five numbers `p`, scaled by `a`), equivalent plastic strain
@@ -283,7 +222,7 @@ fn check_element<const D: usize>(
         nodal.into_iter().map(|p| p * d.scale).collect()
     };
     let mut worst = 0.0f64;
-    for (name, law) in laws() {
+    for (name, law) in nonlinear_laws() {
         if !finite
             && matches!(
                 law,
@@ -362,7 +301,7 @@ proptest! {
 fn tangent_checks_are_plastic() {
     // guard against a vacuous check: a stretch of 10 % is plastic at every point
     let x = shape(&HEX, &[0.0; 9], &[0.0; 24], 1.0);
-    let law = &laws()[3].1;
+    let law = &nonlinear_laws()[3].1;
     let mut out = ElementMatrix::default();
     let mut states = vec![virgin(Kinematics::Finite); 8];
     let u: Vec<Point<3>> = x

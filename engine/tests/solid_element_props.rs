@@ -32,73 +32,12 @@ use ctc_engine::element::kernel::{HEX8, TET4};
 use ctc_engine::element::recovery::virgin;
 use ctc_engine::element::{CellKernel, ElementMatrix, NonlinearInput, Section};
 use ctc_engine::geom::Point;
-use ctc_engine::material::j2::Elastic;
 use ctc_engine::material::tensor::exp;
 use ctc_engine::material::{History, NonlinearLaw};
-use ctc_engine::model::{AnalysisKind, Formulation, Hardening, Kinematics};
+use ctc_engine::model::{AnalysisKind, Formulation, Kinematics};
+use ctc_engine::testkit::laws::nonlinear_laws;
 use nalgebra::{DMatrix, DVector, Vector3};
 use proptest::prelude::*;
-
-fn laws() -> Vec<(&'static str, NonlinearLaw)> {
-    let elastic = Elastic::from_young(200e3, 0.3);
-    let j2 = |hardening, viscosity| NonlinearLaw::J2 {
-        elastic,
-        hardening,
-        viscosity,
-    };
-    vec![
-        (
-            "neo_hookean",
-            NonlinearLaw::NeoHookean {
-                mu: 80e3,
-                lambda: 120e3,
-            },
-        ),
-        ("hencky", NonlinearLaw::Hencky { elastic }),
-        (
-            "j2_linear",
-            j2(
-                Hardening::Linear {
-                    yield_stress: 250.0,
-                    modulus: 1000.0,
-                },
-                None,
-            ),
-        ),
-        (
-            "j2_swift",
-            j2(
-                Hardening::Swift {
-                    k: 500.0,
-                    eps0: 0.01,
-                    n: 0.2,
-                },
-                None,
-            ),
-        ),
-        (
-            "j2_voce",
-            j2(
-                Hardening::Voce {
-                    yield_stress: 200.0,
-                    sigma_inf: 400.0,
-                    delta: 10.0,
-                },
-                None,
-            ),
-        ),
-        (
-            "perzyna",
-            j2(
-                Hardening::Linear {
-                    yield_stress: 250.0,
-                    modulus: 1000.0,
-                },
-                Some(2000.0),
-            ),
-        ),
-    ]
-}
 
 const TET: [[f64; 3]; 4] = [
     [0.0, 0.0, 0.0],
@@ -327,7 +266,7 @@ fn check(
     let u = displacement(&x, d, finite);
     let h = history(finite, d);
     let mut worst = Defects::default();
-    for (name, law) in laws() {
+    for (name, law) in nonlinear_laws() {
         if !finite
             && matches!(
                 law,
@@ -416,7 +355,7 @@ fn solid_tangent_properties_are_measured_and_fbar_is_unsymmetric() {
     // F-bar at finite strain is unsymmetric: the check above can fail
     let x = shape(&HEX, &d);
     let u = displacement(&x, &d, true);
-    for (name, law) in laws() {
+    for (name, law) in nonlinear_laws() {
         let e = defects(
             &HEX8,
             &x,

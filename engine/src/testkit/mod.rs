@@ -13,10 +13,12 @@
 //! - [`grid`]: structured (optionally jittered) meshes and mesh merging;
 //! - [`solid`]: the 3D patch and objectivity scenes (cargo tests and
 //!   `ctc verify` run the same function);
+//! - [`laws`]: one instance of every nonlinear material law;
 //! - [`Rng`]: a deterministic xorshift generator.
 
 pub mod builder;
 pub mod grid;
+pub mod laws;
 pub mod recorder;
 pub mod solid;
 

@@ -1,0 +1,70 @@
+//! The nonlinear material laws the kernel property tests sweep: one
+//! representative of every law (Neo-Hooke, Hencky, J2 with linear, Swift
+//! and Voce hardening, Perzyna), steel-like constants in MPa.
+
+use crate::material::j2::Elastic;
+use crate::material::NonlinearLaw;
+use crate::model::Hardening;
+
+/// Every nonlinear law with its name, as the tangent, rigid-mode and
+/// symmetry property tests iterate over them.
+pub fn nonlinear_laws() -> Vec<(&'static str, NonlinearLaw)> {
+    let elastic = Elastic::from_young(200e3, 0.3);
+    let j2 = |hardening, viscosity| NonlinearLaw::J2 {
+        elastic,
+        hardening,
+        viscosity,
+    };
+    vec![
+        (
+            "neo_hookean",
+            NonlinearLaw::NeoHookean {
+                mu: 80e3,
+                lambda: 120e3,
+            },
+        ),
+        ("hencky", NonlinearLaw::Hencky { elastic }),
+        (
+            "j2_linear",
+            j2(
+                Hardening::Linear {
+                    yield_stress: 250.0,
+                    modulus: 1000.0,
+                },
+                None,
+            ),
+        ),
+        (
+            "j2_swift",
+            j2(
+                Hardening::Swift {
+                    k: 500.0,
+                    eps0: 0.01,
+                    n: 0.2,
+                },
+                None,
+            ),
+        ),
+        (
+            "j2_voce",
+            j2(
+                Hardening::Voce {
+                    yield_stress: 200.0,
+                    sigma_inf: 400.0,
+                    delta: 10.0,
+                },
+                None,
+            ),
+        ),
+        (
+            "perzyna",
+            j2(
+                Hardening::Linear {
+                    yield_stress: 250.0,
+                    modulus: 1000.0,
+                },
+                Some(2000.0),
+            ),
+        ),
+    ]
+}
