@@ -1,6 +1,7 @@
 //! Sparse direct solution of the free-free system with faer.
 //!
-//! The symbolic factorization (fill-reducing AMD ordering, elimination tree,
+//! The symbolic factorization (fill-reducing ordering: AMD, or nested
+//! dissection for large patterns when its factor is smaller; elimination tree,
 //! supernodes) depends only on the pattern, which is fixed for the run: it is
 //! computed on the first factorization and reused by every Newton
 //! iteration, so each iteration pays one numeric factorization and one
@@ -176,15 +177,7 @@ impl LinearSolver {
         let mat = SparseColMatRef::new(symbolic, &values[..pattern.nnz()]);
         if self.method != Method::Lu {
             if self.symbolic.is_none() {
-                let sym = factorize_symbolic_cholesky(
-                    symbolic,
-                    Side::Lower,
-                    SymmetricOrdering::Amd,
-                    CholeskySymbolicParams::default(),
-                )
-                .map_err(|e| {
-                    LinearError::Symbolic(format!("symbolic Cholesky factorization failed: {e:?}"))
-                })?;
+                let sym = symbolic_cholesky(symbolic, pattern)?;
                 let req = sym
                     .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
                     .or(sym.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()))
@@ -347,6 +340,52 @@ impl LinearSystem for LinearSolver {
                 + self.scratch.as_ref().map_or(0, |b| b.len()),
         }
     }
+}
+
+/// Patterns with at least this many rows also get a nested dissection
+/// ordering (`ordering.rs`), kept when its factor is smaller than the
+/// minimum degree one (3D meshes); smaller patterns use AMD alone.
+pub const NESTED_DISSECTION_MIN: usize = 20_000;
+
+/// The symbolic Cholesky factorization of `symbolic` (the pattern
+/// `pattern`) with the fill-reducing ordering that gives the smaller factor:
+/// AMD, or for large patterns nested dissection when its factor has fewer
+/// stored values (deterministic: both depend on the pattern only).
+fn symbolic_cholesky(
+    symbolic: SymbolicSparseColMatRef<'_, usize>,
+    pattern: &SparsePattern,
+) -> Result<SymbolicCholesky<usize>, LinearError> {
+    let failed = |e: faer::sparse::FaerError| {
+        LinearError::Symbolic(format!("symbolic Cholesky factorization failed: {e:?}"))
+    };
+    let amd = factorize_symbolic_cholesky(
+        symbolic,
+        Side::Lower,
+        SymmetricOrdering::Amd,
+        CholeskySymbolicParams::default(),
+    )
+    .map_err(failed)?;
+    if pattern.n < NESTED_DISSECTION_MIN {
+        return Ok(amd);
+    }
+    let forward = super::ordering::nested_dissection(pattern);
+    let mut inverse = vec![0; forward.len()];
+    for (k, &v) in forward.iter().enumerate() {
+        inverse[v] = k;
+    }
+    let perm = faer::perm::PermRef::new_checked(&forward, &inverse, forward.len());
+    let nd = factorize_symbolic_cholesky(
+        symbolic,
+        Side::Lower,
+        SymmetricOrdering::Custom(perm),
+        CholeskySymbolicParams::default(),
+    )
+    .map_err(failed)?;
+    Ok(if nd.len_val() < amd.len_val() {
+        nd
+    } else {
+        amd
+    })
 }
 
 /// An L D L^T pivot smaller than this times the largest diagonal entry of

@@ -23,6 +23,7 @@
 //! aware: element and contact blocks -> value slots).
 
 pub mod direct;
+pub mod ordering;
 pub mod pattern;
 pub mod saddle;
 
