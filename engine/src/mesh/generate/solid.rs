@@ -234,8 +234,10 @@ pub fn tube(
         add_face_set(&mut mesh, &boundary, "start", |p| {
             p[1].abs() <= e && p[0] >= -e
         });
+        // the end is the half-plane on the side of the angle's direction:
+        // at 180 degrees the full plane y = 0 also holds the start
         add_face_set(&mut mesh, &boundary, "end", |p| {
-            (p[0] * s - p[1] * c).abs() <= e
+            (p[0] * s - p[1] * c).abs() <= e && p[0] * c + p[1] * s >= -e
         });
     }
     Ok(mesh)
@@ -562,6 +564,33 @@ mod tests {
             }
             for axis in ["xmin", "ymin", "zmin"] {
                 assert!(!s.face_sets[axis].is_empty());
+            }
+        }
+    }
+
+    /// Regression: with angle 180 the end plane is the plane of the start
+    /// (y = 0), so the end set took the start faces too. Start and end must
+    /// be disjoint half-planes for every open angle, and every boundary
+    /// face must be in exactly one set.
+    #[test]
+    fn tube_start_and_end_sets_are_disjoint_half_planes_for_every_open_angle() {
+        for angle in [90.0, 180.0, 270.0, 350.0] {
+            for kind in [CellKind::Hex8, CellKind::Tet4] {
+                let m = tube(1.0, 2.0, angle, 0.5, [2, 6, 1], Grading::Uniform, kind).unwrap();
+                let (start, end) = (&m.face_sets["start"], &m.face_sets["end"]);
+                let per = if kind == CellKind::Hex8 { 1 } else { 2 };
+                assert_eq!(start.len(), 2 * per, "{angle} {kind:?}");
+                assert_eq!(end.len(), 2 * per, "{angle} {kind:?}");
+                let (c, s) = super::super::common::cos_sin_deg(angle);
+                for &n in &m.node_sets["start"] {
+                    assert!(m.nodes[n][0] > 0.5, "{angle}: start node {:?}", m.nodes[n]);
+                }
+                for &n in &m.node_sets["end"] {
+                    let p = m.nodes[n];
+                    assert!(p[0] * c + p[1] * s > 0.5, "{angle}: end node {p:?}");
+                }
+                let total: usize = m.face_sets.values().map(Vec::len).sum();
+                assert_eq!(total, m.boundary_facets(0..m.cells.len()).len(), "{angle}");
             }
         }
     }
