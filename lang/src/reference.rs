@@ -89,14 +89,20 @@ pub static ITEMS: &[Item] = &[
     Item {
         name: "tool",
         syntax: "tool NAME = KIND { .. }",
-        doc: "A rigid analytical tool: plane, polyline, arc, circle or nurbs, with an \
-              optional rigid `motion`.",
+        doc: "A rigid analytical tool with an optional rigid `motion`: in planar analyses a \
+              curve (plane, polyline, arc, circle or nurbs), in `3d` a surface (plane with \
+              `(x, y, z)` points, sphere, cylinder, cone or torus).",
         blocks: &[
             ("plane", &tables::PLANE),
             ("polyline", &tables::POLYLINE),
             ("arc", &tables::ARC),
             ("circle", &tables::CIRCLE),
             ("nurbs", &tables::NURBS),
+            ("plane (3d)", &tables::PLANE_3D),
+            ("sphere", &tables::SPHERE),
+            ("cylinder", &tables::CYLINDER),
+            ("cone", &tables::CONE),
+            ("torus", &tables::TORUS),
             ("motion", &tables::MOTION),
         ],
         example: "tool punch = circle { center = (0, 1)  radius = 1\n  motion { uy = ramp(0, -0.1) } }",

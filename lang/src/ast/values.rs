@@ -7,6 +7,9 @@ use std::fmt;
 /// A point or vector `(x, y)`.
 pub type Point = Spanned<[f64; 2]>;
 
+/// A point or vector of space `(x, y, z)`.
+pub type Point3 = Spanned<[f64; 3]>;
+
 /// A pair of numbers `(a, b)`, each with its own span (for range errors).
 pub type Pair = Spanned<[Spanned<f64>; 2]>;
 
