@@ -110,9 +110,10 @@ pub static ITEMS: &[Item] = &[
     Item {
         name: "contact",
         syntax: "contact BODY.SET -> TOOL { .. }   or   contact BODY.SET -> BODY.SET { .. }",
-        doc: "A contact pair: the slave surface (boundary edges) against a rigid tool or a \
-              deformable master surface (node-to-segment; the same surface on both sides is \
-              self contact). The gap is positive when open; the pressure is positive in \
+        doc: "A contact pair: the slave surface (boundary edges; faces in 3d) against a rigid \
+              tool or a deformable master surface (node-to-segment; the same surface on both \
+              sides is self contact; planar analyses). In 3d the tool is a surface and the \
+              contact frictionless. The gap is positive when open; the pressure is positive in \
               compression.",
         blocks: &[
             ("contact", &tables::CONTACT),

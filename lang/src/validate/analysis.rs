@@ -66,7 +66,7 @@ pub fn three_d_contact_is_rigid_and_frictionless(a: &Analysis, ctx: &mut Ctx<'_>
     let mut refuse = |what: &str, span: Span| {
         ctx.err(
             Diagnostic::error(
-                format!("{what} in 3d analyses are not supported yet"),
+                format!("{what} not supported in 3d analyses yet"),
                 span,
                 "not supported in 3d yet",
             )
@@ -78,24 +78,24 @@ pub fn three_d_contact_is_rigid_and_frictionless(a: &Analysis, ctx: &mut Ctx<'_>
     };
     let _ = d;
     for m in deck.materials.iter().filter(|m| m.thermal.is_some()) {
-        refuse("thermal material properties", m.span);
+        refuse("thermal material properties are", m.span);
     }
     for b in deck.bodies.iter().filter(|b| b.thermal.is_some()) {
-        refuse("thermal body blocks", b.span);
+        refuse("thermal body blocks are", b.span);
     }
     for c in &deck.contacts {
         if let Some(m) = &c.master {
-            refuse("contact pairs between deformable bodies", m.span);
+            refuse("contact between deformable bodies is", m.span);
         }
         if let Some(f) = &c.friction {
-            refuse("friction of contact pairs", f.span);
+            refuse("friction is", f.span);
         }
         if let Some(th) = &c.thermal {
-            refuse("thermal contact blocks", th.span);
+            refuse("thermal contact blocks are", th.span);
         }
     }
     for l in &deck.thermal_loads {
-        refuse("thermal loads", l.span);
+        refuse("thermal loads are", l.span);
     }
 }
 
