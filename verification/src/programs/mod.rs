@@ -5,6 +5,7 @@
 //! registers its cases in [`all`]; the cargo tests run the same entries.
 
 pub mod cattaneo;
+pub mod contact_3d;
 pub mod fenicsx;
 pub mod friction;
 pub mod friction_block;
@@ -34,6 +35,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
     v.extend(upsetting_3d::cases());
+    v.extend(contact_3d::cases());
     v
 }
 
