@@ -340,4 +340,25 @@ mod tests {
         assert!(none.is_empty(), "{none:?}");
         assert!(list_table(&hertz).contains("tolerance: a <= "));
     }
+
+    /// The verification tests that were cargo-only are cases (issue 16):
+    /// selectable by their tag, each judging a rate where it has levels.
+    #[test]
+    fn former_cargo_only_verifications_are_registered() {
+        for (tag, name, rate) in [
+            ("objectivity", "objectivity_plane_strain", false),
+            ("viscoplastic", "perzyna_viscoplastic", true),
+            ("penalty", "penalty_scaling", true),
+        ] {
+            let c = find(name).unwrap_or_else(|| panic!("{name} is not registered"));
+            assert!(c.tags.contains(&tag), "{name} lacks tag {tag}");
+            assert_eq!(
+                c.checks.iter().any(|k| k.min_rate.is_some()),
+                rate,
+                "{name}"
+            );
+        }
+        let fenicsx = list(None, &["fenicsx".into()]);
+        assert_eq!(fenicsx.len(), crate::fenicsx::cases().len());
+    }
 }
