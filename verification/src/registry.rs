@@ -117,7 +117,7 @@ impl VerifyCase {
             .checks
             .iter()
             .map(|c| {
-                let mut s = format!("{} <= {:.0e}", c.quantity, c.tolerance_at(level));
+                let mut s = format!("{} <= {:e}", c.quantity, c.tolerance_at(level));
                 if let Some(r) = c.min_rate {
                     s.push_str(&format!(" (rate >= {r})"));
                 }
