@@ -409,9 +409,26 @@ pub struct SurfaceTool {
     /// Name from the deck.
     pub name: String,
     /// Geometry in the tool's reference position (time 0 of its motion).
-    pub geometry: ctc_geom::analytic::Analytic,
+    pub geometry: SurfaceShape,
     /// Prescribed rigid motion.
     pub motion: SurfaceMotion,
+}
+
+/// The exact geometry of a rigid surface tool.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceShape {
+    /// A closed-form surface (plane, sphere, cylinder, cone, torus).
+    Analytic(ctc_geom::analytic::Analytic),
+    /// CAD faces: trimmed NURBS surfaces (with holes) read from an IGES
+    /// file, their shared edges and vertices (a foot on an edge or a
+    /// vertex is a cylinder or a sphere of radius 0).
+    Brep(std::sync::Arc<ctc_geom::brep::BrepTool>),
+}
+
+impl From<ctc_geom::analytic::Analytic> for SurfaceShape {
+    fn from(a: ctc_geom::analytic::Analytic) -> Self {
+        SurfaceShape::Analytic(a)
+    }
 }
 
 /// Rigid motion of a surface tool: its reference geometry is rotated by

@@ -813,9 +813,34 @@ fn point3(p: [f64; 3]) -> String {
 }
 
 /// A surface tool's geometry in words (free side included).
-fn surface_words(g: &ctc_geom::analytic::Analytic) -> String {
+fn surface_words(g: &ctc_engine::model::SurfaceShape) -> String {
+    use ctc_engine::model::SurfaceShape;
     use ctc_geom::analytic::Analytic;
     use ctc_geom::Side;
+    let g = match g {
+        SurfaceShape::Analytic(a) => a,
+        SurfaceShape::Brep(b) => {
+            let holes: usize = b
+                .faces
+                .iter()
+                .filter_map(|f| f.boundary.as_ref())
+                .map(|bd| bd.holes.len())
+                .sum();
+            let trimmed = b.faces.iter().filter(|f| f.boundary.is_some()).count();
+            let v = |x: &ctc_geom::Vec3| point3([x[0], x[1], x[2]]);
+            return format!(
+                "CAD faces: {} ({} trimmed, {}), {} in the box {} .. {}; free side \
+                 along S_u x S_v of the first face (oriented across shared edges); a foot on \
+                 an edge or a vertex is a cylinder or a sphere of radius 0",
+                plural(b.faces.len(), "NURBS face", "NURBS faces"),
+                trimmed,
+                plural(holes, "hole", "holes"),
+                plural(b.vertices.len(), "vertex", "vertices"),
+                v(&b.bbox.min),
+                v(&b.bbox.max)
+            );
+        }
+    };
     let side = |s: Side| match s {
         Side::Outside => "bodies outside",
         Side::Inside => "bodies inside",

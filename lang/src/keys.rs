@@ -88,6 +88,8 @@ pub enum KeyType {
     /// Another mesh (a generator or `file "part.msh"`), input of a
     /// generator that transforms it (extrusion, revolution).
     Mesh,
+    /// A file path in quotes, relative to the deck's directory.
+    File,
 }
 
 impl KeyType {
@@ -112,6 +114,7 @@ impl KeyType {
             }
             KeyType::Choice(names) => crate::suggest::one_of(names),
             KeyType::Mesh => "a mesh (a generator `name { .. }` or `file \"part.msh\"`)".into(),
+            KeyType::File => "a file path in quotes (relative to the deck's directory)".into(),
         }
     }
 }

@@ -91,7 +91,8 @@ pub static ITEMS: &[Item] = &[
         syntax: "tool NAME = KIND { .. }",
         doc: "A rigid analytical tool with an optional rigid `motion`: in planar analyses a \
               curve (plane, polyline, arc, circle or nurbs), in `3d` a surface (plane with \
-              `(x, y, z)` points, sphere, cylinder, cone or torus).",
+              `(x, y, z)` points, sphere, cylinder, cone or torus, or the CAD faces of an \
+              IGES file).",
         blocks: &[
             ("plane", &tables::PLANE),
             ("polyline", &tables::POLYLINE),
@@ -103,6 +104,7 @@ pub static ITEMS: &[Item] = &[
             ("cylinder", &tables::CYLINDER),
             ("cone", &tables::CONE),
             ("torus", &tables::TORUS),
+            ("iges", &tables::IGES),
             ("motion", &tables::MOTION),
         ],
         example: "tool punch = circle { center = (0, 1)  radius = 1\n  motion { uy = ramp(0, -0.1) } }",

@@ -356,6 +356,24 @@ pub static TORUS: [Key; 6] = [
     MOTION_KEY,
 ];
 
+/// `tool NAME = iges { .. }` (`3d`): CAD faces read from an IGES file.
+pub static IGES: [Key; 3] = [
+    Key::new(
+        "file",
+        KeyType::File,
+        "IGES 5.3 file: trimmed surfaces (144), bounded surfaces (143), B-spline surfaces (128)",
+    )
+    .required("add `file = \"die.igs\"`"),
+    Key::new(
+        "flip",
+        KeyType::Bool,
+        "free side opposite `S_u x S_v` of the first face (faces are oriented consistently \
+         across shared edges)",
+    )
+    .default(Default::Bool(false)),
+    MOTION_KEY,
+];
+
 /// The `motion { .. }` key of every tool.
 const MOTION_KEY: Key = Key::new(
     "motion",
@@ -743,6 +761,7 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("tool = cylinder", &CYLINDER),
     ("tool = cone", &CONE),
     ("tool = torus", &TORUS),
+    ("tool = iges", &IGES),
     ("tool.motion", &MOTION),
     ("contact", &CONTACT),
     ("contact.method = penalty", &PENALTY),

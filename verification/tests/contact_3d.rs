@@ -49,3 +49,13 @@ fn hertz_sphere_3d_peak_pressure_converges_to_hertz() {
         "the peak pressure error must fall with refinement: {p0:?}"
     );
 }
+
+#[test]
+fn cad_patch_3d_nurbs_face_is_exact_and_the_hole_is_free() {
+    registry::run_passing("cad_patch_3d");
+}
+
+#[test]
+fn cad_sphere_3d_matches_the_analytical_sphere() {
+    registry::run_passing("cad_sphere_3d");
+}

@@ -1,11 +1,16 @@
 //! Contact of solid (3D) bodies with rigid surface tools: the slave nodes of
-//! a face set against an analytical surface of `ctc-geom` (plane, sphere,
-//! cylinder, cone, torus) in its current placement (seed slides, "Part I –
-//! Geometrical aspects" and "Rigid tool defined by a CAD file").
+//! a face set against an exact surface of `ctc-geom` in its current
+//! placement (seed slides, "Part I – Geometrical aspects" and "Rigid tool
+//! defined by a CAD file"): an analytical surface (plane, sphere, cylinder,
+//! cone, torus: closed-form projection) or CAD faces (trimmed NURBS faces
+//! with holes from IGES: `ctc_geom::brep::BrepTool`, Newton on the
+//! foot-point equations seeded by each node's search memory, edges and
+//! vertices as cylinders and spheres of radius 0).
 //!
 //! Each slave node is brought into the tool's reference frame, projected
-//! there in closed form, and the projection is mapped back
-//! ([`ctc_geom::Placement`]). The one projection gives the gap `g`, the
+//! there, and the projection is mapped back ([`ctc_geom::Placement`]). A
+//! CAD projection that does not converge is not guessed: the node is left
+//! out of the evaluation and the failure is returned (the run warns). The one projection gives the gap `g`, the
 //! unit normal `n = dg/dx` into free space and the curvature `W = dn/dx`
 //! (symmetric, `W n = 0`): the same function decides contact, gives the
 //! force and the tangent, and is written as output.
@@ -25,8 +30,9 @@
 
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
-use crate::model::{ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceTool};
-use ctc_geom::{Placement, Projection, Vec3};
+use crate::model::{ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool};
+use ctc_geom::brep::{Counters, SearchState};
+use ctc_geom::{Placement, Projection, ProjectionError, Vec3};
 
 /// Contact state of one pair against a surface tool: slave nodes, their
 /// tributary areas, the search window, and the multipliers and active set
@@ -45,8 +51,14 @@ pub struct SurfacePair {
     pub multiplier: Vec<f64>,
     /// Per slave node: in the Lagrange active set.
     pub active: Vec<bool>,
+    /// Per slave node: the CAD search memory (face and parameter of the
+    /// last foot; unused by analytical tools).
+    pub search: Vec<SearchState>,
+    /// Work of the CAD projections of the last evaluation.
+    pub counters: Counters,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
+    committed_search: Vec<SearchState>,
 }
 
 impl SurfacePair {
@@ -65,8 +77,11 @@ impl SurfacePair {
             prof,
             multiplier: vec![0.0; n],
             active: vec![false; n],
+            search: vec![SearchState::new(); n],
+            counters: Counters::default(),
             committed_multiplier: vec![0.0; n],
             committed_active: vec![false; n],
+            committed_search: vec![SearchState::new(); n],
         }
     }
 
@@ -74,12 +89,14 @@ impl SurfacePair {
     pub fn commit(&mut self) {
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
+        self.committed_search.clone_from(&self.search);
     }
 
-    /// Returns to the committed multipliers and active set.
+    /// Returns to the committed multipliers, active set and search memory.
     pub fn rollback(&mut self) {
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
+        self.search.clone_from(&self.committed_search);
     }
 
     /// The committed multipliers and active set (restart points).
@@ -110,12 +127,29 @@ pub fn placement(motion: &SurfaceMotion, t: f64) -> Placement {
 }
 
 /// The projection of the current point `x` on `tool` at time `t`, in the
-/// current frame; `None` where the closest point is not unique (the centre
-/// of a sphere, the axis of a cylinder: no normal exists there).
-pub fn project(tool: &SurfaceTool, t: f64, x: &[f64; 3]) -> Option<Projection> {
+/// current frame; `Ok(None)` where no foot exists within reach or the
+/// closest point is not unique (the centre of a sphere, the axis of a
+/// cylinder: no normal exists there); an error when a CAD projection did
+/// not converge. `search` is the node's CAD search memory (its `reach`
+/// bounds the faces tested).
+pub fn project(
+    tool: &SurfaceTool,
+    t: f64,
+    x: &[f64; 3],
+    search: &mut SearchState,
+    counters: &mut Counters,
+) -> Result<Option<Projection>, ProjectionError> {
     let p = placement(&tool.motion, t);
     let xr = p.to_reference(&Vec3::from(*x));
-    tool.geometry.project(&xr).ok().map(|pr| p.to_current(&pr))
+    let r = match &tool.geometry {
+        SurfaceShape::Analytic(a) => a.project(&xr),
+        SurfaceShape::Brep(b) => b.project(&xr, search, counters),
+    };
+    match r {
+        Ok(pr) => Ok(Some(p.to_current(&pr))),
+        Err(ProjectionError::Singular { .. } | ProjectionError::OutOfReach) => Ok(None),
+        Err(e) => Err(e),
+    }
 }
 
 /// Tributary area `int N_a dA` of each node of `nodes` (sorted) over the
@@ -211,22 +245,34 @@ pub fn normal_force(
 
 /// Evaluates the slave nodes of pair `pair` at current coordinates `x` and
 /// time `t` (one entry per node within the window or active, in slave
-/// order).
+/// order); the CAD projections that failed, by global node.
 pub fn evaluate_pair(
     model: &Model<3>,
     pair: usize,
     x: &[[f64; 3]],
     t: f64,
-    state: &SurfacePair,
-) -> Vec<NodeContact<3>> {
+    state: &mut SurfacePair,
+) -> (Vec<NodeContact<3>>, Vec<(usize, ProjectionError)>) {
     let cp = &model.contacts[pair];
+    let mut failed = Vec::new();
     let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
-        return Vec::new();
+        return (Vec::new(), failed);
     };
     let mut out = Vec::with_capacity(state.slaves.len());
     for (i, &node) in state.slaves.iter().enumerate() {
-        let Some(p) = project(tool, t, &x[node]) else {
-            continue;
+        // an active Lagrange node is projected whatever its distance
+        state.search[i].reach = if state.active[i] {
+            f64::INFINITY
+        } else {
+            state.prof
+        };
+        let p = match project(tool, t, &x[node], &mut state.search[i], &mut state.counters) {
+            Ok(Some(p)) => p,
+            Ok(None) => continue,
+            Err(e) => {
+                failed.push((node, e));
+                continue;
+            }
         };
         let active = state.active[i];
         if p.gap > state.prof && !active {
@@ -264,7 +310,7 @@ pub fn evaluate_pair(
         }
         out.push(nc);
     }
-    out
+    (out, failed)
 }
 
 #[cfg(test)]
@@ -290,7 +336,8 @@ mod tests {
         motion.translation = translation.map(TimeFunction::Constant);
         m.surfaces.push(SurfaceTool {
             name: "ball".into(),
-            geometry: Analytic::Sphere(Sphere::new(Vec3::zeros(), 1.0, Side::Outside).unwrap()),
+            geometry: Analytic::Sphere(Sphere::new(Vec3::zeros(), 1.0, Side::Outside).unwrap())
+                .into(),
             motion,
         });
         m.contacts.push(ContactPair {
@@ -342,9 +389,9 @@ mod tests {
             },
             [0.0, 0.0, 0.1],
         );
-        let state = SurfacePair::new(&m, 0);
+        let mut state = SurfacePair::new(&m, 0);
         let x = m.mesh.nodes.clone();
-        let r = evaluate_pair(&m, 0, &x, 0.0, &state);
+        let r = evaluate_pair(&m, 0, &x, 0.0, &mut state).0;
         let n0 = r.iter().find(|c| c.node == 0).unwrap();
         assert!((n0.gap + 0.1).abs() < 1e-14);
         assert_eq!(n0.status, ContactStatus::Closed);
@@ -379,14 +426,14 @@ mod tests {
             let mut state = SurfacePair::new(&m, 0);
             state.multiplier = vec![lambda; 3];
             let x0 = m.mesh.nodes.clone();
-            let base = evaluate_pair(&m, 0, &x0, 0.0, &state);
+            let base = evaluate_pair(&m, 0, &x0, 0.0, &mut state).0;
             let h = 1e-6;
             for nc in base.iter().filter(|c| c.status == ContactStatus::Closed) {
                 for b in 0..3 {
                     let f = |s: f64| {
                         let mut x = x0.clone();
                         x[nc.node][b] += s;
-                        let r = evaluate_pair(&m, 0, &x, 0.0, &state);
+                        let r = evaluate_pair(&m, 0, &x, 0.0, &mut state.clone()).0;
                         r.iter().find(|c| c.node == nc.node).unwrap().force
                     };
                     let (fp, fm) = (f(h), f(-h));

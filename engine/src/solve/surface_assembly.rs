@@ -44,6 +44,9 @@ pub struct SurfaceAssembly {
     x: Vec<[f64; 3]>,
     /// Diagonal of the mesh's bounding box (introduction threshold).
     size: f64,
+    /// CAD projections that failed at the last evaluation (pair, node,
+    /// error): those nodes were left out of it.
+    failures: Vec<(usize, usize, ctc_geom::ProjectionError)>,
 }
 
 impl SurfaceAssembly {
@@ -148,6 +151,7 @@ impl ContactScene<3> for SurfaceAssembly {
             } else {
                 1.0
             },
+            failures: Vec::new(),
         }
     }
 
@@ -164,8 +168,11 @@ impl ContactScene<3> for SurfaceAssembly {
                 x[c] = x0[c] + u[c];
             }
         }
-        for (i, state) in self.pairs.iter().enumerate() {
-            let res = surface::evaluate_pair(model, i, &self.x, t, state);
+        self.failures.clear();
+        for (i, state) in self.pairs.iter_mut().enumerate() {
+            let (res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
+            self.failures
+                .extend(failed.into_iter().map(|(n, e)| (i, n, e)));
             for nc in &res {
                 for (c, f) in nc.force.iter().enumerate() {
                     f_c[dofs.dof(nc.node, c)] += f;
@@ -296,7 +303,17 @@ impl ContactScene<3> for SurfaceAssembly {
     ) -> Vec<String> {
         // a slave node that moved farther than the window relative to the
         // tool in one increment may have passed through a thin tool
-        let mut out = Vec::new();
+        let mut out: Vec<String> = self
+            .failures
+            .iter()
+            .map(|(p, n, e)| {
+                format!(
+                    "increment {increment}: slave node {n} of pair `{}`: {e}; the node was left \
+                     out of the contact evaluation (check the CAD faces near it)",
+                    model.contacts[*p].name
+                )
+            })
+            .collect();
         for (pi, cp) in model.contacts.iter().enumerate() {
             let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
                 continue;

@@ -58,12 +58,12 @@ impl ModelBuilder<3> {
     pub fn surface(
         mut self,
         name: &str,
-        geometry: ctc_geom::analytic::Analytic,
+        geometry: impl Into<crate::model::SurfaceShape>,
         motion: crate::model::SurfaceMotion,
     ) -> Self {
         self.model.surfaces.push(crate::model::SurfaceTool {
             name: name.into(),
-            geometry,
+            geometry: geometry.into(),
             motion,
         });
         self

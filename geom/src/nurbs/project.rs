@@ -196,14 +196,38 @@ impl NurbsSurface {
             }
             state = self.state(&d, &r, uv, &dom, scale);
             if state.pole.is_some() && flips < 2 {
-                // Clamped at a pole with the minimum beyond it: cross the
-                // pole (half a turn in the closed direction).
+                // Clamped at a pole: every azimuth (the closed direction o)
+                // meets there, and the one the iteration came along may be
+                // perpendicular to the way down (a point beside the pole at
+                // 90 degrees from it: the pole is then a false minimum along
+                // that meridian). Leave along the meridian of steepest
+                // descent, sampled over the closed direction (a minimum
+                // beyond the pole is the half turn, one of the samples).
                 let k = state.pole.unwrap_or(0);
                 let o = 1 - k;
                 let [a, b] = dom[o];
+                let [lo, hi] = dom[k];
+                let inward = if (uv[k] - lo).abs() <= (hi - uv[k]).abs() {
+                    1.0
+                } else {
+                    -1.0
+                };
+                const AZIMUTHS: usize = 64;
+                let mut steepest = (f64::INFINITY, uv[o]);
+                for j in 0..AZIMUTHS {
+                    let t = a + (b - a) * (j as f64 + 0.5) / AZIMUTHS as f64;
+                    let mut q = uv;
+                    q[o] = t;
+                    let dq = self.eval(q);
+                    let sk = if k == 0 { dq.su } else { dq.sv };
+                    let slope = inward * (dq.p - x).dot(&sk) / sk.norm().max(f64::MIN_POSITIVE);
+                    if slope < steepest.0 {
+                        steepest = (slope, t);
+                    }
+                }
                 let trial = {
                     let mut t = uv;
-                    t[o] = self.fold(o, uv[o] + 0.5 * (b - a)).0;
+                    t[o] = steepest.1;
                     t
                 };
                 let dt = self.eval(trial);
@@ -275,6 +299,40 @@ impl NurbsSurface {
             }
             residual = residual.max(gk.abs() / (tn * dist.max(1e-4 * scale)));
         }
+        // At a pole every azimuth meets: the gradient along the meridian
+        // of the current azimuth may vanish while the point lies beside
+        // the pole (a false minimum). The foot is the pole only if x - p is
+        // along the pole's normal: test two meridians a quarter turn apart.
+        for k in 0..2 {
+            let o = 1 - k;
+            if pole.is_some() || free[o] || !self.closed[o] || self.closed[k] {
+                continue;
+            }
+            let e = if uv[k] <= dom[k][0] {
+                0
+            } else if uv[k] >= dom[k][1] {
+                1
+            } else {
+                continue;
+            };
+            if !self.degenerate[k][e] {
+                continue;
+            }
+            let mut q = uv;
+            q[o] = self.fold(o, uv[o] + 0.25 * (dom[o][1] - dom[o][0])).0;
+            let other = self.eval(q);
+            let t2 = if k == 0 { other.su } else { other.sv };
+            let in_plane = [tangents[k], t2]
+                .iter()
+                .map(|t| r.dot(t).abs() / t.norm().max(f64::MIN_POSITIVE))
+                .fold(0.0, f64::max)
+                / dist.max(1e-4 * scale);
+            if in_plane > 1e-12 {
+                pole = Some(k);
+                on_bound = true;
+                residual = residual.max(in_plane);
+            }
+        }
         if dist <= 1e-14 * scale {
             residual = 0.0;
         }
@@ -333,6 +391,33 @@ fn damped_step(
 mod tests {
     use super::*;
     use crate::nurbs::build;
+
+    /// Points just above the south pole of the revolved sphere, on a grid
+    /// that includes the meridian a quarter turn from the seam: the pole
+    /// is a stationary point of `|S - x|^2` along the seam's meridian there
+    /// (the iteration used to stop at the pole with a distance of ~|y|
+    /// instead of the true 1e-3; found by `ctc verify cad_sphere_3d`).
+    #[test]
+    fn points_beside_a_pole_do_not_stop_at_the_pole() {
+        let c = Vec3::new(0.0, 0.0, 2.0);
+        let s = build::sphere(c, 1.0);
+        let opts = ProjectOptions::default();
+        for i in 0..=10 {
+            for j in 0..=10 {
+                let x = Vec3::new(i as f64 / 20.0, j as f64 / 20.0, 1.0025);
+                let f = s.project(&x, None, &opts).unwrap();
+                let exact = ((x - c).norm() - 1.0).abs();
+                assert!(
+                    (f.distance - exact).abs() < 1e-12,
+                    "{x:?}: distance {} vs {exact}",
+                    f.distance
+                );
+            }
+        }
+        // the pole itself is the foot of a point on the axis
+        let f = s.project(&Vec3::new(0.0, 0.0, 0.5), None, &opts).unwrap();
+        assert!((f.derivs.p - Vec3::new(0.0, 0.0, 1.0)).norm() < 1e-12);
+    }
 
     #[test]
     fn sphere_projection_matches_the_closed_form() {

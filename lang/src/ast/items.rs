@@ -324,6 +324,13 @@ pub enum SurfaceGeometry {
         /// Where the body is (default outside).
         side: Option<Spanned<Side>>,
     },
+    /// `iges { file flip }`: CAD faces of an IGES file.
+    Iges {
+        /// The file, relative to the deck's directory.
+        file: Option<Spanned<String>>,
+        /// Free side opposite `S_u x S_v` of the first face.
+        flip: Option<Spanned<bool>>,
+    },
 }
 
 /// `motion { ux uy uz rotation center axis }`.

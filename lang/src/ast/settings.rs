@@ -28,6 +28,8 @@ pub enum SettingValue {
     Gradings(Vec<Spanned<Grading>>),
     /// [`crate::keys::KeyType::Mesh`]: the input mesh of a generator.
     Mesh(Box<Spanned<MeshDef>>),
+    /// [`crate::keys::KeyType::File`]: the path as written.
+    Text(String),
 }
 
 /// One key given in the deck, with its value.

@@ -4,8 +4,9 @@
 
 use super::{open_uniform_knots, Lowerer};
 use crate::ast;
+use crate::diagnostics::Diagnostic;
 use ctc_engine::model::{
-    RigidTool, SurfaceMotion, SurfaceTool, ToolGeometry, ToolMotion, ToolSide,
+    RigidTool, SurfaceMotion, SurfaceShape, SurfaceTool, ToolGeometry, ToolMotion, ToolSide,
 };
 use ctc_geom::analytic::{Analytic, Cone, Cylinder, Plane, Sphere, Torus};
 use ctc_geom::{Side, Vec3};
@@ -56,9 +57,28 @@ impl Lowerer<'_> {
             let ast::ToolGeometry::Surface(g) = &t.geometry else {
                 continue;
             };
-            let Some((geometry, reference)) = surface_geometry(g) else {
-                self.missing("a tool setting", t.kind.span);
-                continue;
+            let (geometry, reference) = match g {
+                ast::SurfaceGeometry::Iges { file, flip } => {
+                    let Some(file) = file else {
+                        self.missing("the IGES file", t.kind.span);
+                        continue;
+                    };
+                    let flip = flip.as_ref().is_some_and(|f| f.value);
+                    match cad_tool(file, flip, self.src) {
+                        Ok((tool, reference)) => (SurfaceShape::Brep(tool), reference),
+                        Err(d) => {
+                            self.diags.push(d);
+                            continue;
+                        }
+                    }
+                }
+                _ => {
+                    let Some((a, reference)) = surface_geometry(g) else {
+                        self.missing("a tool setting", t.kind.span);
+                        continue;
+                    };
+                    (SurfaceShape::Analytic(a), reference)
+                }
             };
             let mut motion = SurfaceMotion::fixed();
             motion.center = reference;
@@ -185,6 +205,61 @@ impl Lowerer<'_> {
     }
 }
 
+/// The CAD tool of an IGES file (relative to the deck file that names it)
+/// and its reference point (the centre of its box): every face of the
+/// file, oriented consistently across shared edges from the first face
+/// (`S_u x S_v` into free space, or the other side with `flip`). Errors
+/// name the file and its line.
+fn cad_tool(
+    file: &ast::Spanned<String>,
+    flip: bool,
+    src: &crate::source::Source,
+) -> Result<(std::sync::Arc<ctc_geom::brep::BrepTool>, [f64; 3]), Diagnostic> {
+    use ctc_geom::brep::{BrepOptions, BrepTool};
+    let path = src.directory_at(file.span.start).join(&file.value);
+    let text = std::fs::read_to_string(&path).map_err(|e| {
+        Diagnostic::error(
+            format!("cannot read IGES file `{}`: {e}", file.value),
+            file.span,
+            if e.kind() == std::io::ErrorKind::NotFound {
+                "file not found"
+            } else {
+                "cannot read this file"
+            },
+        )
+        .with_help(format!(
+            "looked for `{}`; paths are relative to the deck's directory",
+            path.display()
+        ))
+    })?;
+    let bad = |line: Option<usize>, message: String| {
+        let at = line.map_or(String::new(), |l| format!(" (line {l})"));
+        Diagnostic::error(
+            format!("error in IGES file `{}`{at}: {message}", file.value),
+            file.span,
+            "in this IGES file",
+        )
+    };
+    let iges = ctc_geom::iges::read(&text).map_err(|e| bad(Some(e.line), e.message))?;
+    let faces: Vec<_> = iges
+        .faces()
+        .map_err(|e| bad(Some(e.line), e.message))?
+        .into_iter()
+        .map(|f| f.face)
+        .collect();
+    if faces.is_empty() {
+        return Err(bad(
+            None,
+            "it holds no surface (entities 144, 143 or 128)".into(),
+        ));
+    }
+    let mut tool = BrepTool::new(faces, BrepOptions::default()).map_err(|m| bad(None, m))?;
+    tool.orient(0, if flip { -1.0 } else { 1.0 })
+        .map_err(|m| bad(None, m))?;
+    let c = (tool.bbox.min + tool.bbox.max) * 0.5;
+    Ok((std::sync::Arc::new(tool), [c[0], c[1], c[2]]))
+}
+
 /// The `ctc-geom` surface and its reference point (default centre of
 /// rotation: the plane's point, the centre, a point of the axis, the
 /// apex); `None` when a setting is missing or invalid (validation has
@@ -252,5 +327,6 @@ fn surface_geometry(g: &ast::SurfaceGeometry) -> Option<(Analytic, [f64; 3])> {
                 c.into(),
             )
         }
+        ast::SurfaceGeometry::Iges { .. } => return None,
     })
 }

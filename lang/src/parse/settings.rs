@@ -111,6 +111,7 @@ pub fn setting(v: &Value, key: &Key, diags: &mut Diags) -> Option<Spanned<Settin
             SettingValue::Gradings(gs.into_iter().collect::<Option<Vec<_>>>()?)
         }
         KeyType::Mesh => SettingValue::Mesh(Box::new(super::body::mesh(v, diags)?)),
+        KeyType::File => SettingValue::Text(values::text(v, "a file path in quotes", diags)?.value),
     };
     Some(Spanned::new(value, v.span))
 }

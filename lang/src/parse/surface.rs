@@ -10,7 +10,7 @@ use crate::ast::{Point3, Side, Spanned, SurfaceGeometry};
 use crate::span::Span;
 
 /// Surface kinds only a `3d` analysis has.
-pub const KINDS: [&str; 4] = ["sphere", "cylinder", "cone", "torus"];
+pub const KINDS: [&str; 5] = ["sphere", "cylinder", "cone", "torus", "iges"];
 
 const SIDES: [(&str, Side); 2] = [("outside", Side::Outside), ("inside", Side::Inside)];
 
@@ -155,6 +155,17 @@ pub fn parse<'b>(
                 },
                 motion,
             )
+        }
+        "iges" => {
+            let mut f = Fields::keyed(block, what, &crate::tables::IGES);
+            let file = f
+                .value("file", diags)
+                .and_then(|v| values::text(v, "a file path in quotes", diags));
+            let flip = f.boolean("flip", diags);
+            let motion = f.block("motion", diags);
+            require(&f, &file, "file", at, "add `file = \"die.igs\"`", diags);
+            f.finish(diags);
+            (SurfaceGeometry::Iges { file, flip }, motion)
         }
         _ => return None,
     })

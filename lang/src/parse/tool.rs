@@ -11,8 +11,8 @@ use crate::suggest::did_you_mean;
 
 /// Tool geometry kinds (curves of planar analyses, then the surfaces of
 /// `3d` ones, [`super::surface`]).
-pub const KINDS: [&str; 9] = [
-    "plane", "polyline", "arc", "circle", "nurbs", "sphere", "cylinder", "cone", "torus",
+pub const KINDS: [&str; 10] = [
+    "plane", "polyline", "arc", "circle", "nurbs", "sphere", "cylinder", "cone", "torus", "iges",
 ];
 
 const SIDES: [(&str, Side); 2] = [("outside", Side::Outside), ("inside", Side::Inside)];
@@ -149,7 +149,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
                 )
                 .with_help(did_you_mean(other, KINDS).unwrap_or_else(|| {
                     "expected `plane`, `polyline`, `arc`, `circle` or `nurbs` (planar), or \
-                     `sphere`, `cylinder`, `cone` or `torus` (3d)"
+                     `sphere`, `cylinder`, `cone`, `torus` or `iges` (3d)"
                         .to_string()
                 })),
             );

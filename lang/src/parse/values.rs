@@ -211,6 +211,17 @@ pub fn point3(v: &Value, diags: &mut Diags) -> Option<Point3> {
     }
 }
 
+/// A string in quotes.
+pub fn text(v: &Value, expected: &str, diags: &mut Diags) -> Option<Spanned<String>> {
+    match &v.kind {
+        ValueKind::Str(s) => Some(Spanned::new(s.clone(), v.span)),
+        _ => {
+            wrong(v, expected, diags);
+            None
+        }
+    }
+}
+
 /// The number of elements of a tuple value (`None` for other values).
 pub fn tuple_len(v: &Value) -> Option<usize> {
     match &v.kind {

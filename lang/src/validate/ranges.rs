@@ -35,7 +35,10 @@ pub fn settings_in_range(settings: &Settings, keys: &[Key], ctx: &mut Ctx<'_>) {
                     grading_in_range(key, i, &g.value, ctx);
                 }
             }
-            SettingValue::Bool(_) | SettingValue::Choice(_) | SettingValue::Mesh(_) => {}
+            SettingValue::Bool(_)
+            | SettingValue::Choice(_)
+            | SettingValue::Mesh(_)
+            | SettingValue::Text(_) => {}
         }
     }
 }

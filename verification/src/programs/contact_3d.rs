@@ -46,12 +46,26 @@
 //!   |  symmetry x = 0, y = 0; u_z = 0 at z = 0
 //! ```
 
+//!
+//! `cad_patch_3d` and `cad_sphere_3d` — the same scenes with CAD tools:
+//! NURBS faces written to IGES by `ctc_geom::iges::Writer`, read back by
+//! the reader and projected by Newton on the foot-point equations
+//! (`ctc_geom::brep`). A flat bicubic patch must give the patch test's
+//! uniform pressure; the same plate trimmed by a circular hole of radius
+//! 0.25 over the block's centre must leave exactly the four slave nodes
+//! under the hole open (distance 0.014 from its edge, a cylinder of radius
+//! 0) and close the twelve others; the exact rational NURBS sphere
+//! (`build::sphere`, the contact at its south pole, a degenerate point of
+//! the parametrization) must reproduce the analytical sphere's Hertz run
+//! to the projection tolerance.
+
 use super::{error, value};
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::contact::{ContactStatus, NodeContact};
 use ctc_engine::mesh::generate::{solid, Grading};
 use ctc_engine::mesh::CellKind;
+use ctc_engine::model::SurfaceShape;
 use ctc_engine::model::{
     ContactMethod, LagrangeFormulation, Model, MultiplierUpdate, PenaltyKind, SurfaceMotion,
     TimeFunction,
@@ -59,8 +73,12 @@ use ctc_engine::model::{
 use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
 use ctc_engine::testkit::{ramp, ModelBuilder};
 use ctc_geom::analytic::{Analytic, Plane, Sphere};
-use ctc_geom::{Side, Vec3};
+use ctc_geom::brep::{BrepOptions, BrepTool};
+use ctc_geom::nurbs::{build, NurbsSurface};
+use ctc_geom::trim::TrimCurve;
+use ctc_geom::{Side, Vec2, Vec3};
 use std::f64::consts::PI;
+use std::sync::Arc;
 
 const E: f64 = 1000.0;
 const NU: f64 = 0.3;
@@ -108,7 +126,74 @@ pub fn cases() -> Vec<VerifyCase> {
                 run: hertz_level,
             }),
         },
+        VerifyCase {
+            name: "cad_patch_3d",
+            title: "3D contact patch test against IGES NURBS faces, and a plate with a hole",
+            source: "Taylor & Papadopoulos 1991 (contact patch test); IGES 5.3 entities 128/144",
+            tags: &["3d", "contact", "cad", "nurbs", "iges", "patch", "penalty"],
+            levels: 1,
+            checks: vec![
+                Check::new(Quantity::Named("sigma flat NURBS face"), &[1e-9]),
+                Check::new(Quantity::Named("pressure spread"), &[1e-9]),
+                Check::new(Quantity::Named("open nodes under the hole"), &[1e-12]),
+                Check::new(Quantity::Named("closed nodes around the hole"), &[1e-12]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 1,
+                run: cad_patch_level,
+            }),
+        },
+        VerifyCase {
+            name: "cad_sphere_3d",
+            title: "Hertz block against the IGES rational NURBS sphere vs the analytical sphere",
+            source: "exact rational sphere (Piegl & Tiller, The NURBS Book, 8.5); hertz_sphere_3d",
+            tags: &[
+                "3d",
+                "contact",
+                "cad",
+                "nurbs",
+                "iges",
+                "hertz",
+                "cross_check",
+            ],
+            levels: 1,
+            checks: vec![
+                Check::new(Quantity::Named("P NURBS vs analytical"), &[1e-8]),
+                Check::new(Quantity::Named("p0 NURBS vs analytical"), &[1e-8]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 1,
+                run: cad_sphere_level,
+            }),
+        },
     ]
+}
+
+/// A CAD tool from NURBS faces: written to IGES, read back, oriented from
+/// the first face (`orientation` +1: `S_u x S_v` into free space).
+fn iges_tool(
+    faces: &[(NurbsSurface, Option<Vec<Vec<TrimCurve>>>)],
+    orientation: f64,
+) -> Result<SurfaceShape, String> {
+    let mut w = ctc_geom::iges::Writer::new("ctc verification: contact_3d");
+    for (s, loops) in faces {
+        let si = w.add_surface(s);
+        if let Some(loops) = loops {
+            let ids: Vec<usize> = loops.iter().map(|l| w.add_loop(si, l)).collect();
+            w.add_trimmed(si, Some(ids[0]), &ids[1..]);
+        }
+    }
+    let text = w.finish();
+    let file = ctc_geom::iges::read(&text).map_err(|e| e.to_string())?;
+    let faces: Vec<_> = file
+        .faces()
+        .map_err(|e| e.to_string())?
+        .into_iter()
+        .map(|f| f.face)
+        .collect();
+    let mut tool = BrepTool::new(faces, BrepOptions::default())?;
+    tool.orient(0, orientation)?;
+    Ok(SurfaceShape::Brep(Arc::new(tool)))
 }
 
 /// The contact evaluation of the last converged increment.
@@ -376,5 +461,158 @@ fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
         newton_total: s.newton_iterations,
         newton_max: s.increments.iter().map(|i| i.iterations).max().unwrap_or(0),
         cutbacks: s.cutbacks,
+    })
+}
+
+/// A flat bicubic patch over `[-0.5, 1.5]^2` at `z = 1` whose control
+/// points are spaced unevenly along each direction (a non-affine
+/// parametrization of the plane: the foot needs Newton iterations).
+fn flat_bicubic() -> Result<NurbsSurface, String> {
+    let t = [0.0, 0.1, 0.6, 1.0];
+    let mut points = Vec::new();
+    // u runs fastest in the control net: S_u along x, S_v along y, S_u x S_v = +z
+    for &b in &t {
+        for &a in &t {
+            points.push(Vec3::new(-0.5 + 2.0 * a, -0.5 + 2.0 * b, 1.0));
+        }
+    }
+    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
+    NurbsSurface::new(
+        [3, 3],
+        [4, 4],
+        [knots.clone(), knots],
+        points,
+        vec![1.0; 16],
+    )
+}
+
+fn cad_patch_level(_level: usize) -> Result<ProgramLevel, String> {
+    let k = 1e5;
+    let penalty = ContactMethod::Penalty {
+        kind: PenaltyKind::Area,
+        stiffness: k,
+    };
+    let sigma_penalty = E * D / (1.0 + E / k);
+    let uniform = [Grading::Uniform; 3];
+    // S_u x S_v = +z: the free side (the block, below) is the other one
+    let flat = iges_tool(&[(flat_bicubic()?, None)], -1.0)?;
+    let model = block(
+        CellKind::Hex8,
+        3,
+        uniform,
+        Analytic::Plane(Plane::new(Vec3::zeros(), Vec3::z(), Side::Outside).unwrap()),
+        lowered(D),
+        penalty.clone(),
+        2,
+    )?;
+    let with = |m: &Model<3>, tool: &SurfaceShape| {
+        let mut m = m.clone();
+        m.surfaces[0].geometry = tool.clone();
+        m
+    };
+    let m = with(&model, &flat);
+    let (last, s1) = solve(&m)?;
+    let (p, spread) = pressures(&last.0, m.contacts[0].nodes.len())?;
+    // the same plate trimmed by a hole of radius 0.25 (0.125 in the
+    // parameter square) around (0.5, 0.5)
+    let v = Vec2::new;
+    let outer = vec![
+        TrimCurve::line(v(0.0, 0.0), v(1.0, 0.0))?,
+        TrimCurve::line(v(1.0, 0.0), v(1.0, 1.0))?,
+        TrimCurve::line(v(1.0, 1.0), v(0.0, 1.0))?,
+        TrimCurve::line(v(0.0, 1.0), v(0.0, 0.0))?,
+    ];
+    let hole = vec![TrimCurve::arc(
+        v(0.5, 0.5),
+        0.125,
+        0.0,
+        -std::f64::consts::TAU,
+    )?];
+    let plate = build::plane_patch(
+        Vec3::new(-0.5, -0.5, 1.0),
+        Vec3::new(2.0, 0.0, 0.0),
+        Vec3::new(0.0, 2.0, 0.0),
+    );
+    let holed = iges_tool(&[(plate, Some(vec![outer, hole]))], -1.0)?;
+    let m2 = with(&model, &holed);
+    let (last2, s2) = solve(&m2)?;
+    let (mut open_in, mut closed_out, mut under) = (0usize, 0usize, 0usize);
+    for &n in &m2.contacts[0].nodes {
+        let x = m2.mesh.nodes[n];
+        let r = (x[0] - 0.5).hypot(x[1] - 0.5);
+        let closed = last2
+            .0
+            .iter()
+            .any(|c| c.node == n && c.status == ContactStatus::Closed);
+        if r < 0.25 {
+            under += 1;
+            open_in += usize::from(!closed);
+        } else {
+            closed_out += usize::from(closed);
+        }
+    }
+    let around = m2.contacts[0].nodes.len() - under;
+    Ok(ProgramLevel {
+        values: vec![
+            value("sigma flat NURBS face", p, sigma_penalty),
+            error("pressure spread", spread),
+            value("open nodes under the hole", open_in as f64, under as f64),
+            value(
+                "closed nodes around the hole",
+                closed_out as f64,
+                around as f64,
+            ),
+        ],
+        h: 1.0 / 3.0,
+        nodes: m.mesh.nodes.len(),
+        free_dofs: s1.free_dofs,
+        increments: s1.increments.len() + s2.increments.len(),
+        newton_total: s1.newton_iterations + s2.newton_iterations,
+        newton_max: 0,
+        cutbacks: s1.cutbacks + s2.cutbacks,
+    })
+}
+
+fn cad_sphere_level(_level: usize) -> Result<ProgramLevel, String> {
+    let n = HERTZ_DIVISIONS[0];
+    let center = Vec3::new(0.0, 0.0, 2.0);
+    let grading = [
+        Grading::Geometric { ratio: 8.0 },
+        Grading::Geometric { ratio: 8.0 },
+        Grading::Geometric { ratio: 0.125 },
+    ];
+    let method = ContactMethod::Penalty {
+        kind: PenaltyKind::Area,
+        stiffness: 1e7,
+    };
+    let exact = Analytic::Sphere(Sphere::new(center, 1.0, Side::Outside).unwrap());
+    let model = block(CellKind::Hex8, n, grading, exact, lowered(D), method, 4)?;
+    let mut cad = model.clone();
+    cad.surfaces[0].geometry = iges_tool(&[(build::sphere(center, 1.0), None)], 1.0)?;
+    let measure = |m: &Model<3>| -> Result<(f64, f64, RunSummary), String> {
+        let (last, s) = solve(m)?;
+        let p = -last.0.iter().map(|c| c.force[2]).sum::<f64>();
+        let p0 = last.0.iter().map(|c| c.pressure).fold(0.0, f64::max);
+        Ok((p, p0, s))
+    };
+    let (pa, p0a, sa) = measure(&model)?;
+    let (pc, p0c, sc) = measure(&cad)?;
+    Ok(ProgramLevel {
+        values: vec![
+            value("P NURBS vs analytical", pc, pa),
+            value("p0 NURBS vs analytical", p0c, p0a),
+        ],
+        h: 1.0 / n as f64,
+        nodes: model.mesh.nodes.len(),
+        free_dofs: sa.free_dofs,
+        increments: sa.increments.len() + sc.increments.len(),
+        newton_total: sa.newton_iterations + sc.newton_iterations,
+        newton_max: sc
+            .increments
+            .iter()
+            .map(|i| i.iterations)
+            .max()
+            .unwrap_or(0),
+        cutbacks: sa.cutbacks + sc.cutbacks,
     })
 }
