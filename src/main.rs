@@ -155,6 +155,15 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    // A closed output pipe (`ctc verify --list | head`) ends the process
+    // quietly, as it does any Unix filter, instead of a panic in
+    // `println!`.
+    #[cfg(unix)]
+    // SAFETY: restoring the default action of SIGPIPE at start-up, before
+    // any thread exists; no handler is installed.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { deck, explain } => check(&deck, explain),

@@ -74,3 +74,25 @@ fn run_writes_results() {
         assert!(Path::new(&dir.path().join(f)).exists(), "{f} missing");
     }
 }
+
+/// `ctc verify --list | head`: the reader closes the pipe; ctc must end
+/// quietly (killed by SIGPIPE like any Unix filter), not panic in
+/// `println!` ("failed printing to stdout: Broken pipe"). The read end is
+/// closed before ctc writes its first line, so the write always fails.
+#[cfg(unix)]
+#[test]
+fn closed_output_pipe_ends_quietly_without_a_panic() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Stdio;
+    let mut child = ctc()
+        .args(["verify", "--list"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
+}

@@ -34,12 +34,13 @@ impl<const D: usize> Observer<D> for Probe {
             }
             reaction_abs += r.iter().map(|x| x.abs()).sum::<f64>();
         }
-        let mut contact = [0.0; 2];
+        let mut contact = [0.0; D];
         let mut closed = 0;
         for pair in v.contact {
             for n in pair {
-                contact[0] += n.force[0];
-                contact[1] += n.force[1];
+                for (c, f) in contact.iter_mut().zip(&n.force) {
+                    *c += f;
+                }
                 if n.status == ctc_engine::contact::ContactStatus::Closed {
                     closed += 1;
                 }
@@ -66,16 +67,16 @@ impl<const D: usize> Observer<D> for Probe {
             })
             .fold(0.0, f64::max);
         let reaction: Vec<String> = reaction.iter().map(|r| clean(*r).to_string()).collect();
+        let contact: Vec<String> = contact.iter().map(|c| clean(*c).to_string()).collect();
         self.lines.push(format!(
-            "inc {} t={} iters={} closed={} |u|max={} reaction=({}) contact=({}, {})",
+            "inc {} t={} iters={} closed={} |u|max={} reaction=({}) contact=({})",
             v.increment,
             sig(v.time, 6),
             v.residuals.len(),
             closed,
             sig(umax, 4),
             reaction.join(", "),
-            clean(contact[0]),
-            clean(contact[1]),
+            contact.join(", "),
         ));
         Ok(())
     }

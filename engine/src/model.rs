@@ -27,8 +27,12 @@ pub struct Model<const D: usize = 2> {
     pub constraints: Vec<Dirichlet>,
     /// External loads (pressures, nodal forces).
     pub loads: Vec<Load>,
-    /// Rigid analytical tools (no mesh, no unknowns).
+    /// Rigid analytical curve tools of a planar model (no mesh, no
+    /// unknowns); empty in 3D.
     pub tools: Vec<RigidTool>,
+    /// Rigid surface tools of a solid (3D) model; empty in 2D. A 3D pair's
+    /// `ContactMaster::Tool(i)` indexes this list.
+    pub surfaces: Vec<SurfaceTool>,
     /// Contact pairs between a body surface and a rigid tool.
     pub contacts: Vec<ContactPair>,
     /// Load steps, run in order; their time ranges are contiguous.
@@ -417,6 +421,45 @@ impl ToolMotion {
     }
 }
 
+/// A rigid surface tool of a solid model: exact analytical geometry (no
+/// mesh, no unknowns) and a rigid motion.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceTool {
+    /// Name from the deck.
+    pub name: String,
+    /// Geometry in the tool's reference position (time 0 of its motion).
+    pub geometry: ctc_geom::analytic::Analytic,
+    /// Prescribed rigid motion.
+    pub motion: SurfaceMotion,
+}
+
+/// Rigid motion of a surface tool: its reference geometry is rotated by
+/// `rotation(t)` (radians, right-handed about `axis`) about the axis
+/// through `center`, then translated by `(ux(t), uy(t), uz(t))`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SurfaceMotion {
+    /// Translation along x, y and z.
+    pub translation: [TimeFunction; 3],
+    /// Rotation angle about `axis`, radians.
+    pub rotation: TimeFunction,
+    /// Unit rotation axis.
+    pub axis: [f64; 3],
+    /// A point of the rotation axis in the reference configuration.
+    pub center: [f64; 3],
+}
+
+impl SurfaceMotion {
+    /// A tool that does not move.
+    pub fn fixed() -> Self {
+        SurfaceMotion {
+            translation: std::array::from_fn(|_| TimeFunction::Constant(0.0)),
+            rotation: TimeFunction::Constant(0.0),
+            axis: [0.0, 0.0, 1.0],
+            center: [0.0; 3],
+        }
+    }
+}
+
 /// How the penalty coefficient is scaled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -570,7 +613,11 @@ pub struct ContactPair {
     /// Slave boundary edges `[a, b]` (body on the left); they define the slave
     /// nodes and their tributary lengths.
     pub edges: Vec<[usize; 2]>,
-    /// Slave nodes: the distinct nodes of `edges`, sorted.
+    /// Slave boundary faces of a solid (3D) model, outward (empty in 2D);
+    /// they define the slave nodes and their tributary areas.
+    pub faces: Vec<crate::mesh::Facet>,
+    /// Slave nodes: the distinct nodes of `edges` (2D) or `faces` (3D),
+    /// sorted.
     pub nodes: Vec<usize>,
     /// What the slave nodes contact: a rigid tool or a deformable surface.
     pub master: ContactMaster,

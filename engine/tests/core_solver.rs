@@ -373,6 +373,7 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         name: "block.bottom -> floor".into(),
         body: 0,
         edges,
+        faces: Vec::new(),
         nodes: vec![0, 1, 2],
         master: ctc_engine::model::ContactMaster::Tool(0),
         strategy: Default::default(),

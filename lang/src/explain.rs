@@ -317,48 +317,7 @@ pub fn explain(model: &Model) -> String {
     if !model.contacts.is_empty() {
         let _ = writeln!(o, "contact pairs: {}", model.contacts.len());
         for c in &model.contacts {
-            let method = match &c.method {
-                ContactMethod::Penalty { kind, stiffness } => match kind {
-                    PenaltyKind::Nodal => {
-                        format!("penalty, nodal: {} force per unit gap", num(*stiffness))
-                    }
-                    PenaltyKind::Area => format!(
-                        "penalty, area-weighted: {} pressure per unit gap",
-                        num(*stiffness)
-                    ),
-                },
-                ContactMethod::Lagrange { formulation } => match formulation {
-                    LagrangeFormulation::Single => "Lagrange multipliers (exact, active set), \
-                        saddle-point system [K G^T; G 0] by sparse LU"
-                        .to_string(),
-                    LagrangeFormulation::Doubled => "Lagrange multipliers (exact, active set), \
-                        doubled multipliers (lambda1, q, lambda2) by LDL^T without pivoting"
-                        .to_string(),
-                },
-                ContactMethod::AugmentedLagrange {
-                    kind,
-                    penalty,
-                    tolerance,
-                    update,
-                } => format!(
-                    "augmented Lagrangian, {}: {} {} per unit gap, penetration tolerance {}, \
-                     multipliers updated {}",
-                    match kind {
-                        PenaltyKind::Nodal => "nodal",
-                        PenaltyKind::Area => "area-weighted",
-                    },
-                    num(*penalty),
-                    match kind {
-                        PenaltyKind::Nodal => "force",
-                        PenaltyKind::Area => "pressure",
-                    },
-                    num(*tolerance),
-                    match update {
-                        MultiplierUpdate::Converged => "after each converged Newton loop (Uzawa)",
-                        MultiplierUpdate::Newton => "at every Newton iteration",
-                    }
-                ),
-            };
+            let method = method_plan(&c.method);
             let prof = match c.prof {
                 Some(p) => format!("search within prof = {}", num(p)),
                 None => "search within an automatic prof".to_string(),
@@ -682,6 +641,52 @@ fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
     }
 }
 
+/// The enforcement of a contact pair in words.
+fn method_plan(method: &ContactMethod) -> String {
+    match method {
+        ContactMethod::Penalty { kind, stiffness } => match kind {
+            PenaltyKind::Nodal => {
+                format!("penalty, nodal: {} force per unit gap", num(*stiffness))
+            }
+            PenaltyKind::Area => format!(
+                "penalty, area-weighted: {} pressure per unit gap",
+                num(*stiffness)
+            ),
+        },
+        ContactMethod::Lagrange { formulation } => match formulation {
+            LagrangeFormulation::Single => "Lagrange multipliers (exact, active set), \
+                saddle-point system [K G^T; G 0] by sparse LU"
+                .to_string(),
+            LagrangeFormulation::Doubled => "Lagrange multipliers (exact, active set), \
+                doubled multipliers (lambda1, q, lambda2) by LDL^T without pivoting"
+                .to_string(),
+        },
+        ContactMethod::AugmentedLagrange {
+            kind,
+            penalty,
+            tolerance,
+            update,
+        } => format!(
+            "augmented Lagrangian, {}: {} {} per unit gap, penetration tolerance {}, \
+             multipliers updated {}",
+            match kind {
+                PenaltyKind::Nodal => "nodal",
+                PenaltyKind::Area => "area-weighted",
+            },
+            num(*penalty),
+            match kind {
+                PenaltyKind::Nodal => "force",
+                PenaltyKind::Area => "pressure",
+            },
+            num(*tolerance),
+            match update {
+                MultiplierUpdate::Converged => "after each converged Newton loop (Uzawa)",
+                MultiplierUpdate::Newton => "at every Newton iteration",
+            }
+        ),
+    }
+}
+
 /// The plan of a lowered solid (3D) scene: mesh, bodies, conditions,
 /// loads and steps (`ctc check --explain` of a `3d` deck).
 pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
@@ -771,6 +776,49 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
             }
         }
     }
+    if !model.surfaces.is_empty() {
+        let _ = writeln!(o, "rigid surface tools: {}", model.surfaces.len());
+        for t in &model.surfaces {
+            let _ = writeln!(o, "  {}: {}", t.name, surface_words(&t.geometry));
+            let m = &t.motion;
+            let mut parts = Vec::new();
+            for (name, f) in ["ux", "uy", "uz"].iter().zip(&m.translation) {
+                if !is_zero(f) {
+                    parts.push(format!("{name} = {}", time_function(f)));
+                }
+            }
+            if !is_zero(&m.rotation) {
+                parts.push(format!(
+                    "rotation (radians) about the axis {} through {} = {}",
+                    point3(m.axis),
+                    point3(m.center),
+                    time_function(&m.rotation)
+                ));
+            }
+            if parts.is_empty() {
+                let _ = writeln!(o, "    fixed");
+            } else {
+                let _ = writeln!(o, "    moves: {}", parts.join(", "));
+            }
+        }
+    }
+    if !model.contacts.is_empty() {
+        let _ = writeln!(o, "contact pairs: {}", model.contacts.len());
+        for c in &model.contacts {
+            let prof = match c.prof {
+                Some(p) => format!("search within prof = {}", num(p)),
+                None => "search within an automatic prof (the longest slave face edge)".into(),
+            };
+            let _ = writeln!(
+                o,
+                "  {}: {}; {} slave nodes on {}; frictionless, node-to-surface; {prof}",
+                c.name,
+                method_plan(&c.method),
+                c.nodes.len(),
+                plural(c.faces.len(), "face", "faces")
+            );
+        }
+    }
     let _ = writeln!(o, "steps: {}", model.steps.len());
     for s in &model.steps {
         let _ = writeln!(
@@ -779,11 +827,68 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
             s.name, s.t_start, s.t_end, s.increments
         );
     }
-    let _ = writeln!(
-        o,
-        "not in this scene: rigid tools, contact, heat conduction (3d)"
-    );
+    let mut absent = Vec::new();
+    if model.surfaces.is_empty() {
+        absent.push("rigid tools");
+    }
+    if model.contacts.is_empty() {
+        absent.push("contact");
+    } else {
+        absent.push("friction");
+    }
+    absent.push("heat conduction (3d)");
+    let _ = writeln!(o, "not in this scene: {}", absent.join(", "));
     o
+}
+
+fn point3(p: [f64; 3]) -> String {
+    format!("({}, {}, {})", num(p[0]), num(p[1]), num(p[2]))
+}
+
+/// A surface tool's geometry in words (free side included).
+fn surface_words(g: &ctc_geom::analytic::Analytic) -> String {
+    use ctc_geom::analytic::Analytic;
+    use ctc_geom::Side;
+    let side = |s: Side| match s {
+        Side::Outside => "bodies outside",
+        Side::Inside => "bodies inside",
+    };
+    let v = |x: &ctc_geom::Vec3| point3([x[0], x[1], x[2]]);
+    match g {
+        Analytic::Plane(p) => format!(
+            "plane through {}, normal {} (bodies on the normal's side)",
+            v(&p.point),
+            v(&p.normal)
+        ),
+        Analytic::Sphere(s) => format!(
+            "sphere, center {}, radius {}, {}",
+            v(&s.center),
+            num(s.radius),
+            side(s.side)
+        ),
+        Analytic::Cylinder(c) => format!(
+            "cylinder, axis {} through {}, radius {}, {}",
+            v(&c.axis),
+            v(&c.point),
+            num(c.radius),
+            side(c.side)
+        ),
+        Analytic::Cone(c) => format!(
+            "cone, apex {}, axis {}, half angle {} degrees, {}",
+            v(&c.apex),
+            v(&c.axis),
+            num(c.half_angle.to_degrees()),
+            side(c.side)
+        ),
+        Analytic::Torus(t) => format!(
+            "torus, center {}, axis {}, radii {} and {}, {}",
+            v(&t.center),
+            v(&t.axis),
+            num(t.major),
+            num(t.minor),
+            side(t.side)
+        ),
+    }
 }
 
 #[cfg(test)]

@@ -93,14 +93,20 @@ pub static ITEMS: &[Item] = &[
     Item {
         name: "tool",
         syntax: "tool NAME = KIND { .. }",
-        doc: "A rigid analytical tool: plane, polyline, arc, circle or nurbs, with an \
-              optional rigid `motion`.",
+        doc: "A rigid analytical tool with an optional rigid `motion`: in planar analyses a \
+              curve (plane, polyline, arc, circle or nurbs), in `3d` a surface (plane with \
+              `(x, y, z)` points, sphere, cylinder, cone or torus).",
         blocks: &[
             ("plane", &tables::PLANE),
             ("polyline", &tables::POLYLINE),
             ("arc", &tables::ARC),
             ("circle", &tables::CIRCLE),
             ("nurbs", &tables::NURBS),
+            ("plane (3d)", &tables::PLANE_3D),
+            ("sphere", &tables::SPHERE),
+            ("cylinder", &tables::CYLINDER),
+            ("cone", &tables::CONE),
+            ("torus", &tables::TORUS),
             ("motion", &tables::MOTION),
         ],
         example: "tool punch = circle { center = (0, 1)  radius = 1\n  motion { uy = ramp(0, -0.1) } }",
@@ -108,9 +114,10 @@ pub static ITEMS: &[Item] = &[
     Item {
         name: "contact",
         syntax: "contact BODY.SET -> TOOL { .. }   or   contact BODY.SET -> BODY.SET { .. }",
-        doc: "A contact pair: the slave surface (boundary edges) against a rigid tool or a \
-              deformable master surface (node-to-segment; the same surface on both sides is \
-              self contact). The gap is positive when open; the pressure is positive in \
+        doc: "A contact pair: the slave surface (boundary edges; faces in 3d) against a rigid \
+              tool or a deformable master surface (node-to-segment; the same surface on both \
+              sides is self contact; planar analyses). In 3d the tool is a surface and the \
+              contact frictionless. The gap is positive when open; the pressure is positive in \
               compression.",
         blocks: &[
             ("contact", &tables::CONTACT),

@@ -7,6 +7,7 @@
 use crate::keys::{Components, Default, Dim, Key, KeyType, Range};
 
 const P2: Components = Components::Two;
+const P3: Components = Components::Three;
 
 /// `analysis { .. }`.
 pub static ANALYSIS: [Key; 3] = [
@@ -263,29 +264,132 @@ pub static NURBS: [Key; 5] = [
     MOTION_KEY,
 ];
 
+/// `tool NAME = plane { .. }` of a `3d` analysis (the half-space behind
+/// the plane).
+pub static PLANE_3D: [Key; 3] = [
+    Key::new("point", KeyType::Point(P3), "a point of the plane")
+        .required("add `point = (x, y, z)`")
+        .dim(Dim::Length),
+    Key::new(
+        "normal",
+        KeyType::Point(P3),
+        "normal towards the free side (nonzero)",
+    )
+    .required("add `normal = (nx, ny, nz)` pointing to the free side"),
+    MOTION_KEY,
+];
+
+/// The `side` key of the closed surface tools.
+const SURFACE_SIDE: Key = Key::new(
+    "side",
+    KeyType::Choice(&["outside", "inside"]),
+    "where the bodies are: outside the solid the surface bounds (a punch) or inside (a die)",
+)
+.default(Default::Choice("outside"));
+
+/// `tool NAME = sphere { .. }` (`3d`).
+pub static SPHERE: [Key; 4] = [
+    Key::new("center", KeyType::Point(P3), "centre")
+        .required("add `center = (x, y, z)`")
+        .dim(Dim::Length),
+    Key::new("radius", KeyType::Number, "radius")
+        .required("add `radius = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    SURFACE_SIDE,
+    MOTION_KEY,
+];
+
+/// `tool NAME = cylinder { .. }` (`3d`, infinite).
+pub static CYLINDER: [Key; 5] = [
+    Key::new("point", KeyType::Point(P3), "a point of the axis")
+        .required("add `point = (x, y, z)`")
+        .dim(Dim::Length),
+    Key::new("axis", KeyType::Point(P3), "axis direction (nonzero)")
+        .required("add `axis = (ax, ay, az)`"),
+    Key::new("radius", KeyType::Number, "radius")
+        .required("add `radius = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    SURFACE_SIDE,
+    MOTION_KEY,
+];
+
+/// `tool NAME = cone { .. }` (`3d`, one nappe).
+pub static CONE: [Key; 5] = [
+    Key::new("apex", KeyType::Point(P3), "apex")
+        .required("add `apex = (x, y, z)`")
+        .dim(Dim::Length),
+    Key::new(
+        "axis",
+        KeyType::Point(P3),
+        "axis direction, from the apex into the cone (nonzero)",
+    )
+    .required("add `axis = (ax, ay, az)`"),
+    Key::new("angle", KeyType::Number, "half opening angle (0 to 90)")
+        .required("add `angle = <half angle in degrees>`")
+        .dim(Dim::AngleDegrees),
+    SURFACE_SIDE,
+    MOTION_KEY,
+];
+
+/// `tool NAME = torus { .. }` (`3d`).
+pub static TORUS: [Key; 6] = [
+    Key::new("center", KeyType::Point(P3), "centre")
+        .required("add `center = (x, y, z)`")
+        .dim(Dim::Length),
+    Key::new("axis", KeyType::Point(P3), "axis of revolution (nonzero)")
+        .required("add `axis = (ax, ay, az)`"),
+    Key::new(
+        "major",
+        KeyType::Number,
+        "radius of the tube's centre circle",
+    )
+    .required("add `major = ..`")
+    .range(Range::Positive)
+    .dim(Dim::Length),
+    Key::new("minor", KeyType::Number, "radius of the tube (< major)")
+        .required("add `minor = ..`")
+        .range(Range::Positive)
+        .dim(Dim::Length),
+    SURFACE_SIDE,
+    MOTION_KEY,
+];
+
 /// The `motion { .. }` key of every tool.
 const MOTION_KEY: Key = Key::new(
     "motion",
-    KeyType::Choice(&["{ ux uy rotation center }"]),
-    "rigid motion: rotate about `center`, then translate",
+    KeyType::Choice(&["{ ux uy uz rotation center axis }"]),
+    "rigid motion: rotate about `center` (3d: about `axis` through `center`), then translate",
 );
 
 /// `motion { .. }` of a tool.
-pub static MOTION: [Key; 4] = [
+pub static MOTION: [Key; 6] = [
     Key::new("ux", KeyType::Number, "translation along x (time function)").dim(Dim::Length),
     Key::new("uy", KeyType::Number, "translation along y (time function)").dim(Dim::Length),
     Key::new(
+        "uz",
+        KeyType::Number,
+        "translation along z (time function; 3d)",
+    )
+    .dim(Dim::Length),
+    Key::new(
         "rotation",
         KeyType::Number,
-        "rotation, counter-clockwise (time function)",
+        "rotation, counter-clockwise (3d: right-handed about `axis`) (time function)",
     )
     .dim(Dim::AngleRadians),
     Key::new(
         "center",
-        KeyType::Point(P2),
-        "centre of rotation (default: the tool's reference point)",
+        KeyType::Point(Components::Analysis),
+        "centre of rotation (3d: a point of the axis; default: the tool's reference point)",
     )
     .dim(Dim::Length),
+    Key::new(
+        "axis",
+        KeyType::Point(P3),
+        "rotation axis (3d; default (0, 0, 1))",
+    ),
 ];
 
 /// `contact SLAVE -> MASTER { .. }`.
@@ -634,6 +738,11 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("tool = arc", &ARC),
     ("tool = circle", &CIRCLE),
     ("tool = nurbs", &NURBS),
+    ("tool = plane (3d)", &PLANE_3D),
+    ("tool = sphere", &SPHERE),
+    ("tool = cylinder", &CYLINDER),
+    ("tool = cone", &CONE),
+    ("tool = torus", &TORUS),
     ("tool.motion", &MOTION),
     ("contact", &CONTACT),
     ("contact.method = penalty", &PENALTY),

@@ -41,7 +41,7 @@ pub fn markdown(report: &Report, plots: &[PlotFile]) -> String {
         let errors = finest.map_or("-".to_string(), |l| {
             l.values
                 .iter()
-                .map(|v| format!("{} {:.2e}", v.quantity, v.error))
+                .map(|v| format!("{} {:.2e}", cell(v.quantity), v.error))
                 .collect::<Vec<_>>()
                 .join(", ")
         });
@@ -73,6 +73,12 @@ pub fn markdown(report: &Report, plots: &[PlotFile]) -> String {
 }
 
 /// Links the plots of `case` of kind `kind`.
+/// A quantity's name as a table cell (program quantities such as
+/// `max |du| / max |u|` contain pipes).
+fn cell(q: crate::case::Quantity) -> String {
+    q.to_string().replace('|', "\\|")
+}
+
 fn link_plots(s: &mut String, plots: &[PlotFile], case: &str, kind: &str) {
     for p in plots.iter().filter(|p| p.case == case && p.kind == kind) {
         let _ = writeln!(s, "![{} {}]({})\n", p.case, p.kind, p.file);
@@ -284,7 +290,7 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
                 l.level,
                 fmt_num(l.h),
                 l.free_dofs,
-                v.quantity,
+                cell(v.quantity),
                 v.reference.map_or("-".into(), fmt_num),
                 fmt_num(v.computed),
                 v.error,
@@ -301,7 +307,7 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
             let _ = writeln!(
                 s,
                 "| {} | {} -> {} | {} | {} |",
-                r.quantity,
+                cell(r.quantity),
                 r.from_level,
                 r.to_level,
                 r.rate.map_or("n/a".into(), |x| format!("{x:.2}")),
@@ -318,7 +324,7 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
     let mut head = "| level | dofs | Newton total / max per increment | increments | solve [s] | compile [s] |".to_string();
     let mut rule = "|---:|---:|---:|---:|---:|---:|".to_string();
     for q in &qs {
-        head.push_str(&format!(" {q} |"));
+        head.push_str(&format!(" {} |", cell(*q)));
         rule.push_str("---:|");
     }
     let _ = writeln!(s, "{head}\n{rule}");
@@ -340,5 +346,18 @@ fn case_section(s: &mut String, c: &CaseReport, plots: &[PlotFile]) {
             });
         }
         let _ = writeln!(s, "{row}");
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::case::Quantity;
+
+    #[test]
+    fn pipes_in_quantity_names_are_escaped_in_table_cells() {
+        let q = Quantity::Named("max |du| / max |u|");
+        assert_eq!(cell(q), "max \\|du\\| / max \\|u\\|");
+        assert_eq!(cell(Quantity::PeakPressure), "p0");
     }
 }

@@ -117,7 +117,7 @@ impl VerifyCase {
             .checks
             .iter()
             .map(|c| {
-                let mut s = format!("{} <= {:.0e}", c.quantity, c.tolerance_at(level));
+                let mut s = format!("{} <= {:e}", c.quantity, c.tolerance_at(level));
                 if let Some(r) = c.min_rate {
                     s.push_str(&format!(" (rate >= {r})"));
                 }
@@ -339,5 +339,26 @@ mod tests {
         let none = list(None, &["hertz".into(), "thermal".into()]);
         assert!(none.is_empty(), "{none:?}");
         assert!(list_table(&hertz).contains("tolerance: a <= "));
+    }
+
+    /// The verification tests that were cargo-only are cases (issue 16):
+    /// selectable by their tag, each judging a rate where it has levels.
+    #[test]
+    fn former_cargo_only_verifications_are_registered() {
+        for (tag, name, rate) in [
+            ("objectivity", "objectivity_plane_strain", false),
+            ("viscoplastic", "perzyna_viscoplastic", true),
+            ("penalty", "penalty_scaling", true),
+        ] {
+            let c = find(name).unwrap_or_else(|| panic!("{name} is not registered"));
+            assert!(c.tags.contains(&tag), "{name} lacks tag {tag}");
+            assert_eq!(
+                c.checks.iter().any(|k| k.min_rate.is_some()),
+                rate,
+                "{name}"
+            );
+        }
+        let fenicsx = list(None, &["fenicsx".into()]);
+        assert_eq!(fenicsx.len(), crate::fenicsx::cases().len());
     }
 }

@@ -128,7 +128,7 @@ pub fn uzawa_update(
 /// at a positive gap is an over-correction of `lambda*`), the penetration
 /// `max(0, -g)` elsewhere. The augmented-Lagrangian iterations stop when it
 /// is below the tolerance `gmax*`.
-pub fn constraint_violation(contact: &[NodeContact]) -> f64 {
+pub fn constraint_violation<const D: usize>(contact: &[NodeContact<D>]) -> f64 {
     contact
         .iter()
         .map(|c| match c.status {
@@ -139,7 +139,7 @@ pub fn constraint_violation(contact: &[NodeContact]) -> f64 {
 }
 
 /// Largest penetration `max(0, -g)` over a pair's evaluated nodes.
-pub fn max_penetration(contact: &[NodeContact]) -> f64 {
+pub fn max_penetration<const D: usize>(contact: &[NodeContact<D>]) -> f64 {
     contact.iter().map(|c| -c.gap).fold(0.0, f64::max)
 }
 

@@ -485,7 +485,10 @@ pub struct NodalFriction {
 }
 
 /// Collects the friction fields of all pair evaluations on `nn` nodes.
-pub fn nodal_fields(nn: usize, contact: &[Vec<super::NodeContact>]) -> NodalFriction {
+pub fn nodal_fields<const D: usize>(
+    nn: usize,
+    contact: &[Vec<super::NodeContact<D>>],
+) -> NodalFriction {
     let mut out = NodalFriction {
         force: vec![0.0; nn],
         slip: vec![0.0; nn],
@@ -515,7 +518,7 @@ pub fn status_code(s: FrictionStatus) -> i32 {
 
 /// Frictional work dissipated over the increment by the nodes of one pair
 /// evaluation (axisymmetric: over 2*pi).
-pub fn pair_dissipation(contact: &[super::NodeContact]) -> f64 {
+pub fn pair_dissipation<const D: usize>(contact: &[super::NodeContact<D>]) -> f64 {
     contact.iter().map(|c| c.friction.dissipation).sum()
 }
 

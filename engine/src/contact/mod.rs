@@ -53,6 +53,7 @@ pub mod search;
 pub mod segment;
 pub mod segment_search;
 pub mod smoothing;
+pub mod surface;
 pub mod tributary;
 pub(crate) mod vec2;
 
@@ -70,31 +71,35 @@ pub enum ContactStatus {
     Closed,
 }
 
-/// Evaluation of one slave node against the pair's tool.
+/// Evaluation of one slave node against the pair's master, in dimension
+/// `D` (`NodeContact` without a parameter is the planar one).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct NodeContact {
+pub struct NodeContact<const D: usize = 2> {
     /// Global node number.
     pub node: usize,
     /// Signed normal gap (negative = penetration).
     pub gap: f64,
     /// Unit outward normal of the tool at the projection (points to free space).
-    pub normal: [f64; 2],
+    pub normal: [f64; D],
     /// Force exerted by the tool on the node (total, axisymmetric: over 2*pi).
-    pub force: [f64; 2],
-    /// Tangent block `K_c = -d force / d x` (add to the global stiffness).
-    pub stiffness: [[f64; 2]; 2],
+    pub force: [f64; D],
+    /// Tangent block `K_c = -d force / d x` (add to the global stiffness),
+    /// `stiffness[a][b] = -d force_a / d x_b`.
+    pub stiffness: [[f64; D]; D],
     /// Contact pressure: normal force magnitude / tributary area (>= 0).
     pub pressure: f64,
     /// Open or closed.
     pub status: ContactStatus,
     /// Index of the tool entity (segment, span) the node projects on.
     pub entity: usize,
-    /// Deformable master (node-to-segment): the segment's nodes and the
-    /// coupling terms. `None` against a rigid tool (then `force` and
-    /// `stiffness` are the whole contribution).
+    /// Deformable master (node-to-segment, planar models): the segment's
+    /// nodes and the coupling terms. `None` against a rigid tool (then
+    /// `force` and `stiffness` are the whole contribution), and always in
+    /// 3D.
     pub master: Option<MasterSegment>,
     /// Tangential (friction) part: status, tangential force (included in
-    /// `force`), slip increment and dissipated work of the increment.
+    /// `force`), slip increment and dissipated work of the increment
+    /// (planar models; frictionless in 3D).
     pub friction: friction::NodeFriction,
 }
 

@@ -64,7 +64,7 @@ impl Dimension<2> for Const<2> {
 
 impl Dimension<3> for Const<3> {
     const NAME: &'static str = "3d";
-    type Contact = crate::solve::scene::NoContact;
+    type Contact = crate::solve::surface_assembly::SurfaceAssembly;
     type Heat = crate::solve::scene::NoHeat;
 
     fn facet_normal(tangents: &[Point<3>]) -> Option<(Point<3>, f64)> {

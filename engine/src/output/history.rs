@@ -49,7 +49,7 @@ pub fn row<const D: usize>(
     time: f64,
     displacement: &[[f64; D]],
     reaction: &[[f64; D]],
-    contact: &[Vec<NodeContact>],
+    contact: &[Vec<NodeContact<D>>],
 ) -> Vec<f64> {
     let mut out = vec![time];
     let sum = |nodes: &[usize], v: &[[f64; D]]| {

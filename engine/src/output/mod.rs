@@ -60,7 +60,7 @@ struct Snapshot<const D: usize> {
     time: f64,
     displacement: Vec<[f64; D]>,
     reaction: Vec<[f64; D]>,
-    contact: Vec<Vec<NodeContact>>,
+    contact: Vec<Vec<NodeContact<D>>>,
     /// Converged integration points of nonlinear bodies (may be empty).
     points: Vec<Vec<crate::element::MaterialPoint>>,
     /// Nodal temperatures (thermal scenes only).

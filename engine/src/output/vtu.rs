@@ -47,7 +47,7 @@ pub struct VtuData<'a, const D: usize = 2> {
     /// Nodal reactions.
     pub reaction: &'a [[f64; D]],
     /// Contact evaluation per pair.
-    pub contact: &'a [Vec<NodeContact>],
+    pub contact: &'a [Vec<NodeContact<D>>],
     /// Recovered stress/strain (required when a stress/strain field is requested).
     pub nodal: Option<&'a NodalFields>,
     /// Nodal temperatures (thermal scenes only; written whenever present).

@@ -165,6 +165,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
     }
     for c in &model.contacts {
         let master_ok = match &c.master {
+            crate::model::ContactMaster::Tool(t) if D == 3 => *t < model.surfaces.len(),
             crate::model::ContactMaster::Tool(t) => *t < model.tools.len(),
             crate::model::ContactMaster::Surface { body, edges, nodes } => {
                 *body < model.bodies.len() && edges.iter().flatten().chain(nodes).all(|&n| n < nn)
@@ -179,6 +180,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         if c.nodes
             .iter()
             .chain(c.edges.iter().flatten())
+            .chain(c.faces.iter().flat_map(|f| f.nodes()))
             .any(|&n| n >= nn)
         {
             errors.push(format!(
@@ -187,12 +189,32 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             ));
         }
     }
-    if D == 3 && !(model.contacts.is_empty() && model.tools.is_empty()) {
-        errors.push(
-            "contact and rigid tools are not available in 3D analyses yet (the 3D contact \
-             issue): remove the `tool` and `contact` blocks"
-                .to_string(),
-        );
+    if D == 3 {
+        if !model.tools.is_empty() {
+            errors.push(
+                "planar curve tools cannot be used in a 3D analysis: use surface tools".into(),
+            );
+        }
+        for c in &model.contacts {
+            if matches!(c.master, crate::model::ContactMaster::Surface { .. }) {
+                errors.push(format!(
+                    "contact `{}`: contact between deformable bodies is not available in 3D \
+                     analyses yet (rigid surface tools only)",
+                    c.name
+                ));
+            }
+            if c.friction.is_some() {
+                errors.push(format!(
+                    "contact `{}`: friction is not available in 3D analyses yet",
+                    c.name
+                ));
+            }
+            if c.faces.is_empty() {
+                errors.push(format!("contact `{}`: a 3D pair needs slave faces", c.name));
+            }
+        }
+    } else if !model.surfaces.is_empty() {
+        errors.push("surface tools need a 3D analysis".into());
     }
     if model.steps.is_empty() {
         errors.push("the model has no step: nothing to solve".to_string());

@@ -91,7 +91,7 @@ impl FlipTracker {
     }
 
     /// Records the statuses of one iteration.
-    pub fn record(&mut self, contact: &[Vec<NodeContact>]) {
+    pub fn record<const D: usize>(&mut self, contact: &[Vec<NodeContact<D>>]) {
         let closed: BTreeSet<usize> = contact
             .iter()
             .flatten()

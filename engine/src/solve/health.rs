@@ -49,7 +49,7 @@ impl RunHealth {
     pub fn record<const D: usize>(
         &mut self,
         model: &Model<D>,
-        contact: &[Vec<NodeContact>],
+        contact: &[Vec<NodeContact<D>>],
         t: f64,
     ) {
         self.increments += 1;

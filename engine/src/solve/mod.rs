@@ -47,6 +47,7 @@ pub mod newton;
 pub mod restart;
 pub mod scene;
 pub mod stepping;
+pub mod surface_assembly;
 
 use crate::contact::NodeContact;
 use crate::geom::Dimension;
@@ -94,7 +95,7 @@ pub struct IncrementView<'a, const D: usize = 2> {
     pub reaction: &'a [[f64; D]],
     /// Contact evaluation of each pair at the converged state (empty in
     /// 3D until the 3D contact issue).
-    pub contact: &'a [Vec<NodeContact>],
+    pub contact: &'a [Vec<NodeContact<D>>],
     /// Relative residual after each Newton iteration of this increment.
     pub residuals: &'a [f64],
     /// Converged integration points per global cell for bodies with

@@ -9,8 +9,10 @@
 //! - [`ContactScene`]: contact forces, tangent blocks, pattern growth,
 //!   Lagrange rows, the contact loop around the Newton loops, contact
 //!   history for restarts. 2D: [`ContactAssembly`] (rigid tools and
-//!   node-to-segment, every method); 3D: [`NoContact`] until the 3D contact
-//!   issue (`check_model` refuses tools and contact pairs in 3D).
+//!   node-to-segment, every method); 3D:
+//!   [`super::surface_assembly::SurfaceAssembly`] (rigid surface tools:
+//!   penalty, Lagrange multipliers, augmented Lagrangian; frictionless);
+//!   [`NoContact`] for scenes of any dimension without contact.
 //! - [`HeatCoupling`]: the staggered heat step. 2D:
 //!   [`crate::thermal::coupling::Coupling`]; 3D: [`NoHeat`] (a 3D deck with a
 //!   thermal part is refused with a message).
@@ -68,7 +70,7 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     fn newton_multiplier_update(&mut self, model: &Model<D>) -> bool;
     /// Contact evaluation of each pair at the last evaluated state (empty
     /// without contact).
-    fn contact(&self) -> &[Vec<NodeContact>];
+    fn contact(&self) -> &[Vec<NodeContact<D>>];
     /// Closed contact nodes at the last evaluation.
     fn active_contacts(&self) -> usize;
     /// Largest penetration at the last evaluation.
@@ -119,7 +121,7 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
         model: &Model<D>,
         pair: usize,
         displacement: &[[f64; D]],
-        contact: &[NodeContact],
+        contact: &[NodeContact<D>],
     ) -> String;
     /// One increment attempt: the Newton loops of `newton` inside the
     /// contact loop (Lagrange active set, Uzawa updates).
@@ -315,7 +317,7 @@ impl ContactScene<2> for ContactAssembly {
     }
 }
 
-/// No contact: a solid (3D) model until the 3D contact issue.
+/// No contact at all (a scene without pairs, in any dimension).
 #[derive(Debug, Clone, Default)]
 pub struct NoContact {
     constraints: Constraints,
@@ -351,7 +353,7 @@ impl<const D: usize> ContactScene<D> for NoContact {
         false
     }
 
-    fn contact(&self) -> &[Vec<NodeContact>] {
+    fn contact(&self) -> &[Vec<NodeContact<D>>] {
         &[]
     }
 
@@ -407,7 +409,7 @@ impl<const D: usize> ContactScene<D> for NoContact {
 
     fn set_couplings(&mut self, _: &[(usize, usize)]) {}
 
-    fn contact_csv(_: &Model<D>, _: usize, _: &[[f64; D]], _: &[NodeContact]) -> String {
+    fn contact_csv(_: &Model<D>, _: usize, _: &[[f64; D]], _: &[NodeContact<D>]) -> String {
         String::new()
     }
 
@@ -444,7 +446,7 @@ pub trait HeatCoupling<const D: usize>: Sized {
         model: &Model<D>,
         t: f64,
         dt: f64,
-        contact: &[Vec<NodeContact>],
+        contact: &[Vec<NodeContact<D>>],
         before: &[Vec<MaterialPoint>],
         after: &[Vec<MaterialPoint>],
     ) -> Result<(), String>;
@@ -527,7 +529,7 @@ impl<const D: usize> HeatCoupling<D> for NoHeat {
         _: &Model<D>,
         _: f64,
         _: f64,
-        _: &[Vec<NodeContact>],
+        _: &[Vec<NodeContact<D>>],
         _: &[Vec<MaterialPoint>],
         _: &[Vec<MaterialPoint>],
     ) -> Result<(), String> {

@@ -53,6 +53,49 @@ impl ModelBuilder<3> {
     pub fn solid() -> Self {
         Self::new(AnalysisKind::Solid)
     }
+
+    /// Adds rigid surface tool `name`.
+    pub fn surface(
+        mut self,
+        name: &str,
+        geometry: ctc_geom::analytic::Analytic,
+        motion: crate::model::SurfaceMotion,
+    ) -> Self {
+        self.model.surfaces.push(crate::model::SurfaceTool {
+            name: name.into(),
+            geometry,
+            motion,
+        });
+        self
+    }
+
+    /// Contact pair `name`: the slave `faces` of `body` against surface
+    /// tool `tool`.
+    pub fn contact_faces(
+        mut self,
+        name: &str,
+        body: &str,
+        faces: Vec<crate::mesh::Facet>,
+        tool: &str,
+        method: ContactMethod,
+    ) -> Self {
+        let mut pair = self.pair(name, body, Vec::new());
+        let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        pair.nodes = nodes;
+        pair.faces = faces;
+        pair.master = ContactMaster::Tool(
+            self.model
+                .surfaces
+                .iter()
+                .position(|t| t.name == tool)
+                .unwrap_or_else(|| panic!("test kit: no surface tool `{tool}`")),
+        );
+        pair.method = method;
+        self.model.contacts.push(pair);
+        self
+    }
 }
 
 impl<const D: usize> ModelBuilder<D> {
@@ -70,6 +113,7 @@ impl<const D: usize> ModelBuilder<D> {
                 constraints: Vec::new(),
                 loads: Vec::new(),
                 tools: Vec::new(),
+                surfaces: Vec::new(),
                 contacts: Vec::new(),
                 steps: Vec::new(),
                 output: OutputRequest::default(),
@@ -316,6 +360,7 @@ impl<const D: usize> ModelBuilder<D> {
             name: name.into(),
             body: self.body_index(body),
             edges,
+            faces: Vec::new(),
             nodes,
             master: ContactMaster::Tool(usize::MAX),
             strategy: ContactStrategy::default(),

@@ -6,7 +6,7 @@
 //! keep running.
 
 use super::settings::Settings;
-use super::values::{Point, SetRef, TimeFn};
+use super::values::{Point, Point3, SetRef, TimeFn};
 use crate::generators::GeneratorDef;
 use crate::span::{Ident, Span, Spanned};
 
@@ -265,19 +265,84 @@ pub enum ToolGeometry {
         /// Knot vector (default open uniform).
         knots: Option<Spanned<Vec<Spanned<f64>>>>,
     },
+    /// A rigid surface of a `3d` analysis (`plane` with `(x, y, z)`
+    /// points, `sphere`, `cylinder`, `cone`, `torus`).
+    Surface(SurfaceGeometry),
 }
 
-/// `motion { ux uy rotation center }`.
+/// Geometry settings of the rigid surface tools of `3d` analyses.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SurfaceGeometry {
+    /// `plane { point normal }`: the half-space behind the plane.
+    Plane {
+        /// A point of the plane.
+        point: Option<Point3>,
+        /// Normal towards free space.
+        normal: Option<Point3>,
+    },
+    /// `sphere { center radius side }`.
+    Sphere {
+        /// Centre.
+        center: Option<Point3>,
+        /// Radius.
+        radius: Option<Spanned<f64>>,
+        /// Where the body is (default outside).
+        side: Option<Spanned<Side>>,
+    },
+    /// `cylinder { point axis radius side }` (infinite).
+    Cylinder {
+        /// A point of the axis.
+        point: Option<Point3>,
+        /// Axis direction.
+        axis: Option<Point3>,
+        /// Radius.
+        radius: Option<Spanned<f64>>,
+        /// Where the body is (default outside).
+        side: Option<Spanned<Side>>,
+    },
+    /// `cone { apex axis angle side }` (one nappe, opening along `axis`).
+    Cone {
+        /// Apex.
+        apex: Option<Point3>,
+        /// Axis direction (into the nappe).
+        axis: Option<Point3>,
+        /// Half opening angle, degrees.
+        angle: Option<Spanned<f64>>,
+        /// Where the body is (default outside).
+        side: Option<Spanned<Side>>,
+    },
+    /// `torus { center axis major minor side }`.
+    Torus {
+        /// Centre.
+        center: Option<Point3>,
+        /// Axis of revolution.
+        axis: Option<Point3>,
+        /// Radius of the centre circle of the tube.
+        major: Option<Spanned<f64>>,
+        /// Radius of the tube.
+        minor: Option<Spanned<f64>>,
+        /// Where the body is (default outside).
+        side: Option<Spanned<Side>>,
+    },
+}
+
+/// `motion { ux uy uz rotation center axis }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Motion {
     /// Translation along x.
     pub ux: Option<Spanned<TimeFn>>,
     /// Translation along y.
     pub uy: Option<Spanned<TimeFn>>,
+    /// Translation along z (`3d` analyses).
+    pub uz: Option<Spanned<TimeFn>>,
     /// Rotation, radians.
     pub rotation: Option<Spanned<TimeFn>>,
-    /// Centre of rotation.
+    /// Centre of rotation (planar analyses).
     pub center: Option<Point>,
+    /// A point of the rotation axis (`3d` analyses: `center = (x, y, z)`).
+    pub center3: Option<Point3>,
+    /// Rotation axis (`3d` analyses; default z).
+    pub axis: Option<Point3>,
     /// The `motion` block.
     pub span: Span,
 }

@@ -7,6 +7,9 @@ use std::fmt;
 /// A point or vector `(x, y)`.
 pub type Point = Spanned<[f64; 2]>;
 
+/// A point or vector of space `(x, y, z)`.
+pub type Point3 = Spanned<[f64; 3]>;
+
 /// Coordinates as written in a selection: `(x, y)` or `(x, y, z)`; the
 /// analysis decides which is right (validation checks the count).
 pub type Coords = Spanned<Vec<f64>>;

@@ -4,11 +4,13 @@ use super::{mesh, Lowerer};
 use crate::ast::{self, Method};
 use crate::validate::Need;
 use ctc_engine::model::{
-    self as m, ContactMaster, ContactMethod, ContactPair, ContactStrategy, PenaltyKind, RigidTool,
+    self as m, ContactMaster, ContactMethod, ContactPair, ContactStrategy, PenaltyKind,
 };
 
 impl Lowerer<'_> {
-    pub(super) fn contacts(&mut self, bodies: &[m::Body], tools: &[RigidTool]) -> Vec<ContactPair> {
+    /// The pairs; `tools` are the names of the lowered tools (curves in
+    /// planar analyses, surfaces in `3d`), in `Model` order.
+    pub(super) fn contacts(&mut self, bodies: &[m::Body], tools: &[&str]) -> Vec<ContactPair> {
         let mut out = Vec::new();
         for c in &self.deck.contacts {
             if self.has_error_in(c.span) || self.body_failed(&c.target) {
@@ -39,7 +41,7 @@ impl Lowerer<'_> {
                     }
                 }
                 None => {
-                    let Some(tool) = tools.iter().position(|t| t.name == c.tool.name) else {
+                    let Some(tool) = tools.iter().position(|t| *t == c.tool.name) else {
                         self.missing("the tool", c.tool.span);
                         continue;
                     };
@@ -86,11 +88,21 @@ impl Lowerer<'_> {
                 }
             };
             let edges = r.edges.unwrap_or_default();
+            let faces = r.faces.unwrap_or_default();
+            let nodes = if faces.is_empty() {
+                mesh::edge_nodes(&edges)
+            } else {
+                let mut n: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+                n.sort_unstable();
+                n.dedup();
+                n
+            };
             out.push(ContactPair {
                 name: format!("{} -> {}", c.target, c.tool.name),
                 body,
-                nodes: mesh::edge_nodes(&edges),
+                nodes,
                 edges,
+                faces,
                 master,
                 strategy: match c.strategy.as_ref().map(|s| s.value) {
                     Some(ast::Strategy::DoublePass) => ContactStrategy::DoublePass,

@@ -211,9 +211,13 @@ impl Lowerer<'_> {
         let constraints = self.constraints();
         let loads = self.loads();
         if self.solid {
-            // no tools, contact or heat in 3d yet (refused by validation)
+            // rigid surface tools, frictionless contact; no heat in 3d yet
+            // (refused by validation)
+            let surfaces = self.surfaces();
+            let names: Vec<&str> = surfaces.iter().map(|t| t.name.as_str()).collect();
+            let contacts = self.contacts(&bodies, &names);
             let steps = self.steps();
-            let output = self.output(&[]);
+            let output = self.output(&contacts);
             return Some(AnyModel::D3(Model {
                 analysis: analysis?,
                 mesh: std::mem::take(&mut self.mesh3),
@@ -222,14 +226,16 @@ impl Lowerer<'_> {
                 constraints,
                 loads,
                 tools: Vec::new(),
-                contacts: Vec::new(),
+                surfaces,
+                contacts,
                 steps,
                 output,
                 thermal: None,
             }));
         }
         let tools = self.tools();
-        let contacts = self.contacts(&bodies, &tools);
+        let names: Vec<&str> = tools.iter().map(|t| t.name.as_str()).collect();
+        let contacts = self.contacts(&bodies, &names);
         let steps = self.steps();
         let output = self.output(&contacts);
         let thermal = thermal::lower(
@@ -250,6 +256,7 @@ impl Lowerer<'_> {
             constraints,
             loads,
             tools,
+            surfaces: Vec::new(),
             contacts,
             steps,
             output,

@@ -1,8 +1,14 @@
-//! `tool` items -> `model::RigidTool` (radians, unit normals, default centres of rotation).
+//! `tool` items -> `model::RigidTool` (planar curves) or
+//! `model::SurfaceTool` (3d surfaces): radians, unit normals and axes,
+//! default centres of rotation.
 
 use super::{open_uniform_knots, Lowerer};
 use crate::ast;
-use ctc_engine::model::{RigidTool, ToolGeometry, ToolMotion, ToolSide};
+use ctc_engine::model::{
+    RigidTool, SurfaceMotion, SurfaceTool, ToolGeometry, ToolMotion, ToolSide,
+};
+use ctc_geom::analytic::{Analytic, Cone, Cylinder, Plane, Sphere, Torus};
+use ctc_geom::{Side, Vec3};
 
 impl Lowerer<'_> {
     pub(super) fn tools(&mut self) -> Vec<RigidTool> {
@@ -32,6 +38,50 @@ impl Lowerer<'_> {
                 }
             }
             out.push(RigidTool {
+                name: t.name.name.clone(),
+                geometry,
+                motion,
+            });
+        }
+        out
+    }
+
+    /// The surface tools of a `3d` analysis.
+    pub(super) fn surfaces(&mut self) -> Vec<SurfaceTool> {
+        let mut out = Vec::new();
+        for t in &self.deck.tools {
+            if self.has_error_in(t.span) {
+                continue;
+            }
+            let ast::ToolGeometry::Surface(g) = &t.geometry else {
+                continue;
+            };
+            let Some((geometry, reference)) = surface_geometry(g) else {
+                self.missing("a tool setting", t.kind.span);
+                continue;
+            };
+            let mut motion = SurfaceMotion::fixed();
+            motion.center = reference;
+            if let Some(mo) = &t.motion {
+                for (k, f) in [&mo.ux, &mo.uy, &mo.uz].into_iter().enumerate() {
+                    if let Some(f) = f {
+                        motion.translation[k] = self.tf(f);
+                    }
+                }
+                if let Some(f) = &mo.rotation {
+                    motion.rotation = self.tf(f);
+                }
+                if let Some(c) = &mo.center3 {
+                    motion.center = c.value;
+                }
+                if let Some(a) = &mo.axis {
+                    let v = Vec3::from(a.value);
+                    if v.norm() > 0.0 {
+                        motion.axis = (v / v.norm()).into();
+                    }
+                }
+            }
+            out.push(SurfaceTool {
                 name: t.name.name.clone(),
                 geometry,
                 motion,
@@ -129,6 +179,78 @@ impl Lowerer<'_> {
                     first,
                 )
             }
+            // a 3d surface in a planar deck: refused by validation
+            ast::ToolGeometry::Surface(_) => return None,
         })
     }
+}
+
+/// The `ctc-geom` surface and its reference point (default centre of
+/// rotation: the plane's point, the centre, a point of the axis, the
+/// apex); `None` when a setting is missing or invalid (validation has
+/// reported it).
+fn surface_geometry(g: &ast::SurfaceGeometry) -> Option<(Analytic, [f64; 3])> {
+    let v = |p: &Option<ast::Point3>| p.as_ref().map(|p| Vec3::from(p.value));
+    let side = |s: &Option<ast::Spanned<ast::Side>>| match s.as_ref().map(|s| s.value) {
+        Some(ast::Side::Inside) => Side::Inside,
+        _ => Side::Outside,
+    };
+    let num = |x: &Option<ast::Spanned<f64>>| x.as_ref().map(|x| x.value);
+    Some(match g {
+        ast::SurfaceGeometry::Plane { point, normal } => {
+            let p = v(point)?;
+            (
+                Analytic::Plane(Plane::new(p, v(normal)?, Side::Outside).ok()?),
+                p.into(),
+            )
+        }
+        ast::SurfaceGeometry::Sphere {
+            center,
+            radius,
+            side: s,
+        } => {
+            let c = v(center)?;
+            (
+                Analytic::Sphere(Sphere::new(c, num(radius)?, side(s)).ok()?),
+                c.into(),
+            )
+        }
+        ast::SurfaceGeometry::Cylinder {
+            point,
+            axis,
+            radius,
+            side: s,
+        } => {
+            let p = v(point)?;
+            (
+                Analytic::Cylinder(Cylinder::new(p, v(axis)?, num(radius)?, side(s)).ok()?),
+                p.into(),
+            )
+        }
+        ast::SurfaceGeometry::Cone {
+            apex,
+            axis,
+            angle,
+            side: s,
+        } => {
+            let a = v(apex)?;
+            (
+                Analytic::Cone(Cone::new(a, v(axis)?, num(angle)?.to_radians(), side(s)).ok()?),
+                a.into(),
+            )
+        }
+        ast::SurfaceGeometry::Torus {
+            center,
+            axis,
+            major,
+            minor,
+            side: s,
+        } => {
+            let c = v(center)?;
+            (
+                Analytic::Torus(Torus::new(c, v(axis)?, num(major)?, num(minor)?, side(s)).ok()?),
+                c.into(),
+            )
+        }
+    })
 }

@@ -23,6 +23,7 @@ pub mod output;
 pub mod set;
 pub mod settings;
 pub mod step;
+pub mod surface;
 pub mod syntax;
 pub mod thermal;
 pub mod tool;

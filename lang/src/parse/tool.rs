@@ -9,8 +9,11 @@ use crate::ast::{Motion, Side, Tool, ToolGeometry};
 use crate::diagnostics::Diagnostic;
 use crate::suggest::did_you_mean;
 
-/// Tool geometry kinds.
-pub const KINDS: [&str; 5] = ["plane", "polyline", "arc", "circle", "nurbs"];
+/// Tool geometry kinds (curves of planar analyses, then the surfaces of
+/// `3d` ones, [`super::surface`]).
+pub const KINDS: [&str; 9] = [
+    "plane", "polyline", "arc", "circle", "nurbs", "sphere", "cylinder", "cone", "torus",
+];
 
 const SIDES: [(&str, Side); 2] = [("outside", Side::Outside), ("inside", Side::Inside)];
 
@@ -23,7 +26,13 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
     let at = kind.span;
     let what = format!("`{}` tool", kind.name);
     let motion_block: Option<&Block>;
+    let spatial = kind.name == "plane" && super::surface::is_spatial_plane(&block);
     let geometry = match kind.name.as_str() {
+        k if spatial || super::surface::KINDS.contains(&k) => {
+            let (g, m) = super::surface::parse(k, &block, at, diags)?;
+            motion_block = m;
+            ToolGeometry::Surface(g)
+        }
         "plane" => {
             let mut f = Fields::keyed(&block, what, &crate::tables::PLANE);
             let point = f.point("point", diags);
@@ -139,7 +148,9 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
                     "not a tool kind",
                 )
                 .with_help(did_you_mean(other, KINDS).unwrap_or_else(|| {
-                    "expected `plane`, `polyline`, `arc`, `circle` or `nurbs`".to_string()
+                    "expected `plane`, `polyline`, `arc`, `circle` or `nurbs` (planar), or \
+                     `sphere`, `cylinder`, `cone` or `torus` (3d)"
+                        .to_string()
                 })),
             );
             return None;
@@ -147,11 +158,26 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
     };
     let motion = motion_block.map(|b| {
         let mut f = Fields::keyed(b, "`motion` block", &crate::tables::MOTION);
+        let ux = f.time_fn("ux", diags);
+        let uy = f.time_fn("uy", diags);
+        let uz = f.time_fn("uz", diags);
+        let rotation = f.time_fn("rotation", diags);
+        let (center, center3) = match f.value("center", diags) {
+            Some(v) if values::tuple_len(v) == Some(3) => (None, values::point3(v, diags)),
+            Some(v) => (values::point(v, diags), None),
+            None => (None, None),
+        };
+        let axis = f
+            .value("axis", diags)
+            .and_then(|v| values::point3(v, diags));
         let m = Motion {
-            ux: f.time_fn("ux", diags),
-            uy: f.time_fn("uy", diags),
-            rotation: f.time_fn("rotation", diags),
-            center: f.point("center", diags),
+            ux,
+            uy,
+            uz,
+            rotation,
+            center,
+            center3,
+            axis,
             span: b.span,
         };
         f.finish(diags);
@@ -223,8 +249,8 @@ mod tests {
             ["unknown tool kind `circel`"]
         );
         assert_eq!(
-            parse_messages("tool t = plane { point = (0,0) normal = (0,1) motion { uz = 1 } }"),
-            ["unknown key `uz` in the `motion` block"]
+            parse_messages("tool t = plane { point = (0,0) normal = (0,1) motion { uw = 1 } }"),
+            ["unknown key `uw` in the `motion` block"]
         );
     }
 }

@@ -5,7 +5,7 @@
 //! has the wrong shape, so that callers simply skip the field.
 
 use crate::ast::syntax::{path_text, Arg, ArgKind, BinOp, Value, ValueKind};
-use crate::ast::{Coords, Grading, Point, Selection, SetRef, SetRefKind, TimeFn};
+use crate::ast::{Coords, Grading, Point, Point3, Selection, SetRef, SetRefKind, TimeFn};
 use crate::diagnostics::Diagnostic;
 use crate::expr::Env;
 use crate::keys::Dim;
@@ -179,6 +179,44 @@ pub fn point(v: &Value, diags: &mut Diags) -> Option<Point> {
     let x = number(a, diags)?;
     let y = number(b, diags)?;
     Some(Spanned::new([x.value, y.value], v.span))
+}
+
+/// A point of space `(x, y, z)`.
+pub fn point3(v: &Value, diags: &mut Diags) -> Option<Point3> {
+    match &v.kind {
+        ValueKind::Tuple(items) if items.len() == 3 => {
+            let x = number(&items[0], diags);
+            let y = number(&items[1], diags);
+            let z = number(&items[2], diags);
+            Some(Spanned::new([x?.value, y?.value, z?.value], v.span))
+        }
+        ValueKind::Tuple(items) => {
+            diags.push(
+                Diagnostic::error(
+                    format!(
+                        "expected a point `(x, y, z)`, found a tuple of {}",
+                        items.len()
+                    ),
+                    v.span,
+                    "expected a point `(x, y, z)`",
+                )
+                .with_help("a `3d` analysis takes three coordinates"),
+            );
+            None
+        }
+        _ => {
+            wrong(v, "a point `(x, y, z)`", diags);
+            None
+        }
+    }
+}
+
+/// The number of elements of a tuple value (`None` for other values).
+pub fn tuple_len(v: &Value) -> Option<usize> {
+    match &v.kind {
+        ValueKind::Tuple(items) => Some(items.len()),
+        _ => None,
+    }
 }
 
 /// A pair of numbers `(a, b)`, keeping each number's span.

@@ -10,7 +10,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
     let Some(a) = ctx.deck.analysis.first() else {
         return;
     };
-    three_d_has_no_contact_or_heat_yet(a, ctx);
+    three_d_contact_is_rigid_and_frictionless(a, ctx);
     thickness_only_in_plane_analyses(a, ctx);
 }
 
@@ -51,9 +51,10 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
     }
 }
 
-/// `dimension = 3d` solves solids without rigid tools, contact or heat
-/// conduction (the 3D contact and thermal issues).
-pub fn three_d_has_no_contact_or_heat_yet(a: &Analysis, ctx: &mut Ctx<'_>) {
+/// `dimension = 3d` solves solids in frictionless contact with rigid
+/// surface tools; contact between deformable bodies, friction and heat
+/// conduction are not there yet in 3d.
+pub fn three_d_contact_is_rigid_and_frictionless(a: &Analysis, ctx: &mut Ctx<'_>) {
     let Some(d) = a
         .dimension
         .as_ref()
@@ -65,7 +66,7 @@ pub fn three_d_has_no_contact_or_heat_yet(a: &Analysis, ctx: &mut Ctx<'_>) {
     let mut refuse = |what: &str, span: Span| {
         ctx.err(
             Diagnostic::error(
-                format!("{what} in 3d analyses are not supported yet"),
+                format!("{what} not supported in 3d analyses yet"),
                 span,
                 "not supported in 3d yet",
             )
@@ -77,19 +78,24 @@ pub fn three_d_has_no_contact_or_heat_yet(a: &Analysis, ctx: &mut Ctx<'_>) {
     };
     let _ = d;
     for m in deck.materials.iter().filter(|m| m.thermal.is_some()) {
-        refuse("thermal material properties", m.span);
+        refuse("thermal material properties are", m.span);
     }
     for b in deck.bodies.iter().filter(|b| b.thermal.is_some()) {
-        refuse("thermal body blocks", b.span);
-    }
-    for t in &deck.tools {
-        refuse("rigid tools", t.span);
+        refuse("thermal body blocks are", b.span);
     }
     for c in &deck.contacts {
-        refuse("contact pairs", c.span);
+        if let Some(m) = &c.master {
+            refuse("contact between deformable bodies is", m.span);
+        }
+        if let Some(f) = &c.friction {
+            refuse("friction is", f.span);
+        }
+        if let Some(th) = &c.thermal {
+            refuse("thermal contact blocks are", th.span);
+        }
     }
     for l in &deck.thermal_loads {
-        refuse("thermal loads", l.span);
+        refuse("thermal loads are", l.span);
     }
 }
 

@@ -1,7 +1,7 @@
 //! Rules of `tool` items (rigid analytical tools).
 
 use super::{time_fns, Ctx};
-use crate::ast::{num, Point, Spanned, Tool, ToolGeometry};
+use crate::ast::{num, Point, Point3, Spanned, SurfaceGeometry, Tool, ToolGeometry};
 use crate::diagnostics::Diagnostic;
 
 /// Checks every tool.
@@ -9,9 +9,10 @@ pub fn check(ctx: &mut Ctx<'_>) {
     let deck = ctx.deck;
     ctx.names_are_unique(deck.tools.iter().map(|t| &t.name), "tool");
     for t in &deck.tools {
+        dimension_matches_analysis(t, ctx);
         geometry_valid(t, ctx);
         if let Some(m) = &t.motion {
-            for f in [&m.ux, &m.uy, &m.rotation].into_iter().flatten() {
+            for f in [&m.ux, &m.uy, &m.uz, &m.rotation].into_iter().flatten() {
                 time_fns::ramp_and_table_times_increase(f, ctx);
             }
         }
@@ -68,6 +69,128 @@ pub fn geometry_valid(t: &Tool, ctx: &mut Ctx<'_>) {
             weights,
             knots,
         } => nurbs_data_consistent(degree, points, weights, knots, ctx),
+        ToolGeometry::Surface(g) => surface_valid(g, ctx),
+    }
+}
+
+/// Curve tools belong to planar analyses, surface tools (and the `uz`,
+/// `axis` and 3-coordinate `center` of a motion) to `3d` ones.
+pub fn dimension_matches_analysis(t: &Tool, ctx: &mut Ctx<'_>) {
+    let solid = super::analysis::is_solid(ctx);
+    let surface = matches!(t.geometry, ToolGeometry::Surface(_));
+    if solid && !surface {
+        ctx.err(
+            Diagnostic::error(
+                format!(
+                    "a `{}` tool is a curve of planar analyses; the analysis is `3d`",
+                    t.kind.name
+                ),
+                t.kind.span,
+                "a planar tool",
+            )
+            .with_help(
+                "in 3d use a surface: `plane` with `(x, y, z)` points, `sphere`, `cylinder`, \
+                 `cone` or `torus`",
+            ),
+        );
+    } else if !solid && surface {
+        ctx.err(
+            Diagnostic::error(
+                format!(
+                    "a `{}` tool with `(x, y, z)` points needs a `3d` analysis",
+                    t.kind.name
+                ),
+                t.kind.span,
+                "a 3d surface",
+            )
+            .with_help("set `analysis { dimension = 3d }`, or give planar `(x, y)` points"),
+        );
+    }
+    let Some(m) = &t.motion else { return };
+    if solid {
+        if let Some(c) = &m.center {
+            ctx.err(Diagnostic::error(
+                "the centre of rotation of a 3d tool has three coordinates",
+                c.span,
+                "expected `(x, y, z)`",
+            ));
+        }
+    } else {
+        let spatial = [
+            m.uz.as_ref().map(|f| f.span),
+            m.center3.as_ref().map(|c| c.span),
+        ]
+        .into_iter()
+        .chain([m.axis.as_ref().map(|a| a.span)]);
+        for span in spatial.flatten() {
+            ctx.err(
+                Diagnostic::error(
+                    "`uz`, `axis` and a 3-coordinate `center` need a `3d` analysis",
+                    span,
+                    "a 3d motion",
+                )
+                .with_help(
+                    "planar tools move by `ux`, `uy` and `rotation` about `center = (x, y)`",
+                ),
+            );
+        }
+    }
+}
+
+/// A nonzero vector.
+fn nonzero(v: &Option<Point3>, what: &str, ctx: &mut Ctx<'_>) {
+    if let Some(v) = v.as_ref().filter(|v| v.value.iter().all(|c| *c == 0.0)) {
+        ctx.err(Diagnostic::error(
+            format!("the {what} is zero"),
+            v.span,
+            "(0, 0, 0)",
+        ));
+    }
+}
+
+/// The geometry of a surface tool: nonzero normals and axes, positive
+/// radii, a cone's half angle strictly between 0 and 90 degrees, a torus
+/// tube thinner than its centre circle.
+pub fn surface_valid(g: &SurfaceGeometry, ctx: &mut Ctx<'_>) {
+    match g {
+        SurfaceGeometry::Plane { normal, .. } => nonzero(normal, "plane normal", ctx),
+        SurfaceGeometry::Sphere { radius, .. } => ctx.must_be_positive(radius, "radius"),
+        SurfaceGeometry::Cylinder { axis, radius, .. } => {
+            nonzero(axis, "cylinder axis", ctx);
+            ctx.must_be_positive(radius, "radius");
+        }
+        SurfaceGeometry::Cone { axis, angle, .. } => {
+            nonzero(axis, "cone axis", ctx);
+            if let Some(a) = angle
+                .as_ref()
+                .filter(|a| !(a.value > 0.0 && a.value < 90.0))
+            {
+                ctx.err(Diagnostic::error(
+                    "the half angle of a cone is between 0 and 90 degrees",
+                    a.span,
+                    format!("angle = {}", num(a.value)),
+                ));
+            }
+        }
+        SurfaceGeometry::Torus {
+            axis, major, minor, ..
+        } => {
+            nonzero(axis, "torus axis", ctx);
+            ctx.must_be_positive(major, "major radius");
+            ctx.must_be_positive(minor, "minor radius");
+            if let (Some(a), Some(b)) = (major, minor) {
+                if b.value >= a.value && a.value > 0.0 {
+                    ctx.err(
+                        Diagnostic::error(
+                            "the tube of a torus is thinner than its centre circle",
+                            b.span,
+                            format!("minor = {} >= major = {}", num(b.value), num(a.value)),
+                        )
+                        .with_help("a ring torus needs minor < major"),
+                    );
+                }
+            }
+        }
     }
 }
 

@@ -148,6 +148,7 @@ mod tests {
             name: "b.bottom -> floor".into(),
             body: 0,
             edges,
+            faces: Vec::new(),
             nodes: nodes.clone(),
             master: ctc_engine::model::ContactMaster::Tool(0),
             strategy: Default::default(),

@@ -5,16 +5,20 @@
 //! registers its cases in [`all`]; the cargo tests run the same entries.
 
 pub mod cattaneo;
+pub mod contact_3d;
 pub mod fenicsx;
 pub mod friction;
 pub mod friction_block;
 pub mod mortar;
+pub mod objectivity;
+pub mod penalty_scaling;
 pub mod solid;
 pub mod solid_patch;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod upsetting;
 pub mod upsetting_3d;
+pub mod viscoplastic;
 
 use crate::case::Quantity;
 use crate::measure::Value;
@@ -29,11 +33,15 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(friction::cases());
     v.extend(cattaneo::cases());
     v.extend(upsetting::cases());
+    v.extend(objectivity::cases());
+    v.extend(viscoplastic::cases());
+    v.extend(penalty_scaling::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
     v.extend(upsetting_3d::cases());
+    v.extend(contact_3d::cases());
     v
 }
 

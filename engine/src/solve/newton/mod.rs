@@ -274,7 +274,7 @@ where
     }
 
     /// Contact evaluation of each pair at the last evaluated state.
-    pub fn contact(&self) -> &[Vec<NodeContact>] {
+    pub fn contact(&self) -> &[Vec<NodeContact<D>>] {
         self.contacts.contact()
     }
 

@@ -1,0 +1,470 @@
+//! Contact of a solid (3D) model in the global system: the pairs of slave
+//! face sets against rigid surface tools ([`crate::contact::surface`]),
+//! their forces and 3x3 tangent blocks scattered into the global vectors
+//! and matrix, the Lagrange rows `dg/dx = n`, and the contact loop around
+//! the Newton loops of an increment (Lagrange active set, Uzawa updates of
+//! the augmented Lagrangian), the 3D counterpart of
+//! [`super::contact_assembly`] and [`super::contact_loop`].
+//!
+//! Rigid tools add no unknowns and couple no nodes, so the sparsity
+//! pattern never grows.
+
+use super::constraints::Constraints;
+use super::contact_loop::{CyclingGuard, SetChange, MAX_CONTACT_ITERATIONS};
+use super::diagnosis::PenaltyRatio;
+use super::dofs::DofMap;
+use super::linalg::{Scatter, NO_SLOT};
+use super::newton::{Converged, Failure, FailureKind, Newton};
+use super::restart::PairHistory;
+use super::scene::ContactScene;
+use super::Observer;
+use crate::contact::rows::{NodeRows, NodeTerm, RowKind};
+use crate::contact::surface::{self, SurfacePair};
+use crate::contact::{ContactStatus, NodeContact};
+use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
+use std::fmt::Write;
+
+/// Gap below which an inactive Lagrange node is introduced, relative to
+/// the size of the mesh (as in 2D: a node released exactly on the tool is
+/// not re-introduced by round-off).
+const INTRODUCE_GAP: f64 = 1e-14;
+
+/// Contact state of a solid model and its last evaluation.
+#[derive(Debug, Clone)]
+pub struct SurfaceAssembly {
+    /// State of each pair (slaves, areas, multipliers, active set).
+    pub pairs: Vec<SurfacePair>,
+    /// Evaluation of each pair at the last evaluated state.
+    pub contact: Vec<Vec<NodeContact<3>>>,
+    /// Lagrange constraints of the last evaluation, in dof terms.
+    constraints: Constraints,
+    /// Lagrange rows of the last evaluation, in node terms.
+    rows: NodeRows,
+    /// Current nodal coordinates (scratch).
+    x: Vec<[f64; 3]>,
+    /// Diagonal of the mesh's bounding box (introduction threshold).
+    size: f64,
+}
+
+impl SurfaceAssembly {
+    /// Introduces the inactive Lagrange nodes that penetrate, releases the
+    /// active ones in tension or out of the window.
+    fn update_active_sets(&mut self, model: &Model<3>) -> SetChange {
+        let mut change = SetChange::default();
+        let threshold = INTRODUCE_GAP * self.size;
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
+                continue;
+            }
+            let state = &mut self.pairs[pi];
+            let mut seen = vec![false; state.slaves.len()];
+            for nc in &self.contact[pi] {
+                let Some(i) = state.slave_index(nc.node) else {
+                    continue;
+                };
+                seen[i] = true;
+                if state.active[i] {
+                    if state.multiplier[i] < 0.0 {
+                        state.active[i] = false;
+                        state.multiplier[i] = 0.0;
+                        change.released.push(nc.node);
+                    }
+                } else if nc.gap < -threshold {
+                    state.active[i] = true;
+                    state.multiplier[i] = 0.0;
+                    change.introduced.push(nc.node);
+                }
+            }
+            for (i, s) in seen.iter().enumerate() {
+                if !s && state.active[i] {
+                    state.active[i] = false;
+                    state.multiplier[i] = 0.0;
+                    change.released.push(state.slaves[i]);
+                }
+            }
+        }
+        change
+    }
+
+    /// Uzawa update of the augmented-Lagrangian pairs of update mode
+    /// `mode` whose largest violation exceeds their tolerance:
+    /// `lambda* <- max(0, lambda* - alpha g)`. Whether any pair changed.
+    fn uzawa_update(&mut self, model: &Model<3>, mode: MultiplierUpdate) -> bool {
+        let mut updated = false;
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            let ContactMethod::AugmentedLagrange {
+                tolerance, update, ..
+            } = cp.method
+            else {
+                continue;
+            };
+            let list = &self.contact[pi];
+            let violation = crate::contact::augmented::constraint_violation(list);
+            if update != mode || violation <= tolerance {
+                continue;
+            }
+            let state = &mut self.pairs[pi];
+            let mut next = vec![0.0; state.slaves.len()];
+            for nc in list {
+                if let Some(i) = state.slave_index(nc.node) {
+                    let a = surface::alpha(&cp.method, state.area[i]);
+                    next[i] = (state.multiplier[i] - a * nc.gap).max(0.0);
+                }
+            }
+            state.multiplier = next;
+            updated = true;
+        }
+        updated
+    }
+
+    fn active_key(&self) -> Vec<bool> {
+        self.pairs
+            .iter()
+            .flat_map(|p| p.active.iter().copied())
+            .collect()
+    }
+}
+
+impl ContactScene<3> for SurfaceAssembly {
+    fn new(model: &Model<3>) -> Self {
+        let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for p in &model.mesh.nodes {
+            for c in 0..3 {
+                lo[c] = lo[c].min(p[c]);
+                hi[c] = hi[c].max(p[c]);
+            }
+        }
+        let size = (0..3).map(|c| (hi[c] - lo[c]).powi(2)).sum::<f64>().sqrt();
+        SurfaceAssembly {
+            pairs: (0..model.contacts.len())
+                .map(|i| SurfacePair::new(model, i))
+                .collect(),
+            contact: vec![Vec::new(); model.contacts.len()],
+            constraints: Constraints::default(),
+            rows: NodeRows::default(),
+            x: model.mesh.nodes.clone(),
+            size: if size.is_finite() && size > 0.0 {
+                size
+            } else {
+                1.0
+            },
+        }
+    }
+
+    fn evaluate(
+        &mut self,
+        model: &Model<3>,
+        dofs: &DofMap<3>,
+        u: &[[f64; 3]],
+        t: f64,
+        f_c: &mut [f64],
+    ) {
+        for ((x, x0), u) in self.x.iter_mut().zip(&model.mesh.nodes).zip(u) {
+            for c in 0..3 {
+                x[c] = x0[c] + u[c];
+            }
+        }
+        for (i, state) in self.pairs.iter().enumerate() {
+            let res = surface::evaluate_pair(model, i, &self.x, t, state);
+            for nc in &res {
+                for (c, f) in nc.force.iter().enumerate() {
+                    f_c[dofs.dof(nc.node, c)] += f;
+                }
+            }
+            self.contact[i] = res;
+        }
+    }
+
+    fn grow_pattern(
+        &mut self,
+        _: &Model<3>,
+        _: &DofMap<3>,
+        _: &Scatter,
+    ) -> Result<Option<Scatter>, String> {
+        Ok(None)
+    }
+
+    fn add_tangent(&self, scatter: &Scatter, _: &DofMap<3>, values: &mut [f64]) {
+        for nc in self.contact.iter().flatten() {
+            if nc.status != ContactStatus::Closed {
+                continue;
+            }
+            let slots = scatter.node_slots(nc.node);
+            for b in 0..3 {
+                for a in 0..3 {
+                    let s = slots[a + 3 * b];
+                    if s != NO_SLOT {
+                        values[s as usize] += nc.stiffness[a][b];
+                    }
+                }
+            }
+        }
+    }
+
+    fn build_constraints(&mut self, model: &Model<3>, dofs: &DofMap<3>) {
+        self.rows.clear();
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
+                continue;
+            }
+            for nc in &self.contact[pi] {
+                let Some(i) = self.pairs[pi].slave_index(nc.node) else {
+                    continue;
+                };
+                if !self.pairs[pi].active[i] {
+                    continue;
+                }
+                self.rows.push(
+                    RowKind::Normal,
+                    (pi, i),
+                    nc.gap,
+                    (0..3).map(|c| NodeTerm {
+                        node: nc.node,
+                        component: c,
+                        coefficient: nc.normal[c],
+                    }),
+                );
+            }
+        }
+        self.constraints.build(&self.rows, dofs);
+    }
+
+    fn constraints(&self) -> &Constraints {
+        &self.constraints
+    }
+
+    fn apply_multiplier_corrections(&mut self, dlambda: &[f64]) {
+        for (&(p, i), dl) in self.constraints.owner.iter().zip(dlambda) {
+            self.pairs[p].multiplier[i] += dl;
+        }
+    }
+
+    fn newton_multiplier_update(&mut self, model: &Model<3>) -> bool {
+        self.uzawa_update(model, MultiplierUpdate::Newton)
+    }
+
+    fn contact(&self) -> &[Vec<NodeContact<3>>] {
+        &self.contact
+    }
+
+    fn active_contacts(&self) -> usize {
+        self.contact
+            .iter()
+            .flatten()
+            .filter(|c| c.status == ContactStatus::Closed)
+            .count()
+    }
+
+    fn max_penetration(&self) -> f64 {
+        self.contact
+            .iter()
+            .flatten()
+            .map(|c| -c.gap)
+            .fold(0.0, f64::max)
+    }
+
+    fn commit(&mut self) {
+        for p in &mut self.pairs {
+            p.commit();
+        }
+    }
+
+    fn rollback(&mut self) {
+        for p in &mut self.pairs {
+            p.rollback();
+        }
+    }
+
+    fn pattern_growths(&self) -> usize {
+        0
+    }
+
+    fn penalty_ratio(&self, _: &Model<3>, _: &Scatter, _: &[f64]) -> Option<PenaltyRatio> {
+        None
+    }
+
+    fn impact_fraction(&self, _: &Model<3>) -> Option<f64> {
+        None
+    }
+
+    fn increment_warnings(
+        &self,
+        model: &Model<3>,
+        before: (&[[f64; 3]], f64),
+        after: (&[[f64; 3]], f64),
+        increment: usize,
+    ) -> Vec<String> {
+        // a slave node that moved farther than the window relative to the
+        // tool in one increment may have passed through a thin tool
+        let mut out = Vec::new();
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
+                continue;
+            };
+            let (p0, p1) = (
+                surface::placement(&tool.motion, before.1),
+                surface::placement(&tool.motion, after.1),
+            );
+            let prof = self.pairs[pi].prof;
+            let worst = cp
+                .nodes
+                .iter()
+                .map(|&n| {
+                    let x0 = model.mesh.nodes[n];
+                    let at = |u: &[f64; 3], p: &ctc_geom::Placement| {
+                        p.to_reference(&ctc_geom::Vec3::from_fn(|k, _| x0[k] + u[k]))
+                    };
+                    ((at(&after.0[n], &p1) - at(&before.0[n], &p0)).norm(), n)
+                })
+                .fold((0.0, usize::MAX), |a, b| if b.0 > a.0 { b } else { a });
+            if prof > 0.0 && worst.0 > prof {
+                out.push(format!(
+                    "increment {increment}: slave node {} of pair `{}` moved {:.3e} relative to \
+                     the tool, more than the search window prof = {:.3e}; reduce the time step \
+                     if the node may have crossed the tool",
+                    worst.1, cp.name, worst.0, prof
+                ));
+            }
+        }
+        out
+    }
+
+    fn friction_work(&self) -> Vec<f64> {
+        vec![0.0; self.pairs.len()]
+    }
+
+    fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>) {
+        let pairs = self
+            .pairs
+            .iter()
+            .map(|p| {
+                let (multiplier, active) = p.committed();
+                PairHistory {
+                    entity: vec![None; p.slaves.len()],
+                    multiplier: multiplier.to_vec(),
+                    active: active.to_vec(),
+                    friction: Vec::new(),
+                }
+            })
+            .collect();
+        (pairs, Vec::new())
+    }
+
+    fn restore(&mut self, pairs: &[PairHistory], _: usize, _: &[[f64; 3]]) -> Result<(), String> {
+        if pairs.len() != self.pairs.len() {
+            return Err("the restart point does not match the model (contact pairs)".into());
+        }
+        for (s, h) in self.pairs.iter_mut().zip(pairs) {
+            let n = s.slaves.len();
+            if h.multiplier.len() != n || h.active.len() != n {
+                return Err("the restart point does not match the model (slave nodes)".into());
+            }
+            s.restore(&h.multiplier, &h.active);
+        }
+        Ok(())
+    }
+
+    fn set_couplings(&mut self, _: &[(usize, usize)]) {}
+
+    fn contact_csv(
+        model: &Model<3>,
+        pair: usize,
+        displacement: &[[f64; 3]],
+        contact: &[NodeContact<3>],
+    ) -> String {
+        use crate::output::encode::Shortest as N;
+        let cp = &model.contacts[pair];
+        let mut s = String::from("node,x,y,z,gap,pressure,status,force_x,force_y,force_z\n");
+        for &n in &cp.nodes {
+            let x0 = model.mesh.nodes[n];
+            let u = displacement[n];
+            let _ = write!(
+                s,
+                "{n},{},{},{}",
+                N(x0[0] + u[0]),
+                N(x0[1] + u[1]),
+                N(x0[2] + u[2])
+            );
+            match contact.iter().find(|c| c.node == n) {
+                Some(c) => {
+                    let _ = writeln!(
+                        s,
+                        ",{},{},{},{},{},{}",
+                        N(c.gap),
+                        N(c.pressure),
+                        u8::from(c.status == ContactStatus::Closed),
+                        N(c.force[0]),
+                        N(c.force[1]),
+                        N(c.force[2])
+                    );
+                }
+                None => {
+                    let _ = writeln!(s, ",,0,0,0,0,0");
+                }
+            }
+        }
+        s
+    }
+
+    fn attempt(
+        newton: &mut Newton<'_, 3>,
+        settings: &NewtonSettings,
+        t: f64,
+        step: usize,
+        increment: usize,
+        observer: &mut dyn Observer<3>,
+    ) -> Result<Converged, Failure> {
+        let mut residuals: Vec<f64> = Vec::new();
+        let mut iterations = 0;
+        let mut updates = 0;
+        let mut guard = CyclingGuard::new(newton.contacts.active_key());
+        for _ in 0..MAX_CONTACT_ITERATIONS {
+            let conv = newton
+                .newton_loop(settings, t, step, increment, observer)
+                .map_err(|mut f| {
+                    let mut r = residuals.clone();
+                    r.append(&mut f.residuals);
+                    f.residuals = r;
+                    f
+                })?;
+            iterations += conv.iterations;
+            updates += conv.contact_iterations;
+            residuals.extend_from_slice(&conv.residuals);
+            let model = newton.model;
+            let change = newton.contacts.update_active_sets(model);
+            if !change.is_empty() {
+                updates += 1;
+                if let Err(detail) = guard.visit(newton.contacts.active_key(), &change) {
+                    return Err(Failure {
+                        kind: FailureKind::ActiveSetCycling,
+                        residuals,
+                        detail,
+                    });
+                }
+                continue;
+            }
+            if newton
+                .contacts
+                .uzawa_update(model, MultiplierUpdate::Converged)
+            {
+                updates += 1;
+                continue;
+            }
+            return Ok(Converged {
+                iterations,
+                residuals,
+                active_contacts: conv.active_contacts,
+                contact_iterations: updates,
+                max_penetration: conv.max_penetration,
+            });
+        }
+        Err(Failure {
+            kind: FailureKind::MaxIterations,
+            residuals,
+            detail: format!(
+                "the contact iterations (active set / Uzawa updates) did not settle in \
+                 {MAX_CONTACT_ITERATIONS} Newton loops"
+            ),
+        })
+    }
+}

@@ -1,0 +1,42 @@
+//! Perzyna visco-plasticity (linear over-stress, `d ep/dt = <q - sigma_y> /
+//! eta`) as `ctc verify` runs it: the registry entry
+//! `perzyna_viscoplastic`, against closed forms: the over-stress at a
+//! material point loaded in shear at two constant rates, `s(t) = eta r (1 -
+//! exp(-3 G t / eta))`; relaxation at fixed strain with linear hardening,
+//! `s(t) = s0 exp(-(3 G + H) t / eta)`; the axial force of one
+//! axisymmetric quad compressed at two rates through the solver. Backward
+//! Euler is first order in dt (halving dt halves the error: the observed
+//! rate between the two levels and the order measured at each level).
+//! Scene, references and tolerances:
+//! `verification/src/programs/viscoplastic.rs` (Perzyna 1966; Simo &
+//! Hughes §1.7).
+//!
+//! ```text
+//!   q                      ___________ sigma_y + eta r  (steady over-stress)
+//!   |                 ____/
+//!   |     sigma_y ___/  s(t) = eta r (1 - exp(-t / tau))
+//!   |           /
+//!   +----------+----------------------------> t
+//! ```
+
+use ctc_verification::registry;
+
+#[test]
+fn perzyna_rates_relaxation_and_solver_match_closed_forms_first_order_in_dt() {
+    let report = registry::run_passing("perzyna_viscoplastic");
+    let judged: Vec<_> = report
+        .rates
+        .iter()
+        .filter(|r| r.min_rate.is_some())
+        .collect();
+    assert_eq!(judged.len(), 5, "{:#?}", report.rates);
+    for r in judged {
+        println!(
+            "{}: observed rate {:?} (>= {:?})",
+            r.quantity, r.rate, r.min_rate
+        );
+        assert!(r.passed);
+    }
+    let level = report.levels.last().expect("a level");
+    assert_eq!(level.values.len(), 7, "{:#?}", level.values);
+}
