@@ -287,6 +287,25 @@ pub enum Load {
         /// Pressure as a function of time.
         value: TimeFunction,
     },
+    /// Follower-free (dead) traction on boundary facets: force per unit
+    /// reference area along the global axis `component`, in the reference
+    /// configuration (Abaqus `TRVEC` on `*DSLOAD`, not following the
+    /// surface). Consistent nodal forces `f_a = t int N_a dA`: solid faces
+    /// with the face quadrature of [`Load::FacetPressure`] (tri3 faces: the
+    /// area over 3 on each node; quad4 faces: 2x2 Gauss, exact on flat
+    /// faces); planar edges (2-node facets) with `dA = thickness ds`, or
+    /// `2 pi r ds` (axisymmetric: totals over the ring).
+    FacetTraction {
+        /// Human-readable origin.
+        label: String,
+        /// Boundary facets: faces of a solid, or edges `[a, b]` of a planar
+        /// mesh.
+        facets: Vec<crate::mesh::Facet>,
+        /// 0 = x (or r), 1 = y (or z), 2 = z.
+        component: usize,
+        /// Traction (force per unit reference area) as a function of time.
+        value: TimeFunction,
+    },
     /// A force applied at each listed node (Abaqus CLOAD semantics: the value
     /// is per node; axisymmetric: total over the ring).
     NodalForce {

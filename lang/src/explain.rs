@@ -185,6 +185,25 @@ pub fn explain(model: &Model) -> String {
                         plural(facets.len(), "face", "faces")
                     );
                 }
+                Load::FacetTraction {
+                    label,
+                    facets,
+                    component: c,
+                    value,
+                } => {
+                    let per = if axi {
+                        "per unit reference area, total over 2*pi"
+                    } else {
+                        "per unit reference area"
+                    };
+                    let _ = writeln!(
+                        o,
+                        "  {label}: t{} = {} {per} (dead load), on {}",
+                        component(*c),
+                        time_function(value),
+                        plural(facets.len(), "edge", "edges")
+                    );
+                }
                 Load::NodalForce {
                     label,
                     nodes,
@@ -736,6 +755,20 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
                     ["x", "y", "z"][(*c).min(2)],
                     time_function(value),
                     plural(nodes.len(), "node", "nodes")
+                );
+            }
+            Load::FacetTraction {
+                label,
+                facets,
+                component: c,
+                value,
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: t{} = {} per unit reference area (dead load), on {}",
+                    ["x", "y", "z"][(*c).min(2)],
+                    time_function(value),
+                    plural(facets.len(), "face", "faces")
                 );
             }
             Load::Pressure { label, .. } => {

@@ -79,12 +79,16 @@ pub static ITEMS: &[Item] = &[
         name: "set",
         syntax: "set NAME = BODY.SELECTION",
         doc: "A named set of a body (`BODY.NAME` afterwards): a set, a geometric selection \
-              `BODY.nodes(x = ..)`, `BODY.nodes(y = ..)`, `BODY.nodes(box((x0, y0), (x1, y1)))`, \
-              `BODY.node(near(x, y))`, `BODY.edges(..)`, a quoted name `BODY.\"Hole Edge\"` \
-              (gmsh groups with spaces), or a union and difference `a.top + a.side - a.corner_tl` \
-              (left to right; edges when every term has edges).",
+              `BODY.nodes(x = ..)` (or `y = ..`, and `z = ..` in 3d), \
+              `BODY.nodes(box((x0, y0), (x1, y1)))` (3d: `box((x0, y0, z0), (x1, y1, z1))`), \
+              `BODY.node(near(x, y))` (3d: `near(x, y, z)`), `BODY.edges(..)` (planar: boundary \
+              edges with both nodes selected), `BODY.faces(..)` (3d: boundary faces with every \
+              node selected), a quoted name `BODY.\"Hole Edge\"` (gmsh groups with spaces), or a \
+              union and difference `a.top + a.side - a.corner_tl` (left to right; edges or faces \
+              when every term has them). Coordinates match within 1e-6 x the diagonal of the \
+              body; a selection that selects nothing is an error.",
         blocks: &[],
-        example: "set clamp = block.bottom + block.left\nset hole = lug.\"Hole Edge\"",
+        example: "set clamp = block.bottom + block.left\nset hole = lug.\"Hole Edge\"\nset top = brick.faces(z = 1)",
     },
     Item {
         name: "tool",
@@ -147,10 +151,20 @@ pub static ITEMS: &[Item] = &[
     Item {
         name: "pressure",
         syntax: "pressure EDGES { p = F(t) }",
-        doc: "A pressure on boundary edges, positive pushing into the body, following the \
-              surface (consistent load).",
+        doc: "A pressure on boundary edges (3d: faces), positive pushing into the body, along \
+              the normal of the reference configuration (consistent load).",
         blocks: &[],
         example: "pressure pipe.inner { p = ramp(0, 100) }",
+    },
+    Item {
+        name: "traction",
+        syntax: "traction EDGES { tx = F(t)  ty = F(t)  tz = F(t) }",
+        doc: "A dead traction on boundary edges (3d: faces): force per unit reference area \
+              along the global axes, not following the surface; consistent nodal forces by \
+              the face quadrature (planar: per unit thickness times `thickness`; \
+              axisymmetric: totals over 2 pi). `tz` in 3d only.",
+        blocks: &[],
+        example: "traction block.faces(z = 1) { tx = ramp(0, 5) }",
     },
     Item {
         name: "force",

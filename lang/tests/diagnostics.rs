@@ -92,6 +92,9 @@ decks!(
     units_unknown_unit,
     units_without_system,
     units_wrong_dimension,
+    selection_3d_empty,
+    selection_3d_coordinates,
+    selection_z_in_planar,
 );
 
 #[test]

@@ -187,6 +187,11 @@ pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
                     "FEniCSx export: nodal forces ({label}) are not supported"
                 ))
             }
+            Load::FacetTraction { label, .. } => {
+                return Err(format!(
+                    "FEniCSx export: tractions ({label}) are not supported"
+                ))
+            }
             Load::FacetPressure { label, .. } => {
                 return Err(format!(
                     "FEniCSx export: pressure on faces ({label}) is planar-only"

@@ -123,6 +123,29 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     ));
                 }
             }
+            Load::FacetTraction {
+                label,
+                facets,
+                component,
+                ..
+            } => {
+                if *component >= D {
+                    errors.push(format!(
+                        "`{label}`: component {component} is not {}",
+                        COMPONENTS[D - 2]
+                    ));
+                }
+                let sizes = if D == 2 { 2..=2 } else { 3..=4 };
+                if let Some(f) = facets.iter().find(|f| {
+                    f.nodes().iter().any(|&n| n >= nn) || !sizes.contains(&f.nodes().len())
+                }) {
+                    errors.push(format!(
+                        "`{label}` refers to facet {:?}: outside the mesh or not an edge (planar) \
+                         or a 3- or 4-node face (solid)",
+                        f.nodes()
+                    ));
+                }
+            }
             Load::FacetPressure { label, facets, .. } => {
                 if let Some(f) = facets.iter().find(|f| {
                     f.nodes().iter().any(|&n| n >= nn) || !(3..=4).contains(&f.nodes().len())
@@ -237,7 +260,8 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         .chain(model.loads.iter().map(|l| match l {
             Load::NodalForce { label, value, .. }
             | Load::Pressure { label, value, .. }
-            | Load::FacetPressure { label, value, .. } => (label.as_str(), value),
+            | Load::FacetPressure { label, value, .. }
+            | Load::FacetTraction { label, value, .. } => (label.as_str(), value),
         }));
     for (label, f) in functions {
         times.truncate(2 * model.steps.len());

@@ -547,11 +547,14 @@ pub struct Boundary {
     pub span: Span,
 }
 
-/// `pressure` or `force`.
+/// `pressure`, `traction` or `force`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum LoadKind {
-    /// `pressure ref { p = f(t) }` on edges.
+    /// `pressure ref { p = f(t) }` on edges (planar) or faces (3d).
     Pressure,
+    /// `traction ref { tx = .. ty = .. tz = .. }`: a dead traction per unit
+    /// reference area on edges (planar) or faces (3d).
+    Traction,
     /// `force ref { fx = .. fy = .. }` per node.
     Force,
 }
@@ -565,7 +568,8 @@ pub struct LoadDef {
     pub keyword: Span,
     /// Edges (pressure) or nodes (force).
     pub target: SetRef,
-    /// Pressure: one entry with component `None`; force: one per component.
+    /// Pressure: one entry with component `None`; traction and force: one
+    /// per component.
     pub values: Vec<(Option<Component>, Spanned<TimeFn>)>,
     /// The whole item.
     pub span: Span,

@@ -10,6 +10,10 @@ pub type Point = Spanned<[f64; 2]>;
 /// A point or vector of space `(x, y, z)`.
 pub type Point3 = Spanned<[f64; 3]>;
 
+/// Coordinates as written in a selection: `(x, y)` or `(x, y, z)`; the
+/// analysis decides which is right (validation checks the count).
+pub type Coords = Spanned<Vec<f64>>;
+
 /// A pair of numbers `(a, b)`, each with its own span (for range errors).
 pub type Pair = Spanned<[Spanned<f64>; 2]>;
 
@@ -35,31 +39,54 @@ pub enum SetRefKind {
     Named(Ident),
     /// `body.nodes(..)`: nodes selected geometrically.
     Nodes(Spanned<Selection>),
-    /// `body.node(near(x, y))`: the single node closest to a point.
+    /// `body.node(near(x, y[, z]))`: the single node closest to a point.
     Node(Spanned<Selection>),
-    /// `body.edges(..)`: boundary edges with both nodes selected.
+    /// `body.edges(..)`: boundary edges with both nodes selected (planar).
     Edges(Spanned<Selection>),
+    /// `body.faces(..)`: boundary faces with every node selected (3d).
+    Faces(Spanned<Selection>),
     /// `a.top + a.side - a.corner`: a union and difference of references
     /// to the same body, left to right (`true`: added, `false`: removed).
     Combination(Vec<(bool, SetRef)>),
 }
 
-/// A geometric selection, as written.
+/// A geometric selection, as written (2 or 3 coordinates: validation
+/// checks them against the analysis).
 #[derive(Debug, Clone, PartialEq)]
 pub enum Selection {
     /// `x = value`.
     X(f64),
     /// `y = value`.
     Y(f64),
-    /// `box((x0, y0), (x1, y1))`.
+    /// `z = value` (3d).
+    Z(f64),
+    /// `box((x0, y0), (x1, y1))` or `box((x0, y0, z0), (x1, y1, z1))`.
     Box {
         /// First corner.
-        min: [f64; 2],
+        min: Coords,
         /// Opposite corner.
-        max: [f64; 2],
+        max: Coords,
     },
-    /// `near(x, y)`.
-    Near([f64; 2]),
+    /// `near(x, y)` or `near(x, y, z)`.
+    Near(Coords),
+}
+
+impl Selection {
+    /// The axis (0 = x, 1 = y, 2 = z) and value of `x = ..`, `y = ..`,
+    /// `z = ..`.
+    pub fn plane(&self) -> Option<(usize, f64)> {
+        match self {
+            Selection::X(v) => Some((0, *v)),
+            Selection::Y(v) => Some((1, *v)),
+            Selection::Z(v) => Some((2, *v)),
+            Selection::Box { .. } | Selection::Near(_) => None,
+        }
+    }
+}
+
+/// `a, b[, c]` with numbers printed as a user writes them.
+fn coords(c: &[f64]) -> String {
+    c.iter().map(|v| num(*v)).collect::<Vec<_>>().join(", ")
 }
 
 impl fmt::Display for Selection {
@@ -67,15 +94,11 @@ impl fmt::Display for Selection {
         match self {
             Selection::X(v) => write!(f, "x = {}", num(*v)),
             Selection::Y(v) => write!(f, "y = {}", num(*v)),
-            Selection::Box { min, max } => write!(
-                f,
-                "box(({}, {}), ({}, {}))",
-                num(min[0]),
-                num(min[1]),
-                num(max[0]),
-                num(max[1])
-            ),
-            Selection::Near(p) => write!(f, "near({}, {})", num(p[0]), num(p[1])),
+            Selection::Z(v) => write!(f, "z = {}", num(*v)),
+            Selection::Box { min, max } => {
+                write!(f, "box(({}), ({}))", coords(&min.value), coords(&max.value))
+            }
+            Selection::Near(p) => write!(f, "near({})", coords(&p.value)),
         }
     }
 }
@@ -101,6 +124,7 @@ impl fmt::Display for SetRef {
             SetRefKind::Nodes(s) => write!(f, "{}.nodes({})", self.body, s.value),
             SetRefKind::Node(s) => write!(f, "{}.node({})", self.body, s.value),
             SetRefKind::Edges(s) => write!(f, "{}.edges({})", self.body, s.value),
+            SetRefKind::Faces(s) => write!(f, "{}.faces({})", self.body, s.value),
         }
     }
 }
@@ -199,14 +223,25 @@ mod tests {
             body: Ident::new("block", s),
             kind: SetRefKind::Edges(Spanned::new(
                 Selection::Box {
-                    min: [-1.0, -0.01],
-                    max: [1.0, 0.01],
+                    min: Spanned::new(vec![-1.0, -0.01], s),
+                    max: Spanned::new(vec![1.0, 0.01], s),
                 },
                 s,
             )),
             span: s,
         };
         assert_eq!(r.to_string(), "block.edges(box((-1, -0.01), (1, 0.01)))");
+        let near = Selection::Near(Spanned::new(vec![1.0, 2.0, -0.5], s));
+        let r = SetRef {
+            kind: SetRefKind::Node(Spanned::new(near, s)),
+            ..r
+        };
+        assert_eq!(r.to_string(), "block.node(near(1, 2, -0.5))");
+        let faces = SetRef {
+            kind: SetRefKind::Faces(Spanned::new(Selection::Z(0.0), s)),
+            ..r
+        };
+        assert_eq!(faces.to_string(), "block.faces(z = 0)");
         let t = TimeFn::Ramp {
             v0: 0.0,
             v1: -0.05,

@@ -1,8 +1,9 @@
-//! `pressure` and `force` -> `model::Load`.
+//! `pressure`, `traction` and `force` -> `model::Load`.
 
 use super::Lowerer;
 use crate::ast;
 use crate::validate::Need;
+use ctc_engine::mesh::Facet;
 use ctc_engine::model::Load;
 
 impl Lowerer<'_> {
@@ -32,6 +33,25 @@ impl Lowerer<'_> {
                         out.push(Load::Pressure {
                             label: label.clone(),
                             edges: r.edges.clone().unwrap_or_default(),
+                            value: self.tf(f),
+                        });
+                    }
+                }
+                ast::LoadKind::Traction => {
+                    let Some(r) = self.resolve(&l.target, Need::Edges, "traction") else {
+                        continue;
+                    };
+                    let label = format!("traction {}", l.target);
+                    let facets: Vec<Facet> = match (&r.faces, &r.edges) {
+                        (Some(f), _) => f.clone(),
+                        (None, Some(e)) => e.iter().map(|&[a, b]| Facet::new(&[a, b])).collect(),
+                        (None, None) => Vec::new(),
+                    };
+                    for (c, f) in &l.values {
+                        out.push(Load::FacetTraction {
+                            label: label.clone(),
+                            facets: facets.clone(),
+                            component: c.map_or(0, |c| c.index()),
                             value: self.tf(f),
                         });
                     }

@@ -5,9 +5,11 @@
 use super::mesh::edge_nodes;
 use crate::ast::{self, num, Selection, SetRef, SetRefKind};
 use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
 use crate::suggest::did_you_mean;
 use crate::validate::Need;
 use ctc_engine::mesh::select::{self, Selection as EngineSelection};
+use ctc_engine::mesh::Facet;
 use ctc_engine::mesh::Mesh;
 use std::collections::BTreeMap;
 use std::ops::Range;
@@ -23,37 +25,212 @@ pub struct Resolved {
     pub faces: Option<Vec<ctc_engine::mesh::Facet>>,
 }
 
-/// The engine selection for a selection written in the deck (box corners
-/// may be given in any order).
-pub fn engine_selection(s: &Selection) -> EngineSelection {
-    match s {
+/// The engine selection in dimension `D` for a selection written in the
+/// deck (box corners may be given in any order), or the diagnostic of a
+/// coordinate count that does not fit the analysis (validation reports it
+/// first: [`crate::validate::sets::selection_fits_dimension`]).
+pub fn engine_selection<const D: usize>(
+    s: &Spanned<Selection>,
+) -> Result<EngineSelection<D>, Diagnostic> {
+    if let Some(d) = crate::validate::sets::dimension_mismatch(s, D == 3) {
+        return Err(d);
+    }
+    let point = |c: &[f64]| -> [f64; D] { std::array::from_fn(|k| c[k]) };
+    Ok(match &s.value {
         Selection::X(x) => EngineSelection::XEquals(*x),
         Selection::Y(y) => EngineSelection::YEquals(*y),
-        Selection::Box { min, max } => EngineSelection::Box {
-            min: [min[0].min(max[0]), min[1].min(max[1])],
-            max: [min[0].max(max[0]), min[1].max(max[1])],
-        },
-        Selection::Near(p) => EngineSelection::Nearest(*p),
+        Selection::Z(z) => EngineSelection::ZEquals(*z),
+        Selection::Box { min, max } => {
+            let (a, b) = (point(&min.value), point(&max.value));
+            EngineSelection::Box {
+                min: std::array::from_fn(|k| a[k].min(b[k])),
+                max: std::array::from_fn(|k| a[k].max(b[k])),
+            }
+        }
+        Selection::Near(p) => EngineSelection::Nearest(point(&p.value)),
+    })
+}
+
+const AXES: [&str; 3] = ["x", "y", "z"];
+
+/// "`b` spans x in [..] and y in [..]" (and z in 3d), to help with empty
+/// selections.
+fn extent<const D: usize>(mesh: &Mesh<D>, body: &str, nodes: &Range<usize>) -> String {
+    let Some((lo, hi)) = select::bounds(mesh, nodes.clone()) else {
+        return format!("`{body}` has no node with finite coordinates");
+    };
+    let parts: Vec<String> = (0..D)
+        .map(|k| format!("{} in [{}, {}]", AXES[k], num(lo[k]), num(hi[k])))
+        .collect();
+    let (last, first) = parts.split_last().expect("D >= 2");
+    format!("`{body}` spans {} and {last}", first.join(", "))
+}
+
+/// "boundary edge" or "boundary face".
+fn facet_word<const D: usize>() -> &'static str {
+    if D == 2 {
+        "boundary edge"
+    } else {
+        "boundary face"
     }
 }
 
-/// "`b` spans x in [..] and y in [..]", to help with empty selections.
-fn extent(mesh: &Mesh, body: &str, nodes: &Range<usize>) -> String {
-    let mut lo = [f64::INFINITY; 2];
-    let mut hi = [f64::NEG_INFINITY; 2];
-    for p in &mesh.nodes[nodes.clone()] {
-        for k in 0..2 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
+/// The diagnostic of a selection that selects nothing, naming the cause:
+/// the coordinate range of the body for a plane, its extent for a box, and
+/// for facets whether nodes matched but no facet has all its nodes
+/// selected.
+fn empty_selection<const D: usize>(
+    mesh: &Mesh<D>,
+    range: &Range<usize>,
+    boundary: &[Facet],
+    r: &SetRef,
+    s: &Spanned<Selection>,
+    sel: &EngineSelection<D>,
+    facets: bool,
+) -> Diagnostic {
+    let body = &r.body.name;
+    let what = if facets { facet_word::<D>() } else { "node" };
+    let candidates: Vec<usize> = range.clone().collect();
+    let tol = select::tolerance(mesh, candidates.iter().copied());
+    let d = |label: String| Diagnostic::error(format!("selection `{r}` is empty"), s.span, label);
+    // what the nodes of the body say about it
+    let nodes = select::select_nodes(mesh, &candidates, sel);
+    let on_boundary: Vec<usize> = {
+        let b = super::mesh::facet_nodes(boundary);
+        nodes
+            .iter()
+            .copied()
+            .filter(|n| b.binary_search(n).is_ok())
+            .collect()
+    };
+    let condition = match sel.plane() {
+        Some((axis, v)) => format!("{} = {}", AXES[axis], num(v)),
+        None => "in this box".to_string(),
+    };
+    let with = if sel.plane().is_some() {
+        if facets {
+            format!("with all its nodes at {condition}")
+        } else {
+            format!("has {condition}")
         }
+    } else if facets {
+        "with all its nodes in this box".to_string()
+    } else {
+        "lies in this box".to_string()
+    };
+    if facets && !nodes.is_empty() {
+        let call = if D == 2 { "edges(..)" } else { "faces(..)" };
+        let help = match (on_boundary.len(), nodes.len()) {
+            (0, 1) => format!(
+                "1 node of `{body}` matches, but it is inside the body: `{call}` takes the \
+                 {what}s whose nodes are all selected"
+            ),
+            (0, n) => format!(
+                "{n} nodes of `{body}` match, but they are all inside the body: `{call}` takes \
+                 the {what}s whose nodes are all selected"
+            ),
+            (1, _) => format!(
+                "1 node on the boundary of `{body}` matches, but no {what} has all its nodes \
+                 selected"
+            ),
+            (n, _) => format!(
+                "{n} nodes on the boundary of `{body}` match, but no {what} has all its nodes \
+                 among them"
+            ),
+        };
+        return d(format!("no {what} of `{body}` {with}")).with_help(help);
     }
-    format!(
-        "`{body}` spans x in [{}, {}] and y in [{}, {}]",
-        num(lo[0]),
-        num(hi[0]),
-        num(lo[1]),
-        num(hi[1])
-    )
+    match sel.plane() {
+        Some((axis, _)) => {
+            let range_text = match select::bounds(mesh, range.clone()) {
+                Some((lo, hi)) => format!(
+                    "its {} range is {} .. {}",
+                    AXES[axis],
+                    num(lo[axis]),
+                    num(hi[axis])
+                ),
+                None => "it has no node with finite coordinates".to_string(),
+            };
+            d(format!("no {what} of `{body}` {with}; {range_text}")).with_help(format!(
+                "coordinates match within {tol:.1e} (1e-6 x the diagonal of `{body}`)"
+            ))
+        }
+        None => d(format!("no {what} of `{body}` {with}")).with_help(extent(mesh, body, range)),
+    }
+}
+
+/// Resolves a geometric selection `body.nodes(..)`, `body.node(..)`,
+/// `body.edges(..)` (planar) or `body.faces(..)` (3d) in dimension `D`:
+/// nodes of the body's node `range`, or facets of its `boundary` with every
+/// node selected.
+fn geometric<const D: usize>(
+    mesh: &Mesh<D>,
+    range: &Range<usize>,
+    r: &SetRef,
+    need: Need,
+    user: &str,
+) -> Result<Resolved, Diagnostic> {
+    let body = &r.body.name;
+    let (s, facets) = match &r.kind {
+        SetRefKind::Nodes(s) | SetRefKind::Node(s) => (s, false),
+        SetRefKind::Edges(s) | SetRefKind::Faces(s) => (s, true),
+        SetRefKind::Named(_) | SetRefKind::Combination(_) => {
+            unreachable!("geometric selections only")
+        }
+    };
+    let sel = engine_selection::<D>(s)?;
+    if let Some(d) = crate::validate::sets::facet_kind_mismatch(r, D == 3) {
+        return Err(d);
+    }
+    if need == Need::Edges && !facets {
+        let (word, call) = if D == 2 {
+            ("edges", "edges")
+        } else {
+            ("faces", "faces")
+        };
+        return Err(Diagnostic::error(
+            format!("`{user}` needs boundary {word}, but `{r}` is a set of nodes"),
+            r.span,
+            "nodes only",
+        )
+        .with_help(format!(
+            "select boundary {word} with `{body}.{call}({})`",
+            s.value
+        )));
+    }
+    let boundary = mesh
+        .facet_set(&format!("{body}.boundary"))
+        .unwrap_or_default();
+    if !facets {
+        let candidates: Vec<usize> = range.clone().collect();
+        let nodes = select::select_nodes(mesh, &candidates, &sel);
+        if nodes.is_empty() {
+            return Err(empty_selection(mesh, range, &boundary, r, s, &sel, false));
+        }
+        return Ok(Resolved {
+            nodes,
+            edges: None,
+            faces: None,
+        });
+    }
+    let chosen = select::select_facets(mesh, &boundary, &sel);
+    if chosen.is_empty() {
+        return Err(empty_selection(mesh, range, &boundary, r, s, &sel, true));
+    }
+    let nodes = super::mesh::facet_nodes(&chosen);
+    Ok(if D == 2 {
+        Resolved {
+            nodes,
+            edges: Some(chosen.iter().map(Facet::edge).collect()),
+            faces: None,
+        }
+    } else {
+        Resolved {
+            nodes,
+            edges: None,
+            faces: Some(chosen),
+        }
+    })
 }
 
 /// Resolves `r` in `mesh`; `bodies` maps body names to their node ranges.
@@ -139,50 +316,10 @@ pub fn resolve(
                 }
             }
         }
-        SetRefKind::Nodes(s) | SetRefKind::Node(s) => {
-            if need == Need::Edges {
-                return Err(nodes_only("nodes only".to_string()));
-            }
-            let candidates: Vec<usize> = range.clone().collect();
-            let nodes = select::select_nodes(mesh, &candidates, &engine_selection(&s.value));
-            if nodes.is_empty() {
-                return Err(Diagnostic::error(
-                    format!("selection `{r}` is empty"),
-                    s.span,
-                    format!("no node of `{body}` matches"),
-                )
-                .with_help(extent(mesh, body, range)));
-            }
-            Resolved {
-                nodes,
-                edges: None,
-                faces: None,
-            }
-        }
-        SetRefKind::Edges(s) => {
-            let boundary = mesh
-                .edge_sets
-                .get(&format!("{body}.boundary"))
-                .cloned()
-                .unwrap_or_default();
-            let edges = select::select_edges(mesh, &boundary, &engine_selection(&s.value));
-            if edges.is_empty() {
-                return Err(Diagnostic::error(
-                    format!("selection `{r}` is empty"),
-                    s.span,
-                    format!("no boundary edge of `{body}` matches"),
-                )
-                .with_help(format!(
-                    "edges are boundary edges with both nodes selected; {}",
-                    extent(mesh, body, range)
-                )));
-            }
-            Resolved {
-                nodes: edge_nodes(&edges),
-                edges: Some(edges),
-                faces: None,
-            }
-        }
+        SetRefKind::Nodes(_)
+        | SetRefKind::Node(_)
+        | SetRefKind::Edges(_)
+        | SetRefKind::Faces(_) => geometric(mesh, range, r, need, user)?,
     };
     Ok(resolved)
 }
@@ -229,8 +366,8 @@ impl super::Lowerer<'_> {
 }
 
 /// Resolves `r` in the solid mesh of a `3d` analysis: named sets (node
-/// sets, face sets), unions / differences of them, and the node selections
-/// `nodes(x = ..)`, `nodes(y = ..)`; other selections are planar-only.
+/// sets, face sets), unions / differences of them, and the geometric
+/// selections `nodes(..)`, `node(near(x, y, z))`, `faces(..)`.
 pub fn resolve_solid(
     mesh: &Mesh<3>,
     bodies: &BTreeMap<String, Range<usize>>,
@@ -238,7 +375,6 @@ pub fn resolve_solid(
     need: Need,
     user: &str,
 ) -> Result<Resolved, Diagnostic> {
-    use ctc_engine::mesh::Facet;
     let body = &r.body.name;
     let Some(range) = bodies.get(body) else {
         let names: Vec<&str> = bodies.keys().map(String::as_str).collect();
@@ -333,38 +469,10 @@ pub fn resolve_solid(
                     faces,
                 }
             }
-            SetRefKind::Nodes(s) | SetRefKind::Node(s) => {
-                let (axis, value) = match &s.value {
-                    Selection::X(x) => (0, *x),
-                    Selection::Y(y) => (1, *y),
-                    _ => {
-                        return Err(Diagnostic::error(
-                            format!("selection `{r}` is planar-only"),
-                            s.span,
-                            "not available in 3d analyses",
-                        )
-                        .with_help("use `nodes(x = ..)`, `nodes(y = ..)` or a named set"))
-                    }
-                };
-                let tol = 1e-9 * solid_size(mesh, range).max(f64::MIN_POSITIVE);
-                let nodes: Vec<usize> = range
-                    .clone()
-                    .filter(|&n| (mesh.nodes[n][axis] - value).abs() <= tol)
-                    .collect();
-                Resolved {
-                    nodes,
-                    edges: None,
-                    faces: None,
-                }
-            }
-            SetRefKind::Edges(s) => {
-                return Err(Diagnostic::error(
-                    format!("selection `{r}` is planar-only"),
-                    s.span,
-                    "no edges in 3d analyses",
-                )
-                .with_help(format!("use a named face set, e.g. `{body}.boundary`")));
-            }
+            SetRefKind::Nodes(_)
+            | SetRefKind::Node(_)
+            | SetRefKind::Edges(_)
+            | SetRefKind::Faces(_) => geometric(mesh, range, r, need, user)?,
         };
     if need == Need::Edges && resolved.faces.is_none() {
         return Err(needs_faces("nodes only"));
@@ -377,19 +485,6 @@ pub fn resolve_solid(
         ));
     }
     Ok(resolved)
-}
-
-/// Bounding-box diagonal of a body's nodes.
-fn solid_size(mesh: &Mesh<3>, nodes: &Range<usize>) -> f64 {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in &mesh.nodes[nodes.clone()] {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt()
 }
 
 /// Resolves `a + b - c`: nodes of the added terms minus those of the
@@ -462,6 +557,7 @@ mod tests {
     use super::*;
     use crate::parse::test_support::value_of;
     use crate::parse::values::set_ref;
+    use crate::span::Span;
     use ctc_engine::mesh::generate::{generate, Grading, MeshSpec};
     use ctc_engine::mesh::CellKind;
 
@@ -524,9 +620,128 @@ mod tests {
     fn set_resolution_empty_selection_is_an_error_at_the_selection() {
         let e = res("b.nodes(y = -4)", Need::Nodes).unwrap_err();
         assert_eq!(e.message, "selection `b.nodes(y = -4)` is empty");
+        assert_eq!(e.label, "no node of `b` has y = -4; its y range is 0 .. 2");
+        let e = res("b.nodes(box((5, 0), (6, 1)))", Need::Nodes).unwrap_err();
+        assert_eq!(e.label, "no node of `b` lies in this box");
         assert_eq!(
             e.help.as_deref(),
             Some("`b` spans x in [0, 4] and y in [0, 2]")
+        );
+        // nodes at x = 2 exist, but only 2 of them on the boundary, not an edge
+        let e = res("b.edges(x = 2)", Need::Edges).unwrap_err();
+        assert_eq!(
+            e.label,
+            "no boundary edge of `b` with all its nodes at x = 2"
+        );
+        assert_eq!(
+            e.help.as_deref(),
+            Some("2 nodes on the boundary of `b` match, but no boundary edge has all its nodes among them")
+        );
+    }
+
+    /// A hex8 brick [0, 2] x [0, 1] x [0, 1] (4 x 2 x 2 cells) placed as
+    /// body `block` after a first body `other` (so node numbers are shifted).
+    fn brick() -> (Mesh<3>, BTreeMap<String, Range<usize>>) {
+        use ctc_engine::mesh::generate::solid::brick;
+        let make = |o: f64| {
+            brick(
+                [o, 0.0, 0.0],
+                [2.0, 1.0, 1.0],
+                [4, 2, 2],
+                [Grading::Uniform; 3],
+                CellKind::Hex8,
+            )
+            .expect("brick")
+        };
+        let mut g = Mesh::<3>::default();
+        let mut bodies = BTreeMap::new();
+        for (name, o) in [("other", 10.0), ("block", 0.0)] {
+            let (placed, _) =
+                super::super::mesh::append_solid(&mut g, name, make(o), Span::default());
+            bodies.insert(name.to_string(), placed.nodes);
+        }
+        (g, bodies)
+    }
+
+    fn res3(text: &str, need: Need) -> Result<Resolved, Diagnostic> {
+        let (g, bodies) = brick();
+        let mut d = crate::parse::values::Diags::new();
+        let r = set_ref(&value_of(text), &mut d).expect("a set reference");
+        resolve_solid(&g, &bodies, &r, need, "test")
+    }
+
+    #[test]
+    fn set_resolution_3d_geometric_selections() {
+        let (g, bodies) = brick();
+        let range = bodies["block"].clone();
+        let top = res3("block.nodes(z = 1)", Need::Nodes).unwrap();
+        assert_eq!(top.nodes, g.node_sets["block.zmax"]);
+        assert!(top.nodes.iter().all(|n| range.contains(n)));
+        // relative tolerance: 1e-6 x sqrt(6) ~ 2.45e-6
+        let near_top = res3("block.nodes(z = 1.000002)", Need::Nodes).unwrap();
+        assert_eq!(near_top.nodes, top.nodes);
+        assert!(res3("block.nodes(z = 1.000003)", Need::Nodes).is_err());
+        let faces = res3("block.faces(z = 1)", Need::Edges).unwrap();
+        let mut want = g.face_sets["block.zmax"].clone();
+        let mut got = faces.faces.clone().unwrap();
+        want.sort();
+        got.sort();
+        assert_eq!(got, want);
+        assert_eq!(faces.nodes, top.nodes);
+        let boxed = res3("block.faces(box((0, 0, 1), (1, 1, 1)))", Need::Edges).unwrap();
+        assert_eq!(boxed.faces.unwrap().len(), 4);
+        let b = res3("block.nodes(box((2, 1, 1), (1.5, 0, 0.5)))", Need::Nodes).unwrap();
+        assert_eq!(b.nodes.len(), 2 * 3 * 2);
+        let n = res3("block.node(near(1.9, 0.1, 0.6))", Need::Nodes).unwrap();
+        assert_eq!(n.nodes.len(), 1);
+        assert_eq!(g.nodes[n.nodes[0]], [2.0, 0.0, 0.5]);
+        // combinations of selections keep faces
+        let c = res3("block.faces(z = 1) + block.faces(x = 0)", Need::Edges).unwrap();
+        assert_eq!(c.faces.unwrap().len(), 8 + 4);
+    }
+
+    #[test]
+    fn set_resolution_3d_empty_selections_name_the_cause() {
+        let e = res3("block.nodes(z = 2.5)", Need::Nodes).unwrap_err();
+        assert_eq!(e.message, "selection `block.nodes(z = 2.5)` is empty");
+        assert_eq!(
+            e.label,
+            "no node of `block` has z = 2.5; its z range is 0 .. 1"
+        );
+        let e = res3("block.faces(z = 0.5)", Need::Edges).unwrap_err();
+        assert_eq!(
+            e.label,
+            "no boundary face of `block` with all its nodes at z = 0.5"
+        );
+        assert_eq!(
+            e.help.as_deref(),
+            Some("12 nodes on the boundary of `block` match, but no boundary face has all its nodes among them")
+        );
+        let e = res3(
+            "block.faces(box((0.4, 0.4, 0.4), (0.6, 0.6, 0.6)))",
+            Need::Edges,
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.help.as_deref(),
+            Some("1 node of `block` matches, but it is inside the body: `faces(..)` takes the boundary faces whose nodes are all selected")
+        );
+        let e = res3("block.nodes(box((3, 0, 0), (4, 1, 1)))", Need::Nodes).unwrap_err();
+        assert_eq!(
+            e.help.as_deref(),
+            Some("`block` spans x in [0, 2], y in [0, 1] and z in [0, 1]")
+        );
+        let e = res3("block.nodes(box((0, 0), (1, 1)))", Need::Nodes).unwrap_err();
+        assert_eq!(
+            e.message,
+            "a box corner has 2 coordinates, but the analysis is 3d"
+        );
+        let e = res3("block.edges(z = 0)", Need::Edges).unwrap_err();
+        assert_eq!(e.message, "`edges(..)` in a 3d analysis");
+        let e = res3("block.nodes(z = 1)", Need::Edges).unwrap_err();
+        assert_eq!(
+            e.message,
+            "`test` needs boundary faces, but `block.nodes(z = 1)` is a set of nodes"
         );
     }
 }

@@ -1,4 +1,5 @@
-//! `pressure body.edges { p = .. }` and `force body.nodes { fx = .. fy = .. }`.
+//! `pressure body.edges { p = .. }`, `traction body.faces { tx = .. ty = ..
+//! tz = .. }` and `force body.nodes { fx = .. fy = .. }`.
 
 use super::values::{self, Diags};
 use super::ItemParts;
@@ -7,12 +8,20 @@ use crate::ast::{Component, LoadDef, LoadKind};
 use crate::diagnostics::Diagnostic;
 use crate::suggest::{did_you_mean, one_of};
 
-/// Converts a `pressure` or `force` item.
+/// Converts a `pressure`, `traction` or `force` item.
 pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadDef> {
     let target = values::set_ref(item.target.as_ref()?, diags)?;
     let block = item.block?;
     let (word, keys): (&str, &[(&str, Option<Component>)]) = match kind {
         LoadKind::Pressure => ("pressure", &[("p", None)]),
+        LoadKind::Traction => (
+            "traction",
+            &[
+                ("tx", Some(Component::X)),
+                ("ty", Some(Component::Y)),
+                ("tz", Some(Component::Z)),
+            ],
+        ),
         LoadKind::Force => (
             "force",
             &[
@@ -65,6 +74,7 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
     if block.entries.is_empty() {
         let example = match kind {
             LoadKind::Pressure => "p = ramp(0, 10)",
+            LoadKind::Traction => "tx = ramp(0, 5)",
             LoadKind::Force => "fy = -1",
         };
         diags.push(
@@ -100,6 +110,24 @@ mod tests {
         assert_eq!(f.values[0].0, Some(Component::Y));
         assert_eq!(f.values[0].1.value, TimeFn::Number(-1.0));
         assert_eq!(f.values[1].0, Some(Component::X));
+    }
+
+    #[test]
+    fn traction_components() {
+        let deck = parse_ok("traction block.faces(z = 1) { tx = ramp(0, 5)  tz = -1 }");
+        let t = &deck.loads[0];
+        assert_eq!(t.kind, LoadKind::Traction);
+        assert_eq!(t.values[0].0, Some(Component::X));
+        assert_eq!(t.values[1].0, Some(Component::Z));
+        assert_eq!(t.values[1].1.value, TimeFn::Number(-1.0));
+        assert_eq!(
+            parse_messages("traction a.b { px = 1 }"),
+            ["unknown key `px` in `traction`"]
+        );
+        assert_eq!(
+            parse_messages("traction a.b { }"),
+            ["`traction` gives no value"]
+        );
     }
 
     #[test]

@@ -50,9 +50,9 @@ pub mod grammar {
 pub use grammar::{CtcParser, Rule};
 
 /// Item keywords, in the order they are listed in messages.
-pub const ITEM_KEYWORDS: [&str; 12] = [
+pub const ITEM_KEYWORDS: [&str; 13] = [
     "analysis", "material", "body", "set", "tool", "contact", "fix", "displace", "pressure",
-    "force", "step", "output",
+    "traction", "force", "step", "output",
 ];
 
 /// Keywords that start a chunk of error recovery besides the items.
@@ -212,6 +212,11 @@ fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
         Rule::force => load::parse(parts, LoadKind::Force, diags).map(|x| deck.loads.push(x)),
         Rule::step => step::parse(parts, diags).map(|x| deck.steps.push(x)),
         Rule::output => output::parse(parts, diags).map(|x| deck.outputs.push(x)),
+        // `traction` is not a grammar keyword (an older deck may use the
+        // word as a name): the generic item rule carries it
+        _ if parts.keyword_text == "traction" => {
+            load::parse(parts, LoadKind::Traction, diags).map(|x| deck.loads.push(x))
+        }
         _ if thermal::ITEMS.contains(&parts.keyword_text.as_str()) => {
             thermal::item(parts, diags).map(|x| deck.thermal_loads.push(x))
         }
@@ -278,7 +283,7 @@ fn unknown_item(parts: ItemParts, deck: &mut Deck, diags: &mut Diags) {
         )
         .with_help(did_you_mean(&word, ITEM_KEYWORDS).unwrap_or_else(|| {
             "items are `analysis`, `material`, `body`, `set`, `tool`, `contact`, `fix`, \
-                 `displace`, `pressure`, `force`, `step` and `output`"
+                 `displace`, `pressure`, `traction`, `force`, `step` and `output`"
                 .to_string()
         })),
     );

@@ -5,7 +5,7 @@
 //! has the wrong shape, so that callers simply skip the field.
 
 use crate::ast::syntax::{path_text, Arg, ArgKind, BinOp, Value, ValueKind};
-use crate::ast::{Grading, Point, Point3, Selection, SetRef, SetRefKind, TimeFn};
+use crate::ast::{Coords, Grading, Point, Point3, Selection, SetRef, SetRefKind, TimeFn};
 use crate::diagnostics::Diagnostic;
 use crate::expr::Env;
 use crate::keys::Dim;
@@ -480,13 +480,13 @@ pub fn grading(v: &Value, diags: &mut Diags) -> Option<Spanned<Grading>> {
     }
 }
 
-const SELECTORS: [&str; 3] = ["nodes", "node", "edges"];
-const SETREF_HELP: &str = "a set reference is `body.set`, `body.nodes(x = ..)`, \
-`body.nodes(y = ..)`, `body.nodes(box((x0, y0), (x1, y1)))`, `body.node(near(x, y))` \
-or `body.edges(..)`";
+const SELECTORS: [&str; 4] = ["nodes", "node", "edges", "faces"];
+const SETREF_HELP: &str = "a set reference is `body.set`, `body.nodes(x = ..)` (or `y`, \
+`z`), `body.nodes(box((x0, y0), (x1, y1)))`, `body.node(near(x, y))` (3d: `(x, y, z)`), \
+`body.edges(..)` (planar) or `body.faces(..)` (3d)";
 
 /// A set reference: `body.set`, `body.nodes(..)`, `body.node(near(..))`,
-/// `body.edges(..)`, or a union / difference of references to one body
+/// `body.edges(..)`, `body.faces(..)`, or a union / difference of references to one body
 /// (`a.top + a.side - a.corner_tl`).
 pub fn set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
     if let ValueKind::Binary { op, .. } = &v.kind {
@@ -585,7 +585,7 @@ fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
                     Diagnostic::error(
                         format!("unknown selection `{}`", sel_name.name),
                         sel_name.span,
-                        "expected `nodes`, `node` or `edges`",
+                        "expected `nodes`, `node`, `edges` or `faces`",
                     )
                     .with_help(
                         did_you_mean(&sel_name.name, SELECTORS).unwrap_or(SETREF_HELP.into()),
@@ -606,7 +606,7 @@ fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
                             Diagnostic::error(
                                 "`node(..)` selects a single node",
                                 sel.span,
-                                "expected `near(x, y)`",
+                                "expected `near(x, y)` or `near(x, y, z)`",
                             )
                             .with_help(format!(
                                 "to select several nodes write `{}.nodes({})`",
@@ -629,6 +629,7 @@ fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
                     return None;
                 }
                 "nodes" => SetRefKind::Nodes(sel),
+                "faces" => SetRefKind::Faces(sel),
                 _ => SetRefKind::Edges(sel),
             };
             Some(SetRef {
@@ -648,16 +649,45 @@ fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
     }
 }
 
-/// The argument of `nodes(..)`, `node(..)`, `edges(..)`.
+/// Coordinates `(x, y)` or `(x, y, z)` of a selection (which count is right
+/// depends on the analysis: validation checks it).
+fn coords(v: &Value, diags: &mut Diags) -> Option<Coords> {
+    let expected = "a point `(x, y)` or `(x, y, z)`";
+    match &v.kind {
+        ValueKind::Tuple(items) if items.len() == 2 || items.len() == 3 => {
+            let n = diags.len();
+            let xs: Vec<f64> = items
+                .iter()
+                .filter_map(|x| number(x, diags).map(|x| x.value))
+                .collect();
+            (diags.len() == n).then(|| Spanned::new(xs, v.span))
+        }
+        ValueKind::Tuple(items) => {
+            diags.push(Diagnostic::error(
+                format!("expected {expected}, found a tuple of {}", items.len()),
+                v.span,
+                format!("expected {expected}"),
+            ));
+            None
+        }
+        _ => {
+            wrong(v, expected, diags);
+            None
+        }
+    }
+}
+
+/// The argument of `nodes(..)`, `node(..)`, `edges(..)`, `faces(..)`.
 fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
-    let help = "expected `x = ..`, `y = ..`, `box((x0, y0), (x1, y1))` or `near(x, y)`";
+    let help = "expected `x = ..`, `y = ..`, `z = ..`, `box((x0, y0[, z0]), (x1, y1[, z1]))` \
+                or `near(x, y[, z])`";
     match &a.kind {
-        ArgKind::Named(n, v) if n.name == "x" || n.name == "y" => {
+        ArgKind::Named(n, v) if matches!(n.name.as_str(), "x" | "y" | "z") => {
             let x = number(v, diags)?;
-            let s = if n.name == "x" {
-                Selection::X(x.value)
-            } else {
-                Selection::Y(x.value)
+            let s = match n.name.as_str() {
+                "x" => Selection::X(x.value),
+                "y" => Selection::Y(x.value),
+                _ => Selection::Z(x.value),
             };
             Some(Spanned::new(s, a.span))
         }
@@ -666,9 +696,9 @@ fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
                 Diagnostic::error(
                     format!("unknown coordinate `{}`", n.name),
                     n.span,
-                    "expected `x` or `y`",
+                    "expected `x`, `y` or `z`",
                 )
-                .with_help_opt(did_you_mean(&n.name, ["x", "y"])),
+                .with_help_opt(did_you_mean(&n.name, ["x", "y", "z"])),
             );
             None
         }
@@ -688,30 +718,50 @@ fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
                         arity(name, v.span, args.len(), "2 corners", diags);
                         return None;
                     }
-                    let a0 = point(args[0], diags)?;
-                    let a1 = point(args[1], diags)?;
-                    Some(Spanned::new(
-                        Selection::Box {
-                            min: a0.value,
-                            max: a1.value,
-                        },
-                        v.span,
-                    ))
+                    let a0 = coords(args[0], diags);
+                    let a1 = coords(args[1], diags);
+                    let (a0, a1) = (a0?, a1?);
+                    if a0.value.len() != a1.value.len() {
+                        diags.push(
+                            Diagnostic::error(
+                                format!(
+                                    "the corners of a box have {} and {} coordinates",
+                                    a0.value.len(),
+                                    a1.value.len()
+                                ),
+                                a1.span,
+                                format!("{} coordinates", a1.value.len()),
+                            )
+                            .with_secondary(a0.span, format!("{} coordinates", a0.value.len()))
+                            .with_help(
+                                "give both corners as `(x, y)` (planar) or `(x, y, z)` (3d)",
+                            ),
+                        );
+                        return None;
+                    }
+                    Some(Spanned::new(Selection::Box { min: a0, max: a1 }, v.span))
                 }
                 "near" => {
-                    if args.len() != 2 {
+                    if args.len() != 2 && args.len() != 3 {
                         arity(
                             name,
                             v.span,
                             args.len(),
-                            "2 coordinates `near(x, y)`",
+                            "2 or 3 coordinates `near(x, y[, z])`",
                             diags,
                         );
                         return None;
                     }
-                    let x = number(args[0], diags)?;
-                    let y = number(args[1], diags)?;
-                    Some(Spanned::new(Selection::Near([x.value, y.value]), v.span))
+                    let n = diags.len();
+                    let xs: Vec<f64> = args
+                        .iter()
+                        .filter_map(|x| number(x, diags).map(|x| x.value))
+                        .collect();
+                    if diags.len() != n {
+                        return None;
+                    }
+                    let p = Spanned::new(xs, v.span);
+                    Some(Spanned::new(Selection::Near(p), v.span))
                 }
                 other => {
                     diags.push(
@@ -867,6 +917,45 @@ mod tests {
         assert!(set_ref(&value_of("block.nodez(x = 0)"), &mut d).is_none());
         assert_eq!(d[1].help.as_deref(), Some("did you mean `nodes`?"));
         assert!(set_ref(&value_of("top"), &mut d).is_none());
+    }
+
+    #[test]
+    fn set_references_3d_selections() {
+        let mut d = Diags::new();
+        for text in [
+            "block.nodes(z = 2.5)",
+            "block.nodes(box((0, 0, 0), (1, 1, 1)))",
+            "block.node(near(1, 2, 3))",
+            "block.faces(z = 0)",
+            "block.faces(box((0, 0, 1), (2, 1, 1)))",
+        ] {
+            let r = set_ref(&value_of(text), &mut d).unwrap();
+            assert_eq!(r.to_string(), text);
+        }
+        let r = set_ref(&value_of("block.faces(z = 0)"), &mut d).unwrap();
+        assert!(matches!(&r.kind, SetRefKind::Faces(s) if s.value == Selection::Z(0.0)));
+        assert!(d.is_empty());
+        assert!(set_ref(&value_of("block.nodes(box((0, 0), (1, 1, 1)))"), &mut d).is_none());
+        assert_eq!(
+            d[0].message,
+            "the corners of a box have 2 and 3 coordinates"
+        );
+        assert!(set_ref(&value_of("block.node(near(1, 2, 3, 4))"), &mut d).is_none());
+        assert_eq!(
+            d[1].message,
+            "`near` takes 2 or 3 coordinates `near(x, y[, z])`, found 4"
+        );
+        assert!(set_ref(
+            &value_of("block.nodes(box((0, 0, 0, 0), (1, 1, 1, 1)))"),
+            &mut d
+        )
+        .is_none());
+        assert_eq!(
+            d[2].message,
+            "expected a point `(x, y)` or `(x, y, z)`, found a tuple of 4"
+        );
+        assert!(set_ref(&value_of("block.nodes(w = 0)"), &mut d).is_none());
+        assert_eq!(d[4].message, "unknown coordinate `w`");
     }
 
     fn r_span(r: &SetRef) -> Span {

@@ -1,8 +1,9 @@
 //! Rules of `set` items and of set references anywhere in the deck.
 
 use super::{Ctx, Need, SetKind};
-use crate::ast::{SetRef, SetRefKind};
+use crate::ast::{Selection, SetRef, SetRefKind};
 use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
 use crate::suggest::did_you_mean;
 
 /// Checks every `set` item (in deck order: a set is known to the items
@@ -37,6 +38,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         let kind = match &s.target.kind {
             SetRefKind::Edges(_) => SetKind::Edges,
+            SetRefKind::Faces(_) => SetKind::Faces,
             // Unknown kind (set of a mesh file): be permissive here, the
             // lowering checks it against the mesh.
             SetRefKind::Named(_) => ok.unwrap_or(SetKind::Edges),
@@ -54,6 +56,16 @@ pub fn check(ctx: &mut Ctx<'_>) {
 pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<SetKind> {
     if let SetRefKind::Combination(terms) = &r.kind {
         return combination(r, terms, need, user, ctx);
+    }
+    let solid = super::analysis::is_solid(ctx);
+    if let SetRefKind::Nodes(s)
+    | SetRefKind::Node(s)
+    | SetRefKind::Edges(s)
+    | SetRefKind::Faces(s) = &r.kind
+    {
+        if ctx.bodies.contains_key(&r.body.name) && !selection_fits_dimension(r, s, solid, ctx) {
+            return None;
+        }
     }
     let deck = ctx.deck;
     let body = &r.body.name;
@@ -74,6 +86,7 @@ pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<
     let kind = match &r.kind {
         SetRefKind::Nodes(_) | SetRefKind::Node(_) => Some(SetKind::Nodes),
         SetRefKind::Edges(_) => Some(SetKind::Edges),
+        SetRefKind::Faces(_) => Some(SetKind::Faces),
         SetRefKind::Combination(_) => None,
         SetRefKind::Named(n) => {
             let found = info
@@ -103,15 +116,20 @@ pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<
         }
     };
     if need == Need::Edges && kind == Some(SetKind::Nodes) {
+        let (word, call) = if solid {
+            ("faces", "faces")
+        } else {
+            ("edges", "edges")
+        };
         let help = match &r.kind {
             SetRefKind::Nodes(s) => {
-                format!("select boundary edges with `{body}.edges({})`", s.value)
+                format!("select boundary {word} with `{body}.{call}({})`", s.value)
             }
-            _ => format!("use a set with edges, e.g. `{body}.boundary` or `{body}.edges(..)`"),
+            _ => format!("use a set with {word}, e.g. `{body}.boundary` or `{body}.{call}(..)`"),
         };
         ctx.err(
             Diagnostic::error(
-                format!("`{user}` needs boundary edges, but `{r}` is a set of nodes"),
+                format!("`{user}` needs boundary {word}, but `{r}` is a set of nodes"),
                 r.span,
                 "nodes only",
             )
@@ -119,6 +137,110 @@ pub fn set_ref(r: &SetRef, need: Need, user: &str, ctx: &mut Ctx<'_>) -> Option<
         );
     }
     kind
+}
+
+/// Rule: a geometric selection has the coordinates of the analysis
+/// (`z = ..` and `(x, y, z)` points in 3d only, `(x, y)` points in planar
+/// analyses only) and selects the facets the analysis has (`edges(..)` in
+/// planar analyses, `faces(..)` in 3d). Reports and returns false when not.
+pub fn selection_fits_dimension(
+    r: &SetRef,
+    s: &Spanned<Selection>,
+    solid: bool,
+    ctx: &mut Ctx<'_>,
+) -> bool {
+    let d = dimension_mismatch(s, solid).or_else(|| facet_kind_mismatch(r, solid));
+    match d {
+        Some(d) => {
+            ctx.err(d);
+            false
+        }
+        None => true,
+    }
+}
+
+/// The diagnostic of a selection whose coordinates do not fit the analysis
+/// (`solid`: a 3d analysis), at the offending coordinate or point.
+pub fn dimension_mismatch(s: &Spanned<Selection>, solid: bool) -> Option<Diagnostic> {
+    let (n, analysis, point) = if solid {
+        (3, "3d", "(x, y, z)")
+    } else {
+        (2, "planar", "(x, y)")
+    };
+    match &s.value {
+        Selection::Z(_) if !solid => Some(
+            Diagnostic::error(
+                "`z = ..` in a planar analysis",
+                s.span,
+                "no z coordinate in 2D",
+            )
+            .with_help("planar analyses have x and y only; use `dimension = 3d` for solids"),
+        ),
+        Selection::X(_) | Selection::Y(_) | Selection::Z(_) => None,
+        Selection::Box { min, max } => {
+            [min, max]
+                .into_iter()
+                .find(|c| c.value.len() != n)
+                .map(|c| {
+                    Diagnostic::error(
+                        format!(
+                            "a box corner has {} coordinates, but the analysis is {analysis}",
+                            c.value.len()
+                        ),
+                        c.span,
+                        format!("expected {point}"),
+                    )
+                    .with_help(if solid {
+                        "a 3d analysis selects with `box((x0, y0, z0), (x1, y1, z1))`"
+                    } else {
+                        "a planar analysis selects with `box((x0, y0), (x1, y1))`"
+                    })
+                })
+        }
+        Selection::Near(p) if p.value.len() != n => Some(
+            Diagnostic::error(
+                format!(
+                    "`near` has {} coordinates, but the analysis is {analysis}",
+                    p.value.len()
+                ),
+                p.span,
+                format!("expected `near{point}`"),
+            )
+            .with_help(format!("the point is {point} in a {analysis} analysis")),
+        ),
+        Selection::Near(_) => None,
+    }
+}
+
+/// The diagnostic of `edges(..)` in a 3d analysis or `faces(..)` in a
+/// planar one.
+pub fn facet_kind_mismatch(r: &SetRef, solid: bool) -> Option<Diagnostic> {
+    let body = &r.body.name;
+    match &r.kind {
+        SetRefKind::Edges(s) if solid => Some(
+            Diagnostic::error(
+                "`edges(..)` in a 3d analysis",
+                r.span,
+                "solids have boundary faces",
+            )
+            .with_help(format!(
+                "select boundary faces with `{body}.faces({})`",
+                s.value
+            )),
+        ),
+        SetRefKind::Faces(s) if !solid => Some(
+            Diagnostic::error(
+                "`faces(..)` in a planar analysis",
+                r.span,
+                "planar bodies have boundary edges",
+            )
+            .with_help(format!(
+                "select boundary edges with `{body}.edges({})`",
+                s.value
+            )),
+        ),
+        _ => None,
+    }
 }
 
 /// A union / difference: every term must exist; it has edges when every
@@ -199,5 +321,62 @@ mod tests {
             "set clamp = block.edges(y = 0)\npressure block.clamp { p = 1 }\nset clamp = block.top",
         );
         assert_eq!(m, ["set `block.clamp` is defined twice"]);
+    }
+
+    /// A unit-cube `block` (hex8) in a 3d analysis followed by `extra`.
+    fn solid(extra: &str) -> Vec<String> {
+        crate::validate::test_support::messages_of(&format!(
+            "analysis {{ dimension = 3d }}\n\
+             material steel {{ elastic {{ E = 210e3  nu = 0.3 }} }}\n\
+             body block {{ mesh = box {{ size = (1, 1, 1)  divisions = (2, 2, 2) }}  material = steel }}\n\
+             fix block.zmin {{ ux uy uz }}\n\
+             step load {{ time = 0 .. 1  increments = 1 }}\n{extra}"
+        ))
+    }
+
+    #[test]
+    fn selection_fits_dimension_3d_selections_in_a_3d_analysis() {
+        let m = solid(
+            "fix block.nodes(z = 0) { uz }\n\
+             fix block.node(near(0, 0, 0)) { ux uy }\n\
+             fix block.faces(box((0, 0, 0), (1, 0, 1))) { uy }\n\
+             pressure block.faces(z = 1) { p = 1 }\n\
+             set top = block.faces(z = 1)\npressure block.top { p = 1 }",
+        );
+        assert!(m.is_empty(), "{m:?}");
+    }
+
+    #[test]
+    fn selection_fits_dimension_wrong_coordinate_counts() {
+        let m = solid(
+            "fix block.nodes(box((0, 0), (1, 1))) { uz }\n\
+             fix block.node(near(0, 0)) { ux }\n\
+             fix block.edges(z = 0) { ux }\n\
+             pressure block.nodes(z = 1) { p = 1 }",
+        );
+        assert_eq!(
+            m,
+            [
+                "a box corner has 2 coordinates, but the analysis is 3d",
+                "`near` has 2 coordinates, but the analysis is 3d",
+                "`edges(..)` in a 3d analysis",
+                "`pressure` needs boundary faces, but `block.nodes(z = 1)` is a set of nodes",
+            ]
+        );
+        let m = messages(
+            "fix block.nodes(z = 0) { ux }\n\
+             fix block.node(near(0, 0, 1)) { ux }\n\
+             fix block.nodes(box((0, 0, 0), (1, 1, 1))) { ux }\n\
+             pressure block.faces(y = 1) { p = 1 }",
+        );
+        assert_eq!(
+            m,
+            [
+                "`z = ..` in a planar analysis",
+                "`near` has 3 coordinates, but the analysis is planar",
+                "a box corner has 3 coordinates, but the analysis is planar",
+                "`faces(..)` in a planar analysis",
+            ]
+        );
     }
 }
