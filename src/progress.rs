@@ -123,7 +123,7 @@ impl<const D: usize> Progress<'_, D> {
                 f.max_penetration = Some((-c.gap, view.time));
             }
         }
-        let names = ctc_engine::output::history::header(view.model);
+        let names = ctc_engine::output::history::columns(view.model);
         let row = ctc_engine::output::history::row(
             view.model,
             view.time,
@@ -132,11 +132,11 @@ impl<const D: usize> Progress<'_, D> {
             view.contact,
         );
         f.last_history = names
-            .split(',')
+            .iter()
             .zip(row)
             .skip(1)
             .filter(|(n, _)| !n.starts_with("friction_work"))
-            .map(|(n, v)| (n.to_string(), v))
+            .map(|(n, v)| (n.clone(), v))
             .collect();
     }
 }

@@ -56,8 +56,27 @@ fn read_json(path: &Path) -> Option<Value> {
     serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
 }
 
-/// The last row of a `history.csv` (header names are quoted-free: ctc
-/// writes `reaction(disc.flat)_y`).
+/// The fields of a CSV line, RFC 4180 quotes removed (a history label may
+/// hold commas: `reaction(b.nodes(box((0, 0), (1, 1))))_x`).
+fn csv_fields(line: &str) -> Vec<String> {
+    let mut out = vec![String::new()];
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                chars.next();
+                out.last_mut().expect("a field").push('"');
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(String::new()),
+            c => out.last_mut().expect("a field").push(c),
+        }
+    }
+    out
+}
+
+/// The last row of a `history.csv`.
 fn last_history(path: &Path) -> Vec<(String, f64)> {
     let Ok(text) = std::fs::read_to_string(path) else {
         return Vec::new();
@@ -69,8 +88,8 @@ fn last_history(path: &Path) -> Vec<(String, f64)> {
     let Some(last) = lines.next_back() else {
         return Vec::new();
     };
-    header
-        .split(',')
+    csv_fields(header)
+        .into_iter()
         .zip(last.split(','))
         .skip(1) // time
         .filter_map(|(h, v)| Some((h.trim().to_string(), v.trim().parse::<f64>().ok()?)))
@@ -250,6 +269,21 @@ pub fn markdown(rows: &[Row]) -> String {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn csv_fields_keep_commas_inside_quotes() {
+        assert_eq!(
+            super::csv_fields(
+                "time,\"reaction(b.nodes(box((0, 0), (1, 1))))_x\",\"say \"\"hi\"\"\""
+            ),
+            [
+                "time",
+                "reaction(b.nodes(box((0, 0), (1, 1))))_x",
+                "say \"hi\""
+            ]
+        );
+        assert_eq!(super::csv_fields("a,,b"), ["a", "", "b"]);
+    }
+
     use super::*;
 
     fn variant() -> Variant {

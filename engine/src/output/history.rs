@@ -19,8 +19,16 @@ pub fn csv_field(s: &str) -> String {
     }
 }
 
-/// The header row for `model`'s history requests.
+/// The header row for `model`'s history requests (the [`columns`], CSV
+/// quoted: a label may hold commas, e.g. `reaction(b.nodes(box((0, 0), (1,
+/// 1))))_x`).
 pub fn header<const D: usize>(model: &Model<D>) -> String {
+    let cols: Vec<String> = columns(model).iter().map(|c| csv_field(c)).collect();
+    cols.join(",")
+}
+
+/// The column names of `history.csv`, unquoted, `time` first.
+pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
     let mut cols = vec!["time".to_string()];
     for h in &model.output.history {
         let label = match h {
@@ -29,18 +37,18 @@ pub fn header<const D: usize>(model: &Model<D>) -> String {
             | HistoryRequest::ContactForce { label, .. } => label,
         };
         for axis in ["x", "y", "z"].iter().take(D) {
-            cols.push(csv_field(&format!("{label}_{axis}")));
+            cols.push(format!("{label}_{axis}"));
         }
     }
     for cp in model.contacts.iter().filter(|c| c.friction.is_some()) {
-        cols.push(csv_field(&format!("friction_work[{}]", cp.name)));
+        cols.push(format!("friction_work[{}]", cp.name));
     }
     if model.thermal.is_some() {
         // appended by the writer from the thermal increment
         cols.push("temperature_max".into());
         cols.push("temperature_min".into());
     }
-    cols.join(",")
+    cols
 }
 
 /// The values of one row.

@@ -10,9 +10,44 @@ pub type Point = Spanned<[f64; 2]>;
 /// A point or vector of space `(x, y, z)`.
 pub type Point3 = Spanned<[f64; 3]>;
 
-/// Coordinates as written in a selection: `(x, y)` or `(x, y, z)`; the
-/// analysis decides which is right (validation checks the count).
-pub type Coords = Spanned<Vec<f64>>;
+/// Coordinates as written in a selection: a planar [`Point`] `(x, y)` or a
+/// [`Point3`] `(x, y, z)`; the analysis decides which is right (validation
+/// checks it).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Coords {
+    /// `(x, y)`.
+    Plane(Point),
+    /// `(x, y, z)`.
+    Space(Point3),
+}
+
+impl Coords {
+    /// The coordinates, 2 or 3 of them.
+    pub fn values(&self) -> &[f64] {
+        match self {
+            Coords::Plane(p) => &p.value,
+            Coords::Space(p) => &p.value,
+        }
+    }
+
+    /// The number of coordinates.
+    pub fn len(&self) -> usize {
+        self.values().len()
+    }
+
+    /// Never: a point has 2 or 3 coordinates (for clippy's `len` rule).
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Where the point is written.
+    pub fn span(&self) -> Span {
+        match self {
+            Coords::Plane(p) => p.span,
+            Coords::Space(p) => p.span,
+        }
+    }
+}
 
 /// A pair of numbers `(a, b)`, each with its own span (for range errors).
 pub type Pair = Spanned<[Spanned<f64>; 2]>;
@@ -96,9 +131,14 @@ impl fmt::Display for Selection {
             Selection::Y(v) => write!(f, "y = {}", num(*v)),
             Selection::Z(v) => write!(f, "z = {}", num(*v)),
             Selection::Box { min, max } => {
-                write!(f, "box(({}), ({}))", coords(&min.value), coords(&max.value))
+                write!(
+                    f,
+                    "box(({}), ({}))",
+                    coords(min.values()),
+                    coords(max.values())
+                )
             }
-            Selection::Near(p) => write!(f, "near({})", coords(&p.value)),
+            Selection::Near(p) => write!(f, "near({})", coords(p.values())),
         }
     }
 }
@@ -223,15 +263,15 @@ mod tests {
             body: Ident::new("block", s),
             kind: SetRefKind::Edges(Spanned::new(
                 Selection::Box {
-                    min: Spanned::new(vec![-1.0, -0.01], s),
-                    max: Spanned::new(vec![1.0, 0.01], s),
+                    min: Coords::Plane(Spanned::new([-1.0, -0.01], s)),
+                    max: Coords::Plane(Spanned::new([1.0, 0.01], s)),
                 },
                 s,
             )),
             span: s,
         };
         assert_eq!(r.to_string(), "block.edges(box((-1, -0.01), (1, 0.01)))");
-        let near = Selection::Near(Spanned::new(vec![1.0, 2.0, -0.5], s));
+        let near = Selection::Near(Coords::Space(Spanned::new([1.0, 2.0, -0.5], s)));
         let r = SetRef {
             kind: SetRefKind::Node(Spanned::new(near, s)),
             ..r

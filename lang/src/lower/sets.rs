@@ -41,13 +41,13 @@ pub fn engine_selection<const D: usize>(
         Selection::Y(y) => EngineSelection::YEquals(*y),
         Selection::Z(z) => EngineSelection::ZEquals(*z),
         Selection::Box { min, max } => {
-            let (a, b) = (point(&min.value), point(&max.value));
+            let (a, b) = (point(min.values()), point(max.values()));
             EngineSelection::Box {
                 min: std::array::from_fn(|k| a[k].min(b[k])),
                 max: std::array::from_fn(|k| a[k].max(b[k])),
             }
         }
-        Selection::Near(p) => EngineSelection::Nearest(point(&p.value)),
+        Selection::Near(p) => EngineSelection::Nearest(point(p.values())),
     })
 }
 

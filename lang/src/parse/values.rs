@@ -654,14 +654,8 @@ fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
 fn coords(v: &Value, diags: &mut Diags) -> Option<Coords> {
     let expected = "a point `(x, y)` or `(x, y, z)`";
     match &v.kind {
-        ValueKind::Tuple(items) if items.len() == 2 || items.len() == 3 => {
-            let n = diags.len();
-            let xs: Vec<f64> = items
-                .iter()
-                .filter_map(|x| number(x, diags).map(|x| x.value))
-                .collect();
-            (diags.len() == n).then(|| Spanned::new(xs, v.span))
-        }
+        ValueKind::Tuple(items) if items.len() == 2 => point(v, diags).map(Coords::Plane),
+        ValueKind::Tuple(items) if items.len() == 3 => point3(v, diags).map(Coords::Space),
         ValueKind::Tuple(items) => {
             diags.push(Diagnostic::error(
                 format!("expected {expected}, found a tuple of {}", items.len()),
@@ -721,18 +715,18 @@ fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
                     let a0 = coords(args[0], diags);
                     let a1 = coords(args[1], diags);
                     let (a0, a1) = (a0?, a1?);
-                    if a0.value.len() != a1.value.len() {
+                    if a0.len() != a1.len() {
                         diags.push(
                             Diagnostic::error(
                                 format!(
                                     "the corners of a box have {} and {} coordinates",
-                                    a0.value.len(),
-                                    a1.value.len()
+                                    a0.len(),
+                                    a1.len()
                                 ),
-                                a1.span,
-                                format!("{} coordinates", a1.value.len()),
+                                a1.span(),
+                                format!("{} coordinates", a1.len()),
                             )
-                            .with_secondary(a0.span, format!("{} coordinates", a0.value.len()))
+                            .with_secondary(a0.span(), format!("{} coordinates", a0.len()))
                             .with_help(
                                 "give both corners as `(x, y)` (planar) or `(x, y, z)` (3d)",
                             ),
@@ -757,10 +751,12 @@ fn selection(a: &Arg, diags: &mut Diags) -> Option<Spanned<Selection>> {
                         .iter()
                         .filter_map(|x| number(x, diags).map(|x| x.value))
                         .collect();
-                    if diags.len() != n {
-                        return None;
-                    }
-                    let p = Spanned::new(xs, v.span);
+                    let p = match xs[..] {
+                        _ if diags.len() != n => return None,
+                        [x, y] => Coords::Plane(Spanned::new([x, y], v.span)),
+                        [x, y, z] => Coords::Space(Spanned::new([x, y, z], v.span)),
+                        _ => unreachable!("2 or 3 arguments checked above"),
+                    };
                     Some(Spanned::new(Selection::Near(p), v.span))
                 }
                 other => {

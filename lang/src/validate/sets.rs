@@ -177,33 +177,28 @@ pub fn dimension_mismatch(s: &Spanned<Selection>, solid: bool) -> Option<Diagnos
             .with_help("planar analyses have x and y only; use `dimension = 3d` for solids"),
         ),
         Selection::X(_) | Selection::Y(_) | Selection::Z(_) => None,
-        Selection::Box { min, max } => {
-            [min, max]
-                .into_iter()
-                .find(|c| c.value.len() != n)
-                .map(|c| {
-                    Diagnostic::error(
-                        format!(
-                            "a box corner has {} coordinates, but the analysis is {analysis}",
-                            c.value.len()
-                        ),
-                        c.span,
-                        format!("expected {point}"),
-                    )
-                    .with_help(if solid {
-                        "a 3d analysis selects with `box((x0, y0, z0), (x1, y1, z1))`"
-                    } else {
-                        "a planar analysis selects with `box((x0, y0), (x1, y1))`"
-                    })
-                })
-        }
-        Selection::Near(p) if p.value.len() != n => Some(
+        Selection::Box { min, max } => [min, max].into_iter().find(|c| c.len() != n).map(|c| {
+            Diagnostic::error(
+                format!(
+                    "a box corner has {} coordinates, but the analysis is {analysis}",
+                    c.len()
+                ),
+                c.span(),
+                format!("expected {point}"),
+            )
+            .with_help(if solid {
+                "a 3d analysis selects with `box((x0, y0, z0), (x1, y1, z1))`"
+            } else {
+                "a planar analysis selects with `box((x0, y0), (x1, y1))`"
+            })
+        }),
+        Selection::Near(p) if p.len() != n => Some(
             Diagnostic::error(
                 format!(
                     "`near` has {} coordinates, but the analysis is {analysis}",
-                    p.value.len()
+                    p.len()
                 ),
-                p.span,
+                p.span(),
                 format!("expected `near{point}`"),
             )
             .with_help(format!("the point is {point} in a {analysis} analysis")),

@@ -16,6 +16,7 @@ pub mod solid;
 pub mod solid_patch;
 pub mod thermal_contact;
 pub mod thermal_coupling;
+pub mod traction_3d;
 pub mod upsetting;
 pub mod upsetting_3d;
 pub mod viscoplastic;
@@ -42,6 +43,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(solid_patch::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
+    v.extend(traction_3d::cases());
     v
 }
 
