@@ -137,7 +137,10 @@ fn every_curve(b: &Boundary) -> Vec<(bool, TrimCurve)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(4000))]
+    // `tangent_and_vertex_rays_restart_and_agree` rejects about 1 case in 6
+    // (points on the outer bottom edge), more than the default reject cap
+    // allows at large PROPTEST_CASES.
+    #![proptest_config(ProptestConfig { cases: 4000, max_global_rejects: 1 << 20, ..ProptestConfig::default() })]
 
     #[test]
     fn random_points_agree_with_brute_force(x in -0.05f64..1.1, y in -0.05f64..1.2) {
@@ -212,4 +215,35 @@ fn vertices_are_on_the_boundary_and_holes_are_outside() {
     assert_eq!(b.classify(v(0.5, 0.2)).0, Containment::Inside);
     assert_eq!(b.classify(v(0.5, 1.1)).0, Containment::Inside);
     assert_eq!(b.classify(v(0.5, 1.2)).0, Containment::Outside);
+}
+
+/// Points on a curve near its ends, where the first ray (-u) meets hole 2's
+/// rational bulge at a shallow angle (its end tangent is horizontal): the
+/// bisected crossing is exact across the ray but off along it by
+/// `eps / sine`, which once classified a point 1e-16 from the bulge as
+/// Inside (proptest seed in the regressions file: curve 6, t = 0.99991).
+#[test]
+fn points_near_curve_ends_at_shallow_crossings_are_on_the_boundary() {
+    let b = face();
+    let curves = every_curve(&b);
+    let mut wrong = Vec::new();
+    for (k, (_, c)) in curves.iter().enumerate() {
+        let [t0, t1] = c.domain();
+        for i in 0..=2000 {
+            let s = 1e-3 * i as f64 / 2000.0;
+            for t in [s, 1.0 - s] {
+                let p = c.eval(t0 + (t1 - t0) * t).p;
+                let got = b.classify(p).0;
+                if got != Containment::Boundary {
+                    wrong.push((k, t, p, got));
+                }
+            }
+        }
+    }
+    assert!(
+        wrong.is_empty(),
+        "{} points off the boundary, first {:?}",
+        wrong.len(),
+        &wrong[..wrong.len().min(5)]
+    );
 }

@@ -21,7 +21,10 @@
 //!   otherwise sign changes between samples are refined by bisection, and a
 //!   sampled local minimum of `|h|` that nearly touches the ray is refined
 //!   by golden-section search to detect tangency. Pairs of crossings missed
-//!   inside one sample interval leave the parity unchanged.
+//!   inside one sample interval leave the parity unchanged. A crossing (or
+//!   tangency) near `p` is exact across the ray only, so before it is
+//!   counted the foot point of `p` on the curve is refined by Newton's
+//!   method and the true distance decides whether `p` is on the boundary.
 
 use super::curve::TrimCurve;
 use crate::Vec2;
@@ -267,6 +270,9 @@ fn crossings(c: &TrimCurve, p: Vec2, e: Vec2, reach: f64, tol: &ParityTolerance)
                 if ha * hb < 0.0 {
                     let t = bisect(|t| h(curve.eval(t).p), ta, tb, ha);
                     let q = curve.eval(t).p;
+                    if near_foot(curve, t, q, p, tol) {
+                        return Ray::OnBoundary;
+                    }
                     match verdict(q, ends, sine_at(curve, t, nu)) {
                         Some(Ray::Count(m)) => n += m,
                         Some(other) => return other,
@@ -281,7 +287,7 @@ fn crossings(c: &TrimCurve, p: Vec2, e: Vec2, reach: f64, tol: &ParityTolerance)
                         let q = curve.eval(t).p;
                         let hq = h(q);
                         if hq.abs() <= tol.vertex && s(q) >= -tol.boundary {
-                            if (q - p).norm() <= tol.boundary {
+                            if near_foot(curve, t, q, p, tol) {
                                 return Ray::OnBoundary;
                             }
                             return Ray::Degenerate;
@@ -303,6 +309,54 @@ fn crossings(c: &TrimCurve, p: Vec2, e: Vec2, reach: f64, tol: &ParityTolerance)
             Ray::Count(n)
         }
     }
+}
+
+/// Is `p` on the curve, given a ray crossing (or a tangency) at `q = C(t)`?
+///
+/// The crossing found by bisection is exact in `h` (the distance across the
+/// ray), not along it: at a shallow crossing (sine `sin`) an error `eps` in
+/// `h` moves `q` by `eps / sin` along the ray, so a point lying on the curve
+/// can see its crossing farther than `tol.boundary` from it. When `q` is
+/// close enough that `p` could be within `tol.boundary` of the curve at a
+/// non-tangent crossing (`|q - p| <= tol.boundary / tol.tangent`), the
+/// foot point of `p` is refined by Newton's method on `(C(t) - p) . C'(t) = 0`
+/// from `t` (clamped to the domain) and the true distance decides.
+fn near_foot(
+    c: &crate::nurbs::NurbsCurve<2>,
+    t: f64,
+    q: Vec2,
+    p: Vec2,
+    tol: &ParityTolerance,
+) -> bool {
+    let dq = (q - p).norm();
+    if dq <= tol.boundary {
+        return true;
+    }
+    if dq > 10.0 * tol.boundary / tol.tangent {
+        return false;
+    }
+    let [t0, t1] = c.domain();
+    let mut t = t;
+    let mut best = dq;
+    for _ in 0..30 {
+        let d = c.eval(t);
+        let r = d.p - p;
+        best = best.min(r.norm());
+        if best <= tol.boundary {
+            return true;
+        }
+        let f = r.dot(&d.d1);
+        let df = d.d1.dot(&d.d1) + r.dot(&d.d2);
+        if df <= 0.0 || !df.is_finite() {
+            break;
+        }
+        let next = (t - f / df).clamp(t0, t1);
+        if next == t {
+            break;
+        }
+        t = next;
+    }
+    best <= tol.boundary
 }
 
 /// Sine of the angle between the curve's tangent at `t` and the ray.
