@@ -390,6 +390,19 @@ where
                 for line in figures.lines() {
                     println!("{line}");
                 }
+                for st in &s.stabilization {
+                    println!(
+                        "  stabilization (step `{}`, stabilize = {:e}, bodies {}): energy {:.3e} = \
+                         {:.2e} x the internal work {:.3e}; force at the step end {:.1e}",
+                        st.step,
+                        st.factor,
+                        st.bodies.join(", "),
+                        st.energy,
+                        st.ratio,
+                        st.internal_energy,
+                        st.end_force
+                    );
+                }
             }
             Ok(())
         }

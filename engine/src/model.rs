@@ -163,6 +163,17 @@ pub enum MaterialLaw {
     },
 }
 
+impl MaterialLaw {
+    /// The (small-strain) Young's modulus of the law.
+    pub fn young(&self) -> f64 {
+        match self {
+            MaterialLaw::LinearElastic { young, .. }
+            | MaterialLaw::NeoHookean { young, .. }
+            | MaterialLaw::ElastoPlastic { young, .. } => *young,
+        }
+    }
+}
+
 /// Isotropic hardening: flow stress `sigma_y(ep)` for the equivalent plastic
 /// strain `ep >= 0`.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -654,6 +665,28 @@ pub struct ContactPair {
     pub prof: Option<f64>,
     /// Coulomb friction (`None`: frictionless).
     pub friction: Option<Friction>,
+    /// Per-node penalty coefficients `(node, alpha)` sorted by node, of a
+    /// penalty given relative to the mesh (`stiffness = 10 * E / h`): they
+    /// replace the method's value at those nodes. Empty: the method's value
+    /// everywhere.
+    pub local_penalty: Vec<(usize, f64)>,
+}
+
+impl ContactPair {
+    /// The enforcement method at slave node `node`: the pair's method, with
+    /// the node's own coefficient when the penalty is relative.
+    pub fn method_at(&self, node: usize) -> ContactMethod {
+        let mut m = self.method.clone();
+        if let Ok(k) = self.local_penalty.binary_search_by_key(&node, |&(n, _)| n) {
+            let alpha = self.local_penalty[k].1;
+            match &mut m {
+                ContactMethod::Penalty { stiffness, .. } => *stiffness = alpha,
+                ContactMethod::AugmentedLagrange { penalty, .. } => *penalty = alpha,
+                ContactMethod::Lagrange { .. } => {}
+            }
+        }
+        m
+    }
 }
 
 /// Coulomb friction of a contact pair (seed, "Part III - Friction"). The
@@ -699,6 +732,11 @@ pub struct NewtonSettings {
     pub max_iter: usize,
     /// Backtracking line search on the residual norm.
     pub line_search: bool,
+    /// Vanishing stabilization of the bodies held only by contact: the
+    /// factor `c` of springs `c d_b` on the increment displacement (`d_b`
+    /// the mean stiffness diagonal of body `b`), ramped down to 0 at the
+    /// step's end (`crate::solve::stabilize`); `None`: off.
+    pub stabilize: Option<f64>,
 }
 
 impl Default for NewtonSettings {
@@ -708,6 +746,7 @@ impl Default for NewtonSettings {
             tol_displacement: 1e-8,
             max_iter: 25,
             line_search: true,
+            stabilize: None,
         }
     }
 }

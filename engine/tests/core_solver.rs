@@ -386,6 +386,7 @@ fn body_held_only_by_open_contact_falls_onto_it() {
         },
         prof: None,
         friction: None,
+        local_penalty: Vec::new(),
     }];
     m.steps[0].increments = 2;
     let mut rec = Recorder::default();

@@ -317,7 +317,7 @@ pub fn explain(model: &Model) -> String {
     if !model.contacts.is_empty() {
         let _ = writeln!(o, "contact pairs: {}", model.contacts.len());
         for c in &model.contacts {
-            let method = method_plan(&c.method);
+            let method = method_plan(c);
             let prof = match c.prof {
                 Some(p) => format!("search within prof = {}", num(p)),
                 None => "search within an automatic prof".to_string(),
@@ -364,6 +364,15 @@ pub fn explain(model: &Model) -> String {
             n.max_iter,
             if n.line_search { "on" } else { "off" }
         );
+        if let Some(c) = n.stabilize {
+            let _ = writeln!(
+                o,
+                "    stabilize: springs of {} x the mean stiffness diagonal on the increment \
+                 displacement of the bodies held only by contact, ramped to 0 at t = {}",
+                num(c),
+                num(s.t_end)
+            );
+        }
     }
     // ------------------------------------------------------------ output
     let out = &model.output;
@@ -642,15 +651,31 @@ fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
 }
 
 /// The enforcement of a contact pair in words.
-fn method_plan(method: &ContactMethod) -> String {
-    match method {
+fn method_plan(c: &ctc_engine::model::ContactPair) -> String {
+    // a relative penalty (`10 * E / h`): its range over the nodes
+    let coefficient = |k: f64| {
+        let ks = c.local_penalty.iter().map(|&(_, k)| k);
+        match (ks.clone().reduce(f64::min), ks.reduce(f64::max)) {
+            (Some(lo), Some(hi)) => format!(
+                "{} to {} (relative to E and the local element size h, per node, {} nodes)",
+                num(lo),
+                num(hi),
+                c.local_penalty.len()
+            ),
+            _ => num(k),
+        }
+    };
+    match &c.method {
         ContactMethod::Penalty { kind, stiffness } => match kind {
             PenaltyKind::Nodal => {
-                format!("penalty, nodal: {} force per unit gap", num(*stiffness))
+                format!(
+                    "penalty, nodal: {} force per unit gap",
+                    coefficient(*stiffness)
+                )
             }
             PenaltyKind::Area => format!(
                 "penalty, area-weighted: {} pressure per unit gap",
-                num(*stiffness)
+                coefficient(*stiffness)
             ),
         },
         ContactMethod::Lagrange { formulation } => match formulation {
@@ -673,7 +698,7 @@ fn method_plan(method: &ContactMethod) -> String {
                 PenaltyKind::Nodal => "nodal",
                 PenaltyKind::Area => "area-weighted",
             },
-            num(*penalty),
+            coefficient(*penalty),
             match kind {
                 PenaltyKind::Nodal => "force",
                 PenaltyKind::Area => "pressure",
@@ -809,11 +834,18 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
                 Some(p) => format!("search within prof = {}", num(p)),
                 None => "search within an automatic prof (the longest slave face edge)".into(),
             };
+            let friction = match &c.friction {
+                Some(f) => format!(
+                    "{} (on the tangent plane, stick point in the tool's frame)",
+                    friction_plan(f, &c.method, true)
+                ),
+                None => "frictionless".to_string(),
+            };
             let _ = writeln!(
                 o,
-                "  {}: {}; {} slave nodes on {}; frictionless, node-to-surface; {prof}",
+                "  {}: {}; {} slave nodes on {}; {friction}, node-to-surface; {prof}",
                 c.name,
-                method_plan(&c.method),
+                method_plan(c),
                 c.nodes.len(),
                 plural(c.faces.len(), "face", "faces")
             );
@@ -833,7 +865,7 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
     }
     if model.contacts.is_empty() {
         absent.push("contact");
-    } else {
+    } else if model.contacts.iter().all(|c| c.friction.is_none()) {
         absent.push("friction");
     }
     absent.push("heat conduction (3d)");

@@ -472,9 +472,14 @@ pub static PENALTY: [Key; 2] = [
         "area: pressure = stiffness x penetration (stiffness per area); nodal: force",
     )
     .default(Default::Choice("area")),
-    Key::new("stiffness", KeyType::Number, "penalty coefficient")
-        .required("add `stiffness = <penalty coefficient>`")
-        .range(Range::Positive),
+    Key::new(
+        "stiffness",
+        KeyType::Number,
+        "penalty coefficient; relative to the mesh when written with `E` (the slave body's \
+         Young's modulus) and `h` (the local size of the slave surface, per node): `10 * E / h`",
+    )
+    .required("add `stiffness = <penalty coefficient>`")
+    .range(Range::Positive),
 ];
 
 /// `lagrange { .. }`.
@@ -493,9 +498,13 @@ pub static AUGMENTED_LAGRANGE: [Key; 4] = [
         "as for `penalty`",
     )
     .default(Default::Choice("area")),
-    Key::new("penalty", KeyType::Number, "penalty coefficient alpha")
-        .required("add `penalty = <penalty coefficient>`")
-        .range(Range::Positive),
+    Key::new(
+        "penalty",
+        KeyType::Number,
+        "penalty coefficient alpha; may be relative to the mesh as for `penalty`: `10 * E / h`",
+    )
+    .required("add `penalty = <penalty coefficient>`")
+    .range(Range::Positive),
     Key::new("tolerance", KeyType::Number, "largest accepted penetration")
         .required("add `tolerance = <largest accepted penetration>`")
         .range(Range::Positive)
@@ -672,13 +681,13 @@ pub static STEP: [Key; 4] = [
     .dim(Dim::None),
     Key::new(
         "newton",
-        KeyType::Choice(&["{ tol tol_displacement max_iter line_search }"]),
+        KeyType::Choice(&["{ tol tol_displacement max_iter line_search stabilize }"]),
         "Newton settings",
     ),
 ];
 
 /// `newton { .. }` of a step.
-pub static NEWTON: [Key; 4] = [
+pub static NEWTON: [Key; 5] = [
     Key::new("tol", KeyType::Number, "relative residual tolerance")
         .default(Default::Number(1e-8))
         .range(Range::Positive)
@@ -695,6 +704,15 @@ pub static NEWTON: [Key; 4] = [
         .default(Default::Integer(25))
         .range(Range::AtLeast(1)),
     Key::new("line_search", KeyType::Bool, "backtracking line search").default(Default::Bool(true)),
+    Key::new(
+        "stabilize",
+        KeyType::Number,
+        "vanishing stabilization of the bodies held only by contact: springs of c x the mean \
+         stiffness diagonal on the increment displacement, ramped to 0 at the step end \
+         (bare `stabilize`: c = 1e-5)",
+    )
+    .range(Range::Positive)
+    .dim(Dim::None),
 ];
 
 /// `output { .. }`.

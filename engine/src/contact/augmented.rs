@@ -111,7 +111,7 @@ pub fn uzawa_update(
             let Some(i) = state.slave_index(nc.node) else {
                 continue;
             };
-            let alpha = penalty::effective_stiffness(&cp.method, state.tributary[i]);
+            let alpha = penalty::effective_stiffness(&cp.method_at(nc.node), state.tributary[i]);
             next[i] = normal_force(alpha, state.multiplier[i], nc.gap);
         }
         state.multiplier = next;

@@ -58,21 +58,31 @@ pub enum FrictionStatus {
     Slip,
 }
 
-/// Tangential response of one slave node at the evaluated state.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct NodeFriction {
+/// Tangential response of one slave node at the evaluated state, in
+/// dimension `D` (planar by default). The scalar fields are signed
+/// components along the tangent `t` in 2D and magnitudes in 3D, where the
+/// tangent plane has no preferred direction; the vector fields carry the
+/// directions (3D surface tools; planar rigid tools fill `traction` too).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NodeFriction<const D: usize = 2> {
     /// Stick, slip or frictionless.
     pub status: FrictionStatus,
     /// Tangential force `R_T` along `t = (n_y, -n_x)` (axisymmetric: total
-    /// over 2*pi); it is included in `NodeContact::force`.
+    /// over 2*pi); it is included in `NodeContact::force`. 3D: `|R_T|`.
     pub tangential_force: f64,
-    /// Tangential gap `g_T = t . (x - x_a)` from the committed stick point.
+    /// Tangential gap `g_T = t . (x - x_a)` from the committed stick point
+    /// (3D: `|g_T|`, `g_T = (I - n ⊗ n)(x - x_a)`).
     pub tangential_gap: f64,
     /// Slip increment `ds` along `t` since the last converged increment
-    /// (0 while sticking).
+    /// (0 while sticking; 3D: the length of `slip_vector`).
     pub slip: f64,
-    /// `d g_T / d x` at the slave node (the Lagrange stick row).
-    pub gap_gradient: [f64; 2],
+    /// Tangential force vector on the node (current frame; 2D: `R_T t`).
+    pub traction: [f64; D],
+    /// Slip increment vector of the node relative to the tool since the
+    /// last converged increment (current frame; 3D only, zeros in 2D).
+    pub slip_vector: [f64; D],
+    /// `d g_T / d x` at the slave node (the Lagrange stick row; planar).
+    pub gap_gradient: [f64; D],
     /// Frictional work dissipated at this node over the increment,
     /// `-R_T ds = mu R_N |ds|` (>= 0 once the status loop has settled;
     /// axisymmetric: over 2*pi). This is the heat source of frictional
@@ -80,43 +90,64 @@ pub struct NodeFriction {
     pub dissipation: f64,
 }
 
+impl<const D: usize> Default for NodeFriction<D> {
+    fn default() -> Self {
+        NodeFriction {
+            status: FrictionStatus::Frictionless,
+            tangential_force: 0.0,
+            tangential_gap: 0.0,
+            slip: 0.0,
+            traction: [0.0; D],
+            slip_vector: [0.0; D],
+            gap_gradient: [0.0; D],
+            dissipation: 0.0,
+        }
+    }
+}
+
 /// Per-pair friction history (one entry per slave node, `ContactPair::nodes`
 /// order): trial values of the latest evaluation and their committed
-/// counterparts.
+/// counterparts, in dimension `D` (points in the tool's reference frame).
 #[derive(Debug, Clone, Default)]
-pub struct FrictionState {
+pub struct FrictionState<const D: usize = 2> {
     /// Stick point in the tool's reference frame (trial, after the return
     /// map); `None`: the node is not in contact.
-    pub anchor: Vec<Option<[f64; 2]>>,
+    pub anchor: Vec<Option<[f64; D]>>,
     /// Stick point at the last converged increment.
-    pub committed_anchor: Vec<Option<[f64; 2]>>,
+    pub committed_anchor: Vec<Option<[f64; D]>>,
     /// Stick point the trial force is measured from: the committed one,
     /// or, after an augmented-Lagrangian (Uzawa) update, the trial stick
     /// point of that update (it goes with the multiplier shift).
-    pub base: Vec<Option<[f64; 2]>>,
+    pub base: Vec<Option<[f64; D]>>,
     /// Tangential multiplier: `lambda_T` (Lagrange) or the shift
-    /// `lambda_T*` (augmented Lagrangian), force units.
+    /// `lambda_T*` (augmented Lagrangian), force units, along `t` (planar).
     pub multiplier: Vec<f64>,
     /// Tangential multiplier at the last converged increment.
     pub committed_multiplier: Vec<f64>,
+    /// 3D: the augmented-Lagrangian tangential shift `lambda_T*` as a
+    /// vector in the tool's reference frame (so it turns with the tool);
+    /// unused in 2D, where `multiplier` is its component along `t`.
+    pub shift: Vec<[f64; D]>,
+    /// Shift at the last converged increment.
+    pub committed_shift: Vec<[f64; D]>,
     /// Lagrange status: 0 stick (constraint row), `±1` slip with the force
     /// along `±t`.
     pub sliding: Vec<f64>,
     /// Lagrange status at the last converged increment.
     pub committed_sliding: Vec<f64>,
     /// Node position in the tool's reference frame at the latest evaluation.
-    pub position: Vec<[f64; 2]>,
+    pub position: Vec<[f64; D]>,
     /// Position at the last converged increment (start of the path of the
     /// constant-velocity intersection).
-    pub committed_position: Vec<[f64; 2]>,
+    pub committed_position: Vec<[f64; D]>,
     /// Smallest fraction of the increment at which a node touched for the
     /// first time, at the latest evaluation (`None`: no first impact).
     pub impact: Option<f64>,
 }
 
-impl FrictionState {
+impl<const D: usize> FrictionState<D> {
     /// State of `n` slave nodes at reference-frame positions `positions`.
-    pub fn new(positions: Vec<[f64; 2]>) -> Self {
+    pub fn new(positions: Vec<[f64; D]>) -> Self {
         let n = positions.len();
         FrictionState {
             anchor: vec![None; n],
@@ -124,6 +155,8 @@ impl FrictionState {
             base: vec![None; n],
             multiplier: vec![0.0; n],
             committed_multiplier: vec![0.0; n],
+            shift: vec![[0.0; D]; n],
+            committed_shift: vec![[0.0; D]; n],
             sliding: vec![0.0; n],
             committed_sliding: vec![0.0; n],
             position: positions.clone(),
@@ -137,6 +170,7 @@ impl FrictionState {
         self.committed_anchor.clone_from(&self.anchor);
         self.base.clone_from(&self.anchor);
         self.committed_multiplier.clone_from(&self.multiplier);
+        self.committed_shift.clone_from(&self.shift);
         self.committed_sliding.clone_from(&self.sliding);
         self.committed_position.clone_from(&self.position);
         self.impact = None;
@@ -147,23 +181,38 @@ impl FrictionState {
         self.anchor.clone_from(&self.committed_anchor);
         self.base.clone_from(&self.committed_anchor);
         self.multiplier.clone_from(&self.committed_multiplier);
+        self.shift.clone_from(&self.committed_shift);
         self.sliding.clone_from(&self.committed_sliding);
         self.position.clone_from(&self.committed_position);
         self.impact = None;
     }
 
+    /// Numbers per node in [`FrictionState::committed_values`]: 7 in 2D,
+    /// 12 in 3D (where the shift vector follows).
+    fn values_per_node() -> usize {
+        if D == 2 {
+            3 + 2 * D
+        } else {
+            3 + 3 * D
+        }
+    }
+
     /// The committed state as numbers (restart files): per node the stick
     /// point flag and coordinates, the multiplier, the Lagrange status and
-    /// the reference-frame position (7 values).
+    /// the reference-frame position (7 values in 2D), then in 3D the shift
+    /// vector (12 values).
     pub fn committed_values(&self) -> Vec<f64> {
-        let mut v = Vec::with_capacity(7 * self.committed_anchor.len());
+        let mut v = Vec::with_capacity(Self::values_per_node() * self.committed_anchor.len());
         for i in 0..self.committed_anchor.len() {
             let a = self.committed_anchor[i];
             v.push(if a.is_some() { 1.0 } else { 0.0 });
-            v.extend(a.unwrap_or([0.0; 2]));
+            v.extend(a.unwrap_or([0.0; D]));
             v.push(self.committed_multiplier[i]);
             v.push(self.committed_sliding[i]);
             v.extend(self.committed_position[i]);
+            if D != 2 {
+                v.extend(self.committed_shift[i]);
+            }
         }
         v
     }
@@ -172,20 +221,25 @@ impl FrictionState {
     /// (call `rollback` afterwards to make it the trial state too).
     pub fn restore_committed(&mut self, v: &[f64]) -> Result<(), String> {
         let n = self.committed_anchor.len();
-        if v.len() != 7 * n {
+        let k = Self::values_per_node();
+        if v.len() != k * n {
             return Err("the restart point does not match the model (friction state)".into());
         }
-        for (i, c) in v.chunks_exact(7).enumerate() {
-            self.committed_anchor[i] = (c[0] != 0.0).then_some([c[1], c[2]]);
-            self.committed_multiplier[i] = c[3];
-            self.committed_sliding[i] = c[4];
-            self.committed_position[i] = [c[5], c[6]];
+        let point = |c: &[f64]| -> [f64; D] { std::array::from_fn(|j| c[j]) };
+        for (i, c) in v.chunks_exact(k).enumerate() {
+            self.committed_anchor[i] = (c[0] != 0.0).then(|| point(&c[1..]));
+            self.committed_multiplier[i] = c[1 + D];
+            self.committed_sliding[i] = c[2 + D];
+            self.committed_position[i] = point(&c[3 + D..]);
+            if D != 2 {
+                self.committed_shift[i] = point(&c[3 + 2 * D..]);
+            }
         }
         Ok(())
     }
 
     /// Node `i` is out of contact at reference-frame position `reference`.
-    pub fn open(&mut self, i: usize, reference: [f64; 2]) {
+    pub fn open(&mut self, i: usize, reference: [f64; D]) {
         if let Some(p) = self.position.get_mut(i) {
             *p = reference;
             self.release(i);
@@ -193,10 +247,11 @@ impl FrictionState {
     }
 
     /// Forgets node `i`'s contact history (it is open).
-    fn release(&mut self, i: usize) {
+    pub(crate) fn release(&mut self, i: usize) {
         self.anchor[i] = None;
         self.base[i] = None;
         self.multiplier[i] = 0.0;
+        self.shift[i] = [0.0; D];
         self.sliding[i] = 0.0;
     }
 
@@ -335,6 +390,7 @@ pub fn respond_tool(
         }
     }
     tangential.friction.gap_gradient = grad;
+    tangential.friction.traction = scale(rt, t);
     let (tg, tn, nt) = (outer(t, grad), outer(t, n), outer(n, t));
     for a in 0..2 {
         r.force[a] += rt * t[a];
@@ -387,7 +443,7 @@ impl Coulomb {
                     tangential_gap: gap,
                     slip: 0.0,
                     dissipation: 0.0,
-                    gap_gradient: [0.0; 2],
+                    ..NodeFriction::default()
                 },
                 stick_stiffness: alpha,
                 slip_stiffness: 0.0,
@@ -403,7 +459,7 @@ impl Coulomb {
                 tangential_gap: gap,
                 slip,
                 dissipation: -rt * slip,
-                gap_gradient: [0.0; 2],
+                ..NodeFriction::default()
             },
             stick_stiffness: 0.0,
             slip_stiffness: self.mu * s * self.normal_stiffness,
@@ -421,7 +477,7 @@ impl Coulomb {
                 tangential_gap: gap,
                 slip: 0.0,
                 dissipation: 0.0,
-                gap_gradient: [0.0; 2],
+                ..NodeFriction::default()
             }
         } else {
             let rt = self.mu * self.normal_force * sliding;
@@ -431,7 +487,7 @@ impl Coulomb {
                 tangential_gap: gap,
                 slip: gap,
                 dissipation: -rt * gap,
-                gap_gradient: [0.0; 2],
+                ..NodeFriction::default()
             }
         };
         Tangential {
@@ -444,7 +500,7 @@ impl Coulomb {
 
 /// Largest tangential gap `|g_T|` of a sticking node (the augmented
 /// Lagrangian iterates until it is below the pair's tolerance).
-pub fn stick_violation(contact: &[super::NodeContact]) -> f64 {
+pub fn stick_violation<const D: usize>(contact: &[super::NodeContact<D>]) -> f64 {
     contact
         .iter()
         .filter(|c| c.friction.status == FrictionStatus::Stick)
@@ -474,8 +530,10 @@ pub fn uzawa_update(nodes: &[usize], contact: &[super::NodeContact], state: &mut
 /// dissipations and keeps the highest status.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NodalFriction {
-    /// Tangential force.
+    /// Tangential force (3D: its magnitude).
     pub force: Vec<f64>,
+    /// Tangential force vector, 3 components (3D; planar: in-plane, z = 0).
+    pub traction: Vec<[f64; 3]>,
     /// Slip increment.
     pub slip: Vec<f64>,
     /// 0 frictionless, 1 stick, 2 slip.
@@ -491,6 +549,7 @@ pub fn nodal_fields<const D: usize>(
 ) -> NodalFriction {
     let mut out = NodalFriction {
         force: vec![0.0; nn],
+        traction: vec![[0.0; 3]; nn],
         slip: vec![0.0; nn],
         status: vec![0; nn],
         dissipation: vec![0.0; nn],
@@ -500,6 +559,9 @@ pub fn nodal_fields<const D: usize>(
             continue;
         }
         out.force[c.node] += c.friction.tangential_force;
+        for (k, t) in c.friction.traction.iter().enumerate().take(3) {
+            out.traction[c.node][k] += t;
+        }
         out.slip[c.node] += c.friction.slip;
         out.dissipation[c.node] += c.friction.dissipation;
         out.status[c.node] = out.status[c.node].max(status_code(c.friction.status));

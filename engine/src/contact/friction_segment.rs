@@ -133,6 +133,8 @@ pub fn respond(
             slip: ds,
             gap_gradient: [t[0].re(), t[1].re()],
             dissipation: -rt.re() * ds,
+            traction: [rt.re() * t[0].re(), rt.re() * t[1].re()],
+            slip_vector: [0.0; 2],
         },
         forces,
         tangent,

@@ -38,6 +38,7 @@ pub mod broad;
 pub mod friction;
 pub mod friction_lagrange;
 pub mod friction_segment;
+pub mod friction_surface;
 pub mod geometry;
 pub mod impact;
 pub mod jump;
@@ -99,8 +100,8 @@ pub struct NodeContact<const D: usize = 2> {
     pub master: Option<MasterSegment>,
     /// Tangential (friction) part: status, tangential force (included in
     /// `force`), slip increment and dissipated work of the increment
-    /// (planar models; frictionless in 3D).
-    pub friction: friction::NodeFriction,
+    /// (planar rigid and deformable masters; 3D surface tools).
+    pub friction: friction::NodeFriction<D>,
 }
 
 /// Master side of a node-to-segment contact element. Local dof order of
@@ -168,6 +169,14 @@ pub struct PairState {
     pub slaves: Vec<usize>,
     /// Deformable master (node-to-segment): surfaces, strategy state.
     pub surface: Option<node_to_segment::SurfacePair>,
+    /// Closed-gap start: slave nodes whose gap is within `[0, touching]`
+    /// count as closed with zero force (penalty, augmented Lagrangian:
+    /// the penalty stiffness along the normal; Lagrange: in the active
+    /// set), so the first tangent holds a body that only this contact can
+    /// hold. Set by the solver for the first iteration of the analysis
+    /// only, on frictionless pairs of bodies held only by contact (0: off;
+    /// see [`penalty::touching`]).
+    pub touching: f64,
     /// Mortar pairs and smoothed node-to-segment pairs: the coupling rows
     /// of the latest evaluation (the solver scatters these instead of the
     /// `NodeContact` forces), in slave order; `None` for faceted
@@ -237,6 +246,7 @@ impl PairState {
             scratch: Vec::new(),
             shape,
             slaves,
+            touching: 0.0,
             couplings: ((cp.formulation == ContactFormulation::Mortar
                 || cp.smoothing == NormalSmoothing::Nodal)
                 && surface.is_some())
@@ -351,9 +361,10 @@ pub fn evaluate_pair(
         let normal = placement.rotate(p.normal);
         let tributary = state.tributary.get(i).copied().unwrap_or(0.0);
         let lambda = state.multiplier.get(i).copied().unwrap_or(0.0);
-        let mut r = match &cp.method {
+        let method = cp.method_at(node);
+        let mut r = match &method {
             ContactMethod::Penalty { .. } => {
-                penalty::respond(&cp.method, tributary, p.gap, normal, p.normal_rate)
+                penalty::respond(&method, tributary, p.gap, normal, p.normal_rate)
             }
             ContactMethod::Lagrange { .. } => lagrange::respond(
                 state.active.get(i).copied().unwrap_or(false),
@@ -363,7 +374,7 @@ pub fn evaluate_pair(
                 p.normal_rate,
             ),
             ContactMethod::AugmentedLagrange { .. } => augmented::respond(
-                penalty::effective_stiffness(&cp.method, tributary),
+                penalty::effective_stiffness(&method, tributary),
                 lambda,
                 tributary,
                 p.gap,
@@ -371,6 +382,19 @@ pub fn evaluate_pair(
                 p.normal_rate,
             ),
         };
+        if r.status == ContactStatus::Open && !matches!(method, ContactMethod::Lagrange { .. }) {
+            let alpha = penalty::effective_stiffness(&method, tributary);
+            if let Some(t) = penalty::touching(
+                alpha,
+                p.gap,
+                state.touching,
+                tributary,
+                normal,
+                p.normal_rate,
+            ) {
+                r = t;
+            }
+        }
         let friction = match &cp.friction {
             Some(law) => {
                 let c = friction::ToolContact {
@@ -385,15 +409,7 @@ pub fn evaluate_pair(
                         state.friction.committed_position[i],
                     ))) * 4.0,
                 };
-                friction::respond_tool(
-                    law,
-                    &cp.method,
-                    tributary,
-                    i,
-                    &c,
-                    &mut state.friction,
-                    &mut r,
-                )
+                friction::respond_tool(law, &method, tributary, i, &c, &mut state.friction, &mut r)
             }
             None => friction::NodeFriction::default(),
         };

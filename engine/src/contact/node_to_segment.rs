@@ -563,10 +563,14 @@ pub fn evaluate(
         let [m1, m2] = surface.edges[k.segment];
         let tributary = state.tributary.get(i).copied().unwrap_or(0.0);
         let lambda = state.multiplier.get(i).copied().unwrap_or(0.0);
-        let (resp, dr_dg) = match &cp.method {
+        let method = cp.method_at(node);
+        let (resp, dr_dg) = match &method {
             ContactMethod::Penalty { .. } => {
-                let alpha = penalty::effective_stiffness(&cp.method, tributary);
-                let resp = penalty::respond(&cp.method, tributary, gap, n, 0.0);
+                let alpha = penalty::effective_stiffness(&method, tributary);
+                let resp = penalty::respond(&method, tributary, gap, n, 0.0);
+                let resp = penalty::touching(alpha, gap, state.touching, tributary, n, 0.0)
+                    .filter(|_| resp.status == ContactStatus::Open)
+                    .unwrap_or(resp);
                 let closed = resp.status == ContactStatus::Closed;
                 (resp, if closed { -alpha } else { 0.0 })
             }
@@ -575,8 +579,11 @@ pub fn evaluate(
                 (lagrange::respond(active, lambda, tributary, n, 0.0), 0.0)
             }
             ContactMethod::AugmentedLagrange { .. } => {
-                let alpha = penalty::effective_stiffness(&cp.method, tributary);
+                let alpha = penalty::effective_stiffness(&method, tributary);
                 let resp = augmented::respond(alpha, lambda, tributary, gap, n, 0.0);
+                let resp = penalty::touching(alpha, gap, state.touching, tributary, n, 0.0)
+                    .filter(|_| resp.status == ContactStatus::Open)
+                    .unwrap_or(resp);
                 let closed = resp.status == ContactStatus::Closed;
                 (resp, if closed { -alpha } else { 0.0 })
             }
@@ -590,7 +597,7 @@ pub fn evaluate(
         let friction = match &cp.friction {
             Some(law) => super::friction_segment::apply(
                 law,
-                &cp.method,
+                &method,
                 &model.mesh.nodes,
                 x,
                 &sp.committed_positions,

@@ -93,6 +93,28 @@ pub fn respond(
     }
 }
 
+/// Fraction of the smallest slave edge of a pair within which a slave
+/// node counts as touching its master at the start of the analysis
+/// ([`touching`], `crate::contact::PairState::touching`).
+pub const TOUCH_FRACTION: f64 = 1e-3;
+
+/// Closed-gap start: a node of penalty coefficient `alpha` whose gap lies
+/// in `[0, touching]` is closed with zero force and the tangent
+/// `alpha n ⊗ n` (the curvature term vanishes with the force), so that the
+/// first tangent holds a body that only this contact can hold; `None`
+/// otherwise (and always when `touching <= 0`).
+pub fn touching(
+    alpha: f64,
+    gap: f64,
+    touching: f64,
+    tributary: f64,
+    normal: [f64; 2],
+    normal_rate: f64,
+) -> Option<Response> {
+    (touching > 0.0 && (0.0..=touching).contains(&gap) && alpha > 0.0)
+        .then(|| super::augmented::normal_response(alpha, 0.0, tributary, normal, normal_rate))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -120,6 +142,17 @@ mod tests {
         let r = respond(&nodal, 0.5, -0.01, [1.0, 0.0], 0.0);
         assert!((r.force[0] - 1.0).abs() < 1e-15);
         assert!((r.pressure - 2.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn a_touching_node_is_closed_with_zero_force_and_the_normal_stiffness() {
+        let r = touching(50.0, 1e-6, 1e-5, 0.5, [0.0, 1.0], 2.0).expect("touching");
+        assert_eq!(r.status, ContactStatus::Closed);
+        assert_eq!((r.force, r.pressure), ([0.0; 2], 0.0));
+        assert_eq!(r.stiffness, [[0.0, 0.0], [0.0, 50.0]]);
+        assert!(touching(50.0, 2e-5, 1e-5, 0.5, [0.0, 1.0], 0.0).is_none());
+        assert!(touching(50.0, -1e-6, 1e-5, 0.5, [0.0, 1.0], 0.0).is_none());
+        assert!(touching(50.0, 0.0, 0.0, 0.5, [0.0, 1.0], 0.0).is_none());
     }
 
     #[test]

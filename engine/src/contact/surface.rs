@@ -26,8 +26,13 @@
 //!
 //! Force of the tool on the node `f = R_N n`; tangent
 //! `K = -df/dx = alpha n ⊗ n - R_N W` (penalty: `alpha (n ⊗ n + g W)`,
-//! Lagrange: `-lambda W`); pressure `R_N / A`.
+//! Lagrange: `-lambda W`); pressure `R_N / A`. A pair with Coulomb
+//! friction adds the tangential force and its (non-symmetric) tangent of
+//! [`super::friction_surface`] at every closed node (penalty and augmented
+//! Lagrangian; the lowering refuses Lagrange-multiplier friction in 3D).
 
+use super::friction::FrictionState;
+use super::friction_surface::{self, SurfaceContact};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool};
@@ -56,6 +61,9 @@ pub struct SurfacePair {
     pub search: Vec<SearchState>,
     /// Work of the CAD projections of the last evaluation.
     pub counters: Counters,
+    /// Friction history (stick points and shifts in the tool's reference
+    /// frame; [`super::friction_surface`]).
+    pub friction: FrictionState<3>,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -71,6 +79,20 @@ impl SurfacePair {
             _ => default_prof(&model.mesh, &cp.faces),
         };
         let n = cp.nodes.len();
+        // reference-frame positions at t = 0 (start of the first impact path)
+        let start = cp
+            .master
+            .tool()
+            .and_then(|i| model.surfaces.get(i))
+            .map_or(Placement::identity(), |tool| placement(&tool.motion, 0.0));
+        let positions = cp
+            .nodes
+            .iter()
+            .map(|&k| {
+                let x = model.mesh.nodes.get(k).copied().unwrap_or([0.0; 3]);
+                start.to_reference(&Vec3::from(x)).into()
+            })
+            .collect();
         SurfacePair {
             slaves: cp.nodes.clone(),
             area,
@@ -79,6 +101,7 @@ impl SurfacePair {
             active: vec![false; n],
             search: vec![SearchState::new(); n],
             counters: Counters::default(),
+            friction: FrictionState::new(positions),
             committed_multiplier: vec![0.0; n],
             committed_active: vec![false; n],
             committed_search: vec![SearchState::new(); n],
@@ -90,6 +113,7 @@ impl SurfacePair {
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
         self.committed_search.clone_from(&self.search);
+        self.friction.commit();
     }
 
     /// Returns to the committed multipliers, active set and search memory.
@@ -97,6 +121,7 @@ impl SurfacePair {
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
         self.search.clone_from(&self.committed_search);
+        self.friction.rollback();
     }
 
     /// The committed multipliers and active set (restart points).
@@ -150,6 +175,22 @@ pub fn project(
         Err(ProjectionError::Singular { .. } | ProjectionError::OutOfReach) => Ok(None),
         Err(e) => Err(e),
     }
+}
+
+/// The gap of the tool-frame point `xr` to `tool` (`None` where no foot is
+/// found): the start of a first-impact path.
+fn reference_gap(
+    tool: &SurfaceTool,
+    xr: &Vec3,
+    search: &mut SearchState,
+    counters: &mut Counters,
+) -> Option<f64> {
+    match &tool.geometry {
+        SurfaceShape::Analytic(a) => a.project(xr),
+        SurfaceShape::Brep(b) => b.project(xr, search, counters),
+    }
+    .ok()
+    .map(|p| p.gap)
 }
 
 /// Tributary area `int N_a dA` of each node of `nodes` (sorted) over the
@@ -259,7 +300,10 @@ pub fn evaluate_pair(
         return (Vec::new(), failed);
     };
     let mut out = Vec::with_capacity(state.slaves.len());
+    let placed = placement(&tool.motion, t);
+    state.friction.impact = None;
     for (i, &node) in state.slaves.iter().enumerate() {
+        let xr = placed.to_reference(&Vec3::from(x[node]));
         // an active Lagrange node is projected whatever its distance
         state.search[i].reach = if state.active[i] {
             f64::INFINITY
@@ -268,18 +312,24 @@ pub fn evaluate_pair(
         };
         let p = match project(tool, t, &x[node], &mut state.search[i], &mut state.counters) {
             Ok(Some(p)) => p,
-            Ok(None) => continue,
+            Ok(None) => {
+                state.friction.open(i, xr.into());
+                continue;
+            }
             Err(e) => {
+                state.friction.open(i, xr.into());
                 failed.push((node, e));
                 continue;
             }
         };
         let active = state.active[i];
         if p.gap > state.prof && !active {
+            state.friction.open(i, xr.into());
             continue;
         }
-        let a = alpha(&cp.method, state.area[i]);
-        let rn = normal_force(&cp.method, a, state.multiplier[i], active, p.gap);
+        let method = cp.method_at(node);
+        let a = alpha(&method, state.area[i]);
+        let rn = normal_force(&method, a, state.multiplier[i], active, p.gap);
         let n = p.normal;
         let mut nc = NodeContact {
             node,
@@ -307,6 +357,33 @@ pub fn evaluate_pair(
                 0.0
             };
             nc.status = ContactStatus::Closed;
+            if let Some(law) = &cp.friction {
+                let c = SurfaceContact {
+                    placement: &placed,
+                    x: Vec3::from(x[node]),
+                    reference: xr,
+                    projection: &p,
+                    normal_force: rn,
+                    normal_stiffness: a,
+                    area: state.area[i],
+                };
+                let mut search = state.search[i];
+                search.reach = f64::INFINITY;
+                let mut counters = Counters::default();
+                let start_gap = |x0: &Vec3| reference_gap(tool, x0, &mut search, &mut counters);
+                nc.friction = friction_surface::respond(
+                    law,
+                    &method,
+                    i,
+                    &c,
+                    start_gap,
+                    &mut state.friction,
+                    &mut nc.force,
+                    &mut nc.stiffness,
+                );
+            }
+        } else {
+            state.friction.open(i, xr.into());
         }
         out.push(nc);
     }
@@ -324,6 +401,20 @@ mod tests {
     /// One slave node (a single triangle face) against a rigid sphere of
     /// radius 1 at the origin, moved by `translation`.
     fn model(method: ContactMethod, translation: [f64; 3]) -> Model<3> {
+        let ball = Analytic::Sphere(Sphere::new(Vec3::zeros(), 1.0, Side::Outside).unwrap());
+        let mut motion = SurfaceMotion::fixed();
+        motion.translation = translation.map(TimeFunction::Constant);
+        model_with(method, ball, motion, None)
+    }
+
+    /// The triangle of [`model`] against `tool` in placement `motion`, with
+    /// friction `friction`.
+    fn model_with(
+        method: ContactMethod,
+        tool: Analytic,
+        motion: SurfaceMotion,
+        friction: Option<crate::model::Friction>,
+    ) -> Model<3> {
         let mesh = Mesh::new(
             vec![[0.0, 0.0, 1.0], [1.0, 0.0, 1.0], [0.0, 1.0, 1.0]],
             vec![],
@@ -332,12 +423,9 @@ mod tests {
             .elastic("m", 1.0, 0.3)
             .body("b", mesh, "m")
             .build();
-        let mut motion = SurfaceMotion::fixed();
-        motion.translation = translation.map(TimeFunction::Constant);
         m.surfaces.push(SurfaceTool {
             name: "ball".into(),
-            geometry: Analytic::Sphere(Sphere::new(Vec3::zeros(), 1.0, Side::Outside).unwrap())
-                .into(),
+            geometry: tool.into(),
             motion,
         });
         m.contacts.push(ContactPair {
@@ -353,7 +441,8 @@ mod tests {
             smoothing: Default::default(),
             method,
             prof: Some(10.0),
-            friction: None,
+            friction,
+            local_penalty: Vec::new(),
         });
         m
     }
@@ -447,6 +536,99 @@ mod tests {
                             "K[{a}][{b}] = {} vs {fd}", nc.stiffness[a][b]);
                         prop_assert!((nc.stiffness[a][b] - nc.stiffness[b][a]).abs() < 1e-12);
                     }
+                }
+            }
+        }
+
+        /// 3D Coulomb friction ([`super::friction_surface`]): the tangent of
+        /// the frictional contact force (normal + tangential) is `-d f / d x`
+        /// by central differences to a relative error of 1e-6 (of the
+        /// largest entry), against a plane and a sphere placed by an
+        /// arbitrary rotation and translation, in stick and in slip, for the
+        /// penalty and the augmented Lagrangian (tangential shift), with the
+        /// stick point fixed or on the first-impact path.
+        #[test]
+        fn friction_tangent_matches_finite_differences(
+            sphere in any::<bool>(), augmented in any::<bool>(), first in any::<bool>(),
+            mu in 0.05f64..1.0, angle in -0.4f64..0.4,
+            dx in -0.3f64..0.3, dy in -0.3f64..0.3, dz in 0.02f64..0.3,
+            ax in -0.3f64..0.3, ay in -0.3f64..0.3,
+            sx in -3.0f64..3.0, sy in -3.0f64..3.0, lambda in 0.0f64..3.0,
+        ) {
+            use crate::model::{FirstImpact, Friction};
+            let method = if augmented {
+                ContactMethod::AugmentedLagrange {
+                    kind: PenaltyKind::Area,
+                    penalty: 60.0,
+                    tolerance: 1e-3,
+                    update: crate::model::MultiplierUpdate::Converged,
+                }
+            } else {
+                ContactMethod::Penalty { kind: PenaltyKind::Area, stiffness: 60.0 }
+            };
+            let tool = if sphere {
+                Analytic::Sphere(Sphere::new(Vec3::zeros(), 1.0, Side::Outside).unwrap())
+            } else {
+                use ctc_geom::analytic::Plane;
+                let n = Vec3::new(0.2, -0.1, 1.0);
+                Analytic::Plane(Plane::new(Vec3::new(0.0, 0.0, 1.0), n, Side::Outside).unwrap())
+            };
+            let mut motion = SurfaceMotion::fixed();
+            motion.translation = [dx, dy, dz].map(TimeFunction::Constant);
+            motion.rotation = TimeFunction::Constant(angle);
+            motion.axis = [0.3, 1.0, 0.5];
+            motion.center = [0.1, 0.2, 0.3];
+            let law = Friction {
+                mu,
+                stiffness: Some(25.0),
+                first_impact: FirstImpact::Intersect,
+                cut_at_impact: false,
+            };
+            let m = model_with(method, tool, motion, Some(law));
+            let mut state = SurfacePair::new(&m, 0);
+            state.multiplier = vec![lambda; 3];
+            let x0 = m.mesh.nodes.clone();
+            let p = placement(&m.surfaces[0].motion, 0.0);
+            // node 0: stick point (tool frame) offset in the tangent plane, or
+            // a first impact from a point above the tool
+            let xr = p.to_reference(&Vec3::from(x0[0]));
+            if first {
+                state.friction.committed_position[0] = (xr + Vec3::new(ax, ay, 0.5)).into();
+            } else {
+                state.friction.committed_anchor[0] = Some((xr + Vec3::new(ax, ay, 0.0)).into());
+                state.friction.base = state.friction.committed_anchor.clone();
+            }
+            if augmented {
+                state.friction.shift[0] = [sx, sy, 0.3 * sx];
+            }
+            let eval = |x: &[[f64; 3]]| {
+                let r = evaluate_pair(&m, 0, x, 0.0, &mut state.clone()).0;
+                r.into_iter().find(|c| c.node == 0)
+            };
+            let Some(nc) = eval(&x0) else { return Ok(()) };
+            if nc.status != ContactStatus::Closed {
+                return Ok(());
+            }
+            let kmax = nc.stiffness.iter().flatten().fold(0.0f64, |a, k| a.max(k.abs()));
+            let h = 1e-6;
+            for b in 0..3 {
+                let f = |s: f64| {
+                    let mut x = x0.clone();
+                    x[0][b] += s;
+                    eval(&x)
+                };
+                let (Some(fp), Some(fm)) = (f(h), f(-h)) else { continue };
+                // skip points where the status changes within +-h
+                if fp.status != nc.status || fm.status != nc.status
+                    || fp.friction.status != nc.friction.status
+                    || fm.friction.status != nc.friction.status
+                {
+                    continue;
+                }
+                for a in 0..3 {
+                    let fd = -(fp.force[a] - fm.force[a]) / (2.0 * h);
+                    prop_assert!((fd - nc.stiffness[a][b]).abs() <= 1e-6 * kmax.max(1.0),
+                        "{:?} K[{a}][{b}] = {} vs {fd}", nc.friction.status, nc.stiffness[a][b]);
                 }
             }
         }

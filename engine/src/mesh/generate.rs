@@ -17,6 +17,7 @@ mod half_disc;
 mod quarter_disc;
 mod rectangle;
 pub mod solid;
+pub mod sweep;
 
 pub use common::MAX_NODES;
 pub use grading::RATIO_RANGE;

@@ -13,7 +13,8 @@
 //! plastic: converged integration-point values, nodal averages), `reaction` (3 components), `contact_gap`, `contact_pressure`,
 //! `contact_status` (-1 not a slave node, 0 open or out of reach, 1 closed;
 //! the gap is 0 where no contact was evaluated); with friction also
-//! `friction_force` (tangential force), `friction_slip` (slip increment),
+//! `friction_force` (tangential force; 3D: its magnitude, and the vector
+//! `friction_traction`), `friction_slip` (slip increment; 3D: its length),
 //! `friction_status` (0 frictionless, 1 stick, 2 slip) and
 //! `friction_dissipation` (work of the increment). Cell data: `body` index,
 //! and with the same names as the point data `stress`, `strain`,
@@ -239,6 +240,16 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
         if m.contacts.iter().any(|c| c.friction.is_some()) {
             let f = crate::contact::friction::nodal_fields(nn, d.contact);
             a.array(&mut s, IN, "friction_force", 1, "", f.force);
+            if D == 3 {
+                a.array(
+                    &mut s,
+                    IN,
+                    "friction_traction",
+                    3,
+                    "",
+                    f.traction.iter().flatten().copied(),
+                );
+            }
             a.array(&mut s, IN, "friction_slip", 1, "", f.slip);
             a.array(&mut s, IN, "friction_status", 1, "", f.status);
             a.array(&mut s, IN, "friction_dissipation", 1, "", f.dissipation);

@@ -1,7 +1,7 @@
 //! Checks of a [`Model`] before solving: every index in range, every
 //! parameter usable, every body held. Errors are user-facing sentences.
 
-use crate::model::{AnalysisKind, HistoryRequest, Load, Model};
+use crate::model::{AnalysisKind, ContactMethod, HistoryRequest, Load, Model};
 
 /// The valid components in words, by dimension (2, 3).
 const COMPONENTS: [&str; 2] = ["0 (x) or 1 (y)", "0 (x), 1 (y) or 2 (z)"];
@@ -203,9 +203,10 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     c.name
                 ));
             }
-            if c.friction.is_some() {
+            if c.friction.is_some() && matches!(c.method, ContactMethod::Lagrange { .. }) {
                 errors.push(format!(
-                    "contact `{}`: friction is not available in 3D analyses yet",
+                    "contact `{}`: Lagrange-multiplier friction is not available in 3D \
+                     analyses yet: use penalty or augmented Lagrangian",
                     c.name
                 ));
             }
@@ -245,6 +246,9 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         }
         if n.max_iter == 0 {
             bad("newton max_iter must be >= 1".into());
+        }
+        if let Some(c) = n.stabilize.filter(|c| !(c.is_finite() && *c > 0.0)) {
+            bad(format!("newton stabilize must be a number > 0 (got {c})"));
         }
     }
     // time functions must give finite values over the analysis
@@ -297,6 +301,28 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         errors.extend(unheld_bodies(model));
     }
     errors
+}
+
+/// Per body: whether its own `fix`/`displace` conditions leave a
+/// rigid-body motion free, so that only contact can hold it (the bodies
+/// `newton { stabilize }` acts on, see [`super::stabilize`]).
+pub fn held_only_by_contact<const D: usize>(model: &Model<D>) -> Vec<bool> {
+    let mut constrained = vec![[false; D]; model.mesh.nodes.len()];
+    for d in &model.constraints {
+        for &n in &d.nodes {
+            if let Some(c) = constrained.get_mut(n).and_then(|c| c.get_mut(d.component)) {
+                *c = true;
+            }
+        }
+    }
+    model
+        .bodies
+        .iter()
+        .map(|body| {
+            body.nodes.end <= model.mesh.nodes.len()
+                && !free_motions(model, body, &constrained, &[]).is_empty()
+        })
+        .collect()
 }
 
 /// Bodies that nothing holds: their constrained dofs leave a rigid-body

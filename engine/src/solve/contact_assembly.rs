@@ -86,6 +86,23 @@ impl ContactAssembly {
                 self.contact[i] = res;
                 continue;
             }
+            if state.touching > 0.0
+                && matches!(
+                    model.contacts[i].method,
+                    crate::model::ContactMethod::Lagrange { .. }
+                )
+            {
+                // closed-gap start: touching nodes join the active set (their
+                // multiplier is 0, so their force and tangent are unchanged)
+                for nc in &res {
+                    if let Some(k) = state.slave_index(nc.node) {
+                        if nc.gap <= state.touching && !state.active[k] {
+                            state.active[k] = true;
+                            state.multiplier[k] = 0.0;
+                        }
+                    }
+                }
+            }
             for nc in &res {
                 for (c, f) in nc.force.iter().enumerate() {
                     f_c[dofs.dof(nc.node, c)] += f;
@@ -99,6 +116,49 @@ impl ContactAssembly {
                 }
             }
             self.contact[i] = res;
+        }
+    }
+
+    /// Turns the closed-gap start on (the first iteration of the analysis)
+    /// or off: the touching tolerance of every frictionless pair that
+    /// involves a body held only by contact (slave or master,
+    /// [`crate::solve::check::held_only_by_contact`]; the other pairs are
+    /// left as they are) is [`contact::penalty::TOUCH_FRACTION`] of its
+    /// smallest slave edge.
+    pub fn set_touching(&mut self, model: &Model, on: bool) {
+        let held = if on {
+            crate::solve::check::held_only_by_contact(model)
+        } else {
+            Vec::new()
+        };
+        let held = |b: usize| held.get(b).copied().unwrap_or(false);
+        for (i, state) in self.pairs.iter_mut().enumerate() {
+            state.touching = 0.0;
+            let Some(cp) = model.contacts.get(i).filter(|_| on) else {
+                continue;
+            };
+            let master_held = match &cp.master {
+                crate::model::ContactMaster::Surface { body, .. } => held(*body),
+                crate::model::ContactMaster::Tool(_) => false,
+            };
+            // frictional pairs keep their first-impact stick points: only
+            // `stabilize` helps them
+            if !(held(cp.body) || master_held) || cp.friction.is_some() {
+                continue;
+            }
+            let nodes = &model.mesh.nodes;
+            let h = cp
+                .edges
+                .iter()
+                .filter_map(|&[a, b]| {
+                    let (pa, pb) = (nodes.get(a)?, nodes.get(b)?);
+                    Some((pb[0] - pa[0]).hypot(pb[1] - pa[1]))
+                })
+                .filter(|l| *l > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            if h.is_finite() {
+                state.touching = contact::penalty::TOUCH_FRACTION * h;
+            }
         }
     }
 

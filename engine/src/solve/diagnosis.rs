@@ -175,7 +175,7 @@ pub fn penalty_ratio(
                 continue;
             };
             let trib = contacts.pairs[p].tributary.get(i).copied().unwrap_or(0.0);
-            let alpha = crate::contact::penalty::effective_stiffness(&cp.method, trib);
+            let alpha = crate::contact::penalty::effective_stiffness(&cp.method_at(nc.node), trib);
             let slots = scatter.node_slots(nc.node);
             let k_elem = [0, 3]
                 .iter()
@@ -291,6 +291,55 @@ pub fn contact_cause(
         }
         _ => None,
     }
+}
+
+/// The remedy of a singular failure at the start of step `step` (time
+/// `time`) when a body's own `fix`/`displace` conditions leave it free,
+/// only contact can hold it and none of its pairs had a closed node at the
+/// start of the analysis (`start_closed`: closed nodes per pair, the
+/// touching start included), and the step has no stabilization: `newton {
+/// stabilize }`, naming the bodies; `None` otherwise (a body free along a
+/// direction its closed contact cannot hold needs a `fix`).
+pub fn stabilize_hint<const D: usize>(
+    model: &crate::model::Model<D>,
+    failure: &Failure,
+    step: &crate::model::Step,
+    time: f64,
+    start_closed: &[usize],
+) -> Option<String> {
+    let at_start = (time - step.t_start).abs() <= 1e-12 * (step.t_end - step.t_start).abs();
+    if failure.kind != FailureKind::Singular || !at_start || step.newton.stabilize.is_some() {
+        return None;
+    }
+    let held = super::check::held_only_by_contact(model);
+    let open_at_start = |b: usize| {
+        model.contacts.iter().enumerate().all(|(i, c)| {
+            let involved = c.body == b
+                || matches!(&c.master, crate::model::ContactMaster::Surface { body, .. } if *body == b);
+            !involved || start_closed.get(i).copied().unwrap_or(0) == 0
+        })
+    };
+    let bodies: Vec<String> = model
+        .bodies
+        .iter()
+        .zip(&held)
+        .enumerate()
+        .filter(|(i, (_, h))| **h && open_at_start(*i))
+        .map(|(_, (b, _))| format!("`{}`", b.name))
+        .collect();
+    if bodies.is_empty() || model.contacts.is_empty() {
+        return None;
+    }
+    Some(format!(
+        "{} {} held only by contact, which is still open at t = {time}: add `newton {{ \
+         stabilize }}` to step `{}` (springs on the increment displacement of these bodies, \
+         ramped to 0 at the step's end, their energy reported), or start the bodies touching \
+         (a gap within {} x the smallest slave edge counts as closed at the start)",
+        bodies.join(", "),
+        if bodies.len() == 1 { "is" } else { "are" },
+        step.name,
+        crate::contact::penalty::TOUCH_FRACTION
+    ))
 }
 
 /// Likely cause and remedy of a failed increment when the contact health

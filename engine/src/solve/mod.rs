@@ -46,6 +46,7 @@ pub mod loads;
 pub mod newton;
 pub mod restart;
 pub mod scene;
+pub mod stabilize;
 pub mod stepping;
 pub mod surface_assembly;
 
@@ -178,6 +179,10 @@ pub struct IncrementRecord {
     /// The heat step of the increment (thermal scenes only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub thermal: Option<crate::thermal::solver::ThermalIncrement>,
+    /// The stabilization of the increment (`newton { stabilize }` steps
+    /// only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stabilization: Option<stabilize::IncrementRecord>,
 }
 
 /// Record of one failed increment attempt (a cutback) in the run summary.
@@ -279,6 +284,10 @@ pub struct RunSummary {
     /// Warnings of converged increments (e.g. slave nodes that moved
     /// farther than the contact search window in one increment).
     pub warnings: Vec<String>,
+    /// The stabilization of each `newton { stabilize }` step: its energy
+    /// against the internal work, and its force at the step's end.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub stabilization: Vec<stabilize::StepRecord>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -392,6 +401,18 @@ where
         }
         increment = cp.increment;
     }
+    for s in model.steps.iter().filter(|s| s.newton.stabilize.is_some()) {
+        if !newton.stabilization.any() {
+            let w = format!(
+                "step `{}`: `newton {{ stabilize }}` has nothing to act on: every body is held by \
+                 its own `fix`/`displace` conditions (it stabilizes only bodies held by contact \
+                 alone)",
+                s.name
+            );
+            observer.warning(&w);
+            summary.warnings.push(w);
+        }
+    }
     if from.is_none() {
         // slave nodes inside a tool at the start: a reversed side?
         for w in health::start_inside(model) {
@@ -483,6 +504,13 @@ where
                         diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
                     })
             };
+            // a body that only contact holds, singular at the step's start:
+            // the stabilization is the remedy (issue 14, item 8)
+            let remedy =
+                match diagnosis::stabilize_hint(model, &failure, s, time, newton.start_closed()) {
+                    Some(hint) => format!("{hint}; or: {remedy}"),
+                    None => remedy,
+                };
             let residuals: Vec<String> = failure
                 .residuals
                 .iter()
@@ -540,6 +568,63 @@ where
             *t += w;
         }
         work
+    }
+}
+
+impl<const D: usize> Driver<'_, '_, D>
+where
+    Const<D>: Dimension<D>,
+{
+    /// The stabilization of the converged increment of step `step` ending
+    /// at `t` (`None`: the step has none), kept in the step's record; at
+    /// the step's end, a warning when its energy exceeds
+    /// [`stabilize::ENERGY_WARNING_FRACTION`] of the internal work.
+    fn stabilization_record(&mut self, step: usize, t: f64) -> Option<stabilize::IncrementRecord> {
+        let s = &self.model.steps[step];
+        let c = s.newton.stabilize?;
+        let st = &self.newton.stabilization;
+        if !st.any() {
+            return None;
+        }
+        let internal = st.internal_energy;
+        let ratio = if internal.abs() > 0.0 {
+            st.step_energy / internal.abs()
+        } else {
+            0.0
+        };
+        let completed = st.factor == 0.0 && stabilize::ramp(c, s, t) == 0.0;
+        let record = stabilize::StepRecord {
+            step: s.name.clone(),
+            factor: c,
+            bodies: st.bodies.clone(),
+            energy: st.step_energy,
+            internal_energy: internal,
+            ratio,
+            end_force: st.force,
+            completed,
+        };
+        let increment = stabilize::IncrementRecord {
+            factor: st.factor,
+            energy: st.increment_energy,
+            force: st.force,
+        };
+        match self.summary.stabilization.last_mut() {
+            Some(last) if last.step == record.step => *last = record,
+            _ => self.summary.stabilization.push(record),
+        }
+        if completed && ratio > stabilize::ENERGY_WARNING_FRACTION {
+            let w = format!(
+                "step `{}`: the stabilization energy is {:.1} % of the internal work (more than \
+                 {:.0} %): it changed the solution along the step (the end state is unstabilized); \
+                 lower `stabilize` (now {c:e}) or use more increments",
+                s.name,
+                100.0 * ratio,
+                100.0 * stabilize::ENERGY_WARNING_FRACTION
+            );
+            self.observer.warning(&w);
+            self.summary.warnings.push(w);
+        }
+        Some(increment)
     }
 }
 
@@ -616,6 +701,7 @@ where
         self.summary.timings.output += start.elapsed().as_secs_f64();
         let friction_work = self.friction_work();
         let (residual_floor, at_floor) = self.newton.residual_floor();
+        let stabilization = self.stabilization_record(step, t);
         self.summary.increments.push(IncrementRecord {
             step: self.model.steps[step].name.clone(),
             increment: self.increment,
@@ -631,6 +717,7 @@ where
             at_floor,
             friction_work,
             thermal: self.thermal.as_ref().map(|t| t.last().clone()),
+            stabilization,
         });
         for w in warnings {
             self.observer.warning(&w);

@@ -123,6 +123,9 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
         displacement: &[[f64; D]],
         contact: &[NodeContact<D>],
     ) -> String;
+    /// Turns the closed-gap start (slave nodes touching their master count
+    /// as closed) on or off; planar pairs only (`PairState::touching`).
+    fn set_touching(&mut self, _model: &Model<D>, _on: bool) {}
     /// One increment attempt: the Newton loops of `newton` inside the
     /// contact loop (Lagrange active set, Uzawa updates).
     fn attempt(
@@ -144,6 +147,10 @@ impl ContactScene<2> for ContactAssembly {
 
     fn evaluate(&mut self, model: &Model, dofs: &DofMap, u: &[[f64; 2]], t: f64, f_c: &mut [f64]) {
         ContactAssembly::evaluate(self, model, dofs, u, t, f_c);
+    }
+
+    fn set_touching(&mut self, model: &Model, on: bool) {
+        ContactAssembly::set_touching(self, model, on);
     }
 
     fn grow_pattern(

@@ -3,7 +3,8 @@
 //! their forces and 3x3 tangent blocks scattered into the global vectors
 //! and matrix, the Lagrange rows `dg/dx = n`, and the contact loop around
 //! the Newton loops of an increment (Lagrange active set, Uzawa updates of
-//! the augmented Lagrangian), the 3D counterpart of
+//! the augmented Lagrangian, with the tangential shifts of friction and the
+//! stick violation in its convergence test), the 3D counterpart of
 //! [`super::contact_assembly`] and [`super::contact_loop`].
 //!
 //! Rigid tools add no unknowns and couple no nodes, so the sparsity
@@ -20,6 +21,7 @@ use super::scene::ContactScene;
 use super::Observer;
 use crate::contact::rows::{NodeRows, NodeTerm, RowKind};
 use crate::contact::surface::{self, SurfacePair};
+use crate::contact::{friction, friction_surface};
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 use std::fmt::Write;
@@ -42,6 +44,8 @@ pub struct SurfaceAssembly {
     rows: NodeRows,
     /// Current nodal coordinates (scratch).
     x: Vec<[f64; 3]>,
+    /// Time of the last evaluation (tool placement of the Uzawa updates).
+    time: f64,
     /// Diagonal of the mesh's bounding box (introduction threshold).
     size: f64,
     /// CAD projections that failed at the last evaluation (pair, node,
@@ -102,7 +106,13 @@ impl SurfaceAssembly {
                 continue;
             };
             let list = &self.contact[pi];
-            let violation = crate::contact::augmented::constraint_violation(list);
+            let violation = crate::contact::augmented::constraint_violation(list).max(
+                if cp.friction.is_some() {
+                    friction::stick_violation(list)
+                } else {
+                    0.0
+                },
+            );
             if update != mode || violation <= tolerance {
                 continue;
             }
@@ -110,11 +120,22 @@ impl SurfaceAssembly {
             let mut next = vec![0.0; state.slaves.len()];
             for nc in list {
                 if let Some(i) = state.slave_index(nc.node) {
-                    let a = surface::alpha(&cp.method, state.area[i]);
+                    let a = surface::alpha(&cp.method_at(nc.node), state.area[i]);
                     next[i] = (state.multiplier[i] - a * nc.gap).max(0.0);
                 }
             }
             state.multiplier = next;
+            if cp.friction.is_some() {
+                if let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) {
+                    let placement = surface::placement(&tool.motion, self.time);
+                    friction_surface::uzawa_update(
+                        &state.slaves,
+                        list,
+                        &placement,
+                        &mut state.friction,
+                    );
+                }
+            }
             updated = true;
         }
         updated
@@ -146,6 +167,7 @@ impl ContactScene<3> for SurfaceAssembly {
             constraints: Constraints::default(),
             rows: NodeRows::default(),
             x: model.mesh.nodes.clone(),
+            time: 0.0,
             size: if size.is_finite() && size > 0.0 {
                 size
             } else {
@@ -169,6 +191,7 @@ impl ContactScene<3> for SurfaceAssembly {
             }
         }
         self.failures.clear();
+        self.time = t;
         for (i, state) in self.pairs.iter_mut().enumerate() {
             let (res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
             self.failures
@@ -290,8 +313,14 @@ impl ContactScene<3> for SurfaceAssembly {
         None
     }
 
-    fn impact_fraction(&self, _: &Model<3>) -> Option<f64> {
-        None
+    fn impact_fraction(&self, model: &Model<3>) -> Option<f64> {
+        model
+            .contacts
+            .iter()
+            .zip(&self.pairs)
+            .filter(|(c, _)| c.friction.is_some_and(|f| f.cut_at_impact))
+            .filter_map(|(_, p)| p.friction.impact)
+            .reduce(f64::min)
     }
 
     fn increment_warnings(
@@ -347,7 +376,10 @@ impl ContactScene<3> for SurfaceAssembly {
     }
 
     fn friction_work(&self) -> Vec<f64> {
-        vec![0.0; self.pairs.len()]
+        self.contact
+            .iter()
+            .map(|l| friction::pair_dissipation(l))
+            .collect()
     }
 
     fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>) {
@@ -360,7 +392,7 @@ impl ContactScene<3> for SurfaceAssembly {
                     entity: vec![None; p.slaves.len()],
                     multiplier: multiplier.to_vec(),
                     active: active.to_vec(),
-                    friction: Vec::new(),
+                    friction: p.friction.committed_values(),
                 }
             })
             .collect();
@@ -375,6 +407,11 @@ impl ContactScene<3> for SurfaceAssembly {
             let n = s.slaves.len();
             if h.multiplier.len() != n || h.active.len() != n {
                 return Err("the restart point does not match the model (slave nodes)".into());
+            }
+            // restart points written before 3D friction carry no friction
+            // state: start from none
+            if !h.friction.is_empty() {
+                s.friction.restore_committed(&h.friction)?;
             }
             s.restore(&h.multiplier, &h.active);
         }
@@ -391,7 +428,13 @@ impl ContactScene<3> for SurfaceAssembly {
     ) -> String {
         use crate::output::encode::Shortest as N;
         let cp = &model.contacts[pair];
-        let mut s = String::from("node,x,y,z,gap,pressure,status,force_x,force_y,force_z\n");
+        let friction = cp.friction.is_some();
+        let mut s = String::from("node,x,y,z,gap,pressure,status,force_x,force_y,force_z");
+        s.push_str(if friction {
+            ",tangential_x,tangential_y,tangential_z,slip,friction_status,dissipation\n"
+        } else {
+            "\n"
+        });
         for &n in &cp.nodes {
             let x0 = model.mesh.nodes[n];
             let u = displacement[n];
@@ -404,7 +447,7 @@ impl ContactScene<3> for SurfaceAssembly {
             );
             match contact.iter().find(|c| c.node == n) {
                 Some(c) => {
-                    let _ = writeln!(
+                    let _ = write!(
                         s,
                         ",{},{},{},{},{},{}",
                         N(c.gap),
@@ -414,9 +457,24 @@ impl ContactScene<3> for SurfaceAssembly {
                         N(c.force[1]),
                         N(c.force[2])
                     );
+                    if friction {
+                        let f = &c.friction;
+                        let _ = write!(
+                            s,
+                            ",{},{},{},{},{},{}",
+                            N(f.traction[0]),
+                            N(f.traction[1]),
+                            N(f.traction[2]),
+                            N(f.slip),
+                            friction::status_code(f.status),
+                            N(f.dissipation)
+                        );
+                    }
+                    s.push('\n');
                 }
                 None => {
-                    let _ = writeln!(s, ",,0,0,0,0,0");
+                    s.push_str(",,0,0,0,0,0");
+                    s.push_str(if friction { ",0,0,0,0,0,0\n" } else { "\n" });
                 }
             }
         }

@@ -373,6 +373,7 @@ impl<const D: usize> ModelBuilder<D> {
             },
             prof: None,
             friction: None,
+            local_penalty: Vec::new(),
         }
     }
 

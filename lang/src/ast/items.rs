@@ -462,8 +462,12 @@ pub enum Method {
     Penalty {
         /// Nodal or area (default area).
         kind: Option<Spanned<PenaltyKind>>,
-        /// Penalty coefficient.
+        /// Penalty coefficient (for a relative one, its value at `E = 1`,
+        /// `h = 1`: the validated expression's placeholder).
         stiffness: Option<Spanned<f64>>,
+        /// The stiffness as an expression of the slave body's `E` and the
+        /// local element size `h`, evaluated per slave node at lowering.
+        relative: Option<RelativeStiffness>,
     },
     /// `lagrange { formulation }`.
     Lagrange {
@@ -474,14 +478,41 @@ pub enum Method {
     AugmentedLagrange {
         /// Nodal or area (default area).
         kind: Option<Spanned<PenaltyKind>>,
-        /// Penalty coefficient alpha.
+        /// Penalty coefficient alpha (see `Penalty::stiffness`).
         penalty: Option<Spanned<f64>>,
+        /// alpha as an expression of `E` and `h` (see `Penalty::relative`).
+        relative: Option<RelativeStiffness>,
         /// Largest accepted penetration.
         tolerance: Option<Spanned<f64>>,
         /// `converged` (default) or `newton`.
         update: Option<Spanned<MultiplierUpdate>>,
     },
 }
+
+/// A penalty coefficient written relative to the mesh and the material,
+/// e.g. `stiffness = 10 * E / h`: `E` is the Young's modulus of the slave
+/// body's material and `h` the local size of the slave surface at each
+/// node (the mean length of the slave facet edges that meet there). The
+/// expression is checked when parsed and evaluated per slave node when the
+/// deck is lowered, in the parameters and unit system it was written in.
+#[derive(Debug, Clone)]
+pub struct RelativeStiffness {
+    /// The expression.
+    pub expr: crate::ast::syntax::Value,
+    /// The parameters and unit system at the expression.
+    pub env: crate::expr::Env,
+}
+
+impl PartialEq for RelativeStiffness {
+    /// Two relative stiffnesses are the same when written the same (the
+    /// environment follows from the deck).
+    fn eq(&self, other: &Self) -> bool {
+        self.expr == other.expr
+    }
+}
+
+/// The names a relative penalty coefficient is written in.
+pub const RELATIVE_NAMES: [&str; 2] = ["E", "h"];
 
 /// `lagrange { formulation = .. }` values.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -594,7 +625,7 @@ pub struct Step {
     pub span: Span,
 }
 
-/// `newton { tol tol_displacement max_iter line_search }`.
+/// `newton { tol tol_displacement max_iter line_search stabilize }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Newton {
     /// Residual tolerance.
@@ -605,6 +636,8 @@ pub struct Newton {
     pub max_iter: Option<Spanned<i64>>,
     /// Line search on/off.
     pub line_search: Option<Spanned<bool>>,
+    /// `stabilize = c` or a bare `stabilize` (the default factor).
+    pub stabilize: Option<Spanned<f64>>,
     /// The block.
     pub span: Span,
 }

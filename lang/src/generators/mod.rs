@@ -17,6 +17,7 @@ pub mod annulus;
 pub mod disc;
 pub mod rectangle;
 pub mod solid;
+pub mod sweep;
 
 use crate::ast::settings::Settings;
 use crate::ast::Generator;
@@ -164,6 +165,8 @@ pub static REGISTRY: &[&GeneratorDef] = &[
     &solid::TUBE,
     &solid::CYLINDER,
     &solid::SPHERE_OCTANT,
+    &sweep::EXTRUDE,
+    &sweep::REVOLVE,
 ];
 
 /// The generator called `name`.

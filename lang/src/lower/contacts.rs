@@ -2,15 +2,25 @@
 
 use super::{mesh, Lowerer};
 use crate::ast::{self, Method};
+use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
 use ctc_engine::model::{
     self as m, ContactMaster, ContactMethod, ContactPair, ContactStrategy, PenaltyKind,
 };
 
+/// One side of a contact pair for a relative penalty: its body, its edges
+/// (2D) and its faces (3D).
+type ContactSide = (usize, Vec<[usize; 2]>, Vec<ctc_engine::mesh::Facet>);
+
 impl Lowerer<'_> {
     /// The pairs; `tools` are the names of the lowered tools (curves in
     /// planar analyses, surfaces in `3d`), in `Model` order.
-    pub(super) fn contacts(&mut self, bodies: &[m::Body], tools: &[&str]) -> Vec<ContactPair> {
+    pub(super) fn contacts(
+        &mut self,
+        bodies: &[m::Body],
+        materials: &[m::Material],
+        tools: &[&str],
+    ) -> Vec<ContactPair> {
         let mut out = Vec::new();
         for c in &self.deck.contacts {
             if self.has_error_in(c.span) || self.body_failed(&c.target) {
@@ -52,6 +62,7 @@ impl Lowerer<'_> {
                 Some(Method::Penalty {
                     kind,
                     stiffness: Some(s),
+                    ..
                 }) => ContactMethod::Penalty {
                     kind: match kind.as_ref().map(|k| k.value) {
                         Some(ast::PenaltyKind::Nodal) => PenaltyKind::Nodal,
@@ -70,6 +81,7 @@ impl Lowerer<'_> {
                     penalty: Some(p),
                     tolerance: Some(tol),
                     update,
+                    ..
                 }) => ContactMethod::AugmentedLagrange {
                     kind: match kind.as_ref().map(|k| k.value) {
                         Some(ast::PenaltyKind::Nodal) => PenaltyKind::Nodal,
@@ -89,6 +101,30 @@ impl Lowerer<'_> {
             };
             let edges = r.edges.unwrap_or_default();
             let faces = r.faces.unwrap_or_default();
+            let relative = match c.method.as_ref().map(|m| &m.value) {
+                Some(Method::Penalty { relative, .. })
+                | Some(Method::AugmentedLagrange { relative, .. }) => relative.as_ref(),
+                _ => None,
+            };
+            let local_penalty = match relative {
+                None => Vec::new(),
+                Some(rel) => {
+                    // the slave side, and the master side of a deformable pair
+                    let mut sides = vec![(body, edges.clone(), faces.clone())];
+                    if let ContactMaster::Surface {
+                        body: mb,
+                        edges: me,
+                        ..
+                    } = &master
+                    {
+                        sides.push((*mb, me.clone(), Vec::new()));
+                    }
+                    let Some(local) = self.local_penalty(rel, &sides, bodies, materials) else {
+                        continue;
+                    };
+                    local
+                }
+            };
             let nodes = if faces.is_empty() {
                 mesh::edge_nodes(&edges)
             } else {
@@ -121,7 +157,31 @@ impl Lowerer<'_> {
                     Some(ast::Search::Circle) => m::LocalSearch::Circle,
                     _ => m::LocalSearch::Memory,
                 },
-                method,
+                method: match (
+                    method,
+                    local_penalty.iter().map(|&(_, k)| k).reduce(f64::max),
+                ) {
+                    // the stiffest node's value stands for the pair in messages
+                    (ContactMethod::Penalty { kind, .. }, Some(k)) => {
+                        ContactMethod::Penalty { kind, stiffness: k }
+                    }
+                    (
+                        ContactMethod::AugmentedLagrange {
+                            kind,
+                            tolerance,
+                            update,
+                            ..
+                        },
+                        Some(k),
+                    ) => ContactMethod::AugmentedLagrange {
+                        kind,
+                        penalty: k,
+                        tolerance,
+                        update,
+                    },
+                    (m, _) => m,
+                },
+                local_penalty,
                 prof: c.prof.as_ref().map(|p| p.value),
                 friction: c.friction.as_ref().and_then(|f| {
                     Some(m::Friction {
@@ -137,5 +197,101 @@ impl Lowerer<'_> {
             });
         }
         out
+    }
+
+    /// The per-node penalty coefficients of a relative penalty
+    /// (`stiffness = 10 * E / h`) over the contact `sides` (body, edges,
+    /// faces): `E` is the Young's modulus of the side's body and `h` the
+    /// mean length of the side's facet edges meeting at the node. `None`
+    /// after reporting a coefficient that is not a positive finite number.
+    fn local_penalty(
+        &mut self,
+        rel: &ast::RelativeStiffness,
+        sides: &[ContactSide],
+        bodies: &[m::Body],
+        materials: &[m::Material],
+    ) -> Option<Vec<(usize, f64)>> {
+        let mut out: Vec<(usize, f64)> = Vec::new();
+        for (body, edges, faces) in sides {
+            let young = materials[bodies[*body].material].law.young();
+            // (sum of adjacent edge lengths, count) per node
+            let mut sum: std::collections::BTreeMap<usize, (f64, usize)> = Default::default();
+            let mut add = |a: usize, b: usize, len: f64| {
+                for n in [a, b] {
+                    let e = sum.entry(n).or_insert((0.0, 0));
+                    e.0 += len;
+                    e.1 += 1;
+                }
+            };
+            if self.solid {
+                let x = &self.mesh3.nodes;
+                for f in faces {
+                    let n = f.nodes();
+                    for k in 0..n.len() {
+                        let (a, b) = (n[k], n[(k + 1) % n.len()]);
+                        let d: f64 = (0..3).map(|c| (x[a][c] - x[b][c]).powi(2)).sum();
+                        add(a, b, d.sqrt());
+                    }
+                }
+            } else {
+                let x = &self.mesh.nodes;
+                for &[a, b] in edges {
+                    let d = ((x[a][0] - x[b][0]).powi(2) + (x[a][1] - x[b][1]).powi(2)).sqrt();
+                    add(a, b, d);
+                }
+            }
+            for (node, (total, count)) in sum {
+                let h = total / count as f64;
+                let mut env = rel.env.clone();
+                env.params.push((
+                    crate::span::Ident::new("E", rel.expr.span),
+                    crate::expr::Quantity::plain(young),
+                ));
+                env.params.push((
+                    crate::span::Ident::new("h", rel.expr.span),
+                    crate::expr::Quantity::plain(h),
+                ));
+                let mut diags = Vec::new();
+                let k = crate::expr::eval(&rel.expr, &mut env, &mut diags).and_then(|q| {
+                    crate::expr::in_system(
+                        q,
+                        None,
+                        false,
+                        "the penalty coefficient",
+                        rel.expr.span,
+                        &env,
+                        &mut diags,
+                    )
+                });
+                match k {
+                    Some(k) if k.value.is_finite() && k.value > 0.0 => {
+                        out.push((node, k.value));
+                    }
+                    Some(k) => {
+                        self.diags.push(
+                            Diagnostic::error(
+                                format!(
+                                    "the penalty coefficient must be a positive number, but at \
+                                     node {node} (E = {young}, h = {h:.6e}) it is {}",
+                                    k.value
+                                ),
+                                rel.expr.span,
+                                "evaluated per slave node",
+                            )
+                            .with_help("write it so it stays positive, e.g. `10 * E / h`"),
+                        );
+                        return None;
+                    }
+                    None => {
+                        self.diags.append(&mut diags);
+                        return None;
+                    }
+                }
+            }
+        }
+        // a node on both sides (self contact) keeps its stiffest value
+        out.sort_by(|a, b| a.0.cmp(&b.0).then(b.1.total_cmp(&a.1)));
+        out.dedup_by_key(|e| e.0);
+        Some(out)
     }
 }

@@ -36,7 +36,7 @@ pub fn build_solid(
     let fail = |message: String, label: &str| vec![Diagnostic::error(message, mesh.span, label)];
     let m = match &mesh.value {
         MeshDef::Generator(g) => match g.def.build {
-            Build::Solid(f) => f(&g.settings, &[]).map_err(|e: MeshError| {
+            Build::Solid(f) => f(&g.settings, &inputs(body, g, src)?).map_err(|e: MeshError| {
                 fail(
                     format!("cannot generate the mesh of body `{body}`: {}", e.message),
                     "mesh generation failed",

@@ -211,11 +211,12 @@ impl Lowerer<'_> {
         let constraints = self.constraints();
         let loads = self.loads();
         if self.solid {
-            // rigid surface tools, frictionless contact; no heat in 3d yet
+            // rigid surface tools, frictionless or Coulomb (penalty, augmented
+            // Lagrangian; Lagrange friction refused by validation); no heat in 3d yet
             // (refused by validation)
             let surfaces = self.surfaces();
             let names: Vec<&str> = surfaces.iter().map(|t| t.name.as_str()).collect();
-            let contacts = self.contacts(&bodies, &names);
+            let contacts = self.contacts(&bodies, &materials, &names);
             let steps = self.steps();
             let output = self.output(&contacts);
             return Some(AnyModel::D3(Model {
@@ -235,7 +236,7 @@ impl Lowerer<'_> {
         }
         let tools = self.tools();
         let names: Vec<&str> = tools.iter().map(|t| t.name.as_str()).collect();
-        let contacts = self.contacts(&bodies, &names);
+        let contacts = self.contacts(&bodies, &materials, &names);
         let steps = self.steps();
         let output = self.output(&contacts);
         let thermal = thermal::lower(

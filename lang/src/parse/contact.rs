@@ -3,10 +3,10 @@
 use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
-use crate::ast::syntax::{Value, ValueKind};
+use crate::ast::syntax::{ArgKind, Value, ValueKind};
 use crate::ast::{
     Contact, ContactFormulation, LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind,
-    Search, Smoothing, Strategy,
+    RelativeStiffness, Search, Smoothing, Strategy, RELATIVE_NAMES,
 };
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
@@ -124,7 +124,7 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
             };
             let mut f = Fields::keyed(block, "`penalty` block", &crate::tables::PENALTY);
             let kind = f.choice("kind", "penalty kind", &KINDS, diags);
-            let stiffness = f.number("stiffness", diags);
+            let (stiffness, relative) = coefficient(&mut f, "stiffness", diags);
             f.require(
                 &stiffness,
                 "stiffness",
@@ -133,7 +133,14 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
                 diags,
             );
             f.finish(diags);
-            Some(Spanned::new(Method::Penalty { kind, stiffness }, v.span))
+            Some(Spanned::new(
+                Method::Penalty {
+                    kind,
+                    stiffness,
+                    relative,
+                },
+                v.span,
+            ))
         }
         "lagrange" => {
             let formulation = match block {
@@ -163,7 +170,7 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
                 &crate::tables::AUGMENTED_LAGRANGE,
             );
             let kind = f.choice("kind", "penalty kind", &KINDS, diags);
-            let penalty = f.number("penalty", diags);
+            let (penalty, relative) = coefficient(&mut f, "penalty", diags);
             let tolerance = f.number("tolerance", diags);
             let update = f.choice("update", "multiplier update", &UPDATES, diags);
             f.require(
@@ -185,6 +192,7 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
                 Method::AugmentedLagrange {
                     kind,
                     penalty,
+                    relative,
                     tolerance,
                     update,
                 },
@@ -208,6 +216,82 @@ fn method(v: &Value, diags: &mut Diags) -> Option<Spanned<Method>> {
     }
 }
 
+/// `key = <number>`, or a penalty coefficient relative to the slave body's
+/// Young's modulus `E` and the local element size `h`
+/// (`stiffness = 10 * E / h`): such an expression is checked here with
+/// `E = h = 1` (its number is that placeholder) and evaluated per slave
+/// node when the deck is lowered.
+fn coefficient(
+    f: &mut Fields,
+    key: &str,
+    diags: &mut Diags,
+) -> (Option<Spanned<f64>>, Option<RelativeStiffness>) {
+    let Some(v) = f.value(key, diags) else {
+        return (None, None);
+    };
+    let what = format!("`{key}`");
+    if !mentions_relative_names(v) {
+        return (values::number_of(v, f.dim(key), &what, diags), None);
+    }
+    for name in RELATIVE_NAMES {
+        if let Some((p, _)) = diags.env.params.iter().rev().find(|(p, _)| p.name == name) {
+            let at = p.span;
+            diags.push(
+                Diagnostic::warning(
+                    format!(
+                        "in a penalty coefficient `{name}` is the {}, not the parameter `{name}`",
+                        if name == "E" {
+                            "slave body's Young's modulus"
+                        } else {
+                            "local element size of the slave surface"
+                        }
+                    ),
+                    v.span,
+                    format!("`{name}` is evaluated per slave node here"),
+                )
+                .with_secondary(at, format!("the parameter `{name}`, not used there"))
+                .with_help("rename the parameter to use it in this key"),
+            );
+        }
+    }
+    let mut env = diags.env.clone();
+    for name in RELATIVE_NAMES {
+        env.params
+            .push((Ident::new(name, v.span), crate::expr::Quantity::plain(1.0)));
+    }
+    let (_, out) = diags.split();
+    let checked = crate::expr::eval(v, &mut env, out)
+        .and_then(|q| crate::expr::in_system(q, None, false, &what, v.span, &env, out));
+    match checked {
+        Some(x) => (
+            Some(x),
+            Some(RelativeStiffness {
+                expr: v.clone(),
+                env: diags.env.clone(),
+            }),
+        ),
+        None => (None, None),
+    }
+}
+
+/// Whether `v` refers to `E` or `h` (a relative penalty coefficient).
+fn mentions_relative_names(v: &Value) -> bool {
+    match &v.kind {
+        ValueKind::Path(p) => p.len() == 1 && RELATIVE_NAMES.contains(&p[0].name.as_str()),
+        ValueKind::Neg(x) => mentions_relative_names(x),
+        ValueKind::Tuple(items) => items.iter().any(mentions_relative_names),
+        ValueKind::Binary { lhs, rhs, .. } => {
+            mentions_relative_names(lhs) || mentions_relative_names(rhs)
+        }
+        ValueKind::Call { args, .. } => args.iter().any(|a| match &a.kind {
+            ArgKind::Positional(x) | ArgKind::Named(_, x) | ArgKind::Arrow(x, _) => {
+                mentions_relative_names(x)
+            }
+        }),
+        _ => false,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use crate::ast::{LagrangeFormulation, Method, MultiplierUpdate, PenaltyKind, SetRefKind};
@@ -223,7 +307,9 @@ mod tests {
         assert!(matches!(&c.target.kind, SetRefKind::Named(n) if n.name == "top"));
         assert_eq!(c.prof.as_ref().unwrap().value, 0.5);
         match &c.method.as_ref().unwrap().value {
-            Method::Penalty { kind, stiffness } => {
+            Method::Penalty {
+                kind, stiffness, ..
+            } => {
                 assert_eq!(kind.as_ref().unwrap().value, PenaltyKind::Nodal);
                 assert_eq!(stiffness.as_ref().unwrap().value, 1e4);
             }
@@ -277,6 +363,7 @@ mod tests {
                 penalty,
                 tolerance,
                 update,
+                ..
             } => {
                 assert_eq!(kind.as_ref().unwrap().value, PenaltyKind::Nodal);
                 assert_eq!(penalty.as_ref().unwrap().value, 1e3);

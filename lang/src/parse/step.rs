@@ -43,6 +43,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
             tol_displacement: n.number("tol_displacement", diags),
             max_iter: n.integer("max_iter", diags),
             line_search: n.boolean("line_search", diags),
+            stabilize: stabilize(&mut n, diags),
             span: b.span,
         };
         n.finish(diags);
@@ -60,6 +61,21 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
         newton,
         span: item.span,
     })
+}
+
+/// `stabilize = c`, or a bare `stabilize`: the default factor.
+fn stabilize(n: &mut Fields, diags: &mut Diags) -> Option<Spanned<f64>> {
+    if !n.mentions("stabilize") {
+        return None;
+    }
+    let e = n.entry("stabilize", diags)?;
+    match &e.body {
+        crate::ast::syntax::EntryBody::Flag => Some(Spanned::new(
+            ctc_engine::solve::stabilize::DEFAULT_FACTOR,
+            e.span,
+        )),
+        _ => n.number("stabilize", diags),
+    }
 }
 
 #[cfg(test)]
@@ -84,6 +100,42 @@ mod tests {
         assert!(deck.steps[1].name.is_none());
         let t = deck.steps[1].time.as_ref().unwrap();
         assert_eq!((t.value[0].value, t.value[1].value), (1.0, 2.0));
+    }
+
+    #[test]
+    fn stabilize_is_a_factor_or_a_bare_key() {
+        let newton = |text: &str| {
+            let deck = parse_ok(&format!("step s {{ time = 0 .. 1  newton {{ {text} }} }}"));
+            deck.steps[0]
+                .newton
+                .as_ref()
+                .unwrap()
+                .stabilize
+                .as_ref()
+                .map(|x| x.value)
+        };
+        assert_eq!(
+            newton("stabilize"),
+            Some(ctc_engine::solve::stabilize::DEFAULT_FACTOR)
+        );
+        assert_eq!(newton("tol = 1e-9  stabilize = 2e-4"), Some(2e-4));
+        assert_eq!(newton("tol = 1e-9"), None);
+        assert_eq!(
+            parse_messages("step s { time = 0 .. 1 newton { stabilize { } } }"),
+            ["`stabilize` needs a value"]
+        );
+        assert_eq!(
+            parse_messages("step s { time = 0 .. 1 newton { stabilise } }"),
+            ["unknown key `stabilise` in the `newton` block"]
+        );
+        assert_eq!(
+            crate::validate::test_support::messages(
+                "step s2 { time = 1 .. 2 newton { stabilize = -1 } }"
+            )
+            .last()
+            .map(String::as_str),
+            Some("stabilize must be positive")
+        );
     }
 
     #[test]

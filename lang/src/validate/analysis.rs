@@ -10,7 +10,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
     let Some(a) = ctx.deck.analysis.first() else {
         return;
     };
-    three_d_contact_is_rigid_and_frictionless(a, ctx);
+    three_d_contact_is_rigid(a, ctx);
     thickness_only_in_plane_analyses(a, ctx);
 }
 
@@ -51,10 +51,11 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
     }
 }
 
-/// `dimension = 3d` solves solids in frictionless contact with rigid
-/// surface tools; contact between deformable bodies, friction and heat
-/// conduction are not there yet in 3d.
-pub fn three_d_contact_is_rigid_and_frictionless(a: &Analysis, ctx: &mut Ctx<'_>) {
+/// `dimension = 3d` solves solids in contact with rigid surface tools,
+/// frictionless or with Coulomb friction by penalty or augmented
+/// Lagrangian; contact between deformable bodies, Lagrange-multiplier
+/// friction and heat conduction are not there yet in 3d.
+pub fn three_d_contact_is_rigid(a: &Analysis, ctx: &mut Ctx<'_>) {
     let Some(d) = a
         .dimension
         .as_ref()
@@ -87,15 +88,29 @@ pub fn three_d_contact_is_rigid_and_frictionless(a: &Analysis, ctx: &mut Ctx<'_>
         if let Some(m) = &c.master {
             refuse("contact between deformable bodies is", m.span);
         }
-        if let Some(f) = &c.friction {
-            refuse("friction is", f.span);
-        }
         if let Some(th) = &c.thermal {
             refuse("thermal contact blocks are", th.span);
         }
     }
     for l in &deck.thermal_loads {
         refuse("thermal loads are", l.span);
+    }
+    for c in &deck.contacts {
+        if let (Some(f), Some(m)) = (&c.friction, &c.method) {
+            if matches!(m.value, crate::ast::Method::Lagrange { .. }) {
+                ctx.err(
+                    Diagnostic::error(
+                        "Lagrange-multiplier friction is not supported in 3d analyses yet",
+                        f.span,
+                        "not supported in 3d yet",
+                    )
+                    .with_help(
+                        "use `method = penalty { .. }` or `augmented_lagrange { .. }` \
+                         (regularized friction) in 3d",
+                    ),
+                );
+            }
+        }
     }
 }
 

@@ -52,13 +52,23 @@ pub fn check(ctx: &mut Ctx<'_>) {
             seen.insert(key, c.target.span);
         }
         match c.method.as_ref().map(|m| &m.value) {
-            Some(Method::Penalty { stiffness, .. }) => {
-                ctx.must_be_positive(stiffness, "penalty stiffness")
-            }
+            // A relative coefficient (`10 * E / h`) is checked per slave
+            // node when lowered.
+            Some(Method::Penalty {
+                stiffness,
+                relative: None,
+                ..
+            }) => ctx.must_be_positive(stiffness, "penalty stiffness"),
+            Some(Method::Penalty { .. }) => {}
             Some(Method::AugmentedLagrange {
-                penalty, tolerance, ..
+                penalty,
+                tolerance,
+                relative,
+                ..
             }) => {
-                ctx.must_be_positive(penalty, "augmented Lagrangian penalty");
+                if relative.is_none() {
+                    ctx.must_be_positive(penalty, "augmented Lagrangian penalty");
+                }
                 ctx.must_be_positive(tolerance, "augmented Lagrangian tolerance");
             }
             Some(Method::Lagrange { .. }) | None => {}

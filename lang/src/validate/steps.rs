@@ -82,6 +82,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
             ctx.must_be_positive(&n.tol, "tol");
             ctx.must_be_positive(&n.tol_displacement, "tol_displacement");
             ctx.at_least(&n.max_iter, 1, "max_iter");
+            ctx.must_be_positive(&n.stabilize, "stabilize");
         }
     }
 }

@@ -161,6 +161,7 @@ mod tests {
             },
             prof: None,
             friction: None,
+            local_penalty: Vec::new(),
         });
         let patch = PenaltyPatch {
             kind,

@@ -8,6 +8,7 @@ pub mod cattaneo;
 pub mod contact_3d;
 pub mod fenicsx;
 pub mod friction;
+pub mod friction_3d;
 pub mod friction_block;
 pub mod mortar;
 pub mod objectivity;
@@ -43,6 +44,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(solid_patch::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
+    v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
     v
 }

@@ -160,7 +160,179 @@ pub fn cases() -> Vec<VerifyCase> {
                 run: cylinder,
             }),
         },
+        VerifyCase {
+            name: "lame_cylinder_revolved",
+            title: "Lamé cylinder: a revolved rectangle section (hex8 from quad4, tet4 from tri3) \
+                    against the tube generator and Lamé",
+            source: "Timoshenko & Goodier §29; Dompierre et al. 1999 (prism split)",
+            tags: &["3d", "elasticity", "closed_form", "mesh", "revolve"],
+            levels: 2,
+            checks: vec![
+                Check::new(Quantity::Named("hex8 u_r(a) revolve vs tube"), &[1e-10]),
+                Check::new(Quantity::Named("hex8 u_r(a)"), &[0.03, 0.01, 0.003]),
+                Check::new(Quantity::Named("tet4 u_r(a)"), &[0.06, 0.015, 0.004]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: CYLINDER_LEVELS.len(),
+                run: revolved_cylinder,
+            }),
+        },
+        VerifyCase {
+            name: "extruded_patch_3d",
+            title: "Patch test on extruded meshes: uniaxial stress, graded tri3 -> tet4 and \
+                    quad4 -> hex8, exact linear field",
+            source: "Zienkiewicz & Taylor, The Finite Element Method vol. 1, §9 (patch test)",
+            tags: &["3d", "elasticity", "patch", "exact", "mesh", "extrude"],
+            levels: 1,
+            checks: vec![
+                Check::new(Quantity::Named("tet4 max |u - u_exact| / max |u_exact|"), &[1e-10]),
+                Check::new(Quantity::Named("hex8 max |u - u_exact| / max |u_exact|"), &[1e-10]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 1,
+                run: extruded_patch,
+            }),
+        },
     ]
+}
+
+/// `extruded_patch_3d`: a graded rectangle (tri3 or quad4) extruded in
+/// graded layers, uniaxial traction `S` on `zmax`, `u_z = 0` on `zmin`,
+/// the edge x = y = 0 held in x and y and the edge y = 0 in y (both
+/// compatible with the exact field `u = S / E (-nu x, -nu y, z)`).
+fn extruded_patch(_level: usize) -> Result<ProgramLevel, String> {
+    use ctc_engine::mesh::generate::{generate, sweep, MeshSpec};
+    const S: f64 = 10.0;
+    let mut out = None;
+    let mut values = Vec::new();
+    for (kind, name) in [
+        (CellKind::Tri3, "tet4 max |u - u_exact| / max |u_exact|"),
+        (CellKind::Quad4, "hex8 max |u - u_exact| / max |u_exact|"),
+    ] {
+        let base = generate(&MeshSpec::Rectangle {
+            origin: [0.0, 0.0],
+            size: [1.0, 0.6],
+            divisions: [5, 3],
+            grading: [
+                Grading::Geometric { ratio: 4.0 },
+                Grading::Center { ratio: 3.0 },
+            ],
+            kind,
+        })
+        .map_err(|e| e.message)?;
+        let mesh = sweep::extrude(&base, 1.5, 4, Grading::Geometric { ratio: 0.3 })
+            .map_err(|e| e.message)?;
+        let mut b = ModelBuilder::solid()
+            .elastic("steel", E, NU)
+            .body("bar", mesh, "steel");
+        for (set, c) in [
+            ("zmin", 2),
+            ("corner_bl", 0),
+            ("corner_bl", 1),
+            ("bottom", 1),
+        ] {
+            let nodes = b.node_set(&format!("bar.{set}"));
+            b = b.fix(nodes, c);
+        }
+        let top = b.face_set("bar.zmax");
+        let model = b
+            .load(ctc_engine::model::Load::FacetTraction {
+                label: "traction bar.zmax".into(),
+                facets: top,
+                component: 2,
+                value: TimeFunction::Constant(S),
+            })
+            .step("load", 1.0, 1)
+            .build();
+        let (summary, last) = solve(&model)?;
+        let (mut err, mut scale) = (0.0f64, 0.0f64);
+        for (x, u) in model.mesh.nodes.iter().zip(&last.u) {
+            let exact = [-NU * S * x[0] / E, -NU * S * x[1] / E, S * x[2] / E];
+            for c in 0..3 {
+                err = err.max((u[c] - exact[c]).abs());
+                scale = scale.max(exact[c].abs());
+            }
+        }
+        values.push(error(name, err / scale));
+        out.get_or_insert_with(|| level_of(&summary, &model, 0.0));
+    }
+    let mut out = out.ok_or("no run")?;
+    out.values = values;
+    Ok(out)
+}
+
+/// Lamé's cylinder as a 90 degree sector: the mean radial displacement of
+/// the nodes of face set `inner` under the pressure `P` there, with the
+/// symmetry planes `start` (u_y = 0) and `end` (u_x = 0) and plane strain
+/// between `ends` (u_z = 0).
+fn sector_ur(mesh: Mesh<3>, inner: &str, ends: [&str; 2]) -> Result<(f64, ProgramLevel), String> {
+    let mut b = ModelBuilder::solid()
+        .elastic("steel", E, NU)
+        .body("tube", mesh, "steel");
+    for (name, c) in [("start", 1), ("end", 0), (ends[0], 2), (ends[1], 2)] {
+        let nodes = b.node_set(&format!("tube.{name}"));
+        b = b.fix(nodes, c);
+    }
+    let faces = b.face_set(&format!("tube.{inner}"));
+    let model = b
+        .load(ctc_engine::model::Load::FacetPressure {
+            label: format!("pressure tube.{inner}"),
+            facets: faces,
+            value: TimeFunction::Constant(P),
+        })
+        .step("load", 1.0, 1)
+        .build();
+    let (s, l) = solve(&model)?;
+    let set = &model.mesh.node_sets[&format!("tube.{inner}")];
+    let ur = set
+        .iter()
+        .map(|&n| {
+            let x = model.mesh.nodes[n];
+            (l.u[n][0] * x[0] + l.u[n][1] * x[1]) / x[0].hypot(x[1])
+        })
+        .sum::<f64>()
+        / set.len() as f64;
+    Ok((ur, level_of(&s, &model, 0.0)))
+}
+
+/// `lame_cylinder_revolved`: the section `[a, b] x [0, h]` (rectangle, quad4
+/// or tri3) revolved by 90 degrees against the `tube` generator's sector of
+/// the same divisions and against Lamé.
+fn revolved_cylinder(level: usize) -> Result<ProgramLevel, String> {
+    use ctc_engine::mesh::generate::{generate, sweep, MeshSpec};
+    let (radial, circ) = CYLINDER_LEVELS[level];
+    let height = 0.25;
+    let section = |kind| {
+        generate(&MeshSpec::Rectangle {
+            origin: [A, 0.0],
+            size: [B - A, height],
+            divisions: [radial, 1],
+            grading: [Grading::Uniform, Grading::Uniform],
+            kind,
+        })
+        .and_then(|m| sweep::revolve(&m, 90.0, circ))
+        .map_err(|e| e.message)
+    };
+    let (hex, mut out) = sector_ur(section(CellKind::Quad4)?, "left", ["bottom", "top"])?;
+    let (tet, _) = sector_ur(section(CellKind::Tri3)?, "left", ["bottom", "top"])?;
+    let tube = solid::tube(
+        A,
+        B,
+        90.0,
+        height,
+        [radial, circ, 1],
+        Grading::Uniform,
+        CellKind::Hex8,
+    )
+    .map_err(|e| e.message)?;
+    let (reference, _) = sector_ur(tube, "inner", ["zmin", "zmax"])?;
+    out.h = (B - A) / radial as f64;
+    out.values = vec![
+        value("hex8 u_r(a) revolve vs tube", hex, reference),
+        value("hex8 u_r(a)", hex, cylinder_ur(A)),
+        value("tet4 u_r(a)", tet, cylinder_ur(A)),
+    ];
+    Ok(out)
 }
 
 /// The last converged state of a run.
@@ -409,34 +581,8 @@ fn cylinder(level: usize) -> Result<ProgramLevel, String> {
         CellKind::Hex8,
     )
     .map_err(|e| e.message)?;
-    let mut b = ModelBuilder::solid()
-        .elastic("steel", E, NU)
-        .body("tube", mesh, "steel");
-    for (name, c) in [("start", 1), ("end", 0), ("zmin", 2), ("zmax", 2)] {
-        let nodes = b.node_set(&format!("tube.{name}"));
-        b = b.fix(nodes, c);
-    }
-    let inner = b.face_set("tube.inner");
-    let model3 = b
-        .load(ctc_engine::model::Load::FacetPressure {
-            label: "pressure tube.inner".into(),
-            facets: inner,
-            value: TimeFunction::Constant(P),
-        })
-        .step("load", 1.0, 1)
-        .build();
-    let (s3, l3) = solve(&model3)?;
     // the mean u_r of the inner nodes (the chord nodes of the faceted bore)
-    let inner3 = &model3.mesh.node_sets["tube.inner"];
-    let ur3 = inner3
-        .iter()
-        .map(|&n| {
-            let x = model3.mesh.nodes[n];
-            let r = x[0].hypot(x[1]);
-            (l3.u[n][0] * x[0] + l3.u[n][1] * x[1]) / r
-        })
-        .sum::<f64>()
-        / inner3.len() as f64;
+    let (ur3, mut out) = sector_ur(mesh, "inner", ["zmin", "zmax"])?;
     // axisymmetric with the same radial divisions
     let rect =
         ctc_engine::mesh::generate::generate(&ctc_engine::mesh::generate::MeshSpec::Rectangle {
@@ -462,7 +608,7 @@ fn cylinder(level: usize) -> Result<ProgramLevel, String> {
     let (_, la) = solve(&axi)?;
     let left_nodes = &axi.mesh.node_sets["tube.left"];
     let ur_axi = left_nodes.iter().map(|&n| la.u[n][0]).sum::<f64>() / left_nodes.len() as f64;
-    let mut out = level_of(&s3, &model3, (B - A) / radial as f64);
+    out.h = (B - A) / radial as f64;
     out.values = vec![
         value("u_r(a) 3d vs axi", ur3, ur_axi),
         value("u_r(a) 3d", ur3, cylinder_ur(A)),

@@ -214,7 +214,7 @@ pub fn evaluate(
             .zip(&da)
             .map(|(a, b)| (a - gap * b) / area)
             .collect();
-        let alpha = super::penalty::effective_stiffness(&cp.method, support);
+        let alpha = super::penalty::effective_stiffness(&cp.method_at(node), support);
         let shift = match cp.method {
             ContactMethod::AugmentedLagrange { .. } => {
                 state.multiplier.get(i).copied().unwrap_or(0.0)

@@ -113,6 +113,19 @@ where
     zero_mode: (Option<ZeroMode>, bool),
     /// Diagonal of the mesh's bounding box (round-off floor).
     model_size: f64,
+    /// The next evaluation starts with the touching contact nodes closed
+    /// (closed-gap start, `PairState::touching`): the first iteration of
+    /// each attempt of the first increment of the analysis (reset by
+    /// [`Newton::rollback`] until an increment converged).
+    touch_start: bool,
+    /// Whether an increment converged (or the run restarted after one).
+    any_committed: bool,
+    /// Closed nodes per contact pair at the first evaluation of the
+    /// analysis (touching start included; `None`: not evaluated yet).
+    start_closed: Option<Vec<usize>>,
+    /// Vanishing stabilization of the bodies held only by contact
+    /// (`newton { stabilize }`, [`super::stabilize`]).
+    pub stabilization: super::stabilize::Stabilization,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -186,6 +199,10 @@ where
             contact_dof: Vec::new(),
             zero_mode: (None, false),
             model_size: 0.0,
+            stabilization: Default::default(),
+            touch_start: true,
+            any_committed: false,
+            start_closed: None,
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -220,7 +237,34 @@ where
             .assemble(&model.mesh, &newton.scatter, &newton.u, &mut f, None);
         newton.f_int = f;
         r?;
+        // the stabilization's stiffness scale: the element tangent's
+        // diagonal in the reference configuration
+        let mut diag = Vec::new();
+        if model.steps.iter().any(|s| s.newton.stabilize.is_some()) {
+            let mut f = vec![0.0; n_dofs];
+            let mut values = vec![0.0; newton.scatter.n_values()];
+            newton.assembler.assemble(
+                &model.mesh,
+                &newton.scatter,
+                &newton.u,
+                &mut f,
+                Some(&mut values),
+            )?;
+            let p = &newton.scatter.pattern;
+            diag = (0..p.n)
+                .map(|j| p.find(j, j).map_or(0.0, |k| values[k]))
+                .collect();
+        }
+        newton.stabilization = super::stabilize::Stabilization::new(model, &newton.dofs, |j| {
+            diag.get(j).copied().unwrap_or(0.0)
+        });
         Ok(newton)
+    }
+
+    /// Closed nodes per contact pair at the first evaluation of the
+    /// analysis (the touching start included); empty before it.
+    pub fn start_closed(&self) -> &[usize] {
+        self.start_closed.as_deref().unwrap_or(&[])
     }
 
     /// Counters of the tangent's factorizations.
@@ -389,6 +433,10 @@ where
                 .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
         self.timings.assembly += mid.elapsed().as_secs_f64();
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
+        if with_tangent {
+            self.stabilization
+                .add_springs(&self.scatter.pattern, &mut self.values);
+        }
         let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
         for (g, role) in self.dofs.dofs.iter().enumerate() {
             let r = self.f_int[g] - self.f_ext[g] - self.f_c[g];
@@ -406,6 +454,16 @@ where
             let l = self.f_ext[g] + self.f_c[g];
             load2 += l * l;
             fint2 += self.f_int[g] * self.f_int[g];
+        }
+        if self.stabilization.factor > 0.0 {
+            // r_f += c(t) d_b (u - u_committed) on the stabilized dofs
+            self.stabilization.add_forces(
+                &self.dofs.free,
+                self.u.as_flattened(),
+                self.committed.as_flattened(),
+                &mut self.r_free,
+            );
+            r2 = self.r_free.iter().map(|r| r * r).sum();
         }
         let abs = r2.sqrt();
         let denom = (load2.sqrt() + react2.sqrt())
@@ -686,6 +744,9 @@ where
         self.linear.set_symmetric(potential);
         external_forces(model, t, &mut self.f_ext);
         self.assembler.begin_increment(t);
+        if let Some(s) = model.steps.get(step) {
+            self.stabilization.begin_increment(step, s, t);
+        }
         self.dofs.prescribed_values(model, t, &mut self.target);
         {
             let u = self.u.as_flattened();
@@ -704,10 +765,32 @@ where
         let mut tangent_valid = false;
         for k in 1..=settings.max_iter {
             let first = k == 1;
-            // 1. residual and tangent at the current state
+            // 1. residual and tangent at the current state (the first of the
+            // analysis with the touching contact nodes closed)
             if !tangent_valid {
-                self.evaluate(t, true)
-                    .map_err(|f| f.with_residuals(&residuals))?;
+                let touching = first && self.touch_start && !model.contacts.is_empty();
+                if touching {
+                    self.touch_start = false;
+                    self.contacts.set_touching(model, true);
+                }
+                let ev = self.evaluate(t, true);
+                if touching {
+                    self.contacts.set_touching(model, false);
+                }
+                if self.start_closed.is_none() && ev.is_ok() {
+                    let closed = self
+                        .contacts
+                        .contact()
+                        .iter()
+                        .map(|pair| {
+                            pair.iter()
+                                .filter(|c| c.status == crate::contact::ContactStatus::Closed)
+                                .count()
+                        })
+                        .collect();
+                    self.start_closed = Some(closed);
+                }
+                ev.map_err(|f| f.with_residuals(&residuals))?;
             }
             self.iterations += 1;
             // 2. right-hand side -(r_f + K_fp dp)

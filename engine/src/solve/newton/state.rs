@@ -23,6 +23,14 @@ where
     /// Makes the current state the converged one.
     pub fn commit(&mut self) {
         self.flips.clear();
+        self.touch_start = false;
+        self.any_committed = true;
+        self.stabilization.commit(
+            &self.dofs.free,
+            self.u.as_flattened(),
+            self.committed.as_flattened(),
+            &self.f_int,
+        );
         self.committed.copy_from_slice(&self.u);
         self.assembler.commit();
         self.contacts.commit();
@@ -31,6 +39,7 @@ where
     /// Returns to the last converged state.
     pub fn rollback(&mut self) {
         self.u.copy_from_slice(&self.committed);
+        self.touch_start = !self.any_committed;
         self.assembler.rollback();
         self.contacts.rollback();
     }
@@ -74,6 +83,8 @@ where
         }
         self.committed.copy_from_slice(&cp.displacement);
         self.u.copy_from_slice(&cp.displacement);
+        self.any_committed = cp.increment > 0;
+        self.touch_start = !self.any_committed;
         Ok(())
     }
 }

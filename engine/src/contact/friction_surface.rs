@@ -1,0 +1,241 @@
+//! Coulomb friction of a solid (3D) slave node against a rigid surface tool
+//! ([`super::surface`]): the 3D form of [`super::friction::respond_tool`],
+//! on the dimension-generic [`FrictionState`] and [`NodeFriction`].
+//!
+//! Each closed node has a stick point (anchor) `X_a`, stored in the tool's
+//! reference frame, so a moving or rotating tool carries it; its current
+//! position is `x_a = Q (X_a - c) + c + u` ([`ctc_geom::Placement`]). With
+//! the projection's normal `n` and curvature `W = dn/dx`, `P = I - n ⊗ n`:
+//!
+//! - tangential gap `g_T = P (x - x_a)` (a vector of the tangent plane);
+//! - trial force `t* = P m - k_T g_T`, `k_T` the tangential penalty
+//!   ([`super::friction::tangential_stiffness`]: the law's `stiffness`, or
+//!   `alpha_N / 10`), `m = Q lambda_T*` the augmented-Lagrangian shift
+//!   (kept in the tool frame; 0 for the penalty method);
+//! - return map onto the Coulomb disc `|t| <= mu R_N`: stick, `t = t*`, if
+//!   `|t*| <= mu R_N`; else slip, `t = mu R_N s`, `s = t* / |t*|`, and the
+//!   stick point follows the node by `delta = (t - t*) / k_T` (along `-s`,
+//!   so the slip direction may turn in the plane from one increment to the
+//!   next); the work dissipated over the increment is `-t . slip >= 0`.
+//!
+//! Consistent tangent `K = -d t / d x` (not symmetric: the model is solved
+//! with LU), exact including the curvature terms, with
+//! `G = d g_T / d x = P D - (n . d) W - n ⊗ (W d)`, `d = x - x_a`,
+//! `D = d d / d x` (`I`, or `I - d x_a / d x` in the increment of a first
+//! impact, where the anchor is on the node's path):
+//!
+//! - `T = d t* / d x = -(n . m) W - n ⊗ (W m) - k_T G`;
+//! - stick: `K = -T` (a plane: `k_T P`);
+//! - slip: `K = mu alpha_N s ⊗ n - mu R_N / |t*| (I - s ⊗ s) T` (a plane:
+//!   `mu alpha_N s ⊗ n + mu R_N k_T / |t*| (I - n ⊗ n - s ⊗ s)`), the first
+//!   term being `-mu s ⊗ d R_N / d x`, `d R_N / d x = -alpha_N n`.
+//!
+//! First impact (`first_impact = intersect`, the default): a node without a
+//! committed stick point that was on the free side at the start of the
+//! increment (`g_0 > 0`, tool frame position `X_0`) and penetrates now
+//! (`g < 0`) sticks where its straight path met the tool, `X_a = X_0 + tau
+//! (X - X_0)`, `tau = g_0 / (g_0 - g)` (exact for a plane, first order for a
+//! curved tool; the tangent includes `d tau / d x = tau / (g_0 - g) n`); one
+//! that already penetrated sticks at `X_0`. `first_impact = frictionless`:
+//! no tangential force in that increment, the stick point is the foot of
+//! the node. A node closed at a positive gap (augmented Lagrangian) that
+//! has not met the tool yet takes `tau = 1` (no force; continuous with the
+//! path rule at `g = 0`). The smallest `tau` of an evaluation is recorded
+//! for `cut_at_impact`.
+
+use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeFriction};
+use crate::model::{ContactMethod, FirstImpact, Friction};
+use ctc_geom::{Mat3, Placement, Projection, Vec3};
+
+/// Relative distance to the Coulomb cone under which a node that slid
+/// during the increment is reported as slipping.
+const ON_CONE: f64 = 1e-9;
+
+/// A closed node against a surface tool, as the friction law sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct SurfaceContact<'a> {
+    /// The tool's placement at the evaluated time.
+    pub placement: &'a Placement,
+    /// Current node position.
+    pub x: Vec3,
+    /// Node position in the tool's reference frame.
+    pub reference: Vec3,
+    /// Projection on the tool, current frame.
+    pub projection: &'a Projection,
+    /// Normal force `R_N > 0`.
+    pub normal_force: f64,
+    /// `-d R_N / d g` (`alpha_N`).
+    pub normal_stiffness: f64,
+    /// Tributary area (area penalties).
+    pub area: f64,
+}
+
+/// Adds the friction force and tangent of slave node `i` to `force` and
+/// `stiffness` (`-d force / d x`), updating the trial friction state.
+/// `start_gap` gives the gap at a reference-frame point (the start of the
+/// increment's path, first impact only).
+#[allow(clippy::too_many_arguments)]
+pub fn respond(
+    law: &Friction,
+    method: &ContactMethod,
+    i: usize,
+    c: &SurfaceContact<'_>,
+    start_gap: impl FnOnce(&Vec3) -> Option<f64>,
+    state: &mut FrictionState<3>,
+    force: &mut [f64; 3],
+    stiffness: &mut [[f64; 3]; 3],
+) -> NodeFriction<3> {
+    state.position[i] = c.reference.into();
+    if matches!(method, ContactMethod::Lagrange { .. }) {
+        // refused by the lowering and `check_model`
+        state.release(i);
+        return NodeFriction::default();
+    }
+    let pr = c.projection;
+    let (n, w) = (pr.normal, pr.curvature);
+    let q: Mat3 = *c.placement.rotation.matrix();
+    // d x_a / d x (nonzero only on the first-impact path)
+    let mut dxa = Mat3::zeros();
+    let start = match state.committed_anchor[i] {
+        Some(a) => Vec3::from(a),
+        None => {
+            let x0 = Vec3::from(state.committed_position[i]);
+            let g0 = start_gap(&x0);
+            if pr.gap < 0.0 {
+                let tau = match g0 {
+                    Some(g0) if g0 > 0.0 => g0 / (g0 - pr.gap),
+                    _ => 0.0,
+                };
+                state.record_impact(tau);
+            }
+            match law.first_impact {
+                FirstImpact::Frictionless => {
+                    let foot = c.placement.to_reference(&pr.point);
+                    state.anchor[i] = Some(foot.into());
+                    state.shift[i] = [0.0; 3];
+                    return NodeFriction::default();
+                }
+                FirstImpact::Intersect => match g0 {
+                    Some(g0) if g0 > 0.0 => {
+                        // not there yet at a positive gap (augmented
+                        // Lagrangian): tau = 1, the stick point is the node
+                        let (tau, rate) = if pr.gap < 0.0 {
+                            let tau = g0 / (g0 - pr.gap);
+                            (tau, tau / (g0 - pr.gap))
+                        } else {
+                            (1.0, 0.0)
+                        };
+                        let path = c.reference - x0;
+                        if state.base[i].is_none() {
+                            dxa = Mat3::identity() * tau + (q * path) * n.transpose() * rate;
+                        }
+                        x0 + path * tau
+                    }
+                    _ => x0,
+                },
+            }
+        }
+    };
+    let anchor = state.base[i].map_or(start, Vec3::from);
+    let xa = c.placement.apply(&anchor);
+    let d = c.x - xa;
+    let p = Mat3::identity() - n * n.transpose();
+    let gt = p * d;
+    let kt = tangential_stiffness(law, method, c.area);
+    let m = match method {
+        ContactMethod::AugmentedLagrange { .. } => q * Vec3::from(state.shift[i]),
+        _ => Vec3::zeros(),
+    };
+    let trial = p * m - gt * kt;
+    let g = p * (Mat3::identity() - dxa) - w * n.dot(&d) - n * (w * d).transpose();
+    let dtrial = -(w * n.dot(&m)) - n * (w * m).transpose() - g * kt;
+    let limit = law.mu * c.normal_force;
+    let norm = trial.norm();
+    let (status, t, dt, delta) = if kt <= 0.0 {
+        // no tangential penalty: no friction force
+        (
+            FrictionStatus::Stick,
+            Vec3::zeros(),
+            Mat3::zeros(),
+            Vec3::zeros(),
+        )
+    } else if limit <= 0.0 {
+        // mu R_N = 0 slides freely (no stick stiffness from a zero disc)
+        (
+            FrictionStatus::Slip,
+            Vec3::zeros(),
+            Mat3::zeros(),
+            -trial / kt,
+        )
+    } else if norm <= limit {
+        (FrictionStatus::Stick, trial, dtrial, Vec3::zeros())
+    } else {
+        let s = trial / norm;
+        let t = s * limit;
+        let dt = s * n.transpose() * (-law.mu * c.normal_stiffness)
+            + (Mat3::identity() - s * s.transpose()) * dtrial * (limit / norm);
+        (FrictionStatus::Slip, t, dt, (t - trial) / kt)
+    };
+    let new_anchor = anchor + q.transpose() * delta;
+    state.anchor[i] = Some(new_anchor.into());
+    // slip over the whole increment (the base may have moved with Uzawa)
+    let slip = delta + q * (anchor - start);
+    // the augmented Lagrangian slides a node by moving the base of its
+    // trial force: it ends on the cone (within `k_T` times the pair's gap
+    // tolerance) with a slip, and is reported as slipping (the tangent
+    // stays the return map's)
+    let near = match method {
+        ContactMethod::AugmentedLagrange { tolerance, .. } => kt * tolerance,
+        _ => 0.0,
+    };
+    let status = if status == FrictionStatus::Stick
+        && limit > 0.0
+        && norm >= limit * (1.0 - ON_CONE) - near
+        && slip.norm() > 0.0
+    {
+        FrictionStatus::Slip
+    } else {
+        status
+    };
+    for a in 0..3 {
+        force[a] += t[a];
+        for b in 0..3 {
+            stiffness[a][b] -= dt[(a, b)];
+        }
+    }
+    NodeFriction {
+        status,
+        tangential_force: t.norm(),
+        tangential_gap: gt.norm(),
+        slip: slip.norm(),
+        traction: t.into(),
+        slip_vector: slip.into(),
+        gap_gradient: [0.0; 3],
+        // + 0: no negative zero in the outputs
+        dissipation: -t.dot(&slip) + 0.0,
+    }
+}
+
+/// Uzawa update of the tangential shifts of an augmented-Lagrangian pair
+/// evaluated with the tool at `placement`: `lambda_T* <- Q^T t` at every
+/// node with friction, 0 elsewhere; the trial force is measured from the
+/// current trial stick point from then on (as in 2D,
+/// [`super::friction::uzawa_update`]).
+pub fn uzawa_update(
+    nodes: &[usize],
+    contact: &[super::NodeContact<3>],
+    placement: &Placement,
+    state: &mut FrictionState<3>,
+) {
+    state.shift.iter_mut().for_each(|m| *m = [0.0; 3]);
+    let qt = placement.rotation.inverse();
+    for c in contact {
+        if c.friction.status == FrictionStatus::Frictionless {
+            continue;
+        }
+        if let Ok(i) = nodes.binary_search(&c.node) {
+            state.shift[i] = (qt * Vec3::from(c.friction.traction)).into();
+            state.base[i] = state.anchor[i];
+        }
+    }
+}
