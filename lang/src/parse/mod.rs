@@ -299,11 +299,28 @@ fn unknown_item(parts: ItemParts, deck: &mut Deck, diags: &mut Diags) {
     });
 }
 
+/// Serialises the parses made with pest's error detail on (the switch is
+/// process-global).
+static DETAIL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The error of a parse that failed, again with pest's error detail (the
+/// expected literal tokens of the message) switched on for this parse only:
+/// the detail makes every token attempt of a parse record itself, several
+/// times slower, so only a parse already known to fail pays for it, and
+/// later parses of the process (a sweep's decks, a fuzzer's inputs) do not
+/// (fuzz/README.md: 15 ms -> see there per failing deck under the fuzzer).
+/// `None` if it parses after all.
+fn detailed_error(rule: Rule, text: &str) -> Option<pest::error::Error<Rule>> {
+    let _only_one = DETAIL.lock().unwrap_or_else(|e| e.into_inner());
+    pest::set_error_detail(true);
+    let e = CtcParser::parse(rule, text).err();
+    pest::set_error_detail(false);
+    e
+}
+
 /// Error recovery after the whole deck failed to parse: parse each chunk
 /// starting at an item line on its own.
 fn recover(text: &str, whole: &pest::error::Error<Rule>, deck: &mut Deck, diags: &mut Diags) {
-    // Error details (expected literal tokens) cost time; only failing decks pay.
-    pest::set_error_detail(true);
     let mut failed = 0;
     for (start, end) in chunks(text) {
         // Blank out everything outside the chunk so that spans stay absolute.
@@ -314,8 +331,9 @@ fn recover(text: &str, whole: &pest::error::Error<Rule>, deck: &mut Deck, diags:
                     pairs.flatten().filter(|p| is_item(p.as_rule())).collect();
                 convert_items(items, deck, diags);
             }
-            Err(e) => {
+            Err(plain) => {
                 failed += 1;
+                let e = detailed_error(Rule::items, &padded).unwrap_or(plain);
                 diags.push(chunk_error(&padded, &e, start, end, text.len()));
                 deck.broken.extend(broken_chunk(text, start, end));
             }
@@ -324,7 +342,7 @@ fn recover(text: &str, whole: &pest::error::Error<Rule>, deck: &mut Deck, diags:
     if failed == 0 {
         // The chunks parse on their own but not together (items sharing a
         // line across a cut): report the error of the whole deck.
-        let again = CtcParser::parse(Rule::deck, text).err();
+        let again = detailed_error(Rule::deck, text);
         let e = again.as_ref().unwrap_or(whole);
         diags.push(errors::syntax_error(e, text));
         *deck = Deck {
