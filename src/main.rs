@@ -368,7 +368,7 @@ where
         .map_err(|e| format!("error: cannot write summary.json: {e}"))?;
     if model.thermal.is_some() {
         // thermo-mechanical runs: force-stroke and temperature plots
-        match ctc_verification::history_plot::thermal_run_plots(dir) {
+        match ctc_verification::history_plot::thermal_run_plots(dir, model.output.units.as_ref()) {
             Ok(files) if !quiet && !files.is_empty() => {
                 println!("plots: {} in {}", files.join(", "), dir.display())
             }

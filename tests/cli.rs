@@ -75,6 +75,60 @@ fn run_writes_results() {
     }
 }
 
+/// A deck with `analysis { units = mm_N_s }`: summary.json names the units
+/// and every VTU says them in its header; the same deck without a system
+/// has neither (its numbers are in the user's consistent units).
+#[test]
+fn run_with_a_unit_system_labels_its_results() {
+    let text = std::fs::read_to_string("examples/lame_cylinder_axi.ctc").unwrap();
+    let with = text.replace(
+        "  dimension = axisymmetric\n",
+        "  dimension = axisymmetric\n  units = mm_N_s\n",
+    );
+    assert_ne!(with, text);
+    for (deck, units) in [(with, true), (text, false)] {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("lame.ctc");
+        std::fs::write(&path, deck).unwrap();
+        let out_dir = dir.path().join("out");
+        let out = ctc()
+            .args(["run", "-q", "-o"])
+            .arg(&out_dir)
+            .arg(&path)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let summary: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out_dir.join("summary.json")).unwrap())
+                .unwrap();
+        let vtu = std::fs::read(out_dir.join("inc_0002.vtu")).unwrap();
+        let header = String::from_utf8_lossy(&vtu[..2000.min(vtu.len())]).into_owned();
+        if units {
+            let u = &summary["units"];
+            assert_eq!(u["system"], "mm_N_s");
+            assert_eq!(
+                (u["length"].as_str(), u["stress"].as_str()),
+                (Some("mm"), Some("MPa"))
+            );
+            assert_eq!(
+                (u["force"].as_str(), u["energy"].as_str()),
+                (Some("N"), Some("N*mm"))
+            );
+            assert!(
+                header.contains("<!-- units mm_N_s: length mm, force N, stress MPa"),
+                "{header}"
+            );
+        } else {
+            assert!(summary.get("units").is_none(), "{summary}");
+            assert!(!header.contains("<!-- units"), "{header}");
+        }
+    }
+}
+
 /// `ctc verify --list | head`: the reader closes the pipe; ctc must end
 /// quietly (killed by SIGPIPE like any Unix filter), not panic in
 /// `println!` ("failed printing to stdout: Broken pipe"). The read end is

@@ -824,6 +824,29 @@ pub struct OutputRequest {
     pub history: Vec<HistoryRequest>,
     /// How VTU files store their arrays.
     pub format: VtuFormat,
+    /// Names of the deck's units (`analysis { units = .. }`), for labels in
+    /// summary.json, plots and VTU headers only: the engine computes without
+    /// units. `None` when the deck declares no unit system.
+    pub units: Option<UnitNames>,
+}
+
+/// The unit of each quantity kind in the deck's unit system (labels only).
+#[derive(Debug, Clone, PartialEq, Eq, serde::Serialize)]
+pub struct UnitNames {
+    /// The system's name in the deck (`SI`, `mm_N_s`, ..).
+    pub system: String,
+    /// Unit of length (`m`, `mm`).
+    pub length: String,
+    /// Unit of force (`N`, `kN`).
+    pub force: String,
+    /// Unit of stress and pressure (`Pa`, `MPa`, `GPa`).
+    pub stress: String,
+    /// Unit of time (`s`, `ms`).
+    pub time: String,
+    /// Unit of temperature (`K`).
+    pub temperature: String,
+    /// Unit of energy (`J`, `mJ`).
+    pub energy: String,
 }
 
 /// How VTU files store their data arrays (`output { format = .. }`).
@@ -844,6 +867,7 @@ impl Default for OutputRequest {
             fields: vec![Field::Displacement, Field::Stress, Field::Reaction],
             history: Vec::new(),
             format: VtuFormat::Binary,
+            units: None,
         }
     }
 }

@@ -282,6 +282,9 @@ pub struct System {
     pub doc: &'static str,
     /// SI value of the unit of mass, length, time and temperature.
     pub base: [f64; 4],
+    /// Names of its units of length, force, stress, time, temperature and
+    /// energy (labels of outputs and plots).
+    pub labels: [&'static str; 6],
 }
 
 /// The unit systems.
@@ -290,21 +293,25 @@ pub const SYSTEMS: &[System] = &[
         name: "SI",
         doc: "m, kg, s, K (N, Pa)",
         base: [1.0, 1.0, 1.0, 1.0],
+        labels: ["m", "N", "Pa", "s", "K", "J"],
     },
     System {
         name: "mm_N_s",
         doc: "mm, t, s, K (N, MPa, t/mm^3)",
         base: [1e3, 1e-3, 1.0, 1.0],
+        labels: ["mm", "N", "MPa", "s", "K", "N*mm"],
     },
     System {
         name: "mm_kg_ms",
         doc: "mm, kg, ms, K (kN, GPa)",
         base: [1.0, 1e-3, 1e-3, 1.0],
+        labels: ["mm", "kN", "GPa", "ms", "K", "J"],
     },
     System {
         name: "m_kg_s",
         doc: "the same as SI",
         base: [1.0, 1.0, 1.0, 1.0],
+        labels: ["m", "N", "Pa", "s", "K", "J"],
     },
 ];
 
@@ -314,6 +321,20 @@ pub fn system(name: &str) -> Option<&'static System> {
 }
 
 impl System {
+    /// The names of this system's units, as the engine's output labels.
+    pub fn names(&self) -> ctc_engine::model::UnitNames {
+        let [length, force, stress, time, temperature, energy] = self.labels.map(String::from);
+        ctc_engine::model::UnitNames {
+            system: self.name.to_string(),
+            length,
+            force,
+            stress,
+            time,
+            temperature,
+            energy,
+        }
+    }
+
     /// SI value of one unit of dimension `dim` in this system (angles:
     /// radians).
     pub fn scale(&self, dim: Exponents) -> f64 {
@@ -327,6 +348,33 @@ impl System {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_system_label_is_the_unit_of_its_base_scales() {
+        // each label parses to the SI value the system gives that dimension
+        let dims = [
+            Exponents::LENGTH,
+            Exponents::FORCE,
+            Exponents::STRESS,
+            Exponents::TIME,
+            Exponents::TEMPERATURE,
+            Exponents::ENERGY,
+        ];
+        for s in SYSTEMS {
+            for (label, dim) in s.labels.iter().zip(dims) {
+                let u = parse(label).unwrap_or_else(|e| panic!("{}: {label}: {e}", s.name));
+                assert_eq!(u.dim, dim, "{} {label}", s.name);
+                let rel = (u.scale / s.scale(dim) - 1.0).abs();
+                assert!(
+                    rel < 1e-12,
+                    "{} {label}: {} vs {}",
+                    s.name,
+                    u.scale,
+                    s.scale(dim)
+                );
+            }
+        }
+    }
 
     #[test]
     fn units_parse_to_si_scales_and_dimensions() {

@@ -107,6 +107,8 @@ pub fn history_plot(
         .configure_mesh()
         .x_desc(x_desc)
         .y_desc(y_desc)
+        .x_label_formatter(&|x| crate::plot::tick(*x))
+        .y_label_formatter(&|y| crate::plot::tick(*y))
         .draw()
         .map_err(e)?;
     let c = colour(0);
@@ -150,17 +152,29 @@ pub fn axis_range(lo: f64, hi: f64) -> Option<(f64, f64)> {
 /// column, `force_stroke.svg` (minus the first reaction's y component
 /// against minus the first displacement's y component: a push downwards).
 /// Returns the files written (none for an empty history: a run that
-/// stopped before its first converged increment).
-pub fn thermal_run_plots(dir: &Path) -> Result<Vec<String>, String> {
+/// stopped before its first converged increment). Axis titles carry the
+/// deck's units when it declares a system.
+pub fn thermal_run_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
     let (header, _) = read_history(dir)?;
+    let with = |what: &str, unit: fn(&ctc_engine::model::UnitNames) -> &str| match units {
+        Some(u) => format!("{what} [{}]", unit(u)),
+        None => what.to_string(),
+    };
     let mut files = Vec::new();
     if header.iter().any(|h| h == "temperature_max")
         && history_plot(
             dir,
             "temperature.svg",
             "largest temperature",
-            ("time", 1.0, "time"),
-            ("temperature_max", 1.0, "max temperature"),
+            ("time", 1.0, &with("time", |u| &u.time)),
+            (
+                "temperature_max",
+                1.0,
+                &with("max temperature", |u| &u.temperature),
+            ),
             f64::NAN,
         )?
     {
@@ -180,8 +194,8 @@ pub fn thermal_run_plots(dir: &Path) -> Result<Vec<String>, String> {
             dir,
             "force_stroke.svg",
             "force against stroke",
-            (&u, -1.0, "stroke (-u_y)"),
-            (&f, -1.0, "force (-F_y)"),
+            (&u, -1.0, &with("stroke (-u_y)", |u| &u.length)),
+            (&f, -1.0, &with("force (-F_y)", |u| &u.force)),
             0.0,
         )? {
             files.push("force_stroke.svg".to_string());
@@ -230,10 +244,37 @@ mod tests {
     }
 
     #[test]
+    fn thermal_plots_title_their_axes_with_the_deck_units() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("history.csv"),
+            "time,temperature_max,reaction(a.b)_y,displacement(a.c)_y\n\
+             0.5,300,-10,-0.1\n1,320,-30,-0.2\n",
+        )
+        .unwrap();
+        let units = ctc_lang::units::system("mm_N_s").map(|s| s.names());
+        let files = thermal_run_plots(dir.path(), units.as_ref()).unwrap();
+        assert_eq!(files, ["temperature.svg", "force_stroke.svg"]);
+        let t = std::fs::read_to_string(dir.path().join("temperature.svg")).unwrap();
+        assert!(
+            t.contains("time [s]") && t.contains("max temperature [K]"),
+            "{t}"
+        );
+        let f = std::fs::read_to_string(dir.path().join("force_stroke.svg")).unwrap();
+        assert!(f.contains("stroke (-u_y) [mm]") && f.contains("force (-F_y) [N]"));
+        thermal_run_plots(dir.path(), None).unwrap();
+        let f = std::fs::read_to_string(dir.path().join("force_stroke.svg")).unwrap();
+        assert!(f.contains("stroke (-u_y)") && !f.contains("[mm]"), "{f}");
+    }
+
+    #[test]
     fn an_empty_or_degenerate_history_gives_no_plot_and_returns() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("history.csv"), "time,temperature_max\n").unwrap();
-        assert_eq!(thermal_run_plots(dir.path()).unwrap(), Vec::<String>::new());
+        assert_eq!(
+            thermal_run_plots(dir.path(), None).unwrap(),
+            Vec::<String>::new()
+        );
         assert!(!dir.path().join("temperature.svg").exists());
         // one row, a value far above its spread, NaN: drawn or skipped, never a hang
         std::fs::write(
@@ -241,7 +282,10 @@ mod tests {
             "time,temperature_max\n1,1e6\n2,NaN\n",
         )
         .unwrap();
-        assert_eq!(thermal_run_plots(dir.path()).unwrap(), ["temperature.svg"]);
+        assert_eq!(
+            thermal_run_plots(dir.path(), None).unwrap(),
+            ["temperature.svg"]
+        );
         assert_eq!(axis_range(f64::MAX, f64::MIN), None);
         assert_eq!(axis_range(0.0, f64::INFINITY), None);
         let (lo, hi) = axis_range(1e6, 1e6).unwrap();

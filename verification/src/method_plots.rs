@@ -65,8 +65,8 @@ fn loglog(
         .configure_mesh()
         .x_desc(xdesc)
         .y_desc(ydesc)
-        .x_label_formatter(&|x| format!("{x:.0e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .x_label_formatter(&|x| crate::plot::tick(*x))
+        .y_label_formatter(&|y| crate::plot::tick(*y))
         .draw()
         .map_err(e)?;
     for (i, s) in series.iter().enumerate() {

@@ -74,6 +74,42 @@ pub(crate) fn colour(i: usize) -> RGBColor {
     C[i % C.len()]
 }
 
+/// A readable axis tick: plain decimals between 1e-2 and 1e4 (at most
+/// three significant digits, no trailing zeros), `2.5e-3` style outside,
+/// `1e-3` for powers of ten; the shortest form that tells ticks apart on
+/// a log axis.
+pub(crate) fn tick(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let a = x.abs();
+    if (1e-2..1e4).contains(&a) {
+        let digits = (2 - a.log10().floor() as i32).max(0) as usize;
+        let s = format!("{x:.digits$}");
+        if s.contains('.') {
+            s.trim_end_matches('0').trim_end_matches('.').to_string()
+        } else {
+            s
+        }
+    } else {
+        let s = format!("{x:.1e}");
+        s.replace(".0e", "e")
+    }
+}
+
+/// The observed rate of a series of `(h, error)` points: the slope of
+/// `log error` against `log h` over its two smallest `h` (the finest
+/// pair, as the report's rate table judges it). `None` with fewer than
+/// two distinct `h`.
+pub(crate) fn finest_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let mut p: Vec<(f64, f64)> = points.to_vec();
+    p.sort_by(|a, b| a.0.total_cmp(&b.0));
+    p.dedup_by(|a, b| a.0 == b.0);
+    let (&(h1, e1), &(h2, e2)) = (p.get(1)?, p.first()?);
+    let r = (e1 / e2).ln() / (h1 / h2).ln();
+    r.is_finite().then_some(r)
+}
+
 /// Maps a plotters error to a message.
 pub(crate) fn err<E: std::fmt::Debug>(what: &Path) -> impl Fn(E) -> String + '_ {
     move |e| format!("cannot draw {}: {e:?}", what.display())
@@ -193,7 +229,10 @@ fn error_plot(
     let root = SVGBackend::new(path, SIZE).into_drawing_area();
     root.fill(&WHITE).map_err(&e)?;
     let (title, xdesc) = match axis {
-        Axis::MeshSize => (format!("{}: relative error vs mesh size", case.name), "h"),
+        Axis::MeshSize => (
+            format!("{}: relative error vs mesh size", case.name),
+            "mesh size h [deck length unit]",
+        ),
         Axis::WallTime => (
             format!("{}: relative error vs solve time", case.name),
             "wall time [s]",
@@ -210,19 +249,26 @@ fn error_plot(
         .configure_mesh()
         .x_desc(xdesc)
         .y_desc("relative error")
-        .x_label_formatter(&|x| format!("{x:.1e}"))
-        .y_label_formatter(&|y| format!("{y:.0e}"))
+        .x_label_formatter(&|x| tick(*x))
+        .y_label_formatter(&|y| tick(*y))
         .draw()
         .map_err(&e)?;
     for (i, (q, pts)) in series.into_iter().enumerate() {
         let c = colour(i);
+        // the slope on the finest pair, in the legend: rate against h,
+        // error per time against the wall time
+        let label = match (finest_slope(&pts), axis) {
+            (Some(r), Axis::MeshSize) => format!("{} (rate {r:.2})", q.name()),
+            (Some(r), Axis::WallTime) => format!("{} (slope {r:.2})", q.name()),
+            (None, _) => q.name().to_string(),
+        };
         chart
             .draw_series(LineSeries::new(pts.clone(), c.stroke_width(2)))
             .map_err(&e)?;
         chart
             .draw_series(pts.into_iter().map(move |p| Circle::new(p, 4, c.filled())))
             .map_err(&e)?
-            .label(q.name())
+            .label(label)
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)));
     }
     chart
@@ -301,5 +347,40 @@ mod tests {
             assert!(text.starts_with("<svg"), "{}", &text[..40.min(text.len())]);
             assert!(text.contains("<circle"), "{} has no data points", f.file);
         }
+        // errors 0.04 -> 0.01 as h halves: the legend says rate 2.00
+        let conv = std::fs::read_to_string(dir.path().join("hertz_test_convergence.svg")).unwrap();
+        assert!(conv.contains("(rate 2.00)"), "{conv}");
+        assert!(conv.contains("mesh size h [deck length unit]"));
+    }
+
+    #[test]
+    fn ticks_are_short_and_tell_neighbours_apart() {
+        let cases = [
+            (1e-3, "1e-3"),
+            (2.5e-3, "2.5e-3"),
+            (0.01, "0.01"),
+            (0.0125, "0.0125"),
+            (0.3, "0.3"),
+            (0.30000000000000004, "0.3"),
+            (1.0, "1"),
+            (2.5, "2.5"),
+            (12.0, "12"),
+            (150.0, "150"),
+            (1e4, "1e4"),
+            (-0.5, "-0.5"),
+            (0.0, "0"),
+        ];
+        for (x, want) in cases {
+            assert_eq!(tick(x), want, "{x}");
+        }
+    }
+
+    #[test]
+    fn finest_slope_takes_the_two_smallest_h() {
+        let pts = [(0.04, 0.16), (0.01, 0.01), (0.02, 0.04 * 1.1)];
+        let r = finest_slope(&pts).unwrap();
+        assert!((r - (4.4f64).ln() / 2f64.ln()).abs() < 1e-12, "{r}");
+        assert_eq!(finest_slope(&[(0.1, 1.0)]), None);
+        assert_eq!(finest_slope(&[(0.1, 1.0), (0.1, 2.0)]), None);
     }
 }

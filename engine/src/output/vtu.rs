@@ -102,6 +102,13 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
     if m.analysis.kind == AnalysisKind::Axisymmetric {
         let _ = writeln!(s, "<!-- {} -->", crate::solve::AXISYMMETRIC_NOTE);
     }
+    if let Some(u) = &m.output.units {
+        let _ = writeln!(
+            s,
+            "<!-- units {}: length {}, force {}, stress {}, time {}, temperature {}, energy {} -->",
+            u.system, u.length, u.force, u.stress, u.time, u.temperature, u.energy
+        );
+    }
     let _ = writeln!(
         s,
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \

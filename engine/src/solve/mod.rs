@@ -288,6 +288,11 @@ pub struct RunSummary {
     /// against the internal work, and its force at the step's end.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub stabilization: Vec<stabilize::StepRecord>,
+    /// The deck's unit system and the unit of each quantity kind (absent
+    /// when the deck declares none: numbers are then in the user's
+    /// consistent units).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub units: Option<crate::model::UnitNames>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -350,6 +355,7 @@ where
     let mut summary = RunSummary {
         nodes: model.mesh.nodes.len(),
         linear_solver: linalg::direct::Method::Cholesky.name().to_string(),
+        units: model.output.units.clone(),
         ..Default::default()
     };
     if model.analysis.kind == AnalysisKind::Axisymmetric {

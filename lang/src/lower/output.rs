@@ -7,10 +7,23 @@ use ctc_engine::model::{ContactPair, Field, HistoryRequest, OutputRequest, VtuFo
 
 impl Lowerer<'_> {
     pub(super) fn output(&mut self, contacts: &[ContactPair]) -> OutputRequest {
+        let units = self
+            .deck
+            .analysis
+            .iter()
+            .find_map(|a| a.units.as_ref())
+            .and_then(|u| crate::units::system(u.value))
+            .map(|s| s.names());
         let Some(o) = self.deck.outputs.first() else {
-            return OutputRequest::default();
+            return OutputRequest {
+                units,
+                ..OutputRequest::default()
+            };
         };
-        let mut out = OutputRequest::default();
+        let mut out = OutputRequest {
+            units,
+            ..OutputRequest::default()
+        };
         if let Some(e) = &o.every {
             out.every = e.value.max(1) as usize;
         }
