@@ -1,5 +1,28 @@
 //! Byte ranges into a deck's text, and values that carry one.
 
+use std::cell::Cell;
+
+thread_local! {
+    /// Where the text the parser is reading starts in the deck (0 but while
+    /// [`at_offset`] runs).
+    static OFFSET: Cell<usize> = const { Cell::new(0) };
+}
+
+/// Runs `f` with every [`Span::of`] moved `offset` bytes to the right: the
+/// error recovery parses a chunk of the deck on its own (pest reads a
+/// slice; padding the chunk to its place in the deck made each chunk cost
+/// the whole deck before it) and converts it with spans in the deck.
+pub(crate) fn at_offset<T>(offset: usize, f: impl FnOnce() -> T) -> T {
+    struct Restore(usize);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            OFFSET.with(|o| o.set(self.0));
+        }
+    }
+    let _restore = Restore(OFFSET.with(|o| o.replace(offset)));
+    f()
+}
+
 /// A byte range `start..end` into the deck text. Every AST node has one, so
 /// every diagnostic can point at the exact text it is about.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
@@ -16,9 +39,11 @@ impl Span {
         Span { start, end }
     }
 
-    /// The span of a pest pair or span.
+    /// The span of a pest pair or span, in the whole deck (a chunk parsed
+    /// on its own during error recovery is placed by [`at_offset`]).
     pub fn of(span: pest::Span<'_>) -> Self {
-        Span::new(span.start(), span.end())
+        let o = OFFSET.with(Cell::get);
+        Span::new(span.start() + o, span.end() + o)
     }
 
     /// The smallest span covering `self` and `other`.

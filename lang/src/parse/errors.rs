@@ -188,6 +188,13 @@ fn word_ending_at(text: &str, pos: usize) -> Span {
 
 /// The diagnostic for a pest error on `text`.
 pub fn syntax_error(err: &Error<Rule>, text: &str) -> Diagnostic {
+    syntax_error_at(err, 0, text)
+}
+
+/// The diagnostic for a pest error of a parse that read `text` from byte
+/// `offset` on (a chunk of the deck parsed on its own: the error's
+/// positions are in the chunk, `text` is the deck up to the chunk's end).
+pub fn syntax_error_at(err: &Error<Rule>, offset: usize, text: &str) -> Diagnostic {
     if let pest::error::ErrorVariant::CustomError { message } = &err.variant {
         return Diagnostic::error(
             format!("the deck could not be parsed: {message}"),
@@ -195,7 +202,7 @@ pub fn syntax_error(err: &Error<Rule>, text: &str) -> Diagnostic {
             "",
         );
     }
-    let pos = error_position(err).min(text.len());
+    let pos = (error_position(err) + offset).min(text.len());
     let (found, span) = found_token(text, pos);
     let expected = expected_words(err, text, pos, true);
     if expected.is_empty() && word_before(text, pos) {

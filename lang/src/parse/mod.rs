@@ -308,8 +308,7 @@ static DETAIL: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// the detail makes every token attempt of a parse record itself, several
 /// times slower, so only a parse already known to fail pays for it, and
 /// later parses of the process (a sweep's decks, a fuzzer's inputs) do not
-/// (fuzz/README.md: 15 ms -> see there per failing deck under the fuzzer).
-/// `None` if it parses after all.
+/// (fuzz/README.md). `None` if it parses after all.
 fn detailed_error(rule: Rule, text: &str) -> Option<pest::error::Error<Rule>> {
     let _only_one = DETAIL.lock().unwrap_or_else(|e| e.into_inner());
     pest::set_error_detail(true);
@@ -323,17 +322,19 @@ fn detailed_error(rule: Rule, text: &str) -> Option<pest::error::Error<Rule>> {
 fn recover(text: &str, whole: &pest::error::Error<Rule>, deck: &mut Deck, diags: &mut Diags) {
     let mut failed = 0;
     for (start, end) in chunks(text) {
-        // Blank out everything outside the chunk so that spans stay absolute.
-        let padded = pad(text, start, end);
-        match CtcParser::parse(Rule::items, &padded) {
+        // The chunk alone (its spans moved to their place in the deck)
+        match CtcParser::parse(Rule::items, &text[start..end]) {
             Ok(pairs) => {
                 let items: Vec<Pair<'_, Rule>> =
                     pairs.flatten().filter(|p| is_item(p.as_rule())).collect();
-                convert_items(items, deck, diags);
+                crate::span::at_offset(start, || convert_items(items, deck, diags));
             }
             Err(plain) => {
                 failed += 1;
-                let e = detailed_error(Rule::items, &padded).unwrap_or(plain);
+                // the message is worked out on the deck up to the chunk's
+                // end with everything before the chunk blanked out
+                let e = detailed_error(Rule::items, &text[start..end]).unwrap_or(plain);
+                let padded = pad(text, start, end);
                 diags.push(chunk_error(&padded, &e, start, end, text.len()));
                 deck.broken.extend(broken_chunk(text, start, end));
             }
@@ -525,6 +526,9 @@ fn nesting_error(text: &str) -> Option<Diagnostic> {
 /// The diagnostic for a chunk that failed to parse: an unclosed bracket if
 /// the parser ran off the end of the chunk with brackets still open,
 /// otherwise the parser's own expected/found error.
+///
+/// `e` is the error of the chunk parsed on its own (positions from
+/// `start`); `padded` the deck up to `end`, blank before `start`.
 fn chunk_error(
     padded: &str,
     e: &pest::error::Error<Rule>,
@@ -532,7 +536,7 @@ fn chunk_error(
     end: usize,
     total: usize,
 ) -> Diagnostic {
-    let pos = errors::error_position(e);
+    let pos = errors::error_position(e) + start;
     let rest_is_blank = padded.get(pos..).is_some_and(|r| {
         r.lines()
             .all(|l| l.trim().is_empty() || l.trim_start().starts_with('#'))
@@ -566,7 +570,7 @@ fn chunk_error(
             .with_help(format!("add `{close}` {whr}"));
         }
     }
-    errors::syntax_error(e, padded)
+    errors::syntax_error_at(e, start, padded)
 }
 
 #[cfg(test)]
