@@ -135,29 +135,32 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                         COMPONENTS[D - 2]
                     ));
                 }
-                let sizes = if D == 2 { 2..=2 } else { 3..=4 };
+                let sizes: &[usize] = if D == 2 { &[2, 3] } else { &[3, 4, 6, 8, 9] };
                 if let Some(f) = facets.iter().find(|f| {
                     f.nodes().iter().any(|&n| n >= nn) || !sizes.contains(&f.nodes().len())
                 }) {
                     errors.push(format!(
-                        "`{label}` refers to facet {:?}: outside the mesh or not an edge (planar) \
-                         or a 3- or 4-node face (solid)",
+                        "`{label}` refers to facet {:?}: outside the mesh or not a 2- or 3-node \
+                         edge (planar) or a 3-, 4-, 6-, 8- or 9-node face (solid)",
                         f.nodes()
                     ));
                 }
             }
             Load::FacetPressure { label, facets, .. } => {
                 if let Some(f) = facets.iter().find(|f| {
-                    f.nodes().iter().any(|&n| n >= nn) || !(3..=4).contains(&f.nodes().len())
+                    f.nodes().iter().any(|&n| n >= nn)
+                        || !(if D == 2 {
+                            &[3][..]
+                        } else {
+                            &[3, 4, 6, 8, 9][..]
+                        })
+                        .contains(&f.nodes().len())
                 }) {
                     errors.push(format!(
-                        "`{label}` refers to face {:?}: outside the mesh or not a 3- or 4-node face",
+                        "`{label}` refers to face {:?}: outside the mesh or not a 3-, 4-, 6-, 8- \
+                         or 9-node face (solid) or a 3-node edge (planar; 2-node edges take \
+                         `Load::Pressure`)",
                         f.nodes()
-                    ));
-                }
-                if D != 3 {
-                    errors.push(format!(
-                        "`{label}`: pressure on faces needs a solid (3D) model"
                     ));
                 }
             }
