@@ -171,6 +171,46 @@ pub fn corner_jacobians(kind: CellKind, x: &[&[f64]]) -> Option<(Vec<f64>, f64)>
     }
 }
 
+/// Reference coordinates of the nodes of a cell of kind `kind`.
+pub fn node_coordinates(kind: CellKind) -> Vec<Vec<f64>> {
+    fn of<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>() -> Vec<Vec<f64>> {
+        C::NODES.iter().map(|p| p.to_vec()).collect()
+    }
+    match kind {
+        CellKind::Tri3 => of::<2, 3, Tri3>(),
+        CellKind::Quad4 => of::<2, 4, Quad4>(),
+        CellKind::Tet4 => of::<3, 4, Tet4>(),
+        CellKind::Hex8 => of::<3, 8, Hex8>(),
+        CellKind::Tri6 => of::<2, 6, Tri6>(),
+        CellKind::Quad8 => of::<2, 8, Quad8>(),
+        CellKind::Quad8R => of::<2, 8, Quad8R>(),
+        CellKind::Quad9 => of::<2, 9, Quad9>(),
+        CellKind::Tet10 => of::<3, 10, Tet10>(),
+        CellKind::Hex20 => of::<3, 20, Hex20>(),
+        CellKind::Hex20R => of::<3, 20, Hex20R>(),
+        CellKind::Hex27 => of::<3, 27, Hex27>(),
+    }
+}
+
+/// Shape function values of a linear cell of kind `kind` (tri3, quad4,
+/// tet4, hex8) at the reference point `xi`; `None` for other kinds or a
+/// point of the wrong dimension.
+pub fn linear_shape(kind: CellKind, xi: &[f64]) -> Option<Vec<f64>> {
+    fn of<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
+        xi: &[f64],
+    ) -> Option<Vec<f64>> {
+        let xi: [f64; D] = xi.try_into().ok()?;
+        Some(C::shape(&xi).to_vec())
+    }
+    match kind {
+        CellKind::Tri3 => of::<2, 3, Tri3>(xi),
+        CellKind::Quad4 => of::<2, 4, Quad4>(xi),
+        CellKind::Tet4 => of::<3, 4, Tet4>(xi),
+        CellKind::Hex8 => of::<3, 8, Hex8>(xi),
+        _ => None,
+    }
+}
+
 /// Gauss-Legendre abscissa of the 2-point rule.
 pub const G2: f64 = 0.577_350_269_189_625_8;
 
