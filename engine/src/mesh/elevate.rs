@@ -100,6 +100,41 @@ pub fn elevate<const D: usize>(mesh: &Mesh<D>, target: CellKind) -> Result<Mesh<
     Ok(out)
 }
 
+/// For every node of a cell of kind `kind`, the sorted local corners of
+/// the smallest entity it belongs to (a corner: itself; an edge midpoint:
+/// the edge's two corners; a face centre: the face's corners; the body
+/// centre: all corners).
+pub fn corner_sets(kind: CellKind) -> Vec<Vec<usize>> {
+    let linear = kind.linear();
+    node_coordinates(kind)
+        .iter()
+        .map(|xi| {
+            linear_shape(linear, xi)
+                .unwrap_or_default()
+                .into_iter()
+                .enumerate()
+                .filter(|(_, w)| w.abs() > 1e-12)
+                .map(|(a, _)| a)
+                .collect()
+        })
+        .collect()
+}
+
+/// The node list of a cell of kind `kind` whose corners are renumbered by
+/// `corners` (new corner `i` is old corner `corners[i]`, e.g. a reflection
+/// that fixes an inverted cell), the other nodes following their entity.
+pub fn permute_corners(kind: CellKind, nodes: &[usize], corners: &[usize]) -> Vec<usize> {
+    let sets = corner_sets(kind);
+    sets.iter()
+        .map(|set| {
+            let mut image: Vec<usize> = set.iter().map(|&i| corners[i]).collect();
+            image.sort_unstable();
+            let old = sets.iter().position(|s| *s == image).unwrap_or(0);
+            nodes[old]
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,5 +169,20 @@ mod tests {
             assert!(q.boundary_facets(0..2).iter().all(|f| f.nodes().len() == 3));
         }
         assert!(elevate(&m, CellKind::Tet10).is_err());
+    }
+
+    #[test]
+    fn reflecting_an_inverted_quadratic_cell_keeps_midpoints_on_their_edges() {
+        // tet10: swapping corners 1 and 2 swaps the midpoints of (0,1) and
+        // (0,2), of (1,3) and (2,3), and keeps that of (1,2)
+        let n: Vec<usize> = (10..20).collect();
+        assert_eq!(
+            permute_corners(CellKind::Tet10, &n, &[0, 2, 1, 3]),
+            vec![10, 12, 11, 13, 16, 15, 14, 17, 19, 18]
+        );
+        let n: Vec<usize> = (0..27).collect();
+        let p = permute_corners(CellKind::Hex27, &n, &[0, 3, 2, 1, 4, 7, 6, 5]);
+        // (0,1) <-> (0,3), x = -1 face <-> y = -1 face, the centre stays
+        assert_eq!((p[8], p[11], p[20], p[22], p[26]), (11, 8, 22, 20, 26));
     }
 }
