@@ -182,3 +182,87 @@ fn solid_runs_are_deterministic_and_restart_bit_for_bit() {
     run_from(&model, &mut rest, Some(&first.checkpoints[0])).unwrap();
     assert_eq!(bits(&first), bits(&rest));
 }
+
+/// Patch test (Irons; MacNeal and Harder 1985) on quadratic cells: the
+/// distorted 3 x 3 x 3 brick of the linear patch, elevated to tet10, hex20,
+/// hex20r and hex27 (straight edges, midpoints where the distorted linear
+/// map puts them), `u = b + A x` on every boundary node: the interior
+/// nodes (corner, midside, face and body) and the stress at every
+/// integration point are exact to 1e-10.
+#[test]
+fn solid_patch_linear_elastic_quadratic_cells_reproduce_the_exact_stress() {
+    use ctc_engine::mesh::elevate::elevate;
+    use ctc_engine::testkit::solid::distorted;
+    let law = MaterialLaw::LinearElastic {
+        young: E,
+        poisson: NU,
+    };
+    let exact = linear_stress(E, NU, &A_SMALL);
+    for (linear, kind, f) in [
+        (CellKind::Tet4, CellKind::Tet10, Formulation::Full),
+        (CellKind::Hex8, CellKind::Hex20, Formulation::Full),
+        (
+            CellKind::Hex8,
+            CellKind::Hex20,
+            Formulation::SelectiveReduced,
+        ),
+        (CellKind::Hex8, CellKind::Hex20R, Formulation::Full),
+        (CellKind::Hex8, CellKind::Hex27, Formulation::Full),
+    ] {
+        let mesh = elevate(&distorted(linear), kind).unwrap();
+        let p =
+            ctc_engine::testkit::solid::patch_on(mesh, law.clone(), f, Kinematics::Small, &A_SMALL)
+                .unwrap();
+        let serr = p.stress_error(&exact);
+        println!(
+            "patch linear {kind:?} {f:?}: u error {:.2e}, stress error {serr:.2e}",
+            p.u_error
+        );
+        assert!(
+            p.u_error <= 1e-10 && serr <= 1e-10 && p.stress_spread <= 1e-10,
+            "{kind:?} {f:?}: {} {serr} {}",
+            p.u_error,
+            p.stress_spread
+        );
+    }
+}
+
+/// The quadratic patch (as above) with the nonlinear laws: J2 small strain
+/// past yield, Neo-Hooke and J2 multiplicative at finite strain (F-bar on
+/// hex20): the same homogeneous field everywhere to 1e-10.
+#[test]
+fn solid_patch_quadratic_cells_nonlinear_laws_are_homogeneous() {
+    use ctc_engine::mesh::elevate::elevate;
+    use ctc_engine::testkit::solid::{distorted, patch_on};
+    let neo = MaterialLaw::NeoHookean {
+        young: 10.0,
+        poisson: 0.45,
+    };
+    for (linear, kind, f) in [
+        (CellKind::Tet4, CellKind::Tet10, Formulation::Full),
+        (
+            CellKind::Hex8,
+            CellKind::Hex20,
+            Formulation::SelectiveReduced,
+        ),
+        (CellKind::Hex8, CellKind::Hex20R, Formulation::Full),
+    ] {
+        let mesh = elevate(&distorted(linear), kind).unwrap();
+        let runs = [
+            (plastic(), Kinematics::Small, &A_SMALL),
+            (neo.clone(), Kinematics::Finite, &A_FINITE),
+            (plastic(), Kinematics::Finite, &A_FINITE),
+        ];
+        for (law, kinematics, a) in runs {
+            let p = patch_on(mesh.clone(), law, f, kinematics, a).unwrap();
+            println!(
+                "patch {kinematics:?} {kind:?} {f:?}: u error {:.2e}, stress spread {:.2e}",
+                p.u_error, p.stress_spread
+            );
+            assert!(
+                p.u_error <= 1e-10 && p.stress_spread <= 1e-10,
+                "{kind:?} {f:?} {kinematics:?}"
+            );
+        }
+    }
+}

@@ -81,6 +81,7 @@ decks!(
     include_cycle,
     include_error_inside,
     contact_misspelled_gmsh_group,
+    contact_quadratic_faces,
     include_missing,
     quoted_set_unknown,
     union_nodes_as_edges,

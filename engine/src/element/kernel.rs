@@ -10,7 +10,9 @@
 
 use super::finite::FiniteElement;
 use super::geometry::{centre_point, quadrature_points};
-use super::reference::{Hex8, Quad4, ReferenceCell, Tet4, Tri3};
+use super::reference::{
+    Hex20, Hex20R, Hex27, Hex8, Quad4, Quad8, Quad8R, Quad9, ReferenceCell, Tet10, Tet4, Tri3, Tri6,
+};
 use super::small::{inelastic_response, linear_response, linear_states, strain_points};
 use super::{ElementError, ElementMatrix, MaterialPoint, PointState, Section};
 use crate::geom::{Dimension, Point};
@@ -287,8 +289,9 @@ where
                 for p in &points {
                     super::planar::check_radius(input.section, p.position[0])?;
                 }
-                let fbar =
-                    input.formulation == Formulation::SelectiveReduced && C::QUADRATURE.len() > 1;
+                let fbar = input.formulation == Formulation::SelectiveReduced
+                    && C::QUADRATURE.len() > 1
+                    && C::SELECTIVE_REDUCED;
                 let centre = if fbar {
                     let c = centre_point::<D, NN, C>(&x, input.section)?;
                     super::planar::check_radius(input.section, c.position[0])?;
@@ -332,6 +335,22 @@ pub static QUAD4: Kernel<Quad4, 2, 4, 8> = Kernel::new();
 pub static TET4: Kernel<Tet4, 3, 4, 12> = Kernel::new();
 /// Trilinear hexahedron.
 pub static HEX8: Kernel<Hex8, 3, 8, 24> = Kernel::new();
+/// Quadratic triangle.
+pub static TRI6: Kernel<Tri6, 2, 6, 12> = Kernel::new();
+/// Serendipity quadrilateral.
+pub static QUAD8: Kernel<Quad8, 2, 8, 16> = Kernel::new();
+/// Serendipity quadrilateral, reduced integration.
+pub static QUAD8R: Kernel<Quad8R, 2, 8, 16> = Kernel::new();
+/// Biquadratic quadrilateral.
+pub static QUAD9: Kernel<Quad9, 2, 9, 18> = Kernel::new();
+/// Quadratic tetrahedron.
+pub static TET10: Kernel<Tet10, 3, 10, 30> = Kernel::new();
+/// Serendipity hexahedron.
+pub static HEX20: Kernel<Hex20, 3, 20, 60> = Kernel::new();
+/// Serendipity hexahedron, reduced integration.
+pub static HEX20R: Kernel<Hex20R, 3, 20, 60> = Kernel::new();
+/// Triquadratic hexahedron.
+pub static HEX27: Kernel<Hex27, 3, 27, 81> = Kernel::new();
 
 /// The kernel of cell kind `kind` in dimension `D`, or why there is none
 /// (a 3D cell in a planar analysis, or the reverse).

@@ -97,10 +97,13 @@ where
 {
     let points = quadrature_points::<D, NN, C>(x, section)?;
     let centre = match formulation {
-        Formulation::SelectiveReduced if C::QUADRATURE.len() > 1 && D == 3 => {
-            // solid: the mean dilatation (volume average of B over the
-            // cell), which passes the patch test on distorted hexahedra
-            // (their centre value does not: the adjugate of J is quadratic)
+        Formulation::SelectiveReduced
+            if C::QUADRATURE.len() > 1 && C::SELECTIVE_REDUCED && (D == 3 || NN > 4) =>
+        {
+            // solid and quadratic planar cells: the mean dilatation (volume
+            // average of B over the cell), which passes the patch test on
+            // distorted hexahedra (their centre value does not: the adjugate
+            // of J is quadratic)
             let mut mean = [BBlock::<D>::zeros(); NN];
             let mut volume = 0.0;
             for p in &points {
@@ -115,7 +118,7 @@ where
             }
             Some(mean)
         }
-        Formulation::SelectiveReduced if C::QUADRATURE.len() > 1 => {
+        Formulation::SelectiveReduced if C::QUADRATURE.len() > 1 && C::SELECTIVE_REDUCED => {
             // planar quads: the centre value equals the cell average
             let c = centre_point::<D, NN, C>(x, section)?;
             Some(strain_displacement(&c, section)?)

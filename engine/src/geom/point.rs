@@ -57,7 +57,11 @@ impl Dimension<2> for Const<2> {
         match kind {
             CellKind::Tri3 => Some(&kernel::TRI3),
             CellKind::Quad4 => Some(&kernel::QUAD4),
-            CellKind::Tet4 | CellKind::Hex8 => None,
+            CellKind::Tri6 => Some(&kernel::TRI6),
+            CellKind::Quad8 => Some(&kernel::QUAD8),
+            CellKind::Quad8R => Some(&kernel::QUAD8R),
+            CellKind::Quad9 => Some(&kernel::QUAD9),
+            _ => None,
         }
     }
 }
@@ -78,7 +82,11 @@ impl Dimension<3> for Const<3> {
         match kind {
             CellKind::Tet4 => Some(&kernel::TET4),
             CellKind::Hex8 => Some(&kernel::HEX8),
-            CellKind::Tri3 | CellKind::Quad4 => None,
+            CellKind::Tet10 => Some(&kernel::TET10),
+            CellKind::Hex20 => Some(&kernel::HEX20),
+            CellKind::Hex20R => Some(&kernel::HEX20R),
+            CellKind::Hex27 => Some(&kernel::HEX27),
+            _ => None,
         }
     }
 }

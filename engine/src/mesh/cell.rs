@@ -15,6 +15,22 @@ pub enum CellKind {
     Tet4,
     /// 8-node trilinear hexahedron.
     Hex8,
+    /// 6-node quadratic triangle.
+    Tri6,
+    /// 8-node serendipity quadrilateral, 3x3 Gauss points.
+    Quad8,
+    /// 8-node serendipity quadrilateral, reduced 2x2 Gauss points.
+    Quad8R,
+    /// 9-node biquadratic quadrilateral.
+    Quad9,
+    /// 10-node quadratic tetrahedron.
+    Tet10,
+    /// 20-node serendipity hexahedron, 3x3x3 Gauss points.
+    Hex20,
+    /// 20-node serendipity hexahedron, reduced 2x2x2 Gauss points.
+    Hex20R,
+    /// 27-node triquadratic hexahedron.
+    Hex27,
 }
 
 impl CellKind {
@@ -23,37 +39,95 @@ impl CellKind {
         match self {
             CellKind::Tri3 => 3,
             CellKind::Quad4 | CellKind::Tet4 => 4,
-            CellKind::Hex8 => 8,
+            CellKind::Hex8 | CellKind::Quad8 | CellKind::Quad8R => 8,
+            CellKind::Tri6 => 6,
+            CellKind::Quad9 => 9,
+            CellKind::Tet10 => 10,
+            CellKind::Hex20 | CellKind::Hex20R => 20,
+            CellKind::Hex27 => 27,
         }
     }
 
     /// Dimension of the cell (2 or 3).
     pub fn dimension(self) -> usize {
         match self {
-            CellKind::Tri3 | CellKind::Quad4 => 2,
-            CellKind::Tet4 | CellKind::Hex8 => 3,
+            CellKind::Tri3
+            | CellKind::Quad4
+            | CellKind::Tri6
+            | CellKind::Quad8
+            | CellKind::Quad8R
+            | CellKind::Quad9 => 2,
+            CellKind::Tet4
+            | CellKind::Hex8
+            | CellKind::Tet10
+            | CellKind::Hex20
+            | CellKind::Hex20R
+            | CellKind::Hex27 => 3,
         }
     }
 
-    /// Short name (`tri3`, `quad4`, `tet4`, `hex8`).
+    /// Polynomial order of the shape functions (1 or 2).
+    pub fn order(self) -> usize {
+        match self {
+            CellKind::Tri3 | CellKind::Quad4 | CellKind::Tet4 | CellKind::Hex8 => 1,
+            _ => 2,
+        }
+    }
+
+    /// The linear cell of the same shape (its corners are the first
+    /// nodes of this cell).
+    pub fn linear(self) -> CellKind {
+        match self {
+            CellKind::Tri3 | CellKind::Tri6 => CellKind::Tri3,
+            CellKind::Quad4 | CellKind::Quad8 | CellKind::Quad8R | CellKind::Quad9 => {
+                CellKind::Quad4
+            }
+            CellKind::Tet4 | CellKind::Tet10 => CellKind::Tet4,
+            CellKind::Hex8 | CellKind::Hex20 | CellKind::Hex20R | CellKind::Hex27 => CellKind::Hex8,
+        }
+    }
+
+    /// Number of corner nodes (the nodes of [`CellKind::linear`]).
+    pub fn corner_count(self) -> usize {
+        self.linear().node_count()
+    }
+
+    /// Short name (`tri3`, `quad4`, `tet4`, `hex8`, `tri6`, `quad8`,
+    /// `quad8r`, `quad9`, `tet10`, `hex20`, `hex20r`, `hex27`).
     pub fn name(self) -> &'static str {
         match self {
             CellKind::Tri3 => "tri3",
             CellKind::Quad4 => "quad4",
             CellKind::Tet4 => "tet4",
             CellKind::Hex8 => "hex8",
+            CellKind::Tri6 => "tri6",
+            CellKind::Quad8 => "quad8",
+            CellKind::Quad8R => "quad8r",
+            CellKind::Quad9 => "quad9",
+            CellKind::Tet10 => "tet10",
+            CellKind::Hex20 => "hex20",
+            CellKind::Hex20R => "hex20r",
+            CellKind::Hex27 => "hex27",
         }
     }
 
     /// Local node lists of the faces (edges in 2D), ordered so that their
     /// normal points out of the cell (`crate::element::reference`).
     pub fn faces(self) -> &'static [&'static [usize]] {
-        use crate::element::reference::{Hex8, Quad4, ReferenceCell, Tet4, Tri3};
+        use crate::element::reference::{
+            Hex20, Hex27, Hex8, Quad4, Quad8, Quad9, ReferenceCell, Tet10, Tet4, Tri3, Tri6,
+        };
         match self {
             CellKind::Tri3 => <Tri3 as ReferenceCell<2, 3>>::FACES,
             CellKind::Quad4 => <Quad4 as ReferenceCell<2, 4>>::FACES,
             CellKind::Tet4 => <Tet4 as ReferenceCell<3, 4>>::FACES,
             CellKind::Hex8 => <Hex8 as ReferenceCell<3, 8>>::FACES,
+            CellKind::Tri6 => <Tri6 as ReferenceCell<2, 6>>::FACES,
+            CellKind::Quad8 | CellKind::Quad8R => <Quad8 as ReferenceCell<2, 8>>::FACES,
+            CellKind::Quad9 => <Quad9 as ReferenceCell<2, 9>>::FACES,
+            CellKind::Tet10 => <Tet10 as ReferenceCell<3, 10>>::FACES,
+            CellKind::Hex20 | CellKind::Hex20R => <Hex20 as ReferenceCell<3, 20>>::FACES,
+            CellKind::Hex27 => <Hex27 as ReferenceCell<3, 27>>::FACES,
         }
     }
 }

@@ -25,7 +25,10 @@
 //!   `$PhysicalNames` are merged; unnamed groups of different dimensions
 //!   with the same tag (both `physical_<tag>`) are an error asking for names;
 //! - points (type 15) and lines (type 1) only feed the sets; second-order
-//!   and 3D elements are errors.
+//!   and 3D elements are errors in planar meshes. Solid meshes also read
+//!   the second-order tet10 (11), hex20 (17) and hex27 (12) with their
+//!   facets (8, 9, 10, 16), gmsh's node order mapped to the engine's
+//!   (`crate::element::reference`).
 //!
 //! Every malformed input gives a [`MeshError`] with the 1-based line.
 

@@ -10,11 +10,13 @@
 //!   right-hand rule, `crate::geom::Dimension::facet_normal`).
 //!
 //! - [`cell`]: cell kinds and the compressed-row cell storage;
-//! - [`facet`]: boundary edges and faces;
+//! - [`facet`]: boundary edges and faces; [`elevate`]: linear to
+//!   quadratic cells;
 //! - [`generate`]: built-in generators; [`gmsh`]: the gmsh reader;
 //! - [`select`]: geometric selections; [`validate`], [`quality`]: checks.
 
 pub mod cell;
+pub mod elevate;
 pub mod facet;
 pub mod generate;
 pub mod gmsh;

@@ -256,11 +256,19 @@ fn check_volumes<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut 
                  node order must follow gmsh's)"
             ));
         } else if let Some(i) = corners.iter().position(|&j| j <= tiny) {
-            r.push(format!(
-                "cell {c} ({kind}, nodes {list}) is inverted or twisted at node {}: its Jacobian \
-                 is not positive there",
-                cell.nodes[i]
-            ));
+            if let Some(node) = cell.nodes.get(i) {
+                r.push(format!(
+                    "cell {c} ({kind}, nodes {list}) is inverted or twisted at node {node}: its \
+                     Jacobian is not positive there"
+                ));
+            } else {
+                r.push(format!(
+                    "cell {c} ({kind}, nodes {list}) is inverted or twisted at its integration \
+                     point {}: its Jacobian is not positive there (a midside node too far off \
+                     the middle of its edge?)",
+                    i - cell.nodes.len()
+                ));
+            }
         }
     }
 }

@@ -365,6 +365,13 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
             CellKind::Quad4 => 9u8,
             CellKind::Tet4 => 10u8,
             CellKind::Hex8 => 12u8,
+            // quadratic cells: the engine's node order is VTK's
+            CellKind::Tri6 => 22u8,
+            CellKind::Quad8 | CellKind::Quad8R => 23u8,
+            CellKind::Quad9 => 28u8,
+            CellKind::Tet10 => 24u8,
+            CellKind::Hex20 | CellKind::Hex20R => 25u8,
+            CellKind::Hex27 => 29u8,
         }),
     );
     s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n");

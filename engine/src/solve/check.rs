@@ -135,29 +135,32 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                         COMPONENTS[D - 2]
                     ));
                 }
-                let sizes = if D == 2 { 2..=2 } else { 3..=4 };
+                let sizes: &[usize] = if D == 2 { &[2, 3] } else { &[3, 4, 6, 8, 9] };
                 if let Some(f) = facets.iter().find(|f| {
                     f.nodes().iter().any(|&n| n >= nn) || !sizes.contains(&f.nodes().len())
                 }) {
                     errors.push(format!(
-                        "`{label}` refers to facet {:?}: outside the mesh or not an edge (planar) \
-                         or a 3- or 4-node face (solid)",
+                        "`{label}` refers to facet {:?}: outside the mesh or not a 2- or 3-node \
+                         edge (planar) or a 3-, 4-, 6-, 8- or 9-node face (solid)",
                         f.nodes()
                     ));
                 }
             }
             Load::FacetPressure { label, facets, .. } => {
                 if let Some(f) = facets.iter().find(|f| {
-                    f.nodes().iter().any(|&n| n >= nn) || !(3..=4).contains(&f.nodes().len())
+                    f.nodes().iter().any(|&n| n >= nn)
+                        || !(if D == 2 {
+                            &[3][..]
+                        } else {
+                            &[3, 4, 6, 8, 9][..]
+                        })
+                        .contains(&f.nodes().len())
                 }) {
                     errors.push(format!(
-                        "`{label}` refers to face {:?}: outside the mesh or not a 3- or 4-node face",
+                        "`{label}` refers to face {:?}: outside the mesh or not a 3-, 4-, 6-, 8- \
+                         or 9-node face (solid) or a 3-node edge (planar; 2-node edges take \
+                         `Load::Pressure`)",
                         f.nodes()
-                    ));
-                }
-                if D != 3 {
-                    errors.push(format!(
-                        "`{label}`: pressure on faces needs a solid (3D) model"
                     ));
                 }
             }
@@ -175,6 +178,31 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             errors.push(format!(
                 "contact `{}` refers to a missing body or tool",
                 c.name
+            ));
+        }
+        // contact on quadratic faces (midside weights, mortar) is not built:
+        // refuse a pair whose slave or deformable master body has quadratic
+        // cells rather than give node-to-segment answers that are wrong
+        let quadratic = |body: usize| {
+            model.bodies.get(body).is_some_and(|b| {
+                b.cells.clone().any(|cell| {
+                    cell < model.mesh.cells.len() && model.mesh.cells.kind(cell).order() > 1
+                })
+            })
+        };
+        let master_body = match &c.master {
+            crate::model::ContactMaster::Surface { body, .. } => Some(*body),
+            crate::model::ContactMaster::Tool(_) => None,
+        };
+        if let Some(b) = [Some(c.body), master_body]
+            .into_iter()
+            .flatten()
+            .find(|&b| quadratic(b))
+        {
+            errors.push(format!(
+                "contact `{}`: body `{}` has quadratic cells; contact on quadratic faces is not \
+                 available yet (use linear cells on the contact bodies)",
+                c.name, model.bodies[b].name
             ));
         }
         if c.nodes
@@ -632,6 +660,57 @@ mod tests {
             b = b.fix([n], c);
         }
         b.step("s", 1.0, 1).min_fraction(0.5).build()
+    }
+
+    #[test]
+    fn contact_on_a_body_with_quadratic_cells_is_refused() {
+        let mesh = |kind| {
+            let m = Mesh::new(
+                vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]],
+                vec![Cell::quad(0, 1, 2, 3)],
+            );
+            if kind == crate::mesh::CellKind::Quad4 {
+                m
+            } else {
+                crate::mesh::elevate::elevate(&m, kind).unwrap()
+            }
+        };
+        for kind in [crate::mesh::CellKind::Quad4, crate::mesh::CellKind::Quad8] {
+            let m = crate::testkit::ModelBuilder::new(AnalysisKind::PlaneStrain)
+                .elastic("m", 1.0, 0.3)
+                .body("sq", mesh(kind), "m")
+                .fix([0, 1], 0)
+                .fix([0, 1], 1)
+                .tool(
+                    "floor",
+                    ToolGeometry::Plane {
+                        point: [0.0, 0.0],
+                        normal: [0.0, 1.0],
+                    },
+                    ToolMotion::fixed(),
+                )
+                .contact_tool(
+                    "sq -> floor",
+                    "sq",
+                    vec![[0, 1]],
+                    "floor",
+                    ContactMethod::Penalty {
+                        kind: PenaltyKind::Area,
+                        stiffness: 1.0,
+                    },
+                )
+                .step("s", 1.0, 1)
+                .build();
+            let refused = check_model(&m)
+                .iter()
+                .any(|e| e.contains("contact on quadratic faces is not available"));
+            assert_eq!(
+                refused,
+                kind == crate::mesh::CellKind::Quad8,
+                "{kind:?}: {:?}",
+                check_model(&m)
+            );
+        }
     }
 
     #[test]

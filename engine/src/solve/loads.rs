@@ -33,7 +33,15 @@ pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64]) 
                     continue;
                 }
                 for facet in facets {
-                    facet_pressure(nodes, facet.nodes(), p, f);
+                    if let (2, &[a, b, m]) = (D, facet.nodes()) {
+                        edge3_quadrature(model, nodes, [a, b, m], |node, w, t| {
+                            // the inward normal (-t_y, t_x) times the measure
+                            f[D * node] += p * w * -t[1];
+                            f[D * node + 1] += p * w * t[0];
+                        });
+                    } else {
+                        facet_pressure(nodes, facet.nodes(), p, f);
+                    }
                 }
             }
             Load::FacetTraction {
@@ -52,6 +60,11 @@ pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64]) 
                             let (wa, wb) = edge_measure(model, nodes, a, b);
                             f[D * a + component] += t * wa;
                             f[D * b + component] += t * wb;
+                        }
+                        &[a, b, m] if D == 2 => {
+                            edge3_quadrature(model, nodes, [a, b, m], |node, w, tan| {
+                                f[D * node + component] += t * w * tan[0].hypot(tan[1]);
+                            });
                         }
                         face => {
                             face_quadrature(nodes, face, |node, w, n, area_normal| {
@@ -124,18 +137,54 @@ fn edge_measure<const D: usize>(
     }
 }
 
+/// Visits the 3 Gauss points of the quadratic planar boundary edge
+/// `[a, b, m]` (corners `a -> b`, midpoint `m`): for every point and edge
+/// node, `visit(node, w N_a t_or_2_pi_r, dx/dxi)`; exact for a straight edge
+/// with its midpoint in the middle (a uniform load gives 1/6, 4/6, 1/6 of
+/// the total in plane analyses).
+fn edge3_quadrature<const D: usize>(
+    model: &Model<D>,
+    nodes: &[[f64; D]],
+    edge: [usize; 3],
+    mut visit: impl FnMut(usize, f64, [f64; 2]),
+) {
+    let g = (0.6f64).sqrt();
+    for (xi, w) in [(-g, 5.0 / 9.0), (0.0, 8.0 / 9.0), (g, 5.0 / 9.0)] {
+        let n = [0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi];
+        let dn = [xi - 0.5, xi + 0.5, -2.0 * xi];
+        let (mut t, mut r) = ([0.0; 2], 0.0);
+        for (a, &node) in edge.iter().enumerate() {
+            let x = xyz(&nodes[node]);
+            t[0] += dn[a] * x[0];
+            t[1] += dn[a] * x[1];
+            r += n[a] * x[0];
+        }
+        let measure = match model.analysis.kind {
+            AnalysisKind::Axisymmetric => 2.0 * std::f64::consts::PI * r,
+            AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress | AnalysisKind::Solid => {
+                model.analysis.thickness
+            }
+        };
+        for (a, &node) in edge.iter().enumerate() {
+            visit(node, w * n[a] * measure, t);
+        }
+    }
+}
+
 /// Visits the quadrature points of the face `face` (3 or 4 nodes,
 /// counter-clockwise seen from outside) of a solid mesh: for every point
 /// and face node, `visit(node, w, N_a, n dA / (dxi deta))` with the area
 /// normal `dx/dxi x dx/deta`; 1-point (tri3, exact: the area over 3 on
-/// each node) or 2x2 Gauss (quad4, exact for flat faces) quadrature. Other
-/// node counts are not visited (refused by `check_model`).
+/// each node), 2x2 Gauss (quad4, exact for flat faces), the tri6 3-point
+/// rule (6 nodes) or 3x3 Gauss (quad8: 8 nodes, quad9: 9 nodes; exact for
+/// flat faces with centred midpoints). Other node counts are not visited
+/// (refused by `check_model`).
 fn face_quadrature<const D: usize>(
     nodes: &[[f64; D]],
     face: &[usize],
     mut visit: impl FnMut(usize, f64, f64, [f64; 3]),
 ) {
-    use crate::element::reference::{Quad4, ReferenceCell, Tri3};
+    use crate::element::reference::{Quad4, Quad8, Quad9, ReferenceCell, Tri3, Tri6};
     fn on<const D: usize, const NN: usize, C: ReferenceCell<2, NN>>(
         nodes: &[[f64; D]],
         face: &[usize],
@@ -166,6 +215,9 @@ fn face_quadrature<const D: usize>(
     match face.len() {
         3 => on::<D, 3, Tri3>(nodes, face, &mut visit),
         4 => on::<D, 4, Quad4>(nodes, face, &mut visit),
+        6 => on::<D, 6, Tri6>(nodes, face, &mut visit),
+        8 => on::<D, 8, Quad8>(nodes, face, &mut visit),
+        9 => on::<D, 9, Quad9>(nodes, face, &mut visit),
         _ => {}
     }
 }
@@ -354,6 +406,120 @@ mod tests {
         let exact = 4.0 * 8.0 * std::f64::consts::PI;
         assert!((total(&f, 2, 1) - exact).abs() < 1e-12 * exact);
         assert_eq!(total(&f, 2, 0), 0.0);
+    }
+
+    #[test]
+    fn quadratic_edges_get_one_sixth_four_sixths_one_sixth_of_a_uniform_load() {
+        // nodes (1,0) (3,0) and the midpoint (2,0): plane strain, t = 2,
+        // traction 4 over L = 2: total 16 = (1/6, 1/6, 4/6) x 16
+        let mesh = Mesh::new(vec![[1.0, 0.0], [3.0, 0.0], [2.0, 0.0]], vec![]);
+        let edge = crate::mesh::Facet::new(&[0, 1, 2]);
+        let build = |kind, load| {
+            crate::testkit::ModelBuilder::new(kind)
+                .thickness(2.0)
+                .mesh(mesh.clone())
+                .load(load)
+                .build()
+        };
+        let m = build(
+            AnalysisKind::PlaneStrain,
+            Load::FacetTraction {
+                label: "t".into(),
+                facets: vec![edge],
+                component: 0,
+                value: TimeFunction::Constant(4.0),
+            },
+        );
+        let mut f = vec![0.0; 6];
+        external_forces(&m, 0.0, &mut f);
+        for (node, share) in [(0, 1.0 / 6.0), (1, 1.0 / 6.0), (2, 4.0 / 6.0)] {
+            assert!((f[2 * node] - 16.0 * share).abs() < 1e-13, "{f:?}");
+            assert_eq!(f[2 * node + 1], 0.0);
+        }
+        // a pressure on the bottom edge (body above) pushes up (+y), the same
+        // shares; axisymmetric: the total is p times the ring area 8 pi
+        let pressure = Load::FacetPressure {
+            label: "p".into(),
+            facets: vec![edge],
+            value: TimeFunction::Constant(4.0),
+        };
+        let m = build(AnalysisKind::PlaneStrain, pressure.clone());
+        external_forces(&m, 0.0, &mut f);
+        for (node, share) in [(0, 1.0 / 6.0), (1, 1.0 / 6.0), (2, 4.0 / 6.0)] {
+            assert!((f[2 * node + 1] - 16.0 * share).abs() < 1e-13, "{f:?}");
+        }
+        let m = build(AnalysisKind::Axisymmetric, pressure);
+        external_forces(&m, 0.0, &mut f);
+        let exact = 4.0 * 8.0 * std::f64::consts::PI;
+        assert!((total(&f, 2, 1) - exact).abs() < 1e-12 * exact);
+    }
+
+    #[test]
+    fn quadratic_faces_get_the_consistent_serendipity_and_tri6_shares() {
+        // the unit square z = 0 as quad8 / quad9 and the unit right triangle
+        // as tri6, counter-clockwise from +z: a uniform traction t gives the
+        // classical shares (quad8: corners -1/12, midpoints 1/3; quad9:
+        // corners 1/36, midpoints 1/9, centre 4/9; tri6: corners 0,
+        // midpoints 1/3 of the total) and a pressure pushes along -z
+        let nodes: Vec<[f64; 3]> = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.0, 0.5, 0.0],
+            [0.5, 0.5, 0.0],
+        ];
+        let tri6 = [0usize, 1, 3, 4, 8, 7];
+        let cases: [(&[usize], f64, Vec<f64>); 3] = [
+            (
+                &[0, 1, 2, 3, 4, 5, 6, 7],
+                1.0,
+                [vec![-1.0 / 12.0; 4], vec![1.0 / 3.0; 4]].concat(),
+            ),
+            (
+                &[0, 1, 2, 3, 4, 5, 6, 7, 8],
+                1.0,
+                [vec![1.0 / 36.0; 4], vec![1.0 / 9.0; 4], vec![4.0 / 9.0]].concat(),
+            ),
+            (&tri6, 0.5, [vec![0.0; 3], vec![1.0 / 3.0; 3]].concat()),
+        ];
+        for (face, area, shares) in cases {
+            for pressure in [false, true] {
+                let mut m = crate::testkit::ModelBuilder::<3>::solid()
+                    .mesh(Mesh::new(nodes.clone(), vec![]))
+                    .build();
+                let facets = vec![crate::mesh::Facet::new(face)];
+                let value = TimeFunction::Constant(3.0);
+                m.loads.push(if pressure {
+                    Load::FacetPressure {
+                        label: "p".into(),
+                        facets,
+                        value,
+                    }
+                } else {
+                    Load::FacetTraction {
+                        label: "t".into(),
+                        facets,
+                        component: 2,
+                        value,
+                    }
+                });
+                let mut f = vec![0.0; 27];
+                external_forces(&m, 0.0, &mut f);
+                let sign = if pressure { -1.0 } else { 1.0 };
+                for (&node, share) in face.iter().zip(&shares) {
+                    let want = sign * 3.0 * area * share;
+                    assert!(
+                        (f[3 * node + 2] - want).abs() < 1e-14,
+                        "{face:?} {node}: {f:?}"
+                    );
+                }
+                assert!((total(&f, 3, 2) - sign * 3.0 * area).abs() < 1e-14);
+            }
+        }
     }
 
     #[test]

@@ -131,7 +131,18 @@ pub fn patch_model(
     kinematics: Kinematics,
     a: &[[f64; 3]; 3],
 ) -> Model<3> {
-    let mesh = distorted(kind);
+    patch_model_on(distorted(kind), law, formulation, kinematics, a)
+}
+
+/// The patch model on `mesh` (any cell kinds): every boundary node
+/// prescribed with `u = b + A x`.
+pub fn patch_model_on(
+    mesh: Mesh<3>,
+    law: MaterialLaw,
+    formulation: Formulation,
+    kinematics: Kinematics,
+    a: &[[f64; 3]; 3],
+) -> Model<3> {
     let mut b = ModelBuilder::solid()
         .material("m", law)
         .body("block", mesh.clone(), "m")
@@ -221,7 +232,19 @@ pub fn patch(
     kinematics: Kinematics,
     a: &[[f64; 3]; 3],
 ) -> Result<Patch, String> {
-    let model = patch_model(kind, law, formulation, kinematics, a);
+    patch_on(distorted(kind), law, formulation, kinematics, a)
+}
+
+/// [`patch`] on the mesh `mesh` (e.g. the distorted brick elevated to
+/// quadratic cells by `crate::mesh::elevate`).
+pub fn patch_on(
+    mesh: Mesh<3>,
+    law: MaterialLaw,
+    formulation: Formulation,
+    kinematics: Kinematics,
+    a: &[[f64; 3]; 3],
+) -> Result<Patch, String> {
+    let model = patch_model_on(mesh, law, formulation, kinematics, a);
     let mut last = Last::default();
     let summary = run(&model, &mut last).map_err(|e| e.message)?;
     if !summary.completed {

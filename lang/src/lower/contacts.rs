@@ -13,6 +13,18 @@ use ctc_engine::model::{
 type ContactSide = (usize, Vec<[usize; 2]>, Vec<ctc_engine::mesh::Facet>);
 
 impl Lowerer<'_> {
+    /// Whether body `b` has a cell of order 2.
+    fn has_quadratic_cells(&self, b: &m::Body) -> bool {
+        let cells = if self.solid {
+            &self.mesh3.cells
+        } else {
+            &self.mesh.cells
+        };
+        b.cells
+            .clone()
+            .any(|c| c < cells.len() && cells.kind(c).order() > 1)
+    }
+
     /// The pairs; `tools` are the names of the lowered tools (curves in
     /// planar analyses, surfaces in `3d`), in `Model` order.
     pub(super) fn contacts(
@@ -32,6 +44,33 @@ impl Lowerer<'_> {
             let Some(body) = bodies.iter().position(|b| b.name == c.target.body.name) else {
                 continue;
             };
+            // contact on quadratic faces is not available (midside weights,
+            // mortar): refuse the pair with a caret at the quadratic side
+            let quadratic_side = std::iter::once(&c.target)
+                .chain(c.master.as_ref())
+                .find(|side| {
+                    bodies
+                        .iter()
+                        .find(|b| b.name == side.body.name)
+                        .is_some_and(|b| self.has_quadratic_cells(b))
+                });
+            if let Some(side) = quadratic_side {
+                self.diags.push(
+                    Diagnostic::error(
+                        format!(
+                            "contact on quadratic faces is not available yet: body `{}` has \
+                             quadratic cells",
+                            side.body.name
+                        ),
+                        side.span,
+                        "this surface has midside nodes",
+                    )
+                    .with_help(
+                        "mesh the contact bodies with linear cells (gmsh: Mesh.ElementOrder = 1)",
+                    ),
+                );
+                continue;
+            }
             let master = match &c.master {
                 Some(m) => {
                     if self.body_failed(m) {

@@ -11,19 +11,41 @@
 //! seen from outside (3D).
 //!
 //! - [`tri3`], [`quad4`]: planar (2D) cells;
-//! - [`tet4`], [`hex8`]: solid (3D) cells, gmsh / VTK node order.
+//! - [`tet4`], [`hex8`]: solid (3D) cells, gmsh / VTK node order;
+//! - [`tri6`], [`quad8`] (serendipity, and the 2x2 reduced `quad8r`),
+//!   [`quad9`]: quadratic planar cells;
+//! - [`tet10`], [`hex20`] (serendipity, and the 2x2x2 reduced `hex20r`),
+//!   [`hex27`]: quadratic solid cells, VTK node order (corners, then the
+//!   edge midpoints, then face and body centres; the gmsh reader maps
+//!   gmsh's order to it).
+//!
+//! A quadratic face lists its corners in outward order, then its edge
+//! midpoints in the same cyclic order (then its centre): the line3, tri6,
+//! quad8 and quad9 facet orders of gmsh and VTK.
 
+pub mod hex20;
+pub mod hex27;
 pub mod hex8;
 pub mod quad4;
+pub mod quad8;
+pub mod quad9;
+pub mod tet10;
 pub mod tet4;
 pub mod tri3;
+pub mod tri6;
 
 use crate::mesh::CellKind;
 
+pub use hex20::{Hex20, Hex20R};
+pub use hex27::Hex27;
 pub use hex8::Hex8;
 pub use quad4::Quad4;
+pub use quad8::{Quad8, Quad8R};
+pub use quad9::Quad9;
+pub use tet10::Tet10;
 pub use tet4::Tet4;
 pub use tri3::Tri3;
+pub use tri6::Tri6;
 
 /// A reference cell of dimension `D` with `NN` nodes.
 pub trait ReferenceCell<const D: usize, const NN: usize>: 'static {
@@ -38,6 +60,11 @@ pub trait ReferenceCell<const D: usize, const NN: usize>: 'static {
     const QUADRATURE: &'static [([f64; D], f64)];
     /// The centre of the cell (the point of B-bar / F-bar).
     const CENTRE: [f64; D];
+    /// Whether `formulation = selective_reduced` (B-bar / F-bar with one
+    /// dilatation per cell) is stable on this cell; where it is not (tri6,
+    /// tet10 and the reduced-integration quad8r, hex20r: spurious zero
+    /// energy modes) the formulation is full integration.
+    const SELECTIVE_REDUCED: bool = true;
 
     /// Shape function values at `xi`.
     fn shape(xi: &[f64; D]) -> [f64; NN];
@@ -67,6 +94,14 @@ pub fn quadrature_shape(kind: CellKind, point: usize) -> Vec<f64> {
         CellKind::Quad4 => at::<2, 4, Quad4>(point),
         CellKind::Tet4 => at::<3, 4, Tet4>(point),
         CellKind::Hex8 => at::<3, 8, Hex8>(point),
+        CellKind::Tri6 => at::<2, 6, Tri6>(point),
+        CellKind::Quad8 => at::<2, 8, Quad8>(point),
+        CellKind::Quad8R => at::<2, 8, Quad8R>(point),
+        CellKind::Quad9 => at::<2, 9, Quad9>(point),
+        CellKind::Tet10 => at::<3, 10, Tet10>(point),
+        CellKind::Hex20 => at::<3, 20, Hex20>(point),
+        CellKind::Hex20R => at::<3, 20, Hex20R>(point),
+        CellKind::Hex27 => at::<3, 27, Hex27>(point),
     }
 }
 
@@ -97,7 +132,9 @@ fn jacobian_det<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
 }
 
 /// Jacobian determinants of a cell of kind `kind` with node coordinates
-/// `x` at each of its nodes (the cell is valid when all are positive), and
+/// `x` at each of its nodes, then at each of its integration points (the
+/// cell is valid when all are positive: a quadratic cell may be inverted
+/// between its nodes), and
 /// its signed measure (area or volume: the integral of the determinant by
 /// the cell's quadrature). `None` when `x` does not match the kind.
 pub fn corner_jacobians(kind: CellKind, x: &[&[f64]]) -> Option<(Vec<f64>, f64)> {
@@ -109,6 +146,7 @@ pub fn corner_jacobians(kind: CellKind, x: &[&[f64]]) -> Option<(Vec<f64>, f64)>
         }
         let corners = C::NODES
             .iter()
+            .chain(C::QUADRATURE.iter().map(|q| &q.0))
             .map(|xi| jacobian_det::<D, NN, C>(x, xi))
             .collect();
         let measure = C::QUADRATURE
@@ -122,15 +160,208 @@ pub fn corner_jacobians(kind: CellKind, x: &[&[f64]]) -> Option<(Vec<f64>, f64)>
         CellKind::Quad4 => of::<2, 4, Quad4>(x),
         CellKind::Tet4 => of::<3, 4, Tet4>(x),
         CellKind::Hex8 => of::<3, 8, Hex8>(x),
+        CellKind::Tri6 => of::<2, 6, Tri6>(x),
+        CellKind::Quad8 => of::<2, 8, Quad8>(x),
+        CellKind::Quad8R => of::<2, 8, Quad8R>(x),
+        CellKind::Quad9 => of::<2, 9, Quad9>(x),
+        CellKind::Tet10 => of::<3, 10, Tet10>(x),
+        CellKind::Hex20 => of::<3, 20, Hex20>(x),
+        CellKind::Hex20R => of::<3, 20, Hex20R>(x),
+        CellKind::Hex27 => of::<3, 27, Hex27>(x),
+    }
+}
+
+/// Reference coordinates of the nodes of a cell of kind `kind`.
+pub fn node_coordinates(kind: CellKind) -> Vec<Vec<f64>> {
+    fn of<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>() -> Vec<Vec<f64>> {
+        C::NODES.iter().map(|p| p.to_vec()).collect()
+    }
+    match kind {
+        CellKind::Tri3 => of::<2, 3, Tri3>(),
+        CellKind::Quad4 => of::<2, 4, Quad4>(),
+        CellKind::Tet4 => of::<3, 4, Tet4>(),
+        CellKind::Hex8 => of::<3, 8, Hex8>(),
+        CellKind::Tri6 => of::<2, 6, Tri6>(),
+        CellKind::Quad8 => of::<2, 8, Quad8>(),
+        CellKind::Quad8R => of::<2, 8, Quad8R>(),
+        CellKind::Quad9 => of::<2, 9, Quad9>(),
+        CellKind::Tet10 => of::<3, 10, Tet10>(),
+        CellKind::Hex20 => of::<3, 20, Hex20>(),
+        CellKind::Hex20R => of::<3, 20, Hex20R>(),
+        CellKind::Hex27 => of::<3, 27, Hex27>(),
+    }
+}
+
+/// Shape function values of a linear cell of kind `kind` (tri3, quad4,
+/// tet4, hex8) at the reference point `xi`; `None` for other kinds or a
+/// point of the wrong dimension.
+pub fn linear_shape(kind: CellKind, xi: &[f64]) -> Option<Vec<f64>> {
+    fn of<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
+        xi: &[f64],
+    ) -> Option<Vec<f64>> {
+        let xi: [f64; D] = xi.try_into().ok()?;
+        Some(C::shape(&xi).to_vec())
+    }
+    match kind {
+        CellKind::Tri3 => of::<2, 3, Tri3>(xi),
+        CellKind::Quad4 => of::<2, 4, Quad4>(xi),
+        CellKind::Tet4 => of::<3, 4, Tet4>(xi),
+        CellKind::Hex8 => of::<3, 8, Hex8>(xi),
+        _ => None,
     }
 }
 
 /// Gauss-Legendre abscissa of the 2-point rule.
 pub const G2: f64 = 0.577_350_269_189_625_8;
 
+/// Gauss-Legendre abscissa of the 3-point rule, `sqrt(3/5)`.
+pub const G3: f64 = 0.774_596_669_241_483_4;
+
+/// Points (`-G3, 0, G3`) and weights (`5/9, 8/9, 5/9`) of the 3-point
+/// Gauss-Legendre rule, exact for polynomials of degree 5.
+const GAUSS3: [(f64, f64); 3] = [(-G3, 5.0 / 9.0), (0.0, 8.0 / 9.0), (G3, 5.0 / 9.0)];
+
+/// The 3x3 tensor Gauss rule on `[-1, 1]^2`, `xi` fastest.
+pub const GAUSS3X3: [([f64; 2], f64); 9] = {
+    let mut out = [([0.0; 2], 0.0); 9];
+    let mut i = 0;
+    while i < 9 {
+        let (a, b) = (GAUSS3[i % 3], GAUSS3[i / 3]);
+        out[i] = ([a.0, b.0], a.1 * b.1);
+        i += 1;
+    }
+    out
+};
+
+/// The 3x3x3 tensor Gauss rule on `[-1, 1]^3`, `xi` fastest.
+pub const GAUSS3X3X3: [([f64; 3], f64); 27] = {
+    let mut out = [([0.0; 3], 0.0); 27];
+    let mut i = 0;
+    while i < 27 {
+        let (a, b, c) = (GAUSS3[i % 3], GAUSS3[(i / 3) % 3], GAUSS3[i / 9]);
+        out[i] = ([a.0, b.0, c.0], a.1 * b.1 * c.1);
+        i += 1;
+    }
+    out
+};
+
+/// The 1D quadratic Lagrange function of the node at `c` (-1, 0 or 1)
+/// on the nodes -1, 0, 1, at `x`.
+pub fn lagrange3(c: f64, x: f64) -> f64 {
+    if c == 0.0 {
+        1.0 - x * x
+    } else {
+        0.5 * x * (x + c)
+    }
+}
+
+/// `d/dx` of [`lagrange3`].
+pub fn lagrange3_d(c: f64, x: f64) -> f64 {
+    if c == 0.0 {
+        -2.0 * x
+    } else {
+        x + 0.5 * c
+    }
+}
+
+/// Extrapolation weight of the tensor-product 3-point Gauss rule: the
+/// tensor quadratic interpolant through the Gauss points, evaluated at
+/// the node `node` (entries -1, 0, 1), for the Gauss point `point`.
+pub fn tensor_extrapolation3<const D: usize>(node: &[f64; D], point: &[f64; D]) -> f64 {
+    (0..D)
+        .map(|k| {
+            let (c, s) = (node[k], point[k] / G3);
+            if s.abs() < 0.5 {
+                1.0 - c * c / (G3 * G3)
+            } else {
+                c * (c + s * G3) / (2.0 * G3 * G3)
+            }
+        })
+        .product()
+}
+
+/// The 2x2 tensor Gauss rule on `[-1, 1]^2` (points ordered like the
+/// quad4 corners).
+pub const GAUSS2X2: [([f64; 2], f64); 4] = [
+    ([-G2, -G2], 1.0),
+    ([G2, -G2], 1.0),
+    ([G2, G2], 1.0),
+    ([-G2, G2], 1.0),
+];
+
+/// The 2x2x2 tensor Gauss rule on `[-1, 1]^3` (points ordered like the
+/// hex8 corners).
+pub const GAUSS2X2X2: [([f64; 3], f64); 8] = [
+    ([-G2, -G2, -G2], 1.0),
+    ([G2, -G2, -G2], 1.0),
+    ([G2, G2, -G2], 1.0),
+    ([-G2, G2, -G2], 1.0),
+    ([-G2, -G2, G2], 1.0),
+    ([G2, -G2, G2], 1.0),
+    ([G2, G2, G2], 1.0),
+    ([-G2, G2, G2], 1.0),
+];
+
+/// The sign pattern (+-1 per direction) of a 2-point tensor Gauss point.
+pub fn gauss2_sign<const D: usize>(point: &[f64; D]) -> [f64; D] {
+    point.map(f64::signum)
+}
+
+/// Value and gradient of the serendipity (quad8, hex20) shape function of
+/// the node at `node` (entries -1, 0, 1; a corner has none zero, an edge
+/// midpoint one) at `xi`: corner `2^-D prod(1 + c_k xi_k) (sum(1 + c_k
+/// xi_k) - (2D - 1))`, midpoint of the edge along `k`: `2^(1-D) (1 -
+/// xi_k^2) prod_(j != k)(1 + c_j xi_j)`.
+pub fn serendipity<const D: usize>(node: &[f64; D], xi: &[f64; D]) -> (f64, [f64; D]) {
+    let a: [f64; D] = std::array::from_fn(|k| 1.0 + node[k] * xi[k]);
+    let prod_except =
+        |skip: usize| -> f64 { (0..D).filter(|&j| j != skip).map(|j| a[j]).product::<f64>() };
+    match (0..D).find(|&k| node[k] == 0.0) {
+        None => {
+            let scale = 0.5f64.powi(D as i32);
+            let sum: f64 = a.iter().sum::<f64>() - (2 * D - 1) as f64;
+            let prod: f64 = a.iter().product();
+            let grad = std::array::from_fn(|k| scale * node[k] * prod_except(k) * (sum + a[k]));
+            (scale * prod * sum, grad)
+        }
+        Some(k) => {
+            let scale = 0.5f64.powi(D as i32 - 1);
+            let bubble = 1.0 - xi[k] * xi[k];
+            let rest = prod_except(k);
+            let grad = std::array::from_fn(|j| {
+                if j == k {
+                    -2.0 * xi[k] * scale * rest
+                } else {
+                    let others: f64 = (0..D).filter(|&i| i != k && i != j).map(|i| a[i]).product();
+                    scale * bubble * node[j] * others
+                }
+            });
+            (scale * bubble * rest, grad)
+        }
+    }
+}
+
+/// Value and gradient of the tensor quadratic Lagrange (quad9, hex27)
+/// shape function of the node at `node` (entries -1, 0, 1) at `xi`.
+pub fn lagrange_tensor<const D: usize>(node: &[f64; D], xi: &[f64; D]) -> (f64, [f64; D]) {
+    let l: [f64; D] = std::array::from_fn(|k| lagrange3(node[k], xi[k]));
+    let grad = std::array::from_fn(|k| {
+        (0..D)
+            .map(|j| {
+                if j == k {
+                    lagrange3_d(node[j], xi[j])
+                } else {
+                    l[j]
+                }
+            })
+            .product()
+    });
+    (l.iter().product(), grad)
+}
+
 /// Extrapolation weight of the tensor-product 2-point Gauss rule: the
 /// multilinear interpolant through the Gauss points, evaluated at the
-/// corner `corner` (entries +-1), for the Gauss point at `sign` (+-1)
+/// node `corner` (entries -1, 0 or 1), for the Gauss point at `sign` (+-1)
 /// times `G2` in each direction.
 pub fn tensor_extrapolation<const D: usize>(corner: &[f64; D], sign: &[f64; D]) -> f64 {
     let s3 = 3f64.sqrt();
@@ -181,6 +412,148 @@ pub(crate) mod testing {
         }
         for face in C::FACES {
             assert!(face.iter().all(|&a| a < NN));
+        }
+    }
+
+    /// The quadrature of `C` integrates every monomial of degree at most
+    /// `degree` exactly (in each direction separately for a tensor cell on
+    /// `[-1, 1]^D`, `boxed`; in total for a simplex cell).
+    pub fn check_exactness<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
+        degree: u32,
+        boxed: bool,
+    ) {
+        let fact = |n: u32| -> f64 { (1..=n).map(f64::from).product() };
+        let count = (degree + 1).pow(D as u32);
+        for code in 0..count {
+            let e: [u32; D] =
+                std::array::from_fn(|k| (code / (degree + 1).pow(k as u32)) % (degree + 1));
+            let total: u32 = e.iter().sum();
+            if !boxed && total > degree {
+                continue;
+            }
+            let exact = if boxed {
+                e.iter()
+                    .map(|&a| {
+                        if a % 2 == 1 {
+                            0.0
+                        } else {
+                            2.0 / f64::from(a + 1)
+                        }
+                    })
+                    .product::<f64>()
+            } else {
+                e.iter().map(|&a| fact(a)).product::<f64>() / fact(total + D as u32)
+            };
+            let q: f64 = C::QUADRATURE
+                .iter()
+                .map(|(xi, w)| w * (0..D).map(|k| xi[k].powi(e[k] as i32)).product::<f64>())
+                .sum();
+            assert!(
+                (q - exact).abs() < 1e-14,
+                "{:?} x^{e:?}: {q} != {exact}",
+                C::KIND
+            );
+        }
+        if boxed {
+            // and not one degree more (the rule is the one its degree says)
+            let e = degree + 1 + (degree + 1) % 2;
+            let q: f64 = C::QUADRATURE
+                .iter()
+                .map(|(xi, w)| w * xi[0].powi(e as i32))
+                .sum();
+            assert!((q - 2.0f64.powi(D as i32 - 1) * 2.0 / f64::from(e + 1)).abs() > 1e-6);
+        }
+    }
+
+    /// Extrapolating `f` sampled at the integration points gives `f` at
+    /// every node.
+    pub fn check_extrapolation<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
+        f: impl Fn(&[f64; D]) -> f64,
+    ) {
+        for (node, xa) in C::NODES.iter().enumerate() {
+            let v: f64 = C::QUADRATURE
+                .iter()
+                .enumerate()
+                .map(|(p, q)| C::extrapolation(node, p) * f(&q.0))
+                .sum();
+            assert!(
+                (v - f(xa)).abs() < 1e-12,
+                "{:?} node {node}: {v} != {}",
+                C::KIND,
+                f(xa)
+            );
+        }
+    }
+
+    /// The nodes of `C` under a well-conditioned affine map plus a
+    /// deterministic perturbation of `jitter` (`sample` picks the map).
+    pub fn distorted<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
+        sample: u64,
+        jitter: f64,
+    ) -> Vec<crate::geom::Point<D>> {
+        let mut state = sample
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
+        let mut next = move || {
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            ((state >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        let a: [[f64; D]; D] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| f64::from(u8::from(i == j)) + 0.25 * next())
+        });
+        let scale = 0.5 + 2.0 * (next() + 1.0);
+        let shift = 3.0 + next();
+        C::NODES
+            .iter()
+            .map(|xi| {
+                crate::geom::Point::<D>::from_fn(|i, _| {
+                    let m: f64 = (0..D).map(|j| a[i][j] * xi[j]).sum();
+                    scale * (m + jitter * next()) + if i == 0 { shift * scale } else { 0.0 }
+                })
+            })
+            .collect()
+    }
+
+    /// Linear-elastic stiffness of `C` on distorted cells: symmetric,
+    /// positive semi-definite, rigid-body modes in its null space with
+    /// exactly `zero_modes` zero eigenvalues (per analysis kind), and
+    /// `f_int = K u`.
+    pub fn check_stiffness<const D: usize, const NN: usize, const ND: usize, C>(
+        cases: &[(crate::model::AnalysisKind, usize)],
+    ) where
+        C: ReferenceCell<D, NN>,
+        nalgebra::Const<D>: crate::geom::Dimension<D>,
+    {
+        use crate::element::kernel::{CellKernel, Kernel};
+        use crate::element::{ElementMatrix, Section};
+        use crate::material::LinearElastic;
+        use crate::model::Formulation;
+        let kernel = Kernel::<C, D, NN, ND>::new();
+        for &(kind, zero_modes) in cases {
+            for sample in 0..6u64 {
+                let x = distorted::<D, NN, C>(sample, 0.05);
+                let u: Vec<crate::geom::Point<D>> = distorted::<D, NN, C>(sample + 100, 0.3)
+                    .iter()
+                    .map(|p| p * 1e-3)
+                    .collect();
+                let law = LinearElastic::new(200e3, 0.1 + 0.05 * sample as f64, kind).unwrap();
+                let section = Section {
+                    kind,
+                    thickness: 1.5,
+                };
+                for formulation in [Formulation::Full, Formulation::SelectiveReduced] {
+                    let mut r = ElementMatrix::default();
+                    kernel
+                        .linear(&x, &u, &section, formulation, &law, true, &mut r)
+                        .unwrap();
+                    crate::element::testing::check_element(&x, &r, &u, kind, zero_modes)
+                        .unwrap_or_else(|e| {
+                            panic!("{:?} {kind:?} {formulation:?} #{sample}: {e}", C::KIND)
+                        });
+                }
+            }
         }
     }
 }

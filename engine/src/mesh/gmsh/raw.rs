@@ -3,7 +3,8 @@
 
 use std::collections::BTreeMap;
 
-/// Element types read (all first order); anything else is an error.
+/// Element types read (first order; second order in solid meshes);
+/// anything else is an error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ElementType {
     /// gmsh type 15, 1-node point.
@@ -18,7 +19,24 @@ pub enum ElementType {
     Tetrahedron,
     /// gmsh type 5, 8-node hexahedron (solid meshes only).
     Hexahedron,
+    /// gmsh type 8, 3-node line (solid meshes only: node sets).
+    Line3,
+    /// gmsh type 9, 6-node triangle (solid meshes only: face sets).
+    Triangle6,
+    /// gmsh type 16, 8-node quadrangle (solid meshes only: face sets).
+    Quadrangle8,
+    /// gmsh type 10, 9-node quadrangle (solid meshes only: face sets).
+    Quadrangle9,
+    /// gmsh type 11, 10-node tetrahedron (solid meshes only).
+    Tetrahedron10,
+    /// gmsh type 17, 20-node hexahedron (solid meshes only).
+    Hexahedron20,
+    /// gmsh type 12, 27-node hexahedron (solid meshes only).
+    Hexahedron27,
 }
+
+/// Most nodes of an element read (the 27-node hexahedron).
+pub const MAX_ELEMENT_NODES: usize = 27;
 
 impl ElementType {
     /// The supported type of gmsh type number `t` in a planar (`solid =
@@ -31,7 +49,15 @@ impl ElementType {
             3 => ElementType::Quadrangle,
             4 if solid => ElementType::Tetrahedron,
             5 if solid => ElementType::Hexahedron,
-            11 | 12 | 17 | 29..=35 | 92 | 93 if solid => return Err(higher_order(t, "solid")),
+            8 if solid => ElementType::Line3,
+            9 if solid => ElementType::Triangle6,
+            16 if solid => ElementType::Quadrangle8,
+            10 if solid => ElementType::Quadrangle9,
+            11 if solid => ElementType::Tetrahedron10,
+            17 if solid => ElementType::Hexahedron20,
+            12 if solid => ElementType::Hexahedron27,
+            29..=35 | 92 | 93 if solid => return Err(higher_order(t, "solid")),
+            26..=28 | 20..=25 | 36 | 37 if solid => return Err(higher_order(t, "facet")),
             6 | 7 | 13 | 14 | 18 | 19 if solid => {
                 return Err(format!(
                     "element type {t} (prism or pyramid) is not supported: ctc reads tetrahedra (4) and hexahedra (5)"
@@ -61,6 +87,13 @@ impl ElementType {
             ElementType::Triangle => 3,
             ElementType::Quadrangle | ElementType::Tetrahedron => 4,
             ElementType::Hexahedron => 8,
+            ElementType::Line3 => 3,
+            ElementType::Triangle6 => 6,
+            ElementType::Quadrangle8 => 8,
+            ElementType::Quadrangle9 => 9,
+            ElementType::Tetrahedron10 => 10,
+            ElementType::Hexahedron20 => 20,
+            ElementType::Hexahedron27 => 27,
         }
     }
 
@@ -68,17 +101,27 @@ impl ElementType {
     pub fn dim(self) -> usize {
         match self {
             ElementType::Point => 0,
-            ElementType::Line => 1,
-            ElementType::Triangle | ElementType::Quadrangle => 2,
-            ElementType::Tetrahedron | ElementType::Hexahedron => 3,
+            ElementType::Line | ElementType::Line3 => 1,
+            ElementType::Triangle
+            | ElementType::Quadrangle
+            | ElementType::Triangle6
+            | ElementType::Quadrangle8
+            | ElementType::Quadrangle9 => 2,
+            ElementType::Tetrahedron
+            | ElementType::Hexahedron
+            | ElementType::Tetrahedron10
+            | ElementType::Hexahedron20
+            | ElementType::Hexahedron27 => 3,
         }
     }
 }
 
 fn higher_order(t: i64, shape: &str) -> String {
     format!(
-        "element type {t} is a second- or higher-order {shape}: ctc uses linear elements; \
-         mesh with order 1 (gmsh: Mesh.ElementOrder = 1, or -order 1)"
+        "element type {t} is a second- or higher-order {shape}: ctc reads first-order meshes \
+         and second-order solid meshes (tet10 11, hex20 17, hex27 12 with their 8, 9, 10, 16 \
+         facets); for a planar mesh, or an order above 2, mesh with order 1 (gmsh: \
+         Mesh.ElementOrder = 1, or -order 1)"
     )
 }
 
@@ -99,7 +142,7 @@ pub struct RawElement {
     /// Topology.
     pub kind: ElementType,
     /// gmsh node tags (first `kind.nodes()` used).
-    pub nodes: [u64; 8],
+    pub nodes: [u64; MAX_ELEMENT_NODES],
     /// Physical group tags it belongs to (of dimension `kind.dim()`).
     pub physicals: Vec<i64>,
     /// Line of the element.

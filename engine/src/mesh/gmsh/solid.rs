@@ -20,6 +20,26 @@ struct Group {
     interior: Option<usize>,
 }
 
+/// The engine's (VTK) node `k` of a 10-node tetrahedron is gmsh's node
+/// `GMSH_TET10[k]` (gmsh numbers the midpoints of (1,3) and (2,3) the other
+/// way round).
+const GMSH_TET10: [usize; 10] = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8];
+
+/// The engine's node `k` of a 20-node hexahedron is gmsh's node
+/// `GMSH_HEX20[k]` (gmsh numbers the edges (0,1), (0,3), (0,4), (1,2),
+/// (1,5), (2,3), (2,6), (3,7), (4,5), (4,7), (5,6), (6,7)).
+const GMSH_HEX20: [usize; 20] = [
+    0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15,
+];
+
+/// The engine's node `k` of a 27-node hexahedron is gmsh's node
+/// `GMSH_HEX27[k]` (gmsh's face centres: z = -1, y = -1, x = -1, x = 1,
+/// y = 1, z = 1; the engine's: x = -1, x = 1, y = -1, y = 1, z = -1, z = 1).
+const GMSH_HEX27: [usize; 27] = [
+    0, 1, 2, 3, 4, 5, 6, 7, 8, 11, 13, 9, 16, 18, 19, 17, 10, 12, 14, 15, 22, 23, 21, 24, 20, 25,
+    26,
+];
+
 /// Signed volume of a tetrahedron.
 fn tet_volume(p: [[f64; 3]; 4]) -> f64 {
     let d = |a: usize| [p[a][0] - p[0][0], p[a][1] - p[0][1], p[a][2] - p[0][2]];
@@ -57,7 +77,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh<3>, MeshError> {
     }
     let mut positions: Vec<Vec<usize>> = Vec::with_capacity(raw.elements.len());
     for e in &raw.elements {
-        let mut pos = Vec::with_capacity(8);
+        let mut pos = Vec::with_capacity(e.kind.nodes());
         for &t in &e.nodes[..e.kind.nodes()] {
             pos.push(*by_tag.get(&t).ok_or_else(|| {
                 MeshError::at_line(
@@ -72,15 +92,23 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh<3>, MeshError> {
     let mut cells: Vec<(CellKind, Vec<usize>)> = Vec::new();
     let mut keys: HashSet<Vec<usize>> = HashSet::new();
     for (e, pos) in raw.elements.iter().zip(&positions) {
-        let kind = match e.kind {
-            ElementType::Tetrahedron => CellKind::Tet4,
-            ElementType::Hexahedron => CellKind::Hex8,
+        let (kind, order): (_, &[usize]) = match e.kind {
+            ElementType::Tetrahedron => (CellKind::Tet4, &[]),
+            ElementType::Hexahedron => (CellKind::Hex8, &[]),
+            ElementType::Tetrahedron10 => (CellKind::Tet10, &GMSH_TET10),
+            ElementType::Hexahedron20 => (CellKind::Hex20, &GMSH_HEX20),
+            ElementType::Hexahedron27 => (CellKind::Hex27, &GMSH_HEX27),
             _ => continue,
         };
         let mut key = pos.clone();
         key.sort_unstable();
         if keys.insert(key) {
-            cells.push((kind, pos.clone()));
+            let pos = if order.is_empty() {
+                pos.clone()
+            } else {
+                order.iter().map(|&g| pos[g]).collect()
+            };
+            cells.push((kind, pos));
         }
     }
     if cells.is_empty() {
@@ -108,15 +136,16 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh<3>, MeshError> {
         let mut n: Vec<usize> = c.iter().filter_map(|&p| new_of[p]).collect();
         let x = |k: usize| mesh.nodes[n[k]];
         let inverted = match kind {
-            CellKind::Tet4 => tet_volume([x(0), x(1), x(2), x(3)]) < 0.0,
+            CellKind::Tet4 | CellKind::Tet10 => tet_volume([x(0), x(1), x(2), x(3)]) < 0.0,
             // the corner tetrahedron at node 0 gives the orientation
             _ => tet_volume([x(0), x(1), x(3), x(4)]) < 0.0,
         };
         if inverted {
-            match kind {
-                CellKind::Tet4 => n.swap(1, 2),
-                _ => n = [0, 3, 2, 1, 4, 7, 6, 5].iter().map(|&k| n[k]).collect(),
-            }
+            let corners: &[usize] = match kind {
+                CellKind::Tet4 | CellKind::Tet10 => &[0, 2, 1, 3],
+                _ => &[0, 3, 2, 1, 4, 7, 6, 5],
+            };
+            n = crate::mesh::elevate::permute_corners(*kind, &n, corners);
         }
         mesh.cells.push(Cell {
             kind: *kind,
@@ -227,7 +256,140 @@ $Elements\n1 2 1 2\n3 1 4 2\n1 1 2 3 4\n2 2 4 3 5\n$EndElements\n";
         )
         .unwrap_err();
         assert!(e.message.contains("no tetrahedra"), "{}", e.message);
-        let e = gmsh::parse_solid(&CUBE_V2.replace("2 5 2 2 1", "2 11 2 2 1")).unwrap_err();
+        let e = gmsh::parse_solid(&CUBE_V2.replace("2 5 2 2 1", "2 29 2 2 1")).unwrap_err();
         assert!(e.message.contains("order"), "{}", e.message);
+    }
+
+    /// One second-order cell written in gmsh's node order (corners, then
+    /// gmsh's edge midpoints, face centres and body centre computed from
+    /// them), with the corners optionally listed mirrored (an inverted
+    /// cell), and its first face as a physical surface of the matching
+    /// second-order type.
+    fn second_order(gmsh_type: usize, corners: &[[f64; 3]], mirror: bool) -> String {
+        let tet = corners.len() == 4;
+        let order: Vec<usize> = match (tet, mirror) {
+            (true, true) => vec![0, 2, 1, 3],
+            (false, true) => vec![0, 3, 2, 1, 4, 7, 6, 5],
+            _ => (0..corners.len()).collect(),
+        };
+        let c: Vec<[f64; 3]> = order.iter().map(|&k| corners[k]).collect();
+        let avg = |ids: &[usize]| -> [f64; 3] {
+            std::array::from_fn(|k| ids.iter().map(|&i| c[i][k]).sum::<f64>() / ids.len() as f64)
+        };
+        let edges: &[[usize; 2]] = if tet {
+            &[[0, 1], [1, 2], [0, 2], [0, 3], [2, 3], [1, 3]]
+        } else {
+            &[
+                [0, 1],
+                [0, 3],
+                [0, 4],
+                [1, 2],
+                [1, 5],
+                [2, 3],
+                [2, 6],
+                [3, 7],
+                [4, 5],
+                [4, 7],
+                [5, 6],
+                [6, 7],
+            ]
+        };
+        let mut x = c.clone();
+        x.extend(edges.iter().map(|e| avg(e)));
+        if gmsh_type == 12 {
+            for f in [
+                [0, 1, 2, 3],
+                [0, 1, 5, 4],
+                [0, 3, 7, 4],
+                [1, 2, 6, 5],
+                [2, 3, 7, 6],
+                [4, 5, 6, 7],
+            ] {
+                x.push(avg(&f));
+            }
+            x.push(avg(&[0, 1, 2, 3, 4, 5, 6, 7]));
+        }
+        // the face of corners 0, 1, 2 (tet) or 0..3 (hex) with its gmsh facet
+        let (face_type, face): (usize, Vec<usize>) = match gmsh_type {
+            11 => (9, vec![0, 1, 2, 4, 5, 6]),
+            17 => (16, vec![0, 1, 2, 3, 8, 11, 13, 9]),
+            _ => (10, vec![0, 1, 2, 3, 8, 11, 13, 9, 20]),
+        };
+        let mut t = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 \"face\"\n$EndPhysicalNames\n");
+        t += &format!("$Nodes\n{}\n", x.len());
+        for (i, p) in x.iter().enumerate() {
+            t += &format!("{} {} {} {}\n", i + 1, p[0], p[1], p[2]);
+        }
+        t += "$EndNodes\n$Elements\n2\n";
+        let list = |ids: &mut dyn Iterator<Item = usize>| -> String {
+            ids.map(|i| (i + 1).to_string())
+                .collect::<Vec<_>>()
+                .join(" ")
+        };
+        t += &format!("1 {gmsh_type} 2 2 1 {}\n", list(&mut (0..x.len())));
+        t += &format!("2 {face_type} 2 1 1 {}\n", list(&mut face.iter().copied()));
+        t + "$EndElements\n"
+    }
+
+    #[test]
+    fn second_order_tet10_hex20_hex27_mapped_to_the_engine_order_and_reoriented() {
+        // a sheared, stretched brick and tetrahedron (no symmetry hides a
+        // wrong permutation)
+        let m = |p: [f64; 3]| {
+            [
+                2.0 * p[0] + 0.3 * p[1],
+                1.5 * p[1] + 0.2 * p[2],
+                0.8 * p[2] + 0.1 * p[0],
+            ]
+        };
+        let hex: Vec<[f64; 3]> = crate::element::reference::node_coordinates(CellKind::Hex8)
+            .iter()
+            .map(|p| m([p[0], p[1], p[2]]))
+            .collect();
+        let tet: Vec<[f64; 3]> = crate::element::reference::node_coordinates(CellKind::Tet4)
+            .iter()
+            .map(|p| m([p[0], p[1], p[2]]))
+            .collect();
+        for (t, kind, corners) in [
+            (11, CellKind::Tet10, &tet),
+            (17, CellKind::Hex20, &hex),
+            (12, CellKind::Hex27, &hex),
+        ] {
+            for mirror in [false, true] {
+                let mesh = gmsh::parse_solid(&second_order(t, corners, mirror)).unwrap();
+                assert_eq!(mesh.cells.kind(0), kind);
+                // positive Jacobian at every node and integration point
+                assert!(
+                    validate::check(&mesh).is_ok(),
+                    "{kind:?} {mirror}: {:?}",
+                    validate::check(&mesh)
+                );
+                // every engine node where the linear map of its corners puts it
+                let n = mesh.cells.nodes(0);
+                for (set, &node) in crate::mesh::elevate::corner_sets(kind).iter().zip(n) {
+                    let want: [f64; 3] = std::array::from_fn(|k| {
+                        set.iter().map(|&a| mesh.nodes[n[a]][k]).sum::<f64>() / set.len() as f64
+                    });
+                    let d: f64 = (0..3).map(|k| (mesh.nodes[node][k] - want[k]).abs()).sum();
+                    assert!(
+                        d < 1e-12,
+                        "{kind:?} mirror {mirror}: node {node} at {:?}, want {want:?}",
+                        mesh.nodes[node]
+                    );
+                }
+                let faces = &mesh.face_sets["face"];
+                assert_eq!(faces.len(), 1, "{kind:?}");
+                assert_eq!(
+                    faces[0].nodes().len(),
+                    if t == 11 {
+                        6
+                    } else if t == 17 {
+                        8
+                    } else {
+                        9
+                    }
+                );
+            }
+        }
     }
 }

@@ -51,7 +51,7 @@ pub fn elements(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
                 physicals.push(v);
             }
         }
-        let mut nodes = [0u64; 8];
+        let mut nodes = [0u64; super::raw::MAX_ELEMENT_NODES];
         for slot in nodes.iter_mut().take(kind.nodes()) {
             *slot = c.tag("a node tag of the element")?;
         }

@@ -158,7 +158,7 @@ pub fn elements(
         for _ in 0..n {
             c.tag("an element tag")?;
             let line = c.line();
-            let mut nodes = [0u64; 8];
+            let mut nodes = [0u64; super::raw::MAX_ELEMENT_NODES];
             for slot in nodes.iter_mut().take(kind.nodes()) {
                 *slot = c.tag("a node tag of the element")?;
             }
