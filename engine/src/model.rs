@@ -125,6 +125,9 @@ pub struct Material {
     pub name: String,
     /// The constitutive law.
     pub law: MaterialLaw,
+    /// Mass density (mass per volume; 0: no inertia, quasi-static steps
+    /// only).
+    pub density: f64,
 }
 
 /// Constitutive laws. Only what decks can ask for exists here.
@@ -749,6 +752,18 @@ impl Default for NewtonSettings {
             stabilize: None,
         }
     }
+}
+
+/// How the mass matrix of a dynamic step is formed
+/// (`crate::element::CellKernel::mass`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MassMatrix {
+    /// `int rho N_a N_b dV`.
+    #[default]
+    Consistent,
+    /// Row-sum (HRZ where a row sum is not positive) diagonal.
+    Lumped,
 }
 
 /// A load step.

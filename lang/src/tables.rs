@@ -115,7 +115,7 @@ pub static VISCOPLASTIC: [Key; 1] = [Key::new("eta", KeyType::Number, "Perzyna v
     .dim(Dim::Viscosity)];
 
 /// `material NAME { .. }`.
-pub static MATERIAL: [Key; 5] = [
+pub static MATERIAL: [Key; 6] = [
     Key::new(
         "elastic",
         KeyType::Choice(&["{ E nu }"]),
@@ -141,6 +141,14 @@ pub static MATERIAL: [Key; 5] = [
         KeyType::Choice(&["{ .. }"]),
         "thermal properties (only decks with heat)",
     ),
+    Key::new(
+        "density",
+        KeyType::Number,
+        "mass density: the inertia of `dynamic` steps (needed by them)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Density),
 ];
 
 /// `body NAME { .. }`.

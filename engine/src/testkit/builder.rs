@@ -184,7 +184,18 @@ impl<const D: usize> ModelBuilder<D> {
         self.model.materials.push(Material {
             name: name.into(),
             law,
+            density: 0.0,
         });
+        self
+    }
+
+    /// Mass density of the last material added.
+    pub fn density(mut self, rho: f64) -> Self {
+        self.model
+            .materials
+            .last_mut()
+            .expect("test kit: `density` after `material`")
+            .density = rho;
         self
     }
 

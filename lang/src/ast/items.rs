@@ -68,6 +68,8 @@ pub struct Material {
     pub span: Span,
     /// `thermal { .. }`.
     pub thermal: Option<super::thermal::MaterialThermal>,
+    /// `density = ..`: mass density (inertia of dynamic steps).
+    pub density: Option<Spanned<f64>>,
 }
 
 /// `elastic { .. }`.

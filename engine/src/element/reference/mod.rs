@@ -38,6 +38,14 @@ pub trait ReferenceCell<const D: usize, const NN: usize>: 'static {
     const QUADRATURE: &'static [([f64; D], f64)];
     /// The centre of the cell (the point of B-bar / F-bar).
     const CENTRE: [f64; D];
+    /// Rule of the mass matrix `int rho N_a N_b dV`: exact for `N_a N_b`
+    /// times the Jacobian (and the radius of axisymmetric analyses) of an
+    /// undistorted cell. The default, the full rule, suits a cell whose
+    /// full rule is already that accurate; a cell whose full rule is not
+    /// (one-point simplices, quadratic cells) must give its own, or its
+    /// consistent mass is singular (the property tests of
+    /// `element::kernel` check every registered kernel).
+    const MASS_QUADRATURE: &'static [([f64; D], f64)] = Self::QUADRATURE;
 
     /// Shape function values at `xi`.
     fn shape(xi: &[f64; D]) -> [f64; NN];
@@ -123,6 +131,37 @@ pub fn corner_jacobians(kind: CellKind, x: &[&[f64]]) -> Option<(Vec<f64>, f64)>
         CellKind::Tet4 => of::<3, 4, Tet4>(x),
         CellKind::Hex8 => of::<3, 8, Hex8>(x),
     }
+}
+
+/// The 3-point Gauss-Legendre rule on `[-1, 1]`: abscissae and weights
+/// (exact to degree 5).
+pub const GAUSS3: [(f64, f64); 3] = [
+    (-0.774_596_669_241_483_4, 5.0 / 9.0),
+    (0.0, 8.0 / 9.0),
+    (0.774_596_669_241_483_4, 5.0 / 9.0),
+];
+
+/// The tensor product of [`GAUSS3`] on `[-1, 1]^D` (`3^D` points; `P` must
+/// be `3^D`), the first direction fastest.
+pub const fn gauss3_tensor<const D: usize, const P: usize>() -> [([f64; D], f64); P] {
+    let mut out = [([0.0; D], 0.0); P];
+    let mut p = 0;
+    while p < P {
+        let mut xi = [0.0; D];
+        let mut w = 1.0;
+        let mut rest = p;
+        let mut k = 0;
+        while k < D {
+            let (x, wk) = GAUSS3[rest % 3];
+            xi[k] = x;
+            w *= wk;
+            rest /= 3;
+            k += 1;
+        }
+        out[p] = (xi, w);
+        p += 1;
+    }
+    out
 }
 
 /// Gauss-Legendre abscissa of the 2-point rule.
