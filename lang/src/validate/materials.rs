@@ -31,7 +31,11 @@ pub fn check(ctx: &mut Ctx<'_>) {
 
 /// The mass density is `>= 0`.
 pub fn density_not_negative(m: &Material, ctx: &mut Ctx<'_>) {
-    if let Some(d) = m.density.as_ref().filter(|d| d.value < 0.0 || d.value.is_nan()) {
+    if let Some(d) = m
+        .density
+        .as_ref()
+        .filter(|d| d.value < 0.0 || d.value.is_nan())
+    {
         ctx.err(
             Diagnostic::error(
                 "the density must not be negative",
