@@ -87,49 +87,6 @@ fn newmark_average_acceleration_conserves_the_energy_of_a_free_cantilever() {
     }
 }
 
-/// `(period ratio T_h / T - 1, damping ratio)` of a linear one-mode system
-/// `omega dt = w` by the eigenvalues of the generalized-alpha amplification
-/// matrix (Chung & Hulbert 1993, eq. 16 with xi = 0): the principal root
-/// `lambda = exp(w_h (-xi_h +- i))`.
-fn amplification(k: &Coefficients, w: f64) -> (f64, f64) {
-    let (am, af, b, g) = (k.alpha_m, k.alpha_f, k.beta, k.gamma);
-    // X_{n+1} = A X_n, X = (d, dt v, dt^2 a), from
-    // (1-am) a1 + am a0 + w^2 ((1-af) d1 + af d0) = 0 (unit mass, dt = 1),
-    // d1 = d0 + v0 + (1/2 - b) a0 + b a1, v1 = v0 + (1 - g) a0 + g a1
-    let w2 = w * w;
-    let lhs = nalgebra::Matrix3::new(
-        1.0,
-        0.0,
-        -b, //
-        0.0,
-        1.0,
-        -g, //
-        w2 * (1.0 - af),
-        0.0,
-        1.0 - am,
-    );
-    let rhs = nalgebra::Matrix3::new(
-        1.0,
-        1.0,
-        0.5 - b, //
-        0.0,
-        1.0,
-        1.0 - g, //
-        -w2 * af,
-        0.0,
-        -am,
-    );
-    let a = lhs.try_inverse().unwrap() * rhs;
-    let l = a
-        .complex_eigenvalues()
-        .iter()
-        .copied()
-        .max_by(|x, y| x.im.abs().total_cmp(&y.im.abs()))
-        .unwrap();
-    let phase = l.im.abs().atan2(l.re);
-    ((w / phase) - 1.0, -l.norm().ln() / phase)
-}
-
 #[test]
 fn generalized_alpha_period_and_damping_match_chung_hulbert() {
     let omega = 2f64.sqrt();
@@ -179,7 +136,7 @@ fn generalized_alpha_period_and_damping_match_chung_hulbert() {
         let t_h = (crossings[m] - crossings[0]) / m as f64 * dt;
         let decay = (peaks[peaks.len() - 1] / peaks[1]).ln() / (peaks.len() - 2) as f64;
         let xi_h = -decay / std::f64::consts::TAU * (period / t_h);
-        let (dt_ref, xi_ref) = amplification(&k, omega * dt);
+        let (dt_ref, xi_ref) = k.spectral(omega * dt);
         println!(
             "dt = T/{steps_per_period}: period error {:.4e} (closed form {:.4e}), damping ratio \
              {:.4e} (closed form {:.4e})",

@@ -95,6 +95,51 @@ impl Coefficients {
     }
 }
 
+impl Coefficients {
+    /// `(period ratio T_h / T - 1, damping ratio)` of a linear one-mode system
+    /// `omega dt = w` by the eigenvalues of the generalized-alpha amplification
+    /// matrix (Chung & Hulbert 1993, eq. 16 with xi = 0): the principal root
+    /// `lambda = exp(w_h (-xi_h +- i))`.
+    pub fn spectral(&self, w: f64) -> (f64, f64) {
+        let (am, af, b, g) = (self.alpha_m, self.alpha_f, self.beta, self.gamma);
+        // X_{n+1} = A X_n, X = (d, dt v, dt^2 a), from
+        // (1-am) a1 + am a0 + w^2 ((1-af) d1 + af d0) = 0 (unit mass, dt = 1),
+        // d1 = d0 + v0 + (1/2 - b) a0 + b a1, v1 = v0 + (1 - g) a0 + g a1
+        let w2 = w * w;
+        let lhs = nalgebra::Matrix3::new(
+            1.0,
+            0.0,
+            -b, //
+            0.0,
+            1.0,
+            -g, //
+            w2 * (1.0 - af),
+            0.0,
+            1.0 - am,
+        );
+        let rhs = nalgebra::Matrix3::new(
+            1.0,
+            1.0,
+            0.5 - b, //
+            0.0,
+            1.0,
+            1.0 - g, //
+            -w2 * af,
+            0.0,
+            -am,
+        );
+        let a = lhs.try_inverse().unwrap() * rhs;
+        let l = a
+            .complex_eigenvalues()
+            .iter()
+            .copied()
+            .max_by(|x, y| x.im.abs().total_cmp(&y.im.abs()))
+            .unwrap();
+        let phase = l.im.abs().atan2(l.re);
+        ((w / phase) - 1.0, -l.norm().ln() / phase)
+    }
+}
+
 /// Energies of the run at the last converged increment (all totals since
 /// the start of the analysis).
 #[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
