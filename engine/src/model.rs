@@ -42,6 +42,8 @@ pub struct Model<const D: usize = 2> {
     /// Heat conduction and thermo-mechanical coupling; `None` when the deck
     /// has no `thermal` block (then there are no temperature unknowns).
     pub thermal: Option<crate::thermal::ThermalScene>,
+    /// Initial velocities (dynamic steps; nodes not listed start at rest).
+    pub initial_velocities: Vec<InitialVelocity>,
 }
 
 /// A model of either dimension: what lowering a deck gives (the dimension
@@ -125,6 +127,9 @@ pub struct Material {
     pub name: String,
     /// The constitutive law.
     pub law: MaterialLaw,
+    /// Mass density (mass per volume; 0: no inertia, quasi-static steps
+    /// only).
+    pub density: f64,
 }
 
 /// Constitutive laws. Only what decks can ask for exists here.
@@ -751,6 +756,70 @@ impl Default for NewtonSettings {
     }
 }
 
+/// How the mass matrix of a dynamic step is formed
+/// (`crate::element::CellKernel::mass`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MassMatrix {
+    /// `int rho N_a N_b dV`.
+    #[default]
+    Consistent,
+    /// Row-sum (HRZ where a row sum is not positive) diagonal.
+    Lumped,
+}
+
+/// The time integrator of a dynamic step: one generalized-alpha
+/// formulation (Chung & Hulbert 1993) of which Newmark and HHT-alpha are
+/// special cases (`crate::solve::dynamics::Coefficients`).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+#[serde(rename_all = "snake_case", tag = "scheme")]
+pub enum Scheme {
+    /// Newmark: `alpha_m = alpha_f = 0`; average acceleration is
+    /// `beta = 1/4`, `gamma = 1/2` (no numerical dissipation).
+    Newmark {
+        /// `beta`, in (0, 1/2].
+        beta: f64,
+        /// `gamma`, in [1/2, 1].
+        gamma: f64,
+    },
+    /// Hilber-Hughes-Taylor: `alpha_m = 0`, `alpha_f = (1 - rho_inf) / (1
+    /// + rho_inf)`, `gamma = 1/2 + alpha_f`, `beta = (1 + alpha_f)^2 / 4`.
+    Hht {
+        /// Spectral radius at infinite frequency, in [1/2, 1].
+        rho_inf: f64,
+    },
+    /// Chung-Hulbert generalized-alpha: `alpha_m = (2 rho_inf - 1) /
+    /// (rho_inf + 1)`, `alpha_f = rho_inf / (rho_inf + 1)`, `gamma = 1/2 -
+    /// alpha_m + alpha_f`, `beta = (1 - alpha_m + alpha_f)^2 / 4`.
+    GeneralizedAlpha {
+        /// Spectral radius at infinite frequency, in [0, 1].
+        rho_inf: f64,
+    },
+}
+
+/// What makes a step dynamic: the integrator and the mass matrix.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Dynamic {
+    /// The time integrator.
+    pub scheme: Scheme,
+    /// Consistent or lumped mass.
+    pub mass: MassMatrix,
+}
+
+/// An initial velocity component on a set of nodes (`initial_velocity`
+/// items).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitialVelocity {
+    /// Label from the deck.
+    pub label: String,
+    /// Global node numbers.
+    pub nodes: Vec<usize>,
+    /// Component (0 = x, 1 = y, 2 = z).
+    pub component: usize,
+    /// The velocity.
+    pub value: f64,
+}
+
 /// A load step.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Step {
@@ -767,6 +836,8 @@ pub struct Step {
     pub min_fraction: f64,
     /// Newton settings.
     pub newton: NewtonSettings,
+    /// `None`: quasi-static (no inertia); `Some`: implicit dynamics.
+    pub dynamic: Option<Dynamic>,
 }
 
 /// A nodal or element field that can be written to VTU.

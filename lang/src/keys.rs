@@ -187,6 +187,8 @@ pub enum Dim {
     HeatTransfer,
     /// Heat flux (W/m^2).
     HeatFlux,
+    /// Velocity (length / time).
+    Velocity,
 }
 
 impl Dim {
@@ -211,6 +213,7 @@ impl Dim {
             Dim::PenaltyNodal => "force/length",
             Dim::HeatTransfer => "power/(area temperature)",
             Dim::HeatFlux => "power/area",
+            Dim::Velocity => "length/time",
         }
     }
 
@@ -235,6 +238,7 @@ impl Dim {
             Dim::PenaltyNodal => Exponents::FORCE.per(Exponents::LENGTH),
             Dim::HeatTransfer => Exponents::POWER.per(Exponents::LENGTH.pow(2)).per(k),
             Dim::HeatFlux => Exponents::POWER.per(Exponents::LENGTH.pow(2)),
+            Dim::Velocity => Exponents::LENGTH.per(Exponents::TIME),
         })
     }
 }

@@ -174,6 +174,14 @@ pub static ITEMS: &[Item] = &[
         example: "force block.node(near(0, 1)) { fy = -1 }",
     },
     Item {
+        name: "initial_velocity",
+        syntax: "initial_velocity NODES { vx = ..  vy = ..  vz = .. }",
+        doc: "The velocity of a node set at the start of the analysis (`body.all` for a whole \
+              body), for `dynamic` steps; other nodes start at rest. `vz` in 3d only.",
+        blocks: &[],
+        example: "initial_velocity bar.all { vx = -5 }",
+    },
+    Item {
         name: "temperature",
         syntax: "temperature SET { value = F(t) }",
         doc: "A prescribed temperature (thermal decks).",

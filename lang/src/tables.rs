@@ -115,7 +115,7 @@ pub static VISCOPLASTIC: [Key; 1] = [Key::new("eta", KeyType::Number, "Perzyna v
     .dim(Dim::Viscosity)];
 
 /// `material NAME { .. }`.
-pub static MATERIAL: [Key; 5] = [
+pub static MATERIAL: [Key; 6] = [
     Key::new(
         "elastic",
         KeyType::Choice(&["{ E nu }"]),
@@ -141,6 +141,14 @@ pub static MATERIAL: [Key; 5] = [
         KeyType::Choice(&["{ .. }"]),
         "thermal properties (only decks with heat)",
     ),
+    Key::new(
+        "density",
+        KeyType::Number,
+        "mass density: the inertia of `dynamic` steps (needed by them)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Density),
 ];
 
 /// `body NAME { .. }`.
@@ -661,7 +669,7 @@ pub static POWER_CONDUCTANCE: [Key; 3] = [
 ];
 
 /// `step NAME { .. }`.
-pub static STEP: [Key; 4] = [
+pub static STEP: [Key; 5] = [
     Key::new(
         "time",
         KeyType::Numbers(P2),
@@ -684,6 +692,50 @@ pub static STEP: [Key; 4] = [
         KeyType::Choice(&["{ tol tol_displacement max_iter line_search stabilize }"]),
         "Newton settings",
     ),
+    Key::new(
+        "dynamic",
+        KeyType::Choice(&["{ scheme rho_inf beta gamma mass }"]),
+        "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
+         step is quasi-static",
+    ),
+];
+
+/// `dynamic { .. }` of a step.
+pub static DYNAMIC: [Key; 5] = [
+    Key::new(
+        "scheme",
+        KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
+        "time integrator: Newmark (beta, gamma), HHT-alpha or Chung-Hulbert generalized-alpha \
+         (rho_inf)",
+    )
+    .default(Default::Choice("generalized_alpha")),
+    Key::new(
+        "rho_inf",
+        KeyType::Number,
+        "spectral radius at infinite frequency: 1 no numerical dissipation, smaller damps \
+         the high modes (hht: in [0.5, 1])",
+    )
+    .default(Default::Number(0.9))
+    .range(Range::Closed(0.0, 1.0))
+    .dim(Dim::None),
+    Key::new("beta", KeyType::Number, "Newmark beta (newmark only)")
+        .default(Default::Number(0.25))
+        .range(Range::Positive)
+        .dim(Dim::None),
+    Key::new(
+        "gamma",
+        KeyType::Number,
+        "Newmark gamma, >= 1/2 (newmark only)",
+    )
+    .default(Default::Number(0.5))
+    .range(Range::Positive)
+    .dim(Dim::None),
+    Key::new(
+        "mass",
+        KeyType::Choice(&["consistent", "lumped"]),
+        "mass matrix: consistent, or lumped (row sums; HRZ where a row sum is not positive)",
+    )
+    .default(Default::Choice("consistent")),
 ];
 
 /// `newton { .. }` of a step.
@@ -790,5 +842,6 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("contact.thermal.conductance = power", &POWER_CONDUCTANCE),
     ("step", &STEP),
     ("step.newton", &NEWTON),
+    ("step.dynamic", &DYNAMIC),
     ("output", &OUTPUT),
 ];

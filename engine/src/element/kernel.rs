@@ -9,7 +9,7 @@
 //! (`crate::geom::Dimension::kernel`).
 
 use super::finite::FiniteElement;
-use super::geometry::{centre_point, quadrature_points};
+use super::geometry::{centre_point, quadrature_points, shape_point};
 use super::reference::{
     Hex20, Hex20R, Hex27, Hex8, Quad4, Quad8, Quad8R, Quad9, ReferenceCell, Tet10, Tet4, Tri3, Tri6,
 };
@@ -18,7 +18,7 @@ use super::{ElementError, ElementMatrix, MaterialPoint, PointState, Section};
 use crate::geom::{Dimension, Point};
 use crate::material::{History, LinearElastic, NonlinearLaw, Strain};
 use crate::mesh::CellKind;
-use crate::model::{Formulation, Kinematics};
+use crate::model::{Formulation, Kinematics, MassMatrix};
 use nalgebra::Const;
 use std::marker::PhantomData;
 
@@ -125,6 +125,40 @@ pub trait CellKernel<const D: usize>: Sync + std::fmt::Debug {
     /// Nodal values from integration-point values: `at_points` holds
     /// `width` values per point; the result `width` values per node.
     fn extrapolate(&self, at_points: &[f64], width: usize) -> Vec<f64>;
+
+    /// Mass matrix of density `rho` in the reference configuration:
+    /// `M_ab = int rho N_a N_b dV` (`dV` with the thickness or `2 pi r`)
+    /// by the cell's mass rule, `NN x NN` row-major; the node block is
+    /// `M_ab I`. [`MassMatrix::Lumped`]: the row sums on the diagonal, or
+    /// the HRZ diagonal (`M_aa` scaled to the total mass) when a row sum is
+    /// not positive.
+    fn mass(
+        &self,
+        x: &[Point<D>],
+        section: &Section,
+        rho: f64,
+        kind: MassMatrix,
+    ) -> Result<Vec<f64>, ElementError>;
+}
+
+/// The consistent `NN x NN` mass `m` (row-major) lumped onto its diagonal:
+/// row sums, or HRZ (Hinton, Rock & Zienkiewicz 1976: the consistent
+/// diagonal scaled to the total mass) when a row sum is not positive.
+pub fn lump(m: &mut [f64], nn: usize) {
+    let rows: Vec<f64> = (0..nn)
+        .map(|a| m[a * nn..(a + 1) * nn].iter().sum())
+        .collect();
+    let total: f64 = rows.iter().sum();
+    let diag: Vec<f64> = if rows.iter().all(|r| *r > 0.0) {
+        rows
+    } else {
+        let d: f64 = (0..nn).map(|a| m[a * nn + a]).sum();
+        (0..nn).map(|a| m[a * nn + a] * total / d).collect()
+    };
+    m.fill(0.0);
+    for (a, v) in diag.into_iter().enumerate() {
+        m[a * nn + a] = v;
+    }
 }
 
 /// The kernel of reference cell `C` (`NN` nodes, `ND = D NN` dofs).
@@ -324,6 +358,29 @@ where
             }
         }
         out
+    }
+
+    fn mass(
+        &self,
+        x: &[Point<D>],
+        section: &Section,
+        rho: f64,
+        kind: MassMatrix,
+    ) -> Result<Vec<f64>, ElementError> {
+        let x = Self::nodes(x)?;
+        let mut m = vec![0.0; NN * NN];
+        for (xi, w) in C::MASS_QUADRATURE {
+            let p = shape_point::<D, NN, C>(&x, xi, *w, section)?;
+            for a in 0..NN {
+                for b in 0..NN {
+                    m[a * NN + b] += rho * p.n[a] * p.n[b] * p.volume;
+                }
+            }
+        }
+        if kind == MassMatrix::Lumped {
+            lump(&mut m, NN);
+        }
+        Ok(m)
     }
 }
 
@@ -636,6 +693,158 @@ mod tests {
         }
     }
 
+    /// The mass properties every kernel must have (consistent and lumped):
+    /// total mass `rho V` (`V` the cell's volume by its stiffness rule: the
+    /// measure `t` or `2 pi r` included), the kinetic energy of a rigid
+    /// translation `1/2 rho V |v|^2`, symmetry, positive definiteness of the
+    /// consistent mass and a positive lumped diagonal.
+    fn check_mass<const D: usize>(
+        kernel: &dyn CellKernel<D>,
+        x: &[Point<D>],
+        sec: &Section,
+        rho: f64,
+    ) -> Result<(), String> {
+        let nn = kernel.node_count();
+        let volume: f64 = kernel
+            .shape_points(x, sec)
+            .map_err(|e| e.message)?
+            .iter()
+            .map(|p| p.volume)
+            .sum();
+        let total = rho * volume;
+        let v = Point::<D>::from_fn(|c, _| 0.3 + c as f64);
+        for kind in [MassMatrix::Consistent, MassMatrix::Lumped] {
+            let m = kernel.mass(x, sec, rho, kind).map_err(|e| e.message)?;
+            let sum: f64 = m.iter().sum();
+            if (sum - total).abs() > 1e-12 * total {
+                return Err(format!("{kind:?}: total mass {sum} != rho V = {total}"));
+            }
+            // kinetic energy of the rigid translation v (node blocks M_ab I)
+            let ke: f64 = 0.5 * m.iter().sum::<f64>() * v.norm_squared();
+            let mut ke_blocks = 0.0;
+            for a in 0..nn {
+                for b in 0..nn {
+                    ke_blocks += 0.5 * m[a * nn + b] * v.dot(&v);
+                }
+            }
+            let want = 0.5 * total * v.norm_squared();
+            if (ke - want).abs() > 1e-12 * want || (ke_blocks - want).abs() > 1e-12 * want {
+                return Err(format!(
+                    "{kind:?}: rigid kinetic energy {ke_blocks} != {want}"
+                ));
+            }
+            let dm = nalgebra::DMatrix::from_row_slice(nn, nn, &m);
+            if (&dm - dm.transpose()).amax() > 1e-14 * dm.amax() {
+                return Err(format!("{kind:?}: not symmetric"));
+            }
+            let eig = dm.symmetric_eigen().eigenvalues;
+            let min = eig.min();
+            if min.is_nan() || min <= 1e-8 * eig.max() {
+                return Err(format!(
+                    "{kind:?}: not positive definite, eigenvalues {eig:?}"
+                ));
+            }
+            if kind == MassMatrix::Lumped {
+                let off = (0..nn * nn)
+                    .filter(|i| i / nn != i % nn)
+                    .map(|i| m[i].abs())
+                    .sum::<f64>();
+                if off != 0.0 {
+                    return Err("lumped mass has off-diagonal terms".into());
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// The quadratic cells with their own mass rules (tri6 and tet10 by the
+    /// collapsed Gauss rules, quad8R and hex20R by the full rule of quad8 and
+    /// hex20): total mass, rigid kinetic energy, symmetry, positive definite
+    /// consistent and positive lumped (HRZ) mass, on affinely mapped cells
+    /// (plane strain, plane stress and axisymmetric in 2D).
+    #[test]
+    fn quadratic_cells_have_a_regular_mass() {
+        fn nodes<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>() -> Vec<Point<D>> {
+            C::NODES
+                .iter()
+                .map(|xi| {
+                    Point::<D>::from_fn(|c, _| {
+                        // x = A xi + b with a skewed A and x > 0 (radius)
+                        let mut v = if c == 0 { 2.0 } else { 0.0 };
+                        for (k, x) in xi.iter().enumerate() {
+                            v += x * if k == c { 1.2 + 0.1 * c as f64 } else { 0.15 };
+                        }
+                        v
+                    })
+                })
+                .collect()
+        }
+        let planar: [(&dyn CellKernel<2>, Vec<Point<2>>); 4] = [
+            (&TRI6, nodes::<2, 6, Tri6>()),
+            (&QUAD8, nodes::<2, 8, Quad8>()),
+            (&QUAD8R, nodes::<2, 8, Quad8R>()),
+            (&QUAD9, nodes::<2, 9, Quad9>()),
+        ];
+        for (kernel, x) in &planar {
+            for kind in [
+                AnalysisKind::PlaneStrain,
+                AnalysisKind::PlaneStress,
+                AnalysisKind::Axisymmetric,
+            ] {
+                check_mass(*kernel, x, &section(kind, 2.5), 7.8)
+                    .unwrap_or_else(|e| panic!("{:?} {kind:?}: {e}", kernel.node_count()));
+            }
+        }
+        let solid: [(&dyn CellKernel<3>, Vec<Point<3>>); 4] = [
+            (&TET10, nodes::<3, 10, Tet10>()),
+            (&HEX20, nodes::<3, 20, Hex20>()),
+            (&HEX20R, nodes::<3, 20, Hex20R>()),
+            (&HEX27, nodes::<3, 27, Hex27>()),
+        ];
+        for (kernel, x) in &solid {
+            check_mass(*kernel, x, &section(AnalysisKind::Solid, 1.0), 7.8)
+                .unwrap_or_else(|e| panic!("{}: {e}", kernel.node_count()));
+        }
+    }
+
+    #[test]
+    fn consistent_mass_of_the_unit_triangle_and_tetrahedron() {
+        // int N_a N_b dA = A / 12 (1 + delta_ab), int N_a N_b dV = V / 20 (1 + delta_ab)
+        let t = p2([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
+        let m = TRI3
+            .mass(
+                &t,
+                &section(AnalysisKind::PlaneStrain, 1.0),
+                1.0,
+                MassMatrix::Consistent,
+            )
+            .unwrap();
+        assert!((m[0] - 1.0 / 12.0).abs() < 1e-15 && (m[1] - 1.0 / 24.0).abs() < 1e-15);
+        let tt: Vec<Point<3>> = Tet4::NODES.iter().map(|&c| Point::<3>::from(c)).collect();
+        let m = TET4
+            .mass(
+                &tt,
+                &section(AnalysisKind::Solid, 1.0),
+                1.0,
+                MassMatrix::Consistent,
+            )
+            .unwrap();
+        assert!((m[0] - 1.0 / 60.0).abs() < 1e-15 && (m[1] - 1.0 / 120.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn hrz_lumping_where_row_sums_are_not_positive() {
+        // a 3-node mass with a negative row sum (the corner rows of serendipity cells)
+        let mut m = vec![2.0, 0.5, -3.0, 0.5, 2.0, 0.5, -3.0, 0.5, 3.0];
+        let total: f64 = m.iter().sum();
+        lump(&mut m, 3);
+        assert_eq!([m[1], m[2], m[3], m[5], m[6], m[7]], [0.0; 6]);
+        let d = [m[0], m[4], m[8]];
+        assert!(d.iter().all(|v| *v > 0.0));
+        assert!((d.iter().sum::<f64>() - total).abs() < 1e-14);
+        assert!((d[0] / d[2] - 2.0 / 3.0).abs() < 1e-14);
+    }
+
     fn kinds2() -> impl Strategy<Value = AnalysisKind> {
         prop_oneof![
             Just(AnalysisKind::PlaneStrain),
@@ -701,6 +910,26 @@ mod tests {
             let mut r = ElementMatrix::default();
             TET4.linear(&shape.x, &u, &section(AnalysisKind::Solid, 1.0), Formulation::Full, &law, true, &mut r).unwrap();
             check_element(&shape.x, &r, &u, AnalysisKind::Solid, 6).map_err(TestCaseError::fail)?;
+        }
+
+        #[test]
+        fn tri3_mass_properties(shape in Shape::triangle(), rho in 0.1f64..1e4, kind in kinds2()) {
+            check_mass(&TRI3, &shape.x, &section(kind, 2.5), rho).map_err(TestCaseError::fail)?;
+        }
+
+        #[test]
+        fn quad4_mass_properties(shape in Shape::quad(), rho in 0.1f64..1e4, kind in kinds2()) {
+            check_mass(&QUAD4, &shape.x, &section(kind, 2.5), rho).map_err(TestCaseError::fail)?;
+        }
+
+        #[test]
+        fn tet4_mass_properties(shape in Shape::tet(), rho in 0.1f64..1e4) {
+            check_mass(&TET4, &shape.x, &section(AnalysisKind::Solid, 1.0), rho).map_err(TestCaseError::fail)?;
+        }
+
+        #[test]
+        fn hex8_mass_properties(shape in Shape::hex(), rho in 0.1f64..1e4) {
+            check_mass(&HEX8, &shape.x, &section(AnalysisKind::Solid, 1.0), rho).map_err(TestCaseError::fail)?;
         }
 
         #[test]

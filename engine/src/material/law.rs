@@ -315,6 +315,7 @@ mod tests {
     fn neo_hookean_on_small_strain_body_is_rejected() {
         let m = Material {
             name: "rubber".into(),
+            density: 0.0,
             law: MaterialLaw::NeoHookean {
                 young: 1.0,
                 poisson: 0.3,

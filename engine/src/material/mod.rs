@@ -91,6 +91,7 @@ mod tests {
     fn build_rejects_invalid_poisson_with_the_material_name() {
         let m = Material {
             name: "rubber".into(),
+            density: 0.0,
             law: MaterialLaw::LinearElastic {
                 young: 1.0,
                 poisson: 0.5,

@@ -4,11 +4,23 @@
 //! the tool on the body). Then, for each pair with friction, the work
 //! dissipated by friction over the increment (`friction_work[<pair>]`;
 //! the cumulative work is the column's running sum, also in
-//! `summary.json`). Flushed after every row.
+//! `summary.json`). Models with a dynamic step: the energy audit
+//! ([`ENERGY_COLUMNS`]). Flushed after every row.
 
 use crate::contact::NodeContact;
 use crate::model::{HistoryRequest, Model};
 use std::io::Write;
+
+/// The energy-audit columns of models with a dynamic step
+/// (`crate::solve::dynamics::Energy`).
+pub const ENERGY_COLUMNS: [&str; 6] = [
+    "kinetic_energy",
+    "internal_work",
+    "external_work",
+    "contact_work",
+    "energy_balance",
+    "energy_gain",
+];
 
 /// CSV field quoting (RFC 4180).
 pub fn csv_field(s: &str) -> String {
@@ -42,6 +54,12 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
     }
     for cp in model.contacts.iter().filter(|c| c.friction.is_some()) {
         cols.push(format!("friction_work[{}]", cp.name));
+    }
+    if model.steps.iter().any(|s| s.dynamic.is_some()) {
+        // appended by the writer from the energy audit
+        for c in ENERGY_COLUMNS {
+            cols.push(c.into());
+        }
     }
     if model.thermal.is_some() {
         // appended by the writer from the thermal increment

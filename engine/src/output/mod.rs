@@ -305,6 +305,11 @@ where
             view.reaction,
             view.contact,
         );
+        if let Some(e) = view.energy {
+            row.extend([
+                e.kinetic, e.internal, e.external, e.contact, e.balance, e.gain,
+            ]);
+        }
         if let Some(t) = view.thermal {
             row.extend([t.max_temperature, t.min_temperature]);
         }

@@ -39,6 +39,7 @@ pub mod contact_assembly;
 pub mod contact_loop;
 pub mod diagnosis;
 pub mod dofs;
+pub mod dynamics;
 pub mod health;
 pub mod jumps;
 pub mod linalg;
@@ -109,6 +110,8 @@ pub struct IncrementView<'a, const D: usize = 2> {
     pub temperature: Option<&'a [f64]>,
     /// The heat step of the increment (thermal scenes only).
     pub thermal: Option<&'a crate::thermal::solver::ThermalIncrement>,
+    /// The energy audit (models with a dynamic step).
+    pub energy: Option<&'a dynamics::Energy>,
 }
 
 /// Receives progress and converged states (writers, progress bars, tests)
@@ -183,6 +186,10 @@ pub struct IncrementRecord {
     /// only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub stabilization: Option<stabilize::IncrementRecord>,
+    /// The energy audit at the end of the increment (models with a dynamic
+    /// step).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<dynamics::Energy>,
 }
 
 /// Record of one failed increment attempt (a cutback) in the run summary.
@@ -293,6 +300,9 @@ pub struct RunSummary {
     /// consistent units).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub units: Option<crate::model::UnitNames>,
+    /// The energy audit at the end of the run (models with a dynamic step).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<dynamics::Energy>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -453,6 +463,29 @@ where
     for w in health.warnings(model) {
         observer.warning(&w);
         summary.warnings.push(w);
+    }
+    if let Some(dy) = newton.dynamics() {
+        summary.energy = Some(dy.energy);
+        if dy.energy_grew() {
+            let e = dy.energy;
+            let w = format!(
+                "the total energy grew by {:.3e} ({:.2} % of the largest energy {:.3e}, \
+                 tolerance {} %): kinetic {:.4e}, internal work {:.4e}, external work {:.4e}, \
+                 contact work {:.4e}; a smaller time increment, or a dissipative scheme \
+                 (`dynamic {{ scheme = generalized_alpha  rho_inf = 0.8 }}`) against contact \
+                 chatter",
+                e.gain,
+                100.0 * e.gain / e.scale,
+                e.scale,
+                100.0 * dynamics::ENERGY_GROWTH_TOL,
+                e.kinetic,
+                e.internal,
+                e.external,
+                e.contact
+            );
+            observer.warning(&w);
+            summary.warnings.push(w);
+        }
     }
     let output = summary.timings.output;
     summary.timings = newton.timings.clone();
@@ -701,6 +734,7 @@ where
             points: self.newton.material_points(),
             temperature: self.thermal.as_ref().map(|t| t.temperature()),
             thermal: self.thermal.as_ref().map(|t| t.last()),
+            energy: self.newton.dynamics().map(|d| &d.energy),
         };
         let start = Instant::now();
         let r = self.observer.converged(&view);
@@ -724,6 +758,7 @@ where
             friction_work,
             thermal: self.thermal.as_ref().map(|t| t.last().clone()),
             stabilization,
+            energy: self.newton.dynamics().map(|d| d.energy),
         });
         for w in warnings {
             self.observer.warning(&w);

@@ -247,6 +247,7 @@ mod tests {
             increments: 4,
             min_fraction: 1e-3,
             newton: NewtonSettings::default(),
+            dynamic: None,
         };
         assert_eq!(ramp(1e-4, &step, 1.0), 1e-4);
         assert!((ramp(1e-4, &step, 2.0) - 5e-5).abs() < 1e-18);

@@ -276,6 +276,7 @@ mod tests {
             increments,
             min_fraction,
             newton: NewtonSettings::default(),
+            dynamic: None,
         }
     }
 

@@ -118,6 +118,7 @@ impl<const D: usize> ModelBuilder<D> {
                 steps: Vec::new(),
                 output: OutputRequest::default(),
                 thermal: None,
+                initial_velocities: Vec::new(),
             },
         }
     }
@@ -184,7 +185,18 @@ impl<const D: usize> ModelBuilder<D> {
         self.model.materials.push(Material {
             name: name.into(),
             law,
+            density: 0.0,
         });
+        self
+    }
+
+    /// Mass density of the last material added.
+    pub fn density(mut self, rho: f64) -> Self {
+        self.model
+            .materials
+            .last_mut()
+            .expect("test kit: `density` after `material`")
+            .density = rho;
         self
     }
 
@@ -471,7 +483,33 @@ impl<const D: usize> ModelBuilder<D> {
             increments,
             min_fraction: 1.0 / 1024.0,
             newton: NewtonSettings::default(),
+            dynamic: None,
         });
+        self
+    }
+
+    /// Makes the last step dynamic.
+    pub fn dynamic(mut self, dynamic: crate::model::Dynamic) -> Self {
+        self.last_step().dynamic = Some(dynamic);
+        self
+    }
+
+    /// Initial velocity `value` of component `component` on `nodes`.
+    pub fn initial_velocity(
+        mut self,
+        nodes: impl Into<Vec<usize>>,
+        component: usize,
+        value: f64,
+    ) -> Self {
+        let nodes = nodes.into();
+        self.model
+            .initial_velocities
+            .push(crate::model::InitialVelocity {
+                label: "initial velocity".into(),
+                nodes,
+                component,
+                value,
+            });
         self
     }
 

@@ -35,6 +35,7 @@ pub fn step(increments: usize) -> Step {
         increments,
         min_fraction: 1.0 / 1024.0,
         newton: tight(),
+        dynamic: None,
     }
 }
 

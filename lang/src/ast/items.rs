@@ -68,6 +68,8 @@ pub struct Material {
     pub span: Span,
     /// `thermal { .. }`.
     pub thermal: Option<super::thermal::MaterialThermal>,
+    /// `density = ..`: mass density (inertia of dynamic steps).
+    pub density: Option<Spanned<f64>>,
 }
 
 /// `elastic { .. }`.
@@ -606,6 +608,20 @@ pub struct LoadDef {
     pub span: Span,
 }
 
+/// `initial_velocity ref { vx = ..  vy = ..  vz = .. }`: the velocity of
+/// a node set at the start of the analysis (dynamic steps).
+#[derive(Debug, Clone, PartialEq)]
+pub struct InitialVelocity {
+    /// The keyword.
+    pub keyword: Span,
+    /// The nodes.
+    pub target: SetRef,
+    /// One value per component given.
+    pub values: Vec<(Component, Spanned<f64>)>,
+    /// The whole item.
+    pub span: Span,
+}
+
 /// `step name { .. }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Step {
@@ -621,7 +637,39 @@ pub struct Step {
     pub min_increment: Option<Spanned<f64>>,
     /// `newton { .. }`.
     pub newton: Option<Newton>,
+    /// `dynamic { .. }` (or a bare `dynamic`): implicit dynamics; `None`:
+    /// quasi-static.
+    pub dynamic: Option<Dynamic>,
     /// The whole item.
+    pub span: Span,
+}
+
+/// The time integrator named by `dynamic { scheme = .. }`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DynamicScheme {
+    /// `newmark` (`beta`, `gamma`).
+    Newmark,
+    /// `hht` (`rho_inf` in [1/2, 1]).
+    Hht,
+    /// `generalized_alpha` (`rho_inf` in [0, 1]).
+    GeneralizedAlpha,
+}
+
+/// `dynamic { scheme = ..  rho_inf = ..  beta = ..  gamma = ..  mass = .. }`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dynamic {
+    /// `scheme = newmark | hht | generalized_alpha`.
+    pub scheme: Option<Spanned<DynamicScheme>>,
+    /// `rho_inf`: spectral radius at infinite frequency (hht,
+    /// generalized_alpha).
+    pub rho_inf: Option<Spanned<f64>>,
+    /// `beta` (newmark).
+    pub beta: Option<Spanned<f64>>,
+    /// `gamma` (newmark).
+    pub gamma: Option<Spanned<f64>>,
+    /// `mass = consistent | lumped`.
+    pub mass: Option<Spanned<ctc_engine::model::MassMatrix>>,
+    /// The `dynamic` entry.
     pub span: Span,
 }
 

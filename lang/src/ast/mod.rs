@@ -46,6 +46,8 @@ pub struct Deck {
     pub thermal_loads: Vec<thermal::ThermalLoad>,
     /// `let` parameters, in deck order.
     pub lets: Vec<Let>,
+    /// `initial_velocity` items.
+    pub initial_velocities: Vec<InitialVelocity>,
 }
 
 impl Deck {

@@ -144,6 +144,7 @@ impl Lowerer<'_> {
         materials.push(Material {
             name: name.name.clone(),
             law,
+            density: def.density.as_ref().map_or(0.0, |d| d.value),
         });
         Some(materials.len() - 1)
     }

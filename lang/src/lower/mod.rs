@@ -27,6 +27,7 @@ pub mod sets;
 pub mod steps;
 pub mod thermal;
 pub mod tools;
+pub mod velocity;
 
 use crate::ast::{self, Deck, Span, Spanned, TimeFn};
 use crate::diagnostics::Diagnostic;
@@ -219,6 +220,7 @@ impl Lowerer<'_> {
             let contacts = self.contacts(&bodies, &materials, &names);
             let steps = self.steps();
             let output = self.output(&contacts);
+            let initial_velocities = self.initial_velocities();
             return Some(AnyModel::D3(Model {
                 analysis: analysis?,
                 mesh: std::mem::take(&mut self.mesh3),
@@ -232,6 +234,7 @@ impl Lowerer<'_> {
                 steps,
                 output,
                 thermal: None,
+                initial_velocities,
             }));
         }
         let tools = self.tools();
@@ -239,6 +242,7 @@ impl Lowerer<'_> {
         let contacts = self.contacts(&bodies, &materials, &names);
         let steps = self.steps();
         let output = self.output(&contacts);
+        let initial_velocities = self.initial_velocities();
         let thermal = thermal::lower(
             self.deck,
             &self.mesh,
@@ -262,6 +266,7 @@ impl Lowerer<'_> {
             steps,
             output,
             thermal,
+            initial_velocities,
         }))
     }
 }

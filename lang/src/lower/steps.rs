@@ -1,8 +1,9 @@
 //! `step` items -> `model::Step` (chained exactly in time, Newton defaults filled in).
 
 use super::{Lowerer, DEFAULT_MIN_FRACTION};
+use crate::ast;
 use crate::validate::step_label;
-use ctc_engine::model::{NewtonSettings, Step};
+use ctc_engine::model::{Dynamic, MassMatrix, NewtonSettings, Scheme, Step};
 
 impl Lowerer<'_> {
     pub(super) fn steps(&mut self) -> Vec<Step> {
@@ -53,8 +54,30 @@ impl Lowerer<'_> {
                     .as_ref()
                     .map_or(DEFAULT_MIN_FRACTION, |x| x.value),
                 newton,
+                dynamic: s.dynamic.as_ref().map(dynamic),
             });
         }
         out
+    }
+}
+
+/// The engine's integrator of a `dynamic` block, defaults filled in
+/// (`tables::DYNAMIC`).
+fn dynamic(d: &ast::Dynamic) -> Dynamic {
+    let v = |x: &Option<crate::span::Spanned<f64>>, default: f64| {
+        x.as_ref().map_or(default, |x| x.value)
+    };
+    let rho_inf = v(&d.rho_inf, ctc_engine::solve::dynamics::DEFAULT_RHO_INF);
+    let scheme = match d.scheme.as_ref().map(|s| s.value) {
+        Some(ast::DynamicScheme::Newmark) => Scheme::Newmark {
+            beta: v(&d.beta, 0.25),
+            gamma: v(&d.gamma, 0.5),
+        },
+        Some(ast::DynamicScheme::Hht) => Scheme::Hht { rho_inf },
+        None | Some(ast::DynamicScheme::GeneralizedAlpha) => Scheme::GeneralizedAlpha { rho_inf },
+    };
+    Dynamic {
+        scheme,
+        mass: d.mass.as_ref().map_or(MassMatrix::Consistent, |m| m.value),
     }
 }

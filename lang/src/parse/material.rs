@@ -221,6 +221,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         p.finish(diags);
         Viscoplastic { eta, span: b.span }
     });
+    let density = f.number("density", diags);
     let thermal = f
         .block("thermal", diags)
         .map(|b| super::thermal::material_block(b, diags));
@@ -248,6 +249,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         reserved,
         span: item.span,
         thermal,
+        density,
     })
 }
 

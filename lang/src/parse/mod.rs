@@ -28,6 +28,7 @@ pub mod syntax;
 pub mod thermal;
 pub mod tool;
 pub mod values;
+pub mod velocity;
 
 use crate::ast::syntax::{Block, Value, ValueKind};
 use crate::ast::{BoundaryKind, BrokenItem, Deck, LoadKind};
@@ -56,7 +57,14 @@ pub const ITEM_KEYWORDS: [&str; 13] = [
 ];
 
 /// Keywords that start a chunk of error recovery besides the items.
-pub const CHUNK_KEYWORDS: [&str; 5] = ["let", "include", "temperature", "heat_flux", "convection"];
+pub const CHUNK_KEYWORDS: [&str; 6] = [
+    "let",
+    "include",
+    "temperature",
+    "heat_flux",
+    "convection",
+    "initial_velocity",
+];
 
 /// Deepest bracket nesting accepted (deeper decks are certainly mistakes,
 /// and recursion depth must stay bounded).
@@ -214,6 +222,9 @@ fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
         Rule::output => output::parse(parts, diags).map(|x| deck.outputs.push(x)),
         // `traction` is not a grammar keyword (an older deck may use the
         // word as a name): the generic item rule carries it
+        _ if parts.keyword_text == velocity::KEYWORD => {
+            velocity::parse(parts, diags).map(|x| deck.initial_velocities.push(x))
+        }
         _ if parts.keyword_text == "traction" => {
             load::parse(parts, LoadKind::Traction, diags).map(|x| deck.loads.push(x))
         }

@@ -4,7 +4,7 @@ use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::ValueKind;
-use crate::ast::{Newton, Step};
+use crate::ast::{Dynamic, Newton, Step};
 use crate::diagnostics::Diagnostic;
 use crate::span::Spanned;
 
@@ -49,6 +49,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
         n.finish(diags);
         out
     });
+    let dynamic = dynamic(&mut f, diags);
     let at = item.name.as_ref().map(|n| n.span).unwrap_or(item.keyword);
     f.require(&time, "time", at, "add e.g. `time = 0 .. 1`", diags);
     f.finish(diags);
@@ -59,8 +60,72 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
         increments,
         min_increment,
         newton,
+        dynamic,
         span: item.span,
     })
+}
+
+/// `dynamic { .. }`, or a bare `dynamic` (every default).
+fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
+    use crate::ast::syntax::EntryBody;
+    use crate::ast::DynamicScheme;
+    use ctc_engine::model::MassMatrix;
+    if !f.mentions("dynamic") {
+        return None;
+    }
+    let e = f.entry("dynamic", diags)?;
+    let b = match &e.body {
+        EntryBody::Flag => {
+            return Some(Dynamic {
+                scheme: None,
+                rho_inf: None,
+                beta: None,
+                gamma: None,
+                mass: None,
+                span: e.span,
+            })
+        }
+        EntryBody::Block(b) => b,
+        _ => {
+            diags.push(
+                Diagnostic::error(
+                    "`dynamic` is a block",
+                    e.span,
+                    "expected `dynamic { .. }` or a bare `dynamic`",
+                )
+                .with_help("write e.g. `dynamic { scheme = generalized_alpha  rho_inf = 0.9 }`"),
+            );
+            return None;
+        }
+    };
+    let mut d = Fields::keyed(b, "`dynamic` block", &crate::tables::DYNAMIC);
+    let out = Dynamic {
+        scheme: d.choice(
+            "scheme",
+            "time integration scheme",
+            &[
+                ("newmark", DynamicScheme::Newmark),
+                ("hht", DynamicScheme::Hht),
+                ("generalized_alpha", DynamicScheme::GeneralizedAlpha),
+            ],
+            diags,
+        ),
+        rho_inf: d.number("rho_inf", diags),
+        beta: d.number("beta", diags),
+        gamma: d.number("gamma", diags),
+        mass: d.choice(
+            "mass",
+            "mass matrix",
+            &[
+                ("consistent", MassMatrix::Consistent),
+                ("lumped", MassMatrix::Lumped),
+            ],
+            diags,
+        ),
+        span: e.span,
+    };
+    d.finish(diags);
+    Some(out)
 }
 
 /// `stabilize = c`, or a bare `stabilize`: the default factor.
@@ -135,6 +200,32 @@ mod tests {
             .last()
             .map(String::as_str),
             Some("stabilize must be positive")
+        );
+    }
+
+    #[test]
+    fn dynamic_block_or_bare_key() {
+        use crate::ast::DynamicScheme;
+        let deck = parse_ok(
+            "step a { time = 0 .. 1  dynamic { scheme = hht  rho_inf = 0.8  mass = lumped } }\n\
+             step b { time = 1 .. 2  dynamic }\nstep c { time = 2 .. 3 }",
+        );
+        let d = deck.steps[0].dynamic.as_ref().unwrap();
+        assert_eq!(d.scheme.as_ref().unwrap().value, DynamicScheme::Hht);
+        assert_eq!(d.rho_inf.as_ref().unwrap().value, 0.8);
+        assert_eq!(
+            d.mass.as_ref().unwrap().value,
+            ctc_engine::model::MassMatrix::Lumped
+        );
+        assert!(deck.steps[1].dynamic.as_ref().unwrap().scheme.is_none());
+        assert!(deck.steps[2].dynamic.is_none());
+        assert_eq!(
+            parse_messages("step s { time = 0 .. 1 dynamic { scheme = newmrk } }"),
+            ["unknown time integration scheme `newmrk`"]
+        );
+        assert_eq!(
+            parse_messages("step s { time = 0 .. 1 dynamic { rho = 0.5 } }"),
+            ["unknown key `rho` in the `dynamic` block"]
         );
     }
 

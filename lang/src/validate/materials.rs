@@ -19,12 +19,31 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         yield_stress_fits_hardening(m, ctx);
         hardening_in_range(m, ctx);
+        density_not_negative(m, ctx);
         if m.elastic.is_none() && m.neo_hookean.is_none() {
             continue;
         }
         young_is_positive(m, ctx);
         poisson_in_range(m, ctx);
         is_used(m, ctx);
+    }
+}
+
+/// The mass density is `>= 0`.
+pub fn density_not_negative(m: &Material, ctx: &mut Ctx<'_>) {
+    if let Some(d) = m
+        .density
+        .as_ref()
+        .filter(|d| d.value < 0.0 || d.value.is_nan())
+    {
+        ctx.err(
+            Diagnostic::error(
+                "the density must not be negative",
+                d.span,
+                format!("density = {}", num(d.value)),
+            )
+            .with_help("a mass density is >= 0 (0: no inertia)"),
+        );
     }
 }
 

@@ -26,6 +26,7 @@ pub mod steps;
 pub mod thermal;
 pub mod time_fns;
 pub mod tools;
+pub mod velocity;
 
 use crate::ast::{Deck, Ident, Span, Spanned, Step};
 use crate::diagnostics::{Diagnostic, LineIndex};
@@ -108,6 +109,7 @@ pub fn validate(deck: &Deck, text: &str) -> Vec<Diagnostic> {
     contacts::check(&mut ctx);
     boundaries::check(&mut ctx);
     loads::check(&mut ctx);
+    velocity::check(&mut ctx);
     steps::check(&mut ctx);
     output::check(&mut ctx);
     thermal::check(&mut ctx);

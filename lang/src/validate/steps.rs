@@ -1,7 +1,7 @@
 //! Rules of `step` items.
 
 use super::{step_label, Ctx};
-use crate::ast::{num, Span};
+use crate::ast::{self, num, Span, Spanned};
 use crate::diagnostics::Diagnostic;
 
 /// Checks every step: at least one, unique names, contiguous non-empty
@@ -78,6 +78,10 @@ pub fn check(ctx: &mut Ctx<'_>) {
                         .with_help("it is the smallest cutback increment as a fraction of the initial increment, e.g. 1e-3"),
                 );
         }
+        if let Some(d) = &s.dynamic {
+            dynamic_parameters_fit_scheme(d, ctx);
+            dynamic_bodies_have_density(d, ctx);
+        }
         if let Some(n) = &s.newton {
             ctx.must_be_positive(&n.tol, "tol");
             ctx.must_be_positive(&n.tol_displacement, "tol_displacement");
@@ -87,9 +91,117 @@ pub fn check(ctx: &mut Ctx<'_>) {
     }
 }
 
+/// `rho_inf` belongs to `hht` / `generalized_alpha` (in [0, 1]; hht in
+/// [1/2, 1]), `beta` and `gamma` to `newmark` (`gamma >= 1/2`, `beta > 0`).
+pub fn dynamic_parameters_fit_scheme(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
+    use ast::DynamicScheme as S;
+    let scheme = d.scheme.as_ref().map_or(S::GeneralizedAlpha, |s| s.value);
+    let name = match scheme {
+        S::Newmark => "newmark",
+        S::Hht => "hht",
+        S::GeneralizedAlpha => "generalized_alpha",
+    };
+    let misplaced: [(&Option<Spanned<f64>>, &str, bool); 3] = [
+        (&d.rho_inf, "rho_inf", scheme == S::Newmark),
+        (&d.beta, "beta", scheme != S::Newmark),
+        (&d.gamma, "gamma", scheme != S::Newmark),
+    ];
+    for (x, key, wrong) in misplaced {
+        if let (Some(x), true) = (x, wrong) {
+            let help = if scheme == S::Newmark {
+                "newmark takes `beta` and `gamma`; use `scheme = hht` or `generalized_alpha` for \
+                 `rho_inf`"
+            } else {
+                "`beta` and `gamma` are given by `rho_inf` here; use `scheme = newmark` to set them"
+            };
+            ctx.err(
+                Diagnostic::error(
+                    format!("`{key}` does not apply to `scheme = {name}`"),
+                    x.span,
+                    format!("not a parameter of {name}"),
+                )
+                .with_help(help),
+            );
+        }
+    }
+    if let Some(r) = &d.rho_inf {
+        let lo = if scheme == S::Hht { 0.5 } else { 0.0 };
+        if !(lo..=1.0).contains(&r.value) {
+            ctx.err(
+                Diagnostic::error(
+                    format!("rho_inf must lie in [{}, 1] for {name}", num(lo)),
+                    r.span,
+                    format!("rho_inf = {}", num(r.value)),
+                )
+                .with_help("1: no numerical dissipation; smaller values damp the high modes"),
+            );
+        }
+    }
+    if let Some(g) = d
+        .gamma
+        .as_ref()
+        .filter(|g| g.value < 0.5 || g.value.is_nan())
+    {
+        ctx.err(
+            Diagnostic::error(
+                "gamma must be at least 1/2",
+                g.span,
+                format!("gamma = {}", num(g.value)),
+            )
+            .with_help("gamma < 1/2 makes Newmark unstable (negative damping); 1/2 is the average acceleration rule"),
+        );
+    }
+    ctx.must_be_positive(&d.beta, "beta");
+}
+
+/// A dynamic step needs a positive `density` on the material of every body.
+pub fn dynamic_bodies_have_density(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    for b in &deck.bodies {
+        let Some(mname) = b.material.as_ref() else {
+            continue;
+        };
+        let Some(m) = deck.materials.iter().find(|m| m.name.name == mname.name) else {
+            continue;
+        };
+        if m.density.as_ref().is_none_or(|r| r.value <= 0.0) {
+            ctx.err(
+                Diagnostic::error(
+                    format!("body `{}` has no mass: material `{}` gives no density", b.name.name, m.name.name),
+                    d.span,
+                    "this step is dynamic",
+                )
+                .with_secondary(m.name.span, "add `density = ..` here")
+                .with_help("write e.g. `material steel { elastic { E = 210e9  nu = 0.3 }  density = 7800 }`"),
+            );
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use crate::validate::test_support::messages;
+
+    #[test]
+    fn dynamic_steps_need_density_and_matching_parameters() {
+        let m = messages(
+            "step d { time = 1 .. 2 dynamic { scheme = newmark rho_inf = 0.5 gamma = 0.4 } }",
+        );
+        assert!(
+            m.contains(&"`rho_inf` does not apply to `scheme = newmark`".to_string()),
+            "{m:?}"
+        );
+        assert!(
+            m.contains(&"gamma must be at least 1/2".to_string()),
+            "{m:?}"
+        );
+        assert!(m.iter().any(|s| s.contains("has no mass")), "{m:?}");
+        let m = messages("step d { time = 1 .. 2 dynamic { scheme = hht rho_inf = 0.2 } }");
+        assert!(
+            m.contains(&"rho_inf must lie in [0.5, 1] for hht".to_string()),
+            "{m:?}"
+        );
+    }
 
     #[test]
     fn step_times_must_be_contiguous() {

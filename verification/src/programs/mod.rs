@@ -6,6 +6,7 @@
 
 pub mod cattaneo;
 pub mod contact_3d;
+pub mod dynamics;
 pub mod fenicsx;
 pub mod friction;
 pub mod friction_3d;
@@ -46,6 +47,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(contact_3d::cases());
     v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
+    v.extend(dynamics::cases());
     v
 }
 

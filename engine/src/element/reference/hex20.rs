@@ -89,6 +89,7 @@ impl ReferenceCell<3, 20> for Hex20R {
     const QUADRATURE: &'static [([f64; 3], f64)] = &GAUSS2X2X2;
     const CENTRE: [f64; 3] = [0.0, 0.0, 0.0];
     const SELECTIVE_REDUCED: bool = false;
+    const MASS_QUADRATURE: &'static [([f64; 3], f64)] = &GAUSS3X3X3;
 
     fn shape(xi: &[f64; 3]) -> [f64; 20] {
         shape(xi)

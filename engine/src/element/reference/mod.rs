@@ -66,6 +66,15 @@ pub trait ReferenceCell<const D: usize, const NN: usize>: 'static {
     /// energy modes) the formulation is full integration.
     const SELECTIVE_REDUCED: bool = true;
 
+    /// Rule of the mass matrix `int rho N_a N_b dV`: exact for `N_a N_b`
+    /// times the Jacobian (and the radius of axisymmetric analyses) of an
+    /// undistorted cell. The default, the full rule, suits a cell whose
+    /// full rule is already that accurate; a cell whose full rule is not
+    /// (one-point simplices, quadratic cells) must give its own, or its
+    /// consistent mass is singular (the property tests of
+    /// `element::kernel` check every registered kernel).
+    const MASS_QUADRATURE: &'static [([f64; D], f64)] = Self::QUADRATURE;
+
     /// Shape function values at `xi`.
     fn shape(xi: &[f64; D]) -> [f64; NN];
 
@@ -211,39 +220,48 @@ pub fn linear_shape(kind: CellKind, xi: &[f64]) -> Option<Vec<f64>> {
     }
 }
 
+/// The 3-point Gauss-Legendre rule on `[-1, 1]`: abscissae and weights
+/// (exact to degree 5).
+pub const GAUSS3: [(f64, f64); 3] = [
+    (-0.774_596_669_241_483_4, 5.0 / 9.0),
+    (0.0, 8.0 / 9.0),
+    (0.774_596_669_241_483_4, 5.0 / 9.0),
+];
+
+/// The tensor product of [`GAUSS3`] on `[-1, 1]^D` (`3^D` points; `P` must
+/// be `3^D`), the first direction fastest.
+pub const fn gauss3_tensor<const D: usize, const P: usize>() -> [([f64; D], f64); P] {
+    let mut out = [([0.0; D], 0.0); P];
+    let mut p = 0;
+    while p < P {
+        let mut xi = [0.0; D];
+        let mut w = 1.0;
+        let mut rest = p;
+        let mut k = 0;
+        while k < D {
+            let (x, wk) = GAUSS3[rest % 3];
+            xi[k] = x;
+            w *= wk;
+            rest /= 3;
+            k += 1;
+        }
+        out[p] = (xi, w);
+        p += 1;
+    }
+    out
+}
+
 /// Gauss-Legendre abscissa of the 2-point rule.
 pub const G2: f64 = 0.577_350_269_189_625_8;
 
 /// Gauss-Legendre abscissa of the 3-point rule, `sqrt(3/5)`.
 pub const G3: f64 = 0.774_596_669_241_483_4;
 
-/// Points (`-G3, 0, G3`) and weights (`5/9, 8/9, 5/9`) of the 3-point
-/// Gauss-Legendre rule, exact for polynomials of degree 5.
-const GAUSS3: [(f64, f64); 3] = [(-G3, 5.0 / 9.0), (0.0, 8.0 / 9.0), (G3, 5.0 / 9.0)];
-
 /// The 3x3 tensor Gauss rule on `[-1, 1]^2`, `xi` fastest.
-pub const GAUSS3X3: [([f64; 2], f64); 9] = {
-    let mut out = [([0.0; 2], 0.0); 9];
-    let mut i = 0;
-    while i < 9 {
-        let (a, b) = (GAUSS3[i % 3], GAUSS3[i / 3]);
-        out[i] = ([a.0, b.0], a.1 * b.1);
-        i += 1;
-    }
-    out
-};
+pub const GAUSS3X3: [([f64; 2], f64); 9] = gauss3_tensor::<2, 9>();
 
 /// The 3x3x3 tensor Gauss rule on `[-1, 1]^3`, `xi` fastest.
-pub const GAUSS3X3X3: [([f64; 3], f64); 27] = {
-    let mut out = [([0.0; 3], 0.0); 27];
-    let mut i = 0;
-    while i < 27 {
-        let (a, b, c) = (GAUSS3[i % 3], GAUSS3[(i / 3) % 3], GAUSS3[i / 9]);
-        out[i] = ([a.0, b.0, c.0], a.1 * b.1 * c.1);
-        i += 1;
-    }
-    out
-};
+pub const GAUSS3X3X3: [([f64; 3], f64); 27] = gauss3_tensor::<3, 27>();
 
 /// The 1D quadratic Lagrange function of the node at `c` (-1, 0 or 1)
 /// on the nodes -1, 0, 1, at `x`.
@@ -279,6 +297,74 @@ pub fn tensor_extrapolation3<const D: usize>(node: &[f64; D], point: &[f64; D]) 
         })
         .product()
 }
+
+/// 4-point Gauss-Legendre on `[0, 1]`: (point, weight).
+const GAUSS4_01: [(f64, f64); 4] = [
+    (
+        0.5 * (1.0 - 0.861_136_311_594_052_6),
+        0.5 * 0.347_854_845_137_453_8,
+    ),
+    (
+        0.5 * (1.0 - 0.339_981_043_584_856_3),
+        0.5 * 0.652_145_154_862_546_1,
+    ),
+    (
+        0.5 * (1.0 + 0.339_981_043_584_856_3),
+        0.5 * 0.652_145_154_862_546_1,
+    ),
+    (
+        0.5 * (1.0 + 0.861_136_311_594_052_6),
+        0.5 * 0.347_854_845_137_453_8,
+    ),
+];
+
+/// The conical-product rule of 4 x 4 points on the reference triangle
+/// (Stroud 1971, collapsed Gauss: `x = a (1 - b)`, `y = b`, weight times
+/// `1 - b`): exact for polynomials of degree 6 — the mass rule of tri6
+/// (`N_a N_b` of degree 4, times `r` in axisymmetry).
+pub const COLLAPSED_TRI16: [([f64; 2], f64); 16] = {
+    let mut out = [([0.0; 2], 0.0); 16];
+    let mut i = 0;
+    while i < 4 {
+        let mut j = 0;
+        while j < 4 {
+            let (a, wa) = GAUSS4_01[i];
+            let (b, wb) = GAUSS4_01[j];
+            out[4 * i + j] = ([a * (1.0 - b), b], wa * wb * (1.0 - b));
+            j += 1;
+        }
+        i += 1;
+    }
+    out
+};
+
+/// The conical-product rule of 4 x 4 x 4 points on the reference
+/// tetrahedron (`x = a (1 - b) (1 - c)`, `y = b (1 - c)`, `z = c`, weight
+/// times `(1 - b) (1 - c)^2`): exact for polynomials of degree 5 — the mass
+/// rule of tet10 (`N_a N_b` of degree 4).
+pub const COLLAPSED_TET64: [([f64; 3], f64); 64] = {
+    let mut out = [([0.0; 3], 0.0); 64];
+    let mut i = 0;
+    while i < 4 {
+        let mut j = 0;
+        while j < 4 {
+            let mut k = 0;
+            while k < 4 {
+                let (a, wa) = GAUSS4_01[i];
+                let (b, wb) = GAUSS4_01[j];
+                let (c, wc) = GAUSS4_01[k];
+                out[16 * i + 4 * j + k] = (
+                    [a * (1.0 - b) * (1.0 - c), b * (1.0 - c), c],
+                    wa * wb * wc * (1.0 - b) * (1.0 - c) * (1.0 - c),
+                );
+                k += 1;
+            }
+            j += 1;
+        }
+        i += 1;
+    }
+    out
+};
 
 /// The 2x2 tensor Gauss rule on `[-1, 1]^2` (points ordered like the
 /// quad4 corners).
@@ -552,6 +638,50 @@ pub(crate) mod testing {
                         .unwrap_or_else(|e| {
                             panic!("{:?} {kind:?} {formulation:?} #{sample}: {e}", C::KIND)
                         });
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod collapsed_rules {
+    use super::{COLLAPSED_TET64, COLLAPSED_TRI16};
+
+    fn factorial(n: u32) -> f64 {
+        (1..=n).map(f64::from).product()
+    }
+
+    /// Integrals of monomials over the reference simplices (Stroud 1971):
+    /// `int x^i y^j = i! j! / (i + j + 2)!` and
+    /// `int x^i y^j z^k = i! j! k! / (i + j + k + 3)!`, to their degree.
+    #[test]
+    fn collapsed_gauss_rules_integrate_monomials_to_their_degree() {
+        for i in 0..=6u32 {
+            for j in 0..=6 - i {
+                let q: f64 = COLLAPSED_TRI16
+                    .iter()
+                    .map(|(x, w)| w * x[0].powi(i as i32) * x[1].powi(j as i32))
+                    .sum();
+                let exact = factorial(i) * factorial(j) / factorial(i + j + 2);
+                assert!((q - exact).abs() < 1e-14, "tri x^{i} y^{j}: {q} vs {exact}");
+            }
+        }
+        for i in 0..=5u32 {
+            for j in 0..=5 - i {
+                for k in 0..=5 - i - j {
+                    let q: f64 = COLLAPSED_TET64
+                        .iter()
+                        .map(|(x, w)| {
+                            w * x[0].powi(i as i32) * x[1].powi(j as i32) * x[2].powi(k as i32)
+                        })
+                        .sum();
+                    let exact =
+                        factorial(i) * factorial(j) * factorial(k) / factorial(i + j + k + 3);
+                    assert!(
+                        (q - exact).abs() < 1e-14,
+                        "tet x^{i} y^{j} z^{k}: {q} vs {exact}"
+                    );
                 }
             }
         }

@@ -1,8 +1,11 @@
 //! 4-node bilinear quadrilateral on `[-1, 1]^2`, nodes counter-clockwise;
 //! 2x2 Gauss points ordered like the nodes (point `g` is nearest node `g`).
 
-use super::{tensor_extrapolation, ReferenceCell, G2};
+use super::{gauss3_tensor, tensor_extrapolation, ReferenceCell, G2};
 use crate::mesh::CellKind;
+
+/// The mass rule: 9 Gauss points.
+const MASS_RULE: [([f64; 2], f64); 9] = gauss3_tensor::<2, 9>();
 
 /// The bilinear quadrilateral.
 #[derive(Debug, Clone, Copy)]
@@ -21,6 +24,8 @@ impl ReferenceCell<2, 4> for Quad4 {
         ([-G2, G2], 1.0),
     ];
     const CENTRE: [f64; 2] = [0.0, 0.0];
+    // 3^2 Gauss points: N_a N_b det(J) (r) of a distorted cell
+    const MASS_QUADRATURE: &'static [([f64; 2], f64)] = &MASS_RULE;
 
     fn shape(xi: &[f64; 2]) -> [f64; 4] {
         CORNERS.map(|c| 0.25 * (1.0 + c[0] * xi[0]) * (1.0 + c[1] * xi[1]))

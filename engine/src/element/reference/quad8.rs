@@ -68,6 +68,7 @@ impl ReferenceCell<2, 8> for Quad8R {
     const QUADRATURE: &'static [([f64; 2], f64)] = &GAUSS2X2;
     const CENTRE: [f64; 2] = [0.0, 0.0];
     const SELECTIVE_REDUCED: bool = false;
+    const MASS_QUADRATURE: &'static [([f64; 2], f64)] = &GAUSS3X3;
 
     fn shape(xi: &[f64; 2]) -> [f64; 8] {
         shape(xi)

@@ -57,6 +57,7 @@ impl ReferenceCell<3, 10> for Tet10 {
     ];
     const CENTRE: [f64; 3] = [0.25, 0.25, 0.25];
     const SELECTIVE_REDUCED: bool = false;
+    const MASS_QUADRATURE: &'static [([f64; 3], f64)] = &super::COLLAPSED_TET64;
 
     fn shape(xi: &[f64; 3]) -> [f64; 10] {
         let l = barycentric(xi);

@@ -5,6 +5,20 @@
 use super::ReferenceCell;
 use crate::mesh::CellKind;
 
+/// The 4-point rule (degree 2) on the unit tetrahedron, weights summing to
+/// 1/6: exact for `N_a N_b` (the Jacobian is constant).
+const MASS_RULE: [([f64; 3], f64); 4] = {
+    const A: f64 = 0.585_410_196_624_968_5;
+    const B: f64 = 0.138_196_601_125_010_5;
+    const W: f64 = 1.0 / 24.0;
+    [
+        ([B, B, B], W),
+        ([A, B, B], W),
+        ([B, A, B], W),
+        ([B, B, A], W),
+    ]
+};
+
 /// The linear tetrahedron.
 #[derive(Debug, Clone, Copy)]
 pub struct Tet4;
@@ -21,6 +35,7 @@ impl ReferenceCell<3, 4> for Tet4 {
     const FACES: &'static [&'static [usize]] = &[&[0, 2, 1], &[0, 1, 3], &[1, 2, 3], &[0, 3, 2]];
     const QUADRATURE: &'static [([f64; 3], f64)] = &[([0.25, 0.25, 0.25], 1.0 / 6.0)];
     const CENTRE: [f64; 3] = [0.25, 0.25, 0.25];
+    const MASS_QUADRATURE: &'static [([f64; 3], f64)] = &MASS_RULE;
 
     fn shape(xi: &[f64; 3]) -> [f64; 4] {
         [1.0 - xi[0] - xi[1] - xi[2], xi[0], xi[1], xi[2]]

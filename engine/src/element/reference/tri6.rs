@@ -37,6 +37,7 @@ impl ReferenceCell<2, 6> for Tri6 {
     ];
     const CENTRE: [f64; 2] = [1.0 / 3.0, 1.0 / 3.0];
     const SELECTIVE_REDUCED: bool = false;
+    const MASS_QUADRATURE: &'static [([f64; 2], f64)] = &super::COLLAPSED_TRI16;
 
     fn shape(xi: &[f64; 2]) -> [f64; 6] {
         let l = barycentric(xi);

@@ -126,6 +126,13 @@ where
     /// Vanishing stabilization of the bodies held only by contact
     /// (`newton { stabilize }`, [`super::stabilize`]).
     pub stabilization: super::stabilize::Stabilization,
+    /// Mass, velocities, accelerations and energies (models with a
+    /// dynamic step, [`super::dynamics`]).
+    pub(super) dynamics: Option<super::dynamics::Dynamics>,
+    /// Inertia part of the residual of the last evaluation, per dof.
+    inertia: Vec<f64>,
+    /// `f_int - f_ext - f_c` of the last evaluation, per dof.
+    r_static: Vec<f64>,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -203,6 +210,13 @@ where
             touch_start: true,
             any_committed: false,
             start_closed: None,
+            dynamics: model
+                .steps
+                .iter()
+                .any(|s| s.dynamic.is_some())
+                .then(|| super::dynamics::Dynamics::new(model)),
+            inertia: vec![0.0; n_dofs],
+            r_static: vec![0.0; n_dofs],
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -259,6 +273,39 @@ where
             diag.get(j).copied().unwrap_or(0.0)
         });
         Ok(newton)
+    }
+
+    /// Velocities, accelerations and energies (models with a dynamic step).
+    pub fn dynamics(&self) -> Option<&super::dynamics::Dynamics> {
+        self.dynamics.as_ref()
+    }
+
+    /// Sets the integrator of the increment ending at `t` of step `step`;
+    /// at the first dynamic increment, builds the mass and the initial
+    /// acceleration `M a_0 = f_ext - f_int + f_c` of the committed state.
+    fn begin_dynamics(&mut self, t: f64, step: usize) -> Result<(), Failure> {
+        let model = self.model;
+        let Some(mut dy) = self.dynamics.take() else {
+            return Ok(());
+        };
+        let s = model.steps.get(step);
+        let t0 = self.assembler.committed_time();
+        let mut out = Ok(());
+        if let Some(d) = s.and_then(|s| s.dynamic) {
+            out = dy
+                .build_mass(model, d.mass)
+                .map_err(|e| Failure::new(FailureKind::Element, e));
+            if out.is_ok() && !dy.started {
+                external_forces(model, t0, &mut self.f_ext);
+                out = self.evaluate(t0, false).map(|_| ());
+                if out.is_ok() {
+                    dy.start(model, &self.dofs, &self.r_static);
+                }
+            }
+        }
+        dy.begin_increment(s, t - t0);
+        self.dynamics = Some(dy);
+        out
     }
 
     /// Closed nodes per contact pair at the first evaluation of the
@@ -437,9 +484,28 @@ where
             self.stabilization
                 .add_springs(&self.scatter.pattern, &mut self.values);
         }
+        let inertia_scale = match &self.dynamics {
+            Some(dy) => {
+                if with_tangent {
+                    dy.add_tangent(model, &self.scatter, &mut self.values);
+                }
+                dy.inertia(
+                    model,
+                    self.u.as_flattened(),
+                    self.committed.as_flattened(),
+                    &mut self.inertia,
+                )
+            }
+            None => {
+                self.inertia.fill(0.0);
+                0.0
+            }
+        };
         let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
         for (g, role) in self.dofs.dofs.iter().enumerate() {
-            let r = self.f_int[g] - self.f_ext[g] - self.f_c[g];
+            let rs = self.f_int[g] - self.f_ext[g] - self.f_c[g];
+            self.r_static[g] = rs;
+            let r = rs + self.inertia[g];
             match *role {
                 Dof::Free(i) => {
                     self.r_free[i] = r;
@@ -469,6 +535,7 @@ where
         let denom = (load2.sqrt() + react2.sqrt())
             .max(fint2.sqrt())
             .max(self.assembler.thermal_scale())
+            .max(inertia_scale)
             .max(TINY);
         if with_tangent {
             self.floor = self.round_off_floor();
@@ -742,6 +809,7 @@ where
         // energy test applies (friction and non-symmetric laws: residual only)
         let potential = self.assembler.symmetric() && !friction;
         self.linear.set_symmetric(potential);
+        self.begin_dynamics(t, step)?;
         external_forces(model, t, &mut self.f_ext);
         self.assembler.begin_increment(t);
         if let Some(s) = model.steps.get(step) {

@@ -31,6 +31,19 @@ where
             self.committed.as_flattened(),
             &self.f_int,
         );
+        if let Some(dy) = self.dynamics.as_mut() {
+            let mut ext = self.f_ext.clone();
+            for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
+                ext[p.dof] += r;
+            }
+            dy.commit(
+                self.model,
+                self.u.as_flattened(),
+                self.committed.as_flattened(),
+                &self.r_static,
+                [&self.f_int, &ext, &self.f_c],
+            );
+        }
         self.committed.copy_from_slice(&self.u);
         self.assembler.commit();
         self.contacts.commit();
@@ -62,6 +75,13 @@ where
 
     /// Makes `cp` the committed (and current) state.
     pub(crate) fn restore(&mut self, cp: &Checkpoint<D>) -> Result<(), String> {
+        if self.dynamics.is_some() && cp.increment > 0 {
+            return Err(
+                "restarting a run with a dynamic step is not supported yet (restart \
+                        points hold no velocities or accelerations)"
+                    .into(),
+            );
+        }
         if cp.displacement.len() != self.u.len() {
             return Err("the restart point does not match the model (nodes or pairs)".into());
         }

@@ -1,0 +1,557 @@
+//! Implicit dynamics: the time integrator beside `stepping.rs` and the
+//! inertia terms of `Newton::evaluate` (the loop, line search and
+//! convergence are those of quasi-static steps).
+//!
+//! One formulation, generalized-alpha (Chung & Hulbert 1993, J. Appl.
+//! Mech. 60:371), with the forces weighted like Abaqus' HHT and MOOSE
+//! (the internal, external and contact forces at the end of the increment
+//! and the committed ones, not the forces at an intermediate
+//! displacement, so history-dependent laws are evaluated at the end of the
+//! increment only):
+//!
+//! ```text
+//! M [(1 - am) a1 + am a0] + (1 - af) r(u1) + af r(u0) = 0,   r = f_int - f_ext - f_c
+//! a1 = (u1 - u0 - dt v0) / (beta dt^2) - (1 / (2 beta) - 1) a0
+//! v1 = v0 + dt ((1 - gamma) a0 + gamma a1)
+//! ```
+//!
+//! divided by `1 - af` so the static part keeps its scale: the residual is
+//! `r(u1) + M [(1 - am) a1 + am a0] / (1 - af) + af / (1 - af) r(u0)` and
+//! the tangent `K + (1 - am) / ((1 - af) beta dt^2) M`. Newmark (`am = af
+//! = 0`) and HHT-alpha (`am = 0`) are the special cases
+//! ([`Coefficients::of`]). Velocities and accelerations are state
+//! committed with converged increments (a cutback recomputes `a1` from the
+//! committed state with the new `dt`).
+//!
+//! Energy audit ([`Energy`]): kinetic `1/2 v M v`, internal work
+//! (trapezoidal `f_int . du`, the strain energy of elastic bodies),
+//! external work (loads and reactions), contact work, and the balance
+//! error `K + W_int - W_ext - W_c - K_0` (the integrator's: negative is
+//! numerical dissipation), and the gain `K + W_int - W_ext - K_0` (energy
+//! created, e.g. by contact chatter: a run whose gain exceeds
+//! [`ENERGY_GROWTH_TOL`] of the largest energy is warned about).
+
+use super::dofs::{Dof, DofMap};
+use super::linalg::{Scatter, NO_SLOT};
+use crate::element::kernel::kernel_of;
+use crate::element::Section;
+use crate::geom::Dimension;
+use crate::model::{MassMatrix, Model, Scheme, Step};
+use nalgebra::Const;
+
+/// Default spectral radius at infinite frequency of the dissipative
+/// schemes.
+pub const DEFAULT_RHO_INF: f64 = 0.9;
+
+/// Relative growth of the total energy above which a run is warned about.
+pub const ENERGY_GROWTH_TOL: f64 = 1e-2;
+
+/// The generalized-alpha parameters of a scheme.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Coefficients {
+    /// Weight of the committed acceleration in the inertia term.
+    pub alpha_m: f64,
+    /// Weight of the committed forces.
+    pub alpha_f: f64,
+    /// Newmark `beta`.
+    pub beta: f64,
+    /// Newmark `gamma`.
+    pub gamma: f64,
+}
+
+impl Coefficients {
+    /// The parameters of `scheme` (Chung & Hulbert 1993, eqs. 25 and 17;
+    /// HHT: Hilber, Hughes & Taylor 1977 with `alpha = (1 - rho_inf) / (1 +
+    /// rho_inf)`).
+    pub fn of(scheme: Scheme) -> Self {
+        match scheme {
+            Scheme::Newmark { beta, gamma } => Coefficients {
+                alpha_m: 0.0,
+                alpha_f: 0.0,
+                beta,
+                gamma,
+            },
+            Scheme::Hht { rho_inf } => {
+                let a = (1.0 - rho_inf) / (1.0 + rho_inf);
+                Coefficients {
+                    alpha_m: 0.0,
+                    alpha_f: a,
+                    beta: 0.25 * (1.0 + a) * (1.0 + a),
+                    gamma: 0.5 + a,
+                }
+            }
+            Scheme::GeneralizedAlpha { rho_inf } => {
+                let am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0);
+                let af = rho_inf / (rho_inf + 1.0);
+                let g = 0.5 - am + af;
+                Coefficients {
+                    alpha_m: am,
+                    alpha_f: af,
+                    beta: 0.25 * (1.0 - am + af) * (1.0 - am + af),
+                    gamma: g,
+                }
+            }
+        }
+    }
+}
+
+impl Coefficients {
+    /// `(period ratio T_h / T - 1, damping ratio)` of a linear one-mode system
+    /// `omega dt = w` by the eigenvalues of the generalized-alpha amplification
+    /// matrix (Chung & Hulbert 1993, eq. 16 with xi = 0): the principal root
+    /// `lambda = exp(w_h (-xi_h +- i))`.
+    pub fn spectral(&self, w: f64) -> (f64, f64) {
+        let (am, af, b, g) = (self.alpha_m, self.alpha_f, self.beta, self.gamma);
+        // X_{n+1} = A X_n, X = (d, dt v, dt^2 a), from
+        // (1-am) a1 + am a0 + w^2 ((1-af) d1 + af d0) = 0 (unit mass, dt = 1),
+        // d1 = d0 + v0 + (1/2 - b) a0 + b a1, v1 = v0 + (1 - g) a0 + g a1
+        let w2 = w * w;
+        let lhs = nalgebra::Matrix3::new(
+            1.0,
+            0.0,
+            -b, //
+            0.0,
+            1.0,
+            -g, //
+            w2 * (1.0 - af),
+            0.0,
+            1.0 - am,
+        );
+        let rhs = nalgebra::Matrix3::new(
+            1.0,
+            1.0,
+            0.5 - b, //
+            0.0,
+            1.0,
+            1.0 - g, //
+            -w2 * af,
+            0.0,
+            -am,
+        );
+        let a = lhs.try_inverse().unwrap() * rhs;
+        let l = a
+            .complex_eigenvalues()
+            .iter()
+            .copied()
+            .max_by(|x, y| x.im.abs().total_cmp(&y.im.abs()))
+            .unwrap();
+        let phase = l.im.abs().atan2(l.re);
+        ((w / phase) - 1.0, -l.norm().ln() / phase)
+    }
+}
+
+/// Energies of the run at the last converged increment (all totals since
+/// the start of the analysis).
+#[derive(Debug, Clone, Copy, Default, PartialEq, serde::Serialize)]
+pub struct Energy {
+    /// Kinetic energy `1/2 v M v`.
+    pub kinetic: f64,
+    /// Internal work `sum 1/2 (f_int_0 + f_int_1) . du` (strain energy of
+    /// elastic bodies, plus plastic dissipation).
+    pub internal: f64,
+    /// Work of the loads and of the reactions at prescribed dofs.
+    pub external: f64,
+    /// Work of the contact forces on the bodies (minus the energy stored in
+    /// penalty springs, plus friction dissipation).
+    pub contact: f64,
+    /// `kinetic + internal - external - contact - kinetic_0`: the
+    /// integrator's own energy error (0 for average-acceleration Newmark,
+    /// negative: numerical dissipation).
+    pub balance: f64,
+    /// `kinetic + internal - external - kinetic_0`: the energy gained
+    /// beyond the work of the loads and supports (0 in a conservative
+    /// system; contact against fixed rigid tools must not make it
+    /// positive: the contact work is part of it).
+    pub gain: f64,
+    /// The largest of the energies so far (the scale of `balance`).
+    pub scale: f64,
+}
+
+/// Mass, velocities, accelerations and energies of a model with dynamic
+/// steps.
+#[derive(Debug, Clone)]
+pub struct Dynamics {
+    /// Scalar mass matrix of each global cell, `NN x NN` row-major (node
+    /// block `M_ab I`).
+    cell_mass: Vec<Vec<f64>>,
+    /// The kind the cell masses were built as.
+    mass_kind: Option<MassMatrix>,
+    /// Committed velocity per dof (`node D + c`).
+    pub v: Vec<f64>,
+    /// Committed acceleration per dof.
+    pub a: Vec<f64>,
+    /// Committed `f_int - f_ext - f_c` per dof (at prescribed dofs too).
+    r0: Vec<f64>,
+    /// Whether `a` and `r0` belong to the committed state (false before
+    /// the first dynamic increment: [`Dynamics::start`]).
+    pub started: bool,
+    /// Parameters and `dt` of the current increment (`None`: quasi-static).
+    active: Option<(Coefficients, f64)>,
+    /// Committed forces for the work integrals: internal, external +
+    /// reactions, contact.
+    forces0: [Vec<f64>; 3],
+    /// Kinetic energy at the start.
+    kinetic0: f64,
+    /// Energies at the last converged increment.
+    pub energy: Energy,
+}
+
+impl Dynamics {
+    /// The state of `model` at rest but for its initial velocities; the
+    /// mass is built when a dynamic step begins.
+    pub fn new<const D: usize>(model: &Model<D>) -> Self
+    where
+        Const<D>: Dimension<D>,
+    {
+        let n = model.mesh.nodes.len() * D;
+        let mut v = vec![0.0; n];
+        for iv in &model.initial_velocities {
+            for &node in &iv.nodes {
+                if iv.component < D {
+                    v[node * D + iv.component] = iv.value;
+                }
+            }
+        }
+        Dynamics {
+            cell_mass: Vec::new(),
+            mass_kind: None,
+            v,
+            a: vec![0.0; n],
+            r0: vec![0.0; n],
+            started: false,
+            active: None,
+            forces0: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            kinetic0: 0.0,
+            energy: Energy::default(),
+        }
+    }
+
+    /// Builds the cell masses of `kind` (once per kind).
+    pub fn build_mass<const D: usize>(
+        &mut self,
+        model: &Model<D>,
+        kind: MassMatrix,
+    ) -> Result<(), String>
+    where
+        Const<D>: Dimension<D>,
+    {
+        if self.mass_kind == Some(kind) {
+            return Ok(());
+        }
+        let section = Section::new(&model.analysis);
+        let mut masses = vec![Vec::new(); model.mesh.cells.len()];
+        for b in &model.bodies {
+            let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
+            for c in b.cells.clone() {
+                let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
+                    .map_err(|e| format!("cell {c}: {}", e.message))?;
+                let x: Vec<crate::geom::Point<D>> = model
+                    .mesh
+                    .cells
+                    .nodes(c)
+                    .iter()
+                    .map(|&n| crate::geom::Point::<D>::from(model.mesh.nodes[n]))
+                    .collect();
+                masses[c] = kernel
+                    .mass(&x, &section, rho, kind)
+                    .map_err(|e| format!("cell {c}: {}", e.message))?;
+            }
+        }
+        self.cell_mass = masses;
+        self.mass_kind = Some(kind);
+        self.kinetic0 = self.kinetic(model);
+        if !self.started {
+            self.energy.kinetic = self.kinetic0;
+            self.energy.scale = self.kinetic0;
+        }
+        Ok(())
+    }
+
+    /// `out += M x` over all dofs (`x`, `out` per dof `node D + c`).
+    pub fn mass_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
+        for (c, m) in self.cell_mass.iter().enumerate() {
+            let nodes = model.mesh.cells.nodes(c);
+            let nn = nodes.len();
+            for (a, &na) in nodes.iter().enumerate() {
+                for (b, &nb) in nodes.iter().enumerate() {
+                    let mab = m[a * nn + b];
+                    if mab == 0.0 {
+                        continue;
+                    }
+                    for k in 0..D {
+                        out[na * D + k] += mab * x[nb * D + k];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Kinetic energy `1/2 v M v` of the committed velocities.
+    pub fn kinetic<const D: usize>(&self, model: &Model<D>) -> f64 {
+        let mut mv = vec![0.0; self.v.len()];
+        self.mass_times(model, &self.v, &mut mv);
+        0.5 * mv.iter().zip(&self.v).map(|(a, b)| a * b).sum::<f64>()
+    }
+
+    /// Sets the parameters of an increment ending at `t` of `step` from the
+    /// committed time `t0` (quasi-static steps: none).
+    pub fn begin_increment(&mut self, step: Option<&Step>, dt: f64) {
+        self.active = step
+            .and_then(|s| s.dynamic)
+            .filter(|_| dt > 0.0)
+            .map(|d| (Coefficients::of(d.scheme), dt));
+    }
+
+    /// The parameters of the current increment, if it is dynamic.
+    pub fn active(&self) -> Option<(Coefficients, f64)> {
+        self.active
+    }
+
+    /// The acceleration at the end of the increment for displacements `u`
+    /// (committed `u0`), per dof.
+    fn acceleration(&self, k: &Coefficients, dt: f64, u: &[f64], u0: &[f64]) -> Vec<f64> {
+        let (b, h) = (k.beta, dt);
+        u.iter()
+            .zip(u0)
+            .zip(self.v.iter().zip(&self.a))
+            .map(|((u1, u0), (v0, a0))| (u1 - u0 - h * v0) / (b * h * h) - (0.5 / b - 1.0) * a0)
+            .collect()
+    }
+
+    /// The inertia part of the residual at `u` (added to `f_int - f_ext -
+    /// f_c` at every dof) and its force scale (the norm of the mass times
+    /// the magnitudes of the terms of `a1`, which cancel in a rigid
+    /// motion). Zero when the increment is quasi-static.
+    pub fn inertia<const D: usize>(
+        &self,
+        model: &Model<D>,
+        u: &[f64],
+        u0: &[f64],
+        out: &mut [f64],
+    ) -> f64 {
+        out.fill(0.0);
+        let Some((k, dt)) = self.active else {
+            return 0.0;
+        };
+        let a1 = self.acceleration(&k, dt, u, u0);
+        let w = 1.0 / (1.0 - k.alpha_f);
+        let mix: Vec<f64> = a1
+            .iter()
+            .zip(&self.a)
+            .map(|(a1, a0)| w * ((1.0 - k.alpha_m) * a1 + k.alpha_m * a0))
+            .collect();
+        self.mass_times(model, &mix, out);
+        let (b, h) = (k.beta, dt);
+        let mag: Vec<f64> = (0..u.len())
+            .map(|g| {
+                w * (((u[g] - u0[g]).abs() + h * self.v[g].abs()) / (b * h * h)
+                    + (0.5 / b).abs() * self.a[g].abs())
+            })
+            .collect();
+        let mut scale = vec![0.0; u.len()];
+        self.mass_times(model, &mag, &mut scale);
+        let c = k.alpha_f * w;
+        for (o, r) in out.iter_mut().zip(&self.r0) {
+            *o += c * r;
+        }
+        scale.iter().map(|s| s * s).sum::<f64>().sqrt()
+    }
+
+    /// Adds `(1 - am) / ((1 - af) beta dt^2) M` to the tangent values
+    /// (free-free and free-prescribed slots of every cell).
+    pub fn add_tangent<const D: usize>(
+        &self,
+        model: &Model<D>,
+        scatter: &Scatter,
+        values: &mut [f64],
+    ) {
+        let Some((k, dt)) = self.active else {
+            return;
+        };
+        let coef = (1.0 - k.alpha_m) / ((1.0 - k.alpha_f) * k.beta * dt * dt);
+        for (c, m) in self.cell_mass.iter().enumerate() {
+            let nn = model.mesh.cells.nodes(c).len();
+            let nd = nn * D;
+            let slots = scatter.cell_slots(c);
+            for a in 0..nn {
+                for b in 0..nn {
+                    let mab = m[a * nn + b];
+                    if mab == 0.0 {
+                        continue;
+                    }
+                    for q in 0..D {
+                        // column-major: row a D + q, column b D + q
+                        let s = slots[(a * D + q) + nd * (b * D + q)];
+                        if s != NO_SLOT {
+                            values[s as usize] += coef * mab;
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// The initial acceleration `M_ff a_f = -r_f` (prescribed dofs: 0) of
+    /// the state with residual `r` (`f_int - f_ext - f_c` per dof), by
+    /// Jacobi-preconditioned conjugate gradients; `r` becomes the
+    /// committed residual.
+    pub fn start<const D: usize>(&mut self, model: &Model<D>, dofs: &DofMap<D>, r: &[f64]) {
+        let free: Vec<bool> = dofs
+            .dofs
+            .iter()
+            .map(|d| matches!(d, Dof::Free(_)))
+            .collect();
+        let n = r.len();
+        let apply = |x: &[f64], out: &mut [f64]| {
+            out.fill(0.0);
+            self.mass_times(model, x, out);
+            for (o, f) in out.iter_mut().zip(&free) {
+                if !f {
+                    *o = 0.0;
+                }
+            }
+        };
+        let mut diag = vec![0.0; n];
+        let mut e = vec![0.0; n];
+        let mut col = vec![0.0; n];
+        // the diagonal of M: M e over each component separately is too
+        // costly; the lumped row sum is a good preconditioner
+        e.iter_mut()
+            .zip(&free)
+            .for_each(|(x, f)| *x = if *f { 1.0 } else { 0.0 });
+        apply(&e, &mut col);
+        for ((d, c), f) in diag.iter_mut().zip(&col).zip(&free) {
+            *d = if *f && *c > 0.0 { *c } else { 1.0 };
+        }
+        let b: Vec<f64> = r
+            .iter()
+            .zip(&free)
+            .map(|(r, f)| if *f { -r } else { 0.0 })
+            .collect();
+        let bnorm = b.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let mut x = vec![0.0; n];
+        if bnorm > 0.0 {
+            let mut res = b.clone();
+            let mut z: Vec<f64> = res.iter().zip(&diag).map(|(r, d)| r / d).collect();
+            let mut p = z.clone();
+            let mut rz: f64 = res.iter().zip(&z).map(|(a, b)| a * b).sum();
+            let mut ap = vec![0.0; n];
+            for _ in 0..10 * n.max(10) {
+                apply(&p, &mut ap);
+                let pap: f64 = p.iter().zip(&ap).map(|(a, b)| a * b).sum();
+                if pap <= 0.0 {
+                    break;
+                }
+                let alpha = rz / pap;
+                for i in 0..n {
+                    x[i] += alpha * p[i];
+                    res[i] -= alpha * ap[i];
+                }
+                if res.iter().map(|x| x * x).sum::<f64>().sqrt() <= 1e-14 * bnorm {
+                    break;
+                }
+                z = res.iter().zip(&diag).map(|(r, d)| r / d).collect();
+                let rz1: f64 = res.iter().zip(&z).map(|(a, b)| a * b).sum();
+                let beta = rz1 / rz;
+                rz = rz1;
+                for i in 0..n {
+                    p[i] = z[i] + beta * p[i];
+                }
+            }
+        }
+        self.a = x;
+        self.r0.copy_from_slice(r);
+        self.started = true;
+    }
+
+    /// Commits the converged increment: velocities and accelerations (a
+    /// dynamic increment), the committed residual `r` and the energies
+    /// from the forces (`f_int`, `f_ext` + reactions, `f_c`, per dof) and
+    /// the displacements `u` (committed `u0`).
+    pub fn commit<const D: usize>(
+        &mut self,
+        model: &Model<D>,
+        u: &[f64],
+        u0: &[f64],
+        r: &[f64],
+        forces: [&[f64]; 3],
+    ) {
+        if let Some((k, dt)) = self.active {
+            let a1 = self.acceleration(&k, dt, u, u0);
+            for ((v, a0), a1) in self.v.iter_mut().zip(&self.a).zip(&a1) {
+                *v += dt * ((1.0 - k.gamma) * a0 + k.gamma * a1);
+            }
+            self.a = a1;
+        } else {
+            // a quasi-static increment ends at rest
+            self.v.fill(0.0);
+            self.a.fill(0.0);
+        }
+        self.r0.copy_from_slice(r);
+        let mut work = [0.0; 3];
+        for (w, (f1, f0)) in work.iter_mut().zip(forces.iter().zip(&self.forces0)) {
+            *w = f1
+                .iter()
+                .zip(f0)
+                .zip(u.iter().zip(u0))
+                .map(|((f1, f0), (u1, u0))| 0.5 * (f1 + f0) * (u1 - u0))
+                .sum();
+        }
+        for (f0, f1) in self.forces0.iter_mut().zip(forces) {
+            f0.copy_from_slice(f1);
+        }
+        let e = &mut self.energy;
+        e.internal += work[0];
+        e.external += work[1];
+        e.contact += work[2];
+        e.kinetic = 0.0;
+        let kinetic = self.kinetic(model);
+        let e = &mut self.energy;
+        e.kinetic = kinetic;
+        e.balance = e.kinetic + e.internal - e.external - e.contact - self.kinetic0;
+        e.gain = e.kinetic + e.internal - e.external - self.kinetic0;
+        e.scale = e
+            .scale
+            .max(e.kinetic)
+            .max(e.internal.abs())
+            .max(e.external.abs())
+            .max(e.contact.abs());
+    }
+
+    /// Whether the energy grew (`Energy::gain`) by more than
+    /// [`ENERGY_GROWTH_TOL`] of its scale.
+    pub fn energy_grew(&self) -> bool {
+        self.energy.gain > ENERGY_GROWTH_TOL * self.energy.scale
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn special_cases_of_generalized_alpha() {
+        // rho_inf = 1: every scheme is the average acceleration rule
+        for s in [
+            Scheme::Hht { rho_inf: 1.0 },
+            Scheme::GeneralizedAlpha { rho_inf: 1.0 },
+        ] {
+            let k = Coefficients::of(s);
+            assert!(
+                (k.beta - 0.25).abs() < 1e-15 && (k.gamma - 0.5).abs() < 1e-15,
+                "{s:?}"
+            );
+            // the same weights on accelerations and forces: trapezoidal
+            assert!((k.alpha_m - k.alpha_f).abs() < 1e-15, "{s:?}");
+        }
+        // Chung & Hulbert eq. 25 at rho_inf = 0: am = -1, af = 0, gamma = 3/2, beta = 1
+        let k = Coefficients::of(Scheme::GeneralizedAlpha { rho_inf: 0.0 });
+        assert_eq!(
+            (k.alpha_m, k.alpha_f, k.gamma, k.beta),
+            (-1.0, 0.0, 1.5, 1.0)
+        );
+        // HHT at rho_inf = 1/2: alpha = 1/3
+        let k = Coefficients::of(Scheme::Hht { rho_inf: 0.5 });
+        assert!((k.alpha_f - 1.0 / 3.0).abs() < 1e-15 && k.alpha_m == 0.0);
+    }
+}
