@@ -132,19 +132,28 @@ fn run_with_a_unit_system_labels_its_results() {
 /// `ctc verify --list | head`: the reader closes the pipe; ctc must end
 /// quietly (killed by SIGPIPE like any Unix filter), not panic in
 /// `println!` ("failed printing to stdout: Broken pipe"). The read end is
-/// closed before ctc writes its first line, so the write always fails.
+/// closed before ctc starts (a pipe made here, only its write end handed to
+/// ctc), so its first write always fails: closing the read end after the
+/// spawn raced with ctc writing its whole list into the pipe's buffer on a
+/// loaded machine.
 #[cfg(unix)]
 #[test]
 fn closed_output_pipe_ends_quietly_without_a_panic() {
+    use std::os::fd::{FromRawFd, OwnedFd};
     use std::os::unix::process::ExitStatusExt;
     use std::process::Stdio;
-    let mut child = ctc()
+    let mut fds = [0; 2];
+    // SAFETY: `pipe` fills two new descriptors; each is owned once below.
+    assert_eq!(unsafe { libc::pipe(fds.as_mut_ptr()) }, 0);
+    // SAFETY: the descriptors are open and owned by nothing else.
+    let (read, write) = unsafe { (OwnedFd::from_raw_fd(fds[0]), OwnedFd::from_raw_fd(fds[1])) };
+    drop(read);
+    let child = ctc()
         .args(["verify", "--list"])
-        .stdout(Stdio::piped())
+        .stdout(Stdio::from(write))
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    drop(child.stdout.take());
     let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
