@@ -2,11 +2,8 @@
 //! bottom face `z = -1` counter-clockwise seen from above, then the top
 //! face); 2x2x2 Gauss points ordered like the nodes.
 
-use super::{gauss3_tensor, tensor_extrapolation, ReferenceCell, G2};
+use super::{tensor_extrapolation, ReferenceCell, GAUSS2X2X2, GAUSS3X3X3};
 use crate::mesh::CellKind;
-
-/// The mass rule: 27 Gauss points.
-const MASS_RULE: [([f64; 3], f64); 27] = gauss3_tensor::<3, 27>();
 
 /// The trilinear hexahedron.
 #[derive(Debug, Clone, Copy)]
@@ -35,19 +32,10 @@ impl ReferenceCell<3, 8> for Hex8 {
         &[2, 3, 7, 6],
         &[3, 0, 4, 7],
     ];
-    const QUADRATURE: &'static [([f64; 3], f64)] = &[
-        ([-G2, -G2, -G2], 1.0),
-        ([G2, -G2, -G2], 1.0),
-        ([G2, G2, -G2], 1.0),
-        ([-G2, G2, -G2], 1.0),
-        ([-G2, -G2, G2], 1.0),
-        ([G2, -G2, G2], 1.0),
-        ([G2, G2, G2], 1.0),
-        ([-G2, G2, G2], 1.0),
-    ];
+    const QUADRATURE: &'static [([f64; 3], f64)] = &GAUSS2X2X2;
     const CENTRE: [f64; 3] = [0.0, 0.0, 0.0];
     // 3^3 Gauss points: N_a N_b det(J) (r) of a distorted cell
-    const MASS_QUADRATURE: &'static [([f64; 3], f64)] = &MASS_RULE;
+    const MASS_QUADRATURE: &'static [([f64; 3], f64)] = &GAUSS3X3X3;
 
     fn shape(xi: &[f64; 3]) -> [f64; 8] {
         CORNERS.map(|c| 0.125 * (1.0 + c[0] * xi[0]) * (1.0 + c[1] * xi[1]) * (1.0 + c[2] * xi[2]))

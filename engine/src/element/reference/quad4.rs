@@ -1,11 +1,8 @@
 //! 4-node bilinear quadrilateral on `[-1, 1]^2`, nodes counter-clockwise;
 //! 2x2 Gauss points ordered like the nodes (point `g` is nearest node `g`).
 
-use super::{gauss3_tensor, tensor_extrapolation, ReferenceCell, G2};
+use super::{tensor_extrapolation, ReferenceCell, GAUSS2X2, GAUSS3X3};
 use crate::mesh::CellKind;
-
-/// The mass rule: 9 Gauss points.
-const MASS_RULE: [([f64; 2], f64); 9] = gauss3_tensor::<2, 9>();
 
 /// The bilinear quadrilateral.
 #[derive(Debug, Clone, Copy)]
@@ -17,15 +14,10 @@ impl ReferenceCell<2, 4> for Quad4 {
     const KIND: CellKind = CellKind::Quad4;
     const NODES: [[f64; 2]; 4] = CORNERS;
     const FACES: &'static [&'static [usize]] = &[&[0, 1], &[1, 2], &[2, 3], &[3, 0]];
-    const QUADRATURE: &'static [([f64; 2], f64)] = &[
-        ([-G2, -G2], 1.0),
-        ([G2, -G2], 1.0),
-        ([G2, G2], 1.0),
-        ([-G2, G2], 1.0),
-    ];
+    const QUADRATURE: &'static [([f64; 2], f64)] = &GAUSS2X2;
     const CENTRE: [f64; 2] = [0.0, 0.0];
     // 3^2 Gauss points: N_a N_b det(J) (r) of a distorted cell
-    const MASS_QUADRATURE: &'static [([f64; 2], f64)] = &MASS_RULE;
+    const MASS_QUADRATURE: &'static [([f64; 2], f64)] = &GAUSS3X3;
 
     fn shape(xi: &[f64; 2]) -> [f64; 4] {
         CORNERS.map(|c| 0.25 * (1.0 + c[0] * xi[0]) * (1.0 + c[1] * xi[1]))
