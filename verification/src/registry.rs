@@ -42,6 +42,21 @@ pub struct ProgramLevel {
     pub cutbacks: usize,
 }
 
+impl ProgramLevel {
+    /// Adds the counts of one run of the level: nodes and free dofs of the
+    /// largest model, increments, Newton iterations and cutbacks summed,
+    /// the largest iteration count of an increment.
+    pub fn add_run(&mut self, summary: &ctc_engine::solve::RunSummary) {
+        self.nodes = self.nodes.max(summary.nodes);
+        self.free_dofs = self.free_dofs.max(summary.free_dofs);
+        self.increments += summary.increments.len();
+        self.newton_total += summary.newton_iterations;
+        let most = summary.increments.iter().map(|i| i.iterations).max();
+        self.newton_max = self.newton_max.max(most.unwrap_or(0));
+        self.cutbacks += summary.cutbacks;
+    }
+}
+
 /// A case computed by a program.
 #[derive(Debug, Clone)]
 pub struct ProgramCase {

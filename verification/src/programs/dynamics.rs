@@ -53,22 +53,6 @@ fn newton() -> NewtonSettings {
     }
 }
 
-fn counts(out: &mut ProgramLevel, summary: &RunSummary) {
-    out.nodes = out.nodes.max(summary.nodes);
-    out.free_dofs = out.free_dofs.max(summary.free_dofs);
-    out.increments += summary.increments.len();
-    out.newton_total += summary.newton_iterations;
-    out.newton_max = out.newton_max.max(
-        summary
-            .increments
-            .iter()
-            .map(|i| i.iterations)
-            .max()
-            .unwrap_or(0),
-    );
-    out.cutbacks += summary.cutbacks;
-}
-
 fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
     let (nx, ny) = (20, 2);
     let mut out = ProgramLevel {
@@ -138,7 +122,7 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
             .fold(0.0, f64::max)
             / e0;
         out.values.push(error(balance_name, balance));
-        counts(&mut out, &summary);
+        out.add_run(&summary);
     }
     Ok(out)
 }
@@ -211,7 +195,7 @@ fn oscillator(level: usize) -> Result<ProgramLevel, String> {
         ],
         ..ProgramLevel::default()
     };
-    counts(&mut out, &summary);
+    out.add_run(&summary);
     Ok(out)
 }
 

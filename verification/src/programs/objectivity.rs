@@ -207,19 +207,7 @@ fn objectivity_level(level: usize) -> Result<ProgramLevel, String> {
             }
             out.values.push(error(ep_name, worst_ep));
         }
-        out.nodes = summary.nodes;
-        out.free_dofs = summary.free_dofs;
-        out.increments += summary.increments.len();
-        out.newton_total += summary.newton_iterations;
-        out.newton_max = out.newton_max.max(
-            summary
-                .increments
-                .iter()
-                .map(|i| i.iterations)
-                .max()
-                .unwrap_or(0),
-        );
-        out.cutbacks += summary.cutbacks;
+        out.add_run(&summary);
     }
     Ok(out)
 }

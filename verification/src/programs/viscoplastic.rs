@@ -245,18 +245,7 @@ fn level_run(level: usize) -> Result<ProgramLevel, String> {
     for (rate, name) in [(1e-4 / tau_u, SOLVER_SLOW), (1e-2 / tau_u, SOLVER_FAST)] {
         let (e, summary) = solver_error(rate, SOLVER_N * scale)?;
         out.values.push(error(name, e));
-        out.free_dofs = summary.free_dofs;
-        out.increments += summary.increments.len();
-        out.newton_total += summary.newton_iterations;
-        out.newton_max = out.newton_max.max(
-            summary
-                .increments
-                .iter()
-                .map(|i| i.iterations)
-                .max()
-                .unwrap_or(0),
-        );
-        out.cutbacks += summary.cutbacks;
+        out.add_run(&summary);
     }
     Ok(out)
 }
