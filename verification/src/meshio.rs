@@ -142,6 +142,12 @@ fn vtu_type(kind: CellKind) -> &'static str {
         CellKind::Quad4 => "quad",
         CellKind::Tet4 => "tetra",
         CellKind::Hex8 => "hexahedron",
+        CellKind::Tri6 => "triangle6",
+        CellKind::Quad8 | CellKind::Quad8R => "quad8",
+        CellKind::Quad9 => "quad9",
+        CellKind::Tet10 => "tetra10",
+        CellKind::Hex20 | CellKind::Hex20R => "hexahedron20",
+        CellKind::Hex27 => "hexahedron27",
     }
 }
 
