@@ -804,6 +804,21 @@ pub struct Dynamic {
     pub scheme: Scheme,
     /// Consistent or lumped mass.
     pub mass: MassMatrix,
+    /// The mass of the nodes of contact surfaces.
+    pub contact_mass: ContactMass,
+}
+
+/// The mass of contact-surface nodes in a dynamic step
+/// (`crate::solve::contact_mass`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactMass {
+    /// Moved to the other nodes of their cells (Khenous, Laborde & Renard
+    /// 2008): no chatter, the energy of an impact conserved.
+    #[default]
+    Redistributed,
+    /// The step's mass matrix everywhere (contact nodes bounce).
+    Full,
 }
 
 /// An initial velocity component on a set of nodes (`initial_velocity`

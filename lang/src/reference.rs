@@ -207,7 +207,11 @@ pub static ITEMS: &[Item] = &[
         syntax: "step [NAME] { .. }",
         doc: "A load step: a time range split into increments (cut back by halving on \
               failure, grown back x1.5), with its Newton settings. Steps follow each other.",
-        blocks: &[("step", &tables::STEP), ("newton", &tables::NEWTON)],
+        blocks: &[
+            ("step", &tables::STEP),
+            ("newton", &tables::NEWTON),
+            ("dynamic", &tables::DYNAMIC),
+        ],
         example: "step press { time = 0 .. 1  increments = 10  newton { tol = 1e-9 } }",
     },
     Item {

@@ -694,14 +694,14 @@ pub static STEP: [Key; 5] = [
     ),
     Key::new(
         "dynamic",
-        KeyType::Choice(&["{ scheme rho_inf beta gamma mass }"]),
+        KeyType::Choice(&["{ scheme rho_inf beta gamma mass contact_mass }"]),
         "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
          step is quasi-static",
     ),
 ];
 
 /// `dynamic { .. }` of a step.
-pub static DYNAMIC: [Key; 5] = [
+pub static DYNAMIC: [Key; 6] = [
     Key::new(
         "scheme",
         KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
@@ -736,6 +736,14 @@ pub static DYNAMIC: [Key; 5] = [
         "mass matrix: consistent, or lumped (row sums; HRZ where a row sum is not positive)",
     )
     .default(Default::Choice("consistent")),
+    Key::new(
+        "contact_mass",
+        KeyType::Choice(&["redistributed", "full"]),
+        "mass of the nodes of contact surfaces: redistributed (moved to the other nodes of \
+         their cells, Khenous-Laborde-Renard 2008: no chatter, impacts conserve energy) or \
+         full (the mass matrix everywhere: contact nodes bounce)",
+    )
+    .default(Default::Choice("redistributed")),
 ];
 
 /// `newton { .. }` of a step.

@@ -1,4 +1,4 @@
-//! Implicit dynamics without contact as `ctc verify --tag dynamics` runs
+//! Implicit dynamics as `ctc verify --tag dynamics` runs
 //! it: the registry entries `newmark_energy_cantilever` (average-
 //! acceleration Newmark conserves the energy of a free-vibrating elastic
 //! cantilever to round-off per step; Hughes 2000, section 9.3.2) and
@@ -24,4 +24,23 @@ fn newmark_energy_cantilever() {
 fn generalized_alpha_period_damping() {
     let report = registry::run_passing("generalized_alpha_period_damping");
     assert_eq!(report.levels.len(), 3, "dt = T/10, T/20, T/40");
+}
+
+/// Elastic bars in impact (Graff 1975, section 1.4): a bar on a rigid wall
+/// in 2D and 3D and two bars colliding, with the contact nodes' mass
+/// redistributed (Khenous, Laborde & Renard 2008); scenes and tolerances in
+/// `verification/src/programs/impact.rs`.
+///
+/// ```text
+///   wall |<- [==== bar ====] v0          [== a ==]-> v0  v0 <-[== b ==]
+/// ```
+#[test]
+fn bar_impact_wave_theory() {
+    let report = registry::run_passing("bar_impact_wave_theory");
+    let values = &report.levels[0].values;
+    assert_eq!(values.len(), 15, "three scenes, five values each");
+    // the full mass chatters: the redistribution is what removes it
+    for scene in values.chunks(5) {
+        assert!(scene[4].computed > 100.0 * scene[3].computed, "{scene:?}");
+    }
 }

@@ -363,6 +363,9 @@ pub fn held_only_by_contact<const D: usize>(model: &Model<D>) -> Vec<bool> {
 /// `(a, b, w)` through the row `[1, 0, -y]` (c = 0) or `[0, 1, x]`
 /// (c = 1); the motion is held when these rows have full rank.
 ///
+/// A body with a density in an analysis whose every step is dynamic is
+/// held by its inertia.
+///
 /// Contact holds only once closed, so it is given the benefit of the
 /// doubt, but it must lead somewhere and can hold only along its normals:
 /// - a frictionless pair against a rigid tool adds, for every slave node,
@@ -385,10 +388,24 @@ fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
             constrained[n][d.component] = true;
         }
     }
+    // in an analysis whose every step is dynamic, the mass of a body with
+    // a density holds its rigid-body motions (the tangent has M / (beta
+    // dt^2) on its diagonal): two bars flying at each other are solvable
+    let inertial = !model.steps.is_empty() && model.steps.iter().all(|s| s.dynamic.is_some());
     let free: Vec<Vec<&str>> = model
         .bodies
         .iter()
-        .map(|body| free_motions(model, body, &constrained, &[]))
+        .map(|body| {
+            let rho = model
+                .materials
+                .get(body.material)
+                .map_or(0.0, |m| m.density);
+            if inertial && rho > 0.0 {
+                Vec::new()
+            } else {
+                free_motions(model, body, &constrained, &[])
+            }
+        })
         .collect();
     // groups of bodies linked by contact pairs (union-find)
     let mut parent: Vec<usize> = (0..nb).collect();

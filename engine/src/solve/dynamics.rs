@@ -36,7 +36,7 @@ use super::linalg::{Scatter, NO_SLOT};
 use crate::element::kernel::kernel_of;
 use crate::element::Section;
 use crate::geom::Dimension;
-use crate::model::{MassMatrix, Model, Scheme, Step};
+use crate::model::{ContactMass, ContactMaster, Dynamic, MassMatrix, Model, Scheme, Step};
 use nalgebra::Const;
 
 /// Default spectral radius at infinite frequency of the dissipative
@@ -175,7 +175,7 @@ pub struct Dynamics {
     /// block `M_ab I`).
     cell_mass: Vec<Vec<f64>>,
     /// The kind the cell masses were built as.
-    mass_kind: Option<MassMatrix>,
+    mass_kind: Option<(MassMatrix, ContactMass)>,
     /// Committed velocity per dof (`node D + c`).
     pub v: Vec<f64>,
     /// Committed acceleration per dof.
@@ -194,6 +194,9 @@ pub struct Dynamics {
     kinetic0: f64,
     /// Energies at the last converged increment.
     pub energy: Energy,
+    /// Cells with every node on a contact surface, whose lumped mass was
+    /// kept (no other node to move it to).
+    pub contact_cells_kept: usize,
 }
 
 impl Dynamics {
@@ -223,40 +226,73 @@ impl Dynamics {
             forces0: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
             kinetic0: 0.0,
             energy: Energy::default(),
+            contact_cells_kept: 0,
         }
     }
 
-    /// Builds the cell masses of `kind` (once per kind).
+    /// Builds the cell masses of the step's `dynamic` (once per mass kind):
+    /// `d.mass` everywhere, but for the cells with contact-surface nodes
+    /// when `d.contact_mass` redistributes their mass
+    /// ([`super::contact_mass`]).
     pub fn build_mass<const D: usize>(
         &mut self,
         model: &Model<D>,
-        kind: MassMatrix,
+        d: &Dynamic,
     ) -> Result<(), String>
     where
         Const<D>: Dimension<D>,
     {
+        let kind = (d.mass, d.contact_mass);
         if self.mass_kind == Some(kind) {
             return Ok(());
         }
+        let massless = match d.contact_mass {
+            ContactMass::Full => vec![false; model.mesh.nodes.len()],
+            ContactMass::Redistributed => super::contact_mass::contact_nodes(
+                model.mesh.nodes.len(),
+                model.contacts.iter().flat_map(|p| {
+                    let master: &[usize] = match &p.master {
+                        ContactMaster::Surface { nodes, .. } => nodes,
+                        ContactMaster::Tool(_) => &[],
+                    };
+                    [&p.nodes[..], master]
+                }),
+            ),
+        };
         let section = Section::new(&model.analysis);
         let mut masses = vec![Vec::new(); model.mesh.cells.len()];
+        let mut kept = 0;
         for b in &model.bodies {
             let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
             for c in b.cells.clone() {
                 let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
                     .map_err(|e| format!("cell {c}: {}", e.message))?;
-                let x: Vec<crate::geom::Point<D>> = model
-                    .mesh
-                    .cells
-                    .nodes(c)
+                let nodes = model.mesh.cells.nodes(c);
+                let x: Vec<crate::geom::Point<D>> = nodes
                     .iter()
                     .map(|&n| crate::geom::Point::<D>::from(model.mesh.nodes[n]))
                     .collect();
-                masses[c] = kernel
-                    .mass(&x, &section, rho, kind)
+                let flags: Vec<bool> = nodes.iter().map(|&n| massless[n]).collect();
+                let touches = flags.iter().any(|f| *f);
+                let mut m = kernel
+                    .mass(
+                        &x,
+                        &section,
+                        rho,
+                        if touches {
+                            MassMatrix::Consistent
+                        } else {
+                            d.mass
+                        },
+                    )
                     .map_err(|e| format!("cell {c}: {}", e.message))?;
+                if touches && !super::contact_mass::redistribute(&mut m, nodes.len(), &flags) {
+                    kept += 1;
+                }
+                masses[c] = m;
             }
         }
+        self.contact_cells_kept = kept;
         self.cell_mass = masses;
         self.mass_kind = Some(kind);
         self.kinetic0 = self.kinetic(model);
@@ -396,12 +432,31 @@ impl Dynamics {
     /// Jacobi-preconditioned conjugate gradients; `r` becomes the
     /// committed residual.
     pub fn start<const D: usize>(&mut self, model: &Model<D>, dofs: &DofMap<D>, r: &[f64]) {
-        let free: Vec<bool> = dofs
+        // free dofs that carry mass (contact nodes may not: their
+        // acceleration is left 0, they follow the constraint statically)
+        let mut free: Vec<bool> = dofs
             .dofs
             .iter()
             .map(|d| matches!(d, Dof::Free(_)))
             .collect();
         let n = r.len();
+        // the diagonal of M: the Jacobi preconditioner
+        let mut diag = vec![0.0; n];
+        for (c, m) in self.cell_mass.iter().enumerate() {
+            let nodes = model.mesh.cells.nodes(c);
+            let nn = nodes.len();
+            for (a, &na) in nodes.iter().enumerate() {
+                for k in 0..D {
+                    diag[na * D + k] += m.get(a * nn + a).copied().unwrap_or(0.0);
+                }
+            }
+        }
+        for (f, d) in free.iter_mut().zip(&mut diag) {
+            *f = *f && *d > 0.0;
+            if !*f {
+                *d = 1.0;
+            }
+        }
         let apply = |x: &[f64], out: &mut [f64]| {
             out.fill(0.0);
             self.mass_times(model, x, out);
@@ -411,18 +466,6 @@ impl Dynamics {
                 }
             }
         };
-        let mut diag = vec![0.0; n];
-        let mut e = vec![0.0; n];
-        let mut col = vec![0.0; n];
-        // the diagonal of M: M e over each component separately is too
-        // costly; the lumped row sum is a good preconditioner
-        e.iter_mut()
-            .zip(&free)
-            .for_each(|(x, f)| *x = if *f { 1.0 } else { 0.0 });
-        apply(&e, &mut col);
-        for ((d, c), f) in diag.iter_mut().zip(&col).zip(&free) {
-            *d = if *f && *c > 0.0 { *c } else { 1.0 };
-        }
         let b: Vec<f64> = r
             .iter()
             .zip(&free)

@@ -37,6 +37,7 @@ pub mod check;
 pub mod constraints;
 pub mod contact_assembly;
 pub mod contact_loop;
+pub mod contact_mass;
 pub mod diagnosis;
 pub mod dofs;
 pub mod dynamics;

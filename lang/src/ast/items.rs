@@ -669,6 +669,8 @@ pub struct Dynamic {
     pub gamma: Option<Spanned<f64>>,
     /// `mass = consistent | lumped`.
     pub mass: Option<Spanned<ctc_engine::model::MassMatrix>>,
+    /// `contact_mass = redistributed | full`.
+    pub contact_mass: Option<Spanned<ctc_engine::model::ContactMass>>,
     /// The `dynamic` entry.
     pub span: Span,
 }

@@ -3,7 +3,7 @@
 use super::{Lowerer, DEFAULT_MIN_FRACTION};
 use crate::ast;
 use crate::validate::step_label;
-use ctc_engine::model::{Dynamic, MassMatrix, NewtonSettings, Scheme, Step};
+use ctc_engine::model::{ContactMass, Dynamic, MassMatrix, NewtonSettings, Scheme, Step};
 
 impl Lowerer<'_> {
     pub(super) fn steps(&mut self) -> Vec<Step> {
@@ -79,5 +79,9 @@ fn dynamic(d: &ast::Dynamic) -> Dynamic {
     Dynamic {
         scheme,
         mass: d.mass.as_ref().map_or(MassMatrix::Consistent, |m| m.value),
+        contact_mass: d
+            .contact_mass
+            .as_ref()
+            .map_or(ContactMass::Redistributed, |m| m.value),
     }
 }

@@ -69,7 +69,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
 fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
     use crate::ast::syntax::EntryBody;
     use crate::ast::DynamicScheme;
-    use ctc_engine::model::MassMatrix;
+    use ctc_engine::model::{ContactMass, MassMatrix};
     if !f.mentions("dynamic") {
         return None;
     }
@@ -82,6 +82,7 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
                 beta: None,
                 gamma: None,
                 mass: None,
+                contact_mass: None,
                 span: e.span,
             })
         }
@@ -119,6 +120,15 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
             &[
                 ("consistent", MassMatrix::Consistent),
                 ("lumped", MassMatrix::Lumped),
+            ],
+            diags,
+        ),
+        contact_mass: d.choice(
+            "contact_mass",
+            "mass of the contact-surface nodes",
+            &[
+                ("redistributed", ContactMass::Redistributed),
+                ("full", ContactMass::Full),
             ],
             diags,
         ),

@@ -27,7 +27,7 @@ use super::error;
 use crate::case::{Check, Quantity};
 use crate::measure::Value;
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
-use ctc_engine::model::{Dynamic, MassMatrix, NewtonSettings, Scheme};
+use ctc_engine::model::{ContactMass, Dynamic, MassMatrix, NewtonSettings, Scheme};
 use ctc_engine::solve::dynamics::Coefficients;
 use ctc_engine::solve::RunSummary;
 use ctc_engine::testkit::grid::{grid, grid_node};
@@ -86,6 +86,7 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
                     gamma: 0.5,
                 },
                 mass,
+                contact_mass: ContactMass::Redistributed,
             })
             .newton(newton())
             .build();
@@ -148,6 +149,7 @@ fn oscillator(level: usize) -> Result<ProgramLevel, String> {
         .dynamic(Dynamic {
             scheme: Scheme::GeneralizedAlpha { rho_inf: RHO_INF },
             mass: MassMatrix::Lumped,
+            contact_mass: ContactMass::Redistributed,
         })
         .newton(newton())
         .build();

@@ -11,6 +11,7 @@ pub mod fenicsx;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
+pub mod impact;
 pub mod mortar;
 pub mod objectivity;
 pub mod penalty_scaling;
@@ -48,6 +49,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(dynamics::cases());
+    v.extend(impact::cases());
     v
 }
 

@@ -293,7 +293,7 @@ where
         let mut out = Ok(());
         if let Some(d) = s.and_then(|s| s.dynamic) {
             out = dy
-                .build_mass(model, d.mass)
+                .build_mass(model, &d)
                 .map_err(|e| Failure::new(FailureKind::Element, e));
             if out.is_ok() && !dy.started {
                 external_forces(model, t0, &mut self.f_ext);
