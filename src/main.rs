@@ -479,6 +479,41 @@ fn verify(
     json: bool,
     max_level: Option<usize>,
 ) -> Result<(), String> {
+    if ctc_verification::registry::list(filter.as_deref(), &tags).is_empty() {
+        let names: Vec<String> = ctc_verification::registry::list(None, &[])
+            .into_iter()
+            .map(|r| r.name)
+            .collect();
+        let what = match &filter {
+            Some(f) => format!("no verification case matches `{f}`"),
+            None => "no verification case matches".to_string(),
+        };
+        let tags_note = if tags.is_empty() {
+            String::new()
+        } else {
+            format!(" with tags {}", tags.join(", "))
+        };
+        let close: Vec<&String> = filter
+            .as_deref()
+            .map(|f| {
+                let stem = &f[..f.len().min(4)];
+                names.iter().filter(|n| n.contains(stem)).take(5).collect()
+            })
+            .unwrap_or_default();
+        let hint = if close.is_empty() {
+            "`ctc verify --list` lists the cases and their tags".to_string()
+        } else {
+            format!(
+                "close names: {}; `ctc verify --list` lists them all",
+                close
+                    .iter()
+                    .map(|n| format!("`{n}`"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        return Err(format!("error: {what}{tags_note}\n  = help: {hint}"));
+    }
     let opts = ctc_verification::VerifyOptions {
         filter,
         tags,

@@ -159,3 +159,16 @@ fn closed_output_pipe_ends_quietly_without_a_panic() {
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?}", out.status);
 }
+
+#[test]
+fn verify_of_an_unknown_case_names_the_close_ones_and_fails() {
+    let out = ctc().args(["verify", "bar_impct"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("no verification case matches `bar_impct`")
+            && err.contains("`bar_impact_wave_theory`"),
+        "{err}"
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).is_empty());
+}
