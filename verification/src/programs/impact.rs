@@ -32,12 +32,14 @@ use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::model::AnyModel;
 use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
 
-/// Wave speed, initial speed, bar length and cross-section.
+/// Wave speed `sqrt(E / rho)` of the decks.
 const C: f64 = 1.0;
+/// Initial speed of each bar.
 const V0: f64 = 0.1;
+/// Length of each bar.
 const L: f64 = 10.0;
 
-/// The scenes: name, deck.
+/// The scene names (their decks: [`deck`]).
 const SCENES: [&str; 3] = [
     "quad4 bar on a wall",
     "hex8 bar on a wall",
