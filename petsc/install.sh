@@ -5,7 +5,11 @@
 #   bash petsc/install.sh
 set -euo pipefail
 
-packages=(libpetsc-real-dev libclang-dev clang pkg-config openmpi-bin libopenmpi-dev libmetis-dev)
+# libopenblas0-serial: an optimised BLAS for MUMPS's dense kernels (Debian's
+# default is the reference BLAS, with which a MUMPS factorization of a 14k-dof
+# 3D tangent took 2.5 s instead of 0.2 s); serial, since MPI ranks already
+# use the cores.
+packages=(libpetsc-real-dev libclang-dev clang pkg-config openmpi-bin libopenmpi-dev libmetis-dev libopenblas0-serial)
 
 missing=()
 for p in "${packages[@]}"; do

@@ -1,5 +1,6 @@
 //! `ctc`: check, run, verify and benchmark `.ctc` contact decks.
 
+mod petsc_run;
 mod progress;
 mod sweep;
 
@@ -14,6 +15,15 @@ use std::process::ExitCode;
 struct Cli {
     #[command(subcommand)]
     command: Command,
+}
+
+/// The linear solver of `ctc run`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+enum Solver {
+    /// faer sparse direct (Cholesky, L D L^T, LU), serial.
+    Faer,
+    /// PETSc KSP/PC over MPI.
+    Petsc,
 }
 
 #[derive(Subcommand, Debug)]
@@ -43,6 +53,16 @@ enum Command {
         /// its output directory, appending to the same results.
         #[arg(long)]
         restart: bool,
+        /// Linear solver of the Newton tangent: `faer` (serial direct,
+        /// the default) or `petsc` (PETSc over MPI: `mpirun -n N ctc run
+        /// deck.ctc --solver petsc [-- PETSc options]`; needs a ctc built
+        /// with `--features petsc`). The preset is MUMPS LU; options such
+        /// as `-- -ksp_type cg -pc_type gamg -ksp_rtol 1e-10` replace it.
+        #[arg(long, value_enum, default_value_t = Solver::Faer)]
+        solver: Solver,
+        /// PETSc options (after `--`, with --solver petsc).
+        #[arg(last = true, allow_hyphen_values = true, value_name = "PETSC OPTIONS")]
+        petsc_options: Vec<String>,
     },
     /// Run the verification cases against their references.
     Verify {
@@ -173,7 +193,23 @@ fn main() -> ExitCode {
             quiet,
             verbose,
             restart,
-        } => run(&deck, output.as_deref(), quiet, verbose, restart),
+            solver,
+            petsc_options,
+        } => match solver {
+            Solver::Faer if !petsc_options.is_empty() => Err(format!(
+                "error: `{}` after `--` are PETSc options: they need `--solver petsc`",
+                petsc_options.join(" ")
+            )),
+            Solver::Faer => run(&deck, output.as_deref(), quiet, verbose, restart),
+            Solver::Petsc => petsc_run::run(
+                &deck,
+                output.as_deref(),
+                quiet,
+                verbose,
+                restart,
+                &petsc_options,
+            ),
+        },
         Command::Verify {
             filter,
             list,
@@ -326,6 +362,21 @@ fn run_model<const D: usize>(
 where
     nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
 {
+    run_model_with(model, dir, quiet, verbose, restart, None)
+}
+
+/// [`run_model`] with the tangent solved by `linear` (`None`: faer).
+fn run_model_with<'m, const D: usize>(
+    model: &'m ctc_engine::model::Model<D>,
+    dir: &Path,
+    quiet: bool,
+    verbose: bool,
+    restart: bool,
+    linear: Option<Box<dyn ctc_engine::solve::linalg::LinearSystem + 'm>>,
+) -> Result<(), String>
+where
+    nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
+{
     let (mut writer, from) = if restart {
         let (w, cp) = ctc_engine::output::ResultWriter::resume(dir, model)
             .map_err(|e| format!("error: {e}"))?;
@@ -355,7 +406,7 @@ where
         (w, None)
     };
     let mut observer = progress::Progress::new(model, &mut writer, quiet, verbose);
-    let outcome = ctc_engine::solve::run_from(model, &mut observer, from.as_ref());
+    let outcome = ctc_engine::solve::run_with(model, &mut observer, from.as_ref(), linear);
     observer.finish();
     let figures = observer.figures().clone();
     drop(observer);
@@ -387,6 +438,24 @@ where
                     s.timings.total,
                     dir.display()
                 );
+                if let Some(d) = &s.distributed {
+                    println!(
+                        "  linear solver: {} on {} ranks (rows {:?}, {} assembly): {} set-ups, {} \
+                         solves, {} Krylov iterations (at most {} per solve); times: insertion \
+                         {:.3} s, set-up {:.3} s, solve {:.3} s",
+                        d.solver,
+                        d.ranks,
+                        d.rows_per_rank,
+                        d.assembly,
+                        d.setups,
+                        d.solves,
+                        d.krylov_iterations,
+                        d.max_krylov_iterations,
+                        d.assembly_seconds,
+                        d.setup_seconds,
+                        d.solve_seconds
+                    );
+                }
                 for line in figures.lines() {
                     println!("{line}");
                 }

@@ -172,3 +172,30 @@ fn verify_of_an_unknown_case_names_the_close_ones_and_fails() {
     );
     assert!(String::from_utf8_lossy(&out.stdout).is_empty());
 }
+
+/// `--solver petsc` in a ctc built without the `petsc` feature: a clear
+/// error saying how to get it, before anything is written.
+#[cfg(not(feature = "petsc"))]
+#[test]
+fn run_with_the_petsc_solver_without_the_feature_says_how_to_build_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = ctc()
+        .args([
+            "run",
+            "examples/hertz_cylinder.ctc",
+            "-q",
+            "--solver",
+            "petsc",
+            "-o",
+        ])
+        .arg(dir.path().join("p"))
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("--features petsc") && err.contains("petsc/install.sh"),
+        "{err}"
+    );
+    assert!(!dir.path().join("p").exists(), "nothing written");
+}

@@ -32,6 +32,9 @@ pub enum PetscError {
     Partition(String),
     /// The MPI/PETSc environment could not start.
     Init(String),
+    /// The factorization found the matrix singular (MUMPS null pivots, a
+    /// failed preconditioner set-up): what, in words.
+    Singular(String),
     /// This rank was fine but another one failed with this error class
     /// (see [`PetscError::code`]); every rank stops together.
     OtherRank(u32),
@@ -48,6 +51,7 @@ impl PetscError {
             PetscError::Partition(_) => 3,
             PetscError::Call { .. } => 4,
             PetscError::Init(_) => 5,
+            PetscError::Singular(_) => 6,
             PetscError::OtherRank(c) => *c,
         }
     }
@@ -72,6 +76,7 @@ impl fmt::Display for PetscError {
             PetscError::Layout(m) => write!(f, "distributed layout: {m}"),
             PetscError::Partition(m) => write!(f, "mesh partition: {m}"),
             PetscError::Init(m) => write!(f, "MPI/PETSc start: {m}"),
+            PetscError::Singular(m) => f.write_str(m),
             PetscError::OtherRank(c) => write!(f, "another rank failed (error class {c})"),
         }
     }

@@ -150,9 +150,123 @@ impl<'e> Krylov<'e> {
         b: &GhostedVector<'e>,
         x: &mut GhostedVector<'e>,
     ) -> Result<SolveReport, PetscError> {
+        self.solve_vecs(b.vec, x.vec)
+    }
+
+    /// Builds the preconditioner (the factorization for a direct solver)
+    /// of the current matrix values (collective); a failed set-up (a zero
+    /// pivot, a singular matrix) is an error on every rank.
+    pub fn set_up(&mut self) -> Result<(), PetscError> {
+        // SAFETY: configured solver.
+        unsafe {
+            let mut pc: ffi::PC = std::ptr::null_mut();
+            check("KSPGetPC", ffi::KSPGetPC(self.ksp, &mut pc))?;
+            // KSPSetUp once set up does nothing; PCSetUp redoes the
+            // factorization when the matrix values changed (the symbolic
+            // part is kept while the pattern is the same)
+            check("KSPSetUp", ffi::KSPSetUp(self.ksp))?;
+            check("PCSetUp", ffi::PCSetUp(pc))?;
+            let mut failed: ffi::PCFailedReason = 0;
+            check("PCGetFailedReason", ffi::PCGetFailedReason(pc, &mut failed))?;
+            if failed != ffi::PCFailedReason_PC_NOERROR {
+                let what = match failed {
+                    ffi::PCFailedReason_PC_FACTOR_STRUCT_ZEROPIVOT
+                    | ffi::PCFailedReason_PC_FACTOR_NUMERIC_ZEROPIVOT => "a zero pivot",
+                    ffi::PCFailedReason_PC_FACTOR_OUTMEMORY => "out of memory",
+                    _ => "a failure",
+                };
+                return Err(PetscError::Singular(format!(
+                    "the preconditioner set-up ({}) met {what} (PCFailedReason {failed}): the \
+                     stiffness matrix is singular or the preconditioner does not suit it",
+                    self.describe()?
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// With a MUMPS factorization: switches on its null-pivot detection
+    /// (`ICNTL(24) = 1`) and returns true; otherwise false.
+    pub fn detect_null_pivots(&mut self) -> Result<bool, PetscError> {
+        if !self.describe()?.ends_with("(mumps)") {
+            return Ok(false);
+        }
+        // SAFETY: configured LU/Cholesky PC with MUMPS.
+        unsafe {
+            let mut pc: ffi::PC = std::ptr::null_mut();
+            check("KSPGetPC", ffi::KSPGetPC(self.ksp, &mut pc))?;
+            check(
+                "PCFactorSetUpMatSolverType",
+                ffi::PCFactorSetUpMatSolverType(pc),
+            )?;
+            let mut f: ffi::Mat = std::ptr::null_mut();
+            check("PCFactorGetMatrix", ffi::PCFactorGetMatrix(pc, &mut f))?;
+            check("MatMumpsSetIcntl", ffi::MatMumpsSetIcntl(f, 24, 1))?;
+        }
+        Ok(true)
+    }
+
+    /// Changes the Krylov method (`gmres`, ...), keeping the
+    /// preconditioner.
+    pub fn set_type(&mut self, ksp_type: &str) -> Result<(), PetscError> {
+        let t = cstr(ksp_type)?;
+        // SAFETY: configured solver; PETSc copies the name.
+        unsafe { check("KSPSetType", ffi::KSPSetType(self.ksp, t.as_ptr())) }
+    }
+
+    /// Null pivots MUMPS met in the last factorization (`INFOG(28)`; only
+    /// after [`Krylov::detect_null_pivots`] returned true).
+    pub fn mumps_null_pivots(&self) -> Result<usize, PetscError> {
+        let mut n: ffi::PetscInt = 0;
+        // SAFETY: set-up MUMPS factorization.
+        unsafe {
+            let mut pc: ffi::PC = std::ptr::null_mut();
+            check("KSPGetPC", ffi::KSPGetPC(self.ksp, &mut pc))?;
+            let mut f: ffi::Mat = std::ptr::null_mut();
+            check("PCFactorGetMatrix", ffi::PCFactorGetMatrix(pc, &mut f))?;
+            check("MatMumpsGetInfog", ffi::MatMumpsGetInfog(f, 28, &mut n))?;
+        }
+        Ok(n.max(0) as usize)
+    }
+
+    /// `ksp <type>, pc <type>` (`(<package>)` for a factorization done by
+    /// an external package such as MUMPS), as configured by the preset and
+    /// the options database.
+    pub fn describe(&self) -> Result<String, PetscError> {
+        // SAFETY: configured solver; strings owned by PETSc.
+        unsafe {
+            let mut kt: ffi::KSPType = std::ptr::null();
+            check("KSPGetType", ffi::KSPGetType(self.ksp, &mut kt))?;
+            let mut pc: ffi::PC = std::ptr::null_mut();
+            check("KSPGetPC", ffi::KSPGetPC(self.ksp, &mut pc))?;
+            let mut pt: ffi::PCType = std::ptr::null();
+            check("PCGetType", ffi::PCGetType(pc, &mut pt))?;
+            let (kt, pt) = (text(kt), text(pt));
+            let mut out = format!("petsc: ksp {kt}, pc {pt}");
+            if pt == "lu" || pt == "cholesky" {
+                let mut st: ffi::MatSolverType = std::ptr::null();
+                check(
+                    "PCFactorGetMatSolverType",
+                    ffi::PCFactorGetMatSolverType(pc, &mut st),
+                )?;
+                let st = text(st);
+                if !st.is_empty() {
+                    out.push_str(&format!(" ({st})"));
+                }
+            }
+            Ok(out)
+        }
+    }
+
+    /// [`Krylov::solve`] on raw PETSc vectors of the matrix's layout.
+    pub(crate) fn solve_vecs(
+        &mut self,
+        b: ffi::Vec,
+        x: ffi::Vec,
+    ) -> Result<SolveReport, PetscError> {
         // SAFETY: configured solver, compatible vectors.
         unsafe {
-            check("KSPSolve", ffi::KSPSolve(self.ksp, b.vec, x.vec))?;
+            check("KSPSolve", ffi::KSPSolve(self.ksp, b, x))?;
             let mut reason: ffi::KSPConvergedReason = 0;
             check(
                 "KSPGetConvergedReason",
@@ -236,12 +350,22 @@ pub fn near_null_space<'e>(
         .flat_map(|&nd| coords[dim * nd..dim * nd + dim].iter().copied())
         .collect();
     let modes = rigid_body_modes(&owned, dim, &centre);
+    set_near_null_space(comm, a, &modes)
+}
+
+/// Gives `a` the near-null space spanned by `modes` (each: the values of
+/// this rank's owned rows), orthonormalised across the ranks (collective).
+pub fn set_near_null_space<'e>(
+    comm: &Comm<'e>,
+    a: &mut DistMatrix<'e>,
+    modes: &[Vec<f64>],
+) -> Result<(), PetscError> {
     let mut vecs: Vec<ffi::Vec> = Vec::with_capacity(modes.len());
     // SAFETY: vectors are created from the matrix, filled through their
     // owned arrays, and destroyed here (the null space keeps references).
     unsafe {
         let r = (|| {
-            for m in &modes {
+            for m in modes {
                 let mut v: ffi::Vec = std::ptr::null_mut();
                 check(
                     "MatCreateVecs",

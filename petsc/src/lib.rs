@@ -14,7 +14,9 @@
 //! are compiled: [`layout`] (ownership and numbering from a cell partition),
 //! [`nullspace`] (rigid-body modes from coordinates) and [`error`] (typed
 //! errors). With it, the safe wrappers around the bindgen bindings: [`env`],
-//! [`comm`], [`matrix`], [`vector`], [`krylov`], [`partition`].
+//! [`comm`], [`matrix`], [`vector`], [`krylov`], [`partition`], and
+//! [`engine_system`]: the engine's `LinearSystem` on PETSc, what
+//! `ctc run --solver petsc` uses.
 
 #![warn(missing_docs)]
 
@@ -24,6 +26,8 @@ pub mod nullspace;
 
 #[cfg(feature = "petsc")]
 pub mod comm;
+#[cfg(feature = "petsc")]
+pub mod engine_system;
 #[cfg(feature = "petsc")]
 pub mod env;
 #[cfg(feature = "petsc")]
@@ -43,6 +47,8 @@ pub use nullspace::rigid_body_modes;
 
 #[cfg(feature = "petsc")]
 pub use comm::Comm;
+#[cfg(feature = "petsc")]
+pub use engine_system::PetscSystem;
 #[cfg(feature = "petsc")]
 pub use env::Environment;
 #[cfg(feature = "petsc")]

@@ -41,9 +41,31 @@ impl<'e> DistMatrix<'e> {
         prealloc: &Preallocation,
     ) -> Result<DistMatrix<'e>, PetscError> {
         let (d, o) = prealloc.nnz();
-        let (d, o) = (to_ints(&d)?, to_ints(&o)?);
-        let n_local = to_int(layout.owned_dofs().len())?;
-        let n_global = to_int(layout.n_global_dofs())?;
+        let n_local = layout.owned_dofs().len();
+        DistMatrix::from_nnz(comm, n_local, layout.n_global_dofs(), layout.dim, &d, &o)
+    }
+
+    /// Creates a matrix of `n_local` owned rows (`n_global` in all) with
+    /// block size `block` and the exact per-row counts of entries in the
+    /// owned columns (`d`) and the others (`o`).
+    pub fn from_nnz(
+        comm: &Comm<'e>,
+        n_local: usize,
+        n_global: usize,
+        block: usize,
+        d: &[usize],
+        o: &[usize],
+    ) -> Result<DistMatrix<'e>, PetscError> {
+        if d.len() != n_local || o.len() != n_local {
+            return Err(PetscError::Layout(format!(
+                "{} and {} row counts for {n_local} rows",
+                d.len(),
+                o.len()
+            )));
+        }
+        let (d, o) = (to_ints(d)?, to_ints(o)?);
+        let n_local = to_int(n_local)?;
+        let n_global = to_int(n_global)?;
         let mut mat: ffi::Mat = std::ptr::null_mut();
         // SAFETY: PETSc is initialized (the Comm borrows the Environment);
         // the arrays outlive the calls, which copy them.
@@ -61,10 +83,7 @@ impl<'e> DistMatrix<'e> {
                 "MatSetType",
                 ffi::MatSetType(mat, ffi::MATAIJ.as_ptr().cast()),
             )?;
-            check(
-                "MatSetBlockSize",
-                ffi::MatSetBlockSize(mat, to_int(layout.dim)?),
-            )?;
+            check("MatSetBlockSize", ffi::MatSetBlockSize(mat, to_int(block)?))?;
             check(
                 "MatSeqAIJSetPreallocation",
                 ffi::MatSeqAIJSetPreallocation(mat, 0, d.as_ptr()),
@@ -140,6 +159,23 @@ impl<'e> DistMatrix<'e> {
                     ffi::MatOption_MAT_NEW_NONZERO_LOCATION_ERR,
                     ffi::PetscBool_PETSC_TRUE,
                 ),
+            )
+        }
+    }
+
+    /// Tells PETSc whether the (assembled) matrix is symmetric, for
+    /// solvers that exploit it (CG, Cholesky, GAMG smoothers).
+    pub fn set_symmetric(&mut self, symmetric: bool) -> Result<(), PetscError> {
+        let flag = if symmetric {
+            ffi::PetscBool_PETSC_TRUE
+        } else {
+            ffi::PetscBool_PETSC_FALSE
+        };
+        // SAFETY: the matrix is valid.
+        unsafe {
+            check(
+                "MatSetOption",
+                ffi::MatSetOption(self.mat, ffi::MatOption_MAT_SYMMETRIC, flag),
             )
         }
     }

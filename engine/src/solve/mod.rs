@@ -304,6 +304,10 @@ pub struct RunSummary {
     /// The energy audit at the end of the run (models with a dynamic step).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub energy: Option<dynamics::Energy>,
+    /// Ranks, rows per rank, Krylov iterations and times of a distributed
+    /// linear solver (`ctc run --solver petsc`; absent for the serial one).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub distributed: Option<linalg::DistributedStats>,
 }
 
 fn is_zero(n: &usize) -> bool {
@@ -362,6 +366,25 @@ pub fn run_from<const D: usize>(
 where
     Const<D>: Dimension<D>,
 {
+    run_with(model, observer, from, None)
+}
+
+/// Like [`run_from`] with the tangent solved by `linear` (`None`: the
+/// serial direct solver, [`linalg::direct::LinearSolver`]); this is how
+/// `ctc run --solver petsc` plugs in PETSc over MPI (every rank runs the
+/// same Newton loop on the same replicated model, so every decision is the
+/// same on all ranks as long as the solver returns the same solution
+/// everywhere).
+#[allow(clippy::result_large_err)]
+pub fn run_with<'m, const D: usize>(
+    model: &'m Model<D>,
+    observer: &mut dyn Observer<D>,
+    from: Option<&restart::Checkpoint<D>>,
+    linear: Option<Box<dyn linalg::LinearSystem + 'm>>,
+) -> Result<RunSummary, RunError>
+where
+    Const<D>: Dimension<D>,
+{
     let start = Instant::now();
     let mut summary = RunSummary {
         nodes: model.mesh.nodes.len(),
@@ -382,7 +405,11 @@ where
         let message = format!("the model cannot be solved:\n  - {}", errors.join("\n  - "));
         return Err(fail(summary, message));
     }
-    let newton = match Newton::new(model) {
+    let built = match linear {
+        Some(linear) => Newton::with_linear_system(model, linear),
+        None => Newton::new(model),
+    };
+    let newton = match built {
         Ok(n) => n,
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
@@ -494,6 +521,10 @@ where
     summary.newton_iterations = newton.iterations;
     let stats = newton.factor_stats();
     summary.linear_solver = stats.most_general().to_string();
+    if let Some(d) = newton.distributed_stats() {
+        summary.linear_solver = d.solver.clone();
+        summary.distributed = Some(d);
+    }
     summary.cholesky_factorizations = stats.cholesky;
     summary.ldlt_factorizations = stats.ldlt;
     summary.lu_factorizations = stats.lu;

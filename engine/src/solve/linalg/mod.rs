@@ -145,6 +145,43 @@ pub trait LinearSystem {
     }
     /// Counters.
     fn stats(&self) -> FactorStats;
+    /// What a distributed solver (PETSc over MPI) did; `None` for the
+    /// serial direct solver.
+    fn distributed(&self) -> Option<DistributedStats> {
+        None
+    }
+}
+
+/// Counters of a distributed linear solver over the run (the `distributed`
+/// section of `summary.json`).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct DistributedStats {
+    /// Library and method: `petsc: ksp preonly, pc lu (mumps)`, ...
+    pub solver: String,
+    /// MPI ranks of the run.
+    pub ranks: usize,
+    /// Free dofs (matrix rows) owned by each rank.
+    pub rows_per_rank: Vec<usize>,
+    /// How the ranks were assembled: `replicated` (every rank assembles
+    /// the whole matrix and inserts its own rows).
+    pub assembly: String,
+    /// Matrix set-ups (preconditioner or factorization built).
+    pub setups: usize,
+    /// Linear solves.
+    pub solves: usize,
+    /// Krylov iterations over all solves (1 per solve for a direct solve).
+    pub krylov_iterations: usize,
+    /// Most Krylov iterations of one solve.
+    pub max_krylov_iterations: usize,
+    /// Solves CG could not do (an indefinite tangent) and GMRES did; from
+    /// the first one on, `solver` names GMRES.
+    pub fallbacks: usize,
+    /// Wall time of matrix insertion + assembly, seconds (this rank).
+    pub assembly_seconds: f64,
+    /// Wall time of set-ups (factorization / AMG hierarchy), seconds.
+    pub setup_seconds: f64,
+    /// Wall time of the solves, seconds.
+    pub solve_seconds: f64,
 }
 
 /// The Lagrange-multiplier saddle-point system built from the tangent and

@@ -67,7 +67,7 @@ where
     scatter: Scatter,
     assembler: Assembler<D>,
     /// The tangent system (faer direct by default).
-    linear: Box<dyn LinearSystem>,
+    linear: Box<dyn LinearSystem + 'm>,
     /// Current nodal displacements.
     pub u: Vec<[f64; D]>,
     committed: Vec<[f64; D]>,
@@ -161,7 +161,7 @@ where
     /// Like [`Newton::new`] with the tangent solved by `linear`.
     pub fn with_linear_system(
         model: &'m Model<D>,
-        linear: Box<dyn LinearSystem>,
+        linear: Box<dyn LinearSystem + 'm>,
     ) -> Result<Self, String> {
         let nn = model.mesh.nodes.len();
         let dofs = DofMap::new(model);
@@ -317,6 +317,11 @@ where
     /// Counters of the tangent's factorizations.
     pub fn factor_stats(&self) -> FactorStats {
         self.linear.stats()
+    }
+
+    /// Counters of a distributed linear solver (`None`: the serial one).
+    pub fn distributed_stats(&self) -> Option<super::linalg::DistributedStats> {
+        self.linear.distributed()
     }
 
     /// Saddle-point factorizations (symbolic, numeric) of the Lagrange

@@ -1,0 +1,502 @@
+//! The engine's tangent solved by PETSc over MPI: an implementation of
+//! [`ctc_engine::solve::linalg::LinearSystem`], what `ctc run --solver petsc`
+//! plugs into the Newton loop.
+//!
+//! ```text
+//! every rank: the whole model, the same Newton loop, the whole free-free
+//!   tangent (CSC, replicated assembly)
+//!     ──rows this rank owns (METIS partition of the cells, DofLayout rules)──▶
+//!   MatAIJ (exact preallocation, INSERT_VALUES row by row, no off-rank values)
+//!     ──KSP (preset: MUMPS LU; `-ksp_type`/`-pc_type`.. options win)──▶
+//!   solution (PETSc order) ──scatter to all──▶ the same free vector on every rank
+//! ```
+//!
+//! Because every rank receives the same solution vector, every decision of
+//! the Newton loop (convergence, line search, contact status, cutback,
+//! failure) is taken identically on all ranks without further agreement; a
+//! failed factorization or a diverged Krylov solve is collective in PETSc,
+//! so it is an error on every rank at once.
+//!
+//! What is distributed: the matrix rows, the factorization / preconditioner
+//! and the Krylov solve. What is not (yet): the assembly of the element and
+//! contact contributions, which every rank does for the whole mesh
+//! (`assembly = "replicated"` in `summary.json`).
+//!
+//! Row ownership: a node belongs to the lowest rank among the METIS parts
+//! of its cells ([`DofLayout`]); PETSc numbers the nodes rank by rank, and
+//! every node has its `D` rows (block size `D`, so AMG aggregates nodes as
+//! it does for elasticity). The rows of prescribed and inactive dofs are
+//! identity rows (diagonal = the mean free diagonal of the rank, right-hand
+//! side 0), decoupled from the free ones, as FEniCSx does for Dirichlet
+//! rows; AMG gets the rigid-body modes of the nodes as near-null space.
+//!
+//! With MUMPS, null-pivot detection is on (`ICNTL(24) = 1`): a singular
+//! tangent (a rigid-body motion nothing holds) is an error naming the
+//! number of null pivots, as the serial solver's zero-pivot test is,
+//! instead of a solution with an arbitrary rigid motion.
+
+use crate::comm::Comm;
+use crate::env::{check, Environment};
+use crate::error::PetscError;
+use crate::ffi;
+use crate::krylov::{set_near_null_space, Krylov, SolverChoice};
+use crate::layout::DofLayout;
+use crate::matrix::{to_ints, DistMatrix};
+use crate::nullspace::rigid_body_modes;
+use crate::partition::partition_cells;
+use ctc_engine::model::Model;
+use ctc_engine::solve::dofs::DofMap;
+use ctc_engine::solve::linalg::{
+    DistributedStats, FactorStats, LinearError, LinearSystem, SparsePattern,
+};
+use std::time::Instant;
+
+/// Marks an identity row's entry in [`OwnedRows::slots`].
+const DIAGONAL: usize = usize::MAX;
+
+/// The rows of the tangent owned by this rank, and where their values are
+/// in the engine's CSC value array.
+struct OwnedRows {
+    /// Start of each owned row in `cols` / `slots` (`rows + 1` entries).
+    ptr: Vec<usize>,
+    /// PETSc column index of each entry.
+    cols: Vec<ffi::PetscInt>,
+    /// Index into the CSC values of each entry ([`DIAGONAL`]: the one entry
+    /// of an identity row).
+    slots: Vec<usize>,
+    /// Row values, refilled at each factorization.
+    values: Vec<f64>,
+}
+
+/// PETSc objects of one sparsity pattern.
+struct Objects<'e> {
+    /// The distributed matrix.
+    mat: DistMatrix<'e>,
+    /// The configured solver.
+    ksp: Krylov<'e>,
+    /// Right-hand side and solution (PETSc layout of the matrix).
+    b: ffi::Vec,
+    x: ffi::Vec,
+    /// Scatter of `x` to every rank, and its target.
+    to_all: ffi::VecScatter,
+    all: ffi::Vec,
+}
+
+impl Drop for Objects<'_> {
+    fn drop(&mut self) {
+        // SAFETY: created once in `PetscSystem::build`, destroyed once here
+        // (the matrix and solver drop after, through their own wrappers).
+        unsafe {
+            ffi::VecScatterDestroy(&mut self.to_all);
+            ffi::VecDestroy(&mut self.all);
+            ffi::VecDestroy(&mut self.b);
+            ffi::VecDestroy(&mut self.x);
+        }
+    }
+}
+
+/// The tangent of a model solved by PETSc on all the ranks of `comm`.
+pub struct PetscSystem<'e> {
+    comm: Comm<'e>,
+    choice: SolverChoice,
+    /// Options prefix of the KSP (`""`: plain `-ksp_type ..`).
+    prefix: String,
+    /// Dofs per node (the block size).
+    dim: usize,
+    /// PETSc index of each free dof (engine numbering).
+    petsc_of: Vec<usize>,
+    /// First PETSc row of each rank, and the total at the end.
+    offsets: Vec<usize>,
+    /// Engine free dof of each owned row (`None`: an identity row).
+    owned: Vec<Option<usize>>,
+    /// Rigid-body modes on the owned rows.
+    modes: Vec<Vec<f64>>,
+    /// The MUMPS factor (to read its null-pivot count), when MUMPS is used.
+    mumps: bool,
+    /// Whether the next matrices are symmetric.
+    symmetric: bool,
+    rows: Option<OwnedRows>,
+    objects: Option<Objects<'e>>,
+    factorized: bool,
+    stats: DistributedStats,
+}
+
+impl<'e> PetscSystem<'e> {
+    /// The system of `model` (its dof numbering, mesh partition and
+    /// rigid-body modes) on the ranks of `env`'s world, with the preset
+    /// `choice` (the options database overrides it) and options prefix
+    /// `prefix`.
+    pub fn new<const D: usize>(
+        env: &'e Environment,
+        model: &Model<D>,
+        choice: SolverChoice,
+        prefix: &str,
+    ) -> Result<PetscSystem<'e>, PetscError> {
+        let comm = env.world();
+        let (ranks, rank) = (comm.size(), comm.rank());
+        let cells: Vec<&[usize]> = model.mesh.cells.iter().map(|c| c.nodes).collect();
+        let n_nodes = model.mesh.nodes.len();
+        // faces in 3D, edges in 2D (the first D nodes of a face are enough
+        // for linear and quadratic cells alike)
+        let part = partition_cells(&cells, n_nodes, ranks, D)?;
+        let layout = DofLayout::new(&cells, &part, n_nodes, ranks, rank, D)?;
+        let dofs = DofMap::<D>::new(model);
+        let petsc_of: Vec<usize> = dofs
+            .free
+            .iter()
+            .map(|&g| D * layout.node_block[g / D] + g % D)
+            .collect();
+        let offsets: Vec<usize> = layout.rank_offsets.iter().map(|&b| D * b).collect();
+        let mut owned = vec![None; offsets[rank + 1] - offsets[rank]];
+        for (f, &p) in petsc_of.iter().enumerate() {
+            if p >= offsets[rank] && p < offsets[rank + 1] {
+                owned[p - offsets[rank]] = Some(f);
+            }
+        }
+        // rigid-body modes of the owned nodes about the centroid of the mesh
+        let n = n_nodes.max(1) as f64;
+        let centre: Vec<f64> = (0..D)
+            .map(|c| model.mesh.nodes.iter().map(|x| x[c]).sum::<f64>() / n)
+            .collect();
+        let coords: Vec<f64> = layout
+            .owned_nodes
+            .iter()
+            .flat_map(|&nd| model.mesh.nodes[nd])
+            .collect();
+        let modes = rigid_body_modes(&coords, D, &centre);
+        let stats = DistributedStats {
+            solver: String::new(),
+            ranks,
+            rows_per_rank: offsets.windows(2).map(|w| w[1] - w[0]).collect(),
+            assembly: "replicated".into(),
+            ..Default::default()
+        };
+        Ok(PetscSystem {
+            comm,
+            choice,
+            prefix: prefix.to_string(),
+            dim: D,
+            mumps: false,
+            petsc_of,
+            offsets,
+            owned,
+            modes,
+            symmetric: true,
+            rows: None,
+            objects: None,
+            factorized: false,
+            stats,
+        })
+    }
+
+    /// This rank's number (0 writes the results).
+    pub fn rank(&self) -> usize {
+        self.comm.rank()
+    }
+
+    /// First owned PETSc row.
+    fn lo(&self) -> usize {
+        self.offsets[self.comm.rank()]
+    }
+
+    /// The owned rows of `pattern` (CSC, structurally symmetric: the row
+    /// of a dof has the entries of its column), and identity rows.
+    fn owned_rows(&self, pattern: &SparsePattern) -> Result<OwnedRows, PetscError> {
+        let lo = self.lo();
+        let n_owned = self.owned.len();
+        let local = |f: usize| {
+            let p = self.petsc_of[f];
+            (p >= lo && p < lo + n_owned).then(|| p - lo)
+        };
+        // row i's entries, from the columns j that hold row i
+        let mut count: Vec<usize> = self
+            .owned
+            .iter()
+            .map(|o| usize::from(o.is_none()))
+            .collect();
+        for j in 0..pattern.n {
+            for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
+                if let Some(r) = local(i) {
+                    count[r] += 1;
+                }
+            }
+        }
+        let mut ptr = vec![0; n_owned + 1];
+        for r in 0..n_owned {
+            ptr[r + 1] = ptr[r] + count[r];
+        }
+        let nnz = ptr[n_owned];
+        let mut cols = vec![0usize; nnz];
+        let mut slots = vec![0usize; nnz];
+        let mut next = ptr.clone();
+        for (r, o) in self.owned.iter().enumerate() {
+            if o.is_none() {
+                cols[next[r]] = lo + r;
+                slots[next[r]] = DIAGONAL;
+                next[r] += 1;
+            }
+        }
+        for j in 0..pattern.n {
+            for k in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
+                if let Some(r) = local(pattern.row_idx[k]) {
+                    cols[next[r]] = self.petsc_of[j];
+                    slots[next[r]] = k;
+                    next[r] += 1;
+                }
+            }
+        }
+        // PETSc prefers sorted columns within a row
+        for r in 0..n_owned {
+            let (a, b) = (ptr[r], ptr[r + 1]);
+            let mut idx: Vec<usize> = (a..b).collect();
+            idx.sort_by_key(|&e| cols[e]);
+            let c: Vec<usize> = idx.iter().map(|&e| cols[e]).collect();
+            let s: Vec<usize> = idx.iter().map(|&e| slots[e]).collect();
+            cols[a..b].copy_from_slice(&c);
+            slots[a..b].copy_from_slice(&s);
+        }
+        Ok(OwnedRows {
+            ptr,
+            cols: to_ints(&cols)?,
+            slots,
+            values: vec![0.0; nnz],
+        })
+    }
+
+    /// Creates the matrix, vectors, scatter and solver of the current rows.
+    fn build(&mut self) -> Result<Objects<'e>, PetscError> {
+        let rows = self.rows.as_ref().expect("owned rows are built first");
+        let (lo, n_owned) = (self.lo(), self.owned.len());
+        let hi = lo + n_owned;
+        let mut d = vec![0usize; n_owned];
+        let mut o = vec![0usize; n_owned];
+        for r in 0..n_owned {
+            for &c in &rows.cols[rows.ptr[r]..rows.ptr[r + 1]] {
+                let c = c as usize;
+                if c >= lo && c < hi {
+                    d[r] += 1;
+                } else {
+                    o[r] += 1;
+                }
+            }
+        }
+        let n_global = *self.offsets.last().unwrap_or(&0);
+        let mut mat = DistMatrix::from_nnz(&self.comm, n_owned, n_global, self.dim, &d, &o)?;
+        set_near_null_space(&self.comm, &mut mat, &self.modes)?;
+        let mut ksp = Krylov::new(&self.comm, &mat, self.choice, &self.prefix)?;
+        self.mumps = ksp.detect_null_pivots()?;
+        let mut b: ffi::Vec = std::ptr::null_mut();
+        let mut x: ffi::Vec = std::ptr::null_mut();
+        let mut to_all: ffi::VecScatter = std::ptr::null_mut();
+        let mut all: ffi::Vec = std::ptr::null_mut();
+        // SAFETY: the matrix is created; the handles are owned by
+        // `Objects`, whose Drop destroys them once.
+        unsafe {
+            check("MatCreateVecs", ffi::MatCreateVecs(mat.mat, &mut x, &mut b))?;
+            check(
+                "VecScatterCreateToAll",
+                ffi::VecScatterCreateToAll(x, &mut to_all, &mut all),
+            )?;
+        }
+        self.stats.solver = ksp.describe()?;
+        Ok(Objects {
+            mat,
+            ksp,
+            b,
+            x,
+            to_all,
+            all,
+        })
+    }
+
+    /// Inserts the owned rows of `values` and assembles (collective).
+    fn fill(&mut self, values: &[f64]) -> Result<(), PetscError> {
+        let lo = self.lo();
+        let rows = self.rows.as_mut().expect("owned rows are built first");
+        // identity rows: the mean diagonal of the free rows (conditioning)
+        let (mut sum, mut n) = (0.0, 0usize);
+        for (r, o) in self.owned.iter().enumerate() {
+            if o.is_some() {
+                for e in rows.ptr[r]..rows.ptr[r + 1] {
+                    if rows.cols[e] as usize == lo + r {
+                        sum += values[rows.slots[e]].abs();
+                        n += 1;
+                    }
+                }
+            }
+        }
+        let diagonal = if n > 0 && sum > 0.0 {
+            sum / n as f64
+        } else {
+            1.0
+        };
+        for (v, &s) in rows.values.iter_mut().zip(&rows.slots) {
+            *v = if s == DIAGONAL { diagonal } else { values[s] };
+        }
+        let obj = self.objects.as_mut().expect("objects are built first");
+        for r in 0..self.owned.len() {
+            let (a, b) = (rows.ptr[r], rows.ptr[r + 1]);
+            let row = [(lo + r) as ffi::PetscInt];
+            // SAFETY: the row is owned and its columns are in the
+            // preallocated pattern; PETSc copies the values.
+            unsafe {
+                check(
+                    "MatSetValues",
+                    ffi::MatSetValues(
+                        obj.mat.mat,
+                        1,
+                        row.as_ptr(),
+                        (b - a) as ffi::PetscInt,
+                        rows.cols[a..b].as_ptr(),
+                        rows.values[a..b].as_ptr(),
+                        ffi::InsertMode_INSERT_VALUES,
+                    ),
+                )?;
+            }
+        }
+        obj.mat.assemble()?;
+        obj.mat.set_symmetric(self.symmetric)
+    }
+
+    /// Factorization / preconditioner of the new values (collective).
+    fn factorize_petsc(
+        &mut self,
+        pattern: &SparsePattern,
+        values: &[f64],
+    ) -> Result<(), PetscError> {
+        if self.rows.is_none() {
+            self.objects = None;
+            self.rows = Some(self.owned_rows(pattern)?);
+        }
+        if self.objects.is_none() {
+            self.objects = Some(self.build()?);
+        }
+        let start = Instant::now();
+        self.fill(values)?;
+        let mid = Instant::now();
+        self.stats.assembly_seconds += (mid - start).as_secs_f64();
+        let obj = self.objects.as_mut().expect("built above");
+        // a failed factorization is reported by the rank that met it:
+        // every rank stops with it
+        self.comm.agree_failure(obj.ksp.set_up())?;
+        if self.mumps {
+            let null = obj.ksp.mumps_null_pivots()?;
+            if null > 0 {
+                return Err(PetscError::Singular(format!(
+                    "the stiffness matrix is singular: MUMPS found {null} null pivot(s) (a \
+                     rigid-body motion that no `fix` / `displace` condition and no closed \
+                     contact holds)"
+                )));
+            }
+        }
+        self.stats.setup_seconds += mid.elapsed().as_secs_f64();
+        self.stats.setups += 1;
+        Ok(())
+    }
+
+    /// `K x = rhs` in place (collective).
+    fn solve_petsc(&mut self, rhs: &mut [f64]) -> Result<(), PetscError> {
+        let start = Instant::now();
+        let obj = self.objects.as_mut().expect("factorized first");
+        // SAFETY: `b` has the owned rows of this rank; `all` has every row.
+        unsafe {
+            let mut ptr: *mut f64 = std::ptr::null_mut();
+            check("VecGetArray", ffi::VecGetArray(obj.b, &mut ptr))?;
+            let b = std::slice::from_raw_parts_mut(ptr, self.owned.len());
+            for (v, f) in b.iter_mut().zip(&self.owned) {
+                *v = f.map_or(0.0, |f| rhs[f]);
+            }
+            check("VecRestoreArray", ffi::VecRestoreArray(obj.b, &mut ptr))?;
+        }
+        let report = match obj.ksp.solve_vecs(obj.b, obj.x) {
+            // CG met an indefinite tangent (the curvature term of a convex
+            // tool at a trial penetration, softening): solve it, and the
+            // next ones of this pattern, by GMRES, as the serial solver
+            // falls back from Cholesky to L D L^T
+            Err(PetscError::Diverged { reason, .. })
+                if reason == ffi::KSPConvergedReason_KSP_DIVERGED_INDEFINITE_MAT
+                    || reason == ffi::KSPConvergedReason_KSP_DIVERGED_INDEFINITE_PC =>
+            {
+                obj.ksp.set_type("gmres")?;
+                self.stats.fallbacks += 1;
+                self.stats.solver = obj.ksp.describe()?;
+                obj.ksp.solve_vecs(obj.b, obj.x)?
+            }
+            r => r?,
+        };
+        // SAFETY: scatter created for `x` -> `all`.
+        unsafe {
+            let (i, f) = (
+                ffi::InsertMode_INSERT_VALUES,
+                ffi::ScatterMode_SCATTER_FORWARD,
+            );
+            check(
+                "VecScatterBegin",
+                ffi::VecScatterBegin(obj.to_all, obj.x, obj.all, i, f),
+            )?;
+            check(
+                "VecScatterEnd",
+                ffi::VecScatterEnd(obj.to_all, obj.x, obj.all, i, f),
+            )?;
+            let mut ptr: *const f64 = std::ptr::null();
+            check("VecGetArrayRead", ffi::VecGetArrayRead(obj.all, &mut ptr))?;
+            let all = std::slice::from_raw_parts(ptr, *self.offsets.last().unwrap_or(&0));
+            for (v, &p) in rhs.iter_mut().zip(&self.petsc_of) {
+                *v = all[p];
+            }
+            check(
+                "VecRestoreArrayRead",
+                ffi::VecRestoreArrayRead(obj.all, &mut ptr),
+            )?;
+        }
+        self.stats.solves += 1;
+        self.stats.krylov_iterations += report.iterations;
+        self.stats.max_krylov_iterations = self.stats.max_krylov_iterations.max(report.iterations);
+        self.stats.solve_seconds += start.elapsed().as_secs_f64();
+        Ok(())
+    }
+}
+
+/// A PETSc failure as the engine sees it: a failed set-up (a singular
+/// matrix met by the factorization) or a diverged Krylov solve.
+fn to_linear(e: PetscError) -> LinearError {
+    LinearError::Singular(format!("PETSc: {e}"))
+}
+
+impl LinearSystem for PetscSystem<'_> {
+    fn set_symmetric(&mut self, symmetric: bool) {
+        self.symmetric = symmetric;
+    }
+
+    fn factorize(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), LinearError> {
+        self.factorized = false;
+        self.factorize_petsc(pattern, values).map_err(to_linear)?;
+        self.factorized = true;
+        Ok(())
+    }
+
+    fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
+        if !self.factorized {
+            return Err(LinearError::NotFactorized);
+        }
+        self.solve_petsc(rhs).map_err(to_linear)
+    }
+
+    fn is_factorized(&self) -> bool {
+        self.factorized
+    }
+
+    fn reset_pattern(&mut self) {
+        self.objects = None;
+        self.rows = None;
+        self.factorized = false;
+    }
+
+    fn stats(&self) -> FactorStats {
+        FactorStats::default()
+    }
+
+    fn distributed(&self) -> Option<DistributedStats> {
+        Some(self.stats.clone())
+    }
+}

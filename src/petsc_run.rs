@@ -1,0 +1,97 @@
+//! `ctc run --solver petsc`: the run under MPI with the tangent solved by
+//! PETSc (crate `ctc-petsc`, cargo feature `petsc`).
+//!
+//! Every rank compiles the deck and runs the same Newton loop on the whole
+//! model; the tangent's rows are shared among the ranks and solved by a
+//! PETSc KSP ([`ctc_petsc::PetscSystem`]), whose solution every rank
+//! receives whole, so all ranks take the same decisions. Rank 0 alone
+//! writes the results (VTU/PVD, histories, summary.json with a
+//! `distributed` section, restart points) and prints; the other ranks
+//! print nothing, and all exit with the same status.
+
+use std::path::Path;
+
+/// Without the `petsc` feature: a clear error saying how to get it.
+#[cfg(not(feature = "petsc"))]
+pub fn run(
+    _deck: &Path,
+    _output: Option<&Path>,
+    _quiet: bool,
+    _verbose: bool,
+    _restart: bool,
+    _options: &[String],
+) -> Result<(), String> {
+    Err(
+        "error: `--solver petsc` needs a ctc built with the `petsc` feature: install PETSc \
+         and MPI with `bash petsc/install.sh`, then `cargo build --release --features petsc` \
+         and run `mpirun -n N target/release/ctc run DECK --solver petsc`"
+            .into(),
+    )
+}
+
+/// Runs `deck` on every rank of `mpirun`, the tangent solved by PETSc.
+#[cfg(feature = "petsc")]
+pub fn run(
+    deck: &Path,
+    output: Option<&Path>,
+    quiet: bool,
+    verbose: bool,
+    restart: bool,
+    options: &[String],
+) -> Result<(), String> {
+    use ctc_engine::model::AnyModel;
+    let env = ctc_petsc::Environment::initialize(&options.join(" "))
+        .map_err(|e| format!("error: cannot start MPI and PETSc: {e}"))?;
+    let rank = env.world().rank();
+    // every rank compiles the deck; only rank 0 reports its errors
+    let quiet_rank = |r: Result<(), String>| match r {
+        Err(_) if rank > 0 => Err(String::new()),
+        r => r,
+    };
+    let model = crate::read(deck)
+        .and_then(|source| ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source)));
+    let model = match model {
+        Ok(m) => m,
+        Err(e) => return quiet_rank(Err(e)),
+    };
+    let dir = output.map_or_else(|| crate::default_output(deck, ""), Path::to_path_buf);
+    let r = match &model {
+        AnyModel::D2(m) => run_model(&env, m, &dir, quiet, verbose, restart),
+        AnyModel::D3(m) => run_model(&env, m, &dir, quiet, verbose, restart),
+    };
+    quiet_rank(r)
+}
+
+#[cfg(feature = "petsc")]
+fn run_model<const D: usize>(
+    env: &ctc_petsc::Environment,
+    model: &ctc_engine::model::Model<D>,
+    dir: &Path,
+    quiet: bool,
+    verbose: bool,
+    restart: bool,
+) -> Result<(), String>
+where
+    nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
+{
+    use ctc_petsc::{PetscSystem, SolverChoice};
+    let system = PetscSystem::new(env, model, SolverChoice::MumpsLu, "")
+        .map_err(|e| format!("error: cannot set up PETSc for this model: {e}"))?;
+    if system.rank() == 0 {
+        return crate::run_model_with(model, dir, quiet, verbose, restart, Some(Box::new(system)));
+    }
+    // the other ranks: the same run, silent, writing nothing
+    let from = if restart {
+        let path = dir.join(ctc_engine::output::RESTART_FILE);
+        let file = ctc_engine::solve::restart::RestartFile::<D>::read(&path)
+            .map_err(|e| format!("error: {e}"))?;
+        Some(file.checkpoint)
+    } else {
+        None
+    };
+    struct Silent;
+    impl<const D: usize> ctc_engine::solve::Observer<D> for Silent {}
+    ctc_engine::solve::run_with(model, &mut Silent, from.as_ref(), Some(Box::new(system)))
+        .map(|_| ())
+        .map_err(|e| e.message)
+}

@@ -1,0 +1,235 @@
+//! `mpirun -n N ctc run DECK --solver petsc` against the serial faer run of
+//! the same deck (issue "a PETSc + MPI backend"): on 1 and 2 ranks the 2D
+//! Hertz cylinder (examples/hertz_cylinder.ctc) and a coarse 3D Hertz
+//! sphere (tests/decks/hertz_sphere_3d_coarse.ctc) take the same Newton
+//! iterations in every increment and give the same history (forces,
+//! reactions) and contact pressures to the linear solver's round-off; CG +
+//! GAMG chosen by PETSc options converges to the same answer; a failing
+//! run stops every rank with one diagnosis and a non-zero exit.
+//!
+//! ```text
+//!   serial:  ctc run deck                 ──▶ out/faer  ┐
+//!   MPI:     mpirun -n 1 ctc run deck --solver petsc ─▶ ├─ compare
+//!            mpirun -n 2 ctc run deck --solver petsc ─▶ ┘
+//! ```
+//!
+//! Needs the `petsc` feature and `mpirun` (`bash petsc/install.sh`); run by
+//! `.ci/run` as `cargo test --features petsc --test petsc_run`.
+#![cfg(feature = "petsc")]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// `ctc run deck -o dir [extra]`, under `mpirun -n ranks` when given.
+fn run(deck: &str, dir: &Path, ranks: Option<usize>, extra: &[&str]) -> Output {
+    let exe = env!("CARGO_BIN_EXE_ctc");
+    let mut cmd = match ranks {
+        Some(n) => {
+            let mut c = Command::new("mpirun");
+            c.args([
+                "--allow-run-as-root",
+                "--oversubscribe",
+                "-n",
+                &n.to_string(),
+                exe,
+            ]);
+            c
+        }
+        None => Command::new(exe),
+    };
+    cmd.current_dir(root())
+        .args(["run", deck, "-q", "-o"])
+        .arg(dir)
+        .args(extra);
+    cmd.output().expect("ctc runs")
+}
+
+fn ok(out: Output, what: &str) {
+    assert!(
+        out.status.success(),
+        "{what} failed:\n{}\n{}",
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// Header and numeric rows of a CSV file (empty cells are NaN).
+fn csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    let mut lines = text.lines();
+    let head = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(str::to_string)
+        .collect();
+    let rows = lines
+        .map(|l| {
+            l.split(',')
+                .map(|v| v.parse().unwrap_or(f64::NAN))
+                .collect()
+        })
+        .collect();
+    (head, rows)
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+fn iterations(s: &serde_json::Value) -> Vec<u64> {
+    s["increments"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|i| i["iterations"].as_u64().unwrap())
+        .collect()
+}
+
+/// Largest difference between two histories over the largest value of
+/// either (forces and reactions share one scale).
+fn history_difference(a: &Path, b: &Path) -> f64 {
+    let (ha, ra) = csv(&a.join("history.csv"));
+    let (hb, rb) = csv(&b.join("history.csv"));
+    assert_eq!(ha, hb);
+    assert_eq!(ra.len(), rb.len(), "same number of increments");
+    let scale = ra.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let diff = ra
+        .iter()
+        .flatten()
+        .zip(rb.iter().flatten())
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()));
+    diff / scale
+}
+
+/// The contact pressures of the last increment of pair 0, and their peak.
+fn pressures(dir: &Path, last: usize) -> (Vec<f64>, f64) {
+    let (head, rows) = csv(&dir.join(format!("contact_0_{last:04}.csv")));
+    let k = head.iter().position(|h| h == "pressure").unwrap();
+    let p: Vec<f64> = rows.iter().map(|r| r[k]).collect();
+    let peak = p.iter().fold(0.0f64, |m, v| m.max(*v));
+    (p, peak)
+}
+
+/// The serial and the 1- and 2-rank PETSc runs of `deck` agree.
+fn same_as_serial(deck: &str, name: &str, tol: f64) {
+    let tmp = tempfile::tempdir().unwrap();
+    let serial = tmp.path().join(format!("{name}_faer"));
+    ok(run(deck, &serial, None, &[]), "serial run");
+    let s0 = summary(&serial);
+    let n_inc = s0["increments"].as_array().unwrap().len();
+    let (p0, peak0) = pressures(&serial, n_inc);
+    assert!(peak0 > 0.0);
+    for ranks in [1, 2] {
+        let dir = tmp.path().join(format!("{name}_petsc{ranks}"));
+        ok(
+            run(deck, &dir, Some(ranks), &["--solver", "petsc"]),
+            "petsc run",
+        );
+        let s = summary(&dir);
+        assert_eq!(
+            iterations(&s),
+            iterations(&s0),
+            "{ranks} ranks: Newton iterations"
+        );
+        assert_eq!(s["distributed"]["ranks"], ranks);
+        assert_eq!(s["completed"], true);
+        let h = history_difference(&serial, &dir);
+        let (p, peak) = pressures(&dir, n_inc);
+        let dp = p0
+            .iter()
+            .zip(&p)
+            .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+            / peak0;
+        assert!(h < tol, "{ranks} ranks: history differs by {h:.2e}");
+        assert!(
+            dp < tol,
+            "{ranks} ranks: pressures differ by {dp:.2e} of p0"
+        );
+        assert!((peak - peak0).abs() <= tol * peak0);
+    }
+}
+
+#[test]
+fn hertz_cylinder_2d_on_one_and_two_ranks_is_the_serial_run() {
+    same_as_serial("examples/hertz_cylinder.ctc", "hertz2d", 1e-9);
+}
+
+#[test]
+fn hertz_sphere_3d_on_one_and_two_ranks_is_the_serial_run() {
+    same_as_serial("tests/decks/hertz_sphere_3d_coarse.ctc", "hertz3d", 1e-9);
+}
+
+#[test]
+fn cg_gamg_from_petsc_options_converges_to_the_serial_answer() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "tests/decks/hertz_sphere_3d_coarse.ctc";
+    let serial = tmp.path().join("faer");
+    ok(run(deck, &serial, None, &[]), "serial run");
+    let dir = tmp.path().join("gamg");
+    let opts = [
+        "--solver",
+        "petsc",
+        "--",
+        "-ksp_type",
+        "cg",
+        "-pc_type",
+        "gamg",
+        "-ksp_rtol",
+        "1e-12",
+    ];
+    ok(run(deck, &dir, Some(2), &opts), "CG + GAMG run");
+    let s = summary(&dir);
+    let d = &s["distributed"];
+    // this tangent is indefinite (the serial run needs L D L^T): CG falls back to GMRES
+    assert_eq!(d["solver"], "petsc: ksp gmres, pc gamg");
+    assert!(d["fallbacks"].as_u64().unwrap() >= 1);
+    let its = d["krylov_iterations"].as_u64().unwrap();
+    let solves = d["solves"].as_u64().unwrap();
+    assert!(
+        its > solves,
+        "an iterative solve takes more than one iteration"
+    );
+    assert_eq!(iterations(&s), iterations(&summary(&serial)));
+    let h = history_difference(&serial, &dir);
+    assert!(h < 1e-7, "CG + GAMG history differs by {h:.2e}");
+}
+
+#[test]
+fn a_failing_run_stops_every_rank_with_one_diagnosis() {
+    // the disc of this deck is held by nothing but its contact: the
+    // factorization meets the zero-energy mode on every rank
+    let tmp = tempfile::tempdir().unwrap();
+    let dir = tmp.path().join("fail");
+    let out = run(
+        "tests/decks/singular_with_contact.ctc",
+        &dir,
+        Some(2),
+        &["--solver", "petsc"],
+    );
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(
+        err.matches("error:").count(),
+        1,
+        "one diagnosis, by rank 0:\n{err}"
+    );
+    assert!(err.contains("MUMPS found 1 null pivot"), "{err}");
+}
+
+#[test]
+fn petsc_options_without_the_petsc_solver_are_refused() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = run(
+        "examples/hertz_cylinder.ctc",
+        &tmp.path().join("x"),
+        None,
+        &["--", "-ksp_type", "cg"],
+    );
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("need `--solver petsc`"));
+}
