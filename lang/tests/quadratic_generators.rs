@@ -157,3 +157,39 @@ fn explain_names_the_quadratic_cell_kinds() {
         "{text}"
     );
 }
+
+/// A gmsh file of second-order quadrangles (type 16) with 3-node boundary
+/// lines (type 8): quad8 cells, the midside nodes in the node sets, the
+/// pressure on the 3-node edges (total p x width).
+#[test]
+fn gmsh_quad8_strip_lowers_with_its_three_node_edges() {
+    let src = Source::new(
+        "tests/decks/strip_quad8.ctc",
+        "analysis { dimension = plane_strain }\n\
+         material m { elastic { E = 1000  nu = 0.3 } }\n\
+         body b { mesh = file \"strip_quad8.msh\"  material = m }\n\
+         fix b.bottom { ux uy }\n\
+         pressure b.top { p = 2 }\n\
+         step s { time = 0 .. 1 }\n",
+    );
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D2(m)) => m,
+        Ok(_) => panic!("not planar"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    assert_eq!(m.mesh.cells.len(), 2);
+    assert_eq!(m.mesh.cells.kind(1), CellKind::Quad8);
+    assert_eq!(m.mesh.node_sets["b.bottom"].len(), 5);
+    assert_eq!(m.constraints[0].nodes.len(), 5);
+    let Load::FacetPressure { facets, .. } = &m.loads[0] else {
+        panic!("{:?}", m.loads[0]);
+    };
+    assert_eq!(facets.len(), 2);
+    let mut f = vec![0.0; 2 * m.mesh.nodes.len()];
+    ctc_engine::solve::loads::external_forces(&m, 1.0, &mut f);
+    let fy: f64 = f.iter().skip(1).step_by(2).sum();
+    assert!((fy + 4.0).abs() < 1e-12, "{fy}");
+    let summary =
+        ctc_engine::solve::run(&m, &mut ctc_engine::testkit::Recorder::default()).unwrap();
+    assert!(summary.completed);
+}
