@@ -193,3 +193,24 @@ fn gmsh_quad8_strip_lowers_with_its_three_node_edges() {
         ctc_engine::solve::run(&m, &mut ctc_engine::testkit::Recorder::default()).unwrap();
     assert!(summary.completed);
 }
+
+/// The discs mix a triangle hub with quadrilateral rings: `order = 2`
+/// lifts each (tri6 + quad8), the arc's midside nodes on the circle.
+#[test]
+fn quarter_disc_of_order_two_is_tri6_and_quad8_with_its_arc_on_the_circle() {
+    let m = planar(
+        "axisymmetric",
+        "quarter_disc { center = (0, 0)  radius = 1  radial = 4  circumferential = 4  order = 2 }",
+        "fix b.flat { uy }",
+    );
+    let kinds: std::collections::BTreeSet<&str> = (0..m.mesh.cells.len())
+        .map(|c| m.mesh.cells.kind(c).name())
+        .collect();
+    assert_eq!(kinds.into_iter().collect::<Vec<_>>(), ["quad8", "tri6"]);
+    let arc = &m.mesh.node_sets["b.arc"];
+    assert_eq!(arc.len(), 9);
+    for &n in arc {
+        let p = m.mesh.nodes[n];
+        assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-12);
+    }
+}

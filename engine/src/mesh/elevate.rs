@@ -17,23 +17,41 @@ use std::collections::{BTreeMap, HashMap};
 /// `mesh` with every cell of kind `target.linear()` turned into a cell of
 /// kind `target` (the other cells, and quadratic ones, are an error).
 pub fn elevate<const D: usize>(mesh: &Mesh<D>, target: CellKind) -> Result<Mesh<D>, MeshError> {
-    let linear = target.linear();
-    if target.order() != 2 || target.dimension() != D {
+    elevate_each(mesh, &[target])
+}
+
+/// `mesh` with every cell turned into the cell of `targets` of its linear
+/// kind (a mixed tri3 + quad4 mesh becomes tri6 + quad8 with
+/// `[Tri6, Quad8]`); a cell whose kind no target lifts is an error.
+pub fn elevate_each<const D: usize>(
+    mesh: &Mesh<D>,
+    targets: &[CellKind],
+) -> Result<Mesh<D>, MeshError> {
+    if let Some(t) = targets
+        .iter()
+        .find(|t| t.order() != 2 || t.dimension() != D)
+    {
         return Err(MeshError::new(format!(
             "{} is not a quadratic {D}D cell kind",
-            target.name()
+            t.name()
         )));
     }
-    let reference = node_coordinates(target);
-    // for each new node: the corners it depends on and their weights
-    let weights: Vec<Vec<(usize, f64)>> = reference[linear.node_count()..]
+    // for each target and new node: the corners it depends on and their
+    // weights
+    let weights: Vec<Vec<Vec<(usize, f64)>>> = targets
         .iter()
-        .map(|xi| {
-            linear_shape(linear, xi)
-                .unwrap_or_default()
-                .into_iter()
-                .enumerate()
-                .filter(|(_, w)| w.abs() > 1e-12)
+        .map(|&target| {
+            let linear = target.linear();
+            node_coordinates(target)[linear.node_count()..]
+                .iter()
+                .map(|xi| {
+                    linear_shape(linear, xi)
+                        .unwrap_or_default()
+                        .into_iter()
+                        .enumerate()
+                        .filter(|(_, w)| w.abs() > 1e-12)
+                        .collect()
+                })
                 .collect()
         })
         .collect();
@@ -47,16 +65,17 @@ pub fn elevate<const D: usize>(mesh: &Mesh<D>, target: CellKind) -> Result<Mesh<
     // the sorted corners each new node depends on, by new node
     let mut parents: Vec<Vec<usize>> = Vec::new();
     for (c, cell) in mesh.cells.iter().enumerate() {
-        if cell.kind != linear {
+        let Some(t) = targets.iter().position(|t| t.linear() == cell.kind) else {
+            let names: Vec<&str> = targets.iter().map(|t| t.linear().name()).collect();
             return Err(MeshError::new(format!(
-                "cell {c} is a {}: only {} cells become {}",
+                "cell {c} is a {}: only {} cells are lifted",
                 cell.kind.name(),
-                linear.name(),
-                target.name()
+                names.join(" / ")
             )));
-        }
+        };
+        let (target, weights) = (targets[t], &weights[t]);
         let mut nodes = cell.nodes.to_vec();
-        for w in &weights {
+        for w in weights {
             let mut key: Vec<usize> = w.iter().map(|&(a, _)| cell.nodes[a]).collect();
             key.sort_unstable();
             let n = *shared.entry(key.clone()).or_insert_with(|| {

@@ -240,24 +240,23 @@ pub fn with_order<const D: usize>(
         return Ok(mesh);
     }
     let reduced = s.choice("integration", keys) == Some("reduced");
-    let Some(first) = mesh.cells.iter().next().map(|c| c.kind) else {
-        return Ok(mesh);
+    let targets = if reduced {
+        [
+            CellKind::Tri6,
+            CellKind::Quad8R,
+            CellKind::Tet10,
+            CellKind::Hex20R,
+        ]
+    } else {
+        [
+            CellKind::Tri6,
+            CellKind::Quad8,
+            CellKind::Tet10,
+            CellKind::Hex20,
+        ]
     };
-    let target = match (first, reduced) {
-        (CellKind::Tri3, _) => CellKind::Tri6,
-        (CellKind::Quad4, false) => CellKind::Quad8,
-        (CellKind::Quad4, true) => CellKind::Quad8R,
-        (CellKind::Tet4, _) => CellKind::Tet10,
-        (CellKind::Hex8, false) => CellKind::Hex20,
-        (CellKind::Hex8, true) => CellKind::Hex20R,
-        (k, _) => {
-            return Err(MeshError::new(format!(
-                "`order = 2` lifts linear cells; these are {}",
-                k.name()
-            )))
-        }
-    };
-    let mut q = ctc_engine::mesh::elevate::elevate(&mesh, target)?;
+    let targets: Vec<CellKind> = targets.into_iter().filter(|t| t.dimension() == D).collect();
+    let mut q = ctc_engine::mesh::elevate::elevate_each(&mesh, &targets)?;
     place_on_arcs(&mut q, mesh.nodes.len(), arcs);
     Ok(q)
 }
