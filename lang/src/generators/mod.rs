@@ -221,9 +221,9 @@ pub enum Arcs {
     /// A new node whose corners all lie at one distance from `center`
     /// (circle in 2D, sphere in 3D) moves radially onto that circle.
     About([f64; 3]),
-    /// A new node whose corners all lie at one distance from the z axis
-    /// (3D) or the y axis (the axis of a revolution, x = r) moves radially
-    /// onto that cylinder.
+    /// A new node whose corners all lie at one distance from the axis
+    /// along coordinate `k` through the origin (`Axis(2)`: the z axis of
+    /// tube, cylinder and revolve) moves radially onto that cylinder.
     Axis(usize),
 }
 
