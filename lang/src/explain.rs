@@ -91,26 +91,38 @@ pub fn explain(model: &Model) -> String {
     // ------------------------------------------------------------ bodies
     let _ = writeln!(o, "bodies: {}", model.bodies.len());
     for b in &model.bodies {
-        let tri = b
-            .cells
-            .clone()
-            .filter(|&c| model.mesh.cells.kind(c) == CellKind::Tri3)
-            .count();
-        let quad = b.cells.len() - tri;
-        let mut kinds = Vec::new();
-        if quad > 0 {
-            kinds.push(format!("{quad} quad4"));
-        }
-        if tri > 0 {
-            kinds.push(format!("{tri} tri3"));
-        }
-        let formulation = match (b.formulation, quad > 0) {
-            (Formulation::SelectiveReduced, true) => {
-                "selective reduced integration (quad4: 2x2 deviatoric, 1-point volumetric)"
+        // cell counts by kind, in the order of `CellKind`
+        let mut counts: Vec<(CellKind, usize)> = Vec::new();
+        for c in b.cells.clone() {
+            let k = model.mesh.cells.kind(c);
+            match counts.iter_mut().find(|(q, _)| *q == k) {
+                Some(e) => e.1 += 1,
+                None => counts.push((k, 1)),
             }
-            (_, true) => "full integration (quad4: 2x2 Gauss)",
-            (_, false) => "full integration (tri3: 1 point)",
-        };
+        }
+        counts.sort_by_key(|&(k, _)| (k != CellKind::Quad4, k as usize));
+        let kinds: Vec<String> = counts
+            .iter()
+            .map(|(k, n)| format!("{n} {}", k.name()))
+            .collect();
+        let selective = b.formulation == Formulation::SelectiveReduced
+            && counts.iter().any(|(k, _)| *k == CellKind::Quad4);
+        let rules: Vec<&str> = counts
+            .iter()
+            .map(|&(k, _)| match k {
+                CellKind::Quad4 if selective => {
+                    "selective reduced integration (quad4: 2x2 deviatoric, 1-point volumetric)"
+                }
+                CellKind::Quad4 => "full integration (quad4: 2x2 Gauss)",
+                CellKind::Tri3 => "full integration (tri3: 1 point)",
+                CellKind::Tri6 => "full integration (tri6: 3 points)",
+                CellKind::Quad8 => "full integration (quad8: 3x3 Gauss)",
+                CellKind::Quad8R => "reduced integration (quad8R: 2x2 Gauss)",
+                CellKind::Quad9 => "full integration (quad9: 3x3 Gauss)",
+                _ => "solid cells",
+            })
+            .collect();
+        let formulation = rules.join(" + ");
         let _ = writeln!(
             o,
             "  {}: {}, {} ({}), {formulation}",
@@ -182,7 +194,7 @@ pub fn explain(model: &Model) -> String {
                         o,
                         "  {label}: p = {} on {} (positive pushes into the body)",
                         time_function(value),
-                        plural(facets.len(), "face", "faces")
+                        plural(facets.len(), "3-node edge", "3-node edges")
                     );
                 }
                 Load::FacetTraction {

@@ -1,8 +1,12 @@
 //! Order elevation: a linear mesh (tri3, quad4, tet4, hex8) becomes a
 //! quadratic one of the same shape, with the new nodes (edge midpoints,
 //! face and body centres) where the linear map puts them (straight edges),
-//! shared between the cells that share the entity, and the face sets
-//! carried over to the quadratic faces. The generators use it for
+//! shared between the cells that share the entity, the face sets carried
+//! over to the quadratic faces, and every node set closed over its
+//! entities (a new node joins a set holding all the corners it depends on:
+//! the midside nodes of a boundary edge join the edge's node set). Planar
+//! edge sets keep their corner pairs (`Mesh::edge_midsides` finds the
+//! midside node). The generators use it for
 //! `order = 2`; tests use it to build distorted quadratic patches.
 
 use super::{Facet, Mesh, MeshError};
@@ -13,23 +17,41 @@ use std::collections::{BTreeMap, HashMap};
 /// `mesh` with every cell of kind `target.linear()` turned into a cell of
 /// kind `target` (the other cells, and quadratic ones, are an error).
 pub fn elevate<const D: usize>(mesh: &Mesh<D>, target: CellKind) -> Result<Mesh<D>, MeshError> {
-    let linear = target.linear();
-    if target.order() != 2 || target.dimension() != D {
+    elevate_each(mesh, &[target])
+}
+
+/// `mesh` with every cell turned into the cell of `targets` of its linear
+/// kind (a mixed tri3 + quad4 mesh becomes tri6 + quad8 with
+/// `[Tri6, Quad8]`); a cell whose kind no target lifts is an error.
+pub fn elevate_each<const D: usize>(
+    mesh: &Mesh<D>,
+    targets: &[CellKind],
+) -> Result<Mesh<D>, MeshError> {
+    if let Some(t) = targets
+        .iter()
+        .find(|t| t.order() != 2 || t.dimension() != D)
+    {
         return Err(MeshError::new(format!(
             "{} is not a quadratic {D}D cell kind",
-            target.name()
+            t.name()
         )));
     }
-    let reference = node_coordinates(target);
-    // for each new node: the corners it depends on and their weights
-    let weights: Vec<Vec<(usize, f64)>> = reference[linear.node_count()..]
+    // for each target and new node: the corners it depends on and their
+    // weights
+    let weights: Vec<Vec<Vec<(usize, f64)>>> = targets
         .iter()
-        .map(|xi| {
-            linear_shape(linear, xi)
-                .unwrap_or_default()
-                .into_iter()
-                .enumerate()
-                .filter(|(_, w)| w.abs() > 1e-12)
+        .map(|&target| {
+            let linear = target.linear();
+            node_coordinates(target)[linear.node_count()..]
+                .iter()
+                .map(|xi| {
+                    linear_shape(linear, xi)
+                        .unwrap_or_default()
+                        .into_iter()
+                        .enumerate()
+                        .filter(|(_, w)| w.abs() > 1e-12)
+                        .collect()
+                })
                 .collect()
         })
         .collect();
@@ -40,20 +62,23 @@ pub fn elevate<const D: usize>(mesh: &Mesh<D>, target: CellKind) -> Result<Mesh<
         ..Default::default()
     };
     let mut shared: HashMap<Vec<usize>, usize> = HashMap::new();
+    // the sorted corners each new node depends on, by new node
+    let mut parents: Vec<Vec<usize>> = Vec::new();
     for (c, cell) in mesh.cells.iter().enumerate() {
-        if cell.kind != linear {
+        let Some(t) = targets.iter().position(|t| t.linear() == cell.kind) else {
+            let names: Vec<&str> = targets.iter().map(|t| t.linear().name()).collect();
             return Err(MeshError::new(format!(
-                "cell {c} is a {}: only {} cells become {}",
+                "cell {c} is a {}: only {} cells are lifted",
                 cell.kind.name(),
-                linear.name(),
-                target.name()
+                names.join(" / ")
             )));
-        }
+        };
+        let (target, weights) = (targets[t], &weights[t]);
         let mut nodes = cell.nodes.to_vec();
-        for w in &weights {
+        for w in weights {
             let mut key: Vec<usize> = w.iter().map(|&(a, _)| cell.nodes[a]).collect();
             key.sort_unstable();
-            let n = *shared.entry(key).or_insert_with(|| {
+            let n = *shared.entry(key.clone()).or_insert_with(|| {
                 let mut x = [0.0; D];
                 for &(a, wa) in w {
                     for (xk, pk) in x.iter_mut().zip(&mesh.nodes[cell.nodes[a]]) {
@@ -63,9 +88,20 @@ pub fn elevate<const D: usize>(mesh: &Mesh<D>, target: CellKind) -> Result<Mesh<
                 out.nodes.push(x);
                 out.nodes.len() - 1
             });
+            if n >= mesh.nodes.len() + parents.len() {
+                parents.push(key);
+            }
             nodes.push(n);
         }
         out.cells.push_nodes(target, &nodes);
+    }
+    for set in out.node_sets.values_mut() {
+        let members: std::collections::HashSet<usize> = set.iter().copied().collect();
+        for (i, p) in parents.iter().enumerate() {
+            if p.iter().all(|c| members.contains(c)) {
+                set.push(mesh.nodes.len() + i);
+            }
+        }
     }
     // face sets: each linear face becomes the quadratic face with its corners
     let mut faces: BTreeMap<Vec<usize>, Facet> = BTreeMap::new();
@@ -169,6 +205,33 @@ mod tests {
             assert!(q.boundary_facets(0..2).iter().all(|f| f.nodes().len() == 3));
         }
         assert!(elevate(&m, CellKind::Tet10).is_err());
+    }
+
+    #[test]
+    fn node_sets_gain_the_midside_nodes_of_their_edges_and_planar_edges_find_theirs() {
+        let mut m = crate::mesh::generate::generate(&crate::mesh::generate::MeshSpec::Rectangle {
+            origin: [0.0, 0.0],
+            size: [2.0, 1.0],
+            divisions: [2, 1],
+            grading: [crate::mesh::generate::Grading::Uniform; 2],
+            kind: CellKind::Quad4,
+        })
+        .unwrap();
+        m.node_sets.insert("bottom".into(), vec![0, 1, 2]);
+        let q = elevate(&m, CellKind::Quad8).unwrap();
+        // the bottom set: its 3 corners and the 2 midpoints between them
+        let bottom = &q.node_sets["bottom"];
+        assert_eq!(bottom.len(), 5);
+        assert!(bottom.iter().all(|&n| q.nodes[n][1] == 0.0));
+        let midsides = q.edge_midsides();
+        let facets: Vec<Facet> = q.edge_sets["bottom"]
+            .iter()
+            .map(|&e| Mesh::edge_facet(&midsides, e))
+            .collect();
+        assert!(facets.iter().all(|f| f.nodes().len() == 3));
+        assert_eq!(q.facet_set("bottom").unwrap(), facets);
+        assert_eq!(q.boundary_edges(0..2).len(), 6);
+        assert!(m.edge_midsides().is_empty());
     }
 
     #[test]

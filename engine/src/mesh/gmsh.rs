@@ -24,8 +24,11 @@
 //!   error. Groups of different dimensions sharing a name given in
 //!   `$PhysicalNames` are merged; unnamed groups of different dimensions
 //!   with the same tag (both `physical_<tag>`) are an error asking for names;
-//! - points (type 15) and lines (type 1) only feed the sets; second-order
-//!   and 3D elements are errors in planar meshes. Solid meshes also read
+//! - points (type 15) and lines (types 1 and 8) only feed the sets; planar
+//!   meshes read the second-order tri6 (9), quad8 (16) and quad9 (10) in
+//!   gmsh's node order (the engine's), midside nodes where gmsh put them
+//!   (on the curved geometry); 3D elements are errors in planar meshes,
+//!   orders above 2 everywhere. Solid meshes also read
 //!   the second-order tet10 (11), hex20 (17) and hex27 (12) with their
 //!   facets (8, 9, 10, 16), gmsh's node order mapped to the engine's
 //!   (`crate::element::reference`).
@@ -274,6 +277,7 @@ fn skip(c: &mut Cursor, name: &str, start: usize) -> Result<(), MeshError> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::mesh::CellKind;
 
     const SQUARE_V2: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
 $PhysicalNames\n2\n1 1 \"bottom\"\n2 2 \"body\"\n$EndPhysicalNames\n\
@@ -290,6 +294,33 @@ $Elements\n3\n1 1 2 1 1 1 2\n2 2 2 2 1 1 3 2\n3 2 2 2 1 1 4 3\n$EndElements\n";
         assert_eq!(m.edge_sets["bottom"], vec![[0, 1]]);
         assert_eq!(m.node_sets["bottom"], vec![0, 1]);
         assert_eq!(m.node_sets["body"], vec![0, 1, 2, 3]);
+    }
+
+    /// A clockwise quad8 (top midside node off the chord, as gmsh puts it
+    /// on a curved boundary) with a 3-node physical line, and a tri6.
+    const QUAD8_V2: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
+$PhysicalNames\n1\n1 1 \"bottom\"\n$EndPhysicalNames\n\
+$Nodes\n10\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n5 0.5 0 0\n6 1 0.5 0\n7 0.5 1.1 0\n\
+8 0 0.5 0\n9 2 0 0\n10 1.5 0 0\n$EndNodes\n\
+$Elements\n3\n1 8 2 1 1 1 2 5\n2 16 2 0 1 1 4 3 2 8 7 6 5\n3 9 2 0 1 2 9 3 10 11 6\n$EndElements\n";
+
+    #[test]
+    fn second_order_planar_cells_are_read_reoriented_with_their_midside_nodes() {
+        let text = QUAD8_V2
+            .replace("$Nodes\n10\n", "$Nodes\n11\n")
+            .replace("10 1.5 0 0\n", "10 1.5 0 0\n11 1.5 0.5 0\n");
+        let m = parse(&text).unwrap();
+        assert_eq!(m.cells.kind(0), CellKind::Quad8);
+        assert_eq!(m.cells.kind(1), CellKind::Tri6);
+        // reflected: corners 1 2 3 4, midside nodes 5 6 7 8 (tags - 1)
+        assert_eq!(m.cells.nodes(0), &[0, 1, 2, 3, 4, 5, 6, 7]);
+        assert_eq!(m.nodes[6], [0.5, 1.1]);
+        // the triangle 2 9 3 was counter-clockwise already
+        assert_eq!(m.cells.nodes(1), &[1, 8, 2, 9, 10, 5]);
+        assert_eq!(m.edge_sets["bottom"], vec![[0, 1]]);
+        assert_eq!(m.node_sets["bottom"], vec![0, 1, 4]);
+        assert!(crate::mesh::validate::check(&m).is_ok());
+        assert_eq!(m.boundary_edges(0..2).len(), 5);
     }
 
     #[test]

@@ -97,6 +97,25 @@ impl<const D: usize> Mesh<D> {
         }
     }
 
+    /// [`Mesh::edge_midsides`] of a planar mesh (empty in 3D).
+    fn planar_midsides(&self) -> std::collections::HashMap<(usize, usize), usize> {
+        let mut out = std::collections::HashMap::new();
+        if D == 2 {
+            for cell in self.cells.iter() {
+                if cell.kind.order() != 2 || cell.kind.dimension() != 2 {
+                    continue;
+                }
+                for face in cell.kind.faces() {
+                    if let &[a, b, m] = *face {
+                        let (a, b) = (cell.nodes[a], cell.nodes[b]);
+                        out.insert((a.min(b), a.max(b)), cell.nodes[m]);
+                    }
+                }
+            }
+        }
+        out
+    }
+
     /// Coordinates of the nodes of cell `c`, as points.
     pub fn cell_points(&self, c: usize) -> Vec<crate::geom::Point<D>> {
         self.cells
@@ -128,13 +147,14 @@ impl<const D: usize> Mesh<D> {
             .collect()
     }
 
-    /// The facets of set `name`: the edge set of a planar mesh or the face
-    /// set of a solid mesh.
+    /// The facets of set `name`: the edge set of a planar mesh (3-node
+    /// edges where the cells are quadratic) or the face set of a solid mesh.
     pub fn facet_set(&self, name: &str) -> Option<Vec<Facet>> {
         if D == 2 {
+            let midsides = self.planar_midsides();
             self.edge_sets
                 .get(name)
-                .map(|e| e.iter().map(|&[a, b]| Facet::new(&[a, b])).collect())
+                .map(|e| e.iter().map(|&e| Mesh::edge_facet(&midsides, e)).collect())
         } else {
             self.face_sets.get(name).cloned()
         }
@@ -144,12 +164,15 @@ impl<const D: usize> Mesh<D> {
 impl Mesh<2> {
     /// Boundary edges of the cells in `cells`, oriented with the body on the
     /// left (counter-clockwise cells), in a deterministic order.
+    /// Quadratic cells give the corner pairs of their edges (the midside
+    /// node is [`Mesh::edge_midsides`]'s).
     pub fn boundary_edges(&self, cells: std::ops::Range<usize>) -> Vec<[usize; 2]> {
         let mut count: BTreeMap<(usize, usize), (usize, [usize; 2])> = BTreeMap::new();
         for c in cells {
             let n = self.cells.nodes(c);
-            for i in 0..n.len() {
-                let (a, b) = (n[i], n[(i + 1) % n.len()]);
+            let corners = self.cells.kind(c).corner_count();
+            for i in 0..corners {
+                let (a, b) = (n[i], n[(i + 1) % corners]);
                 let key = (a.min(b), a.max(b));
                 count.entry(key).or_insert((0, [a, b])).0 += 1;
             }
@@ -159,5 +182,25 @@ impl Mesh<2> {
             .filter(|(k, _)| *k == 1)
             .map(|(_, e)| e)
             .collect()
+    }
+
+    /// The midside node of every edge of the quadratic cells, by the
+    /// sorted corner pair of the edge (empty for a linear mesh). Planar
+    /// edge sets store corner pairs `[a, b]`; this map makes them the
+    /// 3-node edges `[a, b, m]` of the cells ([`Mesh::edge_facet`]).
+    pub fn edge_midsides(&self) -> std::collections::HashMap<(usize, usize), usize> {
+        self.planar_midsides()
+    }
+
+    /// The facet of the boundary edge `[a, b]`: `[a, b, m]` when `midsides`
+    /// ([`Mesh::edge_midsides`]) has its midside node, else `[a, b]`.
+    pub fn edge_facet(
+        midsides: &std::collections::HashMap<(usize, usize), usize>,
+        [a, b]: [usize; 2],
+    ) -> Facet {
+        match midsides.get(&(a.min(b), a.max(b))) {
+            Some(&m) => Facet::new(&[a, b, m]),
+            None => Facet::new(&[a, b]),
+        }
     }
 }

@@ -12,7 +12,7 @@ use ctc_engine::mesh::generate::{self, MeshSpec};
 use ctc_engine::mesh::{Mesh, MeshError};
 
 /// The keys of `annulus`.
-pub static KEYS: [Key; 9] = [
+pub static KEYS: [Key; 11] = [
     Key::new("center", KeyType::Point(Components::Two), "centre")
         .required("add `center = (x, y)`")
         .dim(Dim::Length),
@@ -53,6 +53,8 @@ pub static KEYS: [Key; 9] = [
         .range(Range::Positive)
         .labels(&["grading ratio"]),
     ELEMENT,
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `annulus`.
@@ -166,7 +168,17 @@ fn cells(s: &Settings) -> i64 {
     )
 }
 
-fn build(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
+fn build(s: &Settings, inputs: &[Mesh]) -> Result<Mesh, MeshError> {
+    let [x, y] = s.pair("center", &KEYS).unwrap_or([0.0, 0.0]);
+    super::with_order(
+        s,
+        &KEYS,
+        build_linear(s, inputs)?,
+        super::Arcs::About([x, y, 0.0]),
+    )
+}
+
+fn build_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
     let (start_angle, end_angle) = angles(s);
     generate::generate(&MeshSpec::Annulus {
         center: s

@@ -50,7 +50,7 @@ const UPPER: Key = Key::new(
 .default(Default::Bool(false));
 
 /// The keys of a disc whose arc has `min` divisions at least.
-const fn disc_keys(span: &'static str, min: i64) -> [Key; 8] {
+const fn disc_keys(span: &'static str, min: i64) -> [Key; 10] {
     [
         CENTER,
         RADIUS,
@@ -63,14 +63,16 @@ const fn disc_keys(span: &'static str, min: i64) -> [Key; 8] {
         CIRCUMFERENTIAL_GRADING,
         UPPER,
         ELEMENT,
+        super::ORDER,
+        super::INTEGRATION,
     ]
 }
 
 /// The keys of `half_disc`.
-pub static HALF_KEYS: [Key; 8] = disc_keys("divisions along the half circle", 2);
+pub static HALF_KEYS: [Key; 10] = disc_keys("divisions along the half circle", 2);
 
 /// The keys of `quarter_disc`.
-pub static QUARTER_KEYS: [Key; 8] = disc_keys("divisions along the quarter circle", 1);
+pub static QUARTER_KEYS: [Key; 10] = disc_keys("divisions along the quarter circle", 1);
 
 /// `half_disc`.
 pub static HALF_DISC: GeneratorDef = GeneratorDef {
@@ -146,7 +148,8 @@ fn disc(s: &Settings, keys: &[Key], name: &str) -> Result<Disc, MeshError> {
 
 fn build_half(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
     let d = disc(s, &HALF_KEYS, "half_disc")?;
-    generate::generate(&MeshSpec::HalfDisc {
+    let arcs = super::Arcs::About([d.center[0], d.center[1], 0.0]);
+    let linear = generate::generate(&MeshSpec::HalfDisc {
         center: d.center,
         radius: d.radius,
         radial: d.radial,
@@ -155,12 +158,14 @@ fn build_half(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
         circumferential_grading: d.circumferential_grading,
         upper: d.upper,
         kind: HALF_DISC.cell_kind(s),
-    })
+    })?;
+    super::with_order(s, &HALF_KEYS, linear, arcs)
 }
 
 fn build_quarter(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
     let d = disc(s, &QUARTER_KEYS, "quarter_disc")?;
-    generate::generate(&MeshSpec::QuarterDisc {
+    let arcs = super::Arcs::About([d.center[0], d.center[1], 0.0]);
+    let linear = generate::generate(&MeshSpec::QuarterDisc {
         center: d.center,
         radius: d.radius,
         radial: d.radial,
@@ -169,5 +174,6 @@ fn build_quarter(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
         circumferential_grading: d.circumferential_grading,
         upper: d.upper,
         kind: QUARTER_DISC.cell_kind(s),
-    })
+    })?;
+    super::with_order(s, &QUARTER_KEYS, linear, arcs)
 }

@@ -21,7 +21,7 @@ pub mod sweep;
 
 use crate::ast::settings::Settings;
 use crate::ast::Generator;
-use crate::keys::{Default, Key, KeyType};
+use crate::keys::{Default, Key, KeyType, Range};
 use crate::validate::Ctx;
 use ctc_engine::mesh::{CellKind, Mesh, MeshError};
 use std::collections::BTreeMap;
@@ -186,6 +186,160 @@ pub const ELEMENT: Key = Key::new(
     "cell type: linear triangles or bilinear quadrilaterals",
 )
 .default(Default::Choice("quad4"));
+
+/// The `order = 1 | 2` key of every generator: 2 lifts the linear cells to
+/// quadratic ones by [`ctc_engine::mesh::elevate`].
+pub const ORDER: Key = Key::new(
+    "order",
+    KeyType::Integer,
+    "polynomial order of the cells: 1 linear, 2 quadratic (tri3 -> tri6, quad4 -> quad8, \
+     tet4 -> tet10, hex8 -> hex20); new nodes at the straight midpoints, except that annulus, \
+     discs, tube, cylinder, sphere_octant and revolve move a new node whose corners lie at \
+     one distance from their centre / z axis onto that circle, cylinder or sphere",
+)
+.default(Default::Integer(1))
+.range(Range::Closed(1.0, 2.0))
+.labels(&["order"]);
+
+/// The `integration = full | reduced` key of every generator (reduced:
+/// quad8R / hex20R, 2x2 / 2x2x2 Gauss points; only with `order = 2` and
+/// quadrilaterals / hexahedra).
+pub const INTEGRATION: Key = Key::new(
+    "integration",
+    KeyType::Choice(&["full", "reduced"]),
+    "Gauss rule of the quadratic cells: full (quad8 3x3, hex20 3x3x3) or reduced \
+     (quad8R 2x2, hex20R 2x2x2, as CPE8R / C3D20R); needs `order = 2` and quad / hex cells",
+)
+.default(Default::Choice("full"));
+
+/// Where the midside nodes of a quadratic mesh go besides the straight
+/// midpoints: onto the arcs the generator meshes.
+#[derive(Debug, Clone, Copy)]
+pub enum Arcs {
+    /// Every edge straight.
+    None,
+    /// A new node whose corners all lie at one distance from `center`
+    /// (circle in 2D, sphere in 3D) moves radially onto that circle.
+    About([f64; 3]),
+    /// A new node whose corners all lie at one distance from the axis
+    /// along coordinate `k` through the origin (`Axis(2)`: the z axis of
+    /// tube, cylinder and revolve) moves radially onto that cylinder.
+    Axis(usize),
+}
+
+/// The quadratic version of the generated linear `mesh` when the settings
+/// ask for `order = 2` (else `mesh` itself): the cell kind from
+/// `integration`, midside nodes placed on `arcs`.
+pub fn with_order<const D: usize>(
+    s: &Settings,
+    keys: &[Key],
+    mesh: Mesh<D>,
+    arcs: Arcs,
+) -> Result<Mesh<D>, MeshError> {
+    if s.integer("order", keys).unwrap_or(1) != 2 {
+        return Ok(mesh);
+    }
+    let reduced = s.choice("integration", keys) == Some("reduced");
+    let targets = if reduced {
+        [
+            CellKind::Tri6,
+            CellKind::Quad8R,
+            CellKind::Tet10,
+            CellKind::Hex20R,
+        ]
+    } else {
+        [
+            CellKind::Tri6,
+            CellKind::Quad8,
+            CellKind::Tet10,
+            CellKind::Hex20,
+        ]
+    };
+    let targets: Vec<CellKind> = targets.into_iter().filter(|t| t.dimension() == D).collect();
+    let mut q = ctc_engine::mesh::elevate::elevate_each(&mesh, &targets)?;
+    place_on_arcs(&mut q, mesh.nodes.len(), arcs);
+    Ok(q)
+}
+
+/// Moves the new nodes (numbers from `first_new`) of `q` onto `arcs`.
+fn place_on_arcs<const D: usize>(q: &mut Mesh<D>, first_new: usize, arcs: Arcs) {
+    let (center, skip) = match arcs {
+        Arcs::None => return,
+        Arcs::About(c) => (c, None),
+        Arcs::Axis(k) => ([0.0; 3], Some(k)),
+    };
+    // distance vector from the centre or the axis
+    let radial = |p: &[f64; D]| -> [f64; D] {
+        std::array::from_fn(|k| {
+            if Some(k) == skip {
+                0.0
+            } else {
+                p[k] - center[k]
+            }
+        })
+    };
+    let norm = |v: &[f64; D]| v.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let mut done = vec![false; q.nodes.len()];
+    for c in 0..q.cells.len() {
+        let kind = q.cells.kind(c);
+        let sets = ctc_engine::mesh::elevate::corner_sets(kind);
+        let nodes = q.cells.nodes(c).to_vec();
+        for (a, set) in sets.iter().enumerate().skip(kind.corner_count()) {
+            let n = nodes[a];
+            if n < first_new || done[n] {
+                continue;
+            }
+            done[n] = true;
+            let radii: Vec<f64> = set
+                .iter()
+                .map(|&i| norm(&radial(&q.nodes[nodes[i]])))
+                .collect();
+            let r = radii[0];
+            let v = radial(&q.nodes[n]);
+            let rn = norm(&v);
+            if r <= 0.0 || rn <= 1e-12 * r || radii.iter().any(|x| (x - r).abs() > 1e-9 * r) {
+                continue;
+            }
+            for k in 0..D {
+                if Some(k) != skip {
+                    q.nodes[n][k] = center[k] + v[k] * r / rn;
+                }
+            }
+        }
+    }
+}
+
+/// `integration = reduced` and `order = 2` only where they can be
+/// honoured: reduced integration needs quadratic quadrilaterals or
+/// hexahedra (`order = 2`, not tri / tet cells).
+pub fn reduced_integration_needs_quadratic_quads(g: &Generator, ctx: &mut Ctx<'_>) {
+    let s = &g.settings;
+    let Some(span) = s.span("integration") else {
+        return;
+    };
+    if s.choice("integration", g.def.keys) != Some("reduced") {
+        return;
+    }
+    if s.integer("order", g.def.keys).unwrap_or(1) != 2 {
+        ctx.err(
+            crate::diagnostics::Diagnostic::error(
+                "`integration = reduced` is for quadratic cells",
+                span,
+                "needs `order = 2`",
+            )
+            .with_help("add `order = 2` (quad8R / hex20R), or leave `integration` out"),
+        );
+    } else if matches!(s.choice("element", g.def.keys), Some("tri3" | "tet4")) {
+        ctx.err(
+            crate::diagnostics::Diagnostic::error(
+                "`integration = reduced` has no rule for tri6 / tet10 cells",
+                span,
+                "quad8R / hex20R only",
+            )
+            .with_help("use `element = quad4` / `hex8`, or leave `integration` out"),
+        );
+    }
+}
 
 /// A division count as the engine takes it (at least 1).
 pub fn count(n: Option<i64>) -> usize {

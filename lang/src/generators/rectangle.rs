@@ -12,7 +12,7 @@ use ctc_engine::mesh::generate::{self, MeshSpec};
 use ctc_engine::mesh::{Mesh, MeshError};
 
 /// The keys of `rectangle`.
-pub static KEYS: [Key; 5] = [
+pub static KEYS: [Key; 7] = [
     Key::new(
         "origin",
         KeyType::Point(Components::Two),
@@ -46,6 +46,8 @@ pub static KEYS: [Key; 5] = [
     .range(Range::Positive)
     .labels(&["grading ratio"]),
     ELEMENT,
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `rectangle`.
@@ -77,7 +79,11 @@ fn cells(s: &Settings) -> i64 {
     cell_product(s.integers("divisions").unwrap_or_default())
 }
 
-fn build(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
+fn build(s: &Settings, inputs: &[Mesh]) -> Result<Mesh, MeshError> {
+    super::with_order(s, &KEYS, build_linear(s, inputs)?, super::Arcs::None)
+}
+
+fn build_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh, MeshError> {
     let size = s
         .pair("size", &KEYS)
         .ok_or_else(|| missing("rectangle", "size"))?;

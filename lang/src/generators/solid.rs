@@ -28,7 +28,7 @@ fn solid_kind(s: &Settings, keys: &[Key]) -> CellKind {
 }
 
 /// The keys of `box`.
-pub static BOX_KEYS: [Key; 5] = [
+pub static BOX_KEYS: [Key; 7] = [
     Key::new(
         "origin",
         KeyType::Point(Components::Three),
@@ -66,6 +66,8 @@ pub static BOX_KEYS: [Key; 5] = [
     .range(Range::Positive)
     .labels(&["grading ratio"]),
     SOLID_ELEMENT,
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `box`.
@@ -109,7 +111,16 @@ fn triple(v: Option<Vec<f64>>) -> Option<[f64; 3]> {
     (v.len() == 3).then(|| [v[0], v[1], v[2]])
 }
 
-fn build_box(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+fn build_box(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    super::with_order(
+        s,
+        &BOX_KEYS,
+        build_box_linear(s, inputs)?,
+        super::Arcs::None,
+    )
+}
+
+fn build_box_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
     let size = triple(s.numbers("size", &BOX_KEYS)).ok_or_else(|| missing("box", "size"))?;
     let d = s
         .integers("divisions")
@@ -129,7 +140,7 @@ fn build_box(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
 }
 
 /// The keys of `tube`.
-pub static TUBE_KEYS: [Key; 7] = [
+pub static TUBE_KEYS: [Key; 9] = [
     Key::new("inner", KeyType::Number, "inner radius")
         .required("add `inner = <radius>`")
         .range(Range::Positive)
@@ -169,6 +180,8 @@ pub static TUBE_KEYS: [Key; 7] = [
     .default(Default::Uniform)
     .range(Range::Positive),
     SOLID_ELEMENT,
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `tube`.
@@ -206,7 +219,16 @@ fn tube_cells(s: &Settings) -> i64 {
         .saturating_mul(tet_factor(s, &TUBE_KEYS))
 }
 
-fn build_tube(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+fn build_tube(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    super::with_order(
+        s,
+        &TUBE_KEYS,
+        build_tube_linear(s, inputs)?,
+        super::Arcs::Axis(2),
+    )
+}
+
+fn build_tube_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
     let num = |k: &str| s.number(k, &TUBE_KEYS).ok_or_else(|| missing("tube", k));
     let d = s
         .integers("divisions")
@@ -224,7 +246,7 @@ fn build_tube(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
 }
 
 /// The keys of `cylinder`.
-pub static CYLINDER_KEYS: [Key; 5] = [
+pub static CYLINDER_KEYS: [Key; 7] = [
     Key::new("radius", KeyType::Number, "radius")
         .required("add `radius = <radius>`")
         .range(Range::Positive)
@@ -250,6 +272,8 @@ pub static CYLINDER_KEYS: [Key; 5] = [
     .range(Range::AtLeast(1))
     .labels(&["core divisions", "ring divisions", "axial divisions"]),
     SOLID_ELEMENT,
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `cylinder`.
@@ -296,7 +320,16 @@ fn cylinder_cells(s: &Settings) -> i64 {
         .saturating_mul(tet_factor(s, &CYLINDER_KEYS))
 }
 
-fn build_cylinder(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+fn build_cylinder(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    super::with_order(
+        s,
+        &CYLINDER_KEYS,
+        build_cylinder_linear(s, inputs)?,
+        super::Arcs::Axis(2),
+    )
+}
+
+fn build_cylinder_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
     let num = |k: &str| {
         s.number(k, &CYLINDER_KEYS)
             .ok_or_else(|| missing("cylinder", k))
@@ -315,7 +348,7 @@ fn build_cylinder(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> 
 }
 
 /// The keys of `sphere_octant`.
-pub static SPHERE_KEYS: [Key; 6] = [
+pub static SPHERE_KEYS: [Key; 8] = [
     Key::new("inner", KeyType::Number, "inner radius")
         .required("add `inner = <radius>`")
         .range(Range::Positive)
@@ -342,6 +375,8 @@ pub static SPHERE_KEYS: [Key; 6] = [
     .default(Default::Uniform)
     .range(Range::Positive),
     SOLID_ELEMENT,
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `sphere_octant`.
@@ -369,7 +404,16 @@ fn sphere_cells(s: &Settings) -> i64 {
     cell_product([3, t, t, r]).saturating_mul(tet_factor(s, &SPHERE_KEYS))
 }
 
-fn build_sphere(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+fn build_sphere(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    super::with_order(
+        s,
+        &SPHERE_KEYS,
+        build_sphere_linear(s, inputs)?,
+        super::Arcs::About([0.0; 3]),
+    )
+}
+
+fn build_sphere_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
     let num = |k: &str| {
         s.number(k, &SPHERE_KEYS)
             .ok_or_else(|| missing("sphere_octant", k))

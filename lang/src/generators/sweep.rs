@@ -16,7 +16,7 @@ use ctc_engine::mesh::generate::sweep;
 use ctc_engine::mesh::{Mesh, MeshError};
 
 /// The keys of `extrude`.
-pub static EXTRUDE_KEYS: [Key; 4] = [
+pub static EXTRUDE_KEYS: [Key; 6] = [
     Key::new(
         "base",
         KeyType::Mesh,
@@ -34,6 +34,8 @@ pub static EXTRUDE_KEYS: [Key; 4] = [
     Key::new("grading", KeyType::Grading, "spacing of the layers")
         .default(Default::Uniform)
         .range(Range::Positive),
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `extrude`.
@@ -53,7 +55,7 @@ pub static EXTRUDE: GeneratorDef = GeneratorDef {
 };
 
 /// The keys of `revolve`.
-pub static REVOLVE_KEYS: [Key; 3] = [
+pub static REVOLVE_KEYS: [Key; 5] = [
     Key::new(
         "section",
         KeyType::Mesh,
@@ -72,6 +74,8 @@ pub static REVOLVE_KEYS: [Key; 3] = [
     Key::new("segments", KeyType::Integer, "divisions of the angle")
         .required("add `segments = <number of divisions of the angle>`")
         .range(Range::AtLeast(1)),
+    super::ORDER,
+    super::INTEGRATION,
 ];
 
 /// `revolve`.
@@ -140,6 +144,34 @@ fn input_is_planar(g: &Generator, key: &str, ctx: &mut Ctx<'_>) {
             return;
         }
         crate::validate::bodies::generator_settings_valid(inner, ctx);
+        input_is_linear(g, inner, key, ctx);
+    }
+}
+
+/// The swept mesh is linear: `order = 2` goes on the sweep (which lifts
+/// the swept hex8 / tet4 cells), not on its planar input.
+fn input_is_linear(g: &Generator, inner: &Generator, key: &str, ctx: &mut Ctx<'_>) {
+    if inner.settings.integer("order", inner.def.keys) != Some(2) {
+        return;
+    }
+    for k in ["order", "integration"] {
+        if let Some(span) = inner.settings.span(k) {
+            ctx.err(
+                Diagnostic::error(
+                    format!(
+                        "the {key} of `{}` must be linear: `{k}` goes on `{}` itself",
+                        g.name.name, g.name.name
+                    ),
+                    span,
+                    "on the planar input",
+                )
+                .with_help(format!(
+                    "move `{k}` out of `{}` into `{} {{ .. }}`: the swept hex8 / tet4 cells are \
+                     lifted to hex20 / tet10",
+                    inner.name.name, g.name.name
+                )),
+            );
+        }
     }
 }
 
@@ -167,6 +199,15 @@ fn revolve_cells(s: &Settings) -> i64 {
 }
 
 fn build_extrude(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    super::with_order(
+        s,
+        &EXTRUDE_KEYS,
+        build_extrude_linear(s, inputs)?,
+        super::Arcs::None,
+    )
+}
+
+fn build_extrude_linear(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
     let base = inputs.first().ok_or_else(|| missing("extrude", "base"))?;
     sweep::extrude(
         base,
@@ -178,6 +219,15 @@ fn build_extrude(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
 }
 
 fn build_revolve(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
+    super::with_order(
+        s,
+        &REVOLVE_KEYS,
+        build_revolve_linear(s, inputs)?,
+        super::Arcs::Axis(2),
+    )
+}
+
+fn build_revolve_linear(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
     let section = inputs
         .first()
         .ok_or_else(|| missing("revolve", "section"))?;

@@ -66,7 +66,8 @@ impl Lowerer<'_> {
                         "this surface has midside nodes",
                     )
                     .with_help(
-                        "mesh the contact bodies with linear cells (gmsh: Mesh.ElementOrder = 1)",
+                        "mesh the contact bodies with linear cells (generators: leave `order = 2` \
+                         out; gmsh: Mesh.ElementOrder = 1)",
                     ),
                 );
                 continue;

@@ -29,12 +29,32 @@ impl Lowerer<'_> {
                         }
                         continue;
                     }
+                    // edges of quadratic cells take the consistent load on
+                    // their 3-node edges [a, b, m]; linear ones the 2-node
+                    // closed form
+                    let midsides = self.mesh.edge_midsides();
+                    let (quadratic, linear): (Vec<Facet>, Vec<Facet>) = r
+                        .edges
+                        .clone()
+                        .unwrap_or_default()
+                        .into_iter()
+                        .map(|e| ctc_engine::mesh::Mesh::edge_facet(&midsides, e))
+                        .partition(|f| f.nodes().len() == 3);
                     for (_, f) in &l.values {
-                        out.push(Load::Pressure {
-                            label: label.clone(),
-                            edges: r.edges.clone().unwrap_or_default(),
-                            value: self.tf(f),
-                        });
+                        if !linear.is_empty() || quadratic.is_empty() {
+                            out.push(Load::Pressure {
+                                label: label.clone(),
+                                edges: linear.iter().map(Facet::edge).collect(),
+                                value: self.tf(f),
+                            });
+                        }
+                        if !quadratic.is_empty() {
+                            out.push(Load::FacetPressure {
+                                label: label.clone(),
+                                facets: quadratic.clone(),
+                                value: self.tf(f),
+                            });
+                        }
                     }
                 }
                 ast::LoadKind::Traction => {
@@ -44,7 +64,12 @@ impl Lowerer<'_> {
                     let label = format!("traction {}", l.target);
                     let facets: Vec<Facet> = match (&r.faces, &r.edges) {
                         (Some(f), _) => f.clone(),
-                        (None, Some(e)) => e.iter().map(|&[a, b]| Facet::new(&[a, b])).collect(),
+                        (None, Some(e)) => {
+                            let midsides = self.mesh.edge_midsides();
+                            e.iter()
+                                .map(|&e| ctc_engine::mesh::Mesh::edge_facet(&midsides, e))
+                                .collect()
+                        }
                         (None, None) => Vec::new(),
                     };
                     for (c, f) in &l.values {

@@ -253,16 +253,17 @@ pub fn append(global: &mut Mesh, body: &str, m: Mesh, at: Span) -> (Placed, Vec<
             .map(|e| [e[0] + node_off, e[1] + node_off])
             .collect();
         let key = format!("{body}.{name}");
-        global
-            .node_sets
-            .entry(key.clone())
-            .or_insert_with(|| edge_nodes(&v));
+        if !global.node_sets.contains_key(&key) {
+            let nodes = edge_nodes_in(global, &v);
+            global.node_sets.insert(key.clone(), nodes);
+        }
         global.edge_sets.insert(key, v);
     }
     let boundary = global.boundary_edges(cells.clone());
+    let boundary_nodes = edge_nodes_in(global, &boundary);
     global
         .node_sets
-        .insert(format!("{body}.boundary"), edge_nodes(&boundary));
+        .insert(format!("{body}.boundary"), boundary_nodes);
     global
         .edge_sets
         .insert(format!("{body}.boundary"), boundary);
@@ -349,6 +350,20 @@ pub fn facet_nodes(facets: &[ctc_engine::mesh::Facet]) -> Vec<usize> {
 /// The distinct nodes of `edges`, sorted.
 pub fn edge_nodes(edges: &[[usize; 2]]) -> Vec<usize> {
     let set: BTreeSet<usize> = edges.iter().flat_map(|e| [e[0], e[1]]).collect();
+    set.into_iter().collect()
+}
+
+/// The distinct nodes of `edges` of `mesh` with the midside nodes of its
+/// quadratic cells' edges ([`Mesh::edge_midsides`]), sorted.
+pub fn edge_nodes_in(mesh: &Mesh, edges: &[[usize; 2]]) -> Vec<usize> {
+    let midsides = mesh.edge_midsides();
+    if midsides.is_empty() {
+        return edge_nodes(edges);
+    }
+    let set: BTreeSet<usize> = edges
+        .iter()
+        .flat_map(|&e| Mesh::edge_facet(&midsides, e).nodes().to_vec())
+        .collect();
     set.into_iter().collect()
 }
 

@@ -2,7 +2,7 @@
 //! geometric selections (through `ctc_engine::mesh::select`), and the checks
 //! that a selection is not empty and has edges where edges are needed.
 
-use super::mesh::edge_nodes;
+use super::mesh::edge_nodes_in;
 use crate::ast::{self, num, Selection, SetRef, SetRefKind};
 use crate::diagnostics::Diagnostic;
 use crate::span::Spanned;
@@ -298,7 +298,7 @@ pub fn resolve(
                     }
                     let nodes = match (&nodes, &edges) {
                         (Some(n), _) => n.clone(),
-                        (None, Some(e)) => edge_nodes(e),
+                        (None, Some(e)) => edge_nodes_in(mesh, e),
                         (None, None) => Vec::new(),
                     };
                     if nodes.is_empty() {
@@ -535,7 +535,7 @@ fn combine(
         .with_help("every set of the combination must have edges"));
     }
     let nodes = match &edges {
-        Some(e) => edge_nodes(e),
+        Some(e) => edge_nodes_in(mesh, e),
         None => nodes,
     };
     if nodes.is_empty() {

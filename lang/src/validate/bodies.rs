@@ -181,6 +181,7 @@ pub fn generator_fits_dimension(g: &Generator, dim: Option<Dimension>, ctx: &mut
 pub fn generator_settings_valid(g: &Generator, ctx: &mut Ctx<'_>) {
     ranges::settings_in_range(&g.settings, g.def.keys, ctx);
     (g.def.check)(g, ctx);
+    crate::generators::reduced_integration_needs_quadratic_quads(g, ctx);
     let cells = (g.def.cells)(&g.settings);
     let limit = cell_limit();
     if cells > limit {
@@ -197,13 +198,30 @@ pub fn generator_settings_valid(g: &Generator, ctx: &mut Ctx<'_>) {
 
 /// Warning: selective reduced integration does nothing on triangles.
 pub fn selective_reduced_needs_quads(b: &Body, g: &Generator, ctx: &mut Ctx<'_>) {
-    let (Some(f), Some(el)) = (&b.formulation, g.settings.get("element")) else {
+    let Some(f) = &b.formulation else {
         return;
     };
-    let tri3 = matches!(
-        el.value.value,
-        crate::ast::settings::SettingValue::Choice("tri3")
-    );
+    let tri3 = g.settings.get("element").is_some_and(|el| {
+        matches!(
+            el.value.value,
+            crate::ast::settings::SettingValue::Choice("tri3")
+        )
+    });
+    let quadratic = g.settings.integer("order", g.def.keys) == Some(2);
+    if f.value == FormulationKind::SelectiveReduced && quadratic {
+        ctx.err(
+            Diagnostic::warning(
+                "`selective_reduced` has no effect on quadratic cells",
+                f.span,
+                "quadratic cells use their full (or `integration = reduced`) Gauss rule",
+            )
+            .with_help(
+                "leave `formulation` out with `order = 2`, or use `integration = reduced` \
+                 (quad8R / hex20R)",
+            ),
+        );
+        return;
+    }
     if f.value == FormulationKind::SelectiveReduced && tri3 {
         ctx.err(
             Diagnostic::warning(

@@ -15,6 +15,7 @@ pub mod impact;
 pub mod mortar;
 pub mod objectivity;
 pub mod penalty_scaling;
+pub mod quadratic;
 pub mod solid;
 pub mod solid_patch;
 pub mod thermal_contact;
@@ -44,6 +45,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(mortar::cases());
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
+    v.extend(quadratic::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
     v.extend(friction_3d::cases());

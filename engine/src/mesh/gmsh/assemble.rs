@@ -1,9 +1,16 @@
 //! Turns the raw file content into a [`Mesh`]: dense node numbering,
 //! counter-clockwise cells, named sets from the physical groups.
+//!
+//! Second-order cells (tri6 9, quad8 16, quad9 10) keep gmsh's node order,
+//! which is the engine's (corners, edge midpoints from edge 0-1 on, the
+//! centre); their midside nodes stay where gmsh put them (on the curved
+//! geometry). Their boundary lines are 3-node lines (8): the edge sets hold
+//! the corner pairs (`Mesh::edge_midsides` finds the midside node), the
+//! node sets all three nodes.
 
 use super::raw::{ElementType, RawMesh};
 use crate::mesh::quality::polygon_area;
-use crate::mesh::{Cell, Mesh, MeshError};
+use crate::mesh::{Cell, CellKind, Mesh, MeshError};
 use std::collections::{BTreeMap, HashMap, HashSet};
 
 /// What one physical group collects.
@@ -80,7 +87,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     if cells.is_empty() {
         return Err(MeshError::at_line(
             eof_line,
-            "the file has no triangles or quadrangles (type 2 or 3). If physical groups are \
+            "the file has no triangles or quadrangles (type 2, 3, 9, 16 or 10). If physical groups are \
              defined, gmsh saves only their elements: add a Physical Surface, or set \
              Mesh.SaveAll = 1",
         ));
@@ -103,22 +110,30 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     let renum = |p: usize| new_of[p].expect("cell nodes are numbered");
     for c in &cells {
         let mut n: Vec<usize> = c.iter().map(|&p| renum(p)).collect();
-        let pts: Vec<[f64; 2]> = n.iter().map(|&k| mesh.nodes[k]).collect();
+        let kind = match n.len() {
+            3 => CellKind::Tri3,
+            4 => CellKind::Quad4,
+            6 => CellKind::Tri6,
+            8 => CellKind::Quad8,
+            _ => CellKind::Quad9,
+        };
+        let corners = kind.corner_count();
+        let pts: Vec<[f64; 2]> = n[..corners].iter().map(|&k| mesh.nodes[k]).collect();
         if polygon_area(&pts) < 0.0 {
-            n[1..].reverse();
+            // reflect: corners 0, last, .., 1; the midside nodes follow
+            let reflection: Vec<usize> = std::iter::once(0).chain((1..corners).rev()).collect();
+            n = crate::mesh::elevate::permute_corners(kind, &n, &reflection);
         }
-        mesh.cells.push(match n.len() {
-            3 => Cell::tri(n[0], n[1], n[2]),
-            _ => Cell::quad(n[0], n[1], n[2], n[3]),
-        });
+        mesh.cells.push(Cell { kind, nodes: n });
     }
 
     // every cell edge: undirected key -> (count, direction in its first cell)
     let mut edges: HashMap<(usize, usize), (usize, [usize; 2])> = HashMap::new();
     for c in &mesh.cells {
         let n = c.nodes;
-        for i in 0..n.len() {
-            let (a, b) = (n[i], n[(i + 1) % n.len()]);
+        let corners = c.kind.corner_count();
+        for i in 0..corners {
+            let (a, b) = (n[i], n[(i + 1) % corners]);
             edges.entry((a.min(b), a.max(b))).or_insert((0, [a, b])).0 += 1;
         }
     }
@@ -151,7 +166,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
                 )
             })?;
         let mut edge = None;
-        if e.kind == ElementType::Line {
+        if matches!(e.kind, ElementType::Line | ElementType::Line3) {
             let key = (nodes[0].min(nodes[1]), nodes[0].max(nodes[1]));
             match edges.get(&key) {
                 None => {

@@ -3,8 +3,8 @@
 
 use std::collections::BTreeMap;
 
-/// Element types read (first order; second order in solid meshes);
-/// anything else is an error.
+/// Element types read (first and second order); anything else is an
+/// error.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ElementType {
     /// gmsh type 15, 1-node point.
@@ -19,13 +19,17 @@ pub enum ElementType {
     Tetrahedron,
     /// gmsh type 5, 8-node hexahedron (solid meshes only).
     Hexahedron,
-    /// gmsh type 8, 3-node line (solid meshes only: node sets).
+    /// gmsh type 8, 3-node line (planar meshes: edge and node sets of
+    /// quadratic cells; solid meshes: node sets).
     Line3,
-    /// gmsh type 9, 6-node triangle (solid meshes only: face sets).
+    /// gmsh type 9, 6-node triangle (planar meshes: tri6 cells; solid
+    /// meshes: face sets).
     Triangle6,
-    /// gmsh type 16, 8-node quadrangle (solid meshes only: face sets).
+    /// gmsh type 16, 8-node quadrangle (planar: quad8 cells; solid: face
+    /// sets).
     Quadrangle8,
-    /// gmsh type 10, 9-node quadrangle (solid meshes only: face sets).
+    /// gmsh type 10, 9-node quadrangle (planar: quad9 cells; solid: face
+    /// sets).
     Quadrangle9,
     /// gmsh type 11, 10-node tetrahedron (solid meshes only).
     Tetrahedron10,
@@ -49,10 +53,10 @@ impl ElementType {
             3 => ElementType::Quadrangle,
             4 if solid => ElementType::Tetrahedron,
             5 if solid => ElementType::Hexahedron,
-            8 if solid => ElementType::Line3,
-            9 if solid => ElementType::Triangle6,
-            16 if solid => ElementType::Quadrangle8,
-            10 if solid => ElementType::Quadrangle9,
+            8 => ElementType::Line3,
+            9 => ElementType::Triangle6,
+            16 => ElementType::Quadrangle8,
+            10 => ElementType::Quadrangle9,
             11 if solid => ElementType::Tetrahedron10,
             17 if solid => ElementType::Hexahedron20,
             12 if solid => ElementType::Hexahedron27,
@@ -63,9 +67,9 @@ impl ElementType {
                     "element type {t} (prism or pyramid) is not supported: ctc reads tetrahedra (4) and hexahedra (5)"
                 ))
             }
-            8 | 26..=28 => return Err(higher_order(t, "line")),
-            9 | 20..=25 => return Err(higher_order(t, "triangle")),
-            10 | 16 | 36 | 37 => return Err(higher_order(t, "quadrangle")),
+            26..=28 => return Err(higher_order(t, "line")),
+            20..=25 => return Err(higher_order(t, "triangle")),
+            36 | 37 => return Err(higher_order(t, "quadrangle")),
             4..=7 | 11..=14 | 17..=19 | 29..=35 | 92 | 93 => {
                 return Err(format!(
                     "element type {t} is a 3D element: ctc reads 2D meshes only (triangles and quadrangles in a plane)"
@@ -118,10 +122,10 @@ impl ElementType {
 
 fn higher_order(t: i64, shape: &str) -> String {
     format!(
-        "element type {t} is a second- or higher-order {shape}: ctc reads first-order meshes \
-         and second-order solid meshes (tet10 11, hex20 17, hex27 12 with their 8, 9, 10, 16 \
-         facets); for a planar mesh, or an order above 2, mesh with order 1 (gmsh: \
-         Mesh.ElementOrder = 1, or -order 1)"
+        "element type {t} is a higher-order {shape}: ctc reads first- and second-order meshes \
+         (planar: tri6 9, quad8 16, quad9 10 with 3-node lines 8; solid: tet10 11, hex20 17, \
+         hex27 12 with their 8, 9, 10, 16 facets); mesh with order 2 or less (gmsh: \
+         Mesh.ElementOrder = 2, or -order 2)"
     )
 }
 

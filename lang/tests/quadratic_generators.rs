@@ -1,0 +1,216 @@
+//! `order = 2` on the mesh generators (issue 23): the linear mesh lifted by
+//! `mesh::elevate`, its sets carried to the midside nodes, loads on the
+//! 3-node edges / quadratic faces, and the midside nodes of the arcs on
+//! the true circle.
+
+use ctc_engine::mesh::CellKind;
+use ctc_engine::model::{AnyModel, Load, Model};
+use ctc_lang::{check, compile_any, Source};
+
+fn planar(analysis: &str, mesh: &str, rest: &str) -> Model {
+    let src = Source::new(
+        "quad.ctc",
+        format!(
+            "analysis {{ dimension = {analysis} }}\n\
+             material m {{ elastic {{ E = 1000  nu = 0.3 }} }}\n\
+             body b {{\n  mesh = {mesh}\n  material = m\n}}\n\
+             {rest}\n\
+             step s {{ time = 0 .. 1  increments = 1 }}\n"
+        ),
+    );
+    match compile_any(&src) {
+        Ok(AnyModel::D2(m)) => m,
+        Ok(_) => panic!("not planar"),
+        Err(d) => panic!("{}", d.render(&src)),
+    }
+}
+
+fn solid(mesh: &str, rest: &str) -> Model<3> {
+    let src = Source::new(
+        "quad3.ctc",
+        format!(
+            "analysis {{ dimension = 3d }}\n\
+             material m {{ elastic {{ E = 1000  nu = 0.3 }} }}\n\
+             body b {{\n  mesh = {mesh}\n  material = m\n}}\n\
+             {rest}\n\
+             step s {{ time = 0 .. 1  increments = 1 }}\n"
+        ),
+    );
+    match compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    }
+}
+
+#[test]
+fn rectangle_of_order_two_is_quad8_with_midside_nodes_in_its_edge_sets() {
+    let m = planar(
+        "plane_strain",
+        "rectangle { size = (2, 1)  divisions = (4, 2)  order = 2 }",
+        "fix b.left { ux uy }\npressure b.right { p = 1 }",
+    );
+    // 5 x 3 corners, 4 x 3 + 5 x 2 midside nodes
+    assert_eq!(m.mesh.nodes.len(), 15 + 12 + 10);
+    assert!((0..m.mesh.cells.len()).all(|c| m.mesh.cells.kind(c) == CellKind::Quad8));
+    // the left edge: 3 corners and 2 midside nodes, all at x = 0
+    let left = &m.mesh.node_sets["b.left"];
+    assert_eq!(left.len(), 5);
+    assert!(left.iter().all(|&n| m.mesh.nodes[n][0] == 0.0));
+    assert_eq!(m.constraints[0].nodes.len(), 5);
+    // the pressure acts on the two 3-node edges of the right side; its
+    // total is p * height (consistent 1/6, 4/6, 1/6 shares)
+    let Load::FacetPressure { facets, .. } = &m.loads[0] else {
+        panic!("{:?}", m.loads[0]);
+    };
+    assert_eq!(facets.len(), 2);
+    assert!(facets.iter().all(|f| f.nodes().len() == 3));
+    let mut f = vec![0.0; 2 * m.mesh.nodes.len()];
+    ctc_engine::solve::loads::external_forces(&m, 1.0, &mut f);
+    let fx: f64 = f.iter().step_by(2).sum();
+    assert!((fx + 1.0).abs() < 1e-12, "{fx}");
+}
+
+#[test]
+fn reduced_integration_gives_quad8r_and_triangles_give_tri6() {
+    let m = planar(
+        "axisymmetric",
+        "rectangle { origin = (1, 0)  size = (1, 1)  divisions = (2, 2)  order = 2  \
+         integration = reduced }",
+        "fix b.bottom { uy }",
+    );
+    assert_eq!(m.mesh.cells.kind(0), CellKind::Quad8R);
+    let m = planar(
+        "plane_strain",
+        "rectangle { size = (1, 1)  divisions = (2, 2)  element = tri3  order = 2 }",
+        "fix b.bottom { uy }",
+    );
+    assert_eq!(m.mesh.cells.kind(0), CellKind::Tri6);
+}
+
+#[test]
+fn annulus_of_order_two_puts_its_arc_midpoints_on_the_circles() {
+    let m = planar(
+        "plane_strain",
+        "annulus { center = (1, 2)  inner = 1  outer = 2  end = 90  radial = 2  \
+         circumferential = 3  order = 2 }",
+        "fix b.start { uy }",
+    );
+    let radius = |n: usize| {
+        let p = m.mesh.nodes[n];
+        (p[0] - 1.0).hypot(p[1] - 2.0)
+    };
+    // every node of the inner and outer arcs on its circle (midpoints too)
+    for (set, r) in [("b.inner", 1.0), ("b.outer", 2.0)] {
+        let nodes = &m.mesh.node_sets[set];
+        assert_eq!(nodes.len(), 7, "{set}");
+        for &n in nodes {
+            assert!((radius(n) - r).abs() < 1e-12, "{set}: {}", radius(n));
+        }
+    }
+}
+
+#[test]
+fn tube_of_order_two_is_hex20_with_its_faces_on_the_cylinders() {
+    let m = solid(
+        "tube { inner = 1  outer = 2  angle = 90  height = 0.5  divisions = (2, 3, 1)  \
+         order = 2 }",
+        "fix b.zmin { uz }\npressure b.inner { p = 1 }",
+    );
+    assert!((0..m.mesh.cells.len()).all(|c| m.mesh.cells.kind(c) == CellKind::Hex20));
+    for &n in &m.mesh.node_sets["b.inner"] {
+        let p = m.mesh.nodes[n];
+        assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-12);
+    }
+    let Load::FacetPressure { facets, .. } = &m.loads[0] else {
+        panic!("{:?}", m.loads[0]);
+    };
+    assert!(facets.iter().all(|f| f.nodes().len() == 8));
+    let m = solid(
+        "box { size = (1, 1, 1)  divisions = (1, 1, 1)  element = tet4  order = 2 }",
+        "fix b.zmin { uz }",
+    );
+    assert_eq!(m.mesh.cells.kind(0), CellKind::Tet10);
+    let m = solid(
+        "extrude { base = rectangle { size = (1, 1)  divisions = (2, 2) }  length = 1  \
+         layers = 1  order = 2  integration = reduced }",
+        "fix b.zmin { uz }",
+    );
+    assert_eq!(m.mesh.cells.kind(0), CellKind::Hex20R);
+}
+
+#[test]
+fn explain_names_the_quadratic_cell_kinds() {
+    let src = Source::new(
+        "explain.ctc",
+        "analysis { dimension = plane_strain }\n\
+         material m { elastic { E = 1000  nu = 0.3 } }\n\
+         body b { mesh = rectangle { size = (1, 1)  divisions = (2, 2)  order = 2 }  material = m }\n\
+         fix b.bottom { uy }\n\
+         step s { time = 0 .. 1 }\n",
+    );
+    let r = check(&src);
+    let model = r.model.expect("valid deck");
+    let text = ctc_lang::explain::explain(&model);
+    assert!(
+        text.contains("4 cells (4 quad8), full integration (quad8: 3x3 Gauss)"),
+        "{text}"
+    );
+}
+
+/// A gmsh file of second-order quadrangles (type 16) with 3-node boundary
+/// lines (type 8): quad8 cells, the midside nodes in the node sets, the
+/// pressure on the 3-node edges (total p x width).
+#[test]
+fn gmsh_quad8_strip_lowers_with_its_three_node_edges() {
+    let src = Source::new(
+        "tests/decks/strip_quad8.ctc",
+        "analysis { dimension = plane_strain }\n\
+         material m { elastic { E = 1000  nu = 0.3 } }\n\
+         body b { mesh = file \"strip_quad8.msh\"  material = m }\n\
+         fix b.bottom { ux uy }\n\
+         pressure b.top { p = 2 }\n\
+         step s { time = 0 .. 1 }\n",
+    );
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D2(m)) => m,
+        Ok(_) => panic!("not planar"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    assert_eq!(m.mesh.cells.len(), 2);
+    assert_eq!(m.mesh.cells.kind(1), CellKind::Quad8);
+    assert_eq!(m.mesh.node_sets["b.bottom"].len(), 5);
+    assert_eq!(m.constraints[0].nodes.len(), 5);
+    let Load::FacetPressure { facets, .. } = &m.loads[0] else {
+        panic!("{:?}", m.loads[0]);
+    };
+    assert_eq!(facets.len(), 2);
+    let mut f = vec![0.0; 2 * m.mesh.nodes.len()];
+    ctc_engine::solve::loads::external_forces(&m, 1.0, &mut f);
+    let fy: f64 = f.iter().skip(1).step_by(2).sum();
+    assert!((fy + 4.0).abs() < 1e-12, "{fy}");
+    let summary =
+        ctc_engine::solve::run(&m, &mut ctc_engine::testkit::Recorder::default()).unwrap();
+    assert!(summary.completed);
+}
+
+/// The discs mix a triangle hub with quadrilateral rings: `order = 2`
+/// lifts each (tri6 + quad8), the arc's midside nodes on the circle.
+#[test]
+fn quarter_disc_of_order_two_is_tri6_and_quad8_with_its_arc_on_the_circle() {
+    let m = planar(
+        "axisymmetric",
+        "quarter_disc { center = (0, 0)  radius = 1  radial = 4  circumferential = 4  order = 2 }",
+        "fix b.flat { uy }",
+    );
+    let kinds: std::collections::BTreeSet<&str> = (0..m.mesh.cells.len())
+        .map(|c| m.mesh.cells.kind(c).name())
+        .collect();
+    assert_eq!(kinds.into_iter().collect::<Vec<_>>(), ["quad8", "tri6"]);
+    let arc = &m.mesh.node_sets["b.arc"];
+    assert_eq!(arc.len(), 9);
+    for &n in arc {
+        let p = m.mesh.nodes[n];
+        assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-12);
+    }
+}
