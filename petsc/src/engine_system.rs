@@ -165,7 +165,8 @@ impl<'e> PetscSystem<'e> {
             .collect();
         let modes = rigid_body_modes(&coords, D, &centre);
         let stats = DistributedStats {
-            solver: String::new(),
+            // replaced by the KSP's own description at the first set-up
+            solver: "petsc".into(),
             ranks,
             rows_per_rank: offsets.windows(2).map(|w| w[1] - w[0]).collect(),
             assembly: "replicated".into(),
