@@ -92,11 +92,47 @@ fn the_inner_generator_settings_are_validated() {
 }
 
 #[test]
-fn a_section_on_the_axis_is_a_clear_mesh_error() {
+fn a_tri3_section_on_the_axis_revolves_into_a_solid_of_revolution() {
+    // the rod 0 <= r <= 1, 0 <= z <= 2: one copy of each axis node, also
+    // with quadratic cells (midside nodes of axis edges stay on the axis)
+    for order in [1, 2] {
+        let src = Source::new(
+            "rod.ctc",
+            format!(
+                "analysis {{ dimension = 3d }}\n\
+                 material m {{ elastic {{ E = 1000  nu = 0.3 }} }}\n\
+                 body rod {{\n  mesh = revolve {{ section = rectangle {{ size = (1, 2)  \
+                 divisions = (3, 4)  element = tri3 }}  segments = 12  order = {order} }}\n  \
+                 material = m\n}}\n\
+                 fix rod.bottom {{ uz }}\n\
+                 fix rod.left {{ ux uy }}\n\
+                 pressure rod.top {{ p = 1 }}\n\
+                 step s {{ time = 0 .. 1  increments = 1 }}\n"
+            ),
+        );
+        let m = match compile_any(&src) {
+            Ok(AnyModel::D3(m)) => m,
+            Ok(_) => panic!("not 3d"),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        let axis = m.mesh.node_sets["rod.left"].len();
+        assert_eq!(axis, 4 * order + 1, "order {order}");
+        assert!(m.mesh.node_sets["rod.left"]
+            .iter()
+            .all(|&v| m.mesh.nodes[v][0] == 0.0 && m.mesh.nodes[v][1] == 0.0));
+        if order == 1 {
+            assert_eq!(m.mesh.nodes.len(), 5 + 3 * 5 * 12);
+        }
+    }
+}
+
+#[test]
+fn a_quad4_section_on_the_axis_is_a_clear_mesh_error() {
     let text = errors(&deck(
         "revolve { section = rectangle { size = (1, 1)  divisions = (2, 2) }  angle = 90  segments = 4 }",
     ));
     assert!(text.contains("reaches the axis"), "{text}");
+    assert!(text.contains("element = tri3"), "{text}");
     let text = errors(&deck(
         "revolve { section = rectangle { origin = (1, 0)  size = (1, 1)  divisions = (2, 2) }  \
          angle = 400  segments = 4 }",

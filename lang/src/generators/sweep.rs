@@ -59,7 +59,8 @@ pub static REVOLVE_KEYS: [Key; 5] = [
     Key::new(
         "section",
         KeyType::Mesh,
-        "the planar mesh to revolve: x is the radius (> 0), y the axial coordinate (z in 3d)",
+        "the planar mesh to revolve: x is the radius (>= 0; tri3 cells may touch the axis), y the \
+         axial coordinate (z in 3d)",
     )
     .required(
         "add e.g. `section = rectangle { origin = (1, 0)  size = (1, 1)  divisions = (4, 4) }`",
@@ -81,9 +82,9 @@ pub static REVOLVE_KEYS: [Key; 5] = [
 /// `revolve`.
 pub static REVOLVE: GeneratorDef = GeneratorDef {
     name: "revolve",
-    doc: "a planar section (x = radius > 0, y = axial) revolved about the z axis \
-          (quad4 -> hex8, tri3 -> tet4); its edge sets become face sets, its node sets node \
-          sets (3d analyses)",
+    doc: "a planar section (x = radius >= 0, y = axial) revolved about the z axis \
+          (quad4 -> hex8, tri3 -> tet4; tri3 cells may reach the axis, where their nodes are \
+          kept once); its edge sets become face sets, its node sets node sets (3d analyses)",
     keys: &REVOLVE_KEYS,
     sets: &[
         SetDecl::new("start", SetKind::Faces, "faces at angle 0 (open sectors)"),

@@ -179,14 +179,18 @@ pub fn cases() -> Vec<VerifyCase> {
         },
         VerifyCase {
             name: "extruded_patch_3d",
-            title: "Patch test on extruded meshes: uniaxial stress, graded tri3 -> tet4 and \
-                    quad4 -> hex8, exact linear field",
+            title: "Patch test on swept meshes: uniaxial stress, graded tri3 -> tet4 and \
+                    quad4 -> hex8 extruded, tri3 revolved to the axis, exact linear field",
             source: "Zienkiewicz & Taylor, The Finite Element Method vol. 1, §9 (patch test)",
-            tags: &["3d", "elasticity", "patch", "exact", "mesh", "extrude"],
+            tags: &["3d", "elasticity", "patch", "exact", "mesh", "extrude", "revolve"],
             levels: 1,
             checks: vec![
                 Check::new(Quantity::Named("tet4 max |u - u_exact| / max |u_exact|"), &[1e-10]),
                 Check::new(Quantity::Named("hex8 max |u - u_exact| / max |u_exact|"), &[1e-10]),
+                Check::new(
+                    Quantity::Named("tet4 revolved to the axis max |u - u_exact| / max |u_exact|"),
+                    &[1e-10],
+                ),
             ],
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 1,
@@ -199,7 +203,19 @@ pub fn cases() -> Vec<VerifyCase> {
 /// `extruded_patch_3d`: a graded rectangle (tri3 or quad4) extruded in
 /// graded layers, uniaxial traction `S` on `zmax`, `u_z = 0` on `zmin`,
 /// the edge x = y = 0 held in x and y and the edge y = 0 in y (both
-/// compatible with the exact field `u = S / E (-nu x, -nu y, z)`).
+/// compatible with the exact field `u = S / E (-nu x, -nu y, z)`); and a
+/// graded tri3 rectangle `[0, 1] x [0, 1.5]` revolved by 90 degrees about
+/// its edge x = 0 (a quarter rod whose axis nodes are shared by every
+/// segment), held by the same exact field on its planes:
+///
+/// ```text
+///   z  S S S S          start: y = 0, u_y = 0;  end: x = 0, u_x = 0
+///   ^ +-------+  top    bottom: z = 0, u_z = 0
+///   | |      /|         the axis (x = y = 0): tetrahedra of the
+///   | |  rod  |         collapsed prisms
+///   | +-------+  bottom
+///   +----------> r
+/// ```
 fn extruded_patch(_level: usize) -> Result<ProgramLevel, String> {
     use ctc_engine::mesh::generate::{generate, sweep, MeshSpec};
     const S: f64 = 10.0;
@@ -256,6 +272,48 @@ fn extruded_patch(_level: usize) -> Result<ProgramLevel, String> {
         values.push(error(name, err / scale));
         out.get_or_insert_with(|| level_of(&summary, &model, 0.0));
     }
+    let section = generate(&MeshSpec::Rectangle {
+        origin: [0.0, 0.0],
+        size: [1.0, 1.5],
+        divisions: [4, 3],
+        grading: [
+            Grading::Geometric { ratio: 3.0 },
+            Grading::Center { ratio: 2.0 },
+        ],
+        kind: CellKind::Tri3,
+    })
+    .map_err(|e| e.message)?;
+    let mesh = sweep::revolve(&section, 90.0, 5).map_err(|e| e.message)?;
+    let mut b = ModelBuilder::solid()
+        .elastic("steel", E, NU)
+        .body("rod", mesh, "steel");
+    for (set, c) in [("start", 1), ("end", 0), ("bottom", 2)] {
+        let nodes = b.node_set(&format!("rod.{set}"));
+        b = b.fix(nodes, c);
+    }
+    let top = b.face_set("rod.top");
+    let model = b
+        .load(ctc_engine::model::Load::FacetTraction {
+            label: "traction rod.top".into(),
+            facets: top,
+            component: 2,
+            value: TimeFunction::Constant(S),
+        })
+        .step("load", 1.0, 1)
+        .build();
+    let (_, last) = solve(&model)?;
+    let (mut err, mut scale) = (0.0f64, 0.0f64);
+    for (x, u) in model.mesh.nodes.iter().zip(&last.u) {
+        let exact = [-NU * S * x[0] / E, -NU * S * x[1] / E, S * x[2] / E];
+        for c in 0..3 {
+            err = err.max((u[c] - exact[c]).abs());
+            scale = scale.max(exact[c].abs());
+        }
+    }
+    values.push(error(
+        "tet4 revolved to the axis max |u - u_exact| / max |u_exact|",
+        err / scale,
+    ));
     let mut out = out.ok_or("no run")?;
     out.values = values;
     Ok(out)

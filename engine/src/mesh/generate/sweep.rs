@@ -16,6 +16,14 @@
 //! becomes the node set of all copies of its nodes; the two ends are the
 //! face sets `zmin` / `zmax` (extrusion) or `start` / `end` (revolution by
 //! less than a full turn; a full turn closes the ring and has no ends).
+//!
+//! A revolved section may reach the axis (x = 0): its nodes there are kept
+//! once (every layer shares them). A tri3 prism with one node on the axis
+//! collapses into a pyramid, with two into a tetrahedron: of its three
+//! tetrahedra those holding a collapsed vertical edge have no volume and
+//! are left out (the others keep the smallest-number cut, so they still
+//! conform). A quad4 cell on the axis would collapse into a wedge, for
+//! which there is no element: such a section is refused with its remedy.
 
 use super::common::{divisions, node_budget, positive};
 use super::Grading;
@@ -55,17 +63,19 @@ pub fn extrude(
             length * t[k]
         }
     };
-    sweep(G, base, layers, false, ["zmin", "zmax"], |p, k| {
+    let shared = vec![false; base.nodes.len()];
+    sweep(G, base, layers, false, ["zmin", "zmax"], &shared, |p, k| {
         [p[0], p[1], z(k)]
     })
 }
 
-/// The revolution of `section` (x = radius > 0, y = axial coordinate)
+/// The revolution of `section` (x = radius >= 0, y = axial coordinate)
 /// about the z axis by `angle` degrees (in (0, 360]) in `segments`
 /// divisions: the point `(r, y)` at angle `phi` is `(r cos phi, r sin phi,
 /// y)`. Sets: those of `section`, swept, and for an open sector `start`
-/// (phi = 0) and `end` (phi = angle). A section touching the axis is
-/// refused (its cells would collapse there).
+/// (phi = 0) and `end` (phi = angle). Nodes on the axis (x within 1e-9 of
+/// the section's size of 0) are kept once; only tri3 cells may touch it
+/// (see the module doc); a section crossing it (x < 0) is refused.
 pub fn revolve(section: &Mesh, angle: f64, segments: usize) -> Result<Mesh<3>, MeshError> {
     const G: &str = "revolve";
     if !(angle > 0.0 && angle <= 360.0) {
@@ -81,28 +91,52 @@ pub fn revolve(section: &Mesh, angle: f64, segments: usize) -> Result<Mesh<3>, M
         )));
     }
     let size = extent(section);
-    if let Some((i, p)) = section
-        .nodes
-        .iter()
-        .enumerate()
-        .find(|(_, p)| p[0] <= 1e-9 * size)
-    {
+    let tol = 1e-9 * size;
+    if let Some((i, p)) = section.nodes.iter().enumerate().find(|(_, p)| p[0] < -tol) {
         return Err(MeshError::new(format!(
-            "{G}: the section reaches the axis (node {i} at x = {:e}; x is the radius and must \
-             stay > 0): its cells would collapse there; start the section at x > 0, or mesh a \
-             solid of revolution with `cylinder`",
+            "{G}: the section crosses the axis (node {i} at x = {:e}; x is the radius and must \
+             be >= 0)",
             p[0]
         )));
     }
+    let shared: Vec<bool> = section.nodes.iter().map(|p| p[0] <= tol).collect();
+    for c in 0..section.cells.len() {
+        let cell = section.cells.get(c);
+        if cell.kind != CellKind::Tri3 && cell.nodes.iter().any(|&a| shared[a]) {
+            return Err(MeshError::new(format!(
+                "{G}: the section reaches the axis with {} cell {c} (x = 0 at node {}): revolved, \
+                 it would collapse into a wedge, for which there is no element; mesh the section \
+                 with triangles (`element = tri3`: their prisms become tetrahedra at the axis), \
+                 start it at x > 0, or mesh a solid of revolution with `cylinder`",
+                cell.kind.name(),
+                cell.nodes
+                    .iter()
+                    .find(|&&a| shared[a])
+                    .copied()
+                    .unwrap_or(0)
+            )));
+        }
+    }
     let step = angle.to_radians() / segments as f64;
-    sweep(G, section, segments, closed, ["start", "end"], |p, k| {
-        let phi = if k == segments && !closed {
-            angle.to_radians()
-        } else {
-            step * k as f64
-        };
-        [p[0] * phi.cos(), p[0] * phi.sin(), p[1]]
-    })
+    sweep(
+        G,
+        section,
+        segments,
+        closed,
+        ["start", "end"],
+        &shared,
+        |p, k| {
+            if p[0] <= tol {
+                return [0.0, 0.0, p[1]];
+            }
+            let phi = if k == segments && !closed {
+                angle.to_radians()
+            } else {
+                step * k as f64
+            };
+            [p[0] * phi.cos(), p[0] * phi.sin(), p[1]]
+        },
+    )
 }
 
 /// The largest coordinate extent of a planar mesh.
@@ -122,13 +156,17 @@ fn extent(m: &Mesh) -> f64 {
 
 /// Sweeps `base` through `layers` divisions, node `(p, k)` of layer `k`
 /// at `place(p, k)`; `closed`: layer `layers` is layer 0 (a full turn);
-/// `ends`: the names of the face sets of the first and last layers.
+/// `ends`: the names of the face sets of the first and last layers;
+/// `shared[a]`: base node `a` stays where it is and is one node of every
+/// layer (on the axis of a revolution).
+#[allow(clippy::too_many_arguments)]
 fn sweep(
     generator: &str,
     base: &Mesh,
     layers: usize,
     closed: bool,
     ends: [&str; 2],
+    shared: &[bool],
     place: impl Fn(&[f64; 2], usize) -> [f64; 3],
 ) -> Result<Mesh<3>, MeshError> {
     let n = base.nodes.len();
@@ -140,19 +178,30 @@ fn sweep(
     let copies = if closed { layers } else { layers + 1 };
     node_budget(generator, n.checked_mul(copies))?;
     let mut mesh = Mesh::<3>::default();
+    // index[k * n + a]: the node of base node `a` in layer `k`;
+    // origin[v]: the base node and the layer of node `v` (layer 0 for a
+    // shared node, which is in every layer)
+    let mut index = Vec::with_capacity(n * copies);
+    let mut origin = Vec::with_capacity(n * copies);
     for k in 0..copies {
-        for p in &base.nodes {
+        for (a, p) in base.nodes.iter().enumerate() {
+            if shared[a] && k > 0 {
+                index.push(index[a]);
+                continue;
+            }
             let q = place(p, k);
             if !q.iter().all(|v| v.is_finite()) {
                 return Err(MeshError::new(format!(
                     "{generator}: a node position is not finite; check the sizes"
                 )));
             }
+            index.push(mesh.nodes.len());
+            origin.push((a, k));
             mesh.nodes.push(q);
         }
     }
     // node `a` of the base in layer `k`
-    let id = |a: usize, k: usize| (k % copies) * n + a;
+    let id = |a: usize, k: usize| index[(k % copies) * n + a];
     for c in 0..base.cells.len() {
         let cell = base.cells.get(c);
         for k in 0..layers {
@@ -176,6 +225,10 @@ fn sweep(
                         id(cell.nodes[2], k + 1),
                     ];
                     for mut t in prism_tets(v) {
+                        // a collapsed vertical edge (both ends on the axis)
+                        if (0..4).any(|i| t[i + 1..].contains(&t[i])) {
+                            continue;
+                        }
                         if tet_volume(&mesh.nodes, &t) < 0.0 {
                             t.swap(2, 3);
                         }
@@ -192,12 +245,7 @@ fn sweep(
         }
     }
     let boundary = mesh.boundary_facets(0..mesh.cells.len());
-    // the base node and the layer of each swept node
-    let origin = |v: usize| (v % n, v / n);
-    let layered = |f: &Facet| {
-        let ks: BTreeSet<usize> = f.nodes().iter().map(|&v| origin(v).1).collect();
-        ks
-    };
+    let origin = |v: usize| origin[v];
     // swept edge sets
     for (name, edges) in &base.edge_sets {
         let keys: BTreeSet<[usize; 2]> = edges
@@ -209,14 +257,19 @@ fn sweep(
             .filter(|f| {
                 let base_nodes: BTreeSet<usize> = f.nodes().iter().map(|&v| origin(v).0).collect();
                 let mut it = base_nodes.iter();
+                // two base nodes: a face swept from an edge (a face within
+                // a layer has three or four)
                 match (it.next(), it.next(), it.next()) {
-                    (Some(&a), Some(&b), None) => keys.contains(&[a, b]) && layered(f).len() == 2,
+                    (Some(&a), Some(&b), None) => keys.contains(&[a, b]),
                     _ => false,
                 }
             })
             .copied()
             .collect();
-        add_faces(&mut mesh, name, faces);
+        // an edge set on the axis sweeps no face: its nodes stay a node set
+        if !faces.is_empty() {
+            add_faces(&mut mesh, name, faces);
+        }
     }
     // swept node sets (those of edge sets are already there)
     for (name, nodes) in &base.node_sets {
@@ -224,16 +277,22 @@ fn sweep(
             continue;
         }
         let mut all: Vec<usize> = (0..copies)
-            .flat_map(|k| nodes.iter().map(move |&a| id(a, k)))
+            .flat_map(|k| nodes.iter().map(move |&a| (a, k)))
+            .map(|(a, k)| id(a, k))
             .collect();
         all.sort_unstable();
+        all.dedup();
         mesh.node_sets.insert(name.clone(), all);
     }
     if !closed {
         for (name, k) in [(ends[0], 0), (ends[1], layers)] {
             let faces: Vec<Facet> = boundary
                 .iter()
-                .filter(|f| f.nodes().iter().all(|&v| origin(v).1 == k))
+                .filter(|f| {
+                    f.nodes()
+                        .iter()
+                        .all(|&v| origin(v).1 == k || shared[origin(v).0])
+                })
                 .copied()
                 .collect();
             add_faces(&mut mesh, name, faces);
@@ -450,6 +509,46 @@ mod tests {
     }
 
     #[test]
+    fn tri3_section_on_the_axis_revolves_into_a_conforming_solid() {
+        // section 0 <= r <= 1, 0 <= y <= 0.5 (tri3): the axis nodes are
+        // kept once, the prisms at the axis collapse into pyramids and
+        // tetrahedra; volume of the chord solid sum sin(dphi) int r dA
+        let base = rectangle([0.0, 0.0], [1.0, 0.5], [3, 2], CellKind::Tri3);
+        let on_axis = base.nodes.iter().filter(|p| p[0] == 0.0).count();
+        assert_eq!(on_axis, 3);
+        for (angle, segments) in [(90.0, 6), (360.0, 12)] {
+            let m = revolve(&base, angle, segments).unwrap();
+            validate::check(&m).unwrap();
+            let copies = if angle == 360.0 {
+                segments
+            } else {
+                segments + 1
+            };
+            assert_eq!(
+                m.nodes.len(),
+                on_axis + (base.nodes.len() - on_axis) * copies
+            );
+            let dphi = (angle as f64).to_radians() / segments as f64;
+            let exact = segments as f64 * dphi.sin() * 0.5 * 0.5;
+            assert!((volume(&m) - exact).abs() < 1e-12, "{}", volume(&m));
+            // 2 x 2 triangles at the axis: one with an edge on it (1 tet),
+            // one with a node on it (2 tets); 3 tets elsewhere
+            let cells_at_axis = 2 * (1 + 2);
+            let elsewhere = (base.cells.len() - 4) * 3;
+            assert_eq!(m.cells.len(), segments * (cells_at_axis + elsewhere));
+            // `left` (the axis) sweeps no face; its nodes are the axis nodes
+            assert!(!m.face_sets.contains_key("left"));
+            assert_eq!(m.node_sets["left"].len(), on_axis);
+            let sets: &[&str] = if angle == 360.0 {
+                &["bottom", "right", "top"]
+            } else {
+                &["bottom", "right", "top", "start", "end"]
+            };
+            sets_cover_the_boundary(&m, sets);
+        }
+    }
+
+    #[test]
     fn prism_split_conforms_for_every_numbering() {
         // two prisms sharing the side (1, 2, 4, 5) numbered in every order
         // cut it along the same diagonal
@@ -492,6 +591,10 @@ mod tests {
         let base = rectangle([0.0, 0.0], [1.0, 1.0], [2, 2], CellKind::Quad4);
         let e = revolve(&base, 90.0, 4).unwrap_err();
         assert!(e.message.contains("reaches the axis"), "{}", e.message);
+        assert!(e.message.contains("element = tri3"), "{}", e.message);
+        let across = rectangle([-0.5, 0.0], [1.0, 1.0], [2, 2], CellKind::Tri3);
+        let e = revolve(&across, 90.0, 4).unwrap_err();
+        assert!(e.message.contains("crosses the axis"), "{}", e.message);
         let off = rectangle([1.0, 0.0], [1.0, 1.0], [2, 2], CellKind::Quad4);
         assert!(revolve(&off, 0.0, 4).is_err());
         assert!(revolve(&off, 400.0, 4).is_err());
