@@ -10,13 +10,15 @@
 //! increment records (time, dt, iterations, residuals, cutbacks) of the
 //! continued increments must be equal.
 
-use ctc_engine::model::Model;
+use ctc_engine::geom::Dimension;
+use ctc_engine::model::{AnyModel, Model};
 use ctc_engine::output::ResultWriter;
 use ctc_engine::solve::restart::Checkpoint;
 use ctc_engine::solve::{self, IncrementView, IterationInfo, Observer, RunSummary};
+use nalgebra::Const;
 use std::path::Path;
 
-fn model_of(example: &str, edits: &[(&str, &str)]) -> Model {
+fn source_of(example: &str, edits: &[(&str, &str)]) -> ctc_lang::Source {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("examples")
         .join(example);
@@ -25,22 +27,38 @@ fn model_of(example: &str, edits: &[(&str, &str)]) -> Model {
         assert!(text.contains(from), "{example}: `{from}` not found");
         text = text.replace(from, to);
     }
-    let source = ctc_lang::Source::new(&path, text);
+    ctc_lang::Source::new(&path, text)
+}
+
+fn model_of(example: &str, edits: &[(&str, &str)]) -> Model {
+    let source = source_of(example, edits);
     ctc_lang::compile(&source).unwrap_or_else(|d| panic!("{}", d.render(&source)))
 }
 
+fn solid_model_of(example: &str, edits: &[(&str, &str)]) -> Model<3> {
+    let source = source_of(example, edits);
+    match ctc_lang::compile_any(&source) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(AnyModel::D2(_)) => panic!("{example} is not a 3d deck"),
+        Err(d) => panic!("{}", d.render(&source)),
+    }
+}
+
 /// Forwards to the writer and fails after `stop_after` converged increments.
-struct Killer<'a> {
-    inner: &'a mut ResultWriter,
+struct Killer<'a, const D: usize> {
+    inner: &'a mut ResultWriter<D>,
     stop_after: usize,
     seen: usize,
 }
 
-impl Observer for Killer<'_> {
+impl<const D: usize> Observer<D> for Killer<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
     fn iteration(&mut self, info: &IterationInfo) {
         self.inner.iteration(info);
     }
-    fn converged(&mut self, view: &IncrementView<'_>) -> Result<(), String> {
+    fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
         self.inner.converged(view)?;
         self.seen += 1;
         if self.seen >= self.stop_after {
@@ -54,7 +72,7 @@ impl Observer for Killer<'_> {
     fn wants_checkpoint(&self) -> bool {
         self.inner.wants_checkpoint()
     }
-    fn checkpoint(&mut self, checkpoint: &Checkpoint) -> Result<(), String> {
+    fn checkpoint(&mut self, checkpoint: &Checkpoint<D>) -> Result<(), String> {
         self.inner.checkpoint(checkpoint)
     }
 }
@@ -71,7 +89,10 @@ fn files(dir: &Path) -> Vec<String> {
 
 /// Runs the three phases and compares; returns (restart increment,
 /// increments of the full run).
-fn restart_matches(model: &Model, stop_after: usize) -> (usize, usize) {
+fn restart_matches<const D: usize>(model: &Model<D>, stop_after: usize) -> (usize, usize)
+where
+    Const<D>: Dimension<D>,
+{
     let tmp = tempfile::tempdir().unwrap();
     let full_dir = tmp.path().join("full");
     let cut_dir = tmp.path().join("cut");
@@ -218,4 +239,22 @@ fn restart_double_pass_resumes_with_the_right_slave_side() {
     // redo the first side and differ
     let (from, _) = restart_matches(&model, 2);
     assert_eq!(from, 1);
+}
+
+#[test]
+fn restart_3d_hertz_sphere_matches_uninterrupted_run() {
+    // 3D: hex8 block against an analytical sphere tool (area penalty); the
+    // VTU files (hexahedra, 3-component fields), history and contact CSVs
+    // of the continued run are the uninterrupted ones, byte for byte
+    let model = solid_model_of("hertz_sphere_3d.ctc", &[]);
+    let (from, n) = restart_matches(&model, 3);
+    assert_eq!((from, n), (2, 4));
+}
+
+#[test]
+fn restart_3d_friction_in_the_slide_matches_uninterrupted_run() {
+    // 3D friction: the stick points on the plane carried over the restart
+    let model = solid_model_of("friction_block_3d.ctc", &[]);
+    let (from, _) = restart_matches(&model, 4);
+    assert_eq!(from, 3);
 }
