@@ -55,19 +55,6 @@ impl Observer<3> for Quiet {
     }
 }
 
-/// Peak resident memory of this process (`VmHWM`), bytes; 0 if unknown.
-pub fn peak_memory_bytes() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u64>().ok())
-        })
-        .map_or(0, |kb| kb * 1024)
-}
-
 /// Runs the block with `n` cells per edge.
 pub fn run_solid_bench(n: usize) -> Result<SolidBenchReport, String> {
     if n == 0 {
@@ -112,7 +99,7 @@ pub fn run_solid_bench(n: usize) -> Result<SolidBenchReport, String> {
         time_per_iteration: s.timings.total / s.newton_iterations.max(1) as f64,
         factorization_time: s.timings.factorization / factorizations as f64,
         timings: s.timings,
-        peak_memory_bytes: peak_memory_bytes(),
+        peak_memory_bytes: s.peak_memory_bytes,
     })
 }
 

@@ -45,6 +45,7 @@ pub mod health;
 pub mod jumps;
 pub mod linalg;
 pub mod loads;
+pub mod memory;
 pub mod newton;
 pub mod restart;
 pub mod scene;
@@ -245,6 +246,9 @@ pub struct RunSummary {
     pub factor_fill: f64,
     /// Bytes of the factorization (values of `L` plus numeric scratch).
     pub factor_bytes: usize,
+    /// Peak resident memory of the process at the end of the run
+    /// (`VmHWM`, Linux; 0 where unknown), bytes.
+    pub peak_memory_bytes: u64,
     /// Conventions a reader of the results must know (e.g. axisymmetric
     /// forces are totals over 2*pi).
     pub notes: Vec<String>,
@@ -531,6 +535,7 @@ where
     summary.max_negative_pivots = stats.max_negative_pivots;
     summary.factor_nonzeros = stats.factor_nonzeros;
     summary.factor_bytes = stats.factor_bytes;
+    summary.peak_memory_bytes = memory::peak_memory_bytes();
     let lower = (summary.matrix_nonzeros + summary.free_dofs) / 2;
     summary.factor_fill = if lower > 0 {
         stats.factor_nonzeros as f64 / lower as f64
