@@ -171,6 +171,10 @@ enum Command {
         /// Newton iteration, factorization time, fill, peak memory.
         #[arg(long, value_name = "N", conflicts_with_all = ["search", "projection"])]
         solid: Option<usize>,
+        /// With --solid: the symbolic analysis only (factor size, fill; no
+        /// numeric factorization): how large a model fits in memory.
+        #[arg(long, requires = "solid")]
+        symbolic: bool,
     },
 }
 
@@ -258,9 +262,10 @@ fn main() -> ExitCode {
             projection,
             points,
             solid,
+            symbolic,
         } => {
             if let Some(n) = solid {
-                bench_solid(n, json)
+                bench_solid(n, symbolic, json)
             } else if projection {
                 bench_projection(points, json)
             } else if search {
@@ -643,16 +648,7 @@ fn bench_search(max_nodes: usize, json: bool) -> Result<(), String> {
         sizes.push(max_nodes.max(2));
     }
     let opts = ctc_verification::SearchBenchOptions { sizes, ..defaults };
-    let report = ctc_verification::run_search_bench(&opts);
-    if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
-        );
-    } else {
-        print!("{report}");
-    }
-    Ok(())
+    print_report(&ctc_verification::run_search_bench(&opts), json)
 }
 
 fn bench_projection(points: usize, json: bool) -> Result<(), String> {
@@ -690,12 +686,24 @@ fn bench_projection(points: usize, json: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn bench_solid(n: usize, json: bool) -> Result<(), String> {
-    let report = ctc_verification::solid_bench::run_solid_bench(n)?;
+fn bench_solid(n: usize, symbolic: bool, json: bool) -> Result<(), String> {
+    use ctc_verification::solid_bench::{run_solid_bench, run_solid_symbolic};
+    if symbolic {
+        print_report(&run_solid_symbolic(n)?, json)
+    } else {
+        print_report(&run_solid_bench(n)?, json)
+    }
+}
+
+/// Prints a benchmark report as its table or as JSON.
+fn print_report<R: std::fmt::Display + serde::Serialize>(
+    report: &R,
+    json: bool,
+) -> Result<(), String> {
     if json {
         println!(
             "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+            serde_json::to_string_pretty(report).map_err(|e| e.to_string())?
         );
     } else {
         print!("{report}");
@@ -709,14 +717,5 @@ fn bench(size: f64, increments: usize, json: bool) -> Result<(), String> {
         increments,
         ..Default::default()
     };
-    let report = ctc_verification::run_bench(&opts)?;
-    if json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
-        );
-    } else {
-        print!("{report}");
-    }
-    Ok(())
+    print_report(&ctc_verification::run_bench(&opts)?, json)
 }

@@ -55,8 +55,8 @@ impl Observer<3> for Quiet {
     }
 }
 
-/// Runs the block with `n` cells per edge.
-pub fn run_solid_bench(n: usize) -> Result<SolidBenchReport, String> {
+/// The benchmark's block with `n` cells per edge.
+fn block_model(n: usize) -> Result<ctc_engine::model::Model<3>, String> {
     if n == 0 {
         return Err("--solid needs at least 1 cell per edge".into());
     }
@@ -76,10 +76,75 @@ pub fn run_solid_bench(n: usize) -> Result<SolidBenchReport, String> {
         b = b.fix(nodes, c);
     }
     let top = b.node_set("block.zmax");
-    let model = b
-        .displace(top, 2, TimeFunction::Constant(-0.01))
+    Ok(b.displace(top, 2, TimeFunction::Constant(-0.01))
         .step("press", 1.0, 1)
-        .build();
+        .build())
+}
+
+/// The size of the direct solver's factor for the block with `n` cells
+/// per edge, from the symbolic analysis alone (no numeric factorization):
+/// how large a model fits in memory.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct SolidSymbolicReport {
+    /// Cells per edge.
+    pub divisions: usize,
+    /// Free dofs.
+    pub free_dofs: usize,
+    /// Entries of the free-free matrix (both triangles).
+    pub matrix_nonzeros: usize,
+    /// Entries of the Cholesky factor (the ordering a run would choose).
+    pub factor_nonzeros: usize,
+    /// Factor entries over those of the lower triangle.
+    pub factor_fill: f64,
+    /// Bytes of the factor's values (8 per entry; a run adds scratch and
+    /// the matrix).
+    pub factor_value_bytes: u64,
+    /// Seconds of the symbolic analysis (both orderings).
+    pub analysis_time: f64,
+}
+
+/// Symbolic analysis of the block with `n` cells per edge.
+pub fn run_solid_symbolic(n: usize) -> Result<SolidSymbolicReport, String> {
+    let model = block_model(n)?;
+    let start = Instant::now();
+    let dofs = ctc_engine::solve::dofs::DofMap::new(&model);
+    let scatter = ctc_engine::solve::linalg::Scatter::new(&model.mesh, &dofs)?;
+    let pattern = &scatter.pattern;
+    let factor =
+        ctc_engine::solve::linalg::direct::factor_nonzeros(pattern).map_err(|e| e.to_string())?;
+    let lower = (pattern.nnz() + pattern.n) / 2;
+    Ok(SolidSymbolicReport {
+        divisions: n,
+        free_dofs: pattern.n,
+        matrix_nonzeros: pattern.nnz(),
+        factor_nonzeros: factor,
+        factor_fill: factor as f64 / lower.max(1) as f64,
+        factor_value_bytes: 8 * factor as u64,
+        analysis_time: start.elapsed().as_secs_f64(),
+    })
+}
+
+impl fmt::Display for SolidSymbolicReport {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(
+            f,
+            "3D linear-elastic block, {n} x {n} x {n} hex8, symbolic analysis only: {} free dofs, \
+             matrix nonzeros {}, factor nonzeros {} (fill {:.1} x the lower triangle), factor \
+             values {:.2} GiB; analysis {:.2} s",
+            self.free_dofs,
+            self.matrix_nonzeros,
+            self.factor_nonzeros,
+            self.factor_fill,
+            self.factor_value_bytes as f64 / (1u64 << 30) as f64,
+            self.analysis_time,
+            n = self.divisions
+        )
+    }
+}
+
+/// Runs the block with `n` cells per edge.
+pub fn run_solid_bench(n: usize) -> Result<SolidBenchReport, String> {
+    let model = block_model(n)?;
     let start = Instant::now();
     let s = run(&model, &mut Quiet).map_err(|e| e.message)?;
     let wall_time = start.elapsed().as_secs_f64();
@@ -150,5 +215,10 @@ mod tests {
         assert!(r.factor_fill >= 1.0 && r.factor_bytes >= 8 * r.factor_nonzeros);
         assert!(r.newton_iterations >= 1 && r.cholesky_factorizations >= 1);
         assert!(run_solid_bench(0).is_err());
+        // the symbolic analysis alone gives the run's factor
+        let sym = run_solid_symbolic(3).unwrap();
+        assert_eq!(sym.free_dofs, r.free_dofs);
+        assert_eq!(sym.matrix_nonzeros, r.matrix_nonzeros);
+        assert_eq!(sym.factor_nonzeros, r.factor_nonzeros);
     }
 }

@@ -342,6 +342,24 @@ impl LinearSystem for LinearSolver {
     }
 }
 
+/// Entries of the Cholesky factor `L` of a matrix with `pattern` (both
+/// triangles stored), with the ordering a factorization would choose: the
+/// symbolic analysis alone, no numeric work (how large a model fits in
+/// memory, `ctc bench --solid N --symbolic`).
+pub fn factor_nonzeros(pattern: &SparsePattern) -> Result<usize, LinearError> {
+    if pattern.n == 0 {
+        return Ok(0);
+    }
+    let symbolic = SymbolicSparseColMatRef::new_checked(
+        pattern.n,
+        pattern.n,
+        &pattern.col_ptr,
+        None,
+        &pattern.row_idx,
+    );
+    Ok(symbolic_cholesky(symbolic, pattern)?.len_val())
+}
+
 /// Patterns with at least this many rows also get a nested dissection
 /// ordering (`ordering.rs`), kept when its factor is smaller than the
 /// minimum degree one (3D meshes); smaller patterns use AMD alone.
@@ -560,6 +578,16 @@ mod tests {
         (0..3)
             .map(|i| (a[i][0] * x[0] + a[i][1] * x[1] + a[i][2] * x[2] - b[i]).abs())
             .fold(0.0, f64::max)
+    }
+
+    #[test]
+    fn symbolic_factor_size_is_the_numeric_one() {
+        let a = [[4.0, 1.0, 0.0], [1.0, 3.0, 1.0], [0.0, 1.0, 2.0]];
+        let (p, v) = csc(&a);
+        let mut s = LinearSolver::new();
+        s.factorize(&p, &v).unwrap();
+        assert_eq!(super::factor_nonzeros(&p).unwrap(), s.l_values.len());
+        assert_eq!(s.l_values.len(), 5);
     }
 
     #[test]
