@@ -528,7 +528,7 @@ mod tests {
                 m.nodes.len(),
                 on_axis + (base.nodes.len() - on_axis) * copies
             );
-            let dphi = (angle as f64).to_radians() / segments as f64;
+            let dphi = f64::to_radians(angle) / segments as f64;
             let exact = segments as f64 * dphi.sin() * 0.5 * 0.5;
             assert!((volume(&m) - exact).abs() < 1e-12, "{}", volume(&m));
             // 2 x 2 triangles at the axis: one with an edge on it (1 tet),
