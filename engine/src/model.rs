@@ -303,6 +303,20 @@ pub enum Load {
         /// Pressure as a function of time.
         value: TimeFunction,
     },
+    /// Pressure on the deformed surface (a follower load; positive pushes
+    /// into the body): consistent nodal forces on the current
+    /// configuration with their load stiffness (`solve/follower.rs`).
+    /// Bodies under it have finite kinematics (`check_model`).
+    FollowerPressure {
+        /// Human-readable origin.
+        label: String,
+        /// Boundary facets: edges `[a, b]` / `[a, b, m]` of a planar mesh
+        /// (body on the left), or faces of a solid, counter-clockwise seen
+        /// from outside.
+        facets: Vec<crate::mesh::Facet>,
+        /// Pressure as a function of time.
+        value: TimeFunction,
+    },
     /// Follower-free (dead) traction on boundary facets: force per unit
     /// reference area along the global axis `component`, in the reference
     /// configuration (Abaqus `TRVEC` on `*DSLOAD`, not following the

@@ -197,6 +197,19 @@ pub fn explain(model: &Model) -> String {
                         plural(facets.len(), "3-node edge", "3-node edges")
                     );
                 }
+                Load::FollowerPressure {
+                    label,
+                    facets,
+                    value,
+                } => {
+                    let _ = writeln!(
+                        o,
+                        "  {label}: p = {} on {} of the deformed surface (follower: turns with \
+                         it, with its load stiffness; positive pushes into the body)",
+                        time_function(value),
+                        plural(facets.len(), "edge", "edges")
+                    );
+                }
                 Load::FacetTraction {
                     label,
                     facets,
@@ -804,6 +817,19 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
                     o,
                     "  {label}: t{} = {} per unit reference area (dead load), on {}",
                     ["x", "y", "z"][(*c).min(2)],
+                    time_function(value),
+                    plural(facets.len(), "face", "faces")
+                );
+            }
+            Load::FollowerPressure {
+                label,
+                facets,
+                value,
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: p = {} on {} of the deformed surface (follower: turns with it, \
+                     with its load stiffness; positive pushes into the body)",
                     time_function(value),
                     plural(facets.len(), "face", "faces")
                 );

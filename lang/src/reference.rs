@@ -150,9 +150,12 @@ pub static ITEMS: &[Item] = &[
     },
     Item {
         name: "pressure",
-        syntax: "pressure EDGES { p = F(t) }",
+        syntax: "pressure EDGES { p = F(t)  follower = BOOL }",
         doc: "A pressure on boundary edges (3d: faces), positive pushing into the body, along \
-              the normal of the reference configuration (consistent load).",
+              the normal of the reference configuration (consistent load). `follower = true`: \
+              on the deformed surface instead (it turns and stretches with it, with its load \
+              stiffness; the bodies need `kinematics = finite`), as a gas pressure in blow \
+              forming or hydroforming.",
         blocks: &[],
         example: "pressure pipe.inner { p = ramp(0, 100) }",
     },

@@ -370,3 +370,60 @@ fn cylinder_generator_lowers_a_quarter_o_grid_with_its_face_sets() {
     let rendered = err.render(&bad);
     assert!(rendered.contains("90, 180, 270 or 360"), "{rendered}");
 }
+
+#[test]
+fn follower_pressure_lowers_on_edges_and_faces() {
+    // planar: 2-node edges of the sheet's bottom; 3d: the box's top faces
+    for (analysis, mesh, held, set, facet_nodes, count) in [
+        (
+            "plane_strain",
+            "rectangle { size = (4, 0.2)  divisions = (8, 1) }",
+            "left { ux uy }",
+            "bottom",
+            2,
+            8,
+        ),
+        (
+            "3d",
+            "box { size = (1, 1, 0.2)  divisions = (2, 3, 1) }",
+            "xmin { ux uy uz }",
+            "zmax",
+            4,
+            6,
+        ),
+    ] {
+        let text = format!(
+            "analysis {{ dimension = {analysis} }}\n\
+             material rubber {{ neo_hookean {{ E = 10  nu = 0.45 }} }}\n\
+             body sheet {{\n  mesh = {mesh}\n  material = rubber\n  kinematics = finite\n}}\n\
+             fix sheet.{held}\n\
+             pressure sheet.{set} {{ p = ramp(0, 0.01)  follower = true }}\n\
+             step blow {{ time = 0 .. 1  increments = 2 }}\n"
+        );
+        let src = Source::new("follower.ctc", text);
+        let loads: Vec<(usize, usize)> = match ctc_lang::compile_any(&src) {
+            Ok(ctc_engine::model::AnyModel::D2(m)) => m
+                .loads
+                .iter()
+                .filter_map(|l| match l {
+                    Load::FollowerPressure { facets, .. } => {
+                        Some((facets.len(), facets[0].nodes().len()))
+                    }
+                    _ => None,
+                })
+                .collect(),
+            Ok(ctc_engine::model::AnyModel::D3(m)) => m
+                .loads
+                .iter()
+                .filter_map(|l| match l {
+                    Load::FollowerPressure { facets, .. } => {
+                        Some((facets.len(), facets[0].nodes().len()))
+                    }
+                    _ => None,
+                })
+                .collect(),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        assert_eq!(loads, [(count, facet_nodes)], "{analysis}");
+    }
+}

@@ -101,6 +101,7 @@ decks!(
     selection_3d_empty,
     selection_3d_coordinates,
     selection_z_in_planar,
+    follower_on_small_strain_body,
 );
 
 #[test]

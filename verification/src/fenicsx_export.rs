@@ -197,6 +197,11 @@ pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
                     "FEniCSx export: pressure on faces ({label}) is planar-only"
                 ))
             }
+            Load::FollowerPressure { label, .. } => {
+                return Err(format!(
+                    "FEniCSx export: follower pressure ({label}) is not supported"
+                ))
+            }
         }
     }
     let mut contacts = Vec::new();

@@ -146,6 +146,30 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     ));
                 }
             }
+            Load::FollowerPressure { label, facets, .. } => {
+                let sizes: &[usize] = if D == 2 { &[2, 3] } else { &[3, 4, 6, 8, 9] };
+                if let Some(f) = facets.iter().find(|f| {
+                    f.nodes().iter().any(|&n| n >= nn) || !sizes.contains(&f.nodes().len())
+                }) {
+                    errors.push(format!(
+                        "`{label}` refers to facet {:?}: outside the mesh or not a 2- or 3-node \
+                         edge (planar) or a 3-, 4-, 6-, 8- or 9-node face (solid)",
+                        f.nodes()
+                    ));
+                } else if let Some(b) = facets.iter().find_map(|f| {
+                    model.bodies.iter().find(|b| {
+                        b.nodes.contains(&f.nodes()[0])
+                            && b.kinematics != crate::model::Kinematics::Finite
+                    })
+                }) {
+                    errors.push(format!(
+                        "`{label}`: a follower pressure acts on the deformed surface, but body \
+                         `{}` has small kinematics (its surface does not move in the equations); \
+                         give it `kinematics = finite`, or drop `follower = true`",
+                        b.name
+                    ));
+                }
+            }
             Load::FacetPressure { label, facets, .. } => {
                 if let Some(f) = facets.iter().find(|f| {
                     f.nodes().iter().any(|&n| n >= nn)
@@ -293,6 +317,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             Load::NodalForce { label, value, .. }
             | Load::Pressure { label, value, .. }
             | Load::FacetPressure { label, value, .. }
+            | Load::FollowerPressure { label, value, .. }
             | Load::FacetTraction { label, value, .. } => (label.as_str(), value),
         }));
     for (label, f) in functions {

@@ -78,6 +78,8 @@ pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64]) 
                     }
                 }
             }
+            // on the deformed surface: `solve/follower.rs`, per evaluation
+            Load::FollowerPressure { .. } => {}
             Load::Pressure { edges, value, .. } => {
                 let p = value.eval(t);
                 if p == 0.0 {

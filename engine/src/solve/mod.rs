@@ -41,6 +41,7 @@ pub mod contact_mass;
 pub mod diagnosis;
 pub mod dofs;
 pub mod dynamics;
+pub mod follower;
 pub mod health;
 pub mod jumps;
 pub mod linalg;

@@ -604,6 +604,8 @@ pub struct LoadDef {
     /// Pressure: one entry with component `None`; traction and force: one
     /// per component.
     pub values: Vec<(Option<Component>, Spanned<TimeFn>)>,
+    /// Pressure: `follower = true` (on the deformed surface), if given.
+    pub follower: Option<Spanned<bool>>,
     /// The whole item.
     pub span: Span,
 }

@@ -19,6 +19,28 @@ impl Lowerer<'_> {
                         continue;
                     };
                     let label = format!("pressure {}", l.target);
+                    if l.follower.as_ref().is_some_and(|f| f.value) {
+                        // on the deformed surface: faces, or planar edges
+                        // with their midside nodes when quadratic
+                        let facets: Vec<Facet> = match (&r.faces, &r.edges) {
+                            (Some(f), _) if self.solid => f.clone(),
+                            (_, Some(e)) => {
+                                let midsides = self.mesh.edge_midsides();
+                                e.iter()
+                                    .map(|&e| ctc_engine::mesh::Mesh::edge_facet(&midsides, e))
+                                    .collect()
+                            }
+                            _ => Vec::new(),
+                        };
+                        for (_, f) in &l.values {
+                            out.push(Load::FollowerPressure {
+                                label: label.clone(),
+                                facets: facets.clone(),
+                                value: self.tf(f),
+                            });
+                        }
+                        continue;
+                    }
                     if self.solid {
                         for (_, f) in &l.values {
                             out.push(Load::FacetPressure {

@@ -31,10 +31,35 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
             ],
         ),
     };
-    let names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
+    let mut names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
+    if kind == LoadKind::Pressure {
+        names.push("follower");
+    }
     let mut values_out = Vec::new();
+    let mut follower = None;
     let mut seen: Vec<&str> = Vec::new();
     for e in &block.entries {
+        if kind == LoadKind::Pressure && e.key.name == "follower" {
+            match &e.body {
+                EntryBody::Assign(v) if follower.is_none() => {
+                    follower = values::boolean(v, diags);
+                }
+                EntryBody::Assign(_) => diags.push(
+                    Diagnostic::error(
+                        "`follower` is given twice in `pressure`",
+                        e.key.span,
+                        "duplicate key",
+                    )
+                    .with_help("remove one of them"),
+                ),
+                _ => diags.push(Diagnostic::error(
+                    "`follower` needs a value",
+                    e.span,
+                    "expected `follower = true` or `follower = false`",
+                )),
+            }
+            continue;
+        }
         let Some((key, comp)) = keys.iter().find(|(n, _)| *n == e.key.name) else {
             diags.push(
                 Diagnostic::error(
@@ -91,6 +116,7 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
         keyword: item.keyword,
         target,
         values: values_out,
+        follower,
         span: item.span,
     })
 }
@@ -110,6 +136,24 @@ mod tests {
         assert_eq!(f.values[0].0, Some(Component::Y));
         assert_eq!(f.values[0].1.value, TimeFn::Number(-1.0));
         assert_eq!(f.values[1].0, Some(Component::X));
+    }
+
+    #[test]
+    fn follower_pressure() {
+        let deck = parse_ok("pressure sheet.bottom { p = ramp(0, 2)  follower = true }");
+        assert_eq!(deck.loads[0].follower.as_ref().map(|f| f.value), Some(true));
+        assert_eq!(deck.loads[0].values.len(), 1);
+        let deck = parse_ok("pressure sheet.bottom { p = 1 }");
+        assert!(deck.loads[0].follower.is_none());
+        assert_eq!(
+            parse_messages("pressure a.b { p = 1  follower = 3 }").len(),
+            1,
+            "a number is not a boolean"
+        );
+        assert_eq!(
+            parse_messages("force a.b { fx = 1  follower = true }"),
+            ["unknown key `follower` in `force`"]
+        );
     }
 
     #[test]

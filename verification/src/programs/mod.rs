@@ -8,6 +8,7 @@ pub mod cattaneo;
 pub mod contact_3d;
 pub mod dynamics;
 pub mod fenicsx;
+pub mod follower;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
@@ -50,6 +51,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(contact_3d::cases());
     v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
+    v.extend(follower::cases());
     v.extend(dynamics::cases());
     v.extend(impact::cases());
     v

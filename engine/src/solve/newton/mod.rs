@@ -1,6 +1,6 @@
 //! Newton-Raphson iterations of one increment (seed flowchart):
 //! contact search and forces -> internal forces -> residual
-//! `r = f_int - f_ext - f_contact` on the free dofs -> tangent
+//! `r = f_int - f_ext - f_follower - f_contact` on the free dofs -> tangent
 //! `K = K_int + K_contact` -> solve -> update, with a line search, NaN/inf
 //! and divergence detection.
 //!
@@ -84,6 +84,11 @@ where
     f_int: Vec<f64>,
     f_ext: Vec<f64>,
     f_c: Vec<f64>,
+    /// Forces of the follower pressures at the current state (zero when
+    /// the model has none).
+    f_follow: Vec<f64>,
+    /// Whether the model has a follower pressure.
+    follower: bool,
     r_free: Vec<f64>,
     reactions: Vec<f64>,
     target: Vec<f64>,
@@ -131,7 +136,7 @@ where
     pub(super) dynamics: Option<super::dynamics::Dynamics>,
     /// Inertia part of the residual of the last evaluation, per dof.
     inertia: Vec<f64>,
-    /// `f_int - f_ext - f_c` of the last evaluation, per dof.
+    /// `f_int - f_ext - f_follow - f_c` of the last evaluation, per dof.
     r_static: Vec<f64>,
 }
 
@@ -190,6 +195,8 @@ where
             f_int: vec![0.0; n_dofs],
             f_ext: vec![0.0; n_dofs],
             f_c: vec![0.0; n_dofs],
+            f_follow: vec![0.0; n_dofs],
+            follower: super::follower::has_follower(model),
             r_free: vec![0.0; n_free],
             reactions: vec![0.0; n_presc],
             target: vec![0.0; n_presc],
@@ -473,6 +480,15 @@ where
                 self.contacts.build_constraints(model, &self.dofs);
             }
         }
+        if self.follower {
+            self.f_follow.fill(0.0);
+            let tangent = if with_tangent {
+                Some((&self.scatter, &self.dofs, &mut self.values[..]))
+            } else {
+                None
+            };
+            super::follower::add_follower_forces(model, t, &self.u, &mut self.f_follow, tangent);
+        }
         let mid = Instant::now();
         self.timings.contact += (mid - start).as_secs_f64();
         let values = if with_tangent {
@@ -508,7 +524,7 @@ where
         };
         let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
         for (g, role) in self.dofs.dofs.iter().enumerate() {
-            let rs = self.f_int[g] - self.f_ext[g] - self.f_c[g];
+            let rs = self.f_int[g] - self.f_ext[g] - self.f_follow[g] - self.f_c[g];
             self.r_static[g] = rs;
             let r = rs + self.inertia[g];
             match *role {
@@ -522,7 +538,7 @@ where
                 }
                 Dof::Inactive => continue,
             }
-            let l = self.f_ext[g] + self.f_c[g];
+            let l = self.f_ext[g] + self.f_follow[g] + self.f_c[g];
             load2 += l * l;
             fint2 += self.f_int[g] * self.f_int[g];
         }
@@ -809,9 +825,9 @@ where
             c.friction.is_some()
                 || c.formulation == crate::model::ContactFormulation::Mortar
                 || c.smoothing == crate::model::NormalSmoothing::Nodal
-        });
-        // a symmetric tangent derives from a potential: the line search's
-        // energy test applies (friction and non-symmetric laws: residual only)
+        }) || self.follower; // and the load stiffness of a follower pressure
+                             // a symmetric tangent derives from a potential: the line search's
+                             // energy test applies (friction and non-symmetric laws: residual only)
         let potential = self.assembler.symmetric() && !friction;
         self.linear.set_symmetric(potential);
         self.begin_dynamics(t, step)?;

@@ -33,6 +33,9 @@ where
         );
         if let Some(dy) = self.dynamics.as_mut() {
             let mut ext = self.f_ext.clone();
+            for (e, f) in ext.iter_mut().zip(&self.f_follow) {
+                *e += f;
+            }
             for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
                 ext[p.dof] += r;
             }

@@ -1,0 +1,370 @@
+//! Follower pressure: a pressure acting on the deformed surface
+//! ([`Load::FollowerPressure`], deck `pressure .. { p = ..  follower = true
+//! }`), as Abaqus applies `*DSLOAD` pressure under NLGEOM and as the
+//! blow-forming and hydroforming examples need (the gas pressure follows
+//! the sheet).
+//!
+//! The consistent nodal forces on the current configuration `x = X + u`:
+//!
+//! - solid faces: `f_a = -p int N_a (x_xi x x_eta) dxi deta` (the face's
+//!   area normal, outward for faces counter-clockwise seen from outside);
+//! - planar edges `a -> b` (body on the left): `f_a = p int N_a m J x_xi
+//!   dxi` with `J x_xi = (-y_xi, x_xi)` the inward normal times the length
+//!   element and `m` the thickness (plane) or `2 pi r` (axisymmetric, `r =
+//!   sum N_c x_c` on the deformed edge).
+//!
+//! Both are differentiated exactly (the load stiffness): with `skew(v) d =
+//! v x d`, `d f_a / d x_b = -p int N_a (-N_b,xi skew(x_eta) + N_b,eta
+//! skew(x_xi))` on faces and `p int N_a (m N_b,xi J + 2 pi N_b (J x_xi) (x)
+//! e_r)` on axisymmetric edges. The load stiffness is not symmetric, so a
+//! model with a follower pressure is solved with the non-symmetric
+//! factorization. It enters the free-free block only: a prescribed facet
+//! node's column is left out of `K_fp`, which changes the first iteration's
+//! predictor of a moving boundary, not the converged state.
+
+use super::dofs::DofMap;
+use super::linalg::{Scatter, NO_SLOT};
+use crate::element::reference::{Quad4, Quad8, Quad9, ReferenceCell, Tri3, Tri6};
+use crate::model::{AnalysisKind, Load, Model};
+
+/// Whether `model` has a follower pressure.
+pub fn has_follower<const D: usize>(model: &Model<D>) -> bool {
+    model
+        .loads
+        .iter()
+        .any(|l| matches!(l, Load::FollowerPressure { .. }))
+}
+
+/// Adds to `f` (`D` per node) the nodal forces of every follower pressure
+/// of `model` at time `t` on the configuration `X + u`; with `tangent`,
+/// subtracts their derivative `d f / d u` from the free-free entries of
+/// the tangent `values` (the residual is `f_int - f_ext - ..`).
+pub fn add_follower_forces<const D: usize>(
+    model: &Model<D>,
+    t: f64,
+    u: &[[f64; D]],
+    f: &mut [f64],
+    mut tangent: Option<(&Scatter, &DofMap<D>, &mut [f64])>,
+) {
+    let measure = Measure::of(model);
+    for load in &model.loads {
+        let Load::FollowerPressure { facets, value, .. } = load else {
+            continue;
+        };
+        let p = value.eval(t);
+        if p == 0.0 {
+            continue;
+        }
+        for facet in facets {
+            let nodes = facet.nodes();
+            let x: Vec<[f64; D]> = nodes
+                .iter()
+                .map(|&n| std::array::from_fn(|c| model.mesh.nodes[n][c] + u[n][c]))
+                .collect();
+            let Some((fe, ke)) = facet_force(measure, &x, p) else {
+                continue;
+            };
+            let nn = nodes.len();
+            for (a, &na) in nodes.iter().enumerate() {
+                for c in 0..D {
+                    f[D * na + c] += fe[D * a + c];
+                }
+            }
+            let Some((scatter, dofs, values)) = tangent.as_mut() else {
+                continue;
+            };
+            for (a, &na) in nodes.iter().enumerate() {
+                for (b, &nb) in nodes.iter().enumerate() {
+                    // facet nodes share a cell: the block is in the pattern
+                    let Some(slots) = scatter.pair_slots(dofs, na, nb) else {
+                        continue;
+                    };
+                    for j in 0..D {
+                        for i in 0..D {
+                            let s = slots[i + D * j];
+                            if s != NO_SLOT {
+                                values[s as usize] -= ke[(D * a + i) * nn * D + D * b + j];
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// The measure of a planar edge: thickness or the ring `2 pi r`; solids
+/// integrate over faces.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Measure {
+    /// Plane strain / stress: the out-of-plane thickness.
+    Thickness(f64),
+    /// Axisymmetric: `2 pi r` on the deformed edge (totals over the ring).
+    Ring,
+    /// Solid faces.
+    Area,
+}
+
+impl Measure {
+    /// The measure of `model`'s facets.
+    pub fn of<const D: usize>(model: &Model<D>) -> Self {
+        match model.analysis.kind {
+            AnalysisKind::Solid => Measure::Area,
+            AnalysisKind::Axisymmetric => Measure::Ring,
+            AnalysisKind::PlaneStrain | AnalysisKind::PlaneStress => {
+                Measure::Thickness(model.analysis.thickness)
+            }
+        }
+    }
+}
+
+/// The nodal forces `fe` (`D` per facet node) of the pressure `p` on the
+/// facet with current node positions `x` (planar edges: 2 or 3 nodes
+/// `[a, b, m]`; solid faces: 3, 4, 6, 8 or 9 nodes) and their derivative
+/// `ke[(D a + i) * (n D) + D b + j] = d fe[D a + i] / d x_b[j]`; `None` for
+/// a node count the facet kinds do not have (refused by `check_model`).
+pub fn facet_force<const D: usize>(
+    measure: Measure,
+    x: &[[f64; D]],
+    p: f64,
+) -> Option<(Vec<f64>, Vec<f64>)> {
+    let nd = x.len() * D;
+    let mut fe = vec![0.0; nd];
+    let mut ke = vec![0.0; nd * nd];
+    match (D, x.len(), measure) {
+        (2, 2 | 3, Measure::Thickness(_) | Measure::Ring) => {
+            edge(measure, x, p, &mut fe, &mut ke);
+        }
+        (3, 3, Measure::Area) => face::<D, 3, Tri3>(x, p, &mut fe, &mut ke),
+        (3, 4, Measure::Area) => face::<D, 4, Quad4>(x, p, &mut fe, &mut ke),
+        (3, 6, Measure::Area) => face::<D, 6, Tri6>(x, p, &mut fe, &mut ke),
+        (3, 8, Measure::Area) => face::<D, 8, Quad8>(x, p, &mut fe, &mut ke),
+        (3, 9, Measure::Area) => face::<D, 9, Quad9>(x, p, &mut fe, &mut ke),
+        _ => return None,
+    }
+    Some((fe, ke))
+}
+
+/// A planar edge of 2 nodes `[a, b]` or 3 nodes `[a, b, m]` (3-point Gauss:
+/// exact for the polynomial integrands of straight and curved edges of
+/// either order in plane analyses, and of straight ones axisymmetric).
+fn edge<const D: usize>(measure: Measure, x: &[[f64; D]], p: f64, fe: &mut [f64], ke: &mut [f64]) {
+    let n = x.len();
+    let nd = n * D;
+    let g = (0.6f64).sqrt();
+    for (xi, w) in [(-g, 5.0 / 9.0), (0.0, 8.0 / 9.0), (g, 5.0 / 9.0)] {
+        let (sh, dsh): (Vec<f64>, Vec<f64>) = if n == 2 {
+            (vec![0.5 * (1.0 - xi), 0.5 * (1.0 + xi)], vec![-0.5, 0.5])
+        } else {
+            (
+                vec![0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi],
+                vec![xi - 0.5, xi + 0.5, -2.0 * xi],
+            )
+        };
+        let (mut tan, mut r) = ([0.0; 2], 0.0);
+        for a in 0..n {
+            tan[0] += dsh[a] * x[a][0];
+            tan[1] += dsh[a] * x[a][1];
+            r += sh[a] * x[a][0];
+        }
+        let two_pi = 2.0 * std::f64::consts::PI;
+        let m = match measure {
+            Measure::Thickness(t) => t,
+            Measure::Ring => two_pi * r,
+            Measure::Area => return,
+        };
+        // J tan: the inward normal times the length element
+        let jt = [-tan[1], tan[0]];
+        for a in 0..n {
+            for i in 0..2 {
+                fe[D * a + i] += p * w * sh[a] * m * jt[i];
+            }
+            for b in 0..n {
+                // d(J tan)/d x_b = dsh_b J, J = [[0, -1], [1, 0]]
+                let jm = [[0.0, -1.0], [1.0, 0.0]];
+                for i in 0..2 {
+                    for j in 0..2 {
+                        let mut d = m * dsh[b] * jm[i][j];
+                        if measure == Measure::Ring && j == 0 {
+                            d += two_pi * sh[b] * jt[i];
+                        }
+                        ke[(D * a + i) * nd + D * b + j] += p * w * sh[a] * d;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A solid face with the reference cell `C` (its own quadrature).
+fn face<const D: usize, const NN: usize, C: ReferenceCell<2, NN>>(
+    x: &[[f64; D]],
+    p: f64,
+    fe: &mut [f64],
+    ke: &mut [f64],
+) {
+    let nd = NN * D;
+    let skew = |v: [f64; 3]| [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]];
+    for (xi, w) in C::QUADRATURE {
+        let (sh, g) = (C::shape(xi), C::gradients(xi));
+        let mut t = [[0.0; 3]; 2];
+        for a in 0..NN {
+            for (k, tk) in t.iter_mut().enumerate() {
+                for c in 0..3 {
+                    tk[c] += g[a][k] * x[a][c];
+                }
+            }
+        }
+        let [t1, t2] = t;
+        let area_normal = [
+            t1[1] * t2[2] - t1[2] * t2[1],
+            t1[2] * t2[0] - t1[0] * t2[2],
+            t1[0] * t2[1] - t1[1] * t2[0],
+        ];
+        let (s1, s2) = (skew(t1), skew(t2));
+        for a in 0..NN {
+            for i in 0..3 {
+                fe[D * a + i] -= p * w * sh[a] * area_normal[i];
+            }
+            for b in 0..NN {
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let d = -g[b][0] * s2[i][j] + g[b][1] * s1[i][j];
+                        ke[(D * a + i) * nd + D * b + j] -= p * w * sh[a] * d;
+                    }
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Central differences of `facet_force` against its `ke`.
+    fn fd_error<const D: usize>(measure: Measure, x: &[[f64; D]], p: f64) -> f64 {
+        let (f0, ke) = facet_force(measure, x, p).unwrap();
+        let nd = x.len() * D;
+        let h = 1e-6;
+        let (mut err, mut scale) = (0.0f64, 0.0f64);
+        for b in 0..x.len() {
+            for j in 0..D {
+                let mut xp = x.to_vec();
+                let mut xm = x.to_vec();
+                xp[b][j] += h;
+                xm[b][j] -= h;
+                let (fp, _) = facet_force(measure, &xp, p).unwrap();
+                let (fm, _) = facet_force(measure, &xm, p).unwrap();
+                for r in 0..nd {
+                    let fd = (fp[r] - fm[r]) / (2.0 * h);
+                    let k = ke[r * nd + D * b + j];
+                    err = err.max((fd - k).abs());
+                    scale = scale.max(k.abs());
+                }
+            }
+        }
+        assert!(f0.iter().all(|v| v.is_finite()));
+        err / scale
+    }
+
+    #[test]
+    fn load_stiffness_matches_finite_differences_on_every_facet_kind() {
+        // distorted, curved facets; the pressure's sign does not matter
+        let e2 = [[1.0, 0.2], [1.3, 1.1]];
+        let e3 = [[1.0, 0.2], [1.3, 1.1], [1.25, 0.6]];
+        for m in [Measure::Thickness(0.7), Measure::Ring] {
+            assert!(fd_error::<2>(m, &e2, 3.0) < 1e-8, "{m:?} 2");
+            assert!(fd_error::<2>(m, &e3, -2.0) < 1e-8, "{m:?} 3");
+        }
+        let corners = [
+            [0.0, 0.0, 0.1],
+            [1.2, 0.1, 0.0],
+            [1.0, 0.9, 0.3],
+            [0.1, 1.1, -0.1],
+        ];
+        let mid = |a: [f64; 3], b: [f64; 3], lift: f64| {
+            [
+                0.5 * (a[0] + b[0]),
+                0.5 * (a[1] + b[1]),
+                0.5 * (a[2] + b[2]) + lift,
+            ]
+        };
+        let tri3 = [corners[0], corners[1], corners[2]];
+        let tri6 = [
+            corners[0],
+            corners[1],
+            corners[2],
+            mid(corners[0], corners[1], 0.05),
+            mid(corners[1], corners[2], -0.04),
+            mid(corners[2], corners[0], 0.03),
+        ];
+        let mids = [
+            mid(corners[0], corners[1], 0.05),
+            mid(corners[1], corners[2], -0.04),
+            mid(corners[2], corners[3], 0.03),
+            mid(corners[3], corners[0], 0.02),
+        ];
+        let quad8: Vec<[f64; 3]> = corners.iter().chain(&mids).copied().collect();
+        let mut quad9 = quad8.clone();
+        quad9.push([0.55, 0.5, 0.2]);
+        for face in [&tri3[..], &corners[..], &tri6[..], &quad8[..], &quad9[..]] {
+            let e = fd_error::<3>(Measure::Area, face, 5.0);
+            assert!(e < 1e-8, "{} nodes: {e:e}", face.len());
+        }
+    }
+
+    #[test]
+    fn pressure_on_a_closed_deformed_surface_has_no_resultant() {
+        // a unit cube's six quad faces (outward, counter-clockwise seen from
+        // outside), sheared: the forces of a uniform pressure sum to zero
+        // and each face's resultant is -p times its area vector
+        let v = |x: f64, y: f64, z: f64| [x + 0.3 * z, y + 0.1 * x, z];
+        let c = [
+            v(0., 0., 0.),
+            v(1., 0., 0.),
+            v(1., 1., 0.),
+            v(0., 1., 0.),
+            v(0., 0., 1.),
+            v(1., 0., 1.),
+            v(1., 1., 1.),
+            v(0., 1., 1.),
+        ];
+        let faces = [
+            [0, 3, 2, 1],
+            [4, 5, 6, 7],
+            [0, 1, 5, 4],
+            [2, 3, 7, 6],
+            [1, 2, 6, 5],
+            [0, 4, 7, 3],
+        ];
+        let mut total = [0.0; 3];
+        for f in faces {
+            let x: Vec<[f64; 3]> = f.iter().map(|&i| c[i]).collect();
+            let (fe, _) = facet_force(Measure::Area, &x, 2.0).unwrap();
+            for a in 0..4 {
+                for i in 0..3 {
+                    total[i] += fe[3 * a + i];
+                }
+            }
+        }
+        assert!(total.iter().all(|t| t.abs() < 1e-14), "{total:?}");
+        // the top face (z = 1, area 1 after the shear): -p e_z
+        let top: Vec<[f64; 3]> = faces[1].iter().map(|&i| c[i]).collect();
+        let (fe, _) = facet_force(Measure::Area, &top, 2.0).unwrap();
+        let fz: f64 = (0..4).map(|a| fe[3 * a + 2]).sum();
+        assert!((fz + 2.0).abs() < 1e-14, "{fz}");
+    }
+
+    #[test]
+    fn planar_edge_forces_total_p_times_length_or_ring_area() {
+        // edge from (1, 0) to (1, 2), body on the left (x < 1): inward -x
+        let x = [[1.0, 0.0], [1.0, 2.0]];
+        let (fe, _) = facet_force(Measure::Thickness(0.5), &x, 3.0).unwrap();
+        assert!((fe[0] + fe[2] + 3.0 * 2.0 * 0.5).abs() < 1e-14);
+        let (fe, _) = facet_force(Measure::Ring, &x, 3.0).unwrap();
+        let ring = 2.0 * std::f64::consts::PI * 1.0 * 2.0;
+        assert!((fe[0] + fe[2] + 3.0 * ring).abs() < 1e-12);
+        assert!(fe[1].abs() < 1e-14 && fe[3].abs() < 1e-14);
+    }
+}
