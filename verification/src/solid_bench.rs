@@ -56,17 +56,7 @@ impl Observer<3> for Quiet {
 }
 
 /// Peak resident memory of this process (`VmHWM`), bytes; 0 if unknown.
-pub fn peak_memory_bytes() -> u64 {
-    std::fs::read_to_string("/proc/self/status")
-        .ok()
-        .and_then(|s| {
-            s.lines()
-                .find(|l| l.starts_with("VmHWM:"))
-                .and_then(|l| l.split_whitespace().nth(1))
-                .and_then(|kb| kb.parse::<u64>().ok())
-        })
-        .map_or(0, |kb| kb * 1024)
-}
+pub use ctc_engine::solve::linalg::peak_memory_bytes;
 
 /// Runs the block with `n` cells per edge.
 pub fn run_solid_bench(n: usize) -> Result<SolidBenchReport, String> {
