@@ -457,7 +457,9 @@ where
                     );
                     for r in &d.per_rank {
                         println!(
-                            "  rank {}: {} cells, {} owned + {} ghost nodes, halo {} columns                              from {} rank(s); assembly {:.3} s, contact {:.3} s, tangent {:.3}                              s, solve {:.3} s; peak memory {:.1} MiB",
+                            "  rank {}: {} cells, {} owned + {} ghost nodes, halo {} columns from {} \
+                             rank(s); assembly {:.3} s, contact {:.3} s, tangent {:.3} s, solve \
+                             {:.3} s; peak memory {:.1} MiB",
                             r.rank,
                             r.cells,
                             r.owned_nodes,

@@ -188,6 +188,7 @@ fn cg_gamg_from_petsc_options_converges_to_the_serial_answer() {
     // this tangent is indefinite (the serial run needs L D L^T): CG falls back to GMRES
     assert_eq!(d["solver"], "petsc: ksp gmres, pc gamg");
     assert!(d["fallbacks"].as_u64().unwrap() >= 1);
+    assert_eq!(d["fallback_reason"], "indefinite matrix");
     let its = d["krylov_iterations"].as_u64().unwrap();
     let solves = d["solves"].as_u64().unwrap();
     assert!(
@@ -321,6 +322,7 @@ fn large_contact_deck_by_cg_gamg_reports_every_rank() {
         let d = &s["distributed"];
         assert_eq!(d["solver"], "petsc: ksp cg, pc gamg");
         assert_eq!(d["fallbacks"], 0);
+        assert_eq!(d["fallback_reason"], "");
         let h = history_difference(&serial, &dir);
         assert!(h < 1e-7, "{ranks} ranks: history differs by {h:.2e}");
         // Krylov iterations per Newton iteration: one group per set-up

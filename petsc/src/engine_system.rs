@@ -455,6 +455,15 @@ impl<'e> PetscSystem<'e> {
                     || reason == ffi::KSPConvergedReason_KSP_DIVERGED_INDEFINITE_PC =>
             {
                 obj.ksp.set_type("gmres")?;
+                if self.stats.fallbacks == 0 {
+                    self.stats.fallback_reason =
+                        if reason == ffi::KSPConvergedReason_KSP_DIVERGED_INDEFINITE_MAT {
+                            "indefinite matrix"
+                        } else {
+                            "indefinite preconditioner"
+                        }
+                        .into();
+                }
                 self.stats.fallbacks += 1;
                 self.stats.solver = obj.ksp.describe()?;
                 obj.ksp.solve_vecs(obj.b, obj.x)?

@@ -193,6 +193,9 @@ pub struct DistributedStats {
     /// Solves CG could not do (an indefinite tangent) and GMRES did; from
     /// the first one on, `solver` names GMRES.
     pub fallbacks: usize,
+    /// Why CG gave up at the first fallback (`indefinite matrix` or
+    /// `indefinite preconditioner`); empty without a fallback.
+    pub fallback_reason: String,
     /// Wall time of matrix insertion + assembly, seconds (this rank).
     pub assembly_seconds: f64,
     /// Wall time of set-ups (factorization / AMG hierarchy), seconds.
