@@ -460,6 +460,24 @@ where
                         d.setup_seconds,
                         d.solve_seconds
                     );
+                    for r in &d.per_rank {
+                        println!(
+                            "  rank {}: {} cells, {} owned + {} ghost nodes, halo {} columns from {} \
+                             rank(s); assembly {:.3} s, contact {:.3} s, tangent {:.3} s, solve \
+                             {:.3} s; peak memory {:.1} MiB",
+                            r.rank,
+                            r.cells,
+                            r.owned_nodes,
+                            r.ghost_nodes,
+                            r.halo_columns,
+                            r.neighbours,
+                            r.assembly_seconds,
+                            r.contact_seconds,
+                            r.tangent_seconds,
+                            r.solve_seconds,
+                            r.peak_memory_bytes as f64 / (1024.0 * 1024.0)
+                        );
+                    }
                 }
                 for line in figures.lines() {
                     println!("{line}");

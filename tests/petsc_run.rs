@@ -188,6 +188,7 @@ fn cg_gamg_from_petsc_options_converges_to_the_serial_answer() {
     // this tangent is indefinite (the serial run needs L D L^T): CG falls back to GMRES
     assert_eq!(d["solver"], "petsc: ksp gmres, pc gamg");
     assert!(d["fallbacks"].as_u64().unwrap() >= 1);
+    assert_eq!(d["fallback_reason"], "indefinite matrix");
     let its = d["krylov_iterations"].as_u64().unwrap();
     let solves = d["solves"].as_u64().unwrap();
     assert!(
@@ -232,4 +233,218 @@ fn petsc_options_without_the_petsc_solver_are_refused() {
     );
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("need `--solver petsc`"));
+}
+
+/// The deck of `examples/hertz_cylinder.ctc` with one increment and
+/// `max_iter` Newton iterations, written into `dir`.
+fn hertz_one_increment(dir: &Path, max_iter: usize) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/hertz_cylinder.ctc"))
+        .unwrap()
+        .replace("increments = 4", "increments = 1")
+        .replace("max_iter = 20", &format!("max_iter = {max_iter}"));
+    let path = dir.join(format!("hertz_max_iter{max_iter}.ctc"));
+    std::fs::write(&path, text).unwrap();
+    path
+}
+
+#[test]
+fn two_ranks_agree_on_cutbacks_and_on_failure() {
+    // max_iter = 2: the one increment does not converge, the step is cut
+    // back (3 times) and finished in 8 increments; every rank must take the
+    // same cutbacks, or the next collective solve would deadlock
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = hertz_one_increment(tmp.path(), 2);
+    let deck = deck.to_str().unwrap();
+    let serial = tmp.path().join("serial");
+    ok(run(deck, &serial, None, &[]), "serial run");
+    let s0 = summary(&serial);
+    assert!(s0["cutbacks"].as_u64().unwrap() >= 1, "the deck cuts back");
+    let dir = tmp.path().join("petsc2");
+    ok(
+        run(deck, &dir, Some(2), &["--solver", "petsc"]),
+        "petsc run",
+    );
+    let s = summary(&dir);
+    assert_eq!(s["cutbacks"], s0["cutbacks"]);
+    assert_eq!(iterations(&s), iterations(&s0));
+    assert_eq!(s["newton_iterations"], s0["newton_iterations"]);
+    assert!(history_difference(&serial, &dir) < 1e-9);
+
+    // max_iter = 1: every cutback fails down to the smallest increment;
+    // the run stops on both ranks with rank 0's one diagnosis, the
+    // serial run's, and a summary saying so
+    let deck = hertz_one_increment(tmp.path(), 1);
+    let deck = deck.to_str().unwrap();
+    let serial = tmp.path().join("serial_fail");
+    let out0 = run(deck, &serial, None, &[]);
+    assert!(!out0.status.success());
+    let dir = tmp.path().join("petsc2_fail");
+    let out = run(deck, &dir, Some(2), &["--solver", "petsc"]);
+    assert!(!out.status.success());
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(err.matches("error:").count(), 1, "one diagnosis:\n{err}");
+    assert!(
+        err.contains("no convergence in max_iter = 1 iterations"),
+        "{err}"
+    );
+    let (s0, s) = (summary(&serial), summary(&dir));
+    assert_eq!(s["completed"], false);
+    assert_eq!(s["cutbacks"], s0["cutbacks"]);
+    assert_eq!(s["newton_iterations"], s0["newton_iterations"]);
+    assert_eq!(s["failure"], s0["failure"]);
+    assert_eq!(s["distributed"]["ranks"], 2);
+}
+
+#[test]
+fn large_contact_deck_by_cg_gamg_reports_every_rank() {
+    // tests/decks/large_contact_3d.ctc at its own size (n = 6, 8k dofs):
+    // the deck petsc/large_contact.sh scales up; a flat rigid floor keeps
+    // the tangent positive definite, so CG + GAMG needs no fallback
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "tests/decks/large_contact_3d.ctc";
+    let serial = tmp.path().join("faer");
+    ok(run(deck, &serial, None, &[]), "serial run");
+    let opts = [
+        "--solver",
+        "petsc",
+        "--",
+        "-ksp_type",
+        "cg",
+        "-pc_type",
+        "gamg",
+        "-ksp_rtol",
+        "1e-10",
+    ];
+    for ranks in [1, 2] {
+        let dir = tmp.path().join(format!("gamg{ranks}"));
+        ok(run(deck, &dir, Some(ranks), &opts), "CG + GAMG run");
+        let s = summary(&dir);
+        let d = &s["distributed"];
+        assert_eq!(d["solver"], "petsc: ksp cg, pc gamg");
+        assert_eq!(d["fallbacks"], 0);
+        assert_eq!(d["fallback_reason"], "");
+        let h = history_difference(&serial, &dir);
+        assert!(h < 1e-7, "{ranks} ranks: history differs by {h:.2e}");
+        // Krylov iterations per Newton iteration: one group per set-up
+        let groups = d["krylov_per_setup"].as_array().unwrap();
+        assert_eq!(groups.len() as u64, d["setups"].as_u64().unwrap());
+        assert_eq!(
+            groups.len() as u64,
+            s["newton_iterations"].as_u64().unwrap()
+        );
+        let per_solve: Vec<u64> = groups
+            .iter()
+            .flat_map(|g| g.as_array().unwrap().iter().map(|v| v.as_u64().unwrap()))
+            .collect();
+        assert_eq!(per_solve.len() as u64, d["solves"].as_u64().unwrap());
+        assert_eq!(
+            per_solve.iter().sum::<u64>(),
+            d["krylov_iterations"].as_u64().unwrap()
+        );
+        assert!(per_solve.iter().all(|&k| k > 1), "{per_solve:?}");
+        // every rank's share: the partition covers the mesh once, ghosts
+        // and halo exist exactly when there are several ranks
+        let per_rank = d["per_rank"].as_array().unwrap();
+        assert_eq!(per_rank.len(), ranks);
+        let total = |key: &str| -> u64 { per_rank.iter().map(|r| r[key].as_u64().unwrap()).sum() };
+        assert_eq!(total("cells"), 12 * 6 * 6 * 6);
+        assert_eq!(total("owned_nodes"), s["nodes"].as_u64().unwrap());
+        let rows: Vec<u64> = per_rank
+            .iter()
+            .map(|r| r["rows"].as_u64().unwrap())
+            .collect();
+        let expected: Vec<u64> = d["rows_per_rank"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_u64().unwrap())
+            .collect();
+        assert_eq!(rows, expected);
+        // a node shared by two parts belongs to the lower rank: the
+        // ghosts are on rank 1, the halo (columns) on both
+        assert_eq!(total("ghost_nodes") > 0, ranks > 1);
+        for r in per_rank {
+            let halo = r["halo_columns"].as_u64().unwrap();
+            assert_eq!(halo > 0, ranks > 1, "{r}");
+            assert_eq!(r["neighbours"].as_u64().unwrap(), ranks as u64 - 1, "{r}");
+            assert!(r["off_rank_nonzeros"].as_u64().unwrap() >= halo, "{r}");
+            assert!(r["peak_memory_bytes"].as_u64().unwrap() > 0, "{r}");
+            assert!(r["assembly_seconds"].as_f64().unwrap() > 0.0, "{r}");
+            assert!(r["solve_seconds"].as_f64().unwrap() > 0.0, "{r}");
+        }
+    }
+}
+
+#[test]
+fn restart_under_mpirun_finishes_a_stopped_run_as_the_serial_run() {
+    // the coarse 3D Hertz sphere in 40 increments, output (and restart
+    // point) at each: stopped (SIGTERM to mpirun) once two increments are
+    // written, then `mpirun -n 2 ctc run --restart --solver petsc`
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root().join("tests/decks/hertz_sphere_3d_coarse.ctc"))
+        .unwrap()
+        .replace("increments = 4", "increments = 40")
+        .replace("output {", "output {\n  every = 1");
+    let deck = tmp.path().join("sphere40.ctc");
+    std::fs::write(&deck, text).unwrap();
+    let deck = deck.to_str().unwrap();
+    let serial = tmp.path().join("serial");
+    ok(run(deck, &serial, None, &[]), "serial run");
+    let dir = tmp.path().join("petsc2");
+    let mut child = Command::new("mpirun")
+        .args(["--allow-run-as-root", "--oversubscribe", "-n", "2"])
+        .arg(env!("CARGO_BIN_EXE_ctc"))
+        .args(["run", deck, "-q", "--solver", "petsc", "-o"])
+        .arg(&dir)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    let start = std::time::Instant::now();
+    loop {
+        let n = std::fs::read_to_string(dir.join("results.pvd"))
+            .map(|t| t.matches("part=\"0\"").count())
+            .unwrap_or(0);
+        if n >= 2 {
+            break;
+        }
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the run ended before it could be stopped"
+        );
+        assert!(start.elapsed().as_secs() < 300, "run too slow");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let status = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    child.wait().unwrap();
+    assert!(
+        !dir.join("summary.json").exists(),
+        "a stopped run has no summary"
+    );
+    let written = std::fs::read_to_string(dir.join("results.pvd"))
+        .unwrap()
+        .matches("part=\"0\"")
+        .count();
+    assert!((2..40).contains(&written), "{written} increments written");
+    ok(
+        run(deck, &dir, Some(2), &["--restart", "--solver", "petsc"]),
+        "restarted petsc run",
+    );
+    let s = summary(&dir);
+    assert_eq!(s["completed"], true);
+    assert_eq!(s["distributed"]["ranks"], 2);
+    let h = history_difference(&serial, &dir);
+    assert!(h < 1e-9, "restarted history differs by {h:.2e}");
+    let (p0, peak0) = pressures(&serial, 40);
+    let (p, _) = pressures(&dir, 40);
+    let dp = p0
+        .iter()
+        .zip(&p)
+        .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
+        / peak0;
+    assert!(dp < 1e-9, "pressures differ by {dp:.2e} of p0");
 }

@@ -115,4 +115,12 @@ impl<'e> Comm<'e> {
             .all_reduce_into(&(local as u64), &mut out, SystemOperation::sum());
         out as usize
     }
+
+    /// Every rank's `local` values (the same count on every rank), rank by
+    /// rank, on every rank.
+    pub fn all_gather(&self, local: &[f64]) -> Vec<f64> {
+        let mut out = vec![0.0; local.len() * self.size()];
+        self.inner.all_gather_into(local, &mut out[..]);
+        out
+    }
 }

@@ -47,8 +47,10 @@ use crate::partition::partition_cells;
 use ctc_engine::model::Model;
 use ctc_engine::solve::dofs::DofMap;
 use ctc_engine::solve::linalg::{
-    DistributedStats, FactorStats, LinearError, LinearSystem, SparsePattern,
+    peak_memory_bytes, DistributedStats, FactorStats, LinearError, LinearSystem, RankStats,
+    SparsePattern,
 };
+use ctc_engine::solve::Timings;
 use std::time::Instant;
 
 /// Marks an identity row's entry in [`OwnedRows::slots`].
@@ -119,7 +121,13 @@ pub struct PetscSystem<'e> {
     objects: Option<Objects<'e>>,
     factorized: bool,
     stats: DistributedStats,
+    /// This rank's partition and halo (its entry of `per_rank`, without
+    /// the times).
+    share: RankStats,
 }
+
+/// Fields of a [`RankStats`] exchanged by [`PetscSystem::distributed`].
+const RANK_FIELDS: usize = 15;
 
 impl<'e> PetscSystem<'e> {
     /// The system of `model` (its dof numbering, mesh partition and
@@ -172,6 +180,14 @@ impl<'e> PetscSystem<'e> {
             assembly: "replicated".into(),
             ..Default::default()
         };
+        let share = RankStats {
+            rank,
+            cells: layout.cells.len(),
+            owned_nodes: layout.owned_nodes.len(),
+            ghost_nodes: layout.ghost_nodes.len(),
+            rows: offsets[rank + 1] - offsets[rank],
+            ..Default::default()
+        };
         Ok(PetscSystem {
             comm,
             choice,
@@ -187,6 +203,7 @@ impl<'e> PetscSystem<'e> {
             objects: None,
             factorized: false,
             stats,
+            share,
         })
     }
 
@@ -281,6 +298,24 @@ impl<'e> PetscSystem<'e> {
                 }
             }
         }
+        // the halo: distinct columns of other ranks, and the ranks owning them
+        let mut halo: Vec<ffi::PetscInt> = rows
+            .cols
+            .iter()
+            .copied()
+            .filter(|&c| (c as usize) < lo || (c as usize) >= hi)
+            .collect();
+        self.share.nonzeros = rows.cols.len();
+        self.share.off_rank_nonzeros = halo.len();
+        halo.sort_unstable();
+        halo.dedup();
+        self.share.halo_columns = halo.len();
+        let mut owners: Vec<usize> = halo
+            .iter()
+            .map(|&c| self.offsets.partition_point(|&o| o <= c as usize) - 1)
+            .collect();
+        owners.dedup();
+        self.share.neighbours = owners.len();
         let n_global = *self.offsets.last().unwrap_or(&0);
         let mut mat = DistMatrix::from_nnz(&self.comm, n_owned, n_global, self.dim, &d, &o)?;
         set_near_null_space(&self.comm, &mut mat, &self.modes)?;
@@ -392,6 +427,7 @@ impl<'e> PetscSystem<'e> {
         }
         self.stats.setup_seconds += mid.elapsed().as_secs_f64();
         self.stats.setups += 1;
+        self.stats.krylov_per_setup.push(Vec::new());
         Ok(())
     }
 
@@ -419,6 +455,15 @@ impl<'e> PetscSystem<'e> {
                     || reason == ffi::KSPConvergedReason_KSP_DIVERGED_INDEFINITE_PC =>
             {
                 obj.ksp.set_type("gmres")?;
+                if self.stats.fallbacks == 0 {
+                    self.stats.fallback_reason =
+                        if reason == ffi::KSPConvergedReason_KSP_DIVERGED_INDEFINITE_MAT {
+                            "indefinite matrix"
+                        } else {
+                            "indefinite preconditioner"
+                        }
+                        .into();
+                }
                 self.stats.fallbacks += 1;
                 self.stats.solver = obj.ksp.describe()?;
                 obj.ksp.solve_vecs(obj.b, obj.x)?
@@ -451,6 +496,9 @@ impl<'e> PetscSystem<'e> {
             )?;
         }
         self.stats.solves += 1;
+        if let Some(group) = self.stats.krylov_per_setup.last_mut() {
+            group.push(report.iterations);
+        }
         self.stats.krylov_iterations += report.iterations;
         self.stats.max_krylov_iterations = self.stats.max_krylov_iterations.max(report.iterations);
         self.stats.solve_seconds += start.elapsed().as_secs_f64();
@@ -497,7 +545,50 @@ impl LinearSystem for PetscSystem<'_> {
         FactorStats::default()
     }
 
-    fn distributed(&self) -> Option<DistributedStats> {
-        Some(self.stats.clone())
+    fn distributed(&self, timings: &Timings) -> Option<DistributedStats> {
+        let s = &self.share;
+        // counts travel as f64: exact below 2^53
+        let local: [f64; RANK_FIELDS] = [
+            s.cells as f64,
+            s.owned_nodes as f64,
+            s.ghost_nodes as f64,
+            s.rows as f64,
+            s.nonzeros as f64,
+            s.off_rank_nonzeros as f64,
+            s.halo_columns as f64,
+            s.neighbours as f64,
+            timings.assembly,
+            timings.contact,
+            timings.factorization,
+            timings.solve,
+            self.stats.assembly_seconds,
+            self.stats.setup_seconds,
+            peak_memory_bytes() as f64,
+        ];
+        let all = self.comm.all_gather(&local);
+        let mut stats = self.stats.clone();
+        stats.per_rank = all
+            .chunks(RANK_FIELDS)
+            .enumerate()
+            .map(|(rank, v)| RankStats {
+                rank,
+                cells: v[0] as usize,
+                owned_nodes: v[1] as usize,
+                ghost_nodes: v[2] as usize,
+                rows: v[3] as usize,
+                nonzeros: v[4] as usize,
+                off_rank_nonzeros: v[5] as usize,
+                halo_columns: v[6] as usize,
+                neighbours: v[7] as usize,
+                assembly_seconds: v[8],
+                contact_seconds: v[9],
+                tangent_seconds: v[10],
+                solve_seconds: v[11],
+                insertion_seconds: v[12],
+                setup_seconds: v[13],
+                peak_memory_bytes: v[14] as u64,
+            })
+            .collect();
+        Some(stats)
     }
 }

@@ -145,12 +145,17 @@ pub trait LinearSystem {
     }
     /// Counters.
     fn stats(&self) -> FactorStats;
-    /// What a distributed solver (PETSc over MPI) did; `None` for the
-    /// serial direct solver.
-    fn distributed(&self) -> Option<DistributedStats> {
+    /// What a distributed solver (PETSc over MPI) did, with the engine's
+    /// phase `timings` of this rank gathered from every rank into
+    /// [`DistributedStats::per_rank`]; `None` for the serial direct solver.
+    /// Collective for a distributed solver: the run calls it once, at its
+    /// end, on every rank.
+    fn distributed(&self, _timings: &super::Timings) -> Option<DistributedStats> {
         None
     }
 }
+
+pub use super::memory::peak_memory_bytes;
 
 /// Counters of a distributed linear solver over the run (the `distributed`
 /// section of `summary.json`).
@@ -176,12 +181,63 @@ pub struct DistributedStats {
     /// Solves CG could not do (an indefinite tangent) and GMRES did; from
     /// the first one on, `solver` names GMRES.
     pub fallbacks: usize,
+    /// Why CG gave up at the first fallback (`indefinite matrix` or
+    /// `indefinite preconditioner`); empty without a fallback.
+    pub fallback_reason: String,
     /// Wall time of matrix insertion + assembly, seconds (this rank).
     pub assembly_seconds: f64,
     /// Wall time of set-ups (factorization / AMG hierarchy), seconds.
     pub setup_seconds: f64,
     /// Wall time of the solves, seconds.
     pub solve_seconds: f64,
+    /// Krylov iterations of each solve, one list per tangent set-up (a
+    /// Newton iteration: the correction, then, when the engine estimates
+    /// the next correction with the same tangent, that solve).
+    pub krylov_per_setup: Vec<Vec<usize>>,
+    /// Each rank's share: its part of the mesh, its halo (the
+    /// communication volume of a matrix-vector product) and its times and
+    /// peak memory, gathered at the end of the run.
+    pub per_rank: Vec<RankStats>,
+}
+
+/// One rank of a distributed run (an entry of
+/// [`DistributedStats::per_rank`]).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct RankStats {
+    /// The rank.
+    pub rank: usize,
+    /// Cells of its part of the mesh partition (METIS).
+    pub cells: usize,
+    /// Nodes it owns (their rows are its rows).
+    pub owned_nodes: usize,
+    /// Ghost nodes: nodes of its cells owned by another rank.
+    pub ghost_nodes: usize,
+    /// Matrix rows it owns.
+    pub rows: usize,
+    /// Stored entries of its rows (last sparsity pattern).
+    pub nonzeros: usize,
+    /// Of those, entries in columns owned by other ranks.
+    pub off_rank_nonzeros: usize,
+    /// Distinct columns of other ranks its rows touch: the values it
+    /// receives in every matrix-vector product (halo size).
+    pub halo_columns: usize,
+    /// Ranks it receives halo values from.
+    pub neighbours: usize,
+    /// Element assembly on this rank (the engine's phase), seconds.
+    pub assembly_seconds: f64,
+    /// Contact search, forces and tangents on this rank, seconds.
+    pub contact_seconds: f64,
+    /// The tangent handed to PETSc: insertion and set-up (what the serial
+    /// run calls factorization), seconds.
+    pub tangent_seconds: f64,
+    /// Solves (Krylov iterations and the scatter of the solution), seconds.
+    pub solve_seconds: f64,
+    /// PETSc matrix insertion and assembly alone, seconds.
+    pub insertion_seconds: f64,
+    /// Preconditioner / factorization set-ups alone, seconds.
+    pub setup_seconds: f64,
+    /// Peak resident memory of the rank's process (`VmHWM`), bytes.
+    pub peak_memory_bytes: u64,
 }
 
 /// The Lagrange-multiplier saddle-point system built from the tangent and

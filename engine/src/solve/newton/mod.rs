@@ -327,8 +327,9 @@ where
     }
 
     /// Counters of a distributed linear solver (`None`: the serial one).
+    /// Collective under MPI (see [`LinearSystem::distributed`]).
     pub fn distributed_stats(&self) -> Option<super::linalg::DistributedStats> {
-        self.linear.distributed()
+        self.linear.distributed(&self.timings)
     }
 
     /// Saddle-point factorizations (symbolic, numeric) of the Lagrange
