@@ -3,11 +3,11 @@
 
 mod support;
 
-use ctc_engine::model::*;
-use ctc_engine::solve::{run, IncrementView, Observer};
-use ctc_engine::thermal::scene::{
+use ctc_engine::model::thermal::{
     CouplingScheme, HeatFlux, MaterialThermal, PrescribedTemperature, ThermalScene,
 };
+use ctc_engine::model::*;
+use ctc_engine::solve::{run, IncrementView, Observer};
 use std::f64::consts::PI;
 use support::{fix, grid, grid_node, one_body, step};
 

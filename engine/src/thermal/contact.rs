@@ -14,8 +14,8 @@
 //! `h A w w^T`, `w = [1, -(1 - xi), -xi]`, which conserves heat exactly
 //! (what leaves the slave enters the master).
 
-use super::scene::ContactThermal;
 use crate::contact::{ContactStatus, NodeContact};
+use crate::model::thermal::ContactThermal;
 
 /// Conductance `h` of one contact node (power / area / temperature).
 pub fn node_conductance(settings: &ContactThermal, c: &NodeContact) -> f64 {
@@ -97,7 +97,7 @@ impl ConductanceElement {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::thermal::scene::Conductance;
+    use crate::model::thermal::Conductance;
 
     fn contact(status: ContactStatus, gap: f64, pressure: f64) -> NodeContact {
         NodeContact {

@@ -20,11 +20,11 @@
 use super::contact::{node_conductance, ConductanceElement, ThermalMaster};
 use super::expansion::{cell_temperatures, cell_thermal_strains};
 use super::properties::{is_temperature_dependent, law_at};
-use super::scene::ThermalScene;
 use super::solver::{ThermalIncrement, ThermalSolver};
 use crate::contact::{tributary::tributary_areas, NodeContact};
 use crate::element::MaterialPoint;
 use crate::material::{von_mises, NonlinearLaw};
+use crate::model::thermal::ThermalScene;
 use crate::model::Model;
 
 /// The thermal side of a coupled run.

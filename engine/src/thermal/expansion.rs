@@ -13,11 +13,11 @@
 //! Plane strain keeps `eps_zz = 0` in total, so a heated constrained plane
 //! strain body carries `sigma_zz = -E alpha dT` when also held in-plane.
 
-use super::scene::ThermalScene;
 use crate::element::{kernel_of, ElementError, Section};
 use crate::geom::{Dimension, Point};
 use crate::material::LinearElastic;
 use crate::mesh::Mesh;
+use crate::model::thermal::ThermalScene;
 use crate::model::{Formulation, Model};
 use nalgebra::Const;
 

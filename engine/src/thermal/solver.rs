@@ -18,8 +18,8 @@
 use super::boundary::{edge_mass, edge_weights};
 use super::conduction::{cell_conduction, CellConduction};
 use super::contact::ConductanceElement;
-use super::scene::ThermalScene;
 use crate::element::Section;
+use crate::model::thermal::ThermalScene;
 use crate::model::Model;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};

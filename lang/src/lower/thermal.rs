@@ -1,4 +1,4 @@
-//! Lowering the thermal constructs into `ctc_engine::thermal::ThermalScene`.
+//! Lowering the thermal constructs into `ctc_engine::model::thermal::ThermalScene`.
 //!
 //! A deck without any `thermal` block and without thermal load items
 //! lowers to `Model::thermal = None`: no temperature unknowns at all.
@@ -13,11 +13,11 @@ use crate::ast::Deck;
 use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
 use ctc_engine::mesh::Mesh;
-use ctc_engine::model::{Body, ContactPair, Material};
-use ctc_engine::thermal::scene::{
+use ctc_engine::model::thermal::{
     Conductance, ContactThermal, Convection, CouplingScheme, HeatFlux, MaterialThermal,
     PrescribedTemperature, ThermalScene,
 };
+use ctc_engine::model::{Body, ContactPair, Material};
 use std::collections::BTreeMap;
 use std::ops::Range;
 

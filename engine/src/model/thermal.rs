@@ -1,10 +1,11 @@
-//! The thermal part of a lowered scene ([`crate::model::Model::thermal`]).
+//! The thermal part of a lowered scene ([`crate::model::Model::thermal`]):
+//! plain data, lowered from the deck, used by [`crate::thermal`].
 //!
 //! It exists only when the deck has a `thermal` block somewhere: a scene
 //! without one carries `Model::thermal = None` and no temperature unknowns
 //! at all. Temperatures are nodal; units are the user's (consistent).
 
-use crate::model::TimeFunction;
+use super::TimeFunction;
 
 /// Everything thermal of a scene.
 #[derive(Debug, Clone, PartialEq)]
