@@ -184,11 +184,25 @@ fn face_quadrature<const D: usize>(
     face: &[usize],
     mut visit: impl FnMut(usize, f64, f64, [f64; 3]),
 ) {
+    face_points(nodes, face, |w, n, area_normal| {
+        for (a, &node) in face.iter().enumerate() {
+            visit(node, w, n[a], area_normal);
+        }
+    });
+}
+
+/// The quadrature points of [`face_quadrature`], one call per point:
+/// `visit(w, [N_a], n dA / (dxi deta))` (shape values in face node order).
+pub(crate) fn face_points<const D: usize>(
+    nodes: &[[f64; D]],
+    face: &[usize],
+    mut visit: impl FnMut(f64, &[f64], [f64; 3]),
+) {
     use crate::element::reference::{Quad4, Quad8, Quad9, ReferenceCell, Tri3, Tri6};
     fn on<const D: usize, const NN: usize, C: ReferenceCell<2, NN>>(
         nodes: &[[f64; D]],
         face: &[usize],
-        visit: &mut impl FnMut(usize, f64, f64, [f64; 3]),
+        visit: &mut impl FnMut(f64, &[f64], [f64; 3]),
     ) {
         for (xi, w) in C::QUADRATURE {
             let (n, g) = (C::shape(xi), C::gradients(xi));
@@ -207,9 +221,7 @@ fn face_quadrature<const D: usize>(
                 t1[2] * t2[0] - t1[0] * t2[2],
                 t1[0] * t2[1] - t1[1] * t2[0],
             ];
-            for (a, &node) in face.iter().enumerate() {
-                visit(node, *w, n[a], area_normal);
-            }
+            visit(*w, &n[..], area_normal);
         }
     }
     match face.len() {

@@ -6,13 +6,13 @@
 //! contact needs a material with a `thermal` block; a thermal contact with a
 //! rigid tool needs the tool's temperature.
 
-use super::sets::resolve;
+use super::sets::Resolved;
 use super::time_function;
 use crate::ast::thermal::{self as ast, ThermalLoadKind};
-use crate::ast::Deck;
+use crate::ast::{Deck, SetRef};
 use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
-use ctc_engine::mesh::Mesh;
+use ctc_engine::mesh::Facet;
 use ctc_engine::model::thermal::{
     Conductance, ContactThermal, Convection, CouplingScheme, HeatFlux, MaterialThermal,
     PrescribedTemperature, ThermalScene,
@@ -36,11 +36,13 @@ pub fn has_thermal(deck: &Deck) -> bool {
         || !deck.thermal_loads.is_empty()
 }
 
-/// The thermal scene of `deck` (`None` when it has no thermal construct).
+/// The thermal scene of `deck` (`None` when it has no thermal construct),
+/// planar or solid: `resolve` resolves a set in the model's mesh (boundary
+/// edges of a planar mesh, faces of a solid one).
 #[allow(clippy::too_many_arguments)]
 pub fn lower(
     deck: &Deck,
-    mesh: &Mesh,
+    mut resolve: impl FnMut(&SetRef, Need, &str) -> Result<Resolved, Diagnostic>,
     body_nodes: &BTreeMap<String, Range<usize>>,
     bodies: &[Body],
     materials: &[Material],
@@ -131,7 +133,7 @@ pub fn lower(
             ThermalLoadKind::Temperature => Need::Nodes,
             _ => Need::Edges,
         };
-        let r = match resolve(mesh, body_nodes, &l.target, need, word) {
+        let r = match resolve(&l.target, need, word) {
             Ok(r) => r,
             Err(d) => {
                 diags.push(d);
@@ -142,6 +144,13 @@ pub fn lower(
             continue;
         };
         let label = format!("{word} {}", l.target);
+        let facets = || -> Vec<Facet> {
+            match (&r.faces, &r.edges) {
+                (Some(f), _) => f.clone(),
+                (None, Some(e)) => e.iter().map(|e| Facet::new(e)).collect(),
+                (None, None) => Vec::new(),
+            }
+        };
         match l.kind {
             ThermalLoadKind::Temperature => scene.temperatures.push(PrescribedTemperature {
                 label,
@@ -149,13 +158,13 @@ pub fn lower(
                 value,
             }),
             ThermalLoadKind::HeatFlux => scene.fluxes.push(HeatFlux {
+                facets: facets(),
                 label,
-                edges: r.edges.unwrap_or_default(),
                 value,
             }),
             ThermalLoadKind::Convection => scene.convection.push(Convection {
+                facets: facets(),
                 label,
-                edges: r.edges.unwrap_or_default(),
                 film: l.film.as_ref().map_or(0.0, |h| h.value),
                 ambient: value,
             }),
