@@ -7,10 +7,10 @@
 //! plane `dA = t ds`; axisymmetric `dA = 2 pi r ds` with `r` linear along
 //! the edge (the same consistent rule as the contact tributary areas,
 //! `contact::tributary`), totals over the full ring. Faces of a solid
-//! (tri3, quad4, tri6, quad8, quad9): the face quadrature of the pressure
-//! loads (`solve::loads::face_points`), `dA = |dx/dxi x dx/deta| dxi deta`
-//! (exact for flat tri3 faces; 2x2 Gauss on quad4 faces integrates
-//! `N_a N_b` exactly on parallelograms).
+//! (tri3, quad4, tri6, quad8, quad9): the face cell's mass rule through the
+//! face quadrature of the pressure loads (`solve::loads::face_points`),
+//! `dA = |dx/dxi x dx/deta| dxi deta`: `N_a N_b` exact on flat tri3 faces
+//! and on parallelogram quad4 faces (3x3 Gauss).
 
 use crate::mesh::Facet;
 use crate::model::{AnalysisKind, Model};
@@ -54,7 +54,7 @@ pub fn facet_integrals<const D: usize>(model: &Model<D>, facet: &Facet) -> Facet
         weights: vec![0.0; nn],
         mass: vec![vec![0.0; nn]; nn],
     };
-    crate::solve::loads::face_points(nodes, f, |w, n, an| {
+    crate::solve::loads::face_points(nodes, f, true, |w, n, an| {
         let da = w * (an[0] * an[0] + an[1] * an[1] + an[2] * an[2]).sqrt();
         for a in 0..nn {
             out.weights[a] += n[a] * da;

@@ -235,3 +235,37 @@ pub fn lower(
     }
     Some(scene)
 }
+
+#[cfg(test)]
+mod tests {
+    use ctc_engine::model::AnyModel;
+
+    #[test]
+    fn a_3d_deck_lowers_heat_flux_and_convection_on_faces() {
+        let text = "analysis { dimension = 3d }\n\
+            material m { elastic { E = 1 nu = 0.3 } thermal { conductivity = 2 expansion = 1e-5 } }\n\
+            body b { mesh = box { size = (1, 1, 1) divisions = (2, 2, 2) } material = m thermal { initial = 7 } }\n\
+            tool floor = plane { point = (0, 0, 0) normal = (0, 0, 1) }\n\
+            contact b.zmin -> floor { method = penalty { stiffness = 1 } thermal { conductance = 3 tool_temperature = 20 } }\n\
+            fix b.xmin { ux uy uz }\n\
+            temperature b.xmin { value = 100 }\n\
+            heat_flux b.xmax { q = 5 }\n\
+            convection b.ymax + b.zmax { h = 10 ambient = 20 }\n\
+            step s { time = 0 .. 1 }\n";
+        let src = crate::Source::new("t.ctc", text);
+        let model = match crate::compile_any(&src) {
+            Ok(AnyModel::D3(m)) => m,
+            Ok(AnyModel::D2(_)) => panic!("a 3d deck lowered to 2d"),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        let t = model.thermal.expect("a thermal scene");
+        assert_eq!(t.initial, vec![7.0]);
+        assert_eq!(t.temperatures[0].nodes.len(), 9);
+        // 2 x 2 quad faces on x = 1; 4 + 4 on y = 1 and z = 1
+        assert_eq!(t.fluxes[0].facets.len(), 4);
+        assert!(t.fluxes[0].facets.iter().all(|f| f.nodes().len() == 4));
+        assert_eq!(t.convection[0].facets.len(), 8);
+        let c = t.contacts[0].as_ref().expect("a thermal pair");
+        assert!(c.tool_temperature.is_some());
+    }
+}
