@@ -902,7 +902,7 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
             for c in &t.convection {
                 let _ = writeln!(
                     o,
-                    "  {}: q = {} (T_ambient - T), T_ambient = {} on {}",
+                    "  {}: q = h (T_ambient - T), h = {}, T_ambient = {} on {}",
                     c.label,
                     num(c.film),
                     time_function(&c.ambient),

@@ -267,5 +267,22 @@ mod tests {
         assert_eq!(t.convection[0].facets.len(), 8);
         let c = t.contacts[0].as_ref().expect("a thermal pair");
         assert!(c.tool_temperature.is_some());
+        // `ctc check --explain` describes the heat part of a 3d scene
+        let model = match crate::compile_any(&src) {
+            Ok(AnyModel::D3(m)) => m,
+            _ => unreachable!(),
+        };
+        let text = crate::explain::explain_solid(&model);
+        for line in [
+            "heat: conduction on 1 thermal material(s), 1 prescribed temperature(s), 1 flux(es), 1 convection(s), 1 thermal contact pair(s)",
+            "temperature b.xmin: T = 100 on 9 nodes",
+            "heat_flux b.xmax: q = 5 into the body on 4 faces",
+            "convection b.ymax + b.zmax: q = h (T_ambient - T), h = 10, T_ambient = 20 on 8 faces",
+            "thermal contact b.zmin -> floor",
+            "tool at T = 20",
+        ] {
+            assert!(text.contains(line), "{line}\n{text}");
+        }
+        assert!(!text.contains("thermal unknowns"), "{text}");
     }
 }
