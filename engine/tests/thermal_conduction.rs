@@ -3,11 +3,11 @@
 
 mod support;
 
-use ctc_engine::model::*;
-use ctc_engine::solve::{run, IncrementView, Observer};
-use ctc_engine::thermal::scene::{
+use ctc_engine::model::thermal::{
     CouplingScheme, HeatFlux, MaterialThermal, PrescribedTemperature, ThermalScene,
 };
+use ctc_engine::model::*;
+use ctc_engine::solve::{run, IncrementView, Observer};
 use std::f64::consts::PI;
 use support::{fix, grid, grid_node, one_body, step};
 
@@ -138,8 +138,8 @@ fn steady_radial_conduction_in_a_hollow_cylinder_matches_the_log_profile() {
     m.density = 0.0;
     let mut s = scene(&model, m, 0.0);
     let left: Vec<usize> = (0..3).map(|j| grid_node(nx, 0, j)).collect();
-    let right: Vec<[usize; 2]> = (0..2)
-        .map(|j| [grid_node(nx, nx, j), grid_node(nx, nx, j + 1)])
+    let right: Vec<ctc_engine::mesh::Facet> = (0..2)
+        .map(|j| ctc_engine::mesh::Facet::new(&[grid_node(nx, nx, j), grid_node(nx, nx, j + 1)]))
         .collect();
     s.temperatures.push(PrescribedTemperature {
         label: "inner".into(),
@@ -148,7 +148,7 @@ fn steady_radial_conduction_in_a_hollow_cylinder_matches_the_log_profile() {
     });
     s.fluxes.push(HeatFlux {
         label: "outer".into(),
-        edges: right,
+        facets: right,
         value: TimeFunction::Constant(5.0),
     });
     model.thermal = Some(s);

@@ -483,17 +483,7 @@ pub fn explain(model: &Model) -> String {
     match &model.thermal {
         None => absent.push("thermal unknowns"),
         Some(t) => {
-            let _ = writeln!(
-                o,
-                "heat: conduction on {} thermal material(s), {} prescribed temperature(s), \
-                 {} flux(es), {} convection(s), {} thermal contact pair(s); coupling: staggered \
-                 (isothermal split: mechanics at fixed temperature, then heat)",
-                t.materials.iter().flatten().count(),
-                t.temperatures.len(),
-                t.fluxes.len(),
-                t.convection.len(),
-                t.contacts.iter().flatten().count()
-            );
+            let _ = writeln!(o, "{}", heat_line(t));
         }
     }
     if !model
@@ -906,9 +896,78 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
     } else if model.contacts.iter().all(|c| c.friction.is_none()) {
         absent.push("friction");
     }
-    absent.push("heat conduction (3d)");
+    match &model.thermal {
+        None => absent.push("thermal unknowns"),
+        Some(t) => {
+            let _ = writeln!(o, "{}", heat_line(t));
+            let _ = writeln!(
+                o,
+                "  conduction: every cell kind through its reference cell (lumped capacity), \
+                 backward Euler; temperature-dependent moduli and flow stress at the cell's \
+                 mean temperature; thermal strain alpha (T - T_ref) in the six strain \
+                 components; Taylor-Quinney plastic heating"
+            );
+            for b in &t.temperatures {
+                let _ = writeln!(
+                    o,
+                    "  {}: T = {} on {}",
+                    b.label,
+                    time_function(&b.value),
+                    plural(b.nodes.len(), "node", "nodes")
+                );
+            }
+            for f in &t.fluxes {
+                let _ = writeln!(
+                    o,
+                    "  {}: q = {} into the body on {}",
+                    f.label,
+                    time_function(&f.value),
+                    plural(f.facets.len(), "face", "faces")
+                );
+            }
+            for c in &t.convection {
+                let _ = writeln!(
+                    o,
+                    "  {}: q = h (T_ambient - T), h = {}, T_ambient = {} on {}",
+                    c.label,
+                    num(c.film),
+                    time_function(&c.ambient),
+                    plural(c.facets.len(), "face", "faces")
+                );
+            }
+            for (c, th) in model.contacts.iter().zip(&t.contacts) {
+                let Some(th) = th else { continue };
+                let tool = match &th.tool_temperature {
+                    Some(f) => format!("tool at T = {}", time_function(f)),
+                    None => "adiabatic tool".to_string(),
+                };
+                let _ = writeln!(
+                    o,
+                    "  thermal contact {}: heat h (T_tool - T) A per slave node (A: its \
+                     tributary face area), h from the contact pressure when closed, \
+                     k_gap / gap = {} / gap when open; {tool}",
+                    c.name,
+                    num(th.gap_conductivity)
+                );
+            }
+        }
+    }
     let _ = writeln!(o, "not in this scene: {}", absent.join(", "));
     o
+}
+
+/// The one-line summary of a thermal scene (both dimensions).
+fn heat_line(t: &ctc_engine::model::thermal::ThermalScene) -> String {
+    format!(
+        "heat: conduction on {} thermal material(s), {} prescribed temperature(s), \
+         {} flux(es), {} convection(s), {} thermal contact pair(s); coupling: staggered \
+         (isothermal split: mechanics at fixed temperature, then heat)",
+        t.materials.iter().flatten().count(),
+        t.temperatures.len(),
+        t.fluxes.len(),
+        t.convection.len(),
+        t.contacts.iter().flatten().count()
+    )
 }
 
 fn point3(p: [f64; 3]) -> String {

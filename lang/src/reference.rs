@@ -194,14 +194,14 @@ pub static ITEMS: &[Item] = &[
     Item {
         name: "heat_flux",
         syntax: "heat_flux EDGES { q = F(t) }",
-        doc: "A heat flux into the body through boundary edges.",
+        doc: "A heat flux into the body through boundary edges (3d: faces), positive heating the body.",
         blocks: &[],
         example: "heat_flux bar.right { q = 1e3 }",
     },
     Item {
         name: "convection",
         syntax: "convection EDGES { h = ..  ambient = F(t) }",
-        doc: "Convection to an ambient temperature, film coefficient `h`.",
+        doc: "Convection to an ambient temperature, film coefficient `h`, through boundary edges (3d: faces).",
         blocks: &[],
         example: "convection bar.top { h = 10  ambient = 20 }",
     },

@@ -69,7 +69,7 @@ impl Dimension<2> for Const<2> {
 impl Dimension<3> for Const<3> {
     const NAME: &'static str = "3d";
     type Contact = crate::solve::surface_assembly::SurfaceAssembly;
-    type Heat = crate::solve::scene::NoHeat;
+    type Heat = crate::thermal::coupling::Coupling;
 
     fn facet_normal(tangents: &[Point<3>]) -> Option<(Point<3>, f64)> {
         let (a, b) = (tangents.first()?, tangents.get(1)?);

@@ -186,13 +186,36 @@ fn face_quadrature<const D: usize>(
     face: &[usize],
     mut visit: impl FnMut(usize, f64, f64, [f64; 3]),
 ) {
+    face_points(nodes, face, false, |w, n, area_normal| {
+        for (a, &node) in face.iter().enumerate() {
+            visit(node, w, n[a], area_normal);
+        }
+    });
+}
+
+/// The quadrature points of [`face_quadrature`], one call per point:
+/// `visit(w, [N_a], n dA / (dxi deta))` (shape values in face node order);
+/// `mass`: the face cell's mass rule instead (`ReferenceCell::MASS_QUADRATURE`,
+/// exact for `N_a N_b` on flat faces: the tri3 face's 1-point rule is not).
+pub(crate) fn face_points<const D: usize>(
+    nodes: &[[f64; D]],
+    face: &[usize],
+    mass: bool,
+    mut visit: impl FnMut(f64, &[f64], [f64; 3]),
+) {
     use crate::element::reference::{Quad4, Quad8, Quad9, ReferenceCell, Tri3, Tri6};
     fn on<const D: usize, const NN: usize, C: ReferenceCell<2, NN>>(
         nodes: &[[f64; D]],
         face: &[usize],
-        visit: &mut impl FnMut(usize, f64, f64, [f64; 3]),
+        mass: bool,
+        visit: &mut impl FnMut(f64, &[f64], [f64; 3]),
     ) {
-        for (xi, w) in C::QUADRATURE {
+        let rule = if mass {
+            C::MASS_QUADRATURE
+        } else {
+            C::QUADRATURE
+        };
+        for (xi, w) in rule {
             let (n, g) = (C::shape(xi), C::gradients(xi));
             let mut t = [[0.0; 3]; 2];
             for (a, &node) in face.iter().enumerate() {
@@ -209,17 +232,15 @@ fn face_quadrature<const D: usize>(
                 t1[2] * t2[0] - t1[0] * t2[2],
                 t1[0] * t2[1] - t1[1] * t2[0],
             ];
-            for (a, &node) in face.iter().enumerate() {
-                visit(node, *w, n[a], area_normal);
-            }
+            visit(*w, &n[..], area_normal);
         }
     }
     match face.len() {
-        3 => on::<D, 3, Tri3>(nodes, face, &mut visit),
-        4 => on::<D, 4, Quad4>(nodes, face, &mut visit),
-        6 => on::<D, 6, Tri6>(nodes, face, &mut visit),
-        8 => on::<D, 8, Quad8>(nodes, face, &mut visit),
-        9 => on::<D, 9, Quad9>(nodes, face, &mut visit),
+        3 => on::<D, 3, Tri3>(nodes, face, mass, &mut visit),
+        4 => on::<D, 4, Quad4>(nodes, face, mass, &mut visit),
+        6 => on::<D, 6, Tri6>(nodes, face, mass, &mut visit),
+        8 => on::<D, 8, Quad8>(nodes, face, mass, &mut visit),
+        9 => on::<D, 9, Quad9>(nodes, face, mass, &mut visit),
         _ => {}
     }
 }

@@ -13,9 +13,11 @@
 //!   [`super::surface_assembly::SurfaceAssembly`] (rigid surface tools:
 //!   penalty, Lagrange multipliers, augmented Lagrangian; frictionless);
 //!   [`NoContact`] for scenes of any dimension without contact.
-//! - [`HeatCoupling`]: the staggered heat step. 2D:
-//!   [`crate::thermal::coupling::Coupling`]; 3D: [`NoHeat`] (a 3D deck with a
-//!   thermal part is refused with a message).
+//! - [`HeatCoupling`]: the staggered heat step,
+//!   [`crate::thermal::coupling::Coupling`] in both dimensions (one code
+//!   path: conduction on every cell kind, boundary terms on facets, contact
+//!   conductance against planar tools, master segments and 3D surface
+//!   tools).
 
 use super::constraints::Constraints;
 use super::contact_assembly::ContactAssembly;
@@ -463,8 +465,11 @@ pub trait HeatCoupling<const D: usize>: Sized {
     fn last(&self) -> &ThermalIncrement;
 }
 
-impl HeatCoupling<2> for crate::thermal::coupling::Coupling {
-    fn new(model: &Model) -> Result<Option<Self>, String> {
+impl<const D: usize> HeatCoupling<D> for crate::thermal::coupling::Coupling
+where
+    Const<D>: Dimension<D>,
+{
+    fn new(model: &Model<D>) -> Result<Option<Self>, String> {
         crate::thermal::coupling::Coupling::new(model)
     }
 
@@ -472,20 +477,20 @@ impl HeatCoupling<2> for crate::thermal::coupling::Coupling {
         self.solver.free_dofs()
     }
 
-    fn thermal_strains(&self, model: &Model) -> Vec<f64> {
+    fn thermal_strains(&self, model: &Model<D>) -> Vec<f64> {
         crate::thermal::coupling::Coupling::thermal_strains(self, model)
     }
 
-    fn cell_laws(&self, model: &Model) -> Result<Vec<Option<NonlinearLaw>>, String> {
+    fn cell_laws(&self, model: &Model<D>) -> Result<Vec<Option<NonlinearLaw>>, String> {
         crate::thermal::coupling::Coupling::cell_laws(self, model)
     }
 
     fn heat_step(
         &mut self,
-        model: &Model,
+        model: &Model<D>,
         t: f64,
         dt: f64,
-        contact: &[Vec<NodeContact>],
+        contact: &[Vec<NodeContact<D>>],
         before: &[Vec<MaterialPoint>],
         after: &[Vec<MaterialPoint>],
     ) -> Result<(), String> {
@@ -501,53 +506,5 @@ impl HeatCoupling<2> for crate::thermal::coupling::Coupling {
 
     fn last(&self) -> &ThermalIncrement {
         &self.solver.last
-    }
-}
-
-/// No heat conduction: solid (3D) models, until thermal 3D.
-#[derive(Debug, Clone, Copy)]
-pub enum NoHeat {}
-
-impl<const D: usize> HeatCoupling<D> for NoHeat {
-    fn new(model: &Model<D>) -> Result<Option<Self>, String> {
-        match model.thermal {
-            Some(_) => Err(format!(
-                "heat conduction is not available in {D}D analyses yet: remove the `thermal` \
-                 blocks and thermal loads"
-            )),
-            None => Ok(None),
-        }
-    }
-
-    fn free_dofs(&self) -> usize {
-        match *self {}
-    }
-
-    fn thermal_strains(&self, _: &Model<D>) -> Vec<f64> {
-        match *self {}
-    }
-
-    fn cell_laws(&self, _: &Model<D>) -> Result<Vec<Option<NonlinearLaw>>, String> {
-        match *self {}
-    }
-
-    fn heat_step(
-        &mut self,
-        _: &Model<D>,
-        _: f64,
-        _: f64,
-        _: &[Vec<NodeContact<D>>],
-        _: &[Vec<MaterialPoint>],
-        _: &[Vec<MaterialPoint>],
-    ) -> Result<(), String> {
-        match *self {}
-    }
-
-    fn temperature(&self) -> &[f64] {
-        match *self {}
-    }
-
-    fn last(&self) -> &ThermalIncrement {
-        match *self {}
     }
 }

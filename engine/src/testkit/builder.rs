@@ -548,7 +548,7 @@ impl<const D: usize> ModelBuilder<D> {
     }
 
     /// Thermal scene.
-    pub fn thermal(mut self, thermal: crate::thermal::ThermalScene) -> Self {
+    pub fn thermal(mut self, thermal: crate::model::thermal::ThermalScene) -> Self {
         self.model.thermal = Some(thermal);
         self
     }

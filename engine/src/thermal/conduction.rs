@@ -1,5 +1,6 @@
-//! Heat conduction element kernels (every cell kind; plane, axisymmetric
-//! and solid):
+//! Heat conduction element kernels (every cell kind through its reference
+//! cell and quadrature: tri3/quad4/tri6/quad8/quad9 plane and
+//! axisymmetric, tet4/hex8/tet10/hex20/hex27 solid):
 //! conductivity matrix `K_e = sum k grad(N_a) . grad(N_b) dV` and lumped
 //! (row-sum) capacity `C_a = sum rho c N_a dV`, with the same integration
 //! points and volume weights as the mechanical elements (`dV = w det(J) t`
@@ -95,6 +96,56 @@ mod tests {
                 let cap: f64 = c.capacity[..n].iter().sum();
                 assert!((cap - 5.0 * v).abs() < 1e-12 * v);
             }
+        }
+    }
+
+    #[test]
+    fn solid_cells_are_symmetric_with_zero_row_sums_exact_volume_and_flux() {
+        // a distorted hex8 and a tet4; T = 2x - y + 3z gives K T = 0 on the
+        // sums and the exact flux k grad T . (sum of the nodal gradients)
+        let x = [
+            [0.0, 0.0, 0.0],
+            [1.2, 0.1, 0.0],
+            [1.1, 1.0, 0.1],
+            [-0.1, 0.9, 0.0],
+            [0.1, 0.0, 1.0],
+            [1.0, 0.0, 1.1],
+            [1.0, 1.1, 0.9],
+            [0.0, 1.0, 1.0],
+        ];
+        let mesh = Mesh::<3>::new(
+            x.to_vec(),
+            vec![Cell::hex([0, 1, 2, 3, 4, 5, 6, 7]), Cell::tet([0, 1, 3, 4])],
+        );
+        let s = section(AnalysisKind::Solid);
+        for (cell, tet) in [(0, false), (1, true)] {
+            let c = cell_conduction(&mesh, cell, &s, 3.0, 5.0).unwrap();
+            let n = c.nodes;
+            for a in 0..n {
+                let row: f64 = c.conductivity[a][..n].iter().sum();
+                assert!(row.abs() < 1e-12, "{row}");
+                for b in 0..n {
+                    assert!((c.conductivity[a][b] - c.conductivity[b][a]).abs() < 1e-12);
+                }
+            }
+            let v: f64 = c.volume.iter().sum();
+            let cap: f64 = c.capacity.iter().sum();
+            assert!((cap - 5.0 * v).abs() < 1e-12 * v);
+            if tet {
+                // tet (0, 1, 3, 4): det [x1 - x0, x3 - x0, x4 - x0] / 6
+                let det = 1.2 * 0.9 - 0.1 * -0.1;
+                assert!((v - det / 6.0).abs() < 1e-14, "{v}");
+            }
+            // a linear field: the nodal heat K T sums to zero (no source)
+            let nodes = mesh.cells.nodes(cell);
+            let t: Vec<f64> = nodes
+                .iter()
+                .map(|&i| 2.0 * x[i][0] - x[i][1] + 3.0 * x[i][2])
+                .collect();
+            let total: f64 = (0..n)
+                .map(|a| (0..n).map(|b| c.conductivity[a][b] * t[b]).sum::<f64>())
+                .sum();
+            assert!(total.abs() < 1e-12, "{total}");
         }
     }
 

@@ -8,17 +8,18 @@
 //! - open contact within `prof`: `h = k_gap / max(g, g_min)` (gas conduction
 //!   across the gap), 0 when `k_gap = 0`.
 //!
-//! `T_master` is the tool's prescribed temperature against a rigid tool, or
+//! `T_master` is the tool's prescribed temperature against a rigid tool
+//! (a planar curve tool or a solid model's surface tool), or
 //! `(1 - xi) T_m1 + xi T_m2` on a deformable master segment
 //! (node-to-segment): the element is then the 3-node conductance
 //! `h A w w^T`, `w = [1, -(1 - xi), -xi]`, which conserves heat exactly
 //! (what leaves the slave enters the master).
 
-use super::scene::ContactThermal;
 use crate::contact::{ContactStatus, NodeContact};
+use crate::model::thermal::ContactThermal;
 
 /// Conductance `h` of one contact node (power / area / temperature).
-pub fn node_conductance(settings: &ContactThermal, c: &NodeContact) -> f64 {
+pub fn node_conductance<const D: usize>(settings: &ContactThermal, c: &NodeContact<D>) -> f64 {
     match c.status {
         ContactStatus::Closed => settings.conductance.at(c.pressure),
         ContactStatus::Open => {
@@ -97,7 +98,7 @@ impl ConductanceElement {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::thermal::scene::Conductance;
+    use crate::model::thermal::Conductance;
 
     fn contact(status: ContactStatus, gap: f64, pressure: f64) -> NodeContact {
         NodeContact {

@@ -17,15 +17,19 @@
 //!      the model);
 //! 3. updates the thermal strains used by the next increment.
 
+use super::boundary::facet_integrals;
 use super::contact::{node_conductance, ConductanceElement, ThermalMaster};
 use super::expansion::{cell_temperatures, cell_thermal_strains};
 use super::properties::{is_temperature_dependent, law_at};
-use super::scene::ThermalScene;
 use super::solver::{ThermalIncrement, ThermalSolver};
-use crate::contact::{tributary::tributary_areas, NodeContact};
+use crate::contact::NodeContact;
 use crate::element::MaterialPoint;
+use crate::geom::Dimension;
 use crate::material::{von_mises, NonlinearLaw};
+use crate::mesh::Facet;
+use crate::model::thermal::ThermalScene;
 use crate::model::Model;
+use nalgebra::Const;
 
 /// The thermal side of a coupled run.
 #[derive(Debug, Clone)]
@@ -44,12 +48,15 @@ pub struct Coupling {
 
 impl Coupling {
     /// The coupling of `model`, `None` when the scene has no thermal part.
-    pub fn new(model: &Model) -> Result<Option<Self>, String> {
+    pub fn new<const D: usize>(model: &Model<D>) -> Result<Option<Self>, String>
+    where
+        Const<D>: Dimension<D>,
+    {
         let Some(solver) = ThermalSolver::new(model)? else {
             return Ok(None);
         };
         let tributary = (0..model.contacts.len())
-            .map(|p| tributary_areas(model, p))
+            .map(|p| pair_areas(model, p))
             .collect();
         Ok(Some(Coupling {
             source: vec![0.0; solver.active.len()],
@@ -62,7 +69,7 @@ impl Coupling {
 
     /// Thermal strain of every cell at the committed temperatures (what the
     /// next mechanical increment uses).
-    pub fn thermal_strains(&self, model: &Model) -> Vec<f64> {
+    pub fn thermal_strains<const D: usize>(&self, model: &Model<D>) -> Vec<f64> {
         match model.thermal.as_ref() {
             Some(scene) => cell_thermal_strains(model, scene, self.solver.committed()),
             None => vec![0.0; model.mesh.cells.len()],
@@ -71,7 +78,10 @@ impl Coupling {
 
     /// Law of each cell at its committed temperature for the
     /// temperature-dependent materials (empty when there are none).
-    pub fn cell_laws(&self, model: &Model) -> Result<Vec<Option<NonlinearLaw>>, String> {
+    pub fn cell_laws<const D: usize>(
+        &self,
+        model: &Model<D>,
+    ) -> Result<Vec<Option<NonlinearLaw>>, String> {
         let Some(scene) = model.thermal.as_ref() else {
             return Ok(Vec::new());
         };
@@ -107,12 +117,12 @@ impl Coupling {
     /// mechanics converged: `contact` is the converged contact state of
     /// each pair, `before`/`after` the integration points at the start and
     /// end of the increment.
-    pub fn heat_step(
+    pub fn heat_step<const D: usize>(
         &mut self,
-        model: &Model,
+        model: &Model<D>,
         t: f64,
         dt: f64,
-        contact: &[Vec<NodeContact>],
+        contact: &[Vec<NodeContact<D>>],
         before: &[Vec<MaterialPoint>],
         after: &[Vec<MaterialPoint>],
     ) -> Result<&ThermalIncrement, String> {
@@ -129,12 +139,33 @@ impl Coupling {
     }
 }
 
+/// Tributary area `int N_a dA` of each slave node of pair `pair`, in
+/// `ContactPair::nodes` order, from its slave facets (planar edges: the
+/// rules of `contact::tributary`; solid faces: the face quadrature), in the
+/// reference configuration.
+pub fn pair_areas<const D: usize>(model: &Model<D>, pair: usize) -> Vec<f64> {
+    let Some(cp) = model.contacts.get(pair) else {
+        return Vec::new();
+    };
+    let mut area = vec![0.0; cp.nodes.len()];
+    let edges = cp.edges.iter().map(|e| Facet::new(e));
+    for facet in edges.chain(cp.faces.iter().copied()) {
+        let w = facet_integrals(model, &facet).weights;
+        for (node, wa) in facet.nodes().iter().zip(w) {
+            if let Ok(i) = cp.nodes.binary_search(node) {
+                area[i] += wa;
+            }
+        }
+    }
+    area
+}
+
 /// Conductance elements of the converged contact state (pairs with a
 /// thermal block only).
-pub fn contact_elements(
-    model: &Model,
+pub fn contact_elements<const D: usize>(
+    model: &Model<D>,
     scene: &ThermalScene,
-    contact: &[Vec<NodeContact>],
+    contact: &[Vec<NodeContact<D>>],
     tributary: &[Vec<f64>],
     t: f64,
 ) -> Vec<(usize, ConductanceElement)> {
@@ -176,10 +207,10 @@ pub fn contact_elements(
 /// between the slave node and the master segment (the tool's share leaves
 /// the model), added to the nodal sources `out` (energy); returns the total
 /// dissipation.
-pub fn friction_heat(
-    model: &Model,
+pub fn friction_heat<const D: usize>(
+    model: &Model<D>,
     scene: &ThermalScene,
-    contact: &[Vec<NodeContact>],
+    contact: &[Vec<NodeContact<D>>],
     out: &mut [f64],
 ) -> f64 {
     let mut total = 0.0;
@@ -209,8 +240,8 @@ pub fn friction_heat(
 
 /// Plastic dissipation turned into heat during the increment, added to the
 /// nodal sources `out` (energy); returns the total.
-pub fn plastic_heat(
-    model: &Model,
+pub fn plastic_heat<const D: usize>(
+    model: &Model<D>,
     scene: &ThermalScene,
     before: &[Vec<MaterialPoint>],
     after: &[Vec<MaterialPoint>],

@@ -11,19 +11,26 @@
 //!   unit thermal strain once ([`unit_thermal_force`]).
 //!
 //! Plane strain keeps `eps_zz = 0` in total, so a heated constrained plane
-//! strain body carries `sigma_zz = -E alpha dT` when also held in-plane.
+//! strain body carries `sigma_zz = -E alpha dT` when also held in-plane. A
+//! solid (3D) cell takes the same route with its six strain components: a
+//! fully constrained heated brick carries `sigma = -E alpha dT / (1 - 2 nu)`
+//! in every direction.
 
-use super::scene::ThermalScene;
 use crate::element::{kernel_of, ElementError, Section};
 use crate::geom::{Dimension, Point};
 use crate::material::LinearElastic;
 use crate::mesh::Mesh;
+use crate::model::thermal::ThermalScene;
 use crate::model::{Formulation, Model};
 use nalgebra::Const;
 
 /// Thermal strain of every cell for nodal temperatures `temperature`
 /// (0 in cells whose material has no thermal block).
-pub fn cell_thermal_strains(model: &Model, scene: &ThermalScene, temperature: &[f64]) -> Vec<f64> {
+pub fn cell_thermal_strains<const D: usize>(
+    model: &Model<D>,
+    scene: &ThermalScene,
+    temperature: &[f64],
+) -> Vec<f64> {
     let mut out = vec![0.0; model.mesh.cells.len()];
     for body in &model.bodies {
         let Some(Some(m)) = scene.materials.get(body.material) else {
@@ -42,7 +49,11 @@ pub fn cell_thermal_strains(model: &Model, scene: &ThermalScene, temperature: &[
 }
 
 /// Mean temperature of every cell (0 in cells without temperature).
-pub fn cell_temperatures(model: &Model, scene: &ThermalScene, temperature: &[f64]) -> Vec<f64> {
+pub fn cell_temperatures<const D: usize>(
+    model: &Model<D>,
+    scene: &ThermalScene,
+    temperature: &[f64],
+) -> Vec<f64> {
     let mut out = vec![0.0; model.mesh.cells.len()];
     for body in &model.bodies {
         if !matches!(scene.materials.get(body.material), Some(Some(_))) {

@@ -1,12 +1,10 @@
 //! Heat conduction and thermo-mechanical coupling.
 //!
-//! A scene has a thermal part ([`scene::ThermalScene`], `Model::thermal`)
+//! A scene has a thermal part ([`crate::model::thermal::ThermalScene`],
+//! `Model::thermal`, plain data in the model)
 //! only if its deck has a `thermal` block; otherwise nothing here is built
 //! and the run has no temperature unknowns at all.
 //!
-//! - [`scene`]: the lowered thermal data (material properties, initial and
-//!   prescribed temperatures, fluxes, convection, contact conductance, tool
-//!   temperatures, coupling scheme);
 //! - [`conduction`]: conductivity and lumped capacity of tri3/quad4 cells,
 //!   plane and axisymmetric;
 //! - [`boundary`]: edge integrals of fluxes and convection films;
@@ -25,7 +23,4 @@ pub mod contact;
 pub mod coupling;
 pub mod expansion;
 pub mod properties;
-pub mod scene;
 pub mod solver;
-
-pub use scene::ThermalScene;

@@ -8,8 +8,8 @@
 //! small-strain linear elastic cells keep their cached stiffness (the
 //! validation rejects a `young` table on them).
 
-use super::scene::MaterialThermal;
 use crate::material::NonlinearLaw;
+use crate::model::thermal::MaterialThermal;
 use crate::model::{Hardening, TimeFunction};
 
 fn factor(table: &Option<Vec<(f64, f64)>>, t: f64) -> f64 {

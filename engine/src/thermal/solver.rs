@@ -15,15 +15,17 @@
 //! The scalar dofs have their own numbering (only thermal nodes that are
 //! not prescribed); a scene without thermal blocks never builds this.
 
-use super::boundary::{edge_mass, edge_weights};
+use super::boundary::{facet_integrals, FacetIntegrals};
 use super::conduction::{cell_conduction, CellConduction};
 use super::contact::ConductanceElement;
-use super::scene::ThermalScene;
 use crate::element::Section;
+use crate::geom::Dimension;
+use crate::model::thermal::ThermalScene;
 use crate::model::Model;
 use faer::linalg::solvers::Solve;
 use faer::sparse::{SparseColMat, Triplet};
 use faer::Side;
+use nalgebra::Const;
 
 /// No dof: the node is prescribed or carries no temperature.
 const NO_DOF: usize = usize::MAX;
@@ -78,7 +80,10 @@ pub struct ThermalSolver {
 impl ThermalSolver {
     /// Builds the solver of `model`'s thermal scene (`None` if the scene has
     /// no thermal part).
-    pub fn new(model: &Model) -> Result<Option<Self>, String> {
+    pub fn new<const D: usize>(model: &Model<D>) -> Result<Option<Self>, String>
+    where
+        Const<D>: Dimension<D>,
+    {
         let Some(scene) = model.thermal.as_ref() else {
             return Ok(None);
         };
@@ -179,9 +184,9 @@ impl ThermalSolver {
     /// the converged contact state (one per contact node, see
     /// [`super::contact`]) with the pair index of each, `source` the heat
     /// generated at each node during the increment (energy).
-    pub fn solve_increment(
+    pub fn solve_increment<const D: usize>(
         &mut self,
-        model: &Model,
+        model: &Model<D>,
         t: f64,
         dt: f64,
         contact: &[(usize, ConductanceElement)],
@@ -237,13 +242,11 @@ impl ThermalSolver {
             }
         }
         // fluxes and convection
-        let nodes = &model.mesh.nodes;
-        let (kind, thick) = (model.analysis.kind, model.analysis.thickness);
         for f in &scene.fluxes {
             let q = f.value.eval(t);
-            for &[a, b] in &f.edges {
-                let w = edge_weights(nodes[a], nodes[b], kind, thick);
-                for (node, wi) in [(a, w[0]), (b, w[1])] {
+            for facet in &f.facets {
+                let w = facet_integrals(model, facet).weights;
+                for (&node, wi) in facet.nodes().iter().zip(w) {
                     if dof[node] != NO_DOF {
                         rhs[dof[node]] += q * wi;
                     }
@@ -252,12 +255,14 @@ impl ThermalSolver {
         }
         for cv in &scene.convection {
             let ta = cv.ambient.eval(t);
-            for &[a, b] in &cv.edges {
-                let m = edge_mass(nodes[a], nodes[b], kind, thick);
-                let w = edge_weights(nodes[a], nodes[b], kind, thick);
-                let e = [a, b];
-                for i in 0..2 {
-                    for j in 0..2 {
+            for facet in &cv.facets {
+                let FacetIntegrals {
+                    weights: w,
+                    mass: m,
+                } = facet_integrals(model, facet);
+                let e = facet.nodes();
+                for i in 0..w.len() {
+                    for j in 0..w.len() {
                         add(e[i], e[j], cv.film * m[i][j], &mut rhs);
                     }
                     if dof[e[i]] != NO_DOF {

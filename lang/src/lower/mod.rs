@@ -213,14 +213,24 @@ impl Lowerer<'_> {
         let loads = self.loads();
         if self.solid {
             // rigid surface tools, frictionless or Coulomb (penalty, augmented
-            // Lagrangian; Lagrange friction refused by validation); no heat in 3d yet
-            // (refused by validation)
+            // Lagrangian; Lagrange friction refused by validation)
             let surfaces = self.surfaces();
             let names: Vec<&str> = surfaces.iter().map(|t| t.name.as_str()).collect();
             let contacts = self.contacts(&bodies, &materials, &names);
             let steps = self.steps();
             let output = self.output(&contacts);
             let initial_velocities = self.initial_velocities();
+            let (mesh3, body_nodes) = (&self.mesh3, &self.body_nodes);
+            let thermal = thermal::lower(
+                self.deck,
+                |r, need, user| sets::resolve_solid(mesh3, body_nodes, r, need, user),
+                &self.body_nodes,
+                &bodies,
+                &materials,
+                &contacts,
+                self.window,
+                &mut self.diags,
+            );
             return Some(AnyModel::D3(Model {
                 analysis: analysis?,
                 mesh: std::mem::take(&mut self.mesh3),
@@ -233,7 +243,7 @@ impl Lowerer<'_> {
                 contacts,
                 steps,
                 output,
-                thermal: None,
+                thermal,
                 initial_velocities,
             }));
         }
@@ -243,9 +253,10 @@ impl Lowerer<'_> {
         let steps = self.steps();
         let output = self.output(&contacts);
         let initial_velocities = self.initial_velocities();
+        let (mesh, body_nodes) = (&self.mesh, &self.body_nodes);
         let thermal = thermal::lower(
             self.deck,
-            &self.mesh,
+            |r, need, user| resolve(mesh, body_nodes, r, need, user),
             &self.body_nodes,
             &bodies,
             &materials,

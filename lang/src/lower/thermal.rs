@@ -1,4 +1,4 @@
-//! Lowering the thermal constructs into `ctc_engine::thermal::ThermalScene`.
+//! Lowering the thermal constructs into `ctc_engine::model::thermal::ThermalScene`.
 //!
 //! A deck without any `thermal` block and without thermal load items
 //! lowers to `Model::thermal = None`: no temperature unknowns at all.
@@ -6,18 +6,18 @@
 //! contact needs a material with a `thermal` block; a thermal contact with a
 //! rigid tool needs the tool's temperature.
 
-use super::sets::resolve;
+use super::sets::Resolved;
 use super::time_function;
 use crate::ast::thermal::{self as ast, ThermalLoadKind};
-use crate::ast::Deck;
+use crate::ast::{Deck, SetRef};
 use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
-use ctc_engine::mesh::Mesh;
-use ctc_engine::model::{Body, ContactPair, Material};
-use ctc_engine::thermal::scene::{
+use ctc_engine::mesh::Facet;
+use ctc_engine::model::thermal::{
     Conductance, ContactThermal, Convection, CouplingScheme, HeatFlux, MaterialThermal,
     PrescribedTemperature, ThermalScene,
 };
+use ctc_engine::model::{Body, ContactPair, Material};
 use std::collections::BTreeMap;
 use std::ops::Range;
 
@@ -36,11 +36,13 @@ pub fn has_thermal(deck: &Deck) -> bool {
         || !deck.thermal_loads.is_empty()
 }
 
-/// The thermal scene of `deck` (`None` when it has no thermal construct).
+/// The thermal scene of `deck` (`None` when it has no thermal construct),
+/// planar or solid: `resolve` resolves a set in the model's mesh (boundary
+/// edges of a planar mesh, faces of a solid one).
 #[allow(clippy::too_many_arguments)]
 pub fn lower(
     deck: &Deck,
-    mesh: &Mesh,
+    mut resolve: impl FnMut(&SetRef, Need, &str) -> Result<Resolved, Diagnostic>,
     body_nodes: &BTreeMap<String, Range<usize>>,
     bodies: &[Body],
     materials: &[Material],
@@ -131,7 +133,7 @@ pub fn lower(
             ThermalLoadKind::Temperature => Need::Nodes,
             _ => Need::Edges,
         };
-        let r = match resolve(mesh, body_nodes, &l.target, need, word) {
+        let r = match resolve(&l.target, need, word) {
             Ok(r) => r,
             Err(d) => {
                 diags.push(d);
@@ -142,6 +144,13 @@ pub fn lower(
             continue;
         };
         let label = format!("{word} {}", l.target);
+        let facets = || -> Vec<Facet> {
+            match (&r.faces, &r.edges) {
+                (Some(f), _) => f.clone(),
+                (None, Some(e)) => e.iter().map(|e| Facet::new(e)).collect(),
+                (None, None) => Vec::new(),
+            }
+        };
         match l.kind {
             ThermalLoadKind::Temperature => scene.temperatures.push(PrescribedTemperature {
                 label,
@@ -149,13 +158,13 @@ pub fn lower(
                 value,
             }),
             ThermalLoadKind::HeatFlux => scene.fluxes.push(HeatFlux {
+                facets: facets(),
                 label,
-                edges: r.edges.unwrap_or_default(),
                 value,
             }),
             ThermalLoadKind::Convection => scene.convection.push(Convection {
+                facets: facets(),
                 label,
-                edges: r.edges.unwrap_or_default(),
                 film: l.film.as_ref().map_or(0.0, |h| h.value),
                 ambient: value,
             }),
@@ -225,4 +234,55 @@ pub fn lower(
         });
     }
     Some(scene)
+}
+
+#[cfg(test)]
+mod tests {
+    use ctc_engine::model::AnyModel;
+
+    #[test]
+    fn a_3d_deck_lowers_heat_flux_and_convection_on_faces() {
+        let text = "analysis { dimension = 3d }\n\
+            material m { elastic { E = 1 nu = 0.3 } thermal { conductivity = 2 expansion = 1e-5 } }\n\
+            body b { mesh = box { size = (1, 1, 1) divisions = (2, 2, 2) } material = m thermal { initial = 7 } }\n\
+            tool floor = plane { point = (0, 0, 0) normal = (0, 0, 1) }\n\
+            contact b.zmin -> floor { method = penalty { stiffness = 1 } thermal { conductance = 3 tool_temperature = 20 } }\n\
+            fix b.xmin { ux uy uz }\n\
+            temperature b.xmin { value = 100 }\n\
+            heat_flux b.xmax { q = 5 }\n\
+            convection b.ymax + b.zmax { h = 10 ambient = 20 }\n\
+            step s { time = 0 .. 1 }\n";
+        let src = crate::Source::new("t.ctc", text);
+        let model = match crate::compile_any(&src) {
+            Ok(AnyModel::D3(m)) => m,
+            Ok(AnyModel::D2(_)) => panic!("a 3d deck lowered to 2d"),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        let t = model.thermal.expect("a thermal scene");
+        assert_eq!(t.initial, vec![7.0]);
+        assert_eq!(t.temperatures[0].nodes.len(), 9);
+        // 2 x 2 quad faces on x = 1; 4 + 4 on y = 1 and z = 1
+        assert_eq!(t.fluxes[0].facets.len(), 4);
+        assert!(t.fluxes[0].facets.iter().all(|f| f.nodes().len() == 4));
+        assert_eq!(t.convection[0].facets.len(), 8);
+        let c = t.contacts[0].as_ref().expect("a thermal pair");
+        assert!(c.tool_temperature.is_some());
+        // `ctc check --explain` describes the heat part of a 3d scene
+        let model = match crate::compile_any(&src) {
+            Ok(AnyModel::D3(m)) => m,
+            _ => unreachable!(),
+        };
+        let text = crate::explain::explain_solid(&model);
+        for line in [
+            "heat: conduction on 1 thermal material(s), 1 prescribed temperature(s), 1 flux(es), 1 convection(s), 1 thermal contact pair(s)",
+            "temperature b.xmin: T = 100 on 9 nodes",
+            "heat_flux b.xmax: q = 5 into the body on 4 faces",
+            "convection b.ymax + b.zmax: q = h (T_ambient - T), h = 10, T_ambient = 20 on 8 faces",
+            "thermal contact b.zmin -> floor",
+            "tool at T = 20",
+        ] {
+            assert!(text.contains(line), "{line}\n{text}");
+        }
+        assert!(!text.contains("thermal unknowns"), "{text}");
+    }
 }

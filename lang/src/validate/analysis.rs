@@ -53,8 +53,9 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 
 /// `dimension = 3d` solves solids in contact with rigid surface tools,
 /// frictionless or with Coulomb friction by penalty or augmented
-/// Lagrangian; contact between deformable bodies, Lagrange-multiplier
-/// friction and heat conduction are not there yet in 3d.
+/// Lagrangian, with heat conduction and thermal contact against the tools;
+/// contact between deformable bodies and Lagrange-multiplier friction are
+/// not there yet in 3d.
 pub fn three_d_contact_is_rigid(a: &Analysis, ctx: &mut Ctx<'_>) {
     let Some(d) = a
         .dimension
@@ -78,22 +79,10 @@ pub fn three_d_contact_is_rigid(a: &Analysis, ctx: &mut Ctx<'_>) {
         );
     };
     let _ = d;
-    for m in deck.materials.iter().filter(|m| m.thermal.is_some()) {
-        refuse("thermal material properties are", m.span);
-    }
-    for b in deck.bodies.iter().filter(|b| b.thermal.is_some()) {
-        refuse("thermal body blocks are", b.span);
-    }
     for c in &deck.contacts {
         if let Some(m) = &c.master {
             refuse("contact between deformable bodies is", m.span);
         }
-        if let Some(th) = &c.thermal {
-            refuse("thermal contact blocks are", th.span);
-        }
-    }
-    for l in &deck.thermal_loads {
-        refuse("thermal loads are", l.span);
     }
     for c in &deck.contacts {
         if let (Some(f), Some(m)) = (&c.friction, &c.method) {

@@ -19,6 +19,7 @@ pub mod penalty_scaling;
 pub mod quadratic;
 pub mod solid;
 pub mod solid_patch;
+pub mod thermal_3d;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod traction_3d;
@@ -54,6 +55,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(follower::cases());
     v.extend(dynamics::cases());
     v.extend(impact::cases());
+    v.extend(thermal_3d::cases());
     v
 }
 

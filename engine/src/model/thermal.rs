@@ -1,10 +1,14 @@
-//! The thermal part of a lowered scene ([`crate::model::Model::thermal`]).
+//! The thermal part of a lowered scene ([`crate::model::Model::thermal`]):
+//! plain data, lowered from the deck, used by [`crate::thermal`].
 //!
 //! It exists only when the deck has a `thermal` block somewhere: a scene
 //! without one carries `Model::thermal = None` and no temperature unknowns
-//! at all. Temperatures are nodal; units are the user's (consistent).
+//! at all. Temperatures are nodal; units are the user's (consistent). The
+//! same data serves planar and solid models (boundary conditions on
+//! [`Facet`]s: edges in 2D, faces in 3D).
 
-use crate::model::TimeFunction;
+use super::TimeFunction;
+use crate::mesh::Facet;
 
 /// Everything thermal of a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -62,25 +66,28 @@ pub struct PrescribedTemperature {
     pub value: TimeFunction,
 }
 
-/// Heat flux entering the body through boundary edges (power / area;
+/// Heat flux entering the body through boundary facets (power / area;
 /// positive heats the body).
 #[derive(Debug, Clone, PartialEq)]
 pub struct HeatFlux {
     /// Human-readable origin.
     pub label: String,
-    /// Boundary edges `[a, b]` (body on the left).
-    pub edges: Vec<[usize; 2]>,
+    /// Boundary facets: edges `[a, b]` of a planar mesh (body on the left)
+    /// or faces of a solid (outward).
+    pub facets: Vec<Facet>,
     /// Flux as a function of time.
     pub value: TimeFunction,
 }
 
-/// Convection `q = h (T_ambient - T)` entering the body through edges.
+/// Convection `q = h (T_ambient - T)` entering the body through boundary
+/// facets.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Convection {
     /// Human-readable origin.
     pub label: String,
-    /// Boundary edges `[a, b]` (body on the left).
-    pub edges: Vec<[usize; 2]>,
+    /// Boundary facets: edges `[a, b]` of a planar mesh (body on the left)
+    /// or faces of a solid (outward).
+    pub facets: Vec<Facet>,
     /// Film coefficient `h` (power / area / temperature), >= 0.
     pub film: f64,
     /// Ambient temperature as a function of time.

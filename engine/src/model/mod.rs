@@ -7,6 +7,8 @@
 //! Sign and unit conventions are stated on each field; there are no units in
 //! the engine (consistent units are the user's business, as in Abaqus).
 
+pub mod thermal;
+
 use crate::mesh::Mesh;
 use std::ops::Range;
 
@@ -41,7 +43,7 @@ pub struct Model<const D: usize = 2> {
     pub output: OutputRequest,
     /// Heat conduction and thermo-mechanical coupling; `None` when the deck
     /// has no `thermal` block (then there are no temperature unknowns).
-    pub thermal: Option<crate::thermal::ThermalScene>,
+    pub thermal: Option<thermal::ThermalScene>,
     /// Initial velocities (dynamic steps; nodes not listed start at rest).
     pub initial_velocities: Vec<InitialVelocity>,
 }
