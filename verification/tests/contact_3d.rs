@@ -59,3 +59,17 @@ fn cad_patch_3d_nurbs_face_is_exact_and_the_hole_is_free() {
 fn cad_sphere_3d_matches_the_analytical_sphere() {
     registry::run_passing("cad_sphere_3d");
 }
+
+/// `stl_sphere_3d`: the STL sphere's force and peak pressure approach the
+/// analytical sphere's as the facets shrink, at second order in the facet
+/// size (the chords' sagitta).
+#[test]
+fn stl_sphere_3d_converges_to_the_analytical_sphere() {
+    let report = registry::run_passing("stl_sphere_3d");
+    for l in &report.levels {
+        for v in &l.values {
+            eprintln!("level {} h {:.4e} {}: {:.3e}", l.level, l.h, v.quantity, v.error);
+        }
+    }
+    assert_eq!(report.levels.len(), 3, "three default levels");
+}

@@ -2,8 +2,10 @@
 //! a face set against an exact surface of `ctc-geom` in its current
 //! placement (seed slides, "Part I – Geometrical aspects" and "Rigid tool
 //! defined by a CAD file"): an analytical surface (plane, sphere, cylinder,
-//! cone, torus: closed-form projection) or CAD faces (trimmed NURBS faces
-//! with holes from IGES: `ctc_geom::brep::BrepTool`, Newton on the
+//! cone, torus: closed-form projection), a triangulated surface (STL:
+//! `ctc_geom::trimesh`, BVH search, pseudonormal sign) or CAD faces
+//! (trimmed NURBS faces with holes from IGES: `ctc_geom::brep::BrepTool`,
+//! Newton on the
 //! foot-point equations seeded by each node's search memory, edges and
 //! vertices as cylinders and spheres of radius 0).
 //!
@@ -261,6 +263,10 @@ pub fn project(
             a.project(&xr)
         }
         SurfaceShape::Brep(b) => b.project(&xr, search, counters),
+        SurfaceShape::Mesh(m) => {
+            counters.queries += 1;
+            m.project(&xr)
+        }
     };
     match r {
         Ok(pr) => Ok(Some(p.to_current(&pr))),
@@ -280,6 +286,7 @@ fn reference_gap(
     match &tool.geometry {
         SurfaceShape::Analytic(a) => a.project(xr),
         SurfaceShape::Brep(b) => b.project(xr, search, counters),
+        SurfaceShape::Mesh(m) => m.project(xr),
     }
     .ok()
     .map(|p| p.gap)
