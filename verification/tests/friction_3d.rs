@@ -246,3 +246,22 @@ fn friction_3d_outputs_reach_the_files() {
     let json = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
     assert!(json.contains("\"friction_work\""));
 }
+
+/// The work-precision table of `friction_inclined_3d`: `F / G` of each
+/// method against 0.412371, its wall time and Newton iterations (printed
+/// with `--nocapture`); every method within 1e-5.
+#[test]
+fn inclined_3d_table_per_method() {
+    use ctc_verification::programs::friction_3d::inclined_push;
+    use ctc_verification::registry::ProgramLevel;
+    let reference = (0.1 + 0.3) / (1.0 - 0.3 * 0.1);
+    for (k, name) in ["penalty", "augmented", "lagrange"].iter().enumerate() {
+        let push = inclined_push(k, &mut ProgramLevel::default()).unwrap();
+        let e = (push.ratio - reference).abs() / reference;
+        eprintln!(
+            "{name:>9}: F/G = {:.6}  error {e:.1e}  lateral/F {:.1e}  {:.3} s  {} Newton iterations",
+            push.ratio, push.lateral, push.seconds, push.newton
+        );
+        assert!(e < 1e-5, "{name}: {e}");
+    }
+}

@@ -534,9 +534,57 @@ fn block_level(_: usize) -> Result<ProgramLevel, String> {
     Ok(level)
 }
 
-fn inclined_level(_: usize) -> Result<ProgramLevel, String> {
+/// One method's push of `friction_inclined_3d`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InclinedPush {
+    /// `F / G` at the end of the push.
+    pub ratio: f64,
+    /// Lateral reaction over `F`.
+    pub lateral: f64,
+    /// Wall time of the run (seconds).
+    pub seconds: f64,
+    /// Newton iterations of the run.
+    pub newton: usize,
+}
+
+/// The block of `friction_inclined_3d` pushed up the slope with method
+/// `method` (0 penalty, 1 augmented Lagrangian, 2 Lagrange multipliers);
+/// `counts` gathers the run's sizes.
+pub fn inclined_push(method: usize, counts: &mut ProgramLevel) -> Result<InclinedPush, String> {
     let azimuth = 40f64.to_radians();
     let h = [azimuth.cos(), azimuth.sin(), 0.0];
+    let (name, method, stiffness) = methods().get(method).ok_or("method 0, 1 or 2")?.clone();
+    let scene = Scene {
+        slope: 0.1,
+        azimuth,
+        method,
+        stiffness,
+        drive: straight(azimuth, &[(0.0, 0.0), (1.0, 0.0), (2.0, 1e-3), (3.0, 1e-2)]),
+        back: true,
+        increments: [1, 4],
+        poisson: NU,
+    };
+    let newton = counts.newton_total;
+    let start = std::time::Instant::now();
+    let rows = scene.solve(counts).map_err(|e| format!("{name}: {e}"))?;
+    let seconds = start.elapsed().as_secs_f64();
+    let last = rows.last().ok_or("no increment")?;
+    all_in(
+        last,
+        FrictionStatus::Slip,
+        &format!("{name} end of the push"),
+    )?;
+    let r = last.reaction;
+    let f = r[0] * h[0] + r[1] * h[1];
+    Ok(InclinedPush {
+        ratio: f / LOAD,
+        lateral: (r[1] * h[0] - r[0] * h[1]).abs() / f.abs(),
+        seconds,
+        newton: counts.newton_total - newton,
+    })
+}
+
+fn inclined_level(_: usize) -> Result<ProgramLevel, String> {
     let mut level = ProgramLevel {
         h: f64::NAN,
         ..Default::default()
@@ -544,35 +592,15 @@ fn inclined_level(_: usize) -> Result<ProgramLevel, String> {
     let reference = (0.1 + MU) / (1.0 - MU * 0.1);
     let mut values = Vec::new();
     let mut lateral = 0.0f64;
-    for (name, method, stiffness) in methods() {
-        let scene = Scene {
-            slope: 0.1,
-            azimuth,
-            method,
-            stiffness,
-            drive: straight(azimuth, &[(0.0, 0.0), (1.0, 0.0), (2.0, 1e-3), (3.0, 1e-2)]),
-            back: true,
-            increments: [1, 4],
-            poisson: NU,
-        };
-        let rows = scene
-            .solve(&mut level)
-            .map_err(|e| format!("{name}: {e}"))?;
-        let last = rows.last().ok_or("no increment")?;
-        all_in(
-            last,
-            FrictionStatus::Slip,
-            &format!("{name} end of the push"),
-        )?;
-        let r = last.reaction;
-        let f = r[0] * h[0] + r[1] * h[1];
-        lateral = lateral.max((r[1] * h[0] - r[0] * h[1]).abs() / f.abs());
-        let label = match name {
-            "penalty" => "F/G penalty vs 0.412371",
-            "augmented" => "F/G augmented vs 0.412371",
-            _ => "F/G lagrange vs 0.412371",
-        };
-        values.push(value(label, f / LOAD, reference));
+    let labels = [
+        "F/G penalty vs 0.412371",
+        "F/G augmented vs 0.412371",
+        "F/G lagrange vs 0.412371",
+    ];
+    for (k, label) in labels.into_iter().enumerate() {
+        let push = inclined_push(k, &mut level)?;
+        lateral = lateral.max(push.lateral);
+        values.push(value(label, push.ratio, reference));
     }
     values.push(error("lateral / F", lateral));
     level.values = values;
