@@ -98,7 +98,11 @@ fn ascii_and_binary_stl_files_become_the_same_triangulated_tool() {
     // binary coordinates are f32: the cube's are exact in both
     assert_eq!(meshes[0].vertices, meshes[1].vertices);
     // flip = true: free space inside the cube
-    let m = compile(&dir, "tool punch = stl { file = \"cube.stl\"  flip = true }").unwrap();
+    let m = compile(
+        &dir,
+        "tool punch = stl { file = \"cube.stl\"  flip = true }",
+    )
+    .unwrap();
     let SurfaceShape::Mesh(mesh) = &m.surfaces[0].geometry else {
         panic!("a triangulated tool");
     };
@@ -109,15 +113,21 @@ fn ascii_and_binary_stl_files_become_the_same_triangulated_tool() {
 #[test]
 fn bad_stl_files_are_errors_naming_the_file_and_the_cause() {
     let dir = scratch("bad");
-    let tool = |file: &str, extra: &str| format!("tool punch = stl {{ file = \"{file}\" {extra} }}");
+    let tool =
+        |file: &str, extra: &str| format!("tool punch = stl {{ file = \"{file}\" {extra} }}");
     let expect = |tool: String, words: &[&str]| {
-        let text = compile(&dir, &tool).err().unwrap_or_else(|| panic!("{tool}: accepted"));
+        let text = compile(&dir, &tool)
+            .err()
+            .unwrap_or_else(|| panic!("{tool}: accepted"));
         assert!(text.contains("press.ctc:4:"), "{text}");
         for w in words {
             assert!(text.contains(w), "missing `{w}` in\n{text}");
         }
     };
-    expect(tool("nowhere.stl", ""), &["cannot read STL file `nowhere.stl`", "file not found"]);
+    expect(
+        tool("nowhere.stl", ""),
+        &["cannot read STL file `nowhere.stl`", "file not found"],
+    );
     // a binary file cut in the middle of its last triangle
     let mut bin = stl::write_binary(&cube());
     bin.truncate(bin.len() - 20);
@@ -130,17 +140,26 @@ fn bad_stl_files_are_errors_naming_the_file_and_the_cause() {
     let text = stl::write_ascii("cube", &cube());
     let cut: String = text.lines().take(5).map(|l| format!("{l}\n")).collect();
     std::fs::write(dir.join("cut.stl"), cut).unwrap();
-    expect(tool("cut.stl", ""), &["error in STL file `cut.stl`", "the file ends"]);
+    expect(
+        tool("cut.stl", ""),
+        &["error in STL file `cut.stl`", "the file ends"],
+    );
     // a NaN coordinate
     let nan = text.replacen("vertex -5e-1", "vertex nan", 1);
     assert_ne!(nan, text);
     std::fs::write(dir.join("nan.stl"), nan).unwrap();
-    expect(tool("nan.stl", ""), &["`nan.stl`", "three finite coordinates"]);
+    expect(
+        tool("nan.stl", ""),
+        &["`nan.stl`", "three finite coordinates"],
+    );
     // a zero-area (degenerate) triangle
     let mut tris = cube();
     tris.push([tris[0][0], tris[0][0], tris[0][1]]);
     std::fs::write(dir.join("sliver.stl"), stl::write_ascii("s", &tris)).unwrap();
-    expect(tool("sliver.stl", ""), &["`sliver.stl`", "triangle 13 has zero area"]);
+    expect(
+        tool("sliver.stl", ""),
+        &["`sliver.stl`", "triangle 13 has zero area"],
+    );
     // the cube without its top: open, refused where a solid is required
     let open: Vec<_> = cube().into_iter().take(10).collect();
     std::fs::write(dir.join("open.stl"), stl::write_ascii("open", &open)).unwrap();
@@ -153,6 +172,9 @@ fn bad_stl_files_are_errors_naming_the_file_and_the_cause() {
     let mut turned = cube();
     turned[3].swap(1, 2);
     std::fs::write(dir.join("turned.stl"), stl::write_ascii("t", &turned)).unwrap();
-    expect(tool("turned.stl", ""), &["`turned.stl`", "oriented inconsistently"]);
+    expect(
+        tool("turned.stl", ""),
+        &["`turned.stl`", "oriented inconsistently"],
+    );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -68,7 +68,10 @@ fn stl_sphere_3d_converges_to_the_analytical_sphere() {
     let report = registry::run_passing("stl_sphere_3d");
     for l in &report.levels {
         for v in &l.values {
-            eprintln!("level {} h {:.4e} {}: {:.3e}", l.level, l.h, v.quantity, v.error);
+            eprintln!(
+                "level {} h {:.4e} {}: {:.3e}",
+                l.level, l.h, v.quantity, v.error
+            );
         }
     }
     assert_eq!(report.levels.len(), 3, "three default levels");
@@ -92,11 +95,24 @@ fn cad_projection_figures_and_non_convergence_reach_the_summary() {
     let s = run(&good, &mut Quiet).unwrap();
     assert!(s.completed);
     let f = &s.surface_search[0];
-    assert_eq!((f.pair.as_str(), f.tool.as_str()), ("block.zmax -> tool", "tool"));
+    assert_eq!(
+        (f.pair.as_str(), f.tool.as_str()),
+        ("block.zmax -> tool", "tool")
+    );
     assert_eq!(f.not_converged, 0);
-    assert!(s.warnings.iter().all(|w| !w.contains("left out")), "{:?}", s.warnings);
-    assert!(f.projections > 0 && f.projections_per_node <= 1.0 + 1e-12, "{f:?}");
-    assert!(f.faces_per_projection >= 1.0 && f.newton_per_projection > 0.0, "{f:?}");
+    assert!(
+        s.warnings.iter().all(|w| !w.contains("left out")),
+        "{:?}",
+        s.warnings
+    );
+    assert!(
+        f.projections > 0 && f.projections_per_node <= 1.0 + 1e-12,
+        "{f:?}"
+    );
+    assert!(
+        f.faces_per_projection >= 1.0 && f.newton_per_projection > 0.0,
+        "{f:?}"
+    );
     eprintln!("default: {f:?}");
     let json = serde_json::to_value(&s).unwrap();
     assert!(json["surface_search"][0]["newton_per_projection"].is_number());
@@ -109,7 +125,11 @@ fn cad_projection_figures_and_non_convergence_reach_the_summary() {
     let f = &s.surface_search[0];
     eprintln!("one iteration: {f:?}");
     assert!(f.not_converged > 0, "{f:?}");
-    let w: Vec<_> = s.warnings.iter().filter(|w| w.contains("left out")).collect();
+    let w: Vec<_> = s
+        .warnings
+        .iter()
+        .filter(|w| w.contains("left out"))
+        .collect();
     assert!(!w.is_empty(), "{:?}", s.warnings);
     assert!(w[0].contains("the projection did not converge"), "{}", w[0]);
 }

@@ -317,7 +317,10 @@ fn stl_tool(
         bad(if e.line == 0 {
             e.message.clone()
         } else {
-            format!("line {} (a triangle's number in a binary file): {}", e.line, e.message)
+            format!(
+                "line {} (a triangle's number in a binary file): {}",
+                e.line, e.message
+            )
         })
     })?;
     let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));

@@ -236,9 +236,7 @@ pub fn octahedron_sphere(center: Vec3, r: f64, levels: usize) -> Vec<[Vec3; 3]> 
         }
         t = next;
     }
-    t.iter()
-        .map(|tri| tri.map(|k| center + v[k] * r))
-        .collect()
+    t.iter().map(|tri| tri.map(|k| center + v[k] * r)).collect()
 }
 
 /// Subdivisions of the octahedron sphere of `stl_sphere_3d` at each level.
@@ -733,9 +731,7 @@ fn cad_patch_level(_level: usize) -> Result<ProgramLevel, String> {
 /// (the health figures of `summary.json`: with too few Newton iterations
 /// the projections do not converge, the nodes are left out and the run
 /// warns).
-pub fn nurbs_sphere_block(
-    projection: ctc_geom::nurbs::ProjectOptions,
-) -> Result<Model<3>, String> {
+pub fn nurbs_sphere_block(projection: ctc_geom::nurbs::ProjectOptions) -> Result<Model<3>, String> {
     let center = Vec3::new(0.0, 0.0, 2.0);
     let grading = [
         Grading::Geometric { ratio: 8.0 },
@@ -747,7 +743,15 @@ pub fn nurbs_sphere_block(
         stiffness: 1e7,
     };
     let exact = Analytic::Sphere(Sphere::new(center, 1.0, Side::Outside).unwrap());
-    let mut model = block(CellKind::Hex8, HERTZ_DIVISIONS[0], grading, exact, lowered(D), method, 4)?;
+    let mut model = block(
+        CellKind::Hex8,
+        HERTZ_DIVISIONS[0],
+        grading,
+        exact,
+        lowered(D),
+        method,
+        4,
+    )?;
     let options = BrepOptions {
         projection,
         ..BrepOptions::default()
