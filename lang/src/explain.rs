@@ -981,6 +981,25 @@ fn surface_words(g: &ctc_engine::model::SurfaceShape) -> String {
     use ctc_geom::Side;
     let g = match g {
         SurfaceShape::Analytic(a) => a,
+        SurfaceShape::Mesh(m) => {
+            let b = m.bounding_box();
+            let v = |x: &ctc_geom::Vec3| point3([x[0], x[1], x[2]]);
+            let free = m.edge_free.iter().filter(|&&f| f).count();
+            return format!(
+                "triangulated surface (STL): {}, {}, {} in the box {} .. {}; flat \
+                 triangles, a foot on an edge or a vertex is a cylinder or a sphere of radius 0, \
+                 inside / outside by angle-weighted pseudonormals",
+                plural(m.triangles.len(), "triangle", "triangles"),
+                plural(m.vertices.len(), "vertex", "vertices"),
+                if free == 0 {
+                    "closed".to_string()
+                } else {
+                    format!("open ({})", plural(free, "free edge", "free edges"))
+                },
+                v(&b.min),
+                v(&b.max)
+            );
+        }
         SurfaceShape::Brep(b) => {
             let holes: usize = b
                 .faces

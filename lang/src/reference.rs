@@ -95,8 +95,8 @@ pub static ITEMS: &[Item] = &[
         syntax: "tool NAME = KIND { .. }",
         doc: "A rigid analytical tool with an optional rigid `motion`: in planar analyses a \
               curve (plane, polyline, arc, circle or nurbs), in `3d` a surface (plane with \
-              `(x, y, z)` points, sphere, cylinder, cone or torus, or the CAD faces of an \
-              IGES file).",
+              `(x, y, z)` points, sphere, cylinder, cone or torus, the CAD faces of an \
+              IGES file, or the triangles of an STL file).",
         blocks: &[
             ("plane", &tables::PLANE),
             ("polyline", &tables::POLYLINE),
@@ -109,6 +109,7 @@ pub static ITEMS: &[Item] = &[
             ("cone", &tables::CONE),
             ("torus", &tables::TORUS),
             ("iges", &tables::IGES),
+            ("stl", &tables::STL),
             ("motion", &tables::MOTION),
         ],
         example: "tool punch = circle { center = (0, 1)  radius = 1\n  motion { uy = ramp(0, -0.1) } }",

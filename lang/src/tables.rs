@@ -382,6 +382,32 @@ pub static IGES: [Key; 3] = [
     MOTION_KEY,
 ];
 
+/// `tool NAME = stl { .. }` (`3d`): the triangles of an STL file.
+pub static STL: [Key; 4] = [
+    Key::new(
+        "file",
+        KeyType::File,
+        "STL file, ASCII or binary: flat triangles, counter-clockwise seen from free space \
+         (edges and vertices are cylinders and spheres of radius 0; the inside / outside sign \
+         comes from angle-weighted pseudonormals)",
+    )
+    .required("add `file = \"punch.stl\"`"),
+    Key::new(
+        "flip",
+        KeyType::Bool,
+        "free space on the other side of the triangles (clockwise seen from free space)",
+    )
+    .default(Default::Bool(false)),
+    Key::new(
+        "closed",
+        KeyType::Bool,
+        "the triangles must close a solid: an edge of a single triangle (a hole in the surface) \
+         is an error",
+    )
+    .default(Default::Bool(false)),
+    MOTION_KEY,
+];
+
 /// The `motion { .. }` key of every tool.
 const MOTION_KEY: Key = Key::new(
     "motion",
@@ -840,6 +866,7 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("tool = cone", &CONE),
     ("tool = torus", &TORUS),
     ("tool = iges", &IGES),
+    ("tool = stl", &STL),
     ("tool.motion", &MOTION),
     ("contact", &CONTACT),
     ("contact.method = penalty", &PENALTY),

@@ -59,3 +59,77 @@ fn cad_patch_3d_nurbs_face_is_exact_and_the_hole_is_free() {
 fn cad_sphere_3d_matches_the_analytical_sphere() {
     registry::run_passing("cad_sphere_3d");
 }
+
+/// `stl_sphere_3d`: the STL sphere's force and peak pressure approach the
+/// analytical sphere's as the facets shrink, at second order in the facet
+/// size (the chords' sagitta).
+#[test]
+fn stl_sphere_3d_converges_to_the_analytical_sphere() {
+    let report = registry::run_passing("stl_sphere_3d");
+    for l in &report.levels {
+        for v in &l.values {
+            eprintln!(
+                "level {} h {:.4e} {}: {:.3e}",
+                l.level, l.h, v.quantity, v.error
+            );
+        }
+    }
+    assert_eq!(report.levels.len(), 3, "three default levels");
+}
+
+/// The search figures of a CAD tool reach the run summary
+/// (`surface_search`: projections per node, Newton iterations per
+/// projection, faces tested), and a projection that does not converge is
+/// reported, never guessed: with one Newton iteration allowed per seed the
+/// NURBS sphere's projections fail, the nodes are left out and every
+/// failure is a run warning naming the node and the error; with the
+/// default settings none fails.
+#[test]
+fn cad_projection_figures_and_non_convergence_reach_the_summary() {
+    use ctc_engine::solve::{run, Observer};
+    use ctc_geom::nurbs::ProjectOptions;
+    struct Quiet;
+    impl Observer<3> for Quiet {}
+    use ctc_verification::programs::contact_3d::nurbs_sphere_block;
+    let good = nurbs_sphere_block(ProjectOptions::default()).unwrap();
+    let s = run(&good, &mut Quiet).unwrap();
+    assert!(s.completed);
+    let f = &s.surface_search[0];
+    assert_eq!(
+        (f.pair.as_str(), f.tool.as_str()),
+        ("block.zmax -> tool", "tool")
+    );
+    assert_eq!(f.not_converged, 0);
+    assert!(
+        s.warnings.iter().all(|w| !w.contains("left out")),
+        "{:?}",
+        s.warnings
+    );
+    assert!(
+        f.projections > 0 && f.projections_per_node <= 1.0 + 1e-12,
+        "{f:?}"
+    );
+    assert!(
+        f.faces_per_projection >= 1.0 && f.newton_per_projection > 0.0,
+        "{f:?}"
+    );
+    eprintln!("default: {f:?}");
+    let json = serde_json::to_value(&s).unwrap();
+    assert!(json["surface_search"][0]["newton_per_projection"].is_number());
+    let bad = nurbs_sphere_block(ProjectOptions {
+        max_iterations: 1,
+        ..ProjectOptions::default()
+    })
+    .unwrap();
+    let s = run(&bad, &mut Quiet).unwrap_or_else(|e| e.summary);
+    let f = &s.surface_search[0];
+    eprintln!("one iteration: {f:?}");
+    assert!(f.not_converged > 0, "{f:?}");
+    let w: Vec<_> = s
+        .warnings
+        .iter()
+        .filter(|w| w.contains("left out"))
+        .collect();
+    assert!(!w.is_empty(), "{:?}", s.warnings);
+    assert!(w[0].contains("the projection did not converge"), "{}", w[0]);
+}

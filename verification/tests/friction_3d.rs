@@ -5,9 +5,13 @@
 //! slip along the pull, equilibrium and the work `mu F_n Δd` of an
 //! increment) and `friction_inclined_3d` (the block pushed up a plane
 //! inclined at `tan a = 0.1` along 40°: `F / G = (tan a + mu) / (1 - mu tan
-//! a) = 0.412371`, statics of a block on a slope). Scenes, references and
-//! tolerances: `verification/src/programs/friction_3d.rs`. Here also: the
-//! friction state survives a restart bit for bit, and Newton converges
+//! a) = 0.412371`, statics of a block on a slope) and
+//! `friction_curved_path_3d` (the block dragged along a quarter circle:
+//! stick, then a slip whose direction turns by 90°, dissipation `mu F_n x
+//! slip length`), each by penalty, augmented Lagrangian and Lagrange
+//! multipliers. Scenes, references and tolerances:
+//! `verification/src/programs/friction_3d.rs`. Here also: the friction
+//! state survives a restart bit for bit (every method), and Newton converges
 //! quadratically while the base slides (the consistent non-symmetric
 //! tangent of `ctc_engine::contact::friction_surface`).
 //!
@@ -29,6 +33,14 @@ use ctc_verification::registry;
 #[test]
 fn friction_block_3d_passes() {
     registry::run_passing("friction_block_3d");
+}
+
+/// Lagrange-multiplier friction in 3D passes the model check (it was
+/// refused before the 3D status loop existed).
+#[test]
+fn lagrange_friction_in_3d_passes_the_model_check() {
+    let m = pulled_block(2).unwrap();
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
 }
 
 #[test]
@@ -73,8 +85,8 @@ fn bits(l: &Last) -> Vec<u64> {
 
 #[test]
 fn friction_3d_restarts_bit_for_bit_in_the_slide() {
-    for augmented in [false, true] {
-        let model = pulled_block(augmented).unwrap();
+    for method in 0..3 {
+        let model = pulled_block(method).unwrap();
         let mut first = Last::default();
         let s1 = run(&model, &mut first).unwrap();
         assert!(s1.completed);
@@ -83,14 +95,14 @@ fn friction_3d_restarts_bit_for_bit_in_the_slide() {
         let mut rest = Last::default();
         let s2 = run_from(&model, &mut rest, Some(&first.checkpoints[3])).unwrap();
         assert!(s2.completed);
-        assert_eq!(bits(&first), bits(&rest), "augmented = {augmented}");
+        assert_eq!(bits(&first), bits(&rest), "method {method}");
         assert!(s1.friction_work[0] > 0.0);
     }
 }
 
 #[test]
 fn newton_converges_quadratically_while_the_base_slides() {
-    let model = pulled_block(false).unwrap();
+    let model = pulled_block(0).unwrap();
     let mut last = Last::default();
     run(&model, &mut last).unwrap();
     // the pull step (step index 2): in each increment, once the relative
@@ -141,7 +153,7 @@ fn cut_at_impact_3d_cuts_the_increment_at_the_first_impact() {
     use ctc_geom::analytic::{Analytic, Plane};
     use ctc_geom::{Side, Vec3};
     for cut in [true, false] {
-        let mut m = pulled_block(false).unwrap();
+        let mut m = pulled_block(0).unwrap();
         let plane = Plane::new(Vec3::new(0.0, 0.0, -0.013), Vec3::z(), Side::Outside).unwrap();
         m.surfaces[0].geometry = Analytic::Plane(plane).into();
         m.constraints.push(Dirichlet {
@@ -174,30 +186,9 @@ fn cut_at_impact_3d_cuts_the_increment_at_the_first_impact() {
     }
 }
 
-/// Lagrange-multiplier friction is not available in 3D: `check_model` (run
-/// by `ctc check` and before every run) names it, and the run is refused
-/// with that message instead of a panic; the penalty model passes.
 #[test]
-fn lagrange_friction_in_3d_is_refused_by_the_model_check() {
-    use ctc_engine::model::{ContactMethod, LagrangeFormulation};
-    let mut m = pulled_block(false).unwrap();
-    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
-    m.contacts[0].method = ContactMethod::Lagrange {
-        formulation: LagrangeFormulation::Single,
-    };
-    let errors = ctc_engine::solve::check::check_model(&m);
-    assert!(
-        errors
-            .iter()
-            .any(|e| e.contains("Lagrange-multiplier friction is not available in 3D")),
-        "{errors:?}"
-    );
-    let e = run(&m, &mut Times::default()).unwrap_err();
-    assert!(
-        e.message.contains("Lagrange-multiplier friction"),
-        "{}",
-        e.message
-    );
+fn friction_curved_path_3d_passes() {
+    registry::run_passing("friction_curved_path_3d");
 }
 
 /// The 3D friction outputs of a run written by `ResultWriter`: the contact
@@ -208,7 +199,7 @@ fn lagrange_friction_in_3d_is_refused_by_the_model_check() {
 #[test]
 fn friction_3d_outputs_reach_the_files() {
     use ctc_engine::model::{Field, VtuFormat};
-    let mut m = pulled_block(false).unwrap();
+    let mut m = pulled_block(0).unwrap();
     m.output.fields = vec![Field::Displacement, Field::Contact];
     m.output.format = VtuFormat::Ascii;
     let dir = tempfile::tempdir().unwrap();
@@ -254,4 +245,23 @@ fn friction_3d_outputs_reach_the_files() {
     assert!(summary.friction_work[0] > 8.0 * last * 0.9);
     let json = std::fs::read_to_string(dir.path().join("summary.json")).unwrap();
     assert!(json.contains("\"friction_work\""));
+}
+
+/// The work-precision table of `friction_inclined_3d`: `F / G` of each
+/// method against 0.412371, its wall time and Newton iterations (printed
+/// with `--nocapture`); every method within 1e-5.
+#[test]
+fn inclined_3d_table_per_method() {
+    use ctc_verification::programs::friction_3d::inclined_push;
+    use ctc_verification::registry::ProgramLevel;
+    let reference = (0.1 + 0.3) / (1.0 - 0.3 * 0.1);
+    for (k, name) in ["penalty", "augmented", "lagrange"].iter().enumerate() {
+        let push = inclined_push(k, &mut ProgramLevel::default()).unwrap();
+        let e = (push.ratio - reference).abs() / reference;
+        eprintln!(
+            "{name:>9}: F/G = {:.6}  error {e:.1e}  lateral/F {:.1e}  {:.3} s  {} Newton iterations",
+            push.ratio, push.lateral, push.seconds, push.newton
+        );
+        assert!(e < 1e-5, "{name}: {e}");
+    }
 }

@@ -47,6 +47,11 @@ use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeF
 use crate::model::{ContactMethod, FirstImpact, Friction};
 use ctc_geom::{Mat3, Placement, Projection, Vec3};
 
+/// Slip (relative to the square root of the node's tributary area) below
+/// which a slipping Lagrange node takes its friction force direction from
+/// the kept multiplier rather than from its slip.
+const SLIP_FLOOR: f64 = 1e-9;
+
 /// Relative distance to the Coulomb cone under which a node that slid
 /// during the increment is reported as slipping.
 const ON_CONE: f64 = 1e-9;
@@ -84,13 +89,10 @@ pub fn respond(
     state: &mut FrictionState<3>,
     force: &mut [f64; 3],
     stiffness: &mut [[f64; 3]; 3],
+    rows: &mut Option<StickRows>,
 ) -> NodeFriction<3> {
+    *rows = None;
     state.position[i] = c.reference.into();
-    if matches!(method, ContactMethod::Lagrange { .. }) {
-        // refused by the lowering and `check_model`
-        state.release(i);
-        return NodeFriction::default();
-    }
     let pr = c.projection;
     let (n, w) = (pr.normal, pr.curvature);
     let q: Mat3 = *c.placement.rotation.matrix();
@@ -136,6 +138,22 @@ pub fn respond(
             }
         }
     };
+    if matches!(method, ContactMethod::Lagrange { .. }) {
+        let mut k = Mat3::zeros();
+        let sliding = (state.sliding[i], state.committed_sliding[i] != 0.0);
+        let (f, r) = lagrange(law, c, start, dxa, sliding, state.shift[i], &mut k);
+        for a in 0..3 {
+            force[a] += f.traction[a];
+            for b in 0..3 {
+                stiffness[a][b] += k[(a, b)];
+            }
+        }
+        // the slip moves the stick point with the node
+        let slip = Vec3::from(f.slip_vector);
+        state.anchor[i] = Some((start + q.transpose() * slip).into());
+        *rows = r;
+        return f;
+    }
     let anchor = state.base[i].map_or(start, Vec3::from);
     let xa = c.placement.apply(&anchor);
     let d = c.x - xa;
@@ -214,6 +232,131 @@ pub fn respond(
         // + 0: no negative zero in the outputs
         dissipation: -t.dot(&slip) + 0.0,
     }
+}
+
+/// The two tangential stick constraints of a sticking node (Lagrange
+/// multipliers): `g_k = t_k . g_T = 0` along an orthonormal basis `t_1,
+/// t_2` of the tangent plane, with `d g_k / d x = t_k^T G` (exact where
+/// `g_T = 0`, i.e. at the converged stick state: the derivative of the
+/// basis multiplies `g_T`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StickRows {
+    /// `t_1`, `t_2` in the tool's reference frame (the multiplier
+    /// correction of row `k` adds `t_k dlambda` to the tangential
+    /// multiplier, kept in that frame).
+    pub directions: [Vec3; 2],
+    /// `d g_k / d x` (current frame).
+    pub gradients: [Vec3; 2],
+    /// `g_k`.
+    pub gaps: [f64; 2],
+}
+
+/// An orthonormal basis of the plane normal to the unit vector `n`
+/// (deterministic: the first axis is `n` crossed with the coordinate axis
+/// least aligned with it).
+pub fn tangent_basis(n: &Vec3) -> [Vec3; 2] {
+    let k = (0..3)
+        .min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))
+        .unwrap_or(0);
+    let t1 = n.cross(&Vec3::ith(k, 1.0)).normalize();
+    [t1, n.cross(&t1)]
+}
+
+/// Lagrange-multiplier friction of a closed node against a surface tool
+/// (the 3D form of [`super::friction::Coulomb::lagrange`], status loop in
+/// [`super::friction_lagrange`]): the tangential multiplier `lambda_T`
+/// is a vector `m` of the tool's reference frame
+/// ([`FrictionState::shift`]), `v = P Q m` its current tangential part;
+/// the normal force is the normal multiplier `R_N`.
+///
+/// - stick (`sliding = 0`): force `t = v`, no slip, the constraint rows
+///   [`StickRows`] `t_k . g_T = 0`, `g_T = P (x - x_a)`; tangent `-dv/dx =
+///   (n . Q m) W + n ⊗ (W Q m)`;
+/// - slip (`sliding != 0`): the node slips by `g_T` from its stick point
+///   (dissipation `-t . g_T`). Where it was already sliding at the start
+///   of the increment and slides against the kept direction `e = v / |v|`
+///   (`g_T . e < 0`, `|g_T|` above round-off), the force
+///   opposes its slip, `t = -mu R_N s`, `s = g_T / |g_T|`, so the slip
+///   direction turns freely within the Newton loop, tangent `mu R_N / |g_T|
+///   (I - s ⊗ s) G`; otherwise (the increment of the switch, as in 2D: the
+///   slips there are small and their direction ill-conditioned; the first
+///   iteration; or a slip along `e`, which the status loop turns into
+///   stick) `t = mu R_N e`, tangent `-mu R_N (I - e ⊗ e) / |v| dv/dx`. (`R_N` is an unknown of
+///   its own: no `d R_N / d x`.) The status loop keeps `e` along the force
+///   (the predictor of the next increment).
+///
+/// Adds `-d t / d x` to `k`; returns the friction output and the rows of
+/// a sticking node.
+fn lagrange(
+    law: &Friction,
+    c: &SurfaceContact<'_>,
+    start: Vec3,
+    dxa: Mat3,
+    (sliding, established): (f64, bool),
+    shift: [f64; 3],
+    k: &mut Mat3,
+) -> (NodeFriction<3>, Option<StickRows>) {
+    let pr = c.projection;
+    let (n, w) = (pr.normal, pr.curvature);
+    let q: Mat3 = *c.placement.rotation.matrix();
+    let xa = c.placement.apply(&start);
+    let d = c.x - xa;
+    let p = Mat3::identity() - n * n.transpose();
+    let gt = p * d;
+    let m = q * Vec3::from(shift);
+    let v = p * m;
+    let dv = -(w * n.dot(&m)) - n * (w * m).transpose();
+    if sliding == 0.0 {
+        *k -= dv;
+        let g = p * (Mat3::identity() - dxa) - w * n.dot(&d) - n * (w * d).transpose();
+        let t = tangent_basis(&n);
+        let qt = q.transpose();
+        let rows = StickRows {
+            directions: [qt * t[0], qt * t[1]],
+            gradients: [g.transpose() * t[0], g.transpose() * t[1]],
+            gaps: [t[0].dot(&gt), t[1].dot(&gt)],
+        };
+        let f = NodeFriction {
+            status: FrictionStatus::Stick,
+            tangential_force: v.norm(),
+            tangential_gap: gt.norm(),
+            slip: 0.0,
+            traction: v.into(),
+            slip_vector: [0.0; 3],
+            gap_gradient: [0.0; 3],
+            dissipation: 0.0,
+        };
+        return (f, Some(rows));
+    }
+    let limit = law.mu * c.normal_force.max(0.0);
+    let norm = v.norm();
+    let slip = gt.norm();
+    let t = if established && slip > SLIP_FLOOR * c.area.sqrt() && gt.dot(&v) < 0.0 {
+        // sliding against the kept direction: the force opposes the slip
+        // of the increment, its direction turning with it inside Newton
+        let s = gt / slip;
+        let g = p * (Mat3::identity() - dxa) - w * n.dot(&d) - n * (w * d).transpose();
+        *k += (Mat3::identity() - s * s.transpose()) * g * (limit / slip);
+        -s * limit
+    } else if norm > 0.0 {
+        let e = v / norm;
+        *k -= (Mat3::identity() - e * e.transpose()) * dv * (limit / norm);
+        e * limit
+    } else {
+        Vec3::zeros()
+    };
+    let f = NodeFriction {
+        status: FrictionStatus::Slip,
+        tangential_force: t.norm(),
+        tangential_gap: gt.norm(),
+        slip: gt.norm(),
+        traction: t.into(),
+        slip_vector: gt.into(),
+        gap_gradient: [0.0; 3],
+        // + 0: no negative zero in the outputs
+        dissipation: -t.dot(&gt) + 0.0,
+    };
+    (f, None)
 }
 
 /// Uzawa update of the tangential shifts of an augmented-Lagrangian pair

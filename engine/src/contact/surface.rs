@@ -2,8 +2,10 @@
 //! a face set against an exact surface of `ctc-geom` in its current
 //! placement (seed slides, "Part I – Geometrical aspects" and "Rigid tool
 //! defined by a CAD file"): an analytical surface (plane, sphere, cylinder,
-//! cone, torus: closed-form projection) or CAD faces (trimmed NURBS faces
-//! with holes from IGES: `ctc_geom::brep::BrepTool`, Newton on the
+//! cone, torus: closed-form projection), a triangulated surface (STL:
+//! `ctc_geom::trimesh`, BVH search, pseudonormal sign) or CAD faces
+//! (trimmed NURBS faces with holes from IGES: `ctc_geom::brep::BrepTool`,
+//! Newton on the
 //! foot-point equations seeded by each node's search memory, edges and
 //! vertices as cylinders and spheres of radius 0).
 //!
@@ -28,11 +30,13 @@
 //! `K = -df/dx = alpha n ⊗ n - R_N W` (penalty: `alpha (n ⊗ n + g W)`,
 //! Lagrange: `-lambda W`); pressure `R_N / A`. A pair with Coulomb
 //! friction adds the tangential force and its (non-symmetric) tangent of
-//! [`super::friction_surface`] at every closed node (penalty and augmented
-//! Lagrangian; the lowering refuses Lagrange-multiplier friction in 3D).
+//! [`super::friction_surface`] at every closed node (penalty, augmented
+//! Lagrangian, and Lagrange multipliers: two tangential rows per sticking
+//! node, [`SurfacePair::stick`], and the stick/slip status loop of
+//! [`super::friction_lagrange`]).
 
 use super::friction::FrictionState;
-use super::friction_surface::{self, SurfaceContact};
+use super::friction_surface::{self, StickRows, SurfaceContact};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool};
@@ -59,11 +63,17 @@ pub struct SurfacePair {
     /// Per slave node: the CAD search memory (face and parameter of the
     /// last foot; unused by analytical tools).
     pub search: Vec<SearchState>,
-    /// Work of the CAD projections of the last evaluation.
+    /// Work of the projections since the start of the run (every
+    /// evaluation, converged or not; analytical tools count queries only).
     pub counters: Counters,
+    /// Evaluations of the pair since the start of the run.
+    pub evaluations: u64,
     /// Friction history (stick points and shifts in the tool's reference
     /// frame; [`super::friction_surface`]).
     pub friction: FrictionState<3>,
+    /// Per slave node at the last evaluation: the tangential constraint
+    /// rows of a sticking node of a Lagrange pair with friction.
+    pub stick: Vec<Option<StickRows>>,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -93,17 +103,38 @@ impl SurfacePair {
                 start.to_reference(&Vec3::from(x)).into()
             })
             .collect();
+        // Lagrange multipliers: a node that overlaps the tool at the start
+        // is in the active set from the first Newton loop on (a body held
+        // only by that contact is then held from the start)
+        let active: Vec<bool> = match cp.master.tool().and_then(|i| model.surfaces.get(i)) {
+            Some(tool) if matches!(cp.method, ContactMethod::Lagrange { .. }) => cp
+                .nodes
+                .iter()
+                .map(|&k| {
+                    let x = model.mesh.nodes.get(k).copied().unwrap_or([0.0; 3]);
+                    let mut search = SearchState::new();
+                    search.reach = prof;
+                    matches!(
+                        project(tool, 0.0, &x, &mut search, &mut Counters::default()),
+                        Ok(Some(p)) if p.gap < 0.0
+                    )
+                })
+                .collect(),
+            _ => vec![false; n],
+        };
         SurfacePair {
             slaves: cp.nodes.clone(),
             area,
             prof,
             multiplier: vec![0.0; n],
-            active: vec![false; n],
+            committed_active: active.clone(),
+            active,
             search: vec![SearchState::new(); n],
             counters: Counters::default(),
+            evaluations: 0,
             friction: FrictionState::new(positions),
+            stick: vec![None; n],
             committed_multiplier: vec![0.0; n],
-            committed_active: vec![false; n],
             committed_search: vec![SearchState::new(); n],
         }
     }
@@ -143,6 +174,66 @@ impl SurfacePair {
     }
 }
 
+/// Search and projection figures of a pair against a surface tool over
+/// the run (`summary.json`, `surface_search`): the health of the CAD
+/// search (issue 17: projections per node, Newton iterations of the
+/// projections, faces tested, projections that did not converge).
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct SearchFigures {
+    /// The pair's name.
+    pub pair: String,
+    /// The tool's name.
+    pub tool: String,
+    /// Evaluations of the pair (Newton iterations of every attempt).
+    pub evaluations: u64,
+    /// Node projections (queries).
+    pub projections: u64,
+    /// Projections per slave node and evaluation (nodes farther than the
+    /// window are still projected: 1 for a tool near every node).
+    pub projections_per_node: f64,
+    /// Newton iterations of the surface and edge projections (0 for the
+    /// closed forms of analytical tools).
+    pub newton_iterations: u64,
+    /// Newton iterations per projection.
+    pub newton_per_projection: f64,
+    /// CAD faces whose surface was projected on.
+    pub faces_tested: u64,
+    /// CAD faces skipped by their bounding box.
+    pub faces_skipped: u64,
+    /// Faces tested per projection.
+    pub faces_per_projection: f64,
+    /// Projections on boundary edges (radius-0 cylinders).
+    pub edge_projections: u64,
+    /// Rays of the trimming parity test.
+    pub parity_rays: u64,
+    /// Surface projections that did not converge (each a run warning when
+    /// it left a node out).
+    pub not_converged: u64,
+}
+
+impl SurfacePair {
+    /// The search figures of this pair, named `pair` against `tool`.
+    pub fn figures(&self, pair: &str, tool: &str) -> SearchFigures {
+        let c = &self.counters;
+        let per = |a: u64, b: u64| if b > 0 { a as f64 / b as f64 } else { 0.0 };
+        SearchFigures {
+            pair: pair.into(),
+            tool: tool.into(),
+            evaluations: self.evaluations,
+            projections: c.queries,
+            projections_per_node: per(c.queries, self.evaluations * self.slaves.len() as u64),
+            newton_iterations: c.newton_iterations,
+            newton_per_projection: per(c.newton_iterations, c.queries),
+            faces_tested: c.faces_tested,
+            faces_skipped: c.faces_skipped,
+            faces_per_projection: per(c.faces_tested, c.queries),
+            edge_projections: c.edge_projections,
+            parity_rays: c.parity_rays,
+            not_converged: c.not_converged,
+        }
+    }
+}
+
 /// The placement of a tool of motion `motion` at time `t`.
 pub fn placement(motion: &SurfaceMotion, t: f64) -> Placement {
     let u = Vec3::from_fn(|k, _| motion.translation[k].eval(t));
@@ -167,8 +258,15 @@ pub fn project(
     let p = placement(&tool.motion, t);
     let xr = p.to_reference(&Vec3::from(*x));
     let r = match &tool.geometry {
-        SurfaceShape::Analytic(a) => a.project(&xr),
+        SurfaceShape::Analytic(a) => {
+            counters.queries += 1;
+            a.project(&xr)
+        }
         SurfaceShape::Brep(b) => b.project(&xr, search, counters),
+        SurfaceShape::Mesh(m) => {
+            counters.queries += 1;
+            m.project(&xr)
+        }
     };
     match r {
         Ok(pr) => Ok(Some(p.to_current(&pr))),
@@ -188,6 +286,7 @@ fn reference_gap(
     match &tool.geometry {
         SurfaceShape::Analytic(a) => a.project(xr),
         SurfaceShape::Brep(b) => b.project(xr, search, counters),
+        SurfaceShape::Mesh(m) => m.project(xr),
     }
     .ok()
     .map(|p| p.gap)
@@ -302,6 +401,8 @@ pub fn evaluate_pair(
     let mut out = Vec::with_capacity(state.slaves.len());
     let placed = placement(&tool.motion, t);
     state.friction.impact = None;
+    state.evaluations += 1;
+    state.stick.iter_mut().for_each(|r| *r = None);
     for (i, &node) in state.slaves.iter().enumerate() {
         let xr = placed.to_reference(&Vec3::from(x[node]));
         // an active Lagrange node is projected whatever its distance
@@ -380,6 +481,7 @@ pub fn evaluate_pair(
                     &mut state.friction,
                     &mut nc.force,
                     &mut nc.stiffness,
+                    &mut state.stick[i],
                 );
             }
         } else {
@@ -545,18 +647,28 @@ mod tests {
         /// by central differences to a relative error of 1e-6 (of the
         /// largest entry), against a plane and a sphere placed by an
         /// arbitrary rotation and translation, in stick and in slip, for the
-        /// penalty and the augmented Lagrangian (tangential shift), with the
-        /// stick point fixed or on the first-impact path.
+        /// penalty, the augmented Lagrangian (tangential shift) and Lagrange
+        /// multipliers (stick: the multiplier vector, slip: `mu lambda_N`
+        /// along its direction; and the two stick rows `t_k . g_T` against
+        /// differences of `g_T`), with the stick point fixed or on the
+        /// first-impact path.
         #[test]
         fn friction_tangent_matches_finite_differences(
-            sphere in any::<bool>(), augmented in any::<bool>(), first in any::<bool>(),
+            sphere in any::<bool>(), kind in 0usize..3, first in any::<bool>(),
+            slipping in any::<bool>(),
             mu in 0.05f64..1.0, angle in -0.4f64..0.4,
             dx in -0.3f64..0.3, dy in -0.3f64..0.3, dz in 0.02f64..0.3,
             ax in -0.3f64..0.3, ay in -0.3f64..0.3,
             sx in -3.0f64..3.0, sy in -3.0f64..3.0, lambda in 0.0f64..3.0,
         ) {
             use crate::model::{FirstImpact, Friction};
-            let method = if augmented {
+            let augmented = kind == 1;
+            let lagrange = kind == 2;
+            let method = if lagrange {
+                ContactMethod::Lagrange {
+                    formulation: crate::model::LagrangeFormulation::Single,
+                }
+            } else if augmented {
                 ContactMethod::AugmentedLagrange {
                     kind: PenaltyKind::Area,
                     penalty: 60.0,
@@ -598,13 +710,23 @@ mod tests {
                 state.friction.committed_anchor[0] = Some((xr + Vec3::new(ax, ay, 0.0)).into());
                 state.friction.base = state.friction.committed_anchor.clone();
             }
-            if augmented {
+            if augmented || lagrange {
                 state.friction.shift[0] = [sx, sy, 0.3 * sx];
             }
+            if lagrange {
+                state.active = vec![true; 3];
+                state.friction.sliding[0] = if slipping { 1.0 } else { 0.0 };
+                // slipping since an earlier increment (the force follows
+                // the slip) or switched in this one (the kept direction)
+                state.friction.committed_sliding[0] = if slipping && sy > 0.0 { 1.0 } else { 0.0 };
+            }
             let eval = |x: &[[f64; 3]]| {
-                let r = evaluate_pair(&m, 0, x, 0.0, &mut state.clone()).0;
-                r.into_iter().find(|c| c.node == 0)
+                let mut st = state.clone();
+                let r = evaluate_pair(&m, 0, x, 0.0, &mut st).0;
+                r.into_iter().find(|c| c.node == 0).map(|c| (c, st.stick[0]))
             };
+            let eval_rows = |x: &[[f64; 3]]| eval(x).and_then(|r| r.1);
+            let eval = |x: &[[f64; 3]]| eval(x).map(|r| r.0);
             let Some(nc) = eval(&x0) else { return Ok(()) };
             if nc.status != ContactStatus::Closed {
                 return Ok(());
@@ -629,6 +751,26 @@ mod tests {
                     let fd = -(fp.force[a] - fm.force[a]) / (2.0 * h);
                     prop_assert!((fd - nc.stiffness[a][b]).abs() <= 1e-6 * kmax.max(1.0),
                         "{:?} K[{a}][{b}] = {} vs {fd}", nc.friction.status, nc.stiffness[a][b]);
+                }
+                // stick rows: t_k . d g_T / d x_b, g_T rebuilt from the rows
+                let q = *p.rotation.matrix();
+                let gap_vector = |r: StickRows| {
+                    (0..2).fold(Vec3::zeros(), |g, k| g + q * r.directions[k] * r.gaps[k])
+                };
+                let r0 = eval_rows(&x0);
+                prop_assert_eq!(r0.is_some(), lagrange && !slipping);
+                let rows_at = |s: f64| {
+                    let mut x = x0.clone();
+                    x[0][b] += s;
+                    eval_rows(&x)
+                };
+                if let (Some(r0), Some(rp), Some(rm)) = (r0, rows_at(h), rows_at(-h)) {
+                    let dg = (gap_vector(rp) - gap_vector(rm)) / (2.0 * h);
+                    for k in 0..2 {
+                        let fd = (q * r0.directions[k]).dot(&dg);
+                        prop_assert!((fd - r0.gradients[k][b]).abs() <= 1e-6,
+                            "row {k} column {b}: {} vs {fd}", r0.gradients[k][b]);
+                    }
                 }
             }
         }

@@ -474,6 +474,11 @@ pub enum SurfaceShape {
     /// file, their shared edges and vertices (a foot on an edge or a
     /// vertex is a cylinder or a sphere of radius 0).
     Brep(std::sync::Arc<ctc_geom::brep::BrepTool>),
+    /// A triangulated surface (an STL file): flat triangles, their edges
+    /// and vertices as cylinders and spheres of radius 0, the inside /
+    /// outside sign by angle-weighted pseudonormals
+    /// (`ctc_geom::trimesh::TriMesh`).
+    Mesh(std::sync::Arc<ctc_geom::trimesh::TriMesh>),
 }
 
 impl From<ctc_geom::analytic::Analytic> for SurfaceShape {

@@ -1,7 +1,7 @@
 //! Checks of a [`Model`] before solving: every index in range, every
 //! parameter usable, every body held. Errors are user-facing sentences.
 
-use crate::model::{AnalysisKind, ContactMethod, HistoryRequest, Load, Model};
+use crate::model::{AnalysisKind, HistoryRequest, Load, Model};
 
 /// The valid components in words, by dimension (2, 3).
 const COMPONENTS: [&str; 2] = ["0 (x) or 1 (y)", "0 (x), 1 (y) or 2 (z)"];
@@ -252,13 +252,6 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                 errors.push(format!(
                     "contact `{}`: contact between deformable bodies is not available in 3D \
                      analyses yet (rigid surface tools only)",
-                    c.name
-                ));
-            }
-            if c.friction.is_some() && matches!(c.method, ContactMethod::Lagrange { .. }) {
-                errors.push(format!(
-                    "contact `{}`: Lagrange-multiplier friction is not available in 3D \
-                     analyses yet: use penalty or augmented Lagrangian",
                     c.name
                 ));
             }

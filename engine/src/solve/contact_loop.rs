@@ -182,7 +182,9 @@ pub fn active_key(pairs: &[PairState]) -> Vec<bool> {
     pairs
         .iter()
         .flat_map(|p| p.active.iter().copied())
-        .chain(crate::contact::friction_lagrange::status_key(pairs))
+        .chain(crate::contact::friction_lagrange::status_key(
+            pairs.iter().map(|p| &p.friction),
+        ))
         .collect()
 }
 

@@ -295,8 +295,14 @@ pub struct RunSummary {
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub friction_work: Vec<f64>,
     /// Warnings of converged increments (e.g. slave nodes that moved
-    /// farther than the contact search window in one increment).
+    /// farther than the contact search window in one increment, or whose
+    /// projection on a CAD face did not converge).
     pub warnings: Vec<String>,
+    /// Search and projection figures of each pair against a surface tool
+    /// (3D): projections per node, Newton iterations of the projections,
+    /// faces tested, projections that did not converge.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub surface_search: Vec<crate::contact::surface::SearchFigures>,
     /// The stabilization of each `newton { stabilize }` step: its energy
     /// against the internal work, and its force at the step's end.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -778,6 +784,7 @@ where
         let r = self.observer.converged(&view);
         self.summary.timings.output += start.elapsed().as_secs_f64();
         let friction_work = self.friction_work();
+        self.summary.surface_search = self.newton.contacts().search_figures(self.model);
         let (residual_floor, at_floor) = self.newton.residual_floor();
         let stabilization = self.stabilization_record(step, t);
         self.summary.increments.push(IncrementRecord {

@@ -104,6 +104,11 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     ) -> Vec<String>;
     /// Friction work of the last evaluation, per pair.
     fn friction_work(&self) -> Vec<f64>;
+    /// Search and projection figures of the pairs against surface tools
+    /// over the run so far (3D; empty otherwise).
+    fn search_figures(&self, _model: &Model<D>) -> Vec<crate::contact::surface::SearchFigures> {
+        Vec::new()
+    }
     /// Committed contact history per pair and the pattern couplings (for a
     /// restart point).
     fn history(&self) -> (Vec<PairHistory>, Vec<(usize, usize)>);

@@ -19,6 +19,7 @@ use super::newton::{Converged, Failure, FailureKind, Newton};
 use super::restart::PairHistory;
 use super::scene::ContactScene;
 use super::Observer;
+use crate::contact::friction_lagrange::{self, SurfaceStatusChange};
 use crate::contact::rows::{NodeRows, NodeTerm, RowKind};
 use crate::contact::surface::{self, SurfacePair};
 use crate::contact::{friction, friction_surface};
@@ -42,6 +43,8 @@ pub struct SurfaceAssembly {
     constraints: Constraints,
     /// Lagrange rows of the last evaluation, in node terms.
     rows: NodeRows,
+    /// Direction (tool frame) of each tangential stick row, in row order.
+    stick_directions: Vec<[f64; 3]>,
     /// Current nodal coordinates (scratch).
     x: Vec<[f64; 3]>,
     /// Time of the last evaluation (tool placement of the Uzawa updates).
@@ -141,11 +144,37 @@ impl SurfaceAssembly {
         updated
     }
 
+    /// The active sets, then the stick/slip statuses (cycling guard).
     fn active_key(&self) -> Vec<bool> {
         self.pairs
             .iter()
             .flat_map(|p| p.active.iter().copied())
+            .chain(friction_lagrange::status_key(
+                self.pairs.iter().map(|p| &p.friction),
+            ))
             .collect()
+    }
+
+    /// Stick/slip status loop of the Lagrange pairs with friction
+    /// ([`friction_lagrange::update_surface_status`]).
+    fn update_friction_status(&mut self, model: &Model<3>) -> SurfaceStatusChange {
+        let placement: Vec<_> = model
+            .contacts
+            .iter()
+            .map(|cp| {
+                cp.master
+                    .tool()
+                    .and_then(|i| model.surfaces.get(i))
+                    .map(|tool| surface::placement(&tool.motion, self.time))
+            })
+            .collect();
+        friction_lagrange::update_surface_status(
+            model,
+            &mut self.pairs,
+            &self.contact,
+            &placement,
+            INTRODUCE_GAP * self.size,
+        )
     }
 }
 
@@ -166,6 +195,7 @@ impl ContactScene<3> for SurfaceAssembly {
             contact: vec![Vec::new(); model.contacts.len()],
             constraints: Constraints::default(),
             rows: NodeRows::default(),
+            stick_directions: Vec::new(),
             x: model.mesh.nodes.clone(),
             time: 0.0,
             size: if size.is_finite() && size > 0.0 {
@@ -256,6 +286,14 @@ impl ContactScene<3> for SurfaceAssembly {
                 );
             }
         }
+        self.stick_directions.clear();
+        friction_lagrange::surface_stick_rows(
+            model,
+            &self.pairs,
+            &self.contact,
+            &mut self.rows,
+            &mut self.stick_directions,
+        );
         self.constraints.build(&self.rows, dofs);
     }
 
@@ -264,8 +302,25 @@ impl ContactScene<3> for SurfaceAssembly {
     }
 
     fn apply_multiplier_corrections(&mut self, dlambda: &[f64]) {
-        for (&(p, i), dl) in self.constraints.owner.iter().zip(dlambda) {
-            self.pairs[p].multiplier[i] += dl;
+        let mut directions = self.stick_directions.iter();
+        for ((&(p, i), kind), dl) in self
+            .constraints
+            .owner
+            .iter()
+            .zip(&self.constraints.kind)
+            .zip(dlambda)
+        {
+            match kind {
+                RowKind::Normal => self.pairs[p].multiplier[i] += dl,
+                RowKind::Stick => {
+                    if let Some(t) = directions.next() {
+                        let m = &mut self.pairs[p].friction.shift[i];
+                        for c in 0..3 {
+                            m[c] += t[c] * dl;
+                        }
+                    }
+                }
+            }
         }
     }
 
@@ -373,6 +428,22 @@ impl ContactScene<3> for SurfaceAssembly {
             }
         }
         out
+    }
+
+    fn search_figures(&self, model: &Model<3>) -> Vec<surface::SearchFigures> {
+        model
+            .contacts
+            .iter()
+            .zip(&self.pairs)
+            .map(|(cp, p)| {
+                let tool = cp
+                    .master
+                    .tool()
+                    .and_then(|i| model.surfaces.get(i))
+                    .map_or("", |t| t.name.as_str());
+                p.figures(&cp.name, tool)
+            })
+            .collect()
     }
 
     fn friction_work(&self) -> Vec<f64> {
@@ -506,7 +577,12 @@ impl ContactScene<3> for SurfaceAssembly {
             updates += conv.contact_iterations;
             residuals.extend_from_slice(&conv.residuals);
             let model = newton.model;
-            let change = newton.contacts.update_active_sets(model);
+            let mut change = newton.contacts.update_active_sets(model);
+            if change.is_empty() {
+                // friction loop (Lagrange stick/slip statuses) once the
+                // contact loop has settled
+                change.introduced = newton.contacts.update_friction_status(model).switched;
+            }
             if !change.is_empty() {
                 updates += 1;
                 if let Err(detail) = guard.visit(newton.contacts.active_key(), &change) {

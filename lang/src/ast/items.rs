@@ -333,6 +333,15 @@ pub enum SurfaceGeometry {
         /// Free side opposite `S_u x S_v` of the first face.
         flip: Option<Spanned<bool>>,
     },
+    /// `stl { file flip closed }`: the triangles of an STL file.
+    Stl {
+        /// The file, relative to the deck's directory.
+        file: Option<Spanned<String>>,
+        /// Free side behind the triangles (clockwise seen from free space).
+        flip: Option<Spanned<bool>>,
+        /// The surface must be closed (a solid): a free edge is an error.
+        closed: Option<Spanned<bool>>,
+    },
 }
 
 /// `motion { ux uy uz rotation center axis }`.

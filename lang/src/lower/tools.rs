@@ -72,6 +72,21 @@ impl Lowerer<'_> {
                         }
                     }
                 }
+                ast::SurfaceGeometry::Stl { file, flip, closed } => {
+                    let Some(file) = file else {
+                        self.missing("the STL file", t.kind.span);
+                        continue;
+                    };
+                    let flip = flip.as_ref().is_some_and(|f| f.value);
+                    let closed = closed.as_ref().is_some_and(|f| f.value);
+                    match stl_tool(file, flip, closed, self.src) {
+                        Ok((mesh, reference)) => (SurfaceShape::Mesh(mesh), reference),
+                        Err(d) => {
+                            self.diags.push(d);
+                            continue;
+                        }
+                    }
+                }
                 _ => {
                     let Some((a, reference)) = surface_geometry(g) else {
                         self.missing("a tool setting", t.kind.span);
@@ -260,6 +275,87 @@ fn cad_tool(
     Ok((std::sync::Arc::new(tool), [c[0], c[1], c[2]]))
 }
 
+/// The triangulated tool of an STL file (ASCII or binary, relative to the
+/// deck file that names it) and its reference point (the centre of its
+/// box): corners merged within 1e-9 of the box's diagonal, free space on
+/// the side the triangles turn counter-clockwise to (the other with
+/// `flip`); with `closed`, a free edge is an error. Every error names the
+/// file and its cause (a truncated or non-STL file, a non-finite
+/// coordinate, a zero-area triangle, an edge of three triangles,
+/// inconsistent orientation, a hole): the deck is refused, nothing panics.
+fn stl_tool(
+    file: &ast::Spanned<String>,
+    flip: bool,
+    closed: bool,
+    src: &crate::source::Source,
+) -> Result<(std::sync::Arc<ctc_geom::trimesh::TriMesh>, [f64; 3]), Diagnostic> {
+    use ctc_geom::trimesh::{stl, TriMesh};
+    let path = src.directory_at(file.span.start).join(&file.value);
+    let bytes = std::fs::read(&path).map_err(|e| {
+        Diagnostic::error(
+            format!("cannot read STL file `{}`: {e}", file.value),
+            file.span,
+            if e.kind() == std::io::ErrorKind::NotFound {
+                "file not found"
+            } else {
+                "cannot read this file"
+            },
+        )
+        .with_help(format!(
+            "looked for `{}`; paths are relative to the deck's directory",
+            path.display()
+        ))
+    })?;
+    let bad = |message: String| {
+        Diagnostic::error(
+            format!("error in STL file `{}`: {message}", file.value),
+            file.span,
+            "in this STL file",
+        )
+    };
+    let corners = stl::read(&bytes).map_err(|e| {
+        bad(if e.line == 0 {
+            e.message.clone()
+        } else {
+            format!(
+                "line {} (a triangle's number in a binary file): {}",
+                e.line, e.message
+            )
+        })
+    })?;
+    let (mut lo, mut hi) = (Vec3::repeat(f64::INFINITY), Vec3::repeat(f64::NEG_INFINITY));
+    for p in corners.iter().flatten() {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let merge = 1e-9 * (hi - lo).norm();
+    let side = if flip { Side::Inside } else { Side::Outside };
+    let mesh = TriMesh::from_soup(&corners, merge, side).map_err(|m| {
+        let m = m.strip_prefix("triangle mesh: ").unwrap_or(&m).to_string();
+        bad(format!("{m} (triangles are numbered from 1 in file order)"))
+    })?;
+    if closed {
+        if let Some(e) = mesh.edge_free.iter().position(|&f| f) {
+            let [a, b] = mesh.edges[e];
+            let (pa, pb) = (mesh.vertices[a], mesh.vertices[b]);
+            return Err(bad(format!(
+                "the surface is not closed: the edge from ({}, {}, {}) to ({}, {}, {}) belongs \
+                 to one triangle only ({} such edges)",
+                pa.x,
+                pa.y,
+                pa.z,
+                pb.x,
+                pb.y,
+                pb.z,
+                mesh.edge_free.iter().filter(|&&f| f).count()
+            ))
+            .with_help("close the surface, or remove `closed = true` to accept an open one"));
+        }
+    }
+    let c = (lo + hi) * 0.5;
+    Ok((std::sync::Arc::new(mesh), [c[0], c[1], c[2]]))
+}
+
 /// The `ctc-geom` surface and its reference point (default centre of
 /// rotation: the plane's point, the centre, a point of the axis, the
 /// apex); `None` when a setting is missing or invalid (validation has
@@ -327,6 +423,6 @@ fn surface_geometry(g: &ast::SurfaceGeometry) -> Option<(Analytic, [f64; 3])> {
                 c.into(),
             )
         }
-        ast::SurfaceGeometry::Iges { .. } => return None,
+        ast::SurfaceGeometry::Iges { .. } | ast::SurfaceGeometry::Stl { .. } => return None,
     })
 }

@@ -1,6 +1,7 @@
 //! `tool name = kind { .. }` for the rigid surface tools of `3d` analyses:
 //! `plane` written with `(x, y, z)` points, `sphere`, `cylinder`, `cone`,
-//! `torus`. (Whether the analysis is `3d` is a rule of validation:
+//! `torus`, the CAD faces of an IGES file (`iges`) and the triangles of an
+//! STL file (`stl`). (Whether the analysis is `3d` is a rule of validation:
 //! `validate::tools::dimension_matches_analysis`.)
 
 use super::fields::Fields;
@@ -10,7 +11,7 @@ use crate::ast::{Point3, Side, Spanned, SurfaceGeometry};
 use crate::span::Span;
 
 /// Surface kinds only a `3d` analysis has.
-pub const KINDS: [&str; 5] = ["sphere", "cylinder", "cone", "torus", "iges"];
+pub const KINDS: [&str; 6] = ["sphere", "cylinder", "cone", "torus", "iges", "stl"];
 
 const SIDES: [(&str, Side); 2] = [("outside", Side::Outside), ("inside", Side::Inside)];
 
@@ -166,6 +167,18 @@ pub fn parse<'b>(
             require(&f, &file, "file", at, "add `file = \"die.igs\"`", diags);
             f.finish(diags);
             (SurfaceGeometry::Iges { file, flip }, motion)
+        }
+        "stl" => {
+            let mut f = Fields::keyed(block, what, &crate::tables::STL);
+            let file = f
+                .value("file", diags)
+                .and_then(|v| values::text(v, "a file path in quotes", diags));
+            let flip = f.boolean("flip", diags);
+            let closed = f.boolean("closed", diags);
+            let motion = f.block("motion", diags);
+            require(&f, &file, "file", at, "add `file = \"punch.stl\"`", diags);
+            f.finish(diags);
+            (SurfaceGeometry::Stl { file, flip, closed }, motion)
         }
         _ => return None,
     })

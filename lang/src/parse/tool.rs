@@ -11,8 +11,9 @@ use crate::suggest::did_you_mean;
 
 /// Tool geometry kinds (curves of planar analyses, then the surfaces of
 /// `3d` ones, [`super::surface`]).
-pub const KINDS: [&str; 10] = [
+pub const KINDS: [&str; 11] = [
     "plane", "polyline", "arc", "circle", "nurbs", "sphere", "cylinder", "cone", "torus", "iges",
+    "stl",
 ];
 
 const SIDES: [(&str, Side); 2] = [("outside", Side::Outside), ("inside", Side::Inside)];
@@ -149,7 +150,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
                 )
                 .with_help(did_you_mean(other, KINDS).unwrap_or_else(|| {
                     "expected `plane`, `polyline`, `arc`, `circle` or `nurbs` (planar), or \
-                     `sphere`, `cylinder`, `cone`, `torus` or `iges` (3d)"
+                     `sphere`, `cylinder`, `cone`, `torus`, `iges` or `stl` (3d)"
                         .to_string()
                 })),
             );

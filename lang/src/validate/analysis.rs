@@ -52,10 +52,9 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 }
 
 /// `dimension = 3d` solves solids in contact with rigid surface tools,
-/// frictionless or with Coulomb friction by penalty or augmented
-/// Lagrangian, with heat conduction and thermal contact against the tools;
-/// contact between deformable bodies and Lagrange-multiplier friction are
-/// not there yet in 3d.
+/// frictionless or with Coulomb friction (penalty, augmented Lagrangian,
+/// Lagrange multipliers), with heat conduction and thermal contact against
+/// the tools; contact between deformable bodies is not there yet in 3d.
 pub fn three_d_contact_is_rigid(a: &Analysis, ctx: &mut Ctx<'_>) {
     let Some(d) = a
         .dimension
@@ -82,23 +81,6 @@ pub fn three_d_contact_is_rigid(a: &Analysis, ctx: &mut Ctx<'_>) {
     for c in &deck.contacts {
         if let Some(m) = &c.master {
             refuse("contact between deformable bodies is", m.span);
-        }
-    }
-    for c in &deck.contacts {
-        if let (Some(f), Some(m)) = (&c.friction, &c.method) {
-            if matches!(m.value, crate::ast::Method::Lagrange { .. }) {
-                ctx.err(
-                    Diagnostic::error(
-                        "Lagrange-multiplier friction is not supported in 3d analyses yet",
-                        f.span,
-                        "not supported in 3d yet",
-                    )
-                    .with_help(
-                        "use `method = penalty { .. }` or `augmented_lagrange { .. }` \
-                         (regularized friction) in 3d",
-                    ),
-                );
-            }
         }
     }
 }

@@ -90,7 +90,7 @@ pub fn dimension_matches_analysis(t: &Tool, ctx: &mut Ctx<'_>) {
             )
             .with_help(
                 "in 3d use a surface: `plane` with `(x, y, z)` points, `sphere`, `cylinder`, \
-                 `cone`, `torus` or `iges`",
+                 `cone`, `torus`, `iges` or `stl`",
             ),
         );
     } else if !solid && surface {
@@ -173,7 +173,7 @@ pub fn surface_valid(g: &SurfaceGeometry, ctx: &mut Ctx<'_>) {
             }
         }
         // the file is read (and its errors reported) when the deck is lowered
-        SurfaceGeometry::Iges { .. } => {}
+        SurfaceGeometry::Iges { .. } | SurfaceGeometry::Stl { .. } => {}
         SurfaceGeometry::Torus {
             axis, major, minor, ..
         } => {

@@ -58,6 +58,10 @@
 //! (`build::sphere`, the contact at its south pole, a degenerate point of
 //! the parametrization) must reproduce the analytical sphere's Hertz run
 //! to the projection tolerance.
+//!
+//! `stl_sphere_3d` — the Hertz scene with the sphere triangulated and read
+//! from an STL file (`ctc_geom::trimesh`): the difference from the
+//! analytical sphere against the facet size (see [`stl_sphere_level`]).
 
 use super::{error, value};
 use crate::case::{Check, Quantity};
@@ -166,7 +170,147 @@ pub fn cases() -> Vec<VerifyCase> {
                 run: cad_sphere_level,
             }),
         },
+        VerifyCase {
+            name: "stl_sphere_3d",
+            title: "Hertz block against a triangulated (STL) sphere vs the analytical sphere, by facet size",
+            source: "hertz_sphere_3d with the tool read from an ASCII STL file; faceting (chord) error O(h^2 / R)",
+            tags: &["3d", "contact", "stl", "hertz", "cross_check"],
+            levels: 3,
+            checks: vec![
+                // measured: P 0.224, 0.061, 0.0154 at h = 0.139, 0.069,
+                // 0.035 (rates 1.88, 1.98); p0 0.53, 0.15, 0.027
+                Check::new(
+                    Quantity::Named("P STL vs analytical"),
+                    &[0.3, 8e-2, 2e-2, 6e-3],
+                )
+                .with_min_rate(1.7),
+                Check::new(
+                    Quantity::Named("p0 STL vs analytical"),
+                    &[0.7, 0.2, 4e-2, 1.5e-2],
+                )
+                .with_min_rate(1.7),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 4,
+                run: stl_sphere_level,
+            }),
+        },
     ]
+}
+
+/// The sphere of centre `center` and radius `r` triangulated by an
+/// octahedron whose triangles are split in four `levels` times, every new
+/// vertex pushed onto the sphere (counter-clockwise seen from outside; a
+/// vertex at each pole).
+pub fn octahedron_sphere(center: Vec3, r: f64, levels: usize) -> Vec<[Vec3; 3]> {
+    let mut v = vec![
+        Vec3::x(),
+        -Vec3::x(),
+        Vec3::y(),
+        -Vec3::y(),
+        Vec3::z(),
+        -Vec3::z(),
+    ];
+    let mut t = vec![
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    for _ in 0..levels {
+        let mut mid = std::collections::HashMap::new();
+        let mut next = Vec::with_capacity(4 * t.len());
+        let mut m = |a: usize, b: usize, v: &mut Vec<Vec3>| {
+            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                v.push(((v[a] + v[b]) * 0.5).normalize());
+                v.len() - 1
+            })
+        };
+        for [a, b, c] in t {
+            let (ab, bc, ca) = (m(a, b, &mut v), m(b, c, &mut v), m(c, a, &mut v));
+            next.extend([[a, ab, ca], [ab, b, bc], [ca, bc, c], [ab, bc, ca]]);
+        }
+        t = next;
+    }
+    t.iter().map(|tri| tri.map(|k| center + v[k] * r)).collect()
+}
+
+/// Subdivisions of the octahedron sphere of `stl_sphere_3d` at each level.
+const STL_LEVELS: [usize; 4] = [4, 5, 6, 7];
+
+/// `stl_sphere_3d` — the Hertz block of `hertz_sphere_3d` (10 cells per
+/// edge, area penalty) pressed by the unit sphere given as triangles: the
+/// octahedron sphere ([`octahedron_sphere`]) written to an ASCII STL file
+/// (`ctc_geom::trimesh::stl`, every `f64` written exactly), read back and
+/// merged into a `TriMesh` (flat triangles, edges and vertices of radius 0,
+/// pseudonormal sign), against the same run with the analytical sphere.
+/// The triangles are chords of the sphere, inside it by up to the sagitta
+/// `s = h^2 / (8 R)` (`h` the longest edge near the pole), so the tool
+/// reaches `s` less deep: the force `P ~ d^(3/2)` differs by about `1.5 s
+/// / d`, second order in the facet size `h` (rate >= 1.7 judged); the
+/// peak pressure at the pole vertex also feels the kinks between facets.
+/// The level's `h` is the facet size.
+fn stl_sphere_level(level: usize) -> Result<ProgramLevel, String> {
+    use ctc_geom::trimesh::{stl, TriMesh};
+    let k = *STL_LEVELS
+        .get(level)
+        .ok_or_else(|| format!("stl_sphere_3d has no level {level}"))?;
+    let n = HERTZ_DIVISIONS[0];
+    let center = Vec3::new(0.0, 0.0, 2.0);
+    let grading = [
+        Grading::Geometric { ratio: 8.0 },
+        Grading::Geometric { ratio: 8.0 },
+        Grading::Geometric { ratio: 0.125 },
+    ];
+    let method = ContactMethod::Penalty {
+        kind: PenaltyKind::Area,
+        stiffness: 1e7,
+    };
+    let exact = Analytic::Sphere(Sphere::new(center, 1.0, Side::Outside).unwrap());
+    let model = block(CellKind::Hex8, n, grading, exact, lowered(D), method, 4)?;
+    let triangles = octahedron_sphere(center, 1.0, k);
+    let text = stl::write_ascii("sphere", &triangles);
+    let corners = stl::read(text.as_bytes()).map_err(|e| e.to_string())?;
+    let mesh = TriMesh::from_soup(&corners, 1e-12, Side::Outside)?;
+    // facet size: the longest edge of the triangles within 0.3 of the pole
+    let pole = center - Vec3::z();
+    let h = triangles
+        .iter()
+        .filter(|t| t.iter().all(|p| (p - pole).norm() < 0.3))
+        .flat_map(|t| (0..3).map(move |i| (t[i] - t[(i + 1) % 3]).norm()))
+        .fold(0.0, f64::max);
+    let mut faceted = model.clone();
+    faceted.surfaces[0].geometry = SurfaceShape::Mesh(Arc::new(mesh));
+    let measure = |m: &Model<3>| -> Result<(f64, f64, RunSummary), String> {
+        let (last, s) = solve(m)?;
+        let p = -last.0.iter().map(|c| c.force[2]).sum::<f64>();
+        let p0 = last.0.iter().map(|c| c.pressure).fold(0.0, f64::max);
+        Ok((p, p0, s))
+    };
+    let (pa, p0a, sa) = measure(&model)?;
+    let (pf, p0f, sf) = measure(&faceted)?;
+    Ok(ProgramLevel {
+        values: vec![
+            value("P STL vs analytical", pf, pa),
+            value("p0 STL vs analytical", p0f, p0a),
+        ],
+        h,
+        nodes: model.mesh.nodes.len(),
+        free_dofs: sa.free_dofs,
+        increments: sa.increments.len() + sf.increments.len(),
+        newton_total: sa.newton_iterations + sf.newton_iterations,
+        newton_max: sf
+            .increments
+            .iter()
+            .map(|i| i.iterations)
+            .max()
+            .unwrap_or(0),
+        cutbacks: sa.cutbacks + sf.cutbacks,
+    })
 }
 
 /// A CAD tool from NURBS faces: written to IGES, read back, oriented from
@@ -174,6 +318,15 @@ pub fn cases() -> Vec<VerifyCase> {
 fn iges_tool(
     faces: &[(NurbsSurface, Option<Vec<Vec<TrimCurve>>>)],
     orientation: f64,
+) -> Result<SurfaceShape, String> {
+    iges_tool_with(faces, orientation, BrepOptions::default())
+}
+
+/// [`iges_tool`] with the BREP options `options`.
+fn iges_tool_with(
+    faces: &[(NurbsSurface, Option<Vec<Vec<TrimCurve>>>)],
+    orientation: f64,
+    options: BrepOptions,
 ) -> Result<SurfaceShape, String> {
     let mut w = ctc_geom::iges::Writer::new("ctc verification: contact_3d");
     for (s, loops) in faces {
@@ -191,7 +344,7 @@ fn iges_tool(
         .into_iter()
         .map(|f| f.face)
         .collect();
-    let mut tool = BrepTool::new(faces, BrepOptions::default())?;
+    let mut tool = BrepTool::new(faces, options)?;
     tool.orient(0, orientation)?;
     Ok(SurfaceShape::Brep(Arc::new(tool)))
 }
@@ -571,6 +724,41 @@ fn cad_patch_level(_level: usize) -> Result<ProgramLevel, String> {
         newton_max: 0,
         cutbacks: s1.cutbacks + s2.cutbacks,
     })
+}
+
+/// The Hertz block of `cad_sphere_3d` (10 cells per edge) against the
+/// IGES rational NURBS sphere whose surface projections use `projection`
+/// (the health figures of `summary.json`: with too few Newton iterations
+/// the projections do not converge, the nodes are left out and the run
+/// warns).
+pub fn nurbs_sphere_block(projection: ctc_geom::nurbs::ProjectOptions) -> Result<Model<3>, String> {
+    let center = Vec3::new(0.0, 0.0, 2.0);
+    let grading = [
+        Grading::Geometric { ratio: 8.0 },
+        Grading::Geometric { ratio: 8.0 },
+        Grading::Geometric { ratio: 0.125 },
+    ];
+    let method = ContactMethod::Penalty {
+        kind: PenaltyKind::Area,
+        stiffness: 1e7,
+    };
+    let exact = Analytic::Sphere(Sphere::new(center, 1.0, Side::Outside).unwrap());
+    let mut model = block(
+        CellKind::Hex8,
+        HERTZ_DIVISIONS[0],
+        grading,
+        exact,
+        lowered(D),
+        method,
+        4,
+    )?;
+    let options = BrepOptions {
+        projection,
+        ..BrepOptions::default()
+    };
+    model.surfaces[0].geometry =
+        iges_tool_with(&[(build::sphere(center, 1.0), None)], 1.0, options)?;
+    Ok(model)
 }
 
 fn cad_sphere_level(_level: usize) -> Result<ProgramLevel, String> {
