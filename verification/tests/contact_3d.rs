@@ -133,3 +133,16 @@ fn cad_projection_figures_and_non_convergence_reach_the_summary() {
     assert!(!w.is_empty(), "{:?}", s.warnings);
     assert!(w[0].contains("the projection did not converge"), "{}", w[0]);
 }
+
+#[test]
+fn hertz_methods_work_precision_table() {
+    // the table of the issue: p0 error, Newton iterations and solve time of
+    // every method on the coarsest Hertz mesh (times are printed, not
+    // judged; the errors are judged by the case's checks)
+    let rows = ctc_verification::programs::contact_3d::hertz_work_precision(0).unwrap();
+    assert_eq!(rows.len(), 3);
+    for (method, p0_error, newton, seconds) in &rows {
+        println!("{method:>10}: p0 error {p0_error:.2e}, {newton} Newton iterations, {seconds:.3} s");
+        assert!(*p0_error < 3e-2, "{method}: {p0_error}");
+    }
+}

@@ -113,9 +113,18 @@ pub fn cases() -> Vec<VerifyCase> {
         },
         VerifyCase {
             name: "hertz_sphere_3d",
-            title: "Hertz: rigid sphere into an elastic block (3D quarter model, area penalty)",
+            title: "Hertz: rigid sphere into an elastic block (3D quarter model): area penalty, \
+                    Lagrange multipliers, augmented Lagrangian",
             source: "K. L. Johnson, Contact Mechanics (1985) §4.2; Hertz 1882",
-            tags: &["3d", "contact", "hertz", "penalty", "closed_form"],
+            tags: &[
+                "3d",
+                "contact",
+                "hertz",
+                "penalty",
+                "lagrange",
+                "augmented",
+                "closed_form",
+            ],
             levels: 2,
             checks: vec![
                 Check::new(Quantity::Named("p0 vs Hertz(P)"), &[3e-2, 2e-2, 1e-2]),
@@ -124,6 +133,8 @@ pub fn cases() -> Vec<VerifyCase> {
                     &[0.1, 4e-2, 3e-2],
                 ),
                 Check::new(Quantity::Named("P vs half-space (finite block)"), &[0.15]),
+                Check::new(Quantity::Named("p0 vs Hertz(P) lagrange"), &[3e-2, 2e-2, 1e-2]),
+                Check::new(Quantity::Named("p0 vs Hertz(P) augmented"), &[3e-2, 2e-2, 1e-2]),
             ],
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 3,
@@ -546,10 +557,59 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
 /// Divisions per edge of the Hertz block at each level.
 const HERTZ_DIVISIONS: [usize; 3] = [10, 16, 24];
 
-fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
-    let n = *HERTZ_DIVISIONS
-        .get(level)
-        .ok_or_else(|| format!("hertz_sphere_3d has no level {level}"))?;
+/// The Hertz enforcement methods: (method, names of its four quantities:
+/// p0, profile, force, contact radius). Penalty keeps the case's original
+/// names; Lagrange multipliers and the augmented Lagrangian (area penalty
+/// 1e5, multipliers updated to a gap of 1e-9) run the same mesh and load.
+fn hertz_methods() -> [(ContactMethod, [&'static str; 4]); 3] {
+    [
+        (
+            ContactMethod::Penalty {
+                kind: PenaltyKind::Area,
+                stiffness: 1e7,
+            },
+            [
+                "p0 vs Hertz(P)",
+                "p(r < 0.7a) vs Hertz(P)",
+                "P vs half-space (finite block)",
+                "a from P",
+            ],
+        ),
+        (
+            ContactMethod::Lagrange {
+                formulation: LagrangeFormulation::Single,
+            },
+            [
+                "p0 vs Hertz(P) lagrange",
+                "p(r < 0.7a) vs Hertz(P) lagrange",
+                "P vs half-space (finite block) lagrange",
+                "a from P lagrange",
+            ],
+        ),
+        (
+            ContactMethod::AugmentedLagrange {
+                kind: PenaltyKind::Area,
+                penalty: 1e5,
+                tolerance: 1e-9,
+                update: MultiplierUpdate::Converged,
+            },
+            [
+                "p0 vs Hertz(P) augmented",
+                "p(r < 0.7a) vs Hertz(P) augmented",
+                "P vs half-space (finite block) augmented",
+                "a from P augmented",
+            ],
+        ),
+    ]
+}
+
+/// One Hertz run: the model at `n` divisions with `method`; (values under
+/// `names`, summary, nodes, wall seconds).
+fn hertz_run(
+    n: usize,
+    names: [&'static str; 4],
+    method: ContactMethod,
+) -> Result<(Vec<crate::measure::Value>, RunSummary, usize, f64), String> {
     let r_tool = 1.0;
     let ball = Analytic::Sphere(
         Sphere::new(Vec3::new(0.0, 0.0, 1.0 + r_tool), r_tool, Side::Outside).unwrap(),
@@ -559,19 +619,10 @@ fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
         Grading::Geometric { ratio: 8.0 },
         Grading::Geometric { ratio: 0.125 },
     ];
-    let model = block(
-        CellKind::Hex8,
-        n,
-        grading,
-        ball,
-        lowered(D),
-        ContactMethod::Penalty {
-            kind: PenaltyKind::Area,
-            stiffness: 1e7,
-        },
-        4,
-    )?;
+    let model = block(CellKind::Hex8, n, grading, ball, lowered(D), method, 4)?;
+    let start = std::time::Instant::now();
     let (last, s) = solve(&model)?;
+    let seconds = start.elapsed().as_secs_f64();
     let e_star = E / (1.0 - NU * NU);
     let p_total = -4.0 * last.0.iter().map(|c| c.force[2]).sum::<f64>();
     let a = (3.0 * p_total * r_tool / (4.0 * e_star)).cbrt();
@@ -600,21 +651,66 @@ fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
         })
         .fold(0.0, f64::max);
     let p_half_space = 4.0 / 3.0 * e_star * r_tool.sqrt() * D.powf(1.5);
-    Ok(ProgramLevel {
-        values: vec![
-            value("p0 vs Hertz(P)", axis.pressure, p0),
-            error("p(r < 0.7a) vs Hertz(P)", profile),
-            value("P vs half-space (finite block)", p_total, p_half_space),
-            super::value("a from P", a, (r_tool * D).sqrt()),
-        ],
-        h: 1.0 / n as f64,
-        nodes: model.mesh.nodes.len(),
-        free_dofs: s.free_dofs,
-        increments: s.increments.len(),
-        newton_total: s.newton_iterations,
-        newton_max: s.increments.iter().map(|i| i.iterations).max().unwrap_or(0),
-        cutbacks: s.cutbacks,
-    })
+    let values = vec![
+        value(names[0], axis.pressure, p0),
+        error(names[1], profile),
+        value(names[2], p_total, p_half_space),
+        super::value(names[3], a, (r_tool * D).sqrt()),
+    ];
+    Ok((values, s, model.mesh.nodes.len(), seconds))
+}
+
+/// The work-precision table of `hertz_sphere_3d` at `level`: per method,
+/// the p0 error against Hertz at the carried force, Newton iterations and
+/// wall seconds of the solve (`cargo test -p ctc-verification --test
+/// contact_3d hertz_methods -- --nocapture` prints it).
+pub fn hertz_work_precision(level: usize) -> Result<Vec<(String, f64, usize, f64)>, String> {
+    let n = *HERTZ_DIVISIONS
+        .get(level)
+        .ok_or_else(|| format!("hertz_sphere_3d has no level {level}"))?;
+    hertz_methods()
+        .into_iter()
+        .map(|(method, names)| {
+            let label = match method {
+                ContactMethod::Lagrange { .. } => "lagrange",
+                ContactMethod::AugmentedLagrange { .. } => "augmented",
+                _ => "penalty",
+            };
+            let (values, s, _, seconds) = hertz_run(n, names, method)?;
+            Ok((
+                label.to_string(),
+                values[0].error,
+                s.newton_iterations,
+                seconds,
+            ))
+        })
+        .collect()
+}
+
+fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
+    let n = *HERTZ_DIVISIONS
+        .get(level)
+        .ok_or_else(|| format!("hertz_sphere_3d has no level {level}"))?;
+    let mut out: Option<ProgramLevel> = None;
+    for (method, names) in hertz_methods() {
+        let (values, s, nodes, _) = hertz_run(n, names, method)?;
+        match out.as_mut() {
+            None => {
+                out = Some(ProgramLevel {
+                    values,
+                    h: 1.0 / n as f64,
+                    nodes,
+                    free_dofs: s.free_dofs,
+                    increments: s.increments.len(),
+                    newton_total: s.newton_iterations,
+                    newton_max: s.increments.iter().map(|i| i.iterations).max().unwrap_or(0),
+                    cutbacks: s.cutbacks,
+                })
+            }
+            Some(o) => o.values.extend(values),
+        }
+    }
+    out.ok_or_else(|| "no method ran".to_string())
 }
 
 /// A flat bicubic patch over `[-0.5, 1.5]^2` at `z = 1` whose control
