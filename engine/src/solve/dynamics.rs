@@ -167,6 +167,59 @@ pub struct Energy {
     pub scale: f64,
 }
 
+/// The committed state of the integrator in a restart point
+/// (`crate::solve::restart`): everything [`Dynamics`] carries from one
+/// increment to the next but the mass, which the model determines.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicState {
+    /// Whether the initial acceleration was computed.
+    pub started: bool,
+    /// Velocity per dof.
+    pub v: Vec<f64>,
+    /// Acceleration per dof.
+    pub a: Vec<f64>,
+    /// `f_int - f_ext - f_c` per dof (the `alpha_f` term).
+    pub r0: Vec<f64>,
+    /// Internal, external + reactions, contact forces per dof (the work
+    /// integrals).
+    pub forces0: [Vec<f64>; 3],
+    /// Kinetic energy at the start.
+    pub kinetic0: f64,
+    /// [`Energy::values`].
+    pub energy: Vec<f64>,
+}
+
+impl Energy {
+    /// The fields in declaration order (restart points).
+    pub fn values(&self) -> Vec<f64> {
+        vec![
+            self.kinetic,
+            self.internal,
+            self.external,
+            self.contact,
+            self.balance,
+            self.gain,
+            self.scale,
+        ]
+    }
+
+    /// The inverse of [`Energy::values`] (`None`: a wrong count).
+    pub fn from_values(v: &[f64]) -> Option<Self> {
+        let &[kinetic, internal, external, contact, balance, gain, scale] = v else {
+            return None;
+        };
+        Some(Energy {
+            kinetic,
+            internal,
+            external,
+            contact,
+            balance,
+            gain,
+            scale,
+        })
+    }
+}
+
 /// Mass, velocities, accelerations and energies of a model with dynamic
 /// steps.
 #[derive(Debug, Clone)]
@@ -295,8 +348,10 @@ impl Dynamics {
         self.contact_cells_kept = kept;
         self.cell_mass = masses;
         self.mass_kind = Some(kind);
-        self.kinetic0 = self.kinetic(model);
+        // the reference of the energy audit: the kinetic energy of the
+        // initial velocities (once: a restarted run carries it over)
         if !self.started {
+            self.kinetic0 = self.kinetic(model);
             self.energy.kinetic = self.kinetic0;
             self.energy.scale = self.kinetic0;
         }
@@ -559,6 +614,42 @@ impl Dynamics {
             .max(e.internal.abs())
             .max(e.external.abs())
             .max(e.contact.abs());
+    }
+
+    /// The committed state carried by restart points (the mass is rebuilt
+    /// from the model when the next dynamic increment begins).
+    pub fn saved(&self) -> DynamicState {
+        DynamicState {
+            started: self.started,
+            v: self.v.clone(),
+            a: self.a.clone(),
+            r0: self.r0.clone(),
+            forces0: self.forces0.clone(),
+            kinetic0: self.kinetic0,
+            energy: self.energy.values(),
+        }
+    }
+
+    /// Makes `s` the committed state (a restart).
+    pub fn restore(&mut self, s: &DynamicState) -> Result<(), String> {
+        let n = self.v.len();
+        let lens = [s.v.len(), s.a.len(), s.r0.len()]
+            .into_iter()
+            .chain(s.forces0.iter().map(Vec::len));
+        if lens.into_iter().any(|l| l != n) {
+            return Err(format!(
+                "the restart point's velocities do not match the model ({n} dofs)"
+            ));
+        }
+        self.started = s.started;
+        self.v.clone_from(&s.v);
+        self.a.clone_from(&s.a);
+        self.r0.clone_from(&s.r0);
+        self.forces0.clone_from(&s.forces0);
+        self.kinetic0 = s.kinetic0;
+        self.energy = Energy::from_values(&s.energy)
+            .ok_or("the restart point's energy audit does not match this version")?;
+        Ok(())
     }
 
     /// Whether the energy grew (`Energy::gain`) by more than
