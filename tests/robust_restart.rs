@@ -239,3 +239,22 @@ fn restart_dynamic_bar_impact_matches_uninterrupted_run() {
     // and every VTU are compared byte for byte by restart_matches
     assert_eq!((from, n), (40, 100));
 }
+
+#[test]
+fn restart_damped_dynamic_bar_impact_matches_uninterrupted_run() {
+    // Rayleigh damping: the damping matrices are rebuilt from the model at
+    // the restart, the damping work carried in the restart point
+    let model = model_of(
+        "bar_impact.ctc",
+        &[
+            ("increments = 300", "increments = 60"),
+            ("every = 100", "every = 10"),
+            (
+                "mass = consistent }",
+                "mass = consistent  rayleigh_alpha = 0.01  rayleigh_beta = 0.05 }",
+            ),
+        ],
+    );
+    let (from, n) = restart_matches(&model, 25);
+    assert_eq!((from, n), (20, 60));
+}

@@ -806,6 +806,27 @@ pub struct Dynamic {
     pub mass: MassMatrix,
     /// The mass of the nodes of contact surfaces.
     pub contact_mass: ContactMass,
+    /// Rayleigh damping `C = alpha M + beta K_0`.
+    pub rayleigh: Rayleigh,
+}
+
+/// Rayleigh (proportional) damping of a dynamic step: `C = alpha M + beta
+/// K_0`, `K_0` the stiffness in the reference configuration (the elastic
+/// one); a mode of circular frequency `omega` gets the damping ratio
+/// `alpha / (2 omega) + beta omega / 2`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct Rayleigh {
+    /// Mass-proportional coefficient (1 / time).
+    pub alpha: f64,
+    /// Stiffness-proportional coefficient (time).
+    pub beta: f64,
+}
+
+impl Rayleigh {
+    /// Whether there is any damping.
+    pub fn any(&self) -> bool {
+        self.alpha != 0.0 || self.beta != 0.0
+    }
 }
 
 /// The mass of contact-surface nodes in a dynamic step
@@ -871,6 +892,10 @@ pub enum Field {
     Reaction,
     /// Contact gap, pressure and status at slave nodes.
     Contact,
+    /// Nodal velocity (dynamic steps; 0 after a quasi-static increment).
+    Velocity,
+    /// Nodal acceleration (dynamic steps).
+    Acceleration,
 }
 
 /// A quantity recorded at every increment into the CSV history.

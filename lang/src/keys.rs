@@ -189,6 +189,8 @@ pub enum Dim {
     HeatFlux,
     /// Velocity (length / time).
     Velocity,
+    /// Frequency, rate (1 / time).
+    Frequency,
 }
 
 impl Dim {
@@ -214,6 +216,7 @@ impl Dim {
             Dim::HeatTransfer => "power/(area temperature)",
             Dim::HeatFlux => "power/area",
             Dim::Velocity => "length/time",
+            Dim::Frequency => "1/time",
         }
     }
 
@@ -239,6 +242,7 @@ impl Dim {
             Dim::HeatTransfer => Exponents::POWER.per(Exponents::LENGTH.pow(2)).per(k),
             Dim::HeatFlux => Exponents::POWER.per(Exponents::LENGTH.pow(2)),
             Dim::Velocity => Exponents::LENGTH.per(Exponents::TIME),
+            Dim::Frequency => Exponents::NONE.per(Exponents::TIME),
         })
     }
 }

@@ -694,14 +694,16 @@ pub static STEP: [Key; 5] = [
     ),
     Key::new(
         "dynamic",
-        KeyType::Choice(&["{ scheme rho_inf beta gamma mass contact_mass }"]),
+        KeyType::Choice(&[
+            "{ scheme rho_inf beta gamma mass contact_mass rayleigh_alpha rayleigh_beta }",
+        ]),
         "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
          step is quasi-static",
     ),
 ];
 
 /// `dynamic { .. }` of a step.
-pub static DYNAMIC: [Key; 6] = [
+pub static DYNAMIC: [Key; 8] = [
     Key::new(
         "scheme",
         KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
@@ -744,6 +746,24 @@ pub static DYNAMIC: [Key; 6] = [
          full (the mass matrix everywhere: contact nodes bounce)",
     )
     .default(Default::Choice("redistributed")),
+    Key::new(
+        "rayleigh_alpha",
+        KeyType::Number,
+        "mass-proportional Rayleigh damping: C = rayleigh_alpha M + rayleigh_beta K_0 (K_0 the \
+         stiffness in the reference configuration); damping ratio of a mode of circular \
+         frequency w: rayleigh_alpha / (2 w) + rayleigh_beta w / 2",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Frequency),
+    Key::new(
+        "rayleigh_beta",
+        KeyType::Number,
+        "stiffness-proportional Rayleigh damping (see rayleigh_alpha)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Time),
 ];
 
 /// `newton { .. }` of a step.
@@ -793,8 +813,11 @@ pub static OUTPUT: [Key; 4] = [
             "von_mises",
             "reaction",
             "contact",
+            "velocity",
+            "acceleration",
         ]),
-        "list of VTU fields `[displacement, stress, ..]`",
+        "list of VTU fields `[displacement, stress, ..]` (velocity and acceleration: decks \
+         with a dynamic step)",
     ),
     Key::new(
         "history",

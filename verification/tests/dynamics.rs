@@ -20,6 +20,19 @@ fn newmark_energy_cantilever() {
     assert_eq!(report.levels[0].values.len(), 4, "consistent and lumped");
 }
 
+/// Rayleigh damping (Chopra 2012, sections 2.2 and 11.4): one mode with
+/// zeta = alpha / (2 w) + beta w / 2 = 0.05, the logarithmic decrement
+/// and damped period at three dt, the dissipation in the energy audit.
+///
+/// ```text
+///   |>[ ]--> vx = 1     x(t) = A exp(-zeta w t) sin(w_d t)
+/// ```
+#[test]
+fn rayleigh_damping_decrement() {
+    let report = registry::run_passing("rayleigh_damping_decrement");
+    assert_eq!(report.levels.len(), 3, "dt = T/25, T/50, T/100");
+}
+
 #[test]
 fn generalized_alpha_period_damping() {
     let report = registry::run_passing("generalized_alpha_period_damping");

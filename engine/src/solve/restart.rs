@@ -242,6 +242,7 @@ impl<const D: usize> RestartFile<D> {
                 e.f64s(&s.v);
                 e.f64s(&s.a);
                 e.f64s(&s.r0);
+                e.usize(s.forces0.len());
                 for f in &s.forces0 {
                     e.f64s(f);
                 }
@@ -368,7 +369,8 @@ impl<const D: usize> RestartFile<D> {
         } else {
             let started = d.bytes(1)?[0] != 0;
             let (v, a, r0) = (d.f64s()?, d.f64s()?, d.f64s()?);
-            let forces0 = [d.f64s()?, d.f64s()?, d.f64s()?];
+            let nf = d.len(8)?;
+            let forces0 = (0..nf).map(|_| d.f64s()).collect::<Result<_, _>>()?;
             Some(DynamicState {
                 started,
                 v,
@@ -458,9 +460,9 @@ mod tests {
                     v: vec![0.1 + 0.2, -0.0, 1e-300, 4.0],
                     a: vec![1.0 / 3.0, 2.0, -7.5, f64::MIN_POSITIVE],
                     r0: vec![0.5; 4],
-                    forces0: [vec![1.0; 4], vec![-2.0; 4], vec![0.0; 4]],
+                    forces0: vec![vec![1.0; 4], vec![-2.0; 4], vec![0.0; 4], vec![0.5; 4]],
                     kinetic0: 0.005,
-                    energy: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0],
+                    energy: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0],
                 }),
             },
             pvd: vec![(0.5, "inc_0001.vtu".into()), (1.0, "inc_0002.vtu".into())],

@@ -671,6 +671,10 @@ pub struct Dynamic {
     pub mass: Option<Spanned<ctc_engine::model::MassMatrix>>,
     /// `contact_mass = redistributed | full`.
     pub contact_mass: Option<Spanned<ctc_engine::model::ContactMass>>,
+    /// `rayleigh_alpha`: mass-proportional damping (1 / time).
+    pub rayleigh_alpha: Option<Spanned<f64>>,
+    /// `rayleigh_beta`: stiffness-proportional damping (time).
+    pub rayleigh_beta: Option<Spanned<f64>>,
     /// The `dynamic` entry.
     pub span: Span,
 }
@@ -707,6 +711,10 @@ pub enum FieldName {
     Reaction,
     /// `contact`.
     Contact,
+    /// `velocity` (dynamic steps).
+    Velocity,
+    /// `acceleration` (dynamic steps).
+    Acceleration,
 }
 
 /// `output { format = .. }`: how VTU files store their arrays.

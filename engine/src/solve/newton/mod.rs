@@ -131,8 +131,10 @@ where
     pub(super) dynamics: Option<super::dynamics::Dynamics>,
     /// Inertia part of the residual of the last evaluation, per dof.
     inertia: Vec<f64>,
-    /// `f_int - f_ext - f_c` of the last evaluation, per dof.
+    /// `f_int - f_ext - f_c + C v` of the last evaluation, per dof.
     r_static: Vec<f64>,
+    /// Rayleigh damping force `C v` of the last evaluation, per dof.
+    damping: Vec<f64>,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -217,6 +219,7 @@ where
                 .then(|| super::dynamics::Dynamics::new(model)),
             inertia: vec![0.0; n_dofs],
             r_static: vec![0.0; n_dofs],
+            damping: vec![0.0; n_dofs],
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -292,8 +295,12 @@ where
         let t0 = self.assembler.committed_time();
         let mut out = Ok(());
         if let Some(d) = s.and_then(|s| s.dynamic) {
+            let assembler = &self.assembler;
             out = dy
                 .build_mass(model, &d)
+                .and_then(|()| {
+                    dy.build_damping(model, &d, || assembler.reference_stiffness(&model.mesh))
+                })
                 .map_err(|e| Failure::new(FailureKind::Element, e));
             if out.is_ok() && !dy.started {
                 external_forces(model, t0, &mut self.f_ext);
@@ -494,21 +501,19 @@ where
                 if with_tangent {
                     dy.add_tangent(model, &self.scatter, &mut self.values);
                 }
-                dy.inertia(
-                    model,
-                    self.u.as_flattened(),
-                    self.committed.as_flattened(),
-                    &mut self.inertia,
-                )
+                let (u, u0) = (self.u.as_flattened(), self.committed.as_flattened());
+                let damping = dy.damping_force(model, u, u0, &mut self.damping);
+                dy.inertia(model, u, u0, &mut self.inertia).max(damping)
             }
             None => {
                 self.inertia.fill(0.0);
+                self.damping.fill(0.0);
                 0.0
             }
         };
         let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
         for (g, role) in self.dofs.dofs.iter().enumerate() {
-            let rs = self.f_int[g] - self.f_ext[g] - self.f_c[g];
+            let rs = self.f_int[g] - self.f_ext[g] - self.f_c[g] + self.damping[g];
             self.r_static[g] = rs;
             let r = rs + self.inertia[g];
             match *role {

@@ -41,7 +41,7 @@ where
                 self.u.as_flattened(),
                 self.committed.as_flattened(),
                 &self.r_static,
-                [&self.f_int, &ext, &self.f_c],
+                [&self.f_int, &ext, &self.f_c, &self.damping],
             );
         }
         self.committed.copy_from_slice(&self.u);
