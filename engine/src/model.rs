@@ -44,6 +44,37 @@ pub struct Model<const D: usize = 2> {
     pub thermal: Option<crate::thermal::ThermalScene>,
     /// Initial velocities (dynamic steps; nodes not listed start at rest).
     pub initial_velocities: Vec<InitialVelocity>,
+    /// Discrete elements at nodes: springs and dashpots to the ground,
+    /// point masses (`crate::solve::dynamics`, `Newton::evaluate`).
+    pub discrete: Vec<Discrete>,
+}
+
+/// A discrete element on each node of a set. Values are totals per node
+/// (planar: for the model's thickness; axisymmetric: over the full 2 pi).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Discrete {
+    /// A linear spring and a linear dashpot from each node to the ground,
+    /// isotropic (every component): force `-(k u + c v)`; the dashpot acts
+    /// in dynamic increments only.
+    Ground {
+        /// Label.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+        /// Spring stiffness `k` (force / length), `>= 0`.
+        stiffness: f64,
+        /// Dashpot coefficient `c` (force time / length), `>= 0`.
+        damping: f64,
+    },
+    /// A point mass at each node (every component; dynamic steps).
+    Mass {
+        /// Label.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+        /// The mass, `>= 0`.
+        mass: f64,
+    },
 }
 
 /// A model of either dimension: what lowering a deck gives (the dimension

@@ -57,3 +57,23 @@ fn bar_impact_wave_theory() {
         assert!(scene[4].computed > 100.0 * scene[3].computed, "{scene:?}");
     }
 }
+
+/// Discrete elements (Hughes 2000, section 9.3.2; Chopra 2012, section
+/// 2.2): a point mass on a spring to the ground, its period at three dt,
+/// and with a dashpot its logarithmic decrement and energy balance
+/// (`verification/src/programs/discrete.rs`).
+///
+/// ```text
+///   |/\/\/\[ m ] --> v0        |--[=]-[ m ]
+/// ```
+#[test]
+fn spring_mass_oscillator_period() {
+    let report = registry::run_passing("spring_mass_oscillator_period");
+    assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
+}
+
+#[test]
+fn dashpot_decrement() {
+    let report = registry::run_passing("dashpot_decrement");
+    assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
+}

@@ -263,6 +263,11 @@ pub struct Dynamics {
     /// Committed forces for the work integrals: internal, external +
     /// reactions, contact, damping ([`FORCES`] of them).
     forces0: Vec<Vec<f64>>,
+    /// Point mass at each node (`Discrete::Mass`; empty: none).
+    node_mass: Vec<f64>,
+    /// Dashpot to the ground at each node (`Discrete::Ground`; empty:
+    /// none).
+    node_damping: Vec<f64>,
     /// Rayleigh damping matrix of each global cell, column-major `D NN x
     /// D NN` (empty: no damping).
     cell_damping: Vec<Vec<f64>>,
@@ -303,6 +308,8 @@ impl Dynamics {
             active: None,
             forces0: vec![vec![0.0; n]; FORCES],
             cell_damping: Vec::new(),
+            node_mass: Vec::new(),
+            node_damping: Vec::new(),
             damping_kind: None,
             kinetic0: 0.0,
             energy: Energy::default(),
@@ -345,9 +352,15 @@ impl Dynamics {
         for b in &model.bodies {
             let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
             for c in b.cells.clone() {
+                let nodes = model.mesh.cells.nodes(c);
+                if rho == 0.0 {
+                    // a massless body (its nodes may carry point masses):
+                    // no lumping of a zero matrix (HRZ would divide 0 by 0)
+                    masses[c] = vec![0.0; nodes.len() * nodes.len()];
+                    continue;
+                }
                 let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
                     .map_err(|e| format!("cell {c}: {}", e.message))?;
-                let nodes = model.mesh.cells.nodes(c);
                 let x: Vec<crate::geom::Point<D>> = nodes
                     .iter()
                     .map(|&n| crate::geom::Point::<D>::from(model.mesh.nodes[n]))
@@ -374,6 +387,28 @@ impl Dynamics {
         }
         self.contact_cells_kept = kept;
         self.cell_mass = masses;
+        self.node_mass.clear();
+        self.node_damping.clear();
+        let nn = model.mesh.nodes.len();
+        for d in &model.discrete {
+            let (list, nodes, value) = match d {
+                crate::model::Discrete::Mass { nodes, mass, .. } => {
+                    (&mut self.node_mass, nodes, *mass)
+                }
+                crate::model::Discrete::Ground { nodes, damping, .. } => {
+                    (&mut self.node_damping, nodes, *damping)
+                }
+            };
+            if value == 0.0 {
+                continue;
+            }
+            list.resize(nn, 0.0);
+            for &n in nodes {
+                if let Some(x) = list.get_mut(n) {
+                    *x += value;
+                }
+            }
+        }
         self.mass_kind = Some(kind);
         // the reference of the energy audit: the kinetic energy of the
         // initial velocities (once: a restarted run carries it over)
@@ -385,8 +420,14 @@ impl Dynamics {
         Ok(())
     }
 
-    /// `out += M x` over all dofs (`x`, `out` per dof `node D + c`).
+    /// `out += M x` over all dofs (`x`, `out` per dof `node D + c`; point
+    /// masses included).
     pub fn mass_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
+        for (n, m) in self.node_mass.iter().enumerate() {
+            for k in 0..D {
+                out[n * D + k] += m * x[n * D + k];
+            }
+        }
         for (c, m) in self.cell_mass.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
             let nn = nodes.len();
@@ -451,8 +492,14 @@ impl Dynamics {
         Ok(())
     }
 
-    /// `out += C x` over all dofs (`C` the Rayleigh damping).
+    /// `out += C x` over all dofs (`C` the Rayleigh damping and the
+    /// dashpots to the ground).
     fn damping_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
+        for (n, c) in self.node_damping.iter().enumerate() {
+            for k in 0..D {
+                out[n * D + k] += c * x[n * D + k];
+            }
+        }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
             let nd = nodes.len() * D;
@@ -471,9 +518,9 @@ impl Dynamics {
         }
     }
 
-    /// Whether the steps so far have Rayleigh damping.
+    /// Whether the model has Rayleigh damping or dashpots.
     fn damped(&self) -> bool {
-        !self.cell_damping.is_empty()
+        !self.cell_damping.is_empty() || !self.node_damping.is_empty()
     }
 
     /// The damping force `C v1` at `u` (committed `u0`), `v1` the
@@ -578,6 +625,7 @@ impl Dynamics {
     pub fn add_tangent<const D: usize>(
         &self,
         model: &Model<D>,
+        dofs: &DofMap<D>,
         scatter: &Scatter,
         values: &mut [f64],
     ) {
@@ -587,6 +635,22 @@ impl Dynamics {
         let coef = (1.0 - k.alpha_m) / ((1.0 - k.alpha_f) * k.beta * dt * dt);
         // d (C v1) / d u1 = gamma / (beta dt) C
         let cdamp = k.gamma / (k.beta * dt);
+        // point masses and dashpots: the diagonal of their free dofs
+        let nn = model.mesh.nodes.len();
+        for n in 0..nn {
+            let m = self.node_mass.get(n).copied().unwrap_or(0.0);
+            let c = self.node_damping.get(n).copied().unwrap_or(0.0);
+            if m == 0.0 && c == 0.0 {
+                continue;
+            }
+            for q in 0..D {
+                if let Some(Dof::Free(j)) = dofs.dofs.get(n * D + q) {
+                    if let Some(s) = scatter.pattern.find(*j, *j) {
+                        values[s] += coef * m + cdamp * c;
+                    }
+                }
+            }
+        }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nd = model.mesh.cells.nodes(c).len() * D;
             if m.len() != nd * nd {
@@ -643,6 +707,11 @@ impl Dynamics {
         let n = r.len();
         // the diagonal of M: the Jacobi preconditioner
         let mut diag = vec![0.0; n];
+        for (node, m) in self.node_mass.iter().enumerate() {
+            for k in 0..D {
+                diag[node * D + k] += m;
+            }
+        }
         for (c, m) in self.cell_mass.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
             let nn = nodes.len();

@@ -235,6 +235,7 @@ impl Lowerer<'_> {
                 output,
                 thermal: None,
                 initial_velocities,
+                discrete: Vec::new(),
             }));
         }
         let tools = self.tools();
@@ -267,6 +268,7 @@ impl Lowerer<'_> {
             output,
             thermal,
             initial_velocities,
+            discrete: Vec::new(),
         }))
     }
 }

@@ -162,7 +162,7 @@ pub fn rayleigh_damping_not_negative(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
         (&d.rayleigh_alpha, "rayleigh_alpha"),
         (&d.rayleigh_beta, "rayleigh_beta"),
     ] {
-        if let Some(x) = x.as_ref().filter(|x| !(x.value >= 0.0)) {
+        if let Some(x) = x.as_ref().filter(|x| x.value < 0.0 || x.value.is_nan()) {
             ctx.err(
                 Diagnostic::error(
                     format!("{key} must not be negative"),

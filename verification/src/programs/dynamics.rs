@@ -179,7 +179,7 @@ fn one_mode(
 
 /// Zero crossings upward (fractional increment numbers) and the maxima
 /// (parabola through the three points around each) of `u`.
-fn crossings_and_peaks(u: &[f64]) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn crossings_and_peaks(u: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let mut crossings = Vec::new();
     for n in 1..u.len() {
         if u[n - 1] < 0.0 && u[n] >= 0.0 {

@@ -6,6 +6,7 @@
 
 pub mod cattaneo;
 pub mod contact_3d;
+pub mod discrete;
 pub mod dynamics;
 pub mod fenicsx;
 pub mod friction;
@@ -52,6 +53,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(traction_3d::cases());
     v.extend(dynamics::cases());
     v.extend(impact::cases());
+    v.extend(discrete::cases());
     v
 }
 

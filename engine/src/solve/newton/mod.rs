@@ -492,6 +492,27 @@ where
                 .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
         self.timings.assembly += mid.elapsed().as_secs_f64();
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
+        // springs to the ground: internal forces k u (their energy is part
+        // of the internal work)
+        for d in &model.discrete {
+            let crate::model::Discrete::Ground {
+                nodes, stiffness, ..
+            } = d
+            else {
+                continue;
+            };
+            for &n in nodes {
+                for c in 0..D {
+                    let g = n * D + c;
+                    self.f_int[g] += stiffness * self.u[n][c];
+                    if let (true, Some(Dof::Free(j))) = (with_tangent, self.dofs.dofs.get(g)) {
+                        if let Some(s) = self.scatter.pattern.find(*j, *j) {
+                            self.values[s] += stiffness;
+                        }
+                    }
+                }
+            }
+        }
         if with_tangent {
             self.stabilization
                 .add_springs(&self.scatter.pattern, &mut self.values);
@@ -499,7 +520,7 @@ where
         let inertia_scale = match &self.dynamics {
             Some(dy) => {
                 if with_tangent {
-                    dy.add_tangent(model, &self.scatter, &mut self.values);
+                    dy.add_tangent(model, &self.dofs, &self.scatter, &mut self.values);
                 }
                 let (u, u0) = (self.u.as_flattened(), self.committed.as_flattened());
                 let damping = dy.damping_force(model, u, u0, &mut self.damping);
