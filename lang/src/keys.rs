@@ -191,6 +191,10 @@ pub enum Dim {
     Velocity,
     /// Frequency, rate (1 / time).
     Frequency,
+    /// Mass.
+    Mass,
+    /// Dashpot coefficient (force x time / length).
+    Dashpot,
 }
 
 impl Dim {
@@ -217,6 +221,8 @@ impl Dim {
             Dim::HeatFlux => "power/area",
             Dim::Velocity => "length/time",
             Dim::Frequency => "1/time",
+            Dim::Mass => "mass",
+            Dim::Dashpot => "force x time/length",
         }
     }
 
@@ -243,6 +249,10 @@ impl Dim {
             Dim::HeatFlux => Exponents::POWER.per(Exponents::LENGTH.pow(2)),
             Dim::Velocity => Exponents::LENGTH.per(Exponents::TIME),
             Dim::Frequency => Exponents::NONE.per(Exponents::TIME),
+            Dim::Mass => Exponents::MASS,
+            Dim::Dashpot => Exponents::FORCE
+                .times(Exponents::TIME)
+                .per(Exponents::LENGTH),
         })
     }
 }

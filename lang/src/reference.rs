@@ -182,6 +182,24 @@ pub static ITEMS: &[Item] = &[
         example: "initial_velocity bar.all { vx = -5 }",
     },
     Item {
+        name: "spring",
+        syntax: "spring NODES { stiffness = ..  damping = .. }",
+        doc: "A linear spring and a linear dashpot from each node of a set to the ground, in \
+              every direction (force -k u - c v; the dashpot acts in `dynamic` steps). Its \
+              energy is part of the internal work of the energy audit, the dashpot's \
+              dissipation part of `damping_work`. A spring holds its nodes.",
+        blocks: &[("spring", &crate::tables::SPRING)],
+        example: "spring bar.left { stiffness = 1e3  damping = 2 }",
+    },
+    Item {
+        name: "point_mass",
+        syntax: "point_mass NODES { mass = .. }",
+        doc: "A point mass at each node of a set (`dynamic` steps), added to the bodies' \
+              mass (kinetic energy, inertia, initial acceleration).",
+        blocks: &[("point_mass", &crate::tables::POINT_MASS)],
+        example: "point_mass block.all { mass = 0.25 }",
+    },
+    Item {
         name: "temperature",
         syntax: "temperature SET { value = F(t) }",
         doc: "A prescribed temperature (thermal decks).",

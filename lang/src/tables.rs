@@ -766,6 +766,37 @@ pub static DYNAMIC: [Key; 8] = [
     .dim(Dim::Time),
 ];
 
+/// `spring NODES { .. }`: a spring and a dashpot from each node to the
+/// ground.
+pub static SPRING: [Key; 2] = [
+    Key::new(
+        "stiffness",
+        KeyType::Number,
+        "spring stiffness k of each node, in every direction (force -k u; planar: for the \
+         thickness, axisymmetric: over 2 pi)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::PenaltyNodal),
+    Key::new(
+        "damping",
+        KeyType::Number,
+        "dashpot coefficient c of each node, in every direction (force -c v; dynamic steps)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Dashpot),
+];
+
+/// `point_mass NODES { .. }`.
+pub static POINT_MASS: [Key; 1] = [Key::new(
+    "mass",
+    KeyType::Number,
+    "the mass at each node (planar: for the thickness, axisymmetric: over 2 pi; dynamic steps)",
+)
+.range(Range::Positive)
+.dim(Dim::Mass)];
+
 /// `newton { .. }` of a step.
 pub static NEWTON: [Key; 5] = [
     Key::new("tol", KeyType::Number, "relative residual tolerance")
@@ -874,5 +905,7 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("step", &STEP),
     ("step.newton", &NEWTON),
     ("step.dynamic", &DYNAMIC),
+    ("spring", &SPRING),
+    ("point_mass", &POINT_MASS),
     ("output", &OUTPUT),
 ];

@@ -622,6 +622,35 @@ pub struct InitialVelocity {
     pub span: Span,
 }
 
+/// Which discrete element an item places at each node of its set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiscreteKind {
+    /// `spring NODES { stiffness  damping }`: to the ground.
+    Spring,
+    /// `point_mass NODES { mass }`.
+    PointMass,
+}
+
+/// `spring NODES { .. }` or `point_mass NODES { .. }`: discrete elements at
+/// every node of a set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiscreteItem {
+    /// Which element.
+    pub kind: DiscreteKind,
+    /// The keyword.
+    pub keyword: Span,
+    /// The nodes.
+    pub target: SetRef,
+    /// `stiffness` (springs).
+    pub stiffness: Option<Spanned<f64>>,
+    /// `damping` (springs: the dashpot).
+    pub damping: Option<Spanned<f64>>,
+    /// `mass` (point masses).
+    pub mass: Option<Spanned<f64>>,
+    /// The whole item.
+    pub span: Span,
+}
+
 /// `step name { .. }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Step {

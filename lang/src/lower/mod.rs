@@ -19,6 +19,7 @@
 pub mod analysis;
 pub mod boundaries;
 pub mod contacts;
+pub mod discrete;
 pub mod loads;
 pub mod materials;
 pub mod mesh;
@@ -221,6 +222,7 @@ impl Lowerer<'_> {
             let steps = self.steps();
             let output = self.output(&contacts);
             let initial_velocities = self.initial_velocities();
+            let discrete = self.discrete();
             return Some(AnyModel::D3(Model {
                 analysis: analysis?,
                 mesh: std::mem::take(&mut self.mesh3),
@@ -235,7 +237,7 @@ impl Lowerer<'_> {
                 output,
                 thermal: None,
                 initial_velocities,
-                discrete: Vec::new(),
+                discrete,
             }));
         }
         let tools = self.tools();
@@ -244,6 +246,7 @@ impl Lowerer<'_> {
         let steps = self.steps();
         let output = self.output(&contacts);
         let initial_velocities = self.initial_velocities();
+        let discrete = self.discrete();
         let thermal = thermal::lower(
             self.deck,
             &self.mesh,
@@ -268,7 +271,7 @@ impl Lowerer<'_> {
             output,
             thermal,
             initial_velocities,
-            discrete: Vec::new(),
+            discrete,
         }))
     }
 }
