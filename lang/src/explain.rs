@@ -411,6 +411,8 @@ pub fn explain(model: &Model) -> String {
             Field::VonMises => "von_mises",
             Field::Reaction => "reaction",
             Field::Contact => "contact",
+            Field::Velocity => "velocity",
+            Field::Acceleration => "acceleration",
         })
         .collect();
     let _ = writeln!(

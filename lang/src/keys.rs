@@ -189,6 +189,12 @@ pub enum Dim {
     HeatFlux,
     /// Velocity (length / time).
     Velocity,
+    /// Frequency, rate (1 / time).
+    Frequency,
+    /// Mass.
+    Mass,
+    /// Dashpot coefficient (force x time / length).
+    Dashpot,
 }
 
 impl Dim {
@@ -214,6 +220,9 @@ impl Dim {
             Dim::HeatTransfer => "power/(area temperature)",
             Dim::HeatFlux => "power/area",
             Dim::Velocity => "length/time",
+            Dim::Frequency => "1/time",
+            Dim::Mass => "mass",
+            Dim::Dashpot => "force x time/length",
         }
     }
 
@@ -239,6 +248,11 @@ impl Dim {
             Dim::HeatTransfer => Exponents::POWER.per(Exponents::LENGTH.pow(2)).per(k),
             Dim::HeatFlux => Exponents::POWER.per(Exponents::LENGTH.pow(2)),
             Dim::Velocity => Exponents::LENGTH.per(Exponents::TIME),
+            Dim::Frequency => Exponents::NONE.per(Exponents::TIME),
+            Dim::Mass => Exponents::MASS,
+            Dim::Dashpot => Exponents::FORCE
+                .times(Exponents::TIME)
+                .per(Exponents::LENGTH),
         })
     }
 }

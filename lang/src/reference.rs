@@ -186,6 +186,24 @@ pub static ITEMS: &[Item] = &[
         example: "initial_velocity bar.all { vx = -5 }",
     },
     Item {
+        name: "spring",
+        syntax: "spring NODES { stiffness = ..  damping = .. }",
+        doc: "A linear spring and a linear dashpot from each node of a set to the ground, in \
+              every direction (force -k u - c v; the dashpot acts in `dynamic` steps). Its \
+              energy is part of the internal work of the energy audit, the dashpot's \
+              dissipation part of `damping_work`. A spring holds its nodes.",
+        blocks: &[("spring", &crate::tables::SPRING)],
+        example: "spring bar.left { stiffness = 1e3  damping = 2 }",
+    },
+    Item {
+        name: "point_mass",
+        syntax: "point_mass NODES { mass = .. }",
+        doc: "A point mass at each node of a set (`dynamic` steps), added to the bodies' \
+              mass (kinetic energy, inertia, initial acceleration).",
+        blocks: &[("point_mass", &crate::tables::POINT_MASS)],
+        example: "point_mass block.all { mass = 0.25 }",
+    },
+    Item {
         name: "temperature",
         syntax: "temperature SET { value = F(t) }",
         doc: "A prescribed temperature (thermal decks).",
@@ -354,7 +372,7 @@ pub fn conventions_markdown() -> String {
          | file | content |\n| --- | --- |\n\
          | `results.pvd` | the increments written, with their times; the bodies are part 0, rigid tool `k` part `k + 1` |\n\
          | `tool_<k>_NNNN.vtu` | rigid tool `k` at its current position at an increment: line cells walked with the free side on their left, cell data free_side (unit normal into free space; planes are cut to the bodies' extent); field data TIME, CYCLE, TOOL. Points are current coordinates: warp only the bodies' block by displacement |\n\
-         | `inc_NNNN.vtu` | fields at an increment (binary, appended raw zlib, by default; `output { format = ascii }` for text): point data displacement, stress, strain, von_mises, equivalent_plastic_strain, reaction, contact (status, gap, pressure, friction), temperature; cell data body and the integration-point means of stress, strain, von_mises, equivalent_plastic_strain; field data TIME, CYCLE (increment) |\n\
+         | `inc_NNNN.vtu` | fields at an increment (binary, appended raw zlib, by default; `output { format = ascii }` for text): point data displacement, stress, strain, von_mises, equivalent_plastic_strain, reaction, contact (status, gap, pressure, friction), temperature, velocity and acceleration (dynamic steps); cell data body and the integration-point means of stress, strain, von_mises, equivalent_plastic_strain; field data TIME, CYCLE (increment) |\n\
          | `history.csv` | one row per converged increment: time, history requests (x, y), friction work per pair, temperatures |\n\
          | `contact_<pair>_<inc>.csv` | slave nodes along the surface: node, x, y, gap, pressure, status, force_x, force_y (+ master_1, master_2, xi; + tangential_force, slip, friction_status, dissipation) |\n\
          | `summary.json` | increments, residual sequences, timings, factorizations, warnings, friction work, heat |\n\

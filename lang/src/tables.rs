@@ -720,14 +720,16 @@ pub static STEP: [Key; 5] = [
     ),
     Key::new(
         "dynamic",
-        KeyType::Choice(&["{ scheme rho_inf beta gamma mass contact_mass }"]),
+        KeyType::Choice(&[
+            "{ scheme rho_inf beta gamma mass contact_mass rayleigh_alpha rayleigh_beta }",
+        ]),
         "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
          step is quasi-static",
     ),
 ];
 
 /// `dynamic { .. }` of a step.
-pub static DYNAMIC: [Key; 6] = [
+pub static DYNAMIC: [Key; 8] = [
     Key::new(
         "scheme",
         KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
@@ -770,7 +772,56 @@ pub static DYNAMIC: [Key; 6] = [
          full (the mass matrix everywhere: contact nodes bounce)",
     )
     .default(Default::Choice("redistributed")),
+    Key::new(
+        "rayleigh_alpha",
+        KeyType::Number,
+        "mass-proportional Rayleigh damping: C = rayleigh_alpha M + rayleigh_beta K_0 (K_0 the \
+         stiffness in the reference configuration); damping ratio of a mode of circular \
+         frequency w: rayleigh_alpha / (2 w) + rayleigh_beta w / 2",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Frequency),
+    Key::new(
+        "rayleigh_beta",
+        KeyType::Number,
+        "stiffness-proportional Rayleigh damping (see rayleigh_alpha)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Time),
 ];
+
+/// `spring NODES { .. }`: a spring and a dashpot from each node to the
+/// ground.
+pub static SPRING: [Key; 2] = [
+    Key::new(
+        "stiffness",
+        KeyType::Number,
+        "spring stiffness k of each node, in every direction (force -k u; planar: for the \
+         thickness, axisymmetric: over 2 pi)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::PenaltyNodal),
+    Key::new(
+        "damping",
+        KeyType::Number,
+        "dashpot coefficient c of each node, in every direction (force -c v; dynamic steps)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Dashpot),
+];
+
+/// `point_mass NODES { .. }`.
+pub static POINT_MASS: [Key; 1] = [Key::new(
+    "mass",
+    KeyType::Number,
+    "the mass at each node (planar: for the thickness, axisymmetric: over 2 pi; dynamic steps)",
+)
+.range(Range::Positive)
+.dim(Dim::Mass)];
 
 /// `newton { .. }` of a step.
 pub static NEWTON: [Key; 5] = [
@@ -819,8 +870,11 @@ pub static OUTPUT: [Key; 4] = [
             "von_mises",
             "reaction",
             "contact",
+            "velocity",
+            "acceleration",
         ]),
-        "list of VTU fields `[displacement, stress, ..]`",
+        "list of VTU fields `[displacement, stress, ..]` (velocity and acceleration: decks \
+         with a dynamic step)",
     ),
     Key::new(
         "history",
@@ -878,5 +932,7 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("step", &STEP),
     ("step.newton", &NEWTON),
     ("step.dynamic", &DYNAMIC),
+    ("spring", &SPRING),
+    ("point_mass", &POINT_MASS),
     ("output", &OUTPUT),
 ];

@@ -142,7 +142,9 @@ fn hertz_methods_work_precision_table() {
     let rows = ctc_verification::programs::contact_3d::hertz_work_precision(0).unwrap();
     assert_eq!(rows.len(), 3);
     for (method, p0_error, newton, seconds) in &rows {
-        println!("{method:>10}: p0 error {p0_error:.2e}, {newton} Newton iterations, {seconds:.3} s");
+        println!(
+            "{method:>10}: p0 error {p0_error:.2e}, {newton} Newton iterations, {seconds:.3} s"
+        );
         assert!(*p0_error < 3e-2, "{method}: {p0_error}");
     }
 }

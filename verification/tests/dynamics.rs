@@ -20,6 +20,19 @@ fn newmark_energy_cantilever() {
     assert_eq!(report.levels[0].values.len(), 4, "consistent and lumped");
 }
 
+/// Rayleigh damping (Chopra 2012, sections 2.2 and 11.4): one mode with
+/// zeta = alpha / (2 w) + beta w / 2 = 0.05, the logarithmic decrement
+/// and damped period at three dt, the dissipation in the energy audit.
+///
+/// ```text
+///   |>[ ]--> vx = 1     x(t) = A exp(-zeta w t) sin(w_d t)
+/// ```
+#[test]
+fn rayleigh_damping_decrement() {
+    let report = registry::run_passing("rayleigh_damping_decrement");
+    assert_eq!(report.levels.len(), 3, "dt = T/25, T/50, T/100");
+}
+
 #[test]
 fn generalized_alpha_period_damping() {
     let report = registry::run_passing("generalized_alpha_period_damping");
@@ -43,4 +56,24 @@ fn bar_impact_wave_theory() {
     for scene in values.chunks(5) {
         assert!(scene[4].computed > 100.0 * scene[3].computed, "{scene:?}");
     }
+}
+
+/// Discrete elements (Hughes 2000, section 9.3.2; Chopra 2012, section
+/// 2.2): a point mass on a spring to the ground, its period at three dt,
+/// and with a dashpot its logarithmic decrement and energy balance
+/// (`verification/src/programs/discrete.rs`).
+///
+/// ```text
+///   |/\/\/\[ m ] --> v0        |--[=]-[ m ]
+/// ```
+#[test]
+fn spring_mass_oscillator_period() {
+    let report = registry::run_passing("spring_mass_oscillator_period");
+    assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
+}
+
+#[test]
+fn dashpot_decrement() {
+    let report = registry::run_passing("dashpot_decrement");
+    assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
 }

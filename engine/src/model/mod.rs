@@ -46,6 +46,37 @@ pub struct Model<const D: usize = 2> {
     pub thermal: Option<thermal::ThermalScene>,
     /// Initial velocities (dynamic steps; nodes not listed start at rest).
     pub initial_velocities: Vec<InitialVelocity>,
+    /// Discrete elements at nodes: springs and dashpots to the ground,
+    /// point masses (`crate::solve::dynamics`, `Newton::evaluate`).
+    pub discrete: Vec<Discrete>,
+}
+
+/// A discrete element on each node of a set. Values are totals per node
+/// (planar: for the model's thickness; axisymmetric: over the full 2 pi).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Discrete {
+    /// A linear spring and a linear dashpot from each node to the ground,
+    /// isotropic (every component): force `-(k u + c v)`; the dashpot acts
+    /// in dynamic increments only.
+    Ground {
+        /// Label.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+        /// Spring stiffness `k` (force / length), `>= 0`.
+        stiffness: f64,
+        /// Dashpot coefficient `c` (force time / length), `>= 0`.
+        damping: f64,
+    },
+    /// A point mass at each node (every component; dynamic steps).
+    Mass {
+        /// Label.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+        /// The mass, `>= 0`.
+        mass: f64,
+    },
 }
 
 /// A model of either dimension: what lowering a deck gives (the dimension
@@ -827,6 +858,27 @@ pub struct Dynamic {
     pub mass: MassMatrix,
     /// The mass of the nodes of contact surfaces.
     pub contact_mass: ContactMass,
+    /// Rayleigh damping `C = alpha M + beta K_0`.
+    pub rayleigh: Rayleigh,
+}
+
+/// Rayleigh (proportional) damping of a dynamic step: `C = alpha M + beta
+/// K_0`, `K_0` the stiffness in the reference configuration (the elastic
+/// one); a mode of circular frequency `omega` gets the damping ratio
+/// `alpha / (2 omega) + beta omega / 2`.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct Rayleigh {
+    /// Mass-proportional coefficient (1 / time).
+    pub alpha: f64,
+    /// Stiffness-proportional coefficient (time).
+    pub beta: f64,
+}
+
+impl Rayleigh {
+    /// Whether there is any damping.
+    pub fn any(&self) -> bool {
+        self.alpha != 0.0 || self.beta != 0.0
+    }
 }
 
 /// The mass of contact-surface nodes in a dynamic step
@@ -892,6 +944,10 @@ pub enum Field {
     Reaction,
     /// Contact gap, pressure and status at slave nodes.
     Contact,
+    /// Nodal velocity (dynamic steps; 0 after a quasi-static increment).
+    Velocity,
+    /// Nodal acceleration (dynamic steps).
+    Acceleration,
 }
 
 /// A quantity recorded at every increment into the CSV history.

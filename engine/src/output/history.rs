@@ -13,11 +13,12 @@ use std::io::Write;
 
 /// The energy-audit columns of models with a dynamic step
 /// (`crate::solve::dynamics::Energy`).
-pub const ENERGY_COLUMNS: [&str; 6] = [
+pub const ENERGY_COLUMNS: [&str; 7] = [
     "kinetic_energy",
     "internal_work",
     "external_work",
     "contact_work",
+    "damping_work",
     "energy_balance",
     "energy_gain",
 ];

@@ -65,6 +65,9 @@ struct Snapshot<const D: usize> {
     points: Vec<Vec<crate::element::MaterialPoint>>,
     /// Nodal temperatures (thermal scenes only).
     temperature: Option<Vec<f64>>,
+    /// Velocity and acceleration per dof (dynamic models, when requested).
+    velocity: Option<Vec<f64>>,
+    acceleration: Option<Vec<f64>>,
 }
 
 /// Writes a run's results into a directory (an [`Observer`]) for a model
@@ -253,6 +256,8 @@ where
             contact: &snap.contact,
             nodal: nodal.as_ref(),
             temperature: snap.temperature.as_deref(),
+            velocity: snap.velocity.as_deref(),
+            acceleration: snap.acceleration.as_deref(),
             encoding: model.output.format,
         });
         let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
@@ -307,7 +312,7 @@ where
         );
         if let Some(e) = view.energy {
             row.extend([
-                e.kinetic, e.internal, e.external, e.contact, e.balance, e.gain,
+                e.kinetic, e.internal, e.external, e.contact, e.damping, e.balance, e.gain,
             ]);
         }
         if let Some(t) = view.thermal {
@@ -328,6 +333,14 @@ where
             contact: view.contact.to_vec(),
             points: view.points.to_vec(),
             temperature: view.temperature.map(<[f64]>::to_vec),
+            velocity: view
+                .velocity
+                .filter(|_| self.model.output.fields.contains(&Field::Velocity))
+                .map(<[f64]>::to_vec),
+            acceleration: view
+                .acceleration
+                .filter(|_| self.model.output.fields.contains(&Field::Acceleration))
+                .map(<[f64]>::to_vec),
         };
         let every = self.model.output.every.max(1);
         let last = view.step + 1 == self.model.steps.len()

@@ -16,7 +16,8 @@
 //! `friction_force` (tangential force; 3D: its magnitude, and the vector
 //! `friction_traction`), `friction_slip` (slip increment; 3D: its length),
 //! `friction_status` (0 frictionless, 1 stick, 2 slip) and
-//! `friction_dissipation` (work of the increment). Cell data: `body` index,
+//! `friction_dissipation` (work of the increment); dynamic runs:
+//! `velocity`, `acceleration` (3 components, when requested). Cell data: `body` index,
 //! and with the same names as the point data `stress`, `strain`,
 //! `von_mises`, `equivalent_plastic_strain`: the volume-weighted mean of
 //! each cell's integration points (element values, not smoothed; the von
@@ -53,6 +54,10 @@ pub struct VtuData<'a, const D: usize = 2> {
     pub nodal: Option<&'a NodalFields>,
     /// Nodal temperatures (thermal scenes only; written whenever present).
     pub temperature: Option<&'a [f64]>,
+    /// Velocity per dof `node D + c` (written when requested and present).
+    pub velocity: Option<&'a [f64]>,
+    /// Acceleration per dof (written when requested and present).
+    pub acceleration: Option<&'a [f64]>,
     /// How the arrays are stored.
     pub encoding: Encoding,
 }
@@ -156,6 +161,23 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
     }
     if let Some(t) = d.temperature {
         a.array(&mut s, IN, "temperature", 1, "", t.iter().copied());
+    }
+    for (field, name, values) in [
+        (Field::Velocity, "velocity", d.velocity),
+        (Field::Acceleration, "acceleration", d.acceleration),
+    ] {
+        if let Some(v) = values.filter(|v| has(field) && v.len() == nn * D) {
+            a.array(
+                &mut s,
+                IN,
+                name,
+                3,
+                "",
+                v.chunks_exact(D).flat_map(|c| {
+                    std::array::from_fn::<f64, 3, _>(|k| c.get(k).copied().unwrap_or(0.0))
+                }),
+            );
+        }
     }
     if let Some(nodal) = d.nodal {
         if has(Field::Stress) {
@@ -408,6 +430,8 @@ mod tests {
             contact: &contacts,
             nodal: None,
             temperature: None,
+            velocity: None,
+            acceleration: None,
             encoding,
         })
     }

@@ -107,6 +107,53 @@ where
         })
     }
 
+    /// The tangent stiffness of every cell in the reference configuration
+    /// (column-major `D NN x D NN`; nonlinear laws at zero strain with
+    /// virgin internal variables, that is their elastic stiffness): the
+    /// stiffness-proportional part of Rayleigh damping
+    /// (`crate::solve::dynamics`).
+    pub fn reference_stiffness(&self, mesh: &Mesh<D>) -> Result<Vec<Vec<f64>>, String> {
+        let mut out = vec![Vec::new(); mesh.cells.len()];
+        let mut scratch = ElementMatrix::<D>::default();
+        for block in &self.blocks {
+            for c in block.cells.clone() {
+                let nd = D * mesh.cells.nodes(c).len();
+                if let Some(law) = &block.nonlinear {
+                    let kernel = kernel_of::<D>(mesh.cells.kind(c))
+                        .map_err(|e| format!("cell {c}: {}", e.message))?;
+                    let x = mesh.cell_points(c);
+                    let zero = vec![Point::<D>::zeros(); x.len()];
+                    let mut trial = vec![virgin(block.kinematics); kernel.point_count()];
+                    let history: Vec<History> = trial.iter().map(|p| p.history).collect();
+                    kernel
+                        .nonlinear(
+                            &NonlinearInput {
+                                x: &x,
+                                u: &zero,
+                                section: &self.section,
+                                formulation: block.formulation,
+                                kinematics: block.kinematics,
+                                law,
+                                history: &history,
+                                dt: 1.0,
+                                thermal_strain: 0.0,
+                                with_tangent: true,
+                            },
+                            &mut scratch,
+                            &mut trial,
+                        )
+                        .map_err(|e| format!("cell {c}: {}", e.message))?;
+                    out[c] = (0..nd * nd)
+                        .map(|e| scratch.entry(e % nd, e / nd))
+                        .collect();
+                } else {
+                    out[c] = self.linear_k[self.linear_offset[c]..][..nd * nd].to_vec();
+                }
+            }
+        }
+        Ok(out)
+    }
+
     /// Sets the thermal state used by the next evaluations: the thermal
     /// strain of each cell and, for temperature-dependent materials, the
     /// law of each cell at its temperature (`None`: the body's law).

@@ -33,6 +33,31 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             model.analysis.thickness
         ));
     }
+    for d in &model.discrete {
+        let (label, nodes, values) = match d {
+            crate::model::Discrete::Ground {
+                label,
+                nodes,
+                stiffness,
+                damping,
+            } => (
+                label,
+                nodes,
+                vec![("stiffness", *stiffness), ("damping", *damping)],
+            ),
+            crate::model::Discrete::Mass { label, nodes, mass } => {
+                (label, nodes, vec![("mass", *mass)])
+            }
+        };
+        if let Some(&n) = nodes.iter().find(|&&n| n >= nn) {
+            errors.push(format!("{label}: node {n} is not in the mesh ({nn} nodes)"));
+        }
+        for (what, x) in values {
+            if !(x.is_finite() && x >= 0.0) {
+                errors.push(format!("{label}: {what} must be finite and >= 0 (got {x})"));
+            }
+        }
+    }
     for (c, cell) in model.mesh.cells.iter().enumerate() {
         if let Some(&n) = cell.nodes.iter().find(|&&n| n >= nn) {
             errors.push(format!(
@@ -404,6 +429,19 @@ fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
     for d in &model.constraints {
         for &n in &d.nodes {
             constrained[n][d.component] = true;
+        }
+    }
+    // a spring to the ground holds its node in every direction
+    for d in &model.discrete {
+        if let crate::model::Discrete::Ground {
+            nodes, stiffness, ..
+        } = d
+        {
+            for &n in nodes.iter().filter(|_| *stiffness > 0.0) {
+                if let Some(c) = constrained.get_mut(n) {
+                    *c = [true; D];
+                }
+            }
         }
     }
     // in an analysis whose every step is dynamic, the mass of a body with

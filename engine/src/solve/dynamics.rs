@@ -10,7 +10,7 @@
 //! increment only):
 //!
 //! ```text
-//! M [(1 - am) a1 + am a0] + (1 - af) r(u1) + af r(u0) = 0,   r = f_int - f_ext - f_c
+//! M [(1 - am) a1 + am a0] + (1 - af) r(u1) + af r(u0) = 0,   r = f_int - f_ext - f_c + C v
 //! a1 = (u1 - u0 - dt v0) / (beta dt^2) - (1 / (2 beta) - 1) a0
 //! v1 = v0 + dt ((1 - gamma) a0 + gamma a1)
 //! ```
@@ -23,11 +23,19 @@
 //! committed with converged increments (a cutback recomputes `a1` from the
 //! committed state with the new `dt`).
 //!
+//! Rayleigh damping (`dynamic { rayleigh_alpha  rayleigh_beta }`): `C =
+//! alpha M + beta K_0` per cell, `K_0` the cell's stiffness in the
+//! reference configuration ([`super::assembly::Assembler::reference_stiffness`]);
+//! the damping force `C v1` (`v1` of the scheme, a function of `u1`) is
+//! weighted like the other forces (Chung & Hulbert 1993, eq. 2), its
+//! tangent is `gamma / (beta dt) C`.
+//!
 //! Energy audit ([`Energy`]): kinetic `1/2 v M v`, internal work
 //! (trapezoidal `f_int . du`, the strain energy of elastic bodies),
-//! external work (loads and reactions), contact work, and the balance
-//! error `K + W_int - W_ext - W_c - K_0` (the integrator's: negative is
-//! numerical dissipation), and the gain `K + W_int - W_ext - K_0` (energy
+//! external work (loads and reactions), contact work, damping dissipation
+//! (trapezoidal `C v . du`), and the balance error `K + W_int + W_d -
+//! W_ext - W_c - K_0` (the integrator's: negative is numerical
+//! dissipation), and the gain `K + W_int + W_d - W_ext - K_0` (energy
 //! created, e.g. by contact chatter: a run whose gain exceeds
 //! [`ENERGY_GROWTH_TOL`] of the largest energy is warned about).
 
@@ -36,12 +44,18 @@ use super::linalg::{Scatter, NO_SLOT};
 use crate::element::kernel::kernel_of;
 use crate::element::Section;
 use crate::geom::Dimension;
-use crate::model::{ContactMass, ContactMaster, Dynamic, MassMatrix, Model, Scheme, Step};
+use crate::model::{
+    ContactMass, ContactMaster, Dynamic, MassMatrix, Model, Rayleigh, Scheme, Step,
+};
 use nalgebra::Const;
 
 /// Default spectral radius at infinite frequency of the dissipative
 /// schemes.
 pub const DEFAULT_RHO_INF: f64 = 0.9;
+
+/// The forces of the work integrals: internal, external + reactions,
+/// contact, damping.
+pub const FORCES: usize = 4;
 
 /// Relative growth of the total energy above which a run is warned about.
 pub const ENERGY_GROWTH_TOL: f64 = 1e-2;
@@ -154,17 +168,76 @@ pub struct Energy {
     /// Work of the contact forces on the bodies (minus the energy stored in
     /// penalty springs, plus friction dissipation).
     pub contact: f64,
-    /// `kinetic + internal - external - contact - kinetic_0`: the
-    /// integrator's own energy error (0 for average-acceleration Newmark,
+    /// Energy dissipated by Rayleigh damping `sum 1/2 (f_d0 + f_d1) . du`,
+    /// `f_d = C v` (`>= 0`).
+    pub damping: f64,
+    /// `kinetic + internal + damping - external - contact - kinetic_0`:
+    /// the integrator's own energy error (0 for average-acceleration Newmark,
     /// negative: numerical dissipation).
     pub balance: f64,
-    /// `kinetic + internal - external - kinetic_0`: the energy gained
+    /// `kinetic + internal + damping - external - kinetic_0`: the energy
+    /// gained
     /// beyond the work of the loads and supports (0 in a conservative
     /// system; contact against fixed rigid tools must not make it
     /// positive: the contact work is part of it).
     pub gain: f64,
     /// The largest of the energies so far (the scale of `balance`).
     pub scale: f64,
+}
+
+/// The committed state of the integrator in a restart point
+/// (`crate::solve::restart`): everything [`Dynamics`] carries from one
+/// increment to the next but the mass, which the model determines.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DynamicState {
+    /// Whether the initial acceleration was computed.
+    pub started: bool,
+    /// Velocity per dof.
+    pub v: Vec<f64>,
+    /// Acceleration per dof.
+    pub a: Vec<f64>,
+    /// `f_int - f_ext - f_c` per dof (the `alpha_f` term).
+    pub r0: Vec<f64>,
+    /// Internal, external + reactions, contact, damping forces per dof
+    /// (the work integrals).
+    pub forces0: Vec<Vec<f64>>,
+    /// Kinetic energy at the start.
+    pub kinetic0: f64,
+    /// [`Energy::values`].
+    pub energy: Vec<f64>,
+}
+
+impl Energy {
+    /// The fields in declaration order (restart points).
+    pub fn values(&self) -> Vec<f64> {
+        vec![
+            self.kinetic,
+            self.internal,
+            self.external,
+            self.contact,
+            self.damping,
+            self.balance,
+            self.gain,
+            self.scale,
+        ]
+    }
+
+    /// The inverse of [`Energy::values`] (`None`: a wrong count).
+    pub fn from_values(v: &[f64]) -> Option<Self> {
+        let &[kinetic, internal, external, contact, damping, balance, gain, scale] = v else {
+            return None;
+        };
+        Some(Energy {
+            kinetic,
+            internal,
+            external,
+            contact,
+            damping,
+            balance,
+            gain,
+            scale,
+        })
+    }
 }
 
 /// Mass, velocities, accelerations and energies of a model with dynamic
@@ -188,8 +261,18 @@ pub struct Dynamics {
     /// Parameters and `dt` of the current increment (`None`: quasi-static).
     active: Option<(Coefficients, f64)>,
     /// Committed forces for the work integrals: internal, external +
-    /// reactions, contact.
-    forces0: [Vec<f64>; 3],
+    /// reactions, contact, damping ([`FORCES`] of them).
+    forces0: Vec<Vec<f64>>,
+    /// Point mass at each node (`Discrete::Mass`; empty: none).
+    node_mass: Vec<f64>,
+    /// Dashpot to the ground at each node (`Discrete::Ground`; empty:
+    /// none).
+    node_damping: Vec<f64>,
+    /// Rayleigh damping matrix of each global cell, column-major `D NN x
+    /// D NN` (empty: no damping).
+    cell_damping: Vec<Vec<f64>>,
+    /// The coefficients the damping matrices were built with.
+    damping_kind: Option<Rayleigh>,
     /// Kinetic energy at the start.
     kinetic0: f64,
     /// Energies at the last converged increment.
@@ -223,7 +306,11 @@ impl Dynamics {
             r0: vec![0.0; n],
             started: false,
             active: None,
-            forces0: [vec![0.0; n], vec![0.0; n], vec![0.0; n]],
+            forces0: vec![vec![0.0; n]; FORCES],
+            cell_damping: Vec::new(),
+            node_mass: Vec::new(),
+            node_damping: Vec::new(),
+            damping_kind: None,
             kinetic0: 0.0,
             energy: Energy::default(),
             contact_cells_kept: 0,
@@ -265,9 +352,15 @@ impl Dynamics {
         for b in &model.bodies {
             let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
             for c in b.cells.clone() {
+                let nodes = model.mesh.cells.nodes(c);
+                if rho == 0.0 {
+                    // a massless body (its nodes may carry point masses):
+                    // no lumping of a zero matrix (HRZ would divide 0 by 0)
+                    masses[c] = vec![0.0; nodes.len() * nodes.len()];
+                    continue;
+                }
                 let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
                     .map_err(|e| format!("cell {c}: {}", e.message))?;
-                let nodes = model.mesh.cells.nodes(c);
                 let x: Vec<crate::geom::Point<D>> = nodes
                     .iter()
                     .map(|&n| crate::geom::Point::<D>::from(model.mesh.nodes[n]))
@@ -294,17 +387,47 @@ impl Dynamics {
         }
         self.contact_cells_kept = kept;
         self.cell_mass = masses;
+        self.node_mass.clear();
+        self.node_damping.clear();
+        let nn = model.mesh.nodes.len();
+        for d in &model.discrete {
+            let (list, nodes, value) = match d {
+                crate::model::Discrete::Mass { nodes, mass, .. } => {
+                    (&mut self.node_mass, nodes, *mass)
+                }
+                crate::model::Discrete::Ground { nodes, damping, .. } => {
+                    (&mut self.node_damping, nodes, *damping)
+                }
+            };
+            if value == 0.0 {
+                continue;
+            }
+            list.resize(nn, 0.0);
+            for &n in nodes {
+                if let Some(x) = list.get_mut(n) {
+                    *x += value;
+                }
+            }
+        }
         self.mass_kind = Some(kind);
-        self.kinetic0 = self.kinetic(model);
+        // the reference of the energy audit: the kinetic energy of the
+        // initial velocities (once: a restarted run carries it over)
         if !self.started {
+            self.kinetic0 = self.kinetic(model);
             self.energy.kinetic = self.kinetic0;
             self.energy.scale = self.kinetic0;
         }
         Ok(())
     }
 
-    /// `out += M x` over all dofs (`x`, `out` per dof `node D + c`).
+    /// `out += M x` over all dofs (`x`, `out` per dof `node D + c`; point
+    /// masses included).
     pub fn mass_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
+        for (n, m) in self.node_mass.iter().enumerate() {
+            for k in 0..D {
+                out[n * D + k] += m * x[n * D + k];
+            }
+        }
         for (c, m) in self.cell_mass.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
             let nn = nodes.len();
@@ -320,6 +443,110 @@ impl Dynamics {
                 }
             }
         }
+    }
+
+    /// Builds the Rayleigh damping matrices `alpha M + beta K_0` of every
+    /// cell (once per coefficients; `stiffness` gives the cells' reference
+    /// stiffness, called only when `beta != 0`). Call after
+    /// [`Dynamics::build_mass`].
+    pub fn build_damping<const D: usize>(
+        &mut self,
+        model: &Model<D>,
+        d: &Dynamic,
+        stiffness: impl FnOnce() -> Result<Vec<Vec<f64>>, String>,
+    ) -> Result<(), String> {
+        let r = d.rayleigh;
+        if self.damping_kind == Some(r) {
+            return Ok(());
+        }
+        self.damping_kind = Some(r);
+        self.cell_damping.clear();
+        if !r.any() {
+            return Ok(());
+        }
+        let k0 = if r.beta != 0.0 {
+            stiffness()?
+        } else {
+            Vec::new()
+        };
+        self.cell_damping = (0..model.mesh.cells.len())
+            .map(|c| {
+                let nn = model.mesh.cells.nodes(c).len();
+                let nd = nn * D;
+                let mut m = match k0.get(c).filter(|k| k.len() == nd * nd) {
+                    Some(k) => k.iter().map(|x| r.beta * x).collect(),
+                    None => vec![0.0; nd * nd],
+                };
+                if let Some(mass) = self.cell_mass.get(c).filter(|m| m.len() == nn * nn) {
+                    for a in 0..nn {
+                        for b in 0..nn {
+                            for q in 0..D {
+                                m[(a * D + q) + nd * (b * D + q)] += r.alpha * mass[a * nn + b];
+                            }
+                        }
+                    }
+                }
+                m
+            })
+            .collect();
+        Ok(())
+    }
+
+    /// `out += C x` over all dofs (`C` the Rayleigh damping and the
+    /// dashpots to the ground).
+    fn damping_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
+        for (n, c) in self.node_damping.iter().enumerate() {
+            for k in 0..D {
+                out[n * D + k] += c * x[n * D + k];
+            }
+        }
+        for (c, m) in self.cell_damping.iter().enumerate() {
+            let nodes = model.mesh.cells.nodes(c);
+            let nd = nodes.len() * D;
+            if m.len() != nd * nd {
+                continue;
+            }
+            for j in 0..nd {
+                let xj = x[nodes[j / D] * D + j % D];
+                if xj == 0.0 {
+                    continue;
+                }
+                for i in 0..nd {
+                    out[nodes[i / D] * D + i % D] += m[i + nd * j] * xj;
+                }
+            }
+        }
+    }
+
+    /// Whether the model has Rayleigh damping or dashpots.
+    fn damped(&self) -> bool {
+        !self.cell_damping.is_empty() || !self.node_damping.is_empty()
+    }
+
+    /// The damping force `C v1` at `u` (committed `u0`), `v1` the
+    /// velocity of the scheme at the end of the increment, per dof (zero
+    /// without damping or in a quasi-static increment); returns its norm.
+    pub fn damping_force<const D: usize>(
+        &self,
+        model: &Model<D>,
+        u: &[f64],
+        u0: &[f64],
+        out: &mut [f64],
+    ) -> f64 {
+        out.fill(0.0);
+        let Some((k, dt)) = self.active.filter(|_| self.damped()) else {
+            return 0.0;
+        };
+        let a1 = self.acceleration(&k, dt, u, u0);
+        let v1: Vec<f64> = self
+            .v
+            .iter()
+            .zip(&self.a)
+            .zip(&a1)
+            .map(|((v0, a0), a1)| v0 + dt * ((1.0 - k.gamma) * a0 + k.gamma * a1))
+            .collect();
+        self.damping_times(model, &v1, out);
+        out.iter().map(|x| x * x).sum::<f64>().sqrt()
     }
 
     /// Kinetic energy `1/2 v M v` of the committed velocities.
@@ -398,6 +625,7 @@ impl Dynamics {
     pub fn add_tangent<const D: usize>(
         &self,
         model: &Model<D>,
+        dofs: &DofMap<D>,
         scatter: &Scatter,
         values: &mut [f64],
     ) {
@@ -405,6 +633,36 @@ impl Dynamics {
             return;
         };
         let coef = (1.0 - k.alpha_m) / ((1.0 - k.alpha_f) * k.beta * dt * dt);
+        // d (C v1) / d u1 = gamma / (beta dt) C
+        let cdamp = k.gamma / (k.beta * dt);
+        // point masses and dashpots: the diagonal of their free dofs
+        let nn = model.mesh.nodes.len();
+        for n in 0..nn {
+            let m = self.node_mass.get(n).copied().unwrap_or(0.0);
+            let c = self.node_damping.get(n).copied().unwrap_or(0.0);
+            if m == 0.0 && c == 0.0 {
+                continue;
+            }
+            for q in 0..D {
+                if let Some(Dof::Free(j)) = dofs.dofs.get(n * D + q) {
+                    if let Some(s) = scatter.pattern.find(*j, *j) {
+                        values[s] += coef * m + cdamp * c;
+                    }
+                }
+            }
+        }
+        for (c, m) in self.cell_damping.iter().enumerate() {
+            let nd = model.mesh.cells.nodes(c).len() * D;
+            if m.len() != nd * nd {
+                continue;
+            }
+            let slots = scatter.cell_slots(c);
+            for (e, &s) in slots.iter().enumerate().take(nd * nd) {
+                if s != NO_SLOT {
+                    values[s as usize] += cdamp * m[e];
+                }
+            }
+        }
         for (c, m) in self.cell_mass.iter().enumerate() {
             let nn = model.mesh.cells.nodes(c).len();
             let nd = nn * D;
@@ -432,6 +690,13 @@ impl Dynamics {
     /// Jacobi-preconditioned conjugate gradients; `r` becomes the
     /// committed residual.
     pub fn start<const D: usize>(&mut self, model: &Model<D>, dofs: &DofMap<D>, r: &[f64]) {
+        // the damping force of the initial velocities is part of it, and
+        // the start of the damping work integral
+        let mut d0 = vec![0.0; r.len()];
+        self.damping_times(model, &self.v, &mut d0);
+        let r: Vec<f64> = r.iter().zip(&d0).map(|(r, d)| r + d).collect();
+        let r = &r[..];
+        self.forces0[3] = d0;
         // free dofs that carry mass (contact nodes may not: their
         // acceleration is left 0, they follow the constraint statically)
         let mut free: Vec<bool> = dofs
@@ -442,6 +707,11 @@ impl Dynamics {
         let n = r.len();
         // the diagonal of M: the Jacobi preconditioner
         let mut diag = vec![0.0; n];
+        for (node, m) in self.node_mass.iter().enumerate() {
+            for k in 0..D {
+                diag[node * D + k] += m;
+            }
+        }
         for (c, m) in self.cell_mass.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
             let nn = nodes.len();
@@ -509,15 +779,15 @@ impl Dynamics {
 
     /// Commits the converged increment: velocities and accelerations (a
     /// dynamic increment), the committed residual `r` and the energies
-    /// from the forces (`f_int`, `f_ext` + reactions, `f_c`, per dof) and
-    /// the displacements `u` (committed `u0`).
+    /// from the forces (`f_int`, `f_ext` + reactions, `f_c`, damping `C
+    /// v`, per dof) and the displacements `u` (committed `u0`).
     pub fn commit<const D: usize>(
         &mut self,
         model: &Model<D>,
         u: &[f64],
         u0: &[f64],
         r: &[f64],
-        forces: [&[f64]; 3],
+        forces: [&[f64]; FORCES],
     ) {
         if let Some((k, dt)) = self.active {
             let a1 = self.acceleration(&k, dt, u, u0);
@@ -531,7 +801,7 @@ impl Dynamics {
             self.a.fill(0.0);
         }
         self.r0.copy_from_slice(r);
-        let mut work = [0.0; 3];
+        let mut work = [0.0; FORCES];
         for (w, (f1, f0)) in work.iter_mut().zip(forces.iter().zip(&self.forces0)) {
             *w = f1
                 .iter()
@@ -547,18 +817,56 @@ impl Dynamics {
         e.internal += work[0];
         e.external += work[1];
         e.contact += work[2];
+        e.damping += work[3];
         e.kinetic = 0.0;
         let kinetic = self.kinetic(model);
         let e = &mut self.energy;
         e.kinetic = kinetic;
-        e.balance = e.kinetic + e.internal - e.external - e.contact - self.kinetic0;
-        e.gain = e.kinetic + e.internal - e.external - self.kinetic0;
+        e.balance = e.kinetic + e.internal + e.damping - e.external - e.contact - self.kinetic0;
+        e.gain = e.kinetic + e.internal + e.damping - e.external - self.kinetic0;
         e.scale = e
             .scale
             .max(e.kinetic)
             .max(e.internal.abs())
             .max(e.external.abs())
-            .max(e.contact.abs());
+            .max(e.contact.abs())
+            .max(e.damping.abs());
+    }
+
+    /// The committed state carried by restart points (the mass is rebuilt
+    /// from the model when the next dynamic increment begins).
+    pub fn saved(&self) -> DynamicState {
+        DynamicState {
+            started: self.started,
+            v: self.v.clone(),
+            a: self.a.clone(),
+            r0: self.r0.clone(),
+            forces0: self.forces0.clone(),
+            kinetic0: self.kinetic0,
+            energy: self.energy.values(),
+        }
+    }
+
+    /// Makes `s` the committed state (a restart).
+    pub fn restore(&mut self, s: &DynamicState) -> Result<(), String> {
+        let n = self.v.len();
+        let lens = [s.v.len(), s.a.len(), s.r0.len()]
+            .into_iter()
+            .chain(s.forces0.iter().map(Vec::len));
+        if s.forces0.len() != FORCES || lens.into_iter().any(|l| l != n) {
+            return Err(format!(
+                "the restart point's velocities do not match the model ({n} dofs)"
+            ));
+        }
+        self.started = s.started;
+        self.v.clone_from(&s.v);
+        self.a.clone_from(&s.a);
+        self.r0.clone_from(&s.r0);
+        self.forces0.clone_from(&s.forces0);
+        self.kinetic0 = s.kinetic0;
+        self.energy = Energy::from_values(&s.energy)
+            .ok_or("the restart point's energy audit does not match this version")?;
+        Ok(())
     }
 
     /// Whether the energy grew (`Energy::gain`) by more than

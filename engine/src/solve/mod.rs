@@ -115,6 +115,11 @@ pub struct IncrementView<'a, const D: usize = 2> {
     pub thermal: Option<&'a crate::thermal::solver::ThermalIncrement>,
     /// The energy audit (models with a dynamic step).
     pub energy: Option<&'a dynamics::Energy>,
+    /// Committed velocity per dof `node D + c` (models with a dynamic
+    /// step).
+    pub velocity: Option<&'a [f64]>,
+    /// Committed acceleration per dof (models with a dynamic step).
+    pub acceleration: Option<&'a [f64]>,
 }
 
 /// Receives progress and converged states (writers, progress bars, tests)
@@ -779,6 +784,8 @@ where
             temperature: self.thermal.as_ref().map(|t| t.temperature()),
             thermal: self.thermal.as_ref().map(|t| t.last()),
             energy: self.newton.dynamics().map(|d| &d.energy),
+            velocity: self.newton.dynamics().map(|d| &d.v[..]),
+            acceleration: self.newton.dynamics().map(|d| &d.a[..]),
         };
         let start = Instant::now();
         let r = self.observer.converged(&view);

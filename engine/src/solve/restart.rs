@@ -9,18 +9,27 @@
 //! restart with a different deck is refused). [`RestartFile`] adds what the
 //! result writer needs to append to the same directory (the PVD entries).
 //!
-//! Format (`restart.bin`, little endian): the magic `CTCRST05`, the
+//! Format (`restart.bin`, little endian): the magic `CTCRST06`, the
 //! dimension (2 or 3; a restart file is read only by a model of the same
-//! dimension), then fields in a fixed order; every `f64` is stored as its 8
-//! bytes, so the values read back are the values written, bit for bit.
+//! dimension), then fields in a fixed order, ending with the state of the
+//! dynamic integrator (a flag, then velocities, accelerations, committed
+//! residual and forces, energies: [`DynamicState`]); every `f64` is stored
+//! as its 8 bytes, so the values read back are the values written, bit for
+//! bit. `CTCRST05` files (the same without the dynamic state) are read as
+//! quasi-static restart points; older formats are refused with their
+//! version named.
 
 use crate::element::{MaterialPoint, PointState};
 use crate::material::History;
 use crate::model::Model;
+use crate::solve::dynamics::DynamicState;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST05";
+const MAGIC: &[u8; 8] = b"CTCRST06";
+
+/// The previous format: no dynamic state (read, as quasi-static points).
+const MAGIC_05: &[u8; 8] = b"CTCRST05";
 
 /// Values stored per integration point: position (3), volume, strain (6),
 /// stress (6), equivalent plastic strain, internal tensor (6).
@@ -75,6 +84,9 @@ pub struct Checkpoint<const D: usize = 2> {
     /// contact so far (the restarted run starts from the same pattern, so
     /// its factorizations round identically).
     pub couplings: Vec<(usize, usize)>,
+    /// The dynamic integrator's committed state (`None`: a model without
+    /// dynamic steps, or a file of the previous format).
+    pub dynamics: Option<DynamicState>,
 }
 
 /// A restart file: the solver checkpoint and the result writer's index.
@@ -222,12 +234,39 @@ impl<const D: usize> RestartFile<D> {
             e.usize(a);
             e.usize(b);
         }
+        match &c.dynamics {
+            None => e.0.push(0),
+            Some(s) => {
+                e.0.push(1);
+                e.0.push(u8::from(s.started));
+                e.f64s(&s.v);
+                e.f64s(&s.a);
+                e.f64s(&s.r0);
+                e.usize(s.forces0.len());
+                for f in &s.forces0 {
+                    e.f64s(f);
+                }
+                e.f64(s.kinetic0);
+                e.f64s(&s.energy);
+            }
+        }
         e.0
     }
 
     /// Reads a file produced by [`RestartFile::encode`].
     pub fn decode(data: &[u8]) -> Result<Self, String> {
-        if data.len() < MAGIC.len() || &data[..MAGIC.len()] != MAGIC {
+        let magic = data.get(..MAGIC.len()).unwrap_or(&[]);
+        let previous = magic == MAGIC_05;
+        if magic != MAGIC && !previous {
+            if magic.starts_with(b"CTCRST") {
+                return Err(format!(
+                    "restart file of format {} (an older ctc): this version reads {} and \
+                     {}; run from the start",
+                    String::from_utf8_lossy(magic),
+                    String::from_utf8_lossy(MAGIC),
+                    String::from_utf8_lossy(MAGIC_05)
+                ));
+            }
             return Err("not a ctc restart file (bad magic or version)".into());
         }
         let mut d = Dec {
@@ -325,6 +364,23 @@ impl<const D: usize> RestartFile<D> {
         for _ in 0..nk {
             couplings.push((d.usize()?, d.usize()?));
         }
+        let dynamics = if previous || d.bytes(1)?[0] == 0 {
+            None
+        } else {
+            let started = d.bytes(1)?[0] != 0;
+            let (v, a, r0) = (d.f64s()?, d.f64s()?, d.f64s()?);
+            let nf = d.len(8)?;
+            let forces0 = (0..nf).map(|_| d.f64s()).collect::<Result<_, _>>()?;
+            Some(DynamicState {
+                started,
+                v,
+                a,
+                r0,
+                forces0,
+                kinetic0: d.f64()?,
+                energy: d.f64s()?,
+            })
+        };
         if d.pos != data.len() {
             return Err(format!(
                 "restart file corrupted: {} trailing bytes",
@@ -341,6 +397,7 @@ impl<const D: usize> RestartFile<D> {
                 points,
                 points_time,
                 couplings,
+                dynamics,
             },
             pvd,
         })
@@ -398,6 +455,15 @@ mod tests {
                 points: vec![vec![], vec![point; 4]],
                 points_time: 0.30000000000000004,
                 couplings: vec![(1, 7), (2, 9)],
+                dynamics: Some(DynamicState {
+                    started: true,
+                    v: vec![0.1 + 0.2, -0.0, 1e-300, 4.0],
+                    a: vec![1.0 / 3.0, 2.0, -7.5, f64::MIN_POSITIVE],
+                    r0: vec![0.5; 4],
+                    forces0: vec![vec![1.0; 4], vec![-2.0; 4], vec![0.0; 4], vec![0.5; 4]],
+                    kinetic0: 0.005,
+                    energy: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0],
+                }),
             },
             pvd: vec![(0.5, "inc_0001.vtu".into()), (1.0, "inc_0002.vtu".into())],
         }
@@ -430,6 +496,7 @@ mod tests {
                 points: c.points.clone(),
                 points_time: c.points_time,
                 couplings: Vec::new(),
+                dynamics: None,
             },
             pvd: s.pvd.clone(),
         };
@@ -439,6 +506,23 @@ mod tests {
         assert!(e.contains("3D run, this model is 2D"), "{e}");
         let e = RestartFile::<3>::decode(&s.encode()).unwrap_err();
         assert!(e.contains("2D run"), "{e}");
+    }
+
+    #[test]
+    fn previous_format_files_are_read_without_dynamic_state_and_older_ones_refused() {
+        let mut s = sample();
+        s.checkpoint.dynamics = None;
+        let mut bytes = s.encode();
+        // the previous format: its magic, no dynamic flag at the end
+        bytes[..8].copy_from_slice(MAGIC_05);
+        bytes.pop();
+        assert_eq!(RestartFile::<2>::decode(&bytes).unwrap(), s);
+        bytes[..8].copy_from_slice(b"CTCRST04");
+        let e = RestartFile::<2>::decode(&bytes).unwrap_err();
+        assert!(
+            e.contains("format CTCRST04") && e.contains("run from the start"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -119,6 +119,7 @@ impl<const D: usize> ModelBuilder<D> {
                 output: OutputRequest::default(),
                 thermal: None,
                 initial_velocities: Vec::new(),
+                discrete: Vec::new(),
             },
         }
     }
@@ -491,6 +492,28 @@ impl<const D: usize> ModelBuilder<D> {
     /// Makes the last step dynamic.
     pub fn dynamic(mut self, dynamic: crate::model::Dynamic) -> Self {
         self.last_step().dynamic = Some(dynamic);
+        self
+    }
+
+    /// A spring of stiffness `k` and a dashpot `c` from each of `nodes` to
+    /// the ground (every component).
+    pub fn ground_spring(mut self, nodes: impl Into<Vec<usize>>, k: f64, c: f64) -> Self {
+        self.model.discrete.push(crate::model::Discrete::Ground {
+            label: "ground spring".into(),
+            nodes: nodes.into(),
+            stiffness: k,
+            damping: c,
+        });
+        self
+    }
+
+    /// A point mass `m` at each of `nodes`.
+    pub fn point_mass(mut self, nodes: impl Into<Vec<usize>>, m: f64) -> Self {
+        self.model.discrete.push(crate::model::Discrete::Mass {
+            label: "point mass".into(),
+            nodes: nodes.into(),
+            mass: m,
+        });
         self
     }
 

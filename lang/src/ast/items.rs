@@ -633,6 +633,35 @@ pub struct InitialVelocity {
     pub span: Span,
 }
 
+/// Which discrete element an item places at each node of its set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiscreteKind {
+    /// `spring NODES { stiffness  damping }`: to the ground.
+    Spring,
+    /// `point_mass NODES { mass }`.
+    PointMass,
+}
+
+/// `spring NODES { .. }` or `point_mass NODES { .. }`: discrete elements at
+/// every node of a set.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiscreteItem {
+    /// Which element.
+    pub kind: DiscreteKind,
+    /// The keyword.
+    pub keyword: Span,
+    /// The nodes.
+    pub target: SetRef,
+    /// `stiffness` (springs).
+    pub stiffness: Option<Spanned<f64>>,
+    /// `damping` (springs: the dashpot).
+    pub damping: Option<Spanned<f64>>,
+    /// `mass` (point masses).
+    pub mass: Option<Spanned<f64>>,
+    /// The whole item.
+    pub span: Span,
+}
+
 /// `step name { .. }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Step {
@@ -682,6 +711,10 @@ pub struct Dynamic {
     pub mass: Option<Spanned<ctc_engine::model::MassMatrix>>,
     /// `contact_mass = redistributed | full`.
     pub contact_mass: Option<Spanned<ctc_engine::model::ContactMass>>,
+    /// `rayleigh_alpha`: mass-proportional damping (1 / time).
+    pub rayleigh_alpha: Option<Spanned<f64>>,
+    /// `rayleigh_beta`: stiffness-proportional damping (time).
+    pub rayleigh_beta: Option<Spanned<f64>>,
     /// The `dynamic` entry.
     pub span: Span,
 }
@@ -718,6 +751,10 @@ pub enum FieldName {
     Reaction,
     /// `contact`.
     Contact,
+    /// `velocity` (dynamic steps).
+    Velocity,
+    /// `acceleration` (dynamic steps).
+    Acceleration,
 }
 
 /// `output { format = .. }`: how VTU files store their arrays.

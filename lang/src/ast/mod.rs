@@ -48,6 +48,8 @@ pub struct Deck {
     pub lets: Vec<Let>,
     /// `initial_velocity` items.
     pub initial_velocities: Vec<InitialVelocity>,
+    /// `spring` and `point_mass` items.
+    pub discrete: Vec<DiscreteItem>,
 }
 
 impl Deck {

@@ -19,6 +19,7 @@
 pub mod analysis;
 pub mod boundaries;
 pub mod contacts;
+pub mod discrete;
 pub mod loads;
 pub mod materials;
 pub mod mesh;
@@ -220,6 +221,7 @@ impl Lowerer<'_> {
             let steps = self.steps();
             let output = self.output(&contacts);
             let initial_velocities = self.initial_velocities();
+            let discrete = self.discrete();
             let (mesh3, body_nodes) = (&self.mesh3, &self.body_nodes);
             let thermal = thermal::lower(
                 self.deck,
@@ -245,6 +247,7 @@ impl Lowerer<'_> {
                 output,
                 thermal,
                 initial_velocities,
+                discrete,
             }));
         }
         let tools = self.tools();
@@ -253,6 +256,7 @@ impl Lowerer<'_> {
         let steps = self.steps();
         let output = self.output(&contacts);
         let initial_velocities = self.initial_velocities();
+        let discrete = self.discrete();
         let (mesh, body_nodes) = (&self.mesh, &self.body_nodes);
         let thermal = thermal::lower(
             self.deck,
@@ -278,6 +282,7 @@ impl Lowerer<'_> {
             output,
             thermal,
             initial_velocities,
+            discrete,
         }))
     }
 }

@@ -43,6 +43,8 @@ impl Lowerer<'_> {
                     ast::FieldName::VonMises => Field::VonMises,
                     ast::FieldName::Reaction => Field::Reaction,
                     ast::FieldName::Contact => Field::Contact,
+                    ast::FieldName::Velocity => Field::Velocity,
+                    ast::FieldName::Acceleration => Field::Acceleration,
                 };
                 if !list.contains(&field) {
                     list.push(field);

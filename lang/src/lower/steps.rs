@@ -83,5 +83,9 @@ fn dynamic(d: &ast::Dynamic) -> Dynamic {
             .contact_mass
             .as_ref()
             .map_or(ContactMass::Redistributed, |m| m.value),
+        rayleigh: ctc_engine::model::Rayleigh {
+            alpha: v(&d.rayleigh_alpha, 0.0),
+            beta: v(&d.rayleigh_beta, 0.0),
+        },
     }
 }

@@ -14,6 +14,7 @@ pub mod analysis;
 pub mod body;
 pub mod boundary;
 pub mod contact;
+pub mod discrete;
 pub mod errors;
 pub mod fields;
 pub mod friction;
@@ -57,13 +58,15 @@ pub const ITEM_KEYWORDS: [&str; 13] = [
 ];
 
 /// Keywords that start a chunk of error recovery besides the items.
-pub const CHUNK_KEYWORDS: [&str; 6] = [
+pub const CHUNK_KEYWORDS: [&str; 8] = [
     "let",
     "include",
     "temperature",
     "heat_flux",
     "convection",
     "initial_velocity",
+    "spring",
+    "point_mass",
 ];
 
 /// Deepest bracket nesting accepted (deeper decks are certainly mistakes,
@@ -224,6 +227,9 @@ fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
         // word as a name): the generic item rule carries it
         _ if parts.keyword_text == velocity::KEYWORD => {
             velocity::parse(parts, diags).map(|x| deck.initial_velocities.push(x))
+        }
+        _ if discrete::KEYWORDS.contains(&parts.keyword_text.as_str()) => {
+            discrete::parse(parts, diags).map(|x| deck.discrete.push(x))
         }
         _ if parts.keyword_text == "traction" => {
             load::parse(parts, LoadKind::Traction, diags).map(|x| deck.loads.push(x))

@@ -10,13 +10,15 @@ use crate::span::Spanned;
 use crate::suggest::did_you_mean;
 
 /// Output field names.
-pub const FIELDS: [(&str, FieldName); 6] = [
+pub const FIELDS: [(&str, FieldName); 8] = [
     ("displacement", FieldName::Displacement),
     ("stress", FieldName::Stress),
     ("strain", FieldName::Strain),
     ("von_mises", FieldName::VonMises),
     ("reaction", FieldName::Reaction),
     ("contact", FieldName::Contact),
+    ("velocity", FieldName::Velocity),
+    ("acceleration", FieldName::Acceleration),
 ];
 
 /// VTU formats.

@@ -83,6 +83,8 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
                 gamma: None,
                 mass: None,
                 contact_mass: None,
+                rayleigh_alpha: None,
+                rayleigh_beta: None,
                 span: e.span,
             })
         }
@@ -132,6 +134,8 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
             ],
             diags,
         ),
+        rayleigh_alpha: d.number("rayleigh_alpha", diags),
+        rayleigh_beta: d.number("rayleigh_beta", diags),
         span: e.span,
     };
     d.finish(diags);

@@ -17,6 +17,7 @@ pub mod analysis;
 pub mod bodies;
 pub mod boundaries;
 pub mod contacts;
+pub mod discrete;
 pub mod loads;
 pub mod materials;
 pub mod output;
@@ -110,6 +111,7 @@ pub fn validate(deck: &Deck, text: &str) -> Vec<Diagnostic> {
     boundaries::check(&mut ctx);
     loads::check(&mut ctx);
     velocity::check(&mut ctx);
+    discrete::check(&mut ctx);
     steps::check(&mut ctx);
     output::check(&mut ctx);
     thermal::check(&mut ctx);

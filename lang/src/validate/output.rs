@@ -1,7 +1,7 @@
 //! Rules of the `output` block.
 
 use super::{sets, Ctx, Need};
-use crate::ast::History;
+use crate::ast::{FieldName, History, Spanned};
 use crate::diagnostics::Diagnostic;
 use crate::suggest::did_you_mean;
 
@@ -25,6 +25,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
     };
     ctx.at_least(&o.every, 1, "every");
     if let Some(fields) = &o.fields {
+        dynamic_fields_need_a_dynamic_step(fields, ctx);
         for (i, f) in fields.value.iter().enumerate() {
             if fields.value[..i].iter().any(|g| g.value == f.value) {
                 ctx.err(Diagnostic::warning(
@@ -73,5 +74,53 @@ pub fn check(ctx: &mut Ctx<'_>) {
                 }
             }
         }
+    }
+}
+
+/// `velocity` and `acceleration` exist only where some step is dynamic (a
+/// quasi-static analysis has no inertia and no velocities).
+pub fn dynamic_fields_need_a_dynamic_step(
+    fields: &Spanned<Vec<Spanned<FieldName>>>,
+    ctx: &mut Ctx<'_>,
+) {
+    if ctx.deck.steps.iter().any(|s| s.dynamic.is_some()) {
+        return;
+    }
+    for f in &fields.value {
+        let name = match f.value {
+            FieldName::Velocity => "velocity",
+            FieldName::Acceleration => "acceleration",
+            _ => continue,
+        };
+        ctx.err(
+            Diagnostic::error(
+                format!("output field `{name}` in a quasi-static analysis"),
+                f.span,
+                "no step is dynamic",
+            )
+            .with_help(
+                "velocities and accelerations belong to dynamic steps: add `dynamic { .. }` to a \
+                 step, or remove the field",
+            ),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    #[test]
+    fn velocity_and_acceleration_need_a_dynamic_step() {
+        let m = messages("output { fields = [displacement, velocity, acceleration] }");
+        assert!(
+            m.contains(&"output field `velocity` in a quasi-static analysis".to_string())
+                && m.contains(
+                    &"output field `acceleration` in a quasi-static analysis".to_string()
+                ),
+            "{m:?}"
+        );
+        let m = messages("output { fields = [velocity] }\nstep d { time = 1 .. 2  dynamic }");
+        assert!(!m.iter().any(|s| s.contains("quasi-static")), "{m:?}");
     }
 }

@@ -152,6 +152,30 @@ pub fn dynamic_parameters_fit_scheme(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
         );
     }
     ctx.must_be_positive(&d.beta, "beta");
+    rayleigh_damping_not_negative(d, ctx);
+}
+
+/// `rayleigh_alpha` and `rayleigh_beta` are `>= 0` (a negative one feeds
+/// energy into the modes it acts on).
+pub fn rayleigh_damping_not_negative(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
+    for (x, key) in [
+        (&d.rayleigh_alpha, "rayleigh_alpha"),
+        (&d.rayleigh_beta, "rayleigh_beta"),
+    ] {
+        if let Some(x) = x.as_ref().filter(|x| x.value < 0.0 || x.value.is_nan()) {
+            ctx.err(
+                Diagnostic::error(
+                    format!("{key} must not be negative"),
+                    x.span,
+                    format!("{key} = {}", num(x.value)),
+                )
+                .with_help(
+                    "negative damping feeds energy into the modes; the damping ratio of a mode \
+                     of circular frequency w is rayleigh_alpha / (2 w) + rayleigh_beta w / 2",
+                ),
+            );
+        }
+    }
 }
 
 /// A dynamic step needs a positive `density` on the material of every body.
@@ -201,6 +225,18 @@ mod tests {
             m.contains(&"rho_inf must lie in [0.5, 1] for hht".to_string()),
             "{m:?}"
         );
+    }
+
+    #[test]
+    fn rayleigh_damping_must_not_be_negative() {
+        let m = messages(
+            "step d { time = 1 .. 2 dynamic { rayleigh_alpha = -0.1  rayleigh_beta = 0.01 } }",
+        );
+        assert!(
+            m.contains(&"rayleigh_alpha must not be negative".to_string()),
+            "{m:?}"
+        );
+        assert!(!m.iter().any(|s| s.contains("rayleigh_beta")), "{m:?}");
     }
 
     #[test]

@@ -17,6 +17,15 @@
 //!   the eigenvalues of the amplification matrix (Chung & Hulbert 1993, J.
 //!   Appl. Mech. 60:371, eqs. 16-20; `Coefficients::spectral`).
 //!
+//! - `rayleigh_damping_decrement`: the same oscillator with Rayleigh
+//!   damping `C = alpha M + beta K_0` (`alpha / (2 omega) = 0.02`, `beta
+//!   omega / 2 = 0.03`: zeta = 0.05), average-acceleration Newmark at `dt =
+//!   T/25, T/50, T/100`: the damping ratio from the logarithmic decrement
+//!   of the peaks `delta = ln(x_n / x_{n+1})`, `zeta = delta / sqrt(4 pi^2
+//!   + delta^2)`, and the damped period against `T / sqrt(1 - zeta^2)`
+//!   (Chopra, Dynamics of Structures, 2012, sections 2.2 and 11.4); the
+//!   energy balance with the damping dissipation (`Energy::damping`).
+//!
 //! ```text
 //!   |>=========================  v0 (uy)        |>[ ]--> vx = 1
 //!   |>=========================                 |>[ ]-->
@@ -27,7 +36,7 @@ use super::error;
 use crate::case::{Check, Quantity};
 use crate::measure::Value;
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
-use ctc_engine::model::{ContactMass, Dynamic, MassMatrix, NewtonSettings, Scheme};
+use ctc_engine::model::{ContactMass, Dynamic, MassMatrix, NewtonSettings, Rayleigh, Scheme};
 use ctc_engine::solve::dynamics::Coefficients;
 use ctc_engine::solve::RunSummary;
 use ctc_engine::testkit::grid::{grid, grid_node};
@@ -87,6 +96,7 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
                 },
                 mass,
                 contact_mass: ContactMass::Redistributed,
+                rayleigh: Rayleigh::default(),
             })
             .newton(newton())
             .build();
@@ -128,10 +138,17 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
     Ok(out)
 }
 
-fn oscillator(level: usize) -> Result<ProgramLevel, String> {
+/// The one-mode oscillator (one quad, the free end moving along x, lumped
+/// mass: `omega^2 = 2`) released with `vx = 1`, `steps_per_period`
+/// increments per undamped period, six periods: the free end's
+/// displacement after every increment (0 first) and the run.
+fn one_mode(
+    steps_per_period: usize,
+    scheme: Scheme,
+    rayleigh: Rayleigh,
+) -> Result<(Vec<f64>, f64, RunSummary), String> {
     let omega = 2f64.sqrt();
     let period = std::f64::consts::TAU / omega;
-    let steps_per_period = 10usize << level;
     let dt = period / steps_per_period as f64;
     let increments = 6 * steps_per_period;
     let model = ModelBuilder::plane_strain()
@@ -147,15 +164,22 @@ fn oscillator(level: usize) -> Result<ProgramLevel, String> {
         .initial_velocity(vec![1, 3], 0, 1.0)
         .step("vibrate", dt * increments as f64, increments)
         .dynamic(Dynamic {
-            scheme: Scheme::GeneralizedAlpha { rho_inf: RHO_INF },
+            scheme,
             mass: MassMatrix::Lumped,
             contact_mass: ContactMass::Redistributed,
+            rayleigh,
         })
         .newton(newton())
         .build();
     let (summary, rec): (RunSummary, Recorder) = solve(&model)?;
     let mut u = vec![0.0];
     u.extend(rec.increments.iter().map(|i| i.displacement[1][0]));
+    Ok((u, dt, summary))
+}
+
+/// Zero crossings upward (fractional increment numbers) and the maxima
+/// (parabola through the three points around each) of `u`.
+pub(crate) fn crossings_and_peaks(u: &[f64]) -> (Vec<f64>, Vec<f64>) {
     let mut crossings = Vec::new();
     for n in 1..u.len() {
         if u[n - 1] < 0.0 && u[n] >= 0.0 {
@@ -170,6 +194,18 @@ fn oscillator(level: usize) -> Result<ProgramLevel, String> {
             peaks.push(b - 0.25 * (a - c) * s);
         }
     }
+    (crossings, peaks)
+}
+
+fn oscillator(level: usize) -> Result<ProgramLevel, String> {
+    let omega = 2f64.sqrt();
+    let period = std::f64::consts::TAU / omega;
+    let (u, dt, summary) = one_mode(
+        10usize << level,
+        Scheme::GeneralizedAlpha { rho_inf: RHO_INF },
+        Rayleigh::default(),
+    )?;
+    let (crossings, peaks) = crossings_and_peaks(&u);
     if crossings.len() < 3 || peaks.len() < 3 {
         return Err(format!(
             "too few cycles: {} crossings, {} peaks",
@@ -201,6 +237,73 @@ fn oscillator(level: usize) -> Result<ProgramLevel, String> {
     Ok(out)
 }
 
+/// Modal damping ratio of the damped oscillator: `alpha / (2 omega)` =
+/// 0.02 and `beta omega / 2` = 0.03.
+const ZETA: f64 = 0.05;
+const DAMPED: &str = "Rayleigh damping ratio from the logarithmic decrement";
+const DAMPED_PERIOD: &str = "damped period T_d = T / sqrt(1 - zeta^2)";
+const DAMPED_BALANCE: &str = "energy balance with damping: max |K + W_int + W_d - K0| / K0";
+
+fn damped(level: usize) -> Result<ProgramLevel, String> {
+    let omega = 2f64.sqrt();
+    let rayleigh = Rayleigh {
+        alpha: 2.0 * omega * 0.02,
+        beta: 2.0 * 0.03 / omega,
+    };
+    let (u, dt, summary) = one_mode(
+        25usize << level,
+        Scheme::Newmark {
+            beta: 0.25,
+            gamma: 0.5,
+        },
+        rayleigh,
+    )?;
+    let (crossings, peaks) = crossings_and_peaks(&u);
+    if crossings.len() < 3 || peaks.len() < 4 {
+        return Err(format!(
+            "too few cycles: {} crossings, {} peaks",
+            crossings.len(),
+            peaks.len()
+        ));
+    }
+    // logarithmic decrement over the cycles (peaks one damped period apart)
+    let n = peaks.len() - 1;
+    let delta = (peaks[0] / peaks[n]).ln() / n as f64;
+    let zeta_h = delta / (4.0 * std::f64::consts::PI.powi(2) + delta * delta).sqrt();
+    let m = crossings.len() - 1;
+    let t_d = (crossings[m] - crossings[0]) / m as f64 * dt;
+    let t_ref = std::f64::consts::TAU / omega / (1.0 - ZETA * ZETA).sqrt();
+    let energies: Vec<_> = summary.increments.iter().filter_map(|i| i.energy).collect();
+    // the initial kinetic energy (no external work: balance = K + W_int +
+    // W_d - K0)
+    let first = energies.first().ok_or("no increment")?;
+    let k_start = first.kinetic + first.internal + first.damping - first.balance;
+    let balance = energies.iter().map(|e| e.balance.abs()).fold(0.0, f64::max) / k_start;
+    let dissipated = energies.last().map_or(0.0, |e| e.damping) / k_start;
+    if dissipated < 0.5 {
+        return Err(format!(
+            "the damping dissipated only {dissipated:.3} of the initial energy"
+        ));
+    }
+    let value = |name, computed: f64, reference: f64| Value {
+        quantity: Quantity::Named(name),
+        reference: Some(reference),
+        computed,
+        error: (computed - reference).abs() / reference.abs(),
+    };
+    let mut out = ProgramLevel {
+        h: dt,
+        values: vec![
+            value(DAMPED, zeta_h, ZETA),
+            value(DAMPED_PERIOD, t_d, t_ref),
+            error(DAMPED_BALANCE, balance),
+        ],
+        ..ProgramLevel::default()
+    };
+    out.add_run(&summary);
+    Ok(out)
+}
+
 /// The registry entries.
 pub fn cases() -> Vec<VerifyCase> {
     vec![
@@ -220,6 +323,25 @@ pub fn cases() -> Vec<VerifyCase> {
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 1,
                 run: cantilever,
+            }),
+        },
+        VerifyCase {
+            name: "rayleigh_damping_decrement",
+            title: "Damped free vibration of one mode with Rayleigh damping (alpha M + beta K, zeta = alpha/(2 w) + beta w/2 = 0.05), average-acceleration Newmark at dt = T/25, T/50, T/100: logarithmic decrement, damped period and energy balance with the damping dissipation",
+            source: "Chopra, Dynamics of Structures (4th ed. 2012), sections 2.2 (logarithmic decrement, T_D = T / sqrt(1 - zeta^2)) and 11.4 (Rayleigh damping)",
+            tags: &["dynamics", "plane_strain"],
+            levels: 3,
+            // measured (levels 0, 1, 2): zeta 1.03e-2, 2.61e-3, 6.55e-4;
+            // period 5.17e-3, 1.30e-3, 3.26e-4 (both rate 2.0); balance
+            // 6e-15, 1.1e-14, 7.3e-14
+            checks: vec![
+                Check::new(Quantity::Named(DAMPED), &[2e-2, 5e-3, 1.5e-3]),
+                Check::new(Quantity::Named(DAMPED_PERIOD), &[1e-2, 3e-3, 1e-3]),
+                Check::new(Quantity::Named(DAMPED_BALANCE), &[1e-10]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 3,
+                run: damped,
             }),
         },
         VerifyCase {

@@ -6,6 +6,7 @@
 
 pub mod cattaneo;
 pub mod contact_3d;
+pub mod discrete;
 pub mod dynamics;
 pub mod fenicsx;
 pub mod follower;
@@ -56,6 +57,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(dynamics::cases());
     v.extend(impact::cases());
     v.extend(thermal_3d::cases());
+    v.extend(discrete::cases());
     v
 }
 

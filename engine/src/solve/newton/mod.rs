@@ -136,8 +136,10 @@ where
     pub(super) dynamics: Option<super::dynamics::Dynamics>,
     /// Inertia part of the residual of the last evaluation, per dof.
     inertia: Vec<f64>,
-    /// `f_int - f_ext - f_follow - f_c` of the last evaluation, per dof.
+    /// `f_int - f_ext - f_follow - f_c + C v` of the last evaluation, per dof.
     r_static: Vec<f64>,
+    /// Rayleigh damping force `C v` of the last evaluation, per dof.
+    damping: Vec<f64>,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -224,6 +226,7 @@ where
                 .then(|| super::dynamics::Dynamics::new(model)),
             inertia: vec![0.0; n_dofs],
             r_static: vec![0.0; n_dofs],
+            damping: vec![0.0; n_dofs],
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -299,8 +302,12 @@ where
         let t0 = self.assembler.committed_time();
         let mut out = Ok(());
         if let Some(d) = s.and_then(|s| s.dynamic) {
+            let assembler = &self.assembler;
             out = dy
                 .build_mass(model, &d)
+                .and_then(|()| {
+                    dy.build_damping(model, &d, || assembler.reference_stiffness(&model.mesh))
+                })
                 .map_err(|e| Failure::new(FailureKind::Element, e));
             if out.is_ok() && !dy.started {
                 external_forces(model, t0, &mut self.f_ext);
@@ -502,6 +509,27 @@ where
                 .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
         self.timings.assembly += mid.elapsed().as_secs_f64();
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
+        // springs to the ground: internal forces k u (their energy is part
+        // of the internal work)
+        for d in &model.discrete {
+            let crate::model::Discrete::Ground {
+                nodes, stiffness, ..
+            } = d
+            else {
+                continue;
+            };
+            for &n in nodes {
+                for c in 0..D {
+                    let g = n * D + c;
+                    self.f_int[g] += stiffness * self.u[n][c];
+                    if let (true, Some(Dof::Free(j))) = (with_tangent, self.dofs.dofs.get(g)) {
+                        if let Some(s) = self.scatter.pattern.find(*j, *j) {
+                            self.values[s] += stiffness;
+                        }
+                    }
+                }
+            }
+        }
         if with_tangent {
             self.stabilization
                 .add_springs(&self.scatter.pattern, &mut self.values);
@@ -509,23 +537,22 @@ where
         let inertia_scale = match &self.dynamics {
             Some(dy) => {
                 if with_tangent {
-                    dy.add_tangent(model, &self.scatter, &mut self.values);
+                    dy.add_tangent(model, &self.dofs, &self.scatter, &mut self.values);
                 }
-                dy.inertia(
-                    model,
-                    self.u.as_flattened(),
-                    self.committed.as_flattened(),
-                    &mut self.inertia,
-                )
+                let (u, u0) = (self.u.as_flattened(), self.committed.as_flattened());
+                let damping = dy.damping_force(model, u, u0, &mut self.damping);
+                dy.inertia(model, u, u0, &mut self.inertia).max(damping)
             }
             None => {
                 self.inertia.fill(0.0);
+                self.damping.fill(0.0);
                 0.0
             }
         };
         let (mut r2, mut load2, mut react2, mut fint2) = (0.0, 0.0, 0.0, 0.0);
         for (g, role) in self.dofs.dofs.iter().enumerate() {
-            let rs = self.f_int[g] - self.f_ext[g] - self.f_follow[g] - self.f_c[g];
+            let rs =
+                self.f_int[g] - self.f_ext[g] - self.f_follow[g] - self.f_c[g] + self.damping[g];
             self.r_static[g] = rs;
             let r = rs + self.inertia[g];
             match *role {

@@ -44,7 +44,7 @@ where
                 self.u.as_flattened(),
                 self.committed.as_flattened(),
                 &self.r_static,
-                [&self.f_int, &ext, &self.f_c],
+                [&self.f_int, &ext, &self.f_c, &self.damping],
             );
         }
         self.committed.copy_from_slice(&self.u);
@@ -73,20 +73,25 @@ where
             points: self.assembler.points().to_vec(),
             points_time: self.assembler.committed_time(),
             couplings,
+            dynamics: self.dynamics.as_ref().map(|d| d.saved()),
         }
     }
 
     /// Makes `cp` the committed (and current) state.
     pub(crate) fn restore(&mut self, cp: &Checkpoint<D>) -> Result<(), String> {
-        if self.dynamics.is_some() && cp.increment > 0 {
-            return Err(
-                "restarting a run with a dynamic step is not supported yet (restart \
-                        points hold no velocities or accelerations)"
-                    .into(),
-            );
-        }
         if cp.displacement.len() != self.u.len() {
             return Err("the restart point does not match the model (nodes or pairs)".into());
+        }
+        if let Some(dy) = self.dynamics.as_mut() {
+            match &cp.dynamics {
+                Some(s) => dy.restore(s)?,
+                None if cp.increment > 0 => {
+                    return Err("the restart point holds no velocities or accelerations (a \
+                                file of the previous format): run from the start"
+                        .into())
+                }
+                None => {}
+            }
         }
         let positions: Vec<[f64; D]> = self
             .model
