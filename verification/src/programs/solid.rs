@@ -238,38 +238,14 @@ fn extruded_patch(_level: usize) -> Result<ProgramLevel, String> {
         .map_err(|e| e.message)?;
         let mesh = sweep::extrude(&base, 1.5, 4, Grading::Geometric { ratio: 0.3 })
             .map_err(|e| e.message)?;
-        let mut b = ModelBuilder::solid()
-            .elastic("steel", E, NU)
-            .body("bar", mesh, "steel");
-        for (set, c) in [
+        let held = [
             ("zmin", 2),
             ("corner_bl", 0),
             ("corner_bl", 1),
             ("bottom", 1),
-        ] {
-            let nodes = b.node_set(&format!("bar.{set}"));
-            b = b.fix(nodes, c);
-        }
-        let top = b.face_set("bar.zmax");
-        let model = b
-            .load(ctc_engine::model::Load::FacetTraction {
-                label: "traction bar.zmax".into(),
-                facets: top,
-                component: 2,
-                value: TimeFunction::Constant(S),
-            })
-            .step("load", 1.0, 1)
-            .build();
-        let (summary, last) = solve(&model)?;
-        let (mut err, mut scale) = (0.0f64, 0.0f64);
-        for (x, u) in model.mesh.nodes.iter().zip(&last.u) {
-            let exact = [-NU * S * x[0] / E, -NU * S * x[1] / E, S * x[2] / E];
-            for c in 0..3 {
-                err = err.max((u[c] - exact[c]).abs());
-                scale = scale.max(exact[c].abs());
-            }
-        }
-        values.push(error(name, err / scale));
+        ];
+        let (summary, model, err) = uniaxial_patch(mesh, &held, "zmax", S)?;
+        values.push(error(name, err));
         out.get_or_insert_with(|| level_of(&summary, &model, 0.0));
     }
     let section = generate(&MeshSpec::Rectangle {
@@ -284,39 +260,54 @@ fn extruded_patch(_level: usize) -> Result<ProgramLevel, String> {
     })
     .map_err(|e| e.message)?;
     let mesh = sweep::revolve(&section, 90.0, 5).map_err(|e| e.message)?;
+    let held = [("start", 1), ("end", 0), ("bottom", 2)];
+    let (_, _, err) = uniaxial_patch(mesh, &held, "top", S)?;
+    values.push(error(
+        "tet4 revolved to the axis max |u - u_exact| / max |u_exact|",
+        err,
+    ));
+    let mut out = out.ok_or("no run")?;
+    out.values = values;
+    Ok(out)
+}
+
+/// The uniaxial patch on the solid `mesh` (body `bar`): the node sets
+/// `held` fixed in their component, the traction `s` along z on the face
+/// set `loaded`; the run, its model and `max |u - u_exact| / max |u_exact|`
+/// for the exact field `u = s / E (-nu x, -nu y, z)`.
+fn uniaxial_patch(
+    mesh: Mesh<3>,
+    held: &[(&str, usize)],
+    loaded: &str,
+    s: f64,
+) -> Result<(RunSummary, Model<3>, f64), String> {
     let mut b = ModelBuilder::solid()
         .elastic("steel", E, NU)
-        .body("rod", mesh, "steel");
-    for (set, c) in [("start", 1), ("end", 0), ("bottom", 2)] {
-        let nodes = b.node_set(&format!("rod.{set}"));
+        .body("bar", mesh, "steel");
+    for &(set, c) in held {
+        let nodes = b.node_set(&format!("bar.{set}"));
         b = b.fix(nodes, c);
     }
-    let top = b.face_set("rod.top");
+    let top = b.face_set(&format!("bar.{loaded}"));
     let model = b
         .load(ctc_engine::model::Load::FacetTraction {
-            label: "traction rod.top".into(),
+            label: format!("traction bar.{loaded}"),
             facets: top,
             component: 2,
-            value: TimeFunction::Constant(S),
+            value: TimeFunction::Constant(s),
         })
         .step("load", 1.0, 1)
         .build();
-    let (_, last) = solve(&model)?;
+    let (summary, last) = solve(&model)?;
     let (mut err, mut scale) = (0.0f64, 0.0f64);
     for (x, u) in model.mesh.nodes.iter().zip(&last.u) {
-        let exact = [-NU * S * x[0] / E, -NU * S * x[1] / E, S * x[2] / E];
+        let exact = [-NU * s * x[0] / E, -NU * s * x[1] / E, s * x[2] / E];
         for c in 0..3 {
             err = err.max((u[c] - exact[c]).abs());
             scale = scale.max(exact[c].abs());
         }
     }
-    values.push(error(
-        "tet4 revolved to the axis max |u - u_exact| / max |u_exact|",
-        err / scale,
-    ));
-    let mut out = out.ok_or("no run")?;
-    out.values = values;
-    Ok(out)
+    Ok((summary, model, err / scale))
 }
 
 /// Lamé's cylinder as a 90 degree sector: the mean radial displacement of
