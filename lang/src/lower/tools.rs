@@ -220,21 +220,18 @@ impl Lowerer<'_> {
     }
 }
 
-/// The CAD tool of an IGES file (relative to the deck file that names it)
-/// and its reference point (the centre of its box): every face of the
-/// file, oriented consistently across shared edges from the first face
-/// (`S_u x S_v` into free space, or the other side with `flip`). Errors
-/// name the file and its line.
-fn cad_tool(
+/// The bytes of a tool's geometry file (`kind`: IGES, STL), its path
+/// relative to the deck file that names it; a file that cannot be read is
+/// a diagnostic at the name.
+fn tool_file(
     file: &ast::Spanned<String>,
-    flip: bool,
+    kind: &str,
     src: &crate::source::Source,
-) -> Result<(std::sync::Arc<ctc_geom::brep::BrepTool>, [f64; 3]), Diagnostic> {
-    use ctc_geom::brep::{BrepOptions, BrepTool};
+) -> Result<Vec<u8>, Diagnostic> {
     let path = src.directory_at(file.span.start).join(&file.value);
-    let text = std::fs::read_to_string(&path).map_err(|e| {
+    std::fs::read(&path).map_err(|e| {
         Diagnostic::error(
-            format!("cannot read IGES file `{}`: {e}", file.value),
+            format!("cannot read {kind} file `{}`: {e}", file.value),
             file.span,
             if e.kind() == std::io::ErrorKind::NotFound {
                 "file not found"
@@ -246,6 +243,27 @@ fn cad_tool(
             "looked for `{}`; paths are relative to the deck's directory",
             path.display()
         ))
+    })
+}
+
+/// The CAD tool of an IGES file (relative to the deck file that names it)
+/// and its reference point (the centre of its box): every face of the
+/// file, oriented consistently across shared edges from the first face
+/// (`S_u x S_v` into free space, or the other side with `flip`). Errors
+/// name the file and its line.
+fn cad_tool(
+    file: &ast::Spanned<String>,
+    flip: bool,
+    src: &crate::source::Source,
+) -> Result<(std::sync::Arc<ctc_geom::brep::BrepTool>, [f64; 3]), Diagnostic> {
+    use ctc_geom::brep::{BrepOptions, BrepTool};
+    let bytes = tool_file(file, "IGES", src)?;
+    let text = String::from_utf8(bytes).map_err(|_| {
+        Diagnostic::error(
+            format!("error in IGES file `{}`: it is not text", file.value),
+            file.span,
+            "in this IGES file",
+        )
     })?;
     let bad = |line: Option<usize>, message: String| {
         let at = line.map_or(String::new(), |l| format!(" (line {l})"));
@@ -290,22 +308,7 @@ fn stl_tool(
     src: &crate::source::Source,
 ) -> Result<(std::sync::Arc<ctc_geom::trimesh::TriMesh>, [f64; 3]), Diagnostic> {
     use ctc_geom::trimesh::{stl, TriMesh};
-    let path = src.directory_at(file.span.start).join(&file.value);
-    let bytes = std::fs::read(&path).map_err(|e| {
-        Diagnostic::error(
-            format!("cannot read STL file `{}`: {e}", file.value),
-            file.span,
-            if e.kind() == std::io::ErrorKind::NotFound {
-                "file not found"
-            } else {
-                "cannot read this file"
-            },
-        )
-        .with_help(format!(
-            "looked for `{}`; paths are relative to the deck's directory",
-            path.display()
-        ))
-    })?;
+    let bytes = tool_file(file, "STL", src)?;
     let bad = |message: String| {
         Diagnostic::error(
             format!("error in STL file `{}`: {message}", file.value),
