@@ -272,17 +272,7 @@ fn stl_sphere_level(level: usize) -> Result<ProgramLevel, String> {
         .ok_or_else(|| format!("stl_sphere_3d has no level {level}"))?;
     let n = HERTZ_DIVISIONS[0];
     let center = Vec3::new(0.0, 0.0, 2.0);
-    let grading = [
-        Grading::Geometric { ratio: 8.0 },
-        Grading::Geometric { ratio: 8.0 },
-        Grading::Geometric { ratio: 0.125 },
-    ];
-    let method = ContactMethod::Penalty {
-        kind: PenaltyKind::Area,
-        stiffness: 1e7,
-    };
-    let exact = Analytic::Sphere(Sphere::new(center, 1.0, Side::Outside).unwrap());
-    let model = block(CellKind::Hex8, n, grading, exact, lowered(D), method, 4)?;
+    let model = sphere_block(n, center)?;
     let triangles = octahedron_sphere(center, 1.0, k);
     let text = stl::write_ascii("sphere", &triangles);
     let corners = stl::read(text.as_bytes()).map_err(|e| e.to_string())?;
@@ -857,9 +847,10 @@ pub fn nurbs_sphere_block(projection: ctc_geom::nurbs::ProjectOptions) -> Result
     Ok(model)
 }
 
-fn cad_sphere_level(_level: usize) -> Result<ProgramLevel, String> {
-    let n = HERTZ_DIVISIONS[0];
-    let center = Vec3::new(0.0, 0.0, 2.0);
+/// The coarsest Hertz block (`n` divisions, graded towards the contact)
+/// pressed by the analytical unit sphere centred at `center` (area penalty
+/// 1e7): the reference of the CAD and STL sphere cases, which swap the tool.
+fn sphere_block(n: usize, center: Vec3) -> Result<Model<3>, String> {
     let grading = [
         Grading::Geometric { ratio: 8.0 },
         Grading::Geometric { ratio: 8.0 },
@@ -870,7 +861,13 @@ fn cad_sphere_level(_level: usize) -> Result<ProgramLevel, String> {
         stiffness: 1e7,
     };
     let exact = Analytic::Sphere(Sphere::new(center, 1.0, Side::Outside).unwrap());
-    let model = block(CellKind::Hex8, n, grading, exact, lowered(D), method, 4)?;
+    block(CellKind::Hex8, n, grading, exact, lowered(D), method, 4)
+}
+
+fn cad_sphere_level(_level: usize) -> Result<ProgramLevel, String> {
+    let n = HERTZ_DIVISIONS[0];
+    let center = Vec3::new(0.0, 0.0, 2.0);
+    let model = sphere_block(n, center)?;
     let mut cad = model.clone();
     cad.surfaces[0].geometry = iges_tool(&[(build::sphere(center, 1.0), None)], 1.0)?;
     let measure = |m: &Model<3>| -> Result<(f64, f64, RunSummary), String> {
