@@ -12,7 +12,7 @@
 use super::kernel::{kernel_of, NonlinearInput};
 use super::{ElementError, ElementMatrix, MaterialPoint, PointState, Section};
 use crate::geom::{Dimension, Point};
-use crate::material::{self, History, LinearElastic, NonlinearLaw};
+use crate::material::{self, Constitutive, History, LinearElastic, NonlinearLaw};
 use crate::mesh::Mesh;
 use crate::model::{Formulation, Kinematics, Model};
 use nalgebra::{Const, SVector};
@@ -125,6 +125,23 @@ pub fn cell_states<const D: usize>(
 where
     Const<D>: Dimension<D>,
 {
+    heated_cell_states(mesh, c, u, section, block, 0.0)
+}
+
+/// [`cell_states`] of a cell carrying the isotropic thermal strain
+/// `thermal_strain` (the one the solver used for the increment): the stress
+/// is `D (eps - eps_th I)`, the strain reported is the total strain.
+pub fn heated_cell_states<const D: usize>(
+    mesh: &Mesh<D>,
+    c: usize,
+    u: &[[f64; D]],
+    section: &Section,
+    block: &CellBlock,
+    thermal_strain: f64,
+) -> Result<Vec<PointState>, ElementError>
+where
+    Const<D>: Dimension<D>,
+{
     let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(wrap(c))?;
     let (x, ue) = cell_input(mesh, c, u);
     if let Some(law) = &block.nonlinear {
@@ -142,7 +159,7 @@ where
                     law,
                     history: &history,
                     dt: 0.0,
-                    thermal_strain: 0.0,
+                    thermal_strain,
                     with_tangent: false,
                 },
                 &mut out,
@@ -151,9 +168,17 @@ where
             .map_err(wrap(c))?;
         return Ok(states.iter().map(|p| p.state).collect());
     }
-    kernel
+    let mut states = kernel
         .linear_states(&x, &ue, section, block.formulation, &block.law)
-        .map_err(wrap(c))
+        .map_err(wrap(c))?;
+    if thermal_strain != 0.0 {
+        let e = thermal_strain;
+        let thermal_stress = block.law.stress(&SVector::from([e, e, e, 0.0, 0.0, 0.0]));
+        for s in &mut states {
+            s.stress -= thermal_stress;
+        }
+    }
+    Ok(states)
 }
 
 /// A material point in the virgin state of `kinematics` (zero stress).
@@ -179,7 +204,7 @@ pub fn nodal_fields<const D: usize>(
 where
     Const<D>: Dimension<D>,
 {
-    nodal_fields_from_points(mesh, blocks, section, u, &[])
+    nodal_fields_from_points(mesh, blocks, section, u, &[], &[])
 }
 
 /// Values packed per point for the recovery: stress, strain, `ep`.
@@ -195,6 +220,7 @@ pub fn nodal_fields_from_points<const D: usize>(
     section: &Section,
     u: &[[f64; D]],
     points: &[Vec<MaterialPoint>],
+    thermal_strain: &[f64],
 ) -> Result<NodalFields, ElementError>
 where
     Const<D>: Dimension<D>,
@@ -218,9 +244,16 @@ where
             };
             match points.get(c).filter(|p| !p.is_empty()) {
                 Some(stored) => stored.iter().for_each(|p| pack(&p.state, p.history.ep)),
-                None => cell_states(mesh, c, u, section, block)?
-                    .iter()
-                    .for_each(|s| pack(s, 0.0)),
+                None => heated_cell_states(
+                    mesh,
+                    c,
+                    u,
+                    section,
+                    block,
+                    thermal_strain.get(c).copied().unwrap_or(0.0),
+                )?
+                .iter()
+                .for_each(|s| pack(s, 0.0)),
             }
             if let Some(acc) = cell_sum.get_mut(c) {
                 // volume weights; equal weights if the volumes are not known
@@ -301,12 +334,15 @@ where
     nodal_fields(&model.mesh, &blocks, &Section::new(&model.analysis), u).map_err(|e| e.message)
 }
 
-/// [`nodal_fields_from_points`] for a whole model and the solver's
-/// converged integration points ([`crate::solve::IncrementView::points`]).
+/// [`nodal_fields_from_points`] for a whole model, the solver's converged
+/// integration points ([`crate::solve::IncrementView::points`]) and the
+/// cells' thermal strains of the increment
+/// ([`crate::solve::IncrementView::thermal_strain`], empty without heat).
 pub fn nodal_fields_of_model_with_points<const D: usize>(
     model: &Model<D>,
     u: &[[f64; D]],
     points: &[Vec<MaterialPoint>],
+    thermal_strain: &[f64],
 ) -> Result<NodalFields, String>
 where
     Const<D>: Dimension<D>,
@@ -318,6 +354,7 @@ where
         &Section::new(&model.analysis),
         u,
         points,
+        thermal_strain,
     )
     .map_err(|e| e.message)
 }

@@ -63,6 +63,8 @@ struct Snapshot<const D: usize> {
     contact: Vec<Vec<NodeContact<D>>>,
     /// Converged integration points of nonlinear bodies (may be empty).
     points: Vec<Vec<crate::element::MaterialPoint>>,
+    /// Thermal strain per cell the increment was solved with (may be empty).
+    thermal_strain: Vec<f64>,
     /// Nodal temperatures (thermal scenes only).
     temperature: Option<Vec<f64>>,
     /// Velocity and acceleration per dof (dynamic models, when requested).
@@ -240,6 +242,7 @@ where
                 model,
                 &snap.displacement,
                 &snap.points,
+                &snap.thermal_strain,
             )?)
         } else {
             None
@@ -332,6 +335,7 @@ where
             reaction: view.reaction.to_vec(),
             contact: view.contact.to_vec(),
             points: view.points.to_vec(),
+            thermal_strain: view.thermal_strain.to_vec(),
             temperature: view.temperature.map(<[f64]>::to_vec),
             velocity: view
                 .velocity

@@ -193,6 +193,12 @@ where
         Ok(())
     }
 
+    /// Isotropic thermal strain of each cell used by the evaluations (empty
+    /// before the first thermal state).
+    pub fn thermal_strains(&self) -> &[f64] {
+        &self.thermal_strain
+    }
+
     /// Norm of the element thermal forces (0 without thermal strains): a
     /// force scale for the relative residual (a freely expanding body has
     /// no load and no reaction).

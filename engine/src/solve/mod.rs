@@ -108,6 +108,10 @@ pub struct IncrementView<'a, const D: usize = 2> {
     /// equivalent plastic strain); empty for small-strain linear elastic
     /// cells.
     pub points: &'a [Vec<crate::element::MaterialPoint>],
+    /// Isotropic thermal strain of each cell this increment was solved with
+    /// (thermal scenes; empty otherwise): the stress of a linear elastic
+    /// cell is `D (eps - eps_th I)`.
+    pub thermal_strain: &'a [f64],
     /// Nodal temperatures (thermal scenes only; 0 at nodes without
     /// temperature).
     pub temperature: Option<&'a [f64]>,
@@ -752,6 +756,12 @@ where
             .thermal
             .as_ref()
             .map(|_| self.newton.material_points().to_vec());
+        // the thermal strains this increment was solved with (the heat step
+        // below sets those of the next increment)
+        let solved_thermal_strain = self
+            .thermal
+            .as_ref()
+            .map(|_| self.newton.thermal_strains().to_vec());
         self.newton.commit();
         self.increment += 1;
         self.health.record(self.model, self.newton.contact(), t);
@@ -781,6 +791,7 @@ where
             contact: self.newton.contact(),
             residuals: &converged.residuals,
             points: self.newton.material_points(),
+            thermal_strain: solved_thermal_strain.as_deref().unwrap_or(&[]),
             temperature: self.thermal.as_ref().map(|t| t.temperature()),
             thermal: self.thermal.as_ref().map(|t| t.last()),
             energy: self.newton.dynamics().map(|d| &d.energy),

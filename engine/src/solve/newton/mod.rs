@@ -373,6 +373,12 @@ where
         self.assembler.points()
     }
 
+    /// Isotropic thermal strain of each cell the next solves use (empty
+    /// without heat).
+    pub fn thermal_strains(&self) -> &[f64] {
+        self.assembler.thermal_strains()
+    }
+
     /// Sets the thermal strains (and temperature-dependent laws) of the
     /// cells for the next increments (`crate::thermal::coupling`).
     pub fn set_thermal_state(
@@ -449,7 +455,9 @@ where
                 y[p.row_idx[k]] += self.values[k].abs() * x;
             }
         }
-        convergence::FLOOR_FACTOR * f64::EPSILON * norm(&y)
+        // the element thermal forces `eps_th f_unit` carry their own
+        // round-off (a fully held heated body has `u = 0` and no other)
+        convergence::FLOOR_FACTOR * f64::EPSILON * (norm(&y) + self.assembler.thermal_scale())
     }
 
     /// Largest penetration over all pairs at the last evaluation.
@@ -1010,8 +1018,12 @@ where
             if criteria.residual_small(ev) && gap_ok {
                 // at the round-off floor the next correction is the response
                 // to round-off: nothing more accurate exists
+                // settled: the correction is small against the displacement
+                // or, for a body that does not move (`u = 0` exactly: a held
+                // heated body), against the model's size
+                let settled = rel_du * u_norm / u_norm.max(self.model_size);
                 if criteria.correction_small(rel_du)
-                    || (ev.at_floor() && !saddle_used && rel_du <= convergence::FLOOR_SETTLED)
+                    || (ev.at_floor() && !saddle_used && settled <= convergence::FLOOR_SETTLED)
                 {
                     converged = true;
                 } else if let Some(next) = self.next_correction_norm(saddle_used) {
