@@ -8,7 +8,7 @@ use ctc_engine::mesh::CellKind;
 use ctc_engine::model::{
     AnalysisKind, ContactMethod, Field, Formulation, Hardening, HistoryRequest, Kinematics,
     LagrangeFormulation, Load, MaterialLaw, Model, MultiplierUpdate, PenaltyKind, TimeFunction,
-    ToolGeometry, ToolSide,
+    ToolGeometry, ToolSide, Viscosity,
 };
 use std::collections::BTreeSet;
 use std::fmt::Write as _;
@@ -655,7 +655,21 @@ fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
                 }
             };
             let visc = match viscosity {
-                Some(eta) => format!(", Perzyna viscosity eta = {}", num(*eta)),
+                Some(Viscosity::Perzyna { eta }) => {
+                    format!(", Perzyna viscosity eta = {}", num(*eta))
+                }
+                Some(Viscosity::PerzynaPower { rate, exponent }) => format!(
+                    ", Perzyna power law d(ep)/dt = {} (q / sigma_y - 1)^{}",
+                    num(*rate),
+                    num(*exponent)
+                ),
+                Some(Viscosity::NortonHoff { stress, rate, m }) => format!(
+                    ", Norton-Hoff q = sigma_y + {} (d(ep)/dt / {})^{} (K = {})",
+                    num(*stress),
+                    num(*rate),
+                    num(*m),
+                    num(*stress / (3f64.sqrt() * (3f64.sqrt() * rate).powf(*m)))
+                ),
                 None => String::new(),
             };
             format!(

@@ -108,14 +108,58 @@ pub static VOCE_HARDENING: [Key; 2] = [
         .dim(Dim::None),
 ];
 
-/// `viscoplastic { eta }` (Perzyna).
-pub static VISCOPLASTIC: [Key; 1] = [Key::new("eta", KeyType::Number, "Perzyna viscosity")
-    .required("add the Perzyna viscosity `eta = ..` (stress x time)")
+/// `viscoplastic { eta }` or `viscoplastic { rate exponent }` (Perzyna).
+pub static VISCOPLASTIC: [Key; 3] = [
+    Key::new(
+        "eta",
+        KeyType::Number,
+        "Perzyna viscosity, linear over-stress: q - sigma_y = eta d(ep)/dt",
+    )
     .range(Range::Positive)
-    .dim(Dim::Viscosity)];
+    .dim(Dim::Viscosity),
+    Key::new(
+        "rate",
+        KeyType::Number,
+        "reference rate of the power over-stress d(ep)/dt = rate (q / sigma_y - 1)^exponent \
+         (instead of eta, with `exponent`)",
+    )
+    .range(Range::Positive)
+    .dim(Dim::Frequency),
+    Key::new(
+        "exponent",
+        KeyType::Number,
+        "rate exponent N of the power over-stress (with `rate`)",
+    )
+    .range(Range::Positive)
+    .dim(Dim::None),
+];
+
+/// `norton_hoff { stress rate m }`.
+pub static NORTON_HOFF: [Key; 3] = [
+    Key::new(
+        "stress",
+        KeyType::Number,
+        "flow stress at the reference rate: q = sigma_y(ep) + stress (d(ep)/dt / rate)^m",
+    )
+    .required("add the flow stress at the reference rate `stress = ..`")
+    .range(Range::Positive)
+    .dim(Dim::Stress),
+    Key::new("rate", KeyType::Number, "reference equivalent strain rate")
+        .required("add the reference strain rate `rate = ..` (1 / time)")
+        .range(Range::Positive)
+        .dim(Dim::Frequency),
+    Key::new(
+        "m",
+        KeyType::Number,
+        "strain-rate sensitivity, in (0, 1] (superplastic: about 0.5)",
+    )
+    .required("add the strain-rate sensitivity `m = ..`")
+    .range(Range::Closed(0.0, 1.0))
+    .dim(Dim::None),
+];
 
 /// `material NAME { .. }`.
-pub static MATERIAL: [Key; 6] = [
+pub static MATERIAL: [Key; 7] = [
     Key::new(
         "elastic",
         KeyType::Choice(&["{ E nu }"]),
@@ -133,8 +177,13 @@ pub static MATERIAL: [Key; 6] = [
     ),
     Key::new(
         "viscoplastic",
-        KeyType::Choice(&["{ eta }"]),
+        KeyType::Choice(&["{ eta }", "{ rate exponent }"]),
         "Perzyna viscoplasticity (with `plastic`)",
+    ),
+    Key::new(
+        "norton_hoff",
+        KeyType::Choice(&["{ stress rate m }"]),
+        "Norton-Hoff viscoplasticity (the superplastic law; with or without `plastic`)",
     ),
     Key::new(
         "thermal",
@@ -906,6 +955,7 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("material.plastic.hardening = swift", &SWIFT_HARDENING),
     ("material.plastic.hardening = voce", &VOCE_HARDENING),
     ("material.viscoplastic", &VISCOPLASTIC),
+    ("material.norton_hoff", &NORTON_HOFF),
     ("material.thermal", &MATERIAL_THERMAL),
     ("body", &BODY),
     ("body.thermal", &BODY_THERMAL),

@@ -35,6 +35,7 @@ decks!(
     unknown_body_in_set,
     young_not_positive,
     poisson_half,
+    rate_laws,
     negative_thickness,
     zero_divisions,
     empty_time_range,

@@ -40,3 +40,36 @@ fn perzyna_rates_relaxation_and_solver_match_closed_forms_first_order_in_dt() {
     let level = report.levels.last().expect("a level");
     assert_eq!(level.values.len(), 7, "{:#?}", level.values);
 }
+
+/// Norton-Hoff (m = 1/2, no static yield) and the Perzyna power law (N =
+/// 2): the `tanh` closed forms of constant-rate loading at a material
+/// point, and the Kirchhoff stress of a finite-strain axisymmetric quad
+/// compressed at a constant logarithmic rate through the solver; first
+/// order in dt. Scene, references and tolerances:
+/// `verification/src/programs/norton_hoff.rs`.
+///
+/// ```text
+///   s                 ______________ s_ss = sigma0 (r / r0)^m
+///   |            ____/
+///   |        _-'     s(t) = s_ss tanh(M r t / s_ss)
+///   +-----+----------------------------> t
+/// ```
+#[test]
+fn norton_hoff_and_perzyna_power_match_the_tanh_closed_forms_first_order_in_dt() {
+    let report = registry::run_passing("norton_hoff_rate");
+    for l in &report.levels {
+        for v in &l.values {
+            println!("level {}: {} = {:.3e}", l.level, v.quantity, v.error);
+        }
+    }
+    let judged: Vec<_> = report
+        .rates
+        .iter()
+        .filter(|r| r.min_rate.is_some())
+        .collect();
+    assert_eq!(judged.len(), 5, "{:#?}", report.rates);
+    for r in judged {
+        println!("{}: observed rate {:?}", r.quantity, r.rate);
+        assert!(r.passed);
+    }
+}

@@ -14,7 +14,7 @@
 
 use super::dual::Scalar;
 use super::tensor::{deviator, norm2, trace, Sym};
-use crate::model::Hardening;
+use crate::model::{Hardening, Viscosity};
 
 /// Elastic constants of the return mapping.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -63,22 +63,26 @@ pub struct Returned<T> {
     pub dgamma: f64,
 }
 
-/// Local Newton iterations of the return mapping.
-const MAX_LOCAL: usize = 60;
+/// Local iterations of the return mapping (Newton, bisection where Newton
+/// leaves the bracket).
+const MAX_LOCAL: usize = 200;
 
 /// Radial return from the trial elastic strain `e_tr` with equivalent
 /// plastic strain `ep_n` at the start of the increment. `viscosity =
-/// Some((eta, dt))` gives Perzyna visco-plasticity with a linear over-stress
-/// law, `d ep / dt = <q - sigma_y(ep)> / eta`, integrated by backward Euler
-/// over the time increment `dt` (consistency becomes
-/// `q - 3 G dgamma - sigma_y(ep_n + dgamma) = eta dgamma / dt`); `None` is
-/// rate independent.
+/// Some((law, dt))` makes the flow rate dependent ([`Viscosity`]): the
+/// von Mises stress during flow is `q = sigma_y(ep) + over(ep, r)` at the
+/// rate `r = dgamma / dt`, integrated by backward Euler over the time
+/// increment `dt` (consistency becomes `q_trial - 3 G dgamma -
+/// sigma_y(ep_n + dgamma) - over(ep_n + dgamma, dgamma / dt) = 0`); `None`
+/// is rate independent. The consistency equation is solved by Newton kept
+/// inside the bracket `0 < dgamma < q_trial / 3G` (bisection where Newton
+/// leaves it: a rate sensitivity below 1 has an infinite slope at 0).
 pub fn radial_return<T: Scalar>(
     elastic: &Elastic,
     hardening: &Hardening,
     e_tr: &Sym<T>,
     ep_n: f64,
-    viscosity: Option<(f64, f64)>,
+    viscosity: Option<(Viscosity, f64)>,
 ) -> Result<Returned<T>, String> {
     let g = elastic.shear;
     let tr = trace(e_tr);
@@ -103,21 +107,51 @@ pub fn radial_return<T: Scalar>(
         });
     }
     let qv = q.re();
-    // residual r(dg) = q - 3 G dg - sigma_y(ep_n + dg) - eta/dt dg (Perzyna, linear)
-    let visc = viscosity.map_or(0.0, |(eta, dt)| eta / dt);
-    let resid = |dg: f64| qv - 3.0 * g * dg - hardening.flow_stress(ep_n + dg) - visc * dg;
-    let slope = |dg: f64| 3.0 * g + hardening.slope(ep_n + dg) + visc;
-    let mut dg = 0.0;
+    // over-stress and its derivative in dgamma
+    let over = |dg: f64| -> (f64, f64) {
+        match viscosity {
+            None => (0.0, 0.0),
+            Some((Viscosity::Perzyna { eta }, dt)) => (eta * dg / dt, eta / dt),
+            Some((Viscosity::PerzynaPower { rate, exponent }, dt)) => {
+                let x = dg / (dt * rate);
+                let a = 1.0 / exponent;
+                let (sy, h) = (hardening.flow_stress(ep_n + dg), hardening.slope(ep_n + dg));
+                let xa = x.powf(a);
+                (sy * xa, h * xa + sy * a * x.powf(a - 1.0) / (dt * rate))
+            }
+            Some((Viscosity::NortonHoff { stress, rate, m }, dt)) => {
+                let x = dg / (dt * rate);
+                (
+                    stress * x.powf(m),
+                    stress * m * x.powf(m - 1.0) / (dt * rate),
+                )
+            }
+        }
+    };
+    let resid = |dg: f64| qv - 3.0 * g * dg - hardening.flow_stress(ep_n + dg) - over(dg).0;
+    let slope = |dg: f64| 3.0 * g + hardening.slope(ep_n + dg) + over(dg).1;
+    // the residual's scale: the static flow stress, or the trial stress of
+    // a law without one (pure Norton-Hoff)
+    let scale = if sy0 > 0.0 { sy0 } else { qv };
+    let (mut lo, mut hi): (f64, f64) = (0.0, qv / (3.0 * g));
+    let mut dg: f64 = 0.0;
     let mut converged = false;
     for _ in 0..MAX_LOCAL {
         let r = resid(dg);
-        let mut next = dg + r / slope(dg);
-        if next <= 0.0 {
-            next = 0.5 * dg;
+        if r > 0.0 {
+            lo = lo.max(dg);
+        } else {
+            hi = hi.min(dg);
         }
+        let newton = dg + r / slope(dg);
+        let next = if newton.is_finite() && newton > lo && newton < hi {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
         let step = (next - dg).abs();
         dg = next;
-        if step <= 1e-14 * dg.max(1e-300) || resid(dg).abs() <= 1e-13 * sy0 {
+        if step <= 1e-14 * dg.max(1e-300) || resid(dg).abs() <= 1e-13 * scale {
             converged = true;
             break;
         }
@@ -128,8 +162,10 @@ pub fn radial_return<T: Scalar>(
              stress {sy0:e})"
         ));
     }
+    let visc_total = |dg: f64| over(dg).0;
     // one Newton correction in T: exact derivatives (implicit function theorem)
-    let dg_t = (q - (3.0 * g * dg + hardening.flow_stress(ep_n + dg) + visc * dg)) / slope(dg) + dg;
+    let dg_t =
+        (q - (3.0 * g * dg + hardening.flow_stress(ep_n + dg) + visc_total(dg))) / slope(dg) + dg;
     let factor = -(dg_t * (3.0 * g)) / q + 1.0;
     let p = tr * elastic.bulk;
     let g2 = 2.0 * g;

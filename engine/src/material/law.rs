@@ -21,7 +21,7 @@
 use super::dual::Scalar;
 use super::j2::{radial_return, Elastic};
 use super::tensor::{constant, exp, log, values, Deformation, Sym};
-use crate::model::{AnalysisKind, Hardening, Kinematics, Material, MaterialLaw};
+use crate::model::{AnalysisKind, Hardening, Kinematics, Material, MaterialLaw, Viscosity};
 
 /// Internal variables of one integration point.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -68,8 +68,8 @@ pub enum NonlinearLaw {
         elastic: Elastic,
         /// Flow stress.
         hardening: Hardening,
-        /// Perzyna viscosity `eta` (stress x time), `None`: rate independent.
-        viscosity: Option<f64>,
+        /// Rate dependence of the flow, `None`: rate independent.
+        viscosity: Option<Viscosity>,
     },
 }
 
@@ -135,11 +135,18 @@ impl NonlinearLaw {
                 viscosity,
             } => {
                 young_poisson_check(young, poisson).map_err(err)?;
-                hardening.check().map_err(err)?;
-                if let Some(eta) = viscosity {
-                    if !(eta.is_finite() && eta > 0.0) {
-                        return Err(err(format!("the viscosity eta must be > 0 (got {eta})")));
-                    }
+                // pure Norton-Hoff: no static yield stress (sigma_y = 0)
+                let pure_norton_hoff = matches!(viscosity, Some(Viscosity::NortonHoff { .. }))
+                    && hardening
+                        == (Hardening::Linear {
+                            yield_stress: 0.0,
+                            modulus: 0.0,
+                        });
+                if !pure_norton_hoff {
+                    hardening.check().map_err(err)?;
+                }
+                if let Some(v) = viscosity {
+                    v.check().map_err(err)?;
                 }
                 NonlinearLaw::J2 {
                     elastic: Elastic::from_young(young, poisson),

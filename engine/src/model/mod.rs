@@ -195,10 +195,74 @@ pub enum MaterialLaw {
         poisson: f64,
         /// Flow stress as a function of the equivalent plastic strain.
         hardening: Hardening,
-        /// Perzyna viscosity `eta` (stress x time): `d ep / dt =
-        /// <q - sigma_y(ep)> / eta`; `None` is rate-independent plasticity.
-        viscosity: Option<f64>,
+        /// Rate dependence of the flow (Perzyna or Norton-Hoff); `None` is
+        /// rate-independent plasticity.
+        viscosity: Option<Viscosity>,
     },
+}
+
+/// Rate dependence of J2 flow: the von Mises stress during plastic flow at
+/// the equivalent plastic strain rate `r = d ep / dt` is
+/// `q = sigma_y(ep) + over(ep, r)`, integrated by backward Euler
+/// (`crate::material::j2::radial_return`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Viscosity {
+    /// Perzyna with a linear over-stress: `q - sigma_y(ep) = eta r`
+    /// (`r = <q - sigma_y> / eta`).
+    Perzyna {
+        /// Viscosity `eta` (stress x time), > 0.
+        eta: f64,
+    },
+    /// Perzyna with a power over-stress relative to the flow stress:
+    /// `r = rate <q / sigma_y(ep) - 1>^exponent`, i.e.
+    /// `q = sigma_y(ep) (1 + (r / rate)^(1 / exponent))`.
+    PerzynaPower {
+        /// Reference rate `rate` (1 / time), > 0.
+        rate: f64,
+        /// Rate exponent `N`, > 0 (1: over-stress linear in the rate).
+        exponent: f64,
+    },
+    /// Norton-Hoff (the superplastic law): `q = sigma_y(ep) + stress (r /
+    /// rate)^m`; with no static yield (`sigma_y = 0`) this is `q = sqrt(3) K
+    /// (sqrt(3) r)^m` with `K = stress / (sqrt(3) (sqrt(3) rate)^m)`.
+    NortonHoff {
+        /// Flow stress `stress` at the reference rate, > 0.
+        stress: f64,
+        /// Reference rate `rate` (1 / time), > 0.
+        rate: f64,
+        /// Strain-rate sensitivity `m`, in (0, 1].
+        m: f64,
+    },
+}
+
+impl Viscosity {
+    /// Checks the parameters; explains what is wrong.
+    pub fn check(&self) -> Result<(), String> {
+        let pos = |v: f64, what: &str| {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(format!("{what} must be > 0 (got {v})"))
+            }
+        };
+        match *self {
+            Viscosity::Perzyna { eta } => pos(eta, "the viscosity eta"),
+            Viscosity::PerzynaPower { rate, exponent } => {
+                pos(rate, "the Perzyna reference rate")?;
+                pos(exponent, "the Perzyna exponent")
+            }
+            Viscosity::NortonHoff { stress, rate, m } => {
+                pos(stress, "the Norton-Hoff stress")?;
+                pos(rate, "the Norton-Hoff reference rate")?;
+                if !(m.is_finite() && m > 0.0 && m <= 1.0) {
+                    return Err(format!(
+                        "the Norton-Hoff rate sensitivity m must be in (0, 1] (got {m})"
+                    ));
+                }
+                Ok(())
+            }
+        }
+    }
 }
 
 impl MaterialLaw {

@@ -1,10 +1,11 @@
 //! The nonlinear material laws the kernel property tests sweep: one
 //! representative of every law (Neo-Hooke, Hencky, J2 with linear, Swift
-//! and Voce hardening, Perzyna), steel-like constants in MPa.
+//! and Voce hardening, Perzyna linear and power, Norton-Hoff with and without
+//! static yield), steel-like constants in MPa.
 
 use crate::material::j2::Elastic;
 use crate::material::NonlinearLaw;
-use crate::model::Hardening;
+use crate::model::{Hardening, Viscosity};
 
 /// Every nonlinear law with its name, as the tangent, rigid-mode and
 /// symmetry property tests iterate over them.
@@ -63,7 +64,49 @@ pub fn nonlinear_laws() -> Vec<(&'static str, NonlinearLaw)> {
                     yield_stress: 250.0,
                     modulus: 1000.0,
                 },
-                Some(2000.0),
+                Some(Viscosity::Perzyna { eta: 2000.0 }),
+            ),
+        ),
+        (
+            "perzyna_power",
+            j2(
+                Hardening::Linear {
+                    yield_stress: 250.0,
+                    modulus: 1000.0,
+                },
+                Some(Viscosity::PerzynaPower {
+                    rate: 0.5,
+                    exponent: 3.0,
+                }),
+            ),
+        ),
+        (
+            "norton_hoff",
+            j2(
+                Hardening::Linear {
+                    yield_stress: 0.0,
+                    modulus: 0.0,
+                },
+                Some(Viscosity::NortonHoff {
+                    stress: 50.0,
+                    rate: 1e-3,
+                    m: 0.5,
+                }),
+            ),
+        ),
+        (
+            "norton_hoff_yield",
+            j2(
+                Hardening::Swift {
+                    k: 500.0,
+                    eps0: 0.01,
+                    n: 0.2,
+                },
+                Some(Viscosity::NortonHoff {
+                    stress: 80.0,
+                    rate: 1.0,
+                    m: 0.3,
+                }),
             ),
         ),
     ]

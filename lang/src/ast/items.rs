@@ -60,8 +60,10 @@ pub struct Material {
     pub neo_hookean: Option<Elastic>,
     /// `plastic { yield = ..  hardening = .. }`.
     pub plastic: Option<Plastic>,
-    /// `viscoplastic { eta = .. }`.
+    /// `viscoplastic { eta = .. }` or `viscoplastic { rate = ..  exponent = .. }`.
     pub viscoplastic: Option<Viscoplastic>,
+    /// `norton_hoff { stress = ..  rate = ..  m = .. }`.
+    pub norton_hoff: Option<NortonHoff>,
     /// Reserved blocks present, by key.
     pub reserved: Vec<Ident>,
     /// The whole item.
@@ -120,11 +122,30 @@ pub enum Hardening {
     },
 }
 
-/// `viscoplastic { eta = .. }` (Perzyna).
+/// `viscoplastic { eta = .. }` (Perzyna, linear over-stress) or
+/// `viscoplastic { rate = ..  exponent = .. }` (Perzyna, power over-stress).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Viscoplastic {
     /// `eta`: viscosity (stress x time).
     pub eta: Option<Spanned<f64>>,
+    /// `rate`: reference rate of the power law (1 / time).
+    pub rate: Option<Spanned<f64>>,
+    /// `exponent`: rate exponent `N` of the power law.
+    pub exponent: Option<Spanned<f64>>,
+    /// The block.
+    pub span: Span,
+}
+
+/// `norton_hoff { stress = ..  rate = ..  m = .. }`: `q = sigma_y(ep) +
+/// stress (r / rate)^m` (`sigma_y = 0` without a `plastic` block).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NortonHoff {
+    /// `stress`: flow stress at the reference rate.
+    pub stress: Option<Spanned<f64>>,
+    /// `rate`: reference equivalent strain rate (1 / time).
+    pub rate: Option<Spanned<f64>>,
+    /// `m`: strain-rate sensitivity, in (0, 1].
+    pub m: Option<Spanned<f64>>,
     /// The block.
     pub span: Span,
 }

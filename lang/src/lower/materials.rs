@@ -109,8 +109,15 @@ impl Lowerer<'_> {
         let (young, poisson) = (young.value, poisson.value);
         let law = if def.neo_hookean.is_some() {
             MaterialLaw::NeoHookean { young, poisson }
-        } else if let Some(p) = &def.plastic {
+        } else if def.plastic.is_some() || def.norton_hoff.is_some() {
             let v = |x: &Option<crate::span::Spanned<f64>>| x.as_ref().map(|x| x.value);
+            let none = ast::Plastic {
+                yield_stress: Some(crate::span::Spanned::new(0.0, def.name.span)),
+                hardening: None,
+                span: def.name.span,
+            };
+            // pure Norton-Hoff: no static yield stress
+            let p = def.plastic.as_ref().unwrap_or(&none);
             let yield_stress = v(&p.yield_stress);
             let hardening = match p.hardening.as_ref().map(|h| &h.value) {
                 None => m::Hardening::Linear {
@@ -136,7 +143,21 @@ impl Lowerer<'_> {
                 young,
                 poisson,
                 hardening,
-                viscosity: def.viscoplastic.as_ref().and_then(|vp| v(&vp.eta)),
+                viscosity: match (&def.norton_hoff, &def.viscoplastic) {
+                    (Some(n), _) => Some(m::Viscosity::NortonHoff {
+                        stress: v(&n.stress)?,
+                        rate: v(&n.rate)?,
+                        m: v(&n.m)?,
+                    }),
+                    (None, Some(vp)) => Some(match v(&vp.eta) {
+                        Some(eta) => m::Viscosity::Perzyna { eta },
+                        None => m::Viscosity::PerzynaPower {
+                            rate: v(&vp.rate)?,
+                            exponent: v(&vp.exponent)?,
+                        },
+                    }),
+                    (None, None) => None,
+                },
             }
         } else {
             MaterialLaw::LinearElastic { young, poisson }

@@ -316,7 +316,7 @@ mod tests {
                     eps0: 0.01,
                     n: 0.2
                 },
-                viscosity: Some(7.0),
+                viscosity: Some(m::Viscosity::Perzyna { eta: 7.0 }),
             }
         );
         assert_eq!(
@@ -324,6 +324,50 @@ mod tests {
             MaterialLaw::NeoHookean {
                 young: 10.0,
                 poisson: 0.45
+            }
+        );
+    }
+
+    #[test]
+    fn norton_hoff_and_the_perzyna_power_law_lower_to_the_model() {
+        let text = "analysis { dimension = axisymmetric }\n\
+            material sp { elastic { E = 80e3 nu = 0.3 } norton_hoff { stress = 40 rate = 1e-3 m = 0.5 } }\n\
+            material pp { elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 }\n\
+              viscoplastic { rate = 0.01 exponent = 3 } }\n\
+            body b { mesh = rectangle { origin = (0, 0) size = (1, 1) divisions = (2, 2) } material = sp kinematics = finite }\n\
+            body d { mesh = rectangle { origin = (0, 4) size = (1, 1) divisions = (2, 2) } material = pp }\n\
+            fix b.bottom { ux uy }\nfix d.bottom { ux uy }\n\
+            step s { time = 0 .. 1 }\n";
+        let model = crate::compile(&crate::Source::new("t.ctc", text)).unwrap();
+        assert_eq!(
+            model.materials[model.bodies[0].material].law,
+            MaterialLaw::ElastoPlastic {
+                young: 80e3,
+                poisson: 0.3,
+                hardening: m::Hardening::Linear {
+                    yield_stress: 0.0,
+                    modulus: 0.0
+                },
+                viscosity: Some(m::Viscosity::NortonHoff {
+                    stress: 40.0,
+                    rate: 1e-3,
+                    m: 0.5
+                }),
+            }
+        );
+        assert_eq!(
+            model.materials[model.bodies[1].material].law,
+            MaterialLaw::ElastoPlastic {
+                young: 200e3,
+                poisson: 0.3,
+                hardening: m::Hardening::Linear {
+                    yield_stress: 250.0,
+                    modulus: 0.0
+                },
+                viscosity: Some(m::Viscosity::PerzynaPower {
+                    rate: 0.01,
+                    exponent: 3.0
+                }),
             }
         );
     }

@@ -10,7 +10,7 @@ use super::fields::Fields;
 use super::values::Diags;
 use super::ItemParts;
 use crate::ast::syntax::{Block, Value, ValueKind};
-use crate::ast::{Elastic, Hardening, Material, Plastic, Viscoplastic};
+use crate::ast::{Elastic, Hardening, Material, NortonHoff, Plastic, Viscoplastic};
 use crate::diagnostics::Diagnostic;
 use crate::span::{Ident, Spanned};
 use crate::suggest::did_you_mean;
@@ -211,15 +211,46 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
     let viscoplastic = f.block("viscoplastic", diags).map(|b| {
         let mut p = Fields::keyed(b, "`viscoplastic` block", &crate::tables::VISCOPLASTIC);
         let eta = p.number("eta", diags);
-        p.require(
-            &eta,
-            "eta",
-            b.span,
-            "add the Perzyna viscosity `eta = ..` (stress x time)",
-            diags,
-        );
+        let rate = p.number("rate", diags);
+        let exponent = p.number("exponent", diags);
+        if rate.is_none() && exponent.is_none() {
+            p.require(
+                &eta,
+                "eta",
+                b.span,
+                "add the Perzyna viscosity `eta = ..` (stress x time), or `rate = ..  \
+                 exponent = ..` for the power law",
+                diags,
+            );
+        }
         p.finish(diags);
-        Viscoplastic { eta, span: b.span }
+        Viscoplastic {
+            eta,
+            rate,
+            exponent,
+            span: b.span,
+        }
+    });
+    let norton_hoff = f.block("norton_hoff", diags).map(|b| {
+        let mut p = Fields::keyed(b, "`norton_hoff` block", &crate::tables::NORTON_HOFF);
+        let stress = p.number("stress", diags);
+        let rate = p.number("rate", diags);
+        let m = p.number("m", diags);
+        for (found, key) in [(&stress, "stress"), (&rate, "rate"), (&m, "m")] {
+            let help = crate::tables::NORTON_HOFF
+                .iter()
+                .find(|k| k.name == key)
+                .and_then(|k| k.required)
+                .unwrap_or("add it");
+            p.require(found, key, b.span, help, diags);
+        }
+        p.finish(diags);
+        NortonHoff {
+            stress,
+            rate,
+            m,
+            span: b.span,
+        }
     });
     let density = f.number("density", diags);
     let thermal = f
@@ -246,6 +277,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Material> {
         neo_hookean,
         plastic,
         viscoplastic,
+        norton_hoff,
         reserved,
         span: item.span,
         thermal,

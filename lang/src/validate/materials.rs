@@ -2,7 +2,7 @@
 //! hardening parameters, and whether a material is used.
 
 use super::Ctx;
-use crate::ast::{num, Hardening, Material};
+use crate::ast::{num, Hardening, Material, NortonHoff, Viscoplastic};
 use crate::diagnostics::Diagnostic;
 
 /// Checks every material.
@@ -16,7 +16,16 @@ pub fn check(ctx: &mut Ctx<'_>) {
         viscoplastic_needs_plastic(m, ctx);
         if let Some(v) = &m.viscoplastic {
             ctx.must_be_positive(&v.eta, "the viscosity eta");
+            ctx.must_be_positive(&v.rate, "the Perzyna reference rate");
+            ctx.must_be_positive(&v.exponent, "the Perzyna exponent");
+            perzyna_is_linear_or_power(v, ctx);
         }
+        if let Some(n) = &m.norton_hoff {
+            ctx.must_be_positive(&n.stress, "the Norton-Hoff stress");
+            ctx.must_be_positive(&n.rate, "the Norton-Hoff reference rate");
+            norton_hoff_m_in_range(n, ctx);
+        }
+        one_rate_law(m, ctx);
         yield_stress_fits_hardening(m, ctx);
         hardening_in_range(m, ctx);
         density_not_negative(m, ctx);
@@ -87,6 +96,82 @@ pub fn no_plasticity_on_neo_hookean(m: &Material, ctx: &mut Ctx<'_>) {
             .with_help(
                 "use `elastic { .. }` with `plastic { .. }` (Hencky elasticity at finite strain)",
             ),
+        );
+    }
+}
+
+/// A `viscoplastic` block is either the linear law (`eta`) or the power
+/// law (`rate` and `exponent` together).
+pub fn perzyna_is_linear_or_power(v: &Viscoplastic, ctx: &mut Ctx<'_>) {
+    match (&v.eta, &v.rate, &v.exponent) {
+        (Some(eta), Some(_), _) | (Some(eta), _, Some(_)) => ctx.err(
+            Diagnostic::error(
+                "`eta` and the power law's `rate` / `exponent` exclude each other",
+                eta.span,
+                "linear law",
+            )
+            .with_help("keep `eta` (linear over-stress) or `rate` and `exponent` (power law)"),
+        ),
+        (None, Some(r), None) => ctx.err(
+            Diagnostic::error(
+                "the power law needs its `exponent`",
+                r.span,
+                "no `exponent`",
+            )
+            .with_help("add `exponent = ..` (1: over-stress linear in the rate)"),
+        ),
+        (None, None, Some(e)) => ctx.err(
+            Diagnostic::error(
+                "the power law needs its reference `rate`",
+                e.span,
+                "no `rate`",
+            )
+            .with_help("add `rate = ..` (1 / time)"),
+        ),
+        _ => {}
+    }
+}
+
+/// The Norton-Hoff rate sensitivity `m` is in (0, 1].
+pub fn norton_hoff_m_in_range(n: &NortonHoff, ctx: &mut Ctx<'_>) {
+    if let Some(m) = n.m.as_ref().filter(|m| !(m.value > 0.0 && m.value <= 1.0)) {
+        ctx.err(
+            Diagnostic::error(
+                "the Norton-Hoff rate sensitivity m must be in (0, 1]",
+                m.span,
+                format!("m = {}", num(m.value)),
+            )
+            .with_help(
+                "superplastic alloys have m of about 0.3 to 0.8; m = 1 is a Newtonian fluid",
+            ),
+        );
+    }
+}
+
+/// One rate law per material: `norton_hoff` and `viscoplastic` exclude
+/// each other, and Norton-Hoff is not available on Neo-Hookean elasticity.
+pub fn one_rate_law(m: &Material, ctx: &mut Ctx<'_>) {
+    let Some(n) = &m.norton_hoff else {
+        return;
+    };
+    if m.viscoplastic.is_some() {
+        ctx.err(
+            Diagnostic::error(
+                "`norton_hoff` and `viscoplastic` exclude each other",
+                n.span,
+                "second rate law",
+            )
+            .with_help("keep one rate law per material"),
+        );
+    }
+    if m.neo_hookean.is_some() {
+        ctx.err(
+            Diagnostic::error(
+                "Norton-Hoff on a Neo-Hookean material is not supported",
+                n.span,
+                "not supported",
+            )
+            .with_help("use `elastic { .. }` with `norton_hoff { .. }`"),
         );
     }
 }

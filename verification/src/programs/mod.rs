@@ -15,6 +15,7 @@ pub mod friction_3d;
 pub mod friction_block;
 pub mod impact;
 pub mod mortar;
+pub mod norton_hoff;
 pub mod objectivity;
 pub mod penalty_scaling;
 pub mod quadratic;
@@ -43,6 +44,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(upsetting::cases());
     v.extend(objectivity::cases());
     v.extend(viscoplastic::cases());
+    v.extend(norton_hoff::cases());
     v.extend(penalty_scaling::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());

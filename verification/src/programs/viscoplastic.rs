@@ -42,7 +42,7 @@ use ctc_engine::material::j2::Elastic;
 use ctc_engine::material::tensor::{deviator, norm2};
 use ctc_engine::material::{History, NonlinearLaw};
 use ctc_engine::mesh::{Cell, Mesh};
-use ctc_engine::model::{Hardening, Kinematics, MaterialLaw, Model, NewtonSettings};
+use ctc_engine::model::{Hardening, Kinematics, MaterialLaw, Model, NewtonSettings, Viscosity};
 use ctc_engine::solve::{run, IncrementView, Observer};
 use ctc_engine::testkit::{ramp, ModelBuilder};
 use std::f64::consts::PI;
@@ -82,7 +82,7 @@ fn law(h: f64) -> NonlinearLaw {
             yield_stress: YIELD,
             modulus: h,
         },
-        viscosity: Some(ETA),
+        viscosity: Some(Viscosity::Perzyna { eta: ETA }),
     }
 }
 
@@ -168,7 +168,7 @@ fn solver_model(rate: f64, t_end: f64, increments: usize) -> Model {
                     yield_stress: YIELD,
                     modulus: 0.0,
                 },
-                viscosity: Some(ETA),
+                viscosity: Some(Viscosity::Perzyna { eta: ETA }),
             },
         )
         .body(
