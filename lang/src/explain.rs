@@ -201,13 +201,15 @@ pub fn explain(model: &Model) -> String {
                     label,
                     facets,
                     value,
+                    control,
                 } => {
                     let _ = writeln!(
                         o,
                         "  {label}: p = {} on {} of the deformed surface (follower: turns with \
-                         it, with its load stiffness; positive pushes into the body)",
+                         it, with its load stiffness; positive pushes into the body){}",
                         time_function(value),
-                        plural(facets.len(), "edge", "edges")
+                        plural(facets.len(), "edge", "edges"),
+                        controller(control)
                     );
                 }
                 Load::FacetTraction {
@@ -831,13 +833,15 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
                 label,
                 facets,
                 value,
+                control,
             } => {
                 let _ = writeln!(
                     o,
                     "  {label}: p = {} on {} of the deformed surface (follower: turns with it, \
-                     with its load stiffness; positive pushes into the body)",
+                     with its load stiffness; positive pushes into the body){}",
                     time_function(value),
-                    plural(facets.len(), "face", "faces")
+                    plural(facets.len(), "face", "faces"),
+                    controller(control)
                 );
             }
             Load::Pressure { label, .. } => {
@@ -1078,6 +1082,20 @@ fn surface_words(g: &ctc_engine::model::SurfaceShape) -> String {
             side(t.side)
         ),
     }
+}
+
+/// A pressure controller in words (empty without one).
+fn controller(control: &Option<ctc_engine::model::RateControl>) -> String {
+    control.map_or_else(String::new, |c| {
+        format!(
+            ", scaled after each increment by (target / rate)^{} within a factor {} so that \
+             the largest equivalent plastic strain rate of its body holds {} (pressure-cycle \
+             control)",
+            num(c.exponent),
+            num(c.max_factor),
+            num(c.target)
+        )
+    })
 }
 
 #[cfg(test)]

@@ -63,6 +63,7 @@ pub static ITEMS: &[Item] = &[
             ("hardening = swift", &tables::SWIFT_HARDENING),
             ("hardening = voce", &tables::VOCE_HARDENING),
             ("viscoplastic", &tables::VISCOPLASTIC),
+            ("norton_hoff", &tables::NORTON_HOFF),
             ("thermal", &tables::MATERIAL_THERMAL),
         ],
         example: "material steel {\n  elastic { E = 210e3  nu = 0.3 }\n  plastic { yield = 250  hardening = linear { H = 1000 } }\n}",
@@ -151,13 +152,17 @@ pub static ITEMS: &[Item] = &[
     },
     Item {
         name: "pressure",
-        syntax: "pressure EDGES { p = F(t)  follower = BOOL }",
+        syntax: "pressure EDGES { p = F(t)  follower = BOOL  control = strain_rate { .. } }",
         doc: "A pressure on boundary edges (3d: faces), positive pushing into the body, along \
               the normal of the reference configuration (consistent load). `follower = true`: \
               on the deformed surface instead (it turns and stretches with it, with its load \
               stiffness; the bodies need `kinematics = finite`), as a gas pressure in blow \
-              forming or hydroforming.",
-        blocks: &[],
+              forming or hydroforming. `control = strain_rate { target = .. }` (follower \
+              pressures): the pressure-cycle controller of superplastic forming; after every \
+              increment the pressure is scaled by `(target / rate)^exponent` (bounded by \
+              `max_change`), `rate` the largest equivalent plastic strain rate of the pressed \
+              body; history.csv gets the applied pressure and the rate.",
+        blocks: &[("control = strain_rate", &tables::RATE_CONTROL)],
         example: "pressure pipe.inner { p = ramp(0, 100) }",
     },
     Item {

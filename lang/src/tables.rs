@@ -134,6 +134,35 @@ pub static VISCOPLASTIC: [Key; 3] = [
     .dim(Dim::None),
 ];
 
+/// `control = strain_rate { target exponent max_change }` of a follower
+/// pressure.
+pub static RATE_CONTROL: [Key; 3] = [
+    Key::new(
+        "target",
+        KeyType::Number,
+        "the largest equivalent plastic strain rate of the pressed body to hold",
+    )
+    .required("add the target strain rate `target = ..` (1 / time)")
+    .range(Range::Positive)
+    .dim(Dim::Frequency),
+    Key::new(
+        "exponent",
+        KeyType::Number,
+        "exponent of the update: pressure x (target / rate)^exponent after each increment \
+         (the body's Norton-Hoff m lands on the target)",
+    )
+    .default(Default::Number(0.5))
+    .range(Range::Closed(0.0, 1.0))
+    .dim(Dim::None),
+    Key::new(
+        "max_change",
+        KeyType::Number,
+        "largest factor by which the pressure changes in one increment",
+    )
+    .default(Default::Number(2.0))
+    .dim(Dim::None),
+];
+
 /// `norton_hoff { stress rate m }`.
 pub static NORTON_HOFF: [Key; 3] = [
     Key::new(
@@ -956,6 +985,7 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("material.plastic.hardening = voce", &VOCE_HARDENING),
     ("material.viscoplastic", &VISCOPLASTIC),
     ("material.norton_hoff", &NORTON_HOFF),
+    ("pressure.control.strain_rate", &RATE_CONTROL),
     ("material.thermal", &MATERIAL_THERMAL),
     ("body", &BODY),
     ("body.thermal", &BODY_THERMAL),

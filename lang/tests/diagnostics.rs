@@ -36,6 +36,7 @@ decks!(
     young_not_positive,
     poisson_half,
     rate_laws,
+    pressure_control_errors,
     negative_thickness,
     zero_divisions,
     empty_time_range,

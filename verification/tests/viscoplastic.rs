@@ -73,3 +73,25 @@ fn norton_hoff_and_perzyna_power_match_the_tanh_closed_forms_first_order_in_dt()
         assert!(r.passed);
     }
 }
+
+/// The pressure-cycle controller holds the target strain rate of a
+/// Norton-Hoff cylinder (axisymmetric) and block (3D) under a follower
+/// pressure; the steady pressure is the closed form `p* = |tau| exp((1 - 2
+/// nu) |tau| / E)`, `tau = sigma0 (r* / r0)^m`. Scene, references and
+/// tolerances: `verification/src/programs/pressure_control.rs`.
+///
+/// ```text
+///      p(t) controlled
+///    vvvvvvvvvv
+///   +----------+  rate -> r* = 1e-2, p -> p* = 158.1639
+///   +----------+
+/// ```
+#[test]
+fn the_pressure_controller_holds_the_target_rate_at_the_closed_form_pressure() {
+    let report = registry::run_passing("pressure_cycle_control");
+    for l in &report.levels {
+        for v in &l.values {
+            println!("{} = {:.3e}", v.quantity, v.computed);
+        }
+    }
+}

@@ -201,6 +201,26 @@ pub enum MaterialLaw {
     },
 }
 
+/// A pressure-cycle controller (superplastic forming): after every
+/// converged increment the factor `c` applied to a follower pressure is
+/// multiplied by `(target / rate)^exponent`, bounded to `[1 / max_factor,
+/// max_factor]`, where `rate` is the largest equivalent plastic strain rate
+/// of `body` over that increment (`max_factor` when nothing flowed). With
+/// a Norton-Hoff body (`q ~ rate^m`) and `exponent = m` the pressure that
+/// holds the target rate is reached in a few increments. The applied
+/// pressure and the measured rate are written to `history.csv`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RateControl {
+    /// The monitored body (the body of the pressure's surface).
+    pub body: usize,
+    /// Target largest equivalent plastic strain rate (1 / time), > 0.
+    pub target: f64,
+    /// Exponent of the update `(target / rate)^exponent`, in (0, 1].
+    pub exponent: f64,
+    /// Largest change of the factor in one increment, > 1.
+    pub max_factor: f64,
+}
+
 /// Rate dependence of J2 flow: the von Mises stress during plastic flow at
 /// the equivalent plastic strain rate `r = d ep / dt` is
 /// `q = sigma_y(ep) + over(ep, r)`, integrated by backward Euler
@@ -411,8 +431,11 @@ pub enum Load {
         /// (body on the left), or faces of a solid, counter-clockwise seen
         /// from outside.
         facets: Vec<crate::mesh::Facet>,
-        /// Pressure as a function of time.
+        /// Pressure as a function of time (times the controller's factor
+        /// when `control` is set).
         value: TimeFunction,
+        /// Pressure-cycle controller, if any ([`RateControl`]).
+        control: Option<RateControl>,
     },
     /// Follower-free (dead) traction on boundary facets: force per unit
     /// reference area along the global axis `component`, in the reference

@@ -62,6 +62,15 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
             cols.push(c.into());
         }
     }
+    for (i, _) in crate::solve::control::controls(model) {
+        // appended by the writer from the controllers' records
+        let label = match &model.loads[i] {
+            crate::model::Load::FollowerPressure { label, .. } => label.as_str(),
+            _ => "",
+        };
+        cols.push(format!("controlled_pressure[{label}]"));
+        cols.push(format!("controlled_rate[{label}]"));
+    }
     if model.thermal.is_some() {
         // appended by the writer from the thermal increment
         cols.push("temperature_max".into());

@@ -318,6 +318,9 @@ where
                 e.kinetic, e.internal, e.external, e.contact, e.damping, e.balance, e.gain,
             ]);
         }
+        for c in view.controls {
+            row.extend([c.pressure, c.rate]);
+        }
         if let Some(t) = view.thermal {
             row.extend([t.max_temperature, t.min_temperature]);
         }

@@ -36,22 +36,24 @@ pub fn has_follower<const D: usize>(model: &Model<D>) -> bool {
 }
 
 /// Adds to `f` (`D` per node) the nodal forces of every follower pressure
-/// of `model` at time `t` on the configuration `X + u`; with `tangent`,
-/// subtracts their derivative `d f / d u` from the free-free entries of
-/// the tangent `values` (the residual is `f_int - f_ext - ..`).
+/// of `model` at time `t` on the configuration `X + u`, load `i` scaled by
+/// `scales[i]` (a pressure controller's factor; 1 when absent); with
+/// `tangent`, subtracts their derivative `d f / d u` from the free-free
+/// entries of the tangent `values` (the residual is `f_int - f_ext - ..`).
 pub fn add_follower_forces<const D: usize>(
     model: &Model<D>,
     t: f64,
+    scales: &[f64],
     u: &[[f64; D]],
     f: &mut [f64],
     mut tangent: Option<(&Scatter, &DofMap<D>, &mut [f64])>,
 ) {
     let measure = Measure::of(model);
-    for load in &model.loads {
+    for (i, load) in model.loads.iter().enumerate() {
         let Load::FollowerPressure { facets, value, .. } = load else {
             continue;
         };
-        let p = value.eval(t);
+        let p = value.eval(t) * scales.get(i).copied().unwrap_or(1.0);
         if p == 0.0 {
             continue;
         }

@@ -38,6 +38,7 @@ pub mod constraints;
 pub mod contact_assembly;
 pub mod contact_loop;
 pub mod contact_mass;
+pub mod control;
 pub mod diagnosis;
 pub mod dofs;
 pub mod dynamics;
@@ -112,6 +113,9 @@ pub struct IncrementView<'a, const D: usize = 2> {
     /// (thermal scenes; empty otherwise): the stress of a linear elastic
     /// cell is `D (eps - eps_th I)`.
     pub thermal_strain: &'a [f64],
+    /// What each pressure controller did in this increment (the model's
+    /// controlled loads in order; empty without controllers).
+    pub controls: &'a [control::ControlRecord],
     /// Nodal temperatures (thermal scenes only; 0 at nodes without
     /// temperature).
     pub temperature: Option<&'a [f64]>,
@@ -438,6 +442,12 @@ where
         Ok(t) => t,
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
+    if from.is_some() && !control::controls(model).is_empty() {
+        let message = "cannot restart a run with a pressure controller: the restart file does not \
+                       hold the controller's factor yet; run from the start"
+            .to_string();
+        return Err(fail(summary, message));
+    }
     if let Some(th) = &thermal {
         if from.is_some() {
             let message = "cannot restart a thermo-mechanical run: restart points do not hold                            temperatures yet; run from the start"
@@ -492,6 +502,7 @@ where
         increment,
         thermal,
         health: health::RunHealth::new(model),
+        controls: control::controls(model),
         attempt_span: (
             from.map_or_else(
                 || model.steps.first().map_or(0.0, |s| s.t_start),
@@ -642,6 +653,8 @@ where
     attempt_span: (f64, f64),
     /// Contact health over the converged increments (warnings at the end).
     health: health::RunHealth,
+    /// Pressure-cycle controllers: load index and control.
+    controls: Vec<(usize, crate::model::RateControl)>,
 }
 
 impl<const D: usize> Driver<'_, '_, D>
@@ -762,7 +775,28 @@ where
             .thermal
             .as_ref()
             .map(|_| self.newton.thermal_strains().to_vec());
+        let control_before: Vec<Vec<f64>> = self
+            .controls
+            .iter()
+            .map(|(_, c)| control::body_ep(self.model, self.newton.material_points(), c.body))
+            .collect();
         self.newton.commit();
+        let mut control_records = Vec::with_capacity(self.controls.len());
+        for (&(i, c), before) in self.controls.iter().zip(&control_before) {
+            let after = control::body_ep(self.model, self.newton.material_points(), c.body);
+            let rate = control::max_rate(before, &after, dt);
+            let scale = self.newton.load_scales()[i];
+            let value = match &self.model.loads[i] {
+                crate::model::Load::FollowerPressure { value, .. } => value.eval(t),
+                _ => 0.0,
+            };
+            control_records.push(control::ControlRecord {
+                pressure: scale * value,
+                rate,
+            });
+            self.newton
+                .set_load_scale(i, scale * control::factor(&c, rate));
+        }
         self.increment += 1;
         self.health.record(self.model, self.newton.contact(), t);
         if let (Some(th), Some(before)) = (self.thermal.as_mut(), before) {
@@ -792,6 +826,7 @@ where
             residuals: &converged.residuals,
             points: self.newton.material_points(),
             thermal_strain: solved_thermal_strain.as_deref().unwrap_or(&[]),
+            controls: &control_records,
             temperature: self.thermal.as_ref().map(|t| t.temperature()),
             thermal: self.thermal.as_ref().map(|t| t.last()),
             energy: self.newton.dynamics().map(|d| &d.energy),

@@ -636,8 +636,22 @@ pub struct LoadDef {
     pub values: Vec<(Option<Component>, Spanned<TimeFn>)>,
     /// Pressure: `follower = true` (on the deformed surface), if given.
     pub follower: Option<Spanned<bool>>,
+    /// Pressure: `control = strain_rate { .. }`, if given.
+    pub control: Option<Spanned<RateControlDef>>,
     /// The whole item.
     pub span: Span,
+}
+
+/// `control = strain_rate { target = ..  exponent = ..  max_change = .. }`
+/// of a follower `pressure`: the pressure-cycle controller.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RateControlDef {
+    /// `target`: the largest equivalent plastic strain rate to hold.
+    pub target: Option<Spanned<f64>>,
+    /// `exponent` of the update `(target / rate)^exponent`.
+    pub exponent: Option<Spanned<f64>>,
+    /// `max_change`: the largest factor change in one increment.
+    pub max_change: Option<Spanned<f64>>,
 }
 
 /// `initial_velocity ref { vx = ..  vy = ..  vz = .. }`: the velocity of

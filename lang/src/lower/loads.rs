@@ -32,11 +32,30 @@ impl Lowerer<'_> {
                             }
                             _ => Vec::new(),
                         };
+                        // the controlled body: the one holding the surface
+                        let control = l.control.as_ref().and_then(|c| {
+                            let first = *r.nodes.first()?;
+                            let body = self.deck.bodies.iter().position(|b| {
+                                self.body_nodes
+                                    .get(&b.name.name)
+                                    .is_some_and(|n| n.contains(&first))
+                            })?;
+                            let v = |x: &Option<crate::span::Spanned<f64>>, d: f64| {
+                                x.as_ref().map_or(d, |x| x.value)
+                            };
+                            Some(ctc_engine::model::RateControl {
+                                body,
+                                target: c.value.target.as_ref()?.value,
+                                exponent: v(&c.value.exponent, 0.5),
+                                max_factor: v(&c.value.max_change, 2.0),
+                            })
+                        });
                         for (_, f) in &l.values {
                             out.push(Load::FollowerPressure {
                                 label: label.clone(),
                                 facets: facets.clone(),
                                 value: self.tf(f),
+                                control,
                             });
                         }
                         continue;

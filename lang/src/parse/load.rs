@@ -1,11 +1,13 @@
 //! `pressure body.edges { p = .. }`, `traction body.faces { tx = .. ty = ..
 //! tz = .. }` and `force body.nodes { fx = .. fy = .. }`.
 
+use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
-use crate::ast::syntax::EntryBody;
-use crate::ast::{Component, LoadDef, LoadKind};
+use crate::ast::syntax::{EntryBody, Value, ValueKind};
+use crate::ast::{Component, LoadDef, LoadKind, RateControlDef};
 use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
 use crate::suggest::{did_you_mean, one_of};
 
 /// Converts a `pressure`, `traction` or `force` item.
@@ -34,11 +36,32 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
     let mut names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
     if kind == LoadKind::Pressure {
         names.push("follower");
+        names.push("control");
     }
     let mut values_out = Vec::new();
     let mut follower = None;
+    let mut control = None;
     let mut seen: Vec<&str> = Vec::new();
     for e in &block.entries {
+        if kind == LoadKind::Pressure && e.key.name == "control" {
+            match &e.body {
+                EntryBody::Assign(v) if control.is_none() => control = rate_control(v, diags),
+                EntryBody::Assign(_) => diags.push(
+                    Diagnostic::error(
+                        "`control` is given twice in `pressure`",
+                        e.key.span,
+                        "duplicate key",
+                    )
+                    .with_help("remove one of them"),
+                ),
+                _ => diags.push(Diagnostic::error(
+                    "`control` needs a value",
+                    e.span,
+                    "expected `control = strain_rate { target = .. }`",
+                )),
+            }
+            continue;
+        }
         if kind == LoadKind::Pressure && e.key.name == "follower" {
             match &e.body {
                 EntryBody::Assign(v) if follower.is_none() => {
@@ -117,8 +140,56 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
         target,
         values: values_out,
         follower,
+        control,
         span: item.span,
     })
+}
+
+/// `strain_rate { target = ..  exponent = ..  max_change = .. }`.
+fn rate_control(v: &Value, diags: &mut Diags) -> Option<Spanned<RateControlDef>> {
+    let ValueKind::Ctor { name, block } = &v.kind else {
+        diags.push(Diagnostic::error(
+            format!("expected a controller, found {}", v.kind.describe()),
+            v.span,
+            "expected `strain_rate { target = .. }`",
+        ));
+        return None;
+    };
+    if name.name != "strain_rate" {
+        diags.push(
+            Diagnostic::error(
+                format!("unknown controller `{}`", name.name),
+                name.span,
+                "not a controller",
+            )
+            .with_help("expected `strain_rate { target = .. }`"),
+        );
+        return None;
+    }
+    let mut f = Fields::keyed(
+        block,
+        "`strain_rate` controller",
+        &crate::tables::RATE_CONTROL,
+    );
+    let target = f.number("target", diags);
+    let exponent = f.number("exponent", diags);
+    let max_change = f.number("max_change", diags);
+    f.require(
+        &target,
+        "target",
+        name.span,
+        "add the target strain rate `target = ..` (1 / time)",
+        diags,
+    );
+    f.finish(diags);
+    Some(Spanned::new(
+        RateControlDef {
+            target,
+            exponent,
+            max_change,
+        },
+        v.span,
+    ))
 }
 
 #[cfg(test)]

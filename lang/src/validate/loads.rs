@@ -27,6 +27,81 @@ pub fn check(ctx: &mut Ctx<'_>) {
             time_fns::ramp_and_table_times_increase(f, ctx);
         }
         follower_on_a_finite_strain_body(l, ctx);
+        control_on_a_follower_pressure(l, ctx);
+    }
+}
+
+/// `control = strain_rate { .. }` drives a follower pressure (a gas
+/// pressure on the deformed sheet), with `exponent` in (0, 1] and
+/// `max_change` > 1.
+pub fn control_on_a_follower_pressure(l: &LoadDef, ctx: &mut Ctx<'_>) {
+    let Some(c) = &l.control else {
+        return;
+    };
+    if !l.follower.as_ref().is_some_and(|f| f.value) {
+        ctx.err(
+            Diagnostic::error(
+                "a pressure controller needs a follower pressure",
+                c.span,
+                "controller on a dead pressure",
+            )
+            .with_help(
+                "add `follower = true` (the gas pressure of blow forming follows the sheet)",
+            ),
+        );
+    }
+    // the monitored rate is a plastic strain rate: the body must flow
+    let deck = ctx.deck;
+    let material = deck
+        .bodies
+        .iter()
+        .find(|b| b.name.name == l.target.body.name)
+        .and_then(|b| b.material.as_ref())
+        .and_then(|m| deck.materials.iter().find(|x| x.name.name == m.name));
+    if let Some(m) = material.filter(|m| m.plastic.is_none() && m.norton_hoff.is_none()) {
+        ctx.err(
+            Diagnostic::error(
+                format!(
+                    "the controlled body `{}` never flows: its material `{}` has no plastic or \
+                     Norton-Hoff law",
+                    l.target.body.name, m.name.name
+                ),
+                c.span,
+                "no plastic strain rate to control",
+            )
+            .with_help("give the material `norton_hoff { .. }` (superplastic) or `plastic { .. }`"),
+        );
+    }
+    ctx.must_be_positive(&c.value.target, "the target strain rate");
+    if let Some(e) = c
+        .value
+        .exponent
+        .as_ref()
+        .filter(|e| !(e.value > 0.0 && e.value <= 1.0))
+    {
+        ctx.err(
+            Diagnostic::error(
+                "the controller's exponent must be in (0, 1]",
+                e.span,
+                format!("exponent = {}", crate::ast::num(e.value)),
+            )
+            .with_help("use the body's Norton-Hoff m (about 0.5), or less to under-relax"),
+        );
+    }
+    if let Some(m) = c
+        .value
+        .max_change
+        .as_ref()
+        .filter(|m| m.value.is_nan() || m.value <= 1.0)
+    {
+        ctx.err(
+            Diagnostic::error(
+                "the controller's max_change must be > 1",
+                m.span,
+                format!("max_change = {}", crate::ast::num(m.value)),
+            )
+            .with_help("the pressure may change by at most this factor per increment (e.g. 2)"),
+        );
     }
 }
 

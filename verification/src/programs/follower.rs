@@ -172,6 +172,7 @@ where
             label,
             facets: loaded,
             value,
+            control: None,
         }
     } else if D == 3 {
         Load::FacetPressure {

@@ -18,6 +18,7 @@ pub mod mortar;
 pub mod norton_hoff;
 pub mod objectivity;
 pub mod penalty_scaling;
+pub mod pressure_control;
 pub mod quadratic;
 pub mod solid;
 pub mod solid_patch;
@@ -45,6 +46,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(objectivity::cases());
     v.extend(viscoplastic::cases());
     v.extend(norton_hoff::cases());
+    v.extend(pressure_control::cases());
     v.extend(penalty_scaling::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());

@@ -140,6 +140,9 @@ where
     r_static: Vec<f64>,
     /// Rayleigh damping force `C v` of the last evaluation, per dof.
     damping: Vec<f64>,
+    /// Factor of each load of the model (pressure controllers; 1
+    /// otherwise).
+    load_scale: Vec<f64>,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -227,6 +230,7 @@ where
             inertia: vec![0.0; n_dofs],
             r_static: vec![0.0; n_dofs],
             damping: vec![0.0; n_dofs],
+            load_scale: vec![1.0; model.loads.len()],
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -373,6 +377,19 @@ where
         self.assembler.points()
     }
 
+    /// Factor of each load of the model (a pressure controller's; 1
+    /// otherwise).
+    pub fn load_scales(&self) -> &[f64] {
+        &self.load_scale
+    }
+
+    /// Sets the factor of load `i` for the next increments.
+    pub fn set_load_scale(&mut self, i: usize, scale: f64) {
+        if let Some(s) = self.load_scale.get_mut(i) {
+            *s = scale;
+        }
+    }
+
     /// Isotropic thermal strain of each cell the next solves use (empty
     /// without heat).
     pub fn thermal_strains(&self) -> &[f64] {
@@ -503,7 +520,14 @@ where
             } else {
                 None
             };
-            super::follower::add_follower_forces(model, t, &self.u, &mut self.f_follow, tangent);
+            super::follower::add_follower_forces(
+                model,
+                t,
+                &self.load_scale,
+                &self.u,
+                &mut self.f_follow,
+                tangent,
+            );
         }
         let mid = Instant::now();
         self.timings.contact += (mid - start).as_secs_f64();
