@@ -34,13 +34,7 @@ impl Hardening {
 
     /// Checks the parameters; explains what is wrong.
     pub fn check(&self) -> Result<(), String> {
-        let pos = |v: f64, what: &str| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(format!("{what} must be > 0 (got {v})"))
-            }
-        };
+        let pos = positive;
         match *self {
             Hardening::Linear {
                 yield_stress,
@@ -77,6 +71,16 @@ impl Hardening {
                 Ok(())
             }
         }
+    }
+}
+
+/// `Ok` when `v` is finite and > 0; otherwise explains that `what` must
+/// be (a material parameter check).
+pub fn positive(v: f64, what: &str) -> Result<(), String> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!("{what} must be > 0 (got {v})"))
     }
 }
 

@@ -258,13 +258,7 @@ pub enum Viscosity {
 impl Viscosity {
     /// Checks the parameters; explains what is wrong.
     pub fn check(&self) -> Result<(), String> {
-        let pos = |v: f64, what: &str| {
-            if v.is_finite() && v > 0.0 {
-                Ok(())
-            } else {
-                Err(format!("{what} must be > 0 (got {v})"))
-            }
-        };
+        let pos = crate::material::hardening::positive;
         match *self {
             Viscosity::Perzyna { eta } => pos(eta, "the viscosity eta"),
             Viscosity::PerzynaPower { rate, exponent } => {

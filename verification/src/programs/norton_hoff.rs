@@ -44,10 +44,10 @@
 //! ```
 
 use super::error;
+use super::viscoplastic::{q_of, shear};
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::material::j2::Elastic;
-use ctc_engine::material::tensor::{deviator, norm2};
 use ctc_engine::material::{History, NonlinearLaw};
 use ctc_engine::mesh::{Cell, Mesh};
 use ctc_engine::model::{
@@ -75,15 +75,6 @@ const NH_FAST: &str = "Norton-Hoff m = 1/2, shear, fast: max |q - q_exact| / q_s
 const PP_SLOW: &str = "Perzyna N = 2, shear, slow: max |s - s_exact| / s_ss";
 const PP_FAST: &str = "Perzyna N = 2, shear, fast: max |s - s_exact| / s_ss";
 const NH_SOLVER: &str = "Norton-Hoff, solver, finite strain: max |tau - tau_exact| / tau_ss";
-
-fn q_of(s: &[f64; 6]) -> f64 {
-    (1.5 * norm2(&deviator(s))).sqrt()
-}
-
-/// Pure shear with equivalent strain `eb`: tensor shear `sqrt(3) eb / 2`.
-fn shear(eb: f64) -> [f64; 6] {
-    [0.0, 0.0, 0.0, 3f64.sqrt() * eb / 2.0, 0.0, 0.0]
-}
 
 fn norton_hoff() -> Viscosity {
     Viscosity::NortonHoff {

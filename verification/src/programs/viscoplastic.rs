@@ -66,12 +66,13 @@ const RELAX: &str = "relaxation, hardening: max |s - s_exact| / s0";
 const SOLVER_SLOW: &str = "solver, uniaxial, slow rate: max |F - F_exact| / (eta rate pi)";
 const SOLVER_FAST: &str = "solver, uniaxial, fast rate: max |F - F_exact| / (eta rate pi)";
 
-fn q_of(s: &[f64; 6]) -> f64 {
+/// Von Mises stress of a stress tensor.
+pub(super) fn q_of(s: &[f64; 6]) -> f64 {
     (1.5 * norm2(&deviator(s))).sqrt()
 }
 
 /// Pure shear with equivalent strain `eb`: tensor shear `sqrt(3) eb / 2`.
-fn shear(eb: f64) -> [f64; 6] {
+pub(super) fn shear(eb: f64) -> [f64; 6] {
     [0.0, 0.0, 0.0, 3f64.sqrt() * eb / 2.0, 0.0, 0.0]
 }
 
