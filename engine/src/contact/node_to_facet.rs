@@ -1132,6 +1132,50 @@ mod tests {
         }
     }
 
+    /// The largest finite-difference errors of `G` and `K` over 2000
+    /// seeded random facets and slave positions per feature (printed for
+    /// the record: `cargo test -p ctc-engine --lib
+    /// contact::node_to_facet::tests::fd_errors -- --nocapture`).
+    #[test]
+    fn fd_errors_over_seeded_random_elements() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for (name, quad, feature) in [
+            ("tri3 face", false, Feature::Face),
+            ("quad4 face", true, Feature::Face),
+            ("tri3 edge", false, Feature::Edge(0, 1)),
+            ("quad4 edge", true, Feature::Edge(0, 1)),
+            ("quad4 vertex", true, Feature::Vertex(0)),
+        ] {
+            let n = if quad { 4 } else { 3 };
+            let (mut eg, mut ek, mut count) = (0.0f64, 0.0f64, 0);
+            for _ in 0..2000 {
+                let jitter: Vec<f64> = (0..12).map(|_| rnd()).collect();
+                let pts = facet(n, &jitter);
+                let (u, v, w) = (0.5 + 0.4 * rnd(), 0.5 + 0.4 * rnd(), 0.3 * rnd());
+                let (xs, side) = match feature {
+                    Feature::Face if !quad => ([0.45 * u, 0.45 * v, w], 1.0),
+                    Feature::Face => ([u, v, w], 1.0),
+                    _ => ([u, -0.2 - 0.5 * v.abs(), w], if w < 0.0 { -1.0 } else { 1.0 }),
+                };
+                if feature == Feature::Face && foot(xs, &pts).is_none() {
+                    continue;
+                }
+                let (g, k) = check(xs, &pts, feature, side);
+                eg = eg.max(g);
+                ek = ek.max(k);
+                count += 1;
+            }
+            println!("{name}: {count} elements, max rel. FD error G {eg:.2e}, K {ek:.2e}");
+            assert!(count > 1500 && eg <= 1e-6 && ek <= 1e-6, "{name}: {eg} {ek}");
+        }
+    }
+
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(200))]
         #[test]
