@@ -37,3 +37,21 @@ fn table_of_every_combination() {
         );
     }
 }
+
+#[test]
+fn hertz_sphere_block_ntf_3d_passes() {
+    registry::run_passing("hertz_sphere_block_ntf_3d");
+}
+
+/// Prints the three Hertz forces and Newton iterations.
+#[test]
+fn hertz_forces() {
+    for e in [None, Some(1e6), Some(1000.0)] {
+        let (p, s) = ctc_verification::programs::contact_ntf_3d::hertz_force(e).expect("hertz");
+        println!(
+            "block E {e:?}: P {p:.6e}, Newton {}, increments {}",
+            s.newton_iterations,
+            s.increments.len()
+        );
+    }
+}

@@ -1161,7 +1161,10 @@ mod tests {
                 let (xs, side) = match feature {
                     Feature::Face if !quad => ([0.45 * u, 0.45 * v, w], 1.0),
                     Feature::Face => ([u, v, w], 1.0),
-                    _ => ([u, -0.2 - 0.5 * v.abs(), w], if w < 0.0 { -1.0 } else { 1.0 }),
+                    _ => (
+                        [u, -0.2 - 0.5 * v.abs(), w],
+                        if w < 0.0 { -1.0 } else { 1.0 },
+                    ),
                 };
                 if feature == Feature::Face && foot(xs, &pts).is_none() {
                     continue;
@@ -1172,7 +1175,10 @@ mod tests {
                 count += 1;
             }
             println!("{name}: {count} elements, max rel. FD error G {eg:.2e}, K {ek:.2e}");
-            assert!(count > 1500 && eg <= 1e-6 && ek <= 1e-6, "{name}: {eg} {ek}");
+            assert!(
+                count > 1500 && eg <= 1e-6 && ek <= 1e-6,
+                "{name}: {eg} {ek}"
+            );
         }
     }
 

@@ -1,4 +1,4 @@
-//! The 3D contact patch test between two deformable blocks with
+//! `contact_patch_ntf_3d` — the 3D contact patch test between two deformable blocks with
 //! non-matching interface meshes (Taylor & Papadopoulos, IJNME 31 (1991)
 //! 2205, "On a patch test for contact problems in two dimensions", here in
 //! 3D; VERIFICATION-CASES.md case 3), node-to-facet contact
@@ -29,6 +29,9 @@
 //! of the load: the Uzawa loop took 50179 Newton iterations on hex8 to
 //! reach its 1e-9 gap). A control runs matching meshes (3 x 3 facets on
 //! both sides): node-to-facet passes that to round-off.
+//!
+//! `hertz_sphere_block_ntf_3d` — an elastic sphere octant pressed by an
+//! elastic block vs by a rigid plane tool, and Hertz (see [`hertz_level`]).
 
 use super::{error, value};
 use crate::case::{Check, Quantity};
@@ -230,35 +233,110 @@ pub const COMBINATIONS: &[Combination] = &[
 
 /// The registry entries of this file.
 pub fn cases() -> Vec<VerifyCase> {
-    vec![VerifyCase {
-        name: "contact_patch_ntf_3d",
-        title: "3D contact patch test, two deformable blocks 3x3 | 4x4 facets (hex8, tet4): \
+    vec![
+        VerifyCase {
+            name: "contact_patch_ntf_3d",
+            title: "3D contact patch test, two deformable blocks 3x3 | 4x4 facets (hex8, tet4): \
                 node-to-facet, every strategy x method",
-        source: "Taylor & Papadopoulos IJNME 31 (1991), in 3D; VERIFICATION-CASES.md §3",
-        tags: &[
-            "3d",
-            "contact",
-            "node_to_segment",
-            "patch",
-            "penalty",
-            "lagrange",
-            "augmented_lagrange",
-        ],
-        levels: 1,
-        checks: COMBINATIONS
-            .iter()
-            .flat_map(|c| {
-                [
-                    Check::new(Quantity::Named(c.0), &[c.6]),
-                    Check::new(Quantity::Named(c.1), &[c.7]),
-                ]
-            })
-            .collect(),
-        kind: CaseKind::Program(ProgramCase {
-            max_levels: 1,
-            run: patch_level,
-        }),
-    }]
+            source: "Taylor & Papadopoulos IJNME 31 (1991), in 3D; VERIFICATION-CASES.md §3",
+            tags: &[
+                "3d",
+                "contact",
+                "node_to_segment",
+                "patch",
+                "penalty",
+                "lagrange",
+                "augmented_lagrange",
+            ],
+            levels: 1,
+            checks: COMBINATIONS
+                .iter()
+                .flat_map(|c| {
+                    [
+                        Check::new(Quantity::Named(c.0), &[c.6]),
+                        Check::new(Quantity::Named(c.1), &[c.7]),
+                    ]
+                })
+                .collect(),
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 1,
+                run: patch_level,
+            }),
+        },
+        VerifyCase {
+            name: "hertz_sphere_block_ntf_3d",
+            title: "Elastic sphere octant pressed by an elastic block (node-to-facet) vs the same \
+                sphere pressed by a rigid plane tool, and Hertz",
+            source: "K. L. Johnson, Contact Mechanics (1985) §4.2; Hertz 1882; the rigid-tool \
+                 run of the same sphere as cross-check",
+            tags: &[
+                "3d",
+                "contact",
+                "node_to_segment",
+                "hertz",
+                "penalty",
+                "cross_check",
+            ],
+            levels: 1,
+            checks: vec![
+                Check::new(Quantity::Named("P stiff block vs rigid plane"), &[2e-3]),
+                Check::new(Quantity::Named("P equal block vs Hertz(E*)"), &[0.2]),
+                Check::new(Quantity::Named("P rigid plane vs Hertz(E*)"), &[5e-2]),
+            ],
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 1,
+                run: hertz_level,
+            }),
+        },
+    ]
+}
+
+/// The Hertz cross-check: the elastic sphere octant (`E = 1000`, `nu =
+/// 0.3`, outer radius `R = 1`, shell inner radius 0.5, pole up) pressed by
+/// `d = 0.01`: by a rigid plane tool (the reference of the 3D rigid-tool
+/// contact), by a block 1000 times stiffer (node-to-facet, the block's
+/// bottom face as master: must give the rigid plane's force up to the
+/// block's compliance), and by a block of the sphere's material (Hertz with
+/// `E* = E / (2 (1 - nu^2))`: `P = 4/3 E* sqrt(R) d^(3/2)`, a quarter of it
+/// for the quarter model). Measured (`cargo test -p ctc-verification
+/// --test contact_ntf_3d hertz_forces -- --nocapture`): stiff block / rigid
+/// plane - 1 = -6.8e-4; rigid plane vs Hertz -3.1 % (the shell of 16 cells
+/// along each cube-sphere patch edge, the contact radius `a = 0.1`
+/// spanning two cells); equal block vs Hertz +16 %: the block, 2.5 `a`
+/// thick and pushed by its whole top face, is stiffer than a half-space
+/// (model limit, loose tolerance), not a defect of the contact law.
+///
+/// ```text
+///            u_z = -d  (block top; or a rigid plane at z = 1)
+///        +-----------+
+///        |  block    |  0.5 x 0.5 x 0.25, master face zmin
+///        +-----.-----+  z = 1
+///            /   \      sphere octant shell 0.5 <= r <= 1, slave face `outer`
+///           /     \     symmetry x = 0, y = 0 on both; u_z = 0 at z = 0
+/// ```
+fn hertz_level(_level: usize) -> Result<ProgramLevel, String> {
+    let mut out = ProgramLevel {
+        h: std::f64::consts::FRAC_PI_4 / HERTZ_TANGENTIAL as f64,
+        ..ProgramLevel::default()
+    };
+    let (rigid, s) = hertz_force(None)?;
+    out.add_run(&s);
+    let (stiff, s) = hertz_force(Some(1e6))?;
+    out.add_run(&s);
+    let (equal, s) = hertz_force(Some(E))?;
+    out.add_run(&s);
+    let hertz = |e_star: f64| 4.0 / 3.0 * e_star * HERTZ_D.powf(1.5) / 4.0;
+    let e_star = E / (1.0 - 0.3 * 0.3);
+    out.values
+        .push(value("P stiff block vs rigid plane", stiff, rigid));
+    out.values.push(value(
+        "P equal block vs Hertz(E*)",
+        equal,
+        hertz(0.5 * e_star),
+    ));
+    out.values
+        .push(value("P rigid plane vs Hertz(E*)", rigid, hertz(e_star)));
+    Ok(out)
 }
 
 /// The deck of one combination: `cell` (`hex8`, `tet4`), `base` cells
@@ -397,4 +475,63 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
         out.values.push(value(fname, o.force, o.exact));
     }
     Ok(out)
+}
+
+/// The Hertz decks: an elastic sphere octant (outer radius 1, pole up)
+/// pressed by `master`: `rigid` (a plane tool), or a block of Young's
+/// modulus `block_e` on top of it (node-to-facet, the block's bottom face
+/// as master).
+pub fn hertz_deck(block_e: Option<f64>) -> String {
+    let head = format!(
+        "# Hertz-like 3D contact, generated by verification/src/programs/contact_ntf_3d.rs\n\
+         analysis {{ dimension = 3d }}\n\
+         material soft {{ elastic {{ E = {E}  nu = 0.3 }} }}\n\
+         material hard {{ elastic {{ E = {}  nu = 0.3 }} }}\n\
+         body ball {{\n  mesh = sphere_octant {{ inner = 0.5  outer = 1  radial = 3  tangential = {HERTZ_TANGENTIAL} }}\n  material = soft\n}}\n\
+         fix ball.zmin {{ uz }}\nfix ball.xmin {{ ux }}\nfix ball.ymin {{ uy }}\n",
+        block_e.unwrap_or(E)
+    );
+    let pair = match block_e {
+        None => format!(
+            "tool plate = plane {{ point = (0, 0, 1)  normal = (0, 0, -1)  motion {{ uz = ramp(0, -{HERTZ_D}) }} }}\n\
+             contact ball.outer -> plate {{ method = {HERTZ_PENALTY} }}\n"
+        ),
+        Some(_) => format!(
+            "body plate {{\n  mesh = box {{ origin = (0, 0, 1)  size = (0.5, 0.5, 0.25)  divisions = (8, 8, 2) }}\n  material = hard\n}}\n\
+             fix plate.xmin {{ ux }}\nfix plate.ymin {{ uy }}\n\
+             displace plate.zmax {{ uz = ramp(0, -{HERTZ_D}) }}\n\
+             contact ball.outer -> plate.zmin {{ method = {HERTZ_PENALTY} }}\n"
+        ),
+    };
+    format!(
+        "{head}{pair}step press {{\n  time = 0 .. 1\n  increments = 4\n  newton {{ tol = 1e-9  max_iter = 30 }}\n}}\n"
+    )
+}
+
+/// Approach, penalty and mesh of the Hertz decks.
+const HERTZ_D: f64 = 0.01;
+const HERTZ_PENALTY: &str = "penalty { kind = area  stiffness = 1e7 }";
+const HERTZ_TANGENTIAL: usize = 16;
+
+/// Total contact force (z) on the ball's closed slave nodes at the end of
+/// the Hertz deck with master `block_e` ([`hertz_deck`]), and the run.
+pub fn hertz_force(block_e: Option<f64>) -> Result<(f64, ctc_engine::solve::RunSummary), String> {
+    let text = hertz_deck(block_e);
+    let path = std::path::Path::new("hertz_ntf_3d.ctc");
+    let src = ctc_lang::Source::new(path, &text);
+    let AnyModel::D3(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
+        return Err("the Hertz deck is not a 3d deck".into());
+    };
+    let mut last = Last::default();
+    let s = run(&model, &mut last).map_err(|e| e.message)?;
+    if !s.completed {
+        return Err("the run did not complete".into());
+    }
+    let force = last
+        .contact
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .map(|c| -c.force[2])
+        .sum();
+    Ok((force, s))
 }
