@@ -10,7 +10,9 @@
 //!   base 4x4 cells across, bottom on rollers
 //! ```
 
-use ctc_verification::programs::contact_ntf_3d::{run_combination, COMBINATIONS};
+use ctc_verification::programs::contact_ntf_3d::{
+    run_combination, run_loaded, COMBINATIONS, LOADED,
+};
 use ctc_verification::registry;
 
 #[test]
@@ -33,6 +35,18 @@ fn table_of_every_combination() {
             o.deviation,
             o.force / o.exact - 1.0,
             o.closed,
+            o.iterations
+        );
+    }
+    println!("load-controlled (traction 10 on the top, the top block held only by contact):");
+    for &(_, cell, strategy, method) in LOADED {
+        let (o, _) = run_loaded(cell, strategy, method).expect("run");
+        let m = method.split_whitespace().next().unwrap_or("");
+        println!(
+            "| {cell} | {strategy} | {m} | contact force / load - 1 = {:.3e} | p deviation {:.3e} | \
+             Newton {} |",
+            o.contact_force / o.exact - 1.0,
+            o.deviation,
             o.iterations
         );
     }

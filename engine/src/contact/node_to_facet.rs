@@ -631,6 +631,14 @@ pub struct FacetPair {
     pub couplings: Vec<Coupling>,
     /// Projections of the latest evaluation.
     pub tests: usize,
+    /// `increments` at the latest evaluation (`usize::MAX`: none since the
+    /// start or the last rollback): the first evaluation of the run and of
+    /// each double-pass swap brings the new slaves that touch into the
+    /// Lagrange active set.
+    evaluated: usize,
+    /// Gap within which a node counts as touching there:
+    /// [`super::penalty::TOUCH_FRACTION`] of the smallest facet edge.
+    touch: f64,
     /// Scratch: candidate facets of one query.
     candidates: Vec<usize>,
 }
@@ -659,6 +667,7 @@ impl FacetPair {
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
         self.last.clone_from(&self.committed_last);
+        self.evaluated = usize::MAX;
     }
 
     /// Restart: `increments` converged increments were done.
@@ -731,7 +740,27 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<FacetP
     let ContactMaster::Surface { faces, .. } = &cp.master else {
         return None;
     };
+    let h = cp
+        .faces
+        .iter()
+        .chain(faces)
+        .flat_map(|f| {
+            let n = f.nodes();
+            (0..n.len()).map(move |k| (n[k], n[(k + 1) % n.len()]))
+        })
+        .filter_map(|(a, b)| {
+            let (pa, pb) = (model.mesh.nodes.get(a)?, model.mesh.nodes.get(b)?);
+            Some((0..3).map(|c| (pb[c] - pa[c]).powi(2)).sum::<f64>().sqrt())
+        })
+        .filter(|l| *l > 0.0)
+        .fold(f64::INFINITY, f64::min);
     Some(FacetPair {
+        evaluated: usize::MAX,
+        touch: if h.is_finite() {
+            super::penalty::TOUCH_FRACTION * h
+        } else {
+            0.0
+        },
         sides: [FacetSurface::new(&cp.faces), FacetSurface::new(faces)],
         side_of: slaves
             .iter()
@@ -784,6 +813,13 @@ pub fn evaluate(
     }
     fp.couplings.clear();
     fp.tests = 0;
+    // Lagrange: the first evaluation of the run, and of a double-pass swap
+    // (the new slave side was not evaluated in the last increment: none of
+    // its nodes is active, and a body that only this contact holds would
+    // be free), brings the touching slaves into the active set
+    let fresh = fp.evaluated != fp.increments
+        && (fp.increments == 0 || cp.strategy == ContactStrategy::DoublePass);
+    fp.evaluated = fp.increments;
     let mut candidates = std::mem::take(&mut fp.candidates);
     for (i, &node) in state.slaves.iter().enumerate() {
         let side = fp.side_of[i] as usize;
@@ -817,6 +853,19 @@ pub fn evaluate(
         }
         let method = cp.method_at(node);
         let a = alpha(&method, state.area[i]);
+        // closed-gap start: a touching node of a body only this contact
+        // holds joins with zero force (penalty, AL: the tangent alpha G G^T;
+        // Lagrange: the active set, its row holds the body)
+        let touching = state.touching > 0.0 && (0.0..=state.touching).contains(&el.gap);
+        let touching_start = fresh && el.gap <= fp.touch;
+        if (touching || touching_start)
+            && matches!(method, ContactMethod::Lagrange { .. })
+            && !state.active[i]
+        {
+            state.active[i] = true;
+            state.multiplier[i] = 0.0;
+        }
+        let active = state.active[i];
         let mut nc = NodeContact {
             node,
             gap: el.gap,
@@ -829,7 +878,9 @@ pub fn evaluate(
             master: None,
             friction: Default::default(),
         };
-        if let Some((rn, slope)) = response(&method, a, state.multiplier[i], active, el.gap) {
+        let closed = response(&method, a, state.multiplier[i], active, el.gap)
+            .or_else(|| (touching && a > 0.0).then_some((0.0, -a)));
+        if let Some((rn, slope)) = closed {
             let face = surface.faces[k].nodes();
             let dofs = 3 * (1 + face.len());
             let local: Vec<usize> = std::iter::once(node).chain(face.iter().copied()).collect();

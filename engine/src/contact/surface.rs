@@ -81,6 +81,12 @@ pub struct SurfacePair {
     /// two surfaces, the strategy state and the couplings of the latest
     /// evaluation; `None` against a surface tool.
     pub facets: Option<FacetPair>,
+    /// Closed-gap start of node-to-facet pairs (as
+    /// `crate::contact::PairState::touching` in 2D): slave nodes whose gap
+    /// lies in `[0, touching]` count as closed with zero force; set by the
+    /// solver for the first iteration of the analysis only, on
+    /// frictionless pairs of bodies held only by contact (0: off).
+    pub touching: f64,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -139,6 +145,7 @@ impl SurfacePair {
         SurfacePair {
             slaves,
             facets,
+            touching: 0.0,
             area,
             prof,
             multiplier: vec![0.0; n],

@@ -592,6 +592,45 @@ impl ContactScene<3> for SurfaceAssembly {
         self.couplings = couplings.to_vec();
     }
 
+    /// The closed-gap start of the node-to-facet pairs that involve a body
+    /// held only by contact (slave or master; frictionless: all of them in
+    /// 3D): [`crate::contact::penalty::TOUCH_FRACTION`] of the pair's
+    /// smallest slave facet edge, as in 2D.
+    fn set_touching(&mut self, model: &Model<3>, on: bool) {
+        let held = if on {
+            super::check::held_only_by_contact(model)
+        } else {
+            Vec::new()
+        };
+        let held = |b: usize| held.get(b).copied().unwrap_or(false);
+        for (cp, state) in model.contacts.iter().zip(&mut self.pairs) {
+            state.touching = 0.0;
+            let crate::model::ContactMaster::Surface { body, .. } = &cp.master else {
+                continue;
+            };
+            if !on || !(held(cp.body) || held(*body)) || cp.friction.is_some() {
+                continue;
+            }
+            let nodes = &model.mesh.nodes;
+            let h = cp
+                .faces
+                .iter()
+                .flat_map(|f| {
+                    let n = f.nodes();
+                    (0..n.len()).map(move |k| (n[k], n[(k + 1) % n.len()]))
+                })
+                .filter_map(|(a, b)| {
+                    let (pa, pb) = (nodes.get(a)?, nodes.get(b)?);
+                    Some((0..3).map(|c| (pb[c] - pa[c]).powi(2)).sum::<f64>().sqrt())
+                })
+                .filter(|l| *l > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            if h.is_finite() {
+                state.touching = crate::contact::penalty::TOUCH_FRACTION * h;
+            }
+        }
+    }
+
     fn contact_csv(
         model: &Model<3>,
         pair: usize,

@@ -28,7 +28,10 @@
 //! and with the augmented Lagrangian (the two passes fight over the split
 //! of the load: the Uzawa loop took 50179 Newton iterations on hex8 to
 //! reach its 1e-9 gap). A control runs matching meshes (3 x 3 facets on
-//! both sides): node-to-facet passes that to round-off.
+//! both sides): node-to-facet passes that to round-off. Load-controlled
+//! runs ([`LOADED`]: a traction on the top instead of the displacement, the
+//! top block held only by the contact, closed-gap start) give the applied
+//! load as total contact force to round-off.
 //!
 //! `hertz_sphere_block_ntf_3d` — an elastic sphere octant pressed by an
 //! elastic block vs by a rigid plane tool, and Hertz (see [`hertz_level`]).
@@ -231,6 +234,41 @@ pub const COMBINATIONS: &[Combination] = &[
     ),
 ];
 
+/// Load-controlled runs: the top face carries the traction `t_z = -10`
+/// instead of the displacement, so the top block is held only by the
+/// contact (closed-gap start: the interface nodes touch at `t = 0`). The
+/// total contact force must be the applied load, to round-off, whatever
+/// the local pressure does. (name, cell, strategy, method).
+pub const LOADED: &[(&str, &str, &str, &str)] = &[
+    (
+        "hex8 single penalty loaded F",
+        "hex8",
+        "single_pass",
+        PENALTY,
+    ),
+    (
+        "hex8 double lagrange loaded F",
+        "hex8",
+        "double_pass",
+        LAGRANGE,
+    ),
+    (
+        "tet4 single augmented loaded F",
+        "tet4",
+        "single_pass",
+        AUGMENTED,
+    ),
+    (
+        "tet4 modified penalty loaded F",
+        "tet4",
+        "modified_double_pass",
+        PENALTY,
+    ),
+];
+
+/// The applied traction of the load-controlled runs.
+const LOAD: f64 = 10.0;
+
 /// The registry entries of this file.
 pub fn cases() -> Vec<VerifyCase> {
     vec![
@@ -257,6 +295,11 @@ pub fn cases() -> Vec<VerifyCase> {
                         Check::new(Quantity::Named(c.1), &[c.7]),
                     ]
                 })
+                .chain(
+                    LOADED
+                        .iter()
+                        .map(|c| Check::new(Quantity::Named(c.0), &[1e-8])),
+                )
                 .collect(),
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 1,
@@ -382,6 +425,9 @@ pub struct Outcome {
     pub deviation: f64,
     /// Total force through the stack (`-` reaction on the top face).
     pub force: f64,
+    /// Total contact force: the sum of `|f_z|` over the slave nodes (both
+    /// passes' slaves for the modified double pass).
+    pub contact_force: f64,
     /// The exact uniform pressure.
     pub exact: f64,
     /// Closed nodes at the end.
@@ -397,7 +443,30 @@ pub fn run_combination(
     strategy: &str,
     method: &str,
 ) -> Result<(Outcome, ProgramLevel), String> {
-    let text = patch_deck(cell, base, strategy, method);
+    run_deck(patch_deck(cell, base, strategy, method), method)
+}
+
+/// Runs one load-controlled combination ([`LOADED`]): the outcome's
+/// `contact_force` is the total contact force, its `exact` the applied load.
+pub fn run_loaded(
+    cell: &str,
+    strategy: &str,
+    method: &str,
+) -> Result<(Outcome, ProgramLevel), String> {
+    let text = patch_deck(cell, 4, strategy, method).replace(
+        &format!("displace top.zmax {{ uz = ramp(0, -{D}) }}"),
+        &format!("traction top.zmax {{ tz = ramp(0, -{LOAD}) }}"),
+    );
+    if !text.contains("traction") {
+        return Err("the patch deck has no top displacement to replace".into());
+    }
+    let (mut o, level) = run_deck(text, method)?;
+    o.exact = LOAD;
+    Ok((o, level))
+}
+
+/// Runs a patch deck; `method` decides the exact pressure.
+fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), String> {
     let path = std::path::Path::new("contact_patch_ntf_3d.ctc");
     let src = ctc_lang::Source::new(path, &text);
     let AnyModel::D3(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
@@ -439,6 +508,7 @@ pub fn run_combination(
         .iter()
         .map(|x| ((x - exact) / exact).abs())
         .fold(0.0, f64::max);
+    let contact_force = last.contact.iter().map(|c| c.force[2].abs()).sum::<f64>();
     let mut level = ProgramLevel {
         h: 1.0 / 3.0,
         ..ProgramLevel::default()
@@ -449,12 +519,23 @@ pub fn run_combination(
         Outcome {
             deviation,
             force: -last.force,
+            contact_force,
             exact,
             closed: p.len(),
             iterations: s.newton_iterations,
         },
         level,
     ))
+}
+
+/// Adds the work figures of one run's level to `out`.
+fn add_level(out: &mut ProgramLevel, level: &ProgramLevel) {
+    out.nodes = out.nodes.max(level.nodes);
+    out.free_dofs = out.free_dofs.max(level.free_dofs);
+    out.increments += level.increments;
+    out.newton_total += level.newton_total;
+    out.newton_max = out.newton_max.max(level.newton_max);
+    out.cutbacks += level.cutbacks;
 }
 
 fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
@@ -465,14 +546,14 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
     for &(pname, fname, cell, base, strategy, method, _, _) in COMBINATIONS {
         let (o, level) =
             run_combination(cell, base, strategy, method).map_err(|e| format!("{pname}: {e}"))?;
-        out.nodes = out.nodes.max(level.nodes);
-        out.free_dofs = out.free_dofs.max(level.free_dofs);
-        out.increments += level.increments;
-        out.newton_total += level.newton_total;
-        out.newton_max = out.newton_max.max(level.newton_max);
-        out.cutbacks += level.cutbacks;
+        add_level(&mut out, &level);
         out.values.push(error(pname, o.deviation));
         out.values.push(value(fname, o.force, o.exact));
+    }
+    for &(name, cell, strategy, method) in LOADED {
+        let (o, level) = run_loaded(cell, strategy, method).map_err(|e| format!("{name}: {e}"))?;
+        add_level(&mut out, &level);
+        out.values.push(value(name, o.contact_force, o.exact));
     }
     Ok(out)
 }
