@@ -69,3 +69,77 @@ fn hertz_forces() {
         );
     }
 }
+
+#[derive(Default)]
+struct Last {
+    u: Vec<[f64; 3]>,
+    contact: Vec<ctc_engine::contact::NodeContact<3>>,
+    checkpoints: Vec<ctc_engine::solve::restart::Checkpoint<3>>,
+}
+
+impl ctc_engine::solve::Observer<3> for Last {
+    fn converged(&mut self, v: &ctc_engine::solve::IncrementView<'_, 3>) -> Result<(), String> {
+        self.u = v.displacement.to_vec();
+        self.contact = v.contact[0].clone();
+        Ok(())
+    }
+    fn wants_checkpoint(&self) -> bool {
+        true
+    }
+    fn checkpoint(&mut self, c: &ctc_engine::solve::restart::Checkpoint<3>) -> Result<(), String> {
+        self.checkpoints.push(c.clone());
+        Ok(())
+    }
+}
+
+fn bits(l: &Last) -> Vec<u64> {
+    l.u.iter()
+        .flatten()
+        .chain(l.contact.iter().flat_map(|c| c.force.iter()))
+        .chain(l.contact.iter().map(|c| &c.pressure))
+        .map(|v| v.to_bits())
+        .collect()
+}
+
+/// A node-to-facet run restarted after its second increment (of four)
+/// ends bit for bit where the uninterrupted run ends: the pattern
+/// couplings, the double-pass side (an odd number of increments resumed),
+/// the multipliers and the active set come back from the checkpoint.
+#[test]
+fn node_to_facet_restarts_bit_for_bit() {
+    use ctc_verification::programs::contact_ntf_3d::patch_deck;
+    for (cell, strategy, method) in [
+        ("hex8", "double_pass", "lagrange { }"),
+        (
+            "tet4",
+            "single_pass",
+            "augmented_lagrange { kind = area  penalty = 1e4  tolerance = 1e-9 }",
+        ),
+        (
+            "hex8",
+            "modified_double_pass",
+            "penalty { kind = area  stiffness = 1e6 }",
+        ),
+    ] {
+        let text =
+            patch_deck(cell, 4, strategy, method).replace("increments = 2", "increments = 4");
+        let src = ctc_lang::Source::new("restart.ctc", &text);
+        let model = match ctc_lang::compile_any(&src) {
+            Ok(ctc_engine::model::AnyModel::D3(m)) => m,
+            Ok(_) => panic!("not a 3d deck"),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        let mut first = Last::default();
+        let s1 = ctc_engine::solve::run(&model, &mut first).unwrap();
+        assert!(s1.completed && s1.increments.len() == 4);
+        assert!(
+            !first.checkpoints[1].couplings.is_empty(),
+            "{cell} {strategy}: the pattern never grew"
+        );
+        let mut rest = Last::default();
+        let s2 =
+            ctc_engine::solve::run_from(&model, &mut rest, Some(&first.checkpoints[1])).unwrap();
+        assert!(s2.completed);
+        assert_eq!(bits(&first), bits(&rest), "{cell} {strategy} {method}");
+    }
+}

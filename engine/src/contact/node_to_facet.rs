@@ -670,10 +670,20 @@ impl FacetPair {
         self.evaluated = usize::MAX;
     }
 
-    /// Restart: `increments` converged increments were done.
-    pub fn restore(&mut self, increments: usize) {
+    /// Restart: `increments` converged increments were done, `memory` the
+    /// committed facet of each slave ([`FacetPair::memory`]).
+    pub fn restore(&mut self, increments: usize, memory: &[Option<usize>]) {
         self.increments = increments;
         self.committed_increments = increments;
+        self.committed_last = memory.to_vec();
+        self.last = memory.to_vec();
+        self.evaluated = usize::MAX;
+    }
+
+    /// The committed facet of each slave (the search memory), for restart
+    /// points.
+    pub fn memory(&self) -> &[Option<usize>] {
+        &self.committed_last
     }
 
     /// The nodes near facet `k` of the side opposite to slave index `i`

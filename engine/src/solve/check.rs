@@ -296,6 +296,13 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     Some("self contact (the exclusion of a node's own facets)")
                 } else if faces.is_empty() {
                     Some("master faces (the master set has no face)")
+                } else if c.strategy == crate::model::ContactStrategy::ModifiedDoublePass
+                    && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
+                {
+                    Some(
+                        "modified double pass with Lagrange multipliers (over-constrained: use \
+                         the double pass or a penalty)",
+                    )
                 } else {
                     None
                 };

@@ -551,7 +551,12 @@ impl ContactScene<3> for SurfaceAssembly {
             .map(|p| {
                 let (multiplier, active) = p.committed();
                 PairHistory {
-                    entity: vec![None; p.slaves.len()],
+                    // node-to-facet: the search memory (the seam rule
+                    // depends on it)
+                    entity: p
+                        .facets
+                        .as_ref()
+                        .map_or_else(|| vec![None; p.slaves.len()], |f| f.memory().to_vec()),
                     multiplier: multiplier.to_vec(),
                     active: active.to_vec(),
                     friction: p.friction.committed_values(),
@@ -581,7 +586,10 @@ impl ContactScene<3> for SurfaceAssembly {
                 s.friction.restore_committed(&h.friction)?;
             }
             if let Some(f) = &mut s.facets {
-                f.restore(increment);
+                if h.entity.len() != n {
+                    return Err("the restart point does not match the model (slave nodes)".into());
+                }
+                f.restore(increment, &h.entity);
             }
             s.restore(&h.multiplier, &h.active);
         }

@@ -110,6 +110,23 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
                 "contact two different face sets",
             );
         }
+        let lagrange = c
+            .method
+            .as_ref()
+            .is_some_and(|m| matches!(m.value, crate::ast::Method::Lagrange { .. }));
+        if let Some(st) = c
+            .strategy
+            .as_ref()
+            .filter(|s| lagrange && s.value == crate::ast::Strategy::ModifiedDoublePass)
+        {
+            refuse(
+                "modified double pass with Lagrange multipliers (every interface node is \
+                 constrained from both sides: the saddle-point system is singular)",
+                st.span,
+                "use `strategy = double_pass`, or `method = penalty { .. }` / \
+                 `augmented_lagrange { .. }` with the modified double pass",
+            );
+        }
     }
 }
 
