@@ -613,6 +613,69 @@ impl FacetSurface {
     }
 }
 
+/// Slave nodes `slaves` that moved farther than the window `prof` relative
+/// to the master surface `master` between the coordinates `x0` (start of
+/// the increment) and `x1` (end): the rule of [`super::jump`] in 3D (the
+/// relative displacement is the node's minus that of the master point
+/// under its end position, interpolated with the facet's weights; the
+/// master within that distance of the end position; the normal component
+/// larger than `prof`). Stateless (the surface's broad phase is rebuilt at
+/// `x1`), ascending node order.
+pub fn jumps(
+    master: &mut FacetSurface,
+    slaves: &[usize],
+    prof: f64,
+    x0: &[[f64; 3]],
+    x1: &[[f64; 3]],
+) -> Vec<super::jump::Jump> {
+    let mut out = Vec::new();
+    let mut candidates = Vec::new();
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let mut built = false;
+    for &node in slaves {
+        let (Some(&a), Some(&b)) = (x0.get(node), x1.get(node)) else {
+            continue;
+        };
+        let moved: [f64; 3] = std::array::from_fn(|c| b[c] - a[c]);
+        let reach = norm(moved) * (1.0 + 1e-12);
+        if reach <= prof * (1.0 + 1e-12) {
+            continue;
+        }
+        if !built {
+            master.update(x1, prof);
+            built = true;
+        }
+        master.grid.query(b, reach, &mut candidates);
+        // the node's own facets are not a master for it
+        candidates.retain(|&k| !master.faces[k].nodes().contains(&node));
+        let mut tests = 0;
+        let Some((k, el)) = master.closest(x1, b, &candidates, None, reach, &mut tests) else {
+            continue;
+        };
+        let face = master.faces[k].nodes();
+        let mut under = [0.0; 3];
+        for (w, &m) in el.weights.iter().zip(face) {
+            let (Some(p0), Some(p1)) = (x0.get(m), x1.get(m)) else {
+                continue;
+            };
+            for c in 0..3 {
+                under[c] += w * (p1[c] - p0[c]);
+            }
+        }
+        let d: [f64; 3] = std::array::from_fn(|c| moved[c] - under[c]);
+        let distance = norm(d);
+        let normal = (0..3).map(|c| d[c] * el.normal[c]).sum::<f64>().abs();
+        if distance > prof && normal > prof && el.gap.abs() <= distance * (1.0 + 1e-12) {
+            out.push(super::jump::Jump {
+                node,
+                distance,
+                normal,
+            });
+        }
+    }
+    out
+}
+
 /// Prepared data of a 3D pair whose master is a deformable surface.
 #[derive(Debug, Clone, Default)]
 pub struct FacetPair {
@@ -1148,6 +1211,40 @@ mod tests {
                 .0,
             1
         );
+    }
+
+    #[test]
+    fn a_node_crossing_the_master_in_one_increment_is_a_jump() {
+        // a flat master of two quads; node 6 goes from 0.05 above it to 0.05
+        // below (crossing, window 0.01), node 7 slides 0.5 along it at a
+        // gap of 0.005, node 8 approaches from 0.9 above to 0.6 above
+        let faces = [Facet::new(&[0, 1, 2, 3]), Facet::new(&[1, 4, 5, 2])];
+        let x0 = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [0.5, 0.5, 0.05],
+            [0.5, 0.5, 0.005],
+            [1.5, 0.5, 0.9],
+        ];
+        let mut x1 = x0.clone();
+        x1[6][2] = -0.05;
+        x1[7][0] = 1.0;
+        x1[8][2] = 0.6;
+        let mut s = FacetSurface::new(&faces);
+        let j = jumps(&mut s, &[6, 7, 8], 0.01, &x0, &x1);
+        assert_eq!(j.len(), 1, "{j:?}");
+        assert_eq!(j[0].node, 6);
+        assert!((j[0].distance - 0.1).abs() < 1e-12 && (j[0].normal - 0.1).abs() < 1e-12);
+        // the master moving with the node: no relative motion, no jump
+        let mut x2 = x1.clone();
+        for p in x2.iter_mut().take(6) {
+            p[2] -= 0.1;
+        }
+        assert!(jumps(&mut s, &[6], 0.01, &x0, &x2).is_empty());
     }
 
     #[test]

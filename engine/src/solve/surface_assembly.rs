@@ -489,6 +489,30 @@ impl ContactScene<3> for SurfaceAssembly {
                 )
             })
             .collect();
+        // node-to-facet pairs: the deck's slave nodes against the master
+        // faces (the rule of `contact::jump` in 3D)
+        let place = |u: &[[f64; 3]]| -> Vec<[f64; 3]> {
+            model
+                .mesh
+                .nodes
+                .iter()
+                .zip(u)
+                .map(|(x, d)| std::array::from_fn(|c| x[c] + d[c]))
+                .collect()
+        };
+        let mut placed: Option<(Vec<[f64; 3]>, Vec<[f64; 3]>)> = None;
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            let crate::model::ContactMaster::Surface { faces, .. } = &cp.master else {
+                continue;
+            };
+            let (x0, x1) = placed.get_or_insert_with(|| (place(before.0), place(after.0)));
+            let mut master = crate::contact::node_to_facet::FacetSurface::new(faces);
+            let prof = self.pairs[pi].prof;
+            let jumps = crate::contact::node_to_facet::jumps(&mut master, &cp.nodes, prof, x0, x1);
+            out.extend(crate::contact::jump::warning(
+                &cp.name, increment, after.1, prof, &jumps,
+            ));
+        }
         for (pi, cp) in model.contacts.iter().enumerate() {
             let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
                 continue;
