@@ -500,15 +500,24 @@ impl ContactScene<3> for SurfaceAssembly {
                 .map(|(x, d)| std::array::from_fn(|c| x[c] + d[c]))
                 .collect()
         };
-        let mut placed: Option<(Vec<[f64; 3]>, Vec<[f64; 3]>)> = None;
+        let deformable = model
+            .contacts
+            .iter()
+            .any(|c| matches!(c.master, crate::model::ContactMaster::Surface { .. }));
+        let (x0, x1) = if deformable {
+            (place(before.0), place(after.0))
+        } else {
+            (Vec::new(), Vec::new())
+        };
         for (pi, cp) in model.contacts.iter().enumerate() {
             let crate::model::ContactMaster::Surface { faces, .. } = &cp.master else {
                 continue;
             };
-            let (x0, x1) = placed.get_or_insert_with(|| (place(before.0), place(after.0)));
+
             let mut master = crate::contact::node_to_facet::FacetSurface::new(faces);
             let prof = self.pairs[pi].prof;
-            let jumps = crate::contact::node_to_facet::jumps(&mut master, &cp.nodes, prof, x0, x1);
+            let jumps =
+                crate::contact::node_to_facet::jumps(&mut master, &cp.nodes, prof, &x0, &x1);
             out.extend(crate::contact::jump::warning(
                 &cp.name, increment, after.1, prof, &jumps,
             ));
