@@ -8,7 +8,10 @@ use ctc_engine::model::{
 /// One line about a deformable master (strategy, search, self contact);
 /// `None` for a rigid tool.
 pub fn describe(model: &Model, c: &ContactPair) -> Option<String> {
-    let ContactMaster::Surface { body, edges, nodes } = &c.master else {
+    let ContactMaster::Surface {
+        body, edges, nodes, ..
+    } = &c.master
+    else {
         return None;
     };
     let body = model.bodies.get(*body).map_or("?", |b| b.name.as_str());

@@ -561,8 +561,9 @@ pub static CONTACT: [Key; 8] = [
     Key::new(
         "formulation",
         KeyType::Choice(&["node_to_segment", "mortar"]),
-        "contact between deformable bodies: node-to-segment elements, or mortar \
-         segment-to-segment (weighted gaps; single pass, penalty or augmented Lagrangian)",
+        "contact between deformable bodies: node-to-segment elements (3d: node-to-facet on \
+         tri3 / quad4 faces), or mortar segment-to-segment (planar; weighted gaps; single \
+         pass, penalty or augmented Lagrangian)",
     )
     .default(Default::Choice("node_to_segment")),
     Key::new(
@@ -570,7 +571,7 @@ pub static CONTACT: [Key; 8] = [
         KeyType::Choice(&["none", "nodal"]),
         "master normal of node-to-segment contact: none (faceted, exact segment normals) or \
          nodal (averaged nodal normals interpolated along each segment: continuous across the \
-         master nodes)",
+         master nodes; planar analyses)",
     )
     .default(Default::Choice("none")),
     Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),

@@ -269,7 +269,10 @@ fn deformable_contact_lowers_to_a_surface_master_with_oriented_edges() {
     assert_eq!(cp.name, "top.bottom -> base.top");
     assert_eq!(cp.strategy, ContactStrategy::DoublePass);
     assert_eq!(cp.search, LocalSearch::Circle);
-    let ContactMaster::Surface { body, edges, nodes } = &cp.master else {
+    let ContactMaster::Surface {
+        body, edges, nodes, ..
+    } = &cp.master
+    else {
         panic!("surface master expected");
     };
     assert_eq!(model.bodies[*body].name, "base");

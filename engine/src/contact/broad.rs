@@ -5,8 +5,8 @@
 //! window `prof`), contains the point: the narrow phase (projection) then
 //! only runs on those.
 //!
-//! The grid is unbounded and *hashed*: cell `(i, j)` of side `cell` goes to
-//! bucket `morton(i, j) mod B` (see [`bucket`]), with `B` a power of two
+//! The grid is unbounded and *hashed*: cell `(i, j)` (in 3D `(i, j, k)`)
+//! of side `cell` goes to bucket `morton(i, j) mod B` (see [`bucket`]), with `B` a power of two
 //! about the number of (box, cell) registrations. Memory and build time are therefore `O(n)`
 //! whatever the shape of the surface (a ring of `n` segments would need
 //! `O(n^2)` cells in a dense grid over its bounding box). Two cells sharing
@@ -22,6 +22,10 @@
 //! query. A query whose window covers more cells than there are entities
 //! tests every box (brute force is cheaper then).
 //!
+//! The grid is generic over the dimension `D` (`BroadPhase` without a
+//! parameter is the planar one): master segments in 2D, master facets of
+//! node-to-facet contact in 3D ([`super::node_to_facet`]).
+//!
 //! [`BroadPhase::rebuild`] reuses the storage of the previous build, so the
 //! per-iteration rebuild of a moving surface does not allocate once the
 //! sizes have settled.
@@ -29,11 +33,11 @@
 use crate::geom::Aabb;
 
 /// Hashed uniform grid of entity boxes.
-#[derive(Debug, Clone, Default)]
-pub struct BroadPhase {
-    /// Grid origin (lower-left corner of the boxes' bounds).
-    origin: [f64; 2],
-    /// Cell size (same in x and y), > 0.
+#[derive(Debug, Clone)]
+pub struct BroadPhase<const D: usize = 2> {
+    /// Grid origin (lower corner of the boxes' bounds).
+    origin: [f64; D],
+    /// Cell size (same along every axis), > 0.
     cell: f64,
     /// Bucket count minus one (bucket count is a power of two).
     mask: usize,
@@ -44,7 +48,21 @@ pub struct BroadPhase {
     /// Entities whose box covers too many cells (tested by every query).
     oversize: Vec<usize>,
     /// The boxes the grid was built from.
-    boxes: Vec<Aabb<2>>,
+    boxes: Vec<Aabb<D>>,
+}
+
+impl<const D: usize> Default for BroadPhase<D> {
+    fn default() -> Self {
+        BroadPhase {
+            origin: [0.0; D],
+            cell: 0.0,
+            mask: 0,
+            start: Vec::new(),
+            entries: Vec::new(),
+            oversize: Vec::new(),
+            boxes: Vec::new(),
+        }
+    }
 }
 
 /// Largest number of cells a box is registered in; bigger boxes go to the
@@ -59,13 +77,34 @@ pub const MAX_COVER: i64 = 64;
 /// segments). Cells farther apart than `sqrt(B)` cells may share a bucket:
 /// a few extra box tests, never a wrong answer.
 #[inline]
-fn bucket(i: i64, j: i64, mask: usize) -> usize {
-    crate::geom::morton::encode([i, j]) as usize & mask
+fn bucket<const D: usize>(cell: [i64; D], mask: usize) -> usize {
+    crate::geom::morton::encode(cell) as usize & mask
 }
 
-impl BroadPhase {
+/// Calls `f` on every cell of the range `lo ..= hi` (first axis fastest).
+#[inline]
+fn for_each_cell<const D: usize>(lo: [i64; D], hi: [i64; D], mut f: impl FnMut([i64; D])) {
+    let mut c = lo;
+    loop {
+        f(c);
+        let mut axis = 0;
+        loop {
+            if axis == D {
+                return;
+            }
+            if c[axis] < hi[axis] {
+                c[axis] += 1;
+                break;
+            }
+            c[axis] = lo[axis];
+            axis += 1;
+        }
+    }
+}
+
+impl<const D: usize> BroadPhase<D> {
     /// Builds the grid over `boxes` (an empty list gives an empty grid).
-    pub fn build(boxes: &[Aabb<2>]) -> Self {
+    pub fn build(boxes: &[Aabb<D>]) -> Self {
         let mut grid = BroadPhase::default();
         grid.rebuild(boxes, 0.0);
         grid
@@ -73,15 +112,16 @@ impl BroadPhase {
 
     /// Rebuilds the grid over `boxes`, reusing the storage of the previous
     /// build. `radius` is the query radius expected (the search window);
-    /// the cell size is at least that, so a query visits at most 3x3 cells.
-    pub fn rebuild(&mut self, boxes: &[Aabb<2>], radius: f64) {
+    /// the cell size is at least that, so a query visits at most 3 cells
+    /// along each axis.
+    pub fn rebuild(&mut self, boxes: &[Aabb<D>], radius: f64) {
         self.boxes.clear();
         self.boxes.extend_from_slice(boxes);
         self.entries.clear();
         self.oversize.clear();
         let mut bounds = Aabb {
-            min: [f64::INFINITY; 2],
-            max: [f64::NEG_INFINITY; 2],
+            min: [f64::INFINITY; D],
+            max: [f64::NEG_INFINITY; D],
         };
         let mut extent = 0.0;
         let mut finite = 0usize;
@@ -89,13 +129,15 @@ impl BroadPhase {
             if b.is_finite() {
                 bounds.include(b.min);
                 bounds.include(b.max);
-                extent += (b.max[0] - b.min[0]).max(b.max[1] - b.min[1]);
+                extent += (0..D).map(|k| b.max[k] - b.min[k]).fold(0.0, f64::max);
                 finite += 1;
             }
         }
-        self.origin = if finite > 0 { bounds.min } else { [0.0; 2] };
+        self.origin = if finite > 0 { bounds.min } else { [0.0; D] };
         let span = if finite > 0 {
-            (bounds.max[0] - bounds.min[0]).max(bounds.max[1] - bounds.min[1])
+            (0..D)
+                .map(|k| bounds.max[k] - bounds.min[k])
+                .fold(0.0, f64::max)
         } else {
             0.0
         };
@@ -127,11 +169,8 @@ impl BroadPhase {
         for (e, b) in boxes.iter().enumerate() {
             match self.cover(b).filter(|_| small) {
                 Some((lo, hi)) => {
-                    for j in lo[1]..=hi[1] {
-                        for i in lo[0]..=hi[0] {
-                            self.start[bucket(i, j, self.mask) + 1] += 1;
-                        }
-                    }
+                    let (start, mask) = (&mut self.start, self.mask);
+                    for_each_cell(lo, hi, |c| start[bucket(c, mask) + 1] += 1);
                 }
                 None => self.oversize.push(e),
             }
@@ -142,13 +181,12 @@ impl BroadPhase {
         self.entries.resize(self.start[buckets] as usize, 0);
         for (e, b) in boxes.iter().enumerate() {
             if let Some((lo, hi)) = self.cover(b).filter(|_| small) {
-                for j in lo[1]..=hi[1] {
-                    for i in lo[0]..=hi[0] {
-                        let c = bucket(i, j, self.mask);
-                        self.entries[self.start[c] as usize] = e as u32;
-                        self.start[c] += 1;
-                    }
-                }
+                let (start, entries, mask) = (&mut self.start, &mut self.entries, self.mask);
+                for_each_cell(lo, hi, |cell| {
+                    let c = bucket(cell, mask);
+                    entries[start[c] as usize] = e as u32;
+                    start[c] += 1;
+                });
             }
         }
         // start[c] now holds the end of bucket c = the start of c + 1
@@ -174,43 +212,40 @@ impl BroadPhase {
 
     /// Cell range of a box and its number of cells (saturating), or `None`
     /// if the box is not finite.
-    fn cells(&self, b: &Aabb<2>) -> Option<([i64; 2], [i64; 2], i64)> {
+    fn cells(&self, b: &Aabb<D>) -> Option<([i64; D], [i64; D], i64)> {
         if !b.is_finite() {
             return None;
         }
-        let lo = [
-            self.index(b.min[0], self.origin[0]),
-            self.index(b.min[1], self.origin[1]),
-        ];
-        let hi = [
-            self.index(b.max[0], self.origin[0]),
-            self.index(b.max[1], self.origin[1]),
-        ];
-        let nx = hi[0].saturating_sub(lo[0]).saturating_add(1);
-        let ny = hi[1].saturating_sub(lo[1]).saturating_add(1);
-        if nx <= 0 || ny <= 0 {
-            return None;
+        let lo: [i64; D] = std::array::from_fn(|k| self.index(b.min[k], self.origin[k]));
+        let hi: [i64; D] = std::array::from_fn(|k| self.index(b.max[k], self.origin[k]));
+        let mut count: i64 = 1;
+        for k in 0..D {
+            let n = hi[k].saturating_sub(lo[k]).saturating_add(1);
+            if n <= 0 {
+                return None;
+            }
+            count = count.saturating_mul(n);
         }
-        Some((lo, hi, nx.saturating_mul(ny)))
+        Some((lo, hi, count))
     }
 
     /// Cell range of a box, or `None` if it is not finite or covers more
     /// than [`MAX_COVER`] cells.
-    fn cover(&self, b: &Aabb<2>) -> Option<([i64; 2], [i64; 2])> {
+    fn cover(&self, b: &Aabb<D>) -> Option<([i64; D], [i64; D])> {
         self.cells(b)
             .filter(|c| c.2 <= MAX_COVER)
             .map(|(lo, hi, _)| (lo, hi))
     }
 
     /// Number of cells box `b` is registered in (`None`: oversize).
-    fn cover_count(&self, b: &Aabb<2>) -> Option<usize> {
+    fn cover_count(&self, b: &Aabb<D>) -> Option<usize> {
         self.cover(b)
-            .map(|(lo, hi)| ((hi[0] - lo[0] + 1) * (hi[1] - lo[1] + 1)) as usize)
+            .map(|(lo, hi)| (0..D).map(|k| (hi[k] - lo[k] + 1) as usize).product())
     }
 
     /// Entities whose box inflated by `radius` contains `p`, ascending and
     /// without duplicates, written to `out` (cleared first).
-    pub fn query(&self, p: [f64; 2], radius: f64, out: &mut Vec<usize>) {
+    pub fn query(&self, p: [f64; D], radius: f64, out: &mut Vec<usize>) {
         out.clear();
         self.query_append(p, radius, out);
     }
@@ -218,9 +253,9 @@ impl BroadPhase {
     /// Like [`BroadPhase::query`] but appends to `out`: the appended part is
     /// ascending and without duplicates (what `out` held before is kept and
     /// not looked at).
-    pub fn query_append(&self, p: [f64; 2], radius: f64, out: &mut Vec<usize>) {
+    pub fn query_append(&self, p: [f64; D], radius: f64, out: &mut Vec<usize>) {
         let base = out.len();
-        if self.boxes.is_empty() || !(p[0].is_finite() && p[1].is_finite()) {
+        if self.boxes.is_empty() || !p.iter().all(|v| v.is_finite()) {
             return;
         }
         let r = if radius.is_nan() {
@@ -229,24 +264,22 @@ impl BroadPhase {
             radius.max(0.0)
         };
         let window = Aabb {
-            min: [p[0] - r, p[1] - r],
-            max: [p[0] + r, p[1] + r],
+            min: p.map(|v| v - r),
+            max: p.map(|v| v + r),
         };
         // visit the window's cells unless there are more of them than boxes
         let limit = (self.boxes.len() as i64).max(MAX_COVER);
         match self.cells(&window).filter(|c| c.2 <= limit) {
             Some((lo, hi, _)) => {
-                for j in lo[1]..=hi[1] {
-                    for i in lo[0]..=hi[0] {
-                        let c = bucket(i, j, self.mask);
-                        let run = self.start[c] as usize..self.start[c + 1] as usize;
-                        for &e in &self.entries[run] {
-                            if self.boxes[e as usize].contains_within(p, r) {
-                                out.push(e as usize);
-                            }
+                for_each_cell(lo, hi, |cell| {
+                    let c = bucket(cell, self.mask);
+                    let run = self.start[c] as usize..self.start[c + 1] as usize;
+                    for &e in &self.entries[run] {
+                        if self.boxes[e as usize].contains_within(p, r) {
+                            out.push(e as usize);
                         }
                     }
-                }
+                });
                 for &e in &self.oversize {
                     if self.boxes[e].contains_within(p, r) {
                         out.push(e);
@@ -284,7 +317,7 @@ impl BroadPhase {
     }
 
     /// Box of entity `e` as given to the last build.
-    pub fn bounding_box(&self, e: usize) -> Aabb<2> {
+    pub fn bounding_box(&self, e: usize) -> Aabb<D> {
         self.boxes[e]
     }
 }
@@ -314,7 +347,7 @@ mod tests {
     #[test]
     fn query_matches_brute_force() {
         let boxes = segment_boxes(200);
-        let grid = BroadPhase::build(&boxes);
+        let grid: BroadPhase = BroadPhase::build(&boxes);
         let mut out = Vec::new();
         for k in 0..500 {
             let p = [
@@ -339,7 +372,7 @@ mod tests {
             })
             .collect();
         let boxes: Vec<Aabb<2>> = pts.windows(2).map(Aabb::around).collect();
-        let grid = BroadPhase::build(&boxes);
+        let grid: BroadPhase = BroadPhase::build(&boxes);
         assert!(grid.start.len() <= 8 * 4 * n + 2, "{}", grid.start.len());
         let mut out = Vec::new();
         for k in 0..200 {
@@ -380,7 +413,7 @@ mod tests {
     #[test]
     fn query_append_keeps_prefix() {
         let boxes = segment_boxes(20);
-        let grid = BroadPhase::build(&boxes);
+        let grid: BroadPhase = BroadPhase::build(&boxes);
         let mut out = vec![99, 3];
         grid.query_append([0.5, 0.1 * 3.5f64.sin()], 0.02, &mut out);
         assert_eq!(&out[..2], &[99, 3]);
@@ -451,6 +484,28 @@ mod tests {
     }
 
     proptest! {
+        #[test]
+        fn random_boxes_in_3d_match_brute_force(
+            raw in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, -1.0f64..1.0, 0.0f64..0.3, 0.0f64..0.3, 0.0f64..0.3), 0..80),
+            queries in proptest::collection::vec((-1.5f64..1.5, -1.5f64..1.5, -1.5f64..1.5, 0.0f64..0.5), 1..20),
+            hint in 0.0f64..0.5,
+        ) {
+            let boxes: Vec<Aabb<3>> = raw
+                .iter()
+                .map(|&(x, y, z, w, h, d)| Aabb { min: [x, y, z], max: [x + w, y + h, z + d] })
+                .collect();
+            let mut grid = BroadPhase::<3>::default();
+            grid.rebuild(&boxes, hint);
+            let mut out = Vec::new();
+            for &(x, y, z, r) in &queries {
+                grid.query([x, y, z], r, &mut out);
+                let brute: Vec<usize> = (0..boxes.len())
+                    .filter(|&e| boxes[e].contains_within([x, y, z], r))
+                    .collect();
+                prop_assert_eq!(&out, &brute);
+            }
+        }
+
         #[test]
         fn random_boxes_match_brute_force(
             raw in proptest::collection::vec((-1.0f64..1.0, -1.0f64..1.0, 0.0f64..0.3, 0.0f64..0.3), 0..80),

@@ -28,6 +28,7 @@
 //!   master in one increment (run warnings);
 //! - [`segment`], [`node_to_segment`]: deformable masters (node-to-segment
 //!   elements, single / double / modified double pass, self contact);
+//!   [`node_to_facet`]: the 3D form (tri3 / quad4 master facets);
 //!   [`smoothing`]: the nodal normal field of `smoothing = nodal`;
 //! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
 //!   and `M`, segmentation; penalty and augmented Lagrangian);
@@ -46,6 +47,7 @@ pub mod lagrange;
 pub mod log;
 pub mod mortar;
 pub mod motion;
+pub mod node_to_facet;
 pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;

@@ -37,9 +37,12 @@
 
 use super::friction::FrictionState;
 use super::friction_surface::{self, StickRows, SurfaceContact};
+use super::node_to_facet::{self, FacetPair};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
-use crate::model::{ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool};
+use crate::model::{
+    ContactMaster, ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool,
+};
 use ctc_geom::brep::{Counters, SearchState};
 use ctc_geom::{Placement, Projection, ProjectionError, Vec3};
 
@@ -74,6 +77,16 @@ pub struct SurfacePair {
     /// Per slave node at the last evaluation: the tangential constraint
     /// rows of a sticking node of a Lagrange pair with friction.
     pub stick: Vec<Option<StickRows>>,
+    /// Deformable master (node-to-facet, [`super::node_to_facet`]): the
+    /// two surfaces, the strategy state and the couplings of the latest
+    /// evaluation; `None` against a surface tool.
+    pub facets: Option<FacetPair>,
+    /// Closed-gap start of node-to-facet pairs (as
+    /// `crate::contact::PairState::touching` in 2D): slave nodes whose gap
+    /// lies in `[0, touching]` count as closed with zero force; set by the
+    /// solver for the first iteration of the analysis only, on
+    /// frictionless pairs of bodies held only by contact (0: off).
+    pub touching: f64,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -83,20 +96,27 @@ impl SurfacePair {
     /// The state of pair `pair` of `model` at the start of a run.
     pub fn new(model: &Model<3>, pair: usize) -> Self {
         let cp = &model.contacts[pair];
-        let area = tributary_areas(&model.mesh, &cp.faces, &cp.nodes);
+        // a deformable master: the double passes add its nodes as slaves
+        let slaves = node_to_facet::slave_nodes(model, pair);
+        let facets = node_to_facet::prepare(model, pair, &slaves);
+        let area = node_to_facet::areas(model, pair, &slaves);
         let prof = match cp.prof {
             Some(p) if p.is_finite() && p >= 0.0 => p,
-            _ => default_prof(&model.mesh, &cp.faces),
+            _ => match &cp.master {
+                ContactMaster::Surface { faces, .. } => {
+                    default_prof(&model.mesh, &cp.faces).max(default_prof(&model.mesh, faces))
+                }
+                ContactMaster::Tool(_) => default_prof(&model.mesh, &cp.faces),
+            },
         };
-        let n = cp.nodes.len();
+        let n = slaves.len();
         // reference-frame positions at t = 0 (start of the first impact path)
         let start = cp
             .master
             .tool()
             .and_then(|i| model.surfaces.get(i))
             .map_or(Placement::identity(), |tool| placement(&tool.motion, 0.0));
-        let positions = cp
-            .nodes
+        let positions = slaves
             .iter()
             .map(|&k| {
                 let x = model.mesh.nodes.get(k).copied().unwrap_or([0.0; 3]);
@@ -123,7 +143,9 @@ impl SurfacePair {
             _ => vec![false; n],
         };
         SurfacePair {
-            slaves: cp.nodes.clone(),
+            slaves,
+            facets,
+            touching: 0.0,
             area,
             prof,
             multiplier: vec![0.0; n],
@@ -145,6 +167,9 @@ impl SurfacePair {
         self.committed_active.clone_from(&self.active);
         self.committed_search.clone_from(&self.search);
         self.friction.commit();
+        if let Some(f) = &mut self.facets {
+            f.commit();
+        }
     }
 
     /// Returns to the committed multipliers, active set and search memory.
@@ -153,6 +178,9 @@ impl SurfacePair {
         self.active.clone_from(&self.committed_active);
         self.search.clone_from(&self.committed_search);
         self.friction.rollback();
+        if let Some(f) = &mut self.facets {
+            f.rollback();
+        }
     }
 
     /// The committed multipliers and active set (restart points).
@@ -395,6 +423,9 @@ pub fn evaluate_pair(
 ) -> (Vec<NodeContact<3>>, Vec<(usize, ProjectionError)>) {
     let cp = &model.contacts[pair];
     let mut failed = Vec::new();
+    if state.facets.is_some() {
+        return (node_to_facet::evaluate(model, pair, x, state), failed);
+    }
     let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
         return (Vec::new(), failed);
     };

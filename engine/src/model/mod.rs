@@ -703,7 +703,10 @@ pub enum ContactMaster {
         /// Master segments `[a, b]` (body on the left, outward normal to the
         /// right of `a -> b`).
         edges: Vec<[usize; 2]>,
-        /// The distinct nodes of `edges`, sorted.
+        /// Master facets (3D: tri3 / quad4 boundary faces, outward normal
+        /// by the right-hand rule; empty in 2D).
+        faces: Vec<crate::mesh::Facet>,
+        /// The distinct nodes of `edges` (3D: of `faces`), sorted.
         nodes: Vec<usize>,
     },
 }

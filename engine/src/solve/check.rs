@@ -219,8 +219,19 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         let master_ok = match &c.master {
             crate::model::ContactMaster::Tool(t) if D == 3 => *t < model.surfaces.len(),
             crate::model::ContactMaster::Tool(t) => *t < model.tools.len(),
-            crate::model::ContactMaster::Surface { body, edges, nodes } => {
-                *body < model.bodies.len() && edges.iter().flatten().chain(nodes).all(|&n| n < nn)
+            crate::model::ContactMaster::Surface {
+                body,
+                edges,
+                faces,
+                nodes,
+            } => {
+                *body < model.bodies.len()
+                    && edges
+                        .iter()
+                        .flatten()
+                        .chain(nodes)
+                        .chain(faces.iter().flat_map(|f| f.nodes()))
+                        .all(|&n| n < nn)
             }
         };
         if c.body >= model.bodies.len() || !master_ok {
@@ -273,12 +284,35 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             );
         }
         for c in &model.contacts {
-            if matches!(c.master, crate::model::ContactMaster::Surface { .. }) {
-                errors.push(format!(
-                    "contact `{}`: contact between deformable bodies is not available in 3D \
-                     analyses yet (rigid surface tools only)",
-                    c.name
-                ));
+            if let crate::model::ContactMaster::Surface { faces, .. } = &c.master {
+                // node-to-facet: what the 3D deformable pairs do not have yet
+                let missing = if c.formulation == crate::model::ContactFormulation::Mortar {
+                    Some("mortar segment-to-segment contact (3D segmentation of the facets)")
+                } else if c.smoothing != crate::model::NormalSmoothing::None {
+                    Some("normal smoothing (Nagata patches on the master facets)")
+                } else if c.friction.is_some() {
+                    Some("friction (a convected stick point on the master facet)")
+                } else if faces == &c.faces {
+                    Some("self contact (the exclusion of a node's own facets)")
+                } else if faces.is_empty() {
+                    Some("master faces (the master set has no face)")
+                } else if c.strategy == crate::model::ContactStrategy::ModifiedDoublePass
+                    && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
+                {
+                    Some(
+                        "modified double pass with Lagrange multipliers (over-constrained: use \
+                         the double pass or a penalty)",
+                    )
+                } else {
+                    None
+                };
+                if let Some(what) = missing {
+                    errors.push(format!(
+                        "contact `{}`: 3D contact between deformable bodies (node-to-facet) has \
+                         no {what} yet",
+                        c.name
+                    ));
+                }
             }
             if c.faces.is_empty() {
                 errors.push(format!("contact `{}`: a 3D pair needs slave faces", c.name));

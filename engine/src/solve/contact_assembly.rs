@@ -327,11 +327,12 @@ impl ContactAssembly {
     }
 }
 
-/// Adds the tangent of one mortar coupling row (any number of nodes).
-fn add_coupling(
+/// Adds the tangent of one coupling row (any number of nodes; mortar and
+/// smoothed node-to-segment in 2D, node-to-facet in 3D).
+pub(super) fn add_coupling<const D: usize>(
     c: &contact::mortar::Coupling,
     scatter: &Scatter,
-    dofs: &DofMap,
+    dofs: &DofMap<D>,
     values: &mut [f64],
 ) {
     let dim = dofs.components();

@@ -10,8 +10,9 @@
 //!   Lagrange rows, the contact loop around the Newton loops, contact
 //!   history for restarts. 2D: [`ContactAssembly`] (rigid tools and
 //!   node-to-segment, every method); 3D:
-//!   [`super::surface_assembly::SurfaceAssembly`] (rigid surface tools:
-//!   penalty, Lagrange multipliers, augmented Lagrangian; frictionless);
+//!   [`super::surface_assembly::SurfaceAssembly`] (rigid surface tools and
+//!   node-to-facet pairs between deformable solids: penalty, Lagrange
+//!   multipliers, augmented Lagrangian);
 //!   [`NoContact`] for scenes of any dimension without contact.
 //! - [`HeatCoupling`]: the staggered heat step,
 //!   [`crate::thermal::coupling::Coupling`] in both dimensions (one code

@@ -7,8 +7,13 @@
 //! stick violation in its convergence test), the 3D counterpart of
 //! [`super::contact_assembly`] and [`super::contact_loop`].
 //!
-//! Rigid tools add no unknowns and couple no nodes, so the sparsity
-//! pattern never grows.
+//! Rigid tools add no unknowns and couple no nodes. Pairs between two
+//! deformable solids (node-to-facet, [`crate::contact::node_to_facet`])
+//! give per closed node a [`crate::contact::mortar::Coupling`] over the
+//! slave and its facet's nodes: its forces and tangent are scattered, its
+//! `G` is the Lagrange row, and the sparsity pattern grows when a slave
+//! meets a facet it shares no cell with (the slave is then coupled to the
+//! facet and the facets around it, kept for the run and for restarts).
 
 use super::constraints::Constraints;
 use super::contact_loop::{CyclingGuard, SetChange, MAX_CONTACT_ITERATIONS};
@@ -54,6 +59,11 @@ pub struct SurfaceAssembly {
     /// CAD projections that failed at the last evaluation (pair, node,
     /// error): those nodes were left out of it.
     failures: Vec<(usize, usize, ctc_geom::ProjectionError)>,
+    /// Node couplings added to the sparsity pattern by node-to-facet
+    /// elements (sorted, kept for the rest of the run).
+    couplings: Vec<(usize, usize)>,
+    /// Times the sparsity pattern grew.
+    pattern_growths: usize,
 }
 
 impl SurfaceAssembly {
@@ -144,6 +154,25 @@ impl SurfaceAssembly {
         updated
     }
 
+    /// Adds the 3x3 blocks of the closed nodes of `res` (a rigid tool's
+    /// pair) to `values`.
+    fn add_node_blocks(&self, res: &[NodeContact<3>], scatter: &Scatter, values: &mut [f64]) {
+        for nc in res {
+            if nc.status != ContactStatus::Closed {
+                continue;
+            }
+            let slots = scatter.node_slots(nc.node);
+            for b in 0..3 {
+                for a in 0..3 {
+                    let s = slots[a + 3 * b];
+                    if s != NO_SLOT {
+                        values[s as usize] += nc.stiffness[a][b];
+                    }
+                }
+            }
+        }
+    }
+
     /// The active sets, then the stick/slip statuses (cycling guard).
     fn active_key(&self) -> Vec<bool> {
         self.pairs
@@ -204,6 +233,8 @@ impl ContactScene<3> for SurfaceAssembly {
                 1.0
             },
             failures: Vec::new(),
+            couplings: Vec::new(),
+            pattern_growths: 0,
         }
     }
 
@@ -226,9 +257,23 @@ impl ContactScene<3> for SurfaceAssembly {
             let (res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
             self.failures
                 .extend(failed.into_iter().map(|(n, e)| (i, n, e)));
-            for nc in &res {
-                for (c, f) in nc.force.iter().enumerate() {
-                    f_c[dofs.dof(nc.node, c)] += f;
+            match &state.facets {
+                // node-to-facet: the couplings carry slave and master forces
+                Some(fp) => {
+                    for c in &fp.couplings {
+                        for (k, &n) in c.nodes.iter().enumerate() {
+                            for comp in 0..3 {
+                                f_c[dofs.dof(n, comp)] += c.force[3 * k + comp];
+                            }
+                        }
+                    }
+                }
+                None => {
+                    for nc in &res {
+                        for (c, f) in nc.force.iter().enumerate() {
+                            f_c[dofs.dof(nc.node, c)] += f;
+                        }
+                    }
                 }
             }
             self.contact[i] = res;
@@ -237,30 +282,59 @@ impl ContactScene<3> for SurfaceAssembly {
 
     fn grow_pattern(
         &mut self,
-        _: &Model<3>,
-        _: &DofMap<3>,
-        _: &Scatter,
+        model: &Model<3>,
+        dofs: &DofMap<3>,
+        scatter: &Scatter,
     ) -> Result<Option<Scatter>, String> {
-        Ok(None)
-    }
-
-    fn add_tangent(&self, scatter: &Scatter, _: &DofMap<3>, values: &mut [f64]) {
-        for nc in self.contact.iter().flatten() {
-            if nc.status != ContactStatus::Closed {
-                continue;
-            }
-            let slots = scatter.node_slots(nc.node);
-            for b in 0..3 {
-                for a in 0..3 {
-                    let s = slots[a + 3 * b];
-                    if s != NO_SLOT {
-                        values[s as usize] += nc.stiffness[a][b];
+        let missing = self
+            .pairs
+            .iter()
+            .filter_map(|p| p.facets.as_ref())
+            .flat_map(|f| &f.couplings)
+            .any(|c| {
+                c.nodes.iter().any(|&a| {
+                    c.nodes
+                        .iter()
+                        .any(|&b| scatter.pair_slots(dofs, a, b).is_none())
+                })
+            });
+        if !missing {
+            return Ok(None);
+        }
+        let mut near = Vec::new();
+        for (state, res) in self.pairs.iter().zip(&self.contact) {
+            let Some(fp) = &state.facets else { continue };
+            for nc in res.iter().filter(|nc| nc.status == ContactStatus::Closed) {
+                let Some(i) = state.slave_index(nc.node) else {
+                    continue;
+                };
+                near.clear();
+                fp.neighbourhood(i, nc.entity, &mut near);
+                for &m in &near {
+                    if m != nc.node {
+                        self.couplings.push((nc.node.min(m), nc.node.max(m)));
                     }
                 }
             }
         }
+        self.couplings.sort_unstable();
+        self.couplings.dedup();
+        let grown = Scatter::with_couplings(&model.mesh, dofs, &self.couplings)?;
+        self.pattern_growths += 1;
+        Ok(Some(grown))
     }
 
+    fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap<3>, values: &mut [f64]) {
+        for (state, res) in self.pairs.iter().zip(&self.contact) {
+            if let Some(fp) = &state.facets {
+                for c in &fp.couplings {
+                    super::contact_assembly::add_coupling(c, scatter, dofs, values);
+                }
+                continue;
+            }
+            self.add_node_blocks(res, scatter, values);
+        }
+    }
     fn build_constraints(&mut self, model: &Model<3>, dofs: &DofMap<3>) {
         self.rows.clear();
         for (pi, cp) in model.contacts.iter().enumerate() {
@@ -272,6 +346,23 @@ impl ContactScene<3> for SurfaceAssembly {
                     continue;
                 };
                 if !self.pairs[pi].active[i] {
+                    continue;
+                }
+                // node-to-facet: the row G over the slave and the facet nodes
+                if let Some(fp) = &self.pairs[pi].facets {
+                    if let Ok(k) = fp.couplings.binary_search_by_key(&nc.node, |c| c.slave) {
+                        let c = &fp.couplings[k];
+                        self.rows.push(
+                            RowKind::Normal,
+                            (pi, i),
+                            nc.gap,
+                            (0..c.gap_gradient.len()).map(|k| NodeTerm {
+                                node: c.nodes[k / 3],
+                                component: k % 3,
+                                coefficient: c.gap_gradient[k],
+                            }),
+                        );
+                    }
                     continue;
                 }
                 self.rows.push(
@@ -361,7 +452,7 @@ impl ContactScene<3> for SurfaceAssembly {
     }
 
     fn pattern_growths(&self) -> usize {
-        0
+        self.pattern_growths
     }
 
     fn penalty_ratio(&self, _: &Model<3>, _: &Scatter, _: &[f64]) -> Option<PenaltyRatio> {
@@ -398,6 +489,39 @@ impl ContactScene<3> for SurfaceAssembly {
                 )
             })
             .collect();
+        // node-to-facet pairs: the deck's slave nodes against the master
+        // faces (the rule of `contact::jump` in 3D)
+        let place = |u: &[[f64; 3]]| -> Vec<[f64; 3]> {
+            model
+                .mesh
+                .nodes
+                .iter()
+                .zip(u)
+                .map(|(x, d)| std::array::from_fn(|c| x[c] + d[c]))
+                .collect()
+        };
+        let deformable = model
+            .contacts
+            .iter()
+            .any(|c| matches!(c.master, crate::model::ContactMaster::Surface { .. }));
+        let (x0, x1) = if deformable {
+            (place(before.0), place(after.0))
+        } else {
+            (Vec::new(), Vec::new())
+        };
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            let crate::model::ContactMaster::Surface { faces, .. } = &cp.master else {
+                continue;
+            };
+
+            let mut master = crate::contact::node_to_facet::FacetSurface::new(faces);
+            let prof = self.pairs[pi].prof;
+            let jumps =
+                crate::contact::node_to_facet::jumps(&mut master, &cp.nodes, prof, &x0, &x1);
+            out.extend(crate::contact::jump::warning(
+                &cp.name, increment, after.1, prof, &jumps,
+            ));
+        }
         for (pi, cp) in model.contacts.iter().enumerate() {
             let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
                 continue;
@@ -460,17 +584,27 @@ impl ContactScene<3> for SurfaceAssembly {
             .map(|p| {
                 let (multiplier, active) = p.committed();
                 PairHistory {
-                    entity: vec![None; p.slaves.len()],
+                    // node-to-facet: the search memory (the seam rule
+                    // depends on it)
+                    entity: p
+                        .facets
+                        .as_ref()
+                        .map_or_else(|| vec![None; p.slaves.len()], |f| f.memory().to_vec()),
                     multiplier: multiplier.to_vec(),
                     active: active.to_vec(),
                     friction: p.friction.committed_values(),
                 }
             })
             .collect();
-        (pairs, Vec::new())
+        (pairs, self.couplings.clone())
     }
 
-    fn restore(&mut self, pairs: &[PairHistory], _: usize, _: &[[f64; 3]]) -> Result<(), String> {
+    fn restore(
+        &mut self,
+        pairs: &[PairHistory],
+        increment: usize,
+        _: &[[f64; 3]],
+    ) -> Result<(), String> {
         if pairs.len() != self.pairs.len() {
             return Err("the restart point does not match the model (contact pairs)".into());
         }
@@ -484,12 +618,59 @@ impl ContactScene<3> for SurfaceAssembly {
             if !h.friction.is_empty() {
                 s.friction.restore_committed(&h.friction)?;
             }
+            if let Some(f) = &mut s.facets {
+                if h.entity.len() != n {
+                    return Err("the restart point does not match the model (slave nodes)".into());
+                }
+                f.restore(increment, &h.entity);
+            }
             s.restore(&h.multiplier, &h.active);
         }
         Ok(())
     }
 
-    fn set_couplings(&mut self, _: &[(usize, usize)]) {}
+    fn set_couplings(&mut self, couplings: &[(usize, usize)]) {
+        self.couplings = couplings.to_vec();
+    }
+
+    /// The closed-gap start of the node-to-facet pairs that involve a body
+    /// held only by contact (slave or master; frictionless: all of them in
+    /// 3D): [`crate::contact::penalty::TOUCH_FRACTION`] of the pair's
+    /// smallest slave facet edge, as in 2D.
+    fn set_touching(&mut self, model: &Model<3>, on: bool) {
+        let held = if on {
+            super::check::held_only_by_contact(model)
+        } else {
+            Vec::new()
+        };
+        let held = |b: usize| held.get(b).copied().unwrap_or(false);
+        for (cp, state) in model.contacts.iter().zip(&mut self.pairs) {
+            state.touching = 0.0;
+            let crate::model::ContactMaster::Surface { body, .. } = &cp.master else {
+                continue;
+            };
+            if !on || !(held(cp.body) || held(*body)) || cp.friction.is_some() {
+                continue;
+            }
+            let nodes = &model.mesh.nodes;
+            let h = cp
+                .faces
+                .iter()
+                .flat_map(|f| {
+                    let n = f.nodes();
+                    (0..n.len()).map(move |k| (n[k], n[(k + 1) % n.len()]))
+                })
+                .filter_map(|(a, b)| {
+                    let (pa, pb) = (nodes.get(a)?, nodes.get(b)?);
+                    Some((0..3).map(|c| (pb[c] - pa[c]).powi(2)).sum::<f64>().sqrt())
+                })
+                .filter(|l| *l > 0.0)
+                .fold(f64::INFINITY, f64::min);
+            if h.is_finite() {
+                state.touching = crate::contact::penalty::TOUCH_FRACTION * h;
+            }
+        }
+    }
 
     fn contact_csv(
         model: &Model<3>,

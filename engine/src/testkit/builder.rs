@@ -422,6 +422,7 @@ impl<const D: usize> ModelBuilder<D> {
         pair.master = ContactMaster::Surface {
             body: self.body_index(master_body),
             edges: master_edges,
+            faces: Vec::new(),
             nodes,
         };
         pair.method = method;

@@ -84,10 +84,21 @@ impl Lowerer<'_> {
                         continue;
                     };
                     let medges = mr.edges.unwrap_or_default();
+                    let mfaces = mr.faces.unwrap_or_default();
+                    let nodes = if mfaces.is_empty() {
+                        mesh::edge_nodes(&medges)
+                    } else {
+                        let mut n: Vec<usize> =
+                            mfaces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+                        n.sort_unstable();
+                        n.dedup();
+                        n
+                    };
                     ContactMaster::Surface {
                         body: mbody,
-                        nodes: mesh::edge_nodes(&medges),
+                        nodes,
                         edges: medges,
+                        faces: mfaces,
                     }
                 }
                 None => {
@@ -154,10 +165,11 @@ impl Lowerer<'_> {
                     if let ContactMaster::Surface {
                         body: mb,
                         edges: me,
+                        faces: mf,
                         ..
                     } = &master
                     {
-                        sides.push((*mb, me.clone(), Vec::new()));
+                        sides.push((*mb, me.clone(), mf.clone()));
                     }
                     let Some(local) = self.local_penalty(rel, &sides, bodies, materials) else {
                         continue;

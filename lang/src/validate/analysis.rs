@@ -10,7 +10,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
     let Some(a) = ctx.deck.analysis.first() else {
         return;
     };
-    three_d_contact_is_rigid(a, ctx);
+    three_d_deformable_contact_supported(a, ctx);
     thickness_only_in_plane_analyses(a, ctx);
 }
 
@@ -54,33 +54,78 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// `dimension = 3d` solves solids in contact with rigid surface tools,
 /// frictionless or with Coulomb friction (penalty, augmented Lagrangian,
 /// Lagrange multipliers), with heat conduction and thermal contact against
-/// the tools; contact between deformable bodies is not there yet in 3d.
-pub fn three_d_contact_is_rigid(a: &Analysis, ctx: &mut Ctx<'_>) {
-    let Some(d) = a
-        .dimension
-        .as_ref()
-        .filter(|d| d.value == Dimension::ThreeD)
-    else {
+/// the tools, and two deformable solids in frictionless node-to-facet
+/// contact (every strategy and method); mortar, normal smoothing, friction
+/// and self contact between deformable solids are not there yet in 3d.
+pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
+    if a.dimension.as_ref().map(|d| d.value) != Some(Dimension::ThreeD) {
         return;
-    };
+    }
     let deck = ctx.deck;
-    let mut refuse = |what: &str, span: Span| {
+    let mut refuse = |what: &str, span: Span, help: &str| {
         ctx.err(
             Diagnostic::error(
-                format!("{what} not supported in 3d analyses yet"),
+                format!("3d contact between deformable bodies (node-to-facet) has no {what} yet"),
                 span,
                 "not supported in 3d yet",
             )
-            .with_help(format!(
-                "the analysis is `{}`: remove it, or use a planar analysis",
-                "3d"
-            )),
+            .with_help(help.to_string()),
         );
     };
-    let _ = d;
     for c in &deck.contacts {
-        if let Some(m) = &c.master {
-            refuse("contact between deformable bodies is", m.span);
+        let Some(m) = &c.master else { continue };
+        if let Some(f) = c
+            .formulation
+            .as_ref()
+            .filter(|f| f.value == crate::ast::ContactFormulation::Mortar)
+        {
+            refuse(
+                "mortar formulation (the segmentation of slave and master facets)",
+                f.span,
+                "use `formulation = node_to_segment` (node-to-facet in 3d), or a planar analysis",
+            );
+        }
+        if let Some(s) = c
+            .smoothing
+            .as_ref()
+            .filter(|s| s.value == crate::ast::Smoothing::Nodal)
+        {
+            refuse(
+                "normal smoothing (Nagata patches on the master facets)",
+                s.span,
+                "drop `smoothing` (faceted master)",
+            );
+        }
+        if let Some(f) = &c.friction {
+            refuse(
+                "friction (a convected stick point on the master facet)",
+                f.span,
+                "drop `friction` (frictionless contact), or use a rigid surface tool",
+            );
+        }
+        if m.to_string() == c.target.to_string() {
+            refuse(
+                "self contact (the exclusion of a node's own facets)",
+                m.span,
+                "contact two different face sets",
+            );
+        }
+        let lagrange = c
+            .method
+            .as_ref()
+            .is_some_and(|m| matches!(m.value, crate::ast::Method::Lagrange { .. }));
+        if let Some(st) = c
+            .strategy
+            .as_ref()
+            .filter(|s| lagrange && s.value == crate::ast::Strategy::ModifiedDoublePass)
+        {
+            refuse(
+                "modified double pass with Lagrange multipliers (every interface node is \
+                 constrained from both sides: the saddle-point system is singular)",
+                st.span,
+                "use `strategy = double_pass`, or `method = penalty { .. }` / \
+                 `augmented_lagrange { .. }` with the modified double pass",
+            );
         }
     }
 }

@@ -6,6 +6,7 @@
 
 pub mod cattaneo;
 pub mod contact_3d;
+pub mod contact_ntf_3d;
 pub mod discrete;
 pub mod dynamics;
 pub mod fenicsx;
@@ -55,6 +56,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(quadratic::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
+    v.extend(contact_ntf_3d::cases());
     v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());

@@ -42,14 +42,16 @@ use super::{ContactStatus, NodeContact, PairState};
 use crate::model::{AnalysisKind, ContactMethod, Model};
 use integrals::{segment_pair, Ad8, MortarSegment, Weight};
 
-/// Forces and tangent of one mortar row over a list of nodes.
+/// Forces and tangent of one mortar row over a list of nodes (also the
+/// rows of smoothed node-to-segment in 2D and of node-to-facet in 3D,
+/// `D` components per node).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Coupling {
     /// Global node numbers (sorted, distinct).
     pub nodes: Vec<usize>,
-    /// Forces on the nodes, `2 * nodes.len()` (node-major, x then y).
+    /// Forces on the nodes, `D * nodes.len()` (node-major, x then y (then z)).
     pub force: Vec<f64>,
-    /// `-d force / d x`, row-major `2n x 2n` in the same order.
+    /// `-d force / d x`, row-major `Dn x Dn` in the same order.
     pub tangent: Vec<f64>,
     /// Smoothed node-to-segment rows: the slave node of the row.
     pub slave: usize,

@@ -745,24 +745,29 @@ where
         let mut bodies: Vec<&str> = nodes.iter().map(|&n| body_of(n)).collect();
         bodies.sort_unstable();
         bodies.dedup();
-        let mut comps = [0usize; 2];
+        // components the mode moves (3D: z too; a planar mode never has one)
+        let mut comps = [0usize; 3];
         for &i in &mode.rows {
-            comps[self.dofs.free[i] % nc] += 1;
+            comps[(self.dofs.free[i] % nc).min(2)] += 1;
         }
         let along = match comps {
-            [_, 0] => "along x",
-            [0, _] => "along y",
-            _ => "in x and y (a rotation, or a mechanism)",
+            [_, 0, 0] => "along x",
+            [0, _, 0] => "along y",
+            [0, 0, _] => "along z",
+            [_, _, 0] => "in x and y (a rotation, or a mechanism)",
+            _ => "in several directions (a rotation, or a mechanism)",
         };
         Failure::new(
             FailureKind::Singular,
             format!(
-                "the stiffness matrix is singular: a zero pivot at node {node} ({:.4}, {:.4}) of \
-                 body `{}`, dof {}; its zero-energy mode moves {} node(s) of {} {along} \
+                "the stiffness matrix is singular: a zero pivot at node {node} ({}) of body `{}`, \
+                 dof {}; its zero-energy mode moves {} node(s) of {} {along} \
                  (||K v|| / ||diag(K) v|| = {:.1e}): a rigid-body motion that no `fix` / \
                  `displace` condition and no closed contact holds",
-                p[0],
-                p[1],
+                p.iter()
+                    .map(|v| format!("{v:.4}"))
+                    .collect::<Vec<_>>()
+                    .join(", "),
                 body_of(node),
                 ["ux", "uy", "uz"][c.min(2)],
                 nodes.len(),

@@ -1,0 +1,1381 @@
+//! Contact between two deformable solids in 3D: node-to-facet elements,
+//! the 3D form of [`super::node_to_segment`] (seed slides, "Contact between
+//! two deformable bodies", "Three usual strategies", "Part I - Geometrical
+//! aspects").
+//!
+//! A pair has two surfaces of boundary facets (tri3 and quad4: the faces
+//! of tet4 and hex8 bodies): side 0 (the deck's left of `->`) and side 1
+//! (the master, right of `->`). A slave node `x_s` is projected on the
+//! candidate facets of the opposite side (a [`BroadPhase`] over the facet
+//! boxes inflated by `prof`, plus the facet of the last evaluation and the
+//! facets sharing a node with it: memory first, so a node that penetrated
+//! deeper than `prof` is not lost). On a facet `x(xi) = sum N_a(xi) x_a`
+//! (linear triangle, bilinear quadrilateral) the foot point solves
+//!
+//! `r_alpha = (x_s - x(xi)) . a_alpha = 0`, `a_alpha = dx/dxi_alpha`
+//!
+//! by Newton (`J_ab = -a_a . a_b + (x_s - x) . x_,ab`); the gap is
+//! `g = (x_s - x(xi)) . n`, `n = a_1 x a_2 / |a_1 x a_2|` the outward
+//! normal of the facet (its nodes counter-clockwise seen from outside).
+//!
+//! Choice of the projection (several candidates, a node outside every
+//! facet), as the 2D kink rule:
+//! 1. the facet of the previous evaluation (memory) if the foot stays on it
+//!    within [`SEAM_TOL`] of its parametric width past an interior edge
+//!    (hysteresis across seams: a node on a seam keeps one facet's smooth
+//!    element instead of hopping between two normals); otherwise, among
+//!    the candidates whose foot falls inside the facet (round-off
+//!    tolerance [`INSIDE_TOL`]; across a **free** edge of the surface, the
+//!    facet extended by [`FREE_EDGE_TOL`] of its parametric width, so a
+//!    node sitting on the rim of the master does not chatter in and out),
+//!    the one with the smallest `|g|`, ties to the lower facet index;
+//! 2. otherwise (the node lies in the wedge in front of an edge, or the
+//!    corner in front of a vertex, where every foot falls outside its
+//!    facet) the nearest interior edge as a **cylinder of radius 0** or
+//!    interior vertex as a **sphere of radius 0**: `g = s |x_s - p|`,
+//!    `n = s (x_s - p) / |x_s - p|` with `p` the closest point of the edge
+//!    (vertex), `s` the side of the facet it belongs to. The normal turns
+//!    continuously from one facet's normal to the next across the wedge,
+//!    so a node above a seam of a curved master does not jump;
+//! 3. penetrations deeper than `max(prof, h)` (`h` the facet's longest
+//!    edge) are ignored (a node of the far side of a thin body).
+//!
+//! Kinematics ([`FacetElement`]): with `N_a` the shape functions at the
+//! foot (edge: `1 - t`, `t`; vertex: 1), `G = dg/dx = [n, -N_1 n, ..,
+//! -N_k n]` over `[x_s, x_1 .. x_k]` exactly (the foot-point equations make
+//! the variation of `xi` drop out). The force `f = R_N G` (`R_N >= 0` the
+//! normal force) balances forces and moments (`sum f = 0`, `sum x_a x f_a =
+//! R_N (x_s - x) x n = 0`), and the tangent `K = -df/dx = -dR_N/dg G G^T -
+//! R_N H` with `H = dG/dx = d^2 g / dx^2` (symmetric) comes out exactly from
+//! the dual numbers of [`super::mortar::ad`] carried through one Newton
+//! step of the foot-point equations at the converged foot (that step's
+//! derivative is the implicit derivative `dxi/dx = -J^-1 dr/dx`).
+//! Proptests check `G` and `K` against finite differences and the
+//! equilibrium of the forces.
+//!
+//! Strategies (as in 2D): single pass (side-0 nodes against side-1
+//! facets), double pass (the sides swap at every converged increment),
+//! modified double pass (both directions at every evaluation, each node
+//! with half its tributary area). Each closed node gives one
+//! [`super::mortar::Coupling`] over the slave and the facet nodes (force,
+//! tangent, the Lagrange row `G`); the 3D solver
+//! ([`crate::solve::surface_assembly`]) scatters those, grows the sparsity
+//! pattern and builds the Lagrange rows from them.
+
+use super::broad::BroadPhase;
+use super::mortar::ad::Ad;
+use super::mortar::Coupling;
+use super::surface::{alpha, normal_force, tributary_areas, SurfacePair};
+use super::{ContactStatus, NodeContact};
+use crate::geom::Aabb;
+use crate::mesh::Facet;
+use crate::model::{ContactMaster, ContactMethod, ContactStrategy, Model};
+
+/// Coordinates an element depends on: the slave node and up to 4 facet
+/// nodes.
+pub const NDOF: usize = 15;
+
+type A = Ad<NDOF>;
+
+/// Round-off tolerance (fraction of the facet's parametric width) on
+/// "the foot lies inside the facet".
+pub const INSIDE_TOL: f64 = 1e-10;
+
+/// How far (fraction of the facet's parametric width) a foot may fall
+/// beyond a free edge of the master surface and keep the extended facet.
+pub const FREE_EDGE_TOL: f64 = 0.02;
+
+/// How far (fraction of the facet's parametric width) the foot on the
+/// facet of the previous evaluation (the node's memory) may fall beyond an
+/// interior edge and keep that facet: a node sitting on a seam (a slave
+/// node on the diagonal of a master quad split in two triangles) would
+/// otherwise hop between the two facets' normals at every Newton
+/// iteration and stall the convergence.
+pub const SEAM_TOL: f64 = 0.01;
+
+/// Newton iterations of the foot-point equations before giving up.
+const MAX_FOOT_ITERATIONS: usize = 30;
+
+/// The part of a facet a slave node projects on (local node indices).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feature {
+    /// The facet's interior (or its extension across a free edge).
+    Face,
+    /// The edge between local nodes `a` and `b` (radius-0 cylinder).
+    Edge(usize, usize),
+    /// Local node `a` (radius-0 sphere).
+    Vertex(usize),
+}
+
+/// A node-to-facet element at the current coordinates: gap, normal,
+/// `G = dg/dx` and `H = d^2 g/dx^2` over `[x_s, x_1 .. x_k]` (local dofs
+/// `3 a + c`, `a = 0` the slave; unused slots zero).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacetElement {
+    /// Where the foot lies.
+    pub feature: Feature,
+    /// Facet parameters of the foot (face feature; `[0, 0]` otherwise).
+    pub xi: [f64; 2],
+    /// Signed gap (negative: penetration).
+    pub gap: f64,
+    /// Unit normal into free space of the master.
+    pub normal: [f64; 3],
+    /// Weight `N_a` of facet node `a` at the foot (sum 1).
+    pub weights: [f64; 4],
+    /// `dg/dx`.
+    pub gradient: [f64; NDOF],
+    /// `d^2 g / dx^2` (symmetric).
+    pub hessian: [[f64; NDOF]; NDOF],
+}
+
+fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn dot<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> Ad<N> {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn sub<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Shape functions and their parameter derivatives at `xi` of a facet of
+/// `n` nodes (3: `1 - xi - eta, xi, eta`; 4: bilinear on `[-1, 1]^2`,
+/// nodes at `(-1,-1), (1,-1), (1,1), (-1,1)`); unused slots zero.
+fn shapes<const N: usize>(
+    n: usize,
+    xi: [Ad<N>; 2],
+) -> ([Ad<N>; 4], [[f64; 2]; 4], [[Ad<N>; 2]; 4]) {
+    let z = Ad::cst(0.0);
+    let one = Ad::cst(1.0);
+    if n == 3 {
+        let dn = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0], [0.0, 0.0]];
+        let c = |v: f64| Ad::cst(v);
+        (
+            [one - xi[0] - xi[1], xi[0], xi[1], z],
+            [[0.0; 2]; 4],
+            dn.map(|d| [c(d[0]), c(d[1])]),
+        )
+    } else {
+        const S: [[f64; 2]; 4] = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]];
+        let f = |s: [f64; 2]| {
+            let a = one + xi[0] * s[0];
+            let b = one + xi[1] * s[1];
+            (a * b * 0.25, [b * (0.25 * s[0]), a * (0.25 * s[1])])
+        };
+        let v = S.map(f);
+        (
+            v.map(|p| p.0),
+            S.map(|s| [0.25 * s[0] * s[1]; 2]),
+            v.map(|p| p.1),
+        )
+    }
+}
+
+/// Point, tangents `a_1`, `a_2` and the mixed derivative `x_,12` of the
+/// facet `pts` at `xi`.
+#[allow(clippy::type_complexity)]
+fn surface_point<const N: usize>(
+    pts: &[[Ad<N>; 3]],
+    xi: [Ad<N>; 2],
+) -> ([Ad<N>; 4], [Ad<N>; 3], [Ad<N>; 3], [Ad<N>; 3], [Ad<N>; 3]) {
+    let (sh, d12, dn) = shapes(pts.len(), xi);
+    let z = Ad::cst(0.0);
+    let (mut x, mut a1, mut a2, mut x12) = ([z; 3], [z; 3], [z; 3], [z; 3]);
+    for (a, p) in pts.iter().enumerate() {
+        for c in 0..3 {
+            x[c] += sh[a] * p[c];
+            a1[c] += dn[a][0] * p[c];
+            a2[c] += dn[a][1] * p[c];
+            x12[c] += p[c] * d12[a][0];
+        }
+    }
+    (sh, x, a1, a2, x12)
+}
+
+/// Residual and Jacobian of the foot-point equations at `xi`.
+#[allow(clippy::type_complexity)]
+fn foot_system<const N: usize>(
+    xs: [Ad<N>; 3],
+    pts: &[[Ad<N>; 3]],
+    xi: [Ad<N>; 2],
+) -> ([Ad<N>; 2], [[Ad<N>; 2]; 2]) {
+    let (_, x, a1, a2, x12) = surface_point(pts, xi);
+    let d = sub(xs, x);
+    let j12 = dot(d, x12) - dot(a1, a2);
+    (
+        [dot(d, a1), dot(d, a2)],
+        [[-dot(a1, a1), j12], [j12, -dot(a2, a2)]],
+    )
+}
+
+/// The Newton step `-J^-1 r`, `None` for a singular `J`.
+fn newton_step<const N: usize>(r: [Ad<N>; 2], j: [[Ad<N>; 2]; 2]) -> Option<[Ad<N>; 2]> {
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    let scale = (j[0][0].v.abs() + j[1][1].v.abs()).powi(2);
+    if det.v.is_nan() || det.v.abs() <= 1e-14 * scale {
+        return None;
+    }
+    Some([
+        -(j[1][1] * r[0] - j[0][1] * r[1]) / det,
+        -(j[0][0] * r[1] - j[1][0] * r[0]) / det,
+    ])
+}
+
+fn constants(p: [f64; 3]) -> [Ad<0>; 3] {
+    p.map(Ad::cst)
+}
+
+/// The foot of `xs` on the (extended) facet `pts` by Newton on the
+/// foot-point equations from the facet's centre: its parameters and the
+/// iterations, `None` if Newton does not converge.
+pub fn foot(xs: [f64; 3], pts: &[[f64; 3]]) -> Option<([f64; 2], usize)> {
+    let p: Vec<[Ad<0>; 3]> = pts.iter().map(|&q| constants(q)).collect();
+    let xs = constants(xs);
+    let mut xi = if pts.len() == 3 {
+        [1.0 / 3.0; 2]
+    } else {
+        [0.0; 2]
+    };
+    for it in 1..=MAX_FOOT_ITERATIONS {
+        let (r, j) = foot_system(xs, &p, xi.map(Ad::cst));
+        let step = newton_step(r, j)?;
+        xi[0] += step[0].v;
+        xi[1] += step[1].v;
+        if xi.iter().any(|v| v.is_nan() || v.abs() >= 1e3) {
+            return None;
+        }
+        if step[0].v.abs().max(step[1].v.abs()) <= 1e-13 {
+            return Some((xi, it));
+        }
+    }
+    None
+}
+
+/// How far the foot `xi` lies beyond each local edge `(a, a + 1)` of a
+/// facet of `n` nodes, in fractions of the parametric width (<= 0 inside).
+pub fn edge_excess(n: usize, xi: [f64; 2]) -> [f64; 4] {
+    if n == 3 {
+        [-xi[1], xi[0] + xi[1] - 1.0, -xi[0], f64::NEG_INFINITY]
+    } else {
+        [
+            0.5 * (-1.0 - xi[1]),
+            0.5 * (xi[0] - 1.0),
+            0.5 * (xi[1] - 1.0),
+            0.5 * (-1.0 - xi[0]),
+        ]
+    }
+}
+
+/// The dual variables of an element: slave `x_s` (dofs 0..3) and the
+/// facet nodes (dofs `3 + 3a + c`).
+fn variables(xs: [f64; 3], pts: &[[f64; 3]]) -> ([A; 3], Vec<[A; 3]>) {
+    let xs = std::array::from_fn(|c| A::var(xs[c], c));
+    let p = pts
+        .iter()
+        .enumerate()
+        .map(|(a, q)| std::array::from_fn(|c| A::var(q[c], 3 + 3 * a + c)))
+        .collect();
+    (xs, p)
+}
+
+/// Fills gap, normal, `G` and `H` from the dual gap, normal and weights.
+fn finish(feature: Feature, xi: [f64; 2], gap: A, n: [A; 3], w: [A; 4]) -> FacetElement {
+    let mut gv = [A::cst(0.0); NDOF];
+    gv[..3].copy_from_slice(&n);
+    for a in 0..4 {
+        for c in 0..3 {
+            gv[3 + 3 * a + c] = -(w[a] * n[c]);
+        }
+    }
+    FacetElement {
+        feature,
+        xi,
+        gap: gap.v,
+        normal: n.map(|v| v.v),
+        weights: w.map(|v| v.v),
+        gradient: gv.map(|v| v.v),
+        hessian: gv.map(|v| v.d),
+    }
+}
+
+/// The element of `xs` on the face of facet `pts` at the converged foot
+/// `xi` ([`foot`]); `None` for a degenerate facet.
+pub fn face_element(xs: [f64; 3], pts: &[[f64; 3]], xi: [f64; 2]) -> Option<FacetElement> {
+    let (xs_d, p) = variables(xs, pts);
+    // one Newton step at the converged foot: value xi, derivative dxi/dx
+    let (r, j) = foot_system(xs_d, &p, xi.map(A::cst));
+    let step = newton_step(r, j)?;
+    let xi_d = [A::cst(xi[0]) + step[0], A::cst(xi[1]) + step[1]];
+    let (w, x, a1, a2, _) = surface_point(&p, xi_d);
+    let m = cross(a1, a2);
+    let len = dot(m, m).sqrt();
+    if len.v.is_nan() || len.v <= 0.0 {
+        return None;
+    }
+    let n = m.map(|v| v / len);
+    let gap = dot(sub(xs_d, x), n);
+    Some(finish(Feature::Face, xi, gap, n, w))
+}
+
+/// The element of `xs` on local edge `(a, b)` (a radius-0 cylinder) or,
+/// `b = None`, on local vertex `a` (a radius-0 sphere) of facet `pts`;
+/// `side` (+1 or -1) is the side of the facet `xs` lies on. `None` when
+/// `xs` lies on the edge or vertex (no normal there).
+pub fn edge_element(
+    xs: [f64; 3],
+    pts: &[[f64; 3]],
+    a: usize,
+    b: Option<usize>,
+    side: f64,
+) -> Option<FacetElement> {
+    let (xs_d, p) = variables(xs, pts);
+    let z = A::cst(0.0);
+    let mut w = [z; 4];
+    let (foot, feature) = match b {
+        Some(b) => {
+            let e = sub(p[b], p[a]);
+            let t = dot(sub(xs_d, p[a]), e) / dot(e, e);
+            w[a] = A::cst(1.0) - t;
+            w[b] = t;
+            ([0, 1, 2].map(|c| p[a][c] + e[c] * t), Feature::Edge(a, b))
+        }
+        None => {
+            w[a] = A::cst(1.0);
+            (p[a], Feature::Vertex(a))
+        }
+    };
+    let d = sub(xs_d, foot);
+    let len = dot(d, d).sqrt();
+    if len.v.is_nan() || len.v <= 1e-300 {
+        return None;
+    }
+    let n = d.map(|v| v * side / len);
+    Some(finish(feature, [0.0; 2], len * side, n, w))
+}
+
+/// The outward unit normal of facet `pts` at its centre.
+fn centre_normal(pts: &[[f64; 3]]) -> [f64; 3] {
+    let p: Vec<[Ad<0>; 3]> = pts.iter().map(|&q| constants(q)).collect();
+    let c = if pts.len() == 3 { 1.0 / 3.0 } else { 0.0 };
+    let (_, _, a1, a2, _) = surface_point(&p, [Ad::cst(c), Ad::cst(c)]);
+    let m = cross(a1, a2).map(|v| v.v);
+    let l = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+    if l > 0.0 {
+        m.map(|v| v / l)
+    } else {
+        [0.0; 3]
+    }
+}
+
+/// One surface of a deformable pair: its facets, their topology and the
+/// broad phase over their boxes.
+#[derive(Debug, Clone, Default)]
+pub struct FacetSurface {
+    /// Facets (tri3, quad4), outward normal by the right-hand rule.
+    pub faces: Vec<Facet>,
+    /// Per facet: the other facets sharing a node with it (sorted).
+    pub neighbours: Vec<Vec<usize>>,
+    /// Edges `(min, max)` of one facet only (the rim), sorted.
+    free_edges: Vec<(usize, usize)>,
+    /// Nodes on a free edge, sorted.
+    free_nodes: Vec<usize>,
+    /// Broad phase over the facet boxes at the current coordinates.
+    grid: BroadPhase<3>,
+    /// Scratch: facet boxes.
+    boxes: Vec<Aabb<3>>,
+}
+
+impl FacetSurface {
+    /// The surface of `faces` (3- and 4-node facets; others are ignored).
+    pub fn new(faces: &[Facet]) -> Self {
+        let faces: Vec<Facet> = faces
+            .iter()
+            .copied()
+            .filter(|f| matches!(f.nodes().len(), 3 | 4))
+            .collect();
+        // sorted (node, facet) lists: deterministic, no hash map
+        let mut by_node: Vec<(usize, usize)> = faces
+            .iter()
+            .enumerate()
+            .flat_map(|(k, f)| f.nodes().iter().map(move |&n| (n, k)))
+            .collect();
+        by_node.sort_unstable();
+        let neighbours = faces
+            .iter()
+            .enumerate()
+            .map(|(k, f)| {
+                let mut out: Vec<usize> = Vec::new();
+                for n in f.nodes() {
+                    let s = by_node.partition_point(|&(m, _)| m < *n);
+                    out.extend(
+                        by_node[s..]
+                            .iter()
+                            .take_while(|&&(m, _)| m == *n)
+                            .map(|&(_, g)| g)
+                            .filter(|&g| g != k),
+                    );
+                }
+                out.sort_unstable();
+                out.dedup();
+                out
+            })
+            .collect();
+        let mut edges: Vec<(usize, usize)> = faces
+            .iter()
+            .flat_map(|f| {
+                let n = f.nodes();
+                (0..n.len()).map(move |k| {
+                    let (a, b) = (n[k], n[(k + 1) % n.len()]);
+                    (a.min(b), a.max(b))
+                })
+            })
+            .collect();
+        edges.sort_unstable();
+        let free_edges: Vec<(usize, usize)> = edges
+            .iter()
+            .enumerate()
+            .filter(|&(k, e)| {
+                (k == 0 || edges[k - 1] != *e) && edges.get(k + 1).is_none_or(|n| n != e)
+            })
+            .map(|(_, &e)| e)
+            .collect();
+        let mut free_nodes: Vec<usize> = free_edges.iter().flat_map(|&(a, b)| [a, b]).collect();
+        free_nodes.sort_unstable();
+        free_nodes.dedup();
+        FacetSurface {
+            neighbours,
+            free_edges,
+            free_nodes,
+            grid: BroadPhase::default(),
+            boxes: Vec::with_capacity(faces.len()),
+            faces,
+        }
+    }
+
+    /// Whether the edge between global nodes `a` and `b` is on the rim.
+    pub fn is_free_edge(&self, a: usize, b: usize) -> bool {
+        self.free_edges.binary_search(&(a.min(b), a.max(b))).is_ok()
+    }
+
+    /// Whether global node `n` is on the rim.
+    pub fn is_free_node(&self, n: usize) -> bool {
+        self.free_nodes.binary_search(&n).is_ok()
+    }
+
+    /// The distinct nodes of the facets, sorted.
+    pub fn nodes(&self) -> Vec<usize> {
+        let mut n: Vec<usize> = self.faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+        n.sort_unstable();
+        n.dedup();
+        n
+    }
+
+    /// Rebuilds the broad phase at the current coordinates `x`; `radius` is
+    /// the expected query radius.
+    pub fn update(&mut self, x: &[[f64; 3]], radius: f64) {
+        self.boxes.clear();
+        for f in &self.faces {
+            let mut b = Aabb::empty();
+            for &n in f.nodes() {
+                b.include(x[n]);
+            }
+            self.boxes.push(b);
+        }
+        self.grid.rebuild(&self.boxes, radius);
+    }
+
+    /// Coordinates of facet `k`'s nodes.
+    fn points(&self, k: usize, x: &[[f64; 3]]) -> ([[f64; 3]; 4], usize) {
+        let n = self.faces[k].nodes();
+        let mut p = [[0.0; 3]; 4];
+        for (a, &m) in n.iter().enumerate() {
+            p[a] = x[m];
+        }
+        (p, n.len())
+    }
+
+    /// The element kept for the point `xs` among the facets `candidates`
+    /// (rules 1-3 of the module; `memory` the facet of the previous
+    /// evaluation), with its facet; `tests` counts the projections.
+    pub fn closest(
+        &self,
+        x: &[[f64; 3]],
+        xs: [f64; 3],
+        candidates: &[usize],
+        memory: Option<usize>,
+        prof: f64,
+        tests: &mut usize,
+    ) -> Option<(usize, FacetElement)> {
+        let mut best: Option<(usize, FacetElement)> = None;
+        let depth_of = |k: usize| {
+            let (p, n) = self.points(k, x);
+            (0..n)
+                .map(|a| {
+                    let (u, v) = (p[a], p[(a + 1) % n]);
+                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
+                })
+                .fold(prof, f64::max)
+        };
+        for &k in candidates {
+            let (p, n) = self.points(k, x);
+            let pts = &p[..n];
+            *tests += 1;
+            let Some((xi, _)) = foot(xs, pts) else {
+                continue;
+            };
+            let nodes = self.faces[k].nodes();
+            let seam = if memory == Some(k) {
+                SEAM_TOL
+            } else {
+                INSIDE_TOL
+            };
+            let inside = edge_excess(n, xi).iter().enumerate().all(|(a, &e)| {
+                let free = a < n && self.is_free_edge(nodes[a], nodes[(a + 1) % n]);
+                e <= seam || (free && e <= FREE_EDGE_TOL)
+            });
+            if !inside {
+                continue;
+            }
+            let Some(el) = face_element(xs, pts, xi) else {
+                continue;
+            };
+            if el.gap < -depth_of(k) {
+                continue;
+            }
+            if memory == Some(k) {
+                return Some((k, el));
+            }
+            if best
+                .as_ref()
+                .is_none_or(|(_, b)| el.gap.abs() < b.gap.abs())
+            {
+                best = Some((k, el));
+            }
+        }
+        if best.is_some() {
+            return best;
+        }
+        // every foot outside: the nearest interior edge or vertex
+        let mut near: Option<(f64, usize, usize, Option<usize>)> = None;
+        for &k in candidates {
+            let (p, n) = self.points(k, x);
+            let nodes = self.faces[k].nodes();
+            for a in 0..n {
+                let b = (a + 1) % n;
+                let e: [f64; 3] = std::array::from_fn(|c| p[b][c] - p[a][c]);
+                let ee: f64 = e.iter().map(|v| v * v).sum();
+                if ee.is_nan() || ee <= 0.0 {
+                    continue;
+                }
+                let t =
+                    ((0..3).map(|c| (xs[c] - p[a][c]) * e[c]).sum::<f64>() / ee).clamp(0.0, 1.0);
+                let (which, other) = if t <= 0.0 {
+                    (a, None)
+                } else if t >= 1.0 {
+                    (b, None)
+                } else {
+                    (a, Some(b))
+                };
+                let interior = match other {
+                    Some(b) => !self.is_free_edge(nodes[a], nodes[b]),
+                    None => !self.is_free_node(nodes[which]),
+                };
+                if !interior {
+                    continue;
+                }
+                let d: f64 = (0..3)
+                    .map(|c| (xs[c] - p[a][c] - t * e[c]).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                if near.is_none_or(|(best, ..)| d < best) {
+                    near = Some((d, k, which, other));
+                }
+            }
+        }
+        let (_, k, a, b) = near?;
+        let (p, n) = self.points(k, x);
+        let pts = &p[..n];
+        let nrm = centre_normal(pts);
+        let side = if (0..3).map(|c| (xs[c] - p[a][c]) * nrm[c]).sum::<f64>() < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        *tests += 1;
+        let el = edge_element(xs, pts, a, b, side)?;
+        (el.gap >= -depth_of(k)).then_some((k, el))
+    }
+}
+
+/// Slave nodes `slaves` that moved farther than the window `prof` relative
+/// to the master surface `master` between the coordinates `x0` (start of
+/// the increment) and `x1` (end): the rule of [`super::jump`] in 3D (the
+/// relative displacement is the node's minus that of the master point
+/// under its end position, interpolated with the facet's weights; the
+/// master within that distance of the end position; the normal component
+/// larger than `prof`). Stateless (the surface's broad phase is rebuilt at
+/// `x1`), ascending node order.
+pub fn jumps(
+    master: &mut FacetSurface,
+    slaves: &[usize],
+    prof: f64,
+    x0: &[[f64; 3]],
+    x1: &[[f64; 3]],
+) -> Vec<super::jump::Jump> {
+    let mut out = Vec::new();
+    let mut candidates = Vec::new();
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let mut built = false;
+    for &node in slaves {
+        let (Some(&a), Some(&b)) = (x0.get(node), x1.get(node)) else {
+            continue;
+        };
+        let moved: [f64; 3] = std::array::from_fn(|c| b[c] - a[c]);
+        let reach = norm(moved) * (1.0 + 1e-12);
+        if reach <= prof * (1.0 + 1e-12) {
+            continue;
+        }
+        if !built {
+            master.update(x1, prof);
+            built = true;
+        }
+        master.grid.query(b, reach, &mut candidates);
+        // the node's own facets are not a master for it
+        candidates.retain(|&k| !master.faces[k].nodes().contains(&node));
+        let mut tests = 0;
+        let Some((k, el)) = master.closest(x1, b, &candidates, None, reach, &mut tests) else {
+            continue;
+        };
+        let face = master.faces[k].nodes();
+        let mut under = [0.0; 3];
+        for (w, &m) in el.weights.iter().zip(face) {
+            let (Some(p0), Some(p1)) = (x0.get(m), x1.get(m)) else {
+                continue;
+            };
+            for c in 0..3 {
+                under[c] += w * (p1[c] - p0[c]);
+            }
+        }
+        let d: [f64; 3] = std::array::from_fn(|c| moved[c] - under[c]);
+        let distance = norm(d);
+        let normal = (0..3).map(|c| d[c] * el.normal[c]).sum::<f64>().abs();
+        if distance > prof && normal > prof && el.gap.abs() <= distance * (1.0 + 1e-12) {
+            out.push(super::jump::Jump {
+                node,
+                distance,
+                normal,
+            });
+        }
+    }
+    out
+}
+
+/// Prepared data of a 3D pair whose master is a deformable surface.
+#[derive(Debug, Clone, Default)]
+pub struct FacetPair {
+    /// Side 0 (the deck's slave faces) and side 1 (its master faces).
+    pub sides: [FacetSurface; 2],
+    /// Per slave index: the side the node belongs to.
+    pub side_of: Vec<u8>,
+    /// Converged increments so far (double pass: parity picks the side).
+    pub increments: usize,
+    committed_increments: usize,
+    /// Per slave index: facet of the latest evaluation (search memory).
+    pub last: Vec<Option<usize>>,
+    committed_last: Vec<Option<usize>>,
+    /// Closed nodes of the latest evaluation: force, tangent and Lagrange
+    /// row over the slave and its facet's nodes, in slave order.
+    pub couplings: Vec<Coupling>,
+    /// Projections of the latest evaluation.
+    pub tests: usize,
+    /// `increments` at the latest evaluation (`usize::MAX`: none since the
+    /// start or the last rollback): the first evaluation of the run and of
+    /// each double-pass swap brings the new slaves that touch into the
+    /// Lagrange active set.
+    evaluated: usize,
+    /// Gap within which a node counts as touching there:
+    /// [`super::penalty::TOUCH_FRACTION`] of the smallest facet edge.
+    touch: f64,
+    /// Scratch: candidate facets of one query.
+    candidates: Vec<usize>,
+}
+
+impl FacetPair {
+    /// Which sides act as slave now: `[side 0 is slave, side 1 is slave]`.
+    pub fn slave_sides(&self, strategy: ContactStrategy) -> [bool; 2] {
+        match strategy {
+            ContactStrategy::SinglePass => [true, false],
+            ContactStrategy::DoublePass => {
+                let even = self.increments.is_multiple_of(2);
+                [even, !even]
+            }
+            ContactStrategy::ModifiedDoublePass => [true, true],
+        }
+    }
+
+    /// Called when an increment has converged.
+    pub fn commit(&mut self) {
+        self.increments += 1;
+        self.committed_increments = self.increments;
+        self.committed_last.clone_from(&self.last);
+    }
+
+    /// Called when an increment is cut back.
+    pub fn rollback(&mut self) {
+        self.increments = self.committed_increments;
+        self.last.clone_from(&self.committed_last);
+        self.evaluated = usize::MAX;
+    }
+
+    /// Restart: `increments` converged increments were done, `memory` the
+    /// committed facet of each slave ([`FacetPair::memory`]).
+    pub fn restore(&mut self, increments: usize, memory: &[Option<usize>]) {
+        self.increments = increments;
+        self.committed_increments = increments;
+        self.committed_last = memory.to_vec();
+        self.last = memory.to_vec();
+        self.evaluated = usize::MAX;
+    }
+
+    /// The committed facet of each slave (the search memory), for restart
+    /// points.
+    pub fn memory(&self) -> &[Option<usize>] {
+        &self.committed_last
+    }
+
+    /// The nodes near facet `k` of the side opposite to slave index `i`
+    /// (the facet and the facets sharing a node with it): the solver
+    /// couples the slave to all of them when the pattern grows, so that
+    /// sliding to a neighbouring facet does not grow it again.
+    pub fn neighbourhood(&self, i: usize, k: usize, out: &mut Vec<usize>) {
+        let side = &self.sides[1 - self.side_of.get(i).copied().unwrap_or(0) as usize];
+        let Some(f) = side.faces.get(k) else {
+            return;
+        };
+        out.extend_from_slice(f.nodes());
+        for &g in &side.neighbours[k] {
+            out.extend_from_slice(side.faces[g].nodes());
+        }
+    }
+}
+
+/// The slave nodes of 3D pair `pair` (sorted): the slave faces' nodes,
+/// plus the master faces' nodes for the double-pass strategies.
+pub fn slave_nodes(model: &Model<3>, pair: usize) -> Vec<usize> {
+    let cp = &model.contacts[pair];
+    let mut nodes = cp.nodes.clone();
+    if let ContactMaster::Surface { faces, .. } = &cp.master {
+        if cp.strategy != ContactStrategy::SinglePass {
+            nodes.extend(faces.iter().flat_map(|f| f.nodes().to_vec()));
+            nodes.sort_unstable();
+            nodes.dedup();
+        }
+    }
+    nodes
+}
+
+/// Tributary areas `int N_a dA` of the slave nodes: over the slave faces
+/// for side-0 nodes, the master faces for side-1 nodes; halved for the
+/// modified double pass (both passes carry the load).
+pub fn areas(model: &Model<3>, pair: usize, slaves: &[usize]) -> Vec<f64> {
+    let cp = &model.contacts[pair];
+    let mut area = tributary_areas(&model.mesh, &cp.faces, slaves);
+    if let ContactMaster::Surface { faces, .. } = &cp.master {
+        let side1: Vec<usize> = slaves
+            .iter()
+            .copied()
+            .filter(|n| cp.nodes.binary_search(n).is_err())
+            .collect();
+        let a1 = tributary_areas(&model.mesh, faces, &side1);
+        for (n, a) in side1.iter().zip(a1) {
+            if let Ok(i) = slaves.binary_search(n) {
+                area[i] = a;
+            }
+        }
+        if cp.strategy == ContactStrategy::ModifiedDoublePass {
+            for a in &mut area {
+                *a *= 0.5;
+            }
+        }
+    }
+    area
+}
+
+/// Prepares a 3D pair; `None` if the master is a rigid tool.
+pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<FacetPair> {
+    let cp = model.contacts.get(pair)?;
+    let ContactMaster::Surface { faces, .. } = &cp.master else {
+        return None;
+    };
+    let h = cp
+        .faces
+        .iter()
+        .chain(faces)
+        .flat_map(|f| {
+            let n = f.nodes();
+            (0..n.len()).map(move |k| (n[k], n[(k + 1) % n.len()]))
+        })
+        .filter_map(|(a, b)| {
+            let (pa, pb) = (model.mesh.nodes.get(a)?, model.mesh.nodes.get(b)?);
+            Some((0..3).map(|c| (pb[c] - pa[c]).powi(2)).sum::<f64>().sqrt())
+        })
+        .filter(|l| *l > 0.0)
+        .fold(f64::INFINITY, f64::min);
+    Some(FacetPair {
+        evaluated: usize::MAX,
+        touch: if h.is_finite() {
+            super::penalty::TOUCH_FRACTION * h
+        } else {
+            0.0
+        },
+        sides: [FacetSurface::new(&cp.faces), FacetSurface::new(faces)],
+        side_of: slaves
+            .iter()
+            .map(|n| u8::from(cp.nodes.binary_search(n).is_err()))
+            .collect(),
+        last: vec![None; slaves.len()],
+        committed_last: vec![None; slaves.len()],
+        ..FacetPair::default()
+    })
+}
+
+/// The normal force and `dR_N/dg` of a node (`None`: open).
+fn response(
+    method: &ContactMethod,
+    alpha: f64,
+    multiplier: f64,
+    active: bool,
+    gap: f64,
+) -> Option<(f64, f64)> {
+    let rn = normal_force(method, alpha, multiplier, active, gap)?;
+    let slope = match method {
+        ContactMethod::Lagrange { .. } => 0.0,
+        _ => -alpha,
+    };
+    Some((rn, slope))
+}
+
+/// Evaluates the node-to-facet pair `pair` at current coordinates `x`:
+/// one entry per slave node within the window (or active), the couplings
+/// of the closed ones in `state.facets`.
+pub fn evaluate(
+    model: &Model<3>,
+    pair: usize,
+    x: &[[f64; 3]],
+    state: &mut SurfacePair,
+) -> Vec<NodeContact<3>> {
+    let mut out = Vec::new();
+    let cp = &model.contacts[pair];
+    let Some(mut fp) = state.facets.take() else {
+        return out;
+    };
+    state.evaluations += 1;
+    let sides = fp.slave_sides(cp.strategy);
+    let prof = state.prof;
+    for s in 0..2 {
+        // side s is master when the other side is slave
+        if sides[1 - s] {
+            fp.sides[s].update(x, prof);
+        }
+    }
+    fp.couplings.clear();
+    fp.tests = 0;
+    // Lagrange: the first evaluation of the run, and of a double-pass swap
+    // (the new slave side was not evaluated in the last increment: none of
+    // its nodes is active, and a body that only this contact holds would
+    // be free), brings the touching slaves into the active set
+    let fresh = fp.evaluated != fp.increments
+        && (fp.increments == 0 || cp.strategy == ContactStrategy::DoublePass);
+    fp.evaluated = fp.increments;
+    let mut candidates = std::mem::take(&mut fp.candidates);
+    for (i, &node) in state.slaves.iter().enumerate() {
+        let side = fp.side_of[i] as usize;
+        if !sides[side] {
+            fp.last[i] = None;
+            continue;
+        }
+        let Some(&xs) = x.get(node) else {
+            continue;
+        };
+        let surface = &fp.sides[1 - side];
+        candidates.clear();
+        surface.grid.query(xs, prof, &mut candidates);
+        // memory: the last facet and its neighbours are always tested
+        if let Some(k) = fp.last[i].filter(|&k| k < surface.faces.len()) {
+            candidates.push(k);
+            candidates.extend_from_slice(&surface.neighbours[k]);
+            candidates.sort_unstable();
+            candidates.dedup();
+        }
+        state.counters.queries += 1;
+        let memory = fp.last[i];
+        let Some((k, el)) = surface.closest(x, xs, &candidates, memory, prof, &mut fp.tests) else {
+            fp.last[i] = None;
+            continue;
+        };
+        fp.last[i] = Some(k);
+        let active = state.active[i];
+        if el.gap > prof && !active {
+            continue;
+        }
+        let method = cp.method_at(node);
+        let a = alpha(&method, state.area[i]);
+        // closed-gap start: a touching node of a body only this contact
+        // holds joins with zero force (penalty, AL: the tangent alpha G G^T;
+        // Lagrange: the active set, its row holds the body)
+        let touching = state.touching > 0.0 && (0.0..=state.touching).contains(&el.gap);
+        let touching_start = fresh && el.gap <= fp.touch;
+        if (touching || touching_start)
+            && matches!(method, ContactMethod::Lagrange { .. })
+            && !state.active[i]
+        {
+            state.active[i] = true;
+            state.multiplier[i] = 0.0;
+        }
+        let active = state.active[i];
+        let mut nc = NodeContact {
+            node,
+            gap: el.gap,
+            normal: el.normal,
+            force: [0.0; 3],
+            stiffness: [[0.0; 3]; 3],
+            pressure: 0.0,
+            status: ContactStatus::Open,
+            entity: k,
+            master: None,
+            friction: Default::default(),
+        };
+        let closed = response(&method, a, state.multiplier[i], active, el.gap)
+            .or_else(|| (touching && a > 0.0).then_some((0.0, -a)));
+        if let Some((rn, slope)) = closed {
+            let face = surface.faces[k].nodes();
+            let dofs = 3 * (1 + face.len());
+            let local: Vec<usize> = std::iter::once(node).chain(face.iter().copied()).collect();
+            let mut nodes = local.clone();
+            nodes.sort_unstable();
+            nodes.dedup();
+            let nd = 3 * nodes.len();
+            let pos = |l: usize| 3 * nodes.binary_search(&local[l / 3]).unwrap_or(0) + l % 3;
+            let mut force = vec![0.0; nd];
+            let mut row = vec![0.0; nd];
+            let mut tangent = vec![0.0; nd * nd];
+            let g = &el.gradient;
+            for r in 0..dofs {
+                let pr = pos(r);
+                force[pr] += rn * g[r];
+                row[pr] += g[r];
+                for c in 0..dofs {
+                    tangent[pr * nd + pos(c)] += -slope * g[r] * g[c] - rn * el.hessian[r][c];
+                }
+            }
+            for r in 0..3 {
+                nc.force[r] = rn * g[r];
+                for c in 0..3 {
+                    nc.stiffness[r][c] = -slope * g[r] * g[c] - rn * el.hessian[r][c];
+                }
+            }
+            nc.pressure = if state.area[i] > 0.0 {
+                rn / state.area[i]
+            } else {
+                0.0
+            };
+            nc.status = ContactStatus::Closed;
+            fp.couplings.push(Coupling {
+                nodes,
+                force,
+                tangent,
+                slave: node,
+                gap_gradient: row,
+            });
+        }
+        out.push(nc);
+    }
+    fp.candidates = candidates;
+    state.counters.faces_tested += fp.tests as u64;
+    state.facets = Some(fp);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Force `R G` of a penalty element (`R = -k g`) on the feature
+    /// `feature` of facet `pts`, for the finite differences.
+    fn element_at(
+        xs: [f64; 3],
+        pts: &[[f64; 3]],
+        feature: Feature,
+        side: f64,
+    ) -> Option<FacetElement> {
+        match feature {
+            Feature::Face => {
+                let (xi, _) = foot(xs, pts)?;
+                face_element(xs, pts, xi)
+            }
+            Feature::Edge(a, b) => edge_element(xs, pts, a, Some(b), side),
+            Feature::Vertex(a) => edge_element(xs, pts, a, None, side),
+        }
+    }
+
+    fn pack(xs: [f64; 3], pts: &[[f64; 3]]) -> Vec<f64> {
+        xs.iter().chain(pts.iter().flatten()).copied().collect()
+    }
+
+    fn unpack(v: &[f64], n: usize) -> ([f64; 3], Vec<[f64; 3]>) {
+        let xs = [v[0], v[1], v[2]];
+        let pts = (0..n)
+            .map(|a| [v[3 + 3 * a], v[4 + 3 * a], v[5 + 3 * a]])
+            .collect();
+        (xs, pts)
+    }
+
+    /// Checks `G` against finite differences of `g`, the tangent
+    /// `k G G^T - R H` (`R = -k g`) against finite differences of the
+    /// force `R G`, and the force and moment balance; returns the largest
+    /// relative errors `(G, K)`.
+    fn check(xs: [f64; 3], pts: &[[f64; 3]], feature: Feature, side: f64) -> (f64, f64) {
+        let k = 3.0;
+        let n = pts.len();
+        let dofs = 3 * (1 + n);
+        let el = element_at(xs, pts, feature, side).expect("element");
+        let v0 = pack(xs, pts);
+        let force = |el: &FacetElement| -> Vec<f64> {
+            (0..dofs).map(|r| -k * el.gap * el.gradient[r]).collect()
+        };
+        let f0 = force(&el);
+        // balance: sum f = 0, sum x x f = 0
+        let mut sum = [0.0; 3];
+        let mut moment = [0.0; 3];
+        for a in 0..=n {
+            let p = [v0[3 * a], v0[3 * a + 1], v0[3 * a + 2]];
+            let f = [f0[3 * a], f0[3 * a + 1], f0[3 * a + 2]];
+            for c in 0..3 {
+                sum[c] += f[c];
+            }
+            moment[0] += p[1] * f[2] - p[2] * f[1];
+            moment[1] += p[2] * f[0] - p[0] * f[2];
+            moment[2] += p[0] * f[1] - p[1] * f[0];
+        }
+        let fmax = f0.iter().fold(1e-12, |m: f64, v| m.max(v.abs()));
+        for c in 0..3 {
+            assert!(sum[c].abs() <= 1e-10 * fmax, "force balance {sum:?}");
+            assert!(
+                moment[c].abs() <= 1e-9 * fmax * 10.0,
+                "moment balance {moment:?}"
+            );
+        }
+        let h = 1e-6;
+        let (mut eg, mut ek) = (0.0f64, 0.0f64);
+        let gmax = el.gradient.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let kmax = (0..dofs)
+            .flat_map(|r| (0..dofs).map(move |c| (r, c)))
+            .map(|(r, c)| {
+                (k * el.gradient[r] * el.gradient[c] + k * el.gap * el.hessian[r][c]).abs()
+            })
+            .fold(1e-12, f64::max);
+        for c in 0..dofs {
+            let mut vp = v0.clone();
+            let mut vm = v0.clone();
+            vp[c] += h;
+            vm[c] -= h;
+            let (xp, pp) = unpack(&vp, n);
+            let (xm, pm) = unpack(&vm, n);
+            let ep = element_at(xp, &pp, feature, side).expect("element +h");
+            let em = element_at(xm, &pm, feature, side).expect("element -h");
+            let dg = (ep.gap - em.gap) / (2.0 * h);
+            eg = eg.max((dg - el.gradient[c]).abs() / gmax);
+            let (fp, fm) = (force(&ep), force(&em));
+            for r in 0..dofs {
+                // K = -df/dx
+                let fd = -(fp[r] - fm[r]) / (2.0 * h);
+                let an = k * el.gradient[r] * el.gradient[c] + k * el.gap * el.hessian[r][c];
+                ek = ek.max((fd - an).abs() / kmax);
+            }
+        }
+        // H is symmetric
+        for r in 0..dofs {
+            for c in 0..dofs {
+                assert!(
+                    (el.hessian[r][c] - el.hessian[c][r]).abs() <= 1e-9 * (1.0 + kmax),
+                    "H not symmetric at {r},{c}"
+                );
+            }
+        }
+        (eg, ek)
+    }
+
+    /// A random facet of `n` nodes near the unit square in the plane z = 0
+    /// (corners moved by up to `warp`), counter-clockwise seen from +z.
+    fn facet(n: usize, jitter: &[f64]) -> Vec<[f64; 3]> {
+        let base: &[[f64; 3]] = if n == 3 {
+            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        } else {
+            &[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ]
+        };
+        base.iter()
+            .enumerate()
+            .map(|(a, p)| {
+                [
+                    p[0] + 0.2 * jitter[3 * a],
+                    p[1] + 0.2 * jitter[3 * a + 1],
+                    p[2] + 0.3 * jitter[3 * a + 2],
+                ]
+            })
+            .collect()
+    }
+
+    #[test]
+    fn flat_quad_gap_normal_and_weights() {
+        let pts = facet(4, &[0.0; 12]);
+        let (xi, it) = foot([0.25, 0.75, -0.1], &pts).unwrap();
+        assert!(it <= 3);
+        let el = face_element([0.25, 0.75, -0.1], &pts, xi).unwrap();
+        assert!((el.gap + 0.1).abs() < 1e-14);
+        assert!((el.normal[2] - 1.0).abs() < 1e-14);
+        let w = el.weights;
+        assert!((w[0] - 0.1875).abs() < 1e-14 && (w[3] - 0.5625).abs() < 1e-14);
+        assert!((w.iter().sum::<f64>() - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn node_above_a_convex_ridge_takes_the_edge_cylinder() {
+        // two quads folded along the y axis (a roof), a node above the ridge
+        // outside both facets' prisms: the edge, normal along (x_s - p)
+        let faces = [Facet::new(&[0, 1, 2, 3]), Facet::new(&[1, 4, 5, 2])];
+        let mut x = vec![
+            [-1.0, 0.0, -0.5],
+            [0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [-1.0, 1.0, -0.5],
+            [1.0, 0.0, -0.5],
+            [1.0, 1.0, -0.5],
+        ];
+        x.push([0.05, 0.5, 0.3]);
+        let s = FacetSurface::new(&faces);
+        assert!(!s.is_free_edge(1, 2) && s.is_free_edge(0, 1));
+        let mut tests = 0;
+        let (_, el) = s.closest(&x, x[6], &[0, 1], None, 1.0, &mut tests).unwrap();
+        assert!(matches!(el.feature, Feature::Edge(..)), "{:?}", el.feature);
+        let d = (0.05f64 * 0.05 + 0.09).sqrt();
+        assert!((el.gap - d).abs() < 1e-14, "{}", el.gap);
+        // inside a prism: the face
+        let (k, el) = s
+            .closest(&x, [0.5, 0.5, 0.0], &[0, 1], None, 1.0, &mut tests)
+            .unwrap();
+        assert_eq!((k, el.feature), (1, Feature::Face));
+    }
+
+    #[test]
+    fn memory_keeps_its_facet_across_a_seam() {
+        // two triangles of a flat square split along its diagonal, a node
+        // just past the diagonal: the remembered facet keeps it within
+        // SEAM_TOL, the closest rule alone takes the other one
+        let faces = [Facet::new(&[0, 1, 2]), Facet::new(&[0, 2, 3])];
+        let x = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+        ];
+        let s = FacetSurface::new(&faces);
+        let mut tests = 0;
+        let xs = [0.5, 0.504, -0.01];
+        assert_eq!(
+            s.closest(&x, xs, &[0, 1], None, 1.0, &mut tests).unwrap().0,
+            1
+        );
+        assert_eq!(
+            s.closest(&x, xs, &[0, 1], Some(0), 1.0, &mut tests)
+                .unwrap()
+                .0,
+            0
+        );
+        // beyond the tolerance the memory lets go
+        let far = [0.4, 0.6, -0.01];
+        assert_eq!(
+            s.closest(&x, far, &[0, 1], Some(0), 1.0, &mut tests)
+                .unwrap()
+                .0,
+            1
+        );
+    }
+
+    #[test]
+    fn a_node_crossing_the_master_in_one_increment_is_a_jump() {
+        // a flat master of two quads; node 6 goes from 0.05 above it to 0.05
+        // below (crossing, window 0.01), node 7 slides 0.5 along it at a
+        // gap of 0.005, node 8 approaches from 0.9 above to 0.6 above
+        let faces = [Facet::new(&[0, 1, 2, 3]), Facet::new(&[1, 4, 5, 2])];
+        let x0 = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [2.0, 0.0, 0.0],
+            [2.0, 1.0, 0.0],
+            [0.5, 0.5, 0.05],
+            [0.5, 0.5, 0.005],
+            [1.5, 0.5, 0.9],
+        ];
+        let mut x1 = x0.clone();
+        x1[6][2] = -0.05;
+        x1[7][0] = 1.0;
+        x1[8][2] = 0.6;
+        let mut s = FacetSurface::new(&faces);
+        let j = jumps(&mut s, &[6, 7, 8], 0.01, &x0, &x1);
+        assert_eq!(j.len(), 1, "{j:?}");
+        assert_eq!(j[0].node, 6);
+        assert!((j[0].distance - 0.1).abs() < 1e-12 && (j[0].normal - 0.1).abs() < 1e-12);
+        // the master moving with the node: no relative motion, no jump
+        let mut x2 = x1.clone();
+        for p in x2.iter_mut().take(6) {
+            p[2] -= 0.1;
+        }
+        assert!(jumps(&mut s, &[6], 0.01, &x0, &x2).is_empty());
+    }
+
+    #[test]
+    fn free_edge_extends_only_by_the_tolerance() {
+        let faces = [Facet::new(&[0, 1, 2, 3])];
+        let x = facet(4, &[0.0; 12]);
+        let s = FacetSurface::new(&faces);
+        let mut tests = 0;
+        assert!(s
+            .closest(&x, [1.01, 0.5, -0.01], &[0], None, 1.0, &mut tests)
+            .is_some());
+        assert!(s
+            .closest(&x, [1.05, 0.5, -0.01], &[0], None, 1.0, &mut tests)
+            .is_none());
+    }
+
+    #[test]
+    fn hex_faces_point_outward() {
+        // the top face of a unit hex8 in the mesh's face order has normal +z
+        let mesh = crate::mesh::Mesh::new(
+            vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [1.0, 0.0, 1.0],
+                [1.0, 1.0, 1.0],
+                [0.0, 1.0, 1.0],
+            ],
+            vec![crate::mesh::Cell::hex([0, 1, 2, 3, 4, 5, 6, 7])],
+        );
+        for f in mesh.boundary_facets(0..1) {
+            let pts: Vec<[f64; 3]> = f.nodes().iter().map(|&n| mesh.nodes[n]).collect();
+            let n = centre_normal(&pts);
+            let c: [f64; 3] = std::array::from_fn(|k| {
+                pts.iter().map(|p| p[k]).sum::<f64>() / pts.len() as f64 - 0.5
+            });
+            assert!(
+                n.iter().zip(&c).map(|(a, b)| a * b).sum::<f64>() > 0.0,
+                "{f:?}"
+            );
+        }
+    }
+
+    /// The largest finite-difference errors of `G` and `K` over 2000
+    /// seeded random facets and slave positions per feature (printed for
+    /// the record: `cargo test -p ctc-engine --lib
+    /// contact::node_to_facet::tests::fd_errors -- --nocapture`).
+    #[test]
+    fn fd_errors_over_seeded_random_elements() {
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for (name, quad, feature) in [
+            ("tri3 face", false, Feature::Face),
+            ("quad4 face", true, Feature::Face),
+            ("tri3 edge", false, Feature::Edge(0, 1)),
+            ("quad4 edge", true, Feature::Edge(0, 1)),
+            ("quad4 vertex", true, Feature::Vertex(0)),
+        ] {
+            let n = if quad { 4 } else { 3 };
+            let (mut eg, mut ek, mut count) = (0.0f64, 0.0f64, 0);
+            for _ in 0..2000 {
+                let jitter: Vec<f64> = (0..12).map(|_| rnd()).collect();
+                let pts = facet(n, &jitter);
+                let (u, v, w) = (0.5 + 0.4 * rnd(), 0.5 + 0.4 * rnd(), 0.3 * rnd());
+                let (xs, side) = match feature {
+                    Feature::Face if !quad => ([0.45 * u, 0.45 * v, w], 1.0),
+                    Feature::Face => ([u, v, w], 1.0),
+                    _ => (
+                        [u, -0.2 - 0.5 * v.abs(), w],
+                        if w < 0.0 { -1.0 } else { 1.0 },
+                    ),
+                };
+                if feature == Feature::Face && foot(xs, &pts).is_none() {
+                    continue;
+                }
+                let (g, k) = check(xs, &pts, feature, side);
+                eg = eg.max(g);
+                ek = ek.max(k);
+                count += 1;
+            }
+            println!("{name}: {count} elements, max rel. FD error G {eg:.2e}, K {ek:.2e}");
+            assert!(
+                count > 1500 && eg <= 1e-6 && ek <= 1e-6,
+                "{name}: {eg} {ek}"
+            );
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(200))]
+        #[test]
+        fn face_tangent_matches_finite_differences(
+            quad in any::<bool>(),
+            jitter in proptest::collection::vec(-1.0f64..1.0, 12),
+            s in (0.05f64..0.9, 0.05f64..0.9, -0.3f64..0.3),
+        ) {
+            let n = if quad { 4 } else { 3 };
+            let pts = facet(n, &jitter);
+            let (u, v) = if quad { (s.0, s.1) } else { (0.9 * s.0 * (1.0 - s.1), s.1 * 0.9) };
+            let xs = [u, v, s.2];
+            let Some((xi, _)) = foot(xs, &pts) else { return Ok(()) };
+            prop_assume!(xi[0].abs() < 5.0 && xi[1].abs() < 5.0);
+            let (eg, ek) = check(xs, &pts, Feature::Face, 1.0);
+            prop_assert!(eg <= 1e-6, "G error {eg}");
+            prop_assert!(ek <= 1e-6, "K error {ek}");
+        }
+
+        #[test]
+        fn edge_and_vertex_tangents_match_finite_differences(
+            quad in any::<bool>(),
+            jitter in proptest::collection::vec(-1.0f64..1.0, 12),
+            s in (-0.5f64..1.5, 0.2f64..1.0, 0.2f64..1.0),
+            vertex in any::<bool>(),
+            side in any::<bool>(),
+        ) {
+            let n = if quad { 4 } else { 3 };
+            let pts = facet(n, &jitter);
+            // below the edge (0, 1) at y = 0, or around vertex 0
+            let xs = [s.0, -s.1, if side { s.2 } else { -s.2 }];
+            let sign = if side { 1.0 } else { -1.0 };
+            let feature = if vertex { Feature::Vertex(0) } else { Feature::Edge(0, 1) };
+            let (eg, ek) = check(xs, &pts, feature, sign);
+            prop_assert!(eg <= 1e-6, "G error {eg}");
+            prop_assert!(ek <= 1e-6, "K error {ek}");
+        }
+    }
+}
