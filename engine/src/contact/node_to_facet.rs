@@ -678,7 +678,7 @@ pub fn jumps(
 
 /// Prepared data of a 3D pair whose master is a deformable surface.
 #[derive(Debug, Clone, Default)]
-pub struct FacetPair {
+pub struct DeformablePair {
     /// Side 0 (the deck's slave faces) and side 1 (its master faces).
     pub sides: [FacetSurface; 2],
     /// Per slave index: the side the node belongs to.
@@ -706,7 +706,7 @@ pub struct FacetPair {
     candidates: Vec<usize>,
 }
 
-impl FacetPair {
+impl DeformablePair {
     /// Which sides act as slave now: `[side 0 is slave, side 1 is slave]`.
     pub fn slave_sides(&self, strategy: ContactStrategy) -> [bool; 2] {
         match strategy {
@@ -734,7 +734,7 @@ impl FacetPair {
     }
 
     /// Restart: `increments` converged increments were done, `memory` the
-    /// committed facet of each slave ([`FacetPair::memory`]).
+    /// committed facet of each slave ([`DeformablePair::memory`]).
     pub fn restore(&mut self, increments: usize, memory: &[Option<usize>]) {
         self.increments = increments;
         self.committed_increments = increments;
@@ -808,7 +808,7 @@ pub fn areas(model: &Model<3>, pair: usize, slaves: &[usize]) -> Vec<f64> {
 }
 
 /// Prepares a 3D pair; `None` if the master is a rigid tool.
-pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<FacetPair> {
+pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<DeformablePair> {
     let cp = model.contacts.get(pair)?;
     let ContactMaster::Surface { faces, .. } = &cp.master else {
         return None;
@@ -827,7 +827,7 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<FacetP
         })
         .filter(|l| *l > 0.0)
         .fold(f64::INFINITY, f64::min);
-    Some(FacetPair {
+    Some(DeformablePair {
         evaluated: usize::MAX,
         touch: if h.is_finite() {
             super::penalty::TOUCH_FRACTION * h
@@ -841,7 +841,7 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<FacetP
             .collect(),
         last: vec![None; slaves.len()],
         committed_last: vec![None; slaves.len()],
-        ..FacetPair::default()
+        ..DeformablePair::default()
     })
 }
 
@@ -863,7 +863,7 @@ fn response(
 
 /// Evaluates the node-to-facet pair `pair` at current coordinates `x`:
 /// one entry per slave node within the window (or active), the couplings
-/// of the closed ones in `state.facets`.
+/// of the closed ones in `state.deformable`.
 pub fn evaluate(
     model: &Model<3>,
     pair: usize,
@@ -872,7 +872,7 @@ pub fn evaluate(
 ) -> Vec<NodeContact<3>> {
     let mut out = Vec::new();
     let cp = &model.contacts[pair];
-    let Some(mut fp) = state.facets.take() else {
+    let Some(mut fp) = state.deformable.take() else {
         return out;
     };
     state.evaluations += 1;
@@ -998,7 +998,7 @@ pub fn evaluate(
     }
     fp.candidates = candidates;
     state.counters.faces_tested += fp.tests as u64;
-    state.facets = Some(fp);
+    state.deformable = Some(fp);
     out
 }
 

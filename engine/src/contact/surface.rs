@@ -37,7 +37,7 @@
 
 use super::friction::FrictionState;
 use super::friction_surface::{self, StickRows, SurfaceContact};
-use super::node_to_facet::{self, FacetPair};
+use super::node_to_facet::{self, DeformablePair};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{
@@ -80,7 +80,7 @@ pub struct SurfacePair {
     /// Deformable master (node-to-facet, [`super::node_to_facet`]): the
     /// two surfaces, the strategy state and the couplings of the latest
     /// evaluation; `None` against a surface tool.
-    pub facets: Option<FacetPair>,
+    pub deformable: Option<DeformablePair>,
     /// Closed-gap start of node-to-facet pairs (as
     /// `crate::contact::PairState::touching` in 2D): slave nodes whose gap
     /// lies in `[0, touching]` count as closed with zero force; set by the
@@ -98,7 +98,7 @@ impl SurfacePair {
         let cp = &model.contacts[pair];
         // a deformable master: the double passes add its nodes as slaves
         let slaves = node_to_facet::slave_nodes(model, pair);
-        let facets = node_to_facet::prepare(model, pair, &slaves);
+        let deformable = node_to_facet::prepare(model, pair, &slaves);
         let area = node_to_facet::areas(model, pair, &slaves);
         let prof = match cp.prof {
             Some(p) if p.is_finite() && p >= 0.0 => p,
@@ -144,7 +144,7 @@ impl SurfacePair {
         };
         SurfacePair {
             slaves,
-            facets,
+            deformable,
             touching: 0.0,
             area,
             prof,
@@ -167,7 +167,7 @@ impl SurfacePair {
         self.committed_active.clone_from(&self.active);
         self.committed_search.clone_from(&self.search);
         self.friction.commit();
-        if let Some(f) = &mut self.facets {
+        if let Some(f) = &mut self.deformable {
             f.commit();
         }
     }
@@ -178,7 +178,7 @@ impl SurfacePair {
         self.active.clone_from(&self.committed_active);
         self.search.clone_from(&self.committed_search);
         self.friction.rollback();
-        if let Some(f) = &mut self.facets {
+        if let Some(f) = &mut self.deformable {
             f.rollback();
         }
     }
@@ -423,7 +423,7 @@ pub fn evaluate_pair(
 ) -> (Vec<NodeContact<3>>, Vec<(usize, ProjectionError)>) {
     let cp = &model.contacts[pair];
     let mut failed = Vec::new();
-    if state.facets.is_some() {
+    if state.deformable.is_some() {
         return (node_to_facet::evaluate(model, pair, x, state), failed);
     }
     let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {

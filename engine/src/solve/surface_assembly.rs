@@ -257,7 +257,7 @@ impl ContactScene<3> for SurfaceAssembly {
             let (res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
             self.failures
                 .extend(failed.into_iter().map(|(n, e)| (i, n, e)));
-            match &state.facets {
+            match &state.deformable {
                 // node-to-facet: the couplings carry slave and master forces
                 Some(fp) => {
                     for c in &fp.couplings {
@@ -289,7 +289,7 @@ impl ContactScene<3> for SurfaceAssembly {
         let missing = self
             .pairs
             .iter()
-            .filter_map(|p| p.facets.as_ref())
+            .filter_map(|p| p.deformable.as_ref())
             .flat_map(|f| &f.couplings)
             .any(|c| {
                 c.nodes.iter().any(|&a| {
@@ -303,7 +303,7 @@ impl ContactScene<3> for SurfaceAssembly {
         }
         let mut near = Vec::new();
         for (state, res) in self.pairs.iter().zip(&self.contact) {
-            let Some(fp) = &state.facets else { continue };
+            let Some(fp) = &state.deformable else { continue };
             for nc in res.iter().filter(|nc| nc.status == ContactStatus::Closed) {
                 let Some(i) = state.slave_index(nc.node) else {
                     continue;
@@ -326,7 +326,7 @@ impl ContactScene<3> for SurfaceAssembly {
 
     fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap<3>, values: &mut [f64]) {
         for (state, res) in self.pairs.iter().zip(&self.contact) {
-            if let Some(fp) = &state.facets {
+            if let Some(fp) = &state.deformable {
                 for c in &fp.couplings {
                     super::contact_assembly::add_coupling(c, scatter, dofs, values);
                 }
@@ -349,7 +349,7 @@ impl ContactScene<3> for SurfaceAssembly {
                     continue;
                 }
                 // node-to-facet: the row G over the slave and the facet nodes
-                if let Some(fp) = &self.pairs[pi].facets {
+                if let Some(fp) = &self.pairs[pi].deformable {
                     if let Ok(k) = fp.couplings.binary_search_by_key(&nc.node, |c| c.slave) {
                         let c = &fp.couplings[k];
                         self.rows.push(
@@ -587,7 +587,7 @@ impl ContactScene<3> for SurfaceAssembly {
                     // node-to-facet: the search memory (the seam rule
                     // depends on it)
                     entity: p
-                        .facets
+                        .deformable
                         .as_ref()
                         .map_or_else(|| vec![None; p.slaves.len()], |f| f.memory().to_vec()),
                     multiplier: multiplier.to_vec(),
@@ -618,7 +618,7 @@ impl ContactScene<3> for SurfaceAssembly {
             if !h.friction.is_empty() {
                 s.friction.restore_committed(&h.friction)?;
             }
-            if let Some(f) = &mut s.facets {
+            if let Some(f) = &mut s.deformable {
                 if h.entity.len() != n {
                     return Err("the restart point does not match the model (slave nodes)".into());
                 }
