@@ -35,8 +35,10 @@
 //! node, [`SurfacePair::stick`], and the stick/slip status loop of
 //! [`super::friction_lagrange`]).
 
+use super::face_integrated::{self, FacetPair, FacetRule, PointProjection};
 use super::friction::FrictionState;
 use super::friction_surface::{self, StickRows, SurfaceContact};
+use super::mortar::Coupling;
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool};
@@ -74,6 +76,17 @@ pub struct SurfacePair {
     /// Per slave node at the last evaluation: the tangential constraint
     /// rows of a sticking node of a Lagrange pair with friction.
     pub stick: Vec<Option<StickRows>>,
+    /// Quadratic slave faces: the face-integrated state
+    /// ([`super::face_integrated`]: the gap at the faces' integration
+    /// points); `None` on linear faces.
+    pub facets: Option<FacetPair>,
+    /// Face-integrated pairs: the CAD search memory of each integration
+    /// point.
+    pub point_search: Vec<SearchState>,
+    /// Face-integrated pairs: the rows of the latest evaluation (one per
+    /// face with a closed point), which the solver scatters instead of the
+    /// nodal forces.
+    pub couplings: Vec<Coupling>,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -122,7 +135,26 @@ impl SurfacePair {
                 .collect(),
             _ => vec![false; n],
         };
+        // quadratic slave faces against the tool: integrated at points
+        let facets = (cp.master.tool().is_some()
+            && !matches!(cp.method, ContactMethod::Lagrange { .. })
+            && face_integrated::body_is_quadratic(model, cp.body))
+        .then(|| {
+            let rule = FacetRule::solid(
+                &model.mesh.nodes,
+                cp.faces.iter().map(|f| f.nodes().to_vec()).collect(),
+            );
+            FacetPair::new(rule, |node| {
+                face_integrated::pressure_stiffness(&cp.method_at(node))
+            })
+        });
         SurfacePair {
+            point_search: vec![
+                SearchState::new();
+                facets.as_ref().map_or(0, |f| f.rule.points.len())
+            ],
+            facets,
+            couplings: Vec::new(),
             slaves: cp.nodes.clone(),
             area,
             prof,
@@ -145,6 +177,9 @@ impl SurfacePair {
         self.committed_active.clone_from(&self.active);
         self.committed_search.clone_from(&self.search);
         self.friction.commit();
+        if let Some(fp) = &mut self.facets {
+            fp.commit();
+        }
     }
 
     /// Returns to the committed multipliers, active set and search memory.
@@ -153,6 +188,9 @@ impl SurfacePair {
         self.active.clone_from(&self.committed_active);
         self.search.clone_from(&self.committed_search);
         self.friction.rollback();
+        if let Some(fp) = &mut self.facets {
+            fp.rollback();
+        }
     }
 
     /// The committed multipliers and active set (restart points).
@@ -398,6 +436,9 @@ pub fn evaluate_pair(
     let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
         return (Vec::new(), failed);
     };
+    if state.facets.is_some() {
+        return evaluate_facets(tool, t, x, state);
+    }
     let mut out = Vec::with_capacity(state.slaves.len());
     let placed = placement(&tool.motion, t);
     state.friction.impact = None;
@@ -489,6 +530,83 @@ pub fn evaluate_pair(
         }
         out.push(nc);
     }
+    (out, failed)
+}
+
+/// [`evaluate_pair`] of a face-integrated pair (quadratic slave faces,
+/// [`super::face_integrated`]): fills `state.couplings` (the forces) and
+/// returns one entry per slave node within the window or loaded by a face
+/// (output: the node's gap, the pressure field there, its force).
+fn evaluate_facets(
+    tool: &SurfaceTool,
+    t: f64,
+    x: &[[f64; 3]],
+    state: &mut SurfacePair,
+) -> (Vec<NodeContact<3>>, Vec<(usize, ProjectionError)>) {
+    let mut failed = Vec::new();
+    let Some(mut fp) = state.facets.take() else {
+        return (Vec::new(), failed);
+    };
+    state.evaluations += 1;
+    let prof = state.prof;
+    let (searches, counters) = (&mut state.point_search, &mut state.counters);
+    let mut point_failures = Vec::new();
+    let couplings = fp.evaluate(x, 0.0, |g, xg| {
+        searches[g].reach = prof;
+        match project(tool, t, &xg, &mut searches[g], counters) {
+            Ok(Some(p)) if p.gap <= prof => Some(PointProjection {
+                gap: p.gap,
+                normal: [p.normal[0], p.normal[1], p.normal[2]],
+                curvature: std::array::from_fn(|i| std::array::from_fn(|j| p.curvature[(i, j)])),
+            }),
+            Ok(_) => None,
+            Err(e) => {
+                point_failures.push((g, e));
+                None
+            }
+        }
+    });
+    // a point whose CAD projection failed is reported at its facet's
+    // first node
+    for (g, e) in point_failures {
+        let f = fp.rule.points[g].facet;
+        failed.push((fp.rule.facets[f][0], e));
+    }
+    let mut out = Vec::with_capacity(state.slaves.len());
+    for (i, &node) in state.slaves.iter().enumerate() {
+        state.search[i].reach = prof;
+        let p = match project(tool, t, &x[node], &mut state.search[i], &mut state.counters) {
+            Ok(Some(p)) => p,
+            Ok(None) => continue,
+            Err(e) => {
+                failed.push((node, e));
+                continue;
+            }
+        };
+        let (force, stiffness) = FacetPair::node_force::<3>(&couplings, node);
+        if p.gap > prof && force == [0.0; 3] {
+            continue;
+        }
+        let pressure = fp.node_pressure(node, p.gap);
+        out.push(NodeContact {
+            node,
+            gap: p.gap,
+            normal: [p.normal[0], p.normal[1], p.normal[2]],
+            force,
+            stiffness,
+            pressure,
+            status: if pressure > 0.0 {
+                ContactStatus::Closed
+            } else {
+                ContactStatus::Open
+            },
+            entity: p.entity,
+            master: None,
+            friction: Default::default(),
+        });
+    }
+    state.couplings = couplings;
+    state.facets = Some(fp);
     (out, failed)
 }
 

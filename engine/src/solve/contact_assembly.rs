@@ -327,11 +327,13 @@ impl ContactAssembly {
     }
 }
 
-/// Adds the tangent of one mortar coupling row (any number of nodes).
-fn add_coupling(
+/// Adds the tangent of one mortar coupling row (any number of nodes, the
+/// dof map's components per node; also the face rows of quadratic faces
+/// against 3D surface tools).
+pub(crate) fn add_coupling<const D: usize>(
     c: &contact::mortar::Coupling,
     scatter: &Scatter,
-    dofs: &DofMap,
+    dofs: &DofMap<D>,
     values: &mut [f64],
 ) {
     let dim = dofs.components();

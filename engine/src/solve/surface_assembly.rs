@@ -108,6 +108,14 @@ impl SurfaceAssembly {
             else {
                 continue;
             };
+            // quadratic faces: the multipliers and the test at the points
+            if let Some(fp) = &mut self.pairs[pi].facets {
+                if update == mode && fp.violation() > tolerance {
+                    fp.uzawa_update();
+                    updated = true;
+                }
+                continue;
+            }
             let list = &self.contact[pi];
             let violation = crate::contact::augmented::constraint_violation(list).max(
                 if cp.friction.is_some() {
@@ -226,6 +234,18 @@ impl ContactScene<3> for SurfaceAssembly {
             let (res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
             self.failures
                 .extend(failed.into_iter().map(|(n, e)| (i, n, e)));
+            if state.facets.is_some() {
+                // quadratic faces: the face rows carry the forces
+                for c in &state.couplings {
+                    for (k, &n) in c.nodes.iter().enumerate() {
+                        for comp in 0..3 {
+                            f_c[dofs.dof(n, comp)] += c.force[3 * k + comp];
+                        }
+                    }
+                }
+                self.contact[i] = res;
+                continue;
+            }
             for nc in &res {
                 for (c, f) in nc.force.iter().enumerate() {
                     f_c[dofs.dof(nc.node, c)] += f;
@@ -244,8 +264,21 @@ impl ContactScene<3> for SurfaceAssembly {
         Ok(None)
     }
 
-    fn add_tangent(&self, scatter: &Scatter, _: &DofMap<3>, values: &mut [f64]) {
-        for nc in self.contact.iter().flatten() {
+    fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap<3>, values: &mut [f64]) {
+        for state in &self.pairs {
+            if state.facets.is_some() {
+                for c in &state.couplings {
+                    super::contact_assembly::add_coupling(c, scatter, dofs, values);
+                }
+            }
+        }
+        let nodal = self
+            .pairs
+            .iter()
+            .zip(&self.contact)
+            .filter(|(s, _)| s.facets.is_none())
+            .flat_map(|(_, l)| l);
+        for nc in nodal {
             if nc.status != ContactStatus::Closed {
                 continue;
             }
@@ -461,7 +494,12 @@ impl ContactScene<3> for SurfaceAssembly {
                 let (multiplier, active) = p.committed();
                 PairHistory {
                     entity: vec![None; p.slaves.len()],
-                    multiplier: multiplier.to_vec(),
+                    // face-integrated pairs: the points' multipliers follow
+                    multiplier: multiplier
+                        .iter()
+                        .chain(p.facets.iter().flat_map(|f| &f.committed))
+                        .copied()
+                        .collect(),
                     active: active.to_vec(),
                     friction: p.friction.committed_values(),
                 }
@@ -476,15 +514,19 @@ impl ContactScene<3> for SurfaceAssembly {
         }
         for (s, h) in self.pairs.iter_mut().zip(pairs) {
             let n = s.slaves.len();
-            if h.multiplier.len() != n || h.active.len() != n {
+            let points = s.facets.as_ref().map_or(0, |f| f.committed.len());
+            if h.multiplier.len() != n + points || h.active.len() != n {
                 return Err("the restart point does not match the model (slave nodes)".into());
+            }
+            if let Some(fp) = &mut s.facets {
+                fp.restore(&h.multiplier[n..])?;
             }
             // restart points written before 3D friction carry no friction
             // state: start from none
             if !h.friction.is_empty() {
                 s.friction.restore_committed(&h.friction)?;
             }
-            s.restore(&h.multiplier, &h.active);
+            s.restore(&h.multiplier[..n], &h.active);
         }
         Ok(())
     }
