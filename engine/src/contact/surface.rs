@@ -587,7 +587,7 @@ fn evaluate_facets(
         if p.gap > prof && force == [0.0; 3] {
             continue;
         }
-        let pressure = fp.node_pressure(node, p.gap);
+        let pressure = fp.node_pressure(node);
         out.push(NodeContact {
             node,
             gap: p.gap,

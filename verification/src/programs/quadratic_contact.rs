@@ -34,10 +34,13 @@
 //!   run of each level against the quadratic run (`order = 2`: quad8 cells,
 //!   tri6 in the hub, midside nodes on the arc) of the same grading with
 //!   half the divisions in each direction — about the same number of
-//!   degrees of freedom. Measured: the half-width `a`, the peak pressure
-//!   `p0` and the L2 error of `p(x)` against Hertz at the load each run
-//!   carries (`crate::measure::hertz`). [`hertz_work_precision`] prints
-//!   the rows with dofs and solve times.
+//!   degrees of freedom. Measured: the half-width `a` (from the first
+//!   moment of the contact forces, `ContactProfile::moment_ratio`: the
+//!   edge estimator of the linear decks extrapolates nodal gaps, which on
+//!   quadratic faces are not the penetration), the peak pressure `p0` and
+//!   the L2 error of `p(x)` against Hertz at the load each run carries
+//!   (`crate::measure::hertz`). [`hertz_work_precision`] prints the rows
+//!   with dofs and solve times.
 //!
 //!   ```text
 //!          ___              R = 1, E = 1e3, nu = 0.3, flat pushed down
@@ -365,33 +368,37 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
 
 // ------------------------------------------------------------ Hertz
 
-/// Tolerances of the Hertz errors per level (a, p0, L2) of each run, from
-/// the errors measured on 2026-12-04 with a margin.
+/// Tolerances of the Hertz errors per level (a, p0, L2) of each run: the
+/// errors measured on 2026-12-04 (levels 0, 1, 2; free dofs quad4 160,
+/// 566, 2188 against quad8 144, 480, 1698) times about 1.5:
+///
+/// | run | a | p0 | L2(p) |
+/// | --- | --- | --- | --- |
+/// | cylinder quad4 | 2.5e-2 1.0e-2 3.2e-3 | 2.5e-2 1.4e-2 6.8e-3 | 8.5e-2 4.6e-2 2.4e-2 |
+/// | cylinder quad8 | 3.5e-2 2.2e-2 5.0e-3 | 8.4e-3 2.8e-3 1.2e-4 | 6.9e-2 4.9e-2 2.2e-2 |
+/// | sphere quad4 | 1.7e-2 9.9e-3 2.5e-3 | 1.1e-2 8.1e-3 3.3e-4 | 9.5e-2 3.9e-2 1.5e-2 |
+/// | sphere quad8 | 8.3e-2 5.4e-3 8.2e-4 | 7.9e-2 8.6e-3 4.9e-3 | 1.3e-1 4.9e-2 2.3e-2 |
 fn hertz_checks() -> Vec<Check> {
     let tolerances: [[&[f64]; 3]; 4] = [
-        // cylinder quad4 (the deck case's own tolerances)
         [
-            &[0.05, 0.03, 0.02],
-            &[0.05, 0.03, 0.02],
-            &[0.15, 0.08, 0.05],
+            &[0.04, 0.016, 5e-3],
+            &[0.04, 0.02, 0.01],
+            &[0.13, 0.07, 0.036],
         ],
-        // cylinder quad8
         [
-            &[0.05, 0.03, 0.02],
-            &[0.05, 0.03, 0.02],
-            &[0.15, 0.08, 0.05],
+            &[0.05, 0.033, 7.5e-3],
+            &[0.013, 4.2e-3, 2e-4],
+            &[0.1, 0.074, 0.034],
         ],
-        // sphere quad4
         [
-            &[0.06, 0.03, 0.02],
-            &[0.04, 0.03, 0.02],
-            &[0.15, 0.08, 0.04],
+            &[0.025, 0.015, 4e-3],
+            &[0.017, 0.013, 5e-4],
+            &[0.14, 0.06, 0.023],
         ],
-        // sphere quad8
         [
-            &[0.06, 0.03, 0.02],
-            &[0.04, 0.03, 0.02],
-            &[0.15, 0.08, 0.04],
+            &[0.12, 8.2e-3, 1.3e-3],
+            &[0.12, 0.013, 7.4e-3],
+            &[0.19, 0.073, 0.034],
         ],
     ];
     HERTZ_NAMES
@@ -413,7 +420,8 @@ pub struct HertzRun {
     pub deck: &'static str,
     /// Quadratic cells.
     pub quadratic: bool,
-    /// Errors of a, p0 and L2(p).
+    /// Errors of a (from the first moment of the contact forces), p0 and
+    /// L2(p).
     pub errors: [f64; 3],
     /// Free dofs.
     pub dofs: usize,
@@ -437,22 +445,9 @@ fn hertz_run(deck: &'static str, level: usize, quadratic: bool) -> Result<HertzR
     let deck_file = crate::refine::RefinableDeck::parse(&text)?;
     let mut text = deck_file.render(level)?;
     if quadratic {
-        for (from, to) in [
-            (format!("radial = {r} "), format!("radial = {} ", r / 2)),
-            (
-                format!("circumferential = {c} "),
-                format!("circumferential = {} ", c / 2),
-            ),
-            (
-                "element = quad4".to_string(),
-                "element = quad4  order = 2".to_string(),
-            ),
-        ] {
-            if !text.contains(&from) {
-                return Err(format!("hertz_{deck}.ctc: no `{from}` to replace"));
-            }
-            text = text.replacen(&from, &to, 1);
-        }
+        text = set_key(&text, "radial", r, r / 2)?;
+        text = set_key(&text, "circumferential", c, c / 2)?;
+        text = set_key_text(&text, "element = quad4", "element = quad4  order = 2")?;
     }
     let model = super::compile(&path, &text)?;
     let reference = if deck == "sphere" {
@@ -493,7 +488,7 @@ fn hertz_run(deck: &'static str, level: usize, quadratic: bool) -> Result<HertzR
         deck,
         quadratic,
         errors: [
-            of(Quantity::HalfWidth),
+            of(Quantity::HalfWidthMoment),
             of(Quantity::PeakPressure),
             of(Quantity::PressureL2),
         ],
@@ -502,6 +497,64 @@ fn hertz_run(deck: &'static str, level: usize, quadratic: bool) -> Result<HertzR
         seconds,
         summary,
     })
+}
+
+/// `text` with the first `key = old` of its code (comments skipped; not a
+/// longer key or number) set to `key = new`.
+fn set_key(text: &str, key: &str, old: usize, new: usize) -> Result<String, String> {
+    let from = format!("{key} = {old}");
+    let mut done = false;
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let code_end = line.find('#').unwrap_or(line.len());
+        let found = (!done)
+            .then(|| {
+                line[..code_end].match_indices(&from).find(|&(i, _)| {
+                    let before = line[..i].chars().next_back();
+                    let after = line[i + from.len()..].chars().next();
+                    !before.is_some_and(|c| c.is_alphanumeric() || c == '_')
+                        && !after.is_some_and(|c| c.is_ascii_digit())
+                })
+            })
+            .flatten();
+        match found {
+            Some((i, _)) => {
+                out.push_str(&line[..i]);
+                out.push_str(&format!("{key} = {new}"));
+                out.push_str(&line[i + from.len()..]);
+                done = true;
+            }
+            None => out.push_str(line),
+        }
+    }
+    if done {
+        Ok(out)
+    } else {
+        Err(format!("no `{from}` in the deck's code"))
+    }
+}
+
+/// `text` with the first `from` of its code replaced by `to`.
+fn set_key_text(text: &str, from: &str, to: &str) -> Result<String, String> {
+    let mut done = false;
+    let mut out = String::with_capacity(text.len());
+    for line in text.split_inclusive('\n') {
+        let code_end = line.find('#').unwrap_or(line.len());
+        match line[..code_end].find(from).filter(|_| !done) {
+            Some(i) => {
+                out.push_str(&line[..i]);
+                out.push_str(to);
+                out.push_str(&line[i + from.len()..]);
+                done = true;
+            }
+            None => out.push_str(line),
+        }
+    }
+    if done {
+        Ok(out)
+    } else {
+        Err(format!("no `{from}` in the deck's code"))
+    }
 }
 
 /// The four Hertz runs of level `level`: cylinder quad4, quad8, sphere
