@@ -81,3 +81,28 @@ fn thermal_steady_quadratic_is_exact_on_quadratic_cells() {
         println!("{:?}: {:.2e}", v.quantity, v.error);
     }
 }
+
+/// The 3D Hertz block on hex27 / hex20 (n/2 cells) against hex8 (n cells)
+/// (`hertz_sphere_3d_quadratic`; Johnson §4.2), with the work-precision
+/// rows printed (dofs, time; times are not judged).
+#[test]
+fn hertz_sphere_3d_quadratic_against_hex8() {
+    registry::run_passing("hertz_sphere_3d_quadratic");
+    for level in 0..1 {
+        for (kind, n, s, seconds, values) in
+            ctc_verification::programs::quadratic_contact::hertz_3d_work_precision(level).unwrap()
+        {
+            let errors: Vec<String> = values
+                .iter()
+                .map(|v| format!("{:?} {:.2e}", v.quantity, v.error))
+                .collect();
+            println!(
+                "level {level} {} n = {n}: {} dofs, {:.2} s, {}",
+                kind.name(),
+                s.free_dofs,
+                seconds,
+                errors.join(", ")
+            );
+        }
+    }
+}

@@ -49,7 +49,7 @@
 //! slave surface then keeps its curvature inside the contact zone
 //! (measured on the axisymmetric quad8 Hertz sphere: corner gaps +1e-4,
 //! midside gaps -5e-5, against a penetration of 4e-6).
-
+//!
 //! # What it is not
 //!
 //! Lagrange multipliers need a discrete multiplier field: a nodal one is
