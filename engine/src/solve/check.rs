@@ -694,11 +694,12 @@ fn free_solid_motions<const D: usize>(
     free
 }
 
-/// Why pair `c` cannot run on quadratic faces, if it cannot: a
-/// deformable master or slave with quadratic cells (node-to-segment and
-/// mortar are linear), Lagrange multipliers (no positive-weight
-/// multiplier basis on tri6 / quad8 faces is built), friction, or a nodal
-/// penalty (a force per node has no meaning at integration points).
+/// Why pair `c` (one of `model.contacts`) cannot run on quadratic faces,
+/// if it cannot: a deformable master or slave with quadratic cells
+/// (node-to-segment and mortar are linear), Lagrange multipliers (no
+/// positive-weight multiplier basis on tri6 / quad8 faces is built),
+/// friction, thermal contact (nodal areas), or a nodal penalty (a force
+/// per node has no meaning at integration points).
 pub fn quadratic_contact_refusal<const D: usize>(
     model: &Model<D>,
     c: &crate::model::ContactPair,
@@ -738,6 +739,18 @@ pub fn quadratic_contact_refusal<const D: usize>(
              the faces); use `kind = area`"
         }
         _ if c.friction.is_some() => "friction is not available on quadratic faces",
+        _ if model.thermal.as_ref().is_some_and(|t| {
+            model
+                .contacts
+                .iter()
+                .position(|p| std::ptr::eq(p, c))
+                .and_then(|i| t.contacts.get(i))
+                .is_some_and(Option::is_some)
+        }) =>
+        {
+            "thermal contact is not available on quadratic faces (its nodal areas would be \
+             zero or negative at the corners)"
+        }
         _ => return None,
     };
     Some(format!(
