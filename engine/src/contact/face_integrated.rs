@@ -63,7 +63,8 @@
 //! faces put on it, and the pressure: the L2 projection of the points'
 //! pressures on the faces' shape functions (`M p = sum_g w N p_g`, `M` the
 //! faces' mass matrix, by conjugate gradients; exact for a uniform
-//! pressure), clamped at 0; closed where it is positive. The penalty holds
+//! pressure), clamped at 0, kept at the nodes of loaded faces; closed
+//! where it is positive. The penalty holds
 //! the gap at the points, not at the nodes: `k max(0, -g_a)` at a node is
 //! not the pressure (measured: 0 on the axis of the quad8 Hertz cylinder),
 //! and a positive-weight mean over the node's faces smears the peak over a
@@ -463,12 +464,23 @@ impl FacetPair {
                 d[k] = z[k] + beta * d[k];
             }
         }
+        // the projection is global: keep it at the nodes of the faces that
+        // carry pressure (its tail elsewhere is not contact)
+        for (k, v) in x.iter_mut().enumerate() {
+            if !self.node_points[k]
+                .iter()
+                .any(|&(g, _)| self.pressure[g] > 0.0)
+            {
+                *v = 0.0;
+            }
+        }
         self.nodal = x;
     }
 
     /// The pressure at slave node `node`: the L2 projection of the points'
     /// pressures at the last evaluation, clamped at 0 (the projection of a
-    /// pressure that vanishes across a face overshoots there).
+    /// pressure that vanishes across a face overshoots there), and 0 at a
+    /// node none of whose faces has a loaded point.
     pub fn node_pressure(&self, node: usize) -> f64 {
         self.nodes
             .binary_search(&node)
