@@ -564,10 +564,10 @@ impl FacetPair {
                 continue;
             };
             let nd = D * c.nodes.len();
-            for i in 0..D {
-                f[i] += c.force[D * a + i];
-                for j in 0..D {
-                    k[i][j] += c.tangent[(D * a + i) * nd + D * a + j];
+            for (i, (fi, ki)) in f.iter_mut().zip(k.iter_mut()).enumerate() {
+                *fi += c.force[D * a + i];
+                for (j, kij) in ki.iter_mut().enumerate() {
+                    *kij += c.tangent[(D * a + i) * nd + D * a + j];
                 }
             }
         }

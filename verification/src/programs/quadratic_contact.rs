@@ -712,11 +712,12 @@ fn hertz_3d_checks() -> Vec<Check> {
         .collect()
 }
 
-/// The 3D Hertz rows of level `level`: (cell kind, divisions, free dofs,
-/// wall seconds, values).
-pub fn hertz_3d_work_precision(
-    level: usize,
-) -> Result<Vec<(CellKind, usize, RunSummary, f64, Vec<Value>)>, String> {
+/// One 3D Hertz row: cell kind, divisions, the run's summary, wall
+/// seconds, values.
+pub type Hertz3dRow = (CellKind, usize, RunSummary, f64, Vec<Value>);
+
+/// The 3D Hertz rows of level `level`.
+pub fn hertz_3d_work_precision(level: usize) -> Result<Vec<Hertz3dRow>, String> {
     let n = *HERTZ_3D_DIVISIONS
         .get(level)
         .ok_or_else(|| format!("hertz_sphere_3d_quadratic has no level {level}"))?;
