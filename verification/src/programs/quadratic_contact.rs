@@ -676,9 +676,10 @@ const HERTZ_3D_RUNS: [(CellKind, usize, [&str; 4]); 3] = [
 /// | hex20 | 7.0e-1 2.5e-2 | 7.0e-1 3.6e-2 | 1.1e-1 9.6e-2 | 3.5e-2 3.1e-2 |
 ///
 /// At level 0 the contact radius a = 0.1 spans about two quadratic cells
-/// and the quadratic blocks lose (the hex20 axis pressure is 30 % of
-/// Hertz's); at level 1 hex27 carries p0 to 1.7e-3 against hex8's 4.7e-3
-/// on the same nodes.
+/// and the quadratic blocks lose (the hex20 axis pressure is 1.7 times
+/// Hertz's, the projected pressure overshoots on the two loaded faces);
+/// at level 1 hex27 carries p0 to 1.7e-3 against hex8's 4.7e-3 on the
+/// same nodes.
 fn hertz_3d_checks() -> Vec<Check> {
     let tolerances: [[&[f64]; 4]; 3] = [
         [
