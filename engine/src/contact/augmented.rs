@@ -97,6 +97,14 @@ pub fn uzawa_update(
         else {
             continue;
         };
+        // quadratic faces: the multipliers and the test at the points
+        if let Some(fp) = &mut pairs[pi].facets {
+            if update == mode && fp.violation() > tolerance {
+                fp.uzawa_update();
+                updated = true;
+            }
+            continue;
+        }
         let violation = constraint_violation(&contact[pi]).max(if cp.friction.is_some() {
             friction::stick_violation(&contact[pi])
         } else {

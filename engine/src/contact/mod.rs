@@ -32,10 +32,14 @@
 //!   [`smoothing`]: the nodal normal field of `smoothing = nodal`;
 //! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
 //!   and `M`, segmentation; penalty and augmented Lagrangian);
+//! - [`face_integrated`]: quadratic slave faces against rigid tools (the
+//!   gap at the faces' integration points; penalty and augmented
+//!   Lagrangian);
 //! - [`log`]: `CTC_LOG=debug` diagnostics on stderr.
 
 pub mod augmented;
 pub mod broad;
+pub mod face_integrated;
 pub mod friction;
 pub mod friction_lagrange;
 pub mod friction_segment;
@@ -182,8 +186,15 @@ pub struct PairState {
     /// Mortar pairs and smoothed node-to-segment pairs: the coupling rows
     /// of the latest evaluation (the solver scatters these instead of the
     /// `NodeContact` forces), in slave order; `None` for faceted
-    /// node-to-segment and rigid tools.
+    /// node-to-segment and rigid tools. Face-integrated pairs: one row per
+    /// slave edge with a closed integration point.
     pub couplings: Option<Vec<mortar::Coupling>>,
+    /// Quadratic slave edges against a rigid tool: the face-integrated
+    /// state ([`face_integrated`]); `None` otherwise.
+    pub facets: Option<face_integrated::FacetPair>,
+    /// Face-integrated pairs: the tool entity of each integration point
+    /// at the latest evaluation (search memory).
+    pub point_memory: Vec<Option<usize>>,
 }
 
 impl PairState {
@@ -198,7 +209,13 @@ impl PairState {
                 ..PairState::default()
             };
         };
-        let slaves = node_to_segment::slave_nodes(model, pair);
+        let facets = face_integrated::planar_pair(model, pair);
+        let mut slaves = node_to_segment::slave_nodes(model, pair);
+        if let Some(fp) = &facets {
+            slaves.extend(&fp.nodes);
+            slaves.sort_unstable();
+            slaves.dedup();
+        }
         let n = slaves.len();
         let surface = node_to_segment::prepare(model, pair, &slaves);
         let shape = match cp.master.tool().and_then(|t| model.tools.get(t)) {
@@ -249,11 +266,14 @@ impl PairState {
             shape,
             slaves,
             touching: 0.0,
-            couplings: ((cp.formulation == ContactFormulation::Mortar
+            couplings: (((cp.formulation == ContactFormulation::Mortar
                 || cp.smoothing == NormalSmoothing::Nodal)
                 && surface.is_some())
+                || facets.is_some())
             .then(Vec::new),
             surface,
+            point_memory: vec![None; facets.as_ref().map_or(0, |f| f.rule.points.len())],
+            facets,
         }
     }
 
@@ -276,6 +296,9 @@ impl PairState {
         if let Some(sp) = &mut self.surface {
             sp.commit();
         }
+        if let Some(fp) = &mut self.facets {
+            fp.commit();
+        }
     }
 
     /// Index of slave node `node` in the per-slave vectors, if it is one.
@@ -291,6 +314,9 @@ impl PairState {
         self.friction.rollback();
         if let Some(sp) = &mut self.surface {
             sp.rollback();
+        }
+        if let Some(fp) = &mut self.facets {
+            fp.rollback();
         }
     }
 }
@@ -318,6 +344,9 @@ pub fn evaluate_pair(
     }
     if state.surface.is_some() {
         return node_to_segment::evaluate(model, pair, x, state);
+    }
+    if state.facets.is_some() {
+        return face_integrated::evaluate_planar(model, pair, x, t, state);
     }
     let tool = cp.master.tool().and_then(|t| model.tools.get(t));
     let (Some(shape), Some(tool)) = (state.shape.as_ref(), tool) else {

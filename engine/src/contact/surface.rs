@@ -35,9 +35,11 @@
 //! node, [`SurfacePair::stick`], and the stick/slip status loop of
 //! [`super::friction_lagrange`]).
 
+use super::face_integrated::{self, FacetPair, FacetRule, PointProjection};
 use super::friction::FrictionState;
 use super::friction_surface::{self, StickRows, SurfaceContact};
 use super::node_to_facet::{self, DeformablePair};
+use super::mortar::Coupling;
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{
@@ -87,6 +89,17 @@ pub struct SurfacePair {
     /// solver for the first iteration of the analysis only, on
     /// frictionless pairs of bodies held only by contact (0: off).
     pub touching: f64,
+    /// Quadratic slave faces: the face-integrated state
+    /// ([`super::face_integrated`]: the gap at the faces' integration
+    /// points); `None` on linear faces.
+    pub facets: Option<FacetPair>,
+    /// Face-integrated pairs: the CAD search memory of each integration
+    /// point.
+    pub point_search: Vec<SearchState>,
+    /// Face-integrated pairs: the rows of the latest evaluation (one per
+    /// face with a closed point), which the solver scatters instead of the
+    /// nodal forces.
+    pub couplings: Vec<Coupling>,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -142,10 +155,29 @@ impl SurfacePair {
                 .collect(),
             _ => vec![false; n],
         };
+        // quadratic slave faces against the tool: integrated at points
+        let facets = (cp.master.tool().is_some()
+            && !matches!(cp.method, ContactMethod::Lagrange { .. })
+            && face_integrated::body_is_quadratic(model, cp.body))
+        .then(|| {
+            let rule = FacetRule::solid(
+                &model.mesh.nodes,
+                cp.faces.iter().map(|f| f.nodes().to_vec()).collect(),
+            );
+            FacetPair::new(rule, |node| {
+                face_integrated::pressure_stiffness(&cp.method_at(node))
+            })
+        });
         SurfacePair {
             slaves,
             deformable,
             touching: 0.0,
+            point_search: vec![
+                SearchState::new();
+                facets.as_ref().map_or(0, |f| f.rule.points.len())
+            ],
+            facets,
+            couplings: Vec::new(),
             area,
             prof,
             multiplier: vec![0.0; n],
@@ -170,6 +202,9 @@ impl SurfacePair {
         if let Some(f) = &mut self.deformable {
             f.commit();
         }
+        if let Some(fp) = &mut self.facets {
+            fp.commit();
+        }
     }
 
     /// Returns to the committed multipliers, active set and search memory.
@@ -180,6 +215,9 @@ impl SurfacePair {
         self.friction.rollback();
         if let Some(f) = &mut self.deformable {
             f.rollback();
+        }
+        if let Some(fp) = &mut self.facets {
+            fp.rollback();
         }
     }
 
@@ -429,6 +467,9 @@ pub fn evaluate_pair(
     let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {
         return (Vec::new(), failed);
     };
+    if state.facets.is_some() {
+        return evaluate_facets(tool, t, x, state);
+    }
     let mut out = Vec::with_capacity(state.slaves.len());
     let placed = placement(&tool.motion, t);
     state.friction.impact = None;
@@ -520,6 +561,83 @@ pub fn evaluate_pair(
         }
         out.push(nc);
     }
+    (out, failed)
+}
+
+/// [`evaluate_pair`] of a face-integrated pair (quadratic slave faces,
+/// [`super::face_integrated`]): fills `state.couplings` (the forces) and
+/// returns one entry per slave node within the window or loaded by a face
+/// (output: the node's gap, the pressure field there, its force).
+fn evaluate_facets(
+    tool: &SurfaceTool,
+    t: f64,
+    x: &[[f64; 3]],
+    state: &mut SurfacePair,
+) -> (Vec<NodeContact<3>>, Vec<(usize, ProjectionError)>) {
+    let mut failed = Vec::new();
+    let Some(mut fp) = state.facets.take() else {
+        return (Vec::new(), failed);
+    };
+    state.evaluations += 1;
+    let prof = state.prof;
+    let (searches, counters) = (&mut state.point_search, &mut state.counters);
+    let mut point_failures = Vec::new();
+    let couplings = fp.evaluate(x, 0.0, |g, xg| {
+        searches[g].reach = prof;
+        match project(tool, t, &xg, &mut searches[g], counters) {
+            Ok(Some(p)) if p.gap <= prof => Some(PointProjection {
+                gap: p.gap,
+                normal: [p.normal[0], p.normal[1], p.normal[2]],
+                curvature: std::array::from_fn(|i| std::array::from_fn(|j| p.curvature[(i, j)])),
+            }),
+            Ok(_) => None,
+            Err(e) => {
+                point_failures.push((g, e));
+                None
+            }
+        }
+    });
+    // a point whose CAD projection failed is reported at its facet's
+    // first node
+    for (g, e) in point_failures {
+        let f = fp.rule.points[g].facet;
+        failed.push((fp.rule.facets[f][0], e));
+    }
+    let mut out = Vec::with_capacity(state.slaves.len());
+    for (i, &node) in state.slaves.iter().enumerate() {
+        state.search[i].reach = prof;
+        let p = match project(tool, t, &x[node], &mut state.search[i], &mut state.counters) {
+            Ok(Some(p)) => p,
+            Ok(None) => continue,
+            Err(e) => {
+                failed.push((node, e));
+                continue;
+            }
+        };
+        let (force, stiffness) = FacetPair::node_force::<3>(&couplings, node);
+        if p.gap > prof && force == [0.0; 3] {
+            continue;
+        }
+        let pressure = fp.node_pressure(node);
+        out.push(NodeContact {
+            node,
+            gap: p.gap,
+            normal: [p.normal[0], p.normal[1], p.normal[2]],
+            force,
+            stiffness,
+            pressure,
+            status: if pressure > 0.0 {
+                ContactStatus::Closed
+            } else {
+                ContactStatus::Open
+            },
+            entity: p.entity,
+            master: None,
+            friction: Default::default(),
+        });
+    }
+    state.couplings = couplings;
+    state.facets = Some(fp);
     (out, failed)
 }
 

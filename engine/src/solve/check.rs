@@ -240,30 +240,12 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                 c.name
             ));
         }
-        // contact on quadratic faces (midside weights, mortar) is not built:
-        // refuse a pair whose slave or deformable master body has quadratic
-        // cells rather than give node-to-segment answers that are wrong
-        let quadratic = |body: usize| {
-            model.bodies.get(body).is_some_and(|b| {
-                b.cells.clone().any(|cell| {
-                    cell < model.mesh.cells.len() && model.mesh.cells.kind(cell).order() > 1
-                })
-            })
-        };
-        let master_body = match &c.master {
-            crate::model::ContactMaster::Surface { body, .. } => Some(*body),
-            crate::model::ContactMaster::Tool(_) => None,
-        };
-        if let Some(b) = [Some(c.body), master_body]
-            .into_iter()
-            .flatten()
-            .find(|&b| quadratic(b))
-        {
-            errors.push(format!(
-                "contact `{}`: body `{}` has quadratic cells; contact on quadratic faces is not \
-                 available yet (use linear cells on the contact bodies)",
-                c.name, model.bodies[b].name
-            ));
+        // contact on quadratic faces: rigid tools by the face-integrated
+        // penalty or augmented Lagrangian (`contact::face_integrated`);
+        // what that does not cover is refused rather than given
+        // node-based answers that are wrong (negative corner weights)
+        if let Some(why) = quadratic_contact_refusal(model, c) {
+            errors.push(format!("contact `{}`: {why}", c.name));
         }
         if c.nodes
             .iter()
@@ -746,6 +728,71 @@ fn free_solid_motions<const D: usize>(
     free
 }
 
+/// Why pair `c` (one of `model.contacts`) cannot run on quadratic faces,
+/// if it cannot: a deformable master or slave with quadratic cells
+/// (node-to-segment and mortar are linear), Lagrange multipliers (no
+/// positive-weight multiplier basis on tri6 / quad8 faces is built),
+/// friction, thermal contact (nodal areas), or a nodal penalty (a force
+/// per node has no meaning at integration points).
+pub fn quadratic_contact_refusal<const D: usize>(
+    model: &Model<D>,
+    c: &crate::model::ContactPair,
+) -> Option<String> {
+    use crate::contact::face_integrated::body_is_quadratic;
+    use crate::model::{ContactMaster, ContactMethod, PenaltyKind};
+    let body = |b: usize| model.bodies.get(b).map_or("?", |b| b.name.as_str());
+    if let ContactMaster::Surface { body: m, .. } = &c.master {
+        let quadratic = [c.body, *m]
+            .into_iter()
+            .find(|&b| body_is_quadratic(model, b))?;
+        return Some(format!(
+            "body `{}` has quadratic cells; contact between deformable bodies on quadratic \
+             faces is not available (rigid tools are: penalty or augmented Lagrangian; use \
+             linear cells on deformable contact pairs)",
+            body(quadratic)
+        ));
+    }
+    if !body_is_quadratic(model, c.body) {
+        return None;
+    }
+    let what = match &c.method {
+        ContactMethod::Lagrange { .. } => {
+            "Lagrange multipliers are not available on quadratic \
+             faces (their corner weights are zero or negative); use `penalty` or \
+             `augmented_lagrange`"
+        }
+        ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            ..
+        }
+        | ContactMethod::AugmentedLagrange {
+            kind: PenaltyKind::Nodal,
+            ..
+        } => {
+            "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
+             the faces); use `kind = area`"
+        }
+        _ if c.friction.is_some() => "friction is not available on quadratic faces",
+        _ if model.thermal.as_ref().is_some_and(|t| {
+            model
+                .contacts
+                .iter()
+                .position(|p| std::ptr::eq(p, c))
+                .and_then(|i| t.contacts.get(i))
+                .is_some_and(Option::is_some)
+        }) =>
+        {
+            "thermal contact is not available on quadratic faces (its nodal areas would be \
+             zero or negative at the corners)"
+        }
+        _ => return None,
+    };
+    Some(format!(
+        "body `{}` has quadratic cells: {what}",
+        body(c.body)
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -770,7 +817,7 @@ mod tests {
     }
 
     #[test]
-    fn contact_on_a_body_with_quadratic_cells_is_refused() {
+    fn contact_on_quadratic_faces_is_refused_where_it_is_not_built() {
         let mesh = |kind| {
             let m = Mesh::new(
                 vec![[1.0, 0.0], [2.0, 0.0], [2.0, 1.0], [1.0, 1.0]],
@@ -782,7 +829,28 @@ mod tests {
                 crate::mesh::elevate::elevate(&m, kind).unwrap()
             }
         };
-        for kind in [crate::mesh::CellKind::Quad4, crate::mesh::CellKind::Quad8] {
+        let area = ContactMethod::Penalty {
+            kind: PenaltyKind::Area,
+            stiffness: 1.0,
+        };
+        let nodal = ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            stiffness: 1.0,
+        };
+        let lagrange = ContactMethod::Lagrange {
+            formulation: LagrangeFormulation::Single,
+        };
+        use crate::mesh::CellKind::{Quad4, Quad8};
+        for (kind, method, refused) in [
+            (Quad4, lagrange.clone(), None),
+            (Quad8, area, None),
+            (
+                Quad8,
+                lagrange,
+                Some("Lagrange multipliers are not available"),
+            ),
+            (Quad8, nodal, Some("a nodal penalty has no meaning")),
+        ] {
             let m = crate::testkit::ModelBuilder::new(AnalysisKind::PlaneStrain)
                 .elastic("m", 1.0, 0.3)
                 .body("sq", mesh(kind), "m")
@@ -796,27 +864,17 @@ mod tests {
                     },
                     ToolMotion::fixed(),
                 )
-                .contact_tool(
-                    "sq -> floor",
-                    "sq",
-                    vec![[0, 1]],
-                    "floor",
-                    ContactMethod::Penalty {
-                        kind: PenaltyKind::Area,
-                        stiffness: 1.0,
-                    },
-                )
+                .contact_tool("sq -> floor", "sq", vec![[0, 1]], "floor", method)
                 .step("s", 1.0, 1)
                 .build();
-            let refused = check_model(&m)
-                .iter()
-                .any(|e| e.contains("contact on quadratic faces is not available"));
-            assert_eq!(
-                refused,
-                kind == crate::mesh::CellKind::Quad8,
-                "{kind:?}: {:?}",
-                check_model(&m)
-            );
+            let errors = check_model(&m);
+            match refused {
+                None => assert!(errors.is_empty(), "{kind:?}: {errors:?}"),
+                Some(why) => assert!(
+                    errors.len() == 1 && errors[0].contains(why),
+                    "{kind:?}: {errors:?}"
+                ),
+            }
         }
     }
 

@@ -327,9 +327,11 @@ impl ContactAssembly {
     }
 }
 
-/// Adds the tangent of one coupling row (any number of nodes; mortar and
-/// smoothed node-to-segment in 2D, node-to-facet in 3D).
-pub(super) fn add_coupling<const D: usize>(
+/// Adds the tangent of one coupling row (any number of nodes, the dof
+/// map's components per node; mortar and smoothed node-to-segment in 2D,
+/// node-to-facet and the face rows of quadratic faces against surface tools
+/// in 3D).
+pub(crate) fn add_coupling<const D: usize>(
     c: &contact::mortar::Coupling,
     scatter: &Scatter,
     dofs: &DofMap<D>,

@@ -273,7 +273,13 @@ impl ContactScene<2> for ContactAssembly {
             .iter()
             .map(|p| PairHistory {
                 entity: p.committed_entity.clone(),
-                multiplier: p.committed_multiplier.clone(),
+                // face-integrated pairs: the points' multipliers follow
+                multiplier: p
+                    .committed_multiplier
+                    .iter()
+                    .chain(p.facets.iter().flat_map(|f| &f.committed))
+                    .copied()
+                    .collect(),
                 active: p.committed_active.clone(),
                 friction: p.friction.committed_values(),
             })
@@ -292,11 +298,15 @@ impl ContactScene<2> for ContactAssembly {
         }
         for (s, h) in self.pairs.iter_mut().zip(pairs) {
             let n = s.committed_entity.len();
-            if h.entity.len() != n || h.multiplier.len() != n || h.active.len() != n {
+            let points = s.facets.as_ref().map_or(0, |f| f.committed.len());
+            if h.entity.len() != n || h.multiplier.len() != n + points || h.active.len() != n {
                 return Err("the restart point does not match the model (slave nodes)".into());
             }
             s.committed_entity.clone_from(&h.entity);
-            s.committed_multiplier.clone_from(&h.multiplier);
+            s.committed_multiplier = h.multiplier[..n].to_vec();
+            if let Some(fp) = &mut s.facets {
+                fp.restore(&h.multiplier[n..])?;
+            }
             s.committed_active.clone_from(&h.active);
             s.friction.restore_committed(&h.friction)?;
             if let Some(sp) = &mut s.surface {

@@ -118,6 +118,14 @@ impl SurfaceAssembly {
             else {
                 continue;
             };
+            // quadratic faces: the multipliers and the test at the points
+            if let Some(fp) = &mut self.pairs[pi].facets {
+                if update == mode && fp.violation() > tolerance {
+                    fp.uzawa_update();
+                    updated = true;
+                }
+                continue;
+            }
             let list = &self.contact[pi];
             let violation = crate::contact::augmented::constraint_violation(list).max(
                 if cp.friction.is_some() {
@@ -268,6 +276,16 @@ impl ContactScene<3> for SurfaceAssembly {
                         }
                     }
                 }
+                // quadratic faces: the face rows carry the forces
+                None if state.facets.is_some() => {
+                    for c in &state.couplings {
+                        for (k, &n) in c.nodes.iter().enumerate() {
+                            for comp in 0..3 {
+                                f_c[dofs.dof(n, comp)] += c.force[3 * k + comp];
+                            }
+                        }
+                    }
+                }
                 None => {
                     for nc in &res {
                         for (c, f) in nc.force.iter().enumerate() {
@@ -328,6 +346,13 @@ impl ContactScene<3> for SurfaceAssembly {
         for (state, res) in self.pairs.iter().zip(&self.contact) {
             if let Some(fp) = &state.deformable {
                 for c in &fp.couplings {
+                    super::contact_assembly::add_coupling(c, scatter, dofs, values);
+                }
+                continue;
+            }
+            if state.facets.is_some() {
+                // quadratic faces: the face rows
+                for c in &state.couplings {
                     super::contact_assembly::add_coupling(c, scatter, dofs, values);
                 }
                 continue;
@@ -590,7 +615,12 @@ impl ContactScene<3> for SurfaceAssembly {
                         .deformable
                         .as_ref()
                         .map_or_else(|| vec![None; p.slaves.len()], |f| f.memory().to_vec()),
-                    multiplier: multiplier.to_vec(),
+                    // face-integrated pairs: the points' multipliers follow
+                    multiplier: multiplier
+                        .iter()
+                        .chain(p.facets.iter().flat_map(|f| &f.committed))
+                        .copied()
+                        .collect(),
                     active: active.to_vec(),
                     friction: p.friction.committed_values(),
                 }
@@ -610,8 +640,12 @@ impl ContactScene<3> for SurfaceAssembly {
         }
         for (s, h) in self.pairs.iter_mut().zip(pairs) {
             let n = s.slaves.len();
-            if h.multiplier.len() != n || h.active.len() != n {
+            let points = s.facets.as_ref().map_or(0, |f| f.committed.len());
+            if h.multiplier.len() != n + points || h.active.len() != n {
                 return Err("the restart point does not match the model (slave nodes)".into());
+            }
+            if let Some(fp) = &mut s.facets {
+                fp.restore(&h.multiplier[n..])?;
             }
             // restart points written before 3D friction carry no friction
             // state: start from none
@@ -624,7 +658,7 @@ impl ContactScene<3> for SurfaceAssembly {
                 }
                 f.restore(increment, &h.entity);
             }
-            s.restore(&h.multiplier, &h.active);
+            s.restore(&h.multiplier[..n], &h.active);
         }
         Ok(())
     }

@@ -25,6 +25,86 @@ impl Lowerer<'_> {
             .any(|c| c < cells.len() && cells.kind(c).order() > 1)
     }
 
+    /// Why contact item `c` cannot run on quadratic faces, if it cannot:
+    /// the span to mark, the message, the label and the help (the rules of
+    /// `ctc_engine::solve::check::quadratic_contact_refusal`).
+    fn quadratic_refusal(
+        &self,
+        c: &ast::Contact,
+        bodies: &[m::Body],
+    ) -> Option<(ast::Span, String, &'static str, &'static str)> {
+        let quadratic = |side: &&ast::SetRef| {
+            bodies
+                .iter()
+                .find(|b| b.name == side.body.name)
+                .is_some_and(|b| self.has_quadratic_cells(b))
+        };
+        if c.master.is_some() {
+            let side = std::iter::once(&c.target)
+                .chain(c.master.as_ref())
+                .find(quadratic)?;
+            return Some((
+                side.span,
+                format!(
+                    "contact between deformable bodies on quadratic faces is not available: body \
+                     `{}` has quadratic cells",
+                    side.body.name
+                ),
+                "this surface has midside nodes",
+                "mesh deformable contact pairs with linear cells (generators: leave `order = 2` \
+                 out; gmsh: Mesh.ElementOrder = 1); rigid tools accept quadratic faces",
+            ));
+        }
+        if !quadratic(&&c.target) {
+            return None;
+        }
+        let method = c.method.as_ref()?;
+        let nodal = |k: &Option<ast::Spanned<ast::PenaltyKind>>| {
+            k.as_ref()
+                .is_some_and(|k| k.value == ast::PenaltyKind::Nodal)
+        };
+        match &method.value {
+            Method::Lagrange { .. } => Some((
+                method.span,
+                "Lagrange multipliers are not available on quadratic faces".into(),
+                "quadratic slave faces: zero or negative corner weights",
+                "use `penalty` or `augmented_lagrange` (the gap is integrated over the faces)",
+            )),
+            Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }
+                if nodal(kind) =>
+            {
+                Some((
+                    method.span,
+                    "a nodal penalty has no meaning on quadratic faces".into(),
+                    "the gap is integrated over the quadratic faces",
+                    "use `kind = area` (a pressure per unit gap)",
+                ))
+            }
+            _ => c
+                .friction
+                .as_ref()
+                .map(|f| {
+                    (
+                        f.span,
+                        "friction is not available on quadratic faces".into(),
+                        "the slave body has quadratic cells",
+                        "mesh the contact body with linear cells, or leave friction out",
+                    )
+                })
+                .or_else(|| {
+                    c.thermal.as_ref().map(|t| {
+                        (
+                            t.span,
+                            "thermal contact is not available on quadratic faces".into(),
+                            "the slave body has quadratic cells",
+                            "mesh the contact body with linear cells, or leave the thermal \
+                             block out",
+                        )
+                    })
+                }),
+        }
+    }
+
     /// The pairs; `tools` are the names of the lowered tools (curves in
     /// planar analyses, surfaces in `3d`), in `Model` order.
     pub(super) fn contacts(
@@ -44,32 +124,12 @@ impl Lowerer<'_> {
             let Some(body) = bodies.iter().position(|b| b.name == c.target.body.name) else {
                 continue;
             };
-            // contact on quadratic faces is not available (midside weights,
-            // mortar): refuse the pair with a caret at the quadratic side
-            let quadratic_side = std::iter::once(&c.target)
-                .chain(c.master.as_ref())
-                .find(|side| {
-                    bodies
-                        .iter()
-                        .find(|b| b.name == side.body.name)
-                        .is_some_and(|b| self.has_quadratic_cells(b))
-                });
-            if let Some(side) = quadratic_side {
-                self.diags.push(
-                    Diagnostic::error(
-                        format!(
-                            "contact on quadratic faces is not available yet: body `{}` has \
-                             quadratic cells",
-                            side.body.name
-                        ),
-                        side.span,
-                        "this surface has midside nodes",
-                    )
-                    .with_help(
-                        "mesh the contact bodies with linear cells (generators: leave `order = 2` \
-                         out; gmsh: Mesh.ElementOrder = 1)",
-                    ),
-                );
+            // contact on quadratic faces: rigid tools by the face-integrated
+            // penalty or augmented Lagrangian (`contact::face_integrated`);
+            // the rest is refused with a caret at its cause
+            if let Some((span, message, label, help)) = self.quadratic_refusal(c, bodies) {
+                self.diags
+                    .push(Diagnostic::error(message, span, label).with_help(help));
                 continue;
             }
             let master = match &c.master {
@@ -178,7 +238,19 @@ impl Lowerer<'_> {
                 }
             };
             let nodes = if faces.is_empty() {
-                mesh::edge_nodes(&edges)
+                // quadratic edges: their midside nodes are slave nodes too
+                let mut n = mesh::edge_nodes(&edges);
+                if !self.solid && self.has_quadratic_cells(&bodies[body]) {
+                    let midsides = self.mesh.edge_midsides();
+                    n.extend(
+                        edges
+                            .iter()
+                            .filter_map(|&[a, b]| midsides.get(&(a.min(b), a.max(b))).copied()),
+                    );
+                    n.sort_unstable();
+                    n.dedup();
+                }
+                n
             } else {
                 let mut n: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
                 n.sort_unstable();

@@ -382,8 +382,12 @@ fn block(
     method: ContactMethod,
     increments: usize,
 ) -> Result<Model<3>, String> {
-    let mesh =
-        solid::brick([0.0; 3], [1.0; 3], [divisions; 3], grading, kind).map_err(|e| e.message)?;
+    // quadratic kinds: the linear brick elevated (straight midpoints)
+    let mut mesh = solid::brick([0.0; 3], [1.0; 3], [divisions; 3], grading, kind.linear())
+        .map_err(|e| e.message)?;
+    if kind.order() == 2 {
+        mesh = ctc_engine::mesh::elevate::elevate(&mesh, kind).map_err(|e| e.message)?;
+    }
     let mut b = ModelBuilder::solid()
         .elastic("m", E, NU)
         .body("block", mesh, "m")
@@ -600,6 +604,17 @@ fn hertz_run(
     names: [&'static str; 4],
     method: ContactMethod,
 ) -> Result<(Vec<crate::measure::Value>, RunSummary, usize, f64), String> {
+    hertz_run_on(CellKind::Hex8, n, names, method)
+}
+
+/// [`hertz_run`] on cells of `kind` (hex8, or hex20 / hex27: the graded
+/// brick elevated; `quadratic_contact.rs`).
+pub(crate) fn hertz_run_on(
+    kind: CellKind,
+    n: usize,
+    names: [&'static str; 4],
+    method: ContactMethod,
+) -> Result<(Vec<crate::measure::Value>, RunSummary, usize, f64), String> {
     let r_tool = 1.0;
     let ball = Analytic::Sphere(
         Sphere::new(Vec3::new(0.0, 0.0, 1.0 + r_tool), r_tool, Side::Outside).unwrap(),
@@ -609,7 +624,7 @@ fn hertz_run(
         Grading::Geometric { ratio: 8.0 },
         Grading::Geometric { ratio: 0.125 },
     ];
-    let model = block(CellKind::Hex8, n, grading, ball, lowered(D), method, 4)?;
+    let model = block(kind, n, grading, ball, lowered(D), method, 4)?;
     let start = std::time::Instant::now();
     let (last, s) = solve(&model)?;
     let seconds = start.elapsed().as_secs_f64();

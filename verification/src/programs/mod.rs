@@ -21,6 +21,8 @@ pub mod objectivity;
 pub mod penalty_scaling;
 pub mod pressure_control;
 pub mod quadratic;
+pub mod quadratic_contact;
+pub mod quadratic_thermal;
 pub mod solid;
 pub mod solid_patch;
 pub mod thermal_3d;
@@ -54,6 +56,8 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
     v.extend(quadratic::cases());
+    v.extend(quadratic_contact::cases());
+    v.extend(quadratic_thermal::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
     v.extend(contact_ntf_3d::cases());

@@ -117,7 +117,7 @@ enum FieldKind {
 
 /// The mesh of a patch run.
 #[derive(Debug, Clone, Copy, PartialEq)]
-enum MeshKind {
+pub(crate) enum MeshKind {
     /// Interior corners jittered (non-affine cells).
     Distorted,
     /// Sheared, undistorted (parallelograms / parallelepipeds).
@@ -625,7 +625,7 @@ fn jitter(n: usize, k: usize) -> f64 {
 /// The 4 x 4 planar patch of `linear` cells on [x0, x0 + 1] x [0, 1]:
 /// interior nodes moved by up to 0.15 h (distorted) or the whole patch
 /// sheared (affine).
-fn planar_patch(linear: CellKind, x0: f64, mesh: MeshKind) -> Result<Mesh, String> {
+pub(crate) fn planar_patch(linear: CellKind, x0: f64, mesh: MeshKind) -> Result<Mesh, String> {
     let mut m = generate(&MeshSpec::Rectangle {
         origin: [x0, 0.0],
         size: [1.0, 1.0],
@@ -658,7 +658,7 @@ fn planar_patch(linear: CellKind, x0: f64, mesh: MeshKind) -> Result<Mesh, Strin
 
 /// The 3D patch: the distorted brick of `patch_3d`
 /// (`testkit::solid::distorted`), or the undistorted brick sheared.
-fn solid_patch(linear: CellKind, mesh: MeshKind) -> Result<Mesh<3>, String> {
+pub(crate) fn solid_patch(linear: CellKind, mesh: MeshKind) -> Result<Mesh<3>, String> {
     let mut m = ctc_engine::testkit::solid::distorted(linear);
     if mesh == MeshKind::Affine {
         m = ctc_engine::mesh::generate::solid::brick(

@@ -28,7 +28,7 @@ use super::error;
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::contact::pair_total_force;
-use ctc_engine::mesh::{Cell, Mesh};
+use ctc_engine::mesh::{Cell, CellKind, Mesh};
 use ctc_engine::model::{
     ContactMethod, Formulation, Hardening, Kinematics, MaterialLaw, PenaltyKind, ToolGeometry,
     ToolMotion,
@@ -70,6 +70,28 @@ pub(crate) fn upsetting(
     n: usize,
     increments: usize,
 ) -> Result<(Record, usize, ctc_engine::solve::RunSummary), String> {
+    upsetting_on(
+        CellKind::Quad4,
+        hardening,
+        formulation,
+        kinematics,
+        travel,
+        n,
+        increments,
+    )
+}
+
+/// [`upsetting`] on cells of `kind` (quad4, or a quadratic kind: the n x n
+/// grid elevated, the die against the quadratic top edges).
+pub(crate) fn upsetting_on(
+    kind: CellKind,
+    hardening: Hardening,
+    formulation: Formulation,
+    kinematics: Kinematics,
+    travel: f64,
+    n: usize,
+    increments: usize,
+) -> Result<(Record, usize, ctc_engine::solve::RunSummary), String> {
     let (r0, hh) = (1.0, 0.5);
     let mut nodes = Vec::new();
     for j in 0..=n {
@@ -89,7 +111,10 @@ pub(crate) fn upsetting(
             ));
         }
     }
-    let mesh = Mesh::new(nodes, cells);
+    let mut mesh = Mesh::new(nodes, cells);
+    if kind != CellKind::Quad4 {
+        mesh = ctc_engine::mesh::elevate::elevate(&mesh, kind).map_err(|e| e.message)?;
+    }
     let nc = mesh.cells.len();
     let top_edges: Vec<[usize; 2]> = mesh
         .boundary_edges(0..nc)
@@ -97,6 +122,13 @@ pub(crate) fn upsetting(
         .filter(|e| mesh.nodes[e[0]][1] == hh && mesh.nodes[e[1]][1] == hh)
         .collect();
     let top: Vec<usize> = (0..=n).map(|i| id(i, n)).collect();
+    // corners and midside nodes on the symmetry plane and the axis
+    fn on_line(mesh: &Mesh, c: usize, v: f64) -> Vec<usize> {
+        (0..mesh.nodes.len())
+            .filter(|&k| mesh.nodes[k][c] == v)
+            .collect()
+    }
+    let (bottom, axis) = (on_line(&mesh, 1, 0.0), on_line(&mesh, 0, 0.0));
     let model = ModelBuilder::axisymmetric()
         .material(
             "steel",
@@ -110,8 +142,8 @@ pub(crate) fn upsetting(
         .body("billet", mesh, "steel")
         .formulation(formulation)
         .kinematics(kinematics)
-        .fix((0..=n).map(|i| id(i, 0)).collect::<Vec<_>>(), 1)
-        .fix((0..=n).map(|j| id(0, j)).collect::<Vec<_>>(), 0)
+        .fix(bottom, 1)
+        .fix(axis, 0)
         .tool(
             "die",
             ToolGeometry::Plane {
@@ -174,7 +206,26 @@ fn measure(
     n: usize,
     increments: usize,
 ) -> Result<ProgramLevel, String> {
-    let (rec, nodes, s) = upsetting(h, formulation, Kinematics::Finite, 0.25, n, increments)?;
+    measure_on(CellKind::Quad4, h, formulation, n, increments)
+}
+
+/// [`measure`] on cells of `kind` (`quadratic_contact.rs`: quad8).
+pub(crate) fn measure_on(
+    kind: CellKind,
+    h: Hardening,
+    formulation: Formulation,
+    n: usize,
+    increments: usize,
+) -> Result<ProgramLevel, String> {
+    let (rec, nodes, s) = upsetting_on(
+        kind,
+        h,
+        formulation,
+        Kinematics::Finite,
+        0.25,
+        n,
+        increments,
+    )?;
     let (mut worst_model, mut worst_case6, mut worst_rigid) = (0.0f64, 0.0f64, 0.0f64);
     for (hgt, f, _) in &rec.rows {
         let eps = (1.0 / hgt).ln();

@@ -1,0 +1,968 @@
+//! Face-integrated contact of quadratic slave faces against rigid tools
+//! (issue 23): the 3-node edges of tri6 / quad8 / quad9 bodies (plane and
+//! axisymmetric) and the tri6 / quad8 / quad9 faces of tet10 / hex20 /
+//! hex27 bodies.
+//!
+//! # Why not the nodal scheme
+//!
+//! The node-based schemes of the linear faces ([`super::penalty`],
+//! [`super::surface`]) give each slave node the force `R_N(g_a) n_a`
+//! with a tributary area `A_a = int N_a dA`. On quadratic faces these
+//! shares of a uniform pressure are not all positive: 1/6, 4/6, 1/6 on a
+//! 3-node edge, but 0 at the corners of a tri6 face (tet10) and -1/12 at
+//! the corners of a quad8 face (hex20). A nodal area penalty then has a
+//! zero or negative stiffness at the corners (a corner that penetrates is
+//! pulled further in), and a collocated multiplier must be negative at a
+//! quad8 corner to carry a uniform pressure, so the active set releases
+//! it.
+//!
+//! # The formulation: the gap at the integration points
+//!
+//! The penalty energy is integrated over the slave faces in the reference
+//! configuration with the gap of the *interpolated* current surface
+//! `x(xi) = sum_a N_a(xi) x_a` at the integration points of each face:
+//!
+//! `Pi = sum_g w_g phi(g(x(xi_g)))`, `p_g = max(0, lambda*_g - k g_g)`,
+//!
+//! (`k` the pressure per unit gap, `lambda*_g = 0` for the penalty method,
+//! the Uzawa multiplier of the point for the augmented Lagrangian, in
+//! pressure units). With `dg/dx = n` and `dn/dx = W` (the tool's
+//! curvature at the foot, planar `W = h t ⊗ t`), the forces and the exact
+//! (symmetric) tangent of a face are
+//!
+//! `f_a = sum_g w_g N_a p_g n_g`,
+//! `K_ab = -df_a/dx_b = sum_g w_g N_a N_b (k n_g ⊗ n_g - p_g W_g)`.
+//!
+//! A uniform gap therefore gives exactly the consistent nodal loads of a
+//! uniform pressure (negative corner shares included: they are what a
+//! uniform traction needs), so the contact patch test passes to round-off
+//! on every quadratic face; the normal stiffness is `k` times the face's
+//! mass matrix `int N_a N_b dA` (as integrated by the rule), positive
+//! semi-definite whatever the signs of `int N_a dA`.
+//!
+//! The rule is exact for `N_a N_b` on flat faces (4 Gauss points on a
+//! 3-node edge, the faces' mass rules: 16 collapsed points on tri6, 3x3 on
+//! quad8 / quad9), so that the penalty energy `k/2 int g^2 dA` of a gap
+//! that is quadratic along the face is integrated exactly. A rule with
+//! only as many points as the face has nodes (2 per edge, 2x2) does not
+//! see the mode `g ~ xi^2 - 1/3`, zero at both Gauss points: a curved
+//! slave surface then keeps its curvature inside the contact zone
+//! (measured on the axisymmetric quad8 Hertz sphere: corner gaps +1e-4,
+//! midside gaps -5e-5, against a penetration of 4e-6).
+//!
+//! # What it is not
+//!
+//! Lagrange multipliers need a discrete multiplier field: a nodal one is
+//! wrong for the reasons above, and the dual / modified-basis fields of
+//! Popp et al. (2012) are not built, so a Lagrange pair on quadratic faces
+//! is refused (`solve::check`, and the deck lowering with a caret); so are
+//! friction and deformable masters on quadratic faces, and a nodal
+//! penalty (a force per node has no meaning at integration points).
+//!
+//! The reported nodal values: the gap of the node itself, the force the
+//! faces put on it, and the pressure: the L2 projection of the points'
+//! pressures on the faces' shape functions (`M p = sum_g w N p_g`, `M` the
+//! faces' mass matrix, by conjugate gradients; exact for a uniform
+//! pressure), clamped at 0, kept at the nodes of loaded faces; closed
+//! where it is positive. The penalty holds
+//! the gap at the points, not at the nodes: `k max(0, -g_a)` at a node is
+//! not the pressure (measured: 0 on the axis of the quad8 Hertz cylinder),
+//! and a positive-weight mean over the node's faces smears the peak over a
+//! face (measured: p0 38 % low on the coarsest hex27 Hertz block).
+
+use super::mortar::Coupling;
+use super::motion::Placement;
+use super::{search, ContactStatus, NodeContact, PairState};
+use crate::model::{AnalysisKind, ContactMaster, ContactMethod, Model};
+
+/// Gauss-Legendre points of a 3-node edge (4 points, degree 7: exact for
+/// `N_a N_b` times the ring's `r`).
+const EDGE_GAUSS: [(f64, f64); 4] = [
+    (-0.861_136_311_594_052_6, 0.347_854_845_137_453_85),
+    (-0.339_981_043_584_856_26, 0.652_145_154_862_546_1),
+    (0.339_981_043_584_856_26, 0.652_145_154_862_546_1),
+    (0.861_136_311_594_052_6, 0.347_854_845_137_453_85),
+];
+
+/// One integration point of a slave facet (reference configuration).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FacetPoint {
+    /// Facet of the point (index into [`FacetRule::facets`]).
+    pub facet: usize,
+    /// Shape values `N_a` at the point, in the facet's node order.
+    pub shape: Vec<f64>,
+    /// Reference measure of the point: weight x `|dX/dxi|` x (thickness or
+    /// `2 pi r`) on an edge, weight x `|dX/dxi x dX/deta|` on a face.
+    pub weight: f64,
+}
+
+/// The slave facets of a pair and their integration points.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FacetRule {
+    /// Facet nodes: planar `[a, b, m]` (corners then midside) or `[a, b]`;
+    /// solid faces corners then midsides (3, 4, 6, 8 or 9 nodes).
+    pub facets: Vec<Vec<usize>>,
+    /// The integration points, facet by facet.
+    pub points: Vec<FacetPoint>,
+}
+
+impl FacetRule {
+    /// The rule of the planar edges `facets` (`[a, b, m]` or `[a, b]`) of
+    /// the reference nodes `nodes`: 4 Gauss points per edge, measure
+    /// `thickness` or `2 pi r` (`axisymmetric`).
+    pub fn planar(
+        nodes: &[[f64; 2]],
+        facets: Vec<Vec<usize>>,
+        axisymmetric: bool,
+        thickness: f64,
+    ) -> Self {
+        let mut points = Vec::new();
+        for (f, facet) in facets.iter().enumerate() {
+            for &(xi, w) in &EDGE_GAUSS {
+                let (n, dn): (Vec<f64>, Vec<f64>) = if facet.len() == 3 {
+                    (
+                        vec![0.5 * xi * (xi - 1.0), 0.5 * xi * (xi + 1.0), 1.0 - xi * xi],
+                        vec![xi - 0.5, xi + 0.5, -2.0 * xi],
+                    )
+                } else {
+                    (vec![0.5 * (1.0 - xi), 0.5 * (1.0 + xi)], vec![-0.5, 0.5])
+                };
+                let (mut t, mut r) = ([0.0; 2], 0.0);
+                for (a, &node) in facet.iter().enumerate() {
+                    let x = nodes.get(node).copied().unwrap_or([0.0; 2]);
+                    t[0] += dn[a] * x[0];
+                    t[1] += dn[a] * x[1];
+                    r += n[a] * x[0];
+                }
+                let measure = if axisymmetric {
+                    2.0 * std::f64::consts::PI * r.max(0.0)
+                } else {
+                    thickness
+                };
+                points.push(FacetPoint {
+                    facet: f,
+                    shape: n,
+                    weight: w * t[0].hypot(t[1]) * measure,
+                });
+            }
+        }
+        FacetRule { facets, points }
+    }
+
+    /// The rule of the solid faces `facets` of the reference nodes `nodes`:
+    /// each face cell's mass rule (the 16-point collapsed rule on tri6,
+    /// 3x3 Gauss points on quad8 / quad9), exact for `N_a N_b` on flat
+    /// faces.
+    pub fn solid(nodes: &[[f64; 3]], facets: Vec<Vec<usize>>) -> Self {
+        use crate::element::reference::{Quad4, Quad8, Quad9, ReferenceCell, Tri3, Tri6};
+        fn on<const NN: usize, C: ReferenceCell<2, NN>>(
+            nodes: &[[f64; 3]],
+            f: usize,
+            face: &[usize],
+            rule: &[([f64; 2], f64)],
+            points: &mut Vec<FacetPoint>,
+        ) {
+            for (xi, w) in rule {
+                let (n, g) = (C::shape(xi), C::gradients(xi));
+                let mut t = [[0.0; 3]; 2];
+                for (a, &node) in face.iter().enumerate() {
+                    let x = nodes.get(node).copied().unwrap_or([0.0; 3]);
+                    for (k, tk) in t.iter_mut().enumerate() {
+                        for c in 0..3 {
+                            tk[c] += g[a][k] * x[c];
+                        }
+                    }
+                }
+                let [t1, t2] = t;
+                let an = [
+                    t1[1] * t2[2] - t1[2] * t2[1],
+                    t1[2] * t2[0] - t1[0] * t2[2],
+                    t1[0] * t2[1] - t1[1] * t2[0],
+                ];
+                points.push(FacetPoint {
+                    facet: f,
+                    shape: n.to_vec(),
+                    weight: w * (an[0] * an[0] + an[1] * an[1] + an[2] * an[2]).sqrt(),
+                });
+            }
+        }
+        let mut points = Vec::new();
+        for (f, face) in facets.iter().enumerate() {
+            match face.len() {
+                3 => on::<3, Tri3>(nodes, f, face, Tri3::MASS_QUADRATURE, &mut points),
+                4 => on::<4, Quad4>(nodes, f, face, Quad4::QUADRATURE, &mut points),
+                6 => on::<6, Tri6>(nodes, f, face, Tri6::MASS_QUADRATURE, &mut points),
+                8 => on::<8, Quad8>(nodes, f, face, Quad8::MASS_QUADRATURE, &mut points),
+                9 => on::<9, Quad9>(nodes, f, face, Quad9::MASS_QUADRATURE, &mut points),
+                _ => {}
+            }
+        }
+        FacetRule { facets, points }
+    }
+
+    /// `int N_a dA` of every node of the facets, as `(node, area)` sorted
+    /// by node (zero or negative at the corners of tri6 / quad8 faces).
+    pub fn consistent_areas(&self) -> Vec<(usize, f64)> {
+        let mut out: Vec<(usize, f64)> = Vec::new();
+        for p in &self.points {
+            for (a, &node) in self.facets[p.facet].iter().enumerate() {
+                out.push((node, p.shape[a] * p.weight));
+            }
+        }
+        out.sort_by_key(|e| e.0);
+        let mut merged: Vec<(usize, f64)> = Vec::new();
+        for (n, a) in out {
+            match merged.last_mut() {
+                Some(last) if last.0 == n => last.1 += a,
+                _ => merged.push((n, a)),
+            }
+        }
+        merged
+    }
+}
+
+/// The tool seen from one integration point (current frame): the signed
+/// gap, the unit normal `n = dg/dx` into free space and the curvature
+/// `W = dn/dx`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointProjection<const D: usize> {
+    /// Signed gap (negative: penetration).
+    pub gap: f64,
+    /// Unit normal of the tool at the foot, into free space.
+    pub normal: [f64; D],
+    /// `dn/dx` (symmetric, `W n = 0`).
+    pub curvature: [[f64; D]; D],
+}
+
+/// State of a face-integrated pair: its rule, the penalty of each facet,
+/// the point multipliers (augmented Lagrangian, pressure units; trial and
+/// committed) and the points' last gaps and pressures.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FacetPair {
+    /// Facets and integration points.
+    pub rule: FacetRule,
+    /// Pressure per unit gap of each facet (the mean of its nodes'
+    /// coefficients: a relative penalty varies along the surface).
+    pub stiffness: Vec<f64>,
+    /// Per point: `lambda*` (augmented Lagrangian; 0 for the penalty).
+    pub multiplier: Vec<f64>,
+    /// Per point: the multiplier at the last converged increment.
+    pub committed: Vec<f64>,
+    /// Per point: the gap at the last evaluation (`+inf`: no foot within
+    /// the window).
+    pub gap: Vec<f64>,
+    /// Per point: the pressure at the last evaluation.
+    pub pressure: Vec<f64>,
+    /// Slave nodes (sorted) and, per node, its points with `|N_a| w`.
+    pub nodes: Vec<usize>,
+    node_points: Vec<Vec<(usize, f64)>>,
+    /// Per facet: the index in `nodes` of each of its nodes.
+    facet_index: Vec<Vec<usize>>,
+    /// Per slave node (`nodes` order): the L2 projection of the points'
+    /// pressures at the last evaluation.
+    nodal: Vec<f64>,
+}
+
+impl FacetPair {
+    /// The state of `rule` with the pressure per unit gap `stiffness(node)`
+    /// of every node (a facet takes the mean over its nodes).
+    pub fn new(rule: FacetRule, stiffness: impl Fn(usize) -> f64) -> Self {
+        let k = rule
+            .facets
+            .iter()
+            .map(|f| f.iter().map(|&n| stiffness(n)).sum::<f64>() / f.len().max(1) as f64)
+            .collect();
+        let mut nodes: Vec<usize> = rule.facets.iter().flatten().copied().collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let mut node_points = vec![Vec::new(); nodes.len()];
+        for (g, p) in rule.points.iter().enumerate() {
+            for (a, node) in rule.facets[p.facet].iter().enumerate() {
+                if let Ok(i) = nodes.binary_search(node) {
+                    node_points[i].push((g, p.shape[a].abs() * p.weight));
+                }
+            }
+        }
+        let facet_index = rule
+            .facets
+            .iter()
+            .map(|f| {
+                f.iter()
+                    .map(|n| nodes.binary_search(n).unwrap_or(0))
+                    .collect()
+            })
+            .collect();
+        let np = rule.points.len();
+        FacetPair {
+            facet_index,
+            nodal: vec![0.0; nodes.len()],
+            rule,
+            stiffness: k,
+            multiplier: vec![0.0; np],
+            committed: vec![0.0; np],
+            gap: vec![f64::INFINITY; np],
+            pressure: vec![0.0; np],
+            nodes,
+            node_points,
+        }
+    }
+
+    /// Evaluates every facet at the current coordinates `x`: the point
+    /// projections by `project(point, x_point)` (`None`: no foot within
+    /// the window, the point is open), and one [`Coupling`] (forces and
+    /// tangent over the facet's nodes) per facet with a closed point.
+    /// `touching > 0`: the closed-gap start, points with a gap in
+    /// `[0, touching]` add `k n ⊗ n` with no force.
+    pub fn evaluate<const D: usize>(
+        &mut self,
+        x: &[[f64; D]],
+        touching: f64,
+        mut project: impl FnMut(usize, [f64; D]) -> Option<PointProjection<D>>,
+    ) -> Vec<Coupling> {
+        let mut out = Vec::new();
+        let mut g = 0;
+        for (f, facet) in self.rule.facets.iter().enumerate() {
+            let nn = facet.len();
+            // sorted distinct nodes and the position of each facet node
+            let mut sorted = facet.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            let pos: Vec<usize> = facet
+                .iter()
+                .map(|n| sorted.binary_search(n).unwrap_or(0))
+                .collect();
+            let nd = D * sorted.len();
+            let mut c = Coupling {
+                nodes: sorted.clone(),
+                force: vec![0.0; nd],
+                tangent: vec![0.0; nd * nd],
+                slave: facet.first().copied().unwrap_or(0),
+                gap_gradient: Vec::new(),
+            };
+            let mut any = false;
+            let k = self.stiffness[f];
+            while g < self.rule.points.len() && self.rule.points[g].facet == f {
+                let point = &self.rule.points[g];
+                let mut xg = [0.0; D];
+                for (a, &node) in facet.iter().enumerate() {
+                    let xa = x.get(node).copied().unwrap_or([0.0; D]);
+                    for (xc, xac) in xg.iter_mut().zip(xa) {
+                        *xc += point.shape[a] * xac;
+                    }
+                }
+                self.gap[g] = f64::INFINITY;
+                self.pressure[g] = 0.0;
+                let Some(pr) = project(g, xg) else {
+                    g += 1;
+                    continue;
+                };
+                self.gap[g] = pr.gap;
+                let p = self.multiplier[g] - k * pr.gap;
+                let (p, kn) = if p > 0.0 {
+                    (p, k)
+                } else if touching > 0.0 && (0.0..=touching).contains(&pr.gap) {
+                    (0.0, k)
+                } else {
+                    g += 1;
+                    continue;
+                };
+                any = true;
+                self.pressure[g] = p;
+                let w = point.weight;
+                for a in 0..nn {
+                    let na = point.shape[a] * w;
+                    for i in 0..D {
+                        c.force[D * pos[a] + i] += na * p * pr.normal[i];
+                    }
+                    for b in 0..nn {
+                        let nab = na * point.shape[b];
+                        for i in 0..D {
+                            for j in 0..D {
+                                c.tangent[(D * pos[a] + i) * nd + D * pos[b] + j] += nab
+                                    * (kn * pr.normal[i] * pr.normal[j] - p * pr.curvature[i][j]);
+                            }
+                        }
+                    }
+                }
+                g += 1;
+            }
+            if any {
+                out.push(c);
+            }
+        }
+        self.project_pressures();
+        out
+    }
+
+    /// `M v` with the slave surface's mass matrix `M_ab = sum w N_a N_b`
+    /// (over the points; `nodes` order).
+    fn mass_times(&self, v: &[f64], out: &mut [f64]) {
+        out.iter_mut().for_each(|o| *o = 0.0);
+        for p in &self.rule.points {
+            let idx = &self.facet_index[p.facet];
+            let s: f64 = idx.iter().zip(&p.shape).map(|(&i, n)| n * v[i]).sum();
+            for (&i, n) in idx.iter().zip(&p.shape) {
+                out[i] += p.weight * n * s;
+            }
+        }
+    }
+
+    /// The nodal pressures as the L2 projection of the points' pressures
+    /// on the faces' shape functions: `M p = sum_g w N p_g`, solved by
+    /// conjugate gradients with the diagonal of `M` (symmetric positive
+    /// definite for the faces' mass rules; exact for a uniform pressure,
+    /// as `M 1 = int N_a dA`), started from the `|N_a| w`-weighted means.
+    fn project_pressures(&mut self) {
+        let n = self.nodes.len();
+        let (mut b, mut diag) = (vec![0.0; n], vec![0.0; n]);
+        for (g, p) in self.rule.points.iter().enumerate() {
+            for (&i, sh) in self.facet_index[p.facet].iter().zip(&p.shape) {
+                b[i] += p.weight * sh * self.pressure[g];
+                diag[i] += p.weight * sh * sh;
+            }
+        }
+        let bnorm = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if bnorm == 0.0 {
+            self.nodal.iter_mut().for_each(|v| *v = 0.0);
+            return;
+        }
+        let mut x: Vec<f64> = self.nodes.iter().map(|&k| self.mean_pressure(k)).collect();
+        let mut r = vec![0.0; n];
+        self.mass_times(&x, &mut r);
+        for (ri, bi) in r.iter_mut().zip(&b) {
+            *ri = bi - *ri;
+        }
+        let precondition = |r: &[f64]| -> Vec<f64> {
+            r.iter()
+                .zip(&diag)
+                .map(|(r, d)| if *d > 0.0 { r / d } else { 0.0 })
+                .collect()
+        };
+        let mut z = precondition(&r);
+        let mut d = z.clone();
+        let mut rz: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+        let mut q = vec![0.0; n];
+        for _ in 0..4 * n.max(10) {
+            if r.iter().map(|v| v * v).sum::<f64>().sqrt() <= 1e-14 * bnorm {
+                break;
+            }
+            self.mass_times(&d, &mut q);
+            let dq: f64 = d.iter().zip(&q).map(|(a, b)| a * b).sum();
+            if dq <= 0.0 {
+                break;
+            }
+            let alpha = rz / dq;
+            for k in 0..n {
+                x[k] += alpha * d[k];
+                r[k] -= alpha * q[k];
+            }
+            z = precondition(&r);
+            let rz_next: f64 = r.iter().zip(&z).map(|(a, b)| a * b).sum();
+            let beta = rz_next / rz;
+            rz = rz_next;
+            for k in 0..n {
+                d[k] = z[k] + beta * d[k];
+            }
+        }
+        // the projection is global: keep it at the nodes of the faces that
+        // carry pressure (its tail elsewhere is not contact)
+        for (k, v) in x.iter_mut().enumerate() {
+            if !self.node_points[k]
+                .iter()
+                .any(|&(g, _)| self.pressure[g] > 0.0)
+            {
+                *v = 0.0;
+            }
+        }
+        self.nodal = x;
+    }
+
+    /// The pressure at slave node `node`: the L2 projection of the points'
+    /// pressures at the last evaluation, clamped at 0 (the projection of a
+    /// pressure that vanishes across a face overshoots there), and 0 at a
+    /// node none of whose faces has a loaded point.
+    pub fn node_pressure(&self, node: usize) -> f64 {
+        self.nodes
+            .binary_search(&node)
+            .map_or(0.0, |i| self.nodal[i].max(0.0))
+    }
+
+    /// The `|N_a| w`-weighted mean of the pressures of the points of slave
+    /// node `node` (positive weights: exact for a uniform pressure).
+    fn mean_pressure(&self, node: usize) -> f64 {
+        let Ok(i) = self.nodes.binary_search(&node) else {
+            return 0.0;
+        };
+        let (mut s, mut w) = (0.0, 0.0);
+        for &(g, wg) in &self.node_points[i] {
+            s += wg * self.pressure[g];
+            w += wg;
+        }
+        if w > 0.0 {
+            s / w
+        } else {
+            0.0
+        }
+    }
+
+    /// Largest violation of the contact conditions over the points of the
+    /// last evaluation: `|g|` where a pressure acts, the penetration
+    /// elsewhere (the augmented-Lagrangian stopping test).
+    pub fn violation(&self) -> f64 {
+        self.gap
+            .iter()
+            .zip(&self.pressure)
+            .filter(|(g, _)| g.is_finite())
+            .map(|(g, p)| if *p > 0.0 { g.abs() } else { (-g).max(0.0) })
+            .fold(0.0, f64::max)
+    }
+
+    /// Uzawa update `lambda*_g <- max(0, lambda*_g - k g_g)` (0 at points
+    /// without a foot).
+    pub fn uzawa_update(&mut self) {
+        for (g, p) in self.rule.points.iter().enumerate() {
+            let k = self.stiffness[p.facet];
+            self.multiplier[g] = if self.gap[g].is_finite() {
+                (self.multiplier[g] - k * self.gap[g]).max(0.0)
+            } else {
+                0.0
+            };
+        }
+    }
+
+    /// Keeps the trial multipliers (converged increment).
+    pub fn commit(&mut self) {
+        self.committed.clone_from(&self.multiplier);
+    }
+
+    /// Returns to the committed multipliers.
+    pub fn rollback(&mut self) {
+        self.multiplier.clone_from(&self.committed);
+    }
+
+    /// Sets the committed multipliers (restart points) and rolls back.
+    pub fn restore(&mut self, multiplier: &[f64]) -> Result<(), String> {
+        if multiplier.len() != self.committed.len() {
+            return Err(
+                "the restart point does not match the model (contact integration points)".into(),
+            );
+        }
+        self.committed = multiplier.to_vec();
+        self.rollback();
+        Ok(())
+    }
+
+    /// Forces of `couplings` summed at slave node `node`, and its diagonal
+    /// tangent block.
+    pub fn node_force<const D: usize>(
+        couplings: &[Coupling],
+        node: usize,
+    ) -> ([f64; D], [[f64; D]; D]) {
+        let (mut f, mut k) = ([0.0; D], [[0.0; D]; D]);
+        for c in couplings {
+            let Ok(a) = c.nodes.binary_search(&node) else {
+                continue;
+            };
+            let nd = D * c.nodes.len();
+            for (i, (fi, ki)) in f.iter_mut().zip(k.iter_mut()).enumerate() {
+                *fi += c.force[D * a + i];
+                for (j, kij) in ki.iter_mut().enumerate() {
+                    *kij += c.tangent[(D * a + i) * nd + D * a + j];
+                }
+            }
+        }
+        (f, k)
+    }
+}
+
+/// The planar curvature `W = h t ⊗ t` (`t` the unit tangent) of a normal
+/// `n` and normal rate `h`.
+pub fn planar_curvature(normal: [f64; 2], h: f64) -> [[f64; 2]; 2] {
+    let t = [normal[1], -normal[0]];
+    [
+        [h * t[0] * t[0], h * t[0] * t[1]],
+        [h * t[1] * t[0], h * t[1] * t[1]],
+    ]
+}
+
+/// Pressure per unit gap of `method` (0 for Lagrange multipliers).
+pub fn pressure_stiffness(method: &ContactMethod) -> f64 {
+    match method {
+        ContactMethod::Penalty { stiffness, .. }
+        | ContactMethod::AugmentedLagrange {
+            penalty: stiffness, ..
+        } => *stiffness,
+        ContactMethod::Lagrange { .. } => 0.0,
+    }
+}
+
+/// Whether a body has quadratic cells (its contact faces have midside
+/// nodes).
+pub fn body_is_quadratic<const D: usize>(model: &Model<D>, body: usize) -> bool {
+    model.bodies.get(body).is_some_and(|b| {
+        b.cells
+            .clone()
+            .any(|c| c < model.mesh.cells.len() && model.mesh.cells.kind(c).order() > 1)
+    })
+}
+
+/// The face-integrated state of planar pair `pair`: `Some` for a penalty or
+/// augmented-Lagrangian pair against a rigid tool whose slave body has
+/// quadratic cells (its edges `[a, b]` become `[a, b, m]`).
+pub fn planar_pair(model: &Model, pair: usize) -> Option<FacetPair> {
+    let cp = model.contacts.get(pair)?;
+    if !matches!(cp.master, ContactMaster::Tool(_))
+        || matches!(cp.method, ContactMethod::Lagrange { .. })
+        || !body_is_quadratic(model, cp.body)
+    {
+        return None;
+    }
+    let midsides = model.mesh.edge_midsides();
+    let facets = cp
+        .edges
+        .iter()
+        .map(|&e| crate::mesh::Mesh::edge_facet(&midsides, e).nodes().to_vec())
+        .collect();
+    let rule = FacetRule::planar(
+        &model.mesh.nodes,
+        facets,
+        model.analysis.kind == AnalysisKind::Axisymmetric,
+        model.analysis.thickness,
+    );
+    Some(FacetPair::new(rule, |node| {
+        pressure_stiffness(&cp.method_at(node))
+    }))
+}
+
+/// Evaluates the face-integrated planar pair `pair` at current
+/// coordinates `x` and time `t`: fills `state.couplings` (the forces the
+/// solver scatters) and returns one entry per slave node within the
+/// window or loaded by a face (output: gap, pressure field, force).
+pub fn evaluate_planar(
+    model: &Model,
+    pair: usize,
+    x: &[[f64; 2]],
+    t: f64,
+    state: &mut PairState,
+) -> Vec<NodeContact> {
+    let Some(cp) = model.contacts.get(pair) else {
+        return Vec::new();
+    };
+    let tool = cp.master.tool().and_then(|i| model.tools.get(i));
+    let (Some(tool), Some(mut fp)) = (tool, state.facets.take()) else {
+        return Vec::new();
+    };
+    let Some(shape) = state.shape.as_ref() else {
+        state.facets = Some(fp);
+        return Vec::new();
+    };
+    let placement = Placement::at(&tool.motion, t);
+    let prof = state.prof;
+    let mut tests = 0usize;
+    let (grid, scratch, memory) = (
+        &state.tool_grid,
+        &mut state.scratch,
+        &mut state.point_memory,
+    );
+    let mut find = |xr: [f64; 2], memory: Option<usize>, tests: &mut usize| {
+        let request = search::Request {
+            x: xr,
+            window: prof,
+            memory,
+            guess: None,
+            test: cp.search,
+        };
+        search::closest_in(shape, grid, request, scratch, tests)
+    };
+    let couplings = fp.evaluate(x, state.touching, |g, xg| {
+        let found = find(placement.to_reference(xg), memory[g], &mut tests)?;
+        memory[g] = Some(found.entity);
+        let p = found.projection;
+        if p.gap > prof {
+            return None;
+        }
+        let normal = placement.rotate(p.normal);
+        Some(PointProjection {
+            gap: p.gap,
+            normal,
+            curvature: planar_curvature(normal, p.normal_rate),
+        })
+    });
+    let mut out = Vec::new();
+    for (i, &node) in state.slaves.iter().enumerate() {
+        let Some(&xn) = x.get(node) else {
+            continue;
+        };
+        let Some(found) = find(placement.to_reference(xn), state.last_entity[i], &mut tests) else {
+            continue;
+        };
+        state.last_entity[i] = Some(found.entity);
+        let p = found.projection;
+        let (force, stiffness) = FacetPair::node_force::<2>(&couplings, node);
+        if p.gap > prof && force == [0.0; 2] {
+            continue;
+        }
+        let pressure = fp.node_pressure(node);
+        out.push(NodeContact {
+            node,
+            gap: p.gap,
+            normal: placement.rotate(p.normal),
+            force,
+            stiffness,
+            pressure,
+            status: if pressure > 0.0 {
+                ContactStatus::Closed
+            } else {
+                ContactStatus::Open
+            },
+            entity: found.entity,
+            master: None,
+            friction: Default::default(),
+        });
+    }
+    state.last_projection_tests = tests;
+    state.last_brute_force_tests =
+        (fp.rule.points.len() + state.slaves.len()) * shape.entity_count();
+    state.total_projection_tests += tests as u64;
+    state.couplings = Some(couplings);
+    state.facets = Some(fp);
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// A 3-node edge of length 2 along x: the consistent shares of a
+    /// uniform pressure are 1/6, 4/6, 1/6; a tri6 face's corners 0 and a
+    /// quad8 face's -1/12 (the reason for integrating at points).
+    #[test]
+    fn consistent_areas_of_quadratic_facets() {
+        let nodes2 = [[0.0, 0.0], [2.0, 0.0], [1.0, 0.0]];
+        let r = FacetRule::planar(&nodes2, vec![vec![0, 1, 2]], false, 3.0);
+        let a = r.consistent_areas();
+        for (node, expect) in [(0, 1.0), (1, 1.0), (2, 4.0)] {
+            assert!((a[node].1 - expect).abs() < 1e-14, "{a:?}");
+        }
+        // quad8 face of the unit square: corners -1/12, midsides 1/3
+        let q = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        let r = FacetRule::solid(&q, vec![(0..8).collect()]);
+        let a = r.consistent_areas();
+        for (node, area) in a {
+            let expect = if node < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
+            assert!((area - expect).abs() < 1e-14, "{node}: {area}");
+        }
+        // tri6 face: corners 0, midsides 1/6 of the area 1/2
+        let t = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        let r = FacetRule::solid(&t, vec![(0..6).collect()]);
+        for (node, area) in r.consistent_areas() {
+            let expect = if node < 3 { 0.0 } else { 1.0 / 6.0 };
+            assert!((area - expect).abs() < 1e-14, "{node}: {area}");
+        }
+    }
+
+    /// Flat tool `z = 0` (normal +z): the penetration `d` of every point
+    /// gives the consistent loads of the uniform pressure `k d`, and the
+    /// normal tangent is `k int N_a N_b dA`.
+    #[test]
+    fn a_uniform_gap_gives_the_consistent_loads_of_a_uniform_pressure() {
+        let q: Vec<[f64; 3]> = [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [0.0, 1.0],
+            [1.0, 0.0],
+            [2.0, 0.5],
+            [1.0, 1.0],
+            [0.0, 0.5],
+        ]
+        .iter()
+        .map(|p| [p[0], p[1], -0.01])
+        .collect();
+        let mut fp = FacetPair::new(FacetRule::solid(&q, vec![(0..8).collect()]), |_| 100.0);
+        let c = fp.evaluate(&q, 0.0, |_, x| {
+            Some(PointProjection {
+                gap: x[2],
+                normal: [0.0, 0.0, 1.0],
+                curvature: [[0.0; 3]; 3],
+            })
+        });
+        assert_eq!(c.len(), 1);
+        let p = 100.0 * 0.01;
+        for (a, &node) in c[0].nodes.iter().enumerate() {
+            let share = if node < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
+            assert!((c[0].force[3 * a + 2] - p * 2.0 * share).abs() < 1e-13);
+            assert_eq!(c[0].force[3 * a], 0.0);
+        }
+        let total: f64 = (0..8).map(|a| c[0].force[3 * a + 2]).sum();
+        assert!((total - 2.0 * p).abs() < 1e-13);
+        assert!((fp.node_pressure(0) - p).abs() < 1e-13);
+        assert!((fp.violation() - 0.01).abs() < 1e-15);
+        fp.uzawa_update();
+        assert!(fp.multiplier.iter().all(|m| (m - p).abs() < 1e-13));
+    }
+
+    fn sphere(x: [f64; 3], centre: [f64; 3], radius: f64) -> PointProjection<3> {
+        let d: [f64; 3] = std::array::from_fn(|k| x[k] - centre[k]);
+        let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+        let n = d.map(|v| v / r);
+        let curvature = std::array::from_fn(|i| {
+            std::array::from_fn(|j| (f64::from(u8::from(i == j)) - n[i] * n[j]) / r)
+        });
+        PointProjection {
+            gap: r - radius,
+            normal: n,
+            curvature,
+        }
+    }
+
+    fn circle(x: [f64; 2], centre: [f64; 2], radius: f64) -> PointProjection<2> {
+        let d = [x[0] - centre[0], x[1] - centre[1]];
+        let r = d[0].hypot(d[1]);
+        let n = [d[0] / r, d[1] / r];
+        PointProjection {
+            gap: r - radius,
+            normal: n,
+            curvature: planar_curvature(n, 1.0 / r),
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        /// The tangent of a quad8 / tri6 / quad9 face pressed into a rigid
+        /// sphere is minus the derivative of its forces (central
+        /// differences), for the penalty and for the augmented Lagrangian
+        /// with point multipliers.
+        #[test]
+        fn solid_tangent_matches_finite_differences(
+            kind in 0usize..3,
+            depth in 0.02f64..0.2,
+            shift in -0.2f64..0.2,
+            lambda in 0.0f64..2.0,
+            wobble in proptest::collection::vec(-0.05f64..0.05, 27),
+        ) {
+            let base: Vec<[f64; 2]> = match kind {
+                0 => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
+                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]],
+                1 => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5],
+                          [0.0, 0.5]],
+                _ => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
+                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5], [0.5, 0.5]],
+            };
+            let reference: Vec<[f64; 3]> = base.iter().map(|p| [p[0], p[1], 0.0]).collect();
+            let x: Vec<[f64; 3]> = base
+                .iter()
+                .enumerate()
+                .map(|(a, p)| [p[0] + wobble[3 * a], p[1] + wobble[3 * a + 1],
+                               wobble[3 * a + 2] - depth])
+                .collect();
+            let n = x.len();
+            let centre = [0.4 + shift, 0.45, -1.5];
+            let mut fp = FacetPair::new(FacetRule::solid(&reference, vec![(0..n).collect()]),
+                                        |_| 50.0);
+            fp.multiplier.iter_mut().for_each(|m| *m = lambda);
+            let forces = |fp: &mut FacetPair, x: &[[f64; 3]]| -> Vec<f64> {
+                let c = fp.evaluate(x, 0.0, |_, p| Some(sphere(p, centre, 1.5)));
+                let mut f = vec![0.0; 3 * n];
+                for c in &c {
+                    for (a, &node) in c.nodes.iter().enumerate() {
+                        for i in 0..3 { f[3 * node + i] += c.force[3 * a + i]; }
+                    }
+                }
+                f
+            };
+            let c = fp.evaluate(&x, 0.0, |_, p| Some(sphere(p, centre, 1.5)));
+            prop_assume!(!c.is_empty());
+            let c = &c[0];
+            let h = 1e-7;
+            let scale = c.tangent.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (b, &nb) in c.nodes.iter().enumerate() {
+                for j in 0..3 {
+                    let (mut xp, mut xm) = (x.clone(), x.clone());
+                    xp[nb][j] += h;
+                    xm[nb][j] -= h;
+                    let (fp_, fm) = (forces(&mut fp, &xp), forces(&mut fp, &xm));
+                    for (a, &na) in c.nodes.iter().enumerate() {
+                        for i in 0..3 {
+                            let fd = -(fp_[3 * na + i] - fm[3 * na + i]) / (2.0 * h);
+                            let k = c.tangent[(3 * a + i) * 3 * n + 3 * b + j];
+                            prop_assert!((fd - k).abs() < 1e-5 * scale.max(1.0),
+                                "{a}{i},{b}{j}: fd {fd} vs {k}");
+                        }
+                    }
+                }
+            }
+        }
+
+        /// The same for a 3-node edge against a rigid circle (plane and
+        /// axisymmetric measures).
+        #[test]
+        fn planar_tangent_matches_finite_differences(
+            axi in proptest::bool::ANY,
+            depth in 0.02f64..0.2,
+            shift in -0.3f64..0.3,
+            lambda in 0.0f64..2.0,
+            wobble in proptest::collection::vec(-0.05f64..0.05, 6),
+        ) {
+            let reference = [[0.5, 0.0], [1.5, 0.0], [1.0, 0.0]];
+            let x: Vec<[f64; 2]> = reference
+                .iter()
+                .enumerate()
+                .map(|(a, p)| [p[0] + wobble[2 * a], p[1] + wobble[2 * a + 1] - depth])
+                .collect();
+            let centre = [1.0 + shift, -2.0];
+            let mut fp = FacetPair::new(
+                FacetRule::planar(&reference, vec![vec![0, 1, 2]], axi, 1.0), |_| 30.0);
+            fp.multiplier.iter_mut().for_each(|m| *m = lambda);
+            let forces = |fp: &mut FacetPair, x: &[[f64; 2]]| -> Vec<f64> {
+                let c = fp.evaluate(x, 0.0, |_, p| Some(circle(p, centre, 2.0)));
+                let mut f = vec![0.0; 6];
+                for c in &c {
+                    for (a, &node) in c.nodes.iter().enumerate() {
+                        for i in 0..2 { f[2 * node + i] += c.force[2 * a + i]; }
+                    }
+                }
+                f
+            };
+            let c = fp.evaluate(&x, 0.0, |_, p| Some(circle(p, centre, 2.0)));
+            prop_assume!(!c.is_empty());
+            let c = &c[0];
+            let h = 1e-7;
+            let scale = c.tangent.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for b in 0..3 {
+                for j in 0..2 {
+                    let (mut xp, mut xm) = (x.clone(), x.clone());
+                    xp[b][j] += h;
+                    xm[b][j] -= h;
+                    let (fp_, fm) = (forces(&mut fp, &xp), forces(&mut fp, &xm));
+                    for a in 0..3 {
+                        for i in 0..2 {
+                            let fd = -(fp_[2 * a + i] - fm[2 * a + i]) / (2.0 * h);
+                            let k = c.tangent[(2 * a + i) * 6 + 2 * b + j];
+                            prop_assert!((fd - k).abs() < 1e-5 * scale.max(1.0),
+                                "{a}{i},{b}{j}: fd {fd} vs {k}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
