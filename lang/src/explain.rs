@@ -173,6 +173,19 @@ pub fn explain(model: &Model) -> String {
         let _ = writeln!(o, "loads: {}", model.loads.len());
         for l in &model.loads {
             match l {
+                Load::Gravity {
+                    label,
+                    component: c,
+                    value,
+                } => {
+                    let _ = writeln!(
+                        o,
+                        "  {label}: g{} = {} on every body with a density and every point \
+                         mass (consistent nodal forces)",
+                        component(*c),
+                        time_function(value)
+                    );
+                }
                 Load::Pressure {
                     label,
                     edges,
@@ -773,6 +786,19 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
     let _ = writeln!(o, "loads: {}", model.loads.len());
     for l in &model.loads {
         match l {
+            Load::Gravity {
+                label,
+                component: c,
+                value,
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: g{} = {} on every body with a density and every point mass \
+                     (consistent nodal forces)",
+                    ["x", "y", "z"][(*c).min(2)],
+                    time_function(value)
+                );
+            }
             Load::FacetPressure {
                 label,
                 facets,

@@ -178,6 +178,18 @@ pub static ITEMS: &[Item] = &[
         example: "force block.node(near(0, 1)) { fy = -1 }",
     },
     Item {
+        name: "gravity",
+        syntax: "gravity { gx = F(t)  gy = F(t)  gz = F(t) }",
+        doc: "Gravity: an acceleration (length/time^2) pulling every body that has a \
+              `density` and every `point_mass`, in quasi-static and dynamic steps. Consistent \
+              nodal forces `g int rho N_a dV` (the row sums of the consistent mass; \
+              axisymmetric: totals over 2 pi) plus `m g` at point masses, in the reference \
+              configuration; their work is part of the external work of the energy audit. \
+              `gz` in 3d only; several items add up.",
+        blocks: &[],
+        example: "gravity { gy = -9.81 }",
+    },
+    Item {
         name: "initial_velocity",
         syntax: "initial_velocity NODES { vx = ..  vy = ..  vz = .. }",
         doc: "The velocity of a node set at the start of the analysis (`body.all` for a whole \

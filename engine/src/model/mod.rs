@@ -369,6 +369,20 @@ pub enum Load {
         /// Traction (force per unit reference area) as a function of time.
         value: TimeFunction,
     },
+    /// Gravity (a body force per unit mass, Abaqus `GRAV`): the
+    /// acceleration component `value(t)` along `component` acting on every
+    /// body of non-zero density and every point mass; consistent nodal
+    /// forces `f_a = g int rho N_a dV` (the row sums of the consistent
+    /// mass, `solve/loads.rs`; axisymmetric: totals over the ring) plus
+    /// `m g` at point masses, in the reference configuration.
+    Gravity {
+        /// Human-readable origin.
+        label: String,
+        /// 0 = x (or r), 1 = y (or z), 2 = z.
+        component: usize,
+        /// The acceleration (length / time^2) as a function of time.
+        value: TimeFunction,
+    },
     /// A force applied at each listed node (Abaqus CLOAD semantics: the value
     /// is per node; axisymmetric: total over the ring).
     NodalForce {

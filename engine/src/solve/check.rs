@@ -137,6 +137,16 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     ));
                 }
             }
+            Load::Gravity {
+                label, component, ..
+            } => {
+                if *component >= D {
+                    errors.push(format!(
+                        "`{label}`: component {component} is not {}",
+                        COMPONENTS[D - 2]
+                    ));
+                }
+            }
             Load::Pressure { label, edges, .. } => {
                 if let Some(e) = edges.iter().find(|e| e[0] >= nn || e[1] >= nn) {
                     errors.push(format!("`{label}` refers to edge {e:?} outside the mesh"));
@@ -333,6 +343,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         .map(|d| (d.label.as_str(), &d.value))
         .chain(model.loads.iter().map(|l| match l {
             Load::NodalForce { label, value, .. }
+            | Load::Gravity { label, value, .. }
             | Load::Pressure { label, value, .. }
             | Load::FacetPressure { label, value, .. }
             | Load::FollowerPressure { label, value, .. }

@@ -777,6 +777,15 @@ impl Dynamics {
         self.started = true;
     }
 
+    /// The internal, external (+ reactions) and contact forces of the
+    /// initial state, where the trapezoidal work integrals start (call
+    /// after [`Dynamics::start`] when no increment was committed before).
+    pub fn start_forces(&mut self, forces: [&[f64]; 3]) {
+        for (f0, f) in self.forces0.iter_mut().zip(forces) {
+            f0.copy_from_slice(f);
+        }
+    }
+
     /// Commits the converged increment: velocities and accelerations (a
     /// dynamic increment), the committed residual `r` and the energies
     /// from the forces (`f_int`, `f_ext` + reactions, `f_c`, damping `C

@@ -601,6 +601,18 @@ pub enum LoadKind {
     Force,
 }
 
+/// `gravity { gx = F(t)  gy = F(t)  gz = F(t) }`: an acceleration acting
+/// on every body with a density and every point mass.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gravity {
+    /// The keyword.
+    pub keyword: Span,
+    /// One value per component given.
+    pub values: Vec<(Option<Component>, Spanned<TimeFn>)>,
+    /// The whole item.
+    pub span: Span,
+}
+
 /// `pressure ref { .. }` or `force ref { .. }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadDef {

@@ -4,7 +4,7 @@
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::EntryBody;
-use crate::ast::{Component, LoadDef, LoadKind};
+use crate::ast::{Component, Gravity, LoadDef, LoadKind};
 use crate::diagnostics::Diagnostic;
 use crate::suggest::{did_you_mean, one_of};
 
@@ -35,29 +35,117 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
     if kind == LoadKind::Pressure {
         names.push("follower");
     }
-    let mut values_out = Vec::new();
     let mut follower = None;
+    let values_out = time_components(&block, word, keys, &names, diags, |e, diags| {
+        if kind != LoadKind::Pressure || e.key.name != "follower" {
+            return false;
+        }
+        match &e.body {
+            EntryBody::Assign(v) if follower.is_none() => {
+                follower = values::boolean(v, diags);
+            }
+            EntryBody::Assign(_) => diags.push(
+                Diagnostic::error(
+                    "`follower` is given twice in `pressure`",
+                    e.key.span,
+                    "duplicate key",
+                )
+                .with_help("remove one of them"),
+            ),
+            _ => diags.push(Diagnostic::error(
+                "`follower` needs a value",
+                e.span,
+                "expected `follower = true` or `follower = false`",
+            )),
+        }
+        true
+    });
+    if block.entries.is_empty() {
+        let example = match kind {
+            LoadKind::Pressure => "p = ramp(0, 10)",
+            LoadKind::Traction => "tx = ramp(0, 5)",
+            LoadKind::Force => "fy = -1",
+        };
+        diags.push(
+            Diagnostic::error(
+                format!("`{word}` gives no value"),
+                block.span,
+                "empty block",
+            )
+            .with_help(format!("write e.g. `{word} {target} {{ {example} }}`")),
+        );
+    }
+    Some(LoadDef {
+        kind,
+        keyword: item.keyword,
+        target,
+        values: values_out,
+        follower,
+        span: item.span,
+    })
+}
+
+/// The keyword of `gravity { gx  gy  gz }` (carried by the generic item
+/// rule, like `traction`).
+pub const GRAVITY: &str = "gravity";
+
+/// Converts a `gravity` item: no set (it acts on every mass), components
+/// `gx gy gz` (accelerations, functions of time).
+pub fn gravity(item: ItemParts, diags: &mut Diags) -> Option<Gravity> {
+    if let Some(t) = &item.target {
+        diags.push(
+            Diagnostic::error(
+                "`gravity` takes no set",
+                t.span,
+                "gravity acts on every body with a density and every point mass",
+            )
+            .with_help("write `gravity { gy = -9.81 }`"),
+        );
+        return None;
+    }
+    let Some(block) = item.block else {
+        diags.push(
+            Diagnostic::error("`gravity` needs a block", item.keyword, "no block")
+                .with_help("write `gravity { gy = -9.81 }`"),
+        );
+        return None;
+    };
+    let keys = [
+        ("gx", Some(Component::X)),
+        ("gy", Some(Component::Y)),
+        ("gz", Some(Component::Z)),
+    ];
+    let names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
+    let values = time_components(&block, GRAVITY, &keys, &names, diags, |_, _| false);
+    if block.entries.is_empty() {
+        diags.push(
+            Diagnostic::error("`gravity` gives no value", block.span, "empty block")
+                .with_help("write e.g. `gravity { gy = -9.81 }`"),
+        );
+    }
+    Some(Gravity {
+        keyword: item.keyword,
+        values,
+        span: item.span,
+    })
+}
+
+/// The `key = F(t)` entries of an item's block whose keys are `keys`
+/// (component of each), in block order: unknown keys (all `names` are
+/// known) and duplicates are reported; `other` takes an entry first and
+/// returns whether it handled it.
+pub(super) fn time_components(
+    block: &crate::ast::syntax::Block,
+    word: &str,
+    keys: &[(&str, Option<Component>)],
+    names: &[&str],
+    diags: &mut Diags,
+    mut other: impl FnMut(&crate::ast::syntax::Entry, &mut Diags) -> bool,
+) -> Vec<(Option<Component>, crate::span::Spanned<crate::ast::TimeFn>)> {
+    let mut values_out = Vec::new();
     let mut seen: Vec<&str> = Vec::new();
     for e in &block.entries {
-        if kind == LoadKind::Pressure && e.key.name == "follower" {
-            match &e.body {
-                EntryBody::Assign(v) if follower.is_none() => {
-                    follower = values::boolean(v, diags);
-                }
-                EntryBody::Assign(_) => diags.push(
-                    Diagnostic::error(
-                        "`follower` is given twice in `pressure`",
-                        e.key.span,
-                        "duplicate key",
-                    )
-                    .with_help("remove one of them"),
-                ),
-                _ => diags.push(Diagnostic::error(
-                    "`follower` needs a value",
-                    e.span,
-                    "expected `follower = true` or `follower = false`",
-                )),
-            }
+        if other(e, diags) {
             continue;
         }
         let Some((key, comp)) = keys.iter().find(|(n, _)| *n == e.key.name) else {
@@ -65,9 +153,9 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
                 Diagnostic::error(
                     format!("unknown key `{}` in `{word}`", e.key.name),
                     e.key.span,
-                    format!("expected {}", one_of(&names)),
+                    format!("expected {}", one_of(names)),
                 )
-                .with_help_opt(did_you_mean(&e.key.name, &names)),
+                .with_help_opt(did_you_mean(&e.key.name, names)),
             );
             continue;
         };
@@ -96,35 +184,31 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
             )),
         }
     }
-    if block.entries.is_empty() {
-        let example = match kind {
-            LoadKind::Pressure => "p = ramp(0, 10)",
-            LoadKind::Traction => "tx = ramp(0, 5)",
-            LoadKind::Force => "fy = -1",
-        };
-        diags.push(
-            Diagnostic::error(
-                format!("`{word}` gives no value"),
-                block.span,
-                "empty block",
-            )
-            .with_help(format!("write e.g. `{word} {target} {{ {example} }}`")),
-        );
-    }
-    Some(LoadDef {
-        kind,
-        keyword: item.keyword,
-        target,
-        values: values_out,
-        follower,
-        span: item.span,
-    })
+    values_out
 }
 
 #[cfg(test)]
 mod tests {
     use crate::ast::{Component, LoadKind, TimeFn};
     use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn gravity_components_and_errors() {
+        let deck = parse_ok("gravity { gy = -9.81  gx = ramp(0, 1) }");
+        let g = &deck.gravity[0];
+        assert_eq!(g.values.len(), 2);
+        assert_eq!(g.values[0].0, Some(Component::Y));
+        assert_eq!(g.values[0].1.value, TimeFn::Number(-9.81));
+        assert_eq!(
+            parse_messages("gravity { gg = 1 }"),
+            ["unknown key `gg` in `gravity`"]
+        );
+        assert_eq!(
+            parse_messages("gravity block.all { gy = 1 }"),
+            ["`gravity` takes no set"]
+        );
+        assert_eq!(parse_messages("gravity { }"), ["`gravity` gives no value"]);
+    }
 
     #[test]
     fn pressure_and_force() {

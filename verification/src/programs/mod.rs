@@ -13,6 +13,7 @@ pub mod follower;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
+pub mod gravity;
 pub mod impact;
 pub mod mortar;
 pub mod objectivity;
@@ -58,6 +59,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(impact::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
+    v.extend(gravity::cases());
     v
 }
 

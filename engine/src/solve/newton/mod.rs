@@ -314,6 +314,19 @@ where
                 out = self.evaluate(t0, false).map(|_| ());
                 if out.is_ok() {
                     dy.start(model, &self.dofs, &self.r_static);
+                    if !self.any_committed {
+                        // the work integrals start from the forces of the
+                        // initial state (a load present at t0, e.g.
+                        // gravity, works from the first increment on)
+                        let mut ext = self.f_ext.clone();
+                        for (e, f) in ext.iter_mut().zip(&self.f_follow) {
+                            *e += f;
+                        }
+                        for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
+                            ext[p.dof] += r;
+                        }
+                        dy.start_forces([&self.f_int, &ext, &self.f_c]);
+                    }
                 }
             }
         }
