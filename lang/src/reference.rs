@@ -199,11 +199,15 @@ pub static ITEMS: &[Item] = &[
     },
     Item {
         name: "spring",
-        syntax: "spring NODES { stiffness = ..  damping = .. }",
+        syntax: "spring NODES [-> NODES] { stiffness = ..  damping = .. }",
         doc: "A linear spring and a linear dashpot from each node of a set to the ground, in \
-              every direction (force -k u - c v; the dashpot acts in `dynamic` steps). Its \
-              energy is part of the internal work of the energy audit, the dashpot's \
-              dissipation part of `damping_work`. A spring holds its nodes.",
+              every direction (force -k u - c v; the dashpot acts in `dynamic` steps), or with \
+              `-> NODES` between the nodes of two sets (force -k (u_a - u_b) - c (v_a - v_b) \
+              on a, its opposite on b; the i-th node of the first set, in node order, to the \
+              i-th of the second, or every node to a single far node). Its energy is part of \
+              the internal work of the energy audit, the dashpot's dissipation part of \
+              `damping_work`. A spring to the ground holds its nodes; a spring between two \
+              bodies lets a held one hold the other.",
         blocks: &[("spring", &crate::tables::SPRING)],
         example: "spring bar.left { stiffness = 1e3  damping = 2 }",
     },

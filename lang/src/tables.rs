@@ -792,14 +792,14 @@ pub static DYNAMIC: [Key; 8] = [
     .dim(Dim::Time),
 ];
 
-/// `spring NODES { .. }`: a spring and a dashpot from each node to the
-/// ground.
+/// `spring NODES [-> NODES] { .. }`: a spring and a dashpot from each node
+/// to the ground or to a node of the second set.
 pub static SPRING: [Key; 2] = [
     Key::new(
         "stiffness",
         KeyType::Number,
-        "spring stiffness k of each node, in every direction (force -k u; planar: for the \
-         thickness, axisymmetric: over 2 pi)",
+        "spring stiffness k of each node (or node pair of `spring a -> b`), in every direction \
+         (force -k u; planar: for the thickness, axisymmetric: over 2 pi)",
     )
     .default(Default::Number(0.0))
     .range(Range::NonNegative)
@@ -807,7 +807,8 @@ pub static SPRING: [Key; 2] = [
     Key::new(
         "damping",
         KeyType::Number,
-        "dashpot coefficient c of each node, in every direction (force -c v; dynamic steps)",
+        "dashpot coefficient c of each node (or node pair), in every direction (force -c v; \
+         dynamic steps)",
     )
     .default(Default::Number(0.0))
     .range(Range::NonNegative)

@@ -109,3 +109,18 @@ fn mass_spring_bounce_gravity() {
     let t: Vec<f64> = report.levels.iter().map(|l| l.values[0].error).collect();
     assert!(t[2] < t[1] && t[1] < t[0], "{t:?}");
 }
+
+/// Two masses linked by a spring (and a dashpot) between their nodes
+/// (Thomson & Dahleh 1998, section 5.1): the relative period at three dt,
+/// momentum and energy conserved, the dashpot's damping ratio and
+/// dissipation (`verification/src/programs/discrete.rs`).
+///
+/// ```text
+///   [ m1 ]-/\/\/\-[ m2 ]     omega = sqrt(k (m1 + m2) / (m1 m2))
+///         --[=]--
+/// ```
+#[test]
+fn two_mass_oscillator() {
+    let report = registry::run_passing("two_mass_oscillator");
+    assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
+}

@@ -46,8 +46,9 @@ pub struct Model<const D: usize = 2> {
     pub thermal: Option<thermal::ThermalScene>,
     /// Initial velocities (dynamic steps; nodes not listed start at rest).
     pub initial_velocities: Vec<InitialVelocity>,
-    /// Discrete elements at nodes: springs and dashpots to the ground,
-    /// point masses (`crate::solve::dynamics`, `Newton::evaluate`).
+    /// Discrete elements at nodes: springs and dashpots to the ground or
+    /// between two nodes, point masses (`crate::solve::discrete`,
+    /// `crate::solve::dynamics`, `Newton::evaluate`).
     pub discrete: Vec<Discrete>,
 }
 
@@ -63,6 +64,20 @@ pub enum Discrete {
         label: String,
         /// Global node numbers.
         nodes: Vec<usize>,
+        /// Spring stiffness `k` (force / length), `>= 0`.
+        stiffness: f64,
+        /// Dashpot coefficient `c` (force time / length), `>= 0`.
+        damping: f64,
+    },
+    /// A linear spring and a linear dashpot between two nodes, isotropic
+    /// (every component): on `a` the force `-(k (u_a - u_b) + c (v_a -
+    /// v_b))`, its opposite on `b` (`solve/discrete.rs`); the dashpot acts
+    /// in dynamic increments only.
+    Link {
+        /// Label.
+        label: String,
+        /// Global node pairs `(a, b)`.
+        pairs: Vec<(usize, usize)>,
         /// Spring stiffness `k` (force / length), `>= 0`.
         stiffness: f64,
         /// Dashpot coefficient `c` (force time / length), `>= 0`.

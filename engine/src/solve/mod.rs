@@ -39,6 +39,7 @@ pub mod contact_assembly;
 pub mod contact_loop;
 pub mod contact_mass;
 pub mod diagnosis;
+pub mod discrete;
 pub mod dofs;
 pub mod dynamics;
 pub mod follower;

@@ -648,7 +648,8 @@ pub struct InitialVelocity {
 /// Which discrete element an item places at each node of its set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DiscreteKind {
-    /// `spring NODES { stiffness  damping }`: to the ground.
+    /// `spring NODES { stiffness  damping }`: to the ground, or `spring
+    /// NODES -> NODES { .. }`: between the nodes of two sets.
     Spring,
     /// `point_mass NODES { mass }`.
     PointMass,
@@ -664,6 +665,9 @@ pub struct DiscreteItem {
     pub keyword: Span,
     /// The nodes.
     pub target: SetRef,
+    /// `spring a.x -> b.y`: the nodes at the other end (`None`: the
+    /// ground).
+    pub other: Option<SetRef>,
     /// `stiffness` (springs).
     pub stiffness: Option<Spanned<f64>>,
     /// `damping` (springs: the dashpot).
