@@ -648,6 +648,29 @@ fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
                         num(*n)
                     )
                 }
+                Hardening::JohnsonCook {
+                    a,
+                    b,
+                    n,
+                    c,
+                    rate0,
+                    m,
+                    t_ref,
+                    t_melt,
+                    ..
+                } => format!(
+                    "Johnson-Cook sigma_y = ({} + {} ep^{}) (1 + {} ln(rate / {})) (1 - T*^{}), \
+                     T* = (T - {}) / ({} - {})",
+                    num(*a),
+                    num(*b),
+                    num(*n),
+                    num(*c),
+                    num(*rate0),
+                    num(*m),
+                    num(*t_ref),
+                    num(*t_melt),
+                    num(*t_ref)
+                ),
                 Hardening::Voce {
                     yield_stress,
                     sigma_inf,

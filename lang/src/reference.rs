@@ -62,6 +62,7 @@ pub static ITEMS: &[Item] = &[
             ("hardening = linear", &tables::LINEAR_HARDENING),
             ("hardening = swift", &tables::SWIFT_HARDENING),
             ("hardening = voce", &tables::VOCE_HARDENING),
+            ("hardening = johnson_cook", &tables::JOHNSON_COOK_HARDENING),
             ("viscoplastic", &tables::VISCOPLASTIC),
             ("thermal", &tables::MATERIAL_THERMAL),
         ],

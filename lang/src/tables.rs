@@ -60,7 +60,7 @@ pub static PLASTIC: [Key; 2] = [
     Key::new(
         "yield",
         KeyType::Number,
-        "initial yield stress (not with `swift`)",
+        "initial yield stress (not with `swift` or `johnson_cook`)",
     )
     .range(Range::Positive)
     .dim(Dim::Stress),
@@ -70,6 +70,7 @@ pub static PLASTIC: [Key; 2] = [
             "linear { H }",
             "swift { K eps0 n }",
             "voce { sigma_inf delta }",
+            "johnson_cook { A B n C rate0 m T_ref T_melt }",
         ]),
         "isotropic hardening law (absent: perfect plasticity)",
     ),
@@ -106,6 +107,54 @@ pub static VOCE_HARDENING: [Key; 2] = [
         .required("add the saturation rate `delta = ..`")
         .range(Range::Positive)
         .dim(Dim::None),
+];
+
+/// `johnson_cook { A B n C rate0 m T_ref T_melt }` hardening (Johnson &
+/// Cook 1983): `sigma_y = (A + B ep^n) (1 + C ln(rate / rate0)) (1 -
+/// T*^m)`.
+pub static JOHNSON_COOK_HARDENING: [Key; 8] = [
+    Key::new(
+        "A",
+        KeyType::Number,
+        "yield stress at the reference rate and temperature",
+    )
+    .required("add `A = ..` (sigma_y = (A + B ep^n) ..)")
+    .range(Range::Positive)
+    .dim(Dim::Stress),
+    Key::new("B", KeyType::Number, "hardening modulus")
+        .required("add `B = ..`")
+        .range(Range::NonNegative)
+        .dim(Dim::Stress),
+    Key::new("n", KeyType::Number, "hardening exponent, in (0, 1]")
+        .required("add `n = ..`")
+        .range(Range::Closed(0.0, 1.0))
+        .dim(Dim::None),
+    Key::new(
+        "C",
+        KeyType::Number,
+        "strain-rate sensitivity (the factor 1 + C ln(rate / rate0), 1 below rate0)",
+    )
+    .required("add `C = ..` (0: rate independent)")
+    .range(Range::NonNegative)
+    .dim(Dim::None),
+    Key::new("rate0", KeyType::Number, "reference plastic strain rate")
+        .required("add `rate0 = ..` (e.g. 1 /s)")
+        .range(Range::Positive)
+        .dim(Dim::Frequency),
+    Key::new(
+        "m",
+        KeyType::Number,
+        "thermal softening exponent (the factor 1 - T*^m, T* = (T - T_ref) / (T_melt - T_ref))",
+    )
+    .required("add `m = ..`")
+    .range(Range::Positive)
+    .dim(Dim::None),
+    Key::new("T_ref", KeyType::Number, "reference (room) temperature")
+        .required("add `T_ref = ..`")
+        .dim(Dim::Temperature),
+    Key::new("T_melt", KeyType::Number, "melting temperature (> T_ref)")
+        .required("add `T_melt = ..`")
+        .dim(Dim::Temperature),
 ];
 
 /// `viscoplastic { eta }` (Perzyna).
@@ -906,6 +955,10 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("material.plastic.hardening = linear", &LINEAR_HARDENING),
     ("material.plastic.hardening = swift", &SWIFT_HARDENING),
     ("material.plastic.hardening = voce", &VOCE_HARDENING),
+    (
+        "material.plastic.hardening = johnson_cook",
+        &JOHNSON_COOK_HARDENING,
+    ),
     ("material.viscoplastic", &VISCOPLASTIC),
     ("material.thermal", &MATERIAL_THERMAL),
     ("body", &BODY),

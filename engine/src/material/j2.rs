@@ -72,13 +72,19 @@ const MAX_LOCAL: usize = 60;
 /// law, `d ep / dt = <q - sigma_y(ep)> / eta`, integrated by backward Euler
 /// over the time increment `dt` (consistency becomes
 /// `q - 3 G dgamma - sigma_y(ep_n + dgamma) = eta dgamma / dt`); `None` is
-/// rate independent.
+/// rate independent. A rate-dependent flow stress (Johnson-Cook) takes
+/// the plastic rate `dgamma / dt` of the increment `dt`
+/// (`Hardening::rate_factor`): `q - 3 G dgamma - sigma_y(ep_n + dgamma)
+/// R(dgamma / dt) = 0`, whose derivative (the consistent tangent) includes
+/// the rate term. The scalar Newton is safeguarded by bisection on the
+/// bracket `[0, q / 3G]` (Johnson-Cook's slope is infinite at `ep = 0`).
 pub fn radial_return<T: Scalar>(
     elastic: &Elastic,
     hardening: &Hardening,
     e_tr: &Sym<T>,
     ep_n: f64,
     viscosity: Option<(f64, f64)>,
+    dt: f64,
 ) -> Result<Returned<T>, String> {
     let g = elastic.shear;
     let tr = trace(e_tr);
@@ -105,15 +111,30 @@ pub fn radial_return<T: Scalar>(
     let qv = q.re();
     // residual r(dg) = q - 3 G dg - sigma_y(ep_n + dg) - eta/dt dg (Perzyna, linear)
     let visc = viscosity.map_or(0.0, |(eta, dt)| eta / dt);
-    let resid = |dg: f64| qv - 3.0 * g * dg - hardening.flow_stress(ep_n + dg) - visc * dg;
-    let slope = |dg: f64| 3.0 * g + hardening.slope(ep_n + dg) + visc;
+    let flow = |dg: f64| hardening.flow_stress(ep_n + dg) * hardening.rate_factor(dg, dt).0;
+    let resid = |dg: f64| qv - 3.0 * g * dg - flow(dg) - visc * dg;
+    let slope = |dg: f64| {
+        let (r, dr) = hardening.rate_factor(dg, dt);
+        3.0 * g + hardening.slope(ep_n + dg) * r + hardening.flow_stress(ep_n + dg) * dr + visc
+    };
     let mut dg = 0.0;
     let mut converged = false;
+    // r(lo) > 0 > r(hi) (the flow stress is not negative): a Newton step
+    // leaving the bracket (or stalled by an infinite slope) bisects
+    let (mut lo, mut hi) = (0.0, qv / (3.0 * g));
     for _ in 0..MAX_LOCAL {
         let r = resid(dg);
         let mut next = dg + r / slope(dg);
+        if r > 0.0 {
+            lo = dg;
+        } else if r < 0.0 {
+            hi = dg;
+        }
         if next <= 0.0 {
             next = 0.5 * dg;
+        }
+        if !(next.is_finite() && next > lo && next < hi) && r != 0.0 {
+            next = 0.5 * (lo + hi);
         }
         let step = (next - dg).abs();
         dg = next;
@@ -129,7 +150,7 @@ pub fn radial_return<T: Scalar>(
         ));
     }
     // one Newton correction in T: exact derivatives (implicit function theorem)
-    let dg_t = (q - (3.0 * g * dg + hardening.flow_stress(ep_n + dg) + visc * dg)) / slope(dg) + dg;
+    let dg_t = (q - (3.0 * g * dg + flow(dg) + visc * dg)) / slope(dg) + dg;
     let factor = -(dg_t * (3.0 * g)) / q + 1.0;
     let p = tr * elastic.bulk;
     let g2 = 2.0 * g;
@@ -164,11 +185,42 @@ mod tests {
             n: 0.2,
         };
         let e = [0.01, -0.004, -0.003, 0.002, -0.001, 0.003];
-        let r = radial_return(&el, &h, &e, 0.02, None).unwrap();
+        let r = radial_return(&el, &h, &e, 0.02, None, 1.0).unwrap();
         assert!(r.dgamma > 0.0);
         let q = (1.5 * norm2(&deviator(&r.stress))).sqrt();
         assert!((q - h.flow_stress(r.ep)).abs() < 1e-9 * q, "{q}");
         // pressure unchanged by the (isochoric) return
         assert!((trace(&r.stress) - 3.0 * el.bulk * trace(&e)).abs() < 1e-9);
+    }
+
+    /// Johnson-Cook from a virgin point (infinite slope at ep = 0): the
+    /// return lands on `(A + B ep^n)(1 + C ln(rate*))(1 - T*^m)` at the
+    /// increment's plastic rate `dgamma / dt`.
+    #[test]
+    fn johnson_cook_return_lands_on_the_rate_dependent_surface() {
+        let el = Elastic::from_young(124e3, 0.34);
+        let h = Hardening::JohnsonCook {
+            a: 90.0,
+            b: 292.0,
+            n: 0.31,
+            c: 0.025,
+            rate0: 1.0,
+            m: 1.09,
+            t_ref: 298.0,
+            t_melt: 1356.0,
+            temperature: 400.0,
+        };
+        let e = [0.02, -0.01, -0.01, 0.0, 0.0, 0.0];
+        for dt in [1e-5, 1.0] {
+            let r = radial_return(&el, &h, &e, 0.0, None, dt).unwrap();
+            assert!(r.dgamma > 0.0);
+            let q = (1.5 * norm2(&deviator(&r.stress))).sqrt();
+            let rate = (r.dgamma / dt).max(1.0);
+            let t_star: f64 = (400.0 - 298.0) / (1356.0 - 298.0);
+            let closed = (90.0 + 292.0 * r.ep.powf(0.31))
+                * (1.0 + 0.025 * rate.ln())
+                * (1.0 - t_star.powf(1.09));
+            assert!((q - closed).abs() < 1e-9 * q, "dt {dt}: {q} vs {closed}");
+        }
     }
 }

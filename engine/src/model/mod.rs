@@ -256,6 +256,33 @@ pub enum Hardening {
         /// Saturation rate, > 0.
         delta: f64,
     },
+    /// Johnson & Cook (1983): `sigma_y = (A + B ep^n) (1 + C ln(rate*))
+    /// (1 - T*^m)`, `rate* = max(d ep / dt / rate0, 1)` (no rate effect
+    /// below the reference rate, as Abaqus), `T* = (T - T_ref) / (T_melt -
+    /// T_ref)` clamped to [0, 1]; the plastic rate of an increment is `d
+    /// gamma / dt` (backward Euler, `material::j2::radial_return`).
+    JohnsonCook {
+        /// `A` (> 0): the yield stress at the reference rate and
+        /// temperature.
+        a: f64,
+        /// `B` (>= 0).
+        b: f64,
+        /// `n` in (0, 1].
+        n: f64,
+        /// `C` (>= 0): rate sensitivity.
+        c: f64,
+        /// Reference plastic strain rate (> 0, 1 / time).
+        rate0: f64,
+        /// Thermal softening exponent `m` (> 0).
+        m: f64,
+        /// Reference (room) temperature.
+        t_ref: f64,
+        /// Melting temperature (> `t_ref`).
+        t_melt: f64,
+        /// The temperature the law is evaluated at (`t_ref` without a
+        /// thermal scene; set per cell by `thermal::properties::law_at`).
+        temperature: f64,
+    },
 }
 
 /// A scalar function of the analysis time.

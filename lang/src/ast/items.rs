@@ -118,6 +118,12 @@ pub enum Hardening {
         /// `delta`.
         delta: Option<Spanned<f64>>,
     },
+    /// `johnson_cook { A  B  n  C  rate0  m  T_ref  T_melt }`, in the order
+    /// of `tables::JOHNSON_COOK_HARDENING`.
+    JohnsonCook {
+        /// The eight parameters (`None`: missing, reported).
+        values: [Option<Spanned<f64>>; 8],
+    },
 }
 
 /// `viscoplastic { eta = .. }` (Perzyna).

@@ -109,20 +109,21 @@ pub fn viscoplastic_needs_plastic(m: &Material, ctx: &mut Ctx<'_>) {
 /// initial yield stress is `K eps0^n`.
 pub fn yield_stress_fits_hardening(m: &Material, ctx: &mut Ctx<'_>) {
     let Some(p) = &m.plastic else { return };
-    let swift = matches!(
-        p.hardening.as_ref().map(|h| &h.value),
-        Some(Hardening::Swift { .. })
-    );
-    match (&p.yield_stress, swift) {
-        (Some(y), true) => ctx.err(
+    let own = match p.hardening.as_ref().map(|h| &h.value) {
+        Some(Hardening::Swift { .. }) => Some(("Swift", "K eps0^n")),
+        Some(Hardening::JohnsonCook { .. }) => Some(("Johnson-Cook", "A")),
+        _ => None,
+    };
+    match (&p.yield_stress, own) {
+        (Some(y), Some((law, initial))) => ctx.err(
             Diagnostic::error(
-                "`yield` is not used with Swift hardening",
+                format!("`yield` is not used with {law} hardening"),
                 y.span,
-                "the initial yield stress is K eps0^n",
+                format!("the initial yield stress is {initial}"),
             )
             .with_help("remove `yield` (or use `linear` / `voce` hardening)"),
         ),
-        (None, false) => ctx.err(
+        (None, None) => ctx.err(
             Diagnostic::error(
                 "missing `yield` in the `plastic` block",
                 p.span,
@@ -156,6 +157,28 @@ pub fn hardening_in_range(m: &Material, ctx: &mut Ctx<'_>) {
             if let Some(v) = n.as_ref().filter(|v| !(0.0..=1.0).contains(&v.value)) {
                 ctx.err(Diagnostic::error(
                     "Swift n must lie in [0, 1]",
+                    v.span,
+                    format!("n = {}", num(v.value)),
+                ));
+            }
+        }
+        Hardening::JohnsonCook { values } => {
+            if let (Some(t_ref), Some(t_melt)) = (&values[6], &values[7]) {
+                if t_melt.value <= t_ref.value {
+                    ctx.err(Diagnostic::error(
+                        "the Johnson-Cook T_melt must exceed T_ref",
+                        t_melt.span,
+                        format!(
+                            "T_melt = {} <= T_ref = {}",
+                            num(t_melt.value),
+                            num(t_ref.value)
+                        ),
+                    ));
+                }
+            }
+            if let Some(v) = values[2].as_ref().filter(|v| v.value <= 0.0) {
+                ctx.err(Diagnostic::error(
+                    "Johnson-Cook n must lie in (0, 1]",
                     v.span,
                     format!("n = {}", num(v.value)),
                 ));

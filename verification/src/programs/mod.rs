@@ -15,6 +15,7 @@ pub mod friction_3d;
 pub mod friction_block;
 pub mod gravity;
 pub mod impact;
+pub mod johnson_cook;
 pub mod mortar;
 pub mod objectivity;
 pub mod penalty_scaling;
@@ -60,6 +61,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
     v.extend(gravity::cases());
+    v.extend(johnson_cook::cases());
     v
 }
 
