@@ -173,6 +173,19 @@ pub fn explain(model: &Model) -> String {
         let _ = writeln!(o, "loads: {}", model.loads.len());
         for l in &model.loads {
             match l {
+                Load::Gravity {
+                    label,
+                    component: c,
+                    value,
+                } => {
+                    let _ = writeln!(
+                        o,
+                        "  {label}: g{} = {} on every body with a density and every point \
+                         mass (consistent nodal forces)",
+                        component(*c),
+                        time_function(value)
+                    );
+                }
                 Load::Pressure {
                     label,
                     edges,
@@ -637,6 +650,29 @@ fn material_law(law: &MaterialLaw, k: Kinematics) -> String {
                         num(*n)
                     )
                 }
+                Hardening::JohnsonCook {
+                    a,
+                    b,
+                    n,
+                    c,
+                    rate0,
+                    m,
+                    t_ref,
+                    t_melt,
+                    ..
+                } => format!(
+                    "Johnson-Cook sigma_y = ({} + {} ep^{}) (1 + {} ln(rate / {})) (1 - T*^{}), \
+                     T* = (T - {}) / ({} - {})",
+                    num(*a),
+                    num(*b),
+                    num(*n),
+                    num(*c),
+                    num(*rate0),
+                    num(*m),
+                    num(*t_ref),
+                    num(*t_melt),
+                    num(*t_ref)
+                ),
                 Hardening::Voce {
                     yield_stress,
                     sigma_inf,
@@ -789,6 +825,19 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
     let _ = writeln!(o, "loads: {}", model.loads.len());
     for l in &model.loads {
         match l {
+            Load::Gravity {
+                label,
+                component: c,
+                value,
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: g{} = {} on every body with a density and every point mass \
+                     (consistent nodal forces)",
+                    ["x", "y", "z"][(*c).min(2)],
+                    time_function(value)
+                );
+            }
             Load::FacetPressure {
                 label,
                 facets,

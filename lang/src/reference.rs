@@ -62,6 +62,7 @@ pub static ITEMS: &[Item] = &[
             ("hardening = linear", &tables::LINEAR_HARDENING),
             ("hardening = swift", &tables::SWIFT_HARDENING),
             ("hardening = voce", &tables::VOCE_HARDENING),
+            ("hardening = johnson_cook", &tables::JOHNSON_COOK_HARDENING),
             ("viscoplastic", &tables::VISCOPLASTIC),
             ("norton_hoff", &tables::NORTON_HOFF),
             ("thermal", &tables::MATERIAL_THERMAL),
@@ -183,6 +184,18 @@ pub static ITEMS: &[Item] = &[
         example: "force block.node(near(0, 1)) { fy = -1 }",
     },
     Item {
+        name: "gravity",
+        syntax: "gravity { gx = F(t)  gy = F(t)  gz = F(t) }",
+        doc: "Gravity: an acceleration (length/time^2) pulling every body that has a \
+              `density` and every `point_mass`, in quasi-static and dynamic steps. Consistent \
+              nodal forces `g int rho N_a dV` (the row sums of the consistent mass; \
+              axisymmetric: totals over 2 pi) plus `m g` at point masses, in the reference \
+              configuration; their work is part of the external work of the energy audit. \
+              `gz` in 3d only; several items add up.",
+        blocks: &[],
+        example: "gravity { gy = -9.81 }",
+    },
+    Item {
         name: "initial_velocity",
         syntax: "initial_velocity NODES { vx = ..  vy = ..  vz = .. }",
         doc: "The velocity of a node set at the start of the analysis (`body.all` for a whole \
@@ -192,11 +205,15 @@ pub static ITEMS: &[Item] = &[
     },
     Item {
         name: "spring",
-        syntax: "spring NODES { stiffness = ..  damping = .. }",
+        syntax: "spring NODES [-> NODES] { stiffness = ..  damping = .. }",
         doc: "A linear spring and a linear dashpot from each node of a set to the ground, in \
-              every direction (force -k u - c v; the dashpot acts in `dynamic` steps). Its \
-              energy is part of the internal work of the energy audit, the dashpot's \
-              dissipation part of `damping_work`. A spring holds its nodes.",
+              every direction (force -k u - c v; the dashpot acts in `dynamic` steps), or with \
+              `-> NODES` between the nodes of two sets (force -k (u_a - u_b) - c (v_a - v_b) \
+              on a, its opposite on b; the i-th node of the first set, in node order, to the \
+              i-th of the second, or every node to a single far node). Its energy is part of \
+              the internal work of the energy audit, the dashpot's dissipation part of \
+              `damping_work`. A spring to the ground holds its nodes; a spring between two \
+              bodies lets a held one hold the other.",
         blocks: &[("spring", &crate::tables::SPRING)],
         example: "spring bar.left { stiffness = 1e3  damping = 2 }",
     },

@@ -60,7 +60,7 @@ pub static PLASTIC: [Key; 2] = [
     Key::new(
         "yield",
         KeyType::Number,
-        "initial yield stress (not with `swift`)",
+        "initial yield stress (not with `swift` or `johnson_cook`)",
     )
     .range(Range::Positive)
     .dim(Dim::Stress),
@@ -70,6 +70,7 @@ pub static PLASTIC: [Key; 2] = [
             "linear { H }",
             "swift { K eps0 n }",
             "voce { sigma_inf delta }",
+            "johnson_cook { A B n C rate0 m T_ref T_melt }",
         ]),
         "isotropic hardening law (absent: perfect plasticity)",
     ),
@@ -106,6 +107,54 @@ pub static VOCE_HARDENING: [Key; 2] = [
         .required("add the saturation rate `delta = ..`")
         .range(Range::Positive)
         .dim(Dim::None),
+];
+
+/// `johnson_cook { A B n C rate0 m T_ref T_melt }` hardening (Johnson &
+/// Cook 1983): `sigma_y = (A + B ep^n) (1 + C ln(rate / rate0)) (1 -
+/// T*^m)`.
+pub static JOHNSON_COOK_HARDENING: [Key; 8] = [
+    Key::new(
+        "A",
+        KeyType::Number,
+        "yield stress at the reference rate and temperature",
+    )
+    .required("add `A = ..` (sigma_y = (A + B ep^n) ..)")
+    .range(Range::Positive)
+    .dim(Dim::Stress),
+    Key::new("B", KeyType::Number, "hardening modulus")
+        .required("add `B = ..`")
+        .range(Range::NonNegative)
+        .dim(Dim::Stress),
+    Key::new("n", KeyType::Number, "hardening exponent, in (0, 1]")
+        .required("add `n = ..`")
+        .range(Range::Closed(0.0, 1.0))
+        .dim(Dim::None),
+    Key::new(
+        "C",
+        KeyType::Number,
+        "strain-rate sensitivity (the factor 1 + C ln(rate / rate0), 1 below rate0)",
+    )
+    .required("add `C = ..` (0: rate independent)")
+    .range(Range::NonNegative)
+    .dim(Dim::None),
+    Key::new("rate0", KeyType::Number, "reference plastic strain rate")
+        .required("add `rate0 = ..` (e.g. 1 /s)")
+        .range(Range::Positive)
+        .dim(Dim::Frequency),
+    Key::new(
+        "m",
+        KeyType::Number,
+        "thermal softening exponent (the factor 1 - T*^m, T* = (T - T_ref) / (T_melt - T_ref))",
+    )
+    .required("add `m = ..`")
+    .range(Range::Positive)
+    .dim(Dim::None),
+    Key::new("T_ref", KeyType::Number, "reference (room) temperature")
+        .required("add `T_ref = ..`")
+        .dim(Dim::Temperature),
+    Key::new("T_melt", KeyType::Number, "melting temperature (> T_ref)")
+        .required("add `T_melt = ..`")
+        .dim(Dim::Temperature),
 ];
 
 /// `viscoplastic { eta }` or `viscoplastic { rate exponent }` (Perzyna).
@@ -871,14 +920,14 @@ pub static DYNAMIC: [Key; 8] = [
     .dim(Dim::Time),
 ];
 
-/// `spring NODES { .. }`: a spring and a dashpot from each node to the
-/// ground.
+/// `spring NODES [-> NODES] { .. }`: a spring and a dashpot from each node
+/// to the ground or to a node of the second set.
 pub static SPRING: [Key; 2] = [
     Key::new(
         "stiffness",
         KeyType::Number,
-        "spring stiffness k of each node, in every direction (force -k u; planar: for the \
-         thickness, axisymmetric: over 2 pi)",
+        "spring stiffness k of each node (or node pair of `spring a -> b`), in every direction \
+         (force -k u; planar: for the thickness, axisymmetric: over 2 pi)",
     )
     .default(Default::Number(0.0))
     .range(Range::NonNegative)
@@ -886,7 +935,8 @@ pub static SPRING: [Key; 2] = [
     Key::new(
         "damping",
         KeyType::Number,
-        "dashpot coefficient c of each node, in every direction (force -c v; dynamic steps)",
+        "dashpot coefficient c of each node (or node pair), in every direction (force -c v; \
+         dynamic steps)",
     )
     .default(Default::Number(0.0))
     .range(Range::NonNegative)
@@ -984,6 +1034,10 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("material.plastic.hardening = linear", &LINEAR_HARDENING),
     ("material.plastic.hardening = swift", &SWIFT_HARDENING),
     ("material.plastic.hardening = voce", &VOCE_HARDENING),
+    (
+        "material.plastic.hardening = johnson_cook",
+        &JOHNSON_COOK_HARDENING,
+    ),
     ("material.viscoplastic", &VISCOPLASTIC),
     ("material.norton_hoff", &NORTON_HOFF),
     ("pressure.control.strain_rate", &RATE_CONTROL),

@@ -187,6 +187,11 @@ pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
                     "FEniCSx export: nodal forces ({label}) are not supported"
                 ))
             }
+            Load::Gravity { label, .. } => {
+                return Err(format!(
+                    "FEniCSx export: gravity ({label}) is not supported"
+                ))
+            }
             Load::FacetTraction { label, .. } => {
                 return Err(format!(
                     "FEniCSx export: tractions ({label}) are not supported"

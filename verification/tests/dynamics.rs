@@ -77,3 +77,50 @@ fn dashpot_decrement() {
     let report = registry::run_passing("dashpot_decrement");
     assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
 }
+
+/// Gravity (`verification/src/programs/gravity.rs`): a column under its
+/// own weight, quasi-static, in plane strain, axisymmetric and 3D (Timoshenko
+/// & Gere 1997, section 2.3: the top moves by rho g L^2 / (2 E), the base
+/// carries rho g V), and a mass on a spring dropped onto a rigid floor
+/// (free fall, a shifted half sine in contact, rebound at the impact speed)
+/// at three dt.
+///
+/// ```text
+///    +--+ u = -rho g L^2/(2E)        [ M ]
+///    |  |  | g                       |/\/|  | g
+///    +--+  v                         +---+  v
+///   /////                        ==============
+/// ```
+#[test]
+fn self_weight_column() {
+    let report = registry::run_passing("self_weight_column");
+    assert_eq!(
+        report.levels[0].values.len(),
+        6,
+        "three analyses, two values"
+    );
+}
+
+#[test]
+fn mass_spring_bounce_gravity() {
+    let report = registry::run_passing("mass_spring_bounce_gravity");
+    assert_eq!(report.levels.len(), 3, "dt = 0.005, 0.0025, 0.00125");
+    // the trajectory error falls with dt
+    let t: Vec<f64> = report.levels.iter().map(|l| l.values[0].error).collect();
+    assert!(t[2] < t[1] && t[1] < t[0], "{t:?}");
+}
+
+/// Two masses linked by a spring (and a dashpot) between their nodes
+/// (Thomson & Dahleh 1998, section 5.1): the relative period at three dt,
+/// momentum and energy conserved, the dashpot's damping ratio and
+/// dissipation (`verification/src/programs/discrete.rs`).
+///
+/// ```text
+///   [ m1 ]-/\/\/\-[ m2 ]     omega = sqrt(k (m1 + m2) / (m1 m2))
+///         --[=]--
+/// ```
+#[test]
+fn two_mass_oscillator() {
+    let report = registry::run_passing("two_mass_oscillator");
+    assert_eq!(report.levels.len(), 3, "dt = T/20, T/40, T/80");
+}

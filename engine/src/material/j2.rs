@@ -77,12 +77,17 @@ const MAX_LOCAL: usize = 200;
 /// is rate independent. The consistency equation is solved by Newton kept
 /// inside the bracket `0 < dgamma < q_trial / 3G` (bisection where Newton
 /// leaves it: a rate sensitivity below 1 has an infinite slope at 0).
+/// A rate-dependent flow stress (Johnson-Cook) takes the plastic rate
+/// `dgamma / dt` of the increment `dt` (`Hardening::rate_factor`): the
+/// flow stress is `sigma_y(ep_n + dgamma) R(dgamma / dt)`, whose derivative
+/// (the consistent tangent) includes the rate term.
 pub fn radial_return<T: Scalar>(
     elastic: &Elastic,
     hardening: &Hardening,
     e_tr: &Sym<T>,
     ep_n: f64,
     viscosity: Option<(Viscosity, f64)>,
+    dt: f64,
 ) -> Result<Returned<T>, String> {
     let g = elastic.shear;
     let tr = trace(e_tr);
@@ -107,6 +112,12 @@ pub fn radial_return<T: Scalar>(
         });
     }
     let qv = q.re();
+    // the flow stress (with a Johnson-Cook rate factor) and its slope
+    let flow = |dg: f64| hardening.flow_stress(ep_n + dg) * hardening.rate_factor(dg, dt).0;
+    let flow_slope = |dg: f64| {
+        let (r, dr) = hardening.rate_factor(dg, dt);
+        hardening.slope(ep_n + dg) * r + hardening.flow_stress(ep_n + dg) * dr
+    };
     // over-stress and its derivative in dgamma
     let over = |dg: f64| -> (f64, f64) {
         match viscosity {
@@ -115,7 +126,7 @@ pub fn radial_return<T: Scalar>(
             Some((Viscosity::PerzynaPower { rate, exponent }, dt)) => {
                 let x = dg / (dt * rate);
                 let a = 1.0 / exponent;
-                let (sy, h) = (hardening.flow_stress(ep_n + dg), hardening.slope(ep_n + dg));
+                let (sy, h) = (flow(dg), flow_slope(dg));
                 let xa = x.powf(a);
                 (sy * xa, h * xa + sy * a * x.powf(a - 1.0) / (dt * rate))
             }
@@ -128,11 +139,13 @@ pub fn radial_return<T: Scalar>(
             }
         }
     };
-    let resid = |dg: f64| qv - 3.0 * g * dg - hardening.flow_stress(ep_n + dg) - over(dg).0;
-    let slope = |dg: f64| 3.0 * g + hardening.slope(ep_n + dg) + over(dg).1;
+    let resid = |dg: f64| qv - 3.0 * g * dg - flow(dg) - over(dg).0;
+    let slope = |dg: f64| 3.0 * g + flow_slope(dg) + over(dg).1;
     // the residual's scale: the static flow stress, or the trial stress of
     // a law without one (pure Norton-Hoff)
     let scale = if sy0 > 0.0 { sy0 } else { qv };
+    // r(lo) > 0 > r(hi) (the flow stress is not negative): a Newton step
+    // leaving the bracket (or stalled by an infinite slope) bisects
     let (mut lo, mut hi): (f64, f64) = (0.0, qv / (3.0 * g));
     let mut dg: f64 = 0.0;
     let mut converged = false;
@@ -164,8 +177,7 @@ pub fn radial_return<T: Scalar>(
     }
     let visc_total = |dg: f64| over(dg).0;
     // one Newton correction in T: exact derivatives (implicit function theorem)
-    let dg_t =
-        (q - (3.0 * g * dg + hardening.flow_stress(ep_n + dg) + visc_total(dg))) / slope(dg) + dg;
+    let dg_t = (q - (3.0 * g * dg + flow(dg) + visc_total(dg))) / slope(dg) + dg;
     let factor = -(dg_t * (3.0 * g)) / q + 1.0;
     let p = tr * elastic.bulk;
     let g2 = 2.0 * g;
@@ -200,11 +212,42 @@ mod tests {
             n: 0.2,
         };
         let e = [0.01, -0.004, -0.003, 0.002, -0.001, 0.003];
-        let r = radial_return(&el, &h, &e, 0.02, None).unwrap();
+        let r = radial_return(&el, &h, &e, 0.02, None, 1.0).unwrap();
         assert!(r.dgamma > 0.0);
         let q = (1.5 * norm2(&deviator(&r.stress))).sqrt();
         assert!((q - h.flow_stress(r.ep)).abs() < 1e-9 * q, "{q}");
         // pressure unchanged by the (isochoric) return
         assert!((trace(&r.stress) - 3.0 * el.bulk * trace(&e)).abs() < 1e-9);
+    }
+
+    /// Johnson-Cook from a virgin point (infinite slope at ep = 0): the
+    /// return lands on `(A + B ep^n)(1 + C ln(rate*))(1 - T*^m)` at the
+    /// increment's plastic rate `dgamma / dt`.
+    #[test]
+    fn johnson_cook_return_lands_on_the_rate_dependent_surface() {
+        let el = Elastic::from_young(124e3, 0.34);
+        let h = Hardening::JohnsonCook {
+            a: 90.0,
+            b: 292.0,
+            n: 0.31,
+            c: 0.025,
+            rate0: 1.0,
+            m: 1.09,
+            t_ref: 298.0,
+            t_melt: 1356.0,
+            temperature: 400.0,
+        };
+        let e = [0.02, -0.01, -0.01, 0.0, 0.0, 0.0];
+        for dt in [1e-5, 1.0] {
+            let r = radial_return(&el, &h, &e, 0.0, None, dt).unwrap();
+            assert!(r.dgamma > 0.0);
+            let q = (1.5 * norm2(&deviator(&r.stress))).sqrt();
+            let rate = (r.dgamma / dt).max(1.0);
+            let t_star: f64 = (400.0 - 298.0) / (1356.0 - 298.0);
+            let closed = (90.0 + 292.0 * r.ep.powf(0.31))
+                * (1.0 + 0.025 * rate.ln())
+                * (1.0 - t_star.powf(1.09));
+            assert!((q - closed).abs() < 1e-9 * q, "dt {dt}: {q} vs {closed}");
+        }
     }
 }

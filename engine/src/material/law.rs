@@ -182,7 +182,14 @@ impl NonlinearLaw {
             } => {
                 let p = &h.tensor;
                 let e_tr: Sym<T> = std::array::from_fn(|k| eps[k] - p[k]);
-                let r = radial_return(elastic, hardening, &e_tr, h.ep, viscosity.map(|v| (v, dt)))?;
+                let r = radial_return(
+                    elastic,
+                    hardening,
+                    &e_tr,
+                    h.ep,
+                    viscosity.map(|v| (v, dt)),
+                    dt,
+                )?;
                 let tensor = std::array::from_fn(|k| eps[k].re() - r.elastic_strain[k].re());
                 Ok(PointUpdate {
                     stress: r.stress,
@@ -240,7 +247,14 @@ impl NonlinearLaw {
             } => {
                 let be = f.push(&constant(&h.tensor));
                 let e_tr = log(&be).map(|l| l * 0.5);
-                let r = radial_return(elastic, hardening, &e_tr, h.ep, viscosity.map(|v| (v, dt)))?;
+                let r = radial_return(
+                    elastic,
+                    hardening,
+                    &e_tr,
+                    h.ep,
+                    viscosity.map(|v| (v, dt)),
+                    dt,
+                )?;
                 let tensor = if r.dgamma > 0.0 {
                     let be_new = exp(&values(&r.elastic_strain).map(|e| 2.0 * e));
                     f.re().inverse().push(&be_new)

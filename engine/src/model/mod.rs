@@ -46,8 +46,9 @@ pub struct Model<const D: usize = 2> {
     pub thermal: Option<thermal::ThermalScene>,
     /// Initial velocities (dynamic steps; nodes not listed start at rest).
     pub initial_velocities: Vec<InitialVelocity>,
-    /// Discrete elements at nodes: springs and dashpots to the ground,
-    /// point masses (`crate::solve::dynamics`, `Newton::evaluate`).
+    /// Discrete elements at nodes: springs and dashpots to the ground or
+    /// between two nodes, point masses (`crate::solve::discrete`,
+    /// `crate::solve::dynamics`, `Newton::evaluate`).
     pub discrete: Vec<Discrete>,
 }
 
@@ -63,6 +64,20 @@ pub enum Discrete {
         label: String,
         /// Global node numbers.
         nodes: Vec<usize>,
+        /// Spring stiffness `k` (force / length), `>= 0`.
+        stiffness: f64,
+        /// Dashpot coefficient `c` (force time / length), `>= 0`.
+        damping: f64,
+    },
+    /// A linear spring and a linear dashpot between two nodes, isotropic
+    /// (every component): on `a` the force `-(k (u_a - u_b) + c (v_a -
+    /// v_b))`, its opposite on `b` (`solve/discrete.rs`); the dashpot acts
+    /// in dynamic increments only.
+    Link {
+        /// Label.
+        label: String,
+        /// Global node pairs `(a, b)`.
+        pairs: Vec<(usize, usize)>,
         /// Spring stiffness `k` (force / length), `>= 0`.
         stiffness: f64,
         /// Dashpot coefficient `c` (force time / length), `>= 0`.
@@ -319,6 +334,33 @@ pub enum Hardening {
         /// Saturation rate, > 0.
         delta: f64,
     },
+    /// Johnson & Cook (1983): `sigma_y = (A + B ep^n) (1 + C ln(rate*))
+    /// (1 - T*^m)`, `rate* = max(d ep / dt / rate0, 1)` (no rate effect
+    /// below the reference rate, as Abaqus), `T* = (T - T_ref) / (T_melt -
+    /// T_ref)` clamped to [0, 1]; the plastic rate of an increment is `d
+    /// gamma / dt` (backward Euler, `material::j2::radial_return`).
+    JohnsonCook {
+        /// `A` (> 0): the yield stress at the reference rate and
+        /// temperature.
+        a: f64,
+        /// `B` (>= 0).
+        b: f64,
+        /// `n` in (0, 1].
+        n: f64,
+        /// `C` (>= 0): rate sensitivity.
+        c: f64,
+        /// Reference plastic strain rate (> 0, 1 / time).
+        rate0: f64,
+        /// Thermal softening exponent `m` (> 0).
+        m: f64,
+        /// Reference (room) temperature.
+        t_ref: f64,
+        /// Melting temperature (> `t_ref`).
+        t_melt: f64,
+        /// The temperature the law is evaluated at (`t_ref` without a
+        /// thermal scene; set per cell by `thermal::properties::law_at`).
+        temperature: f64,
+    },
 }
 
 /// A scalar function of the analysis time.
@@ -448,6 +490,20 @@ pub enum Load {
         /// 0 = x (or r), 1 = y (or z), 2 = z.
         component: usize,
         /// Traction (force per unit reference area) as a function of time.
+        value: TimeFunction,
+    },
+    /// Gravity (a body force per unit mass, Abaqus `GRAV`): the
+    /// acceleration component `value(t)` along `component` acting on every
+    /// body of non-zero density and every point mass; consistent nodal
+    /// forces `f_a = g int rho N_a dV` (the row sums of the consistent
+    /// mass, `solve/loads.rs`; axisymmetric: totals over the ring) plus
+    /// `m g` at point masses, in the reference configuration.
+    Gravity {
+        /// Human-readable origin.
+        label: String,
+        /// 0 = x (or r), 1 = y (or z), 2 = z.
+        component: usize,
+        /// The acceleration (length / time^2) as a function of time.
         value: TimeFunction,
     },
     /// A force applied at each listed node (Abaqus CLOAD semantics: the value

@@ -45,6 +45,16 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                 nodes,
                 vec![("stiffness", *stiffness), ("damping", *damping)],
             ),
+            crate::model::Discrete::Link {
+                label,
+                pairs,
+                stiffness,
+                damping,
+            } => (
+                label,
+                &pairs.iter().flat_map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
+                vec![("stiffness", *stiffness), ("damping", *damping)],
+            ),
             crate::model::Discrete::Mass { label, nodes, mass } => {
                 (label, nodes, vec![("mass", *mass)])
             }
@@ -134,6 +144,16 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                 if let Some(n) = nodes.iter().find(|&&n| n >= nn) {
                     errors.push(format!(
                         "`{label}` refers to node {n}, the mesh has {nn} nodes"
+                    ));
+                }
+            }
+            Load::Gravity {
+                label, component, ..
+            } => {
+                if *component >= D {
+                    errors.push(format!(
+                        "`{label}`: component {component} is not {}",
+                        COMPONENTS[D - 2]
                     ));
                 }
             }
@@ -349,6 +369,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         .map(|d| (d.label.as_str(), &d.value))
         .chain(model.loads.iter().map(|l| match l {
             Load::NodalForce { label, value, .. }
+            | Load::Gravity { label, value, .. }
             | Load::Pressure { label, value, .. }
             | Load::FacetPressure { label, value, .. }
             | Load::FollowerPressure { label, value, .. }
@@ -422,8 +443,9 @@ pub fn held_only_by_contact<const D: usize>(model: &Model<D>) -> Vec<bool> {
 /// `(a, b, w)` through the row `[1, 0, -y]` (c = 0) or `[0, 1, x]`
 /// (c = 1); the motion is held when these rows have full rank.
 ///
-/// A body with a density in an analysis whose every step is dynamic is
-/// held by its inertia.
+/// A body with a density (or a point mass on every node) in an analysis
+/// whose every step is dynamic is held by its inertia; bodies linked by
+/// springs between their nodes hold each other.
 ///
 /// Contact holds only once closed, so it is given the benefit of the
 /// doubt, but it must lead somewhere and can hold only along its normals:
@@ -463,7 +485,18 @@ fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
     // in an analysis whose every step is dynamic, the mass of a body with
     // a density holds its rigid-body motions (the tangent has M / (beta
     // dt^2) on its diagonal): two bars flying at each other are solvable
+    // (and so do point masses on every node of a massless body)
     let inertial = !model.steps.is_empty() && model.steps.iter().all(|s| s.dynamic.is_some());
+    let mut point_mass = vec![false; model.mesh.nodes.len()];
+    for d in &model.discrete {
+        if let crate::model::Discrete::Mass { nodes, mass, .. } = d {
+            for &n in nodes.iter().filter(|_| *mass > 0.0) {
+                if let Some(p) = point_mass.get_mut(n) {
+                    *p = true;
+                }
+            }
+        }
+    }
     let free: Vec<Vec<&str>> = model
         .bodies
         .iter()
@@ -472,7 +505,8 @@ fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
                 .materials
                 .get(body.material)
                 .map_or(0.0, |m| m.density);
-            if inertial && rho > 0.0 {
+            let lumped = body.nodes.clone().all(|n| point_mass[n]);
+            if inertial && (rho > 0.0 || lumped) {
                 Vec::new()
             } else {
                 free_motions(model, body, &constrained, &[])
@@ -505,6 +539,24 @@ fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
             crate::model::ContactMaster::Surface { body, .. } => {
                 let (a, b) = (root(&mut parent, c.body), root(&mut parent, *body));
                 parent[a] = b;
+            }
+        }
+    }
+    // bodies linked by springs between their nodes hold each other
+    for d in &model.discrete {
+        if let crate::model::Discrete::Link {
+            pairs, stiffness, ..
+        } = d
+        {
+            if *stiffness <= 0.0 {
+                continue;
+            }
+            for &(a, b) in pairs {
+                let owner = |n: usize| model.bodies.iter().position(|x| x.nodes.contains(&n));
+                if let (Some(x), Some(y)) = (owner(a), owner(b)) {
+                    let (x, y) = (root(&mut parent, x), root(&mut parent, y));
+                    parent[x] = y;
+                }
             }
         }
     }

@@ -281,7 +281,7 @@ impl ContactAssembly {
         }
         self.couplings.sort_unstable();
         self.couplings.dedup();
-        let grown = Scatter::with_couplings(&model.mesh, dofs, &self.couplings)?;
+        let grown = super::discrete::scatter_for(model, dofs, &self.couplings)?;
         self.pattern_growths += 1;
         Ok(Some(grown))
     }

@@ -265,9 +265,9 @@ pub struct Dynamics {
     forces0: Vec<Vec<f64>>,
     /// Point mass at each node (`Discrete::Mass`; empty: none).
     node_mass: Vec<f64>,
-    /// Dashpot to the ground at each node (`Discrete::Ground`; empty:
-    /// none).
-    node_damping: Vec<f64>,
+    /// Whether a dashpot (`Discrete::Ground` or `Link` with a damping)
+    /// exists (`super::discrete` applies them).
+    dashpots: bool,
     /// Rayleigh damping matrix of each global cell, column-major `D NN x
     /// D NN` (empty: no damping).
     cell_damping: Vec<Vec<f64>>,
@@ -309,7 +309,7 @@ impl Dynamics {
             forces0: vec![vec![0.0; n]; FORCES],
             cell_damping: Vec::new(),
             node_mass: Vec::new(),
-            node_damping: Vec::new(),
+            dashpots: false,
             damping_kind: None,
             kinetic0: 0.0,
             energy: Energy::default(),
@@ -388,24 +388,19 @@ impl Dynamics {
         self.contact_cells_kept = kept;
         self.cell_mass = masses;
         self.node_mass.clear();
-        self.node_damping.clear();
+        self.dashpots = super::discrete::any(model, |_, c| c);
         let nn = model.mesh.nodes.len();
         for d in &model.discrete {
-            let (list, nodes, value) = match d {
-                crate::model::Discrete::Mass { nodes, mass, .. } => {
-                    (&mut self.node_mass, nodes, *mass)
-                }
-                crate::model::Discrete::Ground { nodes, damping, .. } => {
-                    (&mut self.node_damping, nodes, *damping)
-                }
+            let crate::model::Discrete::Mass { nodes, mass, .. } = d else {
+                continue;
             };
-            if value == 0.0 {
+            if *mass == 0.0 {
                 continue;
             }
-            list.resize(nn, 0.0);
+            self.node_mass.resize(nn, 0.0);
             for &n in nodes {
-                if let Some(x) = list.get_mut(n) {
-                    *x += value;
+                if let Some(x) = self.node_mass.get_mut(n) {
+                    *x += mass;
                 }
             }
         }
@@ -493,12 +488,10 @@ impl Dynamics {
     }
 
     /// `out += C x` over all dofs (`C` the Rayleigh damping and the
-    /// dashpots to the ground).
+    /// dashpots to the ground and between nodes).
     fn damping_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
-        for (n, c) in self.node_damping.iter().enumerate() {
-            for k in 0..D {
-                out[n * D + k] += c * x[n * D + k];
-            }
+        if self.dashpots {
+            super::discrete::times(model, x, out, |_, c| c);
         }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
@@ -520,7 +513,7 @@ impl Dynamics {
 
     /// Whether the model has Rayleigh damping or dashpots.
     fn damped(&self) -> bool {
-        !self.cell_damping.is_empty() || !self.node_damping.is_empty()
+        !self.cell_damping.is_empty() || self.dashpots
     }
 
     /// The damping force `C v1` at `u` (committed `u0`), `v1` the
@@ -635,21 +628,21 @@ impl Dynamics {
         let coef = (1.0 - k.alpha_m) / ((1.0 - k.alpha_f) * k.beta * dt * dt);
         // d (C v1) / d u1 = gamma / (beta dt) C
         let cdamp = k.gamma / (k.beta * dt);
-        // point masses and dashpots: the diagonal of their free dofs
-        let nn = model.mesh.nodes.len();
-        for n in 0..nn {
-            let m = self.node_mass.get(n).copied().unwrap_or(0.0);
-            let c = self.node_damping.get(n).copied().unwrap_or(0.0);
-            if m == 0.0 && c == 0.0 {
+        // point masses: the diagonal of their free dofs
+        for (n, m) in self.node_mass.iter().enumerate() {
+            if *m == 0.0 {
                 continue;
             }
             for q in 0..D {
                 if let Some(Dof::Free(j)) = dofs.dofs.get(n * D + q) {
                     if let Some(s) = scatter.pattern.find(*j, *j) {
-                        values[s] += coef * m + cdamp * c;
+                        values[s] += coef * m;
                     }
                 }
             }
+        }
+        if self.dashpots {
+            super::discrete::add_tangent(model, dofs, scatter, values, |_, c| cdamp * c);
         }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nd = model.mesh.cells.nodes(c).len() * D;
@@ -775,6 +768,15 @@ impl Dynamics {
         self.a = x;
         self.r0.copy_from_slice(r);
         self.started = true;
+    }
+
+    /// The internal, external (+ reactions) and contact forces of the
+    /// initial state, where the trapezoidal work integrals start (call
+    /// after [`Dynamics::start`] when no increment was committed before).
+    pub fn start_forces(&mut self, forces: [&[f64]; 3]) {
+        for (f0, f) in self.forces0.iter_mut().zip(forces) {
+            f0.copy_from_slice(f);
+        }
     }
 
     /// Commits the converged increment: velocities and accelerations (a

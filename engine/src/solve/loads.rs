@@ -6,16 +6,38 @@
 //! normal `(-dy, dx) / L`. Plane kinds: each node gets `p t L / 2`.
 //! Axisymmetric: `int N_a p 2 pi r ds` with `r` linear along the edge, i.e.
 //! `2 pi p L (2 r_a + r_b) / 6` on `a` (totals over the full ring).
+//!
+//! Gravity: `f_a = g int rho N_a dV`, the row sums of each cell's
+//! consistent mass (the kernel's own mass rule, so plane, axisymmetric and
+//! solid cells share it) times `g`, plus `m g` at point masses.
 
-use crate::model::{AnalysisKind, Load, Model};
+use crate::element::kernel::kernel_of;
+use crate::element::Section;
+use crate::geom::Dimension;
+use crate::model::{AnalysisKind, Discrete, Load, MassMatrix, Model};
+use nalgebra::Const;
 
 /// Writes the external forces of `model` at time `t` into `f` (`D` per
 /// node).
-pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64]) {
+pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64])
+where
+    Const<D>: Dimension<D>,
+{
     f.fill(0.0);
     let nodes = &model.mesh.nodes;
     for load in &model.loads {
         match load {
+            Load::Gravity {
+                component, value, ..
+            } => {
+                let g = value.eval(t);
+                if g == 0.0 {
+                    continue;
+                }
+                for (n, m) in gravity_masses(model).iter().enumerate() {
+                    f[D * n + component] += g * m;
+                }
+            }
             Load::NodalForce {
                 nodes: set,
                 component,
@@ -109,6 +131,52 @@ pub fn external_forces<const D: usize>(model: &Model<D>, t: f64, f: &mut [f64]) 
             }
         }
     }
+}
+
+/// The mass each node carries under gravity: `int rho N_a dV` over the
+/// cells of every body (row sums of the consistent cell mass; totals over
+/// the ring in axisymmetry, times the thickness in plane analyses) plus its
+/// point masses. A cell whose mass cannot be formed (inverted) adds none:
+/// the element evaluation reports it.
+pub fn gravity_masses<const D: usize>(model: &Model<D>) -> Vec<f64>
+where
+    Const<D>: Dimension<D>,
+{
+    let mut out = vec![0.0; model.mesh.nodes.len()];
+    let section = Section::new(&model.analysis);
+    for b in &model.bodies {
+        let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
+        if rho == 0.0 {
+            continue;
+        }
+        for c in b.cells.clone() {
+            let cell = model.mesh.cells.nodes(c);
+            let Ok(kernel) = kernel_of::<D>(model.mesh.cells.kind(c)) else {
+                continue;
+            };
+            let x: Vec<crate::geom::Point<D>> = cell
+                .iter()
+                .map(|&n| crate::geom::Point::<D>::from(model.mesh.nodes[n]))
+                .collect();
+            let Ok(m) = kernel.mass(&x, &section, rho, MassMatrix::Consistent) else {
+                continue;
+            };
+            let nn = cell.len();
+            for (a, &na) in cell.iter().enumerate() {
+                out[na] += m[a * nn..(a + 1) * nn].iter().sum::<f64>();
+            }
+        }
+    }
+    for d in &model.discrete {
+        if let Discrete::Mass { nodes, mass, .. } = d {
+            for &n in nodes {
+                if let Some(x) = out.get_mut(n) {
+                    *x += mass;
+                }
+            }
+        }
+    }
+    out
 }
 
 /// `[x, y, z]` of a node (z = 0 in 2D).

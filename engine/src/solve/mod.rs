@@ -40,6 +40,7 @@ pub mod contact_loop;
 pub mod contact_mass;
 pub mod control;
 pub mod diagnosis;
+pub mod discrete;
 pub mod dofs;
 pub mod dynamics;
 pub mod follower;

@@ -1,7 +1,7 @@
 //! The nonlinear material laws the kernel property tests sweep: one
-//! representative of every law (Neo-Hooke, Hencky, J2 with linear, Swift
-//! and Voce hardening, Perzyna linear and power, Norton-Hoff with and without
-//! static yield), steel-like constants in MPa.
+//! representative of every law (Neo-Hooke, Hencky, J2 with linear, Swift,
+//! Voce and Johnson-Cook hardening, Perzyna linear and power, Norton-Hoff
+//! with and without static yield), steel-like constants in MPa.
 
 use crate::material::j2::Elastic;
 use crate::material::NonlinearLaw;
@@ -53,6 +53,26 @@ pub fn nonlinear_laws() -> Vec<(&'static str, NonlinearLaw)> {
                     yield_stress: 200.0,
                     sigma_inf: 400.0,
                     delta: 10.0,
+                },
+                None,
+            ),
+        ),
+        (
+            // OFHC copper's A B n C m (Johnson & Cook 1983) at 500 K, the
+            // reference rate low enough for the rate term to act at the
+            // tests' dt = 0.1
+            "j2_johnson_cook",
+            j2(
+                Hardening::JohnsonCook {
+                    a: 90.0,
+                    b: 292.0,
+                    n: 0.31,
+                    c: 0.025,
+                    rate0: 1e-3,
+                    m: 1.09,
+                    t_ref: 298.0,
+                    t_melt: 1356.0,
+                    temperature: 500.0,
                 },
                 None,
             ),

@@ -91,10 +91,10 @@ impl Coupling {
             let Some(Some(m)) = scene.materials.get(body.material) else {
                 continue;
             };
-            if !is_temperature_dependent(m) {
+            let material = &model.materials[body.material];
+            if !is_temperature_dependent(m, &material.law) {
                 continue;
             }
-            let material = &model.materials[body.material];
             let Some(law) = NonlinearLaw::build(material, body.kinematics, model.analysis.kind)?
             else {
                 return Err(format!(

@@ -19,9 +19,18 @@ fn factor(table: &Option<Vec<(f64, f64)>>, t: f64) -> f64 {
     }
 }
 
-/// Whether the material has any temperature-dependent mechanical parameter.
-pub fn is_temperature_dependent(m: &MaterialThermal) -> bool {
-    m.young_factor.is_some() || m.yield_factor.is_some()
+/// Whether the material has any temperature-dependent mechanical parameter
+/// (tables of its `thermal` block, or Johnson-Cook's thermal softening).
+pub fn is_temperature_dependent(m: &MaterialThermal, law: &crate::model::MaterialLaw) -> bool {
+    m.young_factor.is_some()
+        || m.yield_factor.is_some()
+        || matches!(
+            law,
+            crate::model::MaterialLaw::ElastoPlastic {
+                hardening: Hardening::JohnsonCook { .. },
+                ..
+            }
+        )
 }
 
 /// `law` at temperature `t`.
@@ -62,6 +71,28 @@ pub fn law_at(law: &NonlinearLaw, m: &MaterialThermal, t: f64) -> NonlinearLaw {
                     yield_stress: yield_stress * fy,
                     sigma_inf: sigma_inf * fy,
                     delta,
+                },
+                // its own thermal softening at the cell's temperature
+                Hardening::JohnsonCook {
+                    a,
+                    b,
+                    n,
+                    c,
+                    rate0,
+                    m,
+                    t_ref,
+                    t_melt,
+                    ..
+                } => Hardening::JohnsonCook {
+                    a: a * fy,
+                    b: b * fy,
+                    n,
+                    c,
+                    rate0,
+                    m,
+                    t_ref,
+                    t_melt,
+                    temperature: t,
                 },
             };
             NonlinearLaw::J2 {

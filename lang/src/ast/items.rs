@@ -120,6 +120,12 @@ pub enum Hardening {
         /// `delta`.
         delta: Option<Spanned<f64>>,
     },
+    /// `johnson_cook { A  B  n  C  rate0  m  T_ref  T_melt }`, in the order
+    /// of `tables::JOHNSON_COOK_HARDENING`.
+    JohnsonCook {
+        /// The eight parameters (`None`: missing, reported).
+        values: [Option<Spanned<f64>>; 8],
+    },
 }
 
 /// `viscoplastic { eta = .. }` (Perzyna, linear over-stress) or
@@ -622,6 +628,18 @@ pub enum LoadKind {
     Force,
 }
 
+/// `gravity { gx = F(t)  gy = F(t)  gz = F(t) }`: an acceleration acting
+/// on every body with a density and every point mass.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Gravity {
+    /// The keyword.
+    pub keyword: Span,
+    /// One value per component given.
+    pub values: Vec<(Option<Component>, Spanned<TimeFn>)>,
+    /// The whole item.
+    pub span: Span,
+}
+
 /// `pressure ref { .. }` or `force ref { .. }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct LoadDef {
@@ -671,7 +689,8 @@ pub struct InitialVelocity {
 /// Which discrete element an item places at each node of its set.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum DiscreteKind {
-    /// `spring NODES { stiffness  damping }`: to the ground.
+    /// `spring NODES { stiffness  damping }`: to the ground, or `spring
+    /// NODES -> NODES { .. }`: between the nodes of two sets.
     Spring,
     /// `point_mass NODES { mass }`.
     PointMass,
@@ -687,6 +706,9 @@ pub struct DiscreteItem {
     pub keyword: Span,
     /// The nodes.
     pub target: SetRef,
+    /// `spring a.x -> b.y`: the nodes at the other end (`None`: the
+    /// ground).
+    pub other: Option<SetRef>,
     /// `stiffness` (springs).
     pub stiffness: Option<Spanned<f64>>,
     /// `damping` (springs: the dashpot).

@@ -50,6 +50,8 @@ pub struct Deck {
     pub initial_velocities: Vec<InitialVelocity>,
     /// `spring` and `point_mass` items.
     pub discrete: Vec<DiscreteItem>,
+    /// `gravity` items.
+    pub gravity: Vec<Gravity>,
 }
 
 impl Deck {

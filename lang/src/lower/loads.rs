@@ -1,4 +1,4 @@
-//! `pressure`, `traction` and `force` -> `model::Load`.
+//! `pressure`, `traction`, `force` and `gravity` -> `model::Load`.
 
 use super::Lowerer;
 use crate::ast;
@@ -136,6 +136,19 @@ impl Lowerer<'_> {
                         });
                     }
                 }
+            }
+        }
+        for g in &self.deck.gravity {
+            if self.has_error_in(g.span) {
+                continue;
+            }
+            for (c, f) in &g.values {
+                let c = c.map_or(0, |c| c.index());
+                out.push(Load::Gravity {
+                    label: format!("gravity g{}", ["x", "y", "z"][c.min(2)]),
+                    component: c,
+                    value: self.tf(f),
+                });
             }
         }
         out

@@ -133,6 +133,20 @@ impl Lowerer<'_> {
                     eps0: v(eps0)?,
                     n: v(n)?,
                 },
+                Some(ast::Hardening::JohnsonCook { values }) => {
+                    let [a, b, n, c, rate0, m, t_ref, t_melt] = values;
+                    m::Hardening::JohnsonCook {
+                        a: v(a)?,
+                        b: v(b)?,
+                        n: v(n)?,
+                        c: v(c)?,
+                        rate0: v(rate0)?,
+                        m: v(m)?,
+                        t_ref: v(t_ref)?,
+                        t_melt: v(t_melt)?,
+                        temperature: v(t_ref)?,
+                    }
+                }
                 Some(ast::Hardening::Voce { sigma_inf, delta }) => m::Hardening::Voce {
                     yield_stress: yield_stress?,
                     sigma_inf: v(sigma_inf)?,

@@ -1,4 +1,5 @@
-//! `spring NODES { stiffness = ..  damping = .. }` and `point_mass NODES {
+//! `spring NODES { stiffness = ..  damping = .. }` (to the ground), `spring
+//! NODES -> NODES { .. }` (between two node sets) and `point_mass NODES {
 //! mass = .. }`: discrete elements at nodes (carried by the generic item
 //! rule, like `initial_velocity`).
 
@@ -6,6 +7,7 @@ use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::{DiscreteItem, DiscreteKind};
+use crate::diagnostics::Diagnostic;
 
 /// The item keywords.
 pub const KEYWORDS: [&str; 2] = ["spring", "point_mass"];
@@ -13,6 +15,32 @@ pub const KEYWORDS: [&str; 2] = ["spring", "point_mass"];
 /// Converts a `spring` or `point_mass` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
     let target = values::set_ref(item.target.as_ref()?, diags)?;
+    let other = match (&item.master, item.names.first()) {
+        (Some(m), _) if item.keyword_text == "spring" => Some(values::set_ref(m, diags)?),
+        (None, None) => None,
+        (m, n) => {
+            let span = m
+                .as_ref()
+                .map_or_else(|| n.map(|n| n.span), |m| Some(m.span));
+            diags.push(
+                Diagnostic::error(
+                    if item.keyword_text == "spring" {
+                        "a spring links to a node set `body.set`"
+                    } else {
+                        "`point_mass` takes no `->`"
+                    },
+                    span.unwrap_or(item.keyword),
+                    "here",
+                )
+                .with_help(if item.keyword_text == "spring" {
+                    "write e.g. `spring a.tip -> b.tip { stiffness = 1e3 }`"
+                } else {
+                    "write e.g. `point_mass bar.tip { mass = 2 }`"
+                }),
+            );
+            return None;
+        }
+    };
     let block = item.block?;
     let (kind, table, what) = if item.keyword_text == "spring" {
         (
@@ -41,6 +69,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
         kind,
         keyword: item.keyword,
         target,
+        other,
         stiffness,
         damping,
         mass,
@@ -65,6 +94,17 @@ mod tests {
         let m = &deck.discrete[1];
         assert_eq!(m.kind, DiscreteKind::PointMass);
         assert_eq!(m.mass.as_ref().unwrap().value, 2.0);
+        let deck = parse_ok("spring a.tip -> b.tip { stiffness = 4 }");
+        let l = &deck.discrete[0];
+        assert_eq!(l.other.as_ref().unwrap().to_string(), "b.tip");
+        assert_eq!(
+            parse_messages("spring a.tip -> wall { stiffness = 4 }"),
+            ["a spring links to a node set `body.set`"]
+        );
+        assert_eq!(
+            parse_messages("point_mass a.tip -> b.tip { mass = 4 }"),
+            ["`point_mass` takes no `->`"]
+        );
         assert_eq!(
             parse_messages("spring bar.left { stifness = 4 }"),
             ["unknown key `stifness` in the `spring` block"]

@@ -5,9 +5,9 @@ use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{EntryBody, Value, ValueKind};
-use crate::ast::{Component, LoadDef, LoadKind, RateControlDef};
-use crate::diagnostics::Diagnostic;
+use crate::ast::{Component, Gravity, LoadDef, LoadKind, RateControlDef};
 use crate::span::Spanned;
+use crate::diagnostics::Diagnostic;
 use crate::suggest::{did_you_mean, one_of};
 
 /// Converts a `pressure`, `traction` or `force` item.
@@ -38,11 +38,9 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
         names.push("follower");
         names.push("control");
     }
-    let mut values_out = Vec::new();
     let mut follower = None;
     let mut control = None;
-    let mut seen: Vec<&str> = Vec::new();
-    for e in &block.entries {
+    let values_out = time_components(&block, word, keys, &names, diags, |e, diags| {
         if kind == LoadKind::Pressure && e.key.name == "control" {
             match &e.body {
                 EntryBody::Assign(v) if control.is_none() => control = rate_control(v, diags),
@@ -60,65 +58,31 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
                     "expected `control = strain_rate { target = .. }`",
                 )),
             }
-            continue;
+            return true;
         }
-        if kind == LoadKind::Pressure && e.key.name == "follower" {
-            match &e.body {
-                EntryBody::Assign(v) if follower.is_none() => {
-                    follower = values::boolean(v, diags);
-                }
-                EntryBody::Assign(_) => diags.push(
-                    Diagnostic::error(
-                        "`follower` is given twice in `pressure`",
-                        e.key.span,
-                        "duplicate key",
-                    )
-                    .with_help("remove one of them"),
-                ),
-                _ => diags.push(Diagnostic::error(
-                    "`follower` needs a value",
-                    e.span,
-                    "expected `follower = true` or `follower = false`",
-                )),
+        if kind != LoadKind::Pressure || e.key.name != "follower" {
+            return false;
+        }
+        match &e.body {
+            EntryBody::Assign(v) if follower.is_none() => {
+                follower = values::boolean(v, diags);
             }
-            continue;
-        }
-        let Some((key, comp)) = keys.iter().find(|(n, _)| *n == e.key.name) else {
-            diags.push(
+            EntryBody::Assign(_) => diags.push(
                 Diagnostic::error(
-                    format!("unknown key `{}` in `{word}`", e.key.name),
-                    e.key.span,
-                    format!("expected {}", one_of(&names)),
-                )
-                .with_help_opt(did_you_mean(&e.key.name, &names)),
-            );
-            continue;
-        };
-        if seen.contains(key) {
-            diags.push(
-                Diagnostic::error(
-                    format!("`{key}` is given twice in `{word}`"),
+                    "`follower` is given twice in `pressure`",
                     e.key.span,
                     "duplicate key",
                 )
                 .with_help("remove one of them"),
-            );
-            continue;
-        }
-        seen.push(key);
-        match &e.body {
-            EntryBody::Assign(v) => {
-                if let Some(t) = values::time_fn(v, diags) {
-                    values_out.push((*comp, t));
-                }
-            }
+            ),
             _ => diags.push(Diagnostic::error(
-                format!("`{key}` needs a value"),
+                "`follower` needs a value",
                 e.span,
-                format!("expected `{key} = <value or time function>`"),
+                "expected `follower = true` or `follower = false`",
             )),
         }
-    }
+        true
+    });
     if block.entries.is_empty() {
         let example = match kind {
             LoadKind::Pressure => "p = ramp(0, 10)",
@@ -192,10 +156,130 @@ fn rate_control(v: &Value, diags: &mut Diags) -> Option<Spanned<RateControlDef>>
     ))
 }
 
+/// The keyword of `gravity { gx  gy  gz }` (carried by the generic item
+/// rule, like `traction`).
+pub const GRAVITY: &str = "gravity";
+
+/// Converts a `gravity` item: no set (it acts on every mass), components
+/// `gx gy gz` (accelerations, functions of time).
+pub fn gravity(item: ItemParts, diags: &mut Diags) -> Option<Gravity> {
+    if let Some(t) = &item.target {
+        diags.push(
+            Diagnostic::error(
+                "`gravity` takes no set",
+                t.span,
+                "gravity acts on every body with a density and every point mass",
+            )
+            .with_help("write `gravity { gy = -9.81 }`"),
+        );
+        return None;
+    }
+    let Some(block) = item.block else {
+        diags.push(
+            Diagnostic::error("`gravity` needs a block", item.keyword, "no block")
+                .with_help("write `gravity { gy = -9.81 }`"),
+        );
+        return None;
+    };
+    let keys = [
+        ("gx", Some(Component::X)),
+        ("gy", Some(Component::Y)),
+        ("gz", Some(Component::Z)),
+    ];
+    let names: Vec<&str> = keys.iter().map(|(n, _)| *n).collect();
+    let values = time_components(&block, GRAVITY, &keys, &names, diags, |_, _| false);
+    if block.entries.is_empty() {
+        diags.push(
+            Diagnostic::error("`gravity` gives no value", block.span, "empty block")
+                .with_help("write e.g. `gravity { gy = -9.81 }`"),
+        );
+    }
+    Some(Gravity {
+        keyword: item.keyword,
+        values,
+        span: item.span,
+    })
+}
+
+/// The `key = F(t)` entries of an item's block whose keys are `keys`
+/// (component of each), in block order: unknown keys (all `names` are
+/// known) and duplicates are reported; `other` takes an entry first and
+/// returns whether it handled it.
+pub(super) fn time_components(
+    block: &crate::ast::syntax::Block,
+    word: &str,
+    keys: &[(&str, Option<Component>)],
+    names: &[&str],
+    diags: &mut Diags,
+    mut other: impl FnMut(&crate::ast::syntax::Entry, &mut Diags) -> bool,
+) -> Vec<(Option<Component>, crate::span::Spanned<crate::ast::TimeFn>)> {
+    let mut values_out = Vec::new();
+    let mut seen: Vec<&str> = Vec::new();
+    for e in &block.entries {
+        if other(e, diags) {
+            continue;
+        }
+        let Some((key, comp)) = keys.iter().find(|(n, _)| *n == e.key.name) else {
+            diags.push(
+                Diagnostic::error(
+                    format!("unknown key `{}` in `{word}`", e.key.name),
+                    e.key.span,
+                    format!("expected {}", one_of(names)),
+                )
+                .with_help_opt(did_you_mean(&e.key.name, names)),
+            );
+            continue;
+        };
+        if seen.contains(key) {
+            diags.push(
+                Diagnostic::error(
+                    format!("`{key}` is given twice in `{word}`"),
+                    e.key.span,
+                    "duplicate key",
+                )
+                .with_help("remove one of them"),
+            );
+            continue;
+        }
+        seen.push(key);
+        match &e.body {
+            EntryBody::Assign(v) => {
+                if let Some(t) = values::time_fn(v, diags) {
+                    values_out.push((*comp, t));
+                }
+            }
+            _ => diags.push(Diagnostic::error(
+                format!("`{key}` needs a value"),
+                e.span,
+                format!("expected `{key} = <value or time function>`"),
+            )),
+        }
+    }
+    values_out
+}
+
 #[cfg(test)]
 mod tests {
     use crate::ast::{Component, LoadKind, TimeFn};
     use crate::parse::test_support::{parse_messages, parse_ok};
+
+    #[test]
+    fn gravity_components_and_errors() {
+        let deck = parse_ok("gravity { gy = -9.81  gx = ramp(0, 1) }");
+        let g = &deck.gravity[0];
+        assert_eq!(g.values.len(), 2);
+        assert_eq!(g.values[0].0, Some(Component::Y));
+        assert_eq!(g.values[0].1.value, TimeFn::Number(-9.81));
+        assert_eq!(
+            parse_messages("gravity { gg = 1 }"),
+            ["unknown key `gg` in `gravity`"]
+        );
+        assert_eq!(
+            parse_messages("gravity block.all { gy = 1 }"),
+            ["`gravity` takes no set"]
+        );
+        assert_eq!(parse_messages("gravity { }"), ["`gravity` gives no value"]);
+    }
 
     #[test]
     fn pressure_and_force() {

@@ -19,7 +19,7 @@ use crate::suggest::did_you_mean;
 pub const RESERVED: [&str; 0] = [];
 
 /// Hardening law names.
-pub const HARDENINGS: [&str; 3] = ["linear", "swift", "voce"];
+pub const HARDENINGS: [&str; 4] = ["linear", "swift", "voce", "johnson_cook"];
 
 /// `E` and `nu` of an `elastic` or `neo_hookean` block.
 fn elastic(b: &Block, what: &str, diags: &mut Diags) -> Elastic {
@@ -164,6 +164,18 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
             f.finish(diags);
             Hardening::Voce { sigma_inf, delta }
         }
+        "johnson_cook" => {
+            let table = &crate::tables::JOHNSON_COOK_HARDENING;
+            let mut f = Fields::keyed(block, "`johnson_cook` hardening", table);
+            let values: [Option<Spanned<f64>>; 8] = std::array::from_fn(|i| {
+                let key = table[i].name;
+                let x = f.number(key, diags);
+                f.require(&x, key, name.span, &format!("add `{key} = ..`"), diags);
+                x
+            });
+            f.finish(diags);
+            Hardening::JohnsonCook { values }
+        }
         other => {
             diags.push(
                 Diagnostic::error(
@@ -171,10 +183,9 @@ fn hardening(v: &Value, diags: &mut Diags) -> Option<Spanned<Hardening>> {
                     name.span,
                     "not a hardening law",
                 )
-                .with_help(
-                    did_you_mean(other, HARDENINGS)
-                        .unwrap_or_else(|| "expected `linear`, `swift` or `voce`".into()),
-                ),
+                .with_help(did_you_mean(other, HARDENINGS).unwrap_or_else(|| {
+                    "expected `linear`, `swift`, `voce` or `johnson_cook`".into()
+                })),
             );
             return None;
         }
@@ -334,6 +345,26 @@ mod tests {
                 .value,
             Hardening::Voce { .. }
         ));
+    }
+
+    #[test]
+    fn johnson_cook_hardening_reads_its_eight_parameters() {
+        let deck = parse_ok(
+            "material cu { elastic { E = 124e3 nu = 0.34 }\n plastic { hardening = johnson_cook { \
+             A = 90 B = 292 n = 0.31 C = 0.025 rate0 = 1 m = 1.09 T_ref = 298 T_melt = 1356 } } }",
+        );
+        let h = &deck.materials[0].plastic.as_ref().unwrap().hardening;
+        let Hardening::JohnsonCook { values } = &h.as_ref().unwrap().value else {
+            panic!("{h:?}")
+        };
+        assert_eq!(values[7].as_ref().unwrap().value, 1356.0);
+        assert_eq!(
+            parse_messages(
+                "material cu { elastic { E = 1 nu = 0 } plastic { hardening = johnson_cook { \
+                 A = 90 B = 292 n = 0.31 C = 0 rate0 = 1 m = 1 T_ref = 0 } } }"
+            ),
+            ["missing `T_melt` in the `johnson_cook` hardening"]
+        );
     }
 
     #[test]

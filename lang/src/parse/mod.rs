@@ -58,7 +58,7 @@ pub const ITEM_KEYWORDS: [&str; 13] = [
 ];
 
 /// Keywords that start a chunk of error recovery besides the items.
-pub const CHUNK_KEYWORDS: [&str; 8] = [
+pub const CHUNK_KEYWORDS: [&str; 9] = [
     "let",
     "include",
     "temperature",
@@ -67,6 +67,7 @@ pub const CHUNK_KEYWORDS: [&str; 8] = [
     "initial_velocity",
     "spring",
     "point_mass",
+    "gravity",
 ];
 
 /// Deepest bracket nesting accepted (deeper decks are certainly mistakes,
@@ -230,6 +231,9 @@ fn convert_item(pair: Pair<'_, Rule>, deck: &mut Deck, diags: &mut Diags) {
         }
         _ if discrete::KEYWORDS.contains(&parts.keyword_text.as_str()) => {
             discrete::parse(parts, diags).map(|x| deck.discrete.push(x))
+        }
+        _ if parts.keyword_text == load::GRAVITY => {
+            load::gravity(parts, diags).map(|x| deck.gravity.push(x))
         }
         _ if parts.keyword_text == "traction" => {
             load::parse(parts, LoadKind::Traction, diags).map(|x| deck.loads.push(x))

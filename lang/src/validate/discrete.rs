@@ -13,6 +13,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
             DiscreteKind::PointMass => "point_mass",
         };
         sets::set_ref(&d.target, Need::Nodes, what, ctx);
+        if let Some(o) = &d.other {
+            sets::set_ref(o, Need::Nodes, what, ctx);
+        }
         values_not_negative(d, ctx);
         discrete_item_gives_a_value(d, what, ctx);
     }

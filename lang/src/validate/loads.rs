@@ -1,4 +1,4 @@
-//! Rules of `pressure`, `traction` and `force` items.
+//! Rules of `pressure`, `traction`, `force` and `gravity` items.
 
 use super::{sets, time_fns, Ctx, Need};
 use crate::ast::{KinematicsKind, LoadDef, LoadKind};
@@ -103,6 +103,42 @@ pub fn control_on_a_follower_pressure(l: &LoadDef, ctx: &mut Ctx<'_>) {
             .with_help("the pressure may change by at most this factor per increment (e.g. 2)"),
         );
     }
+    for g in &deck.gravity {
+        for (c, f) in &g.values {
+            if let Some(c) = c {
+                super::boundaries::z_only_in_3d(*c, "gz", f.span, ctx);
+            }
+            time_fns::ramp_and_table_times_increase(f, ctx);
+        }
+        gravity_acts_on_a_mass(g, ctx);
+    }
+}
+
+/// `gravity` needs something to pull: a body whose material has a
+/// `density`, or a `point_mass`.
+pub fn gravity_acts_on_a_mass(g: &crate::ast::Gravity, ctx: &mut Ctx<'_>) {
+    let deck = ctx.deck;
+    let dense = deck.bodies.iter().any(|b| {
+        b.material.as_ref().is_some_and(|mname| {
+            deck.materials.iter().any(|m| {
+                m.name.name == mname.name && m.density.as_ref().is_some_and(|r| r.value > 0.0)
+            })
+        })
+    });
+    let point_mass = deck
+        .discrete
+        .iter()
+        .any(|d| d.kind == crate::ast::DiscreteKind::PointMass);
+    if !dense && !point_mass {
+        ctx.err(
+            Diagnostic::error(
+                "`gravity` acts on no mass",
+                g.keyword,
+                "no body has a density and there is no point mass",
+            )
+            .with_help("give a material a `density = ..` or add a `point_mass`"),
+        );
+    }
 }
 
 /// `follower = true` needs a body with `kinematics = finite`: at small
@@ -134,5 +170,25 @@ pub fn follower_on_a_finite_strain_body(l: &LoadDef, ctx: &mut Ctx<'_>) {
                 body.name.name
             )),
         );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    #[test]
+    fn gravity_needs_a_mass_and_gz_needs_3d() {
+        let m = messages("gravity { gy = -9.81  gz = 1 }");
+        assert!(
+            m.contains(&"`gravity` acts on no mass".to_string()),
+            "{m:?}"
+        );
+        assert!(
+            m.contains(&"`gz` in a planar analysis".to_string()),
+            "{m:?}"
+        );
+        let m = messages("gravity { gy = -9.81 }\npoint_mass block.top { mass = 1 }");
+        assert!(!m.iter().any(|s| s.contains("gravity")), "{m:?}");
     }
 }

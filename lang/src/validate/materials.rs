@@ -151,6 +151,30 @@ pub fn norton_hoff_m_in_range(n: &NortonHoff, ctx: &mut Ctx<'_>) {
 /// One rate law per material: `norton_hoff` and `viscoplastic` exclude
 /// each other, and Norton-Hoff is not available on Neo-Hookean elasticity.
 pub fn one_rate_law(m: &Material, ctx: &mut Ctx<'_>) {
+    // Johnson-Cook hardening carries its own rate factor
+    let johnson_cook = m
+        .plastic
+        .as_ref()
+        .and_then(|p| p.hardening.as_ref())
+        .is_some_and(|h| matches!(h.value, Hardening::JohnsonCook { .. }));
+    if johnson_cook {
+        let other = m
+            .viscoplastic
+            .as_ref()
+            .map(|v| v.span)
+            .or(m.norton_hoff.as_ref().map(|n| n.span));
+        if let Some(span) = other {
+            ctx.err(
+                Diagnostic::error(
+                    "Johnson-Cook hardening has its own rate factor: a second rate law would \
+                     count the rate twice",
+                    span,
+                    "second rate law",
+                )
+                .with_help("keep `hardening = johnson_cook { .. }` or this block, not both"),
+            );
+        }
+    }
     let Some(n) = &m.norton_hoff else {
         return;
     };
@@ -194,20 +218,21 @@ pub fn viscoplastic_needs_plastic(m: &Material, ctx: &mut Ctx<'_>) {
 /// initial yield stress is `K eps0^n`.
 pub fn yield_stress_fits_hardening(m: &Material, ctx: &mut Ctx<'_>) {
     let Some(p) = &m.plastic else { return };
-    let swift = matches!(
-        p.hardening.as_ref().map(|h| &h.value),
-        Some(Hardening::Swift { .. })
-    );
-    match (&p.yield_stress, swift) {
-        (Some(y), true) => ctx.err(
+    let own = match p.hardening.as_ref().map(|h| &h.value) {
+        Some(Hardening::Swift { .. }) => Some(("Swift", "K eps0^n")),
+        Some(Hardening::JohnsonCook { .. }) => Some(("Johnson-Cook", "A")),
+        _ => None,
+    };
+    match (&p.yield_stress, own) {
+        (Some(y), Some((law, initial))) => ctx.err(
             Diagnostic::error(
-                "`yield` is not used with Swift hardening",
+                format!("`yield` is not used with {law} hardening"),
                 y.span,
-                "the initial yield stress is K eps0^n",
+                format!("the initial yield stress is {initial}"),
             )
             .with_help("remove `yield` (or use `linear` / `voce` hardening)"),
         ),
-        (None, false) => ctx.err(
+        (None, None) => ctx.err(
             Diagnostic::error(
                 "missing `yield` in the `plastic` block",
                 p.span,
@@ -241,6 +266,28 @@ pub fn hardening_in_range(m: &Material, ctx: &mut Ctx<'_>) {
             if let Some(v) = n.as_ref().filter(|v| !(0.0..=1.0).contains(&v.value)) {
                 ctx.err(Diagnostic::error(
                     "Swift n must lie in [0, 1]",
+                    v.span,
+                    format!("n = {}", num(v.value)),
+                ));
+            }
+        }
+        Hardening::JohnsonCook { values } => {
+            if let (Some(t_ref), Some(t_melt)) = (&values[6], &values[7]) {
+                if t_melt.value <= t_ref.value {
+                    ctx.err(Diagnostic::error(
+                        "the Johnson-Cook T_melt must exceed T_ref",
+                        t_melt.span,
+                        format!(
+                            "T_melt = {} <= T_ref = {}",
+                            num(t_melt.value),
+                            num(t_ref.value)
+                        ),
+                    ));
+                }
+            }
+            if let Some(v) = values[2].as_ref().filter(|v| v.value <= 0.0) {
+                ctx.err(Diagnostic::error(
+                    "Johnson-Cook n must lie in (0, 1]",
                     v.span,
                     format!("n = {}", num(v.value)),
                 ));

@@ -178,13 +178,22 @@ pub fn rayleigh_damping_not_negative(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
     }
 }
 
-/// A dynamic step needs a positive `density` on the material of every body.
+/// A dynamic step needs a positive `density` on the material of every body
+/// that carries no `point_mass` (a massless body whose mass sits at point
+/// masses, e.g. a spring of finite elements, is accepted).
 pub fn dynamic_bodies_have_density(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
     let deck = ctx.deck;
     for b in &deck.bodies {
         let Some(mname) = b.material.as_ref() else {
             continue;
         };
+        if deck
+            .discrete
+            .iter()
+            .any(|p| p.kind == ast::DiscreteKind::PointMass && p.target.body.name == b.name.name)
+        {
+            continue;
+        }
         let Some(m) = deck.materials.iter().find(|m| m.name.name == mname.name) else {
             continue;
         };

@@ -14,7 +14,9 @@ pub mod follower;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
+pub mod gravity;
 pub mod impact;
+pub mod johnson_cook;
 pub mod mortar;
 pub mod norton_hoff;
 pub mod objectivity;
@@ -68,6 +70,8 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(impact::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
+    v.extend(gravity::cases());
+    v.extend(johnson_cook::cases());
     v
 }
 

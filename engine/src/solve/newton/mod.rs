@@ -175,7 +175,7 @@ where
     ) -> Result<Self, String> {
         let nn = model.mesh.nodes.len();
         let dofs = DofMap::new(model);
-        let scatter = Scatter::new(&model.mesh, &dofs)?;
+        let scatter = super::discrete::scatter_for(model, &dofs, &[])?;
         let assembler = Assembler::new(model)?;
         let n_free = dofs.n_free();
         let n_presc = dofs.prescribed.len();
@@ -318,6 +318,19 @@ where
                 out = self.evaluate(t0, false).map(|_| ());
                 if out.is_ok() {
                     dy.start(model, &self.dofs, &self.r_static);
+                    if !self.any_committed {
+                        // the work integrals start from the forces of the
+                        // initial state (a load present at t0, e.g.
+                        // gravity, works from the first increment on)
+                        let mut ext = self.f_ext.clone();
+                        for (e, f) in ext.iter_mut().zip(&self.f_follow) {
+                            *e += f;
+                        }
+                        for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
+                            ext[p.dof] += r;
+                        }
+                        dy.start_forces([&self.f_int, &ext, &self.f_c]);
+                    }
                 }
             }
         }
@@ -541,25 +554,18 @@ where
                 .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
         self.timings.assembly += mid.elapsed().as_secs_f64();
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
-        // springs to the ground: internal forces k u (their energy is part
-        // of the internal work)
-        for d in &model.discrete {
-            let crate::model::Discrete::Ground {
-                nodes, stiffness, ..
-            } = d
-            else {
-                continue;
-            };
-            for &n in nodes {
-                for c in 0..D {
-                    let g = n * D + c;
-                    self.f_int[g] += stiffness * self.u[n][c];
-                    if let (true, Some(Dof::Free(j))) = (with_tangent, self.dofs.dofs.get(g)) {
-                        if let Some(s) = self.scatter.pattern.find(*j, *j) {
-                            self.values[s] += stiffness;
-                        }
-                    }
-                }
+        // springs to the ground and between nodes: internal forces (their
+        // energy is part of the internal work)
+        if super::discrete::any(model, |k, _| k) {
+            super::discrete::times(model, self.u.as_flattened(), &mut self.f_int, |k, _| k);
+            if with_tangent {
+                super::discrete::add_tangent(
+                    model,
+                    &self.dofs,
+                    &self.scatter,
+                    &mut self.values,
+                    |k, _| k,
+                );
             }
         }
         if with_tangent {

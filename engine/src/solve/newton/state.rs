@@ -6,7 +6,6 @@
 
 use super::Newton;
 use crate::geom::Dimension;
-use crate::solve::linalg::Scatter;
 use crate::solve::restart::{self, Checkpoint, Resume};
 use crate::solve::scene::ContactScene;
 use nalgebra::Const;
@@ -105,7 +104,8 @@ where
         self.assembler.restore(&cp.points, cp.points_time)?;
         if !cp.couplings.is_empty() {
             self.contacts.set_couplings(&cp.couplings);
-            self.scatter = Scatter::with_couplings(&self.model.mesh, &self.dofs, &cp.couplings)?;
+            self.scatter =
+                super::super::discrete::scatter_for(self.model, &self.dofs, &cp.couplings)?;
             self.values = vec![0.0; self.scatter.n_values()];
             self.linear.reset_pattern();
         }
