@@ -13,6 +13,7 @@ pub mod follower;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
+pub mod hertz_3d_axi;
 pub mod impact;
 pub mod mortar;
 pub mod objectivity;
@@ -51,6 +52,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(quadratic::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
+    v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());
