@@ -420,6 +420,42 @@ mod tests {
     }
 
     #[test]
+    fn a_reintroduced_node_slips_against_its_way_from_the_stick_point() {
+        let placement = Placement::identity();
+        let mut state = FrictionState::<3>::new(vec![[0.0; 3]]);
+        // first contact (no stick point at the start): the first-impact rule
+        assert!(!reintroduce_slipping(
+            &mut state,
+            0,
+            Vec3::new(0.3, 0.4, -0.01),
+            Vec3::z(),
+            &placement
+        ));
+        assert_eq!(state.sliding[0], 0.0);
+        state.committed_anchor[0] = Some([0.0; 3]);
+        // right above its stick point: nothing to slip along
+        assert!(!reintroduce_slipping(
+            &mut state,
+            0,
+            Vec3::new(0.0, 0.0, -0.01),
+            Vec3::z(),
+            &placement
+        ));
+        assert_eq!(state.sliding[0], 0.0);
+        // moved by (0.3, 0.4) in the tangent plane: slips, force along -(0.6, 0.8)
+        assert!(reintroduce_slipping(
+            &mut state,
+            0,
+            Vec3::new(0.3, 0.4, -0.01),
+            Vec3::z(),
+            &placement
+        ));
+        assert_eq!(state.sliding[0], 1.0);
+        let f = state.shift[0];
+        assert!((f[0] + 0.6).abs() < 1e-14 && (f[1] + 0.8).abs() < 1e-14 && f[2] == 0.0);
+    }
+
+    #[test]
     fn tangent_basis_is_orthonormal_and_normal_to_n() {
         use super::super::friction_surface::tangent_basis;
         for n in [Vec3::z(), Vec3::new(0.3, -0.2, 0.9).normalize(), -Vec3::x()] {

@@ -182,7 +182,7 @@ impl Measured {
     /// is the fraction of the full body the model holds.
     fn from_nodes(nodes: &[(f64, f64, f64)], share: f64) -> Result<Self, String> {
         let force: f64 = nodes.iter().map(|n| n.1).sum();
-        if !(force > 0.0) {
+        if force <= 0.0 || !force.is_finite() {
             return Err(format!(
                 "no load went through the contact (force {force:e})"
             ));
