@@ -4,7 +4,9 @@
 //! Lagrange multipliers and augmented Lagrangian, hex8 and tet4, and a
 //! plane brought to its place by a rigid rotation) and `hertz_sphere_3d`
 //! (Hertz point contact, K. L. Johnson, Contact Mechanics §4.2: peak
-//! pressure and profile against Hertz at the force the model carries).
+//! pressure and profile against Hertz at the force the model carries) and
+//! `hertz_sphere_3d_vs_axi` (the same contact on a cylinder block, the
+//! 3D quarter against the axisymmetric run of the same section).
 //! Scenes, references and tolerances:
 //! `verification/src/programs/contact_3d.rs`.
 //!
@@ -47,6 +49,41 @@ fn hertz_sphere_3d_peak_pressure_converges_to_hertz() {
     assert!(
         p0[1] < p0[0],
         "the peak pressure error must fall with refinement: {p0:?}"
+    );
+}
+
+/// `hertz_sphere_3d_vs_axi`: the Hertz contact (K. L. Johnson, Contact
+/// Mechanics §4.2) of a rigid sphere pressed into a cylinder block, the
+/// tri3 section solved axisymmetric and revolved by 90 degrees into
+/// tetrahedra (symmetry on x = 0 and y = 0): the total force, the contact
+/// radius and the peak pressure agree between the two runs, and the peak
+/// pressures' difference falls with the mesh.
+///
+/// ```text
+///        rigid sphere R = 1
+///            .-"""-.
+///   ________/_______\_____     axi section  [0, 1] x [0, 1]
+///   | axis  tri3 graded  |     3D: the section revolved by 90 deg
+///   |____________________|
+/// ```
+#[test]
+fn hertz_sphere_3d_vs_axi_agrees_with_the_axisymmetric_run() {
+    let report = registry::run_passing("hertz_sphere_3d_vs_axi");
+    let p0: Vec<f64> = report
+        .levels
+        .iter()
+        .map(|l| {
+            l.values
+                .iter()
+                .find(|v| v.quantity.to_string() == "p0 3d vs axi")
+                .expect("p0 is measured")
+                .error
+        })
+        .collect();
+    assert_eq!(p0.len(), 2, "two default levels");
+    assert!(
+        p0[1] < 0.5 * p0[0],
+        "the 3D and axisymmetric peak pressures must approach each other: {p0:?}"
     );
 }
 

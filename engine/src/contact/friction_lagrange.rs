@@ -6,12 +6,29 @@
 //! increments
 //!   Newton (saddle-point system: normal rows of the active nodes,
 //!           tangential rows g_T = 0 of the sticking nodes)
-//!   contact loop: introduce / release normal constraints
-//!   friction loop: stick -> slip where |lambda_T| > mu lambda_N
-//!                  (sliding direction = sign(lambda_T));
-//!                  slip -> stick where the slip runs along the friction
-//!                  force (the assumed direction was wrong)
+//!   status loop, both on the same converged solution:
+//!     contact: introduce / release normal constraints
+//!     friction (nodes that stay closed): stick -> slip where
+//!                  |lambda_T| > mu lambda_N (sliding direction =
+//!                  sign(lambda_T)); slip -> stick where the slip runs
+//!                  along the friction force (the assumed direction was
+//!                  wrong)
 //! ```
+//!
+//! The two loops decide together: were the friction statuses only updated
+//! once the active set had settled, the increment where the nodes start to
+//! slide would solve the contact loop with every node stuck, its stick
+//! forces many times the Coulomb limit (up to 29x in
+//! `friction_curved_path_3d`); their moment puts the trailing nodes in
+//! tension, released, they penetrate, are introduced sticking, and the
+//! active set cycles (the cutbacks of `friction_block_3d` and
+//! `friction_curved_path_3d` before these rules: 3 and 6). For the same
+//! reason a node that the contact loop releases and introduces again in
+//! the same increment (3D, [`reintroduce_slipping`]) comes back slipping,
+//! its force against its way from the stick point it had at the start of
+//! the increment, instead of sticking there: the body has slid on, and the
+//! stick rows would pull the node back by the whole slide; the friction
+//! loop sticks it again if its slip runs along that force.
 //!
 //! A slipping node carries the force `mu lambda_N s t` with the current
 //! normal multiplier (its derivative with respect to `lambda_N` is not in the
@@ -167,6 +184,7 @@ pub fn update_status(
             };
             if nc.status != ContactStatus::Closed
                 || nc.friction.status == FrictionStatus::Frictionless
+                || !state.active[i]
             {
                 continue;
             }
@@ -194,6 +212,34 @@ pub fn update_status(
         }
     }
     changed
+}
+
+/// A node of a Lagrange surface pair with friction that the contact loop
+/// introduces at current position `x` (tool normal `normal`, tool at
+/// `placement`) while it began the increment in contact (it was released
+/// in between; see the module doc): it slips, its friction force against
+/// its tangential way from the stick point it had at the start of the
+/// increment (`shift` the unit direction, tool frame). Whether it was set
+/// (not for a first contact, where the first-impact rule applies, nor for
+/// a node at its stick point).
+pub fn reintroduce_slipping(
+    state: &mut FrictionState<3>,
+    i: usize,
+    x: Vec3,
+    normal: Vec3,
+    placement: &Placement,
+) -> bool {
+    let Some(anchor) = state.committed_anchor[i] else {
+        return false;
+    };
+    let d = x - placement.apply(&Vec3::from(anchor));
+    let way = d - normal * normal.dot(&d);
+    let Some(s) = way.try_normalize(f64::MIN_POSITIVE) else {
+        return false;
+    };
+    state.sliding[i] = 1.0;
+    state.shift[i] = (placement.rotation.inverse() * -s).into();
+    true
 }
 
 /// What the status loop changed in the surface (3D) pairs.
@@ -276,6 +322,7 @@ pub fn update_surface_status(
             };
             if nc.status != ContactStatus::Closed
                 || nc.friction.status == FrictionStatus::Frictionless
+                || !state.active[i]
             {
                 continue;
             }
@@ -370,6 +417,42 @@ mod tests {
             decide(Some([-1.0]), [0.0], 1.0, [-0.3], 1e-12),
             Decision::Stick
         );
+    }
+
+    #[test]
+    fn a_reintroduced_node_slips_against_its_way_from_the_stick_point() {
+        let placement = Placement::identity();
+        let mut state = FrictionState::<3>::new(vec![[0.0; 3]]);
+        // first contact (no stick point at the start): the first-impact rule
+        assert!(!reintroduce_slipping(
+            &mut state,
+            0,
+            Vec3::new(0.3, 0.4, -0.01),
+            Vec3::z(),
+            &placement
+        ));
+        assert_eq!(state.sliding[0], 0.0);
+        state.committed_anchor[0] = Some([0.0; 3]);
+        // right above its stick point: nothing to slip along
+        assert!(!reintroduce_slipping(
+            &mut state,
+            0,
+            Vec3::new(0.0, 0.0, -0.01),
+            Vec3::z(),
+            &placement
+        ));
+        assert_eq!(state.sliding[0], 0.0);
+        // moved by (0.3, 0.4) in the tangent plane: slips, force along -(0.6, 0.8)
+        assert!(reintroduce_slipping(
+            &mut state,
+            0,
+            Vec3::new(0.3, 0.4, -0.01),
+            Vec3::z(),
+            &placement
+        ));
+        assert_eq!(state.sliding[0], 1.0);
+        let f = state.shift[0];
+        assert!((f[0] + 0.6).abs() < 1e-14 && (f[1] + 0.8).abs() < 1e-14 && f[2] == 0.0);
     }
 
     #[test]

@@ -216,17 +216,18 @@ pub fn attempt(
         updates += conv.contact_iterations;
         residuals.extend_from_slice(&conv.residuals);
         let (model, pairs, contact) = solver.contact_state();
+        // the contact and friction loops in one pass: the stick/slip
+        // statuses of the nodes that stay closed are decided on the same
+        // solution as the active set (see `friction_lagrange`)
         let mut change = update_active_sets(model, pairs, contact);
-        if change.is_empty() {
-            // friction loop (Lagrange stick/slip statuses) once the contact
-            // loop has settled
-            change.introduced = crate::contact::friction_lagrange::update_status(
+        change
+            .introduced
+            .extend(crate::contact::friction_lagrange::update_status(
                 model,
                 pairs,
                 contact,
                 INTRODUCE_GAP * model_size(model),
-            );
-        }
+            ));
         if !change.is_empty() {
             updates += 1;
             if let Err(detail) = guard.visit(active_key(pairs), &change) {

@@ -30,6 +30,7 @@ use crate::contact::surface::{self, SurfacePair};
 use crate::contact::{friction, friction_surface};
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
+use ctc_geom::Placement;
 use std::fmt::Write;
 
 /// Gap below which an inactive Lagrange node is introduced, relative to
@@ -76,6 +77,13 @@ impl SurfaceAssembly {
             if !matches!(cp.method, ContactMethod::Lagrange { .. }) {
                 continue;
             }
+            let placement = cp
+                .master
+                .tool()
+                .and_then(|k| model.surfaces.get(k))
+                .map_or_else(Placement::identity, |tool| {
+                    surface::placement(&tool.motion, self.time)
+                });
             let state = &mut self.pairs[pi];
             let mut seen = vec![false; state.slaves.len()];
             for nc in &self.contact[pi] {
@@ -92,6 +100,15 @@ impl SurfaceAssembly {
                 } else if nc.gap < -threshold {
                     state.active[i] = true;
                     state.multiplier[i] = 0.0;
+                    if cp.friction.is_some() {
+                        friction_lagrange::reintroduce_slipping(
+                            &mut state.friction,
+                            i,
+                            self.x[nc.node].into(),
+                            nc.normal.into(),
+                            &placement,
+                        );
+                    }
                     change.introduced.push(nc.node);
                 }
             }
@@ -792,12 +809,13 @@ impl ContactScene<3> for SurfaceAssembly {
             updates += conv.contact_iterations;
             residuals.extend_from_slice(&conv.residuals);
             let model = newton.model;
+            // the contact and friction loops in one pass: the stick/slip
+            // statuses of the nodes that stay closed are decided on the same
+            // solution as the active set (see `friction_lagrange`)
             let mut change = newton.contacts.update_active_sets(model);
-            if change.is_empty() {
-                // friction loop (Lagrange stick/slip statuses) once the
-                // contact loop has settled
-                change.introduced = newton.contacts.update_friction_status(model).switched;
-            }
+            change
+                .introduced
+                .extend(newton.contacts.update_friction_status(model).switched);
             if !change.is_empty() {
                 updates += 1;
                 if let Err(detail) = guard.visit(newton.contacts.active_key(), &change) {

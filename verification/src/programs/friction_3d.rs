@@ -630,6 +630,31 @@ fn circle_drive(d_s: f64) -> Vec<(f64, [f64; 2])> {
     drive
 }
 
+/// The scene of `friction_curved_path_3d` with method `method` (0
+/// penalty, 1 augmented Lagrangian, 2 Lagrange multipliers), stick stage
+/// to the arc `d_s`.
+fn curved_scene(method: usize, d_s: f64) -> Result<Scene, String> {
+    let (_, method, stiffness) = methods().get(method).ok_or("method 0, 1 or 2")?.clone();
+    Ok(Scene {
+        slope: 0.0,
+        azimuth: 0.0,
+        method,
+        stiffness,
+        drive: circle_drive(d_s),
+        back: false,
+        increments: [1, PATH_INCREMENTS],
+        poisson: 0.0,
+    })
+}
+
+/// The model of `friction_curved_path_3d` with method `method` (0
+/// penalty, 1 augmented Lagrangian, 2 Lagrange multipliers): press, stick
+/// stage, the drag along the quarter circle in 32 increments. For the
+/// convergence tests.
+pub fn curved_path_block(method: usize) -> Result<Model<3>, String> {
+    curved_scene(method, 2e-5)?.model()
+}
+
 /// `friction_curved_path_3d` — the block of `friction_block_3d` (hex8 `1
 /// x 1 x 0.5`, E = 1e5, nu = 0, pressed by `F_n = 100`, mu = 0.3) on the
 /// rigid plane `z = 0`, every node above its base dragged along a quarter
@@ -685,18 +710,8 @@ fn curved_level(_: usize) -> Result<ProgramLevel, String> {
     ];
     let mut values = Vec::new();
     let mut stick_slip = 0.0f64;
-    for (k, (name, method, stiffness)) in methods().into_iter().enumerate() {
-        let scene = Scene {
-            slope: 0.0,
-            azimuth: 0.0,
-            method,
-            stiffness,
-            drive: circle_drive(d_s),
-            back: false,
-            increments: [1, PATH_INCREMENTS],
-            poisson: 0.0,
-        };
-        let rows = scene
+    for (k, (name, _, _)) in methods().into_iter().enumerate() {
+        let rows = curved_scene(k, d_s)?
             .solve(&mut level)
             .map_err(|e| format!("{name}: {e}"))?;
         let stick = rows

@@ -15,6 +15,7 @@ pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
 pub mod gravity;
+pub mod hertz_3d_axi;
 pub mod impact;
 pub mod johnson_cook;
 pub mod mortar;
@@ -63,6 +64,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
     v.extend(contact_ntf_3d::cases());
+    v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());
