@@ -38,8 +38,8 @@
 use super::face_integrated::{self, FacetPair, FacetRule, PointProjection};
 use super::friction::FrictionState;
 use super::friction_surface::{self, StickRows, SurfaceContact};
-use super::node_to_facet::{self, DeformablePair};
 use super::mortar::Coupling;
+use super::node_to_facet::{self, DeformablePair};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{

@@ -338,7 +338,9 @@ impl ContactScene<3> for SurfaceAssembly {
         }
         let mut near = Vec::new();
         for (state, res) in self.pairs.iter().zip(&self.contact) {
-            let Some(fp) = &state.deformable else { continue };
+            let Some(fp) = &state.deformable else {
+                continue;
+            };
             for nc in res.iter().filter(|nc| nc.status == ContactStatus::Closed) {
                 let Some(i) = state.slave_index(nc.node) else {
                     continue;

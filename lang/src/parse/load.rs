@@ -6,8 +6,8 @@ use super::values::{self, Diags};
 use super::ItemParts;
 use crate::ast::syntax::{EntryBody, Value, ValueKind};
 use crate::ast::{Component, Gravity, LoadDef, LoadKind, RateControlDef};
-use crate::span::Spanned;
 use crate::diagnostics::Diagnostic;
+use crate::span::Spanned;
 use crate::suggest::{did_you_mean, one_of};
 
 /// Converts a `pressure`, `traction` or `force` item.
