@@ -4,8 +4,8 @@ use super::{sets, time_fns, Ctx, Need};
 use crate::ast::{KinematicsKind, LoadDef, LoadKind};
 use crate::diagnostics::Diagnostic;
 
-/// Checks every `pressure`, `traction` and `force` item: pressures and
-/// tractions need edges (planar) or faces (3d).
+/// Checks every `pressure`, `traction`, `force` and `gravity` item:
+/// pressures and tractions need edges (planar) or faces (3d).
 pub fn check(ctx: &mut Ctx<'_>) {
     let deck = ctx.deck;
     for l in &deck.loads {
@@ -28,6 +28,15 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         follower_on_a_finite_strain_body(l, ctx);
         control_on_a_follower_pressure(l, ctx);
+    }
+    for g in &deck.gravity {
+        for (c, f) in &g.values {
+            if let Some(c) = c {
+                super::boundaries::z_only_in_3d(*c, "gz", f.span, ctx);
+            }
+            time_fns::ramp_and_table_times_increase(f, ctx);
+        }
+        gravity_acts_on_a_mass(g, ctx);
     }
 }
 
@@ -102,15 +111,6 @@ pub fn control_on_a_follower_pressure(l: &LoadDef, ctx: &mut Ctx<'_>) {
             )
             .with_help("the pressure may change by at most this factor per increment (e.g. 2)"),
         );
-    }
-    for g in &deck.gravity {
-        for (c, f) in &g.values {
-            if let Some(c) = c {
-                super::boundaries::z_only_in_3d(*c, "gz", f.span, ctx);
-            }
-            time_fns::ramp_and_table_times_increase(f, ctx);
-        }
-        gravity_acts_on_a_mass(g, ctx);
     }
 }
 
