@@ -709,14 +709,7 @@ pub struct DeformablePair {
 impl DeformablePair {
     /// Which sides act as slave now: `[side 0 is slave, side 1 is slave]`.
     pub fn slave_sides(&self, strategy: ContactStrategy) -> [bool; 2] {
-        match strategy {
-            ContactStrategy::SinglePass => [true, false],
-            ContactStrategy::DoublePass => {
-                let even = self.increments.is_multiple_of(2);
-                [even, !even]
-            }
-            ContactStrategy::ModifiedDoublePass => [true, true],
-        }
+        strategy.slave_sides(self.increments)
     }
 
     /// Called when an increment has converged.

@@ -157,14 +157,7 @@ impl SurfacePair {
         if self.self_contact {
             return [true, false];
         }
-        match strategy {
-            ContactStrategy::SinglePass => [true, false],
-            ContactStrategy::DoublePass => {
-                let even = self.increments.is_multiple_of(2);
-                [even, !even]
-            }
-            ContactStrategy::ModifiedDoublePass => [true, true],
-        }
+        strategy.slave_sides(self.increments)
     }
 
     /// Called when an increment has converged.

@@ -790,6 +790,22 @@ pub enum ContactStrategy {
     ModifiedDoublePass,
 }
 
+impl ContactStrategy {
+    /// Which sides of a deformable pair act as slave after `increments`
+    /// converged increments: `[side 0 is slave, side 1 is slave]` (double
+    /// pass swaps them every increment).
+    pub fn slave_sides(self, increments: usize) -> [bool; 2] {
+        match self {
+            ContactStrategy::SinglePass => [true, false],
+            ContactStrategy::DoublePass => {
+                let even = increments.is_multiple_of(2);
+                [even, !even]
+            }
+            ContactStrategy::ModifiedDoublePass => [true, true],
+        }
+    }
+}
+
 /// Discretization of the contact between deformable bodies.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ContactFormulation {
