@@ -12,20 +12,9 @@
 
 use ctc_verification::registry;
 
+/// Runs the registry case `name` (every level) and asserts it passes.
 fn passes(name: &str) {
-    let case = registry::find(name).unwrap_or_else(|| panic!("no case {name}"));
-    let report = case.run(&ctc_verification::default_cases_dir(), None, &mut |l| {
-        eprintln!("{l}")
-    });
-    for l in &report.levels {
-        for v in &l.values {
-            eprintln!(
-                "{name} level {}: {} = {:.6e} (error {:.1e}, tolerance {:?})",
-                l.level, v.quantity, v.computed, v.error, v.tolerance
-            );
-        }
-    }
-    assert!(report.passed(), "{report:#?}");
+    registry::run_passing(name);
 }
 
 #[test]
