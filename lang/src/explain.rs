@@ -1135,10 +1135,15 @@ fn surface_words(g: &ctc_engine::model::SurfaceShape) -> String {
 
 /// A pressure controller in words (empty without one).
 fn controller(control: &Option<ctc_engine::model::RateControl>) -> String {
-    control.map_or_else(String::new, |c| {
+    control.as_ref().map_or_else(String::new, |c| {
+        let region = if c.at.is_empty() {
+            "its body".to_string()
+        } else {
+            format!("the cells around node {}", c.at[0])
+        };
         format!(
             ", scaled after each increment by (target / rate)^{} within a factor {} so that \
-             the largest equivalent plastic strain rate of its body holds {} (pressure-cycle \
+             the largest equivalent plastic strain rate of {region} holds {} (pressure-cycle \
              control)",
             num(c.exponent),
             num(c.max_factor),

@@ -162,7 +162,10 @@ pub static ITEMS: &[Item] = &[
               pressures): the pressure-cycle controller of superplastic forming; after every \
               increment the pressure is scaled by `(target / rate)^exponent` (bounded by \
               `max_change`), `rate` the largest equivalent plastic strain rate of the pressed \
-              body; history.csv gets the applied pressure and the rate.",
+              body (or, with `at = (x, y)`, of the cells around the body's node nearest to that \
+              point: the pole of a bulge), and follows the trend of the last two increments; \
+              history.csv gets the applied pressure and the rate, and `ctc run` plots them \
+              (pressure_cycle.svg, controlled_rate.svg).",
         blocks: &[("control = strain_rate", &tables::RATE_CONTROL)],
         example: "pressure pipe.inner { p = ramp(0, 100) }",
     },

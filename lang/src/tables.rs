@@ -185,7 +185,7 @@ pub static VISCOPLASTIC: [Key; 3] = [
 
 /// `control = strain_rate { target exponent max_change }` of a follower
 /// pressure.
-pub static RATE_CONTROL: [Key; 3] = [
+pub static RATE_CONTROL: [Key; 4] = [
     Key::new(
         "target",
         KeyType::Number,
@@ -210,6 +210,13 @@ pub static RATE_CONTROL: [Key; 3] = [
     )
     .default(Default::Number(2.0))
     .dim(Dim::None),
+    Key::new(
+        "at",
+        KeyType::Point(Components::Analysis),
+        "monitor only the cells touching the body's node nearest to this point (the pole of \
+         a bulge; default: the whole body)",
+    )
+    .dim(Dim::Length),
 ];
 
 /// `norton_hoff { stress rate m }`.

@@ -204,6 +204,66 @@ pub fn thermal_run_plots(
     Ok(files)
 }
 
+/// Plots of a run with a pressure-cycle controller (called by `ctc run`
+/// when a follower pressure has `control = strain_rate { .. }`): for each
+/// controlled pressure, `pressure_cycle.svg` (the applied pressure against
+/// time: the optimised cycle of superplastic forming) and
+/// `controlled_rate.svg` (the monitored strain rate against time), numbered
+/// `_2`, `_3`, .. after the first controller. Returns the files written.
+pub fn pressure_cycle_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
+    let (header, _) = read_history(dir)?;
+    let with = |what: &str, unit: fn(&ctc_engine::model::UnitNames) -> &str| match units {
+        Some(u) => format!("{what} [{}]", unit(u)),
+        None => what.to_string(),
+    };
+    let mut files = Vec::new();
+    let pressures = header
+        .iter()
+        .filter(|h| h.starts_with("controlled_pressure["));
+    for (k, p) in pressures.enumerate() {
+        let suffix = if k == 0 {
+            String::new()
+        } else {
+            format!("_{}", k + 1)
+        };
+        let label = &p["controlled_pressure".len()..];
+        let rate = format!("controlled_rate{label}");
+        let time = with("time", |u| &u.time);
+        let file = format!("pressure_cycle{suffix}.svg");
+        let title = format!("controlled pressure {label}");
+        let y = with("pressure", |u| &u.stress);
+        if history_plot(
+            dir,
+            &file,
+            &title,
+            ("time", 1.0, &time),
+            (p, 1.0, &y),
+            f64::NAN,
+        )? {
+            files.push(file);
+        }
+        if header.contains(&rate) {
+            let file = format!("controlled_rate{suffix}.svg");
+            let title = format!("monitored strain rate {label}");
+            let y = "equivalent plastic strain rate";
+            if history_plot(
+                dir,
+                &file,
+                &title,
+                ("time", 1.0, &time),
+                (&rate, 1.0, y),
+                f64::NAN,
+            )? {
+                files.push(file);
+            }
+        }
+    }
+    Ok(files)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -95,3 +95,26 @@ fn the_pressure_controller_holds_the_target_rate_at_the_closed_form_pressure() {
         }
     }
 }
+
+/// Free bulging of a clamped Norton-Hoff diaphragm under the pressure-cycle
+/// controller watching the pole (`ctc verify superplastic_free_bulge`):
+/// the pole's membrane equilibrium `p = 2 sigma s / rho`, the pole rate held
+/// at the target, the pole thickness between Hill's (1950) and the uniform
+/// cap's, and on Hill's curve for a nearly rate-insensitive sheet.
+/// Sources: R. Hill, Phil. Mag. 41 (1950) 1133; F. Jovane, Int. J. Mech.
+/// Sci. 10 (1968) 403.
+///
+/// ```text
+///         .-~~~~~~~~~~-.        pole: s, rho, rate = r*
+///   ===|==================|===  clamped at r = 50
+///       ^  ^  ^  ^  ^  ^  p(t) controlled
+/// ```
+#[test]
+fn a_free_bulge_under_the_pole_rate_controller_satisfies_the_membrane_relations() {
+    let report = registry::run_passing("superplastic_free_bulge");
+    for l in &report.levels {
+        for v in &l.values {
+            println!("{} = {:.3e}", v.quantity, v.computed);
+        }
+    }
+}

@@ -220,14 +220,18 @@ pub enum MaterialLaw {
 /// converged increment the factor `c` applied to a follower pressure is
 /// multiplied by `(target / rate)^exponent`, bounded to `[1 / max_factor,
 /// max_factor]`, where `rate` is the largest equivalent plastic strain rate
-/// of `body` over that increment (`max_factor` when nothing flowed). With
+/// of `body` over that increment (`max_factor` when nothing flowed), or of
+/// the cells touching the nodes `at` when given (the pole of a bulge). With
 /// a Norton-Hoff body (`q ~ rate^m`) and `exponent = m` the pressure that
 /// holds the target rate is reached in a few increments. The applied
 /// pressure and the measured rate are written to `history.csv`.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct RateControl {
     /// The monitored body (the body of the pressure's surface).
     pub body: usize,
+    /// The monitored region: the cells of `body` touching these nodes
+    /// (sorted); empty: the whole body.
+    pub at: Vec<usize>,
     /// Target largest equivalent plastic strain rate (1 / time), > 0.
     pub target: f64,
     /// Exponent of the update `(target / rate)^exponent`, in (0, 1].

@@ -504,6 +504,7 @@ where
         thermal,
         health: health::RunHealth::new(model),
         controls: control::controls(model),
+        control_trend: vec![control::Trend::default(); control::controls(model).len()],
         attempt_span: (
             from.map_or_else(
                 || model.steps.first().map_or(0.0, |s| s.t_start),
@@ -656,6 +657,9 @@ where
     health: health::RunHealth,
     /// Pressure-cycle controllers: load index and control.
     controls: Vec<(usize, crate::model::RateControl)>,
+    /// Each controller's last estimate of the pressure factor that holds
+    /// its target (the trend predictor of [`control::next_scale`]).
+    control_trend: Vec<control::Trend>,
 }
 
 impl<const D: usize> Driver<'_, '_, D>
@@ -779,12 +783,18 @@ where
         let control_before: Vec<Vec<f64>> = self
             .controls
             .iter()
-            .map(|(_, c)| control::body_ep(self.model, self.newton.material_points(), c.body))
+            .map(|(_, c)| control::monitored_ep(self.model, self.newton.material_points(), c))
             .collect();
         self.newton.commit();
         let mut control_records = Vec::with_capacity(self.controls.len());
-        for (&(i, c), before) in self.controls.iter().zip(&control_before) {
-            let after = control::body_ep(self.model, self.newton.material_points(), c.body);
+        for (((i, c), before), trend) in self
+            .controls
+            .iter()
+            .zip(&control_before)
+            .zip(&mut self.control_trend)
+        {
+            let i = *i;
+            let after = control::monitored_ep(self.model, self.newton.material_points(), c);
             let rate = control::max_rate(before, &after, dt);
             let scale = self.newton.load_scales()[i];
             let value = match &self.model.loads[i] {
@@ -796,7 +806,7 @@ where
                 rate,
             });
             self.newton
-                .set_load_scale(i, scale * control::factor(&c, rate));
+                .set_load_scale(i, control::next_scale(c, scale, rate, dt, trend));
         }
         self.increment += 1;
         self.health.record(self.model, self.newton.contact(), t);

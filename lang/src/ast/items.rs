@@ -660,7 +660,7 @@ pub struct LoadDef {
     pub span: Span,
 }
 
-/// `control = strain_rate { target = ..  exponent = ..  max_change = .. }`
+/// `control = strain_rate { target = ..  exponent = ..  max_change = ..  at = .. }`
 /// of a follower `pressure`: the pressure-cycle controller.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RateControlDef {
@@ -670,6 +670,9 @@ pub struct RateControlDef {
     pub exponent: Option<Spanned<f64>>,
     /// `max_change`: the largest factor change in one increment.
     pub max_change: Option<Spanned<f64>>,
+    /// `at = (x, y[, z])`: monitor the cells touching the body's node
+    /// nearest to this point (the pole of a bulge) instead of the body.
+    pub at: Option<crate::ast::Coords>,
 }
 
 /// `initial_velocity ref { vx = ..  vy = ..  vz = .. }`: the velocity of

@@ -3,6 +3,7 @@
 use super::Lowerer;
 use crate::ast;
 use crate::validate::Need;
+use ctc_engine::mesh::select::{select_nodes, Selection};
 use ctc_engine::mesh::Facet;
 use ctc_engine::model::Load;
 
@@ -43,8 +44,23 @@ impl Lowerer<'_> {
                             let v = |x: &Option<crate::span::Spanned<f64>>, d: f64| {
                                 x.as_ref().map_or(d, |x| x.value)
                             };
+                            let range = self.body_nodes.get(&self.deck.bodies[body].name.name)?;
+                            let candidates: Vec<usize> = range.clone().collect();
+                            let at = c.value.at.as_ref().map_or_else(Vec::new, |p| {
+                                let x = p.values();
+                                if self.solid && x.len() == 3 {
+                                    let sel = Selection::Nearest([x[0], x[1], x[2]]);
+                                    select_nodes(&self.mesh3, &candidates, &sel)
+                                } else if !self.solid && x.len() == 2 {
+                                    let sel = Selection::Nearest([x[0], x[1]]);
+                                    select_nodes(&self.mesh, &candidates, &sel)
+                                } else {
+                                    Vec::new()
+                                }
+                            });
                             Some(ctc_engine::model::RateControl {
                                 body,
+                                at,
                                 target: c.value.target.as_ref()?.value,
                                 exponent: v(&c.value.exponent, 0.5),
                                 max_factor: v(&c.value.max_change, 2.0),
@@ -55,7 +71,7 @@ impl Lowerer<'_> {
                                 label: label.clone(),
                                 facets: facets.clone(),
                                 value: self.tf(f),
-                                control,
+                                control: control.clone(),
                             });
                         }
                         continue;

@@ -651,7 +651,7 @@ fn single_set_ref(v: &Value, diags: &mut Diags) -> Option<SetRef> {
 
 /// Coordinates `(x, y)` or `(x, y, z)` of a selection (which count is right
 /// depends on the analysis: validation checks it).
-fn coords(v: &Value, diags: &mut Diags) -> Option<Coords> {
+pub fn coords(v: &Value, diags: &mut Diags) -> Option<Coords> {
     let expected = "a point `(x, y)` or `(x, y, z)`";
     match &v.kind {
         ValueKind::Tuple(items) if items.len() == 2 => point(v, diags).map(Coords::Plane),

@@ -97,6 +97,23 @@ pub fn control_on_a_follower_pressure(l: &LoadDef, ctx: &mut Ctx<'_>) {
             .with_help("use the body's Norton-Hoff m (about 0.5), or less to under-relax"),
         );
     }
+    let solid = super::analysis::is_solid(ctx);
+    if let Some(at) = c
+        .value
+        .at
+        .as_ref()
+        .filter(|p| p.len() != if solid { 3 } else { 2 })
+    {
+        let (want, span) = (if solid { "(x, y, z)" } else { "(x, y)" }, at.span());
+        ctx.err(
+            Diagnostic::error(
+                format!("the monitored point has {} coordinates", at.len()),
+                span,
+                format!("expected `{want}` in this analysis"),
+            )
+            .with_help("`at` is the point whose nearest node's cells the controller watches"),
+        );
+    }
     if let Some(m) = c
         .value
         .max_change

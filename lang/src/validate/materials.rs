@@ -374,11 +374,11 @@ mod tests {
     #[test]
     fn plastic_and_finite_strain_decks_validate() {
         let ok = [
-            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 hardening = linear { H = 1000 } }", ""),
-            ("axisymmetric", "elastic { E = 200e3 nu = 0.3 } plastic { hardening = swift { K = 500 eps0 = 0.01 n = 0.2 } }", "kinematics = finite"),
-            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 200 hardening = voce { sigma_inf = 300 delta = 5 } } viscoplastic { eta = 10 }", "kinematics = finite"),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 hardening = linear { H = 1000 } }", "formulation = selective_reduced"),
+            ("axisymmetric", "elastic { E = 200e3 nu = 0.3 } plastic { hardening = swift { K = 500 eps0 = 0.01 n = 0.2 } }", "kinematics = finite formulation = selective_reduced"),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 200 hardening = voce { sigma_inf = 300 delta = 5 } } viscoplastic { eta = 10 }", "kinematics = finite formulation = selective_reduced"),
             ("plane_strain", "neo_hookean { E = 10 nu = 0.45 }", "kinematics = finite"),
-            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 }", ""),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 }", "formulation = selective_reduced"),
         ];
         for (dim, m, b) in ok {
             assert!(
@@ -409,9 +409,33 @@ mod tests {
         let got = material_messages(
             "plane_strain",
             &format!("{el} plastic {{ hardening = swift {{ K = 5 eps0 = 0.01 n = 2 }} }}"),
-            "",
+            "formulation = selective_reduced",
         );
         assert_eq!(got, ["Swift n must lie in [0, 1]"]);
+    }
+
+    #[test]
+    fn plastic_flow_on_fully_integrated_quads_is_a_locking_warning() {
+        let plastic = "elastic { E = 200e3 nu = 0.3 } plastic { yield = 250 }";
+        let warning = "fully integrated quad4 cells lock under plastic flow";
+        for (dim, m, b, warns) in [
+            ("plane_strain", plastic, "", true),
+            ("axisymmetric", plastic, "formulation = full", true),
+            (
+                "plane_strain",
+                plastic,
+                "formulation = selective_reduced",
+                false,
+            ),
+            ("plane_strain", "elastic { E = 200e3 nu = 0.3 }", "", false),
+        ] {
+            let got = material_messages(dim, m, b);
+            assert_eq!(
+                got.iter().any(|g| g == warning),
+                warns,
+                "{dim} {m} {b}: {got:?}"
+            );
+        }
     }
 
     #[test]

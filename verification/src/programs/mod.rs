@@ -11,6 +11,7 @@ pub mod discrete;
 pub mod dynamics;
 pub mod fenicsx;
 pub mod follower;
+pub mod free_bulge;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
@@ -53,6 +54,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(viscoplastic::cases());
     v.extend(norton_hoff::cases());
     v.extend(pressure_control::cases());
+    v.extend(free_bulge::cases());
     v.extend(penalty_scaling::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());

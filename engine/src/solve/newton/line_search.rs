@@ -4,9 +4,9 @@
 //! `phi'(0) = -du . K du < 0`. The full step is kept when
 //! `phi'(1) < |phi'(0)|` (the energy still decreases along the step: a
 //! contact closing under a full step raises `||r||` without making the step
-//! bad). Only with a potential (symmetric tangent: no friction, no F-bar),
-//! or a tangent non-symmetric only by a follower pressure's load stiffness
-//! (the test along the step still measures descent there).
+//! bad). Only with a potential (symmetric tangent: no friction), or a
+//! tangent non-symmetric only by a follower pressure's load stiffness or by
+//! F-bar (the test along the step still measures descent there).
 //!
 //! Otherwise, when the full step increases the residual (and has not
 //! already reached the tolerance: no backtracking on round-off noise, and

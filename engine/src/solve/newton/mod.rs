@@ -901,11 +901,14 @@ where
         let potential = self.assembler.symmetric() && !contact_unsymmetric && !self.follower;
         // the line search's energy test along the step (`du . r(u + du)`
         // against `du . r(u)`) needs a potential, or a tangent that departs
-        // from one only by a follower pressure's load stiffness: that test
+        // from one only by a follower pressure's load stiffness or by F-bar
+        // (the exact linearisation of a modified potential): that test
         // still measures descent along the step, where the residual-norm
         // test halves the first steps of a plate bending under a gas
-        // pressure to 1/32 (friction and non-symmetric laws: residual only)
-        let energy_test = self.assembler.symmetric() && !contact_unsymmetric;
+        // pressure to 1/32 (an F-bar plate: 1975 iterations instead of 41;
+        // tests/follower_plate.rs). Friction and the non-symmetric contact
+        // formulations: residual only.
+        let energy_test = !contact_unsymmetric;
         self.linear.set_symmetric(potential);
         self.begin_dynamics(t, step)?;
         external_forces(model, t, &mut self.f_ext);
