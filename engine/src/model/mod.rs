@@ -1016,6 +1016,27 @@ pub struct Dynamic {
     pub contact_mass: ContactMass,
     /// Rayleigh damping `C = alpha M + beta K_0`.
     pub rayleigh: Rayleigh,
+    /// Adaptive time stepping (`None`: the step's increments, cut back
+    /// and grown back to at most the initial size).
+    pub adaptive: Option<Adaptive>,
+}
+
+/// Adaptive time stepping of a dynamic step (`dynamic { adaptive = true
+/// dt_min  dt_max  error_tol }`; `solve::stepping`): the increment grows
+/// after easy increments up to `dt_max`, shrinks on a cutback, on a
+/// contact event (the number of active contact nodes changed: a first
+/// contact or a release) and by the local error estimate of Zienkiewicz
+/// & Xie (1991), `e = (beta - 1/6) dt^2 (a1 - a0)`, measured in the mass
+/// norm relative to the increment's displacement (`error_tol`; 0: no
+/// error control).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Adaptive {
+    /// Smallest increment (time).
+    pub dt_min: f64,
+    /// Largest increment (time).
+    pub dt_max: f64,
+    /// Tolerance of the relative local error estimate (0: none).
+    pub error_tol: f64,
 }
 
 /// Rayleigh (proportional) damping of a dynamic step: `C = alpha M + beta

@@ -574,6 +574,43 @@ impl Dynamics {
             .collect()
     }
 
+    /// The local error estimate of Zienkiewicz & Xie (1991, Earthquake
+    /// Eng. Struct. Dyn. 20:871) of the increment ending at `u` (committed
+    /// `u0`): `e = (beta - 1/6) dt^2 (a1 - a0)`, the difference between the
+    /// scheme's displacement and a third-order Taylor step, in the mass
+    /// norm relative to the increment's displacement, `|e|_M / |u1 -
+    /// u0|_M` (massless dofs, e.g. the contact nodes of `contact_mass =
+    /// redistributed`, do not count). `None` when the increment is
+    /// quasi-static or nothing moved.
+    pub fn local_error<const D: usize>(
+        &self,
+        model: &Model<D>,
+        u: &[f64],
+        u0: &[f64],
+    ) -> Option<f64> {
+        let (k, dt) = self.active?;
+        let a1 = self.acceleration(&k, dt, u, u0);
+        let c = (k.beta - 1.0 / 6.0) * dt * dt;
+        let e: Vec<f64> = a1
+            .iter()
+            .zip(&self.a)
+            .map(|(a1, a0)| c * (a1 - a0))
+            .collect();
+        let du: Vec<f64> = u.iter().zip(u0).map(|(u1, u0)| u1 - u0).collect();
+        let norm = |x: &[f64]| {
+            let mut mx = vec![0.0; x.len()];
+            self.mass_times(model, x, &mut mx);
+            mx.iter()
+                .zip(x)
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+                .max(0.0)
+                .sqrt()
+        };
+        let (ne, nu) = (norm(&e), norm(&du));
+        (nu > 0.0).then(|| ne / nu)
+    }
+
     /// The inertia part of the residual at `u` (added to `f_int - f_ext -
     /// f_c` at every dof) and its force scale (the norm of the mass times
     /// the magnitudes of the terms of `a1`, which cancel in a rigid

@@ -11,6 +11,20 @@
 //! grow-backs stay on for 20 levels) are computed as
 //! `t_start + (t_end - t_start) * n / increments`, not by summing the
 //! increments: `0.3`, not `0.30000000000000004`.
+//!
+//! Adaptive dynamic steps (`dynamic { adaptive = true }`,
+//! [`crate::model::Adaptive`]): the size stays within `[dt_min, dt_max]`
+//! (`dt_max` may exceed the initial size); after each converged attempt
+//! the local error estimate `eta` of the integrator
+//! ([`IncrementSolver::local_error`]) is compared with `error_tol`: above
+//! `2 error_tol` the increment is redone with `dt (error_tol / eta)^(1/3)
+//! 0.9` (at least a quarter of it, at least `dt_min`); accepted, the next
+//! size is `0.9 dt (error_tol / eta)^(1/3)` within `[dt / 2, 1.5 dt]`, the
+//! growth only after an easy increment (first attempt, at most half of
+//! `max_iter`). A contact event — the number of active contact nodes
+//! changed since the last accepted increment (a first contact, a release)
+//! — halves the next size. The first increment after a restart sees no
+//! contact event (the count is not in the restart point).
 
 use super::newton::{Converged, Failure};
 use super::restart::Resume;
@@ -53,6 +67,26 @@ pub trait IncrementSolver {
     /// increment there (`None`: no cut).
     fn impact_fraction(&self) -> Option<f64> {
         None
+    }
+    /// After a converged attempt of a dynamic increment: the relative
+    /// local error estimate of the integrator (`None`: none).
+    fn local_error(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// Safety factor of the error-controlled size.
+const ERROR_SAFETY: f64 = 0.9;
+/// An increment whose error estimate exceeds this many tolerances is
+/// redone.
+const ERROR_REJECT: f64 = 2.0;
+
+/// The size the error estimate `eta` of an increment of size `dt` asks
+/// for against `tol` (`tol == 0` or no estimate: no limit, `GROW dt`).
+fn error_controlled(dt: f64, eta: Option<f64>, tol: f64) -> f64 {
+    match eta {
+        Some(e) if tol > 0.0 && e > 0.0 => dt * ERROR_SAFETY * (tol / e).cbrt(),
+        _ => dt * GROW,
     }
 }
 
@@ -98,7 +132,13 @@ pub fn drive_from(
     let first = from.map_or(0, |r| r.step);
     for (si, step) in steps.iter().enumerate().skip(first) {
         let dt0 = (step.t_end - step.t_start) / step.increments as f64;
-        let min_dt = dt0 * step.min_fraction;
+        let adaptive = step.dynamic.and_then(|d| d.adaptive);
+        let min_dt = adaptive.map_or(dt0 * step.min_fraction, |a| a.dt_min.min(dt0));
+        let max_dt = adaptive.map_or(dt0, |a| a.dt_max.max(min_dt));
+        let error_tol = adaptive.map_or(0.0, |a| a.error_tol);
+        // active contact nodes at the last accepted increment (contact
+        // events of adaptive stepping)
+        let mut last_active: Option<usize> = None;
         let easy_iterations = (step.newton.max_iter / 2).max(1);
         let (mut t, mut dt, mut easy) = match from {
             Some(r) if r.step == si => (r.time, r.dt, r.easy),
@@ -134,14 +174,63 @@ pub fn drive_from(
                         dt = new_dt;
                         impact_cut = true;
                     }
+                    Ok(conv)
+                        if adaptive.is_some()
+                            && error_tol > 0.0
+                            && this_dt > min_dt * (1.0 + 1e-9)
+                            && solver
+                                .local_error()
+                                .is_some_and(|e| e > ERROR_REJECT * error_tol) =>
+                    {
+                        // the local error is too large: redo it smaller
+                        let eta = solver.local_error().unwrap_or(0.0);
+                        let new_dt = error_controlled(this_dt, Some(eta), error_tol)
+                            .max(this_dt / 4.0)
+                            .max(min_dt);
+                        let failure = Failure {
+                            kind: super::newton::FailureKind::ErrorEstimate,
+                            residuals: conv.residuals,
+                            detail: format!(
+                                "local error estimate {eta:.2e} above {ERROR_REJECT} x error_tol \
+                                 = {error_tol:.2e}"
+                            ),
+                        };
+                        solver.reject(si, &failure, new_dt);
+                        dt = new_dt;
+                        easy = 0;
+                    }
                     Ok(conv) => {
                         let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
+                        let eta = if adaptive.is_some() {
+                            solver.local_error()
+                        } else {
+                            None
+                        };
+                        let active = conv.active_contacts;
                         solver
                             .accept(si, t_new, this_dt, cutbacks, conv)
                             .map_err(StepError::Aborted)?;
                         t = t_new;
                         easy = if is_easy { easy + 1 } else { 0 };
-                        if easy >= EASY_BEFORE_GROW && dt < dt0 {
+                        if adaptive.is_some() {
+                            // the size of the accepted increment, not the
+                            // remainder of the step it may have been cut to
+                            let base = if this_dt < dt { dt } else { this_dt };
+                            let mut next = error_controlled(base, eta, error_tol)
+                                .clamp(base * CUT, base * GROW);
+                            // growth after EASY_BEFORE_GROW easy increments
+                            if easy < EASY_BEFORE_GROW {
+                                next = next.min(base);
+                            } else if next > base {
+                                easy = 0;
+                            }
+                            if last_active.is_some_and(|n| n != active) {
+                                next = next.min(this_dt * CUT);
+                                easy = 0;
+                            }
+                            last_active = Some(active);
+                            dt = next.clamp(min_dt, max_dt);
+                        } else if easy >= EASY_BEFORE_GROW && dt < dt0 {
                             dt = (dt * GROW).min(dt0);
                             easy = 0;
                         }
