@@ -895,10 +895,12 @@ pub static DYNAMIC: [Key; 12] = [
     .default(Default::Choice("consistent")),
     Key::new(
         "contact_mass",
-        KeyType::Choice(&["redistributed", "full"]),
+        KeyType::Choice(&["redistributed", "full", "normal"]),
         "mass of the nodes of contact surfaces: redistributed (moved to the other nodes of \
-         their cells, Khenous-Laborde-Renard 2008: no chatter, impacts conserve energy) or \
-         full (the mass matrix everywhere: contact nodes bounce)",
+         their cells, Khenous-Laborde-Renard 2008: no chatter, impacts conserve energy), \
+         full (the mass matrix everywhere: contact nodes bounce) or normal (only the share \
+         along the normal of an axis-aligned rigid plane is moved, the tangential mass stays: \
+         a frictionless face keeps its inertia; other masters as redistributed)",
     )
     .default(Default::Choice("redistributed")),
     Key::new(

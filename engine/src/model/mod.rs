@@ -1069,6 +1069,13 @@ pub enum ContactMass {
     Redistributed,
     /// The step's mass matrix everywhere (contact nodes bounce).
     Full,
+    /// Only the share along the tool normal is moved: the nodes in contact
+    /// with a rigid plane whose normal is a coordinate axis keep their
+    /// lumped mass in the tangential directions (a frictionless surface
+    /// layer keeps its inertia, e.g. the impact face of a Taylor bar), the
+    /// other nodes take only the normal share of it; contact nodes of
+    /// other masters are massless as with `Redistributed`.
+    Normal,
 }
 
 /// An initial velocity component on a set of nodes (`initial_velocity`

@@ -25,6 +25,8 @@
 //! layer in contact on both sides) keeps its lumped mass and is counted.
 
 use crate::element::kernel::lump;
+use crate::model::{ContactMaster, Model, SurfaceShape, TimeFunction, ToolGeometry};
+use ctc_geom::analytic::Analytic;
 
 /// Replaces the `nn x nn` cell mass `m` (row-major) by its lumped mass
 /// with the masses of the nodes flagged `massless` moved to the others in
@@ -46,6 +48,74 @@ pub fn redistribute(m: &mut [f64], nn: usize, massless: &[bool]) -> bool {
         *d = if massless[a] { 0.0 } else { *d * scale };
     }
     true
+}
+
+/// The lumped diagonal of `nn x nn` cell mass `m` (row-major) and the
+/// mass [`redistribute`] moves from node `a` to node `b`, `moved[a * nn +
+/// b]` (zero unless `a` is flagged and `b` is not).
+pub fn moved_mass(m: &[f64], nn: usize, massless: &[bool]) -> Vec<f64> {
+    let mut lumped = m.to_vec();
+    lump(&mut lumped, nn);
+    let kept: f64 = (0..nn)
+        .filter(|&a| !massless[a])
+        .map(|a| lumped[a * nn + a])
+        .sum();
+    let mut moved = vec![0.0; nn * nn];
+    if kept <= 0.0 {
+        return moved;
+    }
+    for a in (0..nn).filter(|&a| massless[a]) {
+        for b in (0..nn).filter(|&b| !massless[b]) {
+            moved[a * nn + b] = lumped[a * nn + a] * lumped[b * nn + b] / kept;
+        }
+    }
+    moved
+}
+
+/// The unit normal of `master` when it is a rigid plane that does not
+/// rotate and whose normal is a coordinate axis (`contact_mass = normal`
+/// keeps the tangential mass of its contact nodes: with an axis normal,
+/// the massless direction is one dof, so the initial acceleration and the
+/// mass matrix stay well posed on the others); `None` otherwise.
+pub fn axis_plane_normal<const D: usize>(
+    model: &Model<D>,
+    master: &ContactMaster,
+) -> Option<[f64; D]> {
+    let &ContactMaster::Tool(i) = master else {
+        return None;
+    };
+    let still = |f: &TimeFunction| *f == TimeFunction::Constant(0.0);
+    let n: Vec<f64> = if D == 2 {
+        let t = model.tools.get(i)?;
+        let ToolGeometry::Plane { normal, .. } = t.geometry else {
+            return None;
+        };
+        if !still(&t.motion.rotation) {
+            return None;
+        }
+        normal.to_vec()
+    } else {
+        let t = model.surfaces.get(i)?;
+        let SurfaceShape::Analytic(Analytic::Plane(p)) = &t.geometry else {
+            return None;
+        };
+        if !still(&t.motion.rotation) {
+            return None;
+        }
+        vec![p.normal.x, p.normal.y, p.normal.z]
+    };
+    let len = n.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let axis = n
+        .iter()
+        .filter(|x| (x.abs() / len - 1.0).abs() < 1e-12)
+        .count()
+        == 1
+        && n.iter().filter(|x| **x == 0.0).count() == D - 1;
+    let mut out = [0.0; D];
+    for (o, x) in out.iter_mut().zip(&n) {
+        *o = (x / len).round();
+    }
+    axis.then_some(out)
 }
 
 /// Flags of the nodes of every contact surface of the pairs (`slave`

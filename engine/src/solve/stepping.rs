@@ -449,6 +449,115 @@ mod tests {
         assert_eq!(m.rejected, vec![0.25, 0.125, 0.0625]);
     }
 
+    /// Converges always; the local error is `c dt^3` of the attempt and
+    /// the active contact count switches from 1 to 0 at `release`.
+    struct Smooth {
+        mock: Mock,
+        c: f64,
+        release: f64,
+        last_dt: f64,
+    }
+
+    impl IncrementSolver for Smooth {
+        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+            self.last_dt = t - self.mock.t;
+            let mut conv = self.mock.attempt(step, t)?;
+            conv.active_contacts = usize::from(t <= self.release);
+            Ok(conv)
+        }
+        fn accept(
+            &mut self,
+            s: usize,
+            t: f64,
+            dt: f64,
+            cutbacks: usize,
+            c: Converged,
+        ) -> Result<(), String> {
+            self.mock.accept(s, t, dt, cutbacks, c)
+        }
+        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
+            self.mock.t = self.mock.accepted.last().map_or(0.0, |a| a.0);
+            self.mock.reject(s, f, new_dt);
+        }
+        fn local_error(&self) -> Option<f64> {
+            Some(self.c * self.last_dt.powi(3))
+        }
+    }
+
+    fn adaptive_step(dt_max: f64, error_tol: f64) -> Step {
+        let mut s = step(10.0, 100, 1e-3);
+        s.dynamic = Some(crate::model::Dynamic {
+            scheme: crate::model::Scheme::Newmark {
+                beta: 0.25,
+                gamma: 0.5,
+            },
+            mass: crate::model::MassMatrix::Consistent,
+            contact_mass: crate::model::ContactMass::Redistributed,
+            rayleigh: crate::model::Rayleigh::default(),
+            adaptive: Some(crate::model::Adaptive {
+                dt_min: 1e-3,
+                dt_max,
+                error_tol,
+            }),
+        });
+        s
+    }
+
+    #[test]
+    fn adaptive_steps_follow_the_error_estimate_and_contact_events() {
+        // without an error estimate: growth by 1.5 after two easy
+        // increments, up to dt_max (above the initial 0.1)
+        let mut m = Smooth {
+            mock: mock(10.0),
+            c: 0.0,
+            release: -1.0,
+            last_dt: 0.0,
+        };
+        drive(&[adaptive_step(1.0, 0.0)], &mut m).unwrap();
+        let dts: Vec<f64> = m
+            .mock
+            .accepted
+            .windows(2)
+            .map(|w| w[1].0 - w[0].0)
+            .collect();
+        assert!(dts.iter().all(|d| *d <= 1.0 + 1e-12), "{dts:?}");
+        assert!(dts.iter().any(|d| (*d - 1.0).abs() < 1e-12), "{dts:?}");
+        assert!(m.mock.accepted.len() < 30, "{}", m.mock.accepted.len());
+        assert_eq!(m.mock.accepted.last().unwrap().0, 10.0);
+        // error eta = c dt^3 against tol: the size settles where eta is
+        // 0.9^3 tol .. tol, (tol / c)^(1/3) = 0.2 here; an attempt above
+        // 2 tol is redone
+        let (c, tol) = (1.0, 8e-3);
+        let mut m = Smooth {
+            mock: mock(10.0),
+            c,
+            release: -1.0,
+            last_dt: 0.0,
+        };
+        drive(&[adaptive_step(5.0, tol)], &mut m).unwrap();
+        let acc = &m.mock.accepted;
+        let last: Vec<f64> = acc.windows(2).map(|w| w[1].0 - w[0].0).collect();
+        for d in &last[last.len() / 2..last.len() - 1] {
+            assert!(*d <= 0.2 * 2f64.cbrt() && *d >= 0.2 * 0.9 * 0.5, "{last:?}");
+        }
+        for d in &last {
+            assert!(c * d.powi(3) <= 2.0 * tol * (1.0 + 1e-12), "{last:?}");
+        }
+        // a release halves the next size
+        let mut m = Smooth {
+            mock: mock(10.0),
+            c: 0.0,
+            release: 5.0,
+            last_dt: 0.0,
+        };
+        drive(&[adaptive_step(1.0, 0.0)], &mut m).unwrap();
+        let acc = &m.mock.accepted;
+        let i = acc.iter().position(|a| a.0 > 5.0).unwrap();
+        let before = acc[i].0 - acc[i - 1].0;
+        let after = acc[i + 1].0 - acc[i].0;
+        assert!((after - 0.5 * before).abs() < 1e-12, "{before} {after}");
+    }
+
     /// Records the restart points reported by the stepper.
     struct Recorder {
         mock: Mock,

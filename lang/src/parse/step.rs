@@ -135,6 +135,7 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
             &[
                 ("redistributed", ContactMass::Redistributed),
                 ("full", ContactMass::Full),
+                ("normal", ContactMass::Normal),
             ],
             diags,
         ),
