@@ -297,6 +297,28 @@ mod tests {
     }
 
     #[test]
+    fn adaptive_keys_need_adaptive_and_ordered_bounds() {
+        let m = messages("step d { time = 1 .. 2 dynamic { dt_max = 0.1 } }");
+        assert!(
+            m.contains(&"`dt_max` needs adaptive time stepping".to_string()),
+            "{m:?}"
+        );
+        let m = messages(
+            "step d { time = 1 .. 2 dynamic { adaptive = true  dt_min = 0.2  dt_max = 0.1  \
+             error_tol = -1 } }",
+        );
+        assert!(
+            m.contains(&"dt_min is larger than dt_max".to_string()),
+            "{m:?}"
+        );
+        assert!(
+            m.contains(&"error_tol must not be negative".to_string()),
+            "{m:?}"
+        );
+        assert!(!m.iter().any(|s| s.contains("needs adaptive")), "{m:?}");
+    }
+
+    #[test]
     fn step_times_must_be_contiguous() {
         let m = messages("step b { time = 0.5 .. 2 }\nstep c { time = 3 .. 3 }");
         assert_eq!(
