@@ -158,6 +158,33 @@ mod tests {
         assert_eq!(off, 0.0);
     }
 
+    /// The mass moved from each contact node to each other node is what
+    /// `redistribute` adds to the latter (`contact_mass = normal` gives it
+    /// back tangentially): nodes 0, 1 (1 each) to nodes 2, 3 (1 each).
+    #[test]
+    fn moved_mass_is_what_redistribution_adds() {
+        let mut m = vec![0.0; 16];
+        let base = [4.0, 2.0, 1.0, 2.0];
+        for a in 0..4 {
+            for b in 0..4 {
+                m[a * 4 + b] = base[(b + 4 - a) % 4] * 4.0 / 36.0;
+            }
+        }
+        let flags = [true, true, false, false];
+        let moved = moved_mass(&m, 4, &flags);
+        let mut r = m.clone();
+        assert!(redistribute(&mut r, 4, &flags));
+        for b in 2..4 {
+            let gained: f64 = (0..4).map(|a| moved[a * 4 + b]).sum();
+            assert!((1.0 + gained - r[b * 4 + b]).abs() < 1e-14, "{moved:?}");
+        }
+        for a in 0..2 {
+            let lost: f64 = (0..4).map(|b| moved[a * 4 + b]).sum();
+            assert!((lost - 1.0).abs() < 1e-14, "{moved:?}");
+        }
+        assert!(moved[2 * 4 + 3] == 0.0 && moved[1] == 0.0);
+    }
+
     #[test]
     fn a_cell_with_every_node_in_contact_keeps_its_lumped_mass() {
         let mut m = vec![1.0, 0.5, 0.5, 1.0];
