@@ -856,7 +856,8 @@ pub static STEP: [Key; 5] = [
     Key::new(
         "dynamic",
         KeyType::Choice(&[
-            "{ scheme rho_inf beta gamma mass contact_mass rayleigh_alpha rayleigh_beta }",
+            "{ scheme rho_inf beta gamma mass contact_mass rayleigh_alpha rayleigh_beta adaptive dt_min \
+             dt_max error_tol }",
         ]),
         "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
          step is quasi-static",
@@ -864,7 +865,7 @@ pub static STEP: [Key; 5] = [
 ];
 
 /// `dynamic { .. }` of a step.
-pub static DYNAMIC: [Key; 8] = [
+pub static DYNAMIC: [Key; 12] = [
     Key::new(
         "scheme",
         KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
@@ -901,10 +902,12 @@ pub static DYNAMIC: [Key; 8] = [
     .default(Default::Choice("consistent")),
     Key::new(
         "contact_mass",
-        KeyType::Choice(&["redistributed", "full"]),
+        KeyType::Choice(&["redistributed", "full", "normal"]),
         "mass of the nodes of contact surfaces: redistributed (moved to the other nodes of \
-         their cells, Khenous-Laborde-Renard 2008: no chatter, impacts conserve energy) or \
-         full (the mass matrix everywhere: contact nodes bounce)",
+         their cells, Khenous-Laborde-Renard 2008: no chatter, impacts conserve energy), \
+         full (the mass matrix everywhere: contact nodes bounce) or normal (only the share \
+         along the normal of an axis-aligned rigid plane is moved, the tangential mass stays: \
+         a frictionless face keeps its inertia; other masters as redistributed)",
     )
     .default(Default::Choice("redistributed")),
     Key::new(
@@ -925,6 +928,41 @@ pub static DYNAMIC: [Key; 8] = [
     .default(Default::Number(0.0))
     .range(Range::NonNegative)
     .dim(Dim::Time),
+    Key::new(
+        "adaptive",
+        KeyType::Bool,
+        "adaptive time stepping: the increment grows (x1.5) after two easy increments up to \
+         dt_max, is halved on a cutback and on a contact event (first contact or release), \
+         and follows the Zienkiewicz-Xie local error estimate (error_tol); false: the step's \
+         equal increments, cut back and grown back to at most their initial size",
+    )
+    .default(Default::Bool(false)),
+    Key::new(
+        "dt_min",
+        KeyType::Number,
+        "smallest increment of adaptive stepping (absent: min_increment x the initial \
+         increment)",
+    )
+    .range(Range::Positive)
+    .dim(Dim::Time),
+    Key::new(
+        "dt_max",
+        KeyType::Number,
+        "largest increment of adaptive stepping (absent: 10 x the initial increment)",
+    )
+    .range(Range::Positive)
+    .dim(Dim::Time),
+    Key::new(
+        "error_tol",
+        KeyType::Number,
+        "tolerance of the Zienkiewicz-Xie local error estimate |(beta - 1/6) dt^2 (a1 - a0)|_M \
+         / |u1 - u0|_M of adaptive stepping: an increment above twice it is redone smaller, \
+         the next size is dt (error_tol / error)^(1/3) within [dt / 2, 1.5 dt] (0: no error \
+         control)",
+    )
+    .default(Default::Number(1e-2))
+    .range(Range::NonNegative)
+    .dim(Dim::None),
 ];
 
 /// `spring NODES [-> NODES] { .. }`: a spring and a dashpot from each node

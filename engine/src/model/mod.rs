@@ -1020,6 +1020,27 @@ pub struct Dynamic {
     pub contact_mass: ContactMass,
     /// Rayleigh damping `C = alpha M + beta K_0`.
     pub rayleigh: Rayleigh,
+    /// Adaptive time stepping (`None`: the step's increments, cut back
+    /// and grown back to at most the initial size).
+    pub adaptive: Option<Adaptive>,
+}
+
+/// Adaptive time stepping of a dynamic step (`dynamic { adaptive = true
+/// dt_min  dt_max  error_tol }`; `solve::stepping`): the increment grows
+/// after easy increments up to `dt_max`, shrinks on a cutback, on a
+/// contact event (the number of active contact nodes changed: a first
+/// contact or a release) and by the local error estimate of Zienkiewicz
+/// & Xie (1991), `e = (beta - 1/6) dt^2 (a1 - a0)`, measured in the mass
+/// norm relative to the increment's displacement (`error_tol`; 0: no
+/// error control).
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Adaptive {
+    /// Smallest increment (time).
+    pub dt_min: f64,
+    /// Largest increment (time).
+    pub dt_max: f64,
+    /// Tolerance of the relative local error estimate (0: none).
+    pub error_tol: f64,
 }
 
 /// Rayleigh (proportional) damping of a dynamic step: `C = alpha M + beta
@@ -1052,6 +1073,13 @@ pub enum ContactMass {
     Redistributed,
     /// The step's mass matrix everywhere (contact nodes bounce).
     Full,
+    /// Only the share along the tool normal is moved: the nodes in contact
+    /// with a rigid plane whose normal is a coordinate axis keep their
+    /// lumped mass in the tangential directions (a frictionless surface
+    /// layer keeps its inertia, e.g. the impact face of a Taylor bar), the
+    /// other nodes take only the normal share of it; contact nodes of
+    /// other masters are massless as with `Redistributed`.
+    Normal,
 }
 
 /// An initial velocity component on a set of nodes (`initial_velocity`

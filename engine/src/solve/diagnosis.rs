@@ -406,6 +406,12 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
              `penalty` for this pair"
                 .into(),
         ),
+        FailureKind::ErrorEstimate => (
+            "the local error estimate of adaptive stepping stays above `error_tol` down to \
+             `dt_min`"
+                .into(),
+            "raise `error_tol` or lower `dt_min`".into(),
+        ),
         FailureKind::ImpactCut => (
             "increments are cut at each first impact (`cut_at_impact = true`)".into(),
             "set `cut_at_impact = false` or use more `increments`".into(),

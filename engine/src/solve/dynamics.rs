@@ -265,6 +265,12 @@ pub struct Dynamics {
     forces0: Vec<Vec<f64>>,
     /// Point mass at each node (`Discrete::Mass`; empty: none).
     node_mass: Vec<f64>,
+    /// `contact_mass = normal`: a `D x D` block per node (row-major,
+    /// `node D D + p D + q`) added to the redistributed mass: the
+    /// tangential mass `m_a (I - n n^T)` of contact nodes on axis-aligned
+    /// rigid planes, minus its share moved to the other nodes of their
+    /// cells (empty: none).
+    node_tensor: Vec<f64>,
     /// Whether a dashpot (`Discrete::Ground` or `Link` with a damping)
     /// exists (`super::discrete` applies them).
     dashpots: bool,
@@ -309,6 +315,7 @@ impl Dynamics {
             forces0: vec![vec![0.0; n]; FORCES],
             cell_damping: Vec::new(),
             node_mass: Vec::new(),
+            node_tensor: Vec::new(),
             dashpots: false,
             damping_kind: None,
             kinetic0: 0.0,
@@ -335,7 +342,7 @@ impl Dynamics {
         }
         let massless = match d.contact_mass {
             ContactMass::Full => vec![false; model.mesh.nodes.len()],
-            ContactMass::Redistributed => super::contact_mass::contact_nodes(
+            ContactMass::Redistributed | ContactMass::Normal => super::contact_mass::contact_nodes(
                 model.mesh.nodes.len(),
                 model.contacts.iter().flat_map(|p| {
                     let master: &[usize] = match &p.master {
@@ -346,6 +353,29 @@ impl Dynamics {
                 }),
             ),
         };
+        // contact_mass = normal: the unit normal of the axis-aligned rigid
+        // plane each contact node touches (its tangential mass is kept)
+        let mut normal: Vec<Option<[f64; D]>> = vec![None; model.mesh.nodes.len()];
+        if d.contact_mass == ContactMass::Normal {
+            for p in &model.contacts {
+                let Some(n) = super::contact_mass::axis_plane_normal::<D>(model, &p.master) else {
+                    continue;
+                };
+                for &node in &p.nodes {
+                    if let Some(x) = normal.get_mut(node) {
+                        *x = Some(n);
+                    }
+                }
+            }
+        }
+        let mut tensor = vec![
+            0.0;
+            if normal.iter().any(Option::is_some) {
+                model.mesh.nodes.len() * D * D
+            } else {
+                0
+            }
+        ];
         let section = Section::new(&model.analysis);
         let mut masses = vec![Vec::new(); model.mesh.cells.len()];
         let mut kept = 0;
@@ -379,14 +409,39 @@ impl Dynamics {
                         },
                     )
                     .map_err(|e| format!("cell {c}: {}", e.message))?;
+                let moved = if touches && !tensor.is_empty() {
+                    super::contact_mass::moved_mass(&m, nodes.len(), &flags)
+                } else {
+                    Vec::new()
+                };
                 if touches && !super::contact_mass::redistribute(&mut m, nodes.len(), &flags) {
                     kept += 1;
+                } else if !moved.is_empty() {
+                    // the tangential share stays where it was
+                    let nn = nodes.len();
+                    for (a, &na) in nodes.iter().enumerate() {
+                        let Some(n) = normal[na] else { continue };
+                        for (b, &nb) in nodes.iter().enumerate() {
+                            let w = moved[a * nn + b];
+                            if w == 0.0 {
+                                continue;
+                            }
+                            for p in 0..D {
+                                for q in 0..D {
+                                    let t = f64::from(u8::from(p == q)) - n[p] * n[q];
+                                    tensor[na * D * D + p * D + q] += w * t;
+                                    tensor[nb * D * D + p * D + q] -= w * t;
+                                }
+                            }
+                        }
+                    }
                 }
                 masses[c] = m;
             }
         }
         self.contact_cells_kept = kept;
         self.cell_mass = masses;
+        self.node_tensor = tensor;
         self.node_mass.clear();
         self.dashpots = super::discrete::any(model, |_, c| c);
         let nn = model.mesh.nodes.len();
@@ -418,6 +473,13 @@ impl Dynamics {
     /// `out += M x` over all dofs (`x`, `out` per dof `node D + c`; point
     /// masses included).
     pub fn mass_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
+        for (n, t) in self.node_tensor.chunks_exact(D * D).enumerate() {
+            for p in 0..D {
+                for q in 0..D {
+                    out[n * D + p] += t[p * D + q] * x[n * D + q];
+                }
+            }
+        }
         for (n, m) in self.node_mass.iter().enumerate() {
             for k in 0..D {
                 out[n * D + k] += m * x[n * D + k];
@@ -574,6 +636,43 @@ impl Dynamics {
             .collect()
     }
 
+    /// The local error estimate of Zienkiewicz & Xie (1991, Earthquake
+    /// Eng. Struct. Dyn. 20:871) of the increment ending at `u` (committed
+    /// `u0`): `e = (beta - 1/6) dt^2 (a1 - a0)`, the difference between the
+    /// scheme's displacement and a third-order Taylor step, in the mass
+    /// norm relative to the increment's displacement, `|e|_M / |u1 -
+    /// u0|_M` (massless dofs, e.g. the contact nodes of `contact_mass =
+    /// redistributed`, do not count). `None` when the increment is
+    /// quasi-static or nothing moved.
+    pub fn local_error<const D: usize>(
+        &self,
+        model: &Model<D>,
+        u: &[f64],
+        u0: &[f64],
+    ) -> Option<f64> {
+        let (k, dt) = self.active?;
+        let a1 = self.acceleration(&k, dt, u, u0);
+        let c = (k.beta - 1.0 / 6.0) * dt * dt;
+        let e: Vec<f64> = a1
+            .iter()
+            .zip(&self.a)
+            .map(|(a1, a0)| c * (a1 - a0))
+            .collect();
+        let du: Vec<f64> = u.iter().zip(u0).map(|(u1, u0)| u1 - u0).collect();
+        let norm = |x: &[f64]| {
+            let mut mx = vec![0.0; x.len()];
+            self.mass_times(model, x, &mut mx);
+            mx.iter()
+                .zip(x)
+                .map(|(a, b)| a * b)
+                .sum::<f64>()
+                .max(0.0)
+                .sqrt()
+        };
+        let (ne, nu) = (norm(&e), norm(&du));
+        (nu > 0.0).then(|| ne / nu)
+    }
+
     /// The inertia part of the residual at `u` (added to `f_int - f_ext -
     /// f_c` at every dof) and its force scale (the norm of the mass times
     /// the magnitudes of the terms of `a1`, which cancel in a rigid
@@ -641,6 +740,23 @@ impl Dynamics {
                 }
             }
         }
+        // the nodal blocks of contact_mass = normal
+        for (n, t) in self.node_tensor.chunks_exact(D * D).enumerate() {
+            for p in 0..D {
+                for q in 0..D {
+                    let (Some(Dof::Free(i)), Some(Dof::Free(j))) =
+                        (dofs.dofs.get(n * D + p), dofs.dofs.get(n * D + q))
+                    else {
+                        continue;
+                    };
+                    if t[p * D + q] != 0.0 {
+                        if let Some(s) = scatter.pattern.find(*i, *j) {
+                            values[s] += coef * t[p * D + q];
+                        }
+                    }
+                }
+            }
+        }
         if self.dashpots {
             super::discrete::add_tangent(model, dofs, scatter, values, |_, c| cdamp * c);
         }
@@ -703,6 +819,11 @@ impl Dynamics {
         for (node, m) in self.node_mass.iter().enumerate() {
             for k in 0..D {
                 diag[node * D + k] += m;
+            }
+        }
+        for (node, t) in self.node_tensor.chunks_exact(D * D).enumerate() {
+            for k in 0..D {
+                diag[node * D + k] += t[k * D + k];
             }
         }
         for (c, m) in self.cell_mass.iter().enumerate() {

@@ -891,6 +891,10 @@ where
         self.newton.impact_fraction()
     }
 
+    fn local_error(&self) -> Option<f64> {
+        self.newton.local_error()
+    }
+
     fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64) {
         self.newton.rollback();
         self.summary.cutbacks += 1;

@@ -11,6 +11,20 @@
 //! grow-backs stay on for 20 levels) are computed as
 //! `t_start + (t_end - t_start) * n / increments`, not by summing the
 //! increments: `0.3`, not `0.30000000000000004`.
+//!
+//! Adaptive dynamic steps (`dynamic { adaptive = true }`,
+//! [`crate::model::Adaptive`]): the size stays within `[dt_min, dt_max]`
+//! (`dt_max` may exceed the initial size); after each converged attempt
+//! the local error estimate `eta` of the integrator
+//! ([`IncrementSolver::local_error`]) is compared with `error_tol`: above
+//! `2 error_tol` the increment is redone with `dt (error_tol / eta)^(1/3)
+//! 0.9` (at least a quarter of it, at least `dt_min`); accepted, the next
+//! size is `0.9 dt (error_tol / eta)^(1/3)` within `[dt / 2, 1.5 dt]`, the
+//! growth only after an easy increment (first attempt, at most half of
+//! `max_iter`). A contact event — the number of active contact nodes
+//! changed since the last accepted increment (a first contact, a release)
+//! — halves the next size. The first increment after a restart sees no
+//! contact event (the count is not in the restart point).
 
 use super::newton::{Converged, Failure};
 use super::restart::Resume;
@@ -53,6 +67,26 @@ pub trait IncrementSolver {
     /// increment there (`None`: no cut).
     fn impact_fraction(&self) -> Option<f64> {
         None
+    }
+    /// After a converged attempt of a dynamic increment: the relative
+    /// local error estimate of the integrator (`None`: none).
+    fn local_error(&self) -> Option<f64> {
+        None
+    }
+}
+
+/// Safety factor of the error-controlled size.
+const ERROR_SAFETY: f64 = 0.9;
+/// An increment whose error estimate exceeds this many tolerances is
+/// redone.
+const ERROR_REJECT: f64 = 2.0;
+
+/// The size the error estimate `eta` of an increment of size `dt` asks
+/// for against `tol` (`tol == 0` or no estimate: no limit, `GROW dt`).
+fn error_controlled(dt: f64, eta: Option<f64>, tol: f64) -> f64 {
+    match eta {
+        Some(e) if tol > 0.0 && e > 0.0 => dt * ERROR_SAFETY * (tol / e).cbrt(),
+        _ => dt * GROW,
     }
 }
 
@@ -98,7 +132,13 @@ pub fn drive_from(
     let first = from.map_or(0, |r| r.step);
     for (si, step) in steps.iter().enumerate().skip(first) {
         let dt0 = (step.t_end - step.t_start) / step.increments as f64;
-        let min_dt = dt0 * step.min_fraction;
+        let adaptive = step.dynamic.and_then(|d| d.adaptive);
+        let min_dt = adaptive.map_or(dt0 * step.min_fraction, |a| a.dt_min.min(dt0));
+        let max_dt = adaptive.map_or(dt0, |a| a.dt_max.max(min_dt));
+        let error_tol = adaptive.map_or(0.0, |a| a.error_tol);
+        // active contact nodes at the last accepted increment (contact
+        // events of adaptive stepping)
+        let mut last_active: Option<usize> = None;
         let easy_iterations = (step.newton.max_iter / 2).max(1);
         let (mut t, mut dt, mut easy) = match from {
             Some(r) if r.step == si => (r.time, r.dt, r.easy),
@@ -134,14 +174,63 @@ pub fn drive_from(
                         dt = new_dt;
                         impact_cut = true;
                     }
+                    Ok(conv)
+                        if adaptive.is_some()
+                            && error_tol > 0.0
+                            && this_dt > min_dt * (1.0 + 1e-9)
+                            && solver
+                                .local_error()
+                                .is_some_and(|e| e > ERROR_REJECT * error_tol) =>
+                    {
+                        // the local error is too large: redo it smaller
+                        let eta = solver.local_error().unwrap_or(0.0);
+                        let new_dt = error_controlled(this_dt, Some(eta), error_tol)
+                            .max(this_dt / 4.0)
+                            .max(min_dt);
+                        let failure = Failure {
+                            kind: super::newton::FailureKind::ErrorEstimate,
+                            residuals: conv.residuals,
+                            detail: format!(
+                                "local error estimate {eta:.2e} above {ERROR_REJECT} x error_tol \
+                                 = {error_tol:.2e}"
+                            ),
+                        };
+                        solver.reject(si, &failure, new_dt);
+                        dt = new_dt;
+                        easy = 0;
+                    }
                     Ok(conv) => {
                         let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
+                        let eta = if adaptive.is_some() {
+                            solver.local_error()
+                        } else {
+                            None
+                        };
+                        let active = conv.active_contacts;
                         solver
                             .accept(si, t_new, this_dt, cutbacks, conv)
                             .map_err(StepError::Aborted)?;
                         t = t_new;
                         easy = if is_easy { easy + 1 } else { 0 };
-                        if easy >= EASY_BEFORE_GROW && dt < dt0 {
+                        if adaptive.is_some() {
+                            // the size of the accepted increment, not the
+                            // remainder of the step it may have been cut to
+                            let base = if this_dt < dt { dt } else { this_dt };
+                            let mut next = error_controlled(base, eta, error_tol)
+                                .clamp(base * CUT, base * GROW);
+                            // growth after EASY_BEFORE_GROW easy increments
+                            if easy < EASY_BEFORE_GROW {
+                                next = next.min(base);
+                            } else if next > base {
+                                easy = 0;
+                            }
+                            if last_active.is_some_and(|n| n != active) {
+                                next = next.min(this_dt * CUT);
+                                easy = 0;
+                            }
+                            last_active = Some(active);
+                            dt = next.clamp(min_dt, max_dt);
+                        } else if easy >= EASY_BEFORE_GROW && dt < dt0 {
                             dt = (dt * GROW).min(dt0);
                             easy = 0;
                         }
@@ -358,6 +447,115 @@ mod tests {
         }
         assert_eq!(m.attempts.len(), 4);
         assert_eq!(m.rejected, vec![0.25, 0.125, 0.0625]);
+    }
+
+    /// Converges always; the local error is `c dt^3` of the attempt and
+    /// the active contact count switches from 1 to 0 at `release`.
+    struct Smooth {
+        mock: Mock,
+        c: f64,
+        release: f64,
+        last_dt: f64,
+    }
+
+    impl IncrementSolver for Smooth {
+        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+            self.last_dt = t - self.mock.t;
+            let mut conv = self.mock.attempt(step, t)?;
+            conv.active_contacts = usize::from(t <= self.release);
+            Ok(conv)
+        }
+        fn accept(
+            &mut self,
+            s: usize,
+            t: f64,
+            dt: f64,
+            cutbacks: usize,
+            c: Converged,
+        ) -> Result<(), String> {
+            self.mock.accept(s, t, dt, cutbacks, c)
+        }
+        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
+            self.mock.t = self.mock.accepted.last().map_or(0.0, |a| a.0);
+            self.mock.reject(s, f, new_dt);
+        }
+        fn local_error(&self) -> Option<f64> {
+            Some(self.c * self.last_dt.powi(3))
+        }
+    }
+
+    fn adaptive_step(dt_max: f64, error_tol: f64) -> Step {
+        let mut s = step(10.0, 100, 1e-3);
+        s.dynamic = Some(crate::model::Dynamic {
+            scheme: crate::model::Scheme::Newmark {
+                beta: 0.25,
+                gamma: 0.5,
+            },
+            mass: crate::model::MassMatrix::Consistent,
+            contact_mass: crate::model::ContactMass::Redistributed,
+            rayleigh: crate::model::Rayleigh::default(),
+            adaptive: Some(crate::model::Adaptive {
+                dt_min: 1e-3,
+                dt_max,
+                error_tol,
+            }),
+        });
+        s
+    }
+
+    #[test]
+    fn adaptive_steps_follow_the_error_estimate_and_contact_events() {
+        // without an error estimate: growth by 1.5 after two easy
+        // increments, up to dt_max (above the initial 0.1)
+        let mut m = Smooth {
+            mock: mock(10.0),
+            c: 0.0,
+            release: -1.0,
+            last_dt: 0.0,
+        };
+        drive(&[adaptive_step(1.0, 0.0)], &mut m).unwrap();
+        let dts: Vec<f64> = m
+            .mock
+            .accepted
+            .windows(2)
+            .map(|w| w[1].0 - w[0].0)
+            .collect();
+        assert!(dts.iter().all(|d| *d <= 1.0 + 1e-12), "{dts:?}");
+        assert!(dts.iter().any(|d| (*d - 1.0).abs() < 1e-12), "{dts:?}");
+        assert!(m.mock.accepted.len() < 30, "{}", m.mock.accepted.len());
+        assert_eq!(m.mock.accepted.last().unwrap().0, 10.0);
+        // error eta = c dt^3 against tol: the size settles where eta is
+        // 0.9^3 tol .. tol, (tol / c)^(1/3) = 0.2 here; an attempt above
+        // 2 tol is redone
+        let (c, tol) = (1.0, 8e-3);
+        let mut m = Smooth {
+            mock: mock(10.0),
+            c,
+            release: -1.0,
+            last_dt: 0.0,
+        };
+        drive(&[adaptive_step(5.0, tol)], &mut m).unwrap();
+        let acc = &m.mock.accepted;
+        let last: Vec<f64> = acc.windows(2).map(|w| w[1].0 - w[0].0).collect();
+        for d in &last[last.len() / 2..last.len() - 1] {
+            assert!(*d <= 0.2 * 2f64.cbrt() && *d >= 0.2 * 0.9 * 0.5, "{last:?}");
+        }
+        for d in &last {
+            assert!(c * d.powi(3) <= 2.0 * tol * (1.0 + 1e-12), "{last:?}");
+        }
+        // a release halves the next size
+        let mut m = Smooth {
+            mock: mock(10.0),
+            c: 0.0,
+            release: 5.0,
+            last_dt: 0.0,
+        };
+        drive(&[adaptive_step(1.0, 0.0)], &mut m).unwrap();
+        let acc = &m.mock.accepted;
+        let i = acc.iter().position(|a| a.0 > 5.0).unwrap();
+        let before = acc[i].0 - acc[i - 1].0;
+        let after = acc[i + 1].0 - acc[i].0;
+        assert!((after - 0.5 * before).abs() < 1e-12, "{before} {after}");
     }
 
     /// Records the restart points reported by the stepper.

@@ -775,6 +775,14 @@ pub struct Dynamic {
     pub rayleigh_alpha: Option<Spanned<f64>>,
     /// `rayleigh_beta`: stiffness-proportional damping (time).
     pub rayleigh_beta: Option<Spanned<f64>>,
+    /// `adaptive = true | false`: adaptive time stepping.
+    pub adaptive: Option<Spanned<bool>>,
+    /// `dt_min`: smallest adaptive increment (time).
+    pub dt_min: Option<Spanned<f64>>,
+    /// `dt_max`: largest adaptive increment (time).
+    pub dt_max: Option<Spanned<f64>>,
+    /// `error_tol`: tolerance of the local error estimate.
+    pub error_tol: Option<Spanned<f64>>,
     /// The `dynamic` entry.
     pub span: Span,
 }

@@ -44,17 +44,21 @@ impl Lowerer<'_> {
                 Some(Step { t_end, .. }) => *t_end,
                 None => t.value[0].value,
             };
+            let increments = s.increments.as_ref().map_or(1, |n| n.value.max(1) as usize);
+            let min_fraction = s
+                .min_increment
+                .as_ref()
+                .map_or(DEFAULT_MIN_FRACTION, |x| x.value);
+            let t_end = t.value[1].value;
+            let dt0 = (t_end - t_start) / increments as f64;
             out.push(Step {
                 name,
                 t_start,
-                t_end: t.value[1].value,
-                increments: s.increments.as_ref().map_or(1, |n| n.value.max(1) as usize),
-                min_fraction: s
-                    .min_increment
-                    .as_ref()
-                    .map_or(DEFAULT_MIN_FRACTION, |x| x.value),
+                t_end,
+                increments,
+                min_fraction,
                 newton,
-                dynamic: s.dynamic.as_ref().map(dynamic),
+                dynamic: s.dynamic.as_ref().map(|d| dynamic(d, dt0, min_fraction)),
             });
         }
         out
@@ -62,8 +66,9 @@ impl Lowerer<'_> {
 }
 
 /// The engine's integrator of a `dynamic` block, defaults filled in
-/// (`tables::DYNAMIC`).
-fn dynamic(d: &ast::Dynamic) -> Dynamic {
+/// (`tables::DYNAMIC`; adaptive stepping's bounds from the step's initial
+/// increment `dt0` and `min_fraction`).
+fn dynamic(d: &ast::Dynamic, dt0: f64, min_fraction: f64) -> Dynamic {
     let v = |x: &Option<crate::span::Spanned<f64>>, default: f64| {
         x.as_ref().map_or(default, |x| x.value)
     };
@@ -87,5 +92,14 @@ fn dynamic(d: &ast::Dynamic) -> Dynamic {
             alpha: v(&d.rayleigh_alpha, 0.0),
             beta: v(&d.rayleigh_beta, 0.0),
         },
+        adaptive: d
+            .adaptive
+            .as_ref()
+            .filter(|a| a.value)
+            .map(|_| ctc_engine::model::Adaptive {
+                dt_min: v(&d.dt_min, dt0 * min_fraction),
+                dt_max: v(&d.dt_max, 10.0 * dt0),
+                error_tol: v(&d.error_tol, 1e-2),
+            }),
     }
 }

@@ -85,6 +85,10 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
                 contact_mass: None,
                 rayleigh_alpha: None,
                 rayleigh_beta: None,
+                adaptive: None,
+                dt_min: None,
+                dt_max: None,
+                error_tol: None,
                 span: e.span,
             })
         }
@@ -131,11 +135,16 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
             &[
                 ("redistributed", ContactMass::Redistributed),
                 ("full", ContactMass::Full),
+                ("normal", ContactMass::Normal),
             ],
             diags,
         ),
         rayleigh_alpha: d.number("rayleigh_alpha", diags),
         rayleigh_beta: d.number("rayleigh_beta", diags),
+        adaptive: d.boolean("adaptive", diags),
+        dt_min: d.number("dt_min", diags),
+        dt_max: d.number("dt_max", diags),
+        error_tol: d.number("error_tol", diags),
         span: e.span,
     };
     d.finish(diags);

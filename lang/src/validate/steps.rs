@@ -153,6 +153,54 @@ pub fn dynamic_parameters_fit_scheme(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
     }
     ctx.must_be_positive(&d.beta, "beta");
     rayleigh_damping_not_negative(d, ctx);
+    adaptive_bounds(d, ctx);
+}
+
+/// `dt_min`, `dt_max` and `error_tol` belong to `adaptive = true`;
+/// `dt_min > 0`, `dt_max > 0`, `dt_min <= dt_max`, `error_tol >= 0`.
+pub fn adaptive_bounds(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
+    let adaptive = d.adaptive.as_ref().is_some_and(|a| a.value);
+    for (x, key) in [
+        (&d.dt_min, "dt_min"),
+        (&d.dt_max, "dt_max"),
+        (&d.error_tol, "error_tol"),
+    ] {
+        if let (Some(x), false) = (x, adaptive) {
+            ctx.err(
+                Diagnostic::error(
+                    format!("`{key}` needs adaptive time stepping"),
+                    x.span,
+                    "the step's increments are fixed without `adaptive = true`",
+                )
+                .with_help("add `adaptive = true` to the `dynamic` block, or remove the key"),
+            );
+        }
+    }
+    ctx.must_be_positive(&d.dt_min, "dt_min");
+    ctx.must_be_positive(&d.dt_max, "dt_max");
+    if let Some(e) = d
+        .error_tol
+        .as_ref()
+        .filter(|e| e.value < 0.0 || e.value.is_nan())
+    {
+        ctx.err(Diagnostic::error(
+            "error_tol must not be negative",
+            e.span,
+            format!("error_tol = {}", num(e.value)),
+        ));
+    }
+    if let (Some(lo), Some(hi)) = (&d.dt_min, &d.dt_max) {
+        if lo.value > hi.value {
+            ctx.err(
+                Diagnostic::error(
+                    "dt_min is larger than dt_max",
+                    lo.span,
+                    format!("dt_min = {} > dt_max = {}", num(lo.value), num(hi.value)),
+                )
+                .with_help("adaptive stepping keeps the increment within [dt_min, dt_max]"),
+            );
+        }
+    }
 }
 
 /// `rayleigh_alpha` and `rayleigh_beta` are `>= 0` (a negative one feeds
@@ -246,6 +294,28 @@ mod tests {
             "{m:?}"
         );
         assert!(!m.iter().any(|s| s.contains("rayleigh_beta")), "{m:?}");
+    }
+
+    #[test]
+    fn adaptive_keys_need_adaptive_and_ordered_bounds() {
+        let m = messages("step d { time = 1 .. 2 dynamic { dt_max = 0.1 } }");
+        assert!(
+            m.contains(&"`dt_max` needs adaptive time stepping".to_string()),
+            "{m:?}"
+        );
+        let m = messages(
+            "step d { time = 1 .. 2 dynamic { adaptive = true  dt_min = 0.2  dt_max = 0.1  \
+             error_tol = -1 } }",
+        );
+        assert!(
+            m.contains(&"dt_min is larger than dt_max".to_string()),
+            "{m:?}"
+        );
+        assert!(
+            m.contains(&"error_tol must not be negative".to_string()),
+            "{m:?}"
+        );
+        assert!(!m.iter().any(|s| s.contains("needs adaptive")), "{m:?}");
     }
 
     #[test]

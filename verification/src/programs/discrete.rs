@@ -86,6 +86,7 @@ fn oscillator(steps_per_period: usize, c: f64) -> Result<(Vec<f64>, f64, RunSumm
             mass: MassMatrix::Lumped,
             contact_mass: ContactMass::Redistributed,
             rayleigh: Rayleigh::default(),
+            adaptive: None,
         })
         .newton(NewtonSettings {
             tol: 1e-12,

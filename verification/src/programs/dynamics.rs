@@ -97,6 +97,7 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
                 mass,
                 contact_mass: ContactMass::Redistributed,
                 rayleigh: Rayleigh::default(),
+                adaptive: None,
             })
             .newton(newton())
             .build();
@@ -168,6 +169,7 @@ fn one_mode(
             mass: MassMatrix::Lumped,
             contact_mass: ContactMass::Redistributed,
             rayleigh,
+            adaptive: None,
         })
         .newton(newton())
         .build();

@@ -25,6 +25,13 @@
 //!   Laborde & Renard 2008), and the gain of the same run with the full
 //!   mass (`contact_mass = full`: the nodes chatter and the contact creates
 //!   energy) reported beside it.
+//! - `bar_impact_adaptive`: the quad4 bar on the wall with adaptive time
+//!   stepping (`dynamic { adaptive = true  dt_max = 1  error_tol = 5e-3 }`:
+//!   the Zienkiewicz-Xie error estimate, contact events) against the same
+//!   run at the fixed dt = 0.1: contact duration (the end of the first
+//!   increment without contact force), rebound speed `sqrt(2 K / m)` at t =
+//!   30 and energy gain against 1D wave theory, and the ratio of the
+//!   increments taken.
 
 use crate::case::{Check, Quantity};
 use crate::measure::Value;
@@ -72,10 +79,16 @@ const NAMES: [[&str; 5]; 3] = [
 
 /// The deck of scene `s` with `contact_mass`.
 fn deck(s: usize, contact_mass: &str) -> String {
+    deck_with(s, contact_mass, "")
+}
+
+/// The deck of scene `s` with `contact_mass` and `extra` keys in its
+/// `dynamic` block.
+fn deck_with(s: usize, contact_mass: &str, extra: &str) -> String {
     let dynamic = |scheme: &str| {
         format!(
             "step impact {{\n  time = 0 .. 30\n  increments = 300\n  \
-             dynamic {{ {scheme}  mass = consistent  contact_mass = {contact_mass} }}\n  \
+             dynamic {{ {scheme}  mass = consistent  contact_mass = {contact_mass}{extra} }}\n  \
              newton {{ tol = 1e-10 }}\n}}\n"
         )
     };
@@ -118,6 +131,21 @@ struct Trace {
     rows: Vec<(f64, f64)>,
     gain: f64,
     kinetic0: f64,
+    /// Kinetic energy at the last increment.
+    kinetic: f64,
+}
+
+impl Trace {
+    /// The end of the first increment without contact force after the
+    /// contact began.
+    fn release(&self) -> Result<f64, String> {
+        self.rows
+            .iter()
+            .skip_while(|(_, f)| *f == 0.0)
+            .find(|(_, f)| *f == 0.0)
+            .map(|(t, _)| *t)
+            .ok_or_else(|| "the bar never left the contact".to_string())
+    }
 }
 
 impl<const D: usize> Observer<D> for Trace {
@@ -129,6 +157,7 @@ impl<const D: usize> Observer<D> for Trace {
         self.rows.push((view.time, fx.abs()));
         if let Some(e) = view.energy {
             self.gain = e.gain;
+            self.kinetic = e.kinetic;
             if self.kinetic0 == 0.0 {
                 // K + W_int - W_ext at the first increment minus the gain
                 self.kinetic0 = e.kinetic + e.internal - e.external - e.gain;
@@ -140,7 +169,12 @@ impl<const D: usize> Observer<D> for Trace {
 
 /// Runs scene `s`; the trace and the summary.
 fn solve(s: usize, contact_mass: &str) -> Result<(Trace, RunSummary), String> {
-    let src = ctc_lang::Source::new("bar_impact.ctc", deck(s, contact_mass));
+    solve_deck(s, deck(s, contact_mass))
+}
+
+/// Runs the deck `text` of scene `s`; the trace and the summary.
+fn solve_deck(s: usize, text: String) -> Result<(Trace, RunSummary), String> {
+    let src = ctc_lang::Source::new("bar_impact.ctc", text);
     let mut trace = Trace::default();
     let summary = match ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? {
         AnyModel::D2(m) => run(&m, &mut trace),
@@ -167,13 +201,7 @@ fn measure(_level: usize) -> Result<ProgramLevel, String> {
         // the impulse of the force history (constant per increment, the
         // force at its end: the backward rectangle rule)
         let impulse: f64 = trace.rows.iter().map(|(_, f)| f * dt).sum();
-        let release = trace
-            .rows
-            .iter()
-            .skip_while(|(_, f)| *f == 0.0)
-            .find(|(_, f)| *f == 0.0)
-            .map(|(t, _)| *t)
-            .ok_or("the bar never left the contact")?;
+        let release = trace.release()?;
         let plateau: Vec<f64> = trace
             .rows
             .iter()
@@ -206,6 +234,57 @@ fn measure(_level: usize) -> Result<ProgramLevel, String> {
     Ok(out)
 }
 
+/// Names of `bar_impact_adaptive`'s values.
+const ADAPTIVE: [&str; 7] = [
+    "adaptive: contact duration / (2 L / c) - 1",
+    "adaptive: rebound speed / v0 - 1",
+    "adaptive: energy gain / K0",
+    "adaptive: increments / increments at fixed dt = 0.1",
+    "fixed dt = 0.1: contact duration / (2 L / c) - 1 (not judged)",
+    "fixed dt = 0.1: rebound speed / v0 - 1 (not judged)",
+    "fixed dt = 0.1: energy gain / K0 (not judged)",
+];
+
+/// The quad4 bar on the wall, adaptive against fixed stepping.
+fn measure_adaptive(_level: usize) -> Result<ProgramLevel, String> {
+    let mut out = ProgramLevel {
+        h: f64::NAN,
+        ..ProgramLevel::default()
+    };
+    let mass = L;
+    let k0 = 0.5 * mass * V0 * V0;
+    let (fixed, fixed_summary) = solve(0, "redistributed")?;
+    let (adaptive, summary) = solve_deck(
+        0,
+        deck_with(
+            0,
+            "redistributed",
+            "  adaptive = true  dt_max = 1  error_tol = 5e-3",
+        ),
+    )?;
+    let figures = |t: &Trace| -> Result<[f64; 3], String> {
+        Ok([
+            t.release()? / (2.0 * L / C) - 1.0,
+            (2.0 * t.kinetic / mass).sqrt() / V0 - 1.0,
+            t.gain.abs() / k0,
+        ])
+    };
+    let a = figures(&adaptive)?;
+    let f = figures(&fixed)?;
+    for (name, x) in ADAPTIVE[..3].iter().zip(a) {
+        out.values.push(super::error(name, x.abs()));
+    }
+    out.values.push(super::error(
+        ADAPTIVE[3],
+        summary.increments.len() as f64 / fixed_summary.increments.len() as f64,
+    ));
+    for (name, x) in ADAPTIVE[4..].iter().zip(f) {
+        out.values.push(super::error(name, x.abs()));
+    }
+    out.add_run(&summary);
+    Ok(out)
+}
+
 /// The registry entry.
 pub fn cases() -> Vec<VerifyCase> {
     // measured (redistributed contact mass; bar/wall 2D and 3D, two
@@ -219,7 +298,24 @@ pub fn cases() -> Vec<VerifyCase> {
         checks.push(Check::new(Quantity::Named(names[2]), &[1e-2]));
         checks.push(Check::new(Quantity::Named(names[3]), &[2e-3]));
     }
-    vec![VerifyCase {
+    let adaptive = VerifyCase {
+        name: "bar_impact_adaptive",
+        title: "Adaptive time stepping (Zienkiewicz-Xie error estimate, contact events) on the elastic bar hitting a rigid wall: contact duration 2L/c, rebound speed v0 and energy as at the fixed dt, with fewer increments",
+        source: "Graff, Wave Motion in Elastic Solids (1975), section 1.4; Zienkiewicz & Xie 1991, Earthquake Eng. Struct. Dyn. 20:871 (local error estimate)",
+        tags: &["dynamics", "contact", "plane_strain", "adaptive"],
+        levels: 1,
+        checks: vec![
+            Check::new(Quantity::Named(ADAPTIVE[0]), &[1e-2]),
+            Check::new(Quantity::Named(ADAPTIVE[1]), &[1e-2]),
+            Check::new(Quantity::Named(ADAPTIVE[2]), &[5e-3]),
+            Check::new(Quantity::Named(ADAPTIVE[3]), &[0.9]),
+        ],
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: 1,
+            run: measure_adaptive,
+        }),
+    };
+    vec![adaptive, VerifyCase {
         name: "bar_impact_wave_theory",
         title: "Elastic bars in impact (bar on a rigid wall in 2D and 3D, two bars): impulse, contact duration 2L/c, force rho c v0 A and energy against 1D wave theory, with the contact nodes' mass redistributed",
         source: "Graff, Wave Motion in Elastic Solids (1975), section 1.4; Khenous, Laborde & Renard 2008, Eur. J. Mech. A/Solids 27:918 (mass redistribution)",

@@ -29,6 +29,7 @@ pub mod quadratic_contact;
 pub mod quadratic_thermal;
 pub mod solid;
 pub mod solid_patch;
+pub mod taylor_bar;
 pub mod thermal_3d;
 pub mod thermal_contact;
 pub mod thermal_coupling;
@@ -72,6 +73,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(follower::cases());
     v.extend(dynamics::cases());
     v.extend(impact::cases());
+    v.extend(taylor_bar::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
     v.extend(gravity::cases());

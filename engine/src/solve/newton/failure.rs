@@ -24,6 +24,10 @@ pub enum FailureKind {
     /// increment and the deck asks to cut the increment at that instant
     /// (`cut_at_impact = true`).
     ImpactCut,
+    /// Not a failure: the local error estimate of adaptive dynamic
+    /// stepping exceeds twice its tolerance; the increment is redone
+    /// smaller (`dynamic { adaptive = true  error_tol }`).
+    ErrorEstimate,
 }
 
 /// A failed increment attempt.

@@ -294,6 +294,16 @@ where
         self.dynamics.as_ref()
     }
 
+    /// The local error estimate of the last attempt of a dynamic increment
+    /// ([`super::dynamics::Dynamics::local_error`]).
+    pub fn local_error(&self) -> Option<f64> {
+        self.dynamics.as_ref()?.local_error(
+            self.model,
+            self.u.as_flattened(),
+            self.committed.as_flattened(),
+        )
+    }
+
     /// Sets the integrator of the increment ending at `t` of step `step`;
     /// at the first dynamic increment, builds the mass and the initial
     /// acceleration `M a_0 = f_ext - f_int + f_c` of the committed state.
