@@ -1,0 +1,95 @@
+//! Coulomb friction between deformable solids in 3D (node-to-facet), as
+//! `ctc verify friction_blocks_ntf_3d` and `ironing_ntf_3d` run them; the
+//! tables print with
+//! `cargo test -p ctc-verification --test friction_ntf_3d -- --nocapture`.
+//!
+//! Block on a block (Coulomb's law, statics: stick below mu F_n, in slip
+//! `sum |T_i| = mu sum R_N,i`):
+//!
+//! ```text
+//!        p = 10, top face pulled along x
+//!       +--------+
+//!       |  top   |  slave top.zmin (3x3 facets), mu = 0.3
+//!   +---+--------+-------+  master base.zmax (8x4 facets)
+//!   |       base         |
+//!   +--------------------+  fixed
+//! ```
+//!
+//! Ironing: M. A. Puso, T. A. Laursen, "A mortar segment-to-segment
+//! frictional contact method for large deformations", CMAME 193 (2004)
+//! 4891-4913 (die-on-slab: Neo-Hookean slab 9 x 3 x 4, E = 1, nu = 0.3;
+//! die R = 3, width 5.2, E = 1000, nu = 0.499; press 1.4, slide 4.0,
+//! mu = 0.3, penalty 500):
+//!
+//! ```text
+//!          .-''''''-.   die (u_y = -1.4, then u_x = 4)
+//!         /          \
+//!   +-----\----------/---------------+  slab top (slave)
+//!   |      '--------'     slab        |
+//!   +--------------------------------+  fixed
+//! ```
+
+use ctc_verification::programs::friction_ntf_3d::{block_run, ironing, BLOCK_RUNS, MU};
+use ctc_verification::registry;
+
+#[test]
+fn friction_blocks_ntf_3d_passes() {
+    registry::run_passing("friction_blocks_ntf_3d");
+}
+
+#[test]
+fn table_of_the_block_runs() {
+    println!(
+        "| run | stick: slipping nodes | slip: sum|T| / (mu sum R_N) - 1 | |F_t| / (mu F_n) - 1 | \
+         F_n | Newton | increments |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- |");
+    for &(label, strategy, method) in BLOCK_RUNS {
+        let (f, s) = block_run(strategy, method).expect("run");
+        println!(
+            "| {label} | {} | {:.2e} | {:.2e} | {:.12} | {} | {} |",
+            f[0],
+            f[1] - 1.0,
+            f[2] - 1.0,
+            f[3],
+            s.newton_iterations,
+            s.increments.len()
+        );
+    }
+}
+
+/// The ironing histories at the coarse level: `F_t`, `F_n` per increment,
+/// the ratio against mu, the oscillation amplitudes, Newton iterations per
+/// increment.
+#[test]
+fn ironing_coarse_histories() {
+    let start = std::time::Instant::now();
+    let r = ironing(0).expect("ironing level 0");
+    println!("| t | F_t | F_n | F_t / F_n |");
+    println!("| --- | --- | --- | --- |");
+    for (t, ft, fn_) in &r.history {
+        println!(
+            "| {t:.4} | {ft:.5} | {:.5} | {:.4} |",
+            fn_.abs(),
+            (ft / fn_).abs()
+        );
+    }
+    let s = &r.summary;
+    println!(
+        "level 0: F_t / F_n (slide mean) {:.4} vs mu {MU}; oscillation F_n {:.3}, F_t {:.3}; \
+         sum|T| / (mu sum R_N) - 1 = {:.2e}; balance {:.2e}; {} increments, {} Newton \
+         iterations ({:.2} per increment), {} cutbacks; {:.1} s",
+        r.ratio,
+        r.oscillation[0],
+        r.oscillation[1],
+        r.coulomb - 1.0,
+        r.balance,
+        s.increments.len(),
+        s.newton_iterations,
+        s.newton_iterations as f64 / s.increments.len().max(1) as f64,
+        s.cutbacks,
+        start.elapsed().as_secs_f64()
+    );
+    assert!((r.coulomb - 1.0).abs() <= 1e-9);
+    assert!(r.balance <= 1e-6);
+}
