@@ -29,8 +29,107 @@
 //!   +--------------------------------+  fixed
 //! ```
 
-use ctc_verification::programs::friction_ntf_3d::{block_run, ironing, BLOCK_RUNS, MU};
+use ctc_engine::contact::NodeContact;
+use ctc_engine::solve::{
+    restart::Checkpoint, run, run_from, IncrementView, IterationInfo, Observer,
+};
+use ctc_verification::programs::friction_ntf_3d::{
+    block_run, blocks_model, ironing, BLOCK_RUNS, MU,
+};
 use ctc_verification::registry;
+
+#[derive(Default)]
+struct Last {
+    u: Vec<[f64; 3]>,
+    contact: Vec<NodeContact<3>>,
+    checkpoints: Vec<Checkpoint<3>>,
+    iterations: Vec<IterationInfo>,
+}
+
+impl Observer<3> for Last {
+    fn iteration(&mut self, info: &IterationInfo) {
+        self.iterations.push(info.clone());
+    }
+    fn converged(&mut self, v: &IncrementView<'_, 3>) -> Result<(), String> {
+        self.u = v.displacement.to_vec();
+        self.contact = v.contact[0].clone();
+        Ok(())
+    }
+    fn wants_checkpoint(&self) -> bool {
+        true
+    }
+    fn checkpoint(&mut self, c: &Checkpoint<3>) -> Result<(), String> {
+        self.checkpoints.push(c.clone());
+        Ok(())
+    }
+}
+
+fn bits(l: &Last) -> Vec<u64> {
+    l.u.iter()
+        .flatten()
+        .chain(l.contact.iter().flat_map(|c| c.force.iter()))
+        .chain(l.contact.iter().flat_map(|c| c.friction.slip_vector.iter()))
+        .map(|v| v.to_bits())
+        .collect()
+}
+
+/// The stick points on the master facets (`[facet, xi_1, xi_2]`) and the
+/// shifts survive a restart bit for bit in the slide (checkpoint 4: after
+/// the press, the stick stage and two slip increments).
+#[test]
+fn friction_ntf_3d_restarts_bit_for_bit_in_the_slide() {
+    for (strategy, method) in [
+        ("single_pass", "penalty { kind = area  stiffness = 1e5 }"),
+        (
+            "modified_double_pass",
+            "penalty { kind = area  stiffness = 1e5 }",
+        ),
+        (
+            "single_pass",
+            "augmented_lagrange { kind = area  penalty = 1e5  tolerance = 1e-6 }",
+        ),
+    ] {
+        let model = blocks_model(strategy, method).unwrap();
+        let mut first = Last::default();
+        let s1 = run(&model, &mut first).unwrap();
+        assert!(s1.completed);
+        let mut rest = Last::default();
+        let s2 = run_from(&model, &mut rest, Some(&first.checkpoints[3])).unwrap();
+        assert!(s2.completed);
+        assert_eq!(bits(&first), bits(&rest), "{strategy} {method}");
+        assert!(s1.friction_work[0] > 0.0);
+    }
+}
+
+/// The exact tangent: in the slip stage of the single-pass penalty run,
+/// once the relative residual is below 5e-2 and above round-off, each
+/// Newton iteration squares it at least.
+#[test]
+fn newton_converges_quadratically_while_the_block_slides() {
+    let model = blocks_model("single_pass", "penalty { kind = area  stiffness = 1e5 }").unwrap();
+    let mut last = Last::default();
+    run(&model, &mut last).unwrap();
+    let slip: Vec<&IterationInfo> = last.iterations.iter().filter(|i| i.step == 2).collect();
+    let mut checked = 0;
+    for w in slip.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        if a.increment != b.increment || b.iteration != a.iteration + 1 {
+            continue;
+        }
+        if a.residual < 5e-2 && b.residual > 1e-12 {
+            assert!(
+                b.residual <= a.residual * a.residual,
+                "increment {} iteration {}: {:.3e} -> {:.3e}",
+                a.increment,
+                a.iteration,
+                a.residual,
+                b.residual
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 8, "{checked} iterations checked");
+}
 
 #[test]
 fn friction_blocks_ntf_3d_passes() {
@@ -44,7 +143,7 @@ fn table_of_the_block_runs() {
          F_n | Newton | increments |"
     );
     println!("| --- | --- | --- | --- | --- | --- | --- |");
-    for &(label, strategy, method) in BLOCK_RUNS {
+    for &(label, strategy, method, ..) in BLOCK_RUNS {
         let (f, s) = block_run(strategy, method).expect("run");
         println!(
             "| {label} | {} | {:.2e} | {:.2e} | {:.12} | {} | {} |",

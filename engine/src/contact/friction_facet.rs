@@ -328,6 +328,22 @@ pub fn apply(
         f.slip_vector = slip;
         f.slip = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
         f.dissipation = -(0..3).map(|k| f.traction[k] * slip[k]).sum::<f64>() + 0.0;
+        // the augmented Lagrangian slides a node by moving the base of its
+        // trial force: it ends on the cone (within k_T times the pair's gap
+        // tolerance) with a slip, and is reported as slipping (as against
+        // rigid tools, `friction_surface`)
+        let near = match method {
+            ContactMethod::AugmentedLagrange { tolerance, .. } => fl.alpha_t * tolerance,
+            _ => 0.0,
+        };
+        let limit = law.mu * c.normal_force;
+        if f.status == FrictionStatus::Stick
+            && limit > 0.0
+            && f.tangential_force >= limit * (1.0 - 1e-9) - near
+            && f.slip > 0.0
+        {
+            f.status = FrictionStatus::Slip;
+        }
     }
     Some((r, ka))
 }
