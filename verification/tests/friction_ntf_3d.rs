@@ -102,8 +102,10 @@ fn friction_ntf_3d_restarts_bit_for_bit_in_the_slide() {
 }
 
 /// The exact tangent: in the slip stage of the single-pass penalty run,
-/// once the relative residual is below 5e-2 and above round-off, each
-/// Newton iteration squares it at least.
+/// once the relative residual is below 1e-3 and above round-off, each
+/// Newton iteration squares it (`r_k+1 <= 10 r_k^2`; measured: e.g.
+/// 2.7e-4 -> 1.3e-7 -> 4.0e-13, 4.3e-5 -> 1.4e-8 -> 2.9e-13; the first
+/// iterations of an increment switch nodes from stick to slip).
 #[test]
 fn newton_converges_quadratically_while_the_block_slides() {
     let model = blocks_model("single_pass", "penalty { kind = area  stiffness = 1e5 }").unwrap();
@@ -116,9 +118,9 @@ fn newton_converges_quadratically_while_the_block_slides() {
         if a.increment != b.increment || b.iteration != a.iteration + 1 {
             continue;
         }
-        if a.residual < 5e-2 && b.residual > 1e-12 {
+        if a.residual < 1e-3 && b.residual > 1e-12 {
             assert!(
-                b.residual <= a.residual * a.residual,
+                b.residual <= 10.0 * a.residual * a.residual,
                 "increment {} iteration {}: {:.3e} -> {:.3e}",
                 a.increment,
                 a.iteration,

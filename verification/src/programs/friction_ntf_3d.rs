@@ -225,14 +225,19 @@ pub fn cases() -> Vec<VerifyCase> {
                     Quantity::Named("contact force vs die reaction"),
                     &[1e-6, 1e-6],
                 ),
-                Check::new(Quantity::Named("F_t / F_n (slide mean) vs mu"), &[0.4, 0.4]),
+                // guards: the measured level-0 figures rounded up (0.305,
+                // 0.094, 0.136); level 1 not measured by the tests
+                Check::new(
+                    Quantity::Named("F_t / F_n (slide mean) vs mu"),
+                    &[0.35, 0.5],
+                ),
                 Check::new(
                     Quantity::Named("F_n oscillation (max-min)/mean"),
-                    &[0.3, 0.3],
+                    &[0.12, 0.3],
                 ),
                 Check::new(
                     Quantity::Named("F_t oscillation (max-min)/mean"),
-                    &[0.6, 0.6],
+                    &[0.18, 0.4],
                 ),
             ],
             kind: CaseKind::Program(ProgramCase {
