@@ -166,10 +166,10 @@ pub fn respond(
             tangent[row * NDOF + k] = -dk;
         }
     };
-    for c in 0..3 {
-        put(c, t[c]);
+    for (c, &tc) in t.iter().enumerate() {
+        put(c, tc);
         for (a, wa) in w.iter().enumerate().take(pts.len()) {
-            put(3 + 3 * a + c, -(*wa * t[c]));
+            put(3 + 3 * a + c, -(*wa * tc));
         }
     }
     let point: [f64; 3] = std::array::from_fn(|c| xa[c].v + delta[c]);

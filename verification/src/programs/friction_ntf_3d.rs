@@ -291,8 +291,8 @@ impl Observer<3> for Rows {
     fn converged(&mut self, v: &IncrementView<'_, 3>) -> Result<(), String> {
         let mut r = [0.0; 3];
         for &n in &self.nodes {
-            for c in 0..3 {
-                r[c] += v.reaction[n][c];
+            for (rc, vc) in r.iter_mut().zip(v.reaction[n]) {
+                *rc += vc;
             }
         }
         let contact = v.contact.first().cloned().unwrap_or_default();
@@ -491,8 +491,8 @@ pub fn ironing(level: usize) -> Result<Ironing, String> {
         // forces; the die's driven nodes react with the opposite
         let mut f = [0.0; 3];
         for c in contact {
-            for k in 0..3 {
-                f[k] += c.force[k];
+            for (fk, ck) in f.iter_mut().zip(c.force) {
+                *fk += ck;
             }
         }
         let norm = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
