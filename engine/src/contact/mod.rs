@@ -41,6 +41,7 @@ pub mod augmented;
 pub mod broad;
 pub mod face_integrated;
 pub mod friction;
+pub mod friction_facet;
 pub mod friction_lagrange;
 pub mod friction_segment;
 pub mod friction_surface;

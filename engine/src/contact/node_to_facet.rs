@@ -128,7 +128,7 @@ pub struct FacetElement {
     pub hessian: [[f64; NDOF]; NDOF],
 }
 
-fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
+pub(super) fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -136,11 +136,11 @@ fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
     ]
 }
 
-fn dot<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> Ad<N> {
+pub(super) fn dot<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> Ad<N> {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn sub<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
+pub(super) fn sub<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
@@ -180,7 +180,7 @@ fn shapes<const N: usize>(
 /// Point, tangents `a_1`, `a_2` and the mixed derivative `x_,12` of the
 /// facet `pts` at `xi`.
 #[allow(clippy::type_complexity)]
-fn surface_point<const N: usize>(
+pub(super) fn surface_point<const N: usize>(
     pts: &[[Ad<N>; 3]],
     xi: [Ad<N>; 2],
 ) -> ([Ad<N>; 4], [Ad<N>; 3], [Ad<N>; 3], [Ad<N>; 3], [Ad<N>; 3]) {
@@ -200,7 +200,7 @@ fn surface_point<const N: usize>(
 
 /// Residual and Jacobian of the foot-point equations at `xi`.
 #[allow(clippy::type_complexity)]
-fn foot_system<const N: usize>(
+pub(super) fn foot_system<const N: usize>(
     xs: [Ad<N>; 3],
     pts: &[[Ad<N>; 3]],
     xi: [Ad<N>; 2],
@@ -215,7 +215,7 @@ fn foot_system<const N: usize>(
 }
 
 /// The Newton step `-J^-1 r`, `None` for a singular `J`.
-fn newton_step<const N: usize>(r: [Ad<N>; 2], j: [[Ad<N>; 2]; 2]) -> Option<[Ad<N>; 2]> {
+pub(super) fn newton_step<const N: usize>(r: [Ad<N>; 2], j: [[Ad<N>; 2]; 2]) -> Option<[Ad<N>; 2]> {
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     let scale = (j[0][0].v.abs() + j[1][1].v.abs()).powi(2);
     if det.v.is_nan() || det.v.abs() <= 1e-14 * scale {
@@ -869,6 +869,7 @@ pub fn evaluate(
         return out;
     };
     state.evaluations += 1;
+    state.friction.impact = None;
     let sides = fp.slave_sides(cp.strategy);
     let prof = state.prof;
     for s in 0..2 {
@@ -889,13 +890,14 @@ pub fn evaluate(
     let mut candidates = std::mem::take(&mut fp.candidates);
     for (i, &node) in state.slaves.iter().enumerate() {
         let side = fp.side_of[i] as usize;
-        if !sides[side] {
-            fp.last[i] = None;
-            continue;
-        }
         let Some(&xs) = x.get(node) else {
             continue;
         };
+        if !sides[side] {
+            fp.last[i] = None;
+            state.friction.open(i, xs);
+            continue;
+        }
         let surface = &fp.sides[1 - side];
         candidates.clear();
         surface.grid.query(xs, prof, &mut candidates);
@@ -910,11 +912,13 @@ pub fn evaluate(
         let memory = fp.last[i];
         let Some((k, el)) = surface.closest(x, xs, &candidates, memory, prof, &mut fp.tests) else {
             fp.last[i] = None;
+            state.friction.open(i, xs);
             continue;
         };
         fp.last[i] = Some(k);
         let active = state.active[i];
         if el.gap > prof && !active {
+            state.friction.open(i, xs);
             continue;
         }
         let method = cp.method_at(node);
@@ -950,7 +954,46 @@ pub fn evaluate(
             let face = surface.faces[k].nodes();
             let dofs = 3 * (1 + face.len());
             let local: Vec<usize> = std::iter::once(node).chain(face.iter().copied()).collect();
+            // Coulomb friction (penalty, augmented Lagrangian): its forces
+            // over the slave, the facet and the stick point's facet
+            let friction = cp.friction.as_ref().and_then(|law| {
+                let pts: Vec<[f64; 3]> = face.iter().map(|&m| x[m]).collect();
+                // an edge or vertex element: the foot on the extended facet
+                let xi = match el.feature {
+                    Feature::Face => Some(el.xi),
+                    _ => foot(xs, &pts).map(|f| f.0),
+                };
+                let Some(xi) = xi else {
+                    state.friction.anchor[i] = state.friction.committed_anchor[i];
+                    state.friction.position[i] = xs;
+                    return None;
+                };
+                let contact = super::friction_facet::FacetContact {
+                    slave: i,
+                    xs,
+                    facet: k,
+                    pts: &pts,
+                    xi,
+                    gap: el.gap,
+                    normal_force: rn,
+                    normal_stiffness: -slope,
+                    area: state.area[i],
+                };
+                let points = |f: usize| surface.faces[f].nodes().iter().map(|&m| x[m]).collect();
+                let (r, ka) = super::friction_facet::apply(
+                    law,
+                    &method,
+                    &contact,
+                    surface.faces.len(),
+                    points,
+                    &mut state.friction,
+                )?;
+                Some((r, surface.faces[ka].nodes().to_vec()))
+            });
             let mut nodes = local.clone();
+            if let Some((_, anchor_face)) = &friction {
+                nodes.extend_from_slice(anchor_face);
+            }
             nodes.sort_unstable();
             nodes.dedup();
             let nd = 3 * nodes.len();
@@ -973,6 +1016,39 @@ pub fn evaluate(
                     nc.stiffness[r][c] = -slope * g[r] * g[c] - rn * el.hessian[r][c];
                 }
             }
+            if let Some((r, anchor_face)) = friction {
+                use super::friction_facet::NDOF as FD;
+                // friction dof -> position in `nodes`
+                let node_of = |d: usize| match d / 3 {
+                    0 => Some(node),
+                    a @ 1..=4 => face.get(a - 1).copied(),
+                    a => anchor_face.get(a - 5).copied(),
+                };
+                let at: Vec<Option<usize>> = (0..FD)
+                    .map(|d| {
+                        let n = node_of(d)?;
+                        Some(3 * nodes.binary_search(&n).ok()? + d % 3)
+                    })
+                    .collect();
+                for (d, pd) in at.iter().enumerate() {
+                    let Some(pd) = *pd else { continue };
+                    force[pd] += r.forces[d];
+                    for (e, pe) in at.iter().enumerate() {
+                        if let Some(pe) = *pe {
+                            tangent[pd * nd + pe] += r.tangent[d * FD + e];
+                        }
+                    }
+                }
+                for a in 0..3 {
+                    nc.force[a] += r.forces[a];
+                    for b in 0..3 {
+                        nc.stiffness[a][b] += r.tangent[a * FD + b];
+                    }
+                }
+                nc.friction = r.friction;
+            } else if cp.friction.is_some() {
+                state.friction.position[i] = xs;
+            }
             nc.pressure = if state.area[i] > 0.0 {
                 rn / state.area[i]
             } else {
@@ -986,6 +1062,8 @@ pub fn evaluate(
                 slave: node,
                 gap_gradient: row,
             });
+        } else {
+            state.friction.open(i, xs);
         }
         out.push(nc);
     }

@@ -292,8 +292,13 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     Some("mortar segment-to-segment contact (3D segmentation of the facets)")
                 } else if c.smoothing != crate::model::NormalSmoothing::None {
                     Some("normal smoothing (Nagata patches on the master facets)")
-                } else if c.friction.is_some() {
-                    Some("friction (a convected stick point on the master facet)")
+                } else if c.friction.is_some()
+                    && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
+                {
+                    Some(
+                        "Lagrange-multiplier friction (use the penalty or the augmented \
+                         Lagrangian with friction)",
+                    )
                 } else if faces == &c.faces {
                     Some("self contact (the exclusion of a node's own facets)")
                 } else if faces.is_empty() {

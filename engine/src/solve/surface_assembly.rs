@@ -164,8 +164,16 @@ impl SurfaceAssembly {
             }
             state.multiplier = next;
             if cp.friction.is_some() {
-                if let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) {
-                    let placement = surface::placement(&tool.motion, self.time);
+                // a deformable master (node-to-facet): shifts in the current
+                // frame, stick points on the master facets
+                let placement = cp
+                    .master
+                    .tool()
+                    .and_then(|i| model.surfaces.get(i))
+                    .map_or_else(Placement::identity, |tool| {
+                        surface::placement(&tool.motion, self.time)
+                    });
+                {
                     friction_surface::uzawa_update(
                         &state.slaves,
                         list,

@@ -54,9 +54,10 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// `dimension = 3d` solves solids in contact with rigid surface tools,
 /// frictionless or with Coulomb friction (penalty, augmented Lagrangian,
 /// Lagrange multipliers), with heat conduction and thermal contact against
-/// the tools, and two deformable solids in frictionless node-to-facet
-/// contact (every strategy and method); mortar, normal smoothing, friction
-/// and self contact between deformable solids are not there yet in 3d.
+/// the tools, and two deformable solids in node-to-facet contact (every
+/// strategy and method; Coulomb friction with the penalty and augmented
+/// Lagrangian methods); mortar, normal smoothing and self contact between
+/// deformable solids are not there yet in 3d.
 pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
     if a.dimension.as_ref().map(|d| d.value) != Some(Dimension::ThreeD) {
         return;
@@ -94,13 +95,6 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
                 "normal smoothing (Nagata patches on the master facets)",
                 s.span,
                 "drop `smoothing` (faceted master)",
-            );
-        }
-        if let Some(f) = &c.friction {
-            refuse(
-                "friction (a convected stick point on the master facet)",
-                f.span,
-                "drop `friction` (frictionless contact), or use a rigid surface tool",
             );
         }
         if m.to_string() == c.target.to_string() {

@@ -15,6 +15,7 @@ pub mod free_bulge;
 pub mod friction;
 pub mod friction_3d;
 pub mod friction_block;
+pub mod friction_ntf_3d;
 pub mod gravity;
 pub mod hertz_3d_axi;
 pub mod impact;
@@ -69,6 +70,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(contact_ntf_3d::cases());
     v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
+    v.extend(friction_ntf_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());
     v.extend(dynamics::cases());

@@ -1,0 +1,627 @@
+//! Coulomb friction on a node-to-facet element (3D, deformable master,
+//! [`super::node_to_facet`]): the regularized law of
+//! [`super::friction_surface`] with the stick point convected by the
+//! master surface, the 3D form of [`super::friction_segment`].
+//!
+//! The stick point is a material point of the master surface, stored by
+//! its facet and that facet's parametric coordinates, `(k_a, xi_a)`
+//! (carried in [`FrictionState::anchor`] as `[k_a, xi_a1, xi_a2]`, so the
+//! commit / rollback and the restart checkpoint of the rigid-tool friction
+//! carry it unchanged). Its current position is `x_a = sum N_b(xi_a) x_b`
+//! over facet `k_a`'s current nodes: the master's deformation and rigid
+//! motion carry it. With the slave node `x_s` projected on facet `k` at
+//! `xi` (normal `n`, `P = I - n ⊗ n`):
+//!
+//! - tangential gap `g_T = P (x_s - x_a)` (a vector of the tangent plane);
+//! - trial force `t* = P m - k_T g_T` (`m` the augmented-Lagrangian shift,
+//!   a vector of the current frame; 0 for the penalty method);
+//! - return map onto the disc `|t| <= mu R_N` in the tangent plane: stick
+//!   `t = t*`; slip `t = mu R_N t* / |t*|`, the stick point moving by
+//!   `delta = (t - t*) / k_T` (re-expressed on facet `k` by the foot of
+//!   `x_a + delta`), dissipation `-t . slip`.
+//!
+//! Forces over `[x_s, x_1 .. x_n (facet k), y_1 .. y_m (facet k_a)]`: `t`
+//! on the slave, `-N_b(xi) t` on facet `k`'s nodes (the reaction at the
+//! contact point), none on `k_a`'s (they only place the stick point); the
+//! forces sum to zero, their moment is `(x_s - x(xi)) x t = g n x t`, the
+//! lever arm of the penalty penetration (0 at `g = 0`). `R_N(x) = R_N +
+//! alpha_N (g_now - g(x))` (penalty and augmented Lagrangian alike). The
+//! tangent `-d f / d x` is exact (stick and slip, with the motion of the
+//! foot point, the rotation of the normal and the motion of the stick
+//! point's facet) by the dual numbers of [`super::mortar::ad`] carried
+//! through one Newton step of the foot-point equations at the converged
+//! foot, as [`super::node_to_facet::face_element`] does; it is not
+//! symmetric.
+//!
+//! First touch (no committed stick point): `first_impact = frictionless`
+//! leaves that increment without tangential force (the stick point is the
+//! foot at its end); `intersect` (the default) sticks the node where its
+//! straight path from the converged position `x_0` crossed the facet's
+//! tangent plane (`tau = g_0 / (g_0 - g)`; a node already behind it at the
+//! start sticks at the foot of `x_0`), computed at the first evaluation of
+//! the increment in which the node is closed and convected with the facet
+//! from then on (kept in [`FrictionState::base`] until the increment
+//! converges or is cut back).
+
+use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeFriction};
+use super::mortar::ad::Ad;
+use super::node_to_facet::{cross, dot, foot, foot_system, newton_step, sub, surface_point};
+use crate::model::{ContactMethod, FirstImpact, Friction};
+
+/// Coordinates a friction element depends on: the slave node, up to 4
+/// nodes of the contact facet and up to 4 of the stick point's facet.
+pub const NDOF: usize = 27;
+
+type A = Ad<NDOF>;
+
+/// Inputs of the friction law on one element.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FacetFriction {
+    /// Friction coefficient.
+    pub mu: f64,
+    /// Tangential penalty `k_T` (force per unit slip).
+    pub alpha_t: f64,
+    /// Tangential shift `m` (augmented Lagrangian; 0 for penalty), current
+    /// frame.
+    pub shift: [f64; 3],
+    /// Normal force law `R_N = normal_shift - normal_stiffness g`.
+    pub normal_shift: f64,
+    /// See `normal_shift`.
+    pub normal_stiffness: f64,
+}
+
+/// Friction contribution of one element.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FacetResponse {
+    /// Status, force, gap, slip and work (slip measured from the stick
+    /// point the trial force starts from).
+    pub friction: NodeFriction<3>,
+    /// Forces over `[x_s, facet k, facet k_a]` (local dof `3 a + c`; the
+    /// facet `k` nodes from dof 3, the `k_a` nodes from dof 15).
+    pub forces: [f64; NDOF],
+    /// `-d forces / d x` (row-major `NDOF x NDOF`).
+    pub tangent: Vec<f64>,
+    /// The stick point after the return map: parameters on facet `k` in
+    /// slip, `None` in stick (it stays `(k_a, xi_a)`).
+    pub moved: Option<[f64; 2]>,
+    /// The stick point's current position after the return map.
+    pub point: [f64; 3],
+}
+
+fn cst3(p: [f64; 3]) -> [A; 3] {
+    p.map(A::cst)
+}
+
+/// The friction law on the element: slave `xs` projected on the facet
+/// `pts` at the converged foot `xi`; stick point at `xi_a` on the facet
+/// `anchor_pts`. `None` for a degenerate facet.
+pub fn respond(
+    law: &FacetFriction,
+    xs: [f64; 3],
+    pts: &[[f64; 3]],
+    xi: [f64; 2],
+    anchor_pts: &[[f64; 3]],
+    xi_a: [f64; 2],
+) -> Option<FacetResponse> {
+    let xs_d: [A; 3] = std::array::from_fn(|c| A::var(xs[c], c));
+    let p: Vec<[A; 3]> = pts
+        .iter()
+        .enumerate()
+        .map(|(a, q)| std::array::from_fn(|c| A::var(q[c], 3 + 3 * a + c)))
+        .collect();
+    let pa: Vec<[A; 3]> = anchor_pts
+        .iter()
+        .enumerate()
+        .map(|(a, q)| std::array::from_fn(|c| A::var(q[c], 15 + 3 * a + c)))
+        .collect();
+    // the foot and its derivative by one Newton step at the converged foot
+    let (r, j) = foot_system(xs_d, &p, xi.map(A::cst));
+    let step = newton_step(r, j)?;
+    let xi_d = [A::cst(xi[0]) + step[0], A::cst(xi[1]) + step[1]];
+    let (w, x, a1, a2, _) = surface_point(&p, xi_d);
+    let m = cross(a1, a2);
+    let len = dot(m, m).sqrt();
+    if len.v.is_nan() || len.v <= 0.0 {
+        return None;
+    }
+    let n = m.map(|v| v / len);
+    let gap = dot(sub(xs_d, x), n);
+    // the stick point on its facet (convected)
+    let (_, xa, ..) = surface_point(&pa, xi_a.map(A::cst));
+    let d = sub(xs_d, xa);
+    let dn = dot(d, n);
+    let gt: [A; 3] = std::array::from_fn(|c| d[c] - n[c] * dn);
+    let shift = cst3(law.shift);
+    let sn = dot(shift, n);
+    let trial: [A; 3] = std::array::from_fn(|c| shift[c] - n[c] * sn - gt[c] * law.alpha_t);
+    let rn = gap * -law.normal_stiffness + law.normal_shift;
+    let rn = if rn.v > 0.0 { rn } else { A::cst(0.0) };
+    let limit = rn * law.mu;
+    let norm2 = dot(trial, trial);
+    let zero = [A::cst(0.0); 3];
+    let (status, t) = if law.alpha_t <= 0.0 {
+        (FrictionStatus::Stick, zero)
+    } else if limit.v <= 0.0 {
+        // mu R_N = 0: slides freely
+        (FrictionStatus::Slip, zero)
+    } else if norm2.v.sqrt() <= limit.v {
+        (FrictionStatus::Stick, trial)
+    } else {
+        let norm = norm2.sqrt();
+        let s = limit / norm;
+        (FrictionStatus::Slip, trial.map(|v| v * s))
+    };
+    let tv = t.map(|v| v.v);
+    let trial_v = trial.map(|v| v.v);
+    let delta: [f64; 3] = if law.alpha_t > 0.0 {
+        std::array::from_fn(|c| (tv[c] - trial_v[c]) / law.alpha_t)
+    } else {
+        std::array::from_fn(|c| -gt[c].v)
+    };
+    let mut forces = [0.0; NDOF];
+    let mut tangent = vec![0.0; NDOF * NDOF];
+    let mut put = |row: usize, f: A| {
+        forces[row] = f.v;
+        for (k, dk) in f.d.iter().enumerate() {
+            tangent[row * NDOF + k] = -dk;
+        }
+    };
+    for (c, &tc) in t.iter().enumerate() {
+        put(c, tc);
+        for (a, wa) in w.iter().enumerate().take(pts.len()) {
+            put(3 + 3 * a + c, -(*wa * tc));
+        }
+    }
+    let point: [f64; 3] = std::array::from_fn(|c| xa[c].v + delta[c]);
+    let moved = (status == FrictionStatus::Slip).then(|| foot(point, pts).map_or(xi, |(f, _)| f));
+    let slip = delta;
+    let dissipation = -(0..3).map(|c| tv[c] * slip[c]).sum::<f64>() + 0.0;
+    let norm3 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    Some(FacetResponse {
+        friction: NodeFriction {
+            status,
+            tangential_force: norm3(tv),
+            tangential_gap: norm3(gt.map(|v| v.v)),
+            slip: norm3(slip),
+            traction: tv,
+            slip_vector: slip,
+            gap_gradient: [0.0; 3],
+            dissipation,
+        },
+        forces,
+        tangent,
+        moved,
+        point,
+    })
+}
+
+/// A closed node-to-facet element as the friction law sees it.
+#[derive(Debug, Clone, Copy)]
+pub struct FacetContact<'a> {
+    /// Slave index in the pair's per-slave vectors.
+    pub slave: usize,
+    /// Current slave position.
+    pub xs: [f64; 3],
+    /// The contact facet (index on the master side) and its current node
+    /// coordinates.
+    pub facet: usize,
+    /// See `facet`.
+    pub pts: &'a [[f64; 3]],
+    /// Converged foot parameters on the facet.
+    pub xi: [f64; 2],
+    /// Gap at the foot.
+    pub gap: f64,
+    /// Normal force `R_N >= 0`.
+    pub normal_force: f64,
+    /// `-d R_N / d g` (`alpha_N`; 0 for Lagrange multipliers).
+    pub normal_stiffness: f64,
+    /// Tributary area of the slave node.
+    pub area: f64,
+}
+
+/// The stick point `(facet, xi)` stored in a friction state's anchor.
+pub fn decode(anchor: Option<[f64; 3]>, facets: usize) -> Option<(usize, [f64; 2])> {
+    let a = anchor?;
+    (a[0] >= 0.0 && a[0].fract() == 0.0 && (a[0] as usize) < facets)
+        .then(|| (a[0] as usize, [a[1], a[2]]))
+}
+
+/// The anchor value of the stick point `(facet, xi)`.
+pub fn encode(facet: usize, xi: [f64; 2]) -> [f64; 3] {
+    [facet as f64, xi[0], xi[1]]
+}
+
+/// Friction of a closed node-to-facet element: the stick point from the
+/// committed state (or the Uzawa base, or the first touch), the law, the
+/// trial state updated. `facet_points(k)` gives facet `k`'s current node
+/// coordinates on the master side, `facets` their number. Returns the
+/// response and the stick point's facet (whose nodes follow the contact
+/// facet's in the forces), `None` when there is no tangential force
+/// (Lagrange multipliers, first touch without friction, degenerate facet).
+pub fn apply(
+    law: &Friction,
+    method: &ContactMethod,
+    c: &FacetContact<'_>,
+    facets: usize,
+    facet_points: impl Fn(usize) -> Vec<[f64; 3]>,
+    state: &mut FrictionState<3>,
+) -> Option<(FacetResponse, usize)> {
+    let i = c.slave;
+    if i >= state.anchor.len() {
+        return None;
+    }
+    state.position[i] = c.xs;
+    let shift = match method {
+        ContactMethod::Penalty { .. } => [0.0; 3],
+        ContactMethod::AugmentedLagrange { .. } => state.shift[i],
+        ContactMethod::Lagrange { .. } => return None,
+    };
+    // a first touch fixed at an earlier iteration of this increment is
+    // held in the base (convected from then on)
+    let start =
+        match decode(state.committed_anchor[i], facets).or_else(|| decode(state.base[i], facets)) {
+            Some(a) => a,
+            None => {
+                // first touch in this increment
+                let x0 = state.committed_position[i];
+                let (_, x, ..) = surface_point(
+                    &c.pts
+                        .iter()
+                        .map(|&q| q.map(Ad::<0>::cst))
+                        .collect::<Vec<_>>(),
+                    c.xi.map(Ad::<0>::cst),
+                );
+                let x = x.map(|v| v.v);
+                let n = facet_normal(c.pts, c.xi);
+                let g0: f64 = (0..3).map(|k| (x0[k] - x[k]) * n[k]).sum();
+                if c.gap < 0.0 {
+                    let tau = if g0 > 0.0 { g0 / (g0 - c.gap) } else { 0.0 };
+                    state.record_impact(tau);
+                }
+                let hit: [f64; 3] = match law.first_impact {
+                    FirstImpact::Frictionless => {
+                        state.anchor[i] = Some(encode(c.facet, c.xi));
+                        return None;
+                    }
+                    FirstImpact::Intersect if g0 > 0.0 && c.gap < 0.0 => {
+                        let tau = g0 / (g0 - c.gap);
+                        std::array::from_fn(|k| x0[k] + tau * (c.xs[k] - x0[k]))
+                    }
+                    // not there yet at a positive gap (augmented Lagrangian)
+                    FirstImpact::Intersect if g0 > 0.0 => c.xs,
+                    FirstImpact::Intersect => x0,
+                };
+                let first = (c.facet, foot(hit, c.pts).map_or(c.xi, |(f, _)| f));
+                state.base[i] = Some(encode(first.0, first.1));
+                first
+            }
+        };
+    let (ka, xi_a) = decode(state.base[i], facets).unwrap_or(start);
+    let anchor_pts = if ka == c.facet {
+        c.pts.to_vec()
+    } else {
+        facet_points(ka)
+    };
+    let fl = FacetFriction {
+        mu: law.mu,
+        alpha_t: tangential_stiffness(law, method, c.area),
+        shift,
+        normal_shift: c.normal_force + c.normal_stiffness * c.gap,
+        normal_stiffness: c.normal_stiffness,
+    };
+    let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a)?;
+    state.anchor[i] = Some(match r.moved {
+        Some(xi) => encode(c.facet, xi),
+        None => encode(ka, xi_a),
+    });
+    // the slip of the increment: from the committed (or first-touch) stick
+    // point, whose current position the base may have left (Uzawa)
+    if (ka, xi_a) != start {
+        let pts0 = if start.0 == c.facet {
+            c.pts.to_vec()
+        } else {
+            facet_points(start.0)
+        };
+        let p0 = point_at(&pts0, start.1);
+        let slip: [f64; 3] = std::array::from_fn(|k| r.point[k] - p0[k]);
+        let f = &mut r.friction;
+        f.slip_vector = slip;
+        f.slip = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
+        f.dissipation = -(0..3).map(|k| f.traction[k] * slip[k]).sum::<f64>() + 0.0;
+        // the augmented Lagrangian slides a node by moving the base of its
+        // trial force: it ends on the cone (within k_T times the pair's gap
+        // tolerance) with a slip, and is reported as slipping (as against
+        // rigid tools, `friction_surface`)
+        let near = match method {
+            ContactMethod::AugmentedLagrange { tolerance, .. } => fl.alpha_t * tolerance,
+            _ => 0.0,
+        };
+        let limit = law.mu * c.normal_force;
+        if f.status == FrictionStatus::Stick
+            && limit > 0.0
+            && f.tangential_force >= limit * (1.0 - 1e-9) - near
+            && f.slip > 0.0
+        {
+            f.status = FrictionStatus::Slip;
+        }
+    }
+    Some((r, ka))
+}
+
+/// The point at `xi` of the facet `pts`.
+fn point_at(pts: &[[f64; 3]], xi: [f64; 2]) -> [f64; 3] {
+    let p: Vec<[Ad<0>; 3]> = pts.iter().map(|&q| q.map(Ad::cst)).collect();
+    let (_, x, ..) = surface_point(&p, xi.map(Ad::cst));
+    x.map(|v| v.v)
+}
+
+/// The unit normal of the facet `pts` at `xi`.
+fn facet_normal(pts: &[[f64; 3]], xi: [f64; 2]) -> [f64; 3] {
+    let p: Vec<[Ad<0>; 3]> = pts.iter().map(|&q| q.map(Ad::cst)).collect();
+    let (_, _, a1, a2, _) = surface_point(&p, xi.map(Ad::cst));
+    let m = cross(a1, a2).map(|v| v.v);
+    let l = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+    if l > 0.0 {
+        m.map(|v| v / l)
+    } else {
+        [0.0; 3]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A facet of `n` nodes near the unit square in the plane z = 0,
+    /// corners moved by `jitter` (counter-clockwise seen from +z).
+    fn facet(n: usize, jitter: &[f64], offset: [f64; 3]) -> Vec<[f64; 3]> {
+        let base: &[[f64; 3]] = if n == 3 {
+            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+        } else {
+            &[
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [1.0, 1.0, 0.0],
+                [0.0, 1.0, 0.0],
+            ]
+        };
+        base.iter()
+            .enumerate()
+            .map(|(a, p)| {
+                [
+                    p[0] + offset[0] + 0.2 * jitter[3 * a],
+                    p[1] + offset[1] + 0.2 * jitter[3 * a + 1],
+                    p[2] + offset[2] + 0.3 * jitter[3 * a + 2],
+                ]
+            })
+            .collect()
+    }
+
+    /// The forces of the element at the packed coordinates `v` (slave, the
+    /// contact facet's `n` nodes, the anchor facet's `m` nodes), the foot
+    /// found again by Newton.
+    fn forces_at(
+        law: &FacetFriction,
+        v: &[f64],
+        n: usize,
+        m: usize,
+        xi_a: [f64; 2],
+    ) -> Option<FacetResponse> {
+        let pt = |k: usize| [v[3 * k], v[3 * k + 1], v[3 * k + 2]];
+        let xs = pt(0);
+        let pts: Vec<[f64; 3]> = (1..=n).map(pt).collect();
+        let apts: Vec<[f64; 3]> = (1 + n..=n + m).map(pt).collect();
+        let (xi, _) = foot(xs, &pts)?;
+        respond(law, xs, &pts, xi, &apts, xi_a)
+    }
+
+    /// Largest relative FD error of the tangent of one element (status
+    /// checked unchanged at +-h), and the balance checks. `None` where the
+    /// status changes within the step.
+    fn check(
+        law: &FacetFriction,
+        xs: [f64; 3],
+        pts: &[[f64; 3]],
+        apts: &[[f64; 3]],
+        xi_a: [f64; 2],
+    ) -> Option<(f64, FrictionStatus)> {
+        let (n, m) = (pts.len(), apts.len());
+        let v0: Vec<f64> = xs
+            .iter()
+            .chain(pts.iter().flatten())
+            .chain(apts.iter().flatten())
+            .copied()
+            .collect();
+        let r0 = forces_at(law, &v0, n, m, xi_a)?;
+        // local dof of packed coordinate j
+        let dof = |j: usize| {
+            let k = j / 3;
+            if k <= n {
+                j
+            } else {
+                15 + (j - 3 * (1 + n))
+            }
+        };
+        // balance: sum of forces zero; moment = g n x t
+        let (xi, _) = foot(xs, pts)?;
+        let x = point_at(pts, xi);
+        let fmax = r0.forces.iter().fold(1e-300f64, |a, f| a.max(f.abs()));
+        let (mut sum, mut moment) = ([0.0; 3], [0.0; 3]);
+        for k in 0..(1 + n + m) {
+            let p = [v0[3 * k], v0[3 * k + 1], v0[3 * k + 2]];
+            let f: [f64; 3] = std::array::from_fn(|c| r0.forces[dof(3 * k + c)]);
+            for c in 0..3 {
+                sum[c] += f[c];
+            }
+            moment[0] += p[1] * f[2] - p[2] * f[1];
+            moment[1] += p[2] * f[0] - p[0] * f[2];
+            moment[2] += p[0] * f[1] - p[1] * f[0];
+        }
+        let t = r0.friction.traction;
+        let lever: [f64; 3] = std::array::from_fn(|c| xs[c] - x[c]);
+        let expect = [
+            lever[1] * t[2] - lever[2] * t[1],
+            lever[2] * t[0] - lever[0] * t[2],
+            lever[0] * t[1] - lever[1] * t[0],
+        ];
+        for c in 0..3 {
+            assert!(sum[c].abs() <= 1e-12 * fmax, "force balance {sum:?}");
+            assert!(
+                (moment[c] - expect[c]).abs() <= 1e-11 * fmax * 10.0,
+                "moment {moment:?} vs g n x t {expect:?}"
+            );
+        }
+        let h = 1e-6;
+        let kmax = r0.tangent.iter().fold(1e-12f64, |a, k| a.max(k.abs()));
+        let mut err = 0.0f64;
+        for j in 0..v0.len() {
+            let (mut vp, mut vm) = (v0.clone(), v0.clone());
+            vp[j] += h;
+            vm[j] -= h;
+            let (rp, rm) = (
+                forces_at(law, &vp, n, m, xi_a)?,
+                forces_at(law, &vm, n, m, xi_a)?,
+            );
+            if rp.friction.status != r0.friction.status || rm.friction.status != r0.friction.status
+            {
+                return None;
+            }
+            for i in 0..v0.len() {
+                let fd = -(rp.forces[dof(i)] - rm.forces[dof(i)]) / (2.0 * h);
+                let an = r0.tangent[dof(i) * NDOF + dof(j)];
+                err = err.max((fd - an).abs() / kmax);
+            }
+        }
+        Some((err, r0.friction.status))
+    }
+
+    /// The largest finite-difference error of the friction tangent over
+    /// seeded random elements (tri3 and quad4 contact facets, stick point
+    /// on the same facet or on a neighbouring one, penalty and
+    /// augmented-Lagrangian shift), stick and slip; printed for the record
+    /// (`cargo test -p ctc-engine --lib contact::friction_facet --
+    /// --nocapture`).
+    #[test]
+    fn fd_errors_over_seeded_random_elements_stick_and_slip() {
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let (mut worst_stick, mut worst_slip) = (0.0f64, 0.0f64);
+        let (mut sticks, mut slips) = (0, 0);
+        for case in 0..1200 {
+            let n = if case % 2 == 0 { 4 } else { 3 };
+            let other = case % 3 == 0;
+            let jitter: Vec<f64> = (0..12).map(|_| rnd()).collect();
+            let pts = facet(n, &jitter, [0.0; 3]);
+            let (apts, xi_a) = if other {
+                let j2: Vec<f64> = (0..12).map(|_| 0.3 * rnd()).collect();
+                let m = if case % 4 == 0 { 3 } else { 4 };
+                let xi = if m == 4 {
+                    [0.5 * rnd(), 0.5 * rnd()]
+                } else {
+                    [0.3 + 0.1 * rnd(), 0.3 + 0.1 * rnd()]
+                };
+                (facet(m, &j2, [-0.9, 0.1, 0.0]), xi)
+            } else {
+                let xi = if n == 4 {
+                    [0.6 * rnd(), 0.6 * rnd()]
+                } else {
+                    [0.3 + 0.2 * rnd(), 0.3 + 0.2 * rnd()]
+                };
+                (pts.clone(), xi)
+            };
+            let (u, v) = (0.5 + 0.3 * rnd(), 0.5 + 0.3 * rnd());
+            let xs = if n == 4 {
+                [u, v, -0.05 - 0.05 * rnd().abs()]
+            } else {
+                [0.45 * u, 0.45 * v, -0.05 - 0.05 * rnd().abs()]
+            };
+            let law = FacetFriction {
+                mu: 0.05 + 0.5 * rnd().abs(),
+                alpha_t: 20.0 + 10.0 * rnd(),
+                shift: if case % 5 == 0 {
+                    [rnd(), rnd(), rnd()]
+                } else {
+                    [0.0; 3]
+                },
+                normal_shift: if case % 5 == 0 {
+                    0.5 * rnd().abs()
+                } else {
+                    0.0
+                },
+                normal_stiffness: 100.0,
+            };
+            let Some((err, status)) = check(&law, xs, &pts, &apts, xi_a) else {
+                continue;
+            };
+            match status {
+                FrictionStatus::Stick => {
+                    sticks += 1;
+                    worst_stick = worst_stick.max(err);
+                }
+                _ => {
+                    slips += 1;
+                    worst_slip = worst_slip.max(err);
+                }
+            }
+        }
+        println!(
+            "friction_facet: {sticks} stick elements, max rel. FD error {worst_stick:.2e}; \
+             {slips} slip elements, max rel. FD error {worst_slip:.2e}"
+        );
+        assert!(sticks > 100 && slips > 100, "{sticks} {slips}");
+        assert!(worst_stick <= 1e-6 && worst_slip <= 1e-6);
+    }
+
+    #[test]
+    fn slip_moves_the_stick_point_and_the_force_is_mu_rn() {
+        // flat unit quad, node 0.01 below at (0.7, 0.5), stick point at
+        // the centre (0.5, 0.5): g_T = 0.2 along x, R_N = 100 x 0.01 = 1
+        let pts = facet(4, &[0.0; 12], [0.0; 3]);
+        let law = FacetFriction {
+            mu: 0.3,
+            alpha_t: 10.0,
+            shift: [0.0; 3],
+            normal_shift: 0.0,
+            normal_stiffness: 100.0,
+        };
+        let xs = [0.7, 0.5, -0.01];
+        let (xi, _) = foot(xs, &pts).unwrap();
+        let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0]).unwrap();
+        assert_eq!(r.friction.status, FrictionStatus::Slip);
+        assert!(
+            (r.friction.traction[0] + 0.3).abs() < 1e-12,
+            "{:?}",
+            r.friction
+        );
+        // elastic part 0.3 / 10: the stick point at x = 0.7 - 0.03
+        let moved = r.moved.unwrap();
+        assert!((0.5 * (moved[0] + 1.0) - 0.67).abs() < 1e-12, "{moved:?}");
+        assert!((r.friction.dissipation - 0.3 * 0.17).abs() < 1e-12);
+        // below the limit: stick, force -k_T g_T
+        let xs = [0.52, 0.5, -0.01];
+        let (xi, _) = foot(xs, &pts).unwrap();
+        let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0]).unwrap();
+        assert_eq!(r.friction.status, FrictionStatus::Stick);
+        assert!((r.friction.traction[0] + 0.2).abs() < 1e-12);
+        assert!(r.moved.is_none());
+        // the master facet moved rigidly with the node: no slip, no force
+        let shifted = facet(4, &[0.0; 12], [0.2, 0.0, 0.0]);
+        let xs = [0.7, 0.5, -0.01];
+        let (xi, _) = foot(xs, &shifted).unwrap();
+        let r = respond(&law, xs, &shifted, xi, &shifted, [0.0, 0.0]).unwrap();
+        assert!(r.friction.tangential_force < 1e-12, "{:?}", r.friction);
+    }
+
+    #[test]
+    fn anchor_codes_round_trip() {
+        let a = encode(7, [0.25, -0.5]);
+        assert_eq!(decode(Some(a), 8), Some((7, [0.25, -0.5])));
+        assert_eq!(decode(Some(a), 7), None);
+        assert_eq!(decode(None, 8), None);
+    }
+}
