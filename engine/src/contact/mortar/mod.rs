@@ -36,6 +36,7 @@
 //! total force on the slave node).
 
 pub mod ad;
+pub mod facets;
 pub mod integrals;
 
 use super::{ContactStatus, NodeContact, PairState};
