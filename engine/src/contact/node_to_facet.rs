@@ -490,8 +490,14 @@ impl FacetSurface {
         self.grid.rebuild(&self.boxes, radius);
     }
 
+    /// The facets whose current box lies within `radius` of `p` (broad
+    /// phase of the last [`FacetSurface::update`]), ascending.
+    pub fn query(&self, p: [f64; 3], radius: f64, out: &mut Vec<usize>) {
+        self.grid.query(p, radius, out);
+    }
+
     /// Coordinates of facet `k`'s nodes.
-    fn points(&self, k: usize, x: &[[f64; 3]]) -> ([[f64; 3]; 4], usize) {
+    pub(crate) fn points(&self, k: usize, x: &[[f64; 3]]) -> ([[f64; 3]; 4], usize) {
         let n = self.faces[k].nodes();
         let mut p = [[0.0; 3]; 4];
         for (a, &m) in n.iter().enumerate() {

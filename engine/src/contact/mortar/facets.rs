@@ -59,6 +59,10 @@ pub const MIN_FACING: f64 = 1e-6;
 /// projected area, integrated.
 const MIN_OVERLAP: f64 = 1e-12;
 
+/// Distance from a clipping edge's line, as a fraction of the edge's
+/// length, within which a vertex counts as on the line (inside).
+const ON_EDGE: f64 = 1e-9;
+
 /// Newton iterations of the inverse maps before giving up.
 const MAX_INVERSE_ITERATIONS: usize = 30;
 
@@ -135,10 +139,16 @@ fn clip(subject: Vec<P2>, clipper: &[P2]) -> Vec<P2> {
         }
         let e = sub2(b, a);
         let side = |p: P2| cross2(e, sub2(p, a));
+        // a vertex within ON_EDGE of the edge's length from its line is on
+        // it: two bodies whose boundaries coincide (the rim of a patch
+        // test) put master vertices on the slave edges up to round-off,
+        // where an intersection of a master edge along the slave edge
+        // would have a derivative of order 1 / round-off
+        let tol = ON_EDGE * (e[0].v * e[0].v + e[1].v * e[1].v);
         for k in 0..input.len() {
             let (p, q) = (input[k], input[(k + 1) % input.len()]);
             let (sp, sq) = (side(p), side(q));
-            let (pin, qin) = (sp.v >= 0.0, sq.v >= 0.0);
+            let (pin, qin) = (sp.v >= -tol, sq.v >= -tol);
             if pin {
                 out.push(p);
             }
