@@ -48,8 +48,8 @@ pub const NVAR: usize = 24;
 /// Dual numbers over the 24 coordinates of a facet pair.
 pub type Ad24 = Ad<NVAR>;
 
-type P3 = [Ad24; 3];
-type P2 = [Ad24; 2];
+type P3<const N: usize> = [Ad<N>; 3];
+type P2<const N: usize> = [Ad<N>; 2];
 
 /// Smallest projected area of a master facet on the slave plane, as a
 /// fraction of its own area, for it to count as facing the slave facet.
@@ -106,21 +106,29 @@ pub struct FacetSegment {
     pub gap_range: [f64; 2],
 }
 
-fn var(p: [f64; 3], base: usize) -> P3 {
-    std::array::from_fn(|c| Ad24::var(p[c], base + c))
+/// Point `p` as variables `base..base + 3` (constants when `N` is 0: the
+/// value-only pre-pass).
+fn var<const N: usize>(p: [f64; 3], base: usize) -> P3<N> {
+    std::array::from_fn(|c| {
+        if base + c < N {
+            Ad::var(p[c], base + c)
+        } else {
+            Ad::cst(p[c])
+        }
+    })
 }
 
-fn cross2(a: P2, b: P2) -> Ad24 {
+fn cross2<const N: usize>(a: P2<N>, b: P2<N>) -> Ad<N> {
     a[0] * b[1] - a[1] * b[0]
 }
 
-fn sub2(a: P2, b: P2) -> P2 {
+fn sub2<const N: usize>(a: P2<N>, b: P2<N>) -> P2<N> {
     [a[0] - b[0], a[1] - b[1]]
 }
 
 /// Twice the signed area of a polygon (counter-clockwise positive).
-fn twice_area(poly: &[P2]) -> Ad24 {
-    let mut s = Ad24::cst(0.0);
+fn twice_area<const N: usize>(poly: &[P2<N>]) -> Ad<N> {
+    let mut s = Ad::cst(0.0);
     for k in 0..poly.len() {
         s += cross2(poly[k], poly[(k + 1) % poly.len()]);
     }
@@ -129,7 +137,7 @@ fn twice_area(poly: &[P2]) -> Ad24 {
 
 /// Sutherland-Hodgman: `subject` clipped by the convex counter-clockwise
 /// polygon `clipper`.
-fn clip(subject: Vec<P2>, clipper: &[P2]) -> Vec<P2> {
+fn clip<const N: usize>(subject: Vec<P2<N>>, clipper: &[P2<N>]) -> Vec<P2<N>> {
     let mut out = subject;
     for i in 0..clipper.len() {
         let (a, b) = (clipper[i], clipper[(i + 1) % clipper.len()]);
@@ -138,7 +146,7 @@ fn clip(subject: Vec<P2>, clipper: &[P2]) -> Vec<P2> {
             break;
         }
         let e = sub2(b, a);
-        let side = |p: P2| cross2(e, sub2(p, a));
+        let side = |p: P2<N>| cross2(e, sub2(p, a));
         // a vertex within ON_EDGE of the edge's length from its line is on
         // it: two bodies whose boundaries coincide (the rim of a patch
         // test) put master vertices on the slave edges up to round-off,
@@ -165,8 +173,13 @@ fn clip(subject: Vec<P2>, clipper: &[P2]) -> Vec<P2> {
 /// plane (`x_0`, `t_1`, `t_2`) is `p`: Newton from the centre on the
 /// values, then one step in dual numbers at the converged point (its
 /// derivative is the implicit derivative); `None` if Newton fails.
-fn inverse(pts: &[P3], x0: P3, t: [P3; 2], p: P2) -> Option<[Ad24; 2]> {
-    let residual = |xi: [Ad24; 2]| {
+fn inverse<const N: usize>(
+    pts: &[P3<N>],
+    x0: P3<N>,
+    t: [P3<N>; 2],
+    p: P2<N>,
+) -> Option<[Ad<N>; 2]> {
+    let residual = |xi: [Ad<N>; 2]| {
         let (_, x, a1, a2, _) = surface_point(pts, xi);
         let d = sub(x, x0);
         let r = [dot(d, t[0]) - p[0], dot(d, t[1]) - p[1]];
@@ -176,7 +189,7 @@ fn inverse(pts: &[P3], x0: P3, t: [P3; 2], p: P2) -> Option<[Ad24; 2]> {
         ];
         (r, j)
     };
-    let values = |q: P3| q.map(|v| Ad::<0>::cst(v.v));
+    let values = |q: P3<N>| q.map(|v| Ad::<0>::cst(v.v));
     let (pv, x0v, tv): (Vec<[Ad<0>; 3]>, _, _) = (
         pts.iter().map(|&q| values(q)).collect(),
         values(x0),
@@ -206,7 +219,7 @@ fn inverse(pts: &[P3], x0: P3, t: [P3; 2], p: P2) -> Option<[Ad24; 2]> {
     if !converged {
         return None;
     }
-    let xi_d = xi.map(Ad24::cst);
+    let xi_d = xi.map(Ad::cst);
     let (r, j) = residual(xi_d);
     let step = newton_step(r, j)?;
     Some([xi_d[0] + step[0], xi_d[1] + step[1]])
@@ -217,23 +230,70 @@ fn inverse(pts: &[P3], x0: P3, t: [P3; 2], p: P2) -> Option<[Ad24; 2]> {
 /// `None` when the master facet does not face the slave one, its
 /// projection misses it, or a facet is degenerate.
 pub fn facet_pair(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<FacetSegment> {
+    facet_pair_within(slave, master, f64::INFINITY, f64::INFINITY)
+}
+
+/// [`facet_pair`], `None` also when the gaps at the integration points all
+/// exceed `max_gap` or all lie below `-max_depth` (decided on values,
+/// before the dual numbers: most candidate pairs of a search window do
+/// not overlap or are open).
+pub fn facet_pair_within(
+    slave: &[[f64; 3]],
+    master: &[[f64; 3]],
+    max_gap: f64,
+    max_depth: f64,
+) -> Option<FacetSegment> {
     let (ns, nm) = (slave.len(), master.len());
     if !matches!(ns, 3 | 4) || !matches!(nm, 3 | 4) {
         return None;
     }
-    let xs: Vec<P3> = slave
+    let (_, _, _, [lo, hi]) = integrate::<0>(slave, master)?;
+    if lo > max_gap || hi < -max_depth {
+        return None;
+    }
+    let (seg, polygon, area, gap_range) = integrate::<NVAR>(slave, master)?;
+    Some(FacetSegment {
+        ns,
+        nm,
+        d: seg.d,
+        m: seg.m,
+        normal: seg.normal,
+        gap: seg.gap,
+        polygon,
+        area,
+        gap_range,
+    })
+}
+
+/// The integrals of [`facet_pair`] in dual numbers of `N` directions.
+struct Integrals<const N: usize> {
+    d: [[Ad<N>; 4]; 4],
+    m: [[Ad<N>; 4]; 4],
+    normal: [Ad<N>; 3],
+    gap: [Ad<N>; 4],
+}
+
+/// [`facet_pair`] in dual numbers of `N` directions (`N = 0`: values
+/// only): the integrals, the clip polygon, its area and the gap range.
+#[allow(clippy::type_complexity)]
+fn integrate<const N: usize>(
+    slave: &[[f64; 3]],
+    master: &[[f64; 3]],
+) -> Option<(Integrals<N>, Vec<[f64; 2]>, f64, [f64; 2])> {
+    let (ns, nm) = (slave.len(), master.len());
+    let xs: Vec<P3<N>> = slave
         .iter()
         .enumerate()
         .map(|(a, &p)| var(p, 3 * a))
         .collect();
-    let xm: Vec<P3> = master
+    let xm: Vec<P3<N>> = master
         .iter()
         .enumerate()
         .map(|(b, &p)| var(p, 12 + 3 * b))
         .collect();
     let inv = 1.0 / ns as f64;
-    let x0: P3 = std::array::from_fn(|c| {
-        let mut s = Ad24::cst(0.0);
+    let x0: P3<N> = std::array::from_fn(|c| {
+        let mut s = Ad::cst(0.0);
         for p in &xs {
             s += p[c];
         }
@@ -251,19 +311,19 @@ pub fn facet_pair(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<FacetSegmen
     let n = raw.map(|v| v / len);
     let e = sub(xs[1], xs[0]);
     let en = dot(e, n);
-    let et: P3 = std::array::from_fn(|c| e[c] - n[c] * en);
+    let et: P3<N> = std::array::from_fn(|c| e[c] - n[c] * en);
     let el = dot(et, et).sqrt();
     if el.v.is_nan() || el.v <= 0.0 {
         return None;
     }
     let t1 = et.map(|v| v / el);
     let t2 = cross(n, t1);
-    let project = |p: P3| {
+    let project = |p: P3<N>| {
         let d = sub(p, x0);
         [dot(d, t1), dot(d, t2)]
     };
-    let sp: Vec<P2> = xs.iter().map(|&p| project(p)).collect();
-    let mp: Vec<P2> = xm.iter().rev().map(|&p| project(p)).collect();
+    let sp: Vec<P2<N>> = xs.iter().map(|&p| project(p)).collect();
+    let mp: Vec<P2<N>> = xm.iter().rev().map(|&p| project(p)).collect();
     // the master facet's own area (its normal's length), for the facing test
     let mraw = if nm == 3 {
         cross(sub(xm[1], xm[0]), sub(xm[2], xm[0]))
@@ -288,14 +348,14 @@ pub fn facet_pair(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<FacetSegmen
         return None;
     }
     let k = 1.0 / poly.len() as f64;
-    let centre: P2 = std::array::from_fn(|c| {
-        let mut s = Ad24::cst(0.0);
+    let centre: P2<N> = std::array::from_fn(|c| {
+        let mut s = Ad::cst(0.0);
         for p in &poly {
             s += p[c];
         }
         s * k
     });
-    let z = Ad24::cst(0.0);
+    let z = Ad::<N>::cst(0.0);
     let mut d = [[z; 4]; 4];
     let mut m = [[z; 4]; 4];
     let mut gap_range = [f64::INFINITY, f64::NEG_INFINITY];
@@ -303,7 +363,7 @@ pub fn facet_pair(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<FacetSegmen
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
         let at = cross2(sub2(a, centre), sub2(b, centre)) * 0.5;
         for (l, w) in RULE {
-            let p: P2 = std::array::from_fn(|c| centre[c] * l[0] + a[c] * l[1] + b[c] * l[2]);
+            let p: P2<N> = std::array::from_fn(|c| centre[c] * l[0] + a[c] * l[1] + b[c] * l[2]);
             let xi = inverse(&xs, x0, [t1, t2], p)?;
             let eta = inverse(&xm, x0, [t1, t2], p)?;
             let (nsf, ps, ..) = surface_point(&xs, xi);
@@ -323,7 +383,7 @@ pub fn facet_pair(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<FacetSegmen
         }
     }
     let gap = std::array::from_fn(|j| {
-        let mut v: P3 = [z; 3];
+        let mut v: P3<N> = [z; 3];
         for c in 0..3 {
             for q in 0..nm {
                 v[c] += m[j][q] * xm[q][c];
@@ -334,17 +394,17 @@ pub fn facet_pair(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<FacetSegmen
         }
         dot(v, n)
     });
-    Some(FacetSegment {
-        ns,
-        nm,
-        d,
-        m,
-        normal: n,
-        gap,
-        polygon: poly.iter().map(|p| [p[0].v, p[1].v]).collect(),
+    Some((
+        Integrals {
+            d,
+            m,
+            normal: n,
+            gap,
+        },
+        poly.iter().map(|p| [p[0].v, p[1].v]).collect(),
         area,
         gap_range,
-    })
+    ))
 }
 
 #[cfg(test)]

@@ -448,13 +448,9 @@ pub fn evaluate_3d(
         for &m in &candidates {
             let (mp, nm) = fp.sides[1].points(m, x);
             fp.tests += 1;
-            let Some(seg) = facets::facet_pair(&sx, &mp[..nm]) else {
+            let Some(seg) = facets::facet_pair_within(&sx, &mp[..nm], prof, depth) else {
                 continue;
             };
-            let [lo, hi] = seg.gap_range;
-            if lo > prof || hi < -depth {
-                continue;
-            }
             let mut vars = [UNUSED; 8];
             vars[..sn.len()].copy_from_slice(sn);
             vars[4..4 + nm].copy_from_slice(fp.sides[1].faces[m].nodes());
