@@ -151,3 +151,25 @@ fn mortar_pair_tangent_matches_finite_differences() {
         assert!(worst <= 1e-5, "{cell}: {worst}");
     }
 }
+
+#[test]
+fn hertz_sphere_block_mortar_3d_passes() {
+    registry::run_passing("hertz_sphere_block_mortar_3d");
+}
+
+/// Prints the Hertz forces of mortar and node-to-facet and the Newton
+/// iterations.
+#[test]
+fn hertz_mortar_forces() {
+    use ctc_verification::programs::contact_ntf_3d::hertz_force_with;
+    for formulation in ["mortar", "node_to_segment"] {
+        for e in [Some(1e6), Some(1000.0)] {
+            let (p, s) = hertz_force_with(e, formulation).expect("hertz");
+            println!(
+                "{formulation}: block E {e:?}: P {p:.6e}, Newton {}, increments {}",
+                s.newton_iterations,
+                s.increments.len()
+            );
+        }
+    }
+}
