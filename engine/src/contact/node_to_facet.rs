@@ -128,7 +128,7 @@ pub struct FacetElement {
     pub hessian: [[f64; NDOF]; NDOF],
 }
 
-pub(super) fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
+pub(crate) fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -136,11 +136,11 @@ pub(super) fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] 
     ]
 }
 
-pub(super) fn dot<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> Ad<N> {
+pub(crate) fn dot<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> Ad<N> {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-pub(super) fn sub<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
+pub(crate) fn sub<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
@@ -180,7 +180,7 @@ fn shapes<const N: usize>(
 /// Point, tangents `a_1`, `a_2` and the mixed derivative `x_,12` of the
 /// facet `pts` at `xi`.
 #[allow(clippy::type_complexity)]
-pub(super) fn surface_point<const N: usize>(
+pub(crate) fn surface_point<const N: usize>(
     pts: &[[Ad<N>; 3]],
     xi: [Ad<N>; 2],
 ) -> ([Ad<N>; 4], [Ad<N>; 3], [Ad<N>; 3], [Ad<N>; 3], [Ad<N>; 3]) {
@@ -215,7 +215,7 @@ pub(super) fn foot_system<const N: usize>(
 }
 
 /// The Newton step `-J^-1 r`, `None` for a singular `J`.
-pub(super) fn newton_step<const N: usize>(r: [Ad<N>; 2], j: [[Ad<N>; 2]; 2]) -> Option<[Ad<N>; 2]> {
+pub(crate) fn newton_step<const N: usize>(r: [Ad<N>; 2], j: [[Ad<N>; 2]; 2]) -> Option<[Ad<N>; 2]> {
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
     let scale = (j[0][0].v.abs() + j[1][1].v.abs()).powi(2);
     if det.v.is_nan() || det.v.abs() <= 1e-14 * scale {
@@ -490,8 +490,14 @@ impl FacetSurface {
         self.grid.rebuild(&self.boxes, radius);
     }
 
+    /// The facets whose current box lies within `radius` of `p` (broad
+    /// phase of the last [`FacetSurface::update`]), ascending.
+    pub fn query(&self, p: [f64; 3], radius: f64, out: &mut Vec<usize>) {
+        self.grid.query(p, radius, out);
+    }
+
     /// Coordinates of facet `k`'s nodes.
-    fn points(&self, k: usize, x: &[[f64; 3]]) -> ([[f64; 3]; 4], usize) {
+    pub(crate) fn points(&self, k: usize, x: &[[f64; 3]]) -> ([[f64; 3]; 4], usize) {
         let n = self.faces[k].nodes();
         let mut p = [[0.0; 3]; 4];
         for (a, &m) in n.iter().enumerate() {

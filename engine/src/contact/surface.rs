@@ -43,7 +43,8 @@ use super::node_to_facet::{self, DeformablePair};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{
-    ContactMaster, ContactMethod, Model, PenaltyKind, SurfaceMotion, SurfaceShape, SurfaceTool,
+    ContactFormulation, ContactMaster, ContactMethod, Model, PenaltyKind, SurfaceMotion,
+    SurfaceShape, SurfaceTool,
 };
 use ctc_geom::brep::{Counters, SearchState};
 use ctc_geom::{Placement, Projection, ProjectionError, Vec3};
@@ -462,6 +463,9 @@ pub fn evaluate_pair(
     let cp = &model.contacts[pair];
     let mut failed = Vec::new();
     if state.deformable.is_some() {
+        if cp.formulation == ContactFormulation::Mortar {
+            return (super::mortar::evaluate_3d(model, pair, x, state), failed);
+        }
         return (node_to_facet::evaluate(model, pair, x, state), failed);
     }
     let Some(tool) = cp.master.tool().and_then(|i| model.surfaces.get(i)) else {

@@ -288,8 +288,15 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         for c in &model.contacts {
             if let crate::model::ContactMaster::Surface { faces, .. } = &c.master {
                 // node-to-facet: what the 3D deformable pairs do not have yet
-                let missing = if c.formulation == crate::model::ContactFormulation::Mortar {
-                    Some("mortar segment-to-segment contact (3D segmentation of the facets)")
+                let mortar = c.formulation == crate::model::ContactFormulation::Mortar;
+                let missing = if mortar
+                    && (c.strategy != crate::model::ContactStrategy::SinglePass
+                        || matches!(c.method, crate::model::ContactMethod::Lagrange { .. }))
+                {
+                    Some(
+                        "mortar with a double pass or Lagrange multipliers (mortar is single \
+                         pass, penalty or augmented Lagrangian)",
+                    )
                 } else if c.smoothing != crate::model::NormalSmoothing::None {
                     Some("normal smoothing (Nagata patches on the master facets)")
                 } else if c.friction.is_some()

@@ -349,6 +349,15 @@ impl ContactScene<3> for SurfaceAssembly {
             let Some(fp) = &state.deformable else {
                 continue;
             };
+            // every node pair of a row (a mortar row spans the slave
+            // facets around its node and the master facets they overlap)
+            for c in &fp.couplings {
+                for (k, &a) in c.nodes.iter().enumerate() {
+                    for &b in &c.nodes[k + 1..] {
+                        self.couplings.push((a.min(b), a.max(b)));
+                    }
+                }
+            }
             for nc in res.iter().filter(|nc| nc.status == ContactStatus::Closed) {
                 let Some(i) = state.slave_index(nc.node) else {
                     continue;

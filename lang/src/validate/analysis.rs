@@ -56,8 +56,10 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// Lagrange multipliers), with heat conduction and thermal contact against
 /// the tools, and two deformable solids in node-to-facet contact (every
 /// strategy and method; Coulomb friction with the penalty and augmented
-/// Lagrangian methods); mortar, normal smoothing and self contact between
-/// deformable solids are not there yet in 3d.
+/// Lagrangian methods) or mortar contact (single pass, frictionless,
+/// penalty or augmented Lagrangian: [`super::contacts`] refuses the rest);
+/// normal smoothing and self contact between deformable solids are not
+/// there yet in 3d.
 pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
     if a.dimension.as_ref().map(|d| d.value) != Some(Dimension::ThreeD) {
         return;
@@ -75,17 +77,6 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
     };
     for c in &deck.contacts {
         let Some(m) = &c.master else { continue };
-        if let Some(f) = c
-            .formulation
-            .as_ref()
-            .filter(|f| f.value == crate::ast::ContactFormulation::Mortar)
-        {
-            refuse(
-                "mortar formulation (the segmentation of slave and master facets)",
-                f.span,
-                "use `formulation = node_to_segment` (node-to-facet in 3d), or a planar analysis",
-            );
-        }
         if let Some(s) = c
             .smoothing
             .as_ref()
