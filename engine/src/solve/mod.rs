@@ -44,6 +44,7 @@ pub mod discrete;
 pub mod dofs;
 pub mod dynamics;
 pub mod follower;
+pub mod free_tool;
 pub mod health;
 pub mod jumps;
 pub mod linalg;

@@ -42,6 +42,7 @@ impl Lowerer<'_> {
                 name: t.name.name.clone(),
                 geometry,
                 motion,
+                free_rotation: None,
             });
         }
         out
