@@ -321,6 +321,9 @@ where
         for c in view.controls {
             row.extend([c.pressure, c.rate]);
         }
+        for t in view.tools {
+            row.extend([t.angle, t.angular_velocity, t.moment, t.applied]);
+        }
         if let Some(t) = view.thermal {
             row.extend([t.max_temperature, t.min_temperature]);
         }

@@ -129,6 +129,7 @@ impl ContactAssembly {
             super::free_tool::assemble(
                 model,
                 dofs,
+                &self.pairs,
                 &self.contact,
                 &self.x,
                 t,

@@ -33,9 +33,17 @@
 //! its row is zero (and a tool no node touches has none); the tangent
 //! (never the residual) gets `1e-10` of the row's stiffness scale on its
 //! diagonal, or 1 when the tool is not touched, so the angle stays put
-//! where nothing turns it.
+//! where nothing turns it. A slipping node's force does not depend on the
+//! angle (its magnitude is `mu R_N`), so a roller whose touching nodes all
+//! slip one way has no tangent for its angle although its friction moment
+//! is not balanced (the equilibrium needs some of them to stick): when no
+//! node of the tool sticks, each slipping node adds its stick stiffness
+//! `alpha_T (t . J r)^2` to the diagonal of the tangent (a secant term; the
+//! residual stays exact, and the tangent is exact again as soon as a node
+//! sticks, as a rolling contact does).
 
 use super::dofs::DofMap;
+use crate::contact::friction::{tangential_stiffness, FrictionStatus};
 use crate::contact::mortar::Coupling;
 use crate::contact::vec2::{cross, dot, sub};
 use crate::contact::{NodeContact, PairState};
@@ -82,6 +90,70 @@ pub fn make_free(model: &mut Model, tool: usize, moment: TimeFunction) -> Result
     t.motion.rotation = TimeFunction::Constant(0.0);
     t.free_rotation = Some(FreeRotation { node, moment });
     Ok(node)
+}
+
+/// Why the free tools of `model` cannot be solved, if they cannot: an
+/// axisymmetric analysis, a dynamic step (no rotational inertia), heat
+/// conduction, a pair by Lagrange multipliers or on quadratic faces (the
+/// coupling is built on the nodal forces and tangents), a pilot node
+/// attached to a cell or out of range.
+pub fn refusals<const D: usize>(model: &Model<D>) -> Vec<String> {
+    let mut out = Vec::new();
+    for t in &model.tools {
+        let Some(f) = &t.free_rotation else { continue };
+        let name = &t.name;
+        if model.analysis.kind == AnalysisKind::Axisymmetric {
+            out.push(format!(
+                "tool '{name}': a free rotation needs a plane strain or plane stress analysis"
+            ));
+        }
+        if model.steps.iter().any(|s| s.dynamic.is_some()) {
+            out.push(format!(
+                "tool '{name}': a free rotation is solved in quasi-static steps only (no rotational \
+                 inertia)"
+            ));
+        }
+        if model.thermal.is_some() {
+            out.push(format!(
+                "tool '{name}': a free rotation with heat conduction is not available"
+            ));
+        }
+        if f.node >= model.mesh.nodes.len()
+            || model.mesh.cells.iter().any(|c| c.nodes.contains(&f.node))
+        {
+            out.push(format!(
+                "tool '{name}': pilot node {} is not a free node of the mesh",
+                f.node
+            ));
+        }
+        let tool = model.tools.iter().position(|u| std::ptr::eq(u, t));
+        for cp in model
+            .contacts
+            .iter()
+            .filter(|c| c.master.tool().is_some() && c.master.tool() == tool)
+        {
+            if matches!(cp.method, crate::model::ContactMethod::Lagrange { .. }) {
+                out.push(format!(
+                    "pair '{}': Lagrange multipliers are not available against a tool free to \
+                     rotate (use penalty or augmented Lagrangian)",
+                    cp.name
+                ));
+            }
+            let quadratic = cp.edges.iter().any(|e| {
+                model.mesh.cells.iter().any(|c| {
+                    c.nodes.len() > 4 && c.nodes.contains(&e[0]) && c.nodes.contains(&e[1])
+                })
+            });
+            if quadratic {
+                out.push(format!(
+                    "pair '{}': quadratic slave faces are not available against a tool free to \
+                     rotate",
+                    cp.name
+                ));
+            }
+        }
+    }
+    out
 }
 
 /// The pilot nodes of the model (attached to no cell, but unknowns).
@@ -195,6 +267,7 @@ pub fn centre(model: &Model, tool: usize, t: f64) -> [f64; 2] {
 pub fn assemble(
     model: &Model,
     dofs: &DofMap,
+    pairs: &[PairState],
     contact: &[Vec<NodeContact>],
     x: &[[f64; 2]],
     t: f64,
@@ -211,11 +284,30 @@ pub fn assemble(
         let mut moment = 0.0;
         let mut diagonal = 0.0;
         let mut scale = 0.0;
+        let mut secant = 0.0;
+        let mut sticking = false;
         for (pair, list) in contact.iter().enumerate() {
             if free_master(model, pair).map(|m| m.0) != Some(k) {
                 continue;
             }
+            let cp = &model.contacts[pair];
             for nc in list {
+                sticking |= nc.friction.status == FrictionStatus::Stick;
+                if let (FrictionStatus::Slip, Some(law), Some(state)) =
+                    (nc.friction.status, &cp.friction, pairs.get(pair))
+                {
+                    let tributary = state
+                        .slave_index(nc.node)
+                        .and_then(|i| state.tributary.get(i))
+                        .copied()
+                        .unwrap_or(0.0);
+                    let alpha = tangential_stiffness(law, &cp.method_at(nc.node), tributary);
+                    let tangent = [nc.normal[1], -nc.normal[0]];
+                    if let Some(&xa) = x.get(nc.node) {
+                        let s = dot(tangent, turn(sub(xa, c)));
+                        secant += alpha * s * s;
+                    }
+                }
                 let Some(&xa) = x.get(nc.node) else { continue };
                 let nk = node_coupling(nc, xa, c);
                 moment += nk.moment;
@@ -240,11 +332,12 @@ pub fn assemble(
             }
         }
         f_c[dofs.dof(p, 0)] -= moment;
-        let hold = if scale > 0.0 {
-            REGULARIZATION * scale
-        } else {
-            1.0
-        };
+        let hold = if sticking { 0.0 } else { secant }
+            + if scale > 0.0 {
+                REGULARIZATION * scale
+            } else {
+                1.0
+            };
         rows.push(Coupling {
             nodes: vec![p],
             force: vec![0.0; 2],
@@ -273,37 +366,39 @@ pub struct ToolRecord {
 }
 
 /// The records of the free tools (tool order) between the committed
-/// displacements `u0` and the converged `u` of an increment `(t - dt, t]`.
-pub fn records(
-    model: &Model,
-    u0: &[[f64; 2]],
-    u: &[[f64; 2]],
-    contact: &[Vec<NodeContact>],
+/// displacements `u0` and the converged `u` of an increment `(t - dt, t]`
+/// (planar models; 3D models have no curve tools, so none).
+pub fn records<const D: usize>(
+    model: &Model<D>,
+    u0: &[[f64; D]],
+    u: &[[f64; D]],
+    contact: &[Vec<NodeContact<D>>],
     t: f64,
     dt: f64,
 ) -> Vec<ToolRecord> {
-    let x: Vec<[f64; 2]> = model
-        .mesh
-        .nodes
-        .iter()
-        .zip(u)
-        .map(|(p, v)| [p[0] + v[0], p[1] + v[1]])
-        .collect();
     let mut out = Vec::new();
+    if D != 2 {
+        return out;
+    }
+    let at = |n: usize| -> [f64; 2] {
+        match (model.mesh.nodes.get(n), u.get(n)) {
+            (Some(p), Some(v)) => [p[0] + v[0], p[1] + v[1]],
+            _ => [0.0; 2],
+        }
+    };
     for (k, tool) in model.tools.iter().enumerate() {
         let Some(free) = &tool.free_rotation else {
             continue;
         };
-        let c = centre(model, k, t);
+        let m = &tool.motion;
+        let c = [m.center[0] + m.ux.eval(t), m.center[1] + m.uy.eval(t)];
         let mut moment = 0.0;
-        for (pair, list) in contact.iter().enumerate() {
-            if free_master(model, pair).map(|m| m.0) != Some(k) {
+        for (cp, list) in model.contacts.iter().zip(contact) {
+            if cp.master.tool() != Some(k) {
                 continue;
             }
             for nc in list {
-                if let Some(&xa) = x.get(nc.node) {
-                    moment -= cross(sub(xa, c), nc.force);
-                }
+                moment -= cross(sub(at(nc.node), c), [nc.force[0], nc.force[1]]);
             }
         }
         let angle = u.get(free.node).map_or(0.0, |v| v[0]);
@@ -334,7 +429,6 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::contact::friction::FrictionStatus;
     use crate::contact::{evaluate_pair, PairState};
     use crate::mesh::{Cell, Mesh};
     use crate::model::{
@@ -411,7 +505,16 @@ mod tests {
             f_c[2 * nc.node + 1] += nc.force[1];
         }
         let mut rows = Vec::new();
-        assemble(m, &dofs, &[list.clone()], &x, 0.0, &mut f_c, &mut rows);
+        assemble(
+            m,
+            &dofs,
+            &states,
+            &[list.clone()],
+            &x,
+            0.0,
+            &mut f_c,
+            &mut rows,
+        );
         let idx = [0, 1, 2, 3, 2 * pilot, 2 * pilot + 1];
         let r: Vec<f64> = idx.iter().map(|&g| -f_c[g]).collect();
         let mut k = vec![0.0; 36];
@@ -446,11 +549,29 @@ mod tests {
                 dot(r, r) * (nc.stiffness[0][0].abs() + nc.stiffness[1][1].abs())
             })
             .sum();
-        k[4 * 6 + 4] -= if scale > 0.0 {
-            REGULARIZATION * scale
-        } else {
-            1.0
-        };
+        let sticking = list
+            .iter()
+            .any(|nc| nc.friction.status == FrictionStatus::Stick);
+        let secant: f64 = list
+            .iter()
+            .filter(|_| !sticking)
+            .filter(|nc| nc.friction.status == FrictionStatus::Slip)
+            .map(|nc| {
+                let law = m.contacts[0].friction.as_ref().unwrap();
+                let i = states[0].slave_index(nc.node).unwrap();
+                let alpha =
+                    tangential_stiffness(law, &m.contacts[0].method, states[0].tributary[i]);
+                let t = [nc.normal[1], -nc.normal[0]];
+                let s = dot(t, turn(sub(x[nc.node], centre(m, 0, 0.0))));
+                alpha * s * s
+            })
+            .sum();
+        k[4 * 6 + 4] -= secant
+            + if scale > 0.0 {
+                REGULARIZATION * scale
+            } else {
+                1.0
+            };
         *state = states.pop().unwrap();
         STATUS.with(|st| {
             *st.borrow_mut() = list
