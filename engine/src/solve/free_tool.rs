@@ -264,6 +264,7 @@ pub fn centre(model: &Model, tool: usize, t: f64) -> [f64; 2] {
 /// ... - f_c`) and returns the coupling rows of the tangent (scattered
 /// like mortar rows: pilot node and one slave node each, plus the pilot's
 /// diagonal).
+#[allow(clippy::too_many_arguments)]
 pub fn assemble(
     model: &Model,
     dofs: &DofMap,
@@ -509,7 +510,7 @@ mod tests {
             m,
             &dofs,
             &states,
-            &[list.clone()],
+            std::slice::from_ref(&list),
             &x,
             0.0,
             &mut f_c,

@@ -345,29 +345,6 @@ pub fn nurbs_data_consistent(
     }
 }
 
-#[cfg(test)]
-mod tests {
-    use crate::validate::test_support::messages;
-
-    #[test]
-    fn nurbs_knot_multiplicity_is_bounded_by_the_degree() {
-        let m = messages("tool c = nurbs { degree = 1 points = [(0,0), (1,1), (2,0), (3, 0)] knots = [0, 0, 0.5, 0.5, 1, 1] }\ncontact block.top -> c { method = penalty { stiffness = 1 } }");
-        assert_eq!(m, ["knot 0.5 is repeated 2 times"]);
-    }
-
-    #[test]
-    fn nurbs_knots_are_checked() {
-        let m = messages("tool c = nurbs { degree = 2 points = [(0,0), (1,1), (2,0)] weights = [1, -1, 1] knots = [0, 0, 1, 1] }\ncontact block.top -> c { method = penalty { stiffness = 1 } }");
-        assert_eq!(
-            m,
-            [
-                "NURBS weights must be positive",
-                "the knot vector needs 6 knots (control points + degree + 1)"
-            ]
-        );
-    }
-}
-
 /// `rotation = free` (a free roller, `ctc_engine::solve::free_tool`):
 /// planar plane strain / plane stress analyses, quasi-static steps (no
 /// rotational inertia), pairs by penalty or augmented Lagrangian (the
@@ -444,5 +421,28 @@ pub fn free_rotation(t: &Tool, m: &crate::ast::Motion, ctx: &mut Ctx<'_>) {
                 .with_help("use `penalty` or `augmented_lagrange`"),
             );
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::validate::test_support::messages;
+
+    #[test]
+    fn nurbs_knot_multiplicity_is_bounded_by_the_degree() {
+        let m = messages("tool c = nurbs { degree = 1 points = [(0,0), (1,1), (2,0), (3, 0)] knots = [0, 0, 0.5, 0.5, 1, 1] }\ncontact block.top -> c { method = penalty { stiffness = 1 } }");
+        assert_eq!(m, ["knot 0.5 is repeated 2 times"]);
+    }
+
+    #[test]
+    fn nurbs_knots_are_checked() {
+        let m = messages("tool c = nurbs { degree = 2 points = [(0,0), (1,1), (2,0)] weights = [1, -1, 1] knots = [0, 0, 1, 1] }\ncontact block.top -> c { method = penalty { stiffness = 1 } }");
+        assert_eq!(
+            m,
+            [
+                "NURBS weights must be positive",
+                "the knot vector needs 6 knots (control points + degree + 1)"
+            ]
+        );
     }
 }
