@@ -266,10 +266,22 @@ mod tests {
 
     #[test]
     fn the_variants_change_mu_and_the_rollers() {
-        let (_, fixed) = deck(0.05, false).unwrap();
-        assert!(fixed.contains("mu = 0.05 }") && !fixed.contains("mu = 0.1 }"));
-        assert!(fixed.contains("rotation = 0") && !fixed.contains("rotation = free"));
-        let (_, free) = deck(0.15, true).unwrap();
-        assert_eq!(free.matches("rotation = free").count(), 2);
+        for (mu, free) in [(0.05, false), (0.15, true)] {
+            let (path, text) = deck(mu, free).unwrap();
+            let model = super::super::compile(&path, &text).unwrap();
+            // the two rollers are free or fixed, every pair has mu
+            let free_tools: Vec<&str> = model
+                .tools
+                .iter()
+                .filter(|t| t.free_rotation.is_some())
+                .map(|t| t.name.as_str())
+                .collect();
+            let expected: &[&str] = if free { &["roll_a", "roll_b"] } else { &[] };
+            assert_eq!(free_tools, expected);
+            assert_eq!(model.contacts.len(), 4);
+            for c in &model.contacts {
+                assert_eq!(c.friction.map(|f| f.mu), Some(mu), "{}", c.name);
+            }
+        }
     }
 }
