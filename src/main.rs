@@ -422,9 +422,23 @@ where
     writer
         .finish(&summary)
         .map_err(|e| format!("error: cannot write summary.json: {e}"))?;
-    if model.thermal.is_some() {
+    let plots = if model.thermal.is_some() {
         // thermo-mechanical runs: force-stroke and temperature plots
-        match ctc_verification::history_plot::thermal_run_plots(dir, model.output.units.as_ref()) {
+        Some(ctc_verification::history_plot::thermal_run_plots(
+            dir,
+            model.output.units.as_ref(),
+        ))
+    } else if model.tools.iter().any(|t| t.free_rotation.is_some()) {
+        // free rollers: drawing force against stroke, roller angle
+        Some(ctc_verification::history_plot::free_tool_run_plots(
+            dir,
+            model.output.units.as_ref(),
+        ))
+    } else {
+        None
+    };
+    if let Some(plots) = plots {
+        match plots {
             Ok(files) if !quiet && !files.is_empty() => {
                 println!("plots: {} in {}", files.join(", "), dir.display())
             }

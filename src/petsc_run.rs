@@ -75,6 +75,15 @@ where
     nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
 {
     use ctc_petsc::{PetscSystem, SolverChoice};
+    if model.tools.iter().any(|t| t.free_rotation.is_some()) {
+        // the pilot node of a free tool is attached to no cell: the
+        // PETSc layout gives ownership by cells
+        return Err(
+            "error: `--solver petsc` does not solve tools with `rotation = free` yet; use the \
+             default solver"
+                .into(),
+        );
+    }
     let system = PetscSystem::new(env, model, SolverChoice::MumpsLu, "")
         .map_err(|e| format!("error: cannot set up PETSc for this model: {e}"))?;
     if system.rank() == 0 {

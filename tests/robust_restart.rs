@@ -297,3 +297,22 @@ fn restart_damped_dynamic_bar_impact_matches_uninterrupted_run() {
     let (from, n) = restart_matches(&model, 25);
     assert_eq!((from, n), (20, 60));
 }
+
+#[test]
+fn restart_free_rollers_carry_their_angle_bit_for_bit() {
+    // issue 22: the rollers' angles are the pilot nodes' displacements;
+    // stopped while the strip rolls them (output every 5 increments)
+    let model = model_of(
+        "blankholder.ctc",
+        &[(
+            "time = 1 .. 2\n  increments = 30",
+            "time = 1 .. 1.2\n  increments = 6",
+        )],
+    );
+    assert!(model
+        .tools
+        .iter()
+        .all(|t| t.name.starts_with("roll") == t.free_rotation.is_some()));
+    let (from, n) = restart_matches(&model, 47);
+    assert!(from >= 40 && from < n, "restart from {from} of {n}");
+}

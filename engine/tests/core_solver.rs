@@ -368,6 +368,7 @@ fn body_held_only_by_open_contact_falls_onto_it() {
             normal: [0.0, 1.0],
         },
         motion: ToolMotion::fixed(),
+        free_rotation: None,
     }];
     m.contacts = vec![ContactPair {
         name: "block.bottom -> floor".into(),

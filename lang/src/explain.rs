@@ -351,6 +351,16 @@ pub fn explain(model: &Model) -> String {
                 }
                 let _ = writeln!(o, "    moves: {}", parts.join(", "));
             }
+            if let Some(f) = &t.free_rotation {
+                let _ = writeln!(
+                    o,
+                    "    turns freely about {} (its angle is an unknown, pilot node {}): the \
+                     contact moment balances the applied moment {}",
+                    point(m.center),
+                    f.node,
+                    time_function(&f.moment)
+                );
+            }
         }
     }
     // ------------------------------------------------------------ contact

@@ -545,12 +545,12 @@ pub static STL: [Key; 4] = [
 /// The `motion { .. }` key of every tool.
 const MOTION_KEY: Key = Key::new(
     "motion",
-    KeyType::Choice(&["{ ux uy uz rotation center axis }"]),
+    KeyType::Choice(&["{ ux uy uz rotation moment center axis }"]),
     "rigid motion: rotate about `center` (3d: about `axis` through `center`), then translate",
 );
 
 /// `motion { .. }` of a tool.
-pub static MOTION: [Key; 6] = [
+pub static MOTION: [Key; 7] = [
     Key::new("ux", KeyType::Number, "translation along x (time function)").dim(Dim::Length),
     Key::new("uy", KeyType::Number, "translation along y (time function)").dim(Dim::Length),
     Key::new(
@@ -562,9 +562,18 @@ pub static MOTION: [Key; 6] = [
     Key::new(
         "rotation",
         KeyType::Number,
-        "rotation, counter-clockwise (3d: right-handed about `axis`) (time function)",
+        "rotation, counter-clockwise (3d: right-handed about `axis`) (time function); \
+         `rotation = free`: an unknown, the tool turns until the contact moment about `center` \
+         balances `moment` (a free roller; plane strain / plane stress)",
     )
     .dim(Dim::AngleRadians),
+    Key::new(
+        "moment",
+        KeyType::Number,
+        "moment applied to a tool with `rotation = free`, counter-clockwise about `center`, per \
+         unit thickness like the contact forces (time function; default 0)",
+    )
+    .dim(Dim::Any),
     Key::new(
         "center",
         KeyType::Point(Components::Analysis),

@@ -264,6 +264,72 @@ pub fn pressure_cycle_plots(
     Ok(files)
 }
 
+/// The plots of `ctc run` for a model with free tools
+/// (`rotation = free`, e.g. `examples/blankholder.ctc`):
+/// `force_stroke.svg`, the first `reaction(..)` against the first
+/// `displacement(..)` along the axis where that displacement travels
+/// farthest (the drawing force against the stroke), and `angle.svg`, the
+/// first free tool's angle against time. Returns the files written.
+pub fn free_tool_run_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
+    let (header, rows) = read_history(dir)?;
+    let with = |what: &str, unit: fn(&ctc_engine::model::UnitNames) -> &str| match units {
+        Some(u) => format!("{what} [{}]", unit(u)),
+        None => what.to_string(),
+    };
+    let mut files = Vec::new();
+    let first = |prefix: &str, axis: &str| {
+        header
+            .iter()
+            .find(|h| h.starts_with(prefix) && h.ends_with(axis))
+            .cloned()
+    };
+    let travel = |name: &str| {
+        let Some(i) = header.iter().position(|h| h == name) else {
+            return 0.0;
+        };
+        let v = rows.iter().filter_map(|r| r.get(i)).copied();
+        let (lo, hi) = v.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
+        if hi >= lo {
+            hi - lo
+        } else {
+            0.0
+        }
+    };
+    let axis = match (first("displacement(", "_x"), first("displacement(", "_y")) {
+        (Some(x), Some(y)) if travel(&y) > travel(&x) => "_y",
+        _ => "_x",
+    };
+    if let (Some(f), Some(u)) = (first("reaction(", axis), first("displacement(", axis)) {
+        let c = &axis[1..];
+        if history_plot(
+            dir,
+            "force_stroke.svg",
+            "drawing force against stroke",
+            (&u, 1.0, &with(&format!("stroke (u_{c})"), |u| &u.length)),
+            (&f, 1.0, &with(&format!("force (F_{c})"), |u| &u.force)),
+            0.0,
+        )? {
+            files.push("force_stroke.svg".to_string());
+        }
+    }
+    if let Some(a) = header.iter().find(|h| h.starts_with("angle[")).cloned() {
+        if history_plot(
+            dir,
+            "angle.svg",
+            &format!("{a} (free tool)"),
+            ("time", 1.0, &with("time", |u| &u.time)),
+            (&a, 1.0, "angle [rad]"),
+            0.0,
+        )? {
+            files.push("angle.svg".to_string());
+        }
+    }
+    Ok(files)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -196,6 +196,11 @@ pub struct PairState {
     /// Face-integrated pairs: the tool entity of each integration point
     /// at the latest evaluation (search memory).
     pub point_memory: Vec<Option<usize>>,
+    /// A tool with a free rotation (`model::FreeRotation`): its current
+    /// angle, set by the solver from the pilot node before every
+    /// evaluation (`solve/free_tool.rs`); `None`: the angle is
+    /// `motion.rotation(t)`.
+    pub angle: Option<f64>,
 }
 
 impl PairState {
@@ -275,6 +280,7 @@ impl PairState {
             surface,
             point_memory: vec![None; facets.as_ref().map_or(0, |f| f.rule.points.len())],
             facets,
+            angle: None,
         }
     }
 
@@ -353,7 +359,10 @@ pub fn evaluate_pair(
     let (Some(shape), Some(tool)) = (state.shape.as_ref(), tool) else {
         return Vec::new();
     };
-    let placement = Placement::at(&tool.motion, t);
+    let placement = match state.angle {
+        Some(theta) => Placement::at(&tool.motion, t).with_angle(theta),
+        None => Placement::at(&tool.motion, t),
+    };
     let prof = state.prof;
     state.friction.impact = None;
     let mut tests = 0usize;

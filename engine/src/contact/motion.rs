@@ -33,6 +33,16 @@ impl Placement {
         }
     }
 
+    /// The same centre and translation turned to angle `theta` (a free
+    /// rotation, whose angle is an unknown rather than a time function).
+    pub fn with_angle(self, theta: f64) -> Self {
+        Placement {
+            cos: theta.cos(),
+            sin: theta.sin(),
+            ..self
+        }
+    }
+
     /// The identity placement.
     pub fn identity() -> Self {
         Placement {

@@ -531,8 +531,29 @@ pub struct RigidTool {
     pub name: String,
     /// Geometry in the tool's reference position (time 0 of its motion).
     pub geometry: ToolGeometry,
-    /// Prescribed rigid motion.
+    /// Prescribed rigid motion (with a free rotation, `motion.rotation` is
+    /// unused: the angle is the unknown of [`FreeRotation`]).
     pub motion: ToolMotion,
+    /// The rotation about `motion.center` as an unknown (a free roller), or
+    /// `None`: prescribed by `motion.rotation`.
+    pub free_rotation: Option<FreeRotation>,
+}
+
+/// A tool's rotation about its centre as an unknown of the global system
+/// (`solve/free_tool.rs`): the angle is the x displacement of the pilot
+/// node `node` (a node attached to no cell, its y component held at 0),
+/// and its equation is the tool's moment balance about the current centre
+/// `c + u(t)`: net contact moment on the tool + `moment(t)` = 0 (the
+/// applied moment is a nodal force on the pilot node's x component).
+/// Planar (plane strain / plane stress) models; 3D rotation about an axis
+/// can use the same pilot-node scheme with one component.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FreeRotation {
+    /// The pilot node (global number) carrying the angle.
+    pub node: usize,
+    /// Applied moment about the centre (counter-clockwise positive;
+    /// force x length per unit thickness as the contact forces are).
+    pub moment: TimeFunction,
 }
 
 /// Which side of a closed curve (circle) is free space for the body.

@@ -5,7 +5,10 @@
 //! dissipated by friction over the increment (`friction_work[<pair>]`;
 //! the cumulative work is the column's running sum, also in
 //! `summary.json`). Models with a dynamic step: the energy audit
-//! ([`ENERGY_COLUMNS`]). Flushed after every row.
+//! ([`ENERGY_COLUMNS`]). Pressure controllers: the applied pressure and
+//! the rate. Free tools (`rotation = free`): `angle[tool]`,
+//! `angular_velocity[tool]`, `moment[tool]` (of the contact forces on the
+//! tool) and `applied_moment[tool]`. Flushed after every row.
 
 use crate::contact::NodeContact;
 use crate::model::{HistoryRequest, Model};
@@ -71,6 +74,8 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
         cols.push(format!("controlled_pressure[{label}]"));
         cols.push(format!("controlled_rate[{label}]"));
     }
+    // appended by the writer from the free tools' records
+    cols.extend(crate::solve::free_tool::columns(model));
     if model.thermal.is_some() {
         // appended by the writer from the thermal increment
         cols.push("temperature_max".into());

@@ -280,8 +280,16 @@ where
             let extent = tool_vtu::extent(&model.mesh.nodes, &snap.displacement);
             for (k, tool) in model.tools.iter().enumerate() {
                 let file = tool_vtu::file_name(k, snap.increment);
+                // a free tool is drawn at its angle (its pilot node's x)
+                let turned = tool.free_rotation.as_ref().map(|f| {
+                    let mut t = tool.clone();
+                    t.motion.rotation = crate::model::TimeFunction::Constant(
+                        snap.displacement.get(f.node).map_or(0.0, |u| u[0]),
+                    );
+                    t
+                });
                 let bytes = tool_vtu::tool_vtu(
-                    tool,
+                    turned.as_ref().unwrap_or(tool),
                     k,
                     snap.time,
                     snap.increment,
@@ -320,6 +328,9 @@ where
         }
         for c in view.controls {
             row.extend([c.pressure, c.rate]);
+        }
+        for t in view.tools {
+            row.extend([t.angle, t.angular_velocity, t.moment, t.applied]);
         }
         if let Some(t) = view.thermal {
             row.extend([t.max_temperature, t.min_temperature]);

@@ -267,6 +267,7 @@ mod tests {
                 },
                 ..ToolMotion::fixed()
             },
+            free_rotation: None,
         }
     }
 

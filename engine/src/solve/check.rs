@@ -33,6 +33,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             model.analysis.thickness
         ));
     }
+    errors.extend(super::free_tool::refusals(model));
     for d in &model.discrete {
         let (label, nodes, values) = match d {
             crate::model::Discrete::Ground {

@@ -38,6 +38,9 @@ pub struct ContactAssembly {
     pub couplings: Vec<(usize, usize)>,
     /// Times the sparsity pattern grew.
     pub pattern_growths: usize,
+    /// Free tools: the coupling rows of their angles at the last
+    /// evaluation (`free_tool::assemble`).
+    pub rotation_rows: Vec<contact::mortar::Coupling>,
 }
 
 impl ContactAssembly {
@@ -53,6 +56,7 @@ impl ContactAssembly {
             x: model.mesh.nodes.clone(),
             couplings: Vec::new(),
             pattern_growths: 0,
+            rotation_rows: Vec::new(),
         }
     }
 
@@ -70,6 +74,10 @@ impl ContactAssembly {
             for ((xc, x0c), uc) in x.iter_mut().zip(x0).zip(u) {
                 *xc = x0c + uc;
             }
+        }
+        let free = model.tools.iter().any(|t| t.free_rotation.is_some());
+        if free {
+            super::free_tool::set_angles(model, u, &mut self.pairs);
         }
         for (i, state) in self.pairs.iter_mut().enumerate() {
             let res = contact::evaluate_pair(model, i, &self.x, t, state);
@@ -116,6 +124,18 @@ impl ContactAssembly {
                 }
             }
             self.contact[i] = res;
+        }
+        if free {
+            super::free_tool::assemble(
+                model,
+                dofs,
+                &self.pairs,
+                &self.contact,
+                &self.x,
+                t,
+                f_c,
+                &mut self.rotation_rows,
+            );
         }
     }
 
@@ -167,6 +187,9 @@ impl ContactAssembly {
     /// skipped (grow the pattern first, [`ContactAssembly::grow_pattern`]).
     pub fn add_tangent(&self, scatter: &Scatter, dofs: &DofMap, values: &mut [f64]) {
         let nc_dim = dofs.components();
+        for c in &self.rotation_rows {
+            add_coupling(c, scatter, dofs, values);
+        }
         for (res, state) in self.contact.iter().zip(&self.pairs) {
             if let Some(rows) = &state.couplings {
                 for c in rows {

@@ -8,7 +8,8 @@
 //!
 //! A link couples two nodes that may share no cell: their pairs join the
 //! sparsity pattern ([`couplings`], [`scatter_for`]) at every place it is
-//! built (start, contact growth, restart).
+//! built (start, contact growth, restart); so do the pilot nodes of free
+//! tools with their pairs' slave nodes (`free_tool::couplings`).
 
 use super::dofs::{Dof, DofMap};
 use super::linalg::Scatter;
@@ -39,6 +40,7 @@ pub fn scatter_for<const D: usize>(
     extra: &[(usize, usize)],
 ) -> Result<Scatter, String> {
     let mut all = couplings(model);
+    all.extend(super::free_tool::couplings(model));
     if all.is_empty() {
         return Scatter::with_couplings(&model.mesh, dofs, extra);
     }

@@ -2,7 +2,8 @@
 //! (or r), 1 for y (or z), 2 for z in 3D), split into free dofs (the unknowns, numbered in
 //! node order), prescribed dofs (Dirichlet data, eliminated from the
 //! matrix) and inactive dofs (nodes attached to no cell, e.g. unused points
-//! of a gmsh file: no unknown, no reaction).
+//! of a gmsh file: no unknown, no reaction — except the pilot nodes of free
+//! tools, `free_tool.rs`).
 
 use crate::model::Model;
 
@@ -48,6 +49,12 @@ impl<const D: usize> DofMap<D> {
         for c in &model.mesh.cells {
             for &n in c.nodes {
                 active[n] = true;
+            }
+        }
+        // the pilot nodes of free tools carry their angle (`free_tool.rs`)
+        for n in super::free_tool::pilot_nodes(model) {
+            if let Some(a) = active.get_mut(n) {
+                *a = true;
             }
         }
         let mut constraint_of: Vec<Option<usize>> = vec![None; D * nn];

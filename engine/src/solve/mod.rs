@@ -44,6 +44,7 @@ pub mod discrete;
 pub mod dofs;
 pub mod dynamics;
 pub mod follower;
+pub mod free_tool;
 pub mod health;
 pub mod jumps;
 pub mod linalg;
@@ -117,6 +118,9 @@ pub struct IncrementView<'a, const D: usize = 2> {
     /// What each pressure controller did in this increment (the model's
     /// controlled loads in order; empty without controllers).
     pub controls: &'a [control::ControlRecord],
+    /// The free tools' angle, angular velocity and moments (tool order;
+    /// empty without free tools, `free_tool.rs`).
+    pub tools: &'a [free_tool::ToolRecord],
     /// Nodal temperatures (thermal scenes only; 0 at nodes without
     /// temperature).
     pub temperature: Option<&'a [f64]>,
@@ -207,6 +211,10 @@ pub struct IncrementRecord {
     /// step).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub energy: Option<dynamics::Energy>,
+    /// The free tools at the end of the increment (tool order; models
+    /// with `rotation = free` only).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub tools: Vec<free_tool::ToolRecord>,
 }
 
 /// Record of one failed increment attempt (a cutback) in the run summary.
@@ -785,6 +793,14 @@ where
             .iter()
             .map(|(_, c)| control::monitored_ep(self.model, self.newton.material_points(), c))
             .collect();
+        let tool_records = free_tool::records(
+            self.model,
+            self.newton.committed_displacement(),
+            &self.newton.u,
+            self.newton.contact(),
+            t,
+            dt,
+        );
         self.newton.commit();
         let mut control_records = Vec::with_capacity(self.controls.len());
         for (((i, c), before), trend) in self
@@ -838,6 +854,7 @@ where
             points: self.newton.material_points(),
             thermal_strain: solved_thermal_strain.as_deref().unwrap_or(&[]),
             controls: &control_records,
+            tools: &tool_records,
             temperature: self.thermal.as_ref().map(|t| t.temperature()),
             thermal: self.thermal.as_ref().map(|t| t.last()),
             energy: self.newton.dynamics().map(|d| &d.energy),
@@ -868,6 +885,7 @@ where
             thermal: self.thermal.as_ref().map(|t| t.last().clone()),
             stabilization,
             energy: self.newton.dynamics().map(|d| d.energy),
+            tools: tool_records,
         });
         for w in warnings {
             self.observer.warning(&w);

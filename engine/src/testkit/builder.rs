@@ -361,6 +361,7 @@ impl<const D: usize> ModelBuilder<D> {
             name: name.into(),
             geometry,
             motion,
+            free_rotation: None,
         });
         self
     }

@@ -371,7 +371,7 @@ pub enum SurfaceGeometry {
     },
 }
 
-/// `motion { ux uy uz rotation center axis }`.
+/// `motion { ux uy uz rotation moment center axis }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Motion {
     /// Translation along x.
@@ -382,6 +382,10 @@ pub struct Motion {
     pub uz: Option<Spanned<TimeFn>>,
     /// Rotation, radians.
     pub rotation: Option<Spanned<TimeFn>>,
+    /// `rotation = free`: the rotation is an unknown (its span).
+    pub free: Option<Span>,
+    /// `moment = ..`: the moment applied to a free tool (time function).
+    pub moment: Option<Spanned<TimeFn>>,
     /// Centre of rotation (planar analyses).
     pub center: Option<Point>,
     /// A point of the rotation axis (`3d` analyses: `center = (x, y, z)`).

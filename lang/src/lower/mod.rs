@@ -250,7 +250,7 @@ impl Lowerer<'_> {
                 discrete,
             }));
         }
-        let tools = self.tools();
+        let (tools, free_tools) = self.tools();
         let names: Vec<&str> = tools.iter().map(|t| t.name.as_str()).collect();
         let contacts = self.contacts(&bodies, &materials, &names);
         let steps = self.steps();
@@ -268,7 +268,7 @@ impl Lowerer<'_> {
             self.window,
             &mut self.diags,
         );
-        Some(AnyModel::D2(Model {
+        let mut model = Model {
             analysis: analysis?,
             mesh: std::mem::take(&mut self.mesh),
             bodies,
@@ -283,7 +283,14 @@ impl Lowerer<'_> {
             thermal,
             initial_velocities,
             discrete,
-        }))
+        };
+        for f in free_tools {
+            if let Err(e) = ctc_engine::solve::free_tool::make_free(&mut model, f.tool, f.moment) {
+                self.diags
+                    .push(Diagnostic::error(e, f.span, "rotation = free"));
+            }
+        }
+        Some(AnyModel::D2(model))
     }
 }
 

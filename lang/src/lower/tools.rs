@@ -6,14 +6,29 @@ use super::{open_uniform_knots, Lowerer};
 use crate::ast;
 use crate::diagnostics::Diagnostic;
 use ctc_engine::model::{
-    RigidTool, SurfaceMotion, SurfaceShape, SurfaceTool, ToolGeometry, ToolMotion, ToolSide,
+    RigidTool, SurfaceMotion, SurfaceShape, SurfaceTool, TimeFunction, ToolGeometry, ToolMotion,
+    ToolSide,
 };
 use ctc_geom::analytic::{Analytic, Cone, Cylinder, Plane, Sphere, Torus};
 use ctc_geom::{Side, Vec3};
 
+/// A tool with `rotation = free`, made free once the model is built
+/// (`ctc_engine::solve::free_tool::make_free` appends its pilot node).
+pub(super) struct FreeTool {
+    /// Index in `Model::tools`.
+    pub tool: usize,
+    /// The applied moment.
+    pub moment: TimeFunction,
+    /// Where `free` is written.
+    pub span: crate::ast::Span,
+}
+
 impl Lowerer<'_> {
-    pub(super) fn tools(&mut self) -> Vec<RigidTool> {
+    /// The planar tools, and the free ones (`rotation = free`): tool
+    /// index, applied moment and the span of `free`.
+    pub(super) fn tools(&mut self) -> (Vec<RigidTool>, Vec<FreeTool>) {
         let mut out = Vec::new();
+        let mut free = Vec::new();
         for t in &self.deck.tools {
             if self.has_error_in(t.span) {
                 continue;
@@ -37,14 +52,26 @@ impl Lowerer<'_> {
                 if let Some(c) = &mo.center {
                     motion.center = c.value;
                 }
+                if let Some(span) = mo.free {
+                    let moment = mo
+                        .moment
+                        .as_ref()
+                        .map_or(TimeFunction::Constant(0.0), |f| self.tf(f));
+                    free.push(FreeTool {
+                        tool: out.len(),
+                        moment,
+                        span,
+                    });
+                }
             }
             out.push(RigidTool {
                 name: t.name.name.clone(),
                 geometry,
                 motion,
+                free_rotation: None,
             });
         }
-        out
+        (out, free)
     }
 
     /// The surface tools of a `3d` analysis.

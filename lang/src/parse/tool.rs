@@ -4,7 +4,7 @@
 use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
-use crate::ast::syntax::Block;
+use crate::ast::syntax::{Block, ValueKind};
 use crate::ast::{Motion, Side, Tool, ToolGeometry};
 use crate::diagnostics::Diagnostic;
 use crate::suggest::did_you_mean;
@@ -162,7 +162,15 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
         let ux = f.time_fn("ux", diags);
         let uy = f.time_fn("uy", diags);
         let uz = f.time_fn("uz", diags);
-        let rotation = f.time_fn("rotation", diags);
+        // `rotation = free`: the angle is an unknown (a free roller)
+        let (rotation, free) = match f.value("rotation", diags) {
+            Some(v) if matches!(&v.kind, ValueKind::Path(p) if p.len() == 1 && p[0].name == "free") => {
+                (None, Some(v.span))
+            }
+            Some(v) => (values::time_fn_of(v, f.dim("rotation"), diags), None),
+            None => (None, None),
+        };
+        let moment = f.time_fn("moment", diags);
         let (center, center3) = match f.value("center", diags) {
             Some(v) if values::tuple_len(v) == Some(3) => (None, values::point3(v, diags)),
             Some(v) => (values::point(v, diags), None),
@@ -176,6 +184,8 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Tool> {
             uy,
             uz,
             rotation,
+            free,
+            moment,
             center,
             center3,
             axis,

@@ -12,9 +12,13 @@ pub fn check(ctx: &mut Ctx<'_>) {
         dimension_matches_analysis(t, ctx);
         geometry_valid(t, ctx);
         if let Some(m) = &t.motion {
-            for f in [&m.ux, &m.uy, &m.uz, &m.rotation].into_iter().flatten() {
+            for f in [&m.ux, &m.uy, &m.uz, &m.rotation, &m.moment]
+                .into_iter()
+                .flatten()
+            {
                 time_fns::ramp_and_table_times_increase(f, ctx);
             }
+            free_rotation(t, m, ctx);
         }
         is_used(t, ctx);
     }
@@ -338,6 +342,85 @@ pub fn nurbs_data_consistent(
             k.span,
             format!("knot {} and knot {} are equal", p + 1, n + 1),
         ));
+    }
+}
+
+/// `rotation = free` (a free roller, `ctc_engine::solve::free_tool`):
+/// planar plane strain / plane stress analyses, quasi-static steps (no
+/// rotational inertia), pairs by penalty or augmented Lagrangian (the
+/// coupling of the angle is built on the nodal forces and tangents);
+/// `moment` only with it.
+pub fn free_rotation(t: &Tool, m: &crate::ast::Motion, ctx: &mut Ctx<'_>) {
+    let Some(free) = m.free else {
+        if let Some(mo) = &m.moment {
+            ctx.err(
+                Diagnostic::error(
+                    "`moment` acts on a tool free to rotate",
+                    mo.span,
+                    "the rotation is prescribed",
+                )
+                .with_help("add `rotation = free`, or remove `moment`"),
+            );
+        }
+        return;
+    };
+    let dimension = ctx
+        .deck
+        .analysis
+        .first()
+        .and_then(|a| a.dimension.as_ref())
+        .map(|d| d.value);
+    match dimension {
+        Some(crate::ast::Dimension::ThreeD) => ctx.err(
+            Diagnostic::error(
+                "a free rotation is available for planar tools only",
+                free,
+                "3d tool",
+            )
+            .with_help("prescribe the rotation with a time function"),
+        ),
+        Some(crate::ast::Dimension::Axisymmetric) => ctx.err(
+            Diagnostic::error(
+                "a free rotation needs a plane strain or plane stress analysis",
+                free,
+                "axisymmetric tool",
+            )
+            .with_help(
+                "an axisymmetric tool is a ring, whose cross-section does not turn as a rigid body",
+            ),
+        ),
+        _ => {}
+    }
+    if ctx.deck.steps.iter().any(|s| s.dynamic.is_some()) {
+        ctx.err(
+            Diagnostic::error(
+                "a free rotation is solved in quasi-static steps only",
+                free,
+                "no rotational inertia",
+            )
+            .with_help("remove `dynamic` from the steps, or prescribe the rotation"),
+        );
+    }
+    let deck = ctx.deck;
+    for c in deck
+        .contacts
+        .iter()
+        .filter(|c| c.master.is_none() && c.tool.name == t.name.name)
+    {
+        if let Some(method) = c
+            .method
+            .as_ref()
+            .filter(|m| matches!(m.value, crate::ast::Method::Lagrange { .. }))
+        {
+            ctx.err(
+                Diagnostic::error(
+                    "Lagrange multipliers are not available against a tool free to rotate",
+                    method.span,
+                    "lagrange",
+                )
+                .with_help("use `penalty` or `augmented_lagrange`"),
+            );
+        }
     }
 }
 

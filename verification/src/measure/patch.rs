@@ -143,6 +143,7 @@ mod tests {
                 normal: [0.0, 1.0],
             },
             motion: ToolMotion::fixed(),
+            free_rotation: None,
         });
         model.contacts.push(ContactPair {
             name: "b.bottom -> floor".into(),

@@ -4,6 +4,7 @@
 //! comparisons with other codes. Each file opens with its reference and
 //! registers its cases in [`all`]; the cargo tests run the same entries.
 
+pub mod blankholder;
 pub mod cattaneo;
 pub mod contact_3d;
 pub mod contact_ntf_3d;
@@ -80,6 +81,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(discrete::cases());
     v.extend(gravity::cases());
     v.extend(johnson_cook::cases());
+    v.extend(blankholder::cases());
     v
 }
 
