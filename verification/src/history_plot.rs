@@ -146,6 +146,17 @@ pub fn axis_range(lo: f64, hi: f64) -> Option<(f64, f64)> {
     Some((lo - d, hi + d))
 }
 
+/// The unit of an axis among the deck's declared units.
+type Unit = fn(&ctc_engine::model::UnitNames) -> &str;
+
+/// An axis title: `what [unit]` when the deck declares its units.
+fn axis_title(what: &str, unit: Unit, units: Option<&ctc_engine::model::UnitNames>) -> String {
+    match units {
+        Some(u) => format!("{what} [{}]", unit(u)),
+        None => what.to_string(),
+    }
+}
+
 /// Plots of a thermo-mechanical run in `dir` (called by `ctc run` for
 /// thermal scenes): `temperature.svg` (largest temperature against time)
 /// and, when the history has a `reaction(..)` and a `displacement(..)`
@@ -159,10 +170,7 @@ pub fn thermal_run_plots(
     units: Option<&ctc_engine::model::UnitNames>,
 ) -> Result<Vec<String>, String> {
     let (header, _) = read_history(dir)?;
-    let with = |what: &str, unit: fn(&ctc_engine::model::UnitNames) -> &str| match units {
-        Some(u) => format!("{what} [{}]", unit(u)),
-        None => what.to_string(),
-    };
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
     let mut files = Vec::new();
     if header.iter().any(|h| h == "temperature_max")
         && history_plot(
@@ -215,10 +223,7 @@ pub fn pressure_cycle_plots(
     units: Option<&ctc_engine::model::UnitNames>,
 ) -> Result<Vec<String>, String> {
     let (header, _) = read_history(dir)?;
-    let with = |what: &str, unit: fn(&ctc_engine::model::UnitNames) -> &str| match units {
-        Some(u) => format!("{what} [{}]", unit(u)),
-        None => what.to_string(),
-    };
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
     let mut files = Vec::new();
     let pressures = header
         .iter()
@@ -275,10 +280,7 @@ pub fn free_tool_run_plots(
     units: Option<&ctc_engine::model::UnitNames>,
 ) -> Result<Vec<String>, String> {
     let (header, rows) = read_history(dir)?;
-    let with = |what: &str, unit: fn(&ctc_engine::model::UnitNames) -> &str| match units {
-        Some(u) => format!("{what} [{}]", unit(u)),
-        None => what.to_string(),
-    };
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
     let mut files = Vec::new();
     let first = |prefix: &str, axis: &str| {
         header
