@@ -373,27 +373,12 @@ mod tests {
     use super::*;
 
     /// A facet of `n` nodes near the unit square in the plane z = 0,
-    /// corners moved by `jitter` (counter-clockwise seen from +z).
+    /// corners moved by `jitter` (node-to-facet's test facet), shifted by
+    /// `offset`.
     fn facet(n: usize, jitter: &[f64], offset: [f64; 3]) -> Vec<[f64; 3]> {
-        let base: &[[f64; 3]] = if n == 3 {
-            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
-        } else {
-            &[
-                [0.0, 0.0, 0.0],
-                [1.0, 0.0, 0.0],
-                [1.0, 1.0, 0.0],
-                [0.0, 1.0, 0.0],
-            ]
-        };
-        base.iter()
-            .enumerate()
-            .map(|(a, p)| {
-                [
-                    p[0] + offset[0] + 0.2 * jitter[3 * a],
-                    p[1] + offset[1] + 0.2 * jitter[3 * a + 1],
-                    p[2] + offset[2] + 0.3 * jitter[3 * a + 2],
-                ]
-            })
+        crate::contact::node_to_facet::tests::facet(n, jitter)
+            .into_iter()
+            .map(|p| [p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]])
             .collect()
     }
 

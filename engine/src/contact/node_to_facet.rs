@@ -1080,7 +1080,7 @@ pub fn evaluate(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use proptest::prelude::*;
 
@@ -1191,7 +1191,7 @@ mod tests {
 
     /// A random facet of `n` nodes near the unit square in the plane z = 0
     /// (corners moved by up to `warp`), counter-clockwise seen from +z.
-    fn facet(n: usize, jitter: &[f64]) -> Vec<[f64; 3]> {
+    pub(crate) fn facet(n: usize, jitter: &[f64]) -> Vec<[f64; 3]> {
         let base: &[[f64; 3]] = if n == 3 {
             &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
         } else {
