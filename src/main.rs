@@ -90,6 +90,10 @@ enum Command {
         /// With --stress: only the quick subset run by the tests.
         #[arg(long, requires = "stress")]
         reduced: bool,
+        /// Cases run at the same time (default: the cores); the results do
+        /// not depend on it.
+        #[arg(long, short = 'j')]
+        jobs: Option<usize>,
     },
     /// Run a deck for every combination of varied values (penalty
     /// sensitivity, mesh, material...), locally or as a Slurm job array,
@@ -223,13 +227,14 @@ fn main() -> ExitCode {
             max_level,
             stress,
             reduced,
+            jobs,
         } => {
             if list {
                 verify_list(filter.as_deref(), &tags, json)
             } else if stress {
                 verify_stress(reduced, json, report.as_deref())
             } else {
-                verify(filter, tags, report, json, max_level)
+                verify(filter, tags, report, json, max_level, jobs)
             }
         }
         Command::Sweep {
@@ -595,7 +600,11 @@ fn verify(
     report: Option<PathBuf>,
     json: bool,
     max_level: Option<usize>,
+    jobs: Option<usize>,
 ) -> Result<(), String> {
+    if jobs == Some(0) {
+        return Err("error: --jobs must be at least 1".into());
+    }
     if ctc_verification::registry::list(filter.as_deref(), &tags).is_empty() {
         let names: Vec<String> = ctc_verification::registry::list(None, &[])
             .into_iter()
@@ -637,6 +646,7 @@ fn verify(
         report_dir: report,
         max_level,
         progress: true,
+        jobs,
         ..Default::default()
     };
     let report = ctc_verification::run(&opts)?;

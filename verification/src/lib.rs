@@ -82,6 +82,10 @@ pub struct VerifyOptions {
     pub progress: bool,
     /// Run only the cases carrying every one of these tags.
     pub tags: Vec<String>,
+    /// Cases run at the same time, each on its own thread (`None`: the
+    /// machine's available parallelism). Every case is independent and
+    /// sequential inside, so the report is the same whatever the count.
+    pub jobs: Option<usize>,
 }
 
 /// Environment variable overriding the cases directory (for a `ctc`
@@ -110,7 +114,7 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
             dir.display()
         ));
     }
-    let mut progress = |line: &str| {
+    let progress = |line: &str| {
         if opts.progress {
             eprintln!("{line}");
         }
@@ -119,11 +123,17 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
         .into_iter()
         .filter(|c| c.matches(opts.filter.as_deref(), &opts.tags))
         .collect();
+    let jobs = opts
+        .jobs
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()));
     let mut report = Report {
-        cases: cases
-            .iter()
-            .map(|c| c.run(&dir, opts.max_level, &mut progress))
-            .collect(),
+        cases: run_cases(&cases, jobs, &|c| {
+            if opts.max_level.is_none() && opts.cases_dir.is_none() {
+                registry::run_default(c, &mut |line| progress(line))
+            } else {
+                c.run(&dir, opts.max_level, &mut |line| progress(line))
+            }
+        }),
         cases_dir: dir.display().to_string(),
         wall_time: 0.0,
         studies: None,
@@ -134,7 +144,7 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
         report.studies = Some(studies::run_studies(
             opts.filter.as_deref(),
             &dir,
-            &mut progress,
+            &mut |line| progress(line),
         ));
     }
     report.wall_time = start.elapsed().as_secs_f64();
@@ -142,6 +152,38 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
         write_report_dir(&report, out)?;
     }
     Ok(report)
+}
+
+/// `run_one` over `cases` on `jobs` threads (a shared queue, so a long
+/// case does not hold up the others); the reports in the order of `cases`.
+/// Progress lines (stderr) arrive in finishing order.
+fn run_cases(
+    cases: &[registry::VerifyCase],
+    jobs: usize,
+    run_one: &(dyn Fn(&registry::VerifyCase) -> report::CaseReport + Sync),
+) -> Vec<report::CaseReport> {
+    let jobs = jobs.clamp(1, cases.len().max(1));
+    if jobs == 1 {
+        return cases.iter().map(run_one).collect();
+    }
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let done: std::sync::Mutex<Vec<Option<report::CaseReport>>> =
+        std::sync::Mutex::new(vec![None; cases.len()]);
+    std::thread::scope(|s| {
+        for _ in 0..jobs {
+            s.spawn(|| loop {
+                let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                let Some(case) = cases.get(i) else { break };
+                let report = run_one(case);
+                done.lock().unwrap()[i] = Some(report);
+            });
+        }
+    });
+    done.into_inner()
+        .unwrap()
+        .into_iter()
+        .map(|r| r.expect("every case ran"))
+        .collect()
 }
 
 /// Writes the plots, `report.md` and `report.json` into `dir`.

@@ -18,7 +18,9 @@ use crate::case::{Case, Check};
 use crate::measure::Value;
 use crate::report::{CaseReport, LevelReport};
 use crate::runner;
+use std::collections::BTreeMap;
 use std::path::Path;
+use std::sync::{Arc, Mutex, OnceLock};
 use std::time::Instant;
 
 /// What one level of a program case measured.
@@ -237,12 +239,36 @@ pub fn find(name: &str) -> Option<VerifyCase> {
     all().into_iter().find(|c| c.name == name)
 }
 
+/// The reports of cases run on their default levels from the default
+/// decks, kept for the life of the process: a program that asks for a case
+/// twice (a test binary running the whole catalogue and a test of that
+/// case) runs it once. A case asked for by two threads at once runs once;
+/// the second waits for it.
+type DefaultRuns = BTreeMap<&'static str, Arc<OnceLock<CaseReport>>>;
+static DEFAULT_RUNS: Mutex<DefaultRuns> = Mutex::new(BTreeMap::new());
+
+/// `case` on its default levels from the default decks, run once per
+/// process (see [`DEFAULT_RUNS`]); `progress` hears the levels of a run
+/// made here, not of one found done.
+pub fn run_default(case: &VerifyCase, progress: &mut dyn FnMut(&str)) -> CaseReport {
+    let cell = DEFAULT_RUNS
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .entry(case.name)
+        .or_default()
+        .clone();
+    cell.get_or_init(|| case.run(&crate::default_cases_dir(), None, progress))
+        .clone()
+}
+
 /// Runs the case `name` on its default levels as a cargo test does: prints
 /// every value of the finest level, panics unless the case passes its own
-/// tolerances, and returns the report for further checks.
+/// tolerances, and returns the report for further checks. The run is
+/// shared with every other default run of the case in the process
+/// ([`run_default`]).
 pub fn run_passing(name: &str) -> CaseReport {
     let case = find(name).unwrap_or_else(|| panic!("no case {name}"));
-    let report = case.run(&crate::default_cases_dir(), None, &mut |l| eprintln!("{l}"));
+    let report = run_default(&case, &mut |l| eprintln!("{l}"));
     let level = report.levels.last().expect("one level");
     for v in &level.values {
         println!(

@@ -30,7 +30,7 @@
 //!   |>=========================  v0 (uy)        |>[ ]--> vx = 1
 //!   |>=========================                 |>[ ]-->
 //! ```
-//! `verification/tests/dynamics.rs` runs both entries.
+//! `verification/tests/suite/dynamics.rs` runs both entries.
 
 use super::error;
 use crate::case::{Check, Quantity};

@@ -32,7 +32,7 @@
 //! halves dt).
 //! Source: Norton (1929), Hoff (1954); Perzyna, Adv. Appl. Mech. 9 (1966);
 //! the superplastic law as used in forming: Chandra, J. Eng. Mater.
-//! Technol. 124 (2002) 91. `verification/tests/viscoplastic.rs` runs this
+//! Technol. 124 (2002) 91. `verification/tests/suite/viscoplastic.rs` runs this
 //! entry.
 //!
 //! ```text

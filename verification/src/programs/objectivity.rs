@@ -13,7 +13,7 @@
 //! increments (30, 10, 3.3 degrees each).
 //! Source: rigid-rotation invariance of the finite-strain laws (Simo &
 //! Hughes, Computational Inelasticity §9; the 3D case is `objectivity_3d`).
-//! `verification/tests/objectivity.rs` runs this entry.
+//! `verification/tests/suite/objectivity.rs` runs this entry.
 //!
 //! ```text
 //!    y                      after 90 degrees:

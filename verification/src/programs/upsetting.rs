@@ -14,7 +14,7 @@
 //! `sigma = sigma_y + E_t (eps - sigma_y / E)`, `E_t = E H / (E + H)`, on
 //! the reference area.
 //! Source: Simo & Hughes, Computational Inelasticity §9 (finite) and §2.2
-//! (small-strain uniaxial). `verification/tests/upsetting.rs` runs these
+//! (small-strain uniaxial). `verification/tests/suite/upsetting.rs` runs these
 //! entries.
 //!
 //! ```text

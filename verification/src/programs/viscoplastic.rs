@@ -25,7 +25,7 @@
 //! 1|`.
 //! Source: Perzyna, Adv. Appl. Mech. 9 (1966); Simo & Hughes,
 //! Computational Inelasticity §1.7 (closed forms of the linear over-stress
-//! model). `verification/tests/viscoplastic.rs` runs this entry.
+//! model). `verification/tests/suite/viscoplastic.rs` runs this entry.
 //!
 //! ```text
 //!   q                      ___________ sigma_y + eta r  (steady over-stress)

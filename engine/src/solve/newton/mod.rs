@@ -916,7 +916,7 @@ where
         // still measures descent along the step, where the residual-norm
         // test halves the first steps of a plate bending under a gas
         // pressure to 1/32 (an F-bar plate: 1975 iterations instead of 41;
-        // tests/follower_plate.rs). Friction and the non-symmetric contact
+        // tests/suite/follower_plate.rs). Friction and the non-symmetric contact
         // formulations: residual only.
         let energy_test = !contact_unsymmetric;
         self.linear.set_symmetric(potential);

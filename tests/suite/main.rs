@@ -1,0 +1,24 @@
+//! The integration tests of the `ctc` program in one test binary (one link,
+//! and the modules run side by side on the test threads); each module was
+//! its own binary. `petsc_run.rs` stays apart: it needs the `petsc` feature.
+
+mod cli;
+mod cli_bench_search;
+mod contact_deformable;
+mod contact_search_jump;
+mod determinism;
+mod dynamic_fields;
+mod example_iges_punch;
+mod examples;
+mod follower_plate;
+mod friction_cattaneo;
+mod relative_penalty;
+mod robust_fuzz;
+mod robust_kill;
+mod robust_restart;
+mod robust_stress_report;
+mod run_trust;
+mod sweep;
+mod thermal_3d;
+mod thermal_contact;
+mod thermal_coupling;

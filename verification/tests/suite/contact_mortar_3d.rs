@@ -1,0 +1,175 @@
+//! The 3D contact patch test between two deformable blocks (Taylor &
+//! Papadopoulos, IJNME 31 (1991) 2205, in 3D) with mortar
+//! segment-to-segment contact (Puso & Laursen, CMAME 193 (2004) 601), as
+//! `ctc verify contact_patch_mortar_3d` runs it; prints the table of the
+//! mortar runs next to node-to-facet's single pass
+//! (`cargo test -p ctc-verification --test suite contact_mortar_3d:: -- --nocapture`),
+//! and checks the tangent of the assembled mortar pair against finite
+//! differences of its forces.
+//!
+//! ```text
+//!   top  3x3 cells across, top face pushed down by 0.01
+//!   ---- slave top.zmin (3x3 facets) / master base.zmax (4x4 facets) ----
+//!   base 4x4 cells across, bottom on rollers
+//! ```
+
+use ctc_engine::contact::surface::{evaluate_pair, SurfacePair};
+use ctc_engine::contact::ContactStatus;
+use ctc_engine::model::{AnyModel, Model};
+use ctc_verification::programs::contact_ntf_3d::{
+    mortar_patch_deck, run_combination, run_mortar, MORTAR,
+};
+use ctc_verification::registry;
+
+#[test]
+fn contact_patch_mortar_3d_passes() {
+    registry::run_passing("contact_patch_mortar_3d");
+}
+
+#[test]
+fn table_of_mortar_and_node_to_facet() {
+    println!(
+        "| formulation | cell | base | method | max |p - p_mean| / p_mean | max |p - p_exact| / p \
+         | F / F_exact - 1 | closed | Newton |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
+    for &(_, _, cell, base, method, _) in MORTAR {
+        let (o, _) = run_mortar(cell, base, method).expect("run");
+        let m = method.split_whitespace().next().unwrap_or("");
+        println!(
+            "| mortar | {cell} | {base}x{base} | {m} | {:.2e} | {:.2e} | {:.2e} | {} | {} |",
+            o.uniformity,
+            o.deviation,
+            o.force / o.exact - 1.0,
+            o.closed,
+            o.iterations
+        );
+        assert!(o.uniformity <= 1e-8, "{cell} {m}: {}", o.uniformity);
+    }
+    for cell in ["hex8", "tet4"] {
+        let method = "penalty { kind = area  stiffness = 1e6 }";
+        let (o, _) = run_combination(cell, 4, "single_pass", method).expect("run");
+        println!(
+            "| node-to-facet single | {cell} | 4x4 | penalty | {:.2e} | {:.2e} | {:.2e} | {} | {} |",
+            o.uniformity,
+            o.deviation,
+            o.force / o.exact - 1.0,
+            o.closed,
+            o.iterations
+        );
+    }
+}
+
+fn model(cell: &str) -> Model<3> {
+    let text = mortar_patch_deck(cell, 4, "penalty { kind = area  stiffness = 1e3 }");
+    let src = ctc_lang::Source::new(std::path::Path::new("mortar_3d.ctc"), &text);
+    match ctc_lang::compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        _ => panic!("the mortar patch deck does not compile to a 3d model"),
+    }
+}
+
+/// The pair's forces at `x`, the tangent applied to `v` (`K v`), and the
+/// closed nodes.
+fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
+    let mut state = SurfacePair::new(model, 0);
+    let (res, _) = evaluate_pair(model, 0, x, 0.0, &mut state);
+    let closed = res
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .count();
+    let mut f = vec![0.0; 3 * x.len()];
+    let mut kv = vec![0.0; 3 * x.len()];
+    for c in &state.deformable.expect("a deformable pair").couplings {
+        let nd = 3 * c.nodes.len();
+        for r in 0..nd {
+            let gr = 3 * c.nodes[r / 3] + r % 3;
+            f[gr] += c.force[r];
+            for col in 0..nd {
+                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
+            }
+        }
+    }
+    (f, kv, closed)
+}
+
+#[test]
+fn mortar_pair_tangent_matches_finite_differences() {
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for cell in ["hex8", "tet4"] {
+        let model = model(cell);
+        let top = model.bodies[1].nodes.start;
+        let mut worst = 0.0f64;
+        // jittered: the flat interface of the patch test puts master
+        // vertices on the slave edges (x = 0, ...), a kink of the
+        // segmentation that central differences straddle
+        for trial in 0..4 {
+            let depth = 0.01 + 0.01 * rnd().abs();
+            let x: Vec<[f64; 3]> = model
+                .mesh
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    let dz = if k >= top { -depth } else { 0.0 };
+                    [
+                        p[0] + 0.02 * rnd(),
+                        p[1] + 0.02 * rnd(),
+                        p[2] + dz + 0.004 * rnd(),
+                    ]
+                })
+                .collect();
+            let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
+            let (_, kv, closed) = forces(&model, &x, &v);
+            assert!(closed > 0);
+            let h = 1e-7;
+            let shift = |sign: f64| -> Vec<[f64; 3]> {
+                x.iter()
+                    .zip(&v)
+                    .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
+                    .collect()
+            };
+            let (fp, _, cp) = forces(&model, &shift(1.0), &v);
+            let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
+            assert!(cp == closed && cm == closed);
+            let scale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+            let mut e = 0.0f64;
+            for k in 0..kv.len() {
+                let fd = -(fp[k] - fm[k]) / (2.0 * h);
+                e = e.max((fd - kv[k]).abs() / scale);
+            }
+            println!("{cell} trial {trial}: {e:.2e}");
+            worst = worst.max(e);
+        }
+        println!("{cell}: max |K v - FD| / max |K v| = {worst:.2e}");
+        assert!(worst <= 1e-5, "{cell}: {worst}");
+    }
+}
+
+#[test]
+fn hertz_sphere_block_mortar_3d_passes() {
+    registry::run_passing("hertz_sphere_block_mortar_3d");
+}
+
+/// Prints the Hertz forces of mortar and node-to-facet and the Newton
+/// iterations.
+#[test]
+fn hertz_mortar_forces() {
+    use ctc_verification::programs::contact_ntf_3d::hertz_force_with;
+    for formulation in ["mortar", "node_to_segment"] {
+        for e in [Some(1e6), Some(1000.0)] {
+            let (p, s) = hertz_force_with(e, formulation).expect("hertz");
+            println!(
+                "{formulation}: block E {e:?}: P {p:.6e}, Newton {}, increments {}",
+                s.newton_iterations,
+                s.increments.len()
+            );
+        }
+    }
+}

@@ -1,0 +1,26 @@
+//! The verification suite in one test binary: every module below was its
+//! own binary. One binary links once, and the cases run on their default
+//! levels are shared between the catalogue run and the tests that inspect
+//! a case (`ctc_verification::registry::run_default`), so each runs once.
+
+mod bench_small;
+mod cases_coarse;
+mod contact_3d;
+mod contact_mortar_3d;
+mod contact_ntf_3d;
+mod dynamics;
+mod fenicsx;
+mod fenicsx_snapshots;
+mod friction;
+mod friction_3d;
+mod friction_ntf_3d;
+mod johnson_cook;
+mod methods;
+mod objectivity;
+mod penalty_scaling;
+mod quadratic;
+mod quadratic_contact;
+mod stress_reduced;
+mod traction_3d;
+mod upsetting;
+mod viscoplastic;
