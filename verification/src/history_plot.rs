@@ -303,6 +303,40 @@ pub fn pressure_cycle_plots(
     Ok(files)
 }
 
+/// The plots of `ctc run` for follower pressures driven by a time function
+/// (`examples/tube_hydroforming.ctc`): `pressure_time.svg`, each
+/// `pressure[label]` column of `history.csv` against time (one file per
+/// pressure, numbered `_2`, `_3`, .. after the first). Returns the files
+/// written.
+pub fn pressure_time_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
+    let (header, _) = read_history(dir)?;
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
+    let mut files = Vec::new();
+    let pressures = header.iter().filter(|h| h.starts_with("pressure["));
+    for (k, p) in pressures.enumerate() {
+        let file = if k == 0 {
+            "pressure_time.svg".to_string()
+        } else {
+            format!("pressure_time_{}.svg", k + 1)
+        };
+        let title = format!("applied pressure {}", &p["pressure".len()..]);
+        if history_plot(
+            dir,
+            &file,
+            &title,
+            ("time", 1.0, &with("time", |u| &u.time)),
+            (p, 1.0, &with("pressure", |u| &u.stress)),
+            f64::NAN,
+        )? {
+            files.push(file);
+        }
+    }
+    Ok(files)
+}
+
 /// The plots of `ctc run` for a model with free tools
 /// (`rotation = free`, e.g. `examples/blankholder.ctc`):
 /// `force_stroke.svg`, the first `reaction(..)` against the first
