@@ -451,6 +451,22 @@ where
             Err(e) => eprintln!("warning: no plots: {e}"),
         }
     }
+    if model.loads.iter().any(|l| {
+        matches!(
+            l,
+            ctc_engine::model::Load::FollowerPressure { control: None, .. }
+        )
+    }) {
+        // hydroforming: the applied pressure against time
+        match ctc_verification::history_plot::pressure_time_plots(dir, model.output.units.as_ref())
+        {
+            Ok(files) if !quiet && !files.is_empty() => {
+                println!("plots: {} in {}", files.join(", "), dir.display())
+            }
+            Ok(_) => {}
+            Err(e) => eprintln!("warning: no plots: {e}"),
+        }
+    }
     if !ctc_engine::solve::control::controls(model).is_empty() {
         // superplastic forming: the optimised pressure cycle
         match ctc_verification::history_plot::pressure_cycle_plots(dir, model.output.units.as_ref())

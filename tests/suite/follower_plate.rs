@@ -105,3 +105,48 @@ fn an_f_bar_plate_converges_like_a_fully_integrated_one() {
         );
     }
 }
+
+/// `ctc run` writes the applied value of a follower pressure driven by a
+/// time function (`p = ramp(0, 0.01)`) as the `pressure[..]` column of
+/// `history.csv`, and plots it against time (`pressure_time.svg`); a dead
+/// pressure has no such column.
+#[test]
+fn ctc_run_writes_the_applied_follower_pressure_and_its_plot() {
+    for follower in [true, false] {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("plate.ctc");
+        let text = deck(follower)
+            .replace("p = 0.01", "p = ramp(0, 0.01)")
+            .replace("increments = 2", "increments = 4");
+        std::fs::write(&path, text).unwrap();
+        let out_dir = dir.path().join("out");
+        let out = std::process::Command::new(env!("CARGO_BIN_EXE_ctc"))
+            .args(["run", "--quiet"])
+            .arg(&path)
+            .arg("-o")
+            .arg(&out_dir)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let hist = std::fs::read_to_string(out_dir.join("history.csv")).unwrap();
+        let mut lines = hist.lines();
+        let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+        let col = header.iter().position(|h| h.starts_with("pressure["));
+        assert_eq!(col.is_some(), follower, "{header:?}");
+        assert_eq!(out_dir.join("pressure_time.svg").exists(), follower);
+        let Some(col) = col else { continue };
+        assert_eq!(header[col], "pressure[pressure d.bottom]");
+        let rows: Vec<Vec<f64>> = lines
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), 4);
+        for r in &rows {
+            // ramp(0, 0.01) over the step time 0 .. 1
+            assert!((r[col] - 0.01 * r[0]).abs() <= 1e-15, "{r:?}");
+        }
+    }
+}

@@ -157,11 +157,43 @@ fn axis_title(what: &str, unit: Unit, units: Option<&ctc_engine::model::UnitName
     }
 }
 
+/// The axis (`"_x"`, `"_y"` or `"_z"`) along which the first
+/// `displacement(..)` column of the history travels farthest (`"_x"`
+/// without one; ties keep the earlier axis).
+fn travel_axis(header: &[String], rows: &[Vec<f64>]) -> &'static str {
+    let travel = |name: &str| {
+        let Some(i) = header.iter().position(|h| h == name) else {
+            return 0.0;
+        };
+        let v = rows.iter().filter_map(|r| r.get(i)).copied();
+        let (lo, hi) = v.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
+        if hi >= lo {
+            hi - lo
+        } else {
+            0.0
+        }
+    };
+    let Some(first) = header.iter().find(|h| h.starts_with("displacement(")) else {
+        return "_x";
+    };
+    let stem = &first[..first.len().saturating_sub(2)];
+    let mut best = ("_x", travel(&format!("{stem}_x")));
+    for axis in ["_y", "_z"] {
+        let t = travel(&format!("{stem}{axis}"));
+        if t > best.1 {
+            best = (axis, t);
+        }
+    }
+    best.0
+}
+
 /// Plots of a thermo-mechanical run in `dir` (called by `ctc run` for
 /// thermal scenes): `temperature.svg` (largest temperature against time)
-/// and, when the history has a `reaction(..)` and a `displacement(..)`
-/// column, `force_stroke.svg` (minus the first reaction's y component
-/// against minus the first displacement's y component: a push downwards).
+/// and, when the history has a `reaction(..)` (or `contact_force(..)`) and
+/// a `displacement(..)` column, `force_stroke.svg` (minus the first
+/// reaction's component against minus the first displacement's, along the
+/// axis where that displacement travels farthest ([`travel_axis`]): a push
+/// downwards in 2D, the axial feed of `examples/tube_hydroforming.ctc`).
 /// Returns the files written (none for an empty history: a run that
 /// stopped before its first converged increment). Axis titles carry the
 /// deck's units when it declares a system.
@@ -169,7 +201,7 @@ pub fn thermal_run_plots(
     dir: &Path,
     units: Option<&ctc_engine::model::UnitNames>,
 ) -> Result<Vec<String>, String> {
-    let (header, _) = read_history(dir)?;
+    let (header, rows) = read_history(dir)?;
     let with = |what: &str, unit: Unit| axis_title(what, unit, units);
     let mut files = Vec::new();
     if header.iter().any(|h| h == "temperature_max")
@@ -188,22 +220,24 @@ pub fn thermal_run_plots(
     {
         files.push("temperature.svg".to_string());
     }
+    let axis = travel_axis(&header, &rows);
     let find = |prefix: &str| {
         header
             .iter()
-            .find(|h| h.starts_with(prefix) && h.ends_with("_y"))
+            .find(|h| h.starts_with(prefix) && h.ends_with(axis))
             .cloned()
     };
     if let (Some(f), Some(u)) = (
         find("reaction(").or_else(|| find("contact_force(")),
         find("displacement("),
     ) {
+        let c = &axis[1..];
         if history_plot(
             dir,
             "force_stroke.svg",
             "force against stroke",
-            (&u, -1.0, &with("stroke (-u_y)", |u| &u.length)),
-            (&f, -1.0, &with("force (-F_y)", |u| &u.force)),
+            (&u, -1.0, &with(&format!("stroke (-u_{c})"), |u| &u.length)),
+            (&f, -1.0, &with(&format!("force (-F_{c})"), |u| &u.force)),
             0.0,
         )? {
             files.push("force_stroke.svg".to_string());
@@ -269,6 +303,40 @@ pub fn pressure_cycle_plots(
     Ok(files)
 }
 
+/// The plots of `ctc run` for follower pressures driven by a time function
+/// (`examples/tube_hydroforming.ctc`): `pressure_time.svg`, each
+/// `pressure[label]` column of `history.csv` against time (one file per
+/// pressure, numbered `_2`, `_3`, .. after the first). Returns the files
+/// written.
+pub fn pressure_time_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
+    let (header, _) = read_history(dir)?;
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
+    let mut files = Vec::new();
+    let pressures = header.iter().filter(|h| h.starts_with("pressure["));
+    for (k, p) in pressures.enumerate() {
+        let file = if k == 0 {
+            "pressure_time.svg".to_string()
+        } else {
+            format!("pressure_time_{}.svg", k + 1)
+        };
+        let title = format!("applied pressure {}", &p["pressure".len()..]);
+        if history_plot(
+            dir,
+            &file,
+            &title,
+            ("time", 1.0, &with("time", |u| &u.time)),
+            (p, 1.0, &with("pressure", |u| &u.stress)),
+            f64::NAN,
+        )? {
+            files.push(file);
+        }
+    }
+    Ok(files)
+}
+
 /// The plots of `ctc run` for a model with free tools
 /// (`rotation = free`, e.g. `examples/blankholder.ctc`):
 /// `force_stroke.svg`, the first `reaction(..)` against the first
@@ -288,22 +356,7 @@ pub fn free_tool_run_plots(
             .find(|h| h.starts_with(prefix) && h.ends_with(axis))
             .cloned()
     };
-    let travel = |name: &str| {
-        let Some(i) = header.iter().position(|h| h == name) else {
-            return 0.0;
-        };
-        let v = rows.iter().filter_map(|r| r.get(i)).copied();
-        let (lo, hi) = v.fold((f64::MAX, f64::MIN), |(a, b), x| (a.min(x), b.max(x)));
-        if hi >= lo {
-            hi - lo
-        } else {
-            0.0
-        }
-    };
-    let axis = match (first("displacement(", "_x"), first("displacement(", "_y")) {
-        (Some(x), Some(y)) if travel(&y) > travel(&x) => "_y",
-        _ => "_x",
-    };
+    let axis = travel_axis(&header, &rows);
     if let (Some(f), Some(u)) = (first("reaction(", axis), first("displacement(", axis)) {
         let c = &axis[1..];
         if history_plot(
@@ -335,6 +388,27 @@ pub fn free_tool_run_plots(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_stroke_axis_is_where_the_displacement_travels_farthest() {
+        let header: Vec<String> = [
+            "time",
+            "reaction(t.zmax)_x",
+            "displacement(t.zmax)_x",
+            "displacement(t.zmax)_y",
+            "displacement(t.zmax)_z",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        let rows = [
+            vec![0.5, 1.0, 0.1, 0.0, -3.0],
+            vec![1.0, 2.0, 0.2, 0.1, -6.0],
+        ];
+        assert_eq!(travel_axis(&header, &rows), "_z");
+        assert_eq!(travel_axis(&header[..4], &rows), "_x");
+        assert_eq!(travel_axis(&header[..2], &rows), "_x");
+    }
 
     #[test]
     fn csv_fields_with_quotes_and_arrows_split_right() {

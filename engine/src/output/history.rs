@@ -4,7 +4,8 @@
 //! the tool on the body). Then, for each pair with friction, the work
 //! dissipated by friction over the increment (`friction_work[<pair>]`;
 //! the cumulative work is the column's running sum, also in
-//! `summary.json`). Models with a dynamic step: the energy audit
+//! `summary.json`). Follower pressures from a time function: the applied
+//! pressure (`pressure[label]`). Models with a dynamic step: the energy audit
 //! ([`ENERGY_COLUMNS`]). Pressure controllers: the applied pressure and
 //! the rate. Free tools (`rotation = free`): `angle[tool]`,
 //! `angular_velocity[tool]`, `moment[tool]` (of the contact forces on the
@@ -58,6 +59,9 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
     }
     for cp in model.contacts.iter().filter(|c| c.friction.is_some()) {
         cols.push(format!("friction_work[{}]", cp.name));
+    }
+    for label in time_pressures(model).map(|(label, _)| label) {
+        cols.push(format!("pressure[{label}]"));
     }
     if model.steps.iter().any(|s| s.dynamic.is_some()) {
         // appended by the writer from the energy audit
@@ -125,7 +129,25 @@ pub fn row<const D: usize>(
             out.push(crate::contact::friction::pair_dissipation(list));
         }
     }
+    out.extend(time_pressures(model).map(|(_, value)| value.eval(time)));
     out
+}
+
+/// The follower pressures driven by their time function alone (no
+/// controller; a controlled one has `controlled_pressure[..]`): their
+/// labels and functions, in the order of the `pressure[label]` columns.
+fn time_pressures<const D: usize>(
+    model: &Model<D>,
+) -> impl Iterator<Item = (&str, &crate::model::TimeFunction)> {
+    model.loads.iter().filter_map(|l| match l {
+        crate::model::Load::FollowerPressure {
+            label,
+            value,
+            control: None,
+            ..
+        } => Some((label.as_str(), value)),
+        _ => None,
+    })
 }
 
 /// Appends rows to `history.csv`.

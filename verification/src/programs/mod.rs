@@ -36,6 +36,7 @@ pub mod thermal_3d;
 pub mod thermal_contact;
 pub mod thermal_coupling;
 pub mod traction_3d;
+pub mod tube_bulge;
 pub mod upsetting;
 pub mod upsetting_3d;
 pub mod viscoplastic;
@@ -82,6 +83,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(gravity::cases());
     v.extend(johnson_cook::cases());
     v.extend(blankholder::cases());
+    v.extend(tube_bulge::cases());
     v
 }
 
