@@ -537,7 +537,7 @@ mod tests {
             .assemble(&model.mesh, &whole_scatter, &u, &mut f, Some(&mut k))
             .unwrap();
         assert_eq!(whole.assembled_cells(), 2);
-        let mut f_sum = vec![0.0; 12];
+        let mut f_sum = [0.0; 12];
         let mut k_sum = vec![0.0; whole_scatter.pattern.nnz()];
         for (cells, nodes) in [
             ([true, false], [true, true, false, true, true, false]),
@@ -572,9 +572,9 @@ mod tests {
             // ADD_VALUES)
             let p = &scatter.pattern;
             for j in 0..p.n {
-                for e in p.col_ptr[j]..p.col_ptr[j + 1] {
-                    let w = whole_scatter.pattern.find(p.row_idx[e], j).unwrap();
-                    k_sum[w] += kr[e];
+                let range = p.col_ptr[j]..p.col_ptr[j + 1];
+                for (&i, v) in p.row_idx[range.clone()].iter().zip(&kr[range]) {
+                    k_sum[whole_scatter.pattern.find(i, j).unwrap()] += v;
                 }
             }
         }
