@@ -508,19 +508,26 @@ where
                     );
                     for r in &d.per_rank {
                         println!(
-                            "  rank {}: {} cells, {} owned + {} ghost nodes, halo {} columns from {} \
-                             rank(s); assembly {:.3} s, contact {:.3} s, tangent {:.3} s, solve \
-                             {:.3} s; peak memory {:.1} MiB",
+                            "  rank {}: {} cells ({} assembled), {} owned + {} ghost nodes, halo {} \
+                             columns from {} rank(s); wall (CPU) s: assembly {:.3} ({:.3}), \
+                             contact {:.3} ({:.3}), tangent {:.3} ({:.3}), solve {:.3} ({:.3}); \
+                             process CPU {:.1} s; peak memory {:.1} MiB",
                             r.rank,
                             r.cells,
+                            r.assembled_cells,
                             r.owned_nodes,
                             r.ghost_nodes,
                             r.halo_columns,
                             r.neighbours,
                             r.assembly_seconds,
+                            r.assembly_cpu_seconds,
                             r.contact_seconds,
+                            r.contact_cpu_seconds,
                             r.tangent_seconds,
+                            r.tangent_cpu_seconds,
                             r.solve_seconds,
+                            r.solve_cpu_seconds,
+                            r.process_cpu_seconds,
                             r.peak_memory_bytes as f64 / (1024.0 * 1024.0)
                         );
                     }

@@ -1,8 +1,11 @@
 //! `ctc run --solver petsc`: the run under MPI with the tangent solved by
 //! PETSc (crate `ctc-petsc`, cargo feature `petsc`).
 //!
-//! Every rank compiles the deck and runs the same Newton loop on the whole
-//! model; the tangent's rows are shared among the ranks and solved by a
+//! Every rank compiles the deck and runs the same Newton loop; each rank
+//! assembles the cells of its METIS part (distributed assembly,
+//! `ctc_engine::solve::share`, for the models it accepts; the others are
+//! assembled whole by every rank), the internal forces are summed over the
+//! ranks, the tangent's rows are shared among the ranks and solved by a
 //! PETSc KSP ([`ctc_petsc::PetscSystem`]), whose solution every rank
 //! receives whole, so all ranks take the same decisions. Rank 0 alone
 //! writes the results (VTU/PVD, histories, summary.json with a

@@ -348,6 +348,20 @@ fn large_contact_deck_by_cg_gamg_reports_every_rank() {
         assert_eq!(per_rank.len(), ranks);
         let total = |key: &str| -> u64 { per_rank.iter().map(|r| r[key].as_u64().unwrap()).sum() };
         assert_eq!(total("cells"), 12 * 6 * 6 * 6);
+        // distributed assembly: each rank's element loop evaluates its own
+        // cells and no other (a rank assembling the whole mesh, or cells
+        // of another part, fails here)
+        assert_eq!(d["assembly"], "distributed");
+        for r in per_rank {
+            assert_eq!(r["assembled_cells"], r["cells"], "{r}");
+            for key in [
+                "assembly_cpu_seconds",
+                "solve_cpu_seconds",
+                "process_cpu_seconds",
+            ] {
+                assert!(r[key].as_f64().unwrap() > 0.0, "{key}: {r}");
+            }
+        }
         assert_eq!(total("owned_nodes"), s["nodes"].as_u64().unwrap());
         let rows: Vec<u64> = per_rank
             .iter()

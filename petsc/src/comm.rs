@@ -8,7 +8,7 @@ use crate::error::PetscError;
 use crate::ffi;
 use mpi::collective::SystemOperation;
 use mpi::topology::SimpleCommunicator;
-use mpi::traits::{AsRaw, Communicator, CommunicatorCollectives};
+use mpi::traits::{AsRaw, Communicator, CommunicatorCollectives, Root};
 use std::marker::PhantomData;
 
 /// An MPI communicator usable by PETSc objects and for agreement; it
@@ -114,6 +114,21 @@ impl<'e> Comm<'e> {
         self.inner
             .all_reduce_into(&(local as u64), &mut out, SystemOperation::sum());
         out as usize
+    }
+
+    /// Sums `v` over the ranks in place (collective): reduced on rank 0,
+    /// then broadcast, so every rank holds the same bits (an all-reduce
+    /// may round differently on different ranks).
+    pub fn sum_vector(&self, v: &mut [f64]) {
+        let root = self.inner.process_at_rank(0);
+        if self.rank() == 0 {
+            let mut out = vec![0.0; v.len()];
+            root.reduce_into_root(&v[..], &mut out[..], SystemOperation::sum());
+            v.copy_from_slice(&out);
+        } else {
+            root.reduce_into(&v[..], SystemOperation::sum());
+        }
+        root.broadcast_into(v);
     }
 
     /// Every rank's `local` values (the same count on every rank), rank by

@@ -3,24 +3,33 @@
 //! plugs into the Newton loop.
 //!
 //! ```text
-//! every rank: the whole model, the same Newton loop, the whole free-free
-//!   tangent (CSC, replicated assembly)
-//!     ──rows this rank owns (METIS partition of the cells, DofLayout rules)──▶
-//!   MatAIJ (exact preallocation, INSERT_VALUES row by row, no off-rank values)
-//!     ──KSP (preset: MUMPS LU; `-ksp_type`/`-pc_type`.. options win)──▶
+//! distributed assembly (models ctc_engine::solve::share accepts):
+//!   rank r: its METIS cells + the contact blocks of its nodes
+//!     ──partial CSC──▶ MatAIJ, ADD_VALUES (the stash sends other ranks' rows;
+//!                      exact preallocation from the cells around owned nodes)
+//!   f_int of its cells ──sum over ranks (reduce + broadcast)──▶ the residual
+//! replicated assembly (the other models):
+//!   every rank: the whole free-free tangent ──its own rows, INSERT_VALUES──▶ MatAIJ
+//! then:
+//!   KSP (preset: MUMPS LU; `-ksp_type`/`-pc_type`.. options win)
 //!   solution (PETSc order) ──scatter to all──▶ the same free vector on every rank
 //! ```
 //!
-//! Because every rank receives the same solution vector, every decision of
-//! the Newton loop (convergence, line search, contact status, cutback,
-//! failure) is taken identically on all ranks without further agreement; a
-//! failed factorization or a diverged Krylov solve is collective in PETSc,
-//! so it is an error on every rank at once.
+//! Because every rank holds the same residual (summed over the ranks) and
+//! receives the same solution vector, every decision of the Newton loop
+//! (convergence, line search, contact status, cutback, failure) is taken
+//! identically on all ranks without further agreement; a failed
+//! factorization or a diverged Krylov solve is collective in PETSc, so it
+//! is an error on every rank at once, and a failed element is agreed
+//! (`any_rank`).
 //!
-//! What is distributed: the matrix rows, the factorization / preconditioner
-//! and the Krylov solve. What is not (yet): the assembly of the element and
-//! contact contributions, which every rank does for the whole mesh
-//! (`assembly = "replicated"` in `summary.json`).
+//! Distributed: the element matrices and element loop (each rank its
+//! cells: memory and time fall with the rank count), the contact tangent
+//! (the owner of a slave node adds its block), the matrix rows, the
+//! factorization / preconditioner and the Krylov solve. Replicated: the
+//! mesh and model, the contact evaluation (every rank every slave node
+//! against the replicated rigid tools), and the vectors of the Newton loop
+//! (the solution is gathered whole on every rank: O(dofs) per rank).
 //!
 //! Row ownership: a node belongs to the lowest rank among the METIS parts
 //! of its cells ([`DofLayout`]); PETSc numbers the nodes rank by rank, and
@@ -40,7 +49,7 @@ use crate::env::{check, Environment};
 use crate::error::PetscError;
 use crate::ffi;
 use crate::krylov::{set_near_null_space, Krylov, SolverChoice};
-use crate::layout::DofLayout;
+use crate::layout::{DofLayout, Preallocation};
 use crate::matrix::{to_ints, DistMatrix};
 use crate::nullspace::rigid_body_modes;
 use crate::partition::partition_cells;
@@ -50,7 +59,10 @@ use ctc_engine::solve::linalg::{
     peak_memory_bytes, DistributedStats, FactorStats, LinearError, LinearSystem, RankStats,
     SparsePattern,
 };
+use ctc_engine::solve::memory::process_cpu_seconds;
+use ctc_engine::solve::share::{replicated_reason, AssemblyShare};
 use ctc_engine::solve::Timings;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Marks an identity row's entry in [`OwnedRows::slots`].
@@ -124,10 +136,16 @@ pub struct PetscSystem<'e> {
     /// This rank's partition and halo (its entry of `per_rank`, without
     /// the times).
     share: RankStats,
+    /// Distributed assembly (`ctc_engine::solve::share`): this rank's
+    /// cells and nodes, and the exact preallocation `(d_nnz, o_nnz)` of its
+    /// rows from the cells around its nodes; `None`: replicated assembly.
+    assembly: Option<(Arc<AssemblyShare>, Vec<usize>, Vec<usize>)>,
+    /// Column indices of one CSC column (scratch of the insertion).
+    column: Vec<ffi::PetscInt>,
 }
 
 /// Fields of a [`RankStats`] exchanged by [`PetscSystem::distributed`].
-const RANK_FIELDS: usize = 15;
+const RANK_FIELDS: usize = 21;
 
 impl<'e> PetscSystem<'e> {
     /// The system of `model` (its dof numbering, mesh partition and
@@ -172,12 +190,53 @@ impl<'e> PetscSystem<'e> {
             .flat_map(|&nd| model.mesh.nodes[nd])
             .collect();
         let modes = rigid_body_modes(&coords, D, &centre);
+        let reason = replicated_reason(model);
+        let (mut halo_blocks, mut halo_ranks) = (0, 0);
+        let assembly = match reason {
+            Some(_) => None,
+            None => {
+                let mut mine = vec![false; cells.len()];
+                for &c in &layout.cells {
+                    mine[c] = true;
+                }
+                let nodes = layout.node_owner.iter().map(|&o| o == rank).collect();
+                let prealloc = Preallocation::from_cells(&layout, &cells);
+                let (d, o) = prealloc.nnz();
+                // the halo: node blocks of other ranks coupled to owned rows
+                let own = layout.rank_offsets[rank]..layout.rank_offsets[rank + 1];
+                let mut halo: Vec<usize> = prealloc
+                    .neighbours
+                    .iter()
+                    .flatten()
+                    .copied()
+                    .filter(|b| !own.contains(b))
+                    .collect();
+                halo.sort_unstable();
+                halo.dedup();
+                halo_blocks = halo.len();
+                let mut owners: Vec<usize> = halo
+                    .iter()
+                    .map(|&b| layout.rank_offsets.partition_point(|&o| o <= b) - 1)
+                    .collect();
+                owners.dedup();
+                halo_ranks = owners.len();
+                let share = AssemblyShare {
+                    ranks,
+                    cells: mine,
+                    nodes,
+                };
+                Some((Arc::new(share), d, o))
+            }
+        };
         let stats = DistributedStats {
             // replaced by the KSP's own description at the first set-up
             solver: "petsc".into(),
             ranks,
             rows_per_rank: offsets.windows(2).map(|w| w[1] - w[0]).collect(),
-            assembly: "replicated".into(),
+            assembly: match reason {
+                None => "distributed".into(),
+                Some(r) => format!("replicated: {r}"),
+            },
             ..Default::default()
         };
         let share = RankStats {
@@ -186,6 +245,8 @@ impl<'e> PetscSystem<'e> {
             owned_nodes: layout.owned_nodes.len(),
             ghost_nodes: layout.ghost_nodes.len(),
             rows: offsets[rank + 1] - offsets[rank],
+            halo_columns: D * halo_blocks,
+            neighbours: halo_ranks,
             ..Default::default()
         };
         Ok(PetscSystem {
@@ -204,6 +265,8 @@ impl<'e> PetscSystem<'e> {
             factorized: false,
             stats,
             share,
+            assembly,
+            column: Vec::new(),
         })
     }
 
@@ -283,41 +346,50 @@ impl<'e> PetscSystem<'e> {
 
     /// Creates the matrix, vectors, scatter and solver of the current rows.
     fn build(&mut self) -> Result<Objects<'e>, PetscError> {
-        let rows = self.rows.as_ref().expect("owned rows are built first");
         let (lo, n_owned) = (self.lo(), self.owned.len());
         let hi = lo + n_owned;
-        let mut d = vec![0usize; n_owned];
-        let mut o = vec![0usize; n_owned];
-        for r in 0..n_owned {
-            for &c in &rows.cols[rows.ptr[r]..rows.ptr[r + 1]] {
-                let c = c as usize;
-                if c >= lo && c < hi {
-                    d[r] += 1;
-                } else {
-                    o[r] += 1;
+        let n_global = *self.offsets.last().unwrap_or(&0);
+        let mut mat = if let Some((_, d, o)) = &self.assembly {
+            // distributed: the rows' entries from all the cells around the
+            // owned nodes (every dof of a node, prescribed ones included)
+            self.share.nonzeros = d.iter().sum::<usize>() + o.iter().sum::<usize>();
+            self.share.off_rank_nonzeros = o.iter().sum();
+            DistMatrix::from_nnz(&self.comm, n_owned, n_global, self.dim, d, o)?
+        } else {
+            let rows = self.rows.as_ref().expect("owned rows are built first");
+            let mut d = vec![0usize; n_owned];
+            let mut o = vec![0usize; n_owned];
+            for r in 0..n_owned {
+                for &c in &rows.cols[rows.ptr[r]..rows.ptr[r + 1]] {
+                    let c = c as usize;
+                    if c >= lo && c < hi {
+                        d[r] += 1;
+                    } else {
+                        o[r] += 1;
+                    }
                 }
             }
-        }
-        // the halo: distinct columns of other ranks, and the ranks owning them
-        let mut halo: Vec<ffi::PetscInt> = rows
-            .cols
-            .iter()
-            .copied()
-            .filter(|&c| (c as usize) < lo || (c as usize) >= hi)
-            .collect();
-        self.share.nonzeros = rows.cols.len();
-        self.share.off_rank_nonzeros = halo.len();
-        halo.sort_unstable();
-        halo.dedup();
-        self.share.halo_columns = halo.len();
-        let mut owners: Vec<usize> = halo
-            .iter()
-            .map(|&c| self.offsets.partition_point(|&o| o <= c as usize) - 1)
-            .collect();
-        owners.dedup();
-        self.share.neighbours = owners.len();
-        let n_global = *self.offsets.last().unwrap_or(&0);
-        let mut mat = DistMatrix::from_nnz(&self.comm, n_owned, n_global, self.dim, &d, &o)?;
+            // the halo: distinct columns of other ranks, and the ranks
+            // owning them
+            let mut halo: Vec<ffi::PetscInt> = rows
+                .cols
+                .iter()
+                .copied()
+                .filter(|&c| (c as usize) < lo || (c as usize) >= hi)
+                .collect();
+            self.share.nonzeros = rows.cols.len();
+            self.share.off_rank_nonzeros = halo.len();
+            halo.sort_unstable();
+            halo.dedup();
+            self.share.halo_columns = halo.len();
+            let mut owners: Vec<usize> = halo
+                .iter()
+                .map(|&c| self.offsets.partition_point(|&o| o <= c as usize) - 1)
+                .collect();
+            owners.dedup();
+            self.share.neighbours = owners.len();
+            DistMatrix::from_nnz(&self.comm, n_owned, n_global, self.dim, &d, &o)?
+        };
         set_near_null_space(&self.comm, &mut mat, &self.modes)?;
         let mut ksp = Krylov::new(&self.comm, &mat, self.choice, &self.prefix)?;
         self.mumps = ksp.detect_null_pivots()?;
@@ -394,13 +466,103 @@ impl<'e> PetscSystem<'e> {
         obj.mat.set_symmetric(self.symmetric)
     }
 
+    /// Distributed assembly: adds this rank's part of the tangent (the
+    /// entries of its cells and contact nodes, any rank's rows) into the
+    /// zeroed matrix with ADD_VALUES, the identity rows of the owned
+    /// prescribed and inactive dofs, and assembles (collective: PETSc's
+    /// stash sends the other ranks' rows to their owners).
+    fn add_local(&mut self, pattern: &SparsePattern, values: &[f64]) -> Result<(), PetscError> {
+        let lo = self.lo();
+        // identity rows: the mean diagonal of the owned free rows, the
+        // diagonal summed over the ranks first
+        let mut diagonal: Vec<f64> = (0..pattern.n)
+            .map(|j| pattern.find(j, j).map_or(f64::NAN, |k| values[k]))
+            .collect();
+        if self.comm.size() > 1 {
+            // a dof no rank's cells touch has no diagonal: NaN stays NaN
+            for v in &mut diagonal {
+                if v.is_nan() {
+                    *v = 0.0;
+                }
+            }
+            self.comm.sum_vector(&mut diagonal);
+        }
+        let (mut sum, mut n) = (0.0, 0usize);
+        for f in self.owned.iter().flatten() {
+            let d = diagonal[*f];
+            if !d.is_nan() {
+                sum += d.abs();
+                n += 1;
+            }
+        }
+        drop(diagonal);
+        let diagonal = if n > 0 && sum > 0.0 {
+            sum / n as f64
+        } else {
+            1.0
+        };
+        let obj = self.objects.as_mut().expect("objects are built first");
+        obj.mat.zero()?;
+        for j in 0..pattern.n {
+            let (a, b) = (pattern.col_ptr[j], pattern.col_ptr[j + 1]);
+            if a == b {
+                continue;
+            }
+            self.column.clear();
+            for &i in &pattern.row_idx[a..b] {
+                self.column.push(self.petsc_of[i] as ffi::PetscInt);
+            }
+            let col = [self.petsc_of[j] as ffi::PetscInt];
+            // SAFETY: `column` and the values hold `b - a` entries, in the
+            // preallocated pattern (the cells around the rows' nodes);
+            // PETSc copies them (to its stash for other ranks' rows).
+            unsafe {
+                check(
+                    "MatSetValues",
+                    ffi::MatSetValues(
+                        obj.mat.mat,
+                        (b - a) as ffi::PetscInt,
+                        self.column.as_ptr(),
+                        1,
+                        col.as_ptr(),
+                        values[a..b].as_ptr(),
+                        ffi::InsertMode_ADD_VALUES,
+                    ),
+                )?;
+            }
+        }
+        for (r, o) in self.owned.iter().enumerate() {
+            if o.is_none() {
+                let row = [(lo + r) as ffi::PetscInt];
+                // SAFETY: an owned row's diagonal, preallocated.
+                unsafe {
+                    check(
+                        "MatSetValues",
+                        ffi::MatSetValues(
+                            obj.mat.mat,
+                            1,
+                            row.as_ptr(),
+                            1,
+                            row.as_ptr(),
+                            &diagonal,
+                            ffi::InsertMode_ADD_VALUES,
+                        ),
+                    )?;
+                }
+            }
+        }
+        obj.mat.assemble()?;
+        obj.mat.set_symmetric(self.symmetric)
+    }
+
     /// Factorization / preconditioner of the new values (collective).
     fn factorize_petsc(
         &mut self,
         pattern: &SparsePattern,
         values: &[f64],
     ) -> Result<(), PetscError> {
-        if self.rows.is_none() {
+        let distributed = self.assembly.is_some();
+        if self.rows.is_none() && !distributed {
             self.objects = None;
             self.rows = Some(self.owned_rows(pattern)?);
         }
@@ -408,7 +570,11 @@ impl<'e> PetscSystem<'e> {
             self.objects = Some(self.build()?);
         }
         let start = Instant::now();
-        self.fill(values)?;
+        if distributed {
+            self.add_local(pattern, values)?;
+        } else {
+            self.fill(values)?;
+        }
         let mid = Instant::now();
         self.stats.assembly_seconds += (mid - start).as_secs_f64();
         let obj = self.objects.as_mut().expect("built above");
@@ -545,6 +711,20 @@ impl LinearSystem for PetscSystem<'_> {
         FactorStats::default()
     }
 
+    fn share(&self) -> Option<Arc<AssemblyShare>> {
+        self.assembly.as_ref().map(|(s, _, _)| s.clone())
+    }
+
+    fn sum_over_ranks(&self, v: &mut [f64]) {
+        if self.comm.size() > 1 {
+            self.comm.sum_vector(v);
+        }
+    }
+
+    fn any_rank(&self, flag: bool) -> bool {
+        self.comm.any(flag)
+    }
+
     fn distributed(&self, timings: &Timings) -> Option<DistributedStats> {
         let s = &self.share;
         // counts travel as f64: exact below 2^53
@@ -564,6 +744,12 @@ impl LinearSystem for PetscSystem<'_> {
             self.stats.assembly_seconds,
             self.stats.setup_seconds,
             peak_memory_bytes() as f64,
+            timings.cells_assembled as f64,
+            timings.cpu[0],
+            timings.cpu[1],
+            timings.cpu[2],
+            timings.cpu[3],
+            process_cpu_seconds(),
         ];
         let all = self.comm.all_gather(&local);
         let mut stats = self.stats.clone();
@@ -587,6 +773,12 @@ impl LinearSystem for PetscSystem<'_> {
                 insertion_seconds: v[12],
                 setup_seconds: v[13],
                 peak_memory_bytes: v[14] as u64,
+                assembled_cells: v[15] as usize,
+                assembly_cpu_seconds: v[16],
+                contact_cpu_seconds: v[17],
+                tangent_cpu_seconds: v[18],
+                solve_cpu_seconds: v[19],
+                process_cpu_seconds: v[20],
             })
             .collect();
         Some(stats)

@@ -24,7 +24,9 @@ use crate::geom::{Dimension, Point};
 use crate::material::History;
 use crate::mesh::Mesh;
 use crate::model::Model;
+use crate::solve::share::AssemblyShare;
 use nalgebra::Const;
+use std::sync::Arc;
 
 /// The element kernels of a model of dimension `D`.
 #[derive(Debug, Clone)]
@@ -62,6 +64,11 @@ pub struct Assembler<const D: usize = 2> {
     thermal_scale: f64,
     /// Element force and tangent of the last nonlinear cell (reused).
     scratch: ElementMatrix<D>,
+    /// The cells this rank assembles (distributed assembly,
+    /// [`crate::solve::share`]); `None`: all cells.
+    share: Option<Arc<AssemblyShare>>,
+    /// Cells evaluated by the last [`Assembler::assemble`].
+    assembled: usize,
 }
 
 /// Marks a cell without a cached stiffness matrix.
@@ -76,11 +83,19 @@ where
 {
     /// Builds the kernels of `model` (materials must be valid).
     pub fn new(model: &Model<D>) -> Result<Self, String> {
+        Self::with_share(model, None)
+    }
+
+    /// Like [`Assembler::new`] for the cells of a rank's `share` only
+    /// (distributed assembly): element matrices and integration points of
+    /// its cells, the others skipped by [`Assembler::assemble`].
+    pub fn with_share(model: &Model<D>, share: Option<Arc<AssemblyShare>>) -> Result<Self, String> {
         let blocks = blocks_of(model)?;
+        let owns = |c: usize| share.as_ref().is_none_or(|s| s.owns_cell(c));
         let mut committed = vec![Vec::new(); model.mesh.cells.len()];
         for b in &blocks {
             if b.nonlinear.is_some() {
-                for c in b.cells.clone() {
+                for c in b.cells.clone().filter(|&c| owns(c)) {
                     let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
                         .map_err(|e| format!("cell {c}: {}", e.message))?;
                     committed[c] = vec![virgin(b.kinematics); kernel.point_count()];
@@ -89,7 +104,8 @@ where
         }
         let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
         let section = Section::new(&model.analysis);
-        let (linear_k, linear_offset) = linear_matrices(&model.mesh, &blocks, &section)?;
+        let (linear_k, linear_offset) =
+            linear_matrices(&model.mesh, &blocks, &section, share.as_deref())?;
         Ok(Assembler {
             blocks,
             section,
@@ -104,7 +120,15 @@ where
             cell_law: Vec::new(),
             thermal_scale: 0.0,
             scratch: ElementMatrix::default(),
+            share,
+            assembled: 0,
         })
+    }
+
+    /// Cells evaluated by the last [`Assembler::assemble`] (this rank's
+    /// cells under a distributed assembly).
+    pub fn assembled_cells(&self) -> usize {
+        self.assembled
     }
 
     /// The tangent stiffness of every cell in the reference configuration
@@ -117,6 +141,9 @@ where
         let mut scratch = ElementMatrix::<D>::default();
         for block in &self.blocks {
             for c in block.cells.clone() {
+                if self.share.as_ref().is_some_and(|s| !s.owns_cell(c)) {
+                    continue;
+                }
                 let nd = D * mesh.cells.nodes(c).len();
                 if let Some(law) = &block.nonlinear {
                     let kernel = kernel_of::<D>(mesh.cells.kind(c))
@@ -285,9 +312,14 @@ where
         mut values: Option<&mut [f64]>,
     ) -> Result<(), String> {
         f_int.fill(0.0);
+        self.assembled = 0;
         let with_tangent = values.is_some();
         for block in &self.blocks {
             for c in block.cells.clone() {
+                if self.share.as_ref().is_some_and(|s| !s.owns_cell(c)) {
+                    continue;
+                }
+                self.assembled += 1;
                 let nodes = mesh.cells.nodes(c);
                 let slots = scatter.cell_slots(c);
                 let thermal_strain = self.thermal_strain.get(c).copied().unwrap_or(0.0);
@@ -362,6 +394,7 @@ fn linear_matrices<const D: usize>(
     mesh: &Mesh<D>,
     blocks: &[CellBlock],
     section: &Section,
+    share: Option<&AssemblyShare>,
 ) -> Result<(Vec<f64>, Vec<usize>), String>
 where
     Const<D>: Dimension<D>,
@@ -371,6 +404,9 @@ where
     let mut out = ElementMatrix::<D>::default();
     for block in blocks.iter().filter(|b| b.nonlinear.is_none()) {
         for c in block.cells.clone() {
+            if share.is_some_and(|s| !s.owns_cell(c)) {
+                continue;
+            }
             let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
             let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(err)?;
             let x = mesh.cell_points(c);
@@ -452,6 +488,102 @@ mod tests {
             )
             .kinematics(Kinematics::Finite)
             .build()
+    }
+
+    /// Two elastic quads side by side (0-1-2 bottom, 3-4-5 top), node 0
+    /// fixed.
+    fn two_quads() -> Model {
+        crate::testkit::ModelBuilder::plane_strain()
+            .material(
+                "m",
+                MaterialLaw::LinearElastic {
+                    young: 100.0,
+                    poisson: 0.3,
+                },
+            )
+            .body(
+                "b",
+                Mesh::new(
+                    vec![
+                        [0.0, 0.0],
+                        [1.0, 0.0],
+                        [2.0, 0.0],
+                        [0.0, 1.0],
+                        [1.0, 1.0],
+                        [2.0, 1.0],
+                    ],
+                    vec![Cell::quad(0, 1, 4, 3), Cell::quad(1, 2, 5, 4)],
+                ),
+                "m",
+            )
+            .fix([0], 0)
+            .fix([0], 1)
+            .build()
+    }
+
+    #[test]
+    fn two_ranks_shares_assemble_their_own_cells_and_sum_to_the_whole() {
+        // rank 0 owns cell 0 and nodes 0, 1, 3, 4; rank 1 cell 1 and 2, 5
+        let model = two_quads();
+        let dofs = DofMap::new(&model);
+        let u: Vec<[f64; 2]> = (0..6)
+            .map(|n| [0.01 * n as f64, -0.02 * (n % 3) as f64])
+            .collect();
+        let whole_scatter = Scatter::new(&model.mesh, &dofs).unwrap();
+        let mut whole = Assembler::new(&model).unwrap();
+        let mut f = vec![0.0; 12];
+        let mut k = vec![0.0; whole_scatter.n_values()];
+        whole
+            .assemble(&model.mesh, &whole_scatter, &u, &mut f, Some(&mut k))
+            .unwrap();
+        assert_eq!(whole.assembled_cells(), 2);
+        let mut f_sum = [0.0; 12];
+        let mut k_sum = vec![0.0; whole_scatter.pattern.nnz()];
+        for (cells, nodes) in [
+            ([true, false], [true, true, false, true, true, false]),
+            ([false, true], [false, false, true, false, false, true]),
+        ] {
+            let share = Arc::new(AssemblyShare {
+                ranks: 2,
+                cells: cells.to_vec(),
+                nodes: nodes.to_vec(),
+            });
+            let scatter =
+                Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
+            // the couplings of its cell only: fewer entries, no slots for
+            // the other cell, node blocks of its own nodes only
+            assert!(scatter.pattern.nnz() < whole_scatter.pattern.nnz());
+            let other = usize::from(cells[0]);
+            assert!(scatter.cell_slots(other).is_empty());
+            for (n, &own) in nodes.iter().enumerate() {
+                let has_block = scatter.node_slots(n).iter().any(|&s| s != NO_SLOT);
+                assert_eq!(has_block, own && n != 0, "node {n}");
+            }
+            let mut asm = Assembler::with_share(&model, Some(share)).unwrap();
+            let mut fr = vec![0.0; 12];
+            let mut kr = vec![0.0; scatter.n_values()];
+            asm.assemble(&model.mesh, &scatter, &u, &mut fr, Some(&mut kr))
+                .unwrap();
+            assert_eq!(asm.assembled_cells(), 1);
+            for (a, b) in f_sum.iter_mut().zip(&fr) {
+                *a += b;
+            }
+            // each rank's entries added into the whole pattern (PETSc's
+            // ADD_VALUES)
+            let p = &scatter.pattern;
+            for j in 0..p.n {
+                let range = p.col_ptr[j]..p.col_ptr[j + 1];
+                for (&i, v) in p.row_idx[range.clone()].iter().zip(&kr[range]) {
+                    k_sum[whole_scatter.pattern.find(i, j).unwrap()] += v;
+                }
+            }
+        }
+        for (a, b) in f_sum.iter().zip(&f) {
+            assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{a} vs {b}");
+        }
+        for (a, b) in k_sum.iter().zip(&k) {
+            assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{a} vs {b}");
+        }
     }
 
     #[test]

@@ -304,7 +304,7 @@ impl ContactAssembly {
         }
         self.couplings.sort_unstable();
         self.couplings.dedup();
-        let grown = super::discrete::scatter_for(model, dofs, &self.couplings)?;
+        let grown = super::discrete::scatter_for(model, dofs, &self.couplings, scatter.share())?;
         self.pattern_growths += 1;
         Ok(Some(grown))
     }

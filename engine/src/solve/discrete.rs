@@ -38,14 +38,15 @@ pub fn scatter_for<const D: usize>(
     model: &Model<D>,
     dofs: &DofMap<D>,
     extra: &[(usize, usize)],
+    share: Option<&std::sync::Arc<crate::solve::share::AssemblyShare>>,
 ) -> Result<Scatter, String> {
     let mut all = couplings(model);
     all.extend(super::free_tool::couplings(model));
     if all.is_empty() {
-        return Scatter::with_couplings(&model.mesh, dofs, extra);
+        return Scatter::with_share(&model.mesh, dofs, extra, share.cloned());
     }
     all.extend_from_slice(extra);
-    Scatter::with_couplings(&model.mesh, dofs, &all)
+    Scatter::with_share(&model.mesh, dofs, &all, share.cloned())
 }
 
 /// Whether the model has a link or a ground element whose `pick(k, c)`
@@ -207,7 +208,7 @@ mod tests {
             .unwrap()
             .pair_slots(&dofs, 1, 4)
             .is_none());
-        let scatter = scatter_for(&model, &dofs, &[]).unwrap();
+        let scatter = scatter_for(&model, &dofs, &[], None).unwrap();
         assert!(scatter.pair_slots(&dofs, 1, 4).is_some());
         let mut values = vec![0.0; scatter.n_values()];
         add_tangent(&model, &dofs, &scatter, &mut values, |_, c| c);

@@ -24,6 +24,8 @@
 //!   active set with a cycling guard, augmented-Lagrangian Uzawa updates,
 //!   Lagrange friction statuses);
 //! - [`stepping`]: increments, cutback and grow-back;
+//! - [`share`]: the cells and nodes one MPI rank assembles (distributed
+//!   assembly under `ctc run --solver petsc`) and which models allow it;
 //! - [`scene`]: the seams of the dimension-generic solver (contact scene,
 //!   heat coupling; 3D has neither yet);
 //! - [`diagnosis`]: the likely cause and remedy of a failed run;
@@ -53,6 +55,7 @@ pub mod memory;
 pub mod newton;
 pub mod restart;
 pub mod scene;
+pub mod share;
 pub mod stabilize;
 pub mod stepping;
 pub mod surface_assembly;
@@ -250,6 +253,17 @@ pub struct Timings {
     pub output: f64,
     /// Whole run.
     pub total: f64,
+    /// Cells evaluated by the last element loop (this rank's cells under
+    /// a distributed assembly, all cells otherwise); not a time, not
+    /// written to `summary.json`'s `timings`.
+    #[serde(skip)]
+    pub cells_assembled: usize,
+    /// CPU time of the phases above (this thread's run time,
+    /// [`memory::thread_cpu_seconds`]): assembly, contact, factorization,
+    /// solve; not written to `summary.json`'s `timings` (the distributed
+    /// run reports them per rank).
+    #[serde(skip)]
+    pub cpu: [f64; 4],
 }
 
 /// What a run did; written as `summary.json`.

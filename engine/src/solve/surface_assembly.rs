@@ -373,7 +373,8 @@ impl ContactScene<3> for SurfaceAssembly {
         }
         self.couplings.sort_unstable();
         self.couplings.dedup();
-        let grown = Scatter::with_couplings(&model.mesh, dofs, &self.couplings)?;
+        let grown =
+            Scatter::with_share(&model.mesh, dofs, &self.couplings, scatter.share().cloned())?;
         self.pattern_growths += 1;
         Ok(Some(grown))
     }

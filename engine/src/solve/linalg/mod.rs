@@ -153,6 +153,19 @@ pub trait LinearSystem {
     fn distributed(&self, _timings: &super::Timings) -> Option<DistributedStats> {
         None
     }
+    /// The cells and nodes this rank assembles (distributed assembly,
+    /// [`super::share`]); `None`: the whole model.
+    fn share(&self) -> Option<std::sync::Arc<super::share::AssemblyShare>> {
+        None
+    }
+    /// Sums `v` over the ranks, in place, with the same bits on every rank
+    /// (collective under a distributed assembly; nothing otherwise).
+    fn sum_over_ranks(&self, _v: &mut [f64]) {}
+    /// Whether `flag` is set on any rank (collective under a distributed
+    /// assembly; `flag` otherwise).
+    fn any_rank(&self, flag: bool) -> bool {
+        flag
+    }
 }
 
 pub use super::memory::peak_memory_bytes;
@@ -167,8 +180,11 @@ pub struct DistributedStats {
     pub ranks: usize,
     /// Free dofs (matrix rows) owned by each rank.
     pub rows_per_rank: Vec<usize>,
-    /// How the ranks were assembled: `replicated` (every rank assembles
-    /// the whole matrix and inserts its own rows).
+    /// How the ranks were assembled: `distributed` (each rank its cells
+    /// and contact nodes, `crate::solve::share`, added into the
+    /// distributed matrix) or `replicated: REASON` (every rank assembles
+    /// the whole matrix and inserts its own rows; the reason the model is
+    /// not distributed, `crate::solve::share::replicated_reason`).
     pub assembly: String,
     /// Matrix set-ups (preconditioner or factorization built).
     pub setups: usize,
@@ -238,6 +254,17 @@ pub struct RankStats {
     pub setup_seconds: f64,
     /// Peak resident memory of the rank's process (`VmHWM`), bytes.
     pub peak_memory_bytes: u64,
+    /// Cells the rank's last element loop evaluated (its `cells` under a
+    /// distributed assembly, all cells of the mesh under a replicated one).
+    pub assembled_cells: usize,
+    /// CPU time of the rank's phases (the thread's run time,
+    /// `crate::solve::memory::thread_cpu_seconds`), seconds: element
+    /// assembly, contact, tangent hand-over, solves, and the whole process.
+    pub assembly_cpu_seconds: f64,
+    pub contact_cpu_seconds: f64,
+    pub tangent_cpu_seconds: f64,
+    pub solve_cpu_seconds: f64,
+    pub process_cpu_seconds: f64,
 }
 
 /// The Lagrange-multiplier saddle-point system built from the tangent and

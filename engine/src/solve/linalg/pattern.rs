@@ -15,6 +15,8 @@
 
 use crate::mesh::Mesh;
 use crate::solve::dofs::{Dof, DofMap};
+use crate::solve::share::AssemblyShare;
+use std::sync::Arc;
 
 /// Marks an element entry that has no slot (a prescribed row).
 pub const NO_SLOT: u32 = u32::MAX;
@@ -67,6 +69,10 @@ pub struct Scatter {
     fp_row: Vec<u32>,
     /// Prescribed column (index into `DofMap::prescribed`) of each `K_fp` slot.
     fp_col: Vec<u32>,
+    /// The cells and nodes of this rank under a distributed assembly
+    /// (`crate::solve::share`): only their couplings are in the pattern,
+    /// only their slots exist; `None`: the whole mesh.
+    share: Option<Arc<AssemblyShare>>,
 }
 
 impl Scatter {
@@ -83,10 +89,26 @@ impl Scatter {
         dofs: &DofMap<D>,
         extra: &[(usize, usize)],
     ) -> Result<Self, String> {
+        Self::with_share(mesh, dofs, extra, None)
+    }
+
+    /// Like [`Scatter::with_couplings`], restricted to a rank's `share`
+    /// (distributed assembly): the couplings of its cells (and `extra`),
+    /// slots for its cells only, node blocks for its nodes only.
+    pub fn with_share<const D: usize>(
+        mesh: &Mesh<D>,
+        dofs: &DofMap<D>,
+        extra: &[(usize, usize)],
+        share: Option<Arc<AssemblyShare>>,
+    ) -> Result<Self, String> {
         let nn = mesh.nodes.len();
+        let owns_cell = |c: usize| share.as_ref().is_none_or(|s| s.owns_cell(c));
         // node adjacency (sorted, unique, including the node itself)
         let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nn];
-        for c in &mesh.cells {
+        for (ci, c) in mesh.cells.iter().enumerate() {
+            if !owns_cell(ci) {
+                continue;
+            }
             let ns = c.nodes;
             for &a in ns {
                 for &b in ns {
@@ -146,7 +168,11 @@ impl Scatter {
         let mut cell_offset = Vec::with_capacity(mesh.cells.len() + 1);
         cell_offset.push(0);
         let mut slots = Vec::new();
-        for c in &mesh.cells {
+        for (ci, c) in mesh.cells.iter().enumerate() {
+            if !owns_cell(ci) {
+                cell_offset.push(slots.len());
+                continue;
+            }
             let ns = c.nodes;
             let nd = D * ns.len();
             for j in 0..nd {
@@ -158,7 +184,7 @@ impl Scatter {
         }
         let mut node_block = vec![NO_SLOT; D * D * nn];
         for (node, block) in node_block.chunks_exact_mut(D * D).enumerate() {
-            if adj[node].is_empty() {
+            if adj[node].is_empty() || share.as_ref().is_some_and(|s| !s.owns_node(node)) {
                 continue;
             }
             for j in 0..D {
@@ -175,7 +201,13 @@ impl Scatter {
             node_block,
             fp_row,
             fp_col,
+            share,
         })
+    }
+
+    /// The rank's share of a distributed assembly (`None`: the whole mesh).
+    pub fn share(&self) -> Option<&Arc<AssemblyShare>> {
+        self.share.as_ref()
     }
 
     /// Length of the value array: free-free entries, then `K_fp` slots.

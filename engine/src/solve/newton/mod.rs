@@ -39,6 +39,7 @@ use super::linalg::direct::LinearSolver;
 use super::linalg::saddle::SaddleSolver;
 use super::linalg::{FactorStats, LinearError, LinearSystem, SaddlePointSystem, Scatter, ZeroMode};
 use super::loads::external_forces;
+use super::memory::thread_cpu_seconds;
 use super::scene::ContactScene;
 use super::{IterationInfo, Observer, Timings};
 use crate::contact::{NodeContact, PairState};
@@ -143,6 +144,10 @@ where
     /// Factor of each load of the model (pressure controllers; 1
     /// otherwise).
     load_scale: Vec<f64>,
+    /// This rank's cells and nodes under a distributed assembly
+    /// ([`super::share`]): partial internal forces and tangent, the forces
+    /// summed over the ranks by the linear system.
+    share: Option<std::sync::Arc<super::share::AssemblyShare>>,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -175,8 +180,10 @@ where
     ) -> Result<Self, String> {
         let nn = model.mesh.nodes.len();
         let dofs = DofMap::new(model);
-        let scatter = super::discrete::scatter_for(model, &dofs, &[])?;
-        let assembler = Assembler::new(model)?;
+        // a distributed assembly (`super::share`): this rank's cells only
+        let share = linear.share();
+        let scatter = super::discrete::scatter_for(model, &dofs, &[], share.as_ref())?;
+        let assembler = Assembler::with_share(model, share.clone())?;
         let n_free = dofs.n_free();
         let n_presc = dofs.prescribed.len();
         let n_dofs = dofs.dofs.len();
@@ -231,6 +238,7 @@ where
             r_static: vec![0.0; n_dofs],
             damping: vec![0.0; n_dofs],
             load_scale: vec![1.0; model.loads.len()],
+            share,
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -495,6 +503,10 @@ where
                 y[p.row_idx[k]] += self.values[k].abs() * x;
             }
         }
+        if self.share.as_ref().is_some_and(|s| s.split()) {
+            // each rank holds the terms of its cells
+            self.linear.sum_over_ranks(&mut y);
+        }
         // the element thermal forces `eps_th f_unit` carry their own
         // round-off (a fully held heated body has `u = 0` and no other)
         convergence::FLOOR_FACTOR * f64::EPSILON * (norm(&y) + self.assembler.thermal_scale())
@@ -509,6 +521,7 @@ where
     /// `t`; the tangent too if `with_tangent`.
     fn evaluate(&mut self, t: f64, with_tangent: bool) -> Result<Eval, Failure> {
         let model = self.model;
+        let cpu0 = thread_cpu_seconds();
         let zeroing = Instant::now();
         if with_tangent {
             self.values.fill(0.0);
@@ -553,16 +566,31 @@ where
             );
         }
         let mid = Instant::now();
+        let cpu1 = thread_cpu_seconds();
         self.timings.contact += (mid - start).as_secs_f64();
+        self.timings.cpu[1] += cpu1 - cpu0;
         let values = if with_tangent {
             Some(&mut self.values[..])
         } else {
             None
         };
-        let assembled =
+        let mut assembled =
             self.assembler
                 .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
+        self.timings.cells_assembled = self.assembler.assembled_cells();
+        if self.share.as_ref().is_some_and(|s| s.split()) {
+            // every rank fails together (an element another rank met), and
+            // the residual is the sum of the ranks' internal forces
+            let failed = self.linear.any_rank(assembled.is_err());
+            if failed && assembled.is_ok() {
+                assembled = Err("an element failed on another MPI rank".into());
+            }
+            if !failed {
+                self.linear.sum_over_ranks(&mut self.f_int);
+            }
+        }
         self.timings.assembly += mid.elapsed().as_secs_f64();
+        self.timings.cpu[0] += thread_cpu_seconds() - cpu1;
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
         // springs to the ground and between nodes: internal forces (their
         // energy is part of the internal work)
@@ -671,9 +699,12 @@ where
         let constraints = self.contacts.constraints();
         let Some(saddle) = self.saddle.as_mut().filter(|_| !constraints.is_empty()) else {
             let start = Instant::now();
+            let cpu0 = thread_cpu_seconds();
             let r = self.linear.factorize(&self.scatter.pattern, &self.values);
             let mid = Instant::now();
+            let cpu1 = thread_cpu_seconds();
             self.timings.factorization += (mid - start).as_secs_f64();
+            self.timings.cpu[2] += cpu1 - cpu0;
             r.map_err(|e| self.linear_failure(e))?;
             let mode = self.linear.zero_mode().cloned();
             self.zero_mode.1 = mode.is_some();
@@ -682,6 +713,7 @@ where
             }
             let r = self.linear.solve(&mut self.rhs);
             self.timings.solve += mid.elapsed().as_secs_f64();
+            self.timings.cpu[3] += thread_cpu_seconds() - cpu1;
             return r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()));
         };
         self.zero_mode.1 = false;
@@ -975,8 +1007,19 @@ where
             // 2. right-hand side -(r_f + K_fp dp)
             self.rhs.copy_from_slice(&self.r_free);
             if first {
-                self.scatter
-                    .add_fp_product(&self.values, &self.dp, &mut self.rhs);
+                if self.share.as_ref().is_some_and(|s| s.split()) {
+                    // each rank holds the K_fp entries of its cells
+                    let mut kfp = vec![0.0; self.rhs.len()];
+                    self.scatter
+                        .add_fp_product(&self.values, &self.dp, &mut kfp);
+                    self.linear.sum_over_ranks(&mut kfp);
+                    for (r, k) in self.rhs.iter_mut().zip(&kfp) {
+                        *r += k;
+                    }
+                } else {
+                    self.scatter
+                        .add_fp_product(&self.values, &self.dp, &mut self.rhs);
+                }
             }
             for v in &mut self.rhs {
                 *v = -*v;

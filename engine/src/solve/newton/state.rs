@@ -104,8 +104,12 @@ where
         self.assembler.restore(&cp.points, cp.points_time)?;
         if !cp.couplings.is_empty() {
             self.contacts.set_couplings(&cp.couplings);
-            self.scatter =
-                super::super::discrete::scatter_for(self.model, &self.dofs, &cp.couplings)?;
+            self.scatter = super::super::discrete::scatter_for(
+                self.model,
+                &self.dofs,
+                &cp.couplings,
+                self.scatter.share(),
+            )?;
             self.values = vec![0.0; self.scatter.n_values()];
             self.linear.reset_pattern();
         }

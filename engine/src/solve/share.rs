@@ -1,0 +1,166 @@
+//! Distributed assembly: the part of the model one MPI rank assembles
+//! (`ctc run --solver petsc` under `mpirun`, crate `ctc-petsc`).
+//!
+//! ```text
+//!   rank r: cells of its METIS part ──element loop──▶ f_int (partial), K (partial CSC)
+//!           contact nodes it owns   ──node blocks──▶ K (partial CSC)
+//!   f_int: summed over the ranks (reduce to rank 0 + broadcast: the same
+//!          bits on every rank) ──▶ residual, norms, reactions: identical
+//!   K: each rank's entries added into the distributed matrix (ADD_VALUES)
+//! ```
+//!
+//! The share is given by the linear system ([`super::linalg::LinearSystem::
+//! share`]); the sparsity pattern ([`super::linalg::Scatter`]) then holds
+//! only the couplings of the rank's cells, and the element matrices and
+//! integration points only its cells, so the memory of the assembly falls
+//! with the rank count. Contact is evaluated by every rank for every slave
+//! node (the rigid tools are replicated; the search is a small part of a
+//! run), so every contact decision is identical on all ranks; a slave
+//! node's tangent block is added by the rank owning the node.
+//!
+//! Only models whose every contribution is split this way are assembled
+//! distributed ([`replicated_reason`] says why another one is not): the
+//! others are assembled whole by every rank, as before.
+
+use crate::mesh::CellKind;
+use crate::model::{ContactMaster, ContactMethod, Model};
+
+/// The cells and nodes one rank assembles.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct AssemblyShare {
+    /// Ranks of the run.
+    pub ranks: usize,
+    /// Whether this rank assembles each global cell.
+    pub cells: Vec<bool>,
+    /// Whether this rank owns each global node (adds its contact block).
+    pub nodes: Vec<bool>,
+}
+
+impl AssemblyShare {
+    /// Whether this rank assembles cell `c`.
+    #[inline]
+    pub fn owns_cell(&self, c: usize) -> bool {
+        self.cells.get(c).copied().unwrap_or(false)
+    }
+
+    /// Whether this rank owns node `n`.
+    #[inline]
+    pub fn owns_node(&self, n: usize) -> bool {
+        self.nodes.get(n).copied().unwrap_or(false)
+    }
+
+    /// Number of cells this rank assembles.
+    pub fn owned_cells(&self) -> usize {
+        self.cells.iter().filter(|&&o| o).count()
+    }
+
+    /// Whether the partial vectors need summing over ranks (more than one).
+    pub fn split(&self) -> bool {
+        self.ranks > 1
+    }
+}
+
+/// Why `model` cannot be assembled distributed (each rank its cells and
+/// contact nodes), or `None` when it can: every cell small-strain linear
+/// elastic and linear (tri3, quad4, tet4, hex8), every contact against a
+/// rigid tool by penalty or augmented Lagrangian, no follower pressure, no
+/// spring, mass or dashpot, no dynamic step, no stabilization, no thermal
+/// coupling, no free tool.
+pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
+    let linear_cells = model.mesh.cells.iter().all(|c| {
+        matches!(
+            c.kind,
+            CellKind::Tri3 | CellKind::Quad4 | CellKind::Tet4 | CellKind::Hex8
+        )
+    });
+    if !linear_cells {
+        return Some("quadratic cells");
+    }
+    match crate::element::recovery::blocks_of(model) {
+        Ok(blocks) if blocks.iter().all(|b| b.nonlinear.is_none()) => {}
+        _ => return Some("a material with internal variables or finite strain"),
+    }
+    for c in &model.contacts {
+        if !matches!(c.master, ContactMaster::Tool(_)) {
+            return Some("contact between deformable bodies");
+        }
+        if matches!(c.method, ContactMethod::Lagrange { .. }) {
+            return Some("Lagrange-multiplier contact");
+        }
+    }
+    if model.tools.iter().any(|t| t.free_rotation.is_some()) {
+        return Some("a free tool");
+    }
+    if super::follower::has_follower(model) {
+        return Some("a follower pressure");
+    }
+    if !model.discrete.is_empty() {
+        return Some("springs, masses or dashpots");
+    }
+    if model.steps.iter().any(|s| s.dynamic.is_some()) {
+        return Some("a dynamic step");
+    }
+    if model.steps.iter().any(|s| s.newton.stabilize.is_some()) {
+        return Some("stabilization");
+    }
+    if model.thermal.is_some() {
+        return Some("thermal coupling");
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::{Cell, Mesh};
+    use crate::model::{Hardening, MaterialLaw};
+
+    fn square(law: MaterialLaw) -> Model {
+        crate::testkit::ModelBuilder::plane_strain()
+            .material("m", law)
+            .body(
+                "sq",
+                Mesh::new(
+                    vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                    vec![Cell::quad(0, 1, 2, 3)],
+                ),
+                "m",
+            )
+            .build()
+    }
+
+    #[test]
+    fn linear_elastic_cells_are_distributed_and_plastic_ones_are_not() {
+        let elastic = square(MaterialLaw::LinearElastic {
+            young: 1.0,
+            poisson: 0.3,
+        });
+        assert_eq!(replicated_reason(&elastic), None);
+        let plastic = square(MaterialLaw::ElastoPlastic {
+            young: 200e3,
+            poisson: 0.3,
+            hardening: Hardening::Linear {
+                yield_stress: 250.0,
+                modulus: 1000.0,
+            },
+            viscosity: None,
+        });
+        assert_eq!(
+            replicated_reason(&plastic),
+            Some("a material with internal variables or finite strain")
+        );
+    }
+
+    #[test]
+    fn a_share_counts_its_cells() {
+        let s = AssemblyShare {
+            ranks: 2,
+            cells: vec![true, false, true],
+            nodes: vec![false, true],
+        };
+        assert_eq!(s.owned_cells(), 2);
+        assert!(s.owns_cell(2) && !s.owns_cell(1) && !s.owns_cell(7));
+        assert!(s.owns_node(1) && !s.owns_node(0));
+        assert!(s.split());
+    }
+}
