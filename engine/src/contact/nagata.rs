@@ -141,12 +141,7 @@ pub fn coefficient<T: Scalar>(d: V<T>, na: V<T>, nb: V<T>) -> V<T> {
 /// Derivatives of `w . c(d, na, nb)` with respect to `d`, `na` and `nb`
 /// (`w` held fixed).
 #[allow(clippy::type_complexity)]
-fn coefficient_derivatives<T: Scalar>(
-    d: V<T>,
-    na: V<T>,
-    nb: V<T>,
-    w: V<T>,
-) -> (V<T>, V<T>, V<T>) {
+fn coefficient_derivatives<T: Scalar>(d: V<T>, na: V<T>, nb: V<T>, w: V<T>) -> (V<T>, V<T>, V<T>) {
     let z = [T::of(0.0); 3];
     let s = vdot(na, nb);
     let den = T::of(1.0) - s * s;
@@ -157,7 +152,10 @@ fn coefficient_derivatives<T: Scalar>(
     let (wa, wb) = (vdot(w, na), vdot(w, nb));
     // w . c = F / den, F = pa wa - s pa wb + s pb wa - pb wb
     let f = pa * wa - s * pa * wb + s * pb * wa - pb * wb;
-    let dd = scale(add(scale(na, wa - s * wb), scale(nb, s * wa - wb)), T::of(1.0) / den);
+    let dd = scale(
+        add(scale(na, wa - s * wb), scale(nb, s * wa - wb)),
+        T::of(1.0) / den,
+    );
     // dF/dna = wa d + pa w - wb (pa nb + s d) + pb (wa nb + s w)
     let fa = add(
         add(scale(d, wa), scale(w, pa)),
@@ -491,7 +489,11 @@ pub fn element(
     let pg = differentiate(xs, xp, np, count, xi)?;
     // global nodes: slave, then every node of the rings (the facet's own
     // nodes are in them)
-    let mut others: Vec<usize> = rings.iter().flatten().flat_map(|f| f.iter().copied()).collect();
+    let mut others: Vec<usize> = rings
+        .iter()
+        .flatten()
+        .flat_map(|f| f.iter().copied())
+        .collect();
     others.extend_from_slice(facet);
     others.sort_unstable();
     others.dedup();
@@ -752,8 +754,7 @@ mod tests {
         let r = rings(&faces, f);
         let patch = patch_of(f, &r, &x).unwrap();
         let (p, _, _) = patch.at([0.0, 0.0]);
-        let flat: [f64; 3] =
-            std::array::from_fn(|c| f.iter().map(|&k| x[k][c]).sum::<f64>() / 4.0);
+        let flat: [f64; 3] = std::array::from_fn(|c| f.iter().map(|&k| x[k][c]).sum::<f64>() / 4.0);
         let radius = |q: [f64; 3]| (q[0] * q[0] + q[1] * q[1] + (q[2] + 2.0).powi(2)).sqrt() - 2.0;
         assert!(
             radius(p).abs() < 0.05 * radius(flat).abs(),
@@ -772,12 +773,15 @@ mod tests {
             let k = if tri { 8 + t % 2 } else { 4 };
             let f = faces[k].clone();
             let r = rings(&faces, &f);
-            let c: [f64; 3] = std::array::from_fn(|q| {
-                f.iter().map(|&n| x[n][q]).sum::<f64>() / f.len() as f64
-            });
+            let c: [f64; 3] =
+                std::array::from_fn(|q| f.iter().map(|&n| x[n][q]).sum::<f64>() / f.len() as f64);
             let h = [0.37, -0.61, 0.29][t % 3] * 0.1;
             let s = x.len();
-            x.push([c[0] + 0.05 * (t as f64 * 0.7).sin(), c[1] + 0.04 * (t as f64).cos(), c[2] + h]);
+            x.push([
+                c[0] + 0.05 * (t as f64 * 0.7).sin(),
+                c[1] + 0.04 * (t as f64).cos(),
+                c[2] + h,
+            ]);
             let g = |y: &[[f64; 3]]| -> Option<NagataElement> {
                 let p = patch_of(&f, &r, y)?;
                 let xi = project(y[s], &p, None)?;
@@ -817,7 +821,8 @@ mod tests {
             for row in 0..nd {
                 for col in 0..nd {
                     assert!(
-                        (e.hessian[row * nd + col] - e.hessian[col * nd + row]).abs() <= 1e-9 * hmax,
+                        (e.hessian[row * nd + col] - e.hessian[col * nd + row]).abs()
+                            <= 1e-9 * hmax,
                         "H not symmetric"
                     );
                 }
@@ -825,7 +830,11 @@ mod tests {
             let mut sum = [0.0; 3];
             let mut mom = [0.0; 3];
             for (a, &n) in e.nodes.iter().enumerate() {
-                let q = [e.gradient[3 * a], e.gradient[3 * a + 1], e.gradient[3 * a + 2]];
+                let q = [
+                    e.gradient[3 * a],
+                    e.gradient[3 * a + 1],
+                    e.gradient[3 * a + 2],
+                ];
                 let p = x[n];
                 for c in 0..3 {
                     sum[c] += q[c];
@@ -835,7 +844,10 @@ mod tests {
                 mom[2] += p[0] * q[1] - p[1] * q[0];
             }
             for c in 0..3 {
-                assert!(sum[c].abs() < 1e-12 && mom[c].abs() < 1e-11, "{sum:?} {mom:?}");
+                assert!(
+                    sum[c].abs() < 1e-12 && mom[c].abs() < 1e-11,
+                    "{sum:?} {mom:?}"
+                );
             }
             done += 1;
         }
@@ -850,9 +862,14 @@ mod tests {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
         for tri in [false, true] {
             let (eg, eh, done) = fd_errors(tri, 12, &mut seed);
-            println!("nagata {}: {done} elements, max rel. FD error G {eg:.2e}, H {eh:.2e}",
-                if tri { "tri3" } else { "quad4" });
-            assert!(done >= 8 && eg < 1e-7 && eh < 1e-6, "{tri}: {done} {eg} {eh}");
+            println!(
+                "nagata {}: {done} elements, max rel. FD error G {eg:.2e}, H {eh:.2e}",
+                if tri { "tri3" } else { "quad4" }
+            );
+            assert!(
+                done >= 8 && eg < 1e-7 && eh < 1e-6,
+                "{tri}: {done} {eg} {eh}"
+            );
         }
     }
 

@@ -988,7 +988,13 @@ fn area_vector(surface: &FacetSurface, k: usize, x: &[[f64; 3]]) -> [f64; 3] {
 /// node's own facets, `own`): two parts of a surface touch face to face, a
 /// node never contacts a facet that looks the same way (the far side of a
 /// fold, the next facets along a bend).
-fn facing(surface: &FacetSurface, own: &[usize], node: usize, x: &[[f64; 3]], cand: &mut Vec<usize>) {
+fn facing(
+    surface: &FacetSurface,
+    own: &[usize],
+    node: usize,
+    x: &[[f64; 3]],
+    cand: &mut Vec<usize>,
+) {
     let mut ns = [0.0; 3];
     for &k in own {
         if surface.faces[k].nodes().contains(&node) {

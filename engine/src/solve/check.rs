@@ -300,10 +300,11 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     )
                 } else if c.smoothing == crate::model::NormalSmoothing::Nodal {
                     Some("nodal normal smoothing (use Nagata patches)")
-                } else if c.smoothing == crate::model::NormalSmoothing::Nagata
-                    && (c.friction.is_some() || mortar)
-                {
-                    Some("friction or mortar on Nagata patches")
+                } else if c.smoothing == crate::model::NormalSmoothing::Nagata {
+                    Some(
+                        "Nagata normal smoothing (the patch element is there; runs with it do \
+                         not converge yet)",
+                    )
                 } else if c.friction.is_some()
                     && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
                 {

@@ -445,21 +445,7 @@ fn blocks_level(_level: usize) -> Result<ProgramLevel, String> {
 /// The ironing deck at refinement `level` (0: slab 9 x 3 x 4 cells, die
 /// 28 x 5; each level doubles them).
 pub fn ironing_deck(level: usize) -> String {
-    ironing_deck_with(level, Some(MU), "none")
-}
-
-/// The ironing deck at `level` with Coulomb friction `mu` (`None`:
-/// frictionless) and the die's `smoothing` (`none` or `nagata`).
-pub fn ironing_deck_with(level: usize, mu: Option<f64>, smoothing: &str) -> String {
     let k = 1usize << level;
-    let friction = mu.map_or(String::new(), |mu| {
-        format!("  friction = coulomb {{ mu = {mu} }}\n")
-    });
-    let smoothing = if smoothing == "none" {
-        String::new()
-    } else {
-        format!("  smoothing = {smoothing}\n")
-    };
     let (sx, sy, sz) = (9 * k, 3 * k, 4 * k);
     let (dc, dl) = (28 * k, 5 * k);
     let (press, slide) = (7 * k, 20 * k);
@@ -471,7 +457,7 @@ pub fn ironing_deck_with(level: usize, mu: Option<f64>, smoothing: &str) -> Stri
          material die_mat {{ neo_hookean {{ E = 1000  nu = 0.499 }} }}\n\
          body slab {{\n  mesh = box {{ origin = (0, 0, 0.6)  size = (9, 3, 4)  divisions = ({sx}, {sy}, {sz}) }}\n  material = slab_mat\n  kinematics = finite\n}}\n\
          body die {{\n  mesh = extrude {{\n    base = annulus {{ center = (2, 6)  inner = 2  outer = 3  start = 200  end = 340  radial = 1  circumferential = {dc} }}\n    length = 5.2\n    layers = {dl}\n  }}\n  material = die_mat\n  kinematics = finite\n}}\n\
-         contact slab.ymax -> die.outer {{\n  method = penalty {{ kind = area  stiffness = 500 }}\n{friction}{smoothing}}}\n\
+         contact slab.ymax -> die.outer {{\n  method = penalty {{ kind = area  stiffness = 500 }}\n  friction = coulomb {{ mu = {MU} }}\n}}\n\
          fix slab.ymin {{ ux uy uz }}\n\
          displace die.inner {{\n  ux = table((0, 0), (1, 0), (2, 4))\n  uy = table((0, 0), (1, -1.4), (2, -1.4))\n  uz = 0\n}}\n\
          step press {{ time = 0 .. 1  increments = {press}  newton {{ tol = 1e-8  max_iter = 30 }} }}\n\

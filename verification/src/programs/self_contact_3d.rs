@@ -259,8 +259,7 @@ fn measure(level: usize) -> Result<ProgramLevel, String> {
     out.add_run(&s3);
     out.add_run(&s2);
     let per_length = r3.top / LENGTH;
-    out.values
-        .push(super::value(NAMES[0], per_length, r2.top));
+    out.values.push(super::value(NAMES[0], per_length, r2.top));
     let x: Vec<[f64; 3]> = m3
         .mesh
         .nodes
@@ -278,7 +277,11 @@ fn measure(level: usize) -> Result<ProgramLevel, String> {
     let cp = &m3.contacts[0];
     let surface = FacetSurface::new(&cp.faces);
     let (mut gap_err, mut wrong, mut closed) = (0.0f64, 0usize, 0usize);
-    for n in r3.contact.iter().filter(|n| n.status == ContactStatus::Closed) {
+    for n in r3
+        .contact
+        .iter()
+        .filter(|n| n.status == ContactStatus::Closed)
+    {
         closed += 1;
         if n.pressure > 0.0 {
             gap_err = gap_err.max((n.gap.abs() * K / n.pressure - 1.0).abs());
