@@ -404,10 +404,10 @@ pub fn differentiate(
         let w = v[4 + e];
         for c in 0..3 {
             // x = .. - beta_e c_e: -d(x.n)/dY = + beta_e d(n.c_e)/dY
-            g[3 + 3 * b + c] = g[3 + 3 * b + c] + w * dd[c];
+            g[3 + 3 * b + c] += w * dd[c];
             g[3 + 3 * a + c] = g[3 + 3 * a + c] - w * dd[c];
-            g[15 + 3 * a + c] = g[15 + 3 * a + c] + w * da[c];
-            g[15 + 3 * b + c] = g[15 + 3 * b + c] + w * db[c];
+            g[15 + 3 * a + c] += w * da[c];
+            g[15 + 3 * b + c] += w * db[c];
         }
     }
     Some(PatchGap {

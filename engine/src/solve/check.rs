@@ -302,8 +302,8 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     Some("nodal normal smoothing (use Nagata patches)")
                 } else if c.smoothing == crate::model::NormalSmoothing::Nagata {
                     Some(
-                        "Nagata normal smoothing (the patch element is there; runs with it do \
-                         not converge yet)",
+                        "Nagata normal smoothing (the patch element is there, its runs do \
+                         not converge)",
                     )
                 } else if c.friction.is_some()
                     && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })

@@ -114,8 +114,8 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
             .filter(|s| s.value == crate::ast::Smoothing::Nagata)
         {
             refuse(
-                "Nagata normal smoothing (the patch element is there; runs with it do not \
-                 converge yet)",
+                "Nagata normal smoothing (the patch element is there, its runs do not \
+                 converge)",
                 s.span,
                 "drop `smoothing` (faceted master)",
             );
