@@ -232,8 +232,8 @@ fn balance_and_tangent(model: &Model<3>, x: &[[f64; 3]]) -> Result<(f64, f64, f6
                     }
                     forces[s] = cp.force;
                 }
-                for r in 0..nd {
-                    let fd = -(forces[0][r] - forces[1][r]) / (2.0 * h);
+                for (r, (fp, fm)) in forces[0].iter().zip(&forces[1]).enumerate().take(nd) {
+                    let fd = -(fp - fm) / (2.0 * h);
                     let an = c.tangent[r * nd + 3 * a + k];
                     worst = worst.max((fd - an).abs() / scale);
                 }
