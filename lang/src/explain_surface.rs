@@ -58,6 +58,10 @@ pub fn describe(model: &Model, c: &ContactPair) -> Option<String> {
              continuous across the master nodes; the element reaches the neighbouring \
              segments' far nodes; unsymmetric tangent: LU)"
         }
+        ctc_engine::model::NormalSmoothing::Nagata => {
+            "Nagata patches (quadratic facets through the nodes and their area-weighted nodal \
+             normals; the element reaches the facets around the patch's nodes)"
+        }
     };
     Some(format!(
         "deformable master: {} segments and {} nodes of body `{body}`, node-to-segment \

@@ -120,10 +120,12 @@ pub static ITEMS: &[Item] = &[
         name: "contact",
         syntax: "contact BODY.SET -> TOOL { .. }   or   contact BODY.SET -> BODY.SET { .. }",
         doc: "A contact pair: the slave surface (boundary edges; faces in 3d) against a rigid \
-              tool or a deformable master surface (node-to-segment; the same surface on both \
-              sides is self contact; planar analyses). In 3d the tool is a surface and the \
-              contact frictionless. The gap is positive when open; the pressure is positive in \
-              compression.",
+              tool or a deformable master surface (node-to-segment; 3d: node-to-facet). The \
+              same surface on both sides is self contact: each node against the surface's \
+              facets except its own patch (in 3d only the facets facing it, both directions \
+              with half the tributary areas, penalty or augmented Lagrangian, frictionless). \
+              In 3d a tool is a surface. The gap is positive when open; the pressure is \
+              positive in compression.",
         blocks: &[
             ("contact", &tables::CONTACT),
             ("method = penalty", &tables::PENALTY),

@@ -634,10 +634,12 @@ pub static CONTACT: [Key; 8] = [
     .default(Default::Choice("node_to_segment")),
     Key::new(
         "smoothing",
-        KeyType::Choice(&["none", "nodal"]),
-        "master normal of node-to-segment contact: none (faceted, exact segment normals) or \
+        KeyType::Choice(&["none", "nodal", "nagata"]),
+        "master normal of node-to-segment contact: none (faceted, exact segment normals), \
          nodal (averaged nodal normals interpolated along each segment: continuous across the \
-         master nodes; planar analyses)",
+         master nodes; planar analyses) or nagata (3d node-to-facet: Nagata's quadratic \
+         patches through the master facets' nodes and their area-weighted nodal normals; \
+         refused for now: runs with it do not converge yet)",
     )
     .default(Default::Choice("none")),
     Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),

@@ -30,6 +30,7 @@
 //!   elements, single / double / modified double pass, self contact);
 //!   [`node_to_facet`]: the 3D form (tri3 / quad4 master facets);
 //!   [`smoothing`]: the nodal normal field of `smoothing = nodal`;
+//!   [`nagata`]: Nagata patches on 3D master facets (`smoothing = nagata`);
 //! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
 //!   and `M`, segmentation; penalty and augmented Lagrangian);
 //! - [`face_integrated`]: quadratic slave faces against rigid tools (the
@@ -52,6 +53,7 @@ pub mod lagrange;
 pub mod log;
 pub mod mortar;
 pub mod motion;
+pub mod nagata;
 pub mod node_to_facet;
 pub mod node_to_segment;
 pub mod penalty;

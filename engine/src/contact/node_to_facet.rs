@@ -69,7 +69,7 @@ use super::surface::{alpha, normal_force, tributary_areas, SurfacePair};
 use super::{ContactStatus, NodeContact};
 use crate::geom::Aabb;
 use crate::mesh::Facet;
-use crate::model::{ContactMaster, ContactMethod, ContactStrategy, Model};
+use crate::model::{ContactMaster, ContactMethod, ContactStrategy, Model, NormalSmoothing};
 
 /// Coordinates an element depends on: the slave node and up to 4 facet
 /// nodes.
@@ -92,6 +92,10 @@ pub const FREE_EDGE_TOL: f64 = 0.02;
 /// otherwise hop between the two facets' normals at every Newton
 /// iteration and stall the convergence.
 pub const SEAM_TOL: f64 = 0.01;
+
+/// How far (fraction of the parametric width) the foot on a Nagata patch
+/// may fall past an interior edge when no patch holds it inside.
+pub const NAGATA_OUTSIDE: f64 = 0.1;
 
 /// Newton iterations of the foot-point equations before giving up.
 const MAX_FOOT_ITERATIONS: usize = 30;
@@ -385,6 +389,9 @@ pub struct FacetSurface {
     free_edges: Vec<(usize, usize)>,
     /// Nodes on a free edge, sorted.
     free_nodes: Vec<usize>,
+    /// `(node, facet)` for every facet node, sorted (the facets around a
+    /// node: its nodal normal).
+    by_node: Vec<(usize, usize)>,
     /// Broad phase over the facet boxes at the current coordinates.
     grid: BroadPhase<3>,
     /// Scratch: facet boxes.
@@ -449,6 +456,7 @@ impl FacetSurface {
         free_nodes.sort_unstable();
         free_nodes.dedup();
         FacetSurface {
+            by_node,
             neighbours,
             free_edges,
             free_nodes,
@@ -461,6 +469,118 @@ impl FacetSurface {
     /// Whether the edge between global nodes `a` and `b` is on the rim.
     pub fn is_free_edge(&self, a: usize, b: usize) -> bool {
         self.free_edges.binary_search(&(a.min(b), a.max(b))).is_ok()
+    }
+
+    /// The facets holding global node `n` (their node lists).
+    pub fn ring(&self, n: usize) -> Vec<&[usize]> {
+        let s = self.by_node.partition_point(|&(m, _)| m < n);
+        self.by_node[s..]
+            .iter()
+            .take_while(|&&(m, _)| m == n)
+            .map(|&(_, k)| self.faces[k].nodes())
+            .collect()
+    }
+
+    /// The Nagata element kept for slave node `node` at `xs` among the
+    /// facets `candidates` (`smoothing = nagata`): the projection on each
+    /// candidate's patch; the facet of the previous evaluation (`memory`)
+    /// while its foot stays within [`SEAM_TOL`] past an interior edge;
+    /// else the feet inside their patch (round-off; [`FREE_EDGE_TOL`] past
+    /// a free edge) by smallest `|g|`; else the foot least outside its
+    /// patch within [`NAGATA_OUTSIDE`] (the projection may fall slightly
+    /// outside a patch where two patches' tangent planes part along their
+    /// common edge). `None`: no patch holds the node (the faceted rules
+    /// apply) or a penetration deeper than `max(prof, h)`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn closest_nagata(
+        &self,
+        x: &[[f64; 3]],
+        node: usize,
+        xs: [f64; 3],
+        candidates: &[usize],
+        memory: Option<usize>,
+        prof: f64,
+        tests: &mut usize,
+    ) -> Option<(usize, super::nagata::NagataElement)> {
+        use super::nagata;
+        let mut inside: Option<(f64, usize, [f64; 2])> = None;
+        let mut outside: Option<(f64, usize, [f64; 2])> = None;
+        let mut kept_memory = None;
+        for &k in candidates {
+            let nodes = self.faces[k].nodes();
+            let n = nodes.len();
+            let rings: Vec<Vec<&[usize]>> = nodes.iter().map(|&m| self.ring(m)).collect();
+            let Some(patch) = nagata::patch_of(nodes, &rings, x) else {
+                continue;
+            };
+            *tests += 1;
+            let Some(xi) = nagata::project(xs, &patch, None) else {
+                continue;
+            };
+            let (p, t, _) = patch.at(xi);
+            let m = [
+                t[0][1] * t[1][2] - t[0][2] * t[1][1],
+                t[0][2] * t[1][0] - t[0][0] * t[1][2],
+                t[0][0] * t[1][1] - t[0][1] * t[1][0],
+            ];
+            let ml = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+            if ml.is_nan() || ml <= 0.0 {
+                continue;
+            }
+            let gap = (0..3).map(|c| (xs[c] - p[c]) * m[c]).sum::<f64>() / ml;
+            let (pts, _) = self.points(k, x);
+            let depth = (0..n)
+                .map(|a| {
+                    let (u, v) = (pts[a], pts[(a + 1) % n]);
+                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
+                })
+                .fold(prof, f64::max);
+            if gap < -depth {
+                continue;
+            }
+            let seam = if memory == Some(k) {
+                SEAM_TOL
+            } else {
+                INSIDE_TOL
+            };
+            let excess = edge_excess(n, xi);
+            let is_inside = excess.iter().enumerate().all(|(a, &e)| {
+                let free = a < n && self.is_free_edge(nodes[a], nodes[(a + 1) % n]);
+                e <= seam || (free && e <= FREE_EDGE_TOL)
+            });
+            if is_inside {
+                if memory == Some(k) {
+                    kept_memory = Some((k, xi));
+                    break;
+                }
+                if inside.is_none_or(|(g, ..)| gap.abs() < g) {
+                    inside = Some((gap.abs(), k, xi));
+                }
+                continue;
+            }
+            // beyond an interior edge only: the free rim ends the surface
+            let worst = excess
+                .iter()
+                .enumerate()
+                .filter(|&(a, &e)| a < n && e > 0.0)
+                .map(|(a, &e)| {
+                    if self.is_free_edge(nodes[a], nodes[(a + 1) % n]) {
+                        f64::INFINITY
+                    } else {
+                        e
+                    }
+                })
+                .fold(0.0, f64::max);
+            if worst <= NAGATA_OUTSIDE && outside.is_none_or(|(w, ..)| worst < w) {
+                outside = Some((worst, k, xi));
+            }
+        }
+        let (k, xi) = kept_memory
+            .or(inside.map(|(_, k, xi)| (k, xi)))
+            .or(outside.map(|(_, k, xi)| (k, xi)))?;
+        let nodes = self.faces[k].nodes();
+        let rings: Vec<Vec<&[usize]>> = nodes.iter().map(|&m| self.ring(m)).collect();
+        nagata::element(node, xs, nodes, &rings, x, xi).map(|e| (k, e))
     }
 
     /// Whether global node `n` is on the rim.
@@ -710,11 +830,20 @@ pub struct DeformablePair {
     touch: f64,
     /// Scratch: candidate facets of one query.
     candidates: Vec<usize>,
+    /// Self contact (the deck's `a.s -> a.s`): both sides are the same
+    /// surface, every node is slave and master at once.
+    pub self_contact: bool,
+    /// Per slave index, self contact only: the facets excluded for the
+    /// node (see [`excluded_facets`]), sorted.
+    pub excluded: Vec<Vec<usize>>,
 }
 
 impl DeformablePair {
     /// Which sides act as slave now: `[side 0 is slave, side 1 is slave]`.
     pub fn slave_sides(&self, strategy: ContactStrategy) -> [bool; 2] {
+        if self.self_contact {
+            return [true, false];
+        }
         strategy.slave_sides(self.increments)
     }
 
@@ -770,7 +899,7 @@ pub fn slave_nodes(model: &Model<3>, pair: usize) -> Vec<usize> {
     let cp = &model.contacts[pair];
     let mut nodes = cp.nodes.clone();
     if let ContactMaster::Surface { faces, .. } = &cp.master {
-        if cp.strategy != ContactStrategy::SinglePass {
+        if cp.strategy != ContactStrategy::SinglePass && !is_self_contact(model, pair) {
             nodes.extend(faces.iter().flat_map(|f| f.nodes().to_vec()));
             nodes.sort_unstable();
             nodes.dedup();
@@ -781,10 +910,18 @@ pub fn slave_nodes(model: &Model<3>, pair: usize) -> Vec<usize> {
 
 /// Tributary areas `int N_a dA` of the slave nodes: over the slave faces
 /// for side-0 nodes, the master faces for side-1 nodes; halved for the
-/// modified double pass (both passes carry the load).
+/// modified double pass and for self contact (both directions carry the
+/// load, so that the reported pressure is the interface pressure and a
+/// penalty gap is `p / k`).
 pub fn areas(model: &Model<3>, pair: usize, slaves: &[usize]) -> Vec<f64> {
     let cp = &model.contacts[pair];
     let mut area = tributary_areas(&model.mesh, &cp.faces, slaves);
+    if is_self_contact(model, pair) {
+        for a in &mut area {
+            *a *= 0.5;
+        }
+        return area;
+    }
     if let ContactMaster::Surface { faces, .. } = &cp.master {
         let side1: Vec<usize> = slaves
             .iter()
@@ -804,6 +941,73 @@ pub fn areas(model: &Model<3>, pair: usize, slaves: &[usize]) -> Vec<f64> {
         }
     }
     area
+}
+
+/// Whether 3D pair `pair` is self contact: its master faces are its slave
+/// faces (the deck's `a.s -> a.s`).
+pub fn is_self_contact(model: &Model<3>, pair: usize) -> bool {
+    let cp = &model.contacts[pair];
+    matches!(&cp.master, ContactMaster::Surface { faces, .. } if faces == &cp.faces)
+}
+
+/// The facets of `surface` excluded for its node `node` in self contact:
+/// the facets that hold the node and the facets sharing a node with those
+/// (the 2D rule, "its own segments and the adjacent ones", on a surface:
+/// a node never contacts the patch of facets around it, which its own
+/// deformation bends), sorted.
+pub fn excluded_facets(surface: &FacetSurface, node: usize) -> Vec<usize> {
+    let mut out = Vec::new();
+    for (k, f) in surface.faces.iter().enumerate() {
+        if f.nodes().contains(&node) {
+            out.push(k);
+            out.extend_from_slice(&surface.neighbours[k]);
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+    out
+}
+
+/// The area vector `1/2 sum x_i x x_(i+1)` of facet `k` of `surface` at the
+/// coordinates `x` (its outward normal times its area; exact for a warped
+/// quadrilateral).
+fn area_vector(surface: &FacetSurface, k: usize, x: &[[f64; 3]]) -> [f64; 3] {
+    let n = surface.faces[k].nodes();
+    let mut m = [0.0; 3];
+    for (a, &i) in n.iter().enumerate() {
+        let (p, q) = (x[i], x[n[(a + 1) % n.len()]]);
+        m[0] += 0.5 * (p[1] * q[2] - p[2] * q[1]);
+        m[1] += 0.5 * (p[2] * q[0] - p[0] * q[2]);
+        m[2] += 0.5 * (p[0] * q[1] - p[1] * q[0]);
+    }
+    m
+}
+
+/// Self contact: keeps the candidate facets whose outward normal opposes
+/// the outward normal of the node (the sum of the area vectors of the
+/// node's own facets, `own`): two parts of a surface touch face to face, a
+/// node never contacts a facet that looks the same way (the far side of a
+/// fold, the next facets along a bend).
+fn facing(
+    surface: &FacetSurface,
+    own: &[usize],
+    node: usize,
+    x: &[[f64; 3]],
+    cand: &mut Vec<usize>,
+) {
+    let mut ns = [0.0; 3];
+    for &k in own {
+        if surface.faces[k].nodes().contains(&node) {
+            let m = area_vector(surface, k, x);
+            for c in 0..3 {
+                ns[c] += m[c];
+            }
+        }
+    }
+    cand.retain(|&k| {
+        let m = area_vector(surface, k, x);
+        (0..3).map(|c| m[c] * ns[c]).sum::<f64>() < 0.0
+    });
 }
 
 /// Prepares a 3D pair; `None` if the master is a rigid tool.
@@ -826,14 +1030,26 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<Deform
         })
         .filter(|l| *l > 0.0)
         .fold(f64::INFINITY, f64::min);
+    let self_contact = is_self_contact(model, pair);
+    let sides = [FacetSurface::new(&cp.faces), FacetSurface::new(faces)];
+    let excluded = if self_contact {
+        slaves
+            .iter()
+            .map(|&n| excluded_facets(&sides[1], n))
+            .collect()
+    } else {
+        Vec::new()
+    };
     Some(DeformablePair {
+        self_contact,
+        excluded,
         evaluated: usize::MAX,
         touch: if h.is_finite() {
             super::penalty::TOUCH_FRACTION * h
         } else {
             0.0
         },
-        sides: [FacetSurface::new(&cp.faces), FacetSurface::new(faces)],
+        sides,
         side_of: slaves
             .iter()
             .map(|n| u8::from(cp.nodes.binary_search(n).is_err()))
@@ -878,6 +1094,7 @@ pub fn evaluate(
     state.friction.impact = None;
     let sides = fp.slave_sides(cp.strategy);
     let prof = state.prof;
+    let nagata = cp.smoothing == NormalSmoothing::Nagata;
     for s in 0..2 {
         // side s is master when the other side is slave
         if sides[1 - s] {
@@ -914,16 +1131,38 @@ pub fn evaluate(
             candidates.sort_unstable();
             candidates.dedup();
         }
+        if fp.self_contact {
+            // not the node's own patch, only the facets facing it
+            let ex = &fp.excluded[i];
+            candidates.retain(|k| ex.binary_search(k).is_err());
+            facing(surface, ex, node, x, &mut candidates);
+        }
         state.counters.queries += 1;
         let memory = fp.last[i];
-        let Some((k, el)) = surface.closest(x, xs, &candidates, memory, prof, &mut fp.tests) else {
-            fp.last[i] = None;
-            state.friction.open(i, xs);
-            continue;
+        // Nagata patches first; the faceted rules where no patch holds the
+        // node's foot (the wedges of a patch-less corner)
+        let smooth = if nagata {
+            surface.closest_nagata(x, node, xs, &candidates, memory, prof, &mut fp.tests)
+        } else {
+            None
+        };
+        let faceted = if smooth.is_none() {
+            surface.closest(x, xs, &candidates, memory, prof, &mut fp.tests)
+        } else {
+            None
+        };
+        let (k, gap, normal) = match (&smooth, &faceted) {
+            (Some((k, e)), _) => (*k, e.gap, e.normal),
+            (None, Some((k, el))) => (*k, el.gap, el.normal),
+            (None, None) => {
+                fp.last[i] = None;
+                state.friction.open(i, xs);
+                continue;
+            }
         };
         fp.last[i] = Some(k);
         let active = state.active[i];
-        if el.gap > prof && !active {
+        if gap > prof && !active {
             state.friction.open(i, xs);
             continue;
         }
@@ -932,8 +1171,8 @@ pub fn evaluate(
         // closed-gap start: a touching node of a body only this contact
         // holds joins with zero force (penalty, AL: the tangent alpha G G^T;
         // Lagrange: the active set, its row holds the body)
-        let touching = state.touching > 0.0 && (0.0..=state.touching).contains(&el.gap);
-        let touching_start = fresh && el.gap <= fp.touch;
+        let touching = state.touching > 0.0 && (0.0..=state.touching).contains(&gap);
+        let touching_start = fresh && gap <= fp.touch;
         if (touching || touching_start)
             && matches!(method, ContactMethod::Lagrange { .. })
             && !state.active[i]
@@ -944,8 +1183,8 @@ pub fn evaluate(
         let active = state.active[i];
         let mut nc = NodeContact {
             node,
-            gap: el.gap,
-            normal: el.normal,
+            gap,
+            normal,
             force: [0.0; 3],
             stiffness: [[0.0; 3]; 3],
             pressure: 0.0,
@@ -954,15 +1193,31 @@ pub fn evaluate(
             master: None,
             friction: Default::default(),
         };
-        let closed = response(&method, a, state.multiplier[i], active, el.gap)
+        let closed = response(&method, a, state.multiplier[i], active, gap)
             .or_else(|| (touching && a > 0.0).then_some((0.0, -a)));
         if let Some((rn, slope)) = closed {
             let face = surface.faces[k].nodes();
-            let dofs = 3 * (1 + face.len());
-            let local: Vec<usize> = std::iter::once(node).chain(face.iter().copied()).collect();
-            // Coulomb friction (penalty, augmented Lagrangian): its forces
-            // over the slave, the facet and the stick point's facet
-            let friction = cp.friction.as_ref().and_then(|law| {
+            // the element's nodes (slave first), G and H over them
+            let (local, grad, hess): (Vec<usize>, Vec<f64>, Vec<f64>) = match (&smooth, &faceted) {
+                (Some((_, e)), _) => (e.nodes.clone(), e.gradient.clone(), e.hessian.clone()),
+                (_, Some((_, el))) => {
+                    let dofs = 3 * (1 + face.len());
+                    (
+                        std::iter::once(node).chain(face.iter().copied()).collect(),
+                        el.gradient[..dofs].to_vec(),
+                        (0..dofs)
+                            .flat_map(|r| (0..dofs).map(move |c| el.hessian[r][c]))
+                            .collect(),
+                    )
+                }
+                (None, None) => unreachable!("a kept element"),
+            };
+            let dofs = grad.len();
+            // Coulomb friction (penalty, augmented Lagrangian; faceted
+            // master): its forces over the slave, the facet and the stick
+            // point's facet
+            let law = cp.friction.as_ref().zip(faceted.as_ref().map(|f| f.1));
+            let friction = law.and_then(|(law, el)| {
                 let pts: Vec<[f64; 3]> = face.iter().map(|&m| x[m]).collect();
                 // an edge or vertex element: the foot on the extended facet
                 let xi = match el.feature {
@@ -1007,19 +1262,19 @@ pub fn evaluate(
             let mut force = vec![0.0; nd];
             let mut row = vec![0.0; nd];
             let mut tangent = vec![0.0; nd * nd];
-            let g = &el.gradient;
+            let g = &grad;
             for r in 0..dofs {
                 let pr = pos(r);
                 force[pr] += rn * g[r];
                 row[pr] += g[r];
                 for c in 0..dofs {
-                    tangent[pr * nd + pos(c)] += -slope * g[r] * g[c] - rn * el.hessian[r][c];
+                    tangent[pr * nd + pos(c)] += -slope * g[r] * g[c] - rn * hess[r * dofs + c];
                 }
             }
             for r in 0..3 {
                 nc.force[r] = rn * g[r];
                 for c in 0..3 {
-                    nc.stiffness[r][c] = -slope * g[r] * g[c] - rn * el.hessian[r][c];
+                    nc.stiffness[r][c] = -slope * g[r] * g[c] - rn * hess[r * dofs + c];
                 }
             }
             if let Some((r, anchor_face)) = friction {
@@ -1322,6 +1577,64 @@ pub(crate) mod tests {
             p[2] -= 0.1;
         }
         assert!(jumps(&mut s, &[6], 0.01, &x0, &x2).is_empty());
+    }
+
+    /// A flat `n x n` grid of unit quads in z = 0, normal +z (node `i + (n
+    /// + 1) j` at `(i, j, 0)`, facet `i + n j`).
+    fn grid(n: usize) -> Vec<Facet> {
+        let id = |i: usize, j: usize| i + (n + 1) * j;
+        (0..n * n)
+            .map(|k| {
+                let (i, j) = (k % n, k / n);
+                Facet::new(&[id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+            })
+            .collect()
+    }
+
+    #[test]
+    fn self_contact_excludes_the_node_s_patch_and_keeps_facing_facets() {
+        // 6 x 6 grid: the centre node (3, 3) owns facets (2..=3, 2..=3);
+        // with the facets sharing a node with those: (1..=4, 1..=4), 16
+        let s = FacetSurface::new(&grid(6));
+        let ex = excluded_facets(&s, 3 + 7 * 3);
+        let want: Vec<usize> = (1..=4)
+            .flat_map(|j| (1..=4).map(move |i| i + 6 * j))
+            .collect();
+        assert_eq!(ex, want);
+        // a corner node: its facet and the three around it
+        assert_eq!(excluded_facets(&s, 0), vec![0, 1, 6, 7]);
+        // a strip folded onto itself: facets 0..3 along x at z = 0 (normal
+        // +z), facets 3..6 back along x at z = 0.1 (normal -z); node 0 sees
+        // the facets of the upper part, never those beside it
+        let faces = [
+            Facet::new(&[0, 1, 5, 4]),
+            Facet::new(&[1, 2, 6, 5]),
+            Facet::new(&[2, 3, 7, 6]),
+            Facet::new(&[8, 12, 13, 9]),
+            Facet::new(&[9, 13, 14, 10]),
+            Facet::new(&[10, 14, 15, 11]),
+        ];
+        let mut x = Vec::new();
+        for z in [0.0, 0.1] {
+            for y in [0.0, 1.0] {
+                for i in 0..4 {
+                    x.push([i as f64, y, z]);
+                }
+            }
+        }
+        let s = FacetSurface::new(&faces);
+        let ex = excluded_facets(&s, 1);
+        assert_eq!(ex, vec![0, 1, 2]);
+        let mut cand: Vec<usize> = (0..6).filter(|k| ex.binary_search(k).is_err()).collect();
+        facing(&s, &ex, 1, &x, &mut cand);
+        assert_eq!(cand, vec![3, 4, 5]);
+        // a node of the upper part sees the lower part only
+        let mut cand: Vec<usize> = (0..3).collect();
+        facing(&s, &excluded_facets(&s, 13), 13, &x, &mut cand);
+        assert_eq!(cand, vec![0, 1, 2]);
+        let mut cand: Vec<usize> = vec![4, 5];
+        facing(&s, &[3], 13, &x, &mut cand);
+        assert!(cand.is_empty());
     }
 
     #[test]

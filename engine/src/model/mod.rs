@@ -854,6 +854,10 @@ pub enum NormalSmoothing {
     /// interpolated along each segment, normalized: one continuous normal
     /// field (`crate::contact::smoothing`).
     Nodal,
+    /// 3D node-to-facet: Nagata's quadratic patches through the master
+    /// facets' nodes and their area-weighted nodal normals
+    /// (`crate::contact::nagata`).
+    Nagata,
 }
 
 /// Local contact search test (seed, "Part I - Geometrical aspects").

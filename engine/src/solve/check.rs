@@ -298,8 +298,13 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                         "mortar with a double pass or Lagrange multipliers (mortar is single \
                          pass, penalty or augmented Lagrangian)",
                     )
-                } else if c.smoothing != crate::model::NormalSmoothing::None {
-                    Some("normal smoothing (Nagata patches on the master facets)")
+                } else if c.smoothing == crate::model::NormalSmoothing::Nodal {
+                    Some("nodal normal smoothing (use Nagata patches)")
+                } else if c.smoothing == crate::model::NormalSmoothing::Nagata {
+                    Some(
+                        "Nagata normal smoothing (the patch element is there, its runs do \
+                         not converge)",
+                    )
                 } else if c.friction.is_some()
                     && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
                 {
@@ -307,8 +312,14 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                         "Lagrange-multiplier friction (use the penalty or the augmented \
                          Lagrangian with friction)",
                     )
-                } else if faces == &c.faces {
-                    Some("self contact (the exclusion of a node's own facets)")
+                } else if faces == &c.faces
+                    && (c.friction.is_some()
+                        || matches!(c.method, crate::model::ContactMethod::Lagrange { .. }))
+                {
+                    Some(
+                        "self contact with friction or Lagrange multipliers (self contact is \
+                         frictionless, penalty or augmented Lagrangian)",
+                    )
                 } else if faces.is_empty() {
                     Some("master faces (the master set has no face)")
                 } else if c.strategy == crate::model::ContactStrategy::ModifiedDoublePass

@@ -424,7 +424,7 @@ pub struct Contact {
     pub search: Option<Spanned<Search>>,
     /// `formulation = node_to_segment | mortar`.
     pub formulation: Option<Spanned<ContactFormulation>>,
-    /// `smoothing = none | nodal`.
+    /// `smoothing = none | nodal | nagata`.
     pub smoothing: Option<Spanned<Smoothing>>,
 }
 
@@ -435,6 +435,8 @@ pub enum Smoothing {
     None,
     /// `nodal`: nodal normals interpolated along the segments.
     Nodal,
+    /// `nagata`: Nagata patches on the 3d master facets.
+    Nagata,
 }
 
 /// `formulation = ..` of a contact pair.

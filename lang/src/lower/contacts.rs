@@ -275,6 +275,7 @@ impl Lowerer<'_> {
                 },
                 smoothing: match c.smoothing.as_ref().map(|s| s.value) {
                     Some(ast::Smoothing::Nodal) => m::NormalSmoothing::Nodal,
+                    Some(ast::Smoothing::Nagata) => m::NormalSmoothing::Nagata,
                     _ => m::NormalSmoothing::None,
                 },
                 search: match c.search.as_ref().map(|s| s.value) {

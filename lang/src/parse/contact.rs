@@ -34,7 +34,11 @@ const CONTACT_FORMULATIONS: [(&str, ContactFormulation); 2] = [
     ("mortar", ContactFormulation::Mortar),
 ];
 
-const SMOOTHINGS: [(&str, Smoothing); 2] = [("none", Smoothing::None), ("nodal", Smoothing::Nodal)];
+const SMOOTHINGS: [(&str, Smoothing); 3] = [
+    ("none", Smoothing::None),
+    ("nodal", Smoothing::Nodal),
+    ("nagata", Smoothing::Nagata),
+];
 
 const SEARCHES: [(&str, Search); 2] = [("memory", Search::Memory), ("circle", Search::Circle)];
 

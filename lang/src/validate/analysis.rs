@@ -57,11 +57,31 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// the tools, and two deformable solids in node-to-facet contact (every
 /// strategy and method; Coulomb friction with the penalty and augmented
 /// Lagrangian methods) or mortar contact (single pass, frictionless,
-/// penalty or augmented Lagrangian: [`super::contacts`] refuses the rest);
-/// normal smoothing and self contact between deformable solids are not
-/// there yet in 3d.
+/// penalty or augmented Lagrangian: [`super::contacts`] refuses the rest),
+/// self contact (penalty or augmented Lagrangian, frictionless); normal
+/// smoothing is refused: `nodal` (planar) in 3d, `nagata` everywhere (in
+/// planar analyses it has no facets; in 3d the patch element
+/// `ctc_engine::contact::nagata` is there but pair runs do not converge
+/// yet).
 pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
     if a.dimension.as_ref().map(|d| d.value) != Some(Dimension::ThreeD) {
+        // Nagata patches are surfaces over 3d facets
+        for c in &ctx.deck.contacts {
+            if let Some(s) = c
+                .smoothing
+                .as_ref()
+                .filter(|s| s.value == crate::ast::Smoothing::Nagata)
+            {
+                ctx.err(
+                    Diagnostic::error(
+                        "`smoothing = nagata` is for the master facets of 3d contact",
+                        s.span,
+                        "a 3d smoothing in a planar analysis",
+                    )
+                    .with_help("use `smoothing = nodal` (nodal normals along the master segments)"),
+                );
+            }
+        }
         return;
     }
     let deck = ctx.deck;
@@ -83,17 +103,47 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
             .filter(|s| s.value == crate::ast::Smoothing::Nodal)
         {
             refuse(
-                "normal smoothing (Nagata patches on the master facets)",
+                "nodal normal smoothing (the planar nodal normals along segments)",
+                s.span,
+                "drop `smoothing` (faceted master)",
+            );
+        }
+        if let Some(s) = c
+            .smoothing
+            .as_ref()
+            .filter(|s| s.value == crate::ast::Smoothing::Nagata)
+        {
+            refuse(
+                "Nagata normal smoothing (the patch element is there, its runs do not \
+                 converge)",
                 s.span,
                 "drop `smoothing` (faceted master)",
             );
         }
         if m.to_string() == c.target.to_string() {
-            refuse(
-                "self contact (the exclusion of a node's own facets)",
-                m.span,
-                "contact two different face sets",
-            );
+            // self contact: both directions at once (the modified double
+            // pass of one surface), penalty or augmented Lagrangian,
+            // frictionless
+            if let Some(me) = c
+                .method
+                .as_ref()
+                .filter(|me| matches!(me.value, crate::ast::Method::Lagrange { .. }))
+            {
+                refuse(
+                    "self contact with Lagrange multipliers (every node is constrained from \
+                     both sides, as in the modified double pass: the saddle-point system is \
+                     singular)",
+                    me.span,
+                    "use `method = penalty { .. }` or `augmented_lagrange { .. }` for self contact",
+                );
+            }
+            if let Some(f) = &c.friction {
+                refuse(
+                    "friction in self contact",
+                    f.span,
+                    "drop `friction` (self contact is frictionless in 3d)",
+                );
+            }
         }
         let lagrange = c
             .method

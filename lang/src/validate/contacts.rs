@@ -140,16 +140,18 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     let Some(s) = c
         .smoothing
         .as_ref()
-        .filter(|s| s.value == crate::ast::Smoothing::Nodal)
+        .filter(|s| s.value != crate::ast::Smoothing::None)
     else {
         return;
     };
+    let nodal = s.value == crate::ast::Smoothing::Nodal;
+    let chosen = if nodal { "nodal" } else { "nagata" };
     let mut refuse = |what: &str, span: Span, help: &str| {
         ctx.err(
             Diagnostic::error(
                 format!("normal smoothing {what}"),
                 span,
-                "not supported with `smoothing = nodal`",
+                format!("not supported with `smoothing = {chosen}`"),
             )
             .with_secondary(s.span, "smoothing chosen here")
             .with_help(help.to_string()),
@@ -175,11 +177,12 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
         );
     }
     if let Some(m) = c.method.as_ref().filter(|m| {
-        matches!(
-            &m.value,
-            Method::Lagrange { formulation: Some(f) }
-                if f.value == crate::ast::LagrangeFormulation::Doubled
-        )
+        nodal
+            && matches!(
+                &m.value,
+                Method::Lagrange { formulation: Some(f) }
+                    if f.value == crate::ast::LagrangeFormulation::Doubled
+            )
     }) {
         refuse(
             "with doubled Lagrange multipliers is not supported (its L D L^T factorization \

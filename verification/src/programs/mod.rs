@@ -29,6 +29,7 @@ pub mod pressure_control;
 pub mod quadratic;
 pub mod quadratic_contact;
 pub mod quadratic_thermal;
+pub mod self_contact_3d;
 pub mod solid;
 pub mod solid_patch;
 pub mod taylor_bar;
@@ -73,6 +74,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
     v.extend(friction_ntf_3d::cases());
+    v.extend(self_contact_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());
     v.extend(dynamics::cases());
