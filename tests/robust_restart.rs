@@ -179,7 +179,9 @@ fn restart_upsetting_plastic_with_cutbacks_matches_uninterrupted_run() {
         ],
     );
     let (from, n) = restart_matches(&model, 6);
-    assert_eq!((from, n), (5, 12));
+    // 12 increments before the increment predictor (issue 20), which
+    // spares 4 cutbacks; the restart still resumes after a cutback
+    assert_eq!((from, n), (5, 8));
 }
 
 #[test]

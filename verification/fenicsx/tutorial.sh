@@ -9,7 +9,8 @@
 # logs /proc/loadavg before and after each run; prints the min-of-REPS
 # table (tutorial.py --table). Single-threaded everywhere.
 #
-# Usage: bash verification/fenicsx/tutorial.sh [REPS]   (from anywhere)
+# Usage: bash verification/fenicsx/tutorial.sh [REPS]   (from anywhere;
+#        CTC_BIN=path/to/ctc to use a built binary)
 # Output: target/speed/tutorial/ (ctc_<rep>/, fx_<rep>/, load.txt, table.md)
 set -euo pipefail
 REPS=${1:-3}
@@ -22,8 +23,9 @@ PY=$(bash "$HERE/install-0.11.sh" --python)
 mkdir -p "$OUT"
 rm -rf "$OUT"/ctc_* "$OUT"/fx_* "$OUT"/load.txt
 cd "$ROOT"
-cargo build --release -q -p ctc --bin ctc
-CTC="$ROOT/target/release/ctc"
+# CTC_BIN: an already built ctc (skips the release build)
+if [ -z "${CTC_BIN:-}" ]; then cargo build --release -q -p ctc --bin ctc; fi
+CTC=${CTC_BIN:-$ROOT/target/release/ctc}
 "$PY" "$HERE/tutorial.py" "$OUT" --export-only 2>/dev/null
 
 load() { echo "$(date -u +%H:%M:%S) $1: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT/load.txt"; }

@@ -1023,7 +1023,7 @@ where
                     self.start_closed = Some(closed);
                 }
                 ev.map_err(|f| f.with_residuals(&residuals))?;
-                if first && fresh && settings.predictor {
+                if first && fresh && settings.predictor && predictor::applies(model) {
                     let is_dynamic = model.steps.get(step).is_some_and(|s| s.dynamic.is_some());
                     if let Some(ratio) = self.history.ratio(step, t).filter(|_| !is_dynamic) {
                         if self.predict(t, ratio)? {

@@ -23,6 +23,21 @@
 //!
 //! Dynamic steps keep their integrator's own predictor (the first iterate
 //! is the converged state); `newton { predictor = false }` turns it off.
+//! Models with friction or a free tool keep the plain start too
+//! ([`applies`]): an extrapolated slip or tool rotation can start the
+//! increment on another stick / slip branch, where the plain start's
+//! residual test cannot see it (a free-roller strip bending,
+//! `tests/robust_restart.rs`, stalled at a cutback limit with it).
+
+use crate::model::Model;
+
+/// Whether the predictor is used for `model`: not with friction (a
+/// path-dependent stick / slip state) nor with free tools (a rotation
+/// unknown driven by friction).
+pub fn applies<const D: usize>(model: &Model<D>) -> bool {
+    model.contacts.iter().all(|c| c.friction.is_none())
+        && model.tools.iter().all(|t| t.free_rotation.is_none())
+}
 
 /// The last converged increment, as far as the predictor needs it.
 #[derive(Debug, Clone, PartialEq)]
