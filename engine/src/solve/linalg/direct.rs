@@ -883,10 +883,10 @@ mod low_rank_tests {
         for (m, &a) in nodes.iter().enumerate() {
             let t = 0.3 * m as f64;
             let nrm = [t.sin(), t.cos()];
-            for r in 0..2 {
-                for c in 0..2 {
+            for (r, nr) in nrm.iter().enumerate() {
+                for (c, nc) in nrm.iter().enumerate() {
                     let slot = p.find(2 * a + r, 2 * a + c).unwrap();
-                    v[slot] += k * nrm[r] * nrm[c] + if r == c { k2 } else { 0.0 };
+                    v[slot] += k * nr * nc + if r == c { k2 } else { 0.0 };
                 }
             }
         }

@@ -260,7 +260,7 @@ fn lu_in_place(a: &mut [f64], m: usize) -> Option<Vec<usize>> {
             }
         });
         let pivot = a[p * m + k];
-        if !(pivot.abs() > SINGULAR * scale) {
+        if !pivot.is_finite() || pivot.abs() <= SINGULAR * scale {
             return None;
         }
         if p != k {
@@ -283,6 +283,7 @@ fn lu_in_place(a: &mut [f64], m: usize) -> Option<Vec<usize>> {
 }
 
 /// Solves with the factors of [`lu_in_place`].
+#[allow(clippy::needless_range_loop)] // triangular sweeps over `y` itself
 fn lu_solve(lu: &[f64], perm: &[usize], m: usize, b: &[f64]) -> Vec<f64> {
     let mut y: Vec<f64> = perm.iter().map(|&p| b[p]).collect();
     for i in 0..m {
