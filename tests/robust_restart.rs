@@ -198,7 +198,9 @@ fn restart_skin_pass_output_every_5_matches_uninterrupted_run() {
     // increment (10), increments 11..12 are recomputed
     let model = model_of("skin_pass.ctc", &[]);
     let (from, n) = restart_matches(&model, 12);
-    assert_eq!((from, n), (10, 20));
+    // 20 increments before the increment predictor (issue 20): one
+    // extrapolated start costs a cutback here, the restart is still exact
+    assert_eq!((from, n), (10, 21));
 }
 
 #[test]
