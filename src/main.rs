@@ -156,6 +156,13 @@ enum Command {
         /// Print the results as JSON instead of a table.
         #[arg(long)]
         json: bool,
+        /// Without the increment predictor (`newton { predictor = false }`):
+        /// each increment starts from the converged state.
+        #[arg(long)]
+        no_predictor: bool,
+        /// Without low-rank (Woodbury) updates: every tangent factorized.
+        #[arg(long)]
+        no_low_rank: bool,
         /// Run the contact search benchmark instead (n = 10^2 .. 10^5 contact
         /// nodes against a surface of n segments).
         #[arg(long)]
@@ -262,6 +269,8 @@ fn main() -> ExitCode {
             size,
             increments,
             json,
+            no_predictor,
+            no_low_rank,
             search,
             max_nodes,
             projection,
@@ -276,7 +285,7 @@ fn main() -> ExitCode {
             } else if search {
                 bench_search(max_nodes, json)
             } else {
-                bench(size, increments, json)
+                bench(size, increments, (!no_predictor, !no_low_rank), json)
             }
         }
     };
@@ -787,10 +796,17 @@ fn print_report<R: std::fmt::Display + serde::Serialize>(
     Ok(())
 }
 
-fn bench(size: f64, increments: usize, json: bool) -> Result<(), String> {
+fn bench(
+    size: f64,
+    increments: usize,
+    (predictor, low_rank): (bool, bool),
+    json: bool,
+) -> Result<(), String> {
     let opts = ctc_verification::BenchOptions {
         size,
         increments,
+        predictor,
+        low_rank,
         ..Default::default()
     };
     print_report(&ctc_verification::run_bench(&opts)?, json)

@@ -414,6 +414,12 @@ pub fn explain(model: &Model) -> String {
             n.max_iter,
             if n.line_search { "on" } else { "off" }
         );
+        if !n.predictor {
+            let _ = writeln!(
+                o,
+                "    predictor: off (each increment starts from the converged state)"
+            );
+        }
         if let Some(c) = n.stabilize {
             let _ = writeln!(
                 o,

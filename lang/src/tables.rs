@@ -862,7 +862,7 @@ pub static STEP: [Key; 5] = [
     .dim(Dim::None),
     Key::new(
         "newton",
-        KeyType::Choice(&["{ tol tol_displacement max_iter line_search stabilize }"]),
+        KeyType::Choice(&["{ tol tol_displacement max_iter line_search predictor stabilize }"]),
         "Newton settings",
     ),
     Key::new(
@@ -1010,7 +1010,7 @@ pub static POINT_MASS: [Key; 1] = [Key::new(
 .dim(Dim::Mass)];
 
 /// `newton { .. }` of a step.
-pub static NEWTON: [Key; 5] = [
+pub static NEWTON: [Key; 6] = [
     Key::new("tol", KeyType::Number, "relative residual tolerance")
         .default(Default::Number(1e-8))
         .range(Range::Positive)
@@ -1027,6 +1027,13 @@ pub static NEWTON: [Key; 5] = [
         .default(Default::Integer(25))
         .range(Range::AtLeast(1)),
     Key::new("line_search", KeyType::Bool, "backtracking line search").default(Default::Bool(true)),
+    Key::new(
+        "predictor",
+        KeyType::Bool,
+        "start each increment from the linear extrapolation of the step's last two converged \
+         states (kept only when its residual is smaller than the plain start's)",
+    )
+    .default(Default::Bool(true)),
     Key::new(
         "stabilize",
         KeyType::Number,

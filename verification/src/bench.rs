@@ -15,7 +15,7 @@ use crate::measure::Value;
 use crate::profile::Abscissa;
 use crate::report::fmt_num;
 use ctc_engine::model::{Model, PenaltyKind};
-use ctc_engine::solve::{run, RunSummary, Timings};
+use ctc_engine::solve::{run_with, RunSummary, Timings};
 use std::fmt;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -35,6 +35,11 @@ pub struct BenchOptions {
     pub increments: usize,
     /// Where to write the exact deck that was run (optional).
     pub deck_out: Option<PathBuf>,
+    /// The increment predictor (`newton { predictor }`, on by default).
+    pub predictor: bool,
+    /// Low-rank (Woodbury) updates of the factorized tangent when only
+    /// the contact dofs' blocks change (`linalg::low_rank`, on by default).
+    pub low_rank: bool,
 }
 
 impl Default for BenchOptions {
@@ -43,6 +48,8 @@ impl Default for BenchOptions {
             size: 1.0,
             increments: 4,
             deck_out: None,
+            predictor: true,
+            low_rank: true,
         }
     }
 }
@@ -95,10 +102,32 @@ pub struct BenchReport {
     pub max_negative_pivots: usize,
     /// Numeric LU factorizations.
     pub lu_factorizations: usize,
+    /// Tangents solved by a low-rank update of the last factorization.
+    pub low_rank_updates: usize,
     /// Deck compilation (parsing, mesh generation), seconds.
     pub compile_time: f64,
     /// Solve wall time measured around `run`, seconds.
     pub wall_time: f64,
+    /// CPU time (user + system) of the process during `run`, seconds.
+    pub cpu_time: f64,
+    /// Wall time per Newton iteration (`wall_time` over the iterations),
+    /// seconds.
+    pub wall_per_iteration: f64,
+    /// Mean time of one numeric factorization, seconds.
+    pub time_per_factorization: f64,
+    /// Wall time per Newton iteration over the time of one factorization
+    /// (the bar: close to 1).
+    pub iteration_over_factorization: f64,
+    /// Whether the increment predictor was on.
+    pub predictor: bool,
+    /// Whether low-rank updates were allowed.
+    pub low_rank: bool,
+    /// Entries of the factor `L` (diagonal included).
+    pub factor_nonzeros: usize,
+    /// Fill: factor entries over those of the matrix's lower triangle.
+    pub factor_fill: f64,
+    /// Peak resident memory of the process (`VmHWM`), bytes.
+    pub peak_memory_bytes: u64,
     /// The engine's phase timings (totals), seconds.
     pub timings: Timings,
     /// Phase timings per Newton iteration.
@@ -163,7 +192,11 @@ pub fn run_bench(opts: &BenchOptions) -> Result<BenchReport, String> {
     let probe = compile_text(path, &bench_deck(divisions, 1.0, opts.increments))?;
     let h_min = min_cell_edge(&probe);
     let penalty = 10.0 * YOUNG / h_min;
-    let text = bench_deck(divisions, penalty, opts.increments);
+    let mut text = bench_deck(divisions, penalty, opts.increments);
+    if !opts.predictor {
+        let line = format!("  increments = {}\n", opts.increments);
+        text = text.replace(&line, &format!("{line}  newton {{ predictor = false }}\n"));
+    }
     let model = compile_text(path, &text)?;
     let compile_time = t0.elapsed().as_secs_f64() / 2.0;
     if let Some(out) = &opts.deck_out {
@@ -178,9 +211,16 @@ pub fn run_bench(opts: &BenchOptions) -> Result<BenchReport, String> {
     ));
 
     let mut capture = Capture::default();
+    let cpu0 = ctc_engine::solve::memory::process_cpu_seconds();
     let t1 = Instant::now();
-    let outcome = run(&model, &mut capture);
+    let linear = (!opts.low_rank).then(|| {
+        Box::new(
+            ctc_engine::solve::linalg::direct::LinearSolver::new().with_low_rank(false, usize::MAX),
+        ) as Box<dyn ctc_engine::solve::linalg::LinearSystem>
+    });
+    let outcome = run_with(&model, &mut capture, None, linear);
     let wall_time = t1.elapsed().as_secs_f64();
+    let cpu_time = ctc_engine::solve::memory::process_cpu_seconds() - cpu0;
     let (summary, failure) = match outcome {
         Ok(s) => (s, None),
         Err(e) => (e.summary.clone(), Some(e.message)),
@@ -202,7 +242,7 @@ pub fn run_bench(opts: &BenchOptions) -> Result<BenchReport, String> {
         h_min,
         penalty,
         compile_time,
-        wall_time,
+        (wall_time, cpu_time),
         summary,
         accuracy,
         failure,
@@ -218,13 +258,18 @@ fn report_of(
     h_min: f64,
     penalty: f64,
     compile_time: f64,
-    wall_time: f64,
+    (wall_time, cpu_time): (f64, f64),
     summary: RunSummary,
     accuracy: Vec<Value>,
     failure: Option<String>,
 ) -> BenchReport {
     let its = summary.newton_iterations.max(1) as f64;
     let t = &summary.timings;
+    let factorizations =
+        (summary.cholesky_factorizations + summary.ldlt_factorizations + summary.lu_factorizations)
+            .max(1) as f64;
+    // full factorizations only (the low-rank updates are timed apart)
+    let time_per_factorization = (t.factorization - t.low_rank) / factorizations;
     BenchReport {
         size: opts.size,
         divisions,
@@ -242,8 +287,18 @@ fn report_of(
         ldlt_factorizations: summary.ldlt_factorizations,
         max_negative_pivots: summary.max_negative_pivots,
         lu_factorizations: summary.lu_factorizations,
+        low_rank_updates: summary.low_rank_updates,
         compile_time,
         wall_time,
+        cpu_time,
+        wall_per_iteration: wall_time / its,
+        time_per_factorization,
+        iteration_over_factorization: wall_time / its / time_per_factorization.max(1e-300),
+        predictor: opts.predictor,
+        low_rank: opts.low_rank,
+        factor_nonzeros: summary.factor_nonzeros,
+        factor_fill: summary.factor_fill,
+        peak_memory_bytes: summary.peak_memory_bytes,
         per_iteration: PerIteration {
             assembly: t.assembly / its,
             contact: t.contact / its,
@@ -286,16 +341,37 @@ impl fmt::Display for BenchReport {
         )?;
         writeln!(
             f,
-            "  linear solver  {} ({} nonzeros; {} Cholesky, {} LDL^T (at most {} negative pivots), {} LU factorizations)",
+            "  linear solver  {} ({} nonzeros; {} Cholesky, {} LDL^T (at most {} negative pivots), {} LU factorizations; {} low-rank updates)",
             self.linear_solver,
             self.matrix_nonzeros,
             self.cholesky_factorizations,
             self.ldlt_factorizations,
             self.max_negative_pivots,
-            self.lu_factorizations
+            self.lu_factorizations,
+            self.low_rank_updates
+        )?;
+        writeln!(
+            f,
+            "  factor         {} nonzeros, fill {:.2}; peak memory {:.1} MiB; predictor {}, low-rank {}",
+            self.factor_nonzeros,
+            self.factor_fill,
+            self.peak_memory_bytes as f64 / (1u64 << 20) as f64,
+            if self.predictor { "on" } else { "off" },
+            if self.low_rank { "on" } else { "off" }
         )?;
         writeln!(f, "  compile        {:>9.3} s", self.compile_time)?;
-        writeln!(f, "  solve (total)  {:>9.3} s", self.wall_time)?;
+        writeln!(
+            f,
+            "  solve (total)  {:>9.3} s wall, {:.3} s CPU",
+            self.wall_time, self.cpu_time
+        )?;
+        writeln!(
+            f,
+            "  per iteration  {:>9.3} ms wall = {:.2} x one factorization ({:.3} ms)",
+            1e3 * self.wall_per_iteration,
+            self.iteration_over_factorization,
+            1e3 * self.time_per_factorization
+        )?;
         writeln!(
             f,
             "  {:<14} {:>10} {:>14} {:>7}",
@@ -313,6 +389,11 @@ impl fmt::Display for BenchReport {
                 "factorization",
                 self.timings.factorization,
                 self.per_iteration.factorization,
+            ),
+            (
+                " low-rank part",
+                self.timings.low_rank,
+                self.timings.low_rank / self.newton_iterations.max(1) as f64,
             ),
             ("solve", self.timings.solve, self.per_iteration.solve),
             ("output", self.timings.output, f64::NAN),

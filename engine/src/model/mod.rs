@@ -974,6 +974,10 @@ pub struct NewtonSettings {
     pub max_iter: usize,
     /// Backtracking line search on the residual norm.
     pub line_search: bool,
+    /// Increment predictor: the first iterate of an increment extrapolated
+    /// from the last two converged states of the step
+    /// (`crate::solve::newton::predictor`).
+    pub predictor: bool,
     /// Vanishing stabilization of the bodies held only by contact: the
     /// factor `c` of springs `c d_b` on the increment displacement (`d_b`
     /// the mean stiffness diagonal of body `b`), ramped down to 0 at the
@@ -988,6 +992,7 @@ impl Default for NewtonSettings {
             tol_displacement: 1e-8,
             max_iter: 25,
             line_search: true,
+            predictor: true,
             stabilize: None,
         }
     }

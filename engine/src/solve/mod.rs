@@ -245,8 +245,12 @@ pub struct Timings {
     pub assembly: f64,
     /// Contact search and contact forces/tangents.
     pub contact: f64,
-    /// Numeric sparse factorization (symbolic included on first use).
+    /// Numeric sparse factorization (symbolic included on first use), low-rank
+    /// updates included.
     pub factorization: f64,
+    /// Of `factorization`: the low-rank updates (`linalg::low_rank`: new
+    /// columns of the base's inverse, the dense update).
+    pub low_rank: f64,
     /// Triangular solves.
     pub solve: f64,
     /// Observers (result writing).
@@ -311,6 +315,12 @@ pub struct RunSummary {
     pub max_negative_pivots: usize,
     /// Numeric LU factorizations (Cholesky is retried at each increment).
     pub lu_factorizations: usize,
+    /// Tangents solved by a low-rank (Woodbury) update of the last
+    /// factorization instead of a factorization of their own
+    /// (`linalg::low_rank`: only the contact dofs' blocks changed); 0: every
+    /// tangent was factorized.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub low_rank_updates: usize,
     /// Symbolic factorizations of the Lagrange-multiplier saddle-point
     /// system (one per distinct active set met).
     pub saddle_symbolic_factorizations: usize,
@@ -583,6 +593,7 @@ where
     summary.cholesky_factorizations = stats.cholesky;
     summary.ldlt_factorizations = stats.ldlt;
     summary.lu_factorizations = stats.lu;
+    summary.low_rank_updates = stats.low_rank;
     summary.max_negative_pivots = stats.max_negative_pivots;
     summary.factor_nonzeros = stats.factor_nonzeros;
     summary.factor_bytes = stats.factor_bytes;

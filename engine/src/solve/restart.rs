@@ -13,22 +13,30 @@
 //! dimension (2 or 3; a restart file is read only by a model of the same
 //! dimension), then fields in a fixed order, ending with the state of the
 //! dynamic integrator (a flag, then velocities, accelerations, committed
-//! residual and forces, energies: [`DynamicState`]); every `f64` is stored
-//! as its 8 bytes, so the values read back are the values written, bit for
-//! bit. `CTCRST05` files (the same without the dynamic state) are read as
-//! quasi-static restart points; older formats are refused with their
-//! version named.
+//! residual and forces, energies: [`DynamicState`]), then the increment
+//! predictor's history (a flag, then the step, the start and end times of
+//! the last converged increment and the displacements at its start:
+//! [`PredictorHistory`]); every `f64` is stored as its 8 bytes, so the
+//! values read back are the values written, bit for bit. `CTCRST06` files
+//! (the same without the predictor's history: the first increment after the
+//! restart starts from the converged state) and `CTCRST05` files (also
+//! without the dynamic state, read as quasi-static restart points) are
+//! read; older formats are refused with their version named.
 
 use crate::element::{MaterialPoint, PointState};
 use crate::material::History;
 use crate::model::Model;
 use crate::solve::dynamics::DynamicState;
+pub use crate::solve::newton::predictor::PredictorHistory;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST06";
+const MAGIC: &[u8; 8] = b"CTCRST07";
 
-/// The previous format: no dynamic state (read, as quasi-static points).
+/// The previous format: no predictor history.
+const MAGIC_06: &[u8; 8] = b"CTCRST06";
+
+/// The format before: no dynamic state (read, as quasi-static points).
 const MAGIC_05: &[u8; 8] = b"CTCRST05";
 
 /// Values stored per integration point: position (3), volume, strain (6),
@@ -87,6 +95,9 @@ pub struct Checkpoint<const D: usize = 2> {
     /// The dynamic integrator's committed state (`None`: a model without
     /// dynamic steps, or a file of the previous format).
     pub dynamics: Option<DynamicState>,
+    /// The last converged increment for the increment predictor (`None`:
+    /// none yet, or a file of a previous format).
+    pub predictor: Option<PredictorHistory<D>>,
 }
 
 /// A restart file: the solver checkpoint and the result writer's index.
@@ -250,6 +261,16 @@ impl<const D: usize> RestartFile<D> {
                 e.f64s(&s.energy);
             }
         }
+        match &c.predictor {
+            None => e.0.push(0),
+            Some(h) => {
+                e.0.push(1);
+                e.usize(h.step);
+                e.f64(h.times.0);
+                e.f64(h.times.1);
+                e.f64s(h.start.as_flattened());
+            }
+        }
         e.0
     }
 
@@ -257,13 +278,15 @@ impl<const D: usize> RestartFile<D> {
     pub fn decode(data: &[u8]) -> Result<Self, String> {
         let magic = data.get(..MAGIC.len()).unwrap_or(&[]);
         let previous = magic == MAGIC_05;
-        if magic != MAGIC && !previous {
+        let no_predictor = previous || magic == MAGIC_06;
+        if magic != MAGIC && !no_predictor {
             if magic.starts_with(b"CTCRST") {
                 return Err(format!(
-                    "restart file of format {} (an older ctc): this version reads {} and \
-                     {}; run from the start",
+                    "restart file of format {} (an older ctc): this version reads {}, {} \
+                     and {}; run from the start",
                     String::from_utf8_lossy(magic),
                     String::from_utf8_lossy(MAGIC),
+                    String::from_utf8_lossy(MAGIC_06),
                     String::from_utf8_lossy(MAGIC_05)
                 ));
             }
@@ -295,7 +318,7 @@ impl<const D: usize> RestartFile<D> {
                     .into(),
             );
         }
-        let displacement = flat
+        let displacement: Vec<[f64; D]> = flat
             .chunks_exact(D)
             .map(|c| std::array::from_fn(|k| c[k]))
             .collect();
@@ -381,6 +404,28 @@ impl<const D: usize> RestartFile<D> {
                 energy: d.f64s()?,
             })
         };
+        let predictor = if no_predictor || d.bytes(1)?[0] == 0 {
+            None
+        } else {
+            let step = d.usize()?;
+            let times = (d.f64()?, d.f64()?);
+            let flat = d.f64s()?;
+            if flat.len() != displacement.len() * D {
+                return Err(
+                    "restart file corrupted: the predictor's displacements do not match \
+                     the nodes"
+                        .into(),
+                );
+            }
+            Some(PredictorHistory {
+                step,
+                times,
+                start: flat
+                    .chunks_exact(D)
+                    .map(|c| std::array::from_fn(|k| c[k]))
+                    .collect(),
+            })
+        };
         if d.pos != data.len() {
             return Err(format!(
                 "restart file corrupted: {} trailing bytes",
@@ -398,6 +443,7 @@ impl<const D: usize> RestartFile<D> {
                 points_time,
                 couplings,
                 dynamics,
+                predictor,
             },
             pvd,
         })
@@ -464,6 +510,11 @@ mod tests {
                     kinetic0: 0.005,
                     energy: vec![1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0, 8.0],
                 }),
+                predictor: Some(PredictorHistory {
+                    step: 1,
+                    times: (0.1, 0.1 + 0.2),
+                    start: vec![[-1e-17, 2.5], [1.0 / 3.0, -0.0]],
+                }),
             },
             pvd: vec![(0.5, "inc_0001.vtu".into()), (1.0, "inc_0002.vtu".into())],
         }
@@ -497,6 +548,7 @@ mod tests {
                 points_time: c.points_time,
                 couplings: Vec::new(),
                 dynamics: None,
+                predictor: None,
             },
             pvd: s.pvd.clone(),
         };
@@ -511,10 +563,17 @@ mod tests {
     #[test]
     fn previous_format_files_are_read_without_dynamic_state_and_older_ones_refused() {
         let mut s = sample();
+        s.checkpoint.predictor = None;
+        let mut bytes = s.encode();
+        // the format 06: its magic, no predictor flag at the end
+        bytes[..8].copy_from_slice(MAGIC_06);
+        bytes.pop();
+        assert_eq!(RestartFile::<2>::decode(&bytes).unwrap(), s);
         s.checkpoint.dynamics = None;
         let mut bytes = s.encode();
-        // the previous format: its magic, no dynamic flag at the end
+        // the format 05: its magic, no dynamic and no predictor flag
         bytes[..8].copy_from_slice(MAGIC_05);
+        bytes.pop();
         bytes.pop();
         assert_eq!(RestartFile::<2>::decode(&bytes).unwrap(), s);
         bytes[..8].copy_from_slice(b"CTCRST04");

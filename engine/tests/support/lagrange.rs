@@ -59,6 +59,7 @@ fn press(b: ModelBuilder, increments: usize) -> ModelBuilder {
             tol_displacement: 1e-10,
             max_iter: 25,
             line_search: true,
+            predictor: true,
             stabilize: None,
         })
 }

@@ -96,6 +96,7 @@ pub fn patch(
             tol_displacement: 1e-10,
             max_iter: 30,
             line_search: true,
+            predictor: true,
             stabilize: None,
         })
         .build()

@@ -793,7 +793,7 @@ pub struct Dynamic {
     pub span: Span,
 }
 
-/// `newton { tol tol_displacement max_iter line_search stabilize }`.
+/// `newton { tol tol_displacement max_iter line_search predictor stabilize }`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Newton {
     /// Residual tolerance.
@@ -804,6 +804,8 @@ pub struct Newton {
     pub max_iter: Option<Spanned<i64>>,
     /// Line search on/off.
     pub line_search: Option<Spanned<bool>>,
+    /// Increment predictor on/off.
+    pub predictor: Option<Spanned<bool>>,
     /// `stabilize = c` or a bare `stabilize` (the default factor).
     pub stabilize: Option<Spanned<f64>>,
     /// The block.

@@ -30,6 +30,9 @@ impl Lowerer<'_> {
                 if let Some(x) = &n.line_search {
                     newton.line_search = x.value;
                 }
+                if let Some(x) = &n.predictor {
+                    newton.predictor = x.value;
+                }
                 if let Some(x) = &n.stabilize {
                     newton.stabilize = Some(x.value);
                 }

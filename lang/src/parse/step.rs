@@ -43,6 +43,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Step> {
             tol_displacement: n.number("tol_displacement", diags),
             max_iter: n.integer("max_iter", diags),
             line_search: n.boolean("line_search", diags),
+            predictor: n.boolean("predictor", diags),
             stabilize: stabilize(&mut n, diags),
             span: b.span,
         };

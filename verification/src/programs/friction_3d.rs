@@ -262,6 +262,7 @@ impl Scene {
             tol_displacement: 1e-10,
             max_iter: 30,
             line_search: true,
+            predictor: true,
             stabilize: None,
         };
         let last = self.drive_end();

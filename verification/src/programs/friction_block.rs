@@ -179,6 +179,7 @@ impl Block {
             tol_displacement: 1e-10,
             max_iter: 30,
             line_search: true,
+            predictor: true,
             stabilize: None,
         };
         b.tool(

@@ -149,6 +149,7 @@ fn solver_model(r: f64, tau_ss: f64, n: usize) -> Model {
         tol_displacement: 1e-11,
         max_iter: 20,
         line_search: true,
+        predictor: true,
         stabilize: None,
     };
     ModelBuilder::axisymmetric()

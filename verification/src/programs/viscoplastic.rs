@@ -190,6 +190,7 @@ fn solver_model(rate: f64, t_end: f64, increments: usize) -> Model {
             tol_displacement: 1e-11,
             max_iter: 20,
             line_search: true,
+            predictor: true,
             stabilize: None,
         })
         .build()

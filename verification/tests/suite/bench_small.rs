@@ -38,3 +38,45 @@ fn bench_rigid_cylinder_block_small_size_report_is_consistent() {
     let json: serde_json::Value = serde_json::from_str(&r.to_json()).unwrap();
     assert_eq!(json["divisions"][0], 28);
 }
+
+/// The increment predictor (issue 20) moves only the first iterate of each
+/// increment: the converged results agree with the plain start's to the
+/// Newton tolerance (1e-8), in no more iterations.
+#[test]
+fn bench_predictor_keeps_results_and_saves_iterations() {
+    let run = |predictor| {
+        let r = run_bench(&BenchOptions {
+            size: 0.01,
+            predictor,
+            ..BenchOptions::default()
+        })
+        .expect("bench deck compiles");
+        assert!(r.failure.is_none(), "{:?}", r.failure);
+        r
+    };
+    let (on, off) = (run(true), run(false));
+    assert!(on.predictor && !off.predictor);
+    assert!(
+        on.newton_iterations <= off.newton_iterations,
+        "predictor {:?} vs plain {:?}",
+        on.iterations_per_increment,
+        off.iterations_per_increment
+    );
+    // the first increment has no history: identical
+    assert_eq!(
+        on.iterations_per_increment[0],
+        off.iterations_per_increment[0]
+    );
+    assert_eq!(on.accuracy.len(), off.accuracy.len());
+    for (a, b) in on.accuracy.iter().zip(&off.accuracy) {
+        assert_eq!(a.quantity.name(), b.quantity.name());
+        let scale = a.computed.abs().max(b.computed.abs()).max(1e-12);
+        assert!(
+            (a.computed - b.computed).abs() <= 1e-6 * scale,
+            "{}: {} vs {}",
+            a.quantity.name(),
+            a.computed,
+            b.computed
+        );
+    }
+}

@@ -21,8 +21,14 @@
 //! The first method that worked is tried first at the next factorization;
 //! [`LinearSolver::prefer_cholesky`] goes back to Cholesky (each increment).
 //!
+//! Large tangents that differ from the last factorized one only in the rows
+//! and columns of a few dofs (linear-elastic bodies in contact with rigid
+//! tools: only the contact blocks change) are solved by a low-rank update
+//! of that factorization instead of a new one ([`super::low_rank`]).
+//!
 //! This is the [`LinearSystem`] of the default build (serial, direct).
 
+use super::low_rank::LowRank;
 use super::pattern::SparsePattern;
 use super::{FactorStats, LinearError, LinearSystem, ZeroMode};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -95,7 +101,19 @@ pub struct LinearSolver {
     factor: Factor,
     /// The zero-energy mode of the last matrix, if it was singular.
     zero_mode: Option<ZeroMode>,
+    /// Low-rank updates of the last full factorization ([`LowRank`]).
+    low_rank: LowRank,
+    /// Whether low-rank updates are used (matrices of at least
+    /// `low_rank_min_rows` rows).
+    low_rank_enabled: bool,
+    low_rank_min_rows: usize,
+    /// Tangents solved by a low-rank update instead of a factorization.
+    pub low_rank_count: usize,
 }
+
+/// Matrices with fewer rows are always factorized in full (a low-rank
+/// update pays where a factorization is expensive).
+pub const LOW_RANK_MIN_ROWS: usize = 20_000;
 
 impl std::fmt::Debug for LinearSolver {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -128,7 +146,20 @@ impl LinearSolver {
             lu: None,
             factor: Factor::None,
             zero_mode: None,
+            low_rank: LowRank::default(),
+            low_rank_enabled: true,
+            low_rank_min_rows: LOW_RANK_MIN_ROWS,
+            low_rank_count: 0,
         }
+    }
+
+    /// With (`true`, the default) or without low-rank updates of the last
+    /// factorization (matrices of at least `min_rows` rows).
+    pub fn with_low_rank(mut self, enabled: bool, min_rows: usize) -> Self {
+        self.low_rank_enabled = enabled;
+        self.low_rank_min_rows = min_rows;
+        self.low_rank.clear();
+        self
     }
 
     /// The factorization in use (after the first call to `factorize`).
@@ -156,11 +187,88 @@ impl LinearSolver {
         self.symbolic_lu = None;
         self.lu = None;
         self.factor = Factor::None;
+        self.low_rank.clear();
     }
 
     /// Numerically factorizes the matrix with `pattern` and `values` (the
-    /// first `pattern.nnz()` entries are used; both triangles stored).
+    /// first `pattern.nnz()` entries are used; both triangles stored), or
+    /// updates the last factorization when only a few dofs' rows and
+    /// columns changed ([`LowRank`]).
     pub fn factorize(
+        &mut self,
+        pattern: &SparsePattern,
+        values: &[f64],
+    ) -> Result<(), LinearError> {
+        let values = &values[..pattern.nnz()];
+        if self.try_low_rank(pattern, values) {
+            return Ok(());
+        }
+        self.low_rank.active = false;
+        let r = self.factorize_full(pattern, values);
+        let base = matches!(self.factor, Factor::Llt | Factor::Ldlt | Factor::Lu);
+        if self.low_rank_enabled
+            && pattern.n >= self.low_rank_min_rows
+            && r.is_ok()
+            && base
+            && self.zero_mode.is_none()
+        {
+            self.low_rank.rebase(pattern.n, values);
+        } else {
+            self.low_rank.clear();
+        }
+        r
+    }
+
+    /// The low-rank update of the base factorization for `values`, when
+    /// one is held, the changed dofs and the cached columns stay within
+    /// [`LowRank::limit`] and the update is regular; false otherwise (the
+    /// caller factorizes in full).
+    fn try_low_rank(&mut self, pattern: &SparsePattern, values: &[f64]) -> bool {
+        let n = pattern.n;
+        if !self.low_rank_enabled
+            || n < self.low_rank_min_rows
+            || !self.low_rank.has_base(n, values.len())
+            || !matches!(self.factor, Factor::Llt | Factor::Ldlt | Factor::Lu)
+        {
+            return false;
+        }
+        let limit = LowRank::limit(n);
+        let Some(s) = self
+            .low_rank
+            .changed_dofs(&pattern.col_ptr, &pattern.row_idx, values, limit)
+        else {
+            return false;
+        };
+        let missing = self.low_rank.missing(&s);
+        if self.low_rank.cached() + missing.len() > limit {
+            return false;
+        }
+        if !missing.is_empty() {
+            let mut cols = vec![0.0; n * missing.len()];
+            for (c, &d) in missing.iter().enumerate() {
+                cols[c * n + d] = 1.0;
+            }
+            if self.solve_base(&mut cols, missing.len()).is_err()
+                || !cols.iter().all(|v| v.is_finite())
+            {
+                return false;
+            }
+            self.low_rank.add_columns(&missing, &cols);
+        }
+        if !self
+            .low_rank
+            .update(s, &pattern.col_ptr, &pattern.row_idx, values)
+        {
+            return false;
+        }
+        self.zero_mode = None;
+        self.low_rank_count += 1;
+        true
+    }
+
+    /// Numerically factorizes the matrix with `pattern` and `values` in
+    /// full.
+    fn factorize_full(
         &mut self,
         pattern: &SparsePattern,
         values: &[f64],
@@ -261,18 +369,30 @@ impl LinearSolver {
     /// Solves `K x = b` in place with the last factorization
     /// ([`LinearError::NotFactorized`] without one).
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
-        let n = rhs.len();
+        self.solve_base(rhs, 1)?;
+        if self.low_rank.active {
+            self.low_rank.correct(rhs);
+        }
+        Ok(())
+    }
+
+    /// Solves `K0 X = B` in place for the `ncols` columns of `rhs`
+    /// (column-major) with the last full factorization `K0`.
+    fn solve_base(&mut self, rhs: &mut [f64], ncols: usize) -> Result<(), LinearError> {
+        let n = rhs.len() / ncols.max(1);
         if n == 0 {
             return Ok(());
         }
-        let b = MatMut::from_column_major_slice_mut(rhs, n, 1);
+        let b = MatMut::from_column_major_slice_mut(rhs, n, ncols);
         match self.factor {
             Factor::Llt | Factor::Ldlt => {
                 let (Some(sym), Some(scratch)) = (self.symbolic.as_ref(), self.scratch.as_mut())
                 else {
                     return Err(LinearError::NotFactorized);
                 };
-                let stack = MemStack::new(scratch);
+                let mut many = (ncols > 1)
+                    .then(|| MemBuffer::new(sym.solve_in_place_scratch::<f64>(ncols, Par::Seq)));
+                let stack = MemStack::new(many.as_mut().unwrap_or(scratch));
                 if self.factor == Factor::Llt {
                     LltRef::new(sym, &self.l_values).solve_in_place_with_conj(
                         Conj::No,
@@ -335,6 +455,7 @@ impl LinearSystem for LinearSolver {
             lu: self.lu_count,
             negative_pivots: self.negative_pivots,
             max_negative_pivots: self.max_negative_pivots,
+            low_rank: self.low_rank_count,
             factor_nonzeros: self.l_values.len(),
             factor_bytes: self.l_values.len() * std::mem::size_of::<f64>()
                 + self.scratch.as_ref().map_or(0, |b| b.len()),
@@ -705,5 +826,141 @@ mod tests {
         let mut x = b;
         s.solve(&mut x).unwrap();
         assert!(residual(&a, &x, &b) < 1e-3, "{x:?}");
+    }
+}
+
+#[cfg(test)]
+mod low_rank_tests {
+    use super::*;
+
+    /// A 2-dof-per-node grid "stiffness": a 5-point Laplacian per
+    /// component plus a coupling between the components, held by a
+    /// diagonal shift (SPD), as a full CSC pattern.
+    fn grid(nx: usize) -> (SparsePattern, Vec<f64>) {
+        let nodes = nx * nx;
+        let n = 2 * nodes;
+        let mut cols: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n];
+        let node = |i: usize, j: usize| i * nx + j;
+        for i in 0..nx {
+            for j in 0..nx {
+                let a = node(i, j);
+                for c in 0..2 {
+                    let d = 2 * a + c;
+                    cols[d].push((d, 4.2));
+                    cols[d].push((2 * a + 1 - c, 0.3));
+                    for (di, dj) in [(0i64, 1i64), (1, 0), (0, -1), (-1, 0)] {
+                        let (ii, jj) = (i as i64 + di, j as i64 + dj);
+                        if ii >= 0 && jj >= 0 && (ii as usize) < nx && (jj as usize) < nx {
+                            cols[d].push((2 * node(ii as usize, jj as usize) + c, -1.0));
+                        }
+                    }
+                }
+            }
+        }
+        let mut col_ptr = vec![0];
+        let (mut row_idx, mut values) = (Vec::new(), Vec::new());
+        for mut c in cols {
+            c.sort_by_key(|e| e.0);
+            for (r, v) in c {
+                row_idx.push(r);
+                values.push(v);
+            }
+            col_ptr.push(row_idx.len());
+        }
+        (
+            SparsePattern {
+                n,
+                col_ptr,
+                row_idx,
+            },
+            values,
+        )
+    }
+
+    /// Adds `k n n^T` (plus `k2` on the diagonal) to the 2x2 block of each
+    /// of `nodes`.
+    fn contact(p: &SparsePattern, v: &mut [f64], nodes: &[usize], k: f64, k2: f64) {
+        for (m, &a) in nodes.iter().enumerate() {
+            let t = 0.3 * m as f64;
+            let nrm = [t.sin(), t.cos()];
+            for (r, nr) in nrm.iter().enumerate() {
+                for (c, nc) in nrm.iter().enumerate() {
+                    let slot = p.find(2 * a + r, 2 * a + c).unwrap();
+                    v[slot] += k * nr * nc + if r == c { k2 } else { 0.0 };
+                }
+            }
+        }
+    }
+
+    fn full_solution(p: &SparsePattern, v: &[f64], b: &[f64]) -> Vec<f64> {
+        let mut s = LinearSolver::new().with_low_rank(false, 0);
+        s.factorize(p, v).unwrap();
+        let mut x = b.to_vec();
+        s.solve(&mut x).unwrap();
+        x
+    }
+
+    fn rel_diff(a: &[f64], b: &[f64]) -> f64 {
+        let d = a.iter().zip(b).map(|(x, y)| (x - y).powi(2)).sum::<f64>();
+        let n = b.iter().map(|y| y * y).sum::<f64>();
+        (d / n).sqrt()
+    }
+
+    /// The Woodbury update of a factorized base against a full
+    /// factorization of the updated matrix (issue 20): equal to 1e-10,
+    /// through successive contact states (stiff penalty blocks, nodes
+    /// added and released, an indefinite curvature term), without any new
+    /// factorization; an update of every entry is factorized in full.
+    #[test]
+    fn low_rank_update_matches_the_full_factorization() {
+        let (p, base) = grid(12);
+        let n = p.n;
+        let b: Vec<f64> = (0..n).map(|i| ((i * 7 % 13) as f64 - 6.0) / 6.0).collect();
+        let mut s = LinearSolver::new().with_low_rank(true, 0);
+        s.factorize(&p, &base).unwrap();
+        assert_eq!((s.cholesky_count, s.low_rank_count), (1, 0));
+        let states: [(&[usize], f64, f64); 4] = [
+            (&[60, 61, 62], 1e4, 0.0),
+            (&[59, 60, 61, 62, 63], 1e4, 0.0),
+            (&[61, 62], 1e6, 0.0),
+            // a destabilizing curvature term: indefinite blocks
+            (&[60, 61, 62], 1e4, -5.0),
+        ];
+        for (k, (nodes, pen, curv)) in states.iter().enumerate() {
+            let mut v = base.clone();
+            contact(&p, &mut v, nodes, *pen, *curv);
+            s.factorize(&p, &v).unwrap();
+            assert_eq!(s.low_rank_count, k + 1, "state {k}: a low-rank update");
+            let mut x = b.clone();
+            s.solve(&mut x).unwrap();
+            let e = rel_diff(&x, &full_solution(&p, &v, &b));
+            assert!(e < 1e-10, "state {k}: {e:e}");
+        }
+        assert_eq!(s.cholesky_count + s.ldlt_count + s.lu_count, 1);
+        // back to the base itself: an empty update
+        s.factorize(&p, &base).unwrap();
+        let mut x = b.clone();
+        s.solve(&mut x).unwrap();
+        assert!(rel_diff(&x, &full_solution(&p, &base, &b)) < 1e-12);
+        // every entry changed (a nonlinear material): a full factorization
+        let scaled: Vec<f64> = base.iter().map(|x| 1.1 * x).collect();
+        s.factorize(&p, &scaled).unwrap();
+        assert_eq!(s.cholesky_count, 2);
+        let mut x = b.clone();
+        s.solve(&mut x).unwrap();
+        assert!(rel_diff(&x, &full_solution(&p, &scaled, &b)) < 1e-12);
+    }
+
+    /// Below the size threshold (and when disabled) every tangent is
+    /// factorized: the general path is unchanged.
+    #[test]
+    fn small_matrices_are_always_factorized() {
+        let (p, base) = grid(6);
+        let mut s = LinearSolver::new();
+        s.factorize(&p, &base).unwrap();
+        let mut v = base.clone();
+        contact(&p, &mut v, &[10, 11], 1e4, 0.0);
+        s.factorize(&p, &v).unwrap();
+        assert_eq!((s.cholesky_count, s.low_rank_count), (2, 0));
     }
 }

@@ -23,6 +23,7 @@
 //! aware: element and contact blocks -> value slots).
 
 pub mod direct;
+pub mod low_rank;
 pub mod ordering;
 pub mod pattern;
 pub mod saddle;
@@ -96,6 +97,9 @@ pub struct FactorStats {
     pub negative_pivots: usize,
     /// Largest `negative_pivots` over the run.
     pub max_negative_pivots: usize,
+    /// Tangents solved by a low-rank update of the last factorization
+    /// instead of a factorization ([`low_rank`]).
+    pub low_rank: usize,
     /// Stored entries of the Cholesky / `L D L^T` factor `L` (diagonal
     /// included) of the fill-reducing ordering; 0 before the first
     /// factorization or when only LU ran.

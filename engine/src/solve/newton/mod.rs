@@ -27,6 +27,7 @@
 pub mod convergence;
 pub mod failure;
 pub mod line_search;
+pub mod predictor;
 pub mod state;
 
 pub use convergence::Converged;
@@ -148,6 +149,15 @@ where
     /// ([`super::share`]): partial internal forces and tangent, the forces
     /// summed over the ranks by the linear system.
     share: Option<std::sync::Arc<super::share::AssemblyShare>>,
+    /// The converged history the increment predictor extrapolates
+    /// ([`predictor`]).
+    pub(super) history: predictor::History<D>,
+    /// The next Newton loop is the first of an increment attempt (set by
+    /// commit, rollback and restore): the predictor may start it.
+    fresh: bool,
+    /// Step and end time of the current attempt (recorded into the history
+    /// at commit).
+    attempt: (usize, f64),
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -239,6 +249,9 @@ where
             damping: vec![0.0; n_dofs],
             load_scale: vec![1.0; model.loads.len()],
             share,
+            history: predictor::History::default(),
+            fresh: true,
+            attempt: (0, 0.0),
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -675,6 +688,40 @@ where
         Ok(ev)
     }
 
+    /// The increment predictor ([`predictor`]), called with the plain start
+    /// evaluated (the converged state, tangent included): moves the free
+    /// dofs to the extrapolation by `ratio` of the last converged
+    /// increment and the prescribed dofs to their targets, evaluates
+    /// there, and keeps that start when its residual `||r_f||` is smaller
+    /// than the plain start's `||r_f + K_fp dp||`; otherwise (or when the
+    /// predicted state inverts an element, or fails otherwise) the plain
+    /// start is evaluated again. Returns whether the predicted start is
+    /// kept (then `dp = 0`: the prescribed increment is in the state).
+    fn predict(&mut self, t: f64, ratio: f64) -> Result<bool, Failure> {
+        let Some(last) = self.history.last.as_ref() else {
+            return Ok(false);
+        };
+        let mut plain = self.r_free.clone();
+        self.scatter
+            .add_fp_product(&self.values, &self.dp, &mut plain);
+        let plain_norm = norm(&plain);
+        {
+            let u = self.u.as_flattened_mut();
+            predictor::extrapolate(u, last.start.as_flattened(), &self.dofs.free, ratio);
+            for (p, v) in self.dofs.prescribed.iter().zip(&self.target) {
+                u[p.dof] = *v;
+            }
+        }
+        let predicted = self.evaluate(t, true);
+        if matches!(predicted, Ok(ev) if ev.abs.is_finite() && ev.abs < plain_norm) {
+            self.dp.fill(0.0);
+            return Ok(true);
+        }
+        self.u.copy_from_slice(&self.committed);
+        self.evaluate(t, true)?;
+        Ok(false)
+    }
+
     /// Sets the free dofs to `base + s * rhs` and, in the first iteration,
     /// the prescribed dofs to their target values.
     fn set_state(&mut self, s: f64, prescribed: bool) {
@@ -700,11 +747,15 @@ where
         let Some(saddle) = self.saddle.as_mut().filter(|_| !constraints.is_empty()) else {
             let start = Instant::now();
             let cpu0 = thread_cpu_seconds();
+            let updates = self.linear.stats().low_rank;
             let r = self.linear.factorize(&self.scatter.pattern, &self.values);
             let mid = Instant::now();
             let cpu1 = thread_cpu_seconds();
             self.timings.factorization += (mid - start).as_secs_f64();
             self.timings.cpu[2] += cpu1 - cpu0;
+            if self.linear.stats().low_rank > updates {
+                self.timings.low_rank += (mid - start).as_secs_f64();
+            }
             r.map_err(|e| self.linear_failure(e))?;
             let mode = self.linear.zero_mode().cloned();
             self.zero_mode.1 = mode.is_some();
@@ -970,7 +1021,9 @@ where
                 *d = v - u[p.dof];
             }
         }
-        let dp_norm = norm(&self.dp);
+        let mut dp_norm = norm(&self.dp);
+        let fresh = std::mem::take(&mut self.fresh);
+        self.attempt = (step, t);
         let mut residuals: Vec<f64> = Vec::new();
         let mut divergence = DivergenceMonitor::default();
         let mut tangent_valid = false;
@@ -1002,6 +1055,14 @@ where
                     self.start_closed = Some(closed);
                 }
                 ev.map_err(|f| f.with_residuals(&residuals))?;
+                if first && fresh && settings.predictor && predictor::applies(model) {
+                    let is_dynamic = model.steps.get(step).is_some_and(|s| s.dynamic.is_some());
+                    if let Some(ratio) = self.history.ratio(step, t).filter(|_| !is_dynamic) {
+                        if self.predict(t, ratio)? {
+                            dp_norm = 0.0;
+                        }
+                    }
+                }
             }
             self.iterations += 1;
             // 2. right-hand side -(r_f + K_fp dp)

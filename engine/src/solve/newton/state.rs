@@ -46,6 +46,16 @@ where
                 [&self.f_int, &ext, &self.f_c, &self.damping],
             );
         }
+        // the increment's start: the end of the last one recorded (exact
+        // grid times), else the assembler's accumulated time
+        let t0 = self
+            .history
+            .last
+            .as_ref()
+            .map_or(self.assembler.committed_time(), |h| h.times.1);
+        let (step, t1) = self.attempt;
+        self.history.record(step, t0, t1, &self.committed);
+        self.fresh = true;
         self.committed.copy_from_slice(&self.u);
         self.assembler.commit();
         self.contacts.commit();
@@ -55,6 +65,7 @@ where
     pub fn rollback(&mut self) {
         self.u.copy_from_slice(&self.committed);
         self.touch_start = !self.any_committed;
+        self.fresh = true;
         self.assembler.rollback();
         self.contacts.rollback();
     }
@@ -73,6 +84,7 @@ where
             points_time: self.assembler.committed_time(),
             couplings,
             dynamics: self.dynamics.as_ref().map(|d| d.saved()),
+            predictor: self.history.last.clone(),
         }
     }
 
@@ -117,6 +129,8 @@ where
         self.u.copy_from_slice(&cp.displacement);
         self.any_committed = cp.increment > 0;
         self.touch_start = !self.any_committed;
+        self.history.last = cp.predictor.clone();
+        self.fresh = true;
         Ok(())
     }
 }

@@ -1,0 +1,321 @@
+//! Low-rank updates of a factorized tangent (Woodbury): the cheaper Newton
+//! iteration of issue 20 for bodies whose bulk stiffness does not change.
+//!
+//! A small-strain linear-elastic body in contact with a rigid tool has the
+//! same element stiffness at every iteration (cached, summed in the same
+//! order, so bit for bit the same values); only the contact blocks at the
+//! contact dofs change. When a new tangent `K` differs from the last
+//! factorized one `K0` (the *base*) only in the rows and columns of a small
+//! set `S` of dofs, `K = K0 + E_S dK E_S^T` with `dK` the dense `|S| x |S|`
+//! difference, and
+//!
+//! ```text
+//! K x = b:   x0 = K0^{-1} b,   Z = K0^{-1} E_S,
+//!            (I + dK Z_SS) y = dK x0_S,   x = x0 - Z y
+//! ```
+//!
+//! (exact: `K0 x = b - E_S y` and `y = dK E_S^T x`). The columns of `Z` are
+//! computed once per dof with the base factor (several right-hand sides at
+//! once) and cached for the run; each iteration then costs a comparison of
+//! the values, a dense LU of order `|S|`, one sparse solve and `Z y`, instead
+//! of a numeric factorization. The set `S` is found by comparing the
+//! values bit for bit, so the path is chosen by the matrices themselves: a
+//! nonlinear material changes every entry and keeps the full factorization.
+//! `S` (or the cache) outgrowing its bound ([`LowRank::limit`]), or a
+//! nearly singular `I + dK Z_SS` (pivot below [`SINGULAR`] times the
+//! largest entry), makes the next tangent a full factorization and the new
+//! base. Deterministic: no timings, fixed orders.
+
+/// Smallest pivot of the dense LU of `I + dK Z_SS`, relative to its largest
+/// entry, accepted (below: the updated tangent is nearly singular; the full
+/// factorization decides, and names a zero-energy mode if there is one).
+pub const SINGULAR: f64 = 1e-13;
+
+/// Values of `K0^{-1}` columns kept at most (256 MiB).
+pub const CACHE_VALUES: usize = 32 << 20;
+
+/// The base matrix, the cached columns of `K0^{-1}` and the current update.
+#[derive(Debug, Clone, Default)]
+pub struct LowRank {
+    /// Values of the base matrix `K0` (the pattern's `nnz`).
+    pub base: Vec<f64>,
+    /// Order of the matrix.
+    n: usize,
+    /// Cached columns `K0^{-1} e_j`, column-major `n x cols`.
+    z: Vec<f64>,
+    /// Column of `z` of each dof (`u32::MAX`: not computed).
+    col_of: Vec<u32>,
+    /// Dofs of the current update, increasing.
+    pub s: Vec<usize>,
+    /// `dK`, row-major `|S| x |S|`.
+    dk: Vec<f64>,
+    /// LU factors of `I + dK Z_SS` (row-major, unit lower part below the
+    /// diagonal) and the row permutation.
+    lu: Vec<f64>,
+    perm: Vec<usize>,
+    /// Whether the current factorization is the base plus this update.
+    pub active: bool,
+}
+
+impl LowRank {
+    /// Largest `|S|` and cached column count for a matrix of order `n`:
+    /// `2 sqrt(n)` (the dense work and `Z y` stay below a triangular solve's
+    /// order of cost) and at most [`CACHE_VALUES`] cached values, at least
+    /// 16.
+    pub fn limit(n: usize) -> usize {
+        let by_cost = (2.0 * (n as f64).sqrt()).ceil() as usize;
+        by_cost.min(CACHE_VALUES / n.max(1)).max(16)
+    }
+
+    /// Makes `values` (just factorized in full) the base; the cache is
+    /// emptied.
+    pub fn rebase(&mut self, n: usize, values: &[f64]) {
+        self.base.clear();
+        self.base.extend_from_slice(values);
+        self.n = n;
+        self.z.clear();
+        self.col_of.clear();
+        self.col_of.resize(n, u32::MAX);
+        self.s.clear();
+        self.active = false;
+    }
+
+    /// Forgets the base (a failed or singular full factorization, a new
+    /// pattern).
+    pub fn clear(&mut self) {
+        self.base.clear();
+        self.n = 0;
+        self.z.clear();
+        self.col_of.clear();
+        self.s.clear();
+        self.active = false;
+    }
+
+    /// Whether a base is held for a matrix of order `n` with `nnz` values.
+    pub fn has_base(&self, n: usize, nnz: usize) -> bool {
+        self.n == n && n > 0 && self.base.len() == nnz
+    }
+
+    /// The dofs whose rows or columns differ (bit for bit) between the
+    /// matrix (`col_ptr`, `row_idx`, `values`) and the base, increasing;
+    /// `None` when more than `limit` differ.
+    pub fn changed_dofs(
+        &self,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        values: &[f64],
+        limit: usize,
+    ) -> Option<Vec<usize>> {
+        let mut mark = vec![false; self.n];
+        let mut count = 0;
+        for j in 0..self.n {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                if values[k].to_bits() != self.base[k].to_bits() {
+                    for d in [row_idx[k], j] {
+                        if !mark[d] {
+                            mark[d] = true;
+                            count += 1;
+                        }
+                    }
+                    if count > limit {
+                        return None;
+                    }
+                }
+            }
+        }
+        Some((0..self.n).filter(|&d| mark[d]).collect())
+    }
+
+    /// Dofs of `s` without a cached column.
+    pub fn missing(&self, s: &[usize]) -> Vec<usize> {
+        s.iter()
+            .copied()
+            .filter(|&d| self.col_of[d] == u32::MAX)
+            .collect()
+    }
+
+    /// Number of cached columns.
+    pub fn cached(&self) -> usize {
+        self.z.len() / self.n.max(1)
+    }
+
+    /// Appends the columns `K0^{-1} e_d` of `dofs`, given as `cols`
+    /// (column-major `n x dofs.len()`).
+    pub fn add_columns(&mut self, dofs: &[usize], cols: &[f64]) {
+        for (c, &d) in dofs.iter().enumerate() {
+            self.col_of[d] = (self.cached()) as u32;
+            self.z
+                .extend_from_slice(&cols[c * self.n..(c + 1) * self.n]);
+        }
+    }
+
+    fn column(&self, d: usize) -> &[f64] {
+        let c = self.col_of[d] as usize;
+        &self.z[c * self.n..(c + 1) * self.n]
+    }
+
+    /// Sets the update of the dofs `s` (all with cached columns) for the
+    /// matrix (`col_ptr`, `row_idx`, `values`): `dK` and the LU of
+    /// `I + dK Z_SS`. Returns false (and leaves the update inactive) when
+    /// that matrix is nearly singular.
+    pub fn update(
+        &mut self,
+        s: Vec<usize>,
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        values: &[f64],
+    ) -> bool {
+        self.active = false;
+        let m = s.len();
+        let mut pos = vec![u32::MAX; self.n];
+        for (a, &d) in s.iter().enumerate() {
+            pos[d] = a as u32;
+        }
+        let mut dk = vec![0.0; m * m];
+        for (b, &j) in s.iter().enumerate() {
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let a = pos[row_idx[k]];
+                if a != u32::MAX {
+                    dk[a as usize * m + b] = values[k] - self.base[k];
+                }
+            }
+        }
+        // Z_SS (row-major): zss[b][c] = (K0^{-1} e_{s_c})[s_b]
+        let mut zss = vec![0.0; m * m];
+        for (c, &d) in s.iter().enumerate() {
+            let col = self.column(d);
+            for (b, &r) in s.iter().enumerate() {
+                zss[b * m + c] = col[r];
+            }
+        }
+        // M = I + dK Z_SS
+        let mut lu = vec![0.0; m * m];
+        for a in 0..m {
+            for b in 0..m {
+                let x = dk[a * m + b];
+                if x != 0.0 {
+                    let (row, zrow) = (&mut lu[a * m..(a + 1) * m], &zss[b * m..(b + 1) * m]);
+                    for (l, z) in row.iter_mut().zip(zrow) {
+                        *l += x * z;
+                    }
+                }
+            }
+            lu[a * m + a] += 1.0;
+        }
+        let Some(perm) = lu_in_place(&mut lu, m) else {
+            return false;
+        };
+        self.s = s;
+        self.dk = dk;
+        self.lu = lu;
+        self.perm = perm;
+        self.active = true;
+        true
+    }
+
+    /// `x = x0 - Z y` with `(I + dK Z_SS) y = dK x0_S`; `x` holds
+    /// `x0 = K0^{-1} b` on entry.
+    pub fn correct(&self, x: &mut [f64]) {
+        let m = self.s.len();
+        if !self.active || m == 0 {
+            return;
+        }
+        let xs: Vec<f64> = self.s.iter().map(|&d| x[d]).collect();
+        let t: Vec<f64> = (0..m)
+            .map(|a| {
+                self.dk[a * m..(a + 1) * m]
+                    .iter()
+                    .zip(&xs)
+                    .map(|(k, v)| k * v)
+                    .sum()
+            })
+            .collect();
+        let y = lu_solve(&self.lu, &self.perm, m, &t);
+        for (&d, &yb) in self.s.iter().zip(&y) {
+            if yb != 0.0 {
+                for (xi, zi) in x.iter_mut().zip(self.column(d)) {
+                    *xi -= yb * zi;
+                }
+            }
+        }
+    }
+}
+
+/// Dense LU with partial pivoting of the row-major `m x m` matrix `a`, in
+/// place (unit lower factor below the diagonal); the row order, or `None`
+/// when a pivot is below [`SINGULAR`] times the largest entry (or not
+/// finite).
+fn lu_in_place(a: &mut [f64], m: usize) -> Option<Vec<usize>> {
+    let scale = a.iter().fold(0.0f64, |s, v| s.max(v.abs()));
+    if !scale.is_finite() {
+        return None;
+    }
+    let mut perm: Vec<usize> = (0..m).collect();
+    for k in 0..m {
+        let p = (k..m).fold(k, |p, i| {
+            if a[i * m + k].abs() > a[p * m + k].abs() {
+                i
+            } else {
+                p
+            }
+        });
+        let pivot = a[p * m + k];
+        if !pivot.is_finite() || pivot.abs() <= SINGULAR * scale {
+            return None;
+        }
+        if p != k {
+            for c in 0..m {
+                a.swap(k * m + c, p * m + c);
+            }
+            perm.swap(k, p);
+        }
+        for i in k + 1..m {
+            let f = a[i * m + k] / pivot;
+            a[i * m + k] = f;
+            if f != 0.0 {
+                for c in k + 1..m {
+                    a[i * m + c] -= f * a[k * m + c];
+                }
+            }
+        }
+    }
+    Some(perm)
+}
+
+/// Solves with the factors of [`lu_in_place`].
+#[allow(clippy::needless_range_loop)] // triangular sweeps over `y` itself
+fn lu_solve(lu: &[f64], perm: &[usize], m: usize, b: &[f64]) -> Vec<f64> {
+    let mut y: Vec<f64> = perm.iter().map(|&p| b[p]).collect();
+    for i in 0..m {
+        let s: f64 = (0..i).map(|c| lu[i * m + c] * y[c]).sum();
+        y[i] -= s;
+    }
+    for i in (0..m).rev() {
+        let s: f64 = (i + 1..m).map(|c| lu[i * m + c] * y[c]).sum();
+        y[i] = (y[i] - s) / lu[i * m + i];
+    }
+    y
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn dense_lu_solves_and_refuses_singular_matrices() {
+        let m = 3;
+        let a0 = vec![0.0, 2.0, 1.0, 1.0, 1.0, 0.0, 4.0, -1.0, 3.0];
+        let mut a = a0.clone();
+        let perm = lu_in_place(&mut a, m).unwrap();
+        let x = [1.0, -2.0, 0.5];
+        let b: Vec<f64> = (0..m)
+            .map(|i| (0..m).map(|j| a0[i * m + j] * x[j]).sum())
+            .collect();
+        let y = lu_solve(&a, &perm, m, &b);
+        for (u, v) in x.iter().zip(&y) {
+            assert!((u - v).abs() < 1e-14, "{x:?} vs {y:?}");
+        }
+        let mut s = vec![1.0, 2.0, 2.0, 4.0];
+        assert!(lu_in_place(&mut s, 2).is_none());
+    }
+}
