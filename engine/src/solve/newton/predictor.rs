@@ -23,9 +23,9 @@
 //!
 //! Dynamic steps keep their integrator's own predictor (the first iterate
 //! is the converged state); `newton { predictor = false }` turns it off.
-//! Models with a material with internal variables (plasticity,
-//! viscoplasticity), friction, a free tool or a follower pressure keep the
-//! plain start too
+//! Models with a material other than small-strain linear elasticity
+//! (plasticity, viscoplasticity, finite strain), friction, a free tool or a
+//! follower pressure keep the plain start too
 //! ([`applies`]): an extrapolated slip or tool rotation can start the
 //! increment on another stick / slip branch, where the plain start's
 //! residual test cannot see it (a free-roller strip bending,
@@ -33,22 +33,24 @@
 
 use crate::model::Model;
 
-/// Whether the predictor is used for `model`: only with elastic
-/// (path-independent) materials — with plasticity or viscoplasticity the
+/// Whether the predictor is used for `model`: only with small-strain
+/// linear elastic materials — with plasticity or viscoplasticity the
 /// extrapolated start can lead the increment onto another loading path
 /// (skin pass: one more cutback and a 15 % different final roll force;
-/// rivet forming: one more increment, 3 % in a reaction) —; not with friction (a
+/// rivet forming: one more increment, 3 % in a reaction), and at finite
+/// strain it can start an increment where elements invert (the Neo-Hooke
+/// indentation of `tests/suite/run_trust.rs`: 2 cutbacks with it, none
+/// without) —; not with friction (a
 /// path-dependent stick / slip state), free tools (a rotation unknown
 /// driven by friction) or follower pressures (the follower patch's
 /// homogeneous stress, checked to 1e-10, ended at 2.3e-10 with it).
 pub fn applies<const D: usize>(model: &Model<D>) -> bool {
     use crate::model::MaterialLaw;
-    model.materials.iter().all(|m| {
-        matches!(
-            m.law,
-            MaterialLaw::LinearElastic { .. } | MaterialLaw::NeoHookean { .. }
-        )
-    }) && model.contacts.iter().all(|c| c.friction.is_none())
+    model
+        .materials
+        .iter()
+        .all(|m| matches!(m.law, MaterialLaw::LinearElastic { .. }))
+        && model.contacts.iter().all(|c| c.friction.is_none())
         && model.tools.iter().all(|t| t.free_rotation.is_none())
         && !crate::solve::follower::has_follower(model)
 }
