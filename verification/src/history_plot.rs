@@ -263,44 +263,55 @@ pub fn pressure_cycle_plots(
         .iter()
         .filter(|h| h.starts_with("controlled_pressure["));
     for (k, p) in pressures.enumerate() {
-        let suffix = if k == 0 {
-            String::new()
-        } else {
-            format!("_{}", k + 1)
-        };
         let label = &p["controlled_pressure".len()..];
         let rate = format!("controlled_rate{label}");
         let time = with("time", |u| &u.time);
-        let file = format!("pressure_cycle{suffix}.svg");
+        let file = numbered("pressure_cycle", k);
         let title = format!("controlled pressure {label}");
         let y = with("pressure", |u| &u.stress);
-        if history_plot(
-            dir,
-            &file,
-            &title,
-            ("time", 1.0, &time),
-            (p, 1.0, &y),
-            f64::NAN,
-        )? {
+        if against_time(dir, &file, &title, &time, p, &y)? {
             files.push(file);
         }
         if header.contains(&rate) {
-            let file = format!("controlled_rate{suffix}.svg");
+            let file = numbered("controlled_rate", k);
             let title = format!("monitored strain rate {label}");
             let y = "equivalent plastic strain rate";
-            if history_plot(
-                dir,
-                &file,
-                &title,
-                ("time", 1.0, &time),
-                (&rate, 1.0, y),
-                f64::NAN,
-            )? {
+            if against_time(dir, &file, &title, &time, &rate, y)? {
                 files.push(file);
             }
         }
     }
     Ok(files)
+}
+
+/// `STEM.svg` for the first of several plots of one kind (`k = 0`),
+/// `STEM_2.svg`, `STEM_3.svg`, .. after it.
+fn numbered(stem: &str, k: usize) -> String {
+    if k == 0 {
+        format!("{stem}.svg")
+    } else {
+        format!("{stem}_{}.svg", k + 1)
+    }
+}
+
+/// The `history.csv` column `column` against time into `file` (y axis
+/// titled `y`); whether it was written.
+fn against_time(
+    dir: &Path,
+    file: &str,
+    title: &str,
+    time: &str,
+    column: &str,
+    y: &str,
+) -> Result<bool, String> {
+    history_plot(
+        dir,
+        file,
+        title,
+        ("time", 1.0, time),
+        (column, 1.0, y),
+        f64::NAN,
+    )
 }
 
 /// The plots of `ctc run` for follower pressures driven by a time function
@@ -317,20 +328,10 @@ pub fn pressure_time_plots(
     let mut files = Vec::new();
     let pressures = header.iter().filter(|h| h.starts_with("pressure["));
     for (k, p) in pressures.enumerate() {
-        let file = if k == 0 {
-            "pressure_time.svg".to_string()
-        } else {
-            format!("pressure_time_{}.svg", k + 1)
-        };
+        let file = numbered("pressure_time", k);
         let title = format!("applied pressure {}", &p["pressure".len()..]);
-        if history_plot(
-            dir,
-            &file,
-            &title,
-            ("time", 1.0, &with("time", |u| &u.time)),
-            (p, 1.0, &with("pressure", |u| &u.stress)),
-            f64::NAN,
-        )? {
+        let (time, y) = (with("time", |u| &u.time), with("pressure", |u| &u.stress));
+        if against_time(dir, &file, &title, &time, p, &y)? {
             files.push(file);
         }
     }
