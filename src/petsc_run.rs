@@ -46,23 +46,27 @@ pub fn run(
     let env = ctc_petsc::Environment::initialize(&options.join(" "))
         .map_err(|e| format!("error: cannot start MPI and PETSc: {e}"))?;
     let rank = env.world().rank();
-    // every rank compiles the deck; only rank 0 reports its errors
-    let quiet_rank = |r: Result<(), String>| match r {
-        Err(_) if rank > 0 => Err(String::new()),
-        r => r,
-    };
+    // every rank compiles the deck; only rank 0 reports the errors
     let model = crate::read(deck)
         .and_then(|source| ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source)));
-    let model = match model {
-        Ok(m) => m,
-        Err(e) => return quiet_rank(Err(e)),
-    };
     let dir = output.map_or_else(|| crate::default_output(deck, ""), Path::to_path_buf);
-    let r = match &model {
+    let r = model.and_then(|model| match &model {
         AnyModel::D2(m) => run_model(&env, m, &dir, quiet, verbose, restart),
         AnyModel::D3(m) => run_model(&env, m, &dir, quiet, verbose, restart),
-    };
-    quiet_rank(r)
+    });
+    // rank 0 prints its diagnosis before any rank leaves: a rank exiting
+    // with a failure makes `mpirun` kill the others, and could kill rank 0
+    // before its text is out
+    if let Err(e) = &r {
+        if rank == 0 && !e.is_empty() {
+            use std::io::Write;
+            eprintln!("{e}");
+            let _ = std::io::stderr().flush();
+        }
+        env.leave_together(std::time::Duration::from_secs(30));
+        return Err(String::new());
+    }
+    r
 }
 
 #[cfg(feature = "petsc")]

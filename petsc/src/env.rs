@@ -33,6 +33,11 @@ pub fn check(call: &'static str, code: ffi::PetscErrorCode) -> Result<(), PetscE
 
 /// A started MPI + PETSc environment; dropping it finalizes PETSc, then MPI.
 pub struct Environment {
+    /// A duplicate of the world kept for the leaving barrier alone, so it
+    /// can never match a collective call of the run (declared first: freed
+    /// before `universe` finalizes MPI).
+    leaving: mpi::topology::SimpleCommunicator,
+    /// MPI itself (finalized when dropped).
     universe: mpi::environment::Universe,
 }
 
@@ -58,7 +63,8 @@ impl Environment {
                 ),
             )?;
         }
-        let env = Environment { universe };
+        let leaving = mpi::traits::Communicator::duplicate(&universe.world());
+        let env = Environment { leaving, universe };
         env.insert_options(options)?;
         Ok(env)
     }
@@ -82,6 +88,34 @@ impl Environment {
     /// All the ranks of the run.
     pub fn world(&self) -> Comm<'_> {
         Comm::new(self.universe.world())
+    }
+
+    /// Waits, at most `timeout`, until every rank has called this: a rank
+    /// that has printed its diagnosis then leaves knowing the others did
+    /// not exit (and have `mpirun` kill it) before the text was out. True
+    /// if every rank arrived in time; false after `timeout` (a rank failed
+    /// alone and the others are elsewhere: the caller exits anyway, and
+    /// `mpirun` stops the rest). A separate communicator, so this barrier
+    /// never pairs with a collective call of the run.
+    pub fn leave_together(&self, timeout: std::time::Duration) -> bool {
+        use mpi::traits::CommunicatorCollectives;
+        let start = std::time::Instant::now();
+        let mut request = self.leaving.immediate_barrier();
+        loop {
+            match request.test() {
+                Ok(_) => return true,
+                Err(pending) if start.elapsed() >= timeout => {
+                    // the barrier cannot complete: leave the request
+                    // behind (the process is about to exit)
+                    std::mem::forget(pending);
+                    return false;
+                }
+                Err(pending) => {
+                    request = pending;
+                    std::thread::sleep(std::time::Duration::from_millis(1));
+                }
+            }
+        }
     }
 
     /// This process alone (a sequential PETSc object in a parallel run).
