@@ -8,5 +8,5 @@ venv=${CTC_VENV:-$here/target/venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install -q "maturin>=1.5,<2" numpy
 cd "$here"
-VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" maturin develop --release -q
+VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" maturin develop -q
 CTC_BIN=${CTC_BIN:-$here/../target/debug/ctc} "$venv/bin/python" -m unittest discover -s "$here/tests" -v

@@ -31,6 +31,7 @@ pub mod bench;
 pub mod capture;
 pub mod case;
 pub mod cases;
+pub mod cross_check;
 pub mod deck;
 pub mod fenicsx;
 pub mod fenicsx_export;

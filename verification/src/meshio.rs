@@ -20,6 +20,9 @@ use pyo3::prelude::*;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
+pub use crate::cross_check::CrossCheck;
+use crate::cross_check::{canonical_cell, key, Key};
+
 /// The Python side: flattens a `meshio.Mesh` into plain lists.
 const HELPER: &std::ffi::CStr = c_str!(
     r#"
@@ -102,33 +105,6 @@ pub struct WrittenState<'a> {
     pub reaction: Option<&'a [[f64; 2]]>,
     /// Contact evaluation per pair written (`None`: not requested).
     pub contact: Option<&'a [Vec<NodeContact>]>,
-}
-
-/// Result of a cross-check: how many values were compared and the
-/// mismatches found (empty = agreement).
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct CrossCheck {
-    /// Numbers compared.
-    pub compared: usize,
-    /// Description of each mismatch (at most a few per quantity).
-    pub mismatches: Vec<String>,
-}
-
-impl CrossCheck {
-    /// Whether no mismatch was found.
-    pub fn passed(&self) -> bool {
-        self.mismatches.is_empty()
-    }
-
-    fn value(&mut self, what: &str, index: usize, got: f64, expected: f64, tol: f64) {
-        self.compared += 1;
-        let ok = (got - expected).abs() <= tol * expected.abs().max(1e-300) || got == expected;
-        if !ok && self.mismatches.len() < 20 {
-            self.mismatches.push(format!(
-                "{what}[{index}]: meshio read {got:e}, ctc has {expected:e}"
-            ));
-        }
-    }
 }
 
 /// Relative tolerance on values read back from a VTU file: ctc writes the
@@ -262,32 +238,6 @@ pub fn compare_vtu(path: &Path, state: &WrittenState<'_>) -> Result<CrossCheck, 
 }
 
 /// Coordinates of a point as exact bit patterns (for numbering-free sets).
-type Key = [u64; 2];
-
-fn key(p: [f64; 2]) -> Key {
-    // +0.0 turns -0.0 into 0.0 so both readers' zeros compare equal.
-    [(p[0] + 0.0).to_bits(), (p[1] + 0.0).to_bits()]
-}
-
-/// A cell as the cyclic sequence of its corner keys, rotated to start at
-/// the smallest and walked counter-clockwise (ctc re-orients clockwise
-/// cells, meshio keeps the file's order).
-fn canonical_cell(points: &[[f64; 2]]) -> Vec<Key> {
-    let area2: f64 = (0..points.len())
-        .map(|i| {
-            let (a, b) = (points[i], points[(i + 1) % points.len()]);
-            a[0] * b[1] - b[0] * a[1]
-        })
-        .sum();
-    let mut keys: Vec<Key> = points.iter().map(|&p| key(p)).collect();
-    if area2 < 0.0 {
-        keys.reverse();
-    }
-    let start = (0..keys.len()).min_by_key(|&i| keys[i]).unwrap_or(0);
-    keys.rotate_left(start);
-    keys
-}
-
 /// Compares ctc's [`Mesh`] of a gmsh file with meshio's reading of the
 /// same file: the sets of node coordinates used by cells, the cells (as
 /// counter-clockwise coordinate cycles, so independent of numbering and
@@ -372,30 +322,4 @@ pub fn compare_gmsh(path: &Path, mesh: &Mesh) -> Result<CrossCheck, String> {
         }
     }
     Ok(check)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn canonical_cell_ignores_start_and_orientation() {
-        let a = canonical_cell(&[[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]);
-        let b = canonical_cell(&[[1.0, 1.0], [0.0, 0.0], [1.0, 0.0]]);
-        let cw = canonical_cell(&[[0.0, 0.0], [1.0, 1.0], [1.0, 0.0]]);
-        assert_eq!(a, b);
-        assert_eq!(a, cw);
-        let other = canonical_cell(&[[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]]);
-        assert_ne!(a, other);
-    }
-
-    #[test]
-    fn cross_check_value_reports_mismatches() {
-        let mut c = CrossCheck::default();
-        c.value("u", 0, 1.0, 1.0, 1e-15);
-        c.value("u", 1, 1.0 + 1e-9, 1.0, 1e-15);
-        assert_eq!(c.compared, 2);
-        assert_eq!(c.mismatches.len(), 1);
-        assert!(!c.passed());
-    }
 }
