@@ -55,8 +55,9 @@
 //!
 //! Measured per level:
 //! - closed folds: clusters of closed self-contact nodes along the wall
-//!   (an outward fold closes on the inner face, an inward one on the outer
-//!   face) against the folds the crush distance completes, `floor(delta /
+//!   (an outward fold closes on the inner face, an inward one on the
+//!   outer face; closed rows more than `H / 2` apart start a new cluster)
+//!   against the folds the crush distance completes, `floor(delta /
 //!   delta_e)` (judged: equal);
 //! - fold depth: the largest radial excursion of the mid-surface (the mean
 //!   radial displacement of each axial row of nodes) against `H`; and, not
@@ -72,8 +73,36 @@
 //!   dissipation, penalty energy)), the energy created (`max(gain, 0) /
 //!   K0`), friction work / K0 (not judged).
 //!
-//! Measured (`ctc verify dynamic_buckling_tube_axi --max-level 3`, see the
-//! table in the module tests' output and `docs/ARCHITECTURE.md`).
+//! Levels: 0 (the default, `examples/dynamic_buckling.ctc`) 2 x 40 cells,
+//! dt = 10 us; 1: the same mesh at dt = 5 us; 2: 3 x 60 at 5 us; 3: 4 x
+//! 120 at 2.5 us. Measured (`ctc verify dynamic_buckling_tube_axi
+//! --max-level 3 --jobs 1`, release build, 2-core machine at load ~10; the
+//! fold depth against H = 8.52 mm, the mean force against 49.56 kN):
+//!
+//! | level | cells   | dt    | closed folds | depth mm | mean kN | balance / K0 | friction / K0 | iterations (max) | cutbacks | wall  |
+//! | ----- | ------- | ----- | ------------ | -------- | ------- | ------------ | ------------- | ---------------- | -------- | ----- |
+//! | 0     | 2 x 40  | 10 us | 1            | 8.50     | 48.49   | 4.9e-5       | 3.1e-4        | 2643 (25)        | 1        | 9.8 s |
+//! | 1     | 2 x 40  | 5 us  | 1            | 8.03     | 50.64   | 2.0e-5       | 1.9e-4        | 3497 (8)         | 0        | 9.8 s |
+//! | 2     | 3 x 60  | 5 us  | 1            | 7.95     | 51.78   | 5.2e-5       | 2.3e-4        | 3758 (10)        | 0        | 15 s  |
+//! | 3     | 4 x 120 | 2.5 us| 1            | 7.82     | 51.10   | 3.9e-5       | 4.2e-4        | 7011 (9)         | 0        | 81 s  |
+//!
+//! The fold depth is 0.2 % / 5.8 % / 6.7 % / 8.3 % below Alexander's H,
+//! the mean crush force 2.2 % below / 2.2 % / 4.5 % / 3.1 % above
+//! Abramowicz-Jones with the effective crushing distance (33-43 % above
+//! their formula without it); the crush stops at 19.4-20.7 mm (one fold:
+//! `floor(delta / delta_e) = 1`, `delta_e` = 12.5 mm). The material length
+//! of the fold (23.0 / 23.0 / 20.7 / 19.7 mm against `2 H` = 17.0 mm)
+//! shortens with the mesh: quad4 cells are stiff in bending (F-bar cures
+//! volumetric locking only), which lengthens the plastic hinges; the
+//! depth, set by the hinges' positions, converges (8.03, 7.95, 7.82). The
+//! fold forms in the upper half of the tube in every run (its place is a
+//! bifurcation: at dt = 20 us the run took 7 cutbacks and folded at the
+//! die instead). Crush force history (level 0): the impact peak of 1.33
+//! squash loads (100 kN, the tube's inertia and the plastic compression
+//! wave), a fall to 26 kN while the wall bulges out, a rise to 58-72 kN
+//! once the fold's inner faces close (t = 2.6 ms), zero when the striker
+//! stops (3.9 ms). No energy is created (`gain <= 0`); the balance error is
+//! the scheme's dissipation; friction on the die takes 2-4e-4 of K0.
 
 use crate::case::{Check, Quantity};
 use crate::measure::Value;
@@ -315,7 +344,9 @@ pub fn folds(trace: &Trace, dz: f64) -> Folds {
             .collect();
         js.sort_unstable();
         js.dedup();
-        closed += js.windows(2).filter(|p| p[1] - p[0] > 2).count() + usize::from(!js.is_empty());
+        // a new fold where the closed rows are more than H / 2 apart
+        let gap = |p: &[usize]| (p[1] - p[0]) as f64 * dz > 0.5 * alexander_h();
+        closed += js.windows(2).filter(|p| gap(p)).count() + usize::from(!js.is_empty());
     }
     Folds {
         depth,
@@ -393,9 +424,9 @@ pub fn cases() -> Vec<VerifyCase> {
         levels: 1,
         checks: vec![
             Check::new(Quantity::Named(NAMES[0]), &[0.0]),
-            Check::new(Quantity::Named(NAMES[1]), &[0.1]),
-            Check::new(Quantity::Named(NAMES[2]), &[0.1]),
-            Check::new(Quantity::Named(NAMES[3]), &[1e-3]),
+            Check::new(Quantity::Named(NAMES[1]), &[0.05, 0.1]),
+            Check::new(Quantity::Named(NAMES[2]), &[0.05, 0.05, 0.08]),
+            Check::new(Quantity::Named(NAMES[3]), &[2e-4]),
             Check::new(Quantity::Named(NAMES[4]), &[1e-4]),
         ],
         kind: CaseKind::Program(ProgramCase {
