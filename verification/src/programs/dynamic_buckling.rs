@@ -54,11 +54,11 @@
 //! has stopped. Units mm, t, s, N, MPa (mJ).
 //!
 //! Measured per level:
-//! - closed folds: clusters of closed self-contact nodes along the wall
-//!   (an outward fold closes on the inner face, an inward one on the
-//!   outer face; closed rows more than `H / 2` apart start a new cluster)
-//!   against the folds the crush distance completes, `floor(delta /
-//!   delta_e)` (judged: equal);
+//! - closed folds: the spans from each closed self-contact node to its
+//!   master segment (an outward fold closes on the inner face, the two
+//!   arms touching, an inward one on the outer face), merged where they
+//!   overlap or lie less than `H / 2` apart, against the folds the crush
+//!   distance completes, `floor(delta / delta_e)` (judged: equal);
 //! - fold depth: the largest radial excursion of the mid-surface (the mean
 //!   radial displacement of each axial row of nodes) against `H`; and, not
 //!   judged, the material length of the fold (the reference axial extent
@@ -223,8 +223,9 @@ pub struct Trace {
     pub displacement: Vec<[f64; 2]>,
     /// Reference coordinates.
     pub nodes: Vec<[f64; 2]>,
-    /// Closed self-contact nodes at the end: inner face, outer face.
-    pub closed: [Vec<usize>; 2],
+    /// Closed self-contact nodes at the end with the first node of their
+    /// master segment: inner face, outer face.
+    pub closed: [Vec<(usize, usize)>; 2],
 }
 
 impl Observer<2> for Trace {
@@ -258,7 +259,7 @@ impl Observer<2> for Trace {
                 closed.extend(
                     pair.iter()
                         .filter(|n| n.status == ContactStatus::Closed)
-                        .map(|n| n.node),
+                        .filter_map(|n| n.master.as_ref().map(|m| (n.node, m.nodes[0]))),
                 );
             }
         }
@@ -336,17 +337,26 @@ pub fn folds(trace: &Trace, dz: f64) -> Folds {
         }
         sign = s;
     }
+    // each closed node and its master segment span a fold (the two arms
+    // of an outward fold touch on the inner face): overlapping spans, or
+    // spans less than H / 2 apart, are one fold
     let mut closed = 0;
     for face in &trace.closed {
-        let mut js: Vec<usize> = face
+        let mut spans: Vec<(f64, f64)> = face
             .iter()
-            .filter_map(|&n| trace.nodes.get(n).map(|x| row_of(x[1])))
+            .filter_map(|&(s, m)| {
+                let (a, b) = (trace.nodes.get(s)?[1], trace.nodes.get(m)?[1]);
+                Some((a.min(b), a.max(b)))
+            })
             .collect();
-        js.sort_unstable();
-        js.dedup();
-        // a new fold where the closed rows are more than H / 2 apart
-        let gap = |p: &[usize]| (p[1] - p[0]) as f64 * dz > 0.5 * alexander_h();
-        closed += js.windows(2).filter(|p| gap(p)).count() + usize::from(!js.is_empty());
+        spans.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut end = f64::NEG_INFINITY;
+        for (lo, hi) in spans {
+            if lo > end + 0.5 * alexander_h() {
+                closed += 1;
+            }
+            end = end.max(hi);
+        }
     }
     Folds {
         depth,
@@ -456,7 +466,7 @@ mod tests {
 
     /// A synthetic final shape: one outward fold of depth 6 over rows 10 ..
     /// 30 (`dz = 1`), one inward dent of 3 at row 35, closed nodes in two
-    /// clusters of the inner face and none of the outer one.
+    /// spans of the inner face (two folds) and none of the outer one.
     #[test]
     fn folds_are_measured_on_the_mid_surface_rows() {
         let mut trace = Trace::default();
@@ -473,8 +483,9 @@ mod tests {
                 trace.displacement.push([w, 0.0]);
             }
         }
-        // nodes 2 j (inner face): rows 18, 19, 20 and 25
-        trace.closed[0] = vec![36, 38, 40, 50];
+        // nodes 2 j (inner face): the arms of the fold, rows 18 .. 20
+        // against 22 .. 24, touch; so do rows 33 and 37 (a second fold)
+        trace.closed[0] = vec![(36, 48), (38, 46), (48, 38), (66, 74)];
         let f = folds(&trace, 1.0);
         assert!((f.depth - 6.0).abs() < 1e-12, "{f:?}");
         // rows 11 ..= 29 are beyond 0.6
