@@ -76,15 +76,17 @@
 //! Levels: 0 (the default, `examples/dynamic_buckling.ctc`) 2 x 40 cells,
 //! dt = 10 us; 1: the same mesh at dt = 5 us; 2: 3 x 60 at 5 us; 3: 4 x
 //! 120 at 2.5 us. Measured (`ctc verify dynamic_buckling_tube_axi
-//! --max-level 3 --jobs 1`, release build, 2-core machine at load ~10; the
-//! fold depth against H = 8.52 mm, the mean force against 49.56 kN):
+//! --max-level 3 --jobs 1`, release build, 2-core machine at load ~10:
+//! 108 s wall, 36 s CPU; the fold depth against H = 8.52 mm, the mean
+//! force against 49.56 kN; level 0 in the dev profile: 5.7 s CPU, 8.3 s
+//! wall in `cargo test -p ctc-verification --test suite dynamic_buckling`):
 //!
 //! | level | cells   | dt    | closed folds | depth mm | mean kN | balance / K0 | friction / K0 | iterations (max) | cutbacks | wall  |
 //! | ----- | ------- | ----- | ------------ | -------- | ------- | ------------ | ------------- | ---------------- | -------- | ----- |
-//! | 0     | 2 x 40  | 10 us | 1            | 8.50     | 48.49   | 4.9e-5       | 3.1e-4        | 2643 (25)        | 1        | 9.8 s |
-//! | 1     | 2 x 40  | 5 us  | 1            | 8.03     | 50.64   | 2.0e-5       | 1.9e-4        | 3497 (8)         | 0        | 9.8 s |
-//! | 2     | 3 x 60  | 5 us  | 1            | 7.95     | 51.78   | 5.2e-5       | 2.3e-4        | 3758 (10)        | 0        | 15 s  |
-//! | 3     | 4 x 120 | 2.5 us| 1            | 7.82     | 51.10   | 3.9e-5       | 4.2e-4        | 7011 (9)         | 0        | 81 s  |
+//! | 0     | 2 x 40  | 10 us | 1            | 8.50     | 48.49   | 4.9e-5       | 3.1e-4        | 2643 (25)        | 1        | 6.3 s |
+//! | 1     | 2 x 40  | 5 us  | 1            | 8.03     | 50.64   | 2.0e-5       | 1.9e-4        | 3497 (8)         | 0        | 6.9 s |
+//! | 2     | 3 x 60  | 5 us  | 1            | 7.95     | 51.78   | 5.2e-5       | 2.3e-4        | 3758 (10)        | 0        | 17 s  |
+//! | 3     | 4 x 120 | 2.5 us| 1            | 7.82     | 51.10   | 3.9e-5       | 4.2e-4        | 7011 (9)         | 0        | 78 s  |
 //!
 //! The fold depth is 0.2 % / 5.8 % / 6.7 % / 8.3 % below Alexander's H,
 //! the mean crush force 2.2 % below / 2.2 % / 4.5 % / 3.1 % above
