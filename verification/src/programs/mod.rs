@@ -9,6 +9,7 @@ pub mod cattaneo;
 pub mod contact_3d;
 pub mod contact_ntf_3d;
 pub mod discrete;
+pub mod dynamic_buckling;
 pub mod dynamics;
 pub mod fenicsx;
 pub mod follower;
@@ -80,6 +81,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(dynamics::cases());
     v.extend(impact::cases());
     v.extend(taylor_bar::cases());
+    v.extend(dynamic_buckling::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
     v.extend(gravity::cases());

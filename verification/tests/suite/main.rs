@@ -8,6 +8,7 @@ mod cases_coarse;
 mod contact_3d;
 mod contact_mortar_3d;
 mod contact_ntf_3d;
+mod dynamic_buckling;
 mod dynamics;
 mod fenicsx;
 mod fenicsx_snapshots;
