@@ -901,12 +901,19 @@ mod tests {
         // the regularized coefficient is close for normals this far apart
         let r = coefficient(d, na, nb);
         let l = vdot(c, c).sqrt();
-        assert!(vdot(minus(r, c), minus(r, c)).sqrt() < 0.05 * l, "{r:?} {c:?}");
+        assert!(
+            vdot(minus(r, c), minus(r, c)).sqrt() < 0.05 * l,
+            "{r:?} {c:?}"
+        );
         // on an arc (u . d = 0) it is exact
         let (t0, t1) = (0.3f64, 0.45f64);
         let na = [t0.cos(), t0.sin(), 0.0];
         let nb = [t1.cos(), t1.sin(), 0.0];
-        let d = [3.0 * (t1.cos() - t0.cos()), 3.0 * (t1.sin() - t0.sin()), 0.0];
+        let d = [
+            3.0 * (t1.cos() - t0.cos()),
+            3.0 * (t1.sin() - t0.sin()),
+            0.0,
+        ];
         let (c, r) = (coefficient_with(d, na, nb, 0.0), coefficient(d, na, nb));
         assert!((0..3).all(|k| (c[k] - r[k]).abs() < 1e-15), "{r:?} {c:?}");
     }

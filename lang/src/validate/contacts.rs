@@ -178,8 +178,8 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     }
     if let Some(f) = c.friction.as_ref().filter(|_| !nodal) {
         refuse(
-            "with friction is not supported with Nagata patches yet (the stick point lives \
-             on the faceted master)",
+            "on Nagata patches has no friction yet (the stick point lives on the faceted \
+             master)",
             f.span,
             "drop `friction`, or drop `smoothing` (faceted master with friction)",
         );
