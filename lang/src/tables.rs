@@ -639,7 +639,7 @@ pub static CONTACT: [Key; 8] = [
          nodal (averaged nodal normals interpolated along each segment: continuous across the \
          master nodes; planar analyses) or nagata (3d node-to-facet: Nagata's quadratic \
          patches through the master facets' nodes and their area-weighted nodal normals; \
-         refused for now: runs with it do not converge yet)",
+         frictionless)",
     )
     .default(Default::Choice("none")),
     Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),

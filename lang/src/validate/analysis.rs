@@ -59,10 +59,9 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// Lagrangian methods) or mortar contact (single pass, frictionless,
 /// penalty or augmented Lagrangian: [`super::contacts`] refuses the rest),
 /// self contact (penalty or augmented Lagrangian, frictionless); normal
-/// smoothing is refused: `nodal` (planar) in 3d, `nagata` everywhere (in
-/// planar analyses it has no facets; in 3d the patch element
-/// `ctc_engine::contact::nagata` is there but pair runs do not converge
-/// yet).
+/// smoothing: `nagata` in 3d only (planar analyses have no facets; friction
+/// on the patches is refused in [`super::contacts`]), `nodal` (planar) is
+/// refused in 3d.
 pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
     if a.dimension.as_ref().map(|d| d.value) != Some(Dimension::ThreeD) {
         // Nagata patches are surfaces over 3d facets
@@ -104,18 +103,6 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
         {
             refuse(
                 "nodal normal smoothing (the planar nodal normals along segments)",
-                s.span,
-                "drop `smoothing` (faceted master)",
-            );
-        }
-        if let Some(s) = c
-            .smoothing
-            .as_ref()
-            .filter(|s| s.value == crate::ast::Smoothing::Nagata)
-        {
-            refuse(
-                "Nagata normal smoothing (the patch element is there, its runs do not \
-                 converge)",
                 s.span,
                 "drop `smoothing` (faceted master)",
             );

@@ -50,7 +50,8 @@ const H: f64 = 1.0;
 /// Area penalty of the penalty runs.
 const K: f64 = 1e6;
 
-const PENALTY: &str = "penalty { kind = area  stiffness = 1e6 }";
+/// The penalty of the patch runs (deck text).
+pub const PENALTY: &str = "penalty { kind = area  stiffness = 1e6 }";
 const LAGRANGE: &str = "lagrange { }";
 const AUGMENTED: &str = "augmented_lagrange { kind = area  penalty = 1e4  tolerance = 1e-9 }";
 
@@ -623,6 +624,12 @@ pub fn run_loaded(
     Ok((o, level))
 }
 
+/// Runs a patch deck (any contact block, e.g. with `smoothing`); `method`
+/// decides the exact pressure.
+pub fn run_patch_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), String> {
+    run_deck(text, method)
+}
+
 /// Runs a patch deck; `method` decides the exact pressure.
 fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), String> {
     let path = std::path::Path::new("contact_patch_ntf_3d.ctc");
@@ -694,7 +701,7 @@ fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), Strin
 }
 
 /// Adds the work figures of one run's level to `out`.
-fn add_level(out: &mut ProgramLevel, level: &ProgramLevel) {
+pub fn add_level(out: &mut ProgramLevel, level: &ProgramLevel) {
     out.nodes = out.nodes.max(level.nodes);
     out.free_dofs = out.free_dofs.max(level.free_dofs);
     out.increments += level.increments;

@@ -23,6 +23,7 @@ pub mod hertz_3d_axi;
 pub mod impact;
 pub mod johnson_cook;
 pub mod mortar;
+pub mod nagata_3d;
 pub mod norton_hoff;
 pub mod objectivity;
 pub mod penalty_scaling;
@@ -75,6 +76,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
     v.extend(friction_ntf_3d::cases());
+    v.extend(nagata_3d::cases());
     v.extend(self_contact_3d::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());
