@@ -312,6 +312,14 @@ fn report_of(
 }
 
 impl BenchReport {
+    /// Engine time outside the timed phases (the Newton loop's own work:
+    /// predictor, state updates, line-search bookkeeping, observers' calls).
+    pub fn other_time(&self) -> f64 {
+        let t = &self.timings;
+        t.total
+            - (t.assembly + t.contact + t.factorization + t.solve + t.residual + t.setup + t.output)
+    }
+
     /// Pretty JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
@@ -395,8 +403,16 @@ impl fmt::Display for BenchReport {
                 self.timings.low_rank,
                 self.timings.low_rank / self.newton_iterations.max(1) as f64,
             ),
+            (" symbolic part", self.timings.symbolic, f64::NAN),
             ("solve", self.timings.solve, self.per_iteration.solve),
+            (
+                "residual",
+                self.timings.residual,
+                self.timings.residual / self.newton_iterations.max(1) as f64,
+            ),
+            ("setup", self.timings.setup, f64::NAN),
             ("output", self.timings.output, f64::NAN),
+            ("other", self.other_time(), f64::NAN),
         ] {
             writeln!(
                 f,
