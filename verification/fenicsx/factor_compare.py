@@ -14,7 +14,8 @@ that broke down on an indefinite tangent is in the numeric time).
 Timed here on the same matrix, min of `--reps`, single-threaded:
 - SciPy SuperLU (`splu`, `MMD_AT_PLUS_A` ordering: symmetric pattern);
 - CHOLMOD through scikit-sparse (`--install`: pip-installs scikit-sparse
-  into this Python first, built against Debian's libsuitesparse-dev), an
+  0.4.13 into this Python first, built against Debian's libsuitesparse-dev
+  5.12: later versions need SuiteSparse 7), an
   L D L^T (`mode="simplicial"` and `"supernodal"`, the tangent may be
   indefinite);
 - MUMPS through petsc4py (the DOLFINx 0.11 venv's PETSc): LU and symmetric
@@ -29,15 +30,22 @@ to stdout (Markdown) and `K.mtx.compare.json`.
 
 import argparse
 import json
-import os
 import subprocess
 import sys
 import time
 
-import numpy as np
-import scipy.io
-import scipy.sparse as sp
-import scipy.sparse.linalg as spla
+PETSc, PETSC_ERROR = None, "not imported"
+if sys.argv[-2:] == ["--solver", "mumps"]:
+    try:  # the DOLFINx wheel's shared libraries (MPI, PETSc with MUMPS, its
+        # BLAS) before SciPy's; SciPy's solvers run in another process
+        import dolfinx_solver  # noqa: F401
+        from petsc4py import PETSc
+    except ImportError as e:
+        PETSC_ERROR = str(e)
+
+import scipy.io  # noqa: E402
+import scipy.sparse as sp  # noqa: E402
+import scipy.sparse.linalg as spla  # noqa: E402
 
 
 def best(f, reps):
@@ -65,7 +73,7 @@ def cholmod(a, reps, install):
     except ImportError:
         if not install:
             return [{"solver": "CHOLMOD (scikit-sparse)", "error": "not installed (use --install)"}]
-        r = subprocess.run([sys.executable, "-m", "pip", "install", "-q", "scikit-sparse"],
+        r = subprocess.run([sys.executable, "-m", "pip", "install", "-q", "scikit-sparse==0.4.13"],
                            capture_output=True, text=True)
         try:
             from sksparse import cholmod as cm
@@ -90,14 +98,8 @@ def cholmod(a, reps, install):
 
 
 def mumps(a, reps):
-    try:
-        try:
-            import dolfinx_solver  # noqa: F401  (the wheel's shared libraries first)
-        except ImportError:
-            pass
-        from petsc4py import PETSc
-    except ImportError:
-        return [{"solver": "MUMPS (petsc4py)", "error": "petsc4py not available"}]
+    if PETSc is None:
+        return [{"solver": "MUMPS (petsc4py)", "error": f"petsc4py not available: {PETSC_ERROR}"}]
     csr = a.tocsr()
     out = []
     for factor in ("lu", "cholesky"):
@@ -142,18 +144,36 @@ def main():
     ap.add_argument("matrix")
     ap.add_argument("--reps", type=int, default=3)
     ap.add_argument("--install", action="store_true")
+    ap.add_argument("--solver", choices=["scipy", "mumps"], help="one family only, JSON out (internal)")
     args = ap.parse_args()
+    import warnings
+    warnings.simplefilter("ignore")
     t0 = time.perf_counter()
-    a = scipy.io.mmread(args.matrix)
+    a = sp.csr_matrix(scipy.io.mmread(args.matrix))
     read = time.perf_counter() - t0
+    if args.solver == "scipy":
+        print(json.dumps([scipy_splu(a, args.reps)] + cholmod(a, args.reps, args.install)))
+        return
+    if args.solver == "mumps":
+        print(json.dumps(mumps(a, args.reps)))
+        return
     with open(args.matrix + ".json") as f:
         ctc = json.load(f)
     n, nnz = a.shape[0], a.nnz
     rows = [{"solver": f"ctc (faer, {ctc['method']}, symbolic {1e3 * ctc['symbolic_seconds']:.0f} ms)",
              "total": ctc["first_factorization_seconds"], "factor_nonzeros": ctc["factor_nonzeros"]}]
-    rows.append(scipy_splu(a, args.reps))
-    rows += cholmod(a, args.reps, args.install)
-    rows += mumps(a, args.reps)
+    # each family in its own process: the DOLFINx wheel's BLAS and SciPy's
+    # do not mix in one
+    for family in ("scipy", "mumps"):
+        cmd = [sys.executable, __file__, args.matrix, "--reps", str(args.reps)]
+        if args.install:
+            cmd.append("--install")
+        r = subprocess.run(cmd + ["--solver", family], capture_output=True, text=True)
+        try:
+            rows += json.loads(r.stdout.strip().splitlines()[-1])
+        except (IndexError, ValueError):
+            tail = " ".join(r.stderr.strip().splitlines()[-2:])
+            rows.append({"solver": family, "error": f"exit {r.returncode}: {tail}"})
     base = rows[0]["total"]
     print(f"## Factorization of ctc's first tangent ({n} rows, {nnz} stored entries, read in {read:.1f} s; min of {args.reps})")
     print()

@@ -139,8 +139,13 @@ where
         }
         let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
         let section = Section::new(&model.analysis);
-        let (linear_k, linear_offset) =
-            linear_matrices(&model.mesh, &blocks, &section, share.as_deref())?;
+        let (linear_k, linear_offset) = linear_matrices(
+            &model.mesh,
+            &blocks,
+            &section,
+            share.as_deref(),
+            (super::parallel::threads(), PARALLEL_MIN_CELLS),
+        )?;
         Ok(Assembler {
             blocks,
             section,
@@ -791,18 +796,23 @@ fn linear_matrices<const D: usize>(
     blocks: &[CellBlock],
     section: &Section,
     share: Option<&AssemblyShare>,
+    (threads, min_cells): (usize, usize),
 ) -> Result<(Vec<f64>, Vec<usize>), String>
 where
     Const<D>: Dimension<D>,
 {
-    let mut k = Vec::new();
-    let mut offset = vec![NO_MATRIX; mesh.cells.len()];
-    let mut out = ElementMatrix::<D>::default();
-    for block in blocks.iter().filter(|b| b.nonlinear.is_none()) {
-        for c in block.cells.clone() {
-            if share.is_some_and(|s| !s.owns_cell(c)) {
-                continue;
-            }
+    let cells: Vec<(&CellBlock, usize)> = blocks
+        .iter()
+        .filter(|b| b.nonlinear.is_none())
+        .flat_map(|b| b.cells.clone().map(move |c| (b, c)))
+        .filter(|&(_, c)| share.is_none_or(|s| s.owns_cell(c)))
+        .collect();
+    // each cell's matrix alone: chunks of cells on the threads, their
+    // matrices concatenated in cell order (the same array on any count)
+    let matrices = |part: &[(&CellBlock, usize)]| -> Result<Vec<f64>, String> {
+        let mut k = Vec::new();
+        let mut out = ElementMatrix::<D>::default();
+        for &(block, c) in part {
             let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
             let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(err)?;
             let x = mesh.cell_points(c);
@@ -818,7 +828,6 @@ where
                     &mut out,
                 )
                 .map_err(err)?;
-            offset[c] = k.len();
             let nd = D * x.len();
             for j in 0..nd {
                 for i in 0..nd {
@@ -826,6 +835,42 @@ where
                 }
             }
         }
+        Ok(k)
+    };
+    let threads = if cells.len() >= min_cells { threads } else { 1 };
+    let parts = super::parallel::split(cells.len(), threads);
+    let results: Vec<Result<Vec<f64>, String>> = if parts.len() > 1 {
+        std::thread::scope(|scope| {
+            let matrices = &matrices;
+            let handles: Vec<_> = parts[1..]
+                .iter()
+                .map(|r| {
+                    let part = &cells[r.clone()];
+                    scope.spawn(move || matrices(part))
+                })
+                .collect();
+            let mut out = vec![matrices(&cells[parts[0].clone()])];
+            for h in handles {
+                out.push(
+                    h.join()
+                        .unwrap_or_else(|_| Err("an element thread panicked".into())),
+                );
+            }
+            out
+        })
+    } else {
+        vec![matrices(&cells)]
+    };
+    let mut k = Vec::new();
+    for r in results {
+        k.extend_from_slice(&r?);
+    }
+    let mut offset = vec![NO_MATRIX; mesh.cells.len()];
+    let mut at = 0;
+    for &(_, c) in &cells {
+        offset[c] = at;
+        let nd = D * mesh.cells.nodes(c).len();
+        at += nd * nd;
     }
     Ok((k, offset))
 }
@@ -983,6 +1028,18 @@ mod tests {
                 assert!(par.2 == serial.2, "{threads} threads: points differ");
             }
         }
+        // the cached element matrices: the same array on 1 and 3 threads
+        let blocks = blocks_of(&model).unwrap();
+        let section = Section::new(&model.analysis);
+        let one = linear_matrices(&model.mesh, &blocks, &section, None, (1, 0)).unwrap();
+        let three = linear_matrices(&model.mesh, &blocks, &section, None, (3, 0)).unwrap();
+        assert_eq!(one.1, three.1);
+        assert!(one
+            .0
+            .iter()
+            .zip(&three.0)
+            .all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert_eq!(one.0.len(), 24 * 64);
         // the partition has shared entries (the test covers both paths)
         let plan = Plan::new(
             (2, scatter.id()),

@@ -332,6 +332,9 @@ pub struct RunSummary {
     /// tangent was factorized.
     #[serde(skip_serializing_if = "is_zero")]
     pub low_rank_updates: usize,
+    /// Threads of the parallel kernels (`parallel::threads`: element
+    /// loop, low-rank solves); the results do not depend on it.
+    pub threads: usize,
     /// Symbolic factorizations of the Lagrange-multiplier saddle-point
     /// system (one per distinct active set met).
     pub saddle_symbolic_factorizations: usize,
@@ -607,6 +610,7 @@ where
     summary.ldlt_factorizations = stats.ldlt;
     summary.lu_factorizations = stats.lu;
     summary.low_rank_updates = stats.low_rank;
+    summary.threads = parallel::threads();
     summary.max_negative_pivots = stats.max_negative_pivots;
     summary.factor_nonzeros = stats.factor_nonzeros;
     summary.factor_bytes = stats.factor_bytes;
