@@ -643,7 +643,7 @@ where
         b: usize,
         c: usize,
         out: &mut CellWork<D>,
-        trial: &mut Vec<MaterialPoint>,
+        trial: &mut [MaterialPoint],
     ) -> Result<usize, String> {
         let mesh = self.mesh;
         let block = &self.blocks[b];
@@ -753,8 +753,8 @@ impl Plan {
         for (k, chunk) in chunks.iter().enumerate() {
             for &(_, c) in &seq[chunk.clone()] {
                 for &n in mesh.cells.nodes(c) {
-                    for g in D * n..D * (n + 1) {
-                        claim(&mut force_owner[g], k as u32);
+                    for owner in &mut force_owner[D * n..D * (n + 1)] {
+                        claim(owner, k as u32);
                     }
                 }
                 for &slot in scatter.cell_slots(c) {
