@@ -60,6 +60,17 @@ enum Command {
         /// as `-- -ksp_type cg -pc_type gamg -ksp_rtol 1e-10` replace it.
         #[arg(long, value_enum, default_value_t = Solver::Faer)]
         solver: Solver,
+        /// Write the first tangent the run factorizes (free dofs) to FILE in
+        /// Matrix Market, and ctc's time to factorize it to FILE.json
+        /// (`verification/fenicsx/factor_compare.py` times other solvers on
+        /// it).
+        #[arg(long, value_name = "FILE")]
+        export_matrix: Option<PathBuf>,
+        /// Threads of the element assembly and of the low-rank solves
+        /// (default: `CTC_THREADS`, else the cores); the results do not
+        /// depend on it, bit for bit.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
         /// PETSc options (after `--`, with --solver petsc).
         #[arg(last = true, allow_hyphen_values = true, value_name = "PETSC OPTIONS")]
         petsc_options: Vec<String>,
@@ -186,6 +197,11 @@ enum Command {
         /// numeric factorization): how large a model fits in memory.
         #[arg(long, requires = "solid")]
         symbolic: bool,
+        /// Threads of the element assembly and of the low-rank solves
+        /// (default: `CTC_THREADS`, else the cores); the results do not
+        /// depend on it, bit for bit.
+        #[arg(long, value_name = "N")]
+        threads: Option<usize>,
     },
 }
 
@@ -209,14 +225,25 @@ fn main() -> ExitCode {
             verbose,
             restart,
             solver,
+            export_matrix,
+            threads,
             petsc_options,
-        } => match solver {
-            Solver::Faer if !petsc_options.is_empty() => Err(format!(
+        } => match (solver, set_threads(threads)) {
+            (_, Err(e)) => Err(e),
+            (Solver::Faer, _) if !petsc_options.is_empty() => Err(format!(
                 "error: `{}` after `--` are PETSc options: they need `--solver petsc`",
                 petsc_options.join(" ")
             )),
-            Solver::Faer => run(&deck, output.as_deref(), quiet, verbose, restart),
-            Solver::Petsc => petsc_run::run(
+            (Solver::Petsc, _) if export_matrix.is_some() => {
+                Err("error: --export-matrix needs the faer solver (`--solver faer`)".into())
+            }
+            (Solver::Faer, _) => run(
+                &deck,
+                output.as_deref(),
+                (quiet, verbose, restart),
+                export_matrix.as_deref(),
+            ),
+            (Solver::Petsc, _) => petsc_run::run(
                 &deck,
                 output.as_deref(),
                 quiet,
@@ -277,8 +304,11 @@ fn main() -> ExitCode {
             points,
             solid,
             symbolic,
+            threads,
         } => {
-            if let Some(n) = solid {
+            if let Err(e) = set_threads(threads) {
+                Err(e)
+            } else if let Some(n) = solid {
                 bench_solid(n, symbolic, json)
             } else if projection {
                 bench_projection(points, json)
@@ -352,20 +382,54 @@ fn default_output(deck: &Path, suffix: &str) -> PathBuf {
     PathBuf::from("out").join(format!("{stem}{suffix}"))
 }
 
+/// The thread count of `--threads N`, else `CTC_THREADS`, else the cores
+/// (`ctc_engine::solve::parallel`); an invalid value is an error.
+fn set_threads(threads: Option<usize>) -> Result<(), String> {
+    use ctc_engine::solve::parallel;
+    match threads {
+        Some(0) => Err("error: --threads must be at least 1".into()),
+        Some(n) => {
+            parallel::set_threads(n);
+            Ok(())
+        }
+        None => parallel::threads_from_env()
+            .map(|n| {
+                if let Some(n) = n {
+                    parallel::set_threads(n);
+                }
+            })
+            .map_err(|e| format!("error: {e}")),
+    }
+}
+
 fn run(
     deck: &Path,
     output: Option<&Path>,
-    quiet: bool,
-    verbose: bool,
-    restart: bool,
+    (quiet, verbose, restart): (bool, bool, bool),
+    export_matrix: Option<&Path>,
 ) -> Result<(), String> {
     let source = read(deck)?;
     let model = ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source))?;
     let dir = output.map_or_else(|| default_output(deck, ""), Path::to_path_buf);
+    let linear =
+        |_: ()| -> Result<Option<Box<dyn ctc_engine::solve::linalg::LinearSystem>>, String> {
+            let Some(path) = export_matrix else {
+                return Ok(None);
+            };
+            // the file is created here so that a bad path is an error before the run
+            std::fs::File::create(path)
+                .map_err(|e| format!("error: cannot write {}: {e}", path.display()))?;
+            Ok(Some(Box::new(
+                ctc_engine::solve::linalg::export::ExportFirst::new(
+                    Box::new(ctc_engine::solve::linalg::direct::LinearSolver::new()),
+                    path.to_path_buf(),
+                ),
+            )))
+        };
     // the dimension is chosen once, here
     match &model {
-        AnyModel::D2(m) => run_model(m, &dir, quiet, verbose, restart),
-        AnyModel::D3(m) => run_model(m, &dir, quiet, verbose, restart),
+        AnyModel::D2(m) => run_model_with(m, &dir, quiet, verbose, restart, linear(())?),
+        AnyModel::D3(m) => run_model_with(m, &dir, quiet, verbose, restart, linear(())?),
     }
 }
 

@@ -199,3 +199,91 @@ fn run_with_the_petsc_solver_without_the_feature_says_how_to_build_it() {
     );
     assert!(!dir.path().join("p").exists(), "nothing written");
 }
+
+#[test]
+fn threads_do_not_change_results_and_the_first_tangent_is_exported() {
+    let dir = tempfile::tempdir().unwrap();
+    let run = |threads: &str, extra: &[&str]| {
+        let out_dir = dir.path().join(format!("t{threads}"));
+        let out = ctc()
+            .args([
+                "run",
+                "examples/hertz_cylinder.ctc",
+                "-q",
+                "--threads",
+                threads,
+                "-o",
+            ])
+            .arg(&out_dir)
+            .args(extra)
+            .output()
+            .unwrap();
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        out_dir
+    };
+    let mtx = dir.path().join("K.mtx");
+    let one = run("1", &[]);
+    let two = run("2", &["--export-matrix", mtx.to_str().unwrap()]);
+    for f in ["contact_0_0001.csv", "history.csv"] {
+        assert_eq!(
+            std::fs::read(one.join(f)).unwrap(),
+            std::fs::read(two.join(f)).unwrap(),
+            "{f}"
+        );
+    }
+    let summary = std::fs::read_to_string(two.join("summary.json")).unwrap();
+    assert!(summary.contains("\"threads\": 2"), "{summary}");
+    // the first tangent: a symmetric Matrix Market file of the free dofs
+    let text = std::fs::read_to_string(&mtx).unwrap();
+    let mut lines = text
+        .lines()
+        .filter(|l| !l.starts_with('%') || l.starts_with("%%"));
+    assert_eq!(
+        lines.next(),
+        Some("%%MatrixMarket matrix coordinate real symmetric")
+    );
+    let size: Vec<usize> = lines
+        .next()
+        .unwrap()
+        .split_whitespace()
+        .map(|v| v.parse().unwrap())
+        .collect();
+    assert_eq!(size[0], size[1]);
+    assert!(
+        summary.contains(&format!("\"free_dofs\": {}", size[0])),
+        "{summary}"
+    );
+    assert_eq!(lines.count(), size[2]);
+    let side = std::fs::read_to_string(dir.path().join("K.mtx.json")).unwrap();
+    assert!(side.contains("\"ok\": true"), "{side}");
+    // bad thread counts and export paths: clean errors
+    let bad = ctc()
+        .args(["run", "examples/hertz_cylinder.ctc", "-q", "--threads", "0"])
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("--threads must be at least 1"));
+    let bad = ctc()
+        .args(["run", "examples/hertz_cylinder.ctc", "-q"])
+        .env("CTC_THREADS", "two")
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("CTC_THREADS = `two`"));
+    let bad = ctc()
+        .args([
+            "run",
+            "examples/hertz_cylinder.ctc",
+            "-q",
+            "--export-matrix",
+            "no/such/dir/K.mtx",
+        ])
+        .output()
+        .unwrap();
+    assert!(!bad.status.success());
+    assert!(String::from_utf8_lossy(&bad.stderr).contains("cannot write no/such/dir/K.mtx"));
+}

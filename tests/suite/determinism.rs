@@ -1,7 +1,9 @@
-//! Same deck, same results, bit for bit, in 2D and 3D. (The engine has
-//! no threads: assembly, contact search and the faer factorizations run
-//! sequentially (`Par::Seq`), so the thread count cannot change a bit; a
-//! second compile checks that lowering and mesh generation are
+//! Same deck, same results, bit for bit, in 2D and 3D. (The engine's
+//! threads — element loop, low-rank solves, `solve/parallel.rs` — compute
+//! every value as the serial code does, and faer runs sequentially
+//! (`Par::Seq`), so the thread count cannot change a bit (unit tests in
+//! `assembly.rs` and `linalg/direct.rs`, `cli::threads_do_not_change_...`);
+//! a second compile checks that lowering and mesh generation are
 //! deterministic too.)
 
 use ctc_engine::geom::Dimension;

@@ -164,6 +164,8 @@ def ctc_result(d):
         "factorization": t["factorization"],
         "low_rank": t.get("low_rank", 0.0),
         "peak_memory_bytes": s.get("peak_memory_bytes", 0),
+        "threads": s.get("threads", 1),
+        "timings": t,
     }
 
 
@@ -204,9 +206,16 @@ def table(directory):
         f"ctc per iteration: {1e3 * base['wall_time'] / its:.1f} ms loop, "
         f"{1e3 * base['factorization'] / its:.1f} ms in factorization + low-rank updates "
         f"(low-rank {1e3 * base['low_rank']:.0f} ms in all); peak memory "
-        f"{base['peak_memory_bytes'] / 2**20:.0f} MiB. ctc's CPU is the whole process "
+        f"{base['peak_memory_bytes'] / 2**20:.0f} MiB; {base['threads']} thread(s). ctc's CPU is the whole process "
         "(mesh reading and output included): an upper bound of its loop."
     )
+    t = base["timings"]
+    phases = ["setup", "assembly", "contact", "symbolic", "factorization", "low_rank", "solve", "residual"]
+    other = t["total"] - t["output"] - sum(t.get(p, 0.0) for p in phases if p not in ("symbolic", "low_rank"))
+    print()
+    print("ctc phases of that run [ms]: " + ", ".join(
+        f"{p} {1e3 * t.get(p, 0.0):.0f}" for p in phases) + f", other {1e3 * other:.0f}, "
+        f"output {1e3 * t['output']:.0f} (not in the loop time); symbolic and low_rank are parts of factorization.")
 
 
 def main():

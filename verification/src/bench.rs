@@ -122,6 +122,8 @@ pub struct BenchReport {
     pub predictor: bool,
     /// Whether low-rank updates were allowed.
     pub low_rank: bool,
+    /// Threads of the parallel kernels (`--threads`, `CTC_THREADS`).
+    pub threads: usize,
     /// Entries of the factor `L` (diagonal included).
     pub factor_nonzeros: usize,
     /// Fill: factor entries over those of the matrix's lower triangle.
@@ -296,6 +298,7 @@ fn report_of(
         iteration_over_factorization: wall_time / its / time_per_factorization.max(1e-300),
         predictor: opts.predictor,
         low_rank: opts.low_rank,
+        threads: summary.threads,
         factor_nonzeros: summary.factor_nonzeros,
         factor_fill: summary.factor_fill,
         peak_memory_bytes: summary.peak_memory_bytes,
@@ -312,6 +315,14 @@ fn report_of(
 }
 
 impl BenchReport {
+    /// Engine time outside the timed phases (the Newton loop's own work:
+    /// predictor, state updates, line-search bookkeeping, observers' calls).
+    pub fn other_time(&self) -> f64 {
+        let t = &self.timings;
+        t.total
+            - (t.assembly + t.contact + t.factorization + t.solve + t.residual + t.setup + t.output)
+    }
+
     /// Pretty JSON.
     pub fn to_json(&self) -> String {
         serde_json::to_string_pretty(self).unwrap_or_else(|e| format!("{{\"error\": \"{e}\"}}"))
@@ -352,12 +363,13 @@ impl fmt::Display for BenchReport {
         )?;
         writeln!(
             f,
-            "  factor         {} nonzeros, fill {:.2}; peak memory {:.1} MiB; predictor {}, low-rank {}",
+            "  factor         {} nonzeros, fill {:.2}; peak memory {:.1} MiB; predictor {}, low-rank {}; {} thread(s)",
             self.factor_nonzeros,
             self.factor_fill,
             self.peak_memory_bytes as f64 / (1u64 << 20) as f64,
             if self.predictor { "on" } else { "off" },
-            if self.low_rank { "on" } else { "off" }
+            if self.low_rank { "on" } else { "off" },
+            self.threads
         )?;
         writeln!(f, "  compile        {:>9.3} s", self.compile_time)?;
         writeln!(
@@ -395,8 +407,16 @@ impl fmt::Display for BenchReport {
                 self.timings.low_rank,
                 self.timings.low_rank / self.newton_iterations.max(1) as f64,
             ),
+            (" symbolic part", self.timings.symbolic, f64::NAN),
             ("solve", self.timings.solve, self.per_iteration.solve),
+            (
+                "residual",
+                self.timings.residual,
+                self.timings.residual / self.newton_iterations.max(1) as f64,
+            ),
+            ("setup", self.timings.setup, f64::NAN),
             ("output", self.timings.output, f64::NAN),
+            ("other", self.other_time(), f64::NAN),
         ] {
             writeln!(
                 f,

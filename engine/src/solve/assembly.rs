@@ -62,13 +62,48 @@ pub struct Assembler<const D: usize = 2> {
     /// Norm of the element thermal forces `eps_th f_unit` (unassembled):
     /// a force scale for the convergence test of thermally loaded bodies.
     thermal_scale: f64,
-    /// Element force and tangent of the last nonlinear cell (reused).
-    scratch: ElementMatrix<D>,
     /// The cells this rank assembles (distributed assembly,
     /// [`crate::solve::share`]); `None`: all cells.
     share: Option<Arc<AssemblyShare>>,
     /// Cells evaluated by the last [`Assembler::assemble`].
     assembled: usize,
+    /// The partition of the cells among threads for the last thread count
+    /// and scatter map ([`Plan`]).
+    plan: Option<Arc<Plan>>,
+}
+
+/// Cells below which the element loop stays serial.
+pub const PARALLEL_MIN_CELLS: usize = 4096;
+
+/// Marks a value slot or force entry written by cells of several chunks.
+const SHARED: u32 = u32::MAX;
+
+/// The partition of the element loop among threads, for one thread count
+/// and one scatter map, such that the parallel loop adds every value
+/// slot's and force entry's contributions in the serial order (the bits do
+/// not depend on the thread count):
+/// - the cells, in the serial order (block by block), are cut into
+///   contiguous chunks, one per thread;
+/// - a slot (or force entry) that the cells of one chunk only touch is
+///   *owned* by it: that chunk's thread adds its contributions, in cell
+///   order, straight into the output;
+/// - a slot touched by several chunks is *shared*: the cells touching one
+///   (the *interface* cells) keep their element results, and the shared
+///   entries are added after the threads, chunk by chunk, in cell order.
+#[derive(Debug)]
+struct Plan {
+    /// Thread count and scatter map this plan is for.
+    key: (usize, u64),
+    /// (block, global cell) in the serial order.
+    seq: Vec<(usize, usize)>,
+    /// Chunks: ranges of `seq`.
+    chunks: Vec<std::ops::Range<usize>>,
+    /// Per `seq` entry: an interface cell.
+    interface: Vec<bool>,
+    /// Owner chunk of each value slot, or [`SHARED`].
+    slot_owner: Vec<u32>,
+    /// Owner chunk of each force entry (`D` per node), or [`SHARED`].
+    force_owner: Vec<u32>,
 }
 
 /// Marks a cell without a cached stiffness matrix.
@@ -104,8 +139,13 @@ where
         }
         let t0 = model.steps.first().map_or(0.0, |s| s.t_start);
         let section = Section::new(&model.analysis);
-        let (linear_k, linear_offset) =
-            linear_matrices(&model.mesh, &blocks, &section, share.as_deref())?;
+        let (linear_k, linear_offset) = linear_matrices(
+            &model.mesh,
+            &blocks,
+            &section,
+            share.as_deref(),
+            (super::parallel::threads(), PARALLEL_MIN_CELLS),
+        )?;
         Ok(Assembler {
             blocks,
             section,
@@ -119,9 +159,9 @@ where
             thermal_unit: Vec::new(),
             cell_law: Vec::new(),
             thermal_scale: 0.0,
-            scratch: ElementMatrix::default(),
             share,
             assembled: 0,
+            plan: None,
         })
     }
 
@@ -309,73 +349,88 @@ where
         scatter: &Scatter,
         u: &[[f64; D]],
         f_int: &mut [f64],
-        mut values: Option<&mut [f64]>,
+        values: Option<&mut [f64]>,
+    ) -> Result<(), String> {
+        let threads = super::parallel::threads();
+        self.assemble_with(
+            mesh,
+            scatter,
+            u,
+            f_int,
+            values,
+            (threads, PARALLEL_MIN_CELLS),
+        )
+    }
+
+    /// [`Assembler::assemble`] on `threads` threads when the model has at
+    /// least `min_cells` cells (and is not a rank's share of a distributed
+    /// assembly): the same bits whatever `threads` ([`Plan`]).
+    pub fn assemble_with(
+        &mut self,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        values: Option<&mut [f64]>,
+        (threads, min_cells): (usize, usize),
+    ) -> Result<(), String> {
+        if threads > 1 && self.share.is_none() && mesh.cells.len() >= min_cells.max(2) {
+            let key = (threads, scatter.id());
+            if self.plan.as_ref().is_none_or(|p| p.key != key) {
+                self.plan = Plan::new(key, mesh, &self.blocks, scatter).map(Arc::new);
+            }
+            if let Some(plan) = self.plan.clone() {
+                return self.assemble_parallel(&plan, mesh, scatter, u, f_int, values);
+            }
+        }
+        self.assemble_serial(mesh, scatter, u, f_int, values)
+    }
+
+    /// The element loop on one thread, in cell order.
+    fn assemble_serial(
+        &mut self,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        values: Option<&mut [f64]>,
     ) -> Result<(), String> {
         f_int.fill(0.0);
-        self.assembled = 0;
-        let with_tangent = values.is_some();
-        for block in &self.blocks {
+        let mut trial = std::mem::take(&mut self.trial);
+        let r = self.serial_loop(mesh, scatter, u, f_int, values, &mut trial);
+        self.trial = trial;
+        self.assembled = r?;
+        Ok(())
+    }
+
+    /// The cells of [`Assembler::assemble_serial`], in order; the number
+    /// of cells evaluated.
+    fn serial_loop(
+        &self,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        mut values: Option<&mut [f64]>,
+        trial: &mut [Vec<MaterialPoint>],
+    ) -> Result<usize, String> {
+        let cx = self.context(mesh, u, values.is_some());
+        let mut cell = CellWork::default();
+        let mut assembled = 0;
+        for (b, block) in self.blocks.iter().enumerate() {
             for c in block.cells.clone() {
                 if self.share.as_ref().is_some_and(|s| !s.owns_cell(c)) {
                     continue;
                 }
-                self.assembled += 1;
+                assembled += 1;
+                let nd = cx.element(b, c, &mut cell, &mut trial[c])?;
+                let k = cx.stiffness(c, nd, &cell);
                 let nodes = mesh.cells.nodes(c);
-                let slots = scatter.cell_slots(c);
-                let thermal_strain = self.thermal_strain.get(c).copied().unwrap_or(0.0);
-                if let Some(law) = &block.nonlinear {
-                    let law = self.cell_law.get(c).and_then(|l| l.as_ref()).unwrap_or(law);
-                    let history: Vec<History> =
-                        self.committed[c].iter().map(|p| p.history).collect();
-                    let kernel = kernel_of::<D>(mesh.cells.kind(c))
-                        .map_err(|e| format!("cell {c}: {}", e.message))?;
-                    let (x, ue) = cell_input(mesh, c, u);
-                    kernel
-                        .nonlinear(
-                            &NonlinearInput {
-                                x: &x,
-                                u: &ue,
-                                section: &self.section,
-                                formulation: block.formulation,
-                                kinematics: block.kinematics,
-                                law,
-                                history: &history,
-                                dt: self.dt,
-                                thermal_strain,
-                                with_tangent,
-                            },
-                            &mut self.scratch,
-                            &mut self.trial[c],
-                        )
-                        .map_err(|e| format!("cell {c}: {}", e.message))?;
-                    add(&self.scratch, nodes, slots, f_int, values.as_deref_mut());
-                    continue;
-                }
-                let nd = D * nodes.len();
-                assert!(nd <= MAX_DOFS, "a cell has more than {MAX_DOFS} dofs");
-                let k = &self.linear_k[self.linear_offset[c]..][..nd * nd];
-                let mut ue = [0.0; MAX_DOFS];
-                for (a, &n) in nodes.iter().enumerate() {
-                    ue[D * a..D * (a + 1)].copy_from_slice(&u[n]);
-                }
-                // f_e = K_e u_e (column-major K_e)
-                let mut fe = [0.0; MAX_DOFS];
-                for (j, &uj) in ue[..nd].iter().enumerate() {
-                    for (f, kij) in fe[..nd].iter_mut().zip(&k[j * nd..(j + 1) * nd]) {
-                        *f += kij * uj;
-                    }
-                }
-                if thermal_strain != 0.0 {
-                    // sigma = D (B u - eps_th): f_int = K u - eps_th f_unit
-                    for (i, f) in fe[..nd].iter_mut().enumerate() {
-                        *f -= thermal_strain * self.thermal_unit[c][i / D][i % D];
-                    }
-                }
-                for (i, f) in fe[..nd].iter().enumerate() {
+                for (i, f) in cell.fe[..nd].iter().enumerate() {
                     f_int[D * nodes[i / D] + i % D] += f;
                 }
                 if let Some(values) = values.as_deref_mut() {
-                    for (&slot, kij) in slots.iter().zip(k) {
+                    for (&slot, kij) in scatter.cell_slots(c).iter().zip(k) {
                         if slot != NO_SLOT {
                             values[slot as usize] += kij;
                         }
@@ -383,7 +438,353 @@ where
                 }
             }
         }
+        Ok(assembled)
+    }
+
+    /// The shared, read-only inputs of the element loop.
+    fn context<'a>(
+        &'a self,
+        mesh: &'a Mesh<D>,
+        u: &'a [[f64; D]],
+        with_tangent: bool,
+    ) -> Cx<'a, D> {
+        Cx {
+            mesh,
+            u,
+            with_tangent,
+            blocks: &self.blocks,
+            section: &self.section,
+            committed: &self.committed,
+            dt: self.dt,
+            linear_k: &self.linear_k,
+            linear_offset: &self.linear_offset,
+            thermal_strain: &self.thermal_strain,
+            thermal_unit: &self.thermal_unit,
+            cell_law: &self.cell_law,
+        }
+    }
+
+    /// The element loop on the threads of `plan` (see [`Plan`]): the same
+    /// bits as [`Assembler::assemble_serial`].
+    fn assemble_parallel(
+        &mut self,
+        plan: &Plan,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        values: Option<&mut [f64]>,
+    ) -> Result<(), String> {
+        f_int.fill(0.0);
+        let mut trial = std::mem::take(&mut self.trial);
+        let r = self.parallel_loop(plan, mesh, scatter, u, f_int, values, &mut trial);
+        self.trial = trial;
+        self.assembled = plan.seq.len();
+        r
+    }
+
+    /// The threads of [`Assembler::assemble_parallel`].
+    #[allow(clippy::too_many_arguments)]
+    fn parallel_loop(
+        &self,
+        plan: &Plan,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        mut values: Option<&mut [f64]>,
+        all_trial: &mut [Vec<MaterialPoint>],
+    ) -> Result<(), String> {
+        use super::parallel::Disjoint;
+        let with_tangent = values.is_some();
+        // each chunk's trial points: its cells are a range of global cells
+        let mut trial: Vec<&mut [Vec<MaterialPoint>]> = Vec::with_capacity(plan.chunks.len());
+        let mut rest = all_trial;
+        let mut offset = 0;
+        let mut first_cell = Vec::with_capacity(plan.chunks.len());
+        for (k, chunk) in plan.chunks.iter().enumerate() {
+            let lo = plan.seq[chunk.start].1;
+            let hi = plan
+                .chunks
+                .get(k + 1)
+                .map_or(rest.len() + offset, |n| plan.seq[n.start].1);
+            let (head, tail) = std::mem::take(&mut rest).split_at_mut(hi - offset);
+            trial.push(&mut head[lo - offset..]);
+            first_cell.push(lo);
+            rest = tail;
+            offset = hi;
+        }
+        let cx = self.context(mesh, u, with_tangent);
+        let force_out = Disjoint::new(f_int);
+        let value_out = values.as_deref_mut().map(Disjoint::new);
+        let run_chunk = |k: usize, trial: &mut [Vec<MaterialPoint>]| -> Result<Vec<f64>, String> {
+            let mut kept = Vec::new();
+            let mut cell = CellWork::default();
+            let owner = k as u32;
+            for q in plan.chunks[k].clone() {
+                let (b, c) = plan.seq[q];
+                let nd = cx.element(b, c, &mut cell, &mut trial[c - first_cell[k]])?;
+                let k_e = cx.stiffness(c, nd, &cell);
+                let nodes = mesh.cells.nodes(c);
+                for (i, &f) in cell.fe[..nd].iter().enumerate() {
+                    let g = D * nodes[i / D] + i % D;
+                    if plan.force_owner[g] == owner {
+                        // SAFETY: force entry `g` is owned by this chunk only
+                        unsafe { force_out.add(g, f) };
+                    }
+                }
+                if let Some(out) = &value_out {
+                    for (&slot, &kij) in scatter.cell_slots(c).iter().zip(k_e) {
+                        if slot != NO_SLOT && plan.slot_owner[slot as usize] == owner {
+                            // SAFETY: value slot `slot` is owned by this chunk only
+                            unsafe { out.add(slot as usize, kij) };
+                        }
+                    }
+                }
+                if plan.interface[q] {
+                    kept.extend_from_slice(&cell.fe[..nd]);
+                    if with_tangent {
+                        kept.extend_from_slice(k_e);
+                    }
+                }
+            }
+            Ok(kept)
+        };
+        let results: Vec<Result<Vec<f64>, String>> = std::thread::scope(|scope| {
+            let mut handles = Vec::new();
+            let mut chunks = trial.into_iter().enumerate();
+            let own = chunks.next();
+            for (k, t) in chunks {
+                let run = &run_chunk;
+                handles.push(scope.spawn(move || run(k, t)));
+            }
+            let mut out = vec![own.map_or(Ok(Vec::new()), |(k, t)| run_chunk(k, t))];
+            for h in handles {
+                out.push(
+                    h.join()
+                        .unwrap_or_else(|_| Err("an assembly thread panicked".into())),
+                );
+            }
+            out
+        });
+        // the shared entries: interface cells in the serial order
+        for (k, kept) in results.into_iter().enumerate() {
+            let kept = kept?;
+            let mut at = 0;
+            for q in plan.chunks[k].clone().filter(|&q| plan.interface[q]) {
+                let c = plan.seq[q].1;
+                let nodes = mesh.cells.nodes(c);
+                let nd = D * nodes.len();
+                for (i, f) in kept[at..at + nd].iter().enumerate() {
+                    let g = D * nodes[i / D] + i % D;
+                    if plan.force_owner[g] == SHARED {
+                        f_int[g] += f;
+                    }
+                }
+                at += nd;
+                if let Some(values) = values.as_deref_mut() {
+                    for (&slot, kij) in scatter.cell_slots(c).iter().zip(&kept[at..at + nd * nd]) {
+                        if slot != NO_SLOT && plan.slot_owner[slot as usize] == SHARED {
+                            values[slot as usize] += kij;
+                        }
+                    }
+                    at += nd * nd;
+                }
+            }
+        }
         Ok(())
+    }
+}
+
+/// The read-only inputs of the element loop ([`Assembler::context`]).
+struct Cx<'a, const D: usize> {
+    mesh: &'a Mesh<D>,
+    u: &'a [[f64; D]],
+    with_tangent: bool,
+    blocks: &'a [CellBlock],
+    section: &'a Section,
+    committed: &'a [Vec<MaterialPoint>],
+    dt: f64,
+    linear_k: &'a [f64],
+    linear_offset: &'a [usize],
+    thermal_strain: &'a [f64],
+    thermal_unit: &'a [Vec<Point<D>>],
+    cell_law: &'a [Option<crate::material::NonlinearLaw>],
+}
+
+/// One thread's element results: the force of the last cell (`a D + c`),
+/// the stiffness of the last nonlinear cell (column-major) and the
+/// kernel's scratch.
+struct CellWork<const D: usize> {
+    fe: [f64; MAX_DOFS],
+    k: Vec<f64>,
+    scratch: ElementMatrix<D>,
+}
+
+impl<const D: usize> Default for CellWork<D> {
+    fn default() -> Self {
+        CellWork {
+            fe: [0.0; MAX_DOFS],
+            k: Vec::new(),
+            scratch: ElementMatrix::default(),
+        }
+    }
+}
+
+impl<const D: usize> Cx<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
+    /// Evaluates cell `c` of block `b`: its force into `out.fe`, and for a
+    /// nonlinear law its tangent into `out.k` (if asked) and its trial
+    /// points into `trial`; returns the cell's dof count.
+    fn element(
+        &self,
+        b: usize,
+        c: usize,
+        out: &mut CellWork<D>,
+        trial: &mut [MaterialPoint],
+    ) -> Result<usize, String> {
+        let mesh = self.mesh;
+        let block = &self.blocks[b];
+        let nodes = mesh.cells.nodes(c);
+        let nd = D * nodes.len();
+        assert!(nd <= MAX_DOFS, "a cell has more than {MAX_DOFS} dofs");
+        let thermal_strain = self.thermal_strain.get(c).copied().unwrap_or(0.0);
+        if let Some(law) = &block.nonlinear {
+            let law = self.cell_law.get(c).and_then(|l| l.as_ref()).unwrap_or(law);
+            let history: Vec<History> = self.committed[c].iter().map(|p| p.history).collect();
+            let kernel = kernel_of::<D>(mesh.cells.kind(c))
+                .map_err(|e| format!("cell {c}: {}", e.message))?;
+            let (x, ue) = cell_input(mesh, c, self.u);
+            kernel
+                .nonlinear(
+                    &NonlinearInput {
+                        x: &x,
+                        u: &ue,
+                        section: self.section,
+                        formulation: block.formulation,
+                        kinematics: block.kinematics,
+                        law,
+                        history: &history,
+                        dt: self.dt,
+                        thermal_strain,
+                        with_tangent: self.with_tangent,
+                    },
+                    &mut out.scratch,
+                    trial,
+                )
+                .map_err(|e| format!("cell {c}: {}", e.message))?;
+            let r = &out.scratch;
+            for (a, f) in r.force.iter().enumerate() {
+                out.fe[D * a..D * (a + 1)].copy_from_slice(f.as_slice());
+            }
+            out.k.clear();
+            if self.with_tangent {
+                out.k.extend((0..nd * nd).map(|e| r.entry(e % nd, e / nd)));
+            }
+            return Ok(nd);
+        }
+        let k = &self.linear_k[self.linear_offset[c]..][..nd * nd];
+        let mut ue = [0.0; MAX_DOFS];
+        for (a, &n) in nodes.iter().enumerate() {
+            ue[D * a..D * (a + 1)].copy_from_slice(&self.u[n]);
+        }
+        // f_e = K_e u_e (column-major K_e)
+        let fe = &mut out.fe;
+        fe[..nd].fill(0.0);
+        for (j, &uj) in ue[..nd].iter().enumerate() {
+            for (f, kij) in fe[..nd].iter_mut().zip(&k[j * nd..(j + 1) * nd]) {
+                *f += kij * uj;
+            }
+        }
+        if thermal_strain != 0.0 {
+            // sigma = D (B u - eps_th): f_int = K u - eps_th f_unit
+            for (i, f) in fe[..nd].iter_mut().enumerate() {
+                *f -= thermal_strain * self.thermal_unit[c][i / D][i % D];
+            }
+        }
+        Ok(nd)
+    }
+
+    /// The stiffness of cell `c` (`nd` dofs) just evaluated into `cell`
+    /// (column-major; empty without the tangent for a nonlinear cell).
+    fn stiffness<'b>(&'b self, c: usize, nd: usize, cell: &'b CellWork<D>) -> &'b [f64] {
+        match self.linear_offset[c] {
+            NO_MATRIX => &cell.k,
+            o => &self.linear_k[o..][..nd * nd],
+        }
+    }
+}
+
+impl Plan {
+    /// The partition of `blocks`' cells among `key.0` threads for
+    /// `scatter`; `None` when the cells are not in increasing order (the
+    /// chunks' trial points would not be contiguous) or fewer than two
+    /// chunks result.
+    fn new<const D: usize>(
+        key: (usize, u64),
+        mesh: &Mesh<D>,
+        blocks: &[CellBlock],
+        scatter: &Scatter,
+    ) -> Option<Plan> {
+        let seq: Vec<(usize, usize)> = blocks
+            .iter()
+            .enumerate()
+            .flat_map(|(b, block)| block.cells.clone().map(move |c| (b, c)))
+            .collect();
+        if seq.windows(2).any(|w| w[1].1 <= w[0].1) {
+            return None;
+        }
+        let chunks = super::parallel::split(seq.len(), key.0);
+        if chunks.len() < 2 {
+            return None;
+        }
+        const FREE: u32 = u32::MAX - 1;
+        let mut slot_owner = vec![FREE; scatter.n_values()];
+        let mut force_owner = vec![FREE; D * mesh.nodes.len()];
+        let claim = |owner: &mut u32, k: u32| {
+            *owner = match *owner {
+                FREE => k,
+                o if o == k => k,
+                _ => SHARED,
+            }
+        };
+        for (k, chunk) in chunks.iter().enumerate() {
+            for &(_, c) in &seq[chunk.clone()] {
+                for &n in mesh.cells.nodes(c) {
+                    for owner in &mut force_owner[D * n..D * (n + 1)] {
+                        claim(owner, k as u32);
+                    }
+                }
+                for &slot in scatter.cell_slots(c) {
+                    if slot != NO_SLOT {
+                        claim(&mut slot_owner[slot as usize], k as u32);
+                    }
+                }
+            }
+        }
+        let interface = seq
+            .iter()
+            .map(|&(_, c)| {
+                mesh.cells
+                    .nodes(c)
+                    .iter()
+                    .any(|&n| force_owner[D * n] == SHARED)
+                    || scatter
+                        .cell_slots(c)
+                        .iter()
+                        .any(|&s| s != NO_SLOT && slot_owner[s as usize] == SHARED)
+            })
+            .collect();
+        Some(Plan {
+            key,
+            seq,
+            chunks,
+            interface,
+            slot_owner,
+            force_owner,
+        })
     }
 }
 
@@ -395,18 +796,23 @@ fn linear_matrices<const D: usize>(
     blocks: &[CellBlock],
     section: &Section,
     share: Option<&AssemblyShare>,
+    (threads, min_cells): (usize, usize),
 ) -> Result<(Vec<f64>, Vec<usize>), String>
 where
     Const<D>: Dimension<D>,
 {
-    let mut k = Vec::new();
-    let mut offset = vec![NO_MATRIX; mesh.cells.len()];
-    let mut out = ElementMatrix::<D>::default();
-    for block in blocks.iter().filter(|b| b.nonlinear.is_none()) {
-        for c in block.cells.clone() {
-            if share.is_some_and(|s| !s.owns_cell(c)) {
-                continue;
-            }
+    let cells: Vec<(&CellBlock, usize)> = blocks
+        .iter()
+        .filter(|b| b.nonlinear.is_none())
+        .flat_map(|b| b.cells.clone().map(move |c| (b, c)))
+        .filter(|&(_, c)| share.is_none_or(|s| s.owns_cell(c)))
+        .collect();
+    // each cell's matrix alone: chunks of cells on the threads, their
+    // matrices concatenated in cell order (the same array on any count)
+    let matrices = |part: &[(&CellBlock, usize)]| -> Result<Vec<f64>, String> {
+        let mut k = Vec::new();
+        let mut out = ElementMatrix::<D>::default();
+        for &(block, c) in part {
             let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
             let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(err)?;
             let x = mesh.cell_points(c);
@@ -422,7 +828,6 @@ where
                     &mut out,
                 )
                 .map_err(err)?;
-            offset[c] = k.len();
             let nd = D * x.len();
             for j in 0..nd {
                 for i in 0..nd {
@@ -430,31 +835,44 @@ where
                 }
             }
         }
+        Ok(k)
+    };
+    let threads = if cells.len() >= min_cells { threads } else { 1 };
+    let parts = super::parallel::split(cells.len(), threads);
+    let results: Vec<Result<Vec<f64>, String>> = if parts.len() > 1 {
+        std::thread::scope(|scope| {
+            let matrices = &matrices;
+            let handles: Vec<_> = parts[1..]
+                .iter()
+                .map(|r| {
+                    let part = &cells[r.clone()];
+                    scope.spawn(move || matrices(part))
+                })
+                .collect();
+            let mut out = vec![matrices(&cells[parts[0].clone()])];
+            for h in handles {
+                out.push(
+                    h.join()
+                        .unwrap_or_else(|_| Err("an element thread panicked".into())),
+                );
+            }
+            out
+        })
+    } else {
+        vec![matrices(&cells)]
+    };
+    let mut k = Vec::new();
+    for r in results {
+        k.extend_from_slice(&r?);
+    }
+    let mut offset = vec![NO_MATRIX; mesh.cells.len()];
+    let mut at = 0;
+    for &(_, c) in &cells {
+        offset[c] = at;
+        let nd = D * mesh.cells.nodes(c).len();
+        at += nd * nd;
     }
     Ok((k, offset))
-}
-
-#[inline]
-fn add<const D: usize>(
-    r: &ElementMatrix<D>,
-    nodes: &[usize],
-    slots: &[u32],
-    f_int: &mut [f64],
-    values: Option<&mut [f64]>,
-) {
-    for (f, &n) in r.force.iter().zip(nodes) {
-        for c in 0..D {
-            f_int[D * n + c] += f[c];
-        }
-    }
-    if let Some(values) = values {
-        let nd = D * nodes.len();
-        for (e, &slot) in slots.iter().enumerate() {
-            if slot != NO_SLOT {
-                values[slot as usize] += r.entry(e % nd, e / nd);
-            }
-        }
-    }
 }
 
 #[cfg(test)]
@@ -519,6 +937,119 @@ mod tests {
             .fix([0], 0)
             .fix([0], 1)
             .build()
+    }
+
+    /// A grid of `nx x ny` unit quads with its lower-left corner at `x0`.
+    fn grid(nx: usize, ny: usize, x0: f64) -> Mesh {
+        let nodes = (0..=ny)
+            .flat_map(|j| (0..=nx).map(move |i| [x0 + i as f64, j as f64]))
+            .collect();
+        let cells = (0..ny)
+            .flat_map(|j| {
+                (0..nx).map(move |i| {
+                    let a = j * (nx + 1) + i;
+                    Cell::quad(a, a + 1, a + nx + 2, a + nx + 1)
+                })
+            })
+            .collect();
+        Mesh::new(nodes, cells)
+    }
+
+    #[test]
+    fn one_two_and_three_threads_assemble_the_same_bits() {
+        // an elastic body (cached element matrices) and a finite-strain
+        // plastic one (integration points), fixed at node 0
+        let model = crate::testkit::ModelBuilder::plane_strain()
+            .elastic("e", 100.0, 0.3)
+            .material(
+                "p",
+                MaterialLaw::ElastoPlastic {
+                    young: 200e3,
+                    poisson: 0.3,
+                    hardening: Hardening::Linear {
+                        yield_stress: 250.0,
+                        modulus: 1000.0,
+                    },
+                    viscosity: None,
+                },
+            )
+            .body("a", grid(6, 4, 0.0), "e")
+            .body("b", grid(3, 2, 7.0), "p")
+            .kinematics(Kinematics::Finite)
+            .fix([0], 0)
+            .fix([0], 1)
+            .build();
+        let dofs = DofMap::new(&model);
+        let scatter = Scatter::new(&model.mesh, &dofs).unwrap();
+        let nn = model.mesh.nodes.len();
+        // yielding displacements, irregular enough to round differently
+        // if the summation order changed
+        let u: Vec<[f64; 2]> = (0..nn)
+            .map(|n| {
+                let t = n as f64;
+                [
+                    0.013 * (0.7 * t).sin() / 3.0,
+                    -0.011 * (1.3 * t).cos() / 7.0,
+                ]
+            })
+            .collect();
+        let run = |threads: usize, tangent: bool| {
+            let mut asm = Assembler::new(&model).unwrap();
+            let mut f = vec![0.0; 2 * nn];
+            let mut k = vec![0.0; scatter.n_values()];
+            // values already hold something (the contact blocks)
+            for (i, v) in k.iter_mut().enumerate() {
+                *v = 1.0 / (3.0 + i as f64);
+            }
+            asm.assemble_with(
+                &model.mesh,
+                &scatter,
+                &u,
+                &mut f,
+                tangent.then_some(&mut k[..]),
+                (threads, 0),
+            )
+            .unwrap();
+            assert_eq!(asm.assembled_cells(), model.mesh.cells.len());
+            let used_plan = asm.plan.is_some();
+            asm.commit();
+            let points = format!("{:?}", asm.points());
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            (bits(&f), bits(&k), points, used_plan)
+        };
+        for tangent in [true, false] {
+            let serial = run(1, tangent);
+            assert!(!serial.3);
+            for threads in [2, 3, 7] {
+                let par = run(threads, tangent);
+                assert!(par.3, "{threads} threads: the parallel path ran");
+                assert!(par.0 == serial.0, "{threads} threads: forces differ");
+                assert!(par.1 == serial.1, "{threads} threads: tangent differs");
+                assert!(par.2 == serial.2, "{threads} threads: points differ");
+            }
+        }
+        // the cached element matrices: the same array on 1 and 3 threads
+        let blocks = blocks_of(&model).unwrap();
+        let section = Section::new(&model.analysis);
+        let one = linear_matrices(&model.mesh, &blocks, &section, None, (1, 0)).unwrap();
+        let three = linear_matrices(&model.mesh, &blocks, &section, None, (3, 0)).unwrap();
+        assert_eq!(one.1, three.1);
+        assert!(one
+            .0
+            .iter()
+            .zip(&three.0)
+            .all(|(a, b)| a.to_bits() == b.to_bits()));
+        assert_eq!(one.0.len(), 24 * 64);
+        // the partition has shared entries (the test covers both paths)
+        let plan = Plan::new(
+            (2, scatter.id()),
+            &model.mesh,
+            &blocks_of(&model).unwrap(),
+            &scatter,
+        )
+        .unwrap();
+        assert!(plan.slot_owner.contains(&SHARED) && plan.slot_owner.contains(&0));
+        assert!(plan.interface.iter().any(|&i| i) && !plan.interface.iter().all(|&i| i));
     }
 
     #[test]

@@ -53,6 +53,7 @@ pub mod linalg;
 pub mod loads;
 pub mod memory;
 pub mod newton;
+pub mod parallel;
 pub mod restart;
 pub mod scene;
 pub mod share;
@@ -253,6 +254,16 @@ pub struct Timings {
     pub low_rank: f64,
     /// Triangular solves.
     pub solve: f64,
+    /// Of `factorization`: the symbolic analyses (fill-reducing ordering,
+    /// elimination tree), done once per sparsity pattern.
+    pub symbolic: f64,
+    /// Residual and convergence work of the evaluations outside the
+    /// element loop and the contact: the residual and its norms, springs,
+    /// stabilization, the round-off floor `|K| |x|`.
+    pub residual: f64,
+    /// Set-up before the first increment: model check, dof numbering,
+    /// sparsity pattern, element matrices, the reference-state check.
+    pub setup: f64,
     /// Observers (result writing).
     pub output: f64,
     /// Whole run.
@@ -321,6 +332,9 @@ pub struct RunSummary {
     /// tangent was factorized.
     #[serde(skip_serializing_if = "is_zero")]
     pub low_rank_updates: usize,
+    /// Threads of the parallel kernels (`parallel::threads`: element
+    /// loop, low-rank solves); the results do not depend on it.
+    pub threads: usize,
     /// Symbolic factorizations of the Lagrange-multiplier saddle-point
     /// system (one per distinct active set met).
     pub saddle_symbolic_factorizations: usize,
@@ -471,6 +485,7 @@ where
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
     let mut newton = newton;
+    let setup = start.elapsed().as_secs_f64();
     let thermal = match <Const<D> as Dimension<D>>::Heat::new(model) {
         Ok(t) => t,
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
@@ -583,6 +598,7 @@ where
     let output = summary.timings.output;
     summary.timings = newton.timings.clone();
     summary.timings.output = output;
+    summary.timings.setup = setup;
     summary.newton_iterations = newton.iterations;
     let stats = newton.factor_stats();
     summary.linear_solver = stats.most_general().to_string();
@@ -594,9 +610,11 @@ where
     summary.ldlt_factorizations = stats.ldlt;
     summary.lu_factorizations = stats.lu;
     summary.low_rank_updates = stats.low_rank;
+    summary.threads = parallel::threads();
     summary.max_negative_pivots = stats.max_negative_pivots;
     summary.factor_nonzeros = stats.factor_nonzeros;
     summary.factor_bytes = stats.factor_bytes;
+    summary.timings.symbolic = stats.symbolic_seconds;
     summary.peak_memory_bytes = memory::peak_memory_bytes();
     let lower = (summary.matrix_nonzeros + summary.free_dofs) / 2;
     summary.factor_fill = if lower > 0 {
@@ -923,8 +941,8 @@ where
         if !self.observer.wants_checkpoint() {
             return Ok(());
         }
-        let cp = self.newton.checkpoint(self.increment, *resume);
         let start = Instant::now();
+        let cp = self.newton.checkpoint(self.increment, *resume);
         let r = self.observer.checkpoint(&cp);
         self.summary.timings.output += start.elapsed().as_secs_f64();
         r

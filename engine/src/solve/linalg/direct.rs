@@ -28,7 +28,7 @@
 //!
 //! This is the [`LinearSystem`] of the default build (serial, direct).
 
-use super::low_rank::LowRank;
+use super::low_rank::{LowRank, COLUMN_BATCH};
 use super::pattern::SparsePattern;
 use super::{FactorStats, LinearError, LinearSystem, ZeroMode};
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -109,6 +109,8 @@ pub struct LinearSolver {
     low_rank_min_rows: usize,
     /// Tangents solved by a low-rank update instead of a factorization.
     pub low_rank_count: usize,
+    /// Wall time of the symbolic analyses, seconds.
+    symbolic_seconds: f64,
 }
 
 /// Matrices with fewer rows are always factorized in full (a low-rank
@@ -150,6 +152,7 @@ impl LinearSolver {
             low_rank_enabled: true,
             low_rank_min_rows: LOW_RANK_MIN_ROWS,
             low_rank_count: 0,
+            symbolic_seconds: 0.0,
         }
     }
 
@@ -244,16 +247,39 @@ impl LinearSolver {
             return false;
         }
         if !missing.is_empty() {
-            let mut cols = vec![0.0; n * missing.len()];
-            for (c, &d) in missing.iter().enumerate() {
-                cols[c * n + d] = 1.0;
-            }
-            if self.solve_base(&mut cols, missing.len()).is_err()
-                || !cols.iter().all(|v| v.is_finite())
-            {
+            let first = self.low_rank.push_unit_columns(&missing);
+            let cols = self.low_rank.new_columns(first);
+            let solved = match self.factor {
+                Factor::Llt | Factor::Ldlt => match self.symbolic.as_ref() {
+                    Some(sym) => {
+                        solve_columns(
+                            sym,
+                            &self.l_values,
+                            self.factor == Factor::Llt,
+                            cols,
+                            n,
+                            super::super::parallel::threads(),
+                        );
+                        true
+                    }
+                    None => false,
+                },
+                Factor::Lu => match self.lu.as_ref() {
+                    Some(lu) => {
+                        for batch in cols.chunks_mut(n * COLUMN_BATCH) {
+                            let ncols = batch.len() / n;
+                            lu.solve_in_place(MatMut::from_column_major_slice_mut(batch, n, ncols));
+                        }
+                        true
+                    }
+                    None => false,
+                },
+                Factor::None | Factor::Empty => false,
+            };
+            if !solved || !cols.iter().all(|v| v.is_finite()) {
+                self.low_rank.drop_columns(first);
                 return false;
             }
-            self.low_rank.add_columns(&missing, &cols);
         }
         if !self
             .low_rank
@@ -285,7 +311,10 @@ impl LinearSolver {
         let mat = SparseColMatRef::new(symbolic, &values[..pattern.nnz()]);
         if self.method != Method::Lu {
             if self.symbolic.is_none() {
-                let sym = symbolic_cholesky(symbolic, pattern)?;
+                let start = std::time::Instant::now();
+                let sym = symbolic_cholesky(symbolic, pattern);
+                self.symbolic_seconds += start.elapsed().as_secs_f64();
+                let sym = sym?;
                 let req = sym
                     .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
                     .or(sym.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()))
@@ -350,7 +379,10 @@ impl LinearSolver {
             self.method = Method::Lu;
         }
         if self.symbolic_lu.is_none() {
-            self.symbolic_lu = Some(SymbolicLu::try_new(symbolic).map_err(|e| {
+            let start = std::time::Instant::now();
+            let sym = SymbolicLu::try_new(symbolic);
+            self.symbolic_seconds += start.elapsed().as_secs_f64();
+            self.symbolic_lu = Some(sym.map_err(|e| {
                 LinearError::Symbolic(format!("symbolic LU factorization failed: {e:?}"))
             })?);
         }
@@ -419,6 +451,52 @@ impl LinearSolver {
     }
 }
 
+/// Solves `K0 X = E` in place for the columns of `cols` (column-major,
+/// `n` rows) with the Cholesky (`llt`) or `L D L^T` factor `l_values`, in
+/// batches of [`COLUMN_BATCH`] columns shared among `threads` threads:
+/// each batch is solved as on one thread (the bits do not depend on
+/// `threads`).
+fn solve_columns(
+    sym: &SymbolicCholesky<usize>,
+    l_values: &[f64],
+    llt: bool,
+    cols: &mut [f64],
+    n: usize,
+    threads: usize,
+) {
+    let solve = |batches: &mut [f64]| {
+        let mut scratch = MemBuffer::new(sym.solve_in_place_scratch::<f64>(COLUMN_BATCH, Par::Seq));
+        for batch in batches.chunks_mut(n * COLUMN_BATCH) {
+            let b = MatMut::from_column_major_slice_mut(batch, n, batch.len() / n);
+            let stack = MemStack::new(&mut scratch);
+            if llt {
+                LltRef::new(sym, l_values).solve_in_place_with_conj(Conj::No, b, Par::Seq, stack);
+            } else {
+                LdltRef::new(sym, l_values).solve_in_place_with_conj(Conj::No, b, Par::Seq, stack);
+            }
+        }
+    };
+    let batches = cols.len().div_ceil(n * COLUMN_BATCH);
+    let parts = threads.clamp(1, batches.max(1));
+    if parts == 1 {
+        solve(cols);
+        return;
+    }
+    // whole batches per thread
+    let per = batches.div_ceil(parts) * n * COLUMN_BATCH;
+    std::thread::scope(|scope| {
+        let solve = &solve;
+        let mut parts = cols.chunks_mut(per);
+        let own = parts.next();
+        for part in parts {
+            scope.spawn(move || solve(part));
+        }
+        if let Some(part) = own {
+            solve(part);
+        }
+    });
+}
+
 impl LinearSystem for LinearSolver {
     fn set_symmetric(&mut self, symmetric: bool) {
         if symmetric {
@@ -459,6 +537,7 @@ impl LinearSystem for LinearSolver {
             factor_nonzeros: self.l_values.len(),
             factor_bytes: self.l_values.len() * std::mem::size_of::<f64>()
                 + self.scratch.as_ref().map_or(0, |b| b.len()),
+            symbolic_seconds: self.symbolic_seconds,
         }
     }
 }
@@ -497,29 +576,46 @@ fn symbolic_cholesky(
     let failed = |e: faer::sparse::FaerError| {
         LinearError::Symbolic(format!("symbolic Cholesky factorization failed: {e:?}"))
     };
-    let amd = factorize_symbolic_cholesky(
-        symbolic,
-        Side::Lower,
-        SymmetricOrdering::Amd,
-        CholeskySymbolicParams::default(),
-    )
-    .map_err(failed)?;
+    let amd = || {
+        factorize_symbolic_cholesky(
+            symbolic,
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        )
+    };
     if pattern.n < NESTED_DISSECTION_MIN {
-        return Ok(amd);
+        return amd().map_err(failed);
     }
-    let forward = super::ordering::nested_dissection(pattern);
-    let mut inverse = vec![0; forward.len()];
-    for (k, &v) in forward.iter().enumerate() {
-        inverse[v] = k;
-    }
-    let perm = faer::perm::PermRef::new_checked(&forward, &inverse, forward.len());
-    let nd = factorize_symbolic_cholesky(
-        symbolic,
-        Side::Lower,
-        SymmetricOrdering::Custom(perm),
-        CholeskySymbolicParams::default(),
-    )
-    .map_err(failed)?;
+    let nd = || {
+        let forward = super::ordering::nested_dissection(pattern);
+        let mut inverse = vec![0; forward.len()];
+        for (k, &v) in forward.iter().enumerate() {
+            inverse[v] = k;
+        }
+        let perm = faer::perm::PermRef::new_checked(&forward, &inverse, forward.len());
+        factorize_symbolic_cholesky(
+            symbolic,
+            Side::Lower,
+            SymmetricOrdering::Custom(perm),
+            CholeskySymbolicParams::default(),
+        )
+    };
+    // both analyses at once on two threads (each is deterministic; the
+    // choice depends on their sizes only)
+    let (amd, nd) = if super::super::parallel::threads() > 1 {
+        std::thread::scope(|scope| {
+            let nd = scope.spawn(nd);
+            let amd = amd();
+            (amd, nd.join())
+        })
+    } else {
+        (amd(), Ok(nd()))
+    };
+    let amd = amd.map_err(failed)?;
+    let nd = nd
+        .map_err(|_| LinearError::Symbolic("the nested dissection thread panicked".into()))?
+        .map_err(failed)?;
     Ok(if nd.len_val() < amd.len_val() {
         nd
     } else {
@@ -949,6 +1045,66 @@ mod low_rank_tests {
         let mut x = b.clone();
         s.solve(&mut x).unwrap();
         assert!(rel_diff(&x, &full_solution(&p, &scaled, &b)) < 1e-12);
+    }
+
+    /// The columns `K0^{-1} e_j` (several batches) and the update `Z y`
+    /// are the same bits on 1, 2 and 3 threads (issue 20), and the columns
+    /// are the inverse's.
+    #[test]
+    fn threads_do_not_change_the_low_rank_bits() {
+        let (p, base) = grid(20);
+        let n = p.n;
+        let mut s = LinearSolver::new().with_low_rank(true, 0);
+        s.factorize(&p, &base).unwrap();
+        let sym = s.symbolic.as_ref().unwrap();
+        // 77 distinct dofs: five batches, the last one partial
+        let dofs: Vec<usize> = (0..5 * COLUMN_BATCH - 3).map(|k| (7 * k) % n).collect();
+        let columns = |threads: usize| {
+            let mut cols = vec![0.0; n * dofs.len()];
+            for (c, &d) in dofs.iter().enumerate() {
+                cols[c * n + d] = 1.0;
+            }
+            solve_columns(
+                sym,
+                &s.l_values,
+                s.factor == Factor::Llt,
+                &mut cols,
+                n,
+                threads,
+            );
+            cols
+        };
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let one = columns(1);
+        assert!(bits(&columns(2)) == bits(&one));
+        assert!(bits(&columns(3)) == bits(&one));
+        for (c, &d) in dofs.iter().enumerate().step_by(19) {
+            let mut e = vec![0.0; n];
+            e[d] = 1.0;
+            let exact = full_solution(&p, &base, &e);
+            assert!(
+                rel_diff(&one[c * n..(c + 1) * n], &exact) < 1e-12,
+                "column {d}"
+            );
+        }
+        // an update of 25 nodes (50 dofs), Z y on 1, 2 and 3 threads
+        let nodes: Vec<usize> = (150..175).collect();
+        let mut v = base.clone();
+        contact(&p, &mut v, &nodes, 1e4, 0.0);
+        s.factorize(&p, &v).unwrap();
+        assert_eq!(s.low_rank_count, 1);
+        let b: Vec<f64> = (0..n).map(|i| ((i * 5 % 11) as f64 - 5.0) / 5.0).collect();
+        let mut x0 = b.clone();
+        s.solve_base(&mut x0, 1).unwrap();
+        let update = |parts: usize| {
+            let mut x = x0.clone();
+            s.low_rank.correct_parts(&mut x, parts);
+            x
+        };
+        let serial = update(1);
+        assert!(bits(&update(2)) == bits(&serial));
+        assert!(bits(&update(3)) == bits(&serial));
+        assert!(rel_diff(&serial, &full_solution(&p, &v, &b)) < 1e-10);
     }
 
     /// Below the size threshold (and when disabled) every tangent is

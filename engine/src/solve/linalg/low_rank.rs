@@ -74,6 +74,12 @@ impl LowRank {
         self.base.extend_from_slice(values);
         self.n = n;
         self.z.clear();
+        // room for every column the bound allows: the cache never moves
+        // (untouched capacity costs address space, not memory)
+        let room = Self::limit(n).saturating_mul(n);
+        if self.z.capacity() < room {
+            let _ = self.z.try_reserve_exact(room);
+        }
         self.col_of.clear();
         self.col_of.resize(n, u32::MAX);
         self.s.clear();
@@ -139,13 +145,33 @@ impl LowRank {
         self.z.len() / self.n.max(1)
     }
 
-    /// Appends the columns `K0^{-1} e_d` of `dofs`, given as `cols`
-    /// (column-major `n x dofs.len()`).
-    pub fn add_columns(&mut self, dofs: &[usize], cols: &[f64]) {
-        for (c, &d) in dofs.iter().enumerate() {
-            self.col_of[d] = (self.cached()) as u32;
-            self.z
-                .extend_from_slice(&cols[c * self.n..(c + 1) * self.n]);
+    /// Appends the unit columns `e_d` of `dofs` to the cache, to be solved
+    /// in place into `K0^{-1} e_d` ([`LowRank::new_columns`]); returns the
+    /// index of the first new column.
+    pub fn push_unit_columns(&mut self, dofs: &[usize]) -> usize {
+        let first = self.cached();
+        for &d in dofs {
+            self.col_of[d] = self.cached() as u32;
+            let start = self.z.len();
+            self.z.resize(start + self.n, 0.0);
+            self.z[start + d] = 1.0;
+        }
+        first
+    }
+
+    /// The cached columns from index `first` on (column-major).
+    pub fn new_columns(&mut self, first: usize) -> &mut [f64] {
+        &mut self.z[first * self.n..]
+    }
+
+    /// Forgets the cached columns from index `first` on (their solve
+    /// failed).
+    pub fn drop_columns(&mut self, first: usize) {
+        self.z.truncate(first * self.n);
+        for c in &mut self.col_of {
+            if *c != u32::MAX && *c as usize >= first {
+                *c = u32::MAX;
+            }
         }
     }
 
@@ -214,8 +240,26 @@ impl LowRank {
     }
 
     /// `x = x0 - Z y` with `(I + dK Z_SS) y = dK x0_S`; `x` holds
-    /// `x0 = K0^{-1} b` on entry.
+    /// `x0 = K0^{-1} b` on entry. On [`crate::solve::parallel::threads`]
+    /// threads (the same bits whatever their number).
     pub fn correct(&self, x: &mut [f64]) {
+        self.correct_with(x, crate::solve::parallel::threads());
+    }
+
+    /// [`LowRank::correct`] on `threads` threads (one below
+    /// [`PARALLEL_MIN_WORK`]).
+    pub fn correct_with(&self, x: &mut [f64], threads: usize) {
+        let parts = if x.len() * self.s.len() >= PARALLEL_MIN_WORK {
+            threads
+        } else {
+            1
+        };
+        self.correct_parts(x, parts);
+    }
+
+    /// [`LowRank::correct`] with the rows cut into `parts` ranges, one per
+    /// thread, each row updated in column order as on one thread.
+    pub(crate) fn correct_parts(&self, x: &mut [f64], parts: usize) {
         let m = self.s.len();
         if !self.active || m == 0 {
             return;
@@ -231,15 +275,51 @@ impl LowRank {
             })
             .collect();
         let y = lu_solve(&self.lu, &self.perm, m, &t);
-        for (&d, &yb) in self.s.iter().zip(&y) {
-            if yb != 0.0 {
-                for (xi, zi) in x.iter_mut().zip(self.column(d)) {
+        let terms: Vec<(&[f64], f64)> = self
+            .s
+            .iter()
+            .zip(&y)
+            .filter(|(_, &yb)| yb != 0.0)
+            .map(|(&d, &yb)| (self.column(d), yb))
+            .collect();
+        // x_i -= y_b Z_ib in column order b; each column streamed once
+        // (sequential reads: faster than row blocks that jump between the
+        // columns, measured on the tutorial deck)
+        let rows = |start: usize, xs: &mut [f64]| {
+            let len = xs.len();
+            for &(z, yb) in &terms {
+                for (xi, zi) in xs.iter_mut().zip(&z[start..start + len]) {
                     *xi -= yb * zi;
                 }
             }
+        };
+        let n = x.len();
+        let parts = parts.clamp(1, n.max(1));
+        if parts == 1 {
+            rows(0, x);
+            return;
         }
+        let per = n.div_ceil(parts);
+        std::thread::scope(|scope| {
+            let rows = &rows;
+            let mut parts = x.chunks_mut(per).enumerate();
+            let own = parts.next();
+            for (p, xs) in parts {
+                scope.spawn(move || rows(p * per, xs));
+            }
+            if let Some((_, xs)) = own {
+                rows(0, xs);
+            }
+        });
     }
 }
+
+/// Work (`n` times the columns) below which `Z y` stays on one thread.
+const PARALLEL_MIN_WORK: usize = 1 << 20;
+
+/// Columns of `K0^{-1}` solved together: the batches do not depend on the
+/// thread count, so neither do the columns' bits.
+pub const COLUMN_BATCH: usize = 16;
 
 /// Dense LU with partial pivoting of the row-major `m x m` matrix `a`, in
 /// place (unit lower factor below the diagonal); the row order, or `None`

@@ -23,6 +23,7 @@
 //! aware: element and contact blocks -> value slots).
 
 pub mod direct;
+pub mod export;
 pub mod low_rank;
 pub mod ordering;
 pub mod pattern;
@@ -84,7 +85,7 @@ impl std::fmt::Display for LinearError {
 impl std::error::Error for LinearError {}
 
 /// Counters of a linear system over the run (written to `summary.json`).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct FactorStats {
     /// Successful Cholesky factorizations.
     pub cholesky: usize,
@@ -107,6 +108,9 @@ pub struct FactorStats {
     /// Bytes held by the factorization: the values of `L` and the numeric
     /// scratch (the symbolic structure, a few index arrays, is not counted).
     pub factor_bytes: usize,
+    /// Wall time of the symbolic analyses (orderings, elimination trees),
+    /// seconds; 0 when the system does not report it.
+    pub symbolic_seconds: f64,
 }
 
 impl FactorStats {

@@ -73,7 +73,14 @@ pub struct Scatter {
     /// (`crate::solve::share`): only their couplings are in the pattern,
     /// only their slots exist; `None`: the whole mesh.
     share: Option<Arc<AssemblyShare>>,
+    /// Number of this scatter map (a new one for every pattern built):
+    /// the key of the parallel assembly's partition
+    /// (`crate::solve::assembly`).
+    id: u64,
 }
+
+/// Scatter maps built so far (their [`Scatter::id`]).
+static SCATTERS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
 
 impl Scatter {
     /// Builds the pattern and the scatter maps of `mesh` numbered by `dofs`.
@@ -202,7 +209,14 @@ impl Scatter {
             fp_row,
             fp_col,
             share,
+            id: SCATTERS.fetch_add(1, std::sync::atomic::Ordering::Relaxed),
         })
+    }
+
+    /// Number of this scatter map (distinct for every pattern built; a
+    /// clone keeps it).
+    pub fn id(&self) -> u64 {
+        self.id
     }
 
     /// The rank's share of a distributed assembly (`None`: the whole mesh).

@@ -158,6 +158,9 @@ where
     /// Step and end time of the current attempt (recorded into the history
     /// at commit).
     attempt: (usize, f64),
+    /// The model's restart fingerprint ([`super::restart::fingerprint`]),
+    /// computed at the first checkpoint (it formats the whole model).
+    fingerprint: std::sync::OnceLock<u64>,
 }
 
 impl<const D: usize> std::fmt::Debug for Newton<'_, D>
@@ -252,6 +255,7 @@ where
             history: predictor::History::default(),
             fresh: true,
             attempt: (0, 0.0),
+            fingerprint: std::sync::OnceLock::new(),
         };
         let (mut lo, mut hi) = ([f64::INFINITY; D], [f64::NEG_INFINITY; D]);
         for p in &model.mesh.nodes {
@@ -605,6 +609,7 @@ where
         self.timings.assembly += mid.elapsed().as_secs_f64();
         self.timings.cpu[0] += thread_cpu_seconds() - cpu1;
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
+        let residual_start = Instant::now();
         // springs to the ground and between nodes: internal forces (their
         // energy is part of the internal work)
         if super::discrete::any(model, |k, _| k) {
@@ -685,6 +690,7 @@ where
             scale: denom,
         };
         self.last_eval = Some(ev);
+        self.timings.residual += residual_start.elapsed().as_secs_f64();
         Ok(ev)
     }
 

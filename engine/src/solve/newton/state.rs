@@ -75,7 +75,9 @@ where
     pub(crate) fn checkpoint(&self, increment: usize, resume: Resume) -> Checkpoint<D> {
         let (pairs, couplings) = self.contacts.history();
         Checkpoint {
-            fingerprint: restart::fingerprint(self.model),
+            fingerprint: *self
+                .fingerprint
+                .get_or_init(|| restart::fingerprint(self.model)),
             increment,
             resume,
             displacement: self.committed.clone(),
