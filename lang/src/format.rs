@@ -177,7 +177,7 @@ impl Printer<'_> {
             } else {
                 match (rule, part.as_rule()) {
                     (_, Rule::block) => " ",
-                    (Rule::contact, Rule::master) => " -> ",
+                    (Rule::contact | Rule::unknown_item, Rule::master) => " -> ",
                     (Rule::unknown_item, Rule::name) => " -> ",
                     (Rule::tool, Rule::name) if i == 2 => " = ",
                     (Rule::set, Rule::set_expr)
