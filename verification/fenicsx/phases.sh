@@ -8,7 +8,7 @@
 # and history, byte for byte).
 #
 # Usage: bash verification/fenicsx/phases.sh REPS LABEL=BIN:THREADS ...
-#   e.g. bash verification/fenicsx/phases.sh 3 before=/tmp/ctc-old:1 \
+#   e.g. bash verification/fenicsx/phases.sh 3 before=target/ctc-before:1 \
 #          after=target/release/ctc:1 after=target/release/ctc:2
 # Needs target/speed/tutorial/tutorial.ctc (written by tutorial.sh, or
 # `tutorial.py DIR --export-only`). Output: target/speed/phases/.
