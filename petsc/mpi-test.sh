@@ -5,7 +5,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ranks="${1:-2}"
-exe=$(cargo test -p ctc-petsc --features petsc --test mpi_elasticity --no-run \
+# `-p ctc -p ctc-petsc --features ctc/petsc`: the feature resolution every
+# PETSc command of `.ci/run` uses, so this build reuses theirs (with
+# `-p ctc-petsc` alone nalgebra, faer and the engine resolve differently and
+# are compiled once more).
+exe=$(cargo test -p ctc -p ctc-petsc --features ctc/petsc --test mpi_elasticity --no-run \
         --message-format=json 2>/dev/null |
       sed -n 's/.*"name":"mpi_elasticity".*"executable":"\([^"]*\)".*/\1/p' | tail -1)
 if [ -z "$exe" ]; then

@@ -14,7 +14,9 @@
 //! ```
 //!
 //! Needs the `petsc` feature and `mpirun` (`bash petsc/install.sh`); run by
-//! `.ci/run` as `cargo test --features petsc --test petsc_run`.
+//! `.ci/run` as `cargo test -p ctc -p ctc-petsc --features ctc/petsc --lib
+//! --test mpi_elasticity --test petsc_run` (alone: `cargo test --features
+//! petsc --test petsc_run`).
 #![cfg(feature = "petsc")]
 
 use std::path::{Path, PathBuf};

@@ -1,6 +1,8 @@
 //! Distributed 3D linear elasticity on PETSc, checked against a serial faer
-//! solve. Run on one rank by `cargo test -p ctc-petsc --features petsc`, on
-//! two by `bash petsc/mpi-test.sh 2` (`mpirun -n 2` on this binary).
+//! solve. Run on one rank by `cargo test -p ctc -p ctc-petsc --features
+//! ctc/petsc --test mpi_elasticity` (or `cargo test -p ctc-petsc --features
+//! petsc`), on two by `bash petsc/mpi-test.sh 2` (`mpirun -n 2` on this
+//! binary).
 //!
 //! Reference: the same discrete problem solved serially (faer sparse
 //! Cholesky on the free dofs, natural numbering). Element: trilinear hex8,
