@@ -155,8 +155,8 @@ struct Last {
     u: Vec<[f64; 3]>,
     closed: usize,
     slaves: usize,
-    /// (time, pressure, rate) per increment.
-    cycle: Vec<(f64, f64, f64)>,
+    /// (time, pressure, rate, closed contact nodes) per increment.
+    cycle: Vec<(f64, f64, f64, usize)>,
 }
 
 impl Observer<3> for Last {
@@ -167,7 +167,7 @@ impl Observer<3> for Last {
             (c + usize::from(on), s + 1)
         });
         let c = v.controls.first().ok_or("no controller")?;
-        self.cycle.push((v.time, c.pressure, c.rate));
+        self.cycle.push((v.time, c.pressure, c.rate, self.closed));
         Ok(())
     }
 }
@@ -236,7 +236,7 @@ fn form(replace: &[(&str, &str)]) {
         .map(|(r0, r, t)| format!("{r0:.1}->{r:.1}: {t:.3}"))
         .collect();
     let top = S0 + last.u[pole][2];
-    let (t_end, p_end, rate_end) = *last.cycle.last().unwrap();
+    let (t_end, p_end, rate_end, _) = *last.cycle.last().unwrap();
     let p_max = last.cycle.iter().map(|c| c.1).fold(0.0, f64::max);
     eprintln!(
         "superplastic_forming_3d: {} nodes, {} increments, {} iterations, {} cutbacks, {wall:.1} \
@@ -267,17 +267,29 @@ fn form(replace: &[(&str, &str)]) {
         })
         .map(|n| t[n])
         .fold(f64::NAN, f64::min);
-    // the controller holds the largest rate of the sheet
-    let rate_error = last
+    // the controller holds the largest rate of the sheet while it bulges
+    // freely (after the start's transient, before the die)
+    let free: Vec<_> = last
         .cycle
         .iter()
         .filter(|c| c.0 >= 60.0)
+        .take_while(|c| c.3 == 0)
+        .collect();
+    let rate_error = free
+        .iter()
         .map(|c| (c.2 - 1e-3).abs() / 1e-3)
         .fold(0.0, f64::max);
+    let first_contact = last
+        .cycle
+        .iter()
+        .find(|c| c.3 > 0)
+        .map_or(f64::NAN, |c| c.0);
     eprintln!(
         "thickness in the die's corner: min {corner:.4} (thinning {:.1} %); controlled rate: max \
-         |rate - 1e-3| / 1e-3 for t >= 60: {rate_error:.3}",
-        100.0 * (1.0 - corner / S0)
+         |rate - 1e-3| / 1e-3 from t = 60 to the first contact (t = {first_contact}): \
+         {rate_error:.3} over {} increments",
+        100.0 * (1.0 - corner / S0),
+        free.len()
     );
     // the pole reaches the die's bottom without passing through it
     assert!((top - (S0 + H)).abs() < 0.05, "pole top z = {top}");
@@ -300,7 +312,11 @@ fn form(replace: &[(&str, &str)]) {
         t[pole]
     );
     assert!(corner < 0.9 * S0, "corner thickness {corner}");
-    // the controller held the rate within 30 % (the die's contact
-    // changes the deforming zone from one increment to the next)
-    assert!(rate_error < 0.3, "controlled rate error {rate_error}");
+    // the controller held the rate of the free bulge within 25 % (the
+    // coarse mesh's largest rate moves between cells: the pole's rate
+    // under the pole controller is `ctc verify superplastic_forming_3d`)
+    assert!(
+        free.len() > 5 && rate_error < 0.25,
+        "controlled rate error {rate_error}"
+    );
 }
