@@ -15,7 +15,7 @@ pub fn read_history(dir: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> 
 
 /// Columns of a CSV file of numbers with a header line.
 fn read_table(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
-    let text = std::fs::read_to_string(&path)
+    let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut lines = text.lines();
     let header = split_csv(lines.next().unwrap_or_default());
