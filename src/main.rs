@@ -540,6 +540,16 @@ where
             Err(e) => eprintln!("warning: no plots: {e}"),
         }
     }
+    if model.output.thickness.is_some() {
+        // sheets and tubes: the thickness along the first face set
+        match ctc_verification::history_plot::thickness_plots(dir, model.output.units.as_ref()) {
+            Ok(files) if !quiet && !files.is_empty() => {
+                println!("plots: {} in {}", files.join(", "), dir.display())
+            }
+            Ok(_) => {}
+            Err(e) => eprintln!("warning: no plots: {e}"),
+        }
+    }
     if !ctc_engine::solve::control::controls(model).is_empty() {
         // superplastic forming: the optimised pressure cycle
         match ctc_verification::history_plot::pressure_cycle_plots(dir, model.output.units.as_ref())

@@ -1046,7 +1046,7 @@ pub static NEWTON: [Key; 6] = [
 ];
 
 /// `output { .. }`.
-pub static OUTPUT: [Key; 4] = [
+pub static OUTPUT: [Key; 5] = [
     Key::new(
         "every",
         KeyType::Integer,
@@ -1077,6 +1077,15 @@ pub static OUTPUT: [Key; 4] = [
             "contact_force(set -> master)",
         ]),
         "list of history.csv columns",
+    ),
+    Key::new(
+        "thickness",
+        KeyType::Choice(&["(body.faces, body.faces)"]),
+        "thickness map of a sheet or tube between two face sets of one body (3d): at each node \
+         the sum of its distances to both deformed faces; the VTU point field `thickness`, \
+         `thickness.csv` (the first set's nodes by reference distance from the origin), the \
+         history columns `thickness_min` and its reference position, and `thickness.svg` \
+         from `ctc run`",
     ),
     Key::new(
         "format",

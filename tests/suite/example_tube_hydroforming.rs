@@ -113,6 +113,8 @@ struct Wall {
     /// face's nodes in contact and the bulge's outer radius, per
     /// increment.
     rows: Vec<(f64, f64, f64)>,
+    /// The last converged displacements.
+    u: Vec<[f64; 3]>,
 }
 
 impl Observer<3> for Wall {
@@ -133,6 +135,7 @@ impl Observer<3> for Wall {
             let on = n.status == ctc_engine::contact::ContactStatus::Closed;
             (c + usize::from(on), s + 1)
         });
+        self.u = v.displacement.to_vec();
         let pole = x(self.pole);
         self.rows.push((
             thin,
@@ -212,6 +215,7 @@ fn form(replace: &[(&str, &str)]) {
         pole,
         reference: model.mesh.nodes.clone(),
         rows: Vec::new(),
+        u: Vec::new(),
     };
     let summary = ctc_engine::solve::run(&model, &mut wall).unwrap();
     assert!(summary.completed);
@@ -224,6 +228,21 @@ fn form(replace: &[(&str, &str)]) {
         summary.newton_iterations,
         summary.cutbacks,
         start.elapsed().as_secs_f64()
+    );
+    // the deck's thickness map (`output { thickness = (tube.outer,
+    // tube.inner) }`) on the outer face: the distance to the deformed
+    // inner face, the node lines' thickness to first order
+    let request = model.output.thickness.as_ref().expect("the thickness map");
+    let t = ctc_engine::output::thickness::nodal(&model.mesh, request, &wall.u);
+    let (t_min, _) = ctc_engine::output::thickness::minimum(&model.mesh, request, &t);
+    eprintln!(
+        "thickness map: min {t_min:.4} (thinning {:.4})",
+        1.0 - t_min
+    );
+    assert!(
+        ((1.0 - t_min) - thin).abs() < 2e-3,
+        "map thinning {} vs node lines {thin}",
+        1.0 - t_min
     );
     // the bulge thins the wall, the axial feed keeps it from tearing
     assert!(thin > 0.02 && thin < 0.5, "max thinning {thin}");

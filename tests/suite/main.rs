@@ -9,6 +9,7 @@ mod contact_search_jump;
 mod determinism;
 mod dynamic_fields;
 mod example_iges_punch;
+mod example_superplastic_forming;
 mod example_tube_hydroforming;
 mod examples;
 mod follower_plate;

@@ -1,7 +1,8 @@
 //! SVG line plots of a run's `history.csv` (one column against another):
 //! the force against the stroke and the temperature rise of the
 //! thermo-mechanical examples (`examples/shock_damper.ctc`,
-//! `examples/rivet_forming.ctc`).
+//! `examples/rivet_forming.ctc`), pressure cycles; and of `thickness.csv`
+//! (the thickness map along a sheet, [`thickness_plots`]).
 
 use crate::plot::colour;
 use plotters::prelude::*;
@@ -9,8 +10,12 @@ use std::path::Path;
 
 /// Columns of `history.csv` in `dir`: header names and rows of numbers.
 pub fn read_history(dir: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
-    let path = dir.join("history.csv");
-    let text = std::fs::read_to_string(&path)
+    read_table(&dir.join("history.csv"))
+}
+
+/// Columns of a CSV file of numbers with a header line.
+fn read_table(path: &Path) -> Result<(Vec<String>, Vec<Vec<f64>>), String> {
+    let text = std::fs::read_to_string(path)
         .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     let mut lines = text.lines();
     let header = split_csv(lines.next().unwrap_or_default());
@@ -64,6 +69,28 @@ pub fn history_plot(
     y0: f64,
 ) -> Result<bool, String> {
     let (header, rows) = read_history(dir)?;
+    table_plot(
+        dir,
+        (&header, &rows),
+        file,
+        title,
+        (x, x_scale, x_desc),
+        (y, y_scale, y_desc),
+        y0,
+    )
+}
+
+/// [`history_plot`] of the columns of any table `(header, rows)`.
+#[allow(clippy::too_many_arguments)]
+fn table_plot(
+    dir: &Path,
+    (header, rows): (&[String], &[Vec<f64>]),
+    file: &str,
+    title: &str,
+    (x, x_scale, x_desc): (&str, f64, &str),
+    (y, y_scale, y_desc): (&str, f64, &str),
+    y0: f64,
+) -> Result<bool, String> {
     let col = |name: &str| {
         header
             .iter()
@@ -338,6 +365,41 @@ pub fn pressure_time_plots(
     Ok(files)
 }
 
+/// The plot of `ctc run` for a thickness map (`output { thickness = (a, b)
+/// }`): `thickness.svg`, the thickness of the first face set's nodes at the
+/// last written increment against their reference distance from the
+/// origin (`thickness.csv`: the radius of a sheet centred on the origin).
+/// Returns the files written (none without `thickness.csv`).
+pub fn thickness_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
+    let path = dir.join("thickness.csv");
+    if !path.exists() {
+        return Ok(Vec::new());
+    }
+    let (header, rows) = read_table(&path)?;
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
+    let written = table_plot(
+        dir,
+        (&header, &rows),
+        "thickness.svg",
+        "thickness at the last written increment",
+        (
+            "distance0",
+            1.0,
+            &with("reference distance from the origin", |u| &u.length),
+        ),
+        ("thickness", 1.0, &with("thickness", |u| &u.length)),
+        f64::NAN,
+    )?;
+    Ok(if written {
+        vec!["thickness.svg".to_string()]
+    } else {
+        Vec::new()
+    })
+}
+
 /// The plots of `ctc run` for a model with free tools
 /// (`rotation = free`, e.g. `examples/blankholder.ctc`):
 /// `force_stroke.svg`, the first `reaction(..)` against the first
@@ -409,6 +471,24 @@ mod tests {
         assert_eq!(travel_axis(&header, &rows), "_z");
         assert_eq!(travel_axis(&header[..4], &rows), "_x");
         assert_eq!(travel_axis(&header[..2], &rows), "_x");
+    }
+
+    #[test]
+    fn the_thickness_plot_reads_thickness_csv() {
+        let dir = tempfile::tempdir().unwrap();
+        assert!(thickness_plots(dir.path(), None).unwrap().is_empty());
+        std::fs::write(
+            dir.path().join("thickness.csv"),
+            "node,x0,y0,z0,x,y,z,distance0,thickness\n3,0,0,1,0,0,9,1,0.7\n5,10,0,1,10,0,8,10.05,0.8\n",
+        )
+        .unwrap();
+        let units = ctc_lang::units::system("mm_N_s").map(|s| s.names());
+        assert_eq!(
+            thickness_plots(dir.path(), units.as_ref()).unwrap(),
+            ["thickness.svg"]
+        );
+        let t = std::fs::read_to_string(dir.path().join("thickness.svg")).unwrap();
+        assert!(t.contains("thickness [mm]"), "{t}");
     }
 
     #[test]

@@ -1194,6 +1194,20 @@ pub enum HistoryRequest {
     },
 }
 
+/// The thickness of a sheet or tube between two of its boundary face sets
+/// (`output { thickness = (sheet.top, sheet.bottom) }`, 3D): at each node
+/// of the body, the sum of its distances to both deformed faces
+/// ([`crate::output::thickness`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ThicknessRequest {
+    /// `a, b` as written in the deck.
+    pub label: String,
+    /// The two face sets; the first is the one `thickness.csv` lists.
+    pub faces: [Vec<crate::mesh::Facet>; 2],
+    /// The nodes of the body (sorted).
+    pub nodes: Vec<usize>,
+}
+
 /// Output settings.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OutputRequest {
@@ -1203,6 +1217,9 @@ pub struct OutputRequest {
     pub fields: Vec<Field>,
     /// Histories written to `history.csv`.
     pub history: Vec<HistoryRequest>,
+    /// The thickness map of a sheet or tube (`output { thickness = (a, b)
+    /// }`, [`crate::output::thickness`]).
+    pub thickness: Option<ThicknessRequest>,
     /// How VTU files store their arrays.
     pub format: VtuFormat,
     /// Names of the deck's units (`analysis { units = .. }`), for labels in
@@ -1247,6 +1264,7 @@ impl Default for OutputRequest {
             every: 1,
             fields: vec![Field::Displacement, Field::Stress, Field::Reaction],
             history: Vec::new(),
+            thickness: None,
             format: VtuFormat::Binary,
             units: None,
         }

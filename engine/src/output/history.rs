@@ -85,6 +85,18 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
         cols.push("temperature_max".into());
         cols.push("temperature_min".into());
     }
+    if D == 3 && model.output.thickness.is_some() {
+        // appended by the writer: the thinnest node of the first face set
+        // and its reference position (`super::thickness`)
+        for c in [
+            "thickness_min",
+            "thickness_min_x",
+            "thickness_min_y",
+            "thickness_min_z",
+        ] {
+            cols.push(c.into());
+        }
+    }
     cols
 }
 

@@ -12,6 +12,9 @@
 //! - `contact_<pair>_<NNNN>.csv`: the slave nodes of each pair at each
 //!   written increment;
 //! - `summary.json`: the run summary, written by [`ResultWriter::finish`];
+//! - `thickness.csv`: with `output { thickness = (a, b) }`, the thickness
+//!   along the first face set at the last written increment
+//!   ([`thickness`]);
 //! - `progress.sta`: one line per converged increment (step, increment,
 //!   attempts, Newton iterations, total and step time, increment size,
 //!   closed contact nodes, largest penetration, last residual), flushed
@@ -36,6 +39,7 @@ pub mod encode;
 pub mod history;
 pub mod pvd;
 pub mod sta;
+pub mod thickness;
 pub mod tool_vtu;
 pub mod vtu;
 pub mod vtu_read;
@@ -121,6 +125,7 @@ pub fn is_result_file(name: &str) -> bool {
         "results.pvd",
         "history.csv",
         "summary.json",
+        "thickness.csv",
         RESTART_FILE,
         STA_FILE,
     ]
@@ -247,6 +252,17 @@ where
         } else {
             None
         };
+        let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
+        let thickness = model
+            .output
+            .thickness
+            .as_ref()
+            .filter(|_| D == 3)
+            .map(|t| (t, thickness::nodal(&model.mesh, t, &snap.displacement)));
+        if let Some((request, values)) = &thickness {
+            let csv = thickness::csv(&model.mesh, request, values, &snap.displacement);
+            write_atomic(&self.dir.join("thickness.csv"), csv.as_bytes()).map_err(io)?;
+        }
         let name = format!("inc_{:04}.vtu", snap.increment);
         let bytes = vtu::vtu(&vtu::VtuData {
             model,
@@ -259,11 +275,11 @@ where
             contact: &snap.contact,
             nodal: nodal.as_ref(),
             temperature: snap.temperature.as_deref(),
+            thickness: thickness.as_ref().map(|(_, v)| v.as_slice()),
             velocity: snap.velocity.as_deref(),
             acceleration: snap.acceleration.as_deref(),
             encoding: model.output.format,
         });
-        let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
         write_atomic(&self.dir.join(&name), &bytes).map_err(io)?;
         for (p, list) in snap.contact.iter().enumerate() {
             let csv = <Const<D> as Dimension<D>>::Contact::contact_csv(
@@ -334,6 +350,12 @@ where
         }
         if let Some(t) = view.thermal {
             row.extend([t.max_temperature, t.min_temperature]);
+        }
+        if let Some(t) = self.model.output.thickness.as_ref().filter(|_| D == 3) {
+            let values = thickness::nodal(&self.model.mesh, t, view.displacement);
+            let (min, at) = thickness::minimum(&self.model.mesh, t, &values);
+            row.push(min);
+            row.extend(at);
         }
         self.history
             .append(&row)

@@ -17,7 +17,8 @@
 //! `friction_traction`), `friction_slip` (slip increment; 3D: its length),
 //! `friction_status` (0 frictionless, 1 stick, 2 slip) and
 //! `friction_dissipation` (work of the increment); dynamic runs:
-//! `velocity`, `acceleration` (3 components, when requested). Cell data: `body` index,
+//! `velocity`, `acceleration` (3 components, when requested); `thickness`
+//! with `output { thickness = (a, b) }` ([`super::thickness`]). Cell data: `body` index,
 //! and with the same names as the point data `stress`, `strain`,
 //! `von_mises`, `equivalent_plastic_strain`: the volume-weighted mean of
 //! each cell's integration points (element values, not smoothed; the von
@@ -54,6 +55,9 @@ pub struct VtuData<'a, const D: usize = 2> {
     pub nodal: Option<&'a NodalFields>,
     /// Nodal temperatures (thermal scenes only; written whenever present).
     pub temperature: Option<&'a [f64]>,
+    /// Nodal sheet thickness (`output { thickness = (a, b) }`; written
+    /// whenever present, [`super::thickness`]).
+    pub thickness: Option<&'a [f64]>,
     /// Velocity per dof `node D + c` (written when requested and present).
     pub velocity: Option<&'a [f64]>,
     /// Acceleration per dof (written when requested and present).
@@ -161,6 +165,9 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
     }
     if let Some(t) = d.temperature {
         a.array(&mut s, IN, "temperature", 1, "", t.iter().copied());
+    }
+    if let Some(t) = d.thickness.filter(|t| t.len() == nn) {
+        a.array(&mut s, IN, "thickness", 1, "", t.iter().copied());
     }
     for (field, name, values) in [
         (Field::Velocity, "velocity", d.velocity),
@@ -430,6 +437,7 @@ mod tests {
             contact: &contacts,
             nodal: None,
             temperature: None,
+            thickness: None,
             velocity: None,
             acceleration: None,
             encoding,

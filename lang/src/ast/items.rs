@@ -864,6 +864,9 @@ pub struct Output {
     pub history: Option<Vec<Spanned<History>>>,
     /// `format = binary | ascii`.
     pub format: Option<Spanned<OutputFormat>>,
+    /// `thickness = (body.a, body.b)`: the thickness map between two face
+    /// sets of one body (3d).
+    pub thickness: Option<Spanned<[SetRef; 2]>>,
     /// The `output` keyword.
     pub keyword: Span,
     /// The whole item.

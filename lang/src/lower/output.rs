@@ -3,7 +3,9 @@
 use super::Lowerer;
 use crate::ast;
 use crate::validate::Need;
-use ctc_engine::model::{ContactPair, Field, HistoryRequest, OutputRequest, VtuFormat};
+use ctc_engine::model::{
+    ContactPair, Field, HistoryRequest, OutputRequest, ThicknessRequest, VtuFormat,
+};
 
 impl Lowerer<'_> {
     pub(super) fn output(&mut self, contacts: &[ContactPair]) -> OutputRequest {
@@ -52,6 +54,9 @@ impl Lowerer<'_> {
             }
             out.fields = list;
         }
+        if let Some(t) = o.thickness.as_ref().filter(|t| !self.has_error_in(t.span)) {
+            out.thickness = self.thickness(t);
+        }
         for h in o.history.iter().flatten() {
             if self.has_error_in(h.span) {
                 continue;
@@ -97,5 +102,28 @@ impl Lowerer<'_> {
             }
         }
         out
+    }
+
+    /// `thickness = (a, b)`: both face sets and the body's nodes.
+    fn thickness(
+        &mut self,
+        t: &crate::span::Spanned<[ast::SetRef; 2]>,
+    ) -> Option<ThicknessRequest> {
+        let [a, b] = &t.value;
+        if !self.solid || self.body_failed(a) || self.body_failed(b) {
+            return None;
+        }
+        let fa = self.resolve(a, Need::Edges, "thickness")?.faces;
+        let fb = self.resolve(b, Need::Edges, "thickness")?.faces;
+        let (Some(fa), Some(fb)) = (fa, fb) else {
+            self.missing("the thickness faces", t.span);
+            return None;
+        };
+        let nodes: Vec<usize> = self.body_nodes.get(&a.body.name)?.clone().collect();
+        Some(ThicknessRequest {
+            label: format!("{a}, {b}"),
+            faces: [fa, fb],
+            nodes,
+        })
     }
 }

@@ -1,4 +1,5 @@
-//! `output { every = n  fields = [..]  history = [..]  format = binary | ascii }`.
+//! `output { every = n  fields = [..]  history = [..]  format = binary | ascii
+//! thickness = (body.a, body.b) }`.
 
 use super::fields::Fields;
 use super::values::{self, Diags};
@@ -47,15 +48,39 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Output> {
         Some(items.iter().filter_map(|x| history(x, diags)).collect())
     });
     let format = f.choice("format", "VTU format", &FORMATS, diags);
+    let thickness = f
+        .value("thickness", diags)
+        .and_then(|v| thickness(v, diags));
     f.finish(diags);
     Some(Output {
         every,
         fields,
         history,
         format,
+        thickness,
         keyword: item.keyword,
         span: item.span,
     })
+}
+
+/// `thickness = (body.a, body.b)`: two face set references.
+fn thickness(v: &Value, diags: &mut Diags) -> Option<Spanned<[crate::ast::SetRef; 2]>> {
+    let help = "expected two face sets of one body, e.g. `(sheet.zmax, sheet.zmin)`";
+    match &v.kind {
+        ValueKind::Tuple(items) if items.len() == 2 => {
+            let a = values::set_ref(&items[0], diags);
+            let b = values::set_ref(&items[1], diags);
+            Some(Spanned::new([a?, b?], v.span))
+        }
+        _ => {
+            diags.push(Diagnostic::error(
+                format!("expected a pair of face sets, found {}", v.kind.describe()),
+                v.span,
+                help,
+            ));
+            None
+        }
+    }
 }
 
 fn history(v: &Value, diags: &mut Diags) -> Option<Spanned<History>> {
@@ -135,6 +160,18 @@ mod tests {
         assert!(matches!(&h[0].value, History::Reaction(r) if r.to_string() == "block.bottom"));
         assert!(
             matches!(&h[2].value, History::ContactForce(r, t) if r.to_string() == "block.top" && t.name == "punch")
+        );
+    }
+
+    #[test]
+    fn output_thickness() {
+        let deck = parse_ok("output { thickness = (sheet.zmax, sheet.zmin) }");
+        let t = &deck.outputs[0].thickness.as_ref().unwrap().value;
+        assert_eq!(t[0].to_string(), "sheet.zmax");
+        assert_eq!(t[1].to_string(), "sheet.zmin");
+        assert_eq!(
+            parse_messages("output { thickness = sheet.zmax }"),
+            ["expected a pair of face sets, found a dotted name"]
         );
     }
 

@@ -36,6 +36,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
             }
         }
     }
+    if let Some(t) = &o.thickness {
+        thickness_needs_faces_of_one_solid_body(t, ctx);
+    }
     let pairs: Vec<String> = deck
         .contacts
         .iter()
@@ -77,6 +80,42 @@ pub fn check(ctx: &mut Ctx<'_>) {
     }
 }
 
+/// `thickness = (a, b)`: a 3d analysis, face sets (checked like a
+/// pressure's), both of one body.
+pub fn thickness_needs_faces_of_one_solid_body(
+    t: &Spanned<[crate::ast::SetRef; 2]>,
+    ctx: &mut Ctx<'_>,
+) {
+    if !super::analysis::is_solid(ctx) {
+        ctx.err(
+            Diagnostic::error(
+                "`thickness` is measured between face sets of a 3d body",
+                t.span,
+                "a planar analysis",
+            )
+            .with_help("the thickness of a planar section is its mesh's extent; remove the key"),
+        );
+        return;
+    }
+    for r in &t.value {
+        sets::set_ref(r, Need::Edges, "thickness", ctx);
+    }
+    let [a, b] = &t.value;
+    if a.body.name != b.body.name {
+        ctx.err(
+            Diagnostic::error(
+                format!(
+                    "the thickness is measured within one body, not between `{}` and `{}`",
+                    a.body.name, b.body.name
+                ),
+                t.span,
+                "two bodies",
+            )
+            .with_help("name two face sets of the sheet, e.g. `(sheet.zmax, sheet.zmin)`"),
+        );
+    }
+}
+
 /// `velocity` and `acceleration` exist only where some step is dynamic (a
 /// quasi-static analysis has no inertia and no velocities).
 pub fn dynamic_fields_need_a_dynamic_step(
@@ -108,7 +147,7 @@ pub fn dynamic_fields_need_a_dynamic_step(
 
 #[cfg(test)]
 mod tests {
-    use crate::validate::test_support::messages;
+    use crate::validate::test_support::{messages, messages_of};
 
     #[test]
     fn velocity_and_acceleration_need_a_dynamic_step() {
@@ -122,5 +161,34 @@ mod tests {
         );
         let m = messages("output { fields = [velocity] }\nstep d { time = 1 .. 2  dynamic }");
         assert!(!m.iter().any(|s| s.contains("quasi-static")), "{m:?}");
+    }
+
+    #[test]
+    fn the_thickness_needs_face_sets_of_one_3d_body() {
+        let m = messages("output { thickness = (a.top, a.bottom) }");
+        assert!(
+            m.contains(&"`thickness` is measured between face sets of a 3d body".to_string()),
+            "{m:?}"
+        );
+        let solid = "analysis { dimension = 3d }
+material m { elastic { E = 1  nu = 0.3 } }
+body a { mesh = box { size = (1, 1, 1)  divisions = (1, 1, 1) }  material = m }
+body b { mesh = box { origin = (2, 0, 0)  size = (1, 1, 1)  divisions = (1, 1, 1) }  material = m }
+";
+        let m = messages_of(&format!("{solid}output {{ thickness = (a.zmax, b.zmin) }}"));
+        assert!(
+            m.iter()
+                .any(|s| s.contains("within one body, not between `a` and `b`")),
+            "{m:?}"
+        );
+        let m = messages_of(&format!(
+            "{solid}output {{ thickness = (a.zmax, a.origin) }}"
+        ));
+        assert!(
+            m.iter().any(|s| s.contains("needs boundary faces")),
+            "{m:?}"
+        );
+        let m = messages_of(&format!("{solid}output {{ thickness = (a.zmax, a.zmin) }}"));
+        assert!(!m.iter().any(|s| s.contains("thickness")), "{m:?}");
     }
 }

@@ -42,15 +42,15 @@ use ctc_engine::model::AnyModel;
 use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
 
 /// Die radius (the clamped edge).
-const A: f64 = 50.0;
+pub(crate) const A: f64 = 50.0;
 /// Initial thickness.
-const S0: f64 = 1.0;
+pub(crate) const S0: f64 = 1.0;
 /// Norton-Hoff flow stress at the reference rate.
-const SIGMA0: f64 = 20.0;
+pub(crate) const SIGMA0: f64 = 20.0;
 /// Reference rate.
-const R0: f64 = 1e-3;
+pub(crate) const R0: f64 = 1e-3;
 /// Target pole rate.
-const TARGET: f64 = 1e-3;
+pub(crate) const TARGET: f64 = 1e-3;
 /// Radius of the second mid-surface point of the pole's circle.
 const R_FIT: f64 = 3.0;
 
@@ -86,19 +86,19 @@ step blow {{ time = 0 .. {end}  increments = {increments} }}
 
 /// One converged increment at the pole.
 #[derive(Debug, Clone, Copy)]
-struct Pole {
+pub(crate) struct Pole {
     /// Time.
-    t: f64,
+    pub t: f64,
     /// Height of the mid-surface pole above the clamped plane's mid-surface.
-    h: f64,
+    pub h: f64,
     /// Pole thickness.
-    s: f64,
+    pub s: f64,
     /// Radius of curvature of the mid-surface at the pole.
-    rho: f64,
+    pub rho: f64,
     /// Applied pressure.
-    p: f64,
+    pub p: f64,
     /// Measured pole rate.
-    rate: f64,
+    pub rate: f64,
 }
 
 /// The nodes of the pole (bottom, top) and of the fitting radius.
@@ -137,7 +137,11 @@ impl Observer<2> for Watch {
     }
 }
 
-fn solve(
+/// The axisymmetric free bulge of Norton-Hoff exponent `m` on `divisions`
+/// (radial, through the thickness) quads up to `end` in `increments`: the
+/// pole at every converged increment (also the reference of the 3D sheet,
+/// [`super::superplastic_3d`]).
+pub(crate) fn solve(
     m: f64,
     divisions: (usize, usize),
     end: f64,

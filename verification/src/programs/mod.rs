@@ -34,6 +34,7 @@ pub mod quadratic_thermal;
 pub mod self_contact_3d;
 pub mod solid;
 pub mod solid_patch;
+pub mod superplastic_3d;
 pub mod taylor_bar;
 pub mod thermal_3d;
 pub mod thermal_contact;
@@ -90,6 +91,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(johnson_cook::cases());
     v.extend(blankholder::cases());
     v.extend(tube_bulge::cases());
+    v.extend(superplastic_3d::cases());
     v
 }
 

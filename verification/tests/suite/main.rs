@@ -22,6 +22,7 @@ mod penalty_scaling;
 mod quadratic;
 mod quadratic_contact;
 mod stress_reduced;
+mod superplastic_3d;
 mod traction_3d;
 mod upsetting;
 mod viscoplastic;
