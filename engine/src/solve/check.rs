@@ -807,8 +807,9 @@ fn free_solid_motions<const D: usize>(
 /// if it cannot: a deformable master or slave with quadratic cells
 /// (node-to-segment and mortar are linear), Lagrange multipliers (no
 /// positive-weight multiplier basis on tri6 / quad8 faces is built),
-/// friction, thermal contact (nodal areas), or a nodal penalty (a force
-/// per node has no meaning at integration points).
+/// thermal contact (nodal areas), or a nodal penalty (a force per node
+/// has no meaning at integration points). Friction is integrated at the
+/// points (`contact::face_integrated`).
 pub fn quadratic_contact_refusal<const D: usize>(
     model: &Model<D>,
     c: &crate::model::ContactPair,
@@ -847,7 +848,6 @@ pub fn quadratic_contact_refusal<const D: usize>(
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
         }
-        _ if c.friction.is_some() => "friction is not available on quadratic faces",
         _ if model.thermal.as_ref().is_some_and(|t| {
             model
                 .contacts
