@@ -70,7 +70,7 @@
 //! and a positive-weight mean over the node's faces smears the peak over a
 //! face (measured: p0 38 % low on the coarsest hex27 Hertz block).
 
-use super::friction::{self, NodeFriction};
+use super::friction::{self, FrictionStatus, NodeFriction};
 use super::mortar::Coupling;
 use super::motion::Placement;
 use super::{search, ContactStatus, NodeContact, PairState};
@@ -500,8 +500,8 @@ impl FacetPair {
     }
 
     /// The friction output of slave node `node` from the points' outputs
-    /// `points` (integration-point order, `None`: no friction there): the
-    /// highest status of its points, the tangential force and dissipation
+    /// `points` (integration-point order, `None`: no friction there): stick
+    /// if any of its points sticks, else slip if any slips, the tangential force and dissipation
     /// the points put on it (`sum N_a t_g`, `sum N_a D_g`: the node shares
     /// sum to the points' totals), the `|N_a| w`-weighted means of the
     /// points' slips and tangential gaps. `tangential_force` is left to
@@ -526,7 +526,11 @@ impl FacetPair {
                 continue;
             };
             let na = p.shape[a];
-            out.status = out.status.max(pf.status);
+            // a node sticks while any of its points sticks
+            out.status = match (out.status, pf.status) {
+                (FrictionStatus::Frictionless, s) | (s, FrictionStatus::Frictionless) => s,
+                (a, b) => a.min(b),
+            };
             for k in 0..D {
                 out.traction[k] += na * pf.traction[k];
                 out.slip_vector[k] += wg * pf.slip_vector[k];
