@@ -328,6 +328,12 @@ impl Scene {
 /// increment), stick (1..2, 1 increment), pull (2..3, 8 increments). For
 /// the restart and convergence tests.
 pub fn pulled_block(method: usize) -> Result<Model<3>, String> {
+    pulled_block_on(CellKind::Hex8, method)
+}
+
+/// [`pulled_block`] on cells of `cell` (hex8, tet4, or elevated to hex20,
+/// hex27, tet10: friction face-integrated).
+pub fn pulled_block_on(cell: CellKind, method: usize) -> Result<Model<3>, String> {
     let (_, method, stiffness) = methods().get(method).ok_or("method 0, 1 or 2")?.clone();
     Scene {
         slope: 0.0,
@@ -341,7 +347,7 @@ pub fn pulled_block(method: usize) -> Result<Model<3>, String> {
         back: false,
         increments: [1, 8],
         poisson: 0.0,
-        cell: CellKind::Hex8,
+        cell,
     }
     .model()
 }
