@@ -56,8 +56,21 @@
 //! wrong for the reasons above, and the dual / modified-basis fields of
 //! Popp et al. (2012) are not built, so a Lagrange pair on quadratic faces
 //! is refused (`solve::check`, and the deck lowering with a caret); so are
-//! friction and deformable masters on quadratic faces, and a nodal
-//! penalty (a force per node has no meaning at integration points).
+//! deformable masters on quadratic faces, and a nodal penalty (a force per
+//! node has no meaning at integration points).
+//!
+//! # Friction
+//!
+//! Coulomb friction is integrated like the pressure: every integration
+//! point is a slave "node" of tributary area `w` with its own stick point
+//! (the pair's `FrictionState` is per point), normal force `w p_g` and
+//! normal stiffness `w k`, and the return map and exact tangent of the
+//! linear faces ([`super::friction::respond_tool`] in 2D,
+//! [`super::friction_surface::respond`] in 3D) give its tangential force
+//! `f_T` and `K_T = -d f_T / d x_g`; the nodes get `N_a f_T` and `N_a N_b
+//! K_T` ([`FacetPair::evaluate_with`]). A uniform slip therefore carries
+//! exactly the consistent loads of a uniform shear traction, and in full
+//! slip `|sum f_T| = mu sum w p_g` to round-off.
 //!
 //! The reported nodal values: the gap of the node itself, the force the
 //! faces put on it, and the pressure: the L2 projection of the points'

@@ -128,3 +128,14 @@ fn friction_quadratic_slides_at_the_closed_form_and_sticks_below() {
         println!("{:?}: {:.2e}", v.quantity, v.error);
     }
 }
+
+/// `upsetting_hex20`: VERIFICATION-CASES case 6 (Simo & Hughes §9, `F =
+/// tau A / h`) on hex20 and hex27 cells, the die a rigid plane on the
+/// quadratic top faces (sketch in `quadratic_contact.rs`).
+#[test]
+fn upsetting_hex20_follows_the_closed_form() {
+    let report = registry::run_passing("upsetting_hex20");
+    for v in &report.levels[0].values {
+        println!("{:?}: {:.2e}", v.quantity, v.error);
+    }
+}
