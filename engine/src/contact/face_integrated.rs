@@ -469,15 +469,14 @@ impl FacetPair {
                 if rubs {
                     for a in 0..nn {
                         let na = point.shape[a];
-                        for i in 0..D {
-                            c.force[D * pos[a] + i] += na * ft[i];
+                        for (i, fi) in ft.iter().enumerate() {
+                            c.force[D * pos[a] + i] += na * fi;
                         }
                         for b in 0..nn {
                             let nab = na * point.shape[b];
-                            for i in 0..D {
-                                for j in 0..D {
-                                    c.tangent[(D * pos[a] + i) * nd + D * pos[b] + j] +=
-                                        nab * kt[i][j];
+                            for (i, ki) in kt.iter().enumerate() {
+                                for (j, kij) in ki.iter().enumerate() {
+                                    c.tangent[(D * pos[a] + i) * nd + D * pos[b] + j] += nab * kij;
                                 }
                             }
                         }
