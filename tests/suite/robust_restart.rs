@@ -316,3 +316,31 @@ fn restart_free_rollers_carry_their_angle_bit_for_bit() {
     let (from, n) = restart_matches(&model, 47);
     assert!(from >= 40 && from < n, "restart from {from} of {n}");
 }
+
+#[test]
+fn restart_quadratic_face_friction_matches_uninterrupted_run() {
+    // friction on quadratic faces (issue 23): the stick points, tangential
+    // shifts and normal multipliers of every integration point carried over
+    // the restart; the quad8 block of `friction_quadratic` pushed up the
+    // inclined plane (augmented Lagrangian) and the hex20 block of
+    // `friction_block_3d` pulled into its slide (penalty)
+    use ctc_engine::mesh::CellKind;
+    use ctc_engine::model::{ContactMethod, MultiplierUpdate, PenaltyKind};
+    use ctc_verification::programs::friction_block::{Block, Drive};
+    let mut b = Block::new(0.1f64.atan(), 0.3, Drive::LeftSide(0.01));
+    b.cell = CellKind::Quad8;
+    b.squeeze = Some(1e-3);
+    b.method = ContactMethod::AugmentedLagrange {
+        kind: PenaltyKind::Area,
+        penalty: 1e6,
+        tolerance: 1e-6,
+        update: MultiplierUpdate::Converged,
+    };
+    b.friction_stiffness = Some(1e6);
+    let (from, n) = restart_matches(&b.model(), 3);
+    assert_eq!((from, n), (2, 5));
+    let model = ctc_verification::programs::friction_3d::pulled_block_on(CellKind::Hex20, 0)
+        .expect("hex20 block");
+    let (from, _) = restart_matches(&model, 6);
+    assert_eq!(from, 5);
+}

@@ -103,6 +103,45 @@ fn studies_section(s: &mut String, st: &Studies, plots: &[PlotFile]) {
              of `ctc_engine::solve::run`.\n"
         );
     }
+    if let Some(q) = &st.quadratic {
+        let _ = writeln!(
+            s,
+            "\n## Quadratic against linear elements: Hertz work precision\n"
+        );
+        let _ = writeln!(
+            s,
+            "The decks `hertz_cylinder.ctc` (plane strain) and `hertz_sphere.ctc` (axisymmetric) \
+             on quad4 and on quad8 with half the divisions (about equal dofs), at the levels of \
+             `hertz_quadratic` (issue 23): the p0 and L2(p) errors against the free dofs and \
+             against the solve wall time of `ctc_engine::solve::run`.\n"
+        );
+        match q {
+            Err(e) => {
+                let _ = writeln!(s, "Could not run: `{e}`\n");
+            }
+            Ok(rows) => {
+                link_plots(s, plots, "hertz_quadratic", "work-precision");
+                let _ = writeln!(
+                    s,
+                    "| deck | cells | level | free dofs | p0 error | L2(p) error | solve [s] |"
+                );
+                let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|");
+                for r in rows {
+                    let _ = writeln!(
+                        s,
+                        "| {} | {} | {} | {} | {:.2e} | {:.2e} | {:.3} |",
+                        r.deck,
+                        if r.quadratic { "quad8" } else { "quad4" },
+                        r.level,
+                        r.dofs,
+                        r.p0,
+                        r.l2,
+                        r.seconds
+                    );
+                }
+            }
+        }
+    }
     for c in &st.methods {
         let _ = writeln!(s, "\n### {} — methods\n", c.case);
         let _ = writeln!(s, "{}. Deck: `{}`.\n", c.title, c.deck);

@@ -144,6 +144,73 @@ pub fn work_precision_plot(c: &MethodComparison, dir: &Path) -> Result<Option<Pl
     }))
 }
 
+/// `hertz_quadratic_{deck}_work_precision.svg` (issue 23): the Hertz
+/// `deck` ("cylinder" or "sphere") on quad8 against quad4 through the
+/// levels of `hertz_quadratic`; two panels, the p0 and L2(p) errors
+/// against the free dofs and against the solve wall time.
+pub fn quadratic_work_precision_plot(
+    deck: &str,
+    rows: &[crate::studies::QuadraticRow],
+    dir: &Path,
+) -> Result<Option<PlotFile>, String> {
+    let series = |x: &dyn Fn(&crate::studies::QuadraticRow) -> f64| -> Vec<Series> {
+        let mut out = Vec::new();
+        for (what, y) in [
+            (
+                "p0",
+                (|r: &crate::studies::QuadraticRow| r.p0) as fn(&_) -> f64,
+            ),
+            ("L2(p)", |r| r.l2),
+        ] {
+            for (cells, quadratic) in [("quad4", false), ("quad8", true)] {
+                let points = positive(
+                    rows.iter()
+                        .filter(|r| r.deck == deck && r.quadratic == quadratic)
+                        .map(|r| (x(r), y(r))),
+                );
+                if !points.is_empty() {
+                    out.push(Series {
+                        label: format!("{what} {cells}"),
+                        points,
+                        line: true,
+                    });
+                }
+            }
+        }
+        out
+    };
+    let (by_dofs, by_time) = (series(&|r| r.dofs as f64), series(&|r| r.seconds));
+    if by_dofs.is_empty() {
+        return Ok(None);
+    }
+    let file = format!("hertz_quadratic_{deck}_work_precision.svg");
+    let path = dir.join(&file);
+    let root = SVGBackend::new(&path, (1400, 560)).into_drawing_area();
+    root.fill(&WHITE).map_err(|e| format!("{e:?}"))?;
+    let panels = root.split_evenly((1, 2));
+    loglog(
+        &panels[0],
+        &format!("Hertz {deck}: error vs free dofs"),
+        "free dofs",
+        "relative error",
+        &by_dofs,
+    )?;
+    loglog(
+        &panels[1],
+        &format!("Hertz {deck}: error vs solve time"),
+        "solve wall time [s]",
+        "relative error",
+        &by_time,
+    )?;
+    root.present()
+        .map_err(|e| format!("cannot write {}: {e:?}", path.display()))?;
+    Ok(Some(PlotFile {
+        case: "hertz_quadratic".into(),
+        kind: "work-precision".into(),
+        file,
+    }))
+}
+
 /// `penalty_sweep_{case}.svg`: three panels against k: p0 error (with the
 /// Lagrange value), max penetration (with p0 / k), Newton iterations.
 pub fn sweep_plot(s: &PenaltySweep, dir: &Path) -> Result<Option<PlotFile>, String> {

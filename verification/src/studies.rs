@@ -38,6 +38,52 @@ pub struct Studies {
     pub scaling: Option<PenaltyScaling>,
     /// Penalty picked from an allowed penetration (Hertz cylinder).
     pub target: Option<PenaltyTarget>,
+    /// Hertz cylinder and sphere, quad8 against quad4 at about equal dofs
+    /// through the levels of `hertz_quadratic` (issue 23): the rows of the
+    /// work-precision plot, or why they could not be run.
+    pub quadratic: Option<Result<Vec<QuadraticRow>, String>>,
+}
+
+/// One run of the quadratic-vs-linear Hertz study.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct QuadraticRow {
+    /// "cylinder" or "sphere".
+    pub deck: String,
+    /// quad8 (true) or quad4 cells.
+    pub quadratic: bool,
+    /// Level of `hertz_quadratic`.
+    pub level: usize,
+    /// Free dofs.
+    pub dofs: usize,
+    /// Solve wall time, seconds.
+    pub seconds: f64,
+    /// Relative error of p0.
+    pub p0: f64,
+    /// Relative L2 error of p(x).
+    pub l2: f64,
+}
+
+/// Levels of the quadratic-vs-linear Hertz study (those of
+/// `hertz_quadratic`).
+pub const QUADRATIC_LEVELS: usize = 3;
+
+/// The rows of the quadratic-vs-linear Hertz study.
+pub fn quadratic_rows(levels: usize) -> Result<Vec<QuadraticRow>, String> {
+    let mut out = Vec::new();
+    for level in 0..levels {
+        for r in crate::programs::quadratic_contact::hertz_work_precision(level)? {
+            out.push(QuadraticRow {
+                deck: r.deck.to_string(),
+                quadratic: r.quadratic,
+                level,
+                dofs: r.dofs,
+                seconds: r.seconds,
+                p0: r.errors[1],
+                l2: r.errors[2],
+            });
+        }
+    }
+    Ok(out)
 }
 
 impl Studies {
@@ -121,11 +167,16 @@ pub fn run_studies(
         matches("penalty_scaling").then(|| penalty_scaling(cases_dir, SCALING_LEVELS, progress));
     let target = matches(cyl.name)
         .then(|| penalty_for_penetration(&cyl, cases_dir, SWEEP_LEVEL, TARGET_PENETRATION, 6));
+    let quadratic = matches("hertz_quadratic").then(|| {
+        progress("hertz_quadratic: quad8 vs quad4");
+        quadratic_rows(QUADRATIC_LEVELS)
+    });
     Studies {
         methods,
         sweep,
         scaling,
         target,
+        quadratic,
     }
 }
 
@@ -140,6 +191,13 @@ pub fn study_plots(s: &Studies, dir: &Path) -> Result<Vec<PlotFile>, String> {
     }
     if let Some(sc) = &s.scaling {
         out.extend(scaling_plot(sc, dir)?);
+    }
+    if let Some(Ok(rows)) = &s.quadratic {
+        for deck in ["cylinder", "sphere"] {
+            out.extend(crate::method_plots::quadratic_work_precision_plot(
+                deck, rows, dir,
+            )?);
+        }
     }
     Ok(out)
 }

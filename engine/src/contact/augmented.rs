@@ -98,9 +98,20 @@ pub fn uzawa_update(
             continue;
         };
         // quadratic faces: the multipliers and the test at the points
-        if let Some(fp) = &mut pairs[pi].facets {
-            if update == mode && fp.violation() > tolerance {
+        // (friction: the points' stick gaps and tangential shifts)
+        let state = &mut pairs[pi];
+        if let Some(fp) = &mut state.facets {
+            let stick = if cp.friction.is_some() {
+                friction::stick_violation(&state.point_contact)
+            } else {
+                0.0
+            };
+            if update == mode && fp.violation().max(stick) > tolerance {
                 fp.uzawa_update();
+                if cp.friction.is_some() {
+                    let points: Vec<usize> = (0..fp.rule.points.len()).collect();
+                    friction::uzawa_update(&points, &state.point_contact, &mut state.friction);
+                }
                 updated = true;
             }
             continue;

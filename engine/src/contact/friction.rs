@@ -44,8 +44,8 @@ use super::vec2::{add, dot, outer, scale, sub};
 use super::{impact, ContactStatus};
 use crate::model::{ContactMethod, FirstImpact, Friction, PenaltyKind};
 
-/// Friction status of a slave node.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+/// Friction status of a slave node (ordered: frictionless, stick, slip).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Default, serde::Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum FrictionStatus {
     /// No tangential force: frictionless pair, open node, or a node in the

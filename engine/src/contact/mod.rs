@@ -198,6 +198,10 @@ pub struct PairState {
     /// Face-integrated pairs: the tool entity of each integration point
     /// at the latest evaluation (search memory).
     pub point_memory: Vec<Option<usize>>,
+    /// Face-integrated pairs with friction: the points' responses at the
+    /// latest evaluation (`node` is the point's index; the friction
+    /// history `friction` is then per point), read by the Uzawa update.
+    pub point_contact: Vec<NodeContact>,
     /// A tool with a free rotation (`model::FreeRotation`): its current
     /// angle, set by the solver from the pilot node before every
     /// evaluation (`solve/free_tool.rs`); `None`: the angle is
@@ -247,10 +251,20 @@ impl PairState {
             .tool()
             .and_then(|t| model.tools.get(t))
             .map_or(Placement::identity(), |t| Placement::at(&t.motion, 0.0));
-        let positions = slaves
-            .iter()
-            .map(|&k| placement.to_reference(model.mesh.nodes.get(k).copied().unwrap_or([0.0; 2])))
-            .collect();
+        // face-integrated friction: the history is per integration point
+        let positions = match &facets {
+            Some(fp) if cp.friction.is_some() => fp
+                .point_positions(&model.mesh.nodes)
+                .into_iter()
+                .map(|x| placement.to_reference(x))
+                .collect(),
+            _ => slaves
+                .iter()
+                .map(|&k| {
+                    placement.to_reference(model.mesh.nodes.get(k).copied().unwrap_or([0.0; 2]))
+                })
+                .collect(),
+        };
         PairState {
             tributary: node_to_segment::tributary_areas(model, pair, &slaves),
             pair: Some(pair),
@@ -281,6 +295,7 @@ impl PairState {
             .then(Vec::new),
             surface,
             point_memory: vec![None; facets.as_ref().map_or(0, |f| f.rule.points.len())],
+            point_contact: Vec::new(),
             facets,
             angle: None,
         }

@@ -36,15 +36,15 @@
 //! [`super::friction_lagrange`]).
 
 use super::face_integrated::{self, FacetPair, FacetRule, PointProjection};
-use super::friction::FrictionState;
+use super::friction::{FrictionState, NodeFriction};
 use super::friction_surface::{self, StickRows, SurfaceContact};
 use super::mortar::Coupling;
 use super::node_to_facet::{self, DeformablePair};
 use super::{ContactStatus, NodeContact};
 use crate::mesh::{Facet, Mesh};
 use crate::model::{
-    ContactFormulation, ContactMaster, ContactMethod, Model, PenaltyKind, SurfaceMotion,
-    SurfaceShape, SurfaceTool,
+    ContactFormulation, ContactMaster, ContactMethod, ContactPair, Model, PenaltyKind,
+    SurfaceMotion, SurfaceShape, SurfaceTool,
 };
 use ctc_geom::brep::{Counters, SearchState};
 use ctc_geom::{Placement, Projection, ProjectionError, Vec3};
@@ -101,6 +101,10 @@ pub struct SurfacePair {
     /// face with a closed point), which the solver scatters instead of the
     /// nodal forces.
     pub couplings: Vec<Coupling>,
+    /// Face-integrated pairs with friction: the points' responses at the
+    /// latest evaluation (`node` is the point's index; the friction
+    /// history `friction` is then per point), read by the Uzawa update.
+    pub point_contact: Vec<NodeContact<3>>,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -169,6 +173,15 @@ impl SurfacePair {
                 face_integrated::pressure_stiffness(&cp.method_at(node))
             })
         });
+        // face-integrated friction: the history is per integration point
+        let positions = match &facets {
+            Some(fp) if cp.friction.is_some() => fp
+                .point_positions(&model.mesh.nodes)
+                .into_iter()
+                .map(|x| start.to_reference(&Vec3::from(x)).into())
+                .collect(),
+            _ => positions,
+        };
         SurfacePair {
             slaves,
             deformable,
@@ -179,6 +192,7 @@ impl SurfacePair {
             ],
             facets,
             couplings: Vec::new(),
+            point_contact: Vec::new(),
             area,
             prof,
             multiplier: vec![0.0; n],
@@ -472,7 +486,7 @@ pub fn evaluate_pair(
         return (Vec::new(), failed);
     };
     if state.facets.is_some() {
-        return evaluate_facets(tool, t, x, state);
+        return evaluate_facets(cp, tool, t, x, state);
     }
     let mut out = Vec::with_capacity(state.slaves.len());
     let placed = placement(&tool.motion, t);
@@ -573,6 +587,7 @@ pub fn evaluate_pair(
 /// returns one entry per slave node within the window or loaded by a face
 /// (output: the node's gap, the pressure field there, its force).
 fn evaluate_facets(
+    cp: &ContactPair,
     tool: &SurfaceTool,
     t: f64,
     x: &[[f64; 3]],
@@ -584,23 +599,86 @@ fn evaluate_facets(
     };
     state.evaluations += 1;
     let prof = state.prof;
-    let (searches, counters) = (&mut state.point_search, &mut state.counters);
+    let placed = placement(&tool.motion, t);
+    let law = cp.friction.as_ref();
+    state.friction.impact = None;
+    let np = fp.rule.points.len();
+    let mut point_friction: Vec<Option<NodeFriction<3>>> =
+        vec![None; if law.is_some() { np } else { 0 }];
+    let mut point_contact = Vec::new();
+    let (searches, counters, history) = (
+        &mut state.point_search,
+        &mut state.counters,
+        &mut state.friction,
+    );
     let mut point_failures = Vec::new();
-    let couplings = fp.evaluate(x, 0.0, |g, xg| {
-        searches[g].reach = prof;
-        match project(tool, t, &xg, &mut searches[g], counters) {
-            Ok(Some(p)) if p.gap <= prof => Some(PointProjection {
-                gap: p.gap,
-                normal: [p.normal[0], p.normal[1], p.normal[2]],
-                curvature: std::array::from_fn(|i| std::array::from_fn(|j| p.curvature[(i, j)])),
-            }),
-            Ok(_) => None,
-            Err(e) => {
-                point_failures.push((g, e));
-                None
+    let couplings = fp.evaluate_with(
+        x,
+        0.0,
+        |g, xg| {
+            searches[g].reach = prof;
+            match project(tool, t, &xg, &mut searches[g], counters) {
+                Ok(Some(p)) if p.gap <= prof => Some((
+                    PointProjection {
+                        gap: p.gap,
+                        normal: [p.normal[0], p.normal[1], p.normal[2]],
+                        curvature: std::array::from_fn(|i| {
+                            std::array::from_fn(|j| p.curvature[(i, j)])
+                        }),
+                    },
+                    p,
+                )),
+                Ok(_) => None,
+                Err(e) => {
+                    point_failures.push((g, e));
+                    None
+                }
             }
-        }
-    });
+        },
+        |load, ft, kt| {
+            let Some(law) = law else {
+                return false;
+            };
+            let g = load.point;
+            let xr = placed.to_reference(&Vec3::from(load.x));
+            let (Some((pr, p)), true) = (load.found, load.normal_force > 0.0) else {
+                history.open(g, xr.into());
+                return false;
+            };
+            let method = face_integrated::point_method(&cp.method, load.stiffness);
+            let c = SurfaceContact {
+                placement: &placed,
+                x: Vec3::from(load.x),
+                reference: xr,
+                projection: p,
+                normal_force: load.normal_force,
+                normal_stiffness: load.normal_stiffness,
+                area: load.weight,
+            };
+            let mut search = SearchState::new();
+            search.reach = f64::INFINITY;
+            let mut scratch = Counters::default();
+            let start_gap = |x0: &Vec3| reference_gap(tool, x0, &mut search, &mut scratch);
+            let mut rows = None;
+            let nf = friction_surface::respond(
+                law, &method, g, &c, start_gap, history, ft, kt, &mut rows,
+            );
+            point_friction[g] = Some(nf);
+            point_contact.push(NodeContact {
+                node: g,
+                gap: pr.gap,
+                normal: pr.normal,
+                force: *ft,
+                stiffness: *kt,
+                pressure: load.normal_force / load.weight,
+                status: ContactStatus::Closed,
+                entity: p.entity,
+                master: None,
+                friction: nf,
+            });
+            true
+        },
+    );
     // a point whose CAD projection failed is reported at its facet's
     // first node
     for (g, e) in point_failures {
@@ -623,6 +701,8 @@ fn evaluate_facets(
             continue;
         }
         let pressure = fp.node_pressure(node);
+        let mut friction = fp.node_friction(node, &point_friction);
+        friction.tangential_force = Vec3::from(friction.traction).norm();
         out.push(NodeContact {
             node,
             gap: p.gap,
@@ -637,10 +717,11 @@ fn evaluate_facets(
             },
             entity: p.entity,
             master: None,
-            friction: Default::default(),
+            friction,
         });
     }
     state.couplings = couplings;
+    state.point_contact = point_contact;
     state.facets = Some(fp);
     (out, failed)
 }
@@ -926,6 +1007,216 @@ mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// A hex20 (quad8 top face), hex27 (quad9) or tet10 (tri6 face) cell
+    /// whose face at `z = 1` (tet: `x + y + z = 1`) is the slave surface
+    /// of a pair against `tool` with friction `law`.
+    use super::super::friction::FrictionStatus;
+    fn quadratic_model(
+        kind: usize,
+        method: ContactMethod,
+        tool: Analytic,
+        motion: SurfaceMotion,
+        law: crate::model::Friction,
+    ) -> Model<3> {
+        use crate::mesh::{elevate::elevate, Cell, CellKind};
+        let (linear, target) = if kind == 2 {
+            let mut m = Mesh::new(
+                vec![
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 0.0, 1.0],
+                ],
+                vec![Cell::tet([0, 1, 2, 3])],
+            );
+            m.face_sets
+                .insert("top".into(), vec![Facet::new(&[1, 2, 3])]);
+            (m, CellKind::Tet10)
+        } else {
+            let mut m = Mesh::new(
+                vec![
+                    [0.0, 0.0, 0.0],
+                    [1.0, 0.0, 0.0],
+                    [1.0, 1.0, 0.0],
+                    [0.0, 1.0, 0.0],
+                    [0.0, 0.0, 1.0],
+                    [1.0, 0.0, 1.0],
+                    [1.0, 1.0, 1.0],
+                    [0.0, 1.0, 1.0],
+                ],
+                vec![Cell::hex([0, 1, 2, 3, 4, 5, 6, 7])],
+            );
+            m.face_sets
+                .insert("top".into(), vec![Facet::new(&[4, 5, 6, 7])]);
+            (
+                m,
+                if kind == 0 {
+                    CellKind::Hex20
+                } else {
+                    CellKind::Hex27
+                },
+            )
+        };
+        let mesh = elevate(&linear, target).unwrap();
+        let faces = mesh.face_sets["top"].clone();
+        let mut nodes: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+        nodes.sort_unstable();
+        let mut m = crate::testkit::ModelBuilder::solid()
+            .elastic("m", 1.0, 0.3)
+            .body("b", mesh, "m")
+            .build();
+        m.surfaces.push(SurfaceTool {
+            name: "tool".into(),
+            geometry: tool.into(),
+            motion,
+        });
+        m.contacts.push(ContactPair {
+            name: "b.top -> tool".into(),
+            body: 0,
+            edges: vec![],
+            faces,
+            nodes,
+            master: ContactMaster::Tool(0),
+            strategy: Default::default(),
+            search: Default::default(),
+            formulation: Default::default(),
+            smoothing: Default::default(),
+            method,
+            prof: Some(10.0),
+            friction: Some(law),
+            local_penalty: Vec::new(),
+        });
+        m
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(16))]
+
+        /// Friction on quadratic faces (face-integrated, one stick point
+        /// per integration point): the rows' tangent is minus the
+        /// derivative of their forces (central differences) for tri6,
+        /// quad8 and quad9 faces against a sphere or an inclined plane,
+        /// penalty and augmented Lagrangian (tangential shifts), stick
+        /// points offset in the tangent plane (a mix of stick and slip) or
+        /// on the first-impact path.
+        #[test]
+        fn quadratic_face_friction_tangent_matches_finite_differences(
+            kind in 0usize..3, sphere in any::<bool>(), augmented in any::<bool>(),
+            first in any::<bool>(), mu in 0.05f64..1.0, dz in 0.02f64..0.2,
+            offsets in proptest::collection::vec(-0.05f64..0.05, 54),
+            shift in proptest::collection::vec(-0.05f64..0.05, 27),
+        ) {
+            use crate::model::{FirstImpact, Friction};
+            let method = if augmented {
+                ContactMethod::AugmentedLagrange {
+                    kind: PenaltyKind::Area,
+                    penalty: 60.0,
+                    tolerance: 1e-3,
+                    update: crate::model::MultiplierUpdate::Converged,
+                }
+            } else {
+                ContactMethod::Penalty { kind: PenaltyKind::Area, stiffness: 60.0 }
+            };
+            let tool = if sphere {
+                Analytic::Sphere(Sphere::new(Vec3::new(0.4, 0.3, -0.3), 1.0, Side::Outside)
+                    .unwrap())
+            } else {
+                use ctc_geom::analytic::Plane;
+                let n = Vec3::new(0.2, -0.1, 1.0);
+                Analytic::Plane(Plane::new(Vec3::new(0.0, 0.0, 0.75), n, Side::Outside)
+                    .unwrap())
+            };
+            let mut motion = SurfaceMotion::fixed();
+            motion.translation = [0.0, 0.0, dz].map(TimeFunction::Constant);
+            let law = Friction {
+                mu,
+                stiffness: Some(25.0),
+                first_impact: FirstImpact::Intersect,
+                cut_at_impact: false,
+            };
+            let m = quadratic_model(kind, method, tool, motion, law);
+            let mut state = SurfacePair::new(&m, 0);
+            let np = state.facets.as_ref().unwrap().rule.points.len();
+            prop_assert_eq!(state.friction.committed_anchor.len(), np);
+            for g in 0..np {
+                let xr = Vec3::from(state.friction.committed_position[g]);
+                let o = Vec3::new(offsets[(2 * g) % 54], offsets[(2 * g + 1) % 54], 0.0);
+                if first {
+                    state.friction.committed_position[g] = (xr + o + Vec3::new(0.0, 0.0, 0.5)).into();
+                } else {
+                    state.friction.committed_anchor[g] = Some((xr + o).into());
+                }
+                if augmented {
+                    state.friction.shift[g] = [shift[g % 27], shift[(g + 7) % 27], 0.0];
+                    state.facets.as_mut().unwrap().multiplier[g] = 0.5 + shift[(g + 3) % 27];
+                }
+            }
+            state.friction.base = state.friction.committed_anchor.clone();
+            let x0 = m.mesh.nodes.clone();
+            let nn = x0.len();
+            let forces = |x: &[[f64; 3]]| {
+                let mut st = state.clone();
+                let r = evaluate_pair(&m, 0, x, 0.0, &mut st).0;
+                let mut f = vec![0.0; 3 * nn];
+                for c in &st.couplings {
+                    for (a, &node) in c.nodes.iter().enumerate() {
+                        for i in 0..3 { f[3 * node + i] += c.force[3 * a + i]; }
+                    }
+                }
+                let status: Vec<_> = st.point_contact.iter()
+                    .map(|c| (c.node, c.friction.status)).collect();
+                (f, st.couplings, status, r)
+            };
+            let (_, couplings, status, out) = forces(&x0);
+            prop_assume!(!couplings.is_empty());
+            // the nodes' tangential forces sum to the points'
+            let mut k = vec![0.0; 9 * nn * nn];
+            for c in &couplings {
+                let nd = 3 * c.nodes.len();
+                for (a, &na) in c.nodes.iter().enumerate() {
+                    for (b, &nb) in c.nodes.iter().enumerate() {
+                        for i in 0..3 {
+                            for j in 0..3 {
+                                k[(3 * na + i) * 3 * nn + 3 * nb + j] +=
+                                    c.tangent[(3 * a + i) * nd + 3 * b + j];
+                            }
+                        }
+                    }
+                }
+            }
+            let scale = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let h = 1e-6;
+            let nodes = &m.contacts[0].nodes;
+            // the friction acts: some point rubs, the nodes carry it
+            prop_assert!(status.iter().any(|s| s.1 != FrictionStatus::Frictionless));
+            prop_assert!(out.iter().any(|c| c.friction.traction != [0.0; 3]));
+            let mut compared = 0;
+            for &nb in nodes {
+                for j in 0..3 {
+                    let (mut xp, mut xm) = (x0.clone(), x0.clone());
+                    xp[nb][j] += h;
+                    xm[nb][j] -= h;
+                    let (fp, _, sp, _) = forces(&xp);
+                    let (fm, _, sm, _) = forces(&xm);
+                    // skip where a point changes status within +-h
+                    if sp != status || sm != status {
+                        continue;
+                    }
+                    compared += 1;
+                    for &na in nodes {
+                        for i in 0..3 {
+                            let fd = -(fp[3 * na + i] - fm[3 * na + i]) / (2.0 * h);
+                            let kk = k[(3 * na + i) * 3 * nn + 3 * nb + j];
+                            prop_assert!((fd - kk).abs() <= 1e-6 * scale.max(1.0),
+                                "K[{na}{i}][{nb}{j}] = {kk} vs {fd} ({status:?})");
+                        }
+                    }
+                }
+            }
+            prop_assert!(compared > 0);
         }
     }
 }

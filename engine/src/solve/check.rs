@@ -807,8 +807,9 @@ fn free_solid_motions<const D: usize>(
 /// if it cannot: a deformable master or slave with quadratic cells
 /// (node-to-segment and mortar are linear), Lagrange multipliers (no
 /// positive-weight multiplier basis on tri6 / quad8 faces is built),
-/// friction, thermal contact (nodal areas), or a nodal penalty (a force
-/// per node has no meaning at integration points).
+/// thermal contact (nodal areas), or a nodal penalty (a force per node
+/// has no meaning at integration points). Friction is integrated at the
+/// points (`contact::face_integrated`).
 pub fn quadratic_contact_refusal<const D: usize>(
     model: &Model<D>,
     c: &crate::model::ContactPair,
@@ -847,7 +848,6 @@ pub fn quadratic_contact_refusal<const D: usize>(
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
         }
-        _ if c.friction.is_some() => "friction is not available on quadratic faces",
         _ if model.thermal.as_ref().is_some_and(|t| {
             model
                 .contacts
@@ -918,7 +918,7 @@ mod tests {
         use crate::mesh::CellKind::{Quad4, Quad8};
         for (kind, method, refused) in [
             (Quad4, lagrange.clone(), None),
-            (Quad8, area, None),
+            (Quad8, area.clone(), None),
             (
                 Quad8,
                 lagrange,
@@ -926,6 +926,7 @@ mod tests {
             ),
             (Quad8, nodal, Some("a nodal penalty has no meaning")),
         ] {
+            let rubs = kind == Quad8 && method == area;
             let m = crate::testkit::ModelBuilder::new(AnalysisKind::PlaneStrain)
                 .elastic("m", 1.0, 0.3)
                 .body("sq", mesh(kind), "m")
@@ -942,6 +943,16 @@ mod tests {
                 .contact_tool("sq -> floor", "sq", vec![[0, 1]], "floor", method)
                 .step("s", 1.0, 1)
                 .build();
+            let mut m = m;
+            // friction is integrated at the faces' points: accepted
+            if rubs {
+                m.contacts[0].friction = Some(crate::model::Friction {
+                    mu: 0.3,
+                    stiffness: None,
+                    first_impact: crate::model::FirstImpact::Intersect,
+                    cut_at_impact: false,
+                });
+            }
             let errors = check_model(&m);
             match refused {
                 None => assert!(errors.is_empty(), "{kind:?}: {errors:?}"),

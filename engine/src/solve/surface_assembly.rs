@@ -136,9 +136,32 @@ impl SurfaceAssembly {
                 continue;
             };
             // quadratic faces: the multipliers and the test at the points
-            if let Some(fp) = &mut self.pairs[pi].facets {
-                if update == mode && fp.violation() > tolerance {
+            // (friction: the points' stick gaps and tangential shifts)
+            let state = &mut self.pairs[pi];
+            if let Some(fp) = &mut state.facets {
+                let stick = if cp.friction.is_some() {
+                    friction::stick_violation(&state.point_contact)
+                } else {
+                    0.0
+                };
+                if update == mode && fp.violation().max(stick) > tolerance {
                     fp.uzawa_update();
+                    if cp.friction.is_some() {
+                        let placement = cp
+                            .master
+                            .tool()
+                            .and_then(|i| model.surfaces.get(i))
+                            .map_or_else(Placement::identity, |tool| {
+                                surface::placement(&tool.motion, self.time)
+                            });
+                        let points: Vec<usize> = (0..fp.rule.points.len()).collect();
+                        friction_surface::uzawa_update(
+                            &points,
+                            &state.point_contact,
+                            &placement,
+                            &mut state.friction,
+                        );
+                    }
                     updated = true;
                 }
                 continue;

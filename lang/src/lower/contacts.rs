@@ -80,28 +80,14 @@ impl Lowerer<'_> {
                     "use `kind = area` (a pressure per unit gap)",
                 ))
             }
-            _ => c
-                .friction
-                .as_ref()
-                .map(|f| {
-                    (
-                        f.span,
-                        "friction is not available on quadratic faces".into(),
-                        "the slave body has quadratic cells",
-                        "mesh the contact body with linear cells, or leave friction out",
-                    )
-                })
-                .or_else(|| {
-                    c.thermal.as_ref().map(|t| {
-                        (
-                            t.span,
-                            "thermal contact is not available on quadratic faces".into(),
-                            "the slave body has quadratic cells",
-                            "mesh the contact body with linear cells, or leave the thermal \
-                             block out",
-                        )
-                    })
-                }),
+            _ => c.thermal.as_ref().map(|t| {
+                (
+                    t.span,
+                    "thermal contact is not available on quadratic faces".into(),
+                    "the slave body has quadratic cells",
+                    "mesh the contact body with linear cells, or leave the thermal block out",
+                )
+            }),
         }
     }
 

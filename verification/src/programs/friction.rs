@@ -435,6 +435,99 @@ const TAGS: &[&str] = &[
     "closed_form",
 ];
 
+// ------------------------------------------------------------ quadratic
+
+/// `friction_quadratic` (tags `quadratic`, `friction`): the inclined-plane
+/// and stick/slip benchmarks of this file on quadratic cells, friction
+/// face-integrated (`ctc_engine::contact::face_integrated`: a stick point
+/// per integration point of the 3-node edges / quadratic faces, the
+/// nodes' return map there). Plane strain, the block of
+/// [`super::friction_block`] elevated to quad8 and quad9 (4 x 2 cells):
+///
+/// - pushed up the plane inclined at `tan a = 0.1` (weight 100, penalty;
+///   squeeze, penalty and augmented Lagrangian) with mu = 0.3: `F / G`
+///   against `(tan a + mu) / (1 - mu tan a)` once every point slides, and
+///   `|sum R_T| / (mu sum R_N) - 1` from the nodes' forces (Coulomb at
+///   every integration point sums exactly);
+/// - pulled by `Q = 0.5 mu N` on the flat plane (nu = 0): no node slides,
+///   `|sum R_T + Q| / Q`, no frictional work;
+///
+/// and in 3D the block of `friction_inclined_3d` (3 x 3 x 2 cells) on
+/// hex20, hex27 and tet10 pushed up its slope (penalty): `F / G` against
+/// the same closed form.
+///
+/// ```text
+///          G (or squeeze)
+///        +-----------+
+///  push->|   quad8   |  1 x 0.5, 3-node slave edges
+///        +-----------+
+///   ////// plane inclined at tan a = 0.1, mu = 0.3 //////
+/// ```
+fn quadratic_level() -> Result<ProgramLevel, String> {
+    use ctc_engine::mesh::CellKind;
+    let alpha = 0.1f64.atan();
+    let mut counts = Counts::default();
+    let mut values = Vec::new();
+    let (mut ratio, mut coulomb) = (0.0f64, 0.0f64);
+    let (mut not_stuck, mut hold, mut work) = (0.0f64, 0.0f64, 0.0f64);
+    for cell in [CellKind::Quad8, CellKind::Quad9] {
+        for (name, mut method, squeeze, stiffness) in inclined_methods().into_iter().take(3) {
+            // the points' Uzawa loop contracts the stick gaps slowly (about
+            // 20 % per update on the corner points): a looser gap
+            // tolerance, the slip ratio is exact by equilibrium at any
+            if let ContactMethod::AugmentedLagrange { tolerance, .. } = &mut method {
+                *tolerance = 1e-6;
+            }
+            let mut b = Block::new(alpha, MU, Drive::LeftSide(0.01));
+            b.method = method;
+            b.squeeze = squeeze;
+            b.friction_stiffness = stiffness;
+            b.cell = cell;
+            let r = threshold(&b, &mut counts).map_err(|e| format!("{cell:?} {name}: {e}"))?;
+            ratio = ratio.max((r - inclined_reference(MU)).abs() / inclined_reference(MU));
+            let rows = solved(&b, &mut counts)?;
+            let last = rows.last().expect("rows");
+            let n = [-alpha.sin(), alpha.cos()];
+            let f = ctc_engine::contact::pair_total_force(&last.contact);
+            let (rn, rt) = (f[0] * n[0] + f[1] * n[1], f[0] * n[1] - f[1] * n[0]);
+            coulomb = coulomb.max((rt.abs() / (MU * rn) - 1.0).abs());
+        }
+        let q = 0.5 * MU * N;
+        let mut b = Block::new(0.0, MU, Drive::Force(q));
+        b.poisson = 0.0;
+        b.cell = cell;
+        let rows = solved(&b, &mut counts)?;
+        let last = rows.last().expect("rows");
+        not_stuck += (last.contact.len() - count(&last.contact, FrictionStatus::Stick)) as f64;
+        let rt: f64 = ctc_engine::contact::pair_total_force(&last.contact)[0];
+        hold = hold.max((rt + q).abs() / q);
+        work += rows.iter().map(|r| r.dissipation.abs()).sum::<f64>();
+    }
+    values.push(error("quad8/quad9 F/G vs closed form", ratio));
+    values.push(error(
+        "quad8/quad9 slip: |sum R_T| / (mu sum R_N) - 1",
+        coulomb,
+    ));
+    values.push(error("quad8/quad9 Q < mu N: nodes not sticking", not_stuck));
+    values.push(error("quad8/quad9 Q < mu N: |sum R_T + Q| / Q", hold));
+    values.push(error("quad8/quad9 Q < mu N: friction work", work));
+    for (cell, name) in [
+        (CellKind::Hex20, "hex20 F/G vs closed form"),
+        (CellKind::Hex27, "hex27 F/G vs closed form"),
+        (CellKind::Tet10, "tet10 F/G vs closed form"),
+    ] {
+        // penalty (the augmented Lagrangian's point Uzawa loop does not
+        // reach the 1e-8 stick tolerance in 50 updates on hex20 / tet10)
+        let push = super::friction_3d::inclined_push_on(cell, 0, &mut counts.0)
+            .map_err(|e| format!("{cell:?}: {e}"))?;
+        values.push(error(
+            name,
+            (push.ratio - inclined_reference(MU)).abs() / inclined_reference(MU),
+        ));
+    }
+    Ok(counts.level(values))
+}
+
 fn checks(list: &[(&'static str, f64)]) -> Vec<Check> {
     list.iter()
         .map(|(q, t)| Check::new(Quantity::Named(q), &[*t]))
@@ -533,6 +626,31 @@ pub fn cases() -> Vec<VerifyCase> {
                 ("no cut: first increment whole, no cutback", 0.0),
             ]),
             |_| impact_cut(),
+        ),
+        program(
+            "friction_quadratic",
+            "Friction on quadratic faces (face-integrated): quad8/quad9 block up a plane at tan a = 0.1 and held below mu N; hex20/hex27/tet10 block up a slope",
+            &[
+                "quadratic",
+                "friction",
+                "contact",
+                "penalty",
+                "augmented_lagrange",
+                "plane_strain",
+                "3d",
+                "closed_form",
+            ],
+            checks(&[
+                ("quad8/quad9 F/G vs closed form", 1e-6),
+                ("quad8/quad9 slip: |sum R_T| / (mu sum R_N) - 1", 1e-8),
+                ("quad8/quad9 Q < mu N: nodes not sticking", 0.0),
+                ("quad8/quad9 Q < mu N: |sum R_T + Q| / Q", 1e-8),
+                ("quad8/quad9 Q < mu N: friction work", 1e-12),
+                ("hex20 F/G vs closed form", 1e-6),
+                ("hex27 F/G vs closed form", 1e-6),
+                ("tet10 F/G vs closed form", 1e-6),
+            ]),
+            |_| quadratic_level(),
         ),
     ]
 }

@@ -194,6 +194,9 @@ struct Scene {
     back: bool,
     increments: [usize; 2],
     poisson: f64,
+    /// Cell kind: hex8, or tet4 (Kuhn split), both elevated when
+    /// quadratic (hex20, hex27, tet10: face-integrated friction).
+    cell: CellKind,
 }
 
 /// A straight drive along the horizontal direction at `direction`
@@ -210,14 +213,21 @@ impl Scene {
         let e1 = Vec3::new(a.cos() * phi.cos(), a.cos() * phi.sin(), a.sin());
         let e2 = Vec3::new(-phi.sin(), phi.cos(), 0.0);
         let e3 = e1.cross(&e2);
+        let linear = match self.cell {
+            CellKind::Tet4 | CellKind::Tet10 => CellKind::Tet4,
+            _ => CellKind::Hex8,
+        };
         let mut mesh = solid::brick(
             [0.0; 3],
             [1.0, 1.0, 0.5],
             [3, 3, 2],
             [Grading::Uniform; 3],
-            CellKind::Hex8,
+            linear,
         )
         .map_err(|e| e.message)?;
+        if self.cell != linear {
+            mesh = ctc_engine::mesh::elevate::elevate(&mesh, self.cell).map_err(|e| e.message)?;
+        }
         let bottom: Vec<usize> = {
             let mut v: Vec<usize> = (0..mesh.nodes.len())
                 .filter(|&k| mesh.nodes[k][2].abs() < 1e-12)
@@ -318,6 +328,12 @@ impl Scene {
 /// increment), stick (1..2, 1 increment), pull (2..3, 8 increments). For
 /// the restart and convergence tests.
 pub fn pulled_block(method: usize) -> Result<Model<3>, String> {
+    pulled_block_on(CellKind::Hex8, method)
+}
+
+/// [`pulled_block`] on cells of `cell` (hex8, tet4, or elevated to hex20,
+/// hex27, tet10: friction face-integrated).
+pub fn pulled_block_on(cell: CellKind, method: usize) -> Result<Model<3>, String> {
     let (_, method, stiffness) = methods().get(method).ok_or("method 0, 1 or 2")?.clone();
     Scene {
         slope: 0.0,
@@ -331,6 +347,7 @@ pub fn pulled_block(method: usize) -> Result<Model<3>, String> {
         back: false,
         increments: [1, 8],
         poisson: 0.0,
+        cell,
     }
     .model()
 }
@@ -453,6 +470,7 @@ fn block_level(_: usize) -> Result<ProgramLevel, String> {
             // no Poisson expansion under the press: no tangential force
             // before the pull, and a uniform shear of the base under it
             poisson: 0.0,
+            cell: CellKind::Hex8,
         };
         let rows = scene
             .solve(&mut level)
@@ -552,6 +570,16 @@ pub struct InclinedPush {
 /// `method` (0 penalty, 1 augmented Lagrangian, 2 Lagrange multipliers);
 /// `counts` gathers the run's sizes.
 pub fn inclined_push(method: usize, counts: &mut ProgramLevel) -> Result<InclinedPush, String> {
+    inclined_push_on(CellKind::Hex8, method, counts)
+}
+
+/// [`inclined_push`] on cells of `cell` (hex8, tet4, or the quadratic
+/// hex20, hex27, tet10: the brick elevated, face-integrated friction).
+pub fn inclined_push_on(
+    cell: CellKind,
+    method: usize,
+    counts: &mut ProgramLevel,
+) -> Result<InclinedPush, String> {
     let azimuth = 40f64.to_radians();
     let h = [azimuth.cos(), azimuth.sin(), 0.0];
     let (name, method, stiffness) = methods().get(method).ok_or("method 0, 1 or 2")?.clone();
@@ -564,6 +592,7 @@ pub fn inclined_push(method: usize, counts: &mut ProgramLevel) -> Result<Incline
         back: true,
         increments: [1, 4],
         poisson: NU,
+        cell,
     };
     let newton = counts.newton_total;
     let start = std::time::Instant::now();
@@ -645,6 +674,7 @@ fn curved_scene(method: usize, d_s: f64) -> Result<Scene, String> {
         back: false,
         increments: [1, PATH_INCREMENTS],
         poisson: 0.0,
+        cell: CellKind::Hex8,
     })
 }
 

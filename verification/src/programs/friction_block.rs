@@ -13,7 +13,7 @@
 
 use ctc_engine::contact::friction::{pair_dissipation, FrictionStatus};
 use ctc_engine::contact::NodeContact;
-use ctc_engine::mesh::{Cell, Mesh};
+use ctc_engine::mesh::{Cell, CellKind, Mesh};
 use ctc_engine::model::{
     ContactMethod, Dirichlet, FirstImpact, Friction, Load, Model, NewtonSettings, PenaltyKind,
     TimeFunction, ToolGeometry, ToolMotion,
@@ -63,6 +63,10 @@ pub struct Block {
     pub squeeze: Option<f64>,
     /// Poisson's ratio of the block (E = 1e5).
     pub poisson: f64,
+    /// Cell kind: quad4, or quad8 / quad9 (the grid elevated: the slave
+    /// edges become 3-node edges, friction face-integrated; loads and
+    /// drives stay on the corner nodes).
+    pub cell: CellKind,
 }
 
 impl Block {
@@ -82,6 +86,7 @@ impl Block {
             increments: 4,
             squeeze: None,
             poisson: 0.3,
+            cell: CellKind::Quad4,
         }
     }
 
@@ -116,9 +121,14 @@ impl Block {
         // fight the stick constraint (over-constrained with multipliers)
         let left: Vec<usize> = (1..=ny).map(|j| id(0, j)).collect();
         let all: Vec<usize> = (0..nn).collect();
+        let mut mesh = Mesh::new(nodes, cells);
+        if self.cell != CellKind::Quad4 {
+            mesh = ctc_engine::mesh::elevate::elevate(&mesh, self.cell)
+                .expect("a quad4 grid elevates to quad8 / quad9");
+        }
         let mut b = ModelBuilder::plane_strain()
             .elastic("m", 1e5, self.poisson)
-            .body("block", Mesh::new(nodes, cells), "m");
+            .body("block", mesh, "m");
         match self.squeeze {
             None => {
                 // consistent with a uniform pressure: end nodes take half

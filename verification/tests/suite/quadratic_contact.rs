@@ -106,3 +106,36 @@ fn hertz_sphere_3d_quadratic_against_hex8() {
         }
     }
 }
+
+/// Coulomb friction on quadratic faces (the face-integrated return map):
+/// `friction_quadratic`, the inclined plane of VERIFICATION-CASES case 4
+/// (`F / G = (tan a + mu) / (1 - mu tan a)`, Wriggers, Computational
+/// Contact Mechanics §5.2) on quad8 / quad9 and hex20 / hex27 / tet10,
+/// the stick of a block pulled below `mu N`.
+///
+/// ```text
+///          G
+///        +-------+
+///  F --> | quad8 |
+///        +-------+
+///   ////// tan a = 0.1, mu = 0.3 //////
+/// ```
+#[test]
+fn friction_quadratic_slides_at_the_closed_form_and_sticks_below() {
+    let report = registry::run_passing("friction_quadratic");
+    assert_eq!(report.levels[0].values.len(), 8);
+    for v in &report.levels[0].values {
+        println!("{:?}: {:.2e}", v.quantity, v.error);
+    }
+}
+
+/// `upsetting_hex20`: VERIFICATION-CASES case 6 (Simo & Hughes §9, `F =
+/// tau A / h`) on hex20 and hex27 cells, the die a rigid plane on the
+/// quadratic top faces (sketch in `quadratic_contact.rs`).
+#[test]
+fn upsetting_hex20_follows_the_closed_form() {
+    let report = registry::run_passing("upsetting_hex20");
+    for v in &report.levels[0].values {
+        println!("{:?}: {:.2e}", v.quantity, v.error);
+    }
+}
