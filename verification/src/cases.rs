@@ -30,6 +30,7 @@ pub fn all() -> Vec<Case> {
         patch_axisymmetric(),
         hertz_two_cylinders(),
         hertz_two_cylinders_mortar(),
+        hertz_two_spheres_mortar(),
         hertz_two_cylinders_nts_nonmatching(),
         hertz_two_cylinders_nts_smoothed(),
     ]
@@ -188,6 +189,45 @@ pub fn hertz_two_cylinders_mortar() -> Case {
             &[0.045, 0.025, 0.02],
             &[0.12, 0.065, 0.035],
             Some(0.7),
+        ),
+    }
+}
+
+/// Two identical elastic spheres (axisymmetric) on non-matching arcs,
+/// mortar segment-to-segment contact with dual multipliers.
+pub fn hertz_two_spheres_mortar() -> Case {
+    Case {
+        name: "hertz_two_spheres_mortar",
+        title: "Hertz: two elastic spheres, non-matching arcs, mortar contact, axisymmetric",
+        source: "VERIFICATION-CASES.md §2; Johnson, Contact Mechanics §4.2 (E*, R combined)",
+        deck: "hertz_two_spheres_mortar.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "mortar",
+            "two_bodies",
+            "penalty",
+            "axisymmetric",
+            "closed_form",
+        ],
+        levels: 3,
+        // identical spheres: a and p0 of one sphere (E, nu, R) on a rigid
+        // plane under the same load
+        reference: Reference::HertzSphere {
+            young: 1e3,
+            poisson: 0.3,
+            radius: 1.0,
+            pair: 0,
+        },
+        // Measured (levels 0-2): a 2.8e-2 4.9e-3 5.2e-4; a (moment) 1.8e-2
+        // 1.2e-2 2.3e-3; p0 6.7e-3 5.4e-3 1.9e-3; L2 9.3e-2 3.5e-2 1.5e-2
+        // (rates 1.4, 1.1); 2.6 s dev for the three levels
+        checks: hertz_checks(
+            &[0.04, 0.01, 0.005],
+            &[0.03, 0.02, 0.005],
+            &[0.015, 0.01, 0.005],
+            &[0.14, 0.05, 0.025],
+            Some(0.8),
         ),
     }
 }
