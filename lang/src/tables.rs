@@ -627,9 +627,9 @@ pub static CONTACT: [Key; 8] = [
         "formulation",
         KeyType::Choice(&["node_to_segment", "mortar"]),
         "contact between deformable bodies: node-to-segment elements (3d: node-to-facet on \
-         tri3 / quad4 faces), or mortar segment-to-segment (weighted gaps; 3d: tri3 / quad4 \
-         facets clipped on the slave facet's plane; single pass, penalty or augmented \
-         Lagrangian)",
+         tri3 / quad4 faces), or mortar segment-to-segment (weighted gaps, dual Lagrange \
+         multipliers; 3d: tri3 / quad4 facets clipped on the slave facet's plane; single \
+         pass, penalty or augmented Lagrangian, and in 2d Lagrange multipliers)",
     )
     .default(Default::Choice("node_to_segment")),
     Key::new(

@@ -30,6 +30,7 @@ pub fn all() -> Vec<Case> {
         patch_axisymmetric(),
         hertz_two_cylinders(),
         hertz_two_cylinders_mortar(),
+        hertz_two_spheres_mortar(),
         hertz_two_cylinders_nts_nonmatching(),
         hertz_two_cylinders_nts_smoothed(),
     ]
@@ -164,6 +165,7 @@ pub fn hertz_two_cylinders_mortar() -> Case {
             "contact",
             "hertz",
             "mortar",
+            "two_bodies",
             "penalty",
             "plane_strain",
             "closed_form",
@@ -171,18 +173,61 @@ pub fn hertz_two_cylinders_mortar() -> Case {
         ],
         levels: 3,
         reference: two_cylinders_reference(),
-        // Measured (levels 0-2): a 7.6e-2 3.6e-2 1.5e-2; a (moment) 5.6e-2
-        // 1.8e-2 5.9e-3; p0 2.35e-1 5.0e-2 3.4e-2 (high: the nodal
-        // multipliers of standard shape functions are the consistent L2
-        // projection of the traction, D^-1 f, which amplifies node-to-node
-        // noise; dual multipliers are the remedy, not done); L2 2.4e-1
-        // 9.7e-2 5.0e-2. The 2 % p0 target of issue 18 is not met yet.
+        // Measured (levels 0-2, dual multipliers, pressure per reference
+        // area): a 1.9e-2 1.4e-2 5.9e-3; a (moment) 2.6e-2 1.0e-2 3.6e-3;
+        // p0 3.1e-2 1.7e-2 9.4e-3 (rate 0.85); L2 8.4e-2 4.5e-2 2.3e-2
+        // (rate 0.9). Level 3 (`--max-level 3`, 17,556 dofs, 20 s dev):
+        // a (moment) 1.8e-3, p0 5.3e-3, L2 1.1e-2. Standard multipliers on
+        // the same meshes gave p0 21 % / 3.1 % / 1.5 %, L2 24 % / 9.4 % /
+        // 4.6 %; the pressure per current area (the slave surface
+        // contracts ~2 % under p0 = 42 with E = 1e3) gave p0 +2.4 % at
+        // every level (a plateau against Hertz's profile in reference
+        // coordinates). The finest default level carries issue 18's 2 %.
         checks: hertz_checks(
-            &[0.1, 0.05, 0.025],
-            &[0.08, 0.03, 0.015],
-            &[0.3, 0.07, 0.045],
-            &[0.3, 0.12, 0.065],
-            None,
+            &[0.03, 0.02, 0.01],
+            &[0.04, 0.015, 0.006],
+            &[0.045, 0.025, 0.02],
+            &[0.12, 0.065, 0.035],
+            Some(0.7),
+        ),
+    }
+}
+
+/// Two identical elastic spheres (axisymmetric) on non-matching arcs,
+/// mortar segment-to-segment contact with dual multipliers.
+pub fn hertz_two_spheres_mortar() -> Case {
+    Case {
+        name: "hertz_two_spheres_mortar",
+        title: "Hertz: two elastic spheres, non-matching arcs, mortar contact, axisymmetric",
+        source: "VERIFICATION-CASES.md §2; Johnson, Contact Mechanics §4.2 (E*, R combined)",
+        deck: "hertz_two_spheres_mortar.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "mortar",
+            "two_bodies",
+            "penalty",
+            "axisymmetric",
+            "closed_form",
+        ],
+        levels: 3,
+        // identical spheres: a and p0 of one sphere (E, nu, R) on a rigid
+        // plane under the same load
+        reference: Reference::HertzSphere {
+            young: 1e3,
+            poisson: 0.3,
+            radius: 1.0,
+            pair: 0,
+        },
+        // Measured (levels 0-2): a 2.8e-2 4.9e-3 5.2e-4; a (moment) 1.8e-2
+        // 1.2e-2 2.3e-3; p0 6.7e-3 5.4e-3 1.9e-3; L2 9.3e-2 3.5e-2 1.5e-2
+        // (rates 1.4, 1.1); 2.6 s dev for the three levels
+        checks: hertz_checks(
+            &[0.04, 0.01, 0.005],
+            &[0.03, 0.02, 0.005],
+            &[0.015, 0.01, 0.005],
+            &[0.14, 0.05, 0.025],
+            Some(0.8),
         ),
     }
 }

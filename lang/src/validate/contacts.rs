@@ -202,7 +202,8 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
 }
 
 /// `formulation = mortar`: a deformable master other than the slave
-/// surface, single pass, penalty or augmented Lagrangian, frictionless.
+/// surface, single pass, penalty, augmented Lagrangian or (2D, single
+/// multipliers) Lagrange multipliers, frictionless.
 fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     let Some(f) = c
         .formulation
@@ -211,6 +212,7 @@ fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     else {
         return;
     };
+    let solid = super::analysis::is_solid(ctx);
     let mut refuse = |what: &str, span: Span, help: &str| {
         ctx.err(
             Diagnostic::error(
@@ -247,16 +249,26 @@ fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
             "remove `strategy`, or use `formulation = node_to_segment` for double passes",
         );
     }
-    if let Some(m) = c
-        .method
-        .as_ref()
-        .filter(|m| matches!(m.value, Method::Lagrange { .. }))
-    {
-        refuse(
-            "with Lagrange multipliers is not supported yet",
-            m.span,
-            "use `method = penalty { .. }` or `augmented_lagrange { .. }`",
-        );
+    if let Some(m) = c.method.as_ref() {
+        if let Method::Lagrange { formulation } = &m.value {
+            if solid {
+                refuse(
+                    "with Lagrange multipliers is 2D only for now",
+                    m.span,
+                    "use `method = penalty { .. }` or `augmented_lagrange { .. }` in 3D",
+                );
+            } else if formulation
+                .as_ref()
+                .is_some_and(|f| f.value == crate::ast::LagrangeFormulation::Doubled)
+            {
+                refuse(
+                    "with doubled Lagrange multipliers is not supported (its L D L^T \
+                     factorization needs a symmetric tangent; mortar's is not)",
+                    m.span,
+                    "use `method = lagrange { }` (single multipliers, LU)",
+                );
+            }
+        }
     }
     if c.thermal.is_some() {
         refuse(

@@ -399,12 +399,9 @@ pub fn cases() -> Vec<VerifyCase> {
             checks: vec![
                 Check::new(
                     Quantity::Named("P stiff block mortar vs rigid plane"),
-                    &[0.16],
+                    &[5e-3],
                 ),
-                Check::new(
-                    Quantity::Named("P equal block mortar vs Hertz(E*)"),
-                    &[0.05],
-                ),
+                Check::new(Quantity::Named("P equal block mortar vs Hertz(E*)"), &[0.2]),
             ],
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 1,
@@ -490,13 +487,16 @@ fn hertz_level(_level: usize) -> Result<ProgramLevel, String> {
 /// [`hertz_level`] with mortar contact between the sphere and the block
 /// (the same decks, `formulation = mortar`). Measured (`cargo test -p
 /// ctc-verification --test contact_mortar_3d hertz_mortar_forces --
-/// --nocapture`): stiff block / rigid plane - 1 = -14.9 %, equal block vs
-/// Hertz -4.4 % (node-to-facet: -6.8e-4 and +16 %). Two to three cells
-/// span the contact radius: with standard multipliers a slave node at the
-/// rim whose support averages to an open gap carries no force although
-/// part of its support penetrates, so the coarse mortar contact is
-/// softer (2D mortar's coarsest Hertz level: p0 23 % off); guarded so it
-/// does not get worse.
+/// --nocapture`; `ctc verify hertz_sphere_block_mortar_3d`, 230 s dev on
+/// the loaded machine): with dual multipliers stiff block / rigid plane -
+/// 1 = -1.1e-3 (0.3546 against 0.3550), equal block 0.2104, Hertz +14.9
+/// % (node-to-facet: -6.8e-4 and 0.2129, +16 %: the finite sphere and
+/// block are stiffer than Hertz's half-spaces). With standard multipliers
+/// they were -14.9 % and 0.1750 (-4.4 %): two to three cells span the
+/// contact radius, and a slave node at the rim whose support averages to
+/// an open gap carried no force although part of its support penetrates
+/// (the coarse contact was too soft, which also hid the finite-body
+/// excess of the equal block).
 fn hertz_mortar_level(_level: usize) -> Result<ProgramLevel, String> {
     let mut out = ProgramLevel {
         h: std::f64::consts::FRAC_PI_4 / HERTZ_TANGENTIAL as f64,

@@ -31,9 +31,10 @@ const MESHES: [(usize, usize); 2] = [(4, 3), (7, 5)];
 
 /// The combinations run: (quantity name, formulation, strategy, method,
 /// tolerance on the deviation).
-const COMBINATIONS: [(&str, &str, &str, &str, f64); 9] = [
+const COMBINATIONS: [(&str, &str, &str, &str, f64); 10] = [
     ("mortar penalty", "mortar", "single_pass", PENALTY, 1e-8),
     ("mortar augmented", "mortar", "single_pass", AUGMENTED, 1e-8),
+    ("mortar lagrange", "mortar", "single_pass", "lagrange", 1e-8),
     (
         "nts single penalty",
         "node_to_segment",
@@ -90,7 +91,11 @@ const AUGMENTED: &str = "augmented_lagrange { kind = area  penalty = 1e8  tolera
 
 /// The registry entries of this file.
 pub fn cases() -> Vec<VerifyCase> {
-    vec![VerifyCase {
+    vec![patch_case(), hertz_lagrange_case()]
+}
+
+fn patch_case() -> VerifyCase {
+    VerifyCase {
         name: "contact_patch_two_blocks",
         title: "Contact patch test, two deformable blocks 4|3 and 7|5 across: mortar vs \
                 node-to-segment, every strategy x method",
@@ -116,7 +121,7 @@ pub fn cases() -> Vec<VerifyCase> {
             max_levels: MESHES.len(),
             run: patch_level,
         }),
-    }]
+    }
 }
 
 /// The deck of one combination.
@@ -197,5 +202,190 @@ fn patch_level(level: usize) -> Result<ProgramLevel, String> {
         }
         out.values.push(error(name, deviation(&last.0)));
     }
+    Ok(out)
+}
+
+// ------------------------------------------- Hertz, Lagrange vs penalty
+
+/// The deck of `ctc verify hertz_two_cylinders_mortar` (penalty).
+const HERTZ_DECK: &str = "hertz_two_cylinders_mortar.ctc";
+
+/// Its method, replaced by Lagrange multipliers for the second run.
+const HERTZ_PENALTY: &str = "penalty { kind = area  stiffness = 1e7 }";
+
+/// Names of the values of [`hertz_lagrange_level`], with their tolerances
+/// per level (measured values in the case's doc).
+const HERTZ_LAGRANGE_CHECKS: [(&str, &[f64]); 7] = [
+    ("p0 lagrange", &[0.045, 0.025, 0.02]),
+    ("a (moment) lagrange", &[0.04, 0.015, 0.006]),
+    ("L2(p) lagrange", &[0.12, 0.065, 0.035]),
+    ("p0 lagrange vs penalty / penalty error", &[5.0]),
+    ("P lagrange vs penalty / penalty error", &[5.0]),
+    ("max |g| active lagrange / indentation", &[1e-8]),
+    ("Newton iterations lagrange / penalty", &[4.0]),
+];
+
+/// Hertz, two elastic cylinders on non-matching arcs, mortar contact with
+/// Lagrange multipliers against the same deck with the penalty (issue
+/// 18: Lagrange on two curved deformable bodies converged, its answer
+/// equal to the penalty's within the penalty error).
+///
+/// ```text
+///          |  top quarter cylinder R = 1 (arc grading 0.02), flat pushed 0.02
+///          | .-'
+///   -------+---- interface: slave top.arc -> master bottom.arc (mortar)
+///          | '-.
+///          |  bottom quarter cylinder R = 1 (arc grading 0.03), flat fixed
+///   x = 0: symmetry
+/// ```
+///
+/// Reference: K. L. Johnson, Contact Mechanics (1985) §4.3 (identical
+/// cylinders: `a = sqrt(4 P R / (pi E'))`, `p0 = 2 P / (pi a)`,
+/// `E' = E / (1 - nu^2)`). The penalty error of the deck's area penalty
+/// `k = 1e7` is measured by its penetration: `e_k = p0 / (k d)` with `d`
+/// the indentation 0.02 (the relative change of the approach the
+/// penetration takes); the differences Lagrange - penalty of `p0` and of
+/// the total force `P` are reported divided by `e_k`.
+///
+/// Measured (`ctc verify hertz_two_cylinders_mortar_lagrange --max-level
+/// 2`; levels 0-2, 320 / 1,158 / 4,464 dofs): p0 3.1e-2 1.8e-2 9.9e-3
+/// (rate 0.83), a (moment) 2.7e-2 1.0e-2 3.9e-3, L2(p) 8.4e-2 4.5e-2
+/// 2.3e-2; p0 Lagrange vs penalty 2.6 / 2.9 / 3.1 e_k (e_k = 2.1e-4), P
+/// 0.74 e_k; the largest |gap| of an active node 2.5e-9 / 9.3e-11 /
+/// 2.7e-10 of the indentation (the Newton tolerance); Newton iterations
+/// 26 / 52 / 65 against the penalty's 32 / 34 / 49 (the active set grows
+/// over 3-4 Newton loops per increment). The Newton loops converge fast
+/// but not quadratically in their last step (e.g. 4.6e-4, 1.8e-8,
+/// 1.7e-11): the constraint row is `B / A`, the gap's gradient with `D`,
+/// `M` and the normal held fixed, not its exact derivative (the
+/// saddle-point system takes one row per constraint for both its row and
+/// its column). Standard multipliers with Lagrange gave p0 25 % at level
+/// 0 and 118 e_k from the penalty.
+fn hertz_lagrange_case() -> VerifyCase {
+    VerifyCase {
+        name: "hertz_two_cylinders_mortar_lagrange",
+        title: "Hertz: two elastic cylinders, non-matching arcs, mortar with Lagrange \
+                multipliers vs penalty",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
+        tags: &[
+            "contact",
+            "hertz",
+            "mortar",
+            "two_bodies",
+            "lagrange",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+        ],
+        levels: 2,
+        checks: HERTZ_LAGRANGE_CHECKS
+            .iter()
+            .map(|(n, t)| Check::new(Quantity::Named(n), t))
+            .collect(),
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: 3,
+            run: hertz_lagrange_level,
+        }),
+    }
+}
+
+/// One Hertz run of deck text `text`: the measured values, the final
+/// contact state and the run's summary.
+fn hertz_run(
+    path: &Path,
+    text: &str,
+) -> Result<
+    (
+        crate::measure::Measured,
+        Vec<NodeContact>,
+        ctc_engine::solve::RunSummary,
+    ),
+    String,
+> {
+    use crate::case::Reference;
+    use crate::profile::Abscissa;
+    let model = compile(path, text)?;
+    let mut capture = crate::capture::Capture::default();
+    let summary = ctc_engine::solve::run(&model, &mut capture).map_err(|e| e.message)?;
+    if !summary.completed {
+        return Err("the Hertz run did not complete".into());
+    }
+    let state = capture
+        .last
+        .as_ref()
+        .ok_or("the Hertz run converged no increment")?;
+    let reference = Reference::HertzCylinder {
+        young: 1e3,
+        poisson: 0.3,
+        radius: 1.0,
+        pair: 0,
+        axis: 0.0,
+        half_model: true,
+        abscissa: Abscissa::Reference,
+    };
+    let measured = crate::measure::measure(&reference, &model, state)?;
+    let contact = state.contact.first().cloned().unwrap_or_default();
+    Ok((measured, contact, summary))
+}
+
+fn hertz_lagrange_level(level: usize) -> Result<ProgramLevel, String> {
+    let (path, text) = super::read_case_deck(HERTZ_DECK)?;
+    let deck = crate::refine::RefinableDeck::parse(&text)?;
+    if level >= deck.levels() {
+        return Err(format!("{HERTZ_DECK} has no level {level}"));
+    }
+    let text = deck.render(level)?;
+    if text.matches(HERTZ_PENALTY).count() != 1 {
+        return Err(format!(
+            "{HERTZ_DECK}: `method = {HERTZ_PENALTY}` not found once"
+        ));
+    }
+    let (penalty, _, ps) = hertz_run(&path, &text)?;
+    let (lagrange, contact, ls) = hertz_run(&path, &text.replace(HERTZ_PENALTY, "lagrange"))?;
+    let of = |m: &crate::measure::Measured, q: Quantity| {
+        m.values
+            .iter()
+            .find(|v| v.quantity == q)
+            .map(|v| (v.computed, v.error))
+            .ok_or_else(|| format!("{q:?} not measured"))
+    };
+    let (p0_l, p0_err) = of(&lagrange, Quantity::PeakPressure)?;
+    let (p0_p, _) = of(&penalty, Quantity::PeakPressure)?;
+    let (force_l, _) = of(&lagrange, Quantity::ContactForce)?;
+    let (force_p, _) = of(&penalty, Quantity::ContactForce)?;
+    let (_, a_err) = of(&lagrange, Quantity::HalfWidthMoment)?;
+    let (_, l2_err) = of(&lagrange, Quantity::PressureL2)?;
+    // the penalty's relative penetration at the peak
+    let (stiffness, indentation) = (1e7, 0.02);
+    let penalty_error = p0_p / (stiffness * indentation);
+    let gap = contact
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .map(|c| c.gap.abs())
+        .fold(0.0, f64::max);
+    let mut out = ProgramLevel {
+        h: 1.0 / (16 << level) as f64,
+        ..ProgramLevel::default()
+    };
+    out.add_run(&ps);
+    out.add_run(&ls);
+    out.values = vec![
+        error("p0 lagrange", p0_err),
+        error("a (moment) lagrange", a_err),
+        error("L2(p) lagrange", l2_err),
+        error(
+            "p0 lagrange vs penalty / penalty error",
+            ((p0_l - p0_p) / p0_p).abs() / penalty_error,
+        ),
+        error(
+            "P lagrange vs penalty / penalty error",
+            ((force_l - force_p) / force_p).abs() / penalty_error,
+        ),
+        error("max |g| active lagrange / indentation", gap / indentation),
+        error(
+            "Newton iterations lagrange / penalty",
+            ls.newton_iterations as f64 / ps.newton_iterations.max(1) as f64,
+        ),
+    ];
     Ok(out)
 }

@@ -43,7 +43,7 @@ use super::surface::SurfacePair;
 use super::{ContactStatus, NodeContact, PairState};
 use crate::model::{AnalysisKind, ContactMethod, Model};
 use ad::Ad;
-use integrals::{segment_pair, MortarSegment, Weight};
+use integrals::{segment_pair, Basis, MortarSegment, Weight};
 
 /// Forces and tangent of one mortar row over a list of nodes (also the
 /// rows of smoothed node-to-segment in 2D and of node-to-facet in 3D,
@@ -173,7 +173,8 @@ impl<'a> Row<'a> {
     /// the [`Coupling`] of slave `node`; `touching`: a closed-gap start
     /// (closed with zero force, the penalty tangent). `None` when the
     /// master does not cover the node's support or the gap exceeds
-    /// `prof`.
+    /// `prof`. With Lagrange multipliers (`lagrange = Some((active,
+    /// lambda))`) see [`Row::close_lagrange`].
     #[allow(clippy::too_many_arguments)]
     fn close<const D: usize>(
         &self,
@@ -184,6 +185,7 @@ impl<'a> Row<'a> {
         prof: f64,
         touching: f64,
         entity: usize,
+        lagrange: Option<(bool, f64)>,
     ) -> Option<(NodeContact<D>, Option<Coupling>)> {
         let area = self.area;
         if area.is_nan() || area <= 1e-12 * support || support.is_nan() || support <= 0.0 {
@@ -194,13 +196,6 @@ impl<'a> Row<'a> {
             return None;
         }
         let nd = self.bv.len();
-        let dgap: Vec<f64> = self
-            .dg
-            .iter()
-            .zip(&self.da)
-            .map(|(a, b)| (a - gap * b) / area)
-            .collect();
-        let rn = (shift - alpha * gap).max(0.0);
         let at = D * self.pos(node);
         let sn: [f64; D] = std::array::from_fn(|c| self.bv[at + c]);
         let sl = sn.iter().map(|v| v * v).sum::<f64>().sqrt();
@@ -209,32 +204,57 @@ impl<'a> Row<'a> {
         } else {
             [0.0; D]
         };
-        let closed = rn > 0.0 || (touching > 0.0 && (0.0..=touching).contains(&gap) && alpha > 0.0);
-        let pressure = rn / support;
-        let coupling = closed.then(|| {
-            let dp: Vec<f64> = dgap.iter().map(|v| -alpha / support * v).collect();
-            let force: Vec<f64> = self.bv.iter().map(|b| pressure * b).collect();
-            let mut tangent = vec![0.0; nd * nd];
-            for r in 0..nd {
-                for c in 0..nd {
-                    tangent[r * nd + c] = -(self.bv[r] * dp[c] + pressure * self.db[r * nd + c]);
-                }
+        let (closed, pressure, coupling) = match lagrange {
+            Some((active, lambda)) => {
+                let (pressure, coupling) = self.close_lagrange(node, lambda);
+                (active, pressure, active.then_some(coupling))
             }
-            Coupling {
-                nodes: self.nodes.to_vec(),
-                force,
-                tangent,
-                slave: node,
-                gap_gradient: Vec::new(),
+            None => {
+                let dgap: Vec<f64> = self
+                    .dg
+                    .iter()
+                    .zip(&self.da)
+                    .map(|(a, b)| (a - gap * b) / area)
+                    .collect();
+                let rn = (shift - alpha * gap).max(0.0);
+                let closed =
+                    rn > 0.0 || (touching > 0.0 && (0.0..=touching).contains(&gap) && alpha > 0.0);
+                let pressure = rn / support;
+                let coupling = closed.then(|| {
+                    let dp: Vec<f64> = dgap.iter().map(|v| -alpha / support * v).collect();
+                    let force: Vec<f64> = self.bv.iter().map(|b| pressure * b).collect();
+                    let mut tangent = vec![0.0; nd * nd];
+                    for r in 0..nd {
+                        for c in 0..nd {
+                            tangent[r * nd + c] =
+                                -(self.bv[r] * dp[c] + pressure * self.db[r * nd + c]);
+                        }
+                    }
+                    Coupling {
+                        nodes: self.nodes.to_vec(),
+                        force,
+                        tangent,
+                        slave: node,
+                        gap_gradient: Vec::new(),
+                    }
+                });
+                (closed, pressure, coupling)
             }
-        });
+        };
         let nc = NodeContact {
             node,
             gap,
             normal,
             force: [0.0; D],
             stiffness: [[0.0; D]; D],
-            pressure: if closed { pressure } else { 0.0 },
+            // reported per reference area (the nominal pressure, as
+            // node-to-segment's and node-to-facet's): the slave force
+            // `pressure A` over the reference tributary area
+            pressure: if closed {
+                pressure * area / support
+            } else {
+                0.0
+            },
             status: if closed {
                 ContactStatus::Closed
             } else {
@@ -245,6 +265,36 @@ impl<'a> Row<'a> {
             friction: Default::default(),
         };
         Some((nc, coupling))
+    }
+
+    /// Lagrange multipliers: the constraint of an active node is its nodal
+    /// gap `g~ / A = 0`, its row `B / A` (the gap's gradient with `D`, `M`
+    /// and the normal held fixed, exact where the gap vanishes pointwise),
+    /// the multiplier `lambda` the nodal normal force: force `lambda B /
+    /// A`, tangent `-lambda d(B / A)/dx`, pressure `lambda / A` (per
+    /// covered current area, as the penalty's `R / T` with `|B| = A`).
+    /// Returns the pressure and the coupling (its `gap_gradient` the row).
+    fn close_lagrange(&self, node: usize, lambda: f64) -> (f64, Coupling) {
+        let area = self.area;
+        let nd = self.bv.len();
+        let row: Vec<f64> = self.bv.iter().map(|b| b / area).collect();
+        let force: Vec<f64> = row.iter().map(|b| lambda * b).collect();
+        let mut tangent = vec![0.0; nd * nd];
+        for r in 0..nd {
+            for c in 0..nd {
+                // d(B/A)/dx = dB/A - B dA / A^2
+                let d = self.db[r * nd + c] / area - row[r] * self.da[c] / area;
+                tangent[r * nd + c] = -lambda * d;
+            }
+        }
+        let coupling = Coupling {
+            nodes: self.nodes.to_vec(),
+            force,
+            tangent,
+            slave: node,
+            gap_gradient: row,
+        };
+        (lambda / area, coupling)
     }
 }
 
@@ -287,6 +337,7 @@ pub fn evaluate(
         return out;
     };
     let w = weight(model);
+    let basis = Basis::Dual;
     let prof = state.prof;
     sp.sides[1].update(x);
     let mut pieces: Vec<Vec<Piece>> = vec![Vec::new(); state.slaves.len()];
@@ -308,7 +359,7 @@ pub fn evaluate(
         for &e in &candidates {
             let [c, d] = sp.sides[1].edges[e];
             tests += 1;
-            let Some(seg) = segment_pair([xa, xb, x[c], x[d]], w) else {
+            let Some(seg) = segment_pair([xa, xb, x[c], x[d]], w, basis) else {
                 continue;
             };
             let [g0, g1] = seg.end_gaps;
@@ -368,9 +419,22 @@ pub fn evaluate(
             }
             _ => 0.0,
         };
-        let Some((nc, coupling)) =
-            row.close(node, support, alpha, shift, prof, 0.0, list[0].master)
-        else {
+        let lagrange = matches!(cp.method, ContactMethod::Lagrange { .. }).then(|| {
+            (
+                state.active.get(i).copied().unwrap_or(false),
+                state.multiplier.get(i).copied().unwrap_or(0.0),
+            )
+        });
+        let Some((nc, coupling)) = row.close(
+            node,
+            support,
+            alpha,
+            shift,
+            prof,
+            0.0,
+            list[0].master,
+            lagrange,
+        ) else {
             continue;
         };
         couplings.extend(coupling);
@@ -418,6 +482,7 @@ pub fn evaluate_3d(
         return out;
     };
     state.evaluations += 1;
+    let basis = Basis::Dual;
     let prof = state.prof;
     fp.sides[1].update(x, prof);
     fp.couplings.clear();
@@ -448,7 +513,7 @@ pub fn evaluate_3d(
         for &m in &candidates {
             let (mp, nm) = fp.sides[1].points(m, x);
             fp.tests += 1;
-            let Some(seg) = facets::facet_pair_within(&sx, &mp[..nm], prof, depth) else {
+            let Some(seg) = facets::facet_pair_within(&sx, &mp[..nm], prof, depth, basis) else {
                 continue;
             };
             let mut vars = [UNUSED; 8];
@@ -503,9 +568,16 @@ pub fn evaluate_3d(
             _ => 0.0,
         };
         let entity = pieces[list[0].0].master;
-        let Some((nc, coupling)) =
-            row.close(node, support, alpha, shift, prof, state.touching, entity)
-        else {
+        let Some((nc, coupling)) = row.close(
+            node,
+            support,
+            alpha,
+            shift,
+            prof,
+            state.touching,
+            entity,
+            None,
+        ) else {
             continue;
         };
         fp.couplings.extend(coupling);
