@@ -553,7 +553,8 @@ impl Dynamics {
     /// dashpots to the ground and between nodes).
     fn damping_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
         if self.dashpots {
-            super::discrete::times(model, x, out, |_, c| c);
+            // a released link carries no dashpot (`check`): any time will do
+            super::discrete::times(model, x, out, f64::NEG_INFINITY, |_, c| c);
         }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
@@ -758,7 +759,14 @@ impl Dynamics {
             }
         }
         if self.dashpots {
-            super::discrete::add_tangent(model, dofs, scatter, values, |_, c| cdamp * c);
+            super::discrete::add_tangent(
+                model,
+                dofs,
+                scatter,
+                values,
+                f64::NEG_INFINITY,
+                |_, c| cdamp * c,
+            );
         }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nd = model.mesh.cells.nodes(c).len() * D;
