@@ -241,7 +241,8 @@ pub static ITEMS: &[Item] = &[
               (`tie_stiffness`, a penalty with its exact tangent). The rotation is prescribed \
               (`rotation` or `angular_velocity`) or free under `moment`. The kinetic energy of \
               the mass and inertia and the ties' and bearing's energy are in the energy audit; \
-              history.csv has the body's `ux[..]`, `uy[..]`, `angle[..]` columns.",
+              history.csv has the columns `centre[NODES]_x`, `_y` (the orbit) and \
+              `rotation[NODES]_x` (the angle).",
         blocks: &[("rigid_body", &crate::tables::RIGID_BODY)],
         example: "rigid_body disc.inner { center = (0, 0)  mass = 2  inertia = 0.01  \
                   angular_velocity = 100  stiffness = 1e5  tie_stiffness = 1e7 }",

@@ -14,7 +14,8 @@
 //! energy audit like any point mass; the held y carries nothing), the
 //! bearings ground springs and dashpots on the pilot, a prescribed
 //! rotation a `Dirichlet` on the spin node's x, an applied moment a nodal
-//! force on it.
+//! force on it. `history.csv` gets the columns `centre[NAME]_x`, `_y`
+//! (the orbit) and `rotation[NAME]_x` (the angle; `_y` the held 0).
 //!
 //! Each node `a` of the body is tied to its place on the rigid body at
 //! finite rotation, `p_a = X_c + u_c + R(theta) r_a` (`r_a = X_a - X_c`),
@@ -35,7 +36,9 @@
 
 use super::dofs::{Dof, DofMap};
 use super::linalg::Scatter;
-use crate::model::{AnalysisKind, Dirichlet, Discrete, Load, Model, TimeFunction};
+use crate::model::{
+    AnalysisKind, Dirichlet, Discrete, HistoryRequest, Load, Model, TimeFunction,
+};
 
 /// What [`make_rigid`] needs.
 #[derive(Debug, Clone, PartialEq)]
@@ -211,6 +214,17 @@ pub fn make_rigid(model: &mut Model, spec: RigidSpec) -> Result<(usize, usize), 
             damping: spec.bearing_damping,
         });
     }
+    // history.csv: the centre's displacement (the shaft's orbit) and the
+    // angle (`rotation[..]_x`; its `_y` is the held 0)
+    let name = label.strip_prefix("rigid_body ").unwrap_or(&label);
+    model.output.history.push(HistoryRequest::Displacement {
+        label: format!("centre[{name}]"),
+        nodes: vec![pilot],
+    });
+    model.output.history.push(HistoryRequest::Displacement {
+        label: format!("rotation[{name}]"),
+        nodes: vec![spin],
+    });
     model.discrete.push(Discrete::Rigid {
         label,
         nodes: spec.nodes,
