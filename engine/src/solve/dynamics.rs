@@ -910,8 +910,10 @@ impl Dynamics {
 
     /// Commits the converged increment: velocities and accelerations (a
     /// dynamic increment), the committed residual `r` and the energies
-    /// from the forces (`f_int`, `f_ext` + reactions, `f_c`, damping `C
-    /// v`, per dof) and the displacements `u` (committed `u0`).
+    /// from the forces (`f_int`, `f_ext` + static reactions, `f_c`,
+    /// damping `C v`, per dof; the inertia `M a1` of the `prescribed` dofs
+    /// is added to their reactions here) and the displacements `u`
+    /// (committed `u0`).
     pub fn commit<const D: usize>(
         &mut self,
         model: &Model<D>,
@@ -919,9 +921,20 @@ impl Dynamics {
         u0: &[f64],
         r: &[f64],
         forces: [&[f64]; FORCES],
+        prescribed: &[usize],
     ) {
+        let mut external = forces[1].to_vec();
+        let mut forces = forces;
         if let Some((k, dt)) = self.active {
             let a1 = self.acceleration(&k, dt, u, u0);
+            if !prescribed.is_empty() {
+                let mut ma = vec![0.0; a1.len()];
+                self.mass_times(model, &a1, &mut ma);
+                for &g in prescribed {
+                    external[g] += ma[g];
+                }
+            }
+            forces[1] = &external;
             for ((v, a0), a1) in self.v.iter_mut().zip(&self.a).zip(&a1) {
                 *v += dt * ((1.0 - k.gamma) * a0 + k.gamma * a1);
             }

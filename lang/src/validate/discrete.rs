@@ -83,6 +83,35 @@ pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
             );
         }
     }
+    // a small-strain body turned by the rigid body strains spuriously
+    // (its linear strain of a rotation by theta is cos(theta) - 1)
+    let turns = keys.rotation.as_ref().is_none_or(|r| {
+        !matches!(r.value, crate::ast::TimeFn::Number(0.0) | crate::ast::TimeFn::Constant(0.0))
+    });
+    if let Some(b) = ctx
+        .deck
+        .bodies
+        .iter()
+        .find(|b| b.name.name == d.target.body.name)
+    {
+        let finite = b
+            .kinematics
+            .as_ref()
+            .is_some_and(|k| k.value == crate::ast::KinematicsKind::Finite);
+        if turns && !finite {
+            ctx.err(
+                Diagnostic::error(
+                    "a rigid body turns a small-strain body",
+                    d.target.span,
+                    format!("body `{}` has small-strain kinematics", b.name.name),
+                )
+                .with_help(
+                    "set `kinematics = finite` in the body (a rotation strains a small-strain \
+                     body spuriously), or `rotation = 0`",
+                ),
+            );
+        }
+    }
     if let (Some(r), Some(w)) = (&keys.rotation, &keys.angular_velocity) {
         ctx.err(
             Diagnostic::error(
@@ -209,6 +238,7 @@ mod tests {
             "a moment turns a free rotation only",
             "`release_at` releases links between two sets",
             "a released link carries no dashpot",
+            "a rigid body turns a small-strain body",
         ] {
             assert!(m.contains(&want.to_string()), "{want}: {m:?}");
         }

@@ -115,12 +115,13 @@ fn value(name: &'static str, computed: f64, reference: f64) -> Value {
     }
 }
 
-/// Zero crossings of `x` (interpolated, in increments).
-fn crossings(x: &[f64]) -> Vec<f64> {
+/// Zero crossings of `x(t)` (linearly interpolated times).
+fn crossings(x: &[f64], t: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
     for i in 1..x.len() {
         if x[i - 1] < 0.0 && x[i] >= 0.0 || x[i - 1] > 0.0 && x[i] <= 0.0 {
-            out.push((i - 1) as f64 + x[i - 1] / (x[i - 1] - x[i]));
+            let s = x[i - 1] / (x[i - 1] - x[i]);
+            out.push(t[i - 1] + s * (t[i] - t[i - 1]));
         }
     }
     out
@@ -141,12 +142,12 @@ fn bearing(level: usize) -> Result<ProgramLevel, String> {
     let n = 20 << level;
     let dt = t / n as f64;
     let deck = format!(
-        "analysis {{ dimension = plane_stress  thickness = {thickness} }}\n\
+        "analysis {{ dimension = plane_strain  thickness = {thickness} }}\n\
          material m {{ elastic {{ E = 1e3  nu = 0.3 }}  density = {RHO} }}\n\
-         body disc {{ mesh = annulus {{ center = (0, 0)  inner = {inner}  outer = {outer}  radial = 2  circumferential = {n_c} }}  material = m }}\n\
-         rigid_body disc.all {{ center = (0, 0)  mass = {BEARING_M}  inertia = 0.1  stiffness = {BEARING_K}  tie_stiffness = 1e6 }}\n\
+         body disc {{ mesh = annulus {{ center = (0, 0)  inner = {inner}  outer = {outer}  radial = 2  circumferential = {n_c} }}  material = m  kinematics = finite }}\n\
+         rigid_body disc.all {{ center = (0, 0)  mass = {BEARING_M}  inertia = 0.1  stiffness = {BEARING_K}  tie_stiffness = 1e4 }}\n\
          initial_velocity disc.all {{ vx = 1 }}\n\
-         step vibrate {{\n  time = 0 .. {}\n  increments = {}\n  dynamic {{ scheme = newmark }}\n  newton {{ tol = 1e-12 }}\n}}\n",
+         step vibrate {{\n  time = 0 .. {}\n  increments = {}\n  dynamic {{ scheme = newmark }}\n  newton {{ tol = 1e-10 }}\n}}\n",
         3.0 * t,
         3 * n
     );
@@ -159,14 +160,16 @@ fn bearing(level: usize) -> Result<ProgramLevel, String> {
         value: 1.0,
     });
     let (trace, summary) = run(&model, pilot)?;
-    let mut x = vec![0.0];
-    x.extend(trace.centre.iter().map(|u| u[0]));
-    let c = crossings(&x[1..]);
+    let x: Vec<f64> = trace.centre.iter().map(|u| u[0]).collect();
+    let c = crossings(&x, &trace.time);
     if c.len() < 3 {
         return Err(format!("too few cycles: {} crossings", c.len()));
     }
     let m = c.len() - 1;
-    let t_h = 2.0 * (c[m] - c[0]) / m as f64 * dt;
+    let t_h = 2.0 * (c[m] - c[0]) / m as f64;
+    if summary.cutbacks > 0 {
+        return Err(format!("{} cutbacks", summary.cutbacks));
+    }
     let k0 = 0.5 * m_total;
     let mut out = ProgramLevel {
         h: dt,
@@ -200,14 +203,14 @@ fn jeffcott(ratio: f64, n: usize) -> Result<(f64, f64, f64, f64, RunSummary), St
     let (spin_up, total) = (2.0 * t_n, 14.0 * t_n);
     let h = J_HALF;
     let deck = format!(
-        "analysis {{ dimension = plane_stress }}\n\
+        "analysis {{ dimension = plane_strain }}\n\
          material m {{ elastic {{ E = 1e3  nu = 0.3 }}  density = 0 }}\n\
-         body rotor {{ mesh = rectangle {{ origin = ({}, {})  size = ({}, {})  divisions = (1, 1) }}  material = m }}\n\
+         body rotor {{ mesh = rectangle {{ origin = ({}, {})  size = ({}, {})  divisions = (1, 1) }}  material = m  kinematics = finite }}\n\
          point_mass rotor.all {{ mass = {J_M0} }}\n\
          point_mass rotor.node(near({h}, {h})) {{ mass = {J_ME} }}\n\
          rigid_body rotor.all {{ center = (0, 0)  mass = {J_M}  stiffness = {J_K}  damping = {c}  \
-         angular_velocity = ramp(0, {omega}, 0, {spin_up})  tie_stiffness = 1e6 }}\n\
-         step whirl {{\n  time = 0 .. {total}\n  increments = {}\n  dynamic {{ scheme = newmark }}\n  newton {{ tol = 1e-11 }}\n}}\n",
+         angular_velocity = ramp(0, {omega}, 0, {spin_up})  tie_stiffness = 1e3 }}\n\
+         step whirl {{\n  time = 0 .. {total}\n  increments = {}\n  dynamic {{ scheme = newmark }}\n  newton {{ tol = 1e-10 }}\n}}\n",
         -h,
         -h,
         2.0 * h,
@@ -307,7 +310,7 @@ pub fn cases() -> Vec<VerifyCase> {
             name: "rigid_body_bearing_frequency",
             title: "A disc made rigid (rigid_body disc.all, mass M at its centre) on an isotropic bearing spring k, given v0: period vs 2 pi sqrt(m_total / k) (M + the disc's mass), average-acceleration Newmark at dt = T/20, T/40; energy balance; the ties' gap",
             source: "Thomson & Dahleh, Theory of Vibration with Applications (5th ed. 1998), section 2.1",
-            tags: &["dynamics", "rigid_body", "plane_stress"],
+            tags: &["dynamics", "rigid_body", "plane_strain"],
             levels: 2,
             checks: vec![
                 Check::new(Quantity::Named(PERIOD), &[1e-2, 3e-3]),
@@ -323,7 +326,7 @@ pub fn cases() -> Vec<VerifyCase> {
             name: "jeffcott_rotor_whirl",
             title: "Jeffcott rotor: a rigid square with an eccentric point mass spun up to omega = 0.5 and 2 omega_n on an isotropic damped bearing (zeta = 0.1), Newmark at dt = T_n/40, T_n/80: steady whirl radius vs e r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2), orbit roundness, energy balance",
             source: "Genta, Dynamics of Rotating Systems (2005), section 4.2 (the Jeffcott rotor); Den Hartog, Mechanical Vibrations (1956), section 7.4",
-            tags: &["dynamics", "rigid_body", "plane_stress"],
+            tags: &["dynamics", "rigid_body", "plane_strain"],
             levels: 2,
             checks: vec![
                 Check::new(Quantity::Named(WHIRL_SUB), &[1e-2, 5e-3]),
