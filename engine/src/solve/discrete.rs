@@ -232,5 +232,18 @@ mod tests {
         };
         assert_eq!(values[scatter.pattern.find(i, j).unwrap()], -0.5);
         assert_eq!(values[scatter.pattern.find(i, i).unwrap()], 0.5);
+        // released at t = 1: acting before, gone from then on (force and
+        // tangent)
+        if let Discrete::Link { release_at, .. } = &mut model.discrete[0] {
+            *release_at = Some(1.0);
+        }
+        for (t, acting) in [(0.5, true), (1.0, false), (2.0, false)] {
+            let mut f = vec![0.0; n];
+            times(&model, &u, &mut f, t, |k, _| k);
+            assert_eq!(f[2] != 0.0, acting, "t = {t}");
+            let mut values = vec![0.0; scatter.n_values()];
+            add_tangent(&model, &dofs, &scatter, &mut values, t, |k, _| k);
+            assert_eq!(values.iter().any(|v| *v != 0.0), acting, "t = {t}");
+        }
     }
 }
