@@ -117,7 +117,9 @@ fn blade_loss_whirl_friction_and_energy() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/blade_loss.ctc");
     let src = ctc_lang::Source::read(&path).expect("readable deck");
     let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
-    let (pilot, spin) = ctc_engine::solve::rigid_body::bodies(&model).next().unwrap();
+    let (pilot, spin) = ctc_engine::solve::rigid_body::bodies(&model)
+        .next()
+        .unwrap();
     let (mut k, mut c, mut m_shaft, mut release) = (0.0, 0.0, 0.0, f64::INFINITY);
     for d in &model.discrete {
         match d {
@@ -203,14 +205,19 @@ fn blade_loss_whirl_friction_and_energy() {
         let h = (probe.time[i] - t) / steps as f64;
         for _ in 0..steps {
             let add = |y: [f64; 4], k: [f64; 4], s: f64| {
-                [y[0] + s * k[0], y[1] + s * k[1], y[2] + s * k[2], y[3] + s * k[3]]
+                [
+                    y[0] + s * k[0],
+                    y[1] + s * k[1],
+                    y[2] + s * k[2],
+                    y[3] + s * k[3],
+                ]
             };
             let k1 = rhs(t, y);
             let k2 = rhs(t + h / 2.0, add(y, k1, h / 2.0));
             let k3 = rhs(t + h / 2.0, add(y, k2, h / 2.0));
             let k4 = rhs(t + h, add(y, k3, h));
-            for j in 0..4 {
-                y[j] += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
+            for (j, yj) in y.iter_mut().enumerate() {
+                *yj += h / 6.0 * (k1[j] + 2.0 * k2[j] + 2.0 * k3[j] + k4[j]);
             }
             t += h;
         }
@@ -248,7 +255,10 @@ fn blade_loss_whirl_friction_and_energy() {
         "friction work {friction_total} vs nodes {}",
         probe.dissipation
     );
-    assert!(friction_error < 1e-6, "friction vs mu R_N slip {friction_error:e}");
+    assert!(
+        friction_error < 1e-6,
+        "friction vs mu R_N slip {friction_error:e}"
+    );
     assert!(balance < 1e-2, "energy balance {balance:e}");
     let lines = [
         format!("increments {}", summary.increments.len()),

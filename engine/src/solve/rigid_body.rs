@@ -36,9 +36,7 @@
 
 use super::dofs::{Dof, DofMap};
 use super::linalg::Scatter;
-use crate::model::{
-    AnalysisKind, Dirichlet, Discrete, HistoryRequest, Load, Model, TimeFunction,
-};
+use crate::model::{AnalysisKind, Dirichlet, Discrete, HistoryRequest, Load, Model, TimeFunction};
 
 /// What [`make_rigid`] needs.
 #[derive(Debug, Clone, PartialEq)]

@@ -86,7 +86,10 @@ pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
     // a small-strain body turned by the rigid body strains spuriously
     // (its linear strain of a rotation by theta is cos(theta) - 1)
     let turns = keys.rotation.as_ref().is_none_or(|r| {
-        !matches!(r.value, crate::ast::TimeFn::Number(0.0) | crate::ast::TimeFn::Constant(0.0))
+        !matches!(
+            r.value,
+            crate::ast::TimeFn::Number(0.0) | crate::ast::TimeFn::Constant(0.0)
+        )
     });
     if let Some(b) = ctx
         .deck
@@ -133,7 +136,7 @@ pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
         }
     }
     for x in [&keys.inertia, &keys.tie_stiffness].into_iter().flatten() {
-        if !(x.value >= 0.0) {
+        if x.value < 0.0 || x.value.is_nan() {
             ctx.err(Diagnostic::error(
                 "must be non-negative",
                 x.span,

@@ -45,8 +45,10 @@ use ctc_engine::solve::{IncrementView, Observer, RunSummary};
 const PERIOD: &str = "bearing: period vs 2 pi sqrt(m_total / k)";
 const BEARING_BALANCE: &str = "bearing: energy balance max |K + W_int - K0| / K0";
 const TIE_GAP: &str = "bearing: max tie gap / amplitude";
-const WHIRL_SUB: &str = "Jeffcott r = 0.5: whirl radius vs e r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2)";
-const WHIRL_SUPER: &str = "Jeffcott r = 2: whirl radius vs e r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2)";
+const WHIRL_SUB: &str =
+    "Jeffcott r = 0.5: whirl radius vs e r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2)";
+const WHIRL_SUPER: &str =
+    "Jeffcott r = 2: whirl radius vs e r^2 / sqrt((1 - r^2)^2 + (2 zeta r)^2)";
 const WHIRL_ROUND: &str = "Jeffcott r = 0.5: orbit out-of-roundness (max - min) / mean radius";
 const WHIRL_BALANCE: &str = "Jeffcott: energy balance max |balance| / max energy";
 const SPIN_ERROR: &str = "hub spun 3 rad: max |u - u_rigid| / outer radius";
