@@ -140,7 +140,7 @@ pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
             ctx.err(Diagnostic::error(
                 "must be non-negative",
                 x.span,
-                format!("{}", num(x.value)),
+                num(x.value).to_string(),
             ));
         }
     }
