@@ -231,6 +231,23 @@ pub static ITEMS: &[Item] = &[
         example: "point_mass block.all { mass = 0.25 }",
     },
     Item {
+        name: "rigid_body",
+        syntax: "rigid_body NODES { center = (x, y)  mass  inertia  rotation | angular_velocity \
+                 | moment  stiffness  damping  tie_stiffness }",
+        doc: "The nodes of a set move as one rigid body (plane strain / plane stress): a pilot \
+              node at `center` carries its translation, mass and bearing (a spring and dashpot \
+              to the ground), a spin node its rotation and rotary inertia; each node is tied to \
+              its place `X_c + u_c + R(theta) (X - X_c)` at finite rotation by a stiff spring \
+              (`tie_stiffness`, a penalty with its exact tangent). The rotation is prescribed \
+              (`rotation` or `angular_velocity`) or free under `moment`. The kinetic energy of \
+              the mass and inertia and the ties' and bearing's energy are in the energy audit; \
+              history.csv has the columns `centre[NODES]_x`, `_y` (the orbit) and \
+              `rotation[NODES]_x` (the angle).",
+        blocks: &[("rigid_body", &crate::tables::RIGID_BODY)],
+        example: "rigid_body disc.inner { center = (0, 0)  mass = 2  inertia = 0.01  \
+                  angular_velocity = 100  stiffness = 1e5  tie_stiffness = 1e7 }",
+    },
+    Item {
         name: "temperature",
         syntax: "temperature SET { value = F(t) }",
         doc: "A prescribed temperature (thermal decks).",

@@ -979,7 +979,7 @@ pub static DYNAMIC: [Key; 12] = [
 
 /// `spring NODES [-> NODES] { .. }`: a spring and a dashpot from each node
 /// to the ground or to a node of the second set.
-pub static SPRING: [Key; 2] = [
+pub static SPRING: [Key; 3] = [
     Key::new(
         "stiffness",
         KeyType::Number,
@@ -998,6 +998,82 @@ pub static SPRING: [Key; 2] = [
     .default(Default::Number(0.0))
     .range(Range::NonNegative)
     .dim(Dim::Dashpot),
+    Key::new(
+        "release_at",
+        KeyType::Number,
+        "time from which the links of `spring a -> b` are gone (a released part: a blade off          its disc flies on with its velocity); no dashpot on a released link",
+    )
+    .range(Range::NonNegative)
+    .dim(Dim::Time),
+];
+
+/// `rigid_body NODES { .. }`: the nodes move as one rigid body (planar).
+pub static RIGID_BODY: [Key; 9] = [
+    Key::new(
+        "center",
+        KeyType::Point(P2),
+        "the body's centre: its pilot node (translation, bearings, mass) and the axis of its          rotation",
+    )
+    .required("add `center = (x, y)`")
+    .dim(Dim::Length),
+    Key::new(
+        "mass",
+        KeyType::Number,
+        "mass of the body at its centre, besides its nodes' own (planar: for the thickness)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Mass),
+    Key::new(
+        "inertia",
+        KeyType::Number,
+        "rotary inertia about the centre, besides its nodes' own (mass x length^2)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Any),
+    Key::new(
+        "rotation",
+        KeyType::Number,
+        "prescribed rotation theta(t), counter-clockwise (time function); without it and          `angular_velocity` the rotation is free under `moment`",
+    )
+    .dim(Dim::AngleRadians),
+    Key::new(
+        "angular_velocity",
+        KeyType::Number,
+        "prescribed angular velocity omega(t) (time function, counter-clockwise), integrated          from theta(0) = 0 (a ramp: theta sampled at 64 points per segment)",
+    )
+    .dim(Dim::Frequency),
+    Key::new(
+        "moment",
+        KeyType::Number,
+        "moment applied to a free rotation, counter-clockwise (time function; default 0)",
+    )
+    .dim(Dim::Any),
+    Key::new(
+        "stiffness",
+        KeyType::Number,
+        "bearing: a spring from the centre to the ground, every direction",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::PenaltyNodal),
+    Key::new(
+        "damping",
+        KeyType::Number,
+        "bearing: a dashpot from the centre to the ground (dynamic steps)",
+    )
+    .default(Default::Number(0.0))
+    .range(Range::NonNegative)
+    .dim(Dim::Dashpot),
+    Key::new(
+        "tie_stiffness",
+        KeyType::Number,
+        "stiffness of the spring tying each node to its place on the rigid body (a penalty:          the nodes follow the rigid motion to |f| / k)",
+    )
+    .required("add `tie_stiffness = <force/length>` (e.g. 1e3 x the element stiffness)")
+    .range(Range::Positive)
+    .dim(Dim::PenaltyNodal),
 ];
 
 /// `point_mass NODES { .. }`.
@@ -1142,5 +1218,6 @@ pub static ALL: &[(&str, &[Key])] = &[
     ("step.dynamic", &DYNAMIC),
     ("spring", &SPRING),
     ("point_mass", &POINT_MASS),
+    ("rigid_body", &RIGID_BODY),
     ("output", &OUTPUT),
 ];

@@ -2,6 +2,7 @@
 //! and the modules run side by side on the test threads); each module was
 //! its own binary. `petsc_run.rs` stays apart: it needs the `petsc` feature.
 
+mod blade_loss;
 mod cli;
 mod cli_bench_search;
 mod contact_deformable;

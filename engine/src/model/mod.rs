@@ -82,6 +82,29 @@ pub enum Discrete {
         stiffness: f64,
         /// Dashpot coefficient `c` (force time / length), `>= 0`.
         damping: f64,
+        /// The time from which the links are gone (a released part: a
+        /// blade off its disc; `None`: never). The spring acts while `t <
+        /// release_at`; a released link carries no dashpot (refused).
+        release_at: Option<f64>,
+    },
+    /// A rigid body (`solve/rigid_body.rs`): its nodes follow the motion
+    /// of a **pilot node** (translation `u_c`) and a **spin node** (its x
+    /// displacement is the rotation `theta`, y held), `x_a = X_c + u_c +
+    /// R(theta) (X_a - X_c)` at finite rotation, `X_c` the pilot's
+    /// position; tied by a stiff spring `stiffness` per node to that
+    /// position (a penalty: the energy `k/2 |x_a - p_a(u_c, theta)|^2`, in
+    /// `f_int` with its exact tangent). Planar models only.
+    Rigid {
+        /// Label.
+        label: String,
+        /// The nodes moving with the body (global numbers).
+        nodes: Vec<usize>,
+        /// The pilot node (translation), appended at the centre.
+        pilot: usize,
+        /// The spin node (angle on x, y held), appended at the centre.
+        spin: usize,
+        /// The tie stiffness per node (force / length), `> 0`.
+        stiffness: f64,
     },
     /// A point mass at each node (every component; dynamic steps).
     Mass {

@@ -34,6 +34,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         ));
     }
     errors.extend(super::free_tool::refusals(model));
+    errors.extend(super::rigid_body::refusals(model));
     for d in &model.discrete {
         let (label, nodes, values) = match d {
             crate::model::Discrete::Ground {
@@ -51,14 +52,31 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                 pairs,
                 stiffness,
                 damping,
-            } => (
-                label,
-                &pairs.iter().flat_map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
-                vec![("stiffness", *stiffness), ("damping", *damping)],
-            ),
+                release_at,
+            } => {
+                if release_at.is_some() && *damping != 0.0 {
+                    errors.push(format!(
+                        "{label}: a released link carries no dashpot (damping = {damping})"
+                    ));
+                }
+                if release_at.is_some_and(|t| t.is_nan()) {
+                    errors.push(format!("{label}: the release time is not a number"));
+                }
+                (
+                    label,
+                    &pairs.iter().flat_map(|&(a, b)| [a, b]).collect::<Vec<_>>(),
+                    vec![("stiffness", *stiffness), ("damping", *damping)],
+                )
+            }
             crate::model::Discrete::Mass { label, nodes, mass } => {
                 (label, nodes, vec![("mass", *mass)])
             }
+            crate::model::Discrete::Rigid {
+                label,
+                nodes,
+                stiffness,
+                ..
+            } => (label, nodes, vec![("stiffness", *stiffness)]),
         };
         if let Some(&n) = nodes.iter().find(|&&n| n >= nn) {
             errors.push(format!("{label}: node {n} is not in the mesh ({nn} nodes)"));
@@ -492,8 +510,16 @@ fn unheld_bodies<const D: usize>(model: &Model<D>) -> Vec<String> {
             constrained[n][d.component] = true;
         }
     }
-    // a spring to the ground holds its node in every direction
+    // a spring to the ground holds its node in every direction, and so
+    // does a rigid body (its pilot has the bearing or the body's mass)
     for d in &model.discrete {
+        if let crate::model::Discrete::Rigid { nodes, .. } = d {
+            for &n in nodes {
+                if let Some(c) = constrained.get_mut(n) {
+                    *c = [true; D];
+                }
+            }
+        }
         if let crate::model::Discrete::Ground {
             nodes, stiffness, ..
         } = d

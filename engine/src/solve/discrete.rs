@@ -22,6 +22,9 @@ pub fn couplings<const D: usize>(model: &Model<D>) -> Vec<(usize, usize)> {
         .iter()
         .flat_map(|d| match d {
             Discrete::Link { pairs, .. } => pairs.clone(),
+            Discrete::Rigid {
+                nodes, pilot, spin, ..
+            } => super::rigid_body::couplings(nodes, *pilot, *spin),
             _ => Vec::new(),
         })
         .filter(|(a, b)| a != b)
@@ -59,17 +62,25 @@ pub fn any<const D: usize>(model: &Model<D>, pick: impl Fn(f64, f64) -> f64) -> 
         | Discrete::Link {
             stiffness, damping, ..
         } => pick(*stiffness, *damping) != 0.0,
-        Discrete::Mass { .. } => false,
+        Discrete::Mass { .. } | Discrete::Rigid { .. } => false,
     })
+}
+
+/// Whether a link released at `release_at` still acts at time `t`.
+pub fn linked(release_at: Option<f64>, t: f64) -> bool {
+    release_at.is_none_or(|r| t < r)
 }
 
 /// `out += A x` over all dofs (`x`, `out` per dof `node D + c`), `A` the
 /// operator of the ground elements and links with the coefficient
-/// `pick(k, c)` (springs: `|k, _| k`, dashpots: `|_, c| c`).
+/// `pick(k, c)` (springs: `|k, _| k`, dashpots: `|_, c| c`) at time `t`
+/// (a link released at or before `t` is gone). The rigid bodies are not
+/// linear: `rigid_body::add_forces`.
 pub fn times<const D: usize>(
     model: &Model<D>,
     x: &[f64],
     out: &mut [f64],
+    t: f64,
     pick: impl Fn(f64, f64) -> f64,
 ) {
     for d in &model.discrete {
@@ -94,10 +105,11 @@ pub fn times<const D: usize>(
                 pairs,
                 stiffness,
                 damping,
+                release_at,
                 ..
             } => {
                 let k = pick(*stiffness, *damping);
-                if k == 0.0 {
+                if k == 0.0 || !linked(*release_at, t) {
                     continue;
                 }
                 for &(a, b) in pairs {
@@ -108,18 +120,19 @@ pub fn times<const D: usize>(
                     }
                 }
             }
-            Discrete::Mass { .. } => {}
+            Discrete::Mass { .. } | Discrete::Rigid { .. } => {}
         }
     }
 }
 
 /// Adds `scale` times the operator of [`times`] (coefficient `pick(k,
-/// c)`) to the free-free tangent `values`.
+/// c)`, time `t`) to the free-free tangent `values`.
 pub fn add_tangent<const D: usize>(
     model: &Model<D>,
     dofs: &DofMap<D>,
     scatter: &Scatter,
     values: &mut [f64],
+    t: f64,
     pick: impl Fn(f64, f64) -> f64,
 ) {
     let mut add = |r: usize, c: usize, x: f64| {
@@ -151,10 +164,11 @@ pub fn add_tangent<const D: usize>(
                 pairs,
                 stiffness,
                 damping,
+                release_at,
                 ..
             } => {
                 let k = pick(*stiffness, *damping);
-                if k == 0.0 {
+                if k == 0.0 || !linked(*release_at, t) {
                     continue;
                 }
                 for &(a, b) in pairs {
@@ -167,7 +181,7 @@ pub fn add_tangent<const D: usize>(
                     }
                 }
             }
-            Discrete::Mass { .. } => {}
+            Discrete::Mass { .. } | Discrete::Rigid { .. } => {}
         }
     }
 }
@@ -194,11 +208,12 @@ mod tests {
             pairs: vec![(1, 4)],
             stiffness: 3.0,
             damping: 0.5,
+            release_at: None,
         });
         let n = model.mesh.nodes.len() * 2;
         let u: Vec<f64> = (0..n).map(|i| 0.1 * i as f64 - 0.3).collect();
         let mut f = vec![0.0; n];
-        times(&model, &u, &mut f, |k, _| k);
+        times(&model, &u, &mut f, 0.0, |k, _| k);
         assert!(f.iter().sum::<f64>().abs() < 1e-15, "{f:?}");
         for c in 0..2 {
             assert_eq!(f[2 + c], 3.0 * (u[2 + c] - u[8 + c]));
@@ -211,11 +226,24 @@ mod tests {
         let scatter = scatter_for(&model, &dofs, &[], None).unwrap();
         assert!(scatter.pair_slots(&dofs, 1, 4).is_some());
         let mut values = vec![0.0; scatter.n_values()];
-        add_tangent(&model, &dofs, &scatter, &mut values, |_, c| c);
+        add_tangent(&model, &dofs, &scatter, &mut values, 0.0, |_, c| c);
         let (Dof::Free(i), Dof::Free(j)) = (dofs.dofs[2], dofs.dofs[8]) else {
             panic!("free dofs")
         };
         assert_eq!(values[scatter.pattern.find(i, j).unwrap()], -0.5);
         assert_eq!(values[scatter.pattern.find(i, i).unwrap()], 0.5);
+        // released at t = 1: acting before, gone from then on (force and
+        // tangent)
+        if let Discrete::Link { release_at, .. } = &mut model.discrete[0] {
+            *release_at = Some(1.0);
+        }
+        for (t, acting) in [(0.5, true), (1.0, false), (2.0, false)] {
+            let mut f = vec![0.0; n];
+            times(&model, &u, &mut f, t, |k, _| k);
+            assert_eq!(f[2] != 0.0, acting, "t = {t}");
+            let mut values = vec![0.0; scatter.n_values()];
+            add_tangent(&model, &dofs, &scatter, &mut values, t, |k, _| k);
+            assert_eq!(values.iter().any(|v| *v != 0.0), acting, "t = {t}");
+        }
     }
 }

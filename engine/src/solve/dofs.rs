@@ -51,8 +51,9 @@ impl<const D: usize> DofMap<D> {
                 active[n] = true;
             }
         }
-        // the pilot nodes of free tools carry their angle (`free_tool.rs`)
-        for n in super::free_tool::pilot_nodes(model) {
+        // the pilot nodes of free tools carry their angle (`free_tool.rs`),
+        // those of rigid bodies their motion (`rigid_body.rs`)
+        for n in super::free_tool::pilot_nodes(model).chain(super::rigid_body::pilot_nodes(model)) {
             if let Some(a) = active.get_mut(n) {
                 *a = true;
             }

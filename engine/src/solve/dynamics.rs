@@ -553,7 +553,8 @@ impl Dynamics {
     /// dashpots to the ground and between nodes).
     fn damping_times<const D: usize>(&self, model: &Model<D>, x: &[f64], out: &mut [f64]) {
         if self.dashpots {
-            super::discrete::times(model, x, out, |_, c| c);
+            // a released link carries no dashpot (`check`): any time will do
+            super::discrete::times(model, x, out, f64::NEG_INFINITY, |_, c| c);
         }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nodes = model.mesh.cells.nodes(c);
@@ -758,7 +759,14 @@ impl Dynamics {
             }
         }
         if self.dashpots {
-            super::discrete::add_tangent(model, dofs, scatter, values, |_, c| cdamp * c);
+            super::discrete::add_tangent(
+                model,
+                dofs,
+                scatter,
+                values,
+                f64::NEG_INFINITY,
+                |_, c| cdamp * c,
+            );
         }
         for (c, m) in self.cell_damping.iter().enumerate() {
             let nd = model.mesh.cells.nodes(c).len() * D;
@@ -902,8 +910,10 @@ impl Dynamics {
 
     /// Commits the converged increment: velocities and accelerations (a
     /// dynamic increment), the committed residual `r` and the energies
-    /// from the forces (`f_int`, `f_ext` + reactions, `f_c`, damping `C
-    /// v`, per dof) and the displacements `u` (committed `u0`).
+    /// from the forces (`f_int`, `f_ext` + static reactions, `f_c`,
+    /// damping `C v`, per dof; the inertia `M a1` of the `prescribed` dofs
+    /// is added to their reactions here) and the displacements `u`
+    /// (committed `u0`).
     pub fn commit<const D: usize>(
         &mut self,
         model: &Model<D>,
@@ -911,9 +921,20 @@ impl Dynamics {
         u0: &[f64],
         r: &[f64],
         forces: [&[f64]; FORCES],
+        prescribed: &[usize],
     ) {
+        let mut external = forces[1].to_vec();
+        let mut forces = forces;
         if let Some((k, dt)) = self.active {
             let a1 = self.acceleration(&k, dt, u, u0);
+            if !prescribed.is_empty() {
+                let mut ma = vec![0.0; a1.len()];
+                self.mass_times(model, &a1, &mut ma);
+                for &g in prescribed {
+                    external[g] += ma[g];
+                }
+            }
+            forces[1] = &external;
             for ((v, a0), a1) in self.v.iter_mut().zip(&self.a).zip(&a1) {
                 *v += dt * ((1.0 - k.gamma) * a0 + k.gamma * a1);
             }

@@ -55,6 +55,7 @@ pub mod memory;
 pub mod newton;
 pub mod parallel;
 pub mod restart;
+pub mod rigid_body;
 pub mod scene;
 pub mod share;
 pub mod stabilize;

@@ -703,6 +703,9 @@ pub enum DiscreteKind {
     Spring,
     /// `point_mass NODES { mass }`.
     PointMass,
+    /// `rigid_body NODES { center  mass  inertia  rotation | angular_velocity
+    /// | moment  stiffness  damping  tie_stiffness }`.
+    RigidBody,
 }
 
 /// `spring NODES { .. }` or `point_mass NODES { .. }`: discrete elements at
@@ -722,10 +725,32 @@ pub struct DiscreteItem {
     pub stiffness: Option<Spanned<f64>>,
     /// `damping` (springs: the dashpot).
     pub damping: Option<Spanned<f64>>,
-    /// `mass` (point masses).
+    /// `mass` (point masses, rigid bodies).
     pub mass: Option<Spanned<f64>>,
+    /// `release_at` (links).
+    pub release_at: Option<Spanned<f64>>,
+    /// The keys of a rigid body (`None` for the other items).
+    pub rigid: Option<RigidKeys>,
     /// The whole item.
     pub span: Span,
+}
+
+/// The keys of `rigid_body NODES { .. }` besides `mass`, `stiffness`
+/// (bearing) and `damping` (bearing).
+#[derive(Debug, Clone, PartialEq)]
+pub struct RigidKeys {
+    /// `center = (x, y)`.
+    pub center: Option<Point>,
+    /// `inertia`.
+    pub inertia: Option<Spanned<f64>>,
+    /// `rotation = F(t)`.
+    pub rotation: Option<Spanned<TimeFn>>,
+    /// `angular_velocity = F(t)`.
+    pub angular_velocity: Option<Spanned<TimeFn>>,
+    /// `moment = F(t)`.
+    pub moment: Option<Spanned<TimeFn>>,
+    /// `tie_stiffness`.
+    pub tie_stiffness: Option<Spanned<f64>>,
 }
 
 /// `step name { .. }`.

@@ -1,22 +1,28 @@
 //! `spring` and `point_mass` items -> `model::Discrete` (`Ground`,
-//! `Link`, `Mass`).
+//! `Link`, `Mass`); `rigid_body` items -> `rigid_body::RigidSpec` (applied
+//! to the planar model by `rigid_body::make_rigid`).
 
 use super::Lowerer;
 use crate::ast::DiscreteKind;
 use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
-use ctc_engine::model::Discrete;
+use ctc_engine::model::{self as m, Discrete};
+use ctc_engine::solve::rigid_body::RigidSpec;
 
 impl Lowerer<'_> {
     pub(super) fn discrete(&mut self) -> Vec<Discrete> {
         let mut out = Vec::new();
         for d in &self.deck.discrete {
-            if self.has_error_in(d.span) || self.body_failed(&d.target) {
+            if self.has_error_in(d.span)
+                || self.body_failed(&d.target)
+                || d.kind == DiscreteKind::RigidBody
+            {
                 continue;
             }
             let what = match d.kind {
                 DiscreteKind::Spring => "spring",
                 DiscreteKind::PointMass => "point_mass",
+                DiscreteKind::RigidBody => "rigid_body",
             };
             let Some(r) = self.resolve(&d.target, Need::Nodes, what) else {
                 continue;
@@ -75,6 +81,7 @@ impl Lowerer<'_> {
                     pairs,
                     stiffness: v(&d.stiffness),
                     damping: v(&d.damping),
+                    release_at: d.release_at.as_ref().map(|x| x.value),
                 });
                 continue;
             }
@@ -85,12 +92,54 @@ impl Lowerer<'_> {
                     stiffness: v(&d.stiffness),
                     damping: v(&d.damping),
                 },
-                DiscreteKind::PointMass => Discrete::Mass {
+                DiscreteKind::PointMass | DiscreteKind::RigidBody => Discrete::Mass {
                     label: format!("point_mass {}", d.target),
                     nodes: r.nodes.clone(),
                     mass: v(&d.mass),
                 },
             });
+        }
+        out
+    }
+
+    /// The rigid bodies of a planar deck, with the span of each item.
+    pub(super) fn rigid_bodies(&mut self) -> Vec<(RigidSpec, crate::ast::Span)> {
+        let mut out = Vec::new();
+        for d in &self.deck.discrete {
+            let Some(keys) = &d.rigid else { continue };
+            if self.has_error_in(d.span) || self.body_failed(&d.target) {
+                continue;
+            }
+            let Some(r) = self.resolve(&d.target, Need::Nodes, "rigid_body") else {
+                continue;
+            };
+            let v = |x: &Option<crate::span::Spanned<f64>>| x.as_ref().map_or(0.0, |x| x.value);
+            let rotation = match (&keys.rotation, &keys.angular_velocity) {
+                (Some(r), _) => Some(self.tf(r)),
+                (None, Some(w)) => Some(ctc_engine::solve::rigid_body::angle_of(
+                    &self.tf(w),
+                    self.window,
+                )),
+                (None, None) => None,
+            };
+            out.push((
+                RigidSpec {
+                    label: format!("rigid_body {}", d.target),
+                    nodes: r.nodes.clone(),
+                    centre: keys.center.as_ref().map_or([0.0; 2], |c| c.value),
+                    mass: v(&d.mass),
+                    inertia: v(&keys.inertia),
+                    rotation,
+                    moment: keys
+                        .moment
+                        .as_ref()
+                        .map_or(m::TimeFunction::Constant(0.0), |f| self.tf(f)),
+                    bearing_stiffness: v(&d.stiffness),
+                    bearing_damping: v(&d.damping),
+                    stiffness: v(&keys.tie_stiffness),
+                },
+                d.span,
+            ));
         }
         out
     }

@@ -257,6 +257,7 @@ impl Lowerer<'_> {
         let output = self.output(&contacts);
         let initial_velocities = self.initial_velocities();
         let discrete = self.discrete();
+        let rigid_bodies = self.rigid_bodies();
         let (mesh, body_nodes) = (&self.mesh, &self.body_nodes);
         let thermal = thermal::lower(
             self.deck,
@@ -288,6 +289,11 @@ impl Lowerer<'_> {
             if let Err(e) = ctc_engine::solve::free_tool::make_free(&mut model, f.tool, f.moment) {
                 self.diags
                     .push(Diagnostic::error(e, f.span, "rotation = free"));
+            }
+        }
+        for (spec, span) in rigid_bodies {
+            if let Err(e) = ctc_engine::solve::rigid_body::make_rigid(&mut model, spec) {
+                self.diags.push(Diagnostic::error(e, span, "rigid_body"));
             }
         }
         Some(AnyModel::D2(model))

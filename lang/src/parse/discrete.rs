@@ -1,18 +1,18 @@
 //! `spring NODES { stiffness = ..  damping = .. }` (to the ground), `spring
 //! NODES -> NODES { .. }` (between two node sets) and `point_mass NODES {
-//! mass = .. }`: discrete elements at nodes (carried by the generic item
-//! rule, like `initial_velocity`).
+//! mass = .. }`: discrete elements at nodes, and `rigid_body NODES { .. }`
+//! (carried by the generic item rule, like `initial_velocity`).
 
 use super::fields::Fields;
 use super::values::{self, Diags};
 use super::ItemParts;
-use crate::ast::{DiscreteItem, DiscreteKind};
+use crate::ast::{DiscreteItem, DiscreteKind, RigidKeys};
 use crate::diagnostics::Diagnostic;
 
 /// The item keywords.
-pub const KEYWORDS: [&str; 2] = ["spring", "point_mass"];
+pub const KEYWORDS: [&str; 3] = ["spring", "point_mass", "rigid_body"];
 
-/// Converts a `spring` or `point_mass` item.
+/// Converts a `spring`, `point_mass` or `rigid_body` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
     let target = values::set_ref(item.target.as_ref()?, diags)?;
     let other = match (&item.master, item.names.first()) {
@@ -27,7 +27,7 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
                     if item.keyword_text == "spring" {
                         "a spring links to a node set `body.set`"
                     } else {
-                        "`point_mass` takes no `->`"
+                        "this item takes no `->`"
                     },
                     span.unwrap_or(item.keyword),
                     "here",
@@ -42,27 +42,46 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
         }
     };
     let block = item.block?;
-    let (kind, table, what) = if item.keyword_text == "spring" {
-        (
+    let (kind, table, what) = match item.keyword_text.as_str() {
+        "spring" => (
             DiscreteKind::Spring,
             &crate::tables::SPRING[..],
             "`spring` block",
-        )
-    } else {
-        (
+        ),
+        "point_mass" => (
             DiscreteKind::PointMass,
             &crate::tables::POINT_MASS[..],
             "`point_mass` block",
-        )
+        ),
+        _ => (
+            DiscreteKind::RigidBody,
+            &crate::tables::RIGID_BODY[..],
+            "`rigid_body` block",
+        ),
     };
     let mut f = Fields::keyed(&block, what, table);
-    let (mut stiffness, mut damping, mut mass) = (None, None, None);
+    let (mut stiffness, mut damping, mut mass, mut release_at, mut rigid) =
+        (None, None, None, None, None);
     match kind {
         DiscreteKind::Spring => {
             stiffness = f.number("stiffness", diags);
             damping = f.number("damping", diags);
+            release_at = f.number("release_at", diags);
         }
         DiscreteKind::PointMass => mass = f.number("mass", diags),
+        DiscreteKind::RigidBody => {
+            mass = f.number("mass", diags);
+            stiffness = f.number("stiffness", diags);
+            damping = f.number("damping", diags);
+            rigid = Some(RigidKeys {
+                center: f.point("center", diags),
+                inertia: f.number("inertia", diags),
+                rotation: f.time_fn("rotation", diags),
+                angular_velocity: f.time_fn("angular_velocity", diags),
+                moment: f.time_fn("moment", diags),
+                tie_stiffness: f.number("tie_stiffness", diags),
+            });
+        }
     }
     f.finish(diags);
     Some(DiscreteItem {
@@ -73,6 +92,8 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
         stiffness,
         damping,
         mass,
+        release_at,
+        rigid,
         span: item.span,
     })
 }
@@ -103,7 +124,26 @@ mod tests {
         );
         assert_eq!(
             parse_messages("point_mass a.tip -> b.tip { mass = 4 }"),
-            ["`point_mass` takes no `->`"]
+            ["this item takes no `->`"]
+        );
+        let deck = parse_ok("spring a.tip -> b.tip { stiffness = 4  release_at = 0.5 }");
+        assert_eq!(deck.discrete[0].release_at.as_ref().unwrap().value, 0.5);
+        let deck = parse_ok(
+            "rigid_body d.hub { center = (1, 2)  mass = 3  inertia = 0.5  \
+             angular_velocity = ramp(0, 10, 0, 1)  stiffness = 7  damping = 0.1  \
+             tie_stiffness = 1e6 }",
+        );
+        let r = &deck.discrete[0];
+        assert_eq!(r.kind, DiscreteKind::RigidBody);
+        assert_eq!(r.mass.as_ref().unwrap().value, 3.0);
+        let keys = r.rigid.as_ref().unwrap();
+        assert_eq!(keys.center.as_ref().unwrap().value, [1.0, 2.0]);
+        assert_eq!(keys.inertia.as_ref().unwrap().value, 0.5);
+        assert!(keys.angular_velocity.is_some() && keys.rotation.is_none());
+        assert_eq!(keys.tie_stiffness.as_ref().unwrap().value, 1e6);
+        assert_eq!(
+            parse_messages("rigid_body d.hub { center = (0, 0)  spin = 3 }"),
+            ["unknown key `spin` in the `rigid_body` block"]
         );
         assert_eq!(
             parse_messages("spring bar.left { stifness = 4 }"),

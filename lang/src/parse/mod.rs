@@ -58,7 +58,7 @@ pub const ITEM_KEYWORDS: [&str; 13] = [
 ];
 
 /// Keywords that start a chunk of error recovery besides the items.
-pub const CHUNK_KEYWORDS: [&str; 9] = [
+pub const CHUNK_KEYWORDS: [&str; 10] = [
     "let",
     "include",
     "temperature",
@@ -67,6 +67,7 @@ pub const CHUNK_KEYWORDS: [&str; 9] = [
     "initial_velocity",
     "spring",
     "point_mass",
+    "rigid_body",
     "gravity",
 ];
 

@@ -1,16 +1,17 @@
-//! Rules of the `spring` and `point_mass` items.
+//! Rules of the `spring`, `point_mass` and `rigid_body` items.
 
 use super::{sets, Ctx, Need};
 use crate::ast::{num, DiscreteItem, DiscreteKind};
 use crate::diagnostics::Diagnostic;
 
-/// Checks every `spring` and `point_mass` item.
+/// Checks every `spring`, `point_mass` and `rigid_body` item.
 pub fn check(ctx: &mut Ctx<'_>) {
     let deck = ctx.deck;
     for d in &deck.discrete {
         let what = match d.kind {
             DiscreteKind::Spring => "spring",
             DiscreteKind::PointMass => "point_mass",
+            DiscreteKind::RigidBody => "rigid_body",
         };
         sets::set_ref(&d.target, Need::Nodes, what, ctx);
         if let Some(o) = &d.other {
@@ -18,6 +19,130 @@ pub fn check(ctx: &mut Ctx<'_>) {
         }
         values_not_negative(d, ctx);
         discrete_item_gives_a_value(d, what, ctx);
+        release_needs_a_link(d, ctx);
+        rigid_body_is_planar_and_complete(d, ctx);
+    }
+}
+
+/// `release_at` releases links: a spring between two sets, without a
+/// dashpot.
+pub fn release_needs_a_link(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
+    let Some(r) = &d.release_at else { return };
+    if d.other.is_none() {
+        ctx.err(
+            Diagnostic::error(
+                "`release_at` releases links between two sets",
+                r.span,
+                "a spring to the ground",
+            )
+            .with_help("write `spring a.root -> b.rim { stiffness = ..  release_at = .. }`"),
+        );
+    }
+    if let Some(c) = d.damping.as_ref().filter(|c| c.value != 0.0) {
+        ctx.err(
+            Diagnostic::error("a released link carries no dashpot", c.span, "damping")
+                .with_secondary(r.span, "released here")
+                .with_help("remove `damping`, or give the dashpot its own `spring` item"),
+        );
+    }
+}
+
+/// A rigid body: planar analysis, a centre, a tie stiffness, at most one
+/// of `rotation` / `angular_velocity`, and `moment` only when free.
+pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
+    let Some(keys) = &d.rigid else { return };
+    let dimension = ctx
+        .deck
+        .analysis
+        .first()
+        .and_then(|a| a.dimension.as_ref())
+        .map(|d| d.value);
+    if matches!(
+        dimension,
+        Some(crate::ast::Dimension::ThreeD | crate::ast::Dimension::Axisymmetric)
+    ) {
+        ctx.err(
+            Diagnostic::error(
+                "a rigid body needs a plane strain or plane stress analysis",
+                d.keyword,
+                "rigid_body",
+            )
+            .with_help("3D rigid bodies (6 dofs) are not available yet"),
+        );
+    }
+    for (missing, what) in [
+        (keys.center.is_none(), "add `center = (x, y)`"),
+        (
+            keys.tie_stiffness.is_none(),
+            "add `tie_stiffness = <force/length>` (e.g. 1e3 x the element stiffness)",
+        ),
+    ] {
+        if missing {
+            ctx.err(
+                Diagnostic::error("`rigid_body` is incomplete", d.keyword, "here").with_help(what),
+            );
+        }
+    }
+    // a small-strain body turned by the rigid body strains spuriously
+    // (its linear strain of a rotation by theta is cos(theta) - 1)
+    let turns = keys.rotation.as_ref().is_none_or(|r| {
+        !matches!(
+            r.value,
+            crate::ast::TimeFn::Number(0.0) | crate::ast::TimeFn::Constant(0.0)
+        )
+    });
+    if let Some(b) = ctx
+        .deck
+        .bodies
+        .iter()
+        .find(|b| b.name.name == d.target.body.name)
+    {
+        let finite = b
+            .kinematics
+            .as_ref()
+            .is_some_and(|k| k.value == crate::ast::KinematicsKind::Finite);
+        if turns && !finite {
+            ctx.err(
+                Diagnostic::error(
+                    "a rigid body turns a small-strain body",
+                    d.target.span,
+                    format!("body `{}` has small-strain kinematics", b.name.name),
+                )
+                .with_help(
+                    "set `kinematics = finite` in the body (a rotation strains a small-strain \
+                     body spuriously), or `rotation = 0`",
+                ),
+            );
+        }
+    }
+    if let (Some(r), Some(w)) = (&keys.rotation, &keys.angular_velocity) {
+        ctx.err(
+            Diagnostic::error(
+                "a rigid body's rotation is prescribed twice",
+                w.span,
+                "angular_velocity",
+            )
+            .with_secondary(r.span, "rotation")
+            .with_help("give `rotation` or `angular_velocity`"),
+        );
+    }
+    if let Some(m) = &keys.moment {
+        if let Some(p) = keys.rotation.as_ref().or(keys.angular_velocity.as_ref()) {
+            ctx.err(
+                Diagnostic::error("a moment turns a free rotation only", m.span, "moment")
+                    .with_secondary(p.span, "the rotation is prescribed")
+                    .with_help("remove `moment`, or the prescribed rotation"),
+            );
+        }
+    }
+    for x in [&keys.inertia, &keys.tie_stiffness].into_iter().flatten() {
+        if x.value < 0.0 || x.value.is_nan() {
+            ctx.err(Diagnostic::error(
+                "must be non-negative",
+                x.span,
+                num(x.value).to_string(),
+            ));
+        }
     }
 }
 
@@ -63,6 +188,7 @@ pub fn discrete_item_gives_a_value(d: &DiscreteItem, what: &str, ctx: &mut Ctx<'
             d.mass.is_none(),
             "write e.g. `point_mass bar.tip { mass = 2 }`",
         ),
+        DiscreteKind::RigidBody => return,
     };
     if missing {
         ctx.err(
@@ -99,5 +225,25 @@ mod tests {
             "{m:?}"
         );
         assert!(m.iter().any(|s| s.contains("nowhere")), "{m:?}");
+    }
+
+    #[test]
+    fn rigid_bodies_and_releases_are_checked() {
+        let m = messages(
+            "rigid_body block.bottom { mass = 1  rotation = 1  angular_velocity = 2 }\n\
+             rigid_body block.top { center = (0, 0)  tie_stiffness = 1  rotation = 1  moment = 3 }\n\
+             spring block.top { stiffness = 1  release_at = 1 }\n\
+             spring block.top -> block.bottom { stiffness = 1  damping = 1  release_at = 1 }",
+        );
+        for want in [
+            "`rigid_body` is incomplete",
+            "a rigid body's rotation is prescribed twice",
+            "a moment turns a free rotation only",
+            "`release_at` releases links between two sets",
+            "a released link carries no dashpot",
+            "a rigid body turns a small-strain body",
+        ] {
+            assert!(m.contains(&want.to_string()), "{want}: {m:?}");
+        }
     }
 }

@@ -31,6 +31,7 @@ pub mod pressure_control;
 pub mod quadratic;
 pub mod quadratic_contact;
 pub mod quadratic_thermal;
+pub mod rigid_body;
 pub mod self_contact_3d;
 pub mod solid;
 pub mod solid_patch;
@@ -87,6 +88,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(dynamic_buckling::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
+    v.extend(rigid_body::cases());
     v.extend(gravity::cases());
     v.extend(johnson_cook::cases());
     v.extend(blankholder::cases());

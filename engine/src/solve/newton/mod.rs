@@ -613,16 +613,28 @@ where
         // springs to the ground and between nodes: internal forces (their
         // energy is part of the internal work)
         if super::discrete::any(model, |k, _| k) {
-            super::discrete::times(model, self.u.as_flattened(), &mut self.f_int, |k, _| k);
+            super::discrete::times(model, self.u.as_flattened(), &mut self.f_int, t, |k, _| k);
             if with_tangent {
                 super::discrete::add_tangent(
                     model,
                     &self.dofs,
                     &self.scatter,
                     &mut self.values,
+                    t,
                     |k, _| k,
                 );
             }
+        }
+        // rigid bodies: the ties of their nodes to the pilot's motion
+        super::rigid_body::add_forces(model, self.u.as_flattened(), &mut self.f_int);
+        if with_tangent {
+            super::rigid_body::add_tangent(
+                model,
+                self.u.as_flattened(),
+                &self.dofs,
+                &self.scatter,
+                &mut self.values,
+            );
         }
         if with_tangent {
             self.stabilization

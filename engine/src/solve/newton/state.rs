@@ -35,8 +35,13 @@ where
             for (e, f) in ext.iter_mut().zip(&self.f_follow) {
                 *e += f;
             }
-            for (p, r) in self.dofs.prescribed.iter().zip(&self.reactions) {
-                ext[p.dof] += r;
+            // the reactions at the end of the increment: the static part
+            // here, `M a1` added by `commit` (not the generalized-alpha
+            // weighted reactions of the residual, whose `alpha_f r(u0)`
+            // share would count the drive's work 1 / (1 - alpha_f) times)
+            let prescribed: Vec<usize> = self.dofs.prescribed.iter().map(|p| p.dof).collect();
+            for &g in &prescribed {
+                ext[g] += self.r_static[g];
             }
             dy.commit(
                 self.model,
@@ -44,6 +49,7 @@ where
                 self.committed.as_flattened(),
                 &self.r_static,
                 [&self.f_int, &ext, &self.f_c, &self.damping],
+                &prescribed,
             );
         }
         // the increment's start: the end of the last one recorded (exact
