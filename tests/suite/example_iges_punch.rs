@@ -21,7 +21,6 @@ use ctc_geom::iges::Writer;
 use ctc_geom::nurbs::{build, NurbsCurve};
 use ctc_geom::Vec3;
 use std::f64::consts::FRAC_1_SQRT_2;
-use std::path::Path;
 
 /// Radius of the punch's nose and flank.
 const R: f64 = 0.3;
@@ -51,21 +50,12 @@ fn punch_iges() -> String {
     w.finish()
 }
 
-fn committed() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/iges_punch.igs")
-}
-
 #[test]
 fn the_committed_punch_is_what_the_generator_writes() {
-    let text = punch_iges();
-    if std::env::var_os("CTC_REGENERATE").is_some() {
-        std::fs::write(committed(), &text).unwrap();
-    }
-    let file = std::fs::read_to_string(committed()).expect("examples/iges_punch.igs");
-    assert!(
-        file == text,
-        "examples/iges_punch.igs differs from the generator: CTC_REGENERATE=1 cargo test --test \
-         example_iges_punch"
+    crate::generated_file::assert_committed(
+        "examples/iges_punch.igs",
+        &punch_iges(),
+        "example_iges_punch",
     );
 }
 

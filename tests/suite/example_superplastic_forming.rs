@@ -28,7 +28,7 @@ use ctc_engine::solve::{IncrementView, Observer};
 use ctc_geom::iges::Writer;
 use ctc_geom::nurbs::{build, NurbsCurve};
 use ctc_geom::Vec3;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Wall radius of the cavity (the clamped edge of the sheet).
 const A: f64 = 50.0;
@@ -75,21 +75,12 @@ pub fn die_iges() -> String {
     w.finish()
 }
 
-fn committed() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/superplastic_forming_die.igs")
-}
-
 #[test]
 fn the_committed_die_is_what_the_generator_writes() {
-    let text = die_iges();
-    if std::env::var_os("CTC_REGENERATE").is_some() {
-        std::fs::write(committed(), &text).unwrap();
-    }
-    let file = std::fs::read_to_string(committed()).expect("examples/superplastic_forming_die.igs");
-    assert!(
-        file == text,
-        "examples/superplastic_forming_die.igs differs from the generator: CTC_REGENERATE=1 cargo \
-         test --test suite example_superplastic_forming::"
+    crate::generated_file::assert_committed(
+        "examples/superplastic_forming_die.igs",
+        &die_iges(),
+        "example_superplastic_forming",
     );
 }
 

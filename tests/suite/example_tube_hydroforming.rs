@@ -24,7 +24,7 @@ use ctc_engine::solve::{IncrementView, Observer};
 use ctc_geom::iges::Writer;
 use ctc_geom::nurbs::{build, NurbsCurve};
 use ctc_geom::Vec3;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// Cavity radius of the bulge zone.
 const R_BULGE: f64 = 24.0;
@@ -56,21 +56,12 @@ fn die_iges() -> String {
     w.finish()
 }
 
-fn committed() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/tube_hydroforming_die.igs")
-}
-
 #[test]
 fn the_committed_die_is_what_the_generator_writes() {
-    let text = die_iges();
-    if std::env::var_os("CTC_REGENERATE").is_some() {
-        std::fs::write(committed(), &text).unwrap();
-    }
-    let file = std::fs::read_to_string(committed()).expect("examples/tube_hydroforming_die.igs");
-    assert!(
-        file == text,
-        "examples/tube_hydroforming_die.igs differs from the generator: CTC_REGENERATE=1 cargo \
-         test --test suite example_tube_hydroforming::"
+    crate::generated_file::assert_committed(
+        "examples/tube_hydroforming_die.igs",
+        &die_iges(),
+        "example_tube_hydroforming",
     );
 }
 

@@ -15,6 +15,7 @@ mod example_tube_hydroforming;
 mod examples;
 mod follower_plate;
 mod friction_cattaneo;
+mod generated_file;
 mod relative_penalty;
 mod robust_fuzz;
 mod robust_kill;
