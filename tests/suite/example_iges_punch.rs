@@ -52,7 +52,7 @@ fn punch_iges() -> String {
 
 #[test]
 fn the_committed_punch_is_what_the_generator_writes() {
-    crate::generated_file::assert_committed(
+    crate::example_files::assert_committed(
         "examples/iges_punch.igs",
         &punch_iges(),
         "example_iges_punch",

@@ -23,12 +23,10 @@
 //!      0 (axis)                   50
 //! ```
 
-use ctc_engine::model::AnyModel;
 use ctc_engine::solve::{IncrementView, Observer};
 use ctc_geom::iges::Writer;
 use ctc_geom::nurbs::{build, NurbsCurve};
 use ctc_geom::Vec3;
-use std::path::Path;
 
 /// Wall radius of the cavity (the clamped edge of the sheet).
 const A: f64 = 50.0;
@@ -77,7 +75,7 @@ pub fn die_iges() -> String {
 
 #[test]
 fn the_committed_die_is_what_the_generator_writes() {
-    crate::generated_file::assert_committed(
+    crate::example_files::assert_committed(
         "examples/superplastic_forming_die.igs",
         &die_iges(),
         "example_superplastic_forming",
@@ -186,19 +184,7 @@ fn full_run() {
 /// Runs the example with its `let` lines replaced; prints and checks the
 /// die filling and the thickness map.
 fn form(replace: &[(&str, &str)]) {
-    let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/superplastic_forming_3d.ctc");
-    let mut text = std::fs::read_to_string(&deck).expect("readable deck");
-    for (from, to) in replace {
-        assert!(text.contains(from), "the deck has no `{from}`");
-        text = text.replace(from, to);
-    }
-    let src = ctc_lang::Source::new(deck.clone(), text);
-    let AnyModel::D3(model) = ctc_lang::compile_any(&src)
-        .map_err(|d| d.render(&src))
-        .unwrap()
-    else {
-        panic!("the example is 3D");
-    };
+    let model = crate::example_files::compile_3d("examples/superplastic_forming_3d.ctc", replace);
     let request = model
         .output
         .thickness

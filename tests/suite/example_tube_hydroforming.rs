@@ -19,12 +19,11 @@
 //!     z = 0 (symmetry)   9        24               50
 //! ```
 
-use ctc_engine::model::{AnyModel, Model};
+use ctc_engine::model::Model;
 use ctc_engine::solve::{IncrementView, Observer};
 use ctc_geom::iges::Writer;
 use ctc_geom::nurbs::{build, NurbsCurve};
 use ctc_geom::Vec3;
-use std::path::Path;
 
 /// Cavity radius of the bulge zone.
 const R_BULGE: f64 = 24.0;
@@ -58,7 +57,7 @@ fn die_iges() -> String {
 
 #[test]
 fn the_committed_die_is_what_the_generator_writes() {
-    crate::generated_file::assert_committed(
+    crate::example_files::assert_committed(
         "examples/tube_hydroforming_die.igs",
         &die_iges(),
         "example_tube_hydroforming",
@@ -179,19 +178,7 @@ fn full_run() {
 /// Runs the example with its `let` lines replaced, prints and checks the
 /// thinning, die contact and bulge radius.
 fn form(replace: &[(&str, &str)]) {
-    let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/tube_hydroforming.ctc");
-    let mut text = std::fs::read_to_string(&deck).expect("readable deck");
-    for (from, to) in replace {
-        assert!(text.contains(from), "the deck has no `{from}`");
-        text = text.replace(from, to);
-    }
-    let src = ctc_lang::Source::new(deck.clone(), text);
-    let AnyModel::D3(model) = ctc_lang::compile_any(&src)
-        .map_err(|d| d.render(&src))
-        .unwrap()
-    else {
-        panic!("the example is 3D");
-    };
+    let model = crate::example_files::compile_3d("examples/tube_hydroforming.ctc", replace);
     let start = std::time::Instant::now();
     let pairs = through_thickness_pairs(&model, 19.5, 20.5);
     assert!(!pairs.is_empty());

@@ -9,13 +9,14 @@ mod contact_deformable;
 mod contact_search_jump;
 mod determinism;
 mod dynamic_fields;
+mod example_files;
 mod example_iges_punch;
 mod example_superplastic_forming;
 mod example_tube_hydroforming;
 mod examples;
 mod follower_plate;
 mod friction_cattaneo;
-mod generated_file;
+
 mod relative_penalty;
 mod robust_fuzz;
 mod robust_kill;
