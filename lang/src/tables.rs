@@ -1001,7 +1001,7 @@ pub static SPRING: [Key; 3] = [
     Key::new(
         "release_at",
         KeyType::Number,
-        "time from which the links of `spring a -> b` are gone (a released part: a blade off          its disc flies on with its velocity); no dashpot on a released link",
+        "time from which the links of `spring a -> b` are gone (a released part: a blade off its disc flies on with its velocity); no dashpot on a released link",
     )
     .range(Range::NonNegative)
     .dim(Dim::Time),
@@ -1012,7 +1012,7 @@ pub static RIGID_BODY: [Key; 9] = [
     Key::new(
         "center",
         KeyType::Point(P2),
-        "the body's centre: its pilot node (translation, bearings, mass) and the axis of its          rotation",
+        "the body's centre: its pilot node (translation, bearings, mass) and the axis of its rotation",
     )
     .required("add `center = (x, y)`")
     .dim(Dim::Length),
@@ -1035,13 +1035,13 @@ pub static RIGID_BODY: [Key; 9] = [
     Key::new(
         "rotation",
         KeyType::Number,
-        "prescribed rotation theta(t), counter-clockwise (time function); without it and          `angular_velocity` the rotation is free under `moment`",
+        "prescribed rotation theta(t), counter-clockwise (time function); without it and `angular_velocity` the rotation is free under `moment`",
     )
     .dim(Dim::AngleRadians),
     Key::new(
         "angular_velocity",
         KeyType::Number,
-        "prescribed angular velocity omega(t) (time function, counter-clockwise), integrated          from theta(0) = 0 (a ramp: theta sampled at 64 points per segment)",
+        "prescribed angular velocity omega(t) (time function, counter-clockwise), integrated from theta(0) = 0 (a ramp: theta sampled at 64 points per segment)",
     )
     .dim(Dim::Frequency),
     Key::new(
@@ -1069,7 +1069,7 @@ pub static RIGID_BODY: [Key; 9] = [
     Key::new(
         "tie_stiffness",
         KeyType::Number,
-        "stiffness of the spring tying each node to its place on the rigid body (a penalty:          the nodes follow the rigid motion to |f| / k)",
+        "stiffness of the spring tying each node to its place on the rigid body (a penalty: the nodes follow the rigid motion to |f| / k)",
     )
     .required("add `tie_stiffness = <force/length>` (e.g. 1e3 x the element stiffness)")
     .range(Range::Positive)
