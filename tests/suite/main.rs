@@ -16,6 +16,7 @@ mod example_tube_hydroforming;
 mod examples;
 mod follower_plate;
 mod friction_cattaneo;
+mod pattern_growth_3d;
 
 mod relative_penalty;
 mod robust_fuzz;
