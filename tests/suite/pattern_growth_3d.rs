@@ -73,11 +73,11 @@ fn a_spring_link_keeps_its_tangent_when_contact_grows_the_pattern() {
     assert_eq!(seen.0.len(), 4);
     for (i, r) in seen.0.iter().enumerate() {
         // Newton's finish is quadratic: the last step divides the residual
-        // by more than 1e3 (a tangent without the link's coupling: 0.90)
+        // by more than 100 (a tangent without the link's coupling: 0.90)
         let n = r.len();
         assert!(n >= 2, "increment {}: {r:?}", i + 1);
         assert!(
-            r[n - 1] < 1e-3 * r[n - 2],
+            r[n - 1] < 1e-2 * r[n - 2],
             "increment {}: linear finish {r:?}",
             i + 1
         );
