@@ -163,7 +163,7 @@ pub static ITEMS: &[Item] = &[
               forming or hydroforming. `control = strain_rate { target = .. }` (follower \
               pressures): the pressure-cycle controller of superplastic forming; after every \
               increment the pressure is scaled by `(target / rate)^exponent` (bounded by \
-              `max_change`), `rate` the largest equivalent plastic strain rate of the pressed \
+              `max_change`, and by `max_pressure` on the applied value), `rate` the largest equivalent plastic strain rate of the pressed \
               body (or, with `at = (x, y)`, of the cells around the body's node nearest to that \
               point: the pole of a bulge), and follows the trend of the last two increments; \
               history.csv gets the applied pressure and the rate, and `ctc run` plots them \

@@ -183,9 +183,9 @@ pub static VISCOPLASTIC: [Key; 3] = [
     .dim(Dim::None),
 ];
 
-/// `control = strain_rate { target exponent max_change }` of a follower
-/// pressure.
-pub static RATE_CONTROL: [Key; 4] = [
+/// `control = strain_rate { target exponent max_change max_pressure at }`
+/// of a follower pressure.
+pub static RATE_CONTROL: [Key; 5] = [
     Key::new(
         "target",
         KeyType::Number,
@@ -210,6 +210,15 @@ pub static RATE_CONTROL: [Key; 4] = [
     )
     .default(Default::Number(2.0))
     .dim(Dim::None),
+    Key::new(
+        "max_pressure",
+        KeyType::Number,
+        "the largest pressure the controller applies (the gas supply's limit): once the body \
+         needs more to hold the target rate (a die corner filling), the pressure stays at this \
+         cap and the rate falls below the target",
+    )
+    .range(Range::Positive)
+    .dim(Dim::Stress),
     Key::new(
         "at",
         KeyType::Point(Components::Analysis),

@@ -17,6 +17,7 @@ mod examples;
 mod follower_plate;
 mod friction_cattaneo;
 mod pattern_growth_3d;
+mod pressure_cap;
 
 mod relative_penalty;
 mod robust_fuzz;

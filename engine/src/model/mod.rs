@@ -261,6 +261,9 @@ pub struct RateControl {
     pub exponent: f64,
     /// Largest change of the factor in one increment, > 1.
     pub max_factor: f64,
+    /// Cap of the applied pressure (factor x the deck's value), > 0;
+    /// infinite: no cap.
+    pub max_pressure: f64,
 }
 
 /// Rate dependence of J2 flow: the von Mises stress during plastic flow at

@@ -20,6 +20,10 @@
 //! the plain update (free bulge: the pole rate 2 % low for 40 increments
 //! and 0.9 % high at the end without it; `ctc verify
 //! superplastic_free_bulge`).
+//!
+//! The applied pressure is capped at `max_pressure` ([`capped`]): once the
+//! body needs more than the gas supply gives (a die corner), the pressure
+//! stays there and the rate falls below the target.
 
 use crate::element::MaterialPoint;
 use crate::model::{Load, Model, RateControl};
@@ -125,6 +129,17 @@ pub fn next_scale(control: &RateControl, scale: f64, rate: f64, dt: f64, trend: 
     next.clamp(lo, hi)
 }
 
+/// `scale` limited so that the applied pressure `scale x value` (`value`
+/// the deck's pressure) stays within `max_pressure` in magnitude: the gas
+/// supply's limit. At the cap the rate falls below the target (a die
+/// corner filling by creep at the largest pressure).
+pub fn capped(control: &RateControl, scale: f64, value: f64) -> f64 {
+    if value == 0.0 || !control.max_pressure.is_finite() {
+        return scale;
+    }
+    scale.min(control.max_pressure / value.abs())
+}
+
 /// What a controller did in one converged increment.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ControlRecord {
@@ -146,7 +161,21 @@ mod tests {
             target: 1e-3,
             exponent: 0.5,
             max_factor: 2.0,
+            max_pressure: f64::INFINITY,
         }
+    }
+
+    #[test]
+    fn the_cap_holds_the_applied_pressure_and_keeps_its_sign() {
+        let mut c = control();
+        assert_eq!(capped(&c, 3.0, 0.5), 3.0);
+        c.max_pressure = 1.2;
+        assert_eq!(capped(&c, 3.0, 0.5), 2.4);
+        assert_eq!(capped(&c, 2.0, 0.5), 2.0);
+        // a negative deck value (suction): the magnitude is capped
+        assert_eq!(capped(&c, 3.0, -0.5), 2.4);
+        // a deck value of zero: nothing to cap
+        assert_eq!(capped(&c, 3.0, 0.0), 3.0);
     }
 
     #[test]

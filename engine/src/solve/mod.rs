@@ -865,8 +865,9 @@ where
                 pressure: scale * value,
                 rate,
             });
+            let next = control::next_scale(c, scale, rate, dt, trend);
             self.newton
-                .set_load_scale(i, control::next_scale(c, scale, rate, dt, trend));
+                .set_load_scale(i, control::capped(c, next, value));
         }
         self.increment += 1;
         self.health.record(self.model, self.newton.contact(), t);

@@ -676,6 +676,8 @@ pub struct RateControlDef {
     pub exponent: Option<Spanned<f64>>,
     /// `max_change`: the largest factor change in one increment.
     pub max_change: Option<Spanned<f64>>,
+    /// `max_pressure`: the cap of the applied pressure.
+    pub max_pressure: Option<Spanned<f64>>,
     /// `at = (x, y[, z])`: monitor the cells touching the body's node
     /// nearest to this point (the pole of a bulge) instead of the body.
     pub at: Option<crate::ast::Coords>,

@@ -64,6 +64,7 @@ impl Lowerer<'_> {
                                 target: c.value.target.as_ref()?.value,
                                 exponent: v(&c.value.exponent, 0.5),
                                 max_factor: v(&c.value.max_change, 2.0),
+                                max_pressure: v(&c.value.max_pressure, f64::INFINITY),
                             })
                         });
                         for (_, f) in &l.values {

@@ -109,7 +109,7 @@ pub fn parse(item: ItemParts, kind: LoadKind, diags: &mut Diags) -> Option<LoadD
     })
 }
 
-/// `strain_rate { target = ..  exponent = ..  max_change = ..  at = .. }`.
+/// `strain_rate { target = ..  exponent = ..  max_change = ..  max_pressure = ..  at = .. }`.
 fn rate_control(v: &Value, diags: &mut Diags) -> Option<Spanned<RateControlDef>> {
     let ValueKind::Ctor { name, block } = &v.kind else {
         diags.push(Diagnostic::error(
@@ -138,6 +138,7 @@ fn rate_control(v: &Value, diags: &mut Diags) -> Option<Spanned<RateControlDef>>
     let target = f.number("target", diags);
     let exponent = f.number("exponent", diags);
     let max_change = f.number("max_change", diags);
+    let max_pressure = f.number("max_pressure", diags);
     let at = f
         .value("at", diags)
         .and_then(|v| super::values::coords(v, diags));
@@ -154,6 +155,7 @@ fn rate_control(v: &Value, diags: &mut Diags) -> Option<Spanned<RateControlDef>>
             target,
             exponent,
             max_change,
+            max_pressure,
             at,
         },
         v.span,
