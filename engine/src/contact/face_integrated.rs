@@ -59,17 +59,19 @@
 //! above (a quad8 corner's weighted gap is positive under a uniform
 //! penetration, so the active set never takes it). The multipliers are
 //! therefore nodal, `lambda_a` a force at every slave node (corners and
-//! midsides), on the positive-weight basis `N~_a` of
-//! [`multiplier_basis`] (the modified basis of Wohlmuth, Popp, Gee and
-//! Wall 2012, `alpha = 1/5`): the pressure field `p = sum_a N~_a lambda_a
-//! / A_a` and the weighted gaps `g~_a = int N~_a g dA / A_a`, both
-//! integrated at the points of the penalty path ([`FacetRule`]), `A_a =
-//! int N~_a dA > 0`. The `N~_a` span the same space as the `N_a`, so on a
-//! fully active face the constraints `g~_a = 0` are those of the standard
-//! basis (a flat tool: `g = 0` at every point of the face); the positive
-//! weights make `g~_a < 0` mean penetration around the node, which is
-//! what the active set loops test (introduce at `g~_a < 0`, release at
-//! `lambda_a < 0`). See [`FacetPair::evaluate_lagrange`].
+//! midsides), on the dual `Phi_a` ([`dualize`]) of the positive-weight
+//! basis `N~_a` of [`multiplier_basis`] (the modified basis of Wohlmuth,
+//! Popp, Gee and Wall 2012, `alpha = 1/5`): the pressure field `p = sum_a
+//! Phi_a lambda_a / A_a` and the weighted gaps `g~_a = int Phi_a g dA /
+//! A_a`, both integrated at the points of the penalty path
+//! ([`FacetRule`]), `A_a = int Phi_a dA = int N~_a dA > 0`. The `N~_a`
+//! span the same space as the `N_a`, so on a fully active face the
+//! constraints `g~_a = 0` are those of the standard basis (a flat tool: `g
+//! = 0` at every point of the face); the positive weights make `g~_a < 0`
+//! mean penetration around the node, which is what the active set loops
+//! test (introduce at `g~_a < 0`, release at `lambda_a < 0`), and the dual
+//! keeps each constraint local (a corner's is its own gap on a flat tool).
+//! See [`FacetPair::evaluate_lagrange`].
 //!
 //! # What it is not
 //!
@@ -404,14 +406,15 @@ pub struct FacetPair {
     /// Per slave node (`nodes` order): the L2 projection of the points'
     /// pressures at the last evaluation.
     nodal: Vec<f64>,
-    /// Per slave node (`nodes` order): its weight `A_a = int N~_a dA` of
-    /// the multiplier basis (Lagrange multipliers, positive).
+    /// Per slave node (`nodes` order): its weight `A_a = int Phi_a dA =
+    /// int N~_a dA` of the multiplier basis (Lagrange multipliers,
+    /// positive).
     pub support: Vec<f64>,
-    /// Per slave node (`nodes` order): the weighted gap `int N~_a g dA /
+    /// Per slave node (`nodes` order): the weighted gap `int Phi_a g dA /
     /// A_a` at the last Lagrange evaluation (`+inf`: no point of its faces
     /// has a foot).
     pub weighted_gap: Vec<f64>,
-    /// The constraint rows `d (int N~_a g dA / A_a) / d x` of the last
+    /// The constraint rows `d (int Phi_a g dA / A_a) / d x` of the last
     /// Lagrange evaluation, one per slave node with a point that has a
     /// foot, sorted by node.
     pub rows: Vec<LagrangeRow>,
@@ -423,7 +426,7 @@ pub struct FacetPair {
 pub struct LagrangeRow {
     /// Global node number of the multiplier.
     pub node: usize,
-    /// The weighted gap `int N~_a g dA / A_a` (a length).
+    /// The weighted gap `int Phi_a g dA / A_a` (a length).
     pub gap: f64,
     /// `d gap / d x`, per (node, component).
     pub terms: Vec<NodeTerm>,
@@ -636,14 +639,15 @@ impl FacetPair {
     /// Lagrange multipliers: evaluates every facet at the current
     /// coordinates `x` with the multiplier `multiplier[i]` of each active
     /// slave node `nodes[i]` (`None`: inactive). The pressure field is `p =
-    /// sum_a N~_a lambda_a / A_a` ([`multiplier_basis`]: `lambda_a` is the
-    /// node's force, `A_a` = [`FacetPair::support`]); at a point with a
+    /// sum_a Phi_a lambda_a / A_a` (`Phi_a` = [`FacetPoint::basis`], the
+    /// dual of [`multiplier_basis`]; `lambda_a` is the node's force, `A_a`
+    /// = [`FacetPair::support`]); at a point with a
     /// foot it acts along the tool's normal: forces `f_b = sum_g w N_b p_g
     /// n_g`, tangent `K_bc = -sum_g w N_b N_c p_g W_g` (one [`Coupling`] per
     /// facet with a loaded point). The constraint of node `a` is its
-    /// weighted gap `g~_a = sum_g w N~_a g_g / A_a = 0` (a point without a
+    /// weighted gap `g~_a = sum_g w Phi_a g_g / A_a = 0` (a point without a
     /// foot counts with the gap `window`, the edge of the search window),
-    /// its row `d g~_a / d x_b = sum_g w N~_a N_b n_g / A_a` (exact against
+    /// its row `d g~_a / d x_b = sum_g w Phi_a N_b n_g / A_a` (exact against
     /// a rigid tool: `d g / d x = n`, reference weights), kept in
     /// [`FacetPair::rows`] for every node with a point that has a foot; the
     /// forces are `sum_a lambda_a d g~_a / d x`, so the saddle-point
