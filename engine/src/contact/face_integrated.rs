@@ -1495,7 +1495,9 @@ mod tests {
             [0.5, 0.5, 0.0],
             [0.0, 0.5, 0.0],
         ];
-        let cases: [(&[[f64; 3]], usize, f64, f64, f64); 3] = [
+        // (face nodes, node count, area, corner and midside weight / area)
+        type Case<'a> = (&'a [[f64; 3]], usize, f64, f64, f64);
+        let cases: [Case<'_>; 3] = [
             (&tri6, 6, 0.5, 2.0 / 15.0, 0.2),
             (&quad8, 8, 1.0, 0.05, 0.2),
             (&quad8, 9, 1.0, 1.0 / 36.0 + 0.4 / 9.0, 0.6 / 9.0),
