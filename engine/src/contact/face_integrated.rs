@@ -50,14 +50,35 @@
 //! (measured on the axisymmetric quad8 Hertz sphere: corner gaps +1e-4,
 //! midside gaps -5e-5, against a penetration of 4e-6).
 //!
+//! # Lagrange multipliers
+//!
+//! Multipliers at the integration points would over-constrain the faces
+//! (4 points per 3-node edge, 9 or 16 per face, against the face's
+//! nodes: the saddle-point system is singular), and collocated nodal
+//! multipliers with the weights `int N_a dA` are wrong for the reasons
+//! above (a quad8 corner's weighted gap is positive under a uniform
+//! penetration, so the active set never takes it). The multipliers are
+//! therefore nodal, `lambda_a` a force at every slave node (corners and
+//! midsides), on the dual `Phi_a` ([`dualize`]) of the positive-weight
+//! basis `N~_a` of [`multiplier_basis`] (the modified basis of Wohlmuth,
+//! Popp, Gee and Wall 2012, `alpha = 1/5`): the pressure field `p = sum_a
+//! Phi_a lambda_a / A_a` and the weighted gaps `g~_a = int Phi_a g dA /
+//! A_a`, both integrated at the points of the penalty path
+//! ([`FacetRule`]), `A_a = int Phi_a dA = int N~_a dA > 0`. The `N~_a`
+//! span the same space as the `N_a`, so on a fully active face the
+//! constraints `g~_a = 0` are those of the standard basis (a flat tool: `g
+//! = 0` at every point of the face); the positive weights make `g~_a < 0`
+//! mean penetration around the node, which is what the active set loops
+//! test (introduce at `g~_a < 0`, release at `lambda_a < 0`), and the dual
+//! keeps each constraint local (a corner's is its own gap on a flat tool).
+//! See [`FacetPair::evaluate_lagrange`].
+//!
 //! # What it is not
 //!
-//! Lagrange multipliers need a discrete multiplier field: a nodal one is
-//! wrong for the reasons above, and the dual / modified-basis fields of
-//! Popp et al. (2012) are not built, so a Lagrange pair on quadratic faces
-//! is refused (`solve::check`, and the deck lowering with a caret); so are
-//! deformable masters on quadratic faces, and a nodal penalty (a force per
-//! node has no meaning at integration points).
+//! Deformable masters on quadratic faces, Lagrange-multiplier friction,
+//! and a nodal penalty (a force per node has no meaning at integration
+//! points) are refused (`solve::check`, and the deck lowering with a
+//! caret).
 //!
 //! # Friction
 //!
@@ -86,6 +107,7 @@
 use super::friction::{self, FrictionStatus, NodeFriction};
 use super::mortar::Coupling;
 use super::motion::Placement;
+use super::rows::NodeTerm;
 use super::{search, ContactStatus, NodeContact, PairState};
 use crate::model::{AnalysisKind, ContactMaster, ContactMethod, Model, PenaltyKind};
 
@@ -108,6 +130,91 @@ pub struct FacetPoint {
     /// Reference measure of the point: weight x `|dX/dxi|` x (thickness or
     /// `2 pi r`) on an edge, weight x `|dX/dxi x dX/deta|` on a face.
     pub weight: f64,
+    /// The multiplier basis at the point (Lagrange multipliers): the dual
+    /// of the positive-weight basis `N~_a` of [`multiplier_basis`] on the
+    /// point's facet ([`dualize`]), in the facet's node order.
+    pub basis: Vec<f64>,
+}
+
+/// Weight `alpha` of the positive-weight multiplier basis of quadratic
+/// facets ([`multiplier_basis`]).
+pub const BASIS_ALPHA: f64 = 0.2;
+
+/// The multiplier basis of a quadratic facet at one point, from its shape
+/// values `shape` and its midside nodes `midsides` (`(midside, corner,
+/// corner)`, local indices): `N~_c = N_c + alpha sum_{m adjacent} N_m`,
+/// `N~_m = (1 - 2 alpha) N_m`, other nodes (a quad9's centre) unchanged,
+/// `alpha` = [`BASIS_ALPHA`] (the transformation of Wohlmuth, Popp, Gee and
+/// Wall 2012 for quadratic mortar contact). It keeps the partition of unity
+/// and spans the same space as the `N_a` (so the constraints of a fully
+/// active face are the same), but every node's weight `int N~_a dA` is
+/// positive: corners 2/15 (tri6), 1/20 (quad8, against -1/12 for `N`) of
+/// the face's area, a 3-node edge's corner on the axis of an
+/// axisymmetric model `alpha int N_m 2 pi r dS` (0 for `N`).
+pub fn multiplier_basis(shape: &[f64], midsides: &[(usize, usize, usize)]) -> Vec<f64> {
+    let mut out = shape.to_vec();
+    for &(m, a, b) in midsides {
+        let nm = shape[m];
+        out[a] += BASIS_ALPHA * nm;
+        out[b] += BASIS_ALPHA * nm;
+        out[m] = (1.0 - 2.0 * BASIS_ALPHA) * nm;
+    }
+    out
+}
+
+/// Replaces the multiplier basis `N~_a` of every facet's points by its
+/// dual `Phi_a = sum_b (D M^-1)_ab N~_b` (per facet, `M_ab = int N~_a N~_b
+/// dA`, `D = diag(int N~_a dA)`, both by the facet's own rule, so that
+/// `int Phi_a N~_b dA = delta_ab int N~_a dA` holds to round-off): the
+/// biorthogonal basis of Popp, Gee and Wall (2012, with the transformed
+/// `N~` of Wohlmuth et al. on quadratic faces). It keeps the partition of
+/// unity and the weights `int Phi_a dA = int N~_a dA`, and makes the
+/// weighted gap of a node local: against a flat tool a corner's
+/// constraint is its own gap, a midside's `(g_m - alpha (g_a + g_b)) / (1
+/// - 2 alpha)`, so a node that lifts off at the edge of the contact zone
+/// moves only its own face (with the `N~` themselves the constraints
+/// couple through the faces' mass matrix and the lift-off propagated to
+/// the axis: measured on the quad8 Hertz cylinder, nodal pressures
+/// alternating by +-15 %, p0 11 % off). A facet whose matrix is singular
+/// keeps its `N~`.
+fn dualize(facets: &[Vec<usize>], points: &mut [FacetPoint]) {
+    let mut start = 0;
+    for (f, facet) in facets.iter().enumerate() {
+        let n = facet.len();
+        let end = start + points[start..].iter().take_while(|p| p.facet == f).count();
+        let mut m = nalgebra::DMatrix::<f64>::zeros(n, n);
+        let mut d = vec![0.0; n];
+        for p in &points[start..end] {
+            for a in 0..n {
+                d[a] += p.weight * p.basis[a];
+                for b in 0..n {
+                    m[(a, b)] += p.weight * p.basis[a] * p.basis[b];
+                }
+            }
+        }
+        if let Some(inv) = m.try_inverse() {
+            for p in &mut points[start..end] {
+                let dual: Vec<f64> = (0..n)
+                    .map(|a| d[a] * (0..n).map(|b| inv[(a, b)] * p.basis[b]).sum::<f64>())
+                    .collect();
+                p.basis = dual;
+            }
+        }
+        start = end;
+    }
+}
+
+/// The midside nodes of a facet of `len` nodes as `(midside, corner,
+/// corner)` (local indices): a 3-node edge `[a, b, m]` (`planar`), tri6
+/// and quad8 / quad9 faces (corners first, midside `k` between corners `k`
+/// and `k + 1`); none for linear facets.
+fn facet_midsides(len: usize, planar: bool) -> &'static [(usize, usize, usize)] {
+    match (len, planar) {
+        (3, true) => &[(2, 0, 1)],
+        (6, false) => &[(3, 0, 1), (4, 1, 2), (5, 2, 0)],
+        (8 | 9, false) => &[(4, 0, 1), (5, 1, 2), (6, 2, 3), (7, 3, 0)],
+        _ => &[],
+    }
 }
 
 /// The slave facets of a pair and their integration points.
@@ -155,11 +262,13 @@ impl FacetRule {
                 };
                 points.push(FacetPoint {
                     facet: f,
+                    basis: multiplier_basis(&n, facet_midsides(facet.len(), true)),
                     shape: n,
                     weight: w * t[0].hypot(t[1]) * measure,
                 });
             }
         }
+        dualize(&facets, &mut points);
         FacetRule { facets, points }
     }
 
@@ -195,6 +304,7 @@ impl FacetRule {
                 ];
                 points.push(FacetPoint {
                     facet: f,
+                    basis: multiplier_basis(&n, facet_midsides(NN, false)),
                     shape: n.to_vec(),
                     weight: w * (an[0] * an[0] + an[1] * an[1] + an[2] * an[2]).sqrt(),
                 });
@@ -211,6 +321,7 @@ impl FacetRule {
                 _ => {}
             }
         }
+        dualize(&facets, &mut points);
         FacetRule { facets, points }
     }
 
@@ -295,6 +406,30 @@ pub struct FacetPair {
     /// Per slave node (`nodes` order): the L2 projection of the points'
     /// pressures at the last evaluation.
     nodal: Vec<f64>,
+    /// Per slave node (`nodes` order): its weight `A_a = int Phi_a dA =
+    /// int N~_a dA` of the multiplier basis (Lagrange multipliers,
+    /// positive).
+    pub support: Vec<f64>,
+    /// Per slave node (`nodes` order): the weighted gap `int Phi_a g dA /
+    /// A_a` at the last Lagrange evaluation (`+inf`: no point of its faces
+    /// has a foot).
+    pub weighted_gap: Vec<f64>,
+    /// The constraint rows `d (int Phi_a g dA / A_a) / d x` of the last
+    /// Lagrange evaluation, one per slave node with a point that has a
+    /// foot, sorted by node.
+    pub rows: Vec<LagrangeRow>,
+}
+
+/// The Lagrange constraint of one slave node of a face-integrated pair:
+/// its weighted gap and the gap's gradient over the nodes of its faces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LagrangeRow {
+    /// Global node number of the multiplier.
+    pub node: usize,
+    /// The weighted gap `int Phi_a g dA / A_a` (a length).
+    pub gap: f64,
+    /// `d gap / d x`, per (node, component).
+    pub terms: Vec<NodeTerm>,
 }
 
 impl FacetPair {
@@ -317,7 +452,7 @@ impl FacetPair {
                 }
             }
         }
-        let facet_index = rule
+        let facet_index: Vec<Vec<usize>> = rule
             .facets
             .iter()
             .map(|f| {
@@ -327,7 +462,16 @@ impl FacetPair {
             })
             .collect();
         let np = rule.points.len();
+        let mut support = vec![0.0; nodes.len()];
+        for p in &rule.points {
+            for (&i, b) in facet_index[p.facet].iter().zip(&p.basis) {
+                support[i] += p.weight * b;
+            }
+        }
         FacetPair {
+            weighted_gap: vec![f64::INFINITY; nodes.len()],
+            rows: Vec::new(),
+            support,
             facet_index,
             nodal: vec![0.0; nodes.len()],
             rule,
@@ -490,6 +634,193 @@ impl FacetPair {
         }
         self.project_pressures();
         out
+    }
+
+    /// Lagrange multipliers: evaluates every facet at the current
+    /// coordinates `x` with the multiplier `multiplier[i]` of each active
+    /// slave node `nodes[i]` (`None`: inactive). The pressure field is `p =
+    /// sum_a Phi_a lambda_a / A_a` (`Phi_a` = [`FacetPoint::basis`], the
+    /// dual of [`multiplier_basis`]; `lambda_a` is the node's force, `A_a`
+    /// = [`FacetPair::support`]); at a point with a
+    /// foot it acts along the tool's normal: forces `f_b = sum_g w N_b p_g
+    /// n_g`, tangent `K_bc = -sum_g w N_b N_c p_g W_g` (one [`Coupling`] per
+    /// facet with a loaded point). The constraint of node `a` is its
+    /// weighted gap `g~_a = sum_g w Phi_a g_g / A_a = 0` (a point without a
+    /// foot counts with the gap `window`, the edge of the search window),
+    /// its row `d g~_a / d x_b = sum_g w Phi_a N_b n_g / A_a` (exact against
+    /// a rigid tool: `d g / d x = n`, reference weights), kept in
+    /// [`FacetPair::rows`] for every node with a point that has a foot; the
+    /// forces are `sum_a lambda_a d g~_a / d x`, so the saddle-point
+    /// system is symmetric and the tangent above is the exact derivative
+    /// of the forces. `project` as in [`FacetPair::evaluate`].
+    pub fn evaluate_lagrange<const D: usize>(
+        &mut self,
+        x: &[[f64; D]],
+        window: f64,
+        multiplier: &[Option<f64>],
+        mut project: impl FnMut(usize, [f64; D]) -> Option<PointProjection<D>>,
+    ) -> Vec<Coupling> {
+        let nn_all = self.nodes.len();
+        // pressure coefficient lambda_a / A_a of every active node
+        let mu: Vec<f64> = (0..nn_all)
+            .map(|i| match multiplier.get(i).copied().flatten() {
+                Some(l) if self.support[i] > 0.0 => l / self.support[i],
+                _ => 0.0,
+            })
+            .collect();
+        let mut gsum = vec![0.0; nn_all];
+        let mut found_any = vec![false; nn_all];
+        // the rows: per node, (global node, d g~ / d x) of its faces' nodes
+        let mut rows: Vec<Vec<(usize, [f64; D])>> = vec![Vec::new(); nn_all];
+        let mut out = Vec::new();
+        let mut g = 0;
+        for (f, facet) in self.rule.facets.iter().enumerate() {
+            let nn = facet.len();
+            let mut sorted = facet.clone();
+            sorted.sort_unstable();
+            sorted.dedup();
+            let pos: Vec<usize> = facet
+                .iter()
+                .map(|n| sorted.binary_search(n).unwrap_or(0))
+                .collect();
+            let nd = D * sorted.len();
+            let mut c = Coupling {
+                nodes: sorted.clone(),
+                force: vec![0.0; nd],
+                tangent: vec![0.0; nd * nd],
+                slave: facet.first().copied().unwrap_or(0),
+                gap_gradient: Vec::new(),
+            };
+            let idx = &self.facet_index[f];
+            let mut any = false;
+            while g < self.rule.points.len() && self.rule.points[g].facet == f {
+                let point = &self.rule.points[g];
+                let mut xg = [0.0; D];
+                for (a, &node) in facet.iter().enumerate() {
+                    let xa = x.get(node).copied().unwrap_or([0.0; D]);
+                    for (xc, xac) in xg.iter_mut().zip(xa) {
+                        *xc += point.shape[a] * xac;
+                    }
+                }
+                let w = point.weight;
+                let found = project(g, xg);
+                self.gap[g] = found.as_ref().map_or(f64::INFINITY, |p| p.gap);
+                let p: f64 = idx.iter().zip(&point.basis).map(|(&i, b)| b * mu[i]).sum();
+                self.pressure[g] = if found.is_some() { p } else { 0.0 };
+                for (a, &i) in idx.iter().enumerate() {
+                    let wb = w * point.basis[a];
+                    gsum[i] += wb * found.as_ref().map_or(window, |p| p.gap);
+                    let Some(pr) = &found else {
+                        continue;
+                    };
+                    found_any[i] = true;
+                    let support = self.support[i];
+                    if support <= 0.0 {
+                        continue;
+                    }
+                    for (b, &nb) in facet.iter().enumerate() {
+                        let s = wb * point.shape[b] / support;
+                        let row = &mut rows[i];
+                        let k = match row.iter().position(|e| e.0 == nb) {
+                            Some(k) => k,
+                            None => {
+                                row.push((nb, [0.0; D]));
+                                row.len() - 1
+                            }
+                        };
+                        for (r, nc) in row[k].1.iter_mut().zip(pr.normal) {
+                            *r += s * nc;
+                        }
+                    }
+                }
+                g += 1;
+                let Some(pr) = found else {
+                    continue;
+                };
+                if p == 0.0 {
+                    continue;
+                }
+                any = true;
+                for a in 0..nn {
+                    let na = point.shape[a] * w;
+                    for i in 0..D {
+                        c.force[D * pos[a] + i] += na * p * pr.normal[i];
+                    }
+                    for b in 0..nn {
+                        let nab = na * point.shape[b];
+                        for i in 0..D {
+                            for j in 0..D {
+                                c.tangent[(D * pos[a] + i) * nd + D * pos[b] + j] -=
+                                    nab * p * pr.curvature[i][j];
+                            }
+                        }
+                    }
+                }
+            }
+            if any {
+                out.push(c);
+            }
+        }
+        self.rows.clear();
+        for i in 0..nn_all {
+            self.weighted_gap[i] = if found_any[i] && self.support[i] > 0.0 {
+                gsum[i] / self.support[i]
+            } else {
+                f64::INFINITY
+            };
+            if !self.weighted_gap[i].is_finite() {
+                continue;
+            }
+            let mut terms: Vec<(usize, [f64; D])> = std::mem::take(&mut rows[i]);
+            terms.sort_by_key(|e| e.0);
+            self.rows.push(LagrangeRow {
+                node: self.nodes[i],
+                gap: self.weighted_gap[i],
+                terms: terms
+                    .into_iter()
+                    .flat_map(|(node, v)| {
+                        (0..D).map(move |component| NodeTerm {
+                            node,
+                            component,
+                            coefficient: v[component],
+                        })
+                    })
+                    .collect(),
+            });
+        }
+        self.project_pressures();
+        out
+    }
+
+    /// The Lagrange row of slave node `node` at the last
+    /// [`FacetPair::evaluate_lagrange`] (`None`: no point of its faces has
+    /// a foot).
+    pub fn row(&self, node: usize) -> Option<&LagrangeRow> {
+        self.rows
+            .binary_search_by_key(&node, |r| r.node)
+            .ok()
+            .map(|k| &self.rows[k])
+    }
+
+    /// The weighted gap of slave node `node` at the last
+    /// [`FacetPair::evaluate_lagrange`] (`+inf`: none).
+    pub fn node_weighted_gap(&self, node: usize) -> f64 {
+        self.nodes
+            .binary_search(&node)
+            .map_or(f64::INFINITY, |i| self.weighted_gap[i])
+    }
+
+    /// Largest `|g|` over the points of the last Lagrange evaluation whose
+    /// faces carry a multiplier (the pointwise gap the weighted constraints
+    /// leave: 0 to round-off on a flat tool, where the gap is in the span
+    /// of the `N_a`).
+    pub fn loaded_point_gap(&self) -> f64 {
+        self.gap
+            .iter()
+            .zip(&self.pressure)
+            .filter(|(g, p)| g.is_finite() && **p != 0.0)
+            .map(|(g, _)| g.abs())
+            .fold(0.0, f64::max)
     }
 
     /// The reference positions of the integration points (`sum N_a X_a`
@@ -794,15 +1125,11 @@ pub fn body_is_quadratic<const D: usize>(model: &Model<D>, body: usize) -> bool 
     })
 }
 
-/// The face-integrated state of planar pair `pair`: `Some` for a penalty or
-/// augmented-Lagrangian pair against a rigid tool whose slave body has
-/// quadratic cells (its edges `[a, b]` become `[a, b, m]`).
+/// The face-integrated state of planar pair `pair`: `Some` for a pair
+/// against a rigid tool whose slave body has quadratic cells (its edges `[a, b]` become `[a, b, m]`).
 pub fn planar_pair(model: &Model, pair: usize) -> Option<FacetPair> {
     let cp = model.contacts.get(pair)?;
-    if !matches!(cp.master, ContactMaster::Tool(_))
-        || matches!(cp.method, ContactMethod::Lagrange { .. })
-        || !body_is_quadratic(model, cp.body)
-    {
+    if !matches!(cp.master, ContactMaster::Tool(_)) || !body_is_quadratic(model, cp.body) {
         return None;
     }
     let midsides = model.mesh.edge_midsides();
@@ -872,28 +1199,43 @@ pub fn evaluate_planar(
         };
         search::closest_in(shape, grid, request, scratch, tests)
     };
-    let couplings = fp.evaluate_with(
-        x,
-        state.touching,
-        |g, xg| {
-            let xr = placement.to_reference(xg);
-            let found = find(xr, memory[g], &mut tests)?;
-            memory[g] = Some(found.entity);
-            let p = found.projection;
-            if p.gap > prof {
-                return None;
-            }
-            let normal = placement.rotate(p.normal);
-            Some((
-                PointProjection {
-                    gap: p.gap,
-                    normal,
-                    curvature: planar_curvature(normal, p.normal_rate),
-                },
-                (p, xr, found.entity),
-            ))
-        },
-        |load, ft, kt| {
+    let mut project = |g: usize, xg: [f64; 2]| {
+        let xr = placement.to_reference(xg);
+        let found = find(xr, memory[g], &mut tests)?;
+        memory[g] = Some(found.entity);
+        let p = found.projection;
+        if p.gap > prof {
+            return None;
+        }
+        let normal = placement.rotate(p.normal);
+        Some((
+            PointProjection {
+                gap: p.gap,
+                normal,
+                curvature: planar_curvature(normal, p.normal_rate),
+            },
+            (p, xr, found.entity),
+        ))
+    };
+    let lagrange = matches!(cp.method, ContactMethod::Lagrange { .. });
+    let couplings = if lagrange {
+        // the multipliers of the active slave nodes, in the pair's order
+        let multiplier: Vec<Option<f64>> = fp
+            .nodes
+            .iter()
+            .map(|&n| {
+                let i = state.slaves.binary_search(&n).ok()?;
+                state
+                    .active
+                    .get(i)
+                    .copied()
+                    .unwrap_or(false)
+                    .then(|| state.multiplier[i])
+            })
+            .collect();
+        fp.evaluate_lagrange(x, prof, &multiplier, |g, xg| project(g, xg).map(|p| p.0))
+    } else {
+        fp.evaluate_with(x, state.touching, project, |load, ft, kt| {
             let Some(law) = law else {
                 return false;
             };
@@ -943,8 +1285,8 @@ pub fn evaluate_planar(
                 friction: nf,
             });
             true
-        },
-    );
+        })
+    };
     let mut find = |xr: [f64; 2], memory: Option<usize>, tests: &mut usize| {
         let request = search::Request {
             x: xr,
@@ -960,7 +1302,45 @@ pub fn evaluate_planar(
         let Some(&xn) = x.get(node) else {
             continue;
         };
-        let Some(found) = find(placement.to_reference(xn), state.last_entity[i], &mut tests) else {
+        let found = find(placement.to_reference(xn), state.last_entity[i], &mut tests);
+        if lagrange {
+            // the node's constraint: its weighted gap (no row: left out,
+            // and released if active)
+            let gap = fp.node_weighted_gap(node);
+            if !gap.is_finite() {
+                continue;
+            }
+            if let Some(f) = &found {
+                state.last_entity[i] = Some(f.entity);
+            }
+            // closed-gap start: touching nodes join the active set with a
+            // zero multiplier
+            if state.touching > 0.0 && gap <= state.touching && !state.active[i] {
+                state.active[i] = true;
+                state.multiplier[i] = 0.0;
+            }
+            let (force, stiffness) = FacetPair::node_force::<2>(&couplings, node);
+            out.push(NodeContact {
+                node,
+                gap,
+                normal: found
+                    .as_ref()
+                    .map_or([0.0; 2], |f| placement.rotate(f.projection.normal)),
+                force,
+                stiffness,
+                pressure: fp.node_pressure(node),
+                status: if state.active[i] {
+                    ContactStatus::Closed
+                } else {
+                    ContactStatus::Open
+                },
+                entity: found.as_ref().map_or(0, |f| f.entity),
+                master: None,
+                friction: NodeFriction::default(),
+            });
+            continue;
+        }
+        let Some(found) = found else {
             continue;
         };
         state.last_entity[i] = Some(found.entity);
@@ -1090,6 +1470,132 @@ mod tests {
         assert!(fp.multiplier.iter().all(|m| (m - p).abs() < 1e-13));
     }
 
+    /// The multiplier basis keeps the partition of unity and gives every
+    /// node a positive weight: tri6 corners 2/15, quad8 corners 1/20 of
+    /// the area, a 3-node edge's corner on the axis `alpha int N_m 2 pi r`
+    /// (0 with the shape functions).
+    #[test]
+    fn multiplier_basis_weights_are_positive() {
+        let quad8 = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [1.0, 0.5, 0.0],
+            [0.5, 1.0, 0.0],
+            [0.0, 0.5, 0.0],
+            [0.5, 0.5, 0.0],
+        ];
+        let tri6 = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, 0.0],
+            [0.5, 0.5, 0.0],
+            [0.0, 0.5, 0.0],
+        ];
+        // (face nodes, node count, area, corner and midside weight / area)
+        type Case<'a> = (&'a [[f64; 3]], usize, f64, f64, f64);
+        let cases: [Case<'_>; 3] = [
+            (&tri6, 6, 0.5, 2.0 / 15.0, 0.2),
+            (&quad8, 8, 1.0, 0.05, 0.2),
+            (&quad8, 9, 1.0, 1.0 / 36.0 + 0.4 / 9.0, 0.6 / 9.0),
+        ];
+        for (nodes, n, area, corner, midside) in cases {
+            let fp = FacetPair::new(FacetRule::solid(nodes, vec![(0..n).collect()]), |_| 0.0);
+            // partition of unity, and biorthogonal to the N~ of the face
+            let mut dual = vec![0.0; n * n];
+            for p in &fp.rule.points {
+                assert!((p.basis.iter().sum::<f64>() - 1.0).abs() < 1e-13);
+                let nt = multiplier_basis(&p.shape, facet_midsides(n, false));
+                for a in 0..n {
+                    for b in 0..n {
+                        dual[a * n + b] += p.weight * p.basis[a] * nt[b];
+                    }
+                }
+            }
+            for a in 0..n {
+                for b in 0..n {
+                    let expect = if a == b { fp.support[a] } else { 0.0 };
+                    assert!((dual[a * n + b] - expect).abs() < 1e-13, "{n}: {a} {b}");
+                }
+            }
+            let nc = if n == 6 { 3 } else { 4 };
+            for (a, s) in fp.support.iter().enumerate() {
+                let expect = if a < nc {
+                    corner * area
+                } else if a < 2 * nc {
+                    midside * area
+                } else {
+                    16.0 / 36.0
+                };
+                assert!((s - expect).abs() < 1e-14, "{n} node {a}: {s} vs {expect}");
+            }
+        }
+        // axisymmetric edge from the axis: corner weight alpha int N_m 2 pi r
+        let edge = [[0.0, 0.0], [1.0, 0.0], [0.5, 0.0]];
+        let plain = FacetRule::planar(&edge, vec![vec![0, 1, 2]], true, 1.0);
+        assert!(plain.consistent_areas()[0].1.abs() < 1e-14);
+        let fp = FacetPair::new(plain, |_| 0.0);
+        let mid = 2.0 * std::f64::consts::PI * (2.0 / 3.0) * 0.5;
+        assert!(
+            (fp.support[0] - BASIS_ALPHA * mid).abs() < 1e-13,
+            "{:?}",
+            fp.support
+        );
+        assert!(fp.support.iter().all(|s| *s > 0.0));
+    }
+
+    /// Lagrange on a flat tool: multipliers `lambda_a = p A_a` give the
+    /// consistent loads of the uniform pressure `p`, and a uniform gap `d`
+    /// is every node's weighted gap.
+    #[test]
+    fn uniform_lagrange_pressure_gives_the_consistent_loads() {
+        let q: Vec<[f64; 3]> = [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [0.0, 1.0],
+            [1.0, 0.0],
+            [2.0, 0.5],
+            [1.0, 1.0],
+            [0.0, 0.5],
+        ]
+        .iter()
+        .map(|p| [p[0], p[1], -0.01])
+        .collect();
+        let mut fp = FacetPair::new(FacetRule::solid(&q, vec![(0..8).collect()]), |_| 0.0);
+        let p = 3.0;
+        let lambda: Vec<Option<f64>> = fp.support.iter().map(|a| Some(p * a)).collect();
+        let c = fp.evaluate_lagrange(&q, 1.0, &lambda, |_, x| {
+            Some(PointProjection {
+                gap: x[2],
+                normal: [0.0, 0.0, 1.0],
+                curvature: [[0.0; 3]; 3],
+            })
+        });
+        assert_eq!(c.len(), 1);
+        for (a, &node) in c[0].nodes.iter().enumerate() {
+            let share = if node < 4 { -1.0 / 12.0 } else { 1.0 / 3.0 };
+            assert!((c[0].force[3 * a + 2] - p * 2.0 * share).abs() < 1e-13);
+        }
+        assert!((fp.node_pressure(0) - p).abs() < 1e-13);
+        assert_eq!(fp.rows.len(), 8);
+        for r in &fp.rows {
+            assert!((r.gap + 0.01).abs() < 1e-15, "{r:?}");
+            // the row's z terms sum to 1 (a rigid motion changes g~ by it)
+            let dz: f64 = r
+                .terms
+                .iter()
+                .filter(|t| t.component == 2)
+                .map(|t| t.coefficient)
+                .sum();
+            assert!((dz - 1.0).abs() < 1e-14);
+        }
+        assert!((fp.loaded_point_gap() - 0.01).abs() < 1e-15);
+    }
+
     fn sphere(x: [f64; 3], centre: [f64; 3], radius: f64) -> PointProjection<3> {
         let d: [f64; 3] = std::array::from_fn(|k| x[k] - centre[k]);
         let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -1178,6 +1684,93 @@ mod tests {
                             prop_assert!((fd - k).abs() < 1e-5 * scale.max(1.0),
                                 "{a}{i},{b}{j}: fd {fd} vs {k}");
                         }
+                    }
+                }
+            }
+        }
+
+        /// Lagrange multipliers on a quad8 / tri6 / quad9 face pressed into
+        /// a rigid sphere: the forces are `sum_a lambda_a` times the rows,
+        /// the rows are the derivatives of the weighted gaps and the
+        /// tangent minus the derivative of the forces (central
+        /// differences), with multipliers of both signs and inactive nodes.
+        #[test]
+        fn lagrange_rows_and_tangent_match_finite_differences(
+            kind in 0usize..3,
+            depth in 0.02f64..0.2,
+            lambda in proptest::collection::vec(-0.5f64..2.0, 9),
+            wobble in proptest::collection::vec(-0.05f64..0.05, 27),
+        ) {
+            let base: Vec<[f64; 2]> = match kind {
+                0 => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
+                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]],
+                1 => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5],
+                          [0.0, 0.5]],
+                _ => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
+                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5], [0.5, 0.5]],
+            };
+            let reference: Vec<[f64; 3]> = base.iter().map(|p| [p[0], p[1], 0.0]).collect();
+            let x: Vec<[f64; 3]> = base
+                .iter()
+                .enumerate()
+                .map(|(a, p)| [p[0] + wobble[3 * a], p[1] + wobble[3 * a + 1],
+                               wobble[3 * a + 2] - depth])
+                .collect();
+            let n = x.len();
+            let centre = [0.4, 0.45, -1.5];
+            let mut fp = FacetPair::new(FacetRule::solid(&reference, vec![(0..n).collect()]),
+                                        |_| 0.0);
+            // every third node inactive
+            let lam: Vec<Option<f64>> =
+                (0..n).map(|a| (a % 3 != 2).then_some(lambda[a])).collect();
+            let evaluate = |fp: &mut FacetPair, x: &[[f64; 3]]| -> (Vec<f64>, Vec<f64>) {
+                let c = fp.evaluate_lagrange(x, 10.0, &lam, |_, p| Some(sphere(p, centre, 1.5)));
+                let mut f = vec![0.0; 3 * n];
+                for c in &c {
+                    for (a, &node) in c.nodes.iter().enumerate() {
+                        for i in 0..3 { f[3 * node + i] += c.force[3 * a + i]; }
+                    }
+                }
+                (f, fp.weighted_gap.clone())
+            };
+            let c = fp.evaluate_lagrange(&x, 10.0, &lam, |_, p| Some(sphere(p, centre, 1.5)));
+            prop_assert_eq!(c.len(), 1);
+            let c = &c[0];
+            let rows = fp.rows.clone();
+            prop_assert_eq!(rows.len(), n);
+            // forces = sum_a lambda_a row_a
+            let mut f0 = vec![0.0; 3 * n];
+            for (a, r) in rows.iter().enumerate() {
+                if let Some(l) = lam[a] {
+                    for t in &r.terms { f0[3 * t.node + t.component] += l * t.coefficient; }
+                }
+            }
+            for (a, &node) in c.nodes.iter().enumerate() {
+                for i in 0..3 {
+                    prop_assert!((f0[3 * node + i] - c.force[3 * a + i]).abs() < 1e-12);
+                }
+            }
+            let h = 1e-7;
+            let scale = c.tangent.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for (b, &nb) in c.nodes.iter().enumerate() {
+                for j in 0..3 {
+                    let (mut xp, mut xm) = (x.clone(), x.clone());
+                    xp[nb][j] += h;
+                    xm[nb][j] -= h;
+                    let ((fp_, gp), (fm, gm)) = (evaluate(&mut fp, &xp), evaluate(&mut fp, &xm));
+                    for (a, &na) in c.nodes.iter().enumerate() {
+                        for i in 0..3 {
+                            let fd = -(fp_[3 * na + i] - fm[3 * na + i]) / (2.0 * h);
+                            let k = c.tangent[(3 * a + i) * 3 * n + 3 * b + j];
+                            prop_assert!((fd - k).abs() < 1e-5 * scale.max(1.0),
+                                "{a}{i},{b}{j}: fd {fd} vs {k}");
+                        }
+                    }
+                    for (a, r) in rows.iter().enumerate() {
+                        let fd = (gp[a] - gm[a]) / (2.0 * h);
+                        let k = r.terms.iter().find(|t| t.node == nb && t.component == j)
+                            .map_or(0.0, |t| t.coefficient);
+                        prop_assert!((fd - k).abs() < 1e-6, "row {a} {nb}{j}: fd {fd} vs {k}");
                     }
                 }
             }

@@ -10,7 +10,9 @@
 //! geometric term with `alpha g` replaced by `-lambda`), so that Newton
 //! stays quadratic on curved tools. The constraint rows of the
 //! saddle-point system use `d g / d x = n` ([`normal_rows`], in node terms;
-//! node-to-segment: `d g / d x` over the slave and the segment's ends).
+//! node-to-segment: `d g / d x` over the slave and the segment's ends;
+//! quadratic slave faces: the node's weighted gap over the nodes of its
+//! faces, [`super::face_integrated::FacetPair::evaluate_lagrange`]).
 
 use super::augmented::normal_response;
 use super::penalty::Response;
@@ -61,6 +63,13 @@ pub fn normal_rows(
                 continue;
             }
             let dim = nc.normal.len();
+            // quadratic faces: the node's weighted gap over its faces' nodes
+            if let Some(fp) = &pairs[pi].facets {
+                if let Some(row) = fp.row(nc.node) {
+                    rows.push(RowKind::Normal, (pi, i), row.gap, row.terms.iter().copied());
+                }
+                continue;
+            }
             // smoothed node-to-segment: the row over the coupling's nodes
             if let Some(rows_of_pair) = &pairs[pi].couplings {
                 if let Ok(k) = rows_of_pair.binary_search_by_key(&nc.node, |c| c.slave) {

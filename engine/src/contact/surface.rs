@@ -162,7 +162,6 @@ impl SurfacePair {
         };
         // quadratic slave faces against the tool: integrated at points
         let facets = (cp.master.tool().is_some()
-            && !matches!(cp.method, ContactMethod::Lagrange { .. })
             && face_integrated::body_is_quadratic(model, cp.body))
         .then(|| {
             let rule = FacetRule::solid(
@@ -612,30 +611,47 @@ fn evaluate_facets(
         &mut state.friction,
     );
     let mut point_failures = Vec::new();
-    let couplings = fp.evaluate_with(
-        x,
-        0.0,
-        |g, xg| {
-            searches[g].reach = prof;
-            match project(tool, t, &xg, &mut searches[g], counters) {
-                Ok(Some(p)) if p.gap <= prof => Some((
-                    PointProjection {
-                        gap: p.gap,
-                        normal: [p.normal[0], p.normal[1], p.normal[2]],
-                        curvature: std::array::from_fn(|i| {
-                            std::array::from_fn(|j| p.curvature[(i, j)])
-                        }),
-                    },
-                    p,
-                )),
-                Ok(_) => None,
-                Err(e) => {
-                    point_failures.push((g, e));
-                    None
-                }
+    let mut project_point = |g: usize, xg: [f64; 3]| {
+        searches[g].reach = prof;
+        match project(tool, t, &xg, &mut searches[g], counters) {
+            Ok(Some(p)) if p.gap <= prof => Some((
+                PointProjection {
+                    gap: p.gap,
+                    normal: [p.normal[0], p.normal[1], p.normal[2]],
+                    curvature: std::array::from_fn(|i| {
+                        std::array::from_fn(|j| p.curvature[(i, j)])
+                    }),
+                },
+                p,
+            )),
+            Ok(_) => None,
+            Err(e) => {
+                point_failures.push((g, e));
+                None
             }
-        },
-        |load, ft, kt| {
+        }
+    };
+    let lagrange = matches!(cp.method, ContactMethod::Lagrange { .. });
+    let couplings = if lagrange {
+        // the multipliers of the active slave nodes, in the pair's order
+        let multiplier: Vec<Option<f64>> = fp
+            .nodes
+            .iter()
+            .map(|&n| {
+                let i = state.slaves.binary_search(&n).ok()?;
+                state
+                    .active
+                    .get(i)
+                    .copied()
+                    .unwrap_or(false)
+                    .then(|| state.multiplier[i])
+            })
+            .collect();
+        fp.evaluate_lagrange(x, prof, &multiplier, |g, xg| {
+            project_point(g, xg).map(|p| p.0)
+        })
+    } else {
+        fp.evaluate_with(x, 0.0, project_point, |load, ft, kt| {
             let Some(law) = law else {
                 return false;
             };
@@ -677,8 +693,8 @@ fn evaluate_facets(
                 friction: nf,
             });
             true
-        },
-    );
+        })
+    };
     // a point whose CAD projection failed is reported at its facet's
     // first node
     for (g, e) in point_failures {
@@ -687,7 +703,13 @@ fn evaluate_facets(
     }
     let mut out = Vec::with_capacity(state.slaves.len());
     for (i, &node) in state.slaves.iter().enumerate() {
-        state.search[i].reach = prof;
+        // a Lagrange node with a constraint is projected whatever its
+        // distance (output: its normal)
+        state.search[i].reach = if lagrange && fp.node_weighted_gap(node).is_finite() {
+            f64::INFINITY
+        } else {
+            prof
+        };
         let p = match project(tool, t, &x[node], &mut state.search[i], &mut state.counters) {
             Ok(Some(p)) => p,
             Ok(None) => continue,
@@ -697,6 +719,31 @@ fn evaluate_facets(
             }
         };
         let (force, stiffness) = FacetPair::node_force::<3>(&couplings, node);
+        if lagrange {
+            // the node's constraint: its weighted gap (no row: left out,
+            // and released if active)
+            let gap = fp.node_weighted_gap(node);
+            if !gap.is_finite() {
+                continue;
+            }
+            out.push(NodeContact {
+                node,
+                gap,
+                normal: [p.normal[0], p.normal[1], p.normal[2]],
+                force,
+                stiffness,
+                pressure: fp.node_pressure(node),
+                status: if state.active[i] {
+                    ContactStatus::Closed
+                } else {
+                    ContactStatus::Open
+                },
+                entity: p.entity,
+                master: None,
+                friction: NodeFriction::default(),
+            });
+            continue;
+        }
         if p.gap > prof && force == [0.0; 3] {
             continue;
         }

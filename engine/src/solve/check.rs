@@ -831,9 +831,9 @@ fn free_solid_motions<const D: usize>(
 
 /// Why pair `c` (one of `model.contacts`) cannot run on quadratic faces,
 /// if it cannot: a deformable master or slave with quadratic cells
-/// (node-to-segment and mortar are linear), Lagrange multipliers (no
-/// positive-weight multiplier basis on tri6 / quad8 faces is built),
-/// thermal contact (nodal areas), or a nodal penalty (a force per node
+/// (node-to-segment and mortar are linear), Lagrange-multiplier friction
+/// (frictionless Lagrange multipliers are built on a positive-weight
+/// basis, `contact::face_integrated::multiplier_basis`), thermal contact (nodal areas), or a nodal penalty (a force per node
 /// has no meaning at integration points). Friction is integrated at the
 /// points (`contact::face_integrated`).
 pub fn quadratic_contact_refusal<const D: usize>(
@@ -858,10 +858,10 @@ pub fn quadratic_contact_refusal<const D: usize>(
         return None;
     }
     let what = match &c.method {
-        ContactMethod::Lagrange { .. } => {
-            "Lagrange multipliers are not available on quadratic \
-             faces (their corner weights are zero or negative); use `penalty` or \
-             `augmented_lagrange`"
+        ContactMethod::Lagrange { .. } if c.friction.is_some() => {
+            "Lagrange-multiplier friction is not available on quadratic faces; use \
+             `penalty` or `augmented_lagrange` with friction (frictionless Lagrange \
+             multipliers are)"
         }
         ContactMethod::Penalty {
             kind: PenaltyKind::Nodal,
@@ -942,17 +942,18 @@ mod tests {
             formulation: LagrangeFormulation::Single,
         };
         use crate::mesh::CellKind::{Quad4, Quad8};
-        for (kind, method, refused) in [
-            (Quad4, lagrange.clone(), None),
-            (Quad8, area.clone(), None),
+        for (kind, method, rubs, refused) in [
+            (Quad4, lagrange.clone(), false, None),
+            (Quad8, area.clone(), true, None),
+            (Quad8, lagrange.clone(), false, None),
             (
                 Quad8,
                 lagrange,
-                Some("Lagrange multipliers are not available"),
+                true,
+                Some("Lagrange-multiplier friction is not available on quadratic faces"),
             ),
-            (Quad8, nodal, Some("a nodal penalty has no meaning")),
+            (Quad8, nodal, false, Some("a nodal penalty has no meaning")),
         ] {
-            let rubs = kind == Quad8 && method == area;
             let m = crate::testkit::ModelBuilder::new(AnalysisKind::PlaneStrain)
                 .elastic("m", 1.0, 0.3)
                 .body("sq", mesh(kind), "m")
@@ -970,7 +971,8 @@ mod tests {
                 .step("s", 1.0, 1)
                 .build();
             let mut m = m;
-            // friction is integrated at the faces' points: accepted
+            // friction is integrated at the faces' points: accepted with
+            // the penalty
             if rubs {
                 m.contacts[0].friction = Some(crate::model::Friction {
                     mu: 0.3,

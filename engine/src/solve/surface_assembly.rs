@@ -438,6 +438,19 @@ impl ContactScene<3> for SurfaceAssembly {
                 if !self.pairs[pi].active[i] {
                     continue;
                 }
+                // quadratic faces: the node's weighted gap over its faces'
+                // nodes
+                if let Some(fp) = &self.pairs[pi].facets {
+                    if let Some(row) = fp.row(nc.node) {
+                        self.rows.push(
+                            RowKind::Normal,
+                            (pi, i),
+                            row.gap,
+                            row.terms.iter().copied(),
+                        );
+                    }
+                    continue;
+                }
                 // node-to-facet: the row G over the slave and the facet nodes
                 if let Some(fp) = &self.pairs[pi].deformable {
                     if let Ok(k) = fp.couplings.binary_search_by_key(&nc.node, |c| c.slave) {

@@ -64,11 +64,12 @@ impl Lowerer<'_> {
                 .is_some_and(|k| k.value == ast::PenaltyKind::Nodal)
         };
         match &method.value {
-            Method::Lagrange { .. } => Some((
+            Method::Lagrange { .. } if c.friction.is_some() => Some((
                 method.span,
-                "Lagrange multipliers are not available on quadratic faces".into(),
-                "quadratic slave faces: zero or negative corner weights",
-                "use `penalty` or `augmented_lagrange` (the gap is integrated over the faces)",
+                "Lagrange-multiplier friction is not available on quadratic faces".into(),
+                "quadratic slave faces with friction",
+                "use `penalty` or `augmented_lagrange` with friction (frictionless Lagrange \
+                 multipliers are available)",
             )),
             Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }
                 if nodal(kind) =>
