@@ -8,7 +8,8 @@
 //! finite-strain Neo-Hooke indentation, two deformable cylinders in
 //! node-to-segment contact (examples/two_cylinders_hertz.ctc) and two
 //! deformable 3D blocks in mortar contact
-//! (examples/contact_blocks_mortar_3d.ctc), all
+//! (examples/contact_blocks_mortar_3d.ctc), and the Hertz cylinder on
+//! quadratic cells (examples/hertz_cylinder_quadratic.ctc), all
 //! assembled distributed; the pieces of each increment's parallel VTU
 //! (`.pvtu`) join into the serial VTU; CG + GAMG chosen by PETSc options
 //! converges to the same answer; a failing run stops every rank with one
@@ -294,6 +295,17 @@ fn two_deformable_cylinders_on_one_and_two_ranks_are_the_serial_run() {
     // deformable half discs (the master arc replicated on every rank, the
     // rows of a node added by its owner)
     same_as_serial("examples/two_cylinders_hertz.ctc", "two_cylinders", 1e-9);
+}
+
+#[test]
+fn quadratic_hertz_cylinder_on_one_and_two_ranks_is_the_serial_run() {
+    // examples/hertz_cylinder_quadratic.ctc: quad8 cells (order = 2), the
+    // contact rows of a quadratic face spanning its three nodes
+    same_as_serial(
+        "examples/hertz_cylinder_quadratic.ctc",
+        "hertz_quadratic",
+        1e-9,
+    );
 }
 
 #[test]

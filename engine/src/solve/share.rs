@@ -32,7 +32,6 @@
 //! distributed ([`replicated_reason`] says why another one is not): the
 //! others are assembled whole by every rank, as before.
 
-use crate::mesh::CellKind;
 use crate::model::{ContactMethod, Model};
 
 /// The cells and nodes one rank assembles.
@@ -71,8 +70,8 @@ impl AssemblyShare {
 }
 
 /// Why `model` cannot be assembled distributed (each rank its cells and
-/// contact nodes), or `None` when it can: every cell linear (tri3, quad4,
-/// tet4, hex8), any material law and kinematics (the integration points
+/// contact nodes), or `None` when it can: any cell kind, linear or
+/// quadratic, any material law and kinematics (the integration points
 /// of a rank's cells are evaluated by it alone and exchanged at each
 /// commit, `crate::solve::assembly::Assembler::exchange_points`), every
 /// contact by penalty or augmented Lagrangian, against a rigid tool or a
@@ -81,15 +80,6 @@ impl AssemblyShare {
 /// spring, mass or dashpot, no dynamic step, no stabilization, no thermal
 /// coupling, no free tool.
 pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
-    let linear_cells = model.mesh.cells.iter().all(|c| {
-        matches!(
-            c.kind,
-            CellKind::Tri3 | CellKind::Quad4 | CellKind::Tet4 | CellKind::Hex8
-        )
-    });
-    if !linear_cells {
-        return Some("quadratic cells");
-    }
     for c in &model.contacts {
         if matches!(c.method, ContactMethod::Lagrange { .. }) {
             return Some("Lagrange-multiplier contact");
@@ -119,7 +109,7 @@ pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static st
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{Cell, Mesh};
+    use crate::mesh::{Cell, CellKind, Mesh};
     use crate::model::{Hardening, MaterialLaw};
 
     fn square(law: MaterialLaw) -> Model {
@@ -137,7 +127,7 @@ mod tests {
     }
 
     #[test]
-    fn elastic_and_plastic_cells_are_distributed_and_quadratic_ones_are_not() {
+    fn plastic_and_quadratic_cells_are_distributed() {
         let elastic = square(MaterialLaw::LinearElastic {
             young: 1.0,
             poisson: 0.3,
@@ -155,6 +145,7 @@ mod tests {
         // its integration points are exchanged at each commit
         // (`Assembler::exchange_points`)
         assert_eq!(replicated_reason(&plastic), None);
+        // quadratic cells too (their face rows are added by node owners)
         let mut quadratic = plastic.clone();
         quadratic.mesh = Mesh::new(
             vec![
@@ -170,7 +161,7 @@ mod tests {
                 nodes: vec![0, 1, 2, 3, 4, 5],
             }],
         );
-        assert_eq!(replicated_reason(&quadratic), Some("quadratic cells"));
+        assert_eq!(replicated_reason(&quadratic), None);
     }
 
     #[test]
