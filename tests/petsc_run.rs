@@ -149,8 +149,7 @@ fn pieces_are_the_serial_vtu(serial: &Path, dir: &Path, ranks: usize, tol: f64) 
     let last = pvd
         .lines()
         .filter_map(|l| l.split("file=\"").nth(1)?.split('"').next())
-        .filter(|f| f.ends_with(".pvtu"))
-        .next_back()
+        .rfind(|f| f.ends_with(".pvtu"))
         .expect("the PVD lists the .pvtu files");
     let text = std::fs::read_to_string(dir.join(last)).unwrap();
     let sources: Vec<&str> = text

@@ -146,11 +146,22 @@ pub struct PetscSystem<'e> {
     /// pattern (those couplings and the contact couplings of the rank's
     /// partial pattern, [`PetscSystem::preallocate`]); `None`: replicated
     /// assembly.
-    assembly: Option<(Arc<AssemblyShare>, Preallocation, Vec<usize>, Vec<usize>)>,
+    assembly: Option<Distributed>,
     /// Column indices of one CSC column (scratch of the insertion).
     column: Vec<ffi::PetscInt>,
     /// This rank's METIS cells, increasing (its piece of the output).
     cells: Vec<usize>,
+}
+
+/// A rank's part of a distributed assembly.
+struct Distributed {
+    /// Its cells and nodes.
+    share: Arc<AssemblyShare>,
+    /// The couplings of its rows from the cells around its nodes.
+    cells: Preallocation,
+    /// `(d_nnz, o_nnz)` of its rows for the current pattern.
+    d_nnz: Vec<usize>,
+    o_nnz: Vec<usize>,
 }
 
 /// Fields of a [`RankStats`] exchanged by [`PetscSystem::distributed`].
@@ -234,7 +245,12 @@ impl<'e> PetscSystem<'e> {
                     cells: mine,
                     nodes,
                 };
-                Some((Arc::new(share), prealloc, d, o))
+                Some(Distributed {
+                    share: Arc::new(share),
+                    cells: prealloc,
+                    d_nnz: d,
+                    o_nnz: o,
+                })
             }
         };
         let stats = DistributedStats {
@@ -378,17 +394,17 @@ impl<'e> PetscSystem<'e> {
     /// owns) is in this rank's pattern too.
     fn preallocate(&mut self, pattern: &SparsePattern) {
         let dim = self.dim;
-        let Some((_, base, d, o)) = self.assembly.as_mut() else {
+        let Some(a) = self.assembly.as_mut() else {
             return;
         };
-        let mut p = base.clone();
+        let mut p = a.cells.clone();
         for j in 0..pattern.n {
             let col = self.petsc_of[j] / dim;
             for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
                 p.couple_blocks(self.petsc_of[i] / dim, col);
             }
         }
-        (*d, *o) = p.nnz();
+        (a.d_nnz, a.o_nnz) = p.nnz();
     }
 
     /// Creates the matrix, vectors, scatter and solver of the current rows.
@@ -396,7 +412,10 @@ impl<'e> PetscSystem<'e> {
         let (lo, n_owned) = (self.lo(), self.owned.len());
         let hi = lo + n_owned;
         let n_global = *self.offsets.last().unwrap_or(&0);
-        let mut mat = if let Some((_, _, d, o)) = &self.assembly {
+        let mut mat = if let Some(Distributed {
+            d_nnz: d, o_nnz: o, ..
+        }) = &self.assembly
+        {
             // distributed: the rows' entries from all the cells around the
             // owned nodes (every dof of a node, prescribed ones included)
             self.share.nonzeros = d.iter().sum::<usize>() + o.iter().sum::<usize>();
@@ -762,7 +781,7 @@ impl LinearSystem for PetscSystem<'_> {
     }
 
     fn share(&self) -> Option<Arc<AssemblyShare>> {
-        self.assembly.as_ref().map(|(s, _, _, _)| s.clone())
+        self.assembly.as_ref().map(|a| a.share.clone())
     }
 
     fn sum_over_ranks(&self, v: &mut [f64]) {
