@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Builds the MPI tests of ctc-petsc (feature `petsc`) and runs them on N
-# ranks (default 2):
+# ranks (default 2): the distributed elasticity solves, and the engine's
+# Newton loop on PetscSystem for a finite-strain plastic strip (each rank
+# its cells' integration points, exchanged at each commit) against the
+# serial run:
 #   bash petsc/mpi-test.sh 2
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -428,8 +428,8 @@ fn run(
         };
     // the dimension is chosen once, here
     match &model {
-        AnyModel::D2(m) => run_model_with(m, &dir, quiet, verbose, restart, linear(())?),
-        AnyModel::D3(m) => run_model_with(m, &dir, quiet, verbose, restart, linear(())?),
+        AnyModel::D2(m) => run_model_with(m, &dir, quiet, verbose, restart, linear(())?, None),
+        AnyModel::D3(m) => run_model_with(m, &dir, quiet, verbose, restart, linear(())?, None),
     }
 }
 
@@ -445,10 +445,11 @@ fn run_model<const D: usize>(
 where
     nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
 {
-    run_model_with(model, dir, quiet, verbose, restart, None)
+    run_model_with(model, dir, quiet, verbose, restart, None, None)
 }
 
-/// [`run_model`] with the tangent solved by `linear` (`None`: faer).
+/// [`run_model`] with the tangent solved by `linear` (`None`: faer), the
+/// VTU of each increment written as `pieces` (`mpirun`, rank 0's).
 fn run_model_with<'m, const D: usize>(
     model: &'m ctc_engine::model::Model<D>,
     dir: &Path,
@@ -456,6 +457,7 @@ fn run_model_with<'m, const D: usize>(
     verbose: bool,
     restart: bool,
     linear: Option<Box<dyn ctc_engine::solve::linalg::LinearSystem + 'm>>,
+    pieces: Option<ctc_engine::output::Pieces>,
 ) -> Result<(), String>
 where
     nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
@@ -488,6 +490,9 @@ where
         }
         (w, None)
     };
+    if let Some(pieces) = pieces {
+        writer.set_pieces(pieces);
+    }
     let mut observer = progress::Progress::new(model, &mut writer, quiet, verbose);
     let outcome = ctc_engine::solve::run_with(model, &mut observer, from.as_ref(), linear);
     observer.finish();

@@ -7,10 +7,12 @@
 //! assembled whole by every rank), the internal forces are summed over the
 //! ranks, the tangent's rows are shared among the ranks and solved by a
 //! PETSc KSP ([`ctc_petsc::PetscSystem`]), whose solution every rank
-//! receives whole, so all ranks take the same decisions. Rank 0 alone
-//! writes the results (VTU/PVD, histories, summary.json with a
-//! `distributed` section, restart points) and prints; the other ranks
-//! print nothing, and all exit with the same status.
+//! receives whole, so all ranks take the same decisions. Each rank writes
+//! its cells' piece of every written increment (`inc_NNNN_p<rank>.vtu`);
+//! rank 0 the rest of the results (the `inc_NNNN.pvtu` listing the pieces,
+//! results.pvd, histories, contact CSVs, summary.json with a `distributed`
+//! section, restart points) and prints; the other ranks print nothing, and
+//! all exit with the same status.
 
 use std::path::Path;
 
@@ -93,10 +95,24 @@ where
     }
     let system = PetscSystem::new(env, model, SolverChoice::MumpsLu, "")
         .map_err(|e| format!("error: cannot set up PETSc for this model: {e}"))?;
+    // each rank writes its cells' piece of every written increment
+    let pieces = ctc_engine::output::Pieces {
+        rank: system.rank(),
+        ranks: system.ranks(),
+        cells: system.cells().to_vec(),
+    };
     if system.rank() == 0 {
-        return crate::run_model_with(model, dir, quiet, verbose, restart, Some(Box::new(system)));
+        return crate::run_model_with(
+            model,
+            dir,
+            quiet,
+            verbose,
+            restart,
+            Some(Box::new(system)),
+            Some(pieces),
+        );
     }
-    // the other ranks: the same run, silent, writing nothing
+    // the other ranks: the same run, silent, writing their pieces only
     let from = if restart {
         let path = dir.join(ctc_engine::output::RESTART_FILE);
         let file = ctc_engine::solve::restart::RestartFile::<D>::read(&path)
@@ -105,9 +121,11 @@ where
     } else {
         None
     };
-    struct Silent;
-    impl<const D: usize> ctc_engine::solve::Observer<D> for Silent {}
-    ctc_engine::solve::run_with(model, &mut Silent, from.as_ref(), Some(Box::new(system)))
-        .map(|_| ())
-        .map_err(|e| e.message)
+    let mut writer = ctc_engine::output::PieceWriter::new(dir, model, pieces);
+    let outcome =
+        ctc_engine::solve::run_with(model, &mut writer, from.as_ref(), Some(Box::new(system)));
+    // the last converged increment's piece also after a failure, as rank 0
+    // writes its part of it
+    writer.finish().map_err(|e| format!("error: {e}"))?;
+    outcome.map(|_| ()).map_err(|e| e.message)
 }

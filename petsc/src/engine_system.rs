@@ -23,13 +23,17 @@
 //! is an error on every rank at once, and a failed element is agreed
 //! (`any_rank`).
 //!
-//! Distributed: the element matrices and element loop (each rank its
-//! cells: memory and time fall with the rank count), the contact tangent
-//! (the owner of a slave node adds its block), the matrix rows, the
+//! Distributed: the element matrices and element loop with the
+//! integration-point updates of every material law (each rank its cells:
+//! memory and time fall with the rank count; the committed points are
+//! exchanged at each commit), the contact tangent (the owner of a node
+//! adds its rows: a slave node's block against a tool, the rows of slave
+//! and master nodes of a deformable pair), the matrix rows, the
 //! factorization / preconditioner and the Krylov solve. Replicated: the
 //! mesh and model, the contact evaluation (every rank every slave node
-//! against the replicated rigid tools), and the vectors of the Newton loop
-//! (the solution is gathered whole on every rank: O(dofs) per rank).
+//! against the replicated rigid tools and master surfaces), and the
+//! vectors of the Newton loop (the solution is gathered whole on every
+//! rank: O(dofs) per rank).
 //!
 //! Row ownership: a node belongs to the lowest rank among the METIS parts
 //! of its cells ([`DofLayout`]); PETSc numbers the nodes rank by rank, and
@@ -137,11 +141,27 @@ pub struct PetscSystem<'e> {
     /// the times).
     share: RankStats,
     /// Distributed assembly (`ctc_engine::solve::share`): this rank's
-    /// cells and nodes, and the exact preallocation `(d_nnz, o_nnz)` of its
-    /// rows from the cells around its nodes; `None`: replicated assembly.
-    assembly: Option<(Arc<AssemblyShare>, Vec<usize>, Vec<usize>)>,
+    /// cells and nodes, the couplings of its rows from the cells around its
+    /// nodes, and the exact preallocation `(d_nnz, o_nnz)` of the current
+    /// pattern (those couplings and the contact couplings of the rank's
+    /// partial pattern, [`PetscSystem::preallocate`]); `None`: replicated
+    /// assembly.
+    assembly: Option<Distributed>,
     /// Column indices of one CSC column (scratch of the insertion).
     column: Vec<ffi::PetscInt>,
+    /// This rank's METIS cells, increasing (its piece of the output).
+    cells: Vec<usize>,
+}
+
+/// A rank's part of a distributed assembly.
+struct Distributed {
+    /// Its cells and nodes.
+    share: Arc<AssemblyShare>,
+    /// The couplings of its rows from the cells around its nodes.
+    cells: Preallocation,
+    /// `(d_nnz, o_nnz)` of its rows for the current pattern.
+    d_nnz: Vec<usize>,
+    o_nnz: Vec<usize>,
 }
 
 /// Fields of a [`RankStats`] exchanged by [`PetscSystem::distributed`].
@@ -225,7 +245,12 @@ impl<'e> PetscSystem<'e> {
                     cells: mine,
                     nodes,
                 };
-                Some((Arc::new(share), d, o))
+                Some(Distributed {
+                    share: Arc::new(share),
+                    cells: prealloc,
+                    d_nnz: d,
+                    o_nnz: o,
+                })
             }
         };
         let stats = DistributedStats {
@@ -267,12 +292,28 @@ impl<'e> PetscSystem<'e> {
             share,
             assembly,
             column: Vec::new(),
+            cells: {
+                let mut c = layout.cells.clone();
+                c.sort_unstable();
+                c
+            },
         })
     }
 
     /// This rank's number (0 writes the results).
     pub fn rank(&self) -> usize {
         self.comm.rank()
+    }
+
+    /// Ranks of the run.
+    pub fn ranks(&self) -> usize {
+        self.comm.size()
+    }
+
+    /// This rank's cells (its METIS part, increasing): the piece of the
+    /// output it writes.
+    pub fn cells(&self) -> &[usize] {
+        &self.cells
     }
 
     /// First owned PETSc row.
@@ -344,12 +385,37 @@ impl<'e> PetscSystem<'e> {
         })
     }
 
+    /// Distributed assembly: the exact preallocation of the owned rows for
+    /// the rank's partial `pattern`: the couplings of the cells around the
+    /// owned nodes (the entries other ranks' cells send) and the entries of
+    /// `pattern` in owned rows. The pattern's contact couplings are the same
+    /// on every rank (`Scatter::contact_coupled`), so an entry another rank
+    /// adds to an owned row (a node-to-segment element whose slave node it
+    /// owns) is in this rank's pattern too.
+    fn preallocate(&mut self, pattern: &SparsePattern) {
+        let dim = self.dim;
+        let Some(a) = self.assembly.as_mut() else {
+            return;
+        };
+        let mut p = a.cells.clone();
+        for j in 0..pattern.n {
+            let col = self.petsc_of[j] / dim;
+            for &i in &pattern.row_idx[pattern.col_ptr[j]..pattern.col_ptr[j + 1]] {
+                p.couple_blocks(self.petsc_of[i] / dim, col);
+            }
+        }
+        (a.d_nnz, a.o_nnz) = p.nnz();
+    }
+
     /// Creates the matrix, vectors, scatter and solver of the current rows.
     fn build(&mut self) -> Result<Objects<'e>, PetscError> {
         let (lo, n_owned) = (self.lo(), self.owned.len());
         let hi = lo + n_owned;
         let n_global = *self.offsets.last().unwrap_or(&0);
-        let mut mat = if let Some((_, d, o)) = &self.assembly {
+        let mut mat = if let Some(Distributed {
+            d_nnz: d, o_nnz: o, ..
+        }) = &self.assembly
+        {
             // distributed: the rows' entries from all the cells around the
             // owned nodes (every dof of a node, prescribed ones included)
             self.share.nonzeros = d.iter().sum::<usize>() + o.iter().sum::<usize>();
@@ -567,6 +633,9 @@ impl<'e> PetscSystem<'e> {
             self.rows = Some(self.owned_rows(pattern)?);
         }
         if self.objects.is_none() {
+            if distributed {
+                self.preallocate(pattern);
+            }
             self.objects = Some(self.build()?);
         }
         let start = Instant::now();
@@ -712,7 +781,7 @@ impl LinearSystem for PetscSystem<'_> {
     }
 
     fn share(&self) -> Option<Arc<AssemblyShare>> {
-        self.assembly.as_ref().map(|(s, _, _)| s.clone())
+        self.assembly.as_ref().map(|a| a.share.clone())
     }
 
     fn sum_over_ranks(&self, v: &mut [f64]) {

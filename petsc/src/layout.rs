@@ -239,6 +239,18 @@ impl Preallocation {
         }
     }
 
+    /// Adds column block `col` to row block `row` (PETSc block indices),
+    /// when this rank owns `row`: an entry of a rank's partial pattern
+    /// (contact couplings, added to every rank's pattern alike).
+    pub fn couple_blocks(&mut self, row: usize, col: usize) {
+        if (self.first_block..self.end_block).contains(&row) {
+            let r = &mut self.neighbours[row - self.first_block];
+            if let Err(i) = r.binary_search(&col) {
+                r.insert(i, col);
+            }
+        }
+    }
+
     /// `(d_nnz, o_nnz)` per owned dof row: entries in the diagonal block
     /// (columns owned by this rank) and outside it.
     pub fn nnz(&self) -> (Vec<usize>, Vec<usize>) {
@@ -323,6 +335,15 @@ mod tests {
         assert_eq!(p1.nnz().0[0], 4); // node 0 with 0 and 4
         p1.couple(&l1, 0, 7);
         assert_eq!(p1.nnz(), (vec![4, 4, 4, 4], vec![6, 6, 4, 4]));
+        // by blocks: node 4 (block 7, owned) with node 3 (block 2); a row
+        // of another rank is not this rank's
+        let before = p1.clone();
+        p1.couple_blocks(7, 2);
+        p1.couple_blocks(7, 2);
+        p1.couple_blocks(0, 7);
+        assert_eq!(p1.nnz().1, vec![6, 6, 6, 6]);
+        assert_eq!(p1.neighbours[1], vec![0, 2, 3, 6, 7]);
+        assert_ne!(p1, before);
     }
 
     #[test]

@@ -4,6 +4,9 @@
 //! Files in the result directory:
 //! - `inc_NNNN.vtu`: every `output.every` converged increments and always
 //!   the last one of the analysis (and, on failure, the last converged one);
+//!   under `mpirun -n N ctc run --solver petsc` instead `inc_NNNN.pvtu`
+//!   (written by rank 0) listing the pieces `inc_NNNN_p<rank>.vtu`, each
+//!   rank's cells written by that rank ([`Pieces`], [`PieceWriter`]);
 //! - `tool_<k>_NNNN.vtu`: the current geometry of rigid tool `k` at each
 //!   written increment ([`tool_vtu`]);
 //! - `results.pvd`: the time series, rewritten after each VTU, so a killed
@@ -76,6 +79,189 @@ struct Snapshot<const D: usize> {
     acceleration: Option<Vec<f64>>,
 }
 
+impl<const D: usize> Snapshot<D>
+where
+    Const<D>: Dimension<D>,
+{
+    /// The increment of `view` (velocity and acceleration when `model`
+    /// asks for them).
+    fn of(model: &Model<D>, view: &IncrementView<'_, D>) -> Snapshot<D> {
+        Snapshot {
+            step: view.step,
+            increment: view.increment,
+            time: view.time,
+            displacement: view.displacement.to_vec(),
+            reaction: view.reaction.to_vec(),
+            contact: view.contact.to_vec(),
+            points: view.points.to_vec(),
+            thermal_strain: view.thermal_strain.to_vec(),
+            temperature: view.temperature.map(<[f64]>::to_vec),
+            velocity: view
+                .velocity
+                .filter(|_| model.output.fields.contains(&Field::Velocity))
+                .map(<[f64]>::to_vec),
+            acceleration: view
+                .acceleration
+                .filter(|_| model.output.fields.contains(&Field::Acceleration))
+                .map(<[f64]>::to_vec),
+        }
+    }
+
+    /// The recovered nodal and cell stresses and strains, when a field
+    /// asks for them.
+    fn nodal_fields(
+        &self,
+        model: &Model<D>,
+    ) -> Result<Option<crate::element::recovery::NodalFields>, String> {
+        let needs_recovery = model
+            .output
+            .fields
+            .iter()
+            .any(|f| matches!(f, Field::Stress | Field::Strain | Field::VonMises));
+        if !needs_recovery {
+            return Ok(None);
+        }
+        nodal_fields_of_model_with_points(
+            model,
+            &self.displacement,
+            &self.points,
+            &self.thermal_strain,
+        )
+        .map(Some)
+    }
+}
+
+/// Whether the increment of `view` is written: every `output.every`
+/// increments and the last one of the analysis.
+fn written_now<const D: usize>(model: &Model<D>, view: &IncrementView<'_, D>) -> bool {
+    let every = model.output.every.max(1);
+    let last = view.step + 1 == model.steps.len()
+        && model.steps.last().is_some_and(|s| view.time >= s.t_end);
+    view.increment.is_multiple_of(every) || last
+}
+
+/// The pieces of a parallel output (`mpirun -n N ctc run --solver petsc`):
+/// each rank writes the cells of its partition as `inc_NNNN_p<rank>.vtu`
+/// ([`vtu::VtuData::piece`]: with the global `node` and `cell` numbers),
+/// rank 0 also `inc_NNNN.pvtu`, which lists them and is what
+/// `results.pvd` names.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Pieces {
+    /// This rank.
+    pub rank: usize,
+    /// Ranks of the run (pieces of each increment).
+    pub ranks: usize,
+    /// This rank's cells (global numbers, increasing).
+    pub cells: Vec<usize>,
+}
+
+impl Pieces {
+    /// The file of rank `rank`'s piece of increment `increment`.
+    pub fn file_name(increment: usize, rank: usize) -> String {
+        format!("inc_{increment:04}_p{rank}.vtu")
+    }
+
+    /// Writes this rank's piece of `data` into `dir`; returns its bytes.
+    fn write<const D: usize>(
+        &self,
+        dir: &Path,
+        data: &vtu::VtuData<'_, D>,
+    ) -> Result<Vec<u8>, String> {
+        let bytes = vtu::vtu(&vtu::VtuData {
+            piece: Some(&self.cells),
+            ..*data
+        });
+        let name = Self::file_name(data.increment, self.rank);
+        write_atomic(&dir.join(&name), &bytes)
+            .map_err(|e| format!("cannot write results in {}: {e}", dir.display()))?;
+        Ok(bytes)
+    }
+}
+
+/// The [`Observer`] of the ranks other than 0 under `mpirun`: writes this
+/// rank's piece of each written increment ([`Pieces`]) into the result
+/// directory rank 0's [`ResultWriter`] made, nothing else.
+#[derive(Debug)]
+pub struct PieceWriter<'m, const D: usize = 2> {
+    dir: PathBuf,
+    model: &'m Model<D>,
+    pieces: Pieces,
+    pending: Option<Snapshot<D>>,
+}
+
+impl<'m, const D: usize> PieceWriter<'m, D>
+where
+    Const<D>: Dimension<D>,
+{
+    /// The writer of `pieces` of `model`'s results in `dir`.
+    pub fn new(dir: &Path, model: &'m Model<D>, pieces: Pieces) -> Self {
+        PieceWriter {
+            dir: dir.to_path_buf(),
+            model,
+            pieces,
+            pending: None,
+        }
+    }
+
+    fn write(&self, snap: &Snapshot<D>) -> Result<(), String> {
+        let model = self.model;
+        let nodal = snap.nodal_fields(model)?;
+        let thickness = model
+            .output
+            .thickness
+            .as_ref()
+            .filter(|_| D == 3)
+            .map(|t| thickness::nodal(&model.mesh, t, &snap.displacement));
+        self.pieces
+            .write(
+                &self.dir,
+                &vtu::VtuData {
+                    model,
+                    step: model.steps.get(snap.step).map_or("", |s| s.name.as_str()),
+                    increment: snap.increment,
+                    time: snap.time,
+                    fields: &model.output.fields,
+                    displacement: &snap.displacement,
+                    reaction: &snap.reaction,
+                    contact: &snap.contact,
+                    nodal: nodal.as_ref(),
+                    temperature: snap.temperature.as_deref(),
+                    thickness: thickness.as_deref(),
+                    velocity: snap.velocity.as_deref(),
+                    acceleration: snap.acceleration.as_deref(),
+                    encoding: model.output.format,
+                    piece: None,
+                },
+            )
+            .map(|_| ())
+    }
+
+    /// Writes the last converged increment if it was not written (as
+    /// [`ResultWriter::finish`] does).
+    pub fn finish(&mut self) -> Result<(), String> {
+        match self.pending.take() {
+            Some(snap) => self.write(&snap),
+            None => Ok(()),
+        }
+    }
+}
+
+impl<const D: usize> Observer<D> for PieceWriter<'_, D>
+where
+    Const<D>: Dimension<D>,
+{
+    fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
+        let snap = Snapshot::of(self.model, view);
+        if written_now(self.model, view) {
+            self.pending = None;
+            self.write(&snap)
+        } else {
+            self.pending = Some(snap);
+            Ok(())
+        }
+    }
+}
+
 /// Writes a run's results into a directory (an [`Observer`]) for a model
 /// of dimension `D`.
 #[derive(Debug)]
@@ -92,10 +278,14 @@ pub struct ResultWriter<const D: usize = 2> {
     removed: usize,
     /// `progress.sta`.
     sta: sta::StaWriter,
+    /// Under `mpirun`: rank 0's piece; the VTU of an increment is then a
+    /// `.pvtu` of the ranks' pieces ([`Pieces`]).
+    pieces: Option<Pieces>,
 }
 
 /// Whether `name` is a file that a run writes into its result directory
-/// (or the temporary of one): `inc_<n>.vtu`, `tool_<k>_<n>.vtu`,
+/// (or the temporary of one): `inc_<n>.vtu`, `inc_<n>.pvtu`,
+/// `inc_<n>_p<rank>.vtu`, `tool_<k>_<n>.vtu`,
 /// `contact_<pair>_<n>.csv`,
 /// `results.pvd`, `history.csv`, `summary.json`, `restart.bin`,
 /// `progress.sta`.
@@ -108,6 +298,16 @@ pub fn is_result_file(name: &str) -> bool {
     if let Some(n) = name
         .strip_prefix("inc_")
         .and_then(|n| n.strip_suffix(".vtu"))
+    {
+        // a piece of a parallel run: inc_<n>_p<rank>.vtu
+        return match n.split_once("_p") {
+            Some((n, rank)) => digits(n) && digits(rank),
+            None => digits(n),
+        };
+    }
+    if let Some(n) = name
+        .strip_prefix("inc_")
+        .and_then(|n| n.strip_suffix(".pvtu"))
     {
         return digits(n);
     }
@@ -174,6 +374,7 @@ where
             written_last: false,
             removed,
             sta,
+            pieces: None,
         })
     }
 
@@ -216,8 +417,15 @@ where
             written_last: true,
             removed: 0,
             sta,
+            pieces: None,
         };
         Ok((writer, file.checkpoint))
+    }
+
+    /// Writes the VTU of each increment as pieces, this one rank 0's
+    /// ([`Pieces`]; the other ranks' [`PieceWriter`]s write theirs).
+    pub fn set_pieces(&mut self, pieces: Pieces) {
+        self.pieces = Some(pieces);
     }
 
     /// The result directory.
@@ -239,19 +447,7 @@ where
     fn write_increment(&mut self, snap: &Snapshot<D>) -> Result<(), String> {
         let model = &self.model;
         let fields = &model.output.fields;
-        let needs_recovery = fields
-            .iter()
-            .any(|f| matches!(f, Field::Stress | Field::Strain | Field::VonMises));
-        let nodal = if needs_recovery {
-            Some(nodal_fields_of_model_with_points(
-                model,
-                &snap.displacement,
-                &snap.points,
-                &snap.thermal_strain,
-            )?)
-        } else {
-            None
-        };
+        let nodal = snap.nodal_fields(model)?;
         let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
         let thickness = model
             .output
@@ -263,8 +459,7 @@ where
             let csv = thickness::csv(&model.mesh, request, values, &snap.displacement);
             write_atomic(&self.dir.join("thickness.csv"), csv.as_bytes()).map_err(io)?;
         }
-        let name = format!("inc_{:04}.vtu", snap.increment);
-        let bytes = vtu::vtu(&vtu::VtuData {
+        let data = vtu::VtuData {
             model,
             step: model.steps.get(snap.step).map_or("", |s| s.name.as_str()),
             increment: snap.increment,
@@ -279,8 +474,29 @@ where
             velocity: snap.velocity.as_deref(),
             acceleration: snap.acceleration.as_deref(),
             encoding: model.output.format,
-        });
-        write_atomic(&self.dir.join(&name), &bytes).map_err(io)?;
+            piece: None,
+        };
+        let name = match &self.pieces {
+            None => {
+                let name = format!("inc_{:04}.vtu", snap.increment);
+                write_atomic(&self.dir.join(&name), &vtu::vtu(&data)).map_err(io)?;
+                name
+            }
+            Some(pieces) => {
+                // this rank's piece, and the parallel file of all of them
+                let bytes = pieces.write(&self.dir, &data)?;
+                let name = format!("inc_{:04}.pvtu", snap.increment);
+                let sources: Vec<String> = (0..pieces.ranks)
+                    .map(|r| Pieces::file_name(snap.increment, r))
+                    .collect();
+                write_atomic(
+                    &self.dir.join(&name),
+                    vtu::pvtu(&bytes, &sources).as_bytes(),
+                )
+                .map_err(io)?;
+                name
+            }
+        };
         for (p, list) in snap.contact.iter().enumerate() {
             let csv = <Const<D> as Dimension<D>>::Contact::contact_csv(
                 model,
@@ -363,33 +579,8 @@ where
         self.sta
             .increment(view)
             .map_err(|e| format!("cannot write {STA_FILE} in {}: {e}", self.dir.display()))?;
-        let snap = Snapshot {
-            step: view.step,
-            increment: view.increment,
-            time: view.time,
-            displacement: view.displacement.to_vec(),
-            reaction: view.reaction.to_vec(),
-            contact: view.contact.to_vec(),
-            points: view.points.to_vec(),
-            thermal_strain: view.thermal_strain.to_vec(),
-            temperature: view.temperature.map(<[f64]>::to_vec),
-            velocity: view
-                .velocity
-                .filter(|_| self.model.output.fields.contains(&Field::Velocity))
-                .map(<[f64]>::to_vec),
-            acceleration: view
-                .acceleration
-                .filter(|_| self.model.output.fields.contains(&Field::Acceleration))
-                .map(<[f64]>::to_vec),
-        };
-        let every = self.model.output.every.max(1);
-        let last = view.step + 1 == self.model.steps.len()
-            && self
-                .model
-                .steps
-                .last()
-                .is_some_and(|s| view.time >= s.t_end);
-        if view.increment.is_multiple_of(every) || last {
+        let snap = Snapshot::of(&self.model, view);
+        if written_now(&self.model, view) {
             self.pending = None;
             self.written_last = true;
             self.write_increment(&snap)
@@ -430,6 +621,9 @@ mod tests {
     fn result_files_are_recognised_by_name() {
         for ours in [
             "inc_0001.vtu",
+            "inc_0001.pvtu",
+            "inc_0001_p1.vtu",
+            ".inc_0003_p0.vtu.tmp",
             "inc_12345.vtu",
             "contact_0_0003.csv",
             "contact_12_0003.csv",
@@ -447,6 +641,9 @@ mod tests {
         }
         for theirs in [
             "inc_.vtu",
+            "inc_0001_p.vtu",
+            "inc_0001_q1.vtu",
+            "inc_x.pvtu",
             "inc_final.vtu",
             "inc_0001.vtu.bak",
             "contact_a_0001.csv",

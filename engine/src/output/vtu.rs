@@ -64,6 +64,87 @@ pub struct VtuData<'a, const D: usize = 2> {
     pub acceleration: Option<&'a [f64]>,
     /// How the arrays are stored.
     pub encoding: Encoding,
+    /// A piece of a parallel file (`None`: the whole mesh): these global
+    /// cells (increasing) and the nodes they use, with the point data
+    /// `node` and the cell data `cell` giving their global numbers
+    /// ([`pvtu`] lists the pieces).
+    pub piece: Option<&'a [usize]>,
+}
+
+/// The nodes and cells of a piece, and the local number of each node.
+struct Selection {
+    /// Global nodes of the piece, increasing.
+    nodes: Vec<usize>,
+    /// Global cells of the piece, increasing.
+    cells: Vec<usize>,
+    /// Local number of each global node (`usize::MAX`: not in the piece).
+    local: Vec<usize>,
+}
+
+impl Selection {
+    fn of<const D: usize>(m: &Model<D>, cells: Option<&[usize]>) -> Option<Selection> {
+        let cells = cells?;
+        let nn = m.mesh.nodes.len();
+        let mut used = vec![false; nn];
+        let cells: Vec<usize> = cells
+            .iter()
+            .copied()
+            .filter(|&c| c < m.mesh.cells.len())
+            .collect();
+        for &c in &cells {
+            for &n in m.mesh.cells.nodes(c) {
+                used[n] = true;
+            }
+        }
+        let nodes: Vec<usize> = (0..nn).filter(|&n| used[n]).collect();
+        let mut local = vec![usize::MAX; nn];
+        for (i, &n) in nodes.iter().enumerate() {
+            local[n] = i;
+        }
+        Some(Selection {
+            nodes,
+            cells,
+            local,
+        })
+    }
+}
+
+/// The point values (`comps` per node, all nodes) of the piece's nodes.
+fn pick<T: Copy>(
+    sel: Option<&Selection>,
+    comps: usize,
+    values: impl IntoIterator<Item = T>,
+) -> Vec<T> {
+    let all: Vec<T> = values.into_iter().collect();
+    match sel {
+        None => all,
+        Some(sel) => {
+            let k = comps.max(1);
+            sel.nodes
+                .iter()
+                .flat_map(|&n| all[k * n..k * (n + 1)].iter().copied())
+                .collect()
+        }
+    }
+}
+
+/// The cell values (`comps` per cell, all cells) of the piece's cells.
+fn pick_cells<T: Copy>(
+    sel: Option<&Selection>,
+    comps: usize,
+    values: impl IntoIterator<Item = T>,
+) -> Vec<T> {
+    let all: Vec<T> = values.into_iter().collect();
+    match sel {
+        None => all,
+        Some(sel) => {
+            let k = comps.max(1);
+            sel.cells
+                .iter()
+                .flat_map(|&c| all[k * c..k * (c + 1)].iter().copied())
+                .collect()
+        }
+    }
 }
 
 const TENSOR_NAMES: &str =
@@ -79,6 +160,23 @@ fn xyz<const D: usize>(v: &[f64; D]) -> [f64; 3] {
     std::array::from_fn(|k| if k < D { v[k] } else { 0.0 })
 }
 
+/// The VTK cell type of `kind` (quadratic cells: the engine's node order
+/// is VTK's).
+fn vtk_type(kind: CellKind) -> u8 {
+    match kind {
+        CellKind::Tri3 => 5,
+        CellKind::Quad4 => 9,
+        CellKind::Tet4 => 10,
+        CellKind::Hex8 => 12,
+        CellKind::Tri6 => 22,
+        CellKind::Quad8 | CellKind::Quad8R => 23,
+        CellKind::Quad9 => 28,
+        CellKind::Tet10 => 24,
+        CellKind::Hex20 | CellKind::Hex20R => 25,
+        CellKind::Hex27 => 29,
+    }
+}
+
 /// Indentation of a data array.
 const IN: &str = "        ";
 
@@ -92,6 +190,8 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
         (4, TENSOR_NAMES)
     };
     let nn = m.mesh.nodes.len();
+    let sel = Selection::of(m, d.piece);
+    let sel = sel.as_ref();
     let mut s = String::with_capacity(4096);
     let mut a = Arrays::new(d.encoding);
     s.push_str("<?xml version=\"1.0\"?>\n");
@@ -144,8 +244,9 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
     s.push_str("    </FieldData>\n");
     let _ = writeln!(
         s,
-        "    <Piece NumberOfPoints=\"{nn}\" NumberOfCells=\"{}\">",
-        m.mesh.cells.len()
+        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        sel.map_or(nn, |p| p.nodes.len()),
+        sel.map_or(m.mesh.cells.len(), |p| p.cells.len())
     );
     let has = |f: Field| d.fields.contains(&f);
     if has(Field::Displacement) {
@@ -160,14 +261,28 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
             "displacement",
             3,
             "",
-            d.displacement.iter().flat_map(xyz),
+            pick(sel, 3, d.displacement.iter().flat_map(xyz)),
         );
     }
     if let Some(t) = d.temperature {
-        a.array(&mut s, IN, "temperature", 1, "", t.iter().copied());
+        a.array(
+            &mut s,
+            IN,
+            "temperature",
+            1,
+            "",
+            pick(sel, 1, t.iter().copied()),
+        );
     }
     if let Some(t) = d.thickness.filter(|t| t.len() == nn) {
-        a.array(&mut s, IN, "thickness", 1, "", t.iter().copied());
+        a.array(
+            &mut s,
+            IN,
+            "thickness",
+            1,
+            "",
+            pick(sel, 1, t.iter().copied()),
+        );
     }
     for (field, name, values) in [
         (Field::Velocity, "velocity", d.velocity),
@@ -180,9 +295,13 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 name,
                 3,
                 "",
-                v.chunks_exact(D).flat_map(|c| {
-                    std::array::from_fn::<f64, 3, _>(|k| c.get(k).copied().unwrap_or(0.0))
-                }),
+                pick(
+                    sel,
+                    3,
+                    v.chunks_exact(D).flat_map(|c| {
+                        std::array::from_fn::<f64, 3, _>(|k| c.get(k).copied().unwrap_or(0.0))
+                    }),
+                ),
             );
         }
     }
@@ -194,10 +313,14 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "stress",
                 tensor_comps,
                 tensor_names,
-                nodal
-                    .stress
-                    .iter()
-                    .flat_map(|v| v[..tensor_comps].iter().copied()),
+                pick(
+                    sel,
+                    tensor_comps,
+                    nodal
+                        .stress
+                        .iter()
+                        .flat_map(|v| v[..tensor_comps].iter().copied()),
+                ),
             );
         }
         if has(Field::Strain) {
@@ -207,10 +330,14 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "strain",
                 tensor_comps,
                 tensor_names,
-                nodal
-                    .strain
-                    .iter()
-                    .flat_map(|v| v[..tensor_comps].iter().copied()),
+                pick(
+                    sel,
+                    tensor_comps,
+                    nodal
+                        .strain
+                        .iter()
+                        .flat_map(|v| v[..tensor_comps].iter().copied()),
+                ),
             );
         }
         if has(Field::VonMises) {
@@ -220,7 +347,7 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "von_mises",
                 1,
                 "",
-                nodal.von_mises.iter().copied(),
+                pick(sel, 1, nodal.von_mises.iter().copied()),
             );
         }
         // written whenever a body is plastic and stresses are requested
@@ -233,7 +360,7 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "equivalent_plastic_strain",
                 1,
                 "",
-                nodal.equivalent_plastic_strain.iter().copied(),
+                pick(sel, 1, nodal.equivalent_plastic_strain.iter().copied()),
             );
         }
     }
@@ -244,7 +371,7 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
             "reaction",
             3,
             "",
-            d.reaction.iter().flat_map(xyz),
+            pick(sel, 3, d.reaction.iter().flat_map(xyz)),
         );
     }
     if has(Field::Contact) {
@@ -270,12 +397,19 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 }
             }
         }
-        a.array(&mut s, IN, "contact_gap", 1, "", gap);
-        a.array(&mut s, IN, "contact_pressure", 1, "", pressure);
-        a.array(&mut s, IN, "contact_status", 1, "", status);
+        a.array(&mut s, IN, "contact_gap", 1, "", pick(sel, 1, gap));
+        a.array(
+            &mut s,
+            IN,
+            "contact_pressure",
+            1,
+            "",
+            pick(sel, 1, pressure),
+        );
+        a.array(&mut s, IN, "contact_status", 1, "", pick(sel, 1, status));
         if m.contacts.iter().any(|c| c.friction.is_some()) {
             let f = crate::contact::friction::nodal_fields(nn, d.contact);
-            a.array(&mut s, IN, "friction_force", 1, "", f.force);
+            a.array(&mut s, IN, "friction_force", 1, "", pick(sel, 1, f.force));
             if D == 3 {
                 a.array(
                     &mut s,
@@ -283,13 +417,31 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                     "friction_traction",
                     3,
                     "",
-                    f.traction.iter().flatten().copied(),
+                    pick(sel, 3, f.traction.iter().flatten().copied()),
                 );
             }
-            a.array(&mut s, IN, "friction_slip", 1, "", f.slip);
-            a.array(&mut s, IN, "friction_status", 1, "", f.status);
-            a.array(&mut s, IN, "friction_dissipation", 1, "", f.dissipation);
+            a.array(&mut s, IN, "friction_slip", 1, "", pick(sel, 1, f.slip));
+            a.array(&mut s, IN, "friction_status", 1, "", pick(sel, 1, f.status));
+            a.array(
+                &mut s,
+                IN,
+                "friction_dissipation",
+                1,
+                "",
+                pick(sel, 1, f.dissipation),
+            );
         }
+    }
+    if let Some(sel) = sel {
+        // the global node numbers: the pieces' union is the whole mesh
+        a.array(
+            &mut s,
+            IN,
+            "node",
+            1,
+            "",
+            sel.nodes.iter().map(|&n| n as i64),
+        );
     }
     s.push_str("      </PointData>\n      <CellData>\n");
     let mut body = vec![-1i32; m.mesh.cells.len()];
@@ -300,7 +452,17 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
             }
         }
     }
-    a.array(&mut s, IN, "body", 1, "", body);
+    a.array(&mut s, IN, "body", 1, "", pick_cells(sel, 1, body));
+    if let Some(sel) = sel {
+        a.array(
+            &mut s,
+            IN,
+            "cell",
+            1,
+            "",
+            sel.cells.iter().map(|&c| c as i64),
+        );
+    }
     if let Some(cells) = d.nodal.map(|n| &n.cells) {
         if has(Field::Stress) {
             a.array(
@@ -309,10 +471,14 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "stress",
                 tensor_comps,
                 tensor_names,
-                cells
-                    .stress
-                    .iter()
-                    .flat_map(|v| v[..tensor_comps].iter().copied()),
+                pick_cells(
+                    sel,
+                    tensor_comps,
+                    cells
+                        .stress
+                        .iter()
+                        .flat_map(|v| v[..tensor_comps].iter().copied()),
+                ),
             );
         }
         if has(Field::Strain) {
@@ -322,10 +488,14 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "strain",
                 tensor_comps,
                 tensor_names,
-                cells
-                    .strain
-                    .iter()
-                    .flat_map(|v| v[..tensor_comps].iter().copied()),
+                pick_cells(
+                    sel,
+                    tensor_comps,
+                    cells
+                        .strain
+                        .iter()
+                        .flat_map(|v| v[..tensor_comps].iter().copied()),
+                ),
             );
         }
         if has(Field::VonMises) {
@@ -335,7 +505,7 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "von_mises",
                 1,
                 "",
-                cells.von_mises.iter().copied(),
+                pick_cells(sel, 1, cells.von_mises.iter().copied()),
             );
         }
         if !cells.equivalent_plastic_strain.is_empty()
@@ -347,7 +517,7 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
                 "equivalent_plastic_strain",
                 1,
                 "",
-                cells.equivalent_plastic_strain.iter().copied(),
+                pick_cells(sel, 1, cells.equivalent_plastic_strain.iter().copied()),
             );
         }
     }
@@ -358,19 +528,23 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
         "coordinates",
         3,
         "",
-        m.mesh.nodes.iter().flat_map(xyz),
+        pick(sel, 3, m.mesh.nodes.iter().flat_map(xyz)),
     );
     s.push_str("      </Points>\n      <Cells>\n");
+    let cells: Vec<usize> = match sel {
+        Some(sel) => sel.cells.clone(),
+        None => (0..m.mesh.cells.len()).collect(),
+    };
+    let local = |n: usize| sel.map_or(n, |p| p.local[n]) as i64;
     a.array(
         &mut s,
         IN,
         "connectivity",
         1,
         "",
-        m.mesh
-            .cells
+        cells
             .iter()
-            .flat_map(|c| c.nodes.iter().map(|&n| n as i64)),
+            .flat_map(|&c| m.mesh.cells.nodes(c).iter().map(|&n| local(n))),
     );
     a.array(
         &mut s,
@@ -378,8 +552,8 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
         "offsets",
         1,
         "",
-        m.mesh.cells.iter().scan(0i64, |o, c| {
-            *o += c.kind.node_count() as i64;
+        cells.iter().scan(0i64, |o, &c| {
+            *o += m.mesh.cells.kind(c).node_count() as i64;
             Some(*o)
         }),
     );
@@ -389,22 +563,56 @@ pub fn vtu<const D: usize>(d: &VtuData<'_, D>) -> Vec<u8> {
         "types",
         1,
         "",
-        m.mesh.cells.iter().map(|c| match c.kind {
-            CellKind::Tri3 => 5u8,
-            CellKind::Quad4 => 9u8,
-            CellKind::Tet4 => 10u8,
-            CellKind::Hex8 => 12u8,
-            // quadratic cells: the engine's node order is VTK's
-            CellKind::Tri6 => 22u8,
-            CellKind::Quad8 | CellKind::Quad8R => 23u8,
-            CellKind::Quad9 => 28u8,
-            CellKind::Tet10 => 24u8,
-            CellKind::Hex20 | CellKind::Hex20R => 25u8,
-            CellKind::Hex27 => 29u8,
-        }),
+        cells.iter().map(|&c| vtk_type(m.mesh.cells.kind(c))),
     );
     s.push_str("      </Cells>\n    </Piece>\n  </UnstructuredGrid>\n");
     a.finish(s)
+}
+
+/// The parallel file (`.pvtu`) of the pieces `sources` (file names
+/// relative to it): the arrays it declares are those of `piece`, the
+/// bytes of one of the pieces written by [`vtu`] (every piece of an
+/// increment has the same arrays), read from its XML header.
+pub fn pvtu(piece: &[u8], sources: &[String]) -> String {
+    let end = piece
+        .windows(b"<AppendedData".len())
+        .position(|w| w == b"<AppendedData")
+        .unwrap_or(piece.len());
+    let head = String::from_utf8_lossy(&piece[..end]);
+    let mut out = String::from("<?xml version=\"1.0\"?>\n");
+    for line in head.lines().filter(|l| l.starts_with("<!--")) {
+        out.push_str(line);
+        out.push('\n');
+    }
+    out.push_str(
+        "<VTKFile type=\"PUnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" \
+         header_type=\"UInt64\">\n  <PUnstructuredGrid GhostLevel=\"0\">\n",
+    );
+    let mut inside = false;
+    for line in head.lines().map(str::trim) {
+        for (open, close, tag) in [
+            ("<PointData", "</PointData>", "PPointData"),
+            ("<CellData", "</CellData>", "PCellData"),
+            ("<Points", "</Points>", "PPoints"),
+        ] {
+            if let Some(rest) = line.strip_prefix(open) {
+                let _ = writeln!(out, "    <{tag}{rest}");
+                inside = true;
+            } else if line == close {
+                let _ = writeln!(out, "    </{tag}>");
+                inside = false;
+            }
+        }
+        if let Some(rest) = line.strip_prefix("<DataArray").filter(|_| inside) {
+            let attributes = rest.split(" format=").next().unwrap_or(rest);
+            let _ = writeln!(out, "      <PDataArray{attributes}/>");
+        }
+    }
+    for source in sources {
+        let _ = writeln!(out, "    <Piece Source=\"{source}\"/>");
+    }
+    out.push_str("  </PUnstructuredGrid>\n</VTKFile>\n");
+    out
 }
 
 #[cfg(test)]
@@ -421,7 +629,7 @@ mod tests {
         body[open..close].split_whitespace().collect()
     }
 
-    fn file(encoding: Encoding) -> Vec<u8> {
+    fn piece_file(encoding: Encoding, piece: Option<&[usize]>) -> Vec<u8> {
         let m = model_with_pair();
         let u = vec![[0.0, 0.1], [0.5, -0.25], [1e-300, 0.0], [0.0, 3.0]];
         let r = vec![[0.0; 2]; 4];
@@ -441,7 +649,49 @@ mod tests {
             velocity: None,
             acceleration: None,
             encoding,
+            piece,
         })
+    }
+
+    fn file(encoding: Encoding) -> Vec<u8> {
+        piece_file(encoding, None)
+    }
+
+    #[test]
+    fn pieces_join_into_the_whole_file_and_the_pvtu_lists_them() {
+        let whole = Vtu::read(&file(Encoding::Binary)).unwrap();
+        let a = piece_file(Encoding::Binary, Some(&[1]));
+        let b = piece_file(Encoding::Ascii, Some(&[0]));
+        let (pa, pb) = (Vtu::read(&a).unwrap(), Vtu::read(&b).unwrap());
+        // cell 1 is (2, 0, 3): three points, renumbered
+        assert_eq!((pa.points, pa.cells), (3, 1));
+        assert_eq!(pa.point("node").unwrap().values, [0.0, 2.0, 3.0]);
+        assert_eq!(pa.cell("cell").unwrap().values, [1.0]);
+        assert_eq!(
+            pa.array(Section::Cells, "connectivity").unwrap().values,
+            [1.0, 0.0, 2.0]
+        );
+        let joined = super::super::vtu_read::join_pieces(&[pa.clone(), pb]).unwrap();
+        assert_eq!((joined.points, joined.cells), (whole.points, whole.cells));
+        assert_eq!(joined.arrays.len(), whole.arrays.len());
+        for (j, w) in joined.arrays.iter().zip(&whole.arrays) {
+            assert_eq!((&j.name, j.section), (&w.name, w.section));
+            assert_eq!(j.values, w.values, "{}", j.name);
+        }
+        // a piece alone misses a node: an error, not a panic
+        assert!(super::super::vtu_read::join_pieces(&[pa]).is_err());
+        let p = pvtu(&a, &["x_p0.vtu".into(), "x_p1.vtu".into()]);
+        assert!(p.contains("<PUnstructuredGrid GhostLevel=\"0\">"));
+        assert!(p.contains("<PPointData Vectors=\"displacement\">"));
+        assert!(p.contains(
+            "<PDataArray type=\"Float64\" Name=\"displacement\" NumberOfComponents=\"3\"/>"
+        ));
+        assert!(p.contains("<PDataArray type=\"Int64\" Name=\"cell\" NumberOfComponents=\"1\"/>"));
+        assert!(p.contains("<PPoints>") && p.contains("</PPoints>"));
+        assert!(!p.contains("connectivity"), "cells are not declared");
+        assert!(p.contains("<Piece Source=\"x_p1.vtu\"/>"));
+        // the ascii piece declares the same arrays
+        assert_eq!(p, pvtu(&b, &["x_p0.vtu".into(), "x_p1.vtu".into()]));
     }
 
     #[test]

@@ -116,6 +116,127 @@ impl Vtu {
     }
 }
 
+/// The whole mesh of the pieces of a parallel file (`.pvtu`; each piece
+/// written with the point data `node` and the cell data `cell`, the global
+/// numbers of its points and cells, as `ctc run --solver petsc` under
+/// `mpirun` writes them): every point and cell array at its global
+/// numbers, the connectivity in global node numbers, in the order of the
+/// first piece's arrays (without `node` and `cell`), as a VTU of the whole
+/// mesh holds them. A node of several pieces must have the same values in
+/// each; a node or cell no piece holds is an error.
+pub fn join_pieces(pieces: &[Vtu]) -> Result<Vtu, String> {
+    let first = pieces.first().ok_or("no pieces")?;
+    let ids = |v: &Vtu, section: Section, name: &str| -> Result<Vec<usize>, String> {
+        let a = v
+            .array(section, name)
+            .ok_or(format!("a piece without the {name} numbers"))?;
+        Ok(a.values.iter().map(|&x| x as usize).collect())
+    };
+    let mut node_ids = Vec::new();
+    let mut cell_ids = Vec::new();
+    for v in pieces {
+        node_ids.push(ids(v, Section::PointData, "node")?);
+        cell_ids.push(ids(v, Section::CellData, "cell")?);
+    }
+    let total = |all: &[Vec<usize>]| all.iter().flatten().max().map_or(0, |m| m + 1);
+    let (points, cells) = (total(&node_ids), total(&cell_ids));
+    let mut arrays = Vec::new();
+    for a in &first.arrays {
+        let per_node = matches!(a.section, Section::PointData | Section::Points);
+        let per_cell = a.section == Section::CellData;
+        if (a.section == Section::PointData && a.name == "node")
+            || (per_cell && a.name == "cell")
+            || a.section == Section::Cells
+        {
+            continue;
+        }
+        if !(per_node || per_cell) {
+            arrays.push(a.clone());
+            continue;
+        }
+        let k = a.components.max(1);
+        let n = if per_node { points } else { cells };
+        let mut values = vec![f64::NAN; k * n];
+        let mut seen = vec![false; n];
+        for (p, v) in pieces.iter().enumerate() {
+            let b = v
+                .array(a.section, &a.name)
+                .ok_or(format!("piece {p} has no array {}", a.name))?;
+            let ids = if per_node { &node_ids[p] } else { &cell_ids[p] };
+            if b.values.len() != k * ids.len() {
+                return Err(format!("piece {p}: array {} has the wrong length", a.name));
+            }
+            for (i, &g) in ids.iter().enumerate() {
+                let new = &b.values[k * i..k * (i + 1)];
+                let old = &mut values[k * g..k * (g + 1)];
+                if seen[g] && old.iter().zip(new).any(|(x, y)| x.to_bits() != y.to_bits()) {
+                    return Err(format!("{} differs between pieces at {g}", a.name));
+                }
+                old.copy_from_slice(new);
+                seen[g] = true;
+            }
+        }
+        if let Some(g) = seen.iter().position(|s| !s) {
+            return Err(format!(
+                "no piece holds {} {g}",
+                if per_node { "node" } else { "cell" }
+            ));
+        }
+        arrays.push(DataArray {
+            values,
+            ..a.clone()
+        });
+    }
+    // the cells: connectivity in global node numbers, in global cell order
+    let mut conn: Vec<Vec<f64>> = vec![Vec::new(); cells];
+    let mut types = vec![0.0; cells];
+    for (p, v) in pieces.iter().enumerate() {
+        let get = |name: &str| {
+            v.array(Section::Cells, name)
+                .ok_or(format!("piece {p} has no {name}"))
+        };
+        let (c, o, t) = (get("connectivity")?, get("offsets")?, get("types")?);
+        let mut start = 0;
+        for (i, &g) in cell_ids[p].iter().enumerate() {
+            let end = *o.values.get(i).ok_or("offsets too short")? as usize;
+            let local = c.values.get(start..end).ok_or("connectivity too short")?;
+            conn[g] = local
+                .iter()
+                .map(|&l| node_ids[p].get(l as usize).map(|&n| n as f64))
+                .collect::<Option<_>>()
+                .ok_or("a cell names a point outside its piece")?;
+            types[g] = *t.values.get(i).ok_or("types too short")?;
+            start = end;
+        }
+    }
+    for (name, values) in [
+        ("connectivity", conn.concat()),
+        (
+            "offsets",
+            conn.iter()
+                .scan(0.0, |o, c| {
+                    *o += c.len() as f64;
+                    Some(*o)
+                })
+                .collect(),
+        ),
+        ("types", types),
+    ] {
+        let a = first
+            .array(Section::Cells, name)
+            .ok_or(format!("no {name}"))?;
+        arrays.push(DataArray {
+            values,
+            ..a.clone()
+        });
+    }
+    Ok(Vtu {
+        points,
+        cells,
+        arrays,
+    })
+}
+
 /// An XML tag of the head.
 #[derive(Debug)]
 struct Tag<'a> {

@@ -106,6 +106,33 @@ struct Plan {
     force_owner: Vec<u32>,
 }
 
+/// Values of one packed [`MaterialPoint`] ([`pack_point`]): position (3),
+/// volume, strain (6), stress (6), equivalent plastic strain, history
+/// tensor (6).
+const POINT_VALUES: usize = 23;
+
+/// `p` as [`POINT_VALUES`] numbers (the order of the restart file).
+fn pack_point(p: &MaterialPoint, out: &mut [f64]) {
+    let s = &p.state;
+    out[..3].copy_from_slice(&s.position);
+    out[3] = s.volume;
+    out[4..10].copy_from_slice(s.strain.as_slice());
+    out[10..16].copy_from_slice(s.stress.as_slice());
+    out[16] = p.history.ep;
+    out[17..23].copy_from_slice(&p.history.tensor);
+}
+
+/// The point [`pack_point`] packed into `v`.
+fn unpack_point(v: &[f64], p: &mut MaterialPoint) {
+    let s = &mut p.state;
+    s.position.copy_from_slice(&v[..3]);
+    s.volume = v[3];
+    s.strain.copy_from_slice(&v[4..10]);
+    s.stress.copy_from_slice(&v[10..16]);
+    p.history.ep = v[16];
+    p.history.tensor.copy_from_slice(&v[17..23]);
+}
+
 /// Marks a cell without a cached stiffness matrix.
 const NO_MATRIX: usize = usize::MAX;
 
@@ -126,11 +153,13 @@ where
     /// its cells, the others skipped by [`Assembler::assemble`].
     pub fn with_share(model: &Model<D>, share: Option<Arc<AssemblyShare>>) -> Result<Self, String> {
         let blocks = blocks_of(model)?;
-        let owns = |c: usize| share.as_ref().is_none_or(|s| s.owns_cell(c));
+        // the committed points of every cell, also those of other ranks
+        // (kept current by `Assembler::exchange_points`): the output, the
+        // pressure controls and a restart file see the whole body
         let mut committed = vec![Vec::new(); model.mesh.cells.len()];
         for b in &blocks {
             if b.nonlinear.is_some() {
-                for c in b.cells.clone().filter(|&c| owns(c)) {
+                for c in b.cells.clone() {
                     let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
                         .map_err(|e| format!("cell {c}: {}", e.message))?;
                     committed[c] = vec![virgin(b.kinematics); kernel.point_count()];
@@ -291,6 +320,52 @@ where
     pub fn rollback(&mut self) {
         for (c, t) in self.committed.iter().zip(self.trial.iter_mut()) {
             t.copy_from_slice(c);
+        }
+    }
+
+    /// Distributed assembly ([`crate::solve::share`]): after a commit, the
+    /// committed points of the other ranks' cells, which only their rank
+    /// evaluated, received through `sum` (a sum over the ranks of a flat
+    /// vector, the same bits on every rank): each rank puts its cells'
+    /// values and `-0.0` elsewhere, and `x + (-0.0) = x` for every `x`, so
+    /// every rank then holds every cell's points bit for bit as their
+    /// owner computed them. Trial points of those cells are set alike (a
+    /// rollback leaves them unchanged). Nothing to do without a split share
+    /// or without nonlinear cells.
+    pub fn exchange_points(&mut self, sum: impl FnOnce(&mut [f64])) {
+        let Some(share) = self.share.clone().filter(|s| s.split()) else {
+            return;
+        };
+        let n: usize = self.committed.iter().map(Vec::len).sum();
+        if n == 0 {
+            return;
+        }
+        let mut flat = vec![-0.0; n * POINT_VALUES];
+        let mut at = 0;
+        for (c, cell) in self.committed.iter().enumerate() {
+            let len = cell.len() * POINT_VALUES;
+            if share.owns_cell(c) {
+                for (p, out) in cell.iter().zip(flat[at..at + len].chunks_mut(POINT_VALUES)) {
+                    pack_point(p, out);
+                }
+            }
+            at += len;
+        }
+        sum(&mut flat);
+        let mut at = 0;
+        for (c, (cell, trial)) in self.committed.iter_mut().zip(&mut self.trial).enumerate() {
+            let len = cell.len() * POINT_VALUES;
+            if !share.owns_cell(c) {
+                for ((p, t), v) in cell
+                    .iter_mut()
+                    .zip(trial.iter_mut())
+                    .zip(flat[at..at + len].chunks(POINT_VALUES))
+                {
+                    unpack_point(v, p);
+                    *t = *p;
+                }
+            }
+            at += len;
         }
     }
 
@@ -1115,6 +1190,68 @@ mod tests {
         for (a, b) in k_sum.iter().zip(&k) {
             assert!((a - b).abs() <= 1e-12 * (1.0 + b.abs()), "{a} vs {b}");
         }
+    }
+
+    #[test]
+    fn two_ranks_exchange_their_committed_points_bit_for_bit() {
+        // the plastic finite-strain law on the two quads: each rank
+        // evaluates its cell; after commit and exchange both hold the
+        // points the whole assembler computed, bit for bit
+        let mut model = two_quads();
+        let plastic = plastic_square();
+        model.materials = plastic.materials.clone();
+        model.bodies[0].kinematics = Kinematics::Finite;
+        let dofs = DofMap::new(&model);
+        let u: Vec<[f64; 2]> = (0..6)
+            .map(|n| [0.02 * (n % 3) as f64, -0.01 * (n / 3) as f64])
+            .collect();
+        let mut whole = Assembler::new(&model).unwrap();
+        let scatter = Scatter::new(&model.mesh, &dofs).unwrap();
+        let mut f = vec![0.0; 12];
+        whole.begin_increment(1.0);
+        whole
+            .assemble(&model.mesh, &scatter, &u, &mut f, None)
+            .unwrap();
+        whole.commit();
+        assert!(whole.points()[1][0].history.ep > 0.0, "plastic");
+        let mut ranks = Vec::new();
+        for cells in [[true, false], [false, true]] {
+            let share = Arc::new(AssemblyShare {
+                ranks: 2,
+                cells: cells.to_vec(),
+                nodes: vec![cells[0]; 6],
+            });
+            let scatter =
+                Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
+            let mut asm = Assembler::with_share(&model, Some(share)).unwrap();
+            asm.begin_increment(1.0);
+            asm.assemble(&model.mesh, &scatter, &u, &mut f, None)
+                .unwrap();
+            asm.commit();
+            ranks.push(asm);
+        }
+        // before the exchange a rank holds virgin points of the other cell
+        assert_eq!(ranks[0].points()[1][0].history.ep, 0.0);
+        // the sum over ranks of the packed vectors (as MPI's reduction)
+        let mut packed: Vec<Vec<f64>> = Vec::new();
+        for r in &ranks {
+            r.clone().exchange_points(|v| packed.push(v.to_vec()));
+        }
+        let total: Vec<f64> = packed[0]
+            .iter()
+            .zip(&packed[1])
+            .map(|(a, b)| a + b)
+            .collect();
+        for r in &mut ranks {
+            r.exchange_points(|v| v.copy_from_slice(&total));
+            assert_eq!(format!("{:?}", r.points()), format!("{:?}", whole.points()));
+            // a rollback keeps them
+            r.rollback();
+            assert_eq!(format!("{:?}", r.points()), format!("{:?}", whole.points()));
+        }
+        // one rank: nothing exchanged
+        let mut one = whole.clone();
+        one.exchange_points(|_| panic!("no exchange without a split share"));
     }
 
     #[test]

@@ -214,6 +214,9 @@ impl ContactAssembly {
                         let nodes = [nc.node, ms.nodes[0], ms.nodes[1]];
                         for (bj, &nb) in nodes.iter().enumerate() {
                             for (bi, &na) in nodes.iter().enumerate() {
+                                if !scatter.adds_rows_of(na) {
+                                    continue;
+                                }
                                 let Some(slots) = scatter.pair_slots(dofs, na, nb) else {
                                     continue;
                                 };
@@ -247,11 +250,13 @@ impl ContactAssembly {
         dofs: &DofMap,
         scatter: &Scatter,
     ) -> Result<Option<Scatter>, String> {
+        let couplings = &self.couplings;
+        let coupled = |a: usize, b: usize| scatter.contact_coupled(dofs, couplings, a, b);
+        // the master segment's own pair too: under a distributed assembly
+        // its cell may be another rank's (alone it is always in the pattern)
         let missing = self.contact.iter().flatten().any(|nc| {
             nc.master.as_ref().is_some_and(|ms| {
-                ms.nodes
-                    .iter()
-                    .any(|&m| scatter.pair_slots(dofs, nc.node, m).is_none())
+                !coupled(ms.nodes[0], ms.nodes[1]) || ms.nodes.iter().any(|&m| !coupled(nc.node, m))
             })
         });
         let rows = || {
@@ -261,11 +266,9 @@ impl ContactAssembly {
                 .flatten()
         };
         let missing_rows = rows().any(|c| {
-            c.nodes.iter().any(|&a| {
-                c.nodes
-                    .iter()
-                    .any(|&b| scatter.pair_slots(dofs, a, b).is_none())
-            })
+            c.nodes
+                .iter()
+                .any(|&a| c.nodes.iter().any(|&b| !coupled(a, b)))
         });
         if !missing && !missing_rows {
             return Ok(None);
@@ -281,6 +284,7 @@ impl ContactAssembly {
             }
         }
         self.couplings.extend(extra);
+        let split = scatter.share().is_some_and(|s| s.split());
         let mut near = Vec::new();
         for (p, res) in self.contact.iter().enumerate() {
             for nc in res {
@@ -298,6 +302,17 @@ impl ContactAssembly {
                 for &m in &near {
                     if m != nc.node {
                         self.couplings.push((nc.node.min(m), nc.node.max(m)));
+                    }
+                }
+                if split {
+                    // the pairs of the master nodes around it as well (the
+                    // test above asks for the list, not the rank's cells)
+                    for (k, &a) in near.iter().enumerate() {
+                        for &b in &near[k + 1..] {
+                            if a != b {
+                                self.couplings.push((a.min(b), a.max(b)));
+                            }
+                        }
                     }
                 }
             }
@@ -364,6 +379,9 @@ pub(crate) fn add_coupling<const D: usize>(
     let nd = dim * c.nodes.len();
     for (bj, &nb) in c.nodes.iter().enumerate() {
         for (bi, &na) in c.nodes.iter().enumerate() {
+            if !scatter.adds_rows_of(na) {
+                continue;
+            }
             let Some(slots) = scatter.pair_slots(dofs, na, nb) else {
                 continue;
             };

@@ -11,19 +11,28 @@
 //!
 //! The share is given by the linear system ([`super::linalg::LinearSystem::
 //! share`]); the sparsity pattern ([`super::linalg::Scatter`]) then holds
-//! only the couplings of the rank's cells, and the element matrices and
-//! integration points only its cells, so the memory of the assembly falls
-//! with the rank count. Contact is evaluated by every rank for every slave
-//! node (the rigid tools are replicated; the search is a small part of a
-//! run), so every contact decision is identical on all ranks; a slave
-//! node's tangent block is added by the rank owning the node.
+//! only the couplings of the rank's cells, and the element matrices only
+//! its cells, so the memory of the assembly falls with the rank count.
+//! Integration points (plastic strain, hardening, finite-strain history)
+//! are evaluated by the rank of their cell only; at each commit the ranks
+//! exchange them (`Assembler::exchange_points`), so every rank holds the
+//! committed points of every cell for the output, the pressure controls
+//! and restart files, and a rollback (cutback) is the same on every rank.
+//! Contact is evaluated by every rank for every slave node (the rigid
+//! tools and the deformable master surfaces are replicated with the mesh
+//! and displacements; the search is a small part of a run), so every
+//! contact decision is identical on all ranks; the rows of a node of a
+//! contact element (a slave node against a tool; slave and master nodes
+//! of a node-to-segment, node-to-facet or mortar element) are added by
+//! the rank owning the node (`Scatter::adds_rows_of`), and every rank
+//! grows its pattern at the same evaluation with the same couplings
+//! (`Scatter::contact_coupled`).
 //!
 //! Only models whose every contribution is split this way are assembled
 //! distributed ([`replicated_reason`] says why another one is not): the
 //! others are assembled whole by every rank, as before.
 
-use crate::mesh::CellKind;
-use crate::model::{ContactMaster, ContactMethod, Model};
+use crate::model::{ContactMethod, Model};
 
 /// The cells and nodes one rank assembles.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -61,29 +70,17 @@ impl AssemblyShare {
 }
 
 /// Why `model` cannot be assembled distributed (each rank its cells and
-/// contact nodes), or `None` when it can: every cell small-strain linear
-/// elastic and linear (tri3, quad4, tet4, hex8), every contact against a
-/// rigid tool by penalty or augmented Lagrangian, no follower pressure, no
+/// contact nodes), or `None` when it can: any cell kind, linear or
+/// quadratic, any material law and kinematics (the integration points
+/// of a rank's cells are evaluated by it alone and exchanged at each
+/// commit, `crate::solve::assembly::Assembler::exchange_points`), every
+/// contact by penalty or augmented Lagrangian, against a rigid tool or a
+/// deformable surface (the contact elements are evaluated by every rank,
+/// the rows of a node added by its owner, `Scatter::adds_rows_of`), no follower pressure, no
 /// spring, mass or dashpot, no dynamic step, no stabilization, no thermal
 /// coupling, no free tool.
 pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
-    let linear_cells = model.mesh.cells.iter().all(|c| {
-        matches!(
-            c.kind,
-            CellKind::Tri3 | CellKind::Quad4 | CellKind::Tet4 | CellKind::Hex8
-        )
-    });
-    if !linear_cells {
-        return Some("quadratic cells");
-    }
-    match crate::element::recovery::blocks_of(model) {
-        Ok(blocks) if blocks.iter().all(|b| b.nonlinear.is_none()) => {}
-        _ => return Some("a material with internal variables or finite strain"),
-    }
     for c in &model.contacts {
-        if !matches!(c.master, ContactMaster::Tool(_)) {
-            return Some("contact between deformable bodies");
-        }
         if matches!(c.method, ContactMethod::Lagrange { .. }) {
             return Some("Lagrange-multiplier contact");
         }
@@ -112,7 +109,7 @@ pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static st
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::{Cell, Mesh};
+    use crate::mesh::{Cell, CellKind, Mesh};
     use crate::model::{Hardening, MaterialLaw};
 
     fn square(law: MaterialLaw) -> Model {
@@ -130,7 +127,7 @@ mod tests {
     }
 
     #[test]
-    fn linear_elastic_cells_are_distributed_and_plastic_ones_are_not() {
+    fn plastic_and_quadratic_cells_are_distributed() {
         let elastic = square(MaterialLaw::LinearElastic {
             young: 1.0,
             poisson: 0.3,
@@ -145,10 +142,26 @@ mod tests {
             },
             viscosity: None,
         });
-        assert_eq!(
-            replicated_reason(&plastic),
-            Some("a material with internal variables or finite strain")
+        // its integration points are exchanged at each commit
+        // (`Assembler::exchange_points`)
+        assert_eq!(replicated_reason(&plastic), None);
+        // quadratic cells too (their face rows are added by node owners)
+        let mut quadratic = plastic.clone();
+        quadratic.mesh = Mesh::new(
+            vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [0.0, 1.0],
+                [0.5, 0.0],
+                [0.5, 0.5],
+                [0.0, 0.5],
+            ],
+            vec![Cell {
+                kind: CellKind::Tri6,
+                nodes: vec![0, 1, 2, 3, 4, 5],
+            }],
         );
+        assert_eq!(replicated_reason(&quadratic), None);
     }
 
     #[test]

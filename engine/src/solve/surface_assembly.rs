@@ -352,6 +352,7 @@ impl ContactScene<3> for SurfaceAssembly {
         dofs: &DofMap<3>,
         scatter: &Scatter,
     ) -> Result<Option<Scatter>, String> {
+        let couplings = &self.couplings;
         let missing = self
             .pairs
             .iter()
@@ -361,7 +362,7 @@ impl ContactScene<3> for SurfaceAssembly {
                 c.nodes.iter().any(|&a| {
                     c.nodes
                         .iter()
-                        .any(|&b| scatter.pair_slots(dofs, a, b).is_none())
+                        .any(|&b| !scatter.contact_coupled(dofs, couplings, a, b))
                 })
             });
         if !missing {

@@ -267,6 +267,40 @@ impl Scatter {
         Some(out)
     }
 
+    /// Whether nodes `a` and `b` are coupled for a contact element, as far
+    /// as [`crate::solve::contact_assembly`]'s pattern growth is concerned.
+    /// Alone (no share split over ranks): their entries are in the
+    /// pattern. Under a distributed assembly the ranks' patterns differ
+    /// (each holds its own cells), so the answer is taken from the
+    /// replicated, sorted list of contact `couplings` instead (`a == b` is
+    /// always coupled): the same on every rank, so every rank grows its
+    /// pattern (and rebuilds its PETSc matrix, a collective call) at the
+    /// same evaluation, and every rank's pattern holds every coupling of
+    /// every contact element (the owner of a node adds that node's rows).
+    pub fn contact_coupled<const D: usize>(
+        &self,
+        dofs: &DofMap<D>,
+        couplings: &[(usize, usize)],
+        a: usize,
+        b: usize,
+    ) -> bool {
+        if self.share.as_ref().is_some_and(|s| s.split()) {
+            a == b || couplings.binary_search(&(a.min(b), a.max(b))).is_ok()
+        } else {
+            self.pair_slots(dofs, a, b).is_some()
+        }
+    }
+
+    /// Whether this rank adds the rows of node `a` of a contact element:
+    /// always, except under a distributed assembly split over ranks, where
+    /// only `a`'s owner does (the element is evaluated by every rank).
+    #[inline]
+    pub fn adds_rows_of(&self, a: usize) -> bool {
+        self.share
+            .as_ref()
+            .is_none_or(|s| !s.split() || s.owns_node(a))
+    }
+
     /// `out[i] += sum_p K_fp[i, p] dp[p]` for the `K_fp` part of `values`.
     pub fn add_fp_product(&self, values: &[f64], dp: &[f64], out: &mut [f64]) {
         let kfp = &values[self.pattern.nnz()..];

@@ -706,6 +706,24 @@ where
         Ok(ev)
     }
 
+    /// `out += K_fp dp` (the prescribed increment's forces on the free
+    /// dofs); under a distributed assembly each rank holds the `K_fp`
+    /// entries of its cells, so the partial products are summed over the
+    /// ranks (the same bits on every rank).
+    fn add_kfp_dp(&self, out: &mut [f64]) {
+        if self.share.as_ref().is_some_and(|s| s.split()) {
+            let mut kfp = vec![0.0; out.len()];
+            self.scatter
+                .add_fp_product(&self.values, &self.dp, &mut kfp);
+            self.linear.sum_over_ranks(&mut kfp);
+            for (r, k) in out.iter_mut().zip(&kfp) {
+                *r += k;
+            }
+        } else {
+            self.scatter.add_fp_product(&self.values, &self.dp, out);
+        }
+    }
+
     /// The increment predictor ([`predictor`]), called with the plain start
     /// evaluated (the converged state, tangent included): moves the free
     /// dofs to the extrapolation by `ratio` of the last converged
@@ -720,8 +738,9 @@ where
             return Ok(false);
         };
         let mut plain = self.r_free.clone();
-        self.scatter
-            .add_fp_product(&self.values, &self.dp, &mut plain);
+        // summed over the ranks: every rank must take the same decision
+        // below (an evaluation is collective)
+        self.add_kfp_dp(&mut plain);
         let plain_norm = norm(&plain);
         {
             let u = self.u.as_flattened_mut();
@@ -1086,19 +1105,9 @@ where
             // 2. right-hand side -(r_f + K_fp dp)
             self.rhs.copy_from_slice(&self.r_free);
             if first {
-                if self.share.as_ref().is_some_and(|s| s.split()) {
-                    // each rank holds the K_fp entries of its cells
-                    let mut kfp = vec![0.0; self.rhs.len()];
-                    self.scatter
-                        .add_fp_product(&self.values, &self.dp, &mut kfp);
-                    self.linear.sum_over_ranks(&mut kfp);
-                    for (r, k) in self.rhs.iter_mut().zip(&kfp) {
-                        *r += k;
-                    }
-                } else {
-                    self.scatter
-                        .add_fp_product(&self.values, &self.dp, &mut self.rhs);
-                }
+                let mut rhs = std::mem::take(&mut self.rhs);
+                self.add_kfp_dp(&mut rhs);
+                self.rhs = rhs;
             }
             for v in &mut self.rhs {
                 *v = -*v;

@@ -64,6 +64,10 @@ where
         self.fresh = true;
         self.committed.copy_from_slice(&self.u);
         self.assembler.commit();
+        // distributed assembly: every rank receives the other ranks' points
+        let linear = &self.linear;
+        self.assembler
+            .exchange_points(|v: &mut [f64]| linear.sum_over_ranks(v));
         self.contacts.commit();
     }
 
