@@ -30,6 +30,7 @@
 
 use super::low_rank::{LowRank, COLUMN_BATCH};
 use super::pattern::SparsePattern;
+use super::schur::Schur;
 use super::{FactorStats, LinearError, LinearSystem, ZeroMode};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
@@ -111,6 +112,12 @@ pub struct LinearSolver {
     pub low_rank_count: usize,
     /// Wall time of the symbolic analyses, seconds.
     symbolic_seconds: f64,
+    /// Free dofs whose rows and columns alone change between tangents
+    /// ([`LinearSystem::set_candidates`]).
+    candidates: Vec<usize>,
+    /// The candidate block ordered last and its Schur complement
+    /// ([`super::schur`]), when the symbolic analysis ordered it so.
+    schur: Schur,
 }
 
 /// Matrices with fewer rows are always factorized in full (a low-rank
@@ -153,6 +160,8 @@ impl LinearSolver {
             low_rank_min_rows: LOW_RANK_MIN_ROWS,
             low_rank_count: 0,
             symbolic_seconds: 0.0,
+            candidates: Vec::new(),
+            schur: Schur::default(),
         }
     }
 
@@ -191,6 +200,31 @@ impl LinearSolver {
         self.lu = None;
         self.factor = Factor::None;
         self.low_rank.clear();
+        self.schur = Schur::default();
+    }
+
+    /// The free dofs whose rows and columns alone change between tangents
+    /// (see [`LinearSystem::set_candidates`]): for matrices where low-rank
+    /// updates apply, the next symbolic analysis orders them last when
+    /// they are at most [`LowRank::limit`], and tangents that differ from
+    /// the base only in their block are solved with its updated Schur
+    /// complement ([`Schur`]).
+    pub fn set_candidates(&mut self, dofs: &[usize]) {
+        self.candidates = dofs.to_vec();
+        self.candidates.sort_unstable();
+        self.candidates.dedup();
+        self.reset_pattern();
+    }
+
+    /// Whether the candidates of a matrix of order `n` are to be ordered
+    /// last.
+    fn schur_applies(&self, n: usize) -> bool {
+        self.low_rank_enabled
+            && n >= self.low_rank_min_rows
+            && !self.candidates.is_empty()
+            && self.candidates.len() <= LowRank::limit(n)
+            && self.candidates.len() < n
+            && self.candidates.iter().all(|&d| d < n)
     }
 
     /// Numerically factorizes the matrix with `pattern` and `values` (the
@@ -203,7 +237,8 @@ impl LinearSolver {
         values: &[f64],
     ) -> Result<(), LinearError> {
         let values = &values[..pattern.nnz()];
-        if self.try_low_rank(pattern, values) {
+        self.schur.active = false;
+        if self.try_schur(pattern, values) || self.try_low_rank(pattern, values) {
             return Ok(());
         }
         self.low_rank.active = false;
@@ -216,10 +251,50 @@ impl LinearSolver {
             && self.zero_mode.is_none()
         {
             self.low_rank.rebase(pattern.n, values);
+            match (self.factor, self.symbolic.as_ref()) {
+                (Factor::Ldlt, Some(sym)) if !self.schur.is_empty() => {
+                    self.schur.rebase(sym, &self.l_values);
+                }
+                _ => self.schur.clear(),
+            }
         } else {
             self.low_rank.clear();
+            self.schur.clear();
         }
         r
+    }
+
+    /// The update of the base's Schur complement for `values` ([`Schur`]),
+    /// when the candidates are ordered last, a base is held and `values`
+    /// differ from it in the candidate block only; false otherwise.
+    fn try_schur(&mut self, pattern: &SparsePattern, values: &[f64]) -> bool {
+        if !self.schur.ready
+            || self.factor != Factor::Ldlt
+            || !self.low_rank.has_base(pattern.n, values.len())
+        {
+            return false;
+        }
+        let Some(s) = self.low_rank.changed_dofs(
+            &pattern.col_ptr,
+            &pattern.row_idx,
+            values,
+            self.schur.len(),
+        ) else {
+            return false;
+        };
+        if !self.schur.update(
+            &s,
+            &pattern.col_ptr,
+            &pattern.row_idx,
+            values,
+            &self.low_rank.base,
+        ) {
+            return false;
+        }
+        self.low_rank.active = false;
+        self.zero_mode = None;
+        self.low_rank_count += 1;
+        true
     }
 
     /// The low-rank update of the base factorization for `values`, when
@@ -312,7 +387,12 @@ impl LinearSolver {
         if self.method != Method::Lu {
             if self.symbolic.is_none() {
                 let start = std::time::Instant::now();
-                let sym = symbolic_cholesky(symbolic, pattern);
+                if self.schur_applies(n) {
+                    self.schur.set_candidates(n, &self.candidates);
+                } else {
+                    self.schur = Schur::default();
+                }
+                let sym = symbolic_cholesky(symbolic, pattern, self.schur.candidates(n));
                 self.symbolic_seconds += start.elapsed().as_secs_f64();
                 let sym = sym?;
                 let req = sym
@@ -325,7 +405,11 @@ impl LinearSolver {
             }
             let sym = self.symbolic.as_ref().expect("set above");
             let stack = MemStack::new(self.scratch.as_mut().expect("set with the symbolic"));
+            // with the candidates last, L D L^T directly: the Schur path
+            // needs it, and an indefinite contact block would break
+            // Cholesky down at its very end
             if self.method == Method::Cholesky
+                && self.schur.is_empty()
                 && sym
                     .factorize_numeric_llt(
                         &mut self.l_values,
@@ -401,6 +485,11 @@ impl LinearSolver {
     /// Solves `K x = b` in place with the last factorization
     /// ([`LinearError::NotFactorized`] without one).
     pub fn solve(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
+        if self.schur.active {
+            let sym = self.symbolic.as_ref().ok_or(LinearError::NotFactorized)?;
+            self.schur.solve(sym, &self.l_values, rhs);
+            return Ok(());
+        }
         self.solve_base(rhs, 1)?;
         if self.low_rank.active {
             self.low_rank.correct(rhs);
@@ -526,6 +615,10 @@ impl LinearSystem for LinearSolver {
         LinearSolver::reset_pattern(self);
     }
 
+    fn set_candidates(&mut self, dofs: &[usize]) {
+        LinearSolver::set_candidates(self, dofs);
+    }
+
     fn stats(&self) -> FactorStats {
         FactorStats {
             cholesky: self.cholesky_count,
@@ -557,70 +650,100 @@ pub fn factor_nonzeros(pattern: &SparsePattern) -> Result<usize, LinearError> {
         None,
         &pattern.row_idx,
     );
-    Ok(symbolic_cholesky(symbolic, pattern)?.len_val())
+    Ok(symbolic_cholesky(symbolic, pattern, None)?.len_val())
 }
 
-/// Patterns with at least this many rows also get a nested dissection
-/// ordering (`ordering.rs`), kept when its factor is smaller than the
-/// minimum degree one (3D meshes); smaller patterns use AMD alone.
+/// Patterns with fewer rows are ordered by AMD (see
+/// [`prefers_nested_dissection`]).
 pub const NESTED_DISSECTION_MIN: usize = 20_000;
 
+/// Stored entries per column from which a large pattern is ordered by
+/// nested dissection (`ordering.rs`): 3D meshes (hex8 ~75, tet4 ~45),
+/// where its factor is smaller than AMD's; 2D meshes (linear ~14-18,
+/// quadratic ~30) keep AMD, whose factor is smaller there.
+pub const NESTED_DISSECTION_DENSITY: usize = 40;
+
 /// The symbolic Cholesky factorization of `symbolic` (the pattern
-/// `pattern`) with the fill-reducing ordering that gives the smaller factor:
-/// AMD, or for large patterns nested dissection when its factor has fewer
-/// stored values (deterministic: both depend on the pattern only).
+/// `pattern`) with the fill-reducing ordering chosen by
+/// [`prefers_nested_dissection`]: AMD, or nested dissection for large 3D
+/// patterns (deterministic: the pattern alone decides). With
+/// `last`, the dofs marked there are moved to the end of either ordering
+/// (the candidate block of [`Schur`]).
 fn symbolic_cholesky(
     symbolic: SymbolicSparseColMatRef<'_, usize>,
     pattern: &SparsePattern,
+    last: Option<&[bool]>,
 ) -> Result<SymbolicCholesky<usize>, LinearError> {
     let failed = |e: faer::sparse::FaerError| {
         LinearError::Symbolic(format!("symbolic Cholesky factorization failed: {e:?}"))
     };
-    let amd = || {
-        factorize_symbolic_cholesky(
-            symbolic,
-            Side::Lower,
-            SymmetricOrdering::Amd,
-            CholeskySymbolicParams::default(),
-        )
-    };
-    if pattern.n < NESTED_DISSECTION_MIN {
-        return amd().map_err(failed);
-    }
-    let nd = || {
-        let forward = super::ordering::nested_dissection(pattern);
+    let custom = |forward: &[usize]| {
         let mut inverse = vec![0; forward.len()];
         for (k, &v) in forward.iter().enumerate() {
             inverse[v] = k;
         }
-        let perm = faer::perm::PermRef::new_checked(&forward, &inverse, forward.len());
+        let perm = faer::perm::PermRef::new_checked(forward, &inverse, forward.len());
+        // the Schur path reads a supernodal factor
+        let mut params = CholeskySymbolicParams::default();
+        if last.is_some() {
+            params.supernodal_flop_ratio_threshold =
+                faer::sparse::linalg::SupernodalThreshold::FORCE_SUPERNODAL;
+        }
         factorize_symbolic_cholesky(
             symbolic,
             Side::Lower,
             SymmetricOrdering::Custom(perm),
-            CholeskySymbolicParams::default(),
+            params,
         )
     };
-    // both analyses at once on two threads (each is deterministic; the
-    // choice depends on their sizes only)
-    let (amd, nd) = if super::super::parallel::threads() > 1 {
-        std::thread::scope(|scope| {
-            let nd = scope.spawn(nd);
-            let amd = amd();
-            (amd, nd.join())
-        })
-    } else {
-        (amd(), Ok(nd()))
+    let amd = || match last {
+        None => factorize_symbolic_cholesky(
+            symbolic,
+            Side::Lower,
+            SymmetricOrdering::Amd,
+            CholeskySymbolicParams::default(),
+        ),
+        Some(last) => {
+            let n = pattern.n;
+            let (mut forward, mut inverse) = (vec![0usize; n], vec![0usize; n]);
+            let mut mem =
+                MemBuffer::try_new(faer::sparse::linalg::amd::order_maybe_unsorted_scratch::<
+                    usize,
+                >(n, pattern.nnz()))
+                .map_err(|_| faer::sparse::FaerError::OutOfMemory)?;
+            faer::sparse::linalg::amd::order_maybe_unsorted(
+                &mut forward,
+                &mut inverse,
+                symbolic,
+                Default::default(),
+                MemStack::new(&mut mem),
+            )?;
+            custom(&super::schur::candidates_last(&forward, last))
+        }
     };
-    let amd = amd.map_err(failed)?;
-    let nd = nd
-        .map_err(|_| LinearError::Symbolic("the nested dissection thread panicked".into()))?
-        .map_err(failed)?;
-    Ok(if nd.len_val() < amd.len_val() {
-        nd
-    } else {
-        amd
-    })
+    if !prefers_nested_dissection(pattern) {
+        return amd().map_err(failed);
+    }
+    let forward = super::ordering::nested_dissection(pattern);
+    match last {
+        None => custom(&forward),
+        Some(last) => custom(&super::schur::candidates_last(&forward, last)),
+    }
+    .map_err(failed)
+}
+
+/// Whether the fill-reducing ordering of `pattern` is nested dissection
+/// rather than AMD: at least [`NESTED_DISSECTION_MIN`] rows and at least
+/// [`NESTED_DISSECTION_DENSITY`] stored entries per column (a 3D mesh).
+/// One analysis, chosen by the pattern alone (issue 20; factor entries
+/// with candidates none, AMD against nested dissection: 2D tutorial mesh,
+/// 80,200 rows, 13.9 entries per column, 3.91M vs 8.3M... ; `ctc bench`
+/// 2D, 79,806 rows, 17.9 per column, 7.44M vs 9.14M; 3D hex8 blocks of
+/// `ctc bench --solid N --symbolic`, 72-75 per column: N = 20 (26,019
+/// rows) 24.6M vs 25.4M, N = 26 (56,133) 99.9M vs 74.3M, N = 32 (103,455)
+/// 222.6M vs 173.6M).
+pub fn prefers_nested_dissection(pattern: &SparsePattern) -> bool {
+    pattern.n >= NESTED_DISSECTION_MIN && pattern.nnz() >= NESTED_DISSECTION_DENSITY * pattern.n
 }
 
 /// An L D L^T pivot smaller than this times the largest diagonal entry of
@@ -1105,6 +1228,64 @@ mod low_rank_tests {
         assert!(bits(&update(2)) == bits(&serial));
         assert!(bits(&update(3)) == bits(&serial));
         assert!(rel_diff(&serial, &full_solution(&p, &v, &b)) < 1e-10);
+    }
+
+    /// The candidate block ordered last and its updated Schur complement
+    /// (issue 20) against a full factorization of each updated matrix:
+    /// equal to 1e-10 through the contact states of the Woodbury test,
+    /// without a new factorization and without a column of `K0^{-1}`; a
+    /// change outside the candidates leaves the Schur path (a Woodbury
+    /// update); the candidates are the last positions of the ordering.
+    #[test]
+    fn schur_complement_update_matches_the_full_factorization() {
+        let (p, base) = grid(30);
+        let n = p.n;
+        let b: Vec<f64> = (0..n).map(|i| ((i * 7 % 13) as f64 - 6.0) / 6.0).collect();
+        // the dofs of a row of nodes, as a contact surface
+        let surface: Vec<usize> = (450..480).collect();
+        let candidates: Vec<usize> = surface.iter().flat_map(|&a| [2 * a, 2 * a + 1]).collect();
+        let mut s = LinearSolver::new().with_low_rank(true, 0);
+        s.set_candidates(&candidates);
+        s.factorize(&p, &base).unwrap();
+        assert!(s.schur.ready && s.schur.active, "a Schur base");
+        assert_eq!((s.ldlt_count, s.low_rank_count), (1, 0));
+        let sym = s.symbolic.as_ref().unwrap();
+        let forward = sym.perm().unwrap().arrays().0;
+        let mut last = forward[n - candidates.len()..].to_vec();
+        last.sort_unstable();
+        assert_eq!(last, candidates);
+        // the base itself through the Schur path
+        let mut x = b.clone();
+        s.solve(&mut x).unwrap();
+        let e = rel_diff(&x, &full_solution(&p, &base, &b));
+        assert!(e < 1e-12, "base: {e:e}");
+        let states: [(&[usize], f64, f64); 4] = [
+            (&[460, 461, 462], 1e4, 0.0),
+            (&[459, 460, 461, 462, 463], 1e4, 0.0),
+            (&[461, 462], 1e6, 0.0),
+            (&[460, 461, 462], 1e4, -5.0),
+        ];
+        for (k, (nodes, pen, curv)) in states.iter().enumerate() {
+            let mut v = base.clone();
+            contact(&p, &mut v, nodes, *pen, *curv);
+            s.factorize(&p, &v).unwrap();
+            assert_eq!(s.low_rank_count, k + 1, "state {k}: an update");
+            assert!(s.schur.active, "state {k}: the Schur path");
+            let mut x = b.clone();
+            s.solve(&mut x).unwrap();
+            let e = rel_diff(&x, &full_solution(&p, &v, &b));
+            assert!(e < 1e-10, "state {k}: {e:e}");
+        }
+        assert_eq!(s.cholesky_count + s.ldlt_count + s.lu_count, 1);
+        assert_eq!(s.low_rank.cached(), 0, "no column of K0^-1");
+        // a node outside the candidates: not the Schur path
+        let mut v = base.clone();
+        contact(&p, &mut v, &[100], 1e4, 0.0);
+        s.factorize(&p, &v).unwrap();
+        assert!(!s.schur.active);
+        let mut x = b.clone();
+        s.solve(&mut x).unwrap();
+        assert!(rel_diff(&x, &full_solution(&p, &v, &b)) < 1e-10);
     }
 
     /// Below the size threshold (and when disabled) every tangent is

@@ -143,6 +143,10 @@ impl LinearSystem for ExportFirst<'_> {
         self.inner.is_factorized()
     }
 
+    fn set_candidates(&mut self, dofs: &[usize]) {
+        self.inner.set_candidates(dofs);
+    }
+
     fn reset_pattern(&mut self) {
         self.inner.reset_pattern();
     }

@@ -28,6 +28,7 @@ pub mod low_rank;
 pub mod ordering;
 pub mod pattern;
 pub mod saddle;
+pub mod schur;
 
 pub use pattern::{Scatter, SparsePattern, NO_SLOT};
 
@@ -151,6 +152,12 @@ pub trait LinearSystem {
     fn zero_mode(&self) -> Option<&ZeroMode> {
         None
     }
+    /// The free dofs whose rows and columns are the only ones that change
+    /// between tangents (the contact surfaces' dofs of a model whose bodies
+    /// have a constant stiffness): a direct solver may order them last and
+    /// update their Schur complement instead of factorizing
+    /// ([`schur`]). A hint: the matrices still decide. Ignored by default.
+    fn set_candidates(&mut self, _dofs: &[usize]) {}
     /// Counters.
     fn stats(&self) -> FactorStats;
     /// What a distributed solver (PETSc over MPI) did, with the engine's

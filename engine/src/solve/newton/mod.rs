@@ -283,6 +283,13 @@ where
             .iter()
             .map(|&g| contact_node[g / nc])
             .collect();
+        // bodies with a constant stiffness: between tangents only the
+        // contact surfaces' rows and columns change (a hint to the linear
+        // system: `linalg::schur`)
+        if !model.contacts.is_empty() && !newton.assembler.has_points() {
+            let candidates: Vec<usize> = (0..n_free).filter(|&i| newton.contact_dof[i]).collect();
+            newton.linear.set_candidates(&candidates);
+        }
         // element check in the reference configuration (inverted, off-axis cells)
         let mut f = std::mem::take(&mut newton.f_int);
         let r = newton

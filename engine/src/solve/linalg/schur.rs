@@ -1,0 +1,345 @@
+//! The contact block of a factorized tangent as a dense Schur complement
+//! (issue 20): the cheaper Newton iteration of a linear-elastic body in
+//! contact, without the columns of `K0^{-1}` of [`super::low_rank`].
+//!
+//! The *candidate* dofs `c` (the free dofs of the contact surfaces, given
+//! by the Newton loop when every body's stiffness is constant) are ordered
+//! last by the fill-reducing ordering (`direct.rs`: AMD or nested
+//! dissection of the whole pattern, the candidates moved to the end in
+//! their order). The `L D L^T` factor of the base tangent `K0` then holds
+//!
+//! ```text
+//! K0 = [K_ii K_ic; K_ci K_cc] = [L_ii 0; L_ci L_cc] diag(D_i, D_c) [L_ii 0; L_ci L_cc]^T,
+//! S0 = K_cc - K_ci K_ii^{-1} K_ic = L_cc D_c L_cc^T   (dense, m x m)
+//! ```
+//!
+//! A new tangent `K` that differs from `K0` only inside the candidate block
+//! (`K_cc + dK`: the contact blocks of a rigid tool, or of two contact
+//! surfaces) has the same `L_ii`, `L_ci`, `D_i` and the Schur complement
+//! `S = S0 + dK`, so
+//!
+//! ```text
+//! w_i = L_ii^{-1} b_i,   r_c = b_c - L_ci w_i,   (S0 + dK) x_c = r_c,
+//! x_i = L_ii^{-T} (D_i^{-1} w_i - L_ci^T x_c)
+//! ```
+//!
+//! is one forward and one backward sweep over the interior supernodes and a
+//! dense solve of order `m`. The dense solve uses the LU of `S0` (once per
+//! base) and a [`LowRank`] (Woodbury) update of it for the changed dofs,
+//! whose columns `S0^{-1} e_j` are all computed with that LU: per Newton
+//! iteration a dense LU of order `|changed|` and `O(m |changed|)` work.
+//! Deterministic: fixed orders, one thread.
+
+use super::low_rank::{LowRank, SINGULAR};
+use faer::linalg::solvers::{PartialPivLu, Solve};
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
+use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
+use faer::{Accum, Mat, MatMut, Par};
+
+/// The candidate block, the dense Schur complement of the base and its
+/// update.
+#[derive(Debug, Default)]
+pub struct Schur {
+    /// Whether each free dof is a candidate.
+    candidate: Vec<bool>,
+    /// Candidate count.
+    m: usize,
+    /// Interior dofs (factor positions `0..n_i`); set with a base.
+    n_i: usize,
+    /// Position in the candidate block of each free dof (`u32::MAX`:
+    /// interior); set with a base.
+    slot: Vec<u32>,
+    /// `S0`, column-major `m x m`.
+    s0: Vec<f64>,
+    /// LU of `S0`.
+    lu: Option<PartialPivLu<f64>>,
+    /// Woodbury update of `S0` (its cache: every column of `S0^{-1}`).
+    dense: LowRank,
+    /// The full `m x m` pattern (column pointers and rows).
+    col_ptr: Vec<usize>,
+    row_idx: Vec<usize>,
+    /// `S0 + dK` of the current update.
+    s: Vec<f64>,
+    /// Whether a base is held (the factor is the base's).
+    pub ready: bool,
+    /// Whether the current factorization is the base plus the update.
+    pub active: bool,
+}
+
+impl Schur {
+    /// The candidate dofs of `n` free dofs (out-of-range entries ignored);
+    /// forgets the base.
+    pub fn set_candidates(&mut self, n: usize, dofs: &[usize]) {
+        self.candidate = vec![false; n];
+        for &d in dofs {
+            if d < n {
+                self.candidate[d] = true;
+            }
+        }
+        self.m = self.candidate.iter().filter(|&&c| c).count();
+        self.clear();
+    }
+
+    /// Whether each of `n` free dofs is a candidate, when candidates are
+    /// set for that order.
+    pub fn candidates(&self, n: usize) -> Option<&[bool]> {
+        (self.m > 0 && self.candidate.len() == n).then_some(&self.candidate[..])
+    }
+
+    /// Candidate count.
+    pub fn len(&self) -> usize {
+        self.m
+    }
+
+    /// Whether no candidate is set.
+    pub fn is_empty(&self) -> bool {
+        self.m == 0
+    }
+
+    /// Forgets the base.
+    pub fn clear(&mut self) {
+        self.ready = false;
+        self.active = false;
+        self.lu = None;
+        self.dense.clear();
+    }
+
+    /// Makes the `L D L^T` factor (`sym`, `l_values`) of the base its own:
+    /// `S0` and its LU; false (no base) when the factor is not supernodal,
+    /// the candidates are not its last positions, or `S0` is nearly
+    /// singular. The update is empty (the base itself).
+    pub fn rebase(&mut self, sym: &SymbolicCholesky<usize>, l_values: &[f64]) -> bool {
+        self.clear();
+        let n = sym.nrows();
+        let m = self.m;
+        if m == 0 || self.candidate.len() != n || m >= n {
+            return false;
+        }
+        let (SymbolicCholeskyRaw::Supernodal(sn), Some(perm)) = (sym.raw(), sym.perm()) else {
+            return false;
+        };
+        let n_i = n - m;
+        let (forward, _) = perm.arrays();
+        if forward[n_i..].iter().any(|&d| !self.candidate[d]) {
+            return false;
+        }
+        self.n_i = n_i;
+        self.slot = vec![u32::MAX; n];
+        for (k, &d) in forward[n_i..].iter().enumerate() {
+            self.slot[d] = k as u32;
+        }
+        // L_cc (unit lower) and D_c from the trailing columns
+        let ldlt = SupernodalLdltRef::new(sn, l_values);
+        let mut l = Mat::<f64>::zeros(m, m);
+        let mut d = vec![0.0; m];
+        for s in first_block_supernode(sn, n_i)..sn.n_supernodes() {
+            let node = ldlt.supernode(s);
+            let (start, v) = (node.start(), node.val());
+            let ncols = v.ncols();
+            for cj in n_i.max(start) - start..ncols {
+                let j = start + cj - n_i;
+                d[j] = v[(cj, cj)];
+                l[(j, j)] = 1.0;
+                for r in cj + 1..ncols {
+                    l[(start + r - n_i, j)] = v[(r, cj)];
+                }
+                for (idx, &row) in node.pattern().iter().enumerate() {
+                    l[(row - n_i, j)] = v[(ncols + idx, cj)];
+                }
+            }
+        }
+        let mut ld = l.clone();
+        for (j, dj) in d.iter().enumerate() {
+            for i in 0..m {
+                ld[(i, j)] *= dj;
+            }
+        }
+        let mut s0 = Mat::<f64>::zeros(m, m);
+        faer::linalg::matmul::matmul(
+            s0.as_mut(),
+            Accum::Replace,
+            ld.as_ref(),
+            l.transpose(),
+            1.0,
+            Par::Seq,
+        );
+        self.s0 = (0..m * m).map(|k| s0[(k % m, k / m)]).collect();
+        let scale = self.s0.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let lu = PartialPivLu::new(s0.as_ref());
+        let u = lu.U();
+        let regular = scale.is_finite()
+            && (0..m).all(|k| u[(k, k)].is_finite() && u[(k, k)].abs() > SINGULAR * scale);
+        if !regular {
+            return false;
+        }
+        // every column of S0^{-1} for the dense updates
+        self.dense.rebase(m, &self.s0);
+        let all: Vec<usize> = (0..m).collect();
+        let first = self.dense.push_unit_columns(&all);
+        let cols = self.dense.new_columns(first);
+        lu.solve_in_place(MatMut::from_column_major_slice_mut(cols, m, m));
+        if !cols.iter().all(|v| v.is_finite()) {
+            self.dense.clear();
+            return false;
+        }
+        if self.col_ptr.len() != m + 1 {
+            self.col_ptr = (0..=m).map(|j| j * m).collect();
+            self.row_idx = (0..m * m).map(|k| k % m).collect();
+        }
+        self.lu = Some(lu);
+        self.ready = true;
+        self.active = self
+            .dense
+            .update(Vec::new(), &self.col_ptr, &self.row_idx, &self.s0);
+        self.active
+    }
+
+    /// The update for the matrix (`col_ptr`, `row_idx`, `values`) whose
+    /// entries differ from the base's (`base`) in the rows and columns of
+    /// `changed` only: false (inactive) when one of them is not a
+    /// candidate or `S0 + dK` is nearly singular.
+    pub fn update(
+        &mut self,
+        changed: &[usize],
+        col_ptr: &[usize],
+        row_idx: &[usize],
+        values: &[f64],
+        base: &[f64],
+    ) -> bool {
+        self.active = false;
+        if !self.ready || changed.iter().any(|&d| self.slot[d] == u32::MAX) {
+            return false;
+        }
+        let m = self.m;
+        self.s.clear();
+        self.s.extend_from_slice(&self.s0);
+        for &j in changed {
+            let cj = self.slot[j] as usize;
+            for k in col_ptr[j]..col_ptr[j + 1] {
+                let r = self.slot[row_idx[k]];
+                if r == u32::MAX {
+                    // an interior-candidate coupling changed: not this path
+                    if values[k].to_bits() != base[k].to_bits() {
+                        return false;
+                    }
+                    continue;
+                }
+                self.s[cj * m + r as usize] += values[k] - base[k];
+            }
+        }
+        let mut local: Vec<usize> = changed.iter().map(|&d| self.slot[d] as usize).collect();
+        local.sort_unstable();
+        self.active = self
+            .dense
+            .update(local, &self.col_ptr, &self.row_idx, &self.s);
+        self.active
+    }
+
+    /// Solves `K x = b` in place (`rhs`: `b` on entry) with the interior
+    /// part of the `L D L^T` factor (`sym`, `l_values`) of the base and the
+    /// dense `S0 + dK`.
+    pub fn solve(&self, sym: &SymbolicCholesky<usize>, l_values: &[f64], rhs: &mut [f64]) {
+        let (SymbolicCholeskyRaw::Supernodal(sn), Some(perm), Some(lu)) =
+            (sym.raw(), sym.perm(), self.lu.as_ref())
+        else {
+            return;
+        };
+        let (forward, _) = perm.arrays();
+        let n_i = self.n_i;
+        let mut x: Vec<f64> = forward.iter().map(|&d| rhs[d]).collect();
+        let ldlt = SupernodalLdltRef::new(sn, l_values);
+        // the supernodes with interior columns (the last one may hold
+        // candidate columns too)
+        let last = sn.supernode_begin().partition_point(|&b| b < n_i);
+        let mut tmp = Vec::new();
+        // forward: w_i = L_ii^{-1} b_i, r_c = b_c - L_ci w_i
+        for s in 0..last {
+            let node = ldlt.supernode(s);
+            let (start, v) = (node.start(), node.val());
+            let (ncols, nrows) = (v.ncols(), v.nrows());
+            let p = ncols.min(n_i - start);
+            let top = v.submatrix(0, 0, p, p);
+            let rest = v.submatrix(p, 0, nrows - p, p);
+            let (head, _) = x.split_at_mut(start + p);
+            let mut xt = MatMut::from_column_major_slice_mut(&mut head[start..], p, 1);
+            faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
+                top,
+                xt.rb_mut(),
+                Par::Seq,
+            );
+            tmp.clear();
+            tmp.resize(nrows - p, 0.0);
+            faer::linalg::matmul::matmul(
+                MatMut::from_column_major_slice_mut(&mut tmp, nrows - p, 1),
+                Accum::Replace,
+                rest,
+                xt.rb(),
+                1.0,
+                Par::Seq,
+            );
+            for (k, t) in tmp[..ncols - p].iter().enumerate() {
+                x[start + p + k] -= t;
+            }
+            for (&row, t) in node.pattern().iter().zip(&tmp[ncols - p..]) {
+                x[row] -= t;
+            }
+            // D_i^{-1}
+            for k in 0..p {
+                x[start + k] /= v[(k, k)];
+            }
+        }
+        // x_c = (S0 + dK)^{-1} r_c
+        lu.solve_in_place(MatMut::from_column_major_slice_mut(
+            &mut x[n_i..],
+            self.m,
+            1,
+        ));
+        self.dense.correct_with(&mut x[n_i..], 1);
+        // backward: x_i = L_ii^{-T} (D_i^{-1} w_i - L_ci^T x_c)
+        for s in (0..last).rev() {
+            let node = ldlt.supernode(s);
+            let (start, v) = (node.start(), node.val());
+            let (ncols, nrows) = (v.ncols(), v.nrows());
+            let p = ncols.min(n_i - start);
+            let top = v.submatrix(0, 0, p, p);
+            let rest = v.submatrix(p, 0, nrows - p, p);
+            tmp.clear();
+            tmp.extend_from_slice(&x[start + p..start + ncols]);
+            tmp.extend(node.pattern().iter().map(|&row| x[row]));
+            let xt = &mut x[start..start + p];
+            let mut xt = MatMut::from_column_major_slice_mut(xt, p, 1);
+            faer::linalg::matmul::matmul(
+                xt.rb_mut(),
+                Accum::Add,
+                rest.transpose(),
+                faer::MatRef::from_column_major_slice(&tmp, nrows - p, 1),
+                -1.0,
+                Par::Seq,
+            );
+            faer::linalg::triangular_solve::solve_unit_upper_triangular_in_place(
+                top.transpose(),
+                xt,
+                Par::Seq,
+            );
+        }
+        for (&d, xv) in forward.iter().zip(&x) {
+            rhs[d] = *xv;
+        }
+    }
+}
+
+/// The first supernode with a column at or after `n_i` (the supernodes
+/// cover the columns in order).
+fn first_block_supernode(sn: &SymbolicSupernodalCholesky<usize>, n_i: usize) -> usize {
+    let end = sn.supernode_end();
+    end.partition_point(|&e| e <= n_i)
+}
+
+/// The elimination order `forward` (faer's forward array) with the
+/// candidates moved to the end, both parts in their order.
+pub fn candidates_last(forward: &[usize], candidate: &[bool]) -> Vec<usize> {
+    let mut out: Vec<usize> = forward.iter().copied().filter(|&d| !candidate[d]).collect();
+    out.extend(forward.iter().copied().filter(|&d| candidate[d]));
+    out
+}
