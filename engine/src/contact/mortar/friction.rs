@@ -165,6 +165,8 @@ pub struct Law {
     pub normal_force: f64,
     /// Reference tributary area `T_j` of the node.
     pub support: f64,
+    /// Covered current area `A_j = sum_k D_jk` of the node's row.
+    pub area: f64,
     /// Stick point (slip coordinate) the trial force is measured from.
     pub anchor: f64,
 }
@@ -172,8 +174,9 @@ pub struct Law {
 /// The friction part of one node row.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Response {
-    /// Output (status, `R_T`, `g_T`, slip increment, traction on the slave
-    /// node, dissipation `-R_T ds`).
+    /// Output (status, `R_T`, `g_T`, slip increment, dissipation `-R_T
+    /// ds`; `traction`: `R_T A / T` along the slave node's friction force,
+    /// the convention of the reported pressure `R_N A / T^2` times `T`).
     pub friction: NodeFriction,
     /// Forces over the row's nodes (2 per node).
     pub force: Vec<f64>,
@@ -231,9 +234,17 @@ pub fn respond(
             tangent[r * nd + c] = (bt[r] * drt[c] / law.support) + q * dbt[r * nd + c];
         }
     }
+    // reported as the pressure is (the slave force of a fully covered
+    // node, `R_T A / T`, along the slave node's friction force)
     let at = 2 * node_at;
-    let traction = [force[at], force[at + 1]];
-    let tl = traction[0].hypot(traction[1]);
+    let own = [force[at], force[at + 1]];
+    let ol = own[0].hypot(own[1]);
+    let tl = rt.abs() * law.area / law.support;
+    let traction = if ol > 0.0 {
+        [own[0] / ol * tl, own[1] / ol * tl]
+    } else {
+        [0.0; 2]
+    };
     Response {
         friction: NodeFriction {
             status,

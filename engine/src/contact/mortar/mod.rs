@@ -378,6 +378,7 @@ impl Row<'_> {
             alpha_n: alpha,
             normal_force: (shift - alpha * gap).max(0.0),
             support,
+            area: self.area,
             anchor: inputs.anchor,
         };
         let r = friction::respond(
