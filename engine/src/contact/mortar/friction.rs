@@ -25,8 +25,8 @@
 //!
 //! **Return map** (per slave node, the normal force `R_N` of the mortar
 //! row): the stick point is a slip coordinate `a_j` (in the frame of the
-//! increment: `s_j = 0` at `x^n`), `g_T = s_j - a_j`, trial `R* = lambda_T*
-//! - alpha_T g_T` (`lambda_T* = 0` with the penalty, the Uzawa shift with
+//! increment: `s_j = 0` at `x^n`), `g_T = s_j - a_j`, trial
+//! `R* = lambda_T* - alpha_T g_T` (`lambda_T* = 0` with the penalty, the Uzawa shift with
 //! the augmented Lagrangian), stick `|R*| <= mu R_N`: `R_T = R*`, slip:
 //! `R_T = mu R_N sign(R*)`, the stick point moves by `(R_T - R*) /
 //! alpha_T`. The history is [`super::super::friction::FrictionState`]
@@ -46,6 +46,9 @@
 use super::integrals::MortarSegment;
 use crate::contact::friction::{FrictionStatus, NodeFriction};
 
+/// Coefficients `(node, c)` of a linear combination of node positions.
+pub type Coefficients = Vec<(usize, f64)>;
+
 /// The committed pairing of one slave node (see the module doc).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Pairing {
@@ -53,7 +56,7 @@ pub struct Pairing {
     pub area: f64,
     /// Per slave segment `[a, b]` of the node's support: the coefficients
     /// `(node, c)` of `C^n_je(x) = sum c x_node` (sorted by node).
-    pub segments: Vec<([usize; 2], Vec<(usize, f64)>)>,
+    pub segments: Vec<([usize; 2], Coefficients)>,
 }
 
 impl Pairing {
