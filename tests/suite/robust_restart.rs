@@ -224,6 +224,23 @@ fn restart_upsetting_with_friction_matches_uninterrupted_run() {
 }
 
 #[test]
+fn restart_mortar_friction_matches_uninterrupted_run() {
+    // mortar friction (issue 18): the stick points in slip coordinates of
+    // the committed configuration, rebased at every commit, carried over
+    // the restart; the coarsened Cattaneo cylinders, restarted in the shear
+    let model = model_of(
+        "cattaneo_cylinders_mortar.ctc",
+        &[
+            ("circumferential = 64", "circumferential = 24"),
+            ("circumferential = 80", "circumferential = 30"),
+            ("radial = 12", "radial = 5"),
+        ],
+    );
+    let (from, n) = restart_matches(&model, 7);
+    assert_eq!((from, n), (6, 8));
+}
+
+#[test]
 fn restart_double_pass_resumes_with_the_right_slave_side() {
     // double pass: the slave side alternates with the converged increments;
     // the restart resumes the alternation from the checkpoint's count

@@ -143,6 +143,13 @@ pub struct FrictionState<const D: usize = 2> {
     /// Smallest fraction of the increment at which a node touched for the
     /// first time, at the latest evaluation (`None`: no first impact).
     pub impact: Option<f64>,
+    /// Mortar friction ([`super::mortar::friction`]): the positions and
+    /// stick points are slip coordinates measured from the committed
+    /// configuration (the node's weighted slip since the last converged
+    /// increment, and the stick point's), so [`FrictionState::commit`]
+    /// moves their origin to the new converged state (stick point minus
+    /// position, positions 0).
+    pub incremental: bool,
 }
 
 impl<const D: usize> FrictionState<D> {
@@ -162,11 +169,22 @@ impl<const D: usize> FrictionState<D> {
             position: positions.clone(),
             committed_position: positions,
             impact: None,
+            incremental: false,
         }
     }
 
     /// Commits the trial state (converged increment).
     pub fn commit(&mut self) {
+        if self.incremental {
+            for (a, p) in self.anchor.iter_mut().zip(&mut self.position) {
+                if let Some(a) = a {
+                    for (ac, pc) in a.iter_mut().zip(p.iter()) {
+                        *ac -= pc;
+                    }
+                }
+                *p = [0.0; D];
+            }
+        }
         self.committed_anchor.clone_from(&self.anchor);
         self.base.clone_from(&self.anchor);
         self.committed_multiplier.clone_from(&self.multiplier);

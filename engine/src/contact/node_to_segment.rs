@@ -87,7 +87,7 @@ pub struct Surface {
 }
 
 impl Surface {
-    fn new(edges: &[[usize; 2]]) -> Self {
+    pub(crate) fn new(edges: &[[usize; 2]]) -> Self {
         let mut prev = vec![None; edges.len()];
         let mut next = vec![None; edges.len()];
         // sorted (node, segment) lists: deterministic, no hash map
@@ -147,6 +147,10 @@ pub struct SurfacePair {
     /// constant-velocity path of a first impact,
     /// [`crate::model::FirstImpact::Intersect`]).
     pub committed_positions: Vec<[f64; 2]>,
+    /// Mortar friction: the slave nodes' pairings in the committed
+    /// configuration (recomputed once per increment from
+    /// `committed_positions`).
+    pub pairing: Option<super::mortar::friction::CommittedPairing>,
     /// Scratch: candidate segments of one query.
     pub(crate) candidates: Vec<usize>,
 }

@@ -203,7 +203,8 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
 
 /// `formulation = mortar`: a deformable master other than the slave
 /// surface, single pass, penalty, augmented Lagrangian or (2D, single
-/// multipliers) Lagrange multipliers, frictionless.
+/// multipliers) Lagrange multipliers; Coulomb friction in 2D (penalty or
+/// augmented Lagrangian).
 fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     let Some(f) = c
         .formulation
@@ -277,7 +278,10 @@ fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
             "use `formulation = node_to_segment` for thermal contact",
         );
     }
-    if let Some(fr) = &c.friction {
+    // friction: 2D (penalty, augmented Lagrangian; Lagrange-multiplier
+    // friction against a deformable master is refused above for every
+    // formulation); 3D mortar is frictionless for now
+    if let Some(fr) = c.friction.as_ref().filter(|_| solid) {
         refuse(
             "with friction is not supported yet",
             fr.span,

@@ -102,10 +102,12 @@ fn model(circumferential: usize, radial: usize) -> Result<Model, String> {
     super::compile(&path, &text)
 }
 
+/// The contact state of pair 0 and the current coordinates at the last
+/// converged increment.
 #[derive(Default)]
-struct Last {
-    contact: Vec<NodeContact>,
-    x: Vec<[f64; 2]>,
+pub(crate) struct Last {
+    pub(crate) contact: Vec<NodeContact>,
+    pub(crate) x: Vec<[f64; 2]>,
 }
 
 impl Observer for Last {
@@ -125,7 +127,7 @@ impl Observer for Last {
 
 /// Half-width of the zone where `inside` holds: mid-point between the
 /// outermost node inside and the next node outside, averaged over both sides.
-fn half_width(nodes: &[(f64, bool)]) -> f64 {
+pub(crate) fn half_width(nodes: &[(f64, bool)]) -> f64 {
     let mut sides = [0.0f64; 2];
     for (k, dir) in [(0usize, 1.0f64), (1, -1.0)] {
         // walk outwards from the centre

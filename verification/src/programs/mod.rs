@@ -23,6 +23,7 @@ pub mod hertz_3d_axi;
 pub mod impact;
 pub mod johnson_cook;
 pub mod mortar;
+pub mod mortar_friction;
 pub mod nagata_3d;
 pub mod norton_hoff;
 pub mod objectivity;
@@ -67,6 +68,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(penalty_scaling::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());
+    v.extend(mortar_friction::cases());
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
     v.extend(quadratic::cases());

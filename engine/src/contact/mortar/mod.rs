@@ -37,6 +37,7 @@
 
 pub mod ad;
 pub mod facets;
+pub mod friction;
 pub mod integrals;
 
 use super::surface::SurfacePair;
@@ -136,6 +137,19 @@ impl<'a> Row<'a> {
         self.nodes.binary_search(&node).unwrap_or(0)
     }
 
+    /// The nodal gap `g~ / A` and its gradient `(dg~ - g dA) / A`.
+    fn nodal_gap(&self) -> (f64, Vec<f64>) {
+        let area = self.area;
+        let gap = self.g / area;
+        let dgap = self
+            .dg
+            .iter()
+            .zip(&self.da)
+            .map(|(a, b)| (a - gap * b) / area)
+            .collect();
+        (gap, dgap)
+    }
+
     /// Adds one piece: its weighted gap, area, the coefficients `(node,
     /// -D_jk or M_jl)` of `B` and the normal, all over the variables
     /// `vars`.
@@ -210,12 +224,7 @@ impl<'a> Row<'a> {
                 (active, pressure, active.then_some(coupling))
             }
             None => {
-                let dgap: Vec<f64> = self
-                    .dg
-                    .iter()
-                    .zip(&self.da)
-                    .map(|(a, b)| (a - gap * b) / area)
-                    .collect();
+                let (_, dgap) = self.nodal_gap();
                 let rn = (shift - alpha * gap).max(0.0);
                 let closed =
                     rn > 0.0 || (touching > 0.0 && (0.0..=touching).contains(&gap) && alpha > 0.0);
@@ -298,6 +307,99 @@ impl<'a> Row<'a> {
     }
 }
 
+/// The row of a slave node over `nodes` (sorted) from its pieces and,
+/// with `tangential`, the same row with each slave segment's tangent `t =
+/// (-n_y, n_x)` in place of its normal (`bv = [-D_jk t, M_jl t]`, the
+/// distribution of the friction forces).
+fn rows_of<'a>(list: &[Piece], nodes: &'a [usize], tangential: bool) -> (Row<'a>, Option<Row<'a>>) {
+    let mut row = Row::new(nodes, 2);
+    let mut tangent_row = tangential.then(|| Row::new(nodes, 2));
+    for p in list {
+        let s = &p.seg;
+        let j = p.row;
+        let coefficients = (0..4).map(|slot| {
+            let coef = if slot < 2 {
+                -s.d[j][slot]
+            } else {
+                s.m[j][slot - 2]
+            };
+            (p.nodes[slot], coef)
+        });
+        let area = s.d[j][0] + s.d[j][1];
+        if let Some(t) = &mut tangent_row {
+            let tangent = [-s.normal[1], s.normal[0]];
+            t.add(&p.nodes, &s.gap[j], &area, coefficients.clone(), &tangent);
+        }
+        row.add(&p.nodes, &s.gap[j], &area, coefficients, &s.normal);
+    }
+    (row, tangent_row)
+}
+
+/// The friction inputs of one closed slave node (see [`friction`]).
+struct FrictionInputs {
+    mu: f64,
+    alpha_t: f64,
+    /// The augmented Lagrangian's tangential shift (0: penalty).
+    shift: f64,
+    /// Stick point (slip coordinate) the trial force is measured from.
+    anchor: f64,
+    /// The node's slip since the committed configuration and its gradient.
+    slip: (f64, Vec<f64>),
+}
+
+impl Row<'_> {
+    /// [`Row::close`] (penalty or augmented Lagrangian) with Coulomb
+    /// friction: a closed node's coupling gets the friction forces and
+    /// tangent of [`friction::respond`] (`tangential` from [`rows_of`]),
+    /// its output entry the friction state; the response is returned for
+    /// the pair's history.
+    #[allow(clippy::too_many_arguments)]
+    fn close_with_friction(
+        &self,
+        tangential: &Row,
+        node: usize,
+        support: f64,
+        alpha: f64,
+        shift: f64,
+        prof: f64,
+        entity: usize,
+        inputs: &FrictionInputs,
+    ) -> Option<(NodeContact, Option<Coupling>, Option<friction::Response>)> {
+        let (mut nc, coupling) =
+            self.close(node, support, alpha, shift, prof, 0.0, entity, None)?;
+        let Some(mut coupling) = coupling else {
+            return Some((nc, None, None));
+        };
+        let (gap, dgap) = self.nodal_gap();
+        let law = friction::Law {
+            mu: inputs.mu,
+            alpha_t: inputs.alpha_t,
+            shift: inputs.shift,
+            alpha_n: alpha,
+            normal_force: (shift - alpha * gap).max(0.0),
+            support,
+            area: self.area,
+            anchor: inputs.anchor,
+        };
+        let r = friction::respond(
+            &law,
+            self.pos(node),
+            (inputs.slip.0, &inputs.slip.1),
+            &dgap,
+            &tangential.bv,
+            &tangential.db,
+        );
+        for (c, v) in coupling.force.iter_mut().zip(&r.force) {
+            *c += v;
+        }
+        for (c, v) in coupling.tangent.iter_mut().zip(&r.tangent) {
+            *c += v;
+        }
+        nc.friction = r.friction;
+        Some((nc, Some(coupling), Some(r)))
+    }
+}
+
 /// Adds the forces of `couplings` on the slave nodes to their output
 /// entries (`out` sorted by node).
 fn total_forces<const D: usize>(couplings: &[Coupling], out: &mut [NodeContact<D>]) {
@@ -320,29 +422,24 @@ pub fn weight(model: &Model) -> Weight {
     }
 }
 
-/// Evaluates mortar pair `pair` at current coordinates `x`: fills
-/// `state.couplings` and returns one entry per slave node whose support
-/// the master covers within `prof`.
-pub fn evaluate(
-    model: &Model,
-    pair: usize,
+/// The mortar pieces of every slave node (per slave index of `slaves`)
+/// at coordinates `x`: per slave segment, the master segments of the broad
+/// phase within half its length plus `prof` of its midpoint whose
+/// projection overlaps it, unless both end gaps exceed `prof` or both lie
+/// deeper than `max(prof, L)` (the far side of a thin body). Rebuilds the
+/// master's broad phase at `x`; `tests` counts the segment pairs tried.
+fn pieces_at(
+    sp: &mut super::node_to_segment::SurfacePair,
+    slaves: &[usize],
     x: &[[f64; 2]],
-    state: &mut PairState,
-) -> Vec<NodeContact> {
-    let mut out = Vec::new();
-    let mut couplings = state.couplings.take().unwrap_or_default();
-    couplings.clear();
-    let (Some(cp), Some(mut sp)) = (model.contacts.get(pair), state.surface.take()) else {
-        state.couplings = Some(couplings);
-        return out;
-    };
-    let w = weight(model);
+    w: Weight,
+    prof: f64,
+    tests: &mut usize,
+) -> Vec<Vec<Piece>> {
     let basis = Basis::Dual;
-    let prof = state.prof;
     sp.sides[1].update(x);
-    let mut pieces: Vec<Vec<Piece>> = vec![Vec::new(); state.slaves.len()];
+    let mut pieces: Vec<Vec<Piece>> = vec![Vec::new(); slaves.len()];
     let mut candidates = std::mem::take(&mut sp.candidates);
-    let mut tests = 0usize;
     for &[a, b] in &sp.sides[0].edges {
         let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else {
             continue;
@@ -358,7 +455,7 @@ pub fn evaluate(
         let depth = prof.max(len);
         for &e in &candidates {
             let [c, d] = sp.sides[1].edges[e];
-            tests += 1;
+            *tests += 1;
             let Some(seg) = segment_pair([xa, xb, x[c], x[d]], w, basis) else {
                 continue;
             };
@@ -367,7 +464,7 @@ pub fn evaluate(
                 continue;
             }
             for (row, node) in [a, b].into_iter().enumerate() {
-                if let Some(i) = state.slave_index(node) {
+                if let Ok(i) = slaves.binary_search(&node) {
                     pieces[i].push(Piece {
                         nodes: [a, b, c, d],
                         master: e,
@@ -379,40 +476,77 @@ pub fn evaluate(
         }
     }
     sp.candidates = candidates;
+    pieces
+}
+
+/// Evaluates mortar pair `pair` at current coordinates `x`: fills
+/// `state.couplings` and returns one entry per slave node whose support
+/// the master covers within `prof`. With friction ([`friction`]) the
+/// slave nodes' pairings in the committed configuration are computed once
+/// per increment and each closed node's row gets its friction forces.
+pub fn evaluate(
+    model: &Model,
+    pair: usize,
+    x: &[[f64; 2]],
+    state: &mut PairState,
+) -> Vec<NodeContact> {
+    let mut out = Vec::new();
+    let mut couplings = state.couplings.take().unwrap_or_default();
+    couplings.clear();
+    let (Some(cp), Some(mut sp)) = (model.contacts.get(pair), state.surface.take()) else {
+        state.couplings = Some(couplings);
+        return out;
+    };
+    let w = weight(model);
+    let prof = state.prof;
+    let law = cp.friction.as_ref();
+    if law.is_some() {
+        state.friction.incremental = true;
+        let key = sp.increments;
+        if sp.pairing.as_ref().map(|p| p.key) != Some(key) {
+            let xn = std::mem::take(&mut sp.committed_positions);
+            let mut old_tests = 0;
+            let old = pieces_at(&mut sp, &state.slaves, &xn, w, prof, &mut old_tests);
+            sp.committed_positions = xn;
+            let rows = old
+                .iter()
+                .map(|list| {
+                    let mut p = friction::Pairing::default();
+                    for piece in list {
+                        p.add(piece.nodes, piece.row, &piece.seg);
+                    }
+                    p
+                })
+                .collect();
+            sp.pairing = Some(friction::CommittedPairing { key, rows });
+        }
+        sp.positions.clear();
+        sp.positions.extend_from_slice(x);
+    }
+    let mut tests = 0usize;
+    let pieces = pieces_at(&mut sp, &state.slaves, x, w, prof, &mut tests);
     let mut nodes = Vec::new();
     for (i, list) in pieces.iter().enumerate() {
         let node = state.slaves[i];
         state.last_entity[i] = list.first().map(|p| p.master);
+        let pairing = law.and(sp.pairing.as_ref()).and_then(|p| p.rows.get(i));
         if list.is_empty() {
+            state.friction.open(i, [0.0; 2]);
             continue;
         }
         nodes.clear();
         for p in list {
             nodes.extend_from_slice(&p.nodes);
         }
+        if let Some(p) = pairing {
+            nodes.extend(p.nodes());
+        }
         nodes.sort_unstable();
         nodes.dedup();
-        let mut row = Row::new(&nodes, 2);
-        for p in list {
-            let s = &p.seg;
-            let j = p.row;
-            row.add(
-                &p.nodes,
-                &s.gap[j],
-                &(s.d[j][0] + s.d[j][1]),
-                (0..4).map(|slot| {
-                    let coef = if slot < 2 {
-                        -s.d[j][slot]
-                    } else {
-                        s.m[j][slot - 2]
-                    };
-                    (p.nodes[slot], coef)
-                }),
-                &s.normal,
-            );
-        }
+        let (row, tangential) = rows_of(list, &nodes, law.is_some());
         let support = state.tributary.get(i).copied().unwrap_or(0.0);
-        let alpha = super::penalty::effective_stiffness(&cp.method_at(node), support);
+        let method = cp.method_at(node);
+        let alpha = super::penalty::effective_stiffness(&method, support);
         let shift = match cp.method {
             ContactMethod::AugmentedLagrange { .. } => {
                 state.multiplier.get(i).copied().unwrap_or(0.0)
@@ -425,18 +559,55 @@ pub fn evaluate(
                 state.multiplier.get(i).copied().unwrap_or(0.0),
             )
         });
-        let Some((nc, coupling)) = row.close(
-            node,
-            support,
-            alpha,
-            shift,
-            prof,
-            0.0,
-            list[0].master,
-            lagrange,
-        ) else {
+        let closed = match (law, &tangential) {
+            (Some(law), Some(t)) if lagrange.is_none() => {
+                let f = &state.friction;
+                let inputs = FrictionInputs {
+                    mu: law.mu,
+                    alpha_t: crate::contact::friction::tangential_stiffness(law, &method, support),
+                    shift: match cp.method {
+                        ContactMethod::AugmentedLagrange { .. } => f.multiplier[i],
+                        _ => 0.0,
+                    },
+                    anchor: f.base[i].or(f.committed_anchor[i]).map_or(0.0, |a| a[0]),
+                    slip: pairing
+                        .map_or_else(|| (0.0, vec![0.0; 2 * nodes.len()]), |p| p.slip(x, &nodes)),
+                };
+                row.close_with_friction(
+                    t,
+                    node,
+                    support,
+                    alpha,
+                    shift,
+                    prof,
+                    list[0].master,
+                    &inputs,
+                )
+            }
+            _ => row
+                .close(
+                    node,
+                    support,
+                    alpha,
+                    shift,
+                    prof,
+                    0.0,
+                    list[0].master,
+                    lagrange,
+                )
+                .map(|(nc, c)| (nc, c, None)),
+        };
+        let Some((nc, coupling, response)) = closed else {
+            state.friction.open(i, [0.0; 2]);
             continue;
         };
+        match response {
+            Some(r) => {
+                state.friction.anchor[i] = Some([r.anchor, 0.0]);
+                state.friction.position[i] = [r.position, 0.0];
+            }
+            None => state.friction.open(i, [0.0; 2]),
+        }
         couplings.extend(coupling);
         out.push(nc);
     }
@@ -587,4 +758,257 @@ pub fn evaluate_3d(
     state.counters.faces_tested += fp.tests as u64;
     state.deformable = Some(fp);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::friction::Pairing;
+    use super::*;
+    use crate::contact::friction::FrictionStatus;
+    use crate::contact::node_to_segment::{Surface, SurfacePair};
+    use proptest::prelude::*;
+
+    /// Slave nodes 0, 1, 2 on the top of the lower body (walking -x along
+    /// y = 0: outward normal +y), master nodes 3..=6 on the bottom of the
+    /// upper body (walking +x): slave segments [0, 1], [1, 2], master
+    /// [3, 4], [4, 5], [5, 6].
+    fn pair() -> SurfacePair {
+        let mut sp = SurfacePair::default();
+        sp.sides = [
+            Surface::new(&[[0, 1], [1, 2]]),
+            Surface::new(&[[3, 4], [4, 5], [5, 6]]),
+        ];
+        sp
+    }
+
+    const SLAVES: [usize; 3] = [0, 1, 2];
+
+    fn pieces(x: &[[f64; 2]]) -> Vec<Vec<Piece>> {
+        let mut tests = 0;
+        pieces_at(
+            &mut pair(),
+            &SLAVES,
+            x,
+            Weight::Thickness(1.0),
+            1.0,
+            &mut tests,
+        )
+    }
+
+    fn pairing_of(list: &[Piece]) -> Pairing {
+        let mut p = Pairing::default();
+        for piece in list {
+            p.add(piece.nodes, piece.row, &piece.seg);
+        }
+        p
+    }
+
+    /// The middle slave node's row at `x` with its pairing at `xn`:
+    /// `(nodes, pieces' masters, entry, coupling)`.
+    #[allow(clippy::type_complexity)]
+    fn middle_row(
+        x: &[[f64; 2]],
+        xn: &[[f64; 2]],
+        mu: f64,
+        anchor: f64,
+        shift: f64,
+    ) -> Option<(Vec<usize>, Vec<usize>, NodeContact, Coupling)> {
+        let pairing = pairing_of(&pieces(xn)[1]);
+        let now = pieces(x);
+        let list = &now[1];
+        if list.is_empty() {
+            return None;
+        }
+        let mut nodes: Vec<usize> = list.iter().flat_map(|p| p.nodes).collect();
+        nodes.extend(pairing.nodes());
+        nodes.sort_unstable();
+        nodes.dedup();
+        let (row, t) = rows_of(list, &nodes, true);
+        let inputs = FrictionInputs {
+            mu,
+            alpha_t: 40.0,
+            shift: 0.3 * shift,
+            anchor,
+            slip: pairing.slip(x, &nodes),
+        };
+        let (nc, coupling, _) =
+            row.close_with_friction(&t.unwrap(), 1, 1.0, 100.0, shift, 1.0, 0, &inputs)?;
+        let masters = list.iter().map(|p| p.master).collect();
+        Some((nodes, masters, nc, coupling?))
+    }
+
+    /// Reference positions: a slightly curved slave over a master below it.
+    fn reference(bend: f64, gap: f64) -> Vec<[f64; 2]> {
+        vec![
+            [1.0, bend],
+            [0.0, 0.0],
+            [-1.0, bend],
+            [-1.3, gap],
+            [-0.4, gap - 0.3 * bend],
+            [0.5, gap - 0.2 * bend],
+            [1.4, gap + bend],
+        ]
+    }
+
+    #[test]
+    fn slip_is_zero_for_a_rigid_motion_and_the_slide_along_a_flat_master() {
+        let xn = reference(0.05, -0.01);
+        let nodes: Vec<usize> = (0..7).collect();
+        let p = pairing_of(&pieces(&xn)[1]);
+        assert!(p.area > 0.0 && p.segments.len() == 2);
+        // rigid rotation and translation of both bodies
+        let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+        let moved: Vec<[f64; 2]> = xn
+            .iter()
+            .map(|q| [c * q[0] - s * q[1] + 0.7, s * q[0] + c * q[1] - 0.2])
+            .collect();
+        let (slip, _) = p.slip(&moved, &nodes);
+        assert!(slip.abs() < 1e-14, "{slip}");
+        // the slave slides by 0.05 along a flat master (slave tangent -x)
+        let flat = reference(0.0, -0.01);
+        let p = pairing_of(&pieces(&flat)[1]);
+        let slid: Vec<[f64; 2]> = flat
+            .iter()
+            .enumerate()
+            .map(|(k, q)| if k < 3 { [q[0] - 0.05, q[1]] } else { *q })
+            .collect();
+        let (slip, _) = p.slip(&slid, &nodes);
+        assert!((slip - 0.05).abs() < 1e-14, "{slip}");
+    }
+
+    #[test]
+    fn friction_forces_balance_and_slip_on_the_cone() {
+        let xn = reference(0.05, -0.01);
+        let x: Vec<[f64; 2]> = xn
+            .iter()
+            .enumerate()
+            .map(|(k, q)| if k < 3 { [q[0] - 0.02, q[1]] } else { *q })
+            .collect();
+        for (mu, status) in [(0.9, FrictionStatus::Stick), (0.1, FrictionStatus::Slip)] {
+            let (nodes, _, nc, c) = middle_row(&x, &xn, mu, 0.0, 0.0).unwrap();
+            assert_eq!(nc.friction.status, status);
+            for comp in 0..2 {
+                let sum: f64 = (0..nodes.len()).map(|k| c.force[2 * k + comp]).sum();
+                assert!(sum.abs() < 1e-13, "{sum}");
+            }
+            let rn = (-100.0 * nc.gap).max(0.0);
+            if status == FrictionStatus::Slip {
+                assert!((nc.friction.tangential_force.abs() - mu * rn).abs() < 1e-14 * rn);
+            } else {
+                assert!(nc.friction.tangential_force.abs() < mu * rn);
+            }
+            // the slave slid along -x: the master drags it back (+x)
+            assert!(nc.friction.traction[0] > 0.0, "{:?}", nc.friction);
+        }
+    }
+
+    fn perturbation() -> impl Strategy<Value = (Vec<[f64; 2]>, Vec<[f64; 2]>)> {
+        (
+            -0.1f64..0.1,
+            proptest::collection::vec((-0.05f64..0.05, -0.01f64..0.01), 7),
+            proptest::collection::vec((-0.05f64..0.05, -0.005f64..0.005), 7),
+        )
+            .prop_map(|(bend, now, old)| {
+                let r = reference(bend, -0.01);
+                let x = r
+                    .iter()
+                    .zip(&now)
+                    .map(|(q, d)| [q[0] + d.0, q[1] + d.1])
+                    .collect();
+                let xn = r
+                    .iter()
+                    .zip(&old)
+                    .map(|(q, d)| [q[0] + d.0, q[1] + 0.02 + d.1])
+                    .collect();
+                (x, xn)
+            })
+    }
+
+    /// The largest `|K - K_fd|` of the middle row relative to the largest
+    /// `|K|` (central differences, step 1e-7) and the row's friction
+    /// status; `None` when the node is open or a perturbation changes the
+    /// pieces or the status (a kink of the segmentation or the cone).
+    fn fd_error(
+        x: &[[f64; 2]],
+        xn: &[[f64; 2]],
+        mu: f64,
+        anchor: f64,
+        shift: f64,
+    ) -> Option<(FrictionStatus, f64)> {
+        let (nodes, masters, nc, c) = middle_row(x, xn, mu, anchor, shift)?;
+        let h = 1e-7;
+        let scale = c.tangent.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let nd = 2 * nodes.len();
+        let mut worst = 0.0f64;
+        for (k, &node) in nodes.iter().enumerate() {
+            for comp in 0..2 {
+                let at = |dh: f64| {
+                    let mut y = x.to_vec();
+                    y[node][comp] += dh;
+                    middle_row(&y, xn, mu, anchor, shift)
+                        .filter(|r| r.0 == nodes && r.1 == masters)
+                        .filter(|r| r.2.friction.status == nc.friction.status)
+                };
+                let (p, m) = at(h).zip(at(-h))?;
+                let col = 2 * k + comp;
+                for r in 0..nd {
+                    let fd = -(p.3.force[r] - m.3.force[r]) / (2.0 * h);
+                    worst = worst.max((fd - c.tangent[r * nd + col]).abs() / scale);
+                }
+            }
+        }
+        Some((nc.friction.status, worst))
+    }
+
+    proptest! {
+        /// The row's tangent (normal and friction parts, stick and slip,
+        /// penalty and augmented Lagrangian) is minus the derivative of its
+        /// forces, by central differences.
+        #[test]
+        fn frictional_row_tangent_matches_finite_differences(
+            (x, xn) in perturbation(),
+            mu in 0.05f64..1.0,
+            anchor in -0.05f64..0.05,
+            shift in prop_oneof![Just(0.0), 0.0f64..2.0],
+        ) {
+            let e = fd_error(&x, &xn, mu, anchor, shift);
+            prop_assume!(e.is_some());
+            let (status, worst) = e.unwrap();
+            prop_assert!(worst < 1e-6, "{status:?}: {worst}");
+        }
+    }
+
+    /// The same over 400 seeded random rows: both statuses are exercised
+    /// (counts asserted) and the largest error is printed.
+    #[test]
+    fn fd_errors_over_seeded_random_rows() {
+        use proptest::strategy::ValueTree;
+        use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+        let mut runner = TestRunner::new_with_rng(
+            Config::default(),
+            TestRng::from_seed(RngAlgorithm::ChaCha, &[7; 32]),
+        );
+        let inputs = (perturbation(), 0.05f64..1.0, -0.05f64..0.05, 0.0f64..2.0);
+        let (mut stick, mut slip) = ((0, 0.0f64), (0, 0.0f64));
+        for k in 0..400 {
+            let ((x, xn), mu, anchor, shift) = inputs.new_tree(&mut runner).unwrap().current();
+            let shift = if k % 2 == 0 { 0.0 } else { shift };
+            let Some((status, worst)) = fd_error(&x, &xn, mu, anchor, shift) else {
+                continue;
+            };
+            let slot = if status == FrictionStatus::Stick {
+                &mut stick
+            } else {
+                &mut slip
+            };
+            slot.0 += 1;
+            slot.1 = slot.1.max(worst);
+        }
+        eprintln!(
+            "mortar friction row, K vs central differences: stick {} rows, max {:.1e}; slip {} rows, max {:.1e}",
+            stick.0, stick.1, slip.0, slip.1
+        );
+        assert!(stick.0 >= 50 && slip.0 >= 50, "{stick:?} {slip:?}");
+        assert!(stick.1 < 1e-6 && slip.1 < 1e-6, "{stick:?} {slip:?}");
+    }
 }
