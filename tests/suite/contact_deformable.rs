@@ -6,7 +6,9 @@
 //!   touch (self contact): no penetration beyond the penalty gap,
 //!   equilibrium of the contact forces;
 //! - examples/contact_patch.ctc made axisymmetric: uniform pressure to
-//!   round-off with matching meshes, equilibrium with non-matching ones.
+//!   round-off with matching meshes, equilibrium with non-matching ones;
+//! - examples/contact_blocks_3d.ctc: the double pass's contact CSV lists
+//!   the side that carries the contact.
 //!
 //! `cargo test --test suite contact_deformable:: -- --nocapture` prints the figures.
 
@@ -283,4 +285,48 @@ fn axisymmetric_contact_patch_transmits_the_uniform_pressure() {
         worst > 1e-4,
         "single pass is not expected to pass the patch test"
     );
+}
+
+/// `examples/contact_blocks_3d.ctc` (node-to-facet, double pass: the
+/// blocks swap master and slave every increment): the contact CSV lists
+/// both faces' nodes, and in the second increment, where the base's face
+/// is the slave, its 25 nodes carry the contact (the CSV listed only the
+/// top face's 16 nodes, all open, so the written pressure was zero).
+#[test]
+fn double_pass_3d_contact_csv_lists_the_acting_side() {
+    let dir = tempfile::tempdir().unwrap();
+    let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/contact_blocks_3d.ctc");
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_ctc"))
+        .args(["run", "-q"])
+        .arg(&deck)
+        .arg("-o")
+        .arg(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let closed = |inc: usize| -> (usize, Vec<f64>) {
+        let text =
+            std::fs::read_to_string(dir.path().join(format!("contact_0_{inc:04}.csv"))).unwrap();
+        let rows: Vec<Vec<String>> = text
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(str::to_string).collect())
+            .collect();
+        let p = rows
+            .iter()
+            .filter(|r| r[6] == "1")
+            .map(|r| r[5].parse().unwrap())
+            .collect();
+        (rows.len(), p)
+    };
+    for (inc, acting) in [(1, 16), (2, 25)] {
+        let (rows, p) = closed(inc);
+        assert_eq!(rows, 16 + 25, "increment {inc}");
+        assert_eq!(p.len(), acting, "increment {inc}");
+        // p = E d / H = 5 (increment 1), 10 (2), within the node-to-facet
+        // defect (the top face's corner nodes 25 % low, its centre 11 %
+        // high)
+        let exact = 5.0 * inc as f64;
+        assert!(p.iter().all(|p| (p / exact - 1.0).abs() < 0.3), "{p:?}");
+    }
 }

@@ -800,7 +800,10 @@ impl ContactScene<3> for SurfaceAssembly {
         } else {
             "\n"
         });
-        for &n in &cp.nodes {
+        // both surfaces' nodes when both act as slaves (double passes), as
+        // in 2D: a double pass's second side carries the contact in every
+        // other increment
+        for n in crate::contact::node_to_facet::slave_nodes(model, pair) {
             let x0 = model.mesh.nodes[n];
             let u = displacement[n];
             let _ = write!(
