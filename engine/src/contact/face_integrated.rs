@@ -525,22 +525,8 @@ impl FacetPair {
         let mut g = 0;
         for (f, facet) in self.rule.facets.iter().enumerate() {
             let nn = facet.len();
-            // sorted distinct nodes and the position of each facet node
-            let mut sorted = facet.clone();
-            sorted.sort_unstable();
-            sorted.dedup();
-            let pos: Vec<usize> = facet
-                .iter()
-                .map(|n| sorted.binary_search(n).unwrap_or(0))
-                .collect();
-            let nd = D * sorted.len();
-            let mut c = Coupling {
-                nodes: sorted.clone(),
-                force: vec![0.0; nd],
-                tangent: vec![0.0; nd * nd],
-                slave: facet.first().copied().unwrap_or(0),
-                gap_gradient: Vec::new(),
-            };
+            let (mut c, pos) = facet_coupling::<D>(facet);
+            let nd = c.force.len();
             let mut any = false;
             let k = self.stiffness[f];
             while g < self.rule.points.len() && self.rule.points[g].facet == f {
@@ -676,21 +662,8 @@ impl FacetPair {
         let mut g = 0;
         for (f, facet) in self.rule.facets.iter().enumerate() {
             let nn = facet.len();
-            let mut sorted = facet.clone();
-            sorted.sort_unstable();
-            sorted.dedup();
-            let pos: Vec<usize> = facet
-                .iter()
-                .map(|n| sorted.binary_search(n).unwrap_or(0))
-                .collect();
-            let nd = D * sorted.len();
-            let mut c = Coupling {
-                nodes: sorted.clone(),
-                force: vec![0.0; nd],
-                tangent: vec![0.0; nd * nd],
-                slave: facet.first().copied().unwrap_or(0),
-                gap_gradient: Vec::new(),
-            };
+            let (mut c, pos) = facet_coupling::<D>(facet);
+            let nd = c.force.len();
             let idx = &self.facet_index[f];
             let mut any = false;
             while g < self.rule.points.len() && self.rule.points[g].facet == f {
@@ -1378,6 +1351,27 @@ pub fn evaluate_planar(
     state.point_contact = point_contact;
     state.facets = Some(fp);
     out
+}
+
+/// An empty coupling over the sorted distinct nodes of `facet`, and the
+/// position of each facet node among them.
+fn facet_coupling<const D: usize>(facet: &[usize]) -> (Coupling, Vec<usize>) {
+    let mut sorted = facet.to_vec();
+    sorted.sort_unstable();
+    sorted.dedup();
+    let pos = facet
+        .iter()
+        .map(|n| sorted.binary_search(n).unwrap_or(0))
+        .collect();
+    let nd = D * sorted.len();
+    let c = Coupling {
+        nodes: sorted,
+        force: vec![0.0; nd],
+        tangent: vec![0.0; nd * nd],
+        slave: facet.first().copied().unwrap_or(0),
+        gap_gradient: Vec::new(),
+    };
+    (c, pos)
 }
 
 #[cfg(test)]
