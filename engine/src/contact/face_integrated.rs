@@ -1590,6 +1590,56 @@ mod tests {
         assert!((fp.loaded_point_gap() - 0.01).abs() < 1e-15);
     }
 
+    /// A quad8 (`kind` 0), tri6 (1) or quad9 (2) face in the plane z = 0
+    /// (the reference) and its nodes moved by `wobble` (3 per node) and
+    /// lowered by `depth` (the current positions).
+    fn wobbled_face(kind: usize, depth: f64, wobble: &[f64]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+        let base: Vec<[f64; 2]> = match kind {
+            0 => vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [0.5, 0.0],
+                [1.0, 0.5],
+                [0.5, 1.0],
+                [0.0, 0.5],
+            ],
+            1 => vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [0.0, 1.0],
+                [0.5, 0.0],
+                [0.5, 0.5],
+                [0.0, 0.5],
+            ],
+            _ => vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [1.0, 1.0],
+                [0.0, 1.0],
+                [0.5, 0.0],
+                [1.0, 0.5],
+                [0.5, 1.0],
+                [0.0, 0.5],
+                [0.5, 0.5],
+            ],
+        };
+        let reference = base.iter().map(|p| [p[0], p[1], 0.0]).collect();
+        let x = base
+            .iter()
+            .enumerate()
+            .map(|(a, p)| {
+                [
+                    p[0] + wobble[3 * a],
+                    p[1] + wobble[3 * a + 1],
+                    wobble[3 * a + 2] - depth,
+                ]
+            })
+            .collect();
+        (reference, x)
+    }
+
     fn sphere(x: [f64; 3], centre: [f64; 3], radius: f64) -> PointProjection<3> {
         let d: [f64; 3] = std::array::from_fn(|k| x[k] - centre[k]);
         let r = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
@@ -1630,21 +1680,7 @@ mod tests {
             lambda in 0.0f64..2.0,
             wobble in proptest::collection::vec(-0.05f64..0.05, 27),
         ) {
-            let base: Vec<[f64; 2]> = match kind {
-                0 => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
-                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]],
-                1 => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5],
-                          [0.0, 0.5]],
-                _ => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
-                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5], [0.5, 0.5]],
-            };
-            let reference: Vec<[f64; 3]> = base.iter().map(|p| [p[0], p[1], 0.0]).collect();
-            let x: Vec<[f64; 3]> = base
-                .iter()
-                .enumerate()
-                .map(|(a, p)| [p[0] + wobble[3 * a], p[1] + wobble[3 * a + 1],
-                               wobble[3 * a + 2] - depth])
-                .collect();
+            let (reference, x) = wobbled_face(kind, depth, &wobble);
             let n = x.len();
             let centre = [0.4 + shift, 0.45, -1.5];
             let mut fp = FacetPair::new(FacetRule::solid(&reference, vec![(0..n).collect()]),
@@ -1695,21 +1731,7 @@ mod tests {
             lambda in proptest::collection::vec(-0.5f64..2.0, 9),
             wobble in proptest::collection::vec(-0.05f64..0.05, 27),
         ) {
-            let base: Vec<[f64; 2]> = match kind {
-                0 => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
-                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5]],
-                1 => vec![[0.0, 0.0], [1.0, 0.0], [0.0, 1.0], [0.5, 0.0], [0.5, 0.5],
-                          [0.0, 0.5]],
-                _ => vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [0.5, 0.0],
-                          [1.0, 0.5], [0.5, 1.0], [0.0, 0.5], [0.5, 0.5]],
-            };
-            let reference: Vec<[f64; 3]> = base.iter().map(|p| [p[0], p[1], 0.0]).collect();
-            let x: Vec<[f64; 3]> = base
-                .iter()
-                .enumerate()
-                .map(|(a, p)| [p[0] + wobble[3 * a], p[1] + wobble[3 * a + 1],
-                               wobble[3 * a + 2] - depth])
-                .collect();
+            let (reference, x) = wobbled_face(kind, depth, &wobble);
             let n = x.len();
             let centre = [0.4, 0.45, -1.5];
             let mut fp = FacetPair::new(FacetRule::solid(&reference, vec![(0..n).collect()]),
