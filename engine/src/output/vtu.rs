@@ -115,17 +115,7 @@ fn pick<T: Copy>(
     comps: usize,
     values: impl IntoIterator<Item = T>,
 ) -> Vec<T> {
-    let all: Vec<T> = values.into_iter().collect();
-    match sel {
-        None => all,
-        Some(sel) => {
-            let k = comps.max(1);
-            sel.nodes
-                .iter()
-                .flat_map(|&n| all[k * n..k * (n + 1)].iter().copied())
-                .collect()
-        }
-    }
+    restrict(sel.map(|s| &s.nodes[..]), comps, values)
 }
 
 /// The cell values (`comps` per cell, all cells) of the piece's cells.
@@ -134,14 +124,23 @@ fn pick_cells<T: Copy>(
     comps: usize,
     values: impl IntoIterator<Item = T>,
 ) -> Vec<T> {
+    restrict(sel.map(|s| &s.cells[..]), comps, values)
+}
+
+/// The values (`comps` per entity, all entities) of the listed entities
+/// (all of them without a list).
+fn restrict<T: Copy>(
+    entities: Option<&[usize]>,
+    comps: usize,
+    values: impl IntoIterator<Item = T>,
+) -> Vec<T> {
     let all: Vec<T> = values.into_iter().collect();
-    match sel {
+    match entities {
         None => all,
-        Some(sel) => {
+        Some(list) => {
             let k = comps.max(1);
-            sel.cells
-                .iter()
-                .flat_map(|&c| all[k * c..k * (c + 1)].iter().copied())
+            list.iter()
+                .flat_map(|&e| all[k * e..k * (e + 1)].iter().copied())
                 .collect()
         }
     }
