@@ -30,17 +30,29 @@
 //! vector (`t A / T`, [`NodeFriction::traction`]) over its reference
 //! tributary area `T` (the convention of the reported pressure).
 //!
-//! Measured per run: stick, the largest `|q_i - q_mean| / |q_mean|` (the
-//! vectors: magnitude and direction), the pressure's deviation from
-//! uniform and `|q_mean| / tau - 1`; slip, the largest `| |q_i| - mu p_i
-//! | / (mu p_mean)`, the total tangential contact force over `mu` times
-//! the total normal one minus 1, and the angle between the total
-//! tangential force and minus the shear direction. See the figures in the
-//! test `verification/tests/suite/contact_mortar_3d.rs`.
+//! Measured per run: see [`CHECKS`]. Figures (`ctc verify
+//! contact_patch_friction_3d`, 8 runs, 171 Newton iterations, 27 s dev):
+//! stick, augmented Lagrangian: q deviation 2.2e-11 (hex8, x) / 1.7e-11
+//! (hex8, 30 degrees) / 6.3e-11 (tet4, 30 degrees), p deviation <= 8.8e-12,
+//! `|q| / tau - 1` <= 3.9e-12; stick, penalty (hex8, 30 degrees): q
+//! deviation 3.7e-5, p deviation 3.4e-5, `|q| / tau - 1` 1.5e-5 — the
+//! penalty's elastic slip `g_T = tau / k_T = 2.9e-6` moves the slave's rim
+//! past the master's on the sides the shear points to: the rim nodes lose
+//! the coverage of a strip `g_T` of their support (about `4 g_T / h` =
+//! 3.5e-5 of their force, as in 2D), an end effect of the regularization
+//! that the augmented Lagrangian closes; slip, penalty: `| |q| - mu p |`
+//! 4.6e-16 / 3.1e-16 / 3.1e-16 of `mu p` (every node on the cone), `T /
+//! (mu N) - 1` 5.1e-12 / 9.8e-9 / 3.4e-9, the direction of `T` off the
+//! shear by 4e-14 / 1.6e-6 / 1.5e-5 rad (the slide of 5 % past the limit
+//! overhangs the rim on two sides at 30 degrees: the pressure deviates by
+//! 2.5e-3 / 3.5e-3 / 2.6e-3 from uniform, the nodes' slip directions
+//! spread by that non-uniformity); slip, augmented Lagrangian (hex8, 30
+//! degrees): the Uzawa loop leaves nodes sticking on the cone, `| |q| - mu
+//! p |` 1.6e-7, `T / (mu N) - 1` 1.1e-7.
 //!
 //! [`NodeFriction::traction`]: ctc_engine::contact::friction::NodeFriction
 
-use super::{error, value};
+use super::error;
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::contact::friction::FrictionStatus;
@@ -105,17 +117,18 @@ pub const RUNS: [Run; 8] = [
     ),
 ];
 
-/// The quantities of a stick run and of a slip run (suffixes of the run's
-/// name).
-const STICK: [&str; 3] = ["q deviation", "p deviation", "|q| / tau - 1"];
-const SLIPPING: [&str; 3] = [
-    "max ||q| - mu p| / (mu p)",
-    "T / (mu N) - 1",
-    "T direction error (rad)",
-];
-
-/// Names and tolerances of every value, in run order.
-pub const CHECKS: [(&str, f64); 24] = [
+/// Names and tolerances of every value, in run order: per stick run the
+/// largest deviation of the traction vectors from their mean, the
+/// pressure's deviation from uniform and `|q_mean| / tau - 1`; per slip
+/// run the largest `| |q_i| - mu p_i | / (mu p_mean)`, the total
+/// tangential force over `mu` times the total normal one minus 1 (both
+/// summed over the nodes' laws: `sum t_i A_i / T_i` against `mu sum R_i
+/// A_i / T_i`), the angle between the total tangential force (in the
+/// plane) and minus the shear, and the pressure's deviation from uniform.
+/// The stick runs with the augmented Lagrangian and every `|q| = mu p`
+/// are issue 18's 1e-8; the penalty's figures are guards (the measured
+/// figure rounded up; see the module doc).
+pub const CHECKS: [(&str, f64); 28] = [
     ("hex8 stick augmented x: q deviation", 1e-8),
     ("hex8 stick augmented x: p deviation", 1e-8),
     ("hex8 stick augmented x: |q| / tau - 1", 1e-8),
@@ -127,19 +140,23 @@ pub const CHECKS: [(&str, f64); 24] = [
     ("tet4 stick augmented 30deg: |q| / tau - 1", 1e-8),
     ("hex8 stick penalty 30deg: q deviation", 1e-4),
     ("hex8 stick penalty 30deg: p deviation", 1e-4),
-    ("hex8 stick penalty 30deg: |q| / tau - 1", 2e-5),
-    ("hex8 slip penalty x: max ||q| - mu p| / (mu p)", 1e-10),
+    ("hex8 stick penalty 30deg: |q| / tau - 1", 3e-5),
+    ("hex8 slip penalty x: max ||q| - mu p| / (mu p)", 1e-12),
     ("hex8 slip penalty x: T / (mu N) - 1", 1e-10),
-    ("hex8 slip penalty x: T direction error (rad)", 1e-10),
-    ("hex8 slip penalty 30deg: max ||q| - mu p| / (mu p)", 1e-10),
-    ("hex8 slip penalty 30deg: T / (mu N) - 1", 1e-10),
-    ("hex8 slip penalty 30deg: T direction error (rad)", 1e-10),
-    ("tet4 slip penalty 30deg: max ||q| - mu p| / (mu p)", 1e-10),
-    ("tet4 slip penalty 30deg: T / (mu N) - 1", 1e-10),
-    ("tet4 slip penalty 30deg: T direction error (rad)", 1e-10),
+    ("hex8 slip penalty x: T direction error (rad)", 1e-12),
+    ("hex8 slip penalty x: p deviation", 1e-2),
+    ("hex8 slip penalty 30deg: max ||q| - mu p| / (mu p)", 1e-12),
+    ("hex8 slip penalty 30deg: T / (mu N) - 1", 3e-8),
+    ("hex8 slip penalty 30deg: T direction error (rad)", 1e-5),
+    ("hex8 slip penalty 30deg: p deviation", 1e-2),
+    ("tet4 slip penalty 30deg: max ||q| - mu p| / (mu p)", 1e-12),
+    ("tet4 slip penalty 30deg: T / (mu N) - 1", 1e-8),
+    ("tet4 slip penalty 30deg: T direction error (rad)", 5e-5),
+    ("tet4 slip penalty 30deg: p deviation", 1e-2),
     ("hex8 slip augmented 30deg: max ||q| - mu p| / (mu p)", 1e-6),
     ("hex8 slip augmented 30deg: T / (mu N) - 1", 1e-6),
-    ("hex8 slip augmented 30deg: T direction error (rad)", 1e-6),
+    ("hex8 slip augmented 30deg: T direction error (rad)", 1e-5),
+    ("hex8 slip augmented 30deg: p deviation", 1e-2),
 ];
 
 /// The registry entry.
@@ -263,14 +280,12 @@ fn tributary(model: &Model<3>) -> Vec<(usize, f64)> {
 /// The measures of one run.
 #[derive(Debug, Clone)]
 pub struct Outcome {
-    /// The three values (see [`STICK`], [`SLIPPING`]).
-    pub values: [f64; 3],
+    /// `(name suffix, value)` of each of the run's [`CHECKS`].
+    pub values: Vec<(&'static str, f64)>,
     /// Closed slave nodes at the end.
     pub closed: usize,
     /// Newton iterations of the run.
     pub iterations: usize,
-    /// Mean `|q|` over `tau` (stick) or over `mu p_exact` (slip).
-    pub ratio: f64,
 }
 
 /// Runs one of [`RUNS`].
@@ -326,24 +341,26 @@ pub fn run_one(r: &Run) -> Result<(Outcome, ProgramLevel), String> {
             c.node, c.friction.status
         ));
     }
-    let mut q: Vec<[f64; 2]> = Vec::new();
+    // per node: the traction vector q (3D: in the node's tangent plane),
+    // the pressure and the reference area
+    let mut q: Vec<[f64; 3]> = Vec::new();
     let mut pr = Vec::new();
+    let mut area = Vec::new();
     for c in &closed {
         let t = areas
             .iter()
             .find(|e| e.0 == c.node)
             .map(|e| e.1)
             .ok_or_else(|| format!("{name}: node {} is no slave", c.node))?;
-        q.push([c.friction.traction[0] / t, c.friction.traction[1] / t]);
+        q.push(c.friction.traction.map(|v| v / t));
         pr.push(c.pressure);
+        area.push(t);
     }
     let n = q.len() as f64;
-    let mean_q = [
-        q.iter().map(|v| v[0]).sum::<f64>() / n,
-        q.iter().map(|v| v[1]).sum::<f64>() / n,
-    ];
+    let mean_q: [f64; 3] = std::array::from_fn(|k| q.iter().map(|v| v[k]).sum::<f64>() / n);
     let mean_p = pr.iter().sum::<f64>() / n;
-    let len = |v: [f64; 2]| v[0].hypot(v[1]);
+    let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let dp = pr.iter().map(|v| (v - mean_p).abs()).fold(0.0, f64::max) / mean_p;
     let values = if slip {
         let cone = q
             .iter()
@@ -351,33 +368,47 @@ pub fn run_one(r: &Run) -> Result<(Outcome, ProgramLevel), String> {
             .map(|(v, p)| (len(*v) - MU * p).abs())
             .fold(0.0, f64::max)
             / (MU * mean_p);
-        // totals on the slave (top) block: N up, T against the shear
-        let fz: f64 = closed.iter().map(|c| c.force[2]).sum();
-        let t = [
-            closed.iter().map(|c| c.force[0]).sum::<f64>(),
-            closed.iter().map(|c| c.force[1]).sum::<f64>(),
-        ];
+        // the totals of the laws: T = sum q_i T_i, N = sum p_i T_i
+        let t: [f64; 3] =
+            std::array::from_fn(|k| q.iter().zip(&area).map(|(v, a)| v[k] * a).sum::<f64>());
+        let normal: f64 = pr.iter().zip(&area).map(|(p, a)| p * a).sum();
         let angle = (t[1] * theta.cos() - t[0] * theta.sin())
             .atan2(-(t[0] * theta.cos() + t[1] * theta.sin()));
-        [cone, len(t) / (MU * fz) - 1.0, angle.abs()]
+        vec![
+            ("max ||q| - mu p| / (mu p)", cone),
+            ("T / (mu N) - 1", len(t) / (MU * normal) - 1.0),
+            ("T direction error (rad)", angle),
+            ("p deviation", dp),
+        ]
     } else {
         let dq = q
             .iter()
-            .map(|v| len([v[0] - mean_q[0], v[1] - mean_q[1]]))
+            .map(|v| len([v[0] - mean_q[0], v[1] - mean_q[1], v[2] - mean_q[2]]))
             .fold(0.0, f64::max)
             / len(mean_q);
-        let dp = pr.iter().map(|v| (v - mean_p).abs()).fold(0.0, f64::max) / mean_p;
-        [dq, dp, len(mean_q) / tau - 1.0]
+        vec![
+            ("q deviation", dq),
+            ("p deviation", dp),
+            ("|q| / tau - 1", len(mean_q) / tau - 1.0),
+        ]
     };
     Ok((
         Outcome {
             values,
             closed: closed.len(),
             iterations: s.newton_iterations,
-            ratio: len(mean_q) / if slip { MU * p } else { tau },
         },
         level,
     ))
+}
+
+/// The [`CHECKS`] name of `suffix` of run `run`.
+fn check_name(run: &str, suffix: &str) -> Result<&'static str, String> {
+    CHECKS
+        .iter()
+        .find(|(n, _)| n.strip_prefix(run).and_then(|r| r.strip_prefix(": ")) == Some(suffix))
+        .map(|c| c.0)
+        .ok_or_else(|| format!("no check `{run}: {suffix}`"))
 }
 
 fn level(_level: usize) -> Result<ProgramLevel, String> {
@@ -385,17 +416,11 @@ fn level(_level: usize) -> Result<ProgramLevel, String> {
         h: 1.0 / 3.0,
         ..ProgramLevel::default()
     };
-    for (k, r) in RUNS.iter().enumerate() {
+    for r in &RUNS {
         let (o, l) = run_one(r)?;
         super::contact_ntf_3d::add_level(&mut out, &l);
-        for (m, v) in o.values.iter().enumerate() {
-            let name = CHECKS[3 * k + m].0;
-            debug_assert!(name.ends_with(if r.4 { SLIPPING[m] } else { STICK[m] }));
-            if m == 2 && !r.4 {
-                out.values.push(value(name, o.ratio * 1.0, 1.0));
-            } else {
-                out.values.push(error(name, v.abs()));
-            }
+        for (suffix, v) in o.values {
+            out.values.push(error(check_name(r.0, suffix)?, v.abs()));
         }
     }
     Ok(out)
