@@ -253,6 +253,7 @@ pub fn deck(
 /// The contact of the last converged increment.
 #[derive(Default)]
 struct Last {
+    /// The pair's evaluation at the last converged increment.
     contact: Vec<NodeContact<3>>,
 }
 

@@ -739,7 +739,9 @@ fn row_3d<'a>(
 
 /// The friction inputs of one closed 3D slave node (see [`friction3d`]).
 struct FrictionInputs3 {
+    /// Friction coefficient.
     mu: f64,
+    /// Tangential penalty `alpha_T` of the node (force per unit slip).
     alpha_t: f64,
     /// The augmented Lagrangian's tangential shift (0: penalty).
     shift: [f64; 3],
