@@ -639,7 +639,7 @@ pub static CONTACT: [Key; 8] = [
          tri3 / quad4 faces), or mortar segment-to-segment (weighted gaps, dual Lagrange \
          multipliers; 3d: tri3 / quad4 facets clipped on the slave facet's plane; single \
          pass, penalty or augmented Lagrangian, and in 2d Lagrange multipliers; Coulomb \
-         friction in 2d on the weighted slip, penalty or augmented Lagrangian)",
+         friction on the weighted slip (2d and 3d), penalty or augmented Lagrangian)",
     )
     .default(Default::Choice("node_to_segment")),
     Key::new(

@@ -241,6 +241,17 @@ fn restart_mortar_friction_matches_uninterrupted_run() {
 }
 
 #[test]
+fn restart_3d_mortar_friction_matches_uninterrupted_run() {
+    // 3D mortar friction (issue 18): the stick vectors in slip coordinates
+    // of the committed configuration (rebased at every commit) and the
+    // committed positions the weighted slip is measured from, carried over
+    // the restart; the two blocks of the example restarted in the slide
+    let model = solid_model_of("friction_blocks_mortar_3d.ctc", &[]);
+    let (from, n) = restart_matches(&model, 5);
+    assert_eq!((from, n), (4, 6));
+}
+
+#[test]
 fn restart_double_pass_resumes_with_the_right_slave_side() {
     // double pass: the slave side alternates with the converged increments;
     // the restart resumes the alternation from the checkpoint's count

@@ -836,6 +836,19 @@ pub struct DeformablePair {
     /// Per slave index, self contact only: the facets excluded for the
     /// node (see [`excluded_facets`]), sorted.
     pub excluded: Vec<Vec<usize>>,
+    /// Mortar friction: current coordinates of every node at the latest
+    /// evaluation (empty for other pairs).
+    pub positions: Vec<[f64; 3]>,
+    /// Mortar friction: coordinates at the last converged increment (the
+    /// committed configuration of the weighted slip).
+    pub committed_positions: Vec<[f64; 3]>,
+    /// Mortar friction: the slave nodes' pairings in the committed
+    /// configuration ([`super::mortar::friction3d`], recomputed once per
+    /// increment from `committed_positions`).
+    pub pairing: Option<super::mortar::friction3d::CommittedPairing>,
+    /// Mortar friction: per slave index, the tangential force vector of
+    /// the latest evaluation (the augmented Lagrangian's next shift).
+    pub tangential: Vec<[f64; 3]>,
 }
 
 impl DeformablePair {
@@ -852,23 +865,32 @@ impl DeformablePair {
         self.increments += 1;
         self.committed_increments = self.increments;
         self.committed_last.clone_from(&self.last);
+        self.committed_positions.clone_from(&self.positions);
     }
 
     /// Called when an increment is cut back.
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
         self.last.clone_from(&self.committed_last);
+        self.positions.clone_from(&self.committed_positions);
         self.evaluated = usize::MAX;
     }
 
     /// Restart: `increments` converged increments were done, `memory` the
-    /// committed facet of each slave ([`DeformablePair::memory`]).
-    pub fn restore(&mut self, increments: usize, memory: &[Option<usize>]) {
+    /// committed facet of each slave ([`DeformablePair::memory`]),
+    /// `positions` the committed coordinates of every node (kept by mortar
+    /// friction pairs only).
+    pub fn restore(&mut self, increments: usize, memory: &[Option<usize>], positions: &[[f64; 3]]) {
         self.increments = increments;
         self.committed_increments = increments;
         self.committed_last = memory.to_vec();
         self.last = memory.to_vec();
         self.evaluated = usize::MAX;
+        if !self.committed_positions.is_empty() {
+            self.committed_positions = positions.to_vec();
+            self.positions = positions.to_vec();
+            self.pairing = None;
+        }
     }
 
     /// The committed facet of each slave (the search memory), for restart
@@ -1031,6 +1053,8 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<Deform
         .filter(|l| *l > 0.0)
         .fold(f64::INFINITY, f64::min);
     let self_contact = is_self_contact(model, pair);
+    let mortar_friction =
+        cp.formulation == crate::model::ContactFormulation::Mortar && cp.friction.is_some();
     let sides = [FacetSurface::new(&cp.faces), FacetSurface::new(faces)];
     let excluded = if self_contact {
         slaves
@@ -1056,6 +1080,17 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<Deform
             .collect(),
         last: vec![None; slaves.len()],
         committed_last: vec![None; slaves.len()],
+        // mortar friction: the committed configuration of the weighted slip
+        positions: if mortar_friction {
+            model.mesh.nodes.clone()
+        } else {
+            Vec::new()
+        },
+        committed_positions: if mortar_friction {
+            model.mesh.nodes.clone()
+        } else {
+            Vec::new()
+        },
         ..DeformablePair::default()
     })
 }

@@ -29,7 +29,7 @@ use crate::contact::rows::{NodeRows, NodeTerm, RowKind};
 use crate::contact::surface::{self, SurfacePair};
 use crate::contact::{friction, friction_surface};
 use crate::contact::{ContactStatus, NodeContact};
-use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
+use crate::model::{ContactFormulation, ContactMethod, Model, MultiplierUpdate, NewtonSettings};
 use ctc_geom::Placement;
 use std::fmt::Write;
 
@@ -196,13 +196,23 @@ impl SurfaceAssembly {
                     .map_or_else(Placement::identity, |tool| {
                         surface::placement(&tool.motion, self.time)
                     });
-                {
-                    friction_surface::uzawa_update(
+                match &state.deformable {
+                    // mortar: the nodes' tangential forces (the reported
+                    // traction is per reference area)
+                    Some(fp) if cp.formulation == ContactFormulation::Mortar => {
+                        crate::contact::mortar::friction3d::uzawa_update(
+                            &state.slaves,
+                            list,
+                            &fp.tangential,
+                            &mut state.friction,
+                        );
+                    }
+                    _ => friction_surface::uzawa_update(
                         &state.slaves,
                         list,
                         &placement,
                         &mut state.friction,
-                    );
+                    ),
                 }
             }
             updated = true;
@@ -712,7 +722,7 @@ impl ContactScene<3> for SurfaceAssembly {
         &mut self,
         pairs: &[PairHistory],
         increment: usize,
-        _: &[[f64; 3]],
+        positions: &[[f64; 3]],
     ) -> Result<(), String> {
         if pairs.len() != self.pairs.len() {
             return Err("the restart point does not match the model (contact pairs)".into());
@@ -735,7 +745,7 @@ impl ContactScene<3> for SurfaceAssembly {
                 if h.entity.len() != n {
                     return Err("the restart point does not match the model (slave nodes)".into());
                 }
-                f.restore(increment, &h.entity);
+                f.restore(increment, &h.entity, positions);
             }
             s.restore(&h.multiplier[..n], &h.active);
         }

@@ -278,14 +278,7 @@ fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
             "use `formulation = node_to_segment` for thermal contact",
         );
     }
-    // friction: 2D (penalty, augmented Lagrangian; Lagrange-multiplier
-    // friction against a deformable master is refused above for every
-    // formulation); 3D mortar is frictionless for now
-    if let Some(fr) = c.friction.as_ref().filter(|_| solid) {
-        refuse(
-            "with friction is not supported yet",
-            fr.span,
-            "mortar contact is frictionless for now; use `formulation = node_to_segment`",
-        );
-    }
+    // friction (2D and 3D): penalty and augmented Lagrangian;
+    // Lagrange-multiplier friction against a deformable master is refused
+    // above for every formulation
 }

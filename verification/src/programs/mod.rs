@@ -24,6 +24,7 @@ pub mod impact;
 pub mod johnson_cook;
 pub mod mortar;
 pub mod mortar_friction;
+pub mod mortar_friction_3d;
 pub mod nagata_3d;
 pub mod norton_hoff;
 pub mod objectivity;
@@ -77,6 +78,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
     v.extend(contact_ntf_3d::cases());
+    v.extend(mortar_friction_3d::cases());
     v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
     v.extend(friction_ntf_3d::cases());

@@ -173,3 +173,99 @@ fn hertz_mortar_forces() {
         }
     }
 }
+
+/// The frictional 3D patch test with mortar (`ctc verify
+/// contact_patch_friction_3d`; Taylor & Papadopoulos, IJNME 31 (1991) 2205,
+/// in 3D; Gitterle, Popp, Gee & Wall, IJNME 84 (2010) 543): two blocks,
+/// 3x3 | 4x4 facets, pressed then sheared below and past `mu N`, along x
+/// and at 30 degrees; every value within its tolerance (stick with the
+/// augmented Lagrangian uniform to 1e-8, slip `|q| = mu p` at every node).
+///
+/// ```text
+///   top  3x3 cells, u = (delta cos th, delta sin th, -d) on top
+///   ---- slave top.zmin (3x3) / master base.zmax (4x4), mu = 0.3 ----
+///   base 4x4 cells, fixed bottom; side tractions of the uniform state
+/// ```
+#[test]
+fn contact_patch_friction_3d_passes() {
+    registry::run_passing("contact_patch_friction_3d");
+}
+
+/// The assembled frictional mortar pair: its tangent applied to random
+/// directions against central differences of its forces, on jittered
+/// interfaces pressed and slid from the mesh's configuration (the
+/// committed one), in stick (`mu = 0.9`) and in slip (`mu = 0.05`).
+#[test]
+fn frictional_mortar_pair_tangent_matches_finite_differences() {
+    use ctc_verification::programs::mortar_friction_3d::deck;
+    let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    // (mu, k_T): stick (the trial force 0.1 below mu R_N), slip
+    for (cell, mu, k_t) in [
+        ("hex8", 0.9, 1e2),
+        ("hex8", 0.05, 1e4),
+        ("tet4", 0.9, 1e2),
+        ("tet4", 0.05, 1e4),
+    ] {
+        let text = deck(
+            cell,
+            "penalty { kind = area  stiffness = 1e3 }",
+            k_t,
+            0.0,
+            0.0,
+            2.0,
+            0.0,
+        )
+        .replace("mu = 0.3", &format!("mu = {mu}"));
+        let src = ctc_lang::Source::new(std::path::Path::new("mortar_friction_3d.ctc"), &text);
+        let Ok(AnyModel::D3(model)) = ctc_lang::compile_any(&src) else {
+            panic!("the frictional patch deck does not compile to a 3d model");
+        };
+        let top = model.bodies[1].nodes.start;
+        let mut worst = 0.0f64;
+        for _ in 0..2 {
+            let depth = 0.01 + 0.01 * rnd().abs();
+            let x: Vec<[f64; 3]> = model
+                .mesh
+                .nodes
+                .iter()
+                .enumerate()
+                .map(|(k, p)| {
+                    let (dx, dz) = if k >= top { (0.01, -depth) } else { (0.0, 0.0) };
+                    [
+                        p[0] + dx + 0.02 * rnd(),
+                        p[1] + 0.5 * dx + 0.02 * rnd(),
+                        p[2] + dz + 0.004 * rnd(),
+                    ]
+                })
+                .collect();
+            let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
+            let (_, kv, closed) = forces(&model, &x, &v);
+            assert!(closed > 0);
+            let h = 1e-7;
+            let shift = |sign: f64| -> Vec<[f64; 3]> {
+                x.iter()
+                    .zip(&v)
+                    .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
+                    .collect()
+            };
+            let (fp, _, cp) = forces(&model, &shift(1.0), &v);
+            let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
+            assert!(cp == closed && cm == closed);
+            let scale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+            let mut e = 0.0f64;
+            for k in 0..kv.len() {
+                let fd = -(fp[k] - fm[k]) / (2.0 * h);
+                e = e.max((fd - kv[k]).abs() / scale);
+            }
+            worst = worst.max(e);
+        }
+        println!("{cell} mu {mu}: max |K v - FD| / max |K v| = {worst:.2e}");
+        assert!(worst <= 1e-5, "{cell} mu {mu}: {worst}");
+    }
+}

@@ -38,6 +38,7 @@
 pub mod ad;
 pub mod facets;
 pub mod friction;
+pub mod friction3d;
 pub mod integrals;
 
 use super::surface::SurfacePair;
@@ -629,37 +630,27 @@ struct FacetPiece {
     seg: facets::FacetSegment,
 }
 
-/// Evaluates the 3D mortar pair `pair` (deformable slave and master face
-/// sets, tri3 / quad4, [`facets`]) at current coordinates `x`: one entry
-/// per slave node whose support the master covers within `prof`, the
-/// couplings of the closed ones in `state.deformable` (the solver
-/// scatters them as node-to-facet's). Per slave facet, the candidate
-/// master facets are those of the broad phase within the facet's radius
-/// plus `prof` of its centre; a facet pair whose gaps (at the
-/// integration points) all exceed `prof`, or all lie deeper than `max(prof,
-/// h)` (`h` the slave facet's longest edge: the far side of a thin body),
-/// is left out.
-pub fn evaluate_3d(
-    model: &Model<3>,
-    pair: usize,
+/// The facet pairs of a 3D pair at coordinates `x` and, per slave index
+/// (`slaves`, sorted), its `(piece, row)` list: per slave facet, the
+/// candidate master facets are those of the broad phase within the
+/// facet's radius plus `prof` of its centre; a facet pair whose gaps (at
+/// the integration points) all exceed `prof`, or all lie deeper than
+/// `max(prof, h)` (`h` the slave facet's longest edge: the far side of a
+/// thin body), is left out. Rebuilds the master's broad phase at `x`;
+/// returns the pieces, the rows, the broad-phase queries and the facet
+/// pairs tried.
+#[allow(clippy::type_complexity)]
+fn facet_pieces(
+    fp: &mut super::node_to_facet::DeformablePair,
+    slaves: &[usize],
     x: &[[f64; 3]],
-    state: &mut SurfacePair,
-) -> Vec<NodeContact<3>> {
-    let mut out = Vec::new();
-    let Some(cp) = model.contacts.get(pair) else {
-        return out;
-    };
-    let Some(mut fp) = state.deformable.take() else {
-        return out;
-    };
-    state.evaluations += 1;
+    prof: f64,
+) -> (Vec<FacetPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
     let basis = Basis::Dual;
-    let prof = state.prof;
     fp.sides[1].update(x, prof);
-    fp.couplings.clear();
-    fp.tests = 0;
+    let (mut queries, mut tests) = (0u64, 0usize);
     let mut pieces: Vec<FacetPiece> = Vec::new();
-    let mut rows: Vec<Vec<(usize, usize)>> = vec![Vec::new(); state.slaves.len()];
+    let mut rows: Vec<Vec<(usize, usize)>> = vec![Vec::new(); slaves.len()];
     let mut candidates = Vec::new();
     for face in &fp.sides[0].faces {
         let sn = face.nodes();
@@ -680,10 +671,10 @@ pub fn evaluate_3d(
             .fold(0.0, f64::max);
         let depth = prof.max(h);
         fp.sides[1].query(centre, radius + prof, &mut candidates);
-        state.counters.queries += 1;
+        queries += 1;
         for &m in &candidates {
             let (mp, nm) = fp.sides[1].points(m, x);
-            fp.tests += 1;
+            tests += 1;
             let Some(seg) = facets::facet_pair_within(&sx, &mp[..nm], prof, depth, basis) else {
                 continue;
             };
@@ -691,7 +682,7 @@ pub fn evaluate_3d(
             vars[..sn.len()].copy_from_slice(sn);
             vars[4..4 + nm].copy_from_slice(fp.sides[1].faces[m].nodes());
             for (j, &node) in sn.iter().enumerate() {
-                if let Some(i) = state.slave_index(node) {
+                if let Ok(i) = slaves.binary_search(&node) {
                     rows[i].push((pieces.len(), j));
                 }
             }
@@ -702,55 +693,262 @@ pub fn evaluate_3d(
             });
         }
     }
+    (pieces, rows, queries, tests)
+}
+
+/// The row of a 3D slave node over `nodes` (sorted) from its pieces
+/// `list` (`(piece, row)`), and with `coefficients` its scalar row
+/// [`friction3d::CoefficientRow`] (the distribution of the friction
+/// forces).
+fn row_3d<'a>(
+    pieces: &[FacetPiece],
+    list: &[(usize, usize)],
+    nodes: &'a [usize],
+    coefficients: bool,
+) -> (Row<'a>, Option<friction3d::CoefficientRow>) {
+    let mut row = Row::new(nodes, 3);
+    let nd = 3 * nodes.len();
+    let mut scalar = coefficients.then(|| friction3d::CoefficientRow {
+        coef: vec![0.0; nodes.len()],
+        dcoef: vec![0.0; nodes.len() * nd],
+    });
+    for &(p, j) in list {
+        let FacetPiece { vars, seg, .. } = &pieces[p];
+        let area = seg.d[j].iter().fold(Ad::cst(0.0), |a, &b| a + b);
+        let terms = (0..seg.ns)
+            .map(|k| (vars[k], -seg.d[j][k]))
+            .chain((0..seg.nm).map(|l| (vars[4 + l], seg.m[j][l])));
+        if let Some(s) = &mut scalar {
+            for (node, coef) in terms.clone() {
+                if let Ok(q) = nodes.binary_search(&node) {
+                    accumulate(
+                        nodes,
+                        3,
+                        vars,
+                        &coef,
+                        &mut s.coef[q],
+                        &mut s.dcoef[q * nd..(q + 1) * nd],
+                    );
+                }
+            }
+        }
+        row.add(vars, &seg.gap[j], &area, terms, &seg.normal);
+    }
+    (row, scalar)
+}
+
+/// The friction inputs of one closed 3D slave node (see [`friction3d`]).
+struct FrictionInputs3 {
+    /// Friction coefficient.
+    mu: f64,
+    /// Tangential penalty `alpha_T` of the node (force per unit slip).
+    alpha_t: f64,
+    /// The augmented Lagrangian's tangential shift (0: penalty).
+    shift: [f64; 3],
+    /// Stick point (slip vector) the trial force is measured from.
+    anchor: [f64; 3],
+    /// The node's slip since the committed configuration and its gradient.
+    slip: ([f64; 3], [Vec<f64>; 3]),
+}
+
+impl Row<'_> {
+    /// [`Row::close`] (penalty or augmented Lagrangian) of a 3D node with
+    /// Coulomb friction: a closed node's coupling gets the friction forces
+    /// and tangent of [`friction3d::respond`] (`scalar` from [`row_3d`]),
+    /// its output entry the friction state; the response is returned for
+    /// the pair's history.
+    #[allow(clippy::too_many_arguments)]
+    fn close_with_friction_3d(
+        &self,
+        scalar: &friction3d::CoefficientRow,
+        node: usize,
+        support: f64,
+        alpha: f64,
+        shift: f64,
+        prof: f64,
+        entity: usize,
+        inputs: &FrictionInputs3,
+    ) -> Option<(
+        NodeContact<3>,
+        Option<Coupling>,
+        Option<friction3d::Response>,
+    )> {
+        // a normal force of a round-off penetration: open (no friction
+        // direction can be read from it)
+        let rn = shift - alpha * self.g / self.area;
+        if rn <= alpha * friction3d::ROUND_OFF * support.max(0.0).sqrt() {
+            let (nc, _) = self.close::<3>(node, support, 0.0, 0.0, prof, 0.0, entity, None)?;
+            return Some((nc, None, None));
+        }
+        let (mut nc, coupling) =
+            self.close::<3>(node, support, alpha, shift, prof, 0.0, entity, None)?;
+        let Some(mut coupling) = coupling else {
+            return Some((nc, None, None));
+        };
+        let (gap, dgap) = self.nodal_gap();
+        let law = friction3d::Law {
+            mu: inputs.mu,
+            alpha_t: inputs.alpha_t,
+            shift: inputs.shift,
+            alpha_n: alpha,
+            normal_force: (shift - alpha * gap).max(0.0),
+            support,
+            area: self.area,
+            anchor: inputs.anchor,
+        };
+        let nd = self.bv.len();
+        let at = 3 * self.pos(node);
+        let own = friction3d::OwnNormal {
+            sn: [self.bv[at], self.bv[at + 1], self.bv[at + 2]],
+            dsn: std::array::from_fn(|c| &self.db[(at + c) * nd..(at + c + 1) * nd]),
+        };
+        let r = friction3d::respond(&law, &own, &inputs.slip, &dgap, scalar);
+        for (c, v) in coupling.force.iter_mut().zip(&r.force) {
+            *c += v;
+        }
+        for (c, v) in coupling.tangent.iter_mut().zip(&r.tangent) {
+            *c += v;
+        }
+        nc.friction = r.friction;
+        Some((nc, Some(coupling), Some(r)))
+    }
+}
+
+/// Evaluates the 3D mortar pair `pair` (deformable slave and master face
+/// sets, tri3 / quad4, [`facets`]) at current coordinates `x`: one entry
+/// per slave node whose support the master covers within `prof`, the
+/// couplings of the closed ones in `state.deformable` (the solver
+/// scatters them as node-to-facet's); the facet pairs are those of
+/// [`facet_pieces`]. With friction ([`friction3d`]) the slave nodes'
+/// pairings in the committed configuration are computed once per
+/// increment and each closed node's row gets its friction forces.
+pub fn evaluate_3d(
+    model: &Model<3>,
+    pair: usize,
+    x: &[[f64; 3]],
+    state: &mut SurfacePair,
+) -> Vec<NodeContact<3>> {
+    let mut out = Vec::new();
+    let Some(cp) = model.contacts.get(pair) else {
+        return out;
+    };
+    let Some(mut fp) = state.deformable.take() else {
+        return out;
+    };
+    state.evaluations += 1;
+    let prof = state.prof;
+    let law = cp.friction.as_ref();
+    if law.is_some() {
+        state.friction.incremental = true;
+        let key = fp.increments;
+        if fp.pairing.as_ref().map(|p| p.key) != Some(key) {
+            let mut xn = std::mem::take(&mut fp.committed_positions);
+            if xn.len() != x.len() {
+                xn = x.to_vec();
+            }
+            let (old, old_rows, _, _) = facet_pieces(&mut fp, &state.slaves, &xn, prof);
+            fp.committed_positions = xn;
+            let rows = old_rows
+                .iter()
+                .map(|list| {
+                    let mut p = friction3d::Pairing::default();
+                    for &(k, j) in list {
+                        p.add(&old[k].vars, j, &old[k].seg);
+                    }
+                    p
+                })
+                .collect();
+            fp.pairing = Some(friction3d::CommittedPairing { key, rows });
+        }
+        fp.positions.clear();
+        fp.positions.extend_from_slice(x);
+        fp.tangential.clear();
+        fp.tangential.resize(state.slaves.len(), [0.0; 3]);
+    }
+    fp.couplings.clear();
+    let (pieces, rows, queries, tests) = facet_pieces(&mut fp, &state.slaves, x, prof);
+    fp.tests = tests;
+    state.counters.queries += queries;
     let mut nodes = Vec::new();
     for (i, list) in rows.iter().enumerate() {
         let node = state.slaves[i];
         fp.last[i] = list.first().map(|&(p, _)| pieces[p].master);
         if list.is_empty() {
+            if law.is_some() {
+                state.friction.open(i, [0.0; 3]);
+            }
             continue;
         }
+        let pairing = law.and(fp.pairing.as_ref()).and_then(|p| p.rows.get(i));
         nodes.clear();
         for &(p, _) in list {
             nodes.extend(pieces[p].vars.iter().copied().filter(|&n| n != UNUSED));
         }
+        if let Some(p) = pairing {
+            nodes.extend(p.nodes());
+        }
         nodes.sort_unstable();
         nodes.dedup();
-        let mut row = Row::new(&nodes, 3);
-        for &(p, j) in list {
-            let FacetPiece { vars, seg, .. } = &pieces[p];
-            let area = seg.d[j].iter().fold(Ad::cst(0.0), |a, &b| a + b);
-            row.add(
-                vars,
-                &seg.gap[j],
-                &area,
-                (0..seg.ns)
-                    .map(|k| (vars[k], -seg.d[j][k]))
-                    .chain((0..seg.nm).map(|l| (vars[4 + l], seg.m[j][l]))),
-                &seg.normal,
-            );
-        }
+        let (row, scalar) = row_3d(&pieces, list, &nodes, law.is_some());
         let support = state.area.get(i).copied().unwrap_or(0.0);
         let method = cp.method_at(node);
         let alpha = super::surface::alpha(&method, support);
-        let shift = match method {
-            ContactMethod::AugmentedLagrange { .. } => {
-                state.multiplier.get(i).copied().unwrap_or(0.0)
-            }
-            _ => 0.0,
+        let augmented = matches!(method, ContactMethod::AugmentedLagrange { .. });
+        let shift = if augmented {
+            state.multiplier.get(i).copied().unwrap_or(0.0)
+        } else {
+            0.0
         };
         let entity = pieces[list[0].0].master;
-        let Some((nc, coupling)) = row.close(
-            node,
-            support,
-            alpha,
-            shift,
-            prof,
-            state.touching,
-            entity,
-            None,
-        ) else {
+        let closed = match (law, &scalar) {
+            (Some(law), Some(scalar)) => {
+                let f = &state.friction;
+                let inputs = FrictionInputs3 {
+                    mu: law.mu,
+                    alpha_t: crate::contact::friction::tangential_stiffness(law, &method, support),
+                    shift: if augmented { f.shift[i] } else { [0.0; 3] },
+                    anchor: f.base[i].or(f.committed_anchor[i]).unwrap_or([0.0; 3]),
+                    slip: pairing.map_or_else(
+                        || {
+                            let nd = 3 * nodes.len();
+                            ([0.0; 3], [vec![0.0; nd], vec![0.0; nd], vec![0.0; nd]])
+                        },
+                        |p| p.slip(x, &nodes),
+                    ),
+                };
+                row.close_with_friction_3d(
+                    scalar, node, support, alpha, shift, prof, entity, &inputs,
+                )
+            }
+            _ => row
+                .close(
+                    node,
+                    support,
+                    alpha,
+                    shift,
+                    prof,
+                    state.touching,
+                    entity,
+                    None,
+                )
+                .map(|(nc, c)| (nc, c, None)),
+        };
+        let Some((nc, coupling, response)) = closed else {
+            if law.is_some() {
+                state.friction.open(i, [0.0; 3]);
+            }
             continue;
         };
+        if law.is_some() {
+            match response {
+                Some(r) => {
+                    state.friction.anchor[i] = Some(r.anchor);
+                    state.friction.position[i] = r.position;
+                    fp.tangential[i] = r.traction;
+                }
+                None => state.friction.open(i, [0.0; 3]),
+            }
+        }
         fp.couplings.extend(coupling);
         out.push(nc);
     }
