@@ -843,15 +843,47 @@ pub fn quadratic_contact_refusal<const D: usize>(
     use crate::contact::face_integrated::body_is_quadratic;
     use crate::model::{ContactMaster, ContactMethod, PenaltyKind};
     let body = |b: usize| model.bodies.get(b).map_or("?", |b| b.name.as_str());
+    let nodal = matches!(
+        c.method,
+        ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            ..
+        } | ContactMethod::AugmentedLagrange {
+            kind: PenaltyKind::Nodal,
+            ..
+        }
+    );
     if let ContactMaster::Surface { body: m, .. } = &c.master {
-        let quadratic = [c.body, *m]
+        let quadratic: Vec<usize> = [c.body, *m]
             .into_iter()
-            .find(|&b| body_is_quadratic(model, b))?;
+            .filter(|&b| body_is_quadratic(model, b))
+            .collect();
+        let first = *quadratic.first()?;
+        // 2D mortar on seg3 faces (`contact::mortar::seg3`): both sides
+        // quadratic, frictionless, area penalty / augmented Lagrangian /
+        // single Lagrange multipliers
+        let what = if c.formulation != crate::model::ContactFormulation::Mortar {
+            "node-to-segment contact between deformable bodies on quadratic faces is not \
+             available (its nodal weights are wrong at the corners); use `formulation = \
+             mortar`"
+        } else if D != 2 {
+            "mortar contact between deformable bodies on quadratic faces is planar only (3D: \
+             use linear cells on deformable contact pairs)"
+        } else if quadratic.len() == 1 {
+            "mortar on quadratic faces needs both surfaces quadratic (mesh both bodies with \
+             quadratic cells, or both with linear cells)"
+        } else if c.friction.is_some() {
+            "friction with mortar contact on quadratic faces is not available (frictionless \
+             mortar is)"
+        } else if nodal {
+            "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
+             the faces); use `kind = area`"
+        } else {
+            return None;
+        };
         return Some(format!(
-            "body `{}` has quadratic cells; contact between deformable bodies on quadratic \
-             faces is not available (rigid tools are: penalty or augmented Lagrangian; use \
-             linear cells on deformable contact pairs)",
-            body(quadratic)
+            "body `{}` has quadratic cells: {what}",
+            body(first)
         ));
     }
     if !body_is_quadratic(model, c.body) {
@@ -863,14 +895,7 @@ pub fn quadratic_contact_refusal<const D: usize>(
              `penalty` or `augmented_lagrange` with friction (frictionless Lagrange \
              multipliers are)"
         }
-        ContactMethod::Penalty {
-            kind: PenaltyKind::Nodal,
-            ..
-        }
-        | ContactMethod::AugmentedLagrange {
-            kind: PenaltyKind::Nodal,
-            ..
-        } => {
+        _ if nodal => {
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
         }

@@ -1,0 +1,323 @@
+//! `contact_patch_mortar_quadratic`: the contact patch test between two
+//! deformable blocks on quadratic faces (issues 23 and 18), mortar on seg3
+//! segments with dual multipliers (`ctc_engine::contact::mortar::seg3`).
+//!
+//! Source: Taylor & Papadopoulos, "On a patch test for contact problems in
+//! two dimensions", IJNME 31 (1991) 2205 (the test); Puso & Laursen, CMAME
+//! 193 (2004) 601 and Popp, Gee & Wall, IJNME 79 (2009) 1354 (mortar with
+//! dual multipliers passes it to round-off); the linear version is
+//! `contact_patch_two_blocks` (`programs/mortar.rs`).
+//!
+//! ```text
+//!   top  [0,1]x[1,2], 3 | 5 cells across, 2 up; top edge pushed down by 0.1
+//!   ---- interface: slave = top.bottom, master = base.top (non-matching) ----
+//!   base [0,1]x[0,1], 4 | 7 cells across, 2 up; bottom fixed in y
+//!   E = 2e6, nu = 0; x = 0 fixed in x on both blocks (the axis in
+//!   axisymmetry); quad8, quad9 (elevated quad4) and tri6 (elevated tri3)
+//! ```
+//!
+//! Exact state: `sigma_yy = -p` everywhere with `p = 0.1 / (2 / E + 1 / k)`
+//! (area penalty `k = 1e8`) or `p = 0.1 E / 2` (augmented Lagrangian,
+//! Lagrange multipliers); `nu = 0` keeps the interface's area constant, so
+//! the reported (nominal) pressure is `p`. Measured per cell kind, analysis
+//! and method: the largest deviation of the closed slave nodes' pressures
+//! (corners and midside nodes) from their mean, and the mean's error
+//! against `p`. Every slave node with a positive tributary area must be
+//! closed (in axisymmetry the corner on the axis has `int N_a 2 pi r ds =
+//! 0`: no multiplier row, as its dual function vanishes).
+
+use super::error;
+use crate::case::{Check, Quantity};
+use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
+use ctc_engine::contact::{ContactStatus, NodeContact};
+use ctc_engine::mesh::elevate::elevate;
+use ctc_engine::mesh::generate::{generate, Grading, MeshSpec};
+use ctc_engine::mesh::{CellKind, Mesh};
+use ctc_engine::model::{
+    AnalysisKind, ContactFormulation, ContactMethod, LagrangeFormulation, MultiplierUpdate,
+    PenaltyKind,
+};
+use ctc_engine::solve::{IncrementView, Observer};
+use ctc_engine::testkit::{ramp, ModelBuilder};
+
+/// Levels: (base cells, top cells) across the interface.
+const MESHES: [(usize, usize); 2] = [(4, 3), (7, 5)];
+
+const E: f64 = 2e6;
+/// Area penalty.
+const K: f64 = 1e8;
+/// Travel of the top edge.
+const TRAVEL: f64 = 0.1;
+
+/// How a run enforces contact.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Enforce {
+    Penalty,
+    Augmented,
+    Lagrange,
+}
+
+/// The runs: (deviation name, mean-error name, analysis, linear cell,
+/// quadratic cell, enforcement).
+type Run = (
+    &'static str,
+    &'static str,
+    AnalysisKind,
+    CellKind,
+    CellKind,
+    Enforce,
+);
+
+fn runs() -> Vec<Run> {
+    use AnalysisKind::{Axisymmetric as Axi, PlaneStrain as Ps};
+    use CellKind::{Quad4, Quad8, Quad9, Tri3, Tri6};
+    use Enforce::{Augmented as Al, Lagrange as La, Penalty as Pe};
+    vec![
+        (
+            "dev penalty quad8 plane strain",
+            "p penalty quad8 plane strain",
+            Ps,
+            Quad4,
+            Quad8,
+            Pe,
+        ),
+        (
+            "dev penalty quad9 plane strain",
+            "p penalty quad9 plane strain",
+            Ps,
+            Quad4,
+            Quad9,
+            Pe,
+        ),
+        (
+            "dev penalty tri6 plane strain",
+            "p penalty tri6 plane strain",
+            Ps,
+            Tri3,
+            Tri6,
+            Pe,
+        ),
+        (
+            "dev penalty quad8 axisymmetric",
+            "p penalty quad8 axisymmetric",
+            Axi,
+            Quad4,
+            Quad8,
+            Pe,
+        ),
+        (
+            "dev penalty quad9 axisymmetric",
+            "p penalty quad9 axisymmetric",
+            Axi,
+            Quad4,
+            Quad9,
+            Pe,
+        ),
+        (
+            "dev penalty tri6 axisymmetric",
+            "p penalty tri6 axisymmetric",
+            Axi,
+            Tri3,
+            Tri6,
+            Pe,
+        ),
+        (
+            "dev augmented quad8 plane strain",
+            "p augmented quad8 plane strain",
+            Ps,
+            Quad4,
+            Quad8,
+            Al,
+        ),
+        (
+            "dev augmented tri6 axisymmetric",
+            "p augmented tri6 axisymmetric",
+            Axi,
+            Tri3,
+            Tri6,
+            Al,
+        ),
+        (
+            "dev lagrange quad8 plane strain",
+            "p lagrange quad8 plane strain",
+            Ps,
+            Quad4,
+            Quad8,
+            La,
+        ),
+        (
+            "dev lagrange quad9 axisymmetric",
+            "p lagrange quad9 axisymmetric",
+            Axi,
+            Quad4,
+            Quad9,
+            La,
+        ),
+    ]
+}
+
+/// The registry entries of this file.
+pub fn cases() -> Vec<VerifyCase> {
+    vec![VerifyCase {
+        name: "contact_patch_mortar_quadratic",
+        title: "Contact patch test, two deformable blocks on quadratic faces (quad8, quad9, tri6; \
+                plane strain and axisymmetric), non-matching 4|3 and 7|5: seg3 mortar, dual \
+                multipliers",
+        source: "Taylor & Papadopoulos IJNME 31 (1991); Puso & Laursen CMAME 193 (2004); Popp, \
+                 Gee & Wall IJNME 79 (2009)",
+        tags: &[
+            "contact",
+            "patch",
+            "mortar",
+            "quadratic",
+            "two_bodies",
+            "penalty",
+            "augmented_lagrange",
+            "lagrange",
+            "plane_strain",
+            "axisymmetric",
+            "exact",
+        ],
+        levels: MESHES.len(),
+        checks: runs()
+            .into_iter()
+            .flat_map(|r| {
+                [
+                    Check::new(Quantity::Named(r.0), &[1e-8]),
+                    Check::new(Quantity::Named(r.1), &[1e-8]),
+                ]
+            })
+            .collect(),
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: MESHES.len(),
+            run: patch_level,
+        }),
+    }]
+}
+
+/// A block `[0, 1] x [y0, y0 + 1]` of `n` x 2 `kind` cells (the `linear`
+/// cells elevated).
+fn block(y0: f64, n: usize, linear: CellKind, kind: CellKind) -> Result<Mesh, String> {
+    let m = generate(&MeshSpec::Rectangle {
+        origin: [0.0, y0],
+        size: [1.0, 1.0],
+        divisions: [n, 2],
+        grading: [Grading::Uniform; 2],
+        kind: linear,
+    })
+    .map_err(|e| e.message)?;
+    elevate(&m, kind).map_err(|e| e.message)
+}
+
+fn method(enforce: Enforce) -> ContactMethod {
+    match enforce {
+        Enforce::Penalty => ContactMethod::Penalty {
+            kind: PenaltyKind::Area,
+            stiffness: K,
+        },
+        Enforce::Augmented => ContactMethod::AugmentedLagrange {
+            kind: PenaltyKind::Area,
+            penalty: K,
+            tolerance: 1e-12,
+            update: MultiplierUpdate::Converged,
+        },
+        Enforce::Lagrange => ContactMethod::Lagrange {
+            formulation: LagrangeFormulation::Single,
+        },
+    }
+}
+
+#[derive(Default)]
+struct Last(Vec<NodeContact>);
+
+impl Observer for Last {
+    fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
+        self.0 = v.contact.first().cloned().unwrap_or_default();
+        Ok(())
+    }
+}
+
+/// One run's figures: the largest `|p_i - mean| / mean` over the closed
+/// slave nodes, the mean's relative error against the closed form, and the
+/// run's summary.
+fn patch_run(
+    n_base: usize,
+    n_top: usize,
+    analysis: AnalysisKind,
+    linear: CellKind,
+    kind: CellKind,
+    enforce: Enforce,
+) -> Result<(f64, f64, ctc_engine::solve::RunSummary), String> {
+    let mut b = ModelBuilder::new(analysis)
+        .elastic("m", E, 0.0)
+        .body("base", block(0.0, n_base, linear, kind)?, "m")
+        .body("top", block(1.0, n_top, linear, kind)?, "m");
+    let (base_bottom, base_left) = (b.node_set("base.bottom"), b.node_set("base.left"));
+    let (top_left, top_top) = (b.node_set("top.left"), b.node_set("top.top"));
+    let (slave, master) = (b.edge_set("top.bottom"), b.edge_set("base.top"));
+    b = b
+        .fix(base_bottom, 1)
+        .fix(base_left, 0)
+        .fix(top_left, 0)
+        .displace(top_top, 1, ramp(0.0, 1.0, -TRAVEL));
+    let model = b
+        .contact_surface(
+            "top.bottom -> base.top",
+            ("top", slave),
+            ("base", master),
+            method(enforce),
+        )
+        .formulation_of_pair(ContactFormulation::Mortar)
+        .step("press", 1.0, 2)
+        .tol(1e-10)
+        .build();
+    let mut last = Last::default();
+    let s = ctc_engine::solve::run(&model, &mut last).map_err(|e| e.message)?;
+    if !s.completed {
+        return Err("the run did not complete".into());
+    }
+    // corners and midside nodes of the slave edges, less the corner on
+    // the axis in axisymmetry (zero tributary area)
+    let expected = 2 * n_top + 1 - usize::from(analysis == AnalysisKind::Axisymmetric);
+    let p: Vec<f64> = last
+        .0
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .map(|c| c.pressure)
+        .collect();
+    if p.len() != expected {
+        return Err(format!(
+            "{} of {expected} slave nodes are closed in the patch test",
+            p.len()
+        ));
+    }
+    let mean = p.iter().sum::<f64>() / p.len() as f64;
+    let deviation = p.iter().map(|x| (x - mean).abs()).fold(0.0, f64::max) / mean;
+    let exact = match enforce {
+        Enforce::Penalty => TRAVEL / (2.0 / E + 1.0 / K),
+        _ => TRAVEL * E / 2.0,
+    };
+    Ok((deviation, ((mean - exact) / exact).abs(), s))
+}
+
+fn patch_level(level: usize) -> Result<ProgramLevel, String> {
+    let (n_base, n_top) = *MESHES.get(level).ok_or("no such level")?;
+    let mut out = ProgramLevel {
+        h: 1.0 / n_top as f64,
+        ..ProgramLevel::default()
+    };
+    for (dev, mean, analysis, linear, kind, enforce) in runs() {
+        let (d, m, s) = patch_run(n_base, n_top, analysis, linear, kind, enforce)
+            .map_err(|e| format!("{dev}: {e}"))?;
+        out.free_dofs = out.free_dofs.max(s.free_dofs);
+        out.increments += s.increments.len();
+        out.newton_total += s.newton_iterations;
+        out.newton_max = out
+            .newton_max
+            .max(s.increments.iter().map(|i| i.iterations).max().unwrap_or(0));
+        out.cutbacks += s.cutbacks;
+        out.values.push(error(dev, d));
+        out.values.push(error(mean, m));
+    }
+    Ok(out)
+}
