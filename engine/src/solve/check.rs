@@ -1017,6 +1017,101 @@ mod tests {
         }
     }
 
+    /// Deformable pairs on quadratic faces: 2D mortar, both sides
+    /// quadratic, frictionless, area penalty; the rest refused.
+    #[test]
+    fn deformable_pairs_on_quadratic_faces_need_mortar_on_both_sides() {
+        use crate::mesh::CellKind::{Quad4, Quad8};
+        use crate::model::{ContactFormulation as F, Friction};
+        let square = |y0: f64, kind| {
+            let m = Mesh::new(
+                vec![[0.0, y0], [1.0, y0], [1.0, y0 + 1.0], [0.0, y0 + 1.0]],
+                vec![Cell::quad(0, 1, 2, 3)],
+            );
+            if kind == Quad4 {
+                m
+            } else {
+                crate::mesh::elevate::elevate(&m, kind).unwrap()
+            }
+        };
+        let area = ContactMethod::Penalty {
+            kind: PenaltyKind::Area,
+            stiffness: 1.0,
+        };
+        let nodal = ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            stiffness: 1.0,
+        };
+        for (lower, formulation, method, rubs, refused) in [
+            (Quad8, F::Mortar, area.clone(), false, None),
+            (
+                Quad8,
+                F::NodeToSegment,
+                area.clone(),
+                false,
+                Some("use `formulation = mortar`"),
+            ),
+            (
+                Quad4,
+                F::Mortar,
+                area.clone(),
+                false,
+                Some("needs both surfaces quadratic"),
+            ),
+            (
+                Quad8,
+                F::Mortar,
+                area.clone(),
+                true,
+                Some("friction with mortar"),
+            ),
+            (
+                Quad8,
+                F::Mortar,
+                nodal,
+                false,
+                Some("a nodal penalty has no meaning"),
+            ),
+        ] {
+            let b = crate::testkit::ModelBuilder::new(AnalysisKind::PlaneStrain)
+                .elastic("m", 1.0, 0.3)
+                .body("low", square(0.0, lower), "m")
+                .body("up", square(1.0, Quad8), "m");
+            let n0 = b.model().bodies[1].nodes.start;
+            let (low, up) = (vec![0, 1], vec![n0 + 2, n0 + 3]);
+            let mut m = b
+                .fix(low.clone(), 0)
+                .fix(low, 1)
+                .fix(up.clone(), 0)
+                .fix(up, 1)
+                .contact_surface(
+                    "up -> low",
+                    ("up", vec![[n0, n0 + 1]]),
+                    ("low", vec![[2, 3]]),
+                    method,
+                )
+                .formulation_of_pair(formulation)
+                .step("s", 1.0, 1)
+                .build();
+            if rubs {
+                m.contacts[0].friction = Some(Friction {
+                    mu: 0.3,
+                    stiffness: None,
+                    first_impact: crate::model::FirstImpact::Intersect,
+                    cut_at_impact: false,
+                });
+            }
+            let errors = check_model(&m);
+            match refused {
+                None => assert!(errors.is_empty(), "{lower:?} {formulation:?}: {errors:?}"),
+                Some(why) => assert!(
+                    errors.len() == 1 && errors[0].contains(why),
+                    "{lower:?} {formulation:?}: {errors:?}"
+                ),
+            }
+        }
+    }
+
     #[test]
     fn well_held_body_passes() {
         let m = square(AnalysisKind::PlaneStrain, vec![(0, 0), (0, 1), (1, 1)]);

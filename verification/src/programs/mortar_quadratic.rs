@@ -158,7 +158,11 @@ fn runs() -> Vec<Run> {
 
 /// The registry entries of this file.
 pub fn cases() -> Vec<VerifyCase> {
-    vec![VerifyCase {
+    vec![patch_case(), hertz_case()]
+}
+
+fn patch_case() -> VerifyCase {
+    VerifyCase {
         name: "contact_patch_mortar_quadratic",
         title: "Contact patch test, two deformable blocks on quadratic faces (quad8, quad9, tri6; \
                 plane strain and axisymmetric), non-matching 4|3 and 7|5: seg3 mortar, dual \
@@ -192,7 +196,7 @@ pub fn cases() -> Vec<VerifyCase> {
             max_levels: MESHES.len(),
             run: patch_level,
         }),
-    }]
+    }
 }
 
 /// A block `[0, 1] x [y0, y0 + 1]` of `n` x 2 `kind` cells (the `linear`
@@ -309,15 +313,136 @@ fn patch_level(level: usize) -> Result<ProgramLevel, String> {
     for (dev, mean, analysis, linear, kind, enforce) in runs() {
         let (d, m, s) = patch_run(n_base, n_top, analysis, linear, kind, enforce)
             .map_err(|e| format!("{dev}: {e}"))?;
-        out.free_dofs = out.free_dofs.max(s.free_dofs);
-        out.increments += s.increments.len();
-        out.newton_total += s.newton_iterations;
-        out.newton_max = out
-            .newton_max
-            .max(s.increments.iter().map(|i| i.iterations).max().unwrap_or(0));
-        out.cutbacks += s.cutbacks;
+        out.add_run(&s);
         out.values.push(error(dev, d));
         out.values.push(error(mean, m));
+    }
+    Ok(out)
+}
+
+// ---------------------------------------- Hertz, two cylinders on quad8
+
+/// The deck of `ctc verify hertz_two_cylinders_mortar` (quad4).
+const HERTZ_DECK: &str = "hertz_two_cylinders_mortar.ctc";
+
+/// The measured quantities: (name, tolerance per level); the quad4 ones
+/// are the same deck's (`hertz_two_cylinders_mortar`) at about the same
+/// number of dofs.
+const HERTZ_CHECKS: [(&str, &[f64]); 6] = [
+    ("p0 quad8", &[0.06, 0.03, 0.015]),
+    ("a (moment) quad8", &[0.06, 0.03, 0.015]),
+    ("L2(p) quad8", &[0.15, 0.08, 0.04]),
+    ("p0 quad4", &[0.04, 0.02, 0.012]),
+    ("a (moment) quad4", &[0.04, 0.015, 0.008]),
+    ("L2(p) quad4", &[0.1, 0.05, 0.03]),
+];
+
+/// Hertz, two elastic cylinders on non-matching arcs, seg3 mortar on
+/// quad8 cells (tri6 in the hubs, midside nodes on the arcs) against the
+/// quad4 mortar run of the same deck with twice the divisions (about the
+/// same dofs).
+///
+/// ```text
+///          |  top quarter cylinder R = 1 (arc grading 0.02), flat pushed 0.02
+///          | .-'
+///   -------+---- interface: slave top.arc -> master bottom.arc (mortar)
+///          | '-.
+///          |  bottom quarter cylinder R = 1 (arc grading 0.03), flat fixed
+///   x = 0: symmetry
+/// ```
+///
+/// Reference: K. L. Johnson, Contact Mechanics (1985) §4.3 (identical
+/// cylinders: `a = sqrt(4 P R / (pi E'))`, `p0 = 2 P / (pi a)`), the deck
+/// `verification/cases/hertz_two_cylinders_mortar.ctc` with `order = 2` and
+/// half its `radial` / `circumferential` divisions.
+fn hertz_case() -> VerifyCase {
+    VerifyCase {
+        name: "hertz_two_cylinders_mortar_quadratic",
+        title: "Hertz: two elastic cylinders, non-matching arcs, seg3 mortar on quad8 cells vs \
+                quad4 mortar at about equal dofs",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3; deck \
+                 hertz_two_cylinders_mortar.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "mortar",
+            "quadratic",
+            "two_bodies",
+            "penalty",
+            "plane_strain",
+            "closed_form",
+        ],
+        levels: 2,
+        checks: HERTZ_CHECKS
+            .iter()
+            .map(|(n, t)| Check::new(Quantity::Named(n), t))
+            .collect(),
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: 3,
+            run: hertz_level,
+        }),
+    }
+}
+
+/// `text` with every `from` replaced by `to`, which must occur `count`
+/// times.
+fn replace_n(text: &str, from: &str, to: &str, count: usize) -> Result<String, String> {
+    let found = text.matches(from).count();
+    if found != count {
+        return Err(format!(
+            "{HERTZ_DECK}: `{from}` found {found} times, not {count}"
+        ));
+    }
+    Ok(text.replace(from, to))
+}
+
+fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
+    let (path, text) = super::read_case_deck(HERTZ_DECK)?;
+    let deck = crate::refine::RefinableDeck::parse(&text)?;
+    if level >= deck.levels() {
+        return Err(format!("{HERTZ_DECK} has no level {level}"));
+    }
+    let linear = deck.render(level)?;
+    let (r, c) = (8 << level, 16 << level);
+    let quadratic = replace_n(
+        &linear,
+        &format!("radial = {r}  circumferential = {c}"),
+        &format!("radial = {}  circumferential = {}", r / 2, c / 2),
+        2,
+    )?;
+    let quadratic = replace_n(
+        &quadratic,
+        "element = quad4",
+        "element = quad4  order = 2",
+        2,
+    )?;
+    let mut out = ProgramLevel {
+        h: 1.0 / c as f64,
+        ..ProgramLevel::default()
+    };
+    let of = |m: &crate::measure::Measured, q: Quantity| {
+        m.values
+            .iter()
+            .find(|v| v.quantity == q)
+            .map(|v| v.error)
+            .ok_or_else(|| format!("{q:?} not measured"))
+    };
+    for (text, names) in [
+        (quadratic, &HERTZ_CHECKS[..3]),
+        (linear, &HERTZ_CHECKS[3..]),
+    ] {
+        let (measured, _, summary) = super::mortar::hertz_run(&path, &text)?;
+        out.add_run(&summary);
+        for (q, (name, _)) in [
+            Quantity::PeakPressure,
+            Quantity::HalfWidthMoment,
+            Quantity::PressureL2,
+        ]
+        .into_iter()
+        .zip(names)
+        {
+            out.values.push(error(name, of(&measured, q)?));
+        }
     }
     Ok(out)
 }
