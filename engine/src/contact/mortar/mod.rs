@@ -1,4 +1,5 @@
-//! Mortar segment-to-segment contact between deformable bodies (2D, seg2).
+//! Mortar segment-to-segment contact between deformable bodies (2D, seg2;
+//! seg3 when both bodies have quadratic cells: [`seg3`], `evaluate_seg3`).
 //!
 //! Instead of one constraint per slave node against the point under it
 //! (node-to-segment), the gap is integrated along the slave surface
