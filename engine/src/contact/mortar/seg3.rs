@@ -78,6 +78,10 @@ pub const GAUSS: [(f64, f64); 5] = [
 /// Newton iterations allowed for a projection.
 const NEWTON: usize = 30;
 
+/// Largest `|xi|` a master end may project to (a master segment up to
+/// ~1000 slave segments long still finds the slave's part under it).
+const MAX_PARAM: f64 = 1e3;
+
 /// Newton tolerance on a parameter.
 const PARAM_TOL: f64 = 1e-14;
 
@@ -148,7 +152,7 @@ fn project_on_curve(x: &[[f64; 2]; 3], p: [f64; 2], guess: f64) -> Option<f64> {
         }
         let step = f / df;
         xi -= step;
-        if !xi.is_finite() || xi.abs() > 10.0 {
+        if !xi.is_finite() || xi.abs() > MAX_PARAM {
             return None;
         }
         if step.abs() < PARAM_TOL {
@@ -298,8 +302,18 @@ pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Se
         ((q[0] - sv[0][0]) * (sv[1][0] - sv[0][0]) + (q[1] - sv[0][1]) * (sv[1][1] - sv[0][1]))
             / (len * len)
     };
-    let xi_c0 = project_on_curve(&sv, mv[0], guess(mv[0]))?;
-    let xi_d0 = project_on_curve(&sv, mv[1], guess(mv[1]))?;
+    // an end whose chord projection lies far beyond the slave only says on
+    // which side it is (the mortar segment stops at the slave's end)
+    let end = |q: [f64; 2]| {
+        let g = guess(q);
+        if (-0.5..=1.5).contains(&g) {
+            project_on_curve(&sv, q, g)
+        } else {
+            Some(g)
+        }
+    };
+    let xi_c0 = end(mv[0])?;
+    let xi_d0 = end(mv[1])?;
     if (xi_c0 - xi_d0) * len <= MIN_PROJECTED * len_m {
         return None;
     }
@@ -575,6 +589,12 @@ mod tests {
                 assert!((g - gfun(s[j][0])).abs() < 1e-12, "{weight:?} {j}: {g}");
             }
         }
+        // a master 25 times longer than a curved slave covers it whole
+        let mut curved = s;
+        curved[2][1] += 0.05;
+        let long = straight([-10.0, 0.1], [15.0, 0.1]);
+        let seg = segment_pair(join(curved, long), Weight::Thickness(1.0), Basis::Dual).unwrap();
+        assert!(seg.lo == 0.0 && seg.hi == 1.0);
         // a master walking the same way does not face the slave
         let m = straight([0.9, 0.1], [0.2, 0.1]);
         assert!(segment_pair(join(s, m), Weight::Thickness(1.0), Basis::Dual).is_none());
