@@ -214,3 +214,44 @@ fn quarter_disc_of_order_two_is_tri6_and_quad8_with_its_arc_on_the_circle() {
         assert!((p[0].hypot(p[1]) - 1.0).abs() < 1e-12);
     }
 }
+
+/// Two deformable blocks of quad8 cells in contact (issues 23 and 18):
+/// mortar lowers (the slave midside nodes are contact nodes); node-to-
+/// segment, one linear side and friction are refused with a caret.
+#[test]
+fn deformable_quadratic_pair_lowers_with_mortar_only() {
+    let deck = |top_order: usize, contact_extra: &str| {
+        format!(
+            "analysis {{ dimension = plane_strain }}\n\
+             material m {{ elastic {{ E = 1000  nu = 0.3 }} }}\n\
+             body base {{\n  mesh = rectangle {{ origin = (0, 0)  size = (1, 1)  divisions = (4, 2)  order = 2 }}\n  material = m\n}}\n\
+             body top {{\n  mesh = rectangle {{ origin = (0, 1)  size = (1, 1)  divisions = (3, 2)  order = {top_order} }}\n  material = m\n}}\n\
+             contact top.bottom -> base.top {{\n  method = penalty {{ kind = area  stiffness = 1e6 }}\n  {contact_extra}\n}}\n\
+             fix base.bottom {{ uy }}\nfix base.left {{ ux }}\nfix top.left {{ ux }}\n\
+             displace top.top {{ uy = ramp(0, -0.01) }}\n\
+             step s {{ time = 0 .. 1  increments = 1 }}\n"
+        )
+    };
+    let src = Source::new("pair.ctc", deck(2, "formulation = mortar"));
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D2(m)) => m,
+        Ok(_) => panic!("not planar"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    // 3 edges: 4 corners and 3 midside nodes
+    assert_eq!(m.contacts[0].nodes.len(), 7);
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    for (order, extra, expected) in [
+        (2, "", "add `formulation = mortar`"),
+        (1, "formulation = mortar", "needs both surfaces quadratic"),
+        (
+            2,
+            "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
+            "friction with mortar contact on quadratic faces",
+        ),
+    ] {
+        let src = Source::new("pair.ctc", deck(order, extra));
+        let out = check(&src).diagnostics.render(&src);
+        assert!(out.contains(expected), "{out}");
+    }
+}

@@ -67,7 +67,7 @@ pub mod surface;
 pub mod tributary;
 pub(crate) mod vec2;
 
-use crate::model::{ContactFormulation, ContactMethod, Model, NormalSmoothing};
+use crate::model::{ContactFormulation, ContactMaster, ContactMethod, Model, NormalSmoothing};
 use geometry::ToolShape;
 use motion::Placement;
 
@@ -228,8 +228,24 @@ impl PairState {
             slaves.sort_unstable();
             slaves.dedup();
         }
+        // seg3 mortar: the slave edges' midside nodes are slave nodes too
+        let seg3 = cp.formulation == ContactFormulation::Mortar
+            && matches!(cp.master, ContactMaster::Surface { .. });
+        if seg3 {
+            if let Some(m) = mortar::seg3::edge_midsides(model, cp.body, &cp.edges) {
+                slaves.extend(m);
+                slaves.sort_unstable();
+                slaves.dedup();
+            }
+        }
         let n = slaves.len();
         let surface = node_to_segment::prepare(model, pair, &slaves);
+        let tributary = match &surface {
+            Some(sp) if seg3 && !sp.midsides[0].is_empty() && !sp.midsides[1].is_empty() => {
+                mortar::seg3::reference_areas(model, &cp.edges, &sp.midsides[0], &slaves)
+            }
+            _ => node_to_segment::tributary_areas(model, pair, &slaves),
+        };
         let shape = match cp.master.tool().and_then(|t| model.tools.get(t)) {
             Some(tool) => {
                 ToolShape::new(&tool.geometry).map_err(|e| format!("tool '{}': {e}", tool.name))
@@ -266,7 +282,7 @@ impl PairState {
                 .collect(),
         };
         PairState {
-            tributary: node_to_segment::tributary_areas(model, pair, &slaves),
+            tributary,
             pair: Some(pair),
             prof: prof::effective_prof(model, pair),
             error,

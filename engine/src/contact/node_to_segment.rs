@@ -112,6 +112,19 @@ impl Surface {
         }
     }
 
+    /// Rebuilds the broad phase at the current coordinates `x` with each
+    /// segment's box around its two ends and its midside node
+    /// (`midsides`, per segment: seg3 segments).
+    pub(crate) fn update_with_midsides(&mut self, x: &[[f64; 2]], midsides: &[usize]) {
+        self.boxes.clear();
+        for (&[a, b], &m) in self.edges.iter().zip(midsides) {
+            self.boxes.push(Aabb::around(&[x[a], x[b], x[m]]));
+        }
+        self.grid
+            .get_or_insert_with(BroadPhase::default)
+            .rebuild(&self.boxes, 0.0);
+    }
+
     /// Rebuilds the broad phase at the current coordinates `x`.
     pub(crate) fn update(&mut self, x: &[[f64; 2]]) {
         self.boxes.clear();
@@ -151,6 +164,10 @@ pub struct SurfacePair {
     /// configuration (recomputed once per increment from
     /// `committed_positions`).
     pub pairing: Option<super::mortar::friction::CommittedPairing>,
+    /// Per side, per segment: its midside node when the side's body has
+    /// quadratic cells (seg3 segments `[a, b, m]`, mortar only,
+    /// [`super::mortar::seg3`]); empty for a linear side.
+    pub midsides: [Vec<usize>; 2],
     /// Scratch: candidate segments of one query.
     pub(crate) candidates: Vec<usize>,
 }
@@ -214,9 +231,15 @@ pub fn slave_nodes(model: &Model, pair: usize) -> Vec<usize> {
 /// Prepares a deformable pair; `None` if the master is a rigid tool.
 pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePair> {
     let cp = model.contacts.get(pair)?;
-    let ContactMaster::Surface { edges, .. } = &cp.master else {
+    let ContactMaster::Surface {
+        edges,
+        body: master_body,
+        ..
+    } = &cp.master
+    else {
         return None;
     };
+    let master_body = *master_body;
     let self_contact = edges == &cp.edges;
     let sides = [Surface::new(&cp.edges), Surface::new(edges)];
     let side_of = slaves
@@ -244,11 +267,14 @@ pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePa
     } else {
         Vec::new()
     };
+    let midsides = [(cp.body, &cp.edges), (master_body, edges)]
+        .map(|(b, e)| super::mortar::seg3::edge_midsides(model, b, e).unwrap_or_default());
     Some(SurfacePair {
         sides,
         side_of,
         self_contact,
         excluded,
+        midsides,
         positions: model.mesh.nodes.clone(),
         committed_positions: model.mesh.nodes.clone(),
         ..SurfacePair::default()

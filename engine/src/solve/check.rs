@@ -843,15 +843,47 @@ pub fn quadratic_contact_refusal<const D: usize>(
     use crate::contact::face_integrated::body_is_quadratic;
     use crate::model::{ContactMaster, ContactMethod, PenaltyKind};
     let body = |b: usize| model.bodies.get(b).map_or("?", |b| b.name.as_str());
+    let nodal = matches!(
+        c.method,
+        ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            ..
+        } | ContactMethod::AugmentedLagrange {
+            kind: PenaltyKind::Nodal,
+            ..
+        }
+    );
     if let ContactMaster::Surface { body: m, .. } = &c.master {
-        let quadratic = [c.body, *m]
+        let quadratic: Vec<usize> = [c.body, *m]
             .into_iter()
-            .find(|&b| body_is_quadratic(model, b))?;
+            .filter(|&b| body_is_quadratic(model, b))
+            .collect();
+        let first = *quadratic.first()?;
+        // 2D mortar on seg3 faces (`contact::mortar::seg3`): both sides
+        // quadratic, frictionless, area penalty / augmented Lagrangian /
+        // single Lagrange multipliers
+        let what = if c.formulation != crate::model::ContactFormulation::Mortar {
+            "node-to-segment contact between deformable bodies on quadratic faces is not \
+             available (its nodal weights are wrong at the corners); use `formulation = \
+             mortar`"
+        } else if D != 2 {
+            "mortar contact between deformable bodies on quadratic faces is planar only (3D: \
+             use linear cells on deformable contact pairs)"
+        } else if quadratic.len() == 1 {
+            "mortar on quadratic faces needs both surfaces quadratic (mesh both bodies with \
+             quadratic cells, or both with linear cells)"
+        } else if c.friction.is_some() {
+            "friction with mortar contact on quadratic faces is not available (frictionless \
+             mortar is)"
+        } else if nodal {
+            "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
+             the faces); use `kind = area`"
+        } else {
+            return None;
+        };
         return Some(format!(
-            "body `{}` has quadratic cells; contact between deformable bodies on quadratic \
-             faces is not available (rigid tools are: penalty or augmented Lagrangian; use \
-             linear cells on deformable contact pairs)",
-            body(quadratic)
+            "body `{}` has quadratic cells: {what}",
+            body(first)
         ));
     }
     if !body_is_quadratic(model, c.body) {
@@ -863,14 +895,7 @@ pub fn quadratic_contact_refusal<const D: usize>(
              `penalty` or `augmented_lagrange` with friction (frictionless Lagrange \
              multipliers are)"
         }
-        ContactMethod::Penalty {
-            kind: PenaltyKind::Nodal,
-            ..
-        }
-        | ContactMethod::AugmentedLagrange {
-            kind: PenaltyKind::Nodal,
-            ..
-        } => {
+        _ if nodal => {
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
         }
@@ -987,6 +1012,101 @@ mod tests {
                 Some(why) => assert!(
                     errors.len() == 1 && errors[0].contains(why),
                     "{kind:?}: {errors:?}"
+                ),
+            }
+        }
+    }
+
+    /// Deformable pairs on quadratic faces: 2D mortar, both sides
+    /// quadratic, frictionless, area penalty; the rest refused.
+    #[test]
+    fn deformable_pairs_on_quadratic_faces_need_mortar_on_both_sides() {
+        use crate::mesh::CellKind::{Quad4, Quad8};
+        use crate::model::{ContactFormulation as F, Friction};
+        let square = |y0: f64, kind| {
+            let m = Mesh::new(
+                vec![[0.0, y0], [1.0, y0], [1.0, y0 + 1.0], [0.0, y0 + 1.0]],
+                vec![Cell::quad(0, 1, 2, 3)],
+            );
+            if kind == Quad4 {
+                m
+            } else {
+                crate::mesh::elevate::elevate(&m, kind).unwrap()
+            }
+        };
+        let area = ContactMethod::Penalty {
+            kind: PenaltyKind::Area,
+            stiffness: 1.0,
+        };
+        let nodal = ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            stiffness: 1.0,
+        };
+        for (lower, formulation, method, rubs, refused) in [
+            (Quad8, F::Mortar, area.clone(), false, None),
+            (
+                Quad8,
+                F::NodeToSegment,
+                area.clone(),
+                false,
+                Some("use `formulation = mortar`"),
+            ),
+            (
+                Quad4,
+                F::Mortar,
+                area.clone(),
+                false,
+                Some("needs both surfaces quadratic"),
+            ),
+            (
+                Quad8,
+                F::Mortar,
+                area.clone(),
+                true,
+                Some("friction with mortar"),
+            ),
+            (
+                Quad8,
+                F::Mortar,
+                nodal,
+                false,
+                Some("a nodal penalty has no meaning"),
+            ),
+        ] {
+            let b = crate::testkit::ModelBuilder::new(AnalysisKind::PlaneStrain)
+                .elastic("m", 1.0, 0.3)
+                .body("low", square(0.0, lower), "m")
+                .body("up", square(1.0, Quad8), "m");
+            let n0 = b.model().bodies[1].nodes.start;
+            let (low, up) = (vec![0, 1], vec![n0 + 2, n0 + 3]);
+            let mut m = b
+                .fix(low.clone(), 0)
+                .fix(low, 1)
+                .fix(up.clone(), 0)
+                .fix(up, 1)
+                .contact_surface(
+                    "up -> low",
+                    ("up", vec![[n0, n0 + 1]]),
+                    ("low", vec![[2, 3]]),
+                    method,
+                )
+                .formulation_of_pair(formulation)
+                .step("s", 1.0, 1)
+                .build();
+            if rubs {
+                m.contacts[0].friction = Some(Friction {
+                    mu: 0.3,
+                    stiffness: None,
+                    first_impact: crate::model::FirstImpact::Intersect,
+                    cut_at_impact: false,
+                });
+            }
+            let errors = check_model(&m);
+            match refused {
+                None => assert!(errors.is_empty(), "{lower:?} {formulation:?}: {errors:?}"),
+                Some(why) => assert!(
+                    errors.len() == 1 && errors[0].contains(why),
+                    "{lower:?} {formulation:?}: {errors:?}"
                 ),
             }
         }

@@ -39,30 +39,88 @@ impl Lowerer<'_> {
                 .find(|b| b.name == side.body.name)
                 .is_some_and(|b| self.has_quadratic_cells(b))
         };
+        let nodal = |k: &Option<ast::Spanned<ast::PenaltyKind>>| {
+            k.as_ref()
+                .is_some_and(|k| k.value == ast::PenaltyKind::Nodal)
+        };
         if c.master.is_some() {
-            let side = std::iter::once(&c.target)
+            let sides: Vec<&ast::SetRef> = std::iter::once(&c.target)
                 .chain(c.master.as_ref())
-                .find(quadratic)?;
-            return Some((
-                side.span,
-                format!(
-                    "contact between deformable bodies on quadratic faces is not available: body \
-                     `{}` has quadratic cells",
-                    side.body.name
-                ),
-                "this surface has midside nodes",
-                "mesh deformable contact pairs with linear cells (generators: leave `order = 2` \
-                 out; gmsh: Mesh.ElementOrder = 1); rigid tools accept quadratic faces",
-            ));
+                .filter(|s| quadratic(s))
+                .collect();
+            let side = *sides.first()?;
+            let mortar = c
+                .formulation
+                .as_ref()
+                .filter(|f| f.value == ast::ContactFormulation::Mortar);
+            // 2D mortar on seg3 faces: both sides quadratic, frictionless,
+            // area penalty / augmented Lagrangian / Lagrange multipliers
+            // (`ctc_engine::contact::mortar::seg3`)
+            let refusal = |span, message: String, label, help| Some((span, message, label, help));
+            let Some(mortar) = mortar else {
+                return refusal(
+                    side.span,
+                    format!(
+                        "node-to-segment contact between deformable bodies on quadratic faces is \
+                         not available: body `{}` has quadratic cells",
+                        side.body.name
+                    ),
+                    "this surface has midside nodes",
+                    "add `formulation = mortar` (mortar integrates the gap over the quadratic \
+                     faces), or mesh the pair with linear cells",
+                );
+            };
+            if self.solid {
+                return refusal(
+                    mortar.span,
+                    "mortar contact between deformable bodies on quadratic faces is planar only"
+                        .into(),
+                    "3D quadratic faces",
+                    "mesh 3D deformable contact pairs with linear cells (rigid tools accept \
+                     quadratic faces)",
+                );
+            }
+            if sides.len() == 1 {
+                return refusal(
+                    side.span,
+                    format!(
+                        "mortar on quadratic faces needs both surfaces quadratic: body `{}` has \
+                         quadratic cells, the other side linear ones",
+                        side.body.name
+                    ),
+                    "this surface has midside nodes",
+                    "mesh both bodies with quadratic cells (`order = 2`), or both with linear \
+                     cells",
+                );
+            }
+            if let Some(f) = &c.friction {
+                return refusal(
+                    f.span,
+                    "friction with mortar contact on quadratic faces is not available".into(),
+                    "quadratic faces with friction",
+                    "drop `friction` (frictionless mortar on quadratic faces is available), or \
+                     mesh the pair with linear cells",
+                );
+            }
+            let method = c.method.as_ref()?;
+            return match &method.value {
+                Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }
+                    if nodal(kind) =>
+                {
+                    refusal(
+                        method.span,
+                        "a nodal penalty has no meaning on quadratic faces".into(),
+                        "the gap is integrated over the quadratic faces",
+                        "use `kind = area` (a pressure per unit gap)",
+                    )
+                }
+                _ => None,
+            };
         }
         if !quadratic(&&c.target) {
             return None;
         }
         let method = c.method.as_ref()?;
-        let nodal = |k: &Option<ast::Spanned<ast::PenaltyKind>>| {
-            k.as_ref()
-                .is_some_and(|k| k.value == ast::PenaltyKind::Nodal)
-        };
         match &method.value {
             Method::Lagrange { .. } if c.friction.is_some() => Some((
                 method.span,

@@ -25,6 +25,7 @@ pub mod johnson_cook;
 pub mod mortar;
 pub mod mortar_friction;
 pub mod mortar_friction_3d;
+pub mod mortar_quadratic;
 pub mod nagata_3d;
 pub mod norton_hoff;
 pub mod objectivity;
@@ -69,6 +70,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(penalty_scaling::cases());
     v.extend(fenicsx::cases());
     v.extend(mortar::cases());
+    v.extend(mortar_quadratic::cases());
     v.extend(mortar_friction::cases());
     v.extend(solid::cases());
     v.extend(solid_patch::cases());

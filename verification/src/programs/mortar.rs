@@ -291,7 +291,7 @@ fn hertz_lagrange_case() -> VerifyCase {
 
 /// One Hertz run of deck text `text`: the measured values, the final
 /// contact state and the run's summary.
-fn hertz_run(
+pub(super) fn hertz_run(
     path: &Path,
     text: &str,
 ) -> Result<

@@ -1,4 +1,5 @@
-//! Mortar segment-to-segment contact between deformable bodies (2D, seg2).
+//! Mortar segment-to-segment contact between deformable bodies (2D, seg2;
+//! seg3 when both bodies have quadratic cells: [`seg3`], `evaluate_seg3`).
 //!
 //! Instead of one constraint per slave node against the point under it
 //! (node-to-segment), the gap is integrated along the slave surface
@@ -40,10 +41,11 @@ pub mod facets;
 pub mod friction;
 pub mod friction3d;
 pub mod integrals;
+pub mod seg3;
 
 use super::surface::SurfacePair;
 use super::{ContactStatus, NodeContact, PairState};
-use crate::model::{AnalysisKind, ContactMethod, Model};
+use crate::model::{AnalysisKind, ContactMethod, ContactPair, Model};
 use ad::Ad;
 use integrals::{segment_pair, Basis, MortarSegment, Weight};
 
@@ -175,6 +177,38 @@ impl<'a> Row<'a> {
                     dim,
                     vars,
                     &(coef * *nc),
+                    &mut v,
+                    &mut self.db[r * nd..(r + 1) * nd],
+                );
+                self.bv[r] += v;
+            }
+        }
+    }
+
+    /// Adds one piece whose force coefficients are vectors (`(node,
+    /// B_jk)`, `dim` components: the seg3 rows, whose normal varies along
+    /// the slave): its weighted gap, area and `B` over the variables
+    /// `vars`.
+    fn add_vectors<'v, const N: usize>(
+        &mut self,
+        vars: &[usize],
+        gap: &Ad<N>,
+        area: &Ad<N>,
+        coefficients: impl Iterator<Item = (usize, &'v [Ad<N>])>,
+    ) {
+        let (nodes, dim) = (self.nodes, self.dim);
+        let nd = dim * nodes.len();
+        accumulate(nodes, dim, vars, gap, &mut self.g, &mut self.dg);
+        accumulate(nodes, dim, vars, area, &mut self.area, &mut self.da);
+        for (node, b) in coefficients {
+            for (c, bc) in b.iter().enumerate() {
+                let r = dim * self.pos(node) + c;
+                let mut v = 0.0;
+                accumulate(
+                    nodes,
+                    dim,
+                    vars,
+                    bc,
                     &mut v,
                     &mut self.db[r * nd..(r + 1) * nd],
                 );
@@ -480,6 +514,169 @@ fn pieces_at(
     pieces
 }
 
+/// The enforcement of slave `i` of a 2D pair under `method` (the node's):
+/// the penalty `alpha` of its reference tributary area `support`, the
+/// augmented Lagrangian's shift (0 otherwise) and, with Lagrange
+/// multipliers, the node's `(active, multiplier)`.
+fn enforcement(
+    cp: &ContactPair,
+    state: &PairState,
+    i: usize,
+    method: &ContactMethod,
+    support: f64,
+) -> (f64, f64, Option<(bool, f64)>) {
+    let alpha = super::penalty::effective_stiffness(method, support);
+    let shift = match cp.method {
+        ContactMethod::AugmentedLagrange { .. } => state.multiplier.get(i).copied().unwrap_or(0.0),
+        _ => 0.0,
+    };
+    let lagrange = matches!(cp.method, ContactMethod::Lagrange { .. }).then(|| {
+        (
+            state.active.get(i).copied().unwrap_or(false),
+            state.multiplier.get(i).copied().unwrap_or(0.0),
+        )
+    });
+    (alpha, shift, lagrange)
+}
+
+/// One seg3 segment pair seen from one of its three slave nodes.
+#[derive(Debug, Clone, Copy)]
+struct Seg3Piece {
+    /// Global nodes `[a, b, m, c, d, m']` of the segment pair.
+    nodes: [usize; 6],
+    /// Master segment index.
+    master: usize,
+    /// Row of the slave node (0: `a`, 1: `b`, 2: `m`).
+    row: usize,
+    seg: seg3::Seg3Segment,
+}
+
+/// The seg3 mortar pieces of every slave node (as [`pieces_at`], the
+/// segments `[a, b, m]` of `sp.midsides`): per slave segment, the master
+/// segments of the broad phase (boxes around the three nodes) within half
+/// its chord plus its midside's offset plus `prof` of the chord's middle,
+/// unless every integration-point gap exceeds `prof` or lies deeper than
+/// `max(prof, L)`.
+fn pieces_seg3(
+    sp: &mut super::node_to_segment::SurfacePair,
+    slaves: &[usize],
+    x: &[[f64; 2]],
+    w: Weight,
+    prof: f64,
+    tests: &mut usize,
+) -> Vec<Vec<Seg3Piece>> {
+    let basis = Basis::Dual;
+    sp.sides[1].update_with_midsides(x, &sp.midsides[1]);
+    let mut pieces: Vec<Vec<Seg3Piece>> = vec![Vec::new(); slaves.len()];
+    let mut candidates = std::mem::take(&mut sp.candidates);
+    for (e, &[a, b]) in sp.sides[0].edges.iter().enumerate() {
+        let Some(&m) = sp.midsides[0].get(e) else {
+            continue;
+        };
+        let (Some(&xa), Some(&xb), Some(&xm)) = (x.get(a), x.get(b), x.get(m)) else {
+            continue;
+        };
+        let len = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);
+        let mid = [0.5 * (xa[0] + xb[0]), 0.5 * (xa[1] + xb[1])];
+        let bulge = (xm[0] - mid[0]).hypot(xm[1] - mid[1]);
+        candidates.clear();
+        if let Some(grid) = &sp.sides[1].grid {
+            grid.query(mid, 0.5 * len + bulge + prof, &mut candidates);
+        }
+        candidates.sort_unstable();
+        candidates.dedup();
+        let depth = prof.max(len);
+        for &f in &candidates {
+            let [c, d] = sp.sides[1].edges[f];
+            let Some(&mm) = sp.midsides[1].get(f) else {
+                continue;
+            };
+            *tests += 1;
+            let Some(seg) = seg3::segment_pair([xa, xb, xm, x[c], x[d], x[mm]], w, basis) else {
+                continue;
+            };
+            let [gmin, gmax] = seg.gap_range;
+            if gmin > prof || gmax < -depth {
+                continue;
+            }
+            for (row, node) in [a, b, m].into_iter().enumerate() {
+                if let Ok(i) = slaves.binary_search(&node) {
+                    pieces[i].push(Seg3Piece {
+                        nodes: [a, b, m, c, d, mm],
+                        master: f,
+                        row,
+                        seg,
+                    });
+                }
+            }
+        }
+    }
+    sp.candidates = candidates;
+    pieces
+}
+
+/// The seg3 branch of [`evaluate`] (both surfaces quadratic; frictionless):
+/// per slave node (corners and midside nodes) its row over its pieces,
+/// closed as the seg2 rows ([`Row::close`]); returns the projection tests.
+fn evaluate_seg3(
+    cp: &ContactPair,
+    state: &mut PairState,
+    sp: &mut super::node_to_segment::SurfacePair,
+    x: &[[f64; 2]],
+    w: Weight,
+    couplings: &mut Vec<Coupling>,
+    out: &mut Vec<NodeContact>,
+) -> usize {
+    let prof = state.prof;
+    let mut tests = 0usize;
+    let pieces = pieces_seg3(sp, &state.slaves, x, w, prof, &mut tests);
+    let mut nodes = Vec::new();
+    for (i, list) in pieces.iter().enumerate() {
+        let node = state.slaves[i];
+        state.last_entity[i] = list.first().map(|p| p.master);
+        state.friction.open(i, [0.0; 2]);
+        if list.is_empty() {
+            continue;
+        }
+        nodes.clear();
+        for p in list {
+            nodes.extend_from_slice(&p.nodes);
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        let mut row = Row::new(&nodes, 2);
+        for p in list {
+            let s = &p.seg;
+            let j = p.row;
+            let area = s.d[j][0] + s.d[j][1] + s.d[j][2];
+            row.add_vectors(
+                &p.nodes,
+                &s.gap[j],
+                &area,
+                (0..6).map(|k| (p.nodes[k], &s.b[j][k][..])),
+            );
+        }
+        let support = state.tributary.get(i).copied().unwrap_or(0.0);
+        let method = cp.method_at(node);
+        let (alpha, shift, lagrange) = enforcement(cp, state, i, &method, support);
+        let Some((nc, coupling)) = row.close(
+            node,
+            support,
+            alpha,
+            shift,
+            prof,
+            0.0,
+            list[0].master,
+            lagrange,
+        ) else {
+            continue;
+        };
+        couplings.extend(coupling);
+        out.push(nc);
+    }
+    tests
+}
+
 /// Evaluates mortar pair `pair` at current coordinates `x`: fills
 /// `state.couplings` and returns one entry per slave node whose support
 /// the master covers within `prof`. With friction ([`friction`]) the
@@ -500,6 +697,16 @@ pub fn evaluate(
     };
     let w = weight(model);
     let prof = state.prof;
+    if !sp.midsides[0].is_empty() && !sp.midsides[1].is_empty() {
+        let tests = evaluate_seg3(cp, state, &mut sp, x, w, &mut couplings, &mut out);
+        total_forces(&couplings, &mut out);
+        state.last_projection_tests = tests;
+        state.last_brute_force_tests = sp.sides[0].edges.len() * sp.sides[1].edges.len();
+        state.total_projection_tests += tests as u64;
+        state.surface = Some(sp);
+        state.couplings = Some(couplings);
+        return out;
+    }
     let law = cp.friction.as_ref();
     if law.is_some() {
         state.friction.incremental = true;
@@ -547,19 +754,7 @@ pub fn evaluate(
         let (row, tangential) = rows_of(list, &nodes, law.is_some());
         let support = state.tributary.get(i).copied().unwrap_or(0.0);
         let method = cp.method_at(node);
-        let alpha = super::penalty::effective_stiffness(&method, support);
-        let shift = match cp.method {
-            ContactMethod::AugmentedLagrange { .. } => {
-                state.multiplier.get(i).copied().unwrap_or(0.0)
-            }
-            _ => 0.0,
-        };
-        let lagrange = matches!(cp.method, ContactMethod::Lagrange { .. }).then(|| {
-            (
-                state.active.get(i).copied().unwrap_or(false),
-                state.multiplier.get(i).copied().unwrap_or(0.0),
-            )
-        });
+        let (alpha, shift, lagrange) = enforcement(cp, state, i, &method, support);
         let closed = match (law, &tangential) {
             (Some(law), Some(t)) if lagrange.is_none() => {
                 let f = &state.friction;
@@ -1174,6 +1369,141 @@ mod tests {
             let (status, worst) = e.unwrap();
             prop_assert!(worst < 1e-6, "{status:?}: {worst}");
         }
+    }
+
+    /// seg3 pair: slave corners 0, 1, 2 (walking -x near y = 0), midside
+    /// nodes 3 (of [0, 1]) and 4 (of [1, 2]); master corners 5..=8 below
+    /// walking +x, midside nodes 9, 10, 11; both curved by `bend`.
+    fn seg3_pair() -> SurfacePair {
+        let mut sp = SurfacePair::default();
+        sp.sides = [
+            Surface::new(&[[0, 1], [1, 2]]),
+            Surface::new(&[[5, 6], [6, 7], [7, 8]]),
+        ];
+        sp.midsides = [vec![3, 4], vec![9, 10, 11]];
+        sp
+    }
+
+    fn seg3_reference(bend: f64, gap: f64) -> Vec<[f64; 2]> {
+        let s = |x: f64| bend * x * x;
+        let m = |x: f64| gap - 0.5 * bend * x * x;
+        let mut v: Vec<[f64; 2]> = [1.0, 0.0, -1.0, 0.5, -0.5]
+            .iter()
+            .map(|&x| [x, s(x)])
+            .collect();
+        v.extend(
+            [-1.3, -0.4, 0.5, 1.4, -0.85, 0.05, 0.95]
+                .iter()
+                .map(|&x| [x, m(x)]),
+        );
+        v
+    }
+
+    /// The seg3 row of slave `node` at `x` (penalty 100 per unit area on
+    /// a tributary area 0.5, augmented shift `shift`): `(nodes, masters,
+    /// coupling)`.
+    fn seg3_row(
+        x: &[[f64; 2]],
+        node: usize,
+        w: Weight,
+        shift: f64,
+    ) -> Option<(Vec<usize>, Vec<usize>, Coupling)> {
+        let slaves = [0, 1, 2, 3, 4];
+        let mut tests = 0;
+        let pieces = pieces_seg3(&mut seg3_pair(), &slaves, x, w, 1.0, &mut tests);
+        let list = &pieces[slaves.binary_search(&node).ok()?];
+        let mut nodes: Vec<usize> = list.iter().flat_map(|p| p.nodes).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let mut row = Row::new(&nodes, 2);
+        for p in list {
+            let s = &p.seg;
+            let area = s.d[p.row][0] + s.d[p.row][1] + s.d[p.row][2];
+            row.add_vectors(
+                &p.nodes,
+                &s.gap[p.row],
+                &area,
+                (0..6).map(|k| (p.nodes[k], &s.b[p.row][k][..])),
+            );
+        }
+        let (_, c) = row.close::<2>(node, 0.5, 50.0, shift, 1.0, 0.0, 0, None)?;
+        let masters = list
+            .iter()
+            .map(|p| (p.master, p.seg.lo > 0.0, p.seg.hi < 1.0));
+        let masters = masters
+            .map(|(m, l, h)| 4 * m + 2 * usize::from(l) + usize::from(h))
+            .collect();
+        Some((nodes, masters, c?))
+    }
+
+    /// The seg3 rows (corner and midside slave nodes, plane and
+    /// axisymmetric, penalty and augmented shift): the tangent is minus
+    /// the derivative of the forces (central differences), and the forces
+    /// balance in force and moment.
+    #[test]
+    fn seg3_rows_balance_and_their_tangent_matches_finite_differences() {
+        let mut checked = 0;
+        for (bend, gap, dx) in [
+            (0.0, -0.01, 0.0),
+            (0.05, -0.02, 0.13),
+            (-0.04, -0.015, -0.21),
+        ] {
+            let x: Vec<[f64; 2]> = seg3_reference(bend, gap)
+                .into_iter()
+                .enumerate()
+                .map(|(k, p)| [p[0] + 3.0 + if k < 5 { dx } else { 0.0 }, p[1]])
+                .collect();
+            for w in [Weight::Thickness(1.0), Weight::Axisymmetric] {
+                for node in [1, 3, 4, 0] {
+                    for shift in [0.0, 0.7] {
+                        let Some((nodes, masters, c)) = seg3_row(&x, node, w, shift) else {
+                            continue;
+                        };
+                        // force and moment balance
+                        let nn = nodes.len();
+                        let fsum: [f64; 2] = std::array::from_fn(|comp| {
+                            (0..nn).map(|k| c.force[2 * k + comp]).sum()
+                        });
+                        let moment: f64 = (0..nn)
+                            .map(|k| {
+                                let p = x[nodes[k]];
+                                p[0] * c.force[2 * k + 1] - p[1] * c.force[2 * k]
+                            })
+                            .sum();
+                        let scale = c.force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                        assert!(scale > 0.0);
+                        assert!(
+                            fsum[0].abs() < 1e-12 * scale && fsum[1].abs() < 1e-12 * scale,
+                            "{w:?} node {node}: {fsum:?}"
+                        );
+                        assert!(moment.abs() < 1e-11 * scale, "{w:?} node {node}: {moment}");
+                        // tangent against central differences
+                        let h = 1e-7;
+                        let kscale = c.tangent.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+                        let nd = 2 * nn;
+                        for (k, &n) in nodes.iter().enumerate() {
+                            for comp in 0..2 {
+                                let at = |dh: f64| {
+                                    let mut y = x.clone();
+                                    y[n][comp] += dh;
+                                    seg3_row(&y, node, w, shift)
+                                        .filter(|r| r.0 == nodes && r.1 == masters)
+                                };
+                                let (p, m) = at(h).zip(at(-h)).expect("same pieces");
+                                let col = 2 * k + comp;
+                                for r in 0..nd {
+                                    let fd = -(p.2.force[r] - m.2.force[r]) / (2.0 * h);
+                                    let err = (fd - c.tangent[r * nd + col]).abs() / kscale;
+                                    assert!(err < 1e-6, "{w:?} node {node} K[{r}][{col}]: {err}");
+                                }
+                            }
+                        }
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert!(checked >= 30, "{checked} rows checked");
     }
 
     /// The same over 400 seeded random rows: both statuses are exercised
