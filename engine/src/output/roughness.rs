@@ -184,19 +184,20 @@ fn mean_line<const D: usize>(
 mod tests {
     use super::*;
 
-    /// A sampled sine `z = a sin(2 pi x / l)` over whole periods has Ra =
-    /// 2 a / pi and Rq = a / sqrt 2 (the profile integrals), whatever
-    /// tilt and offset are added.
+    /// A sampled cosine `z = a cos(2 pi x / l)` over whole periods,
+    /// symmetric about the window's centre (so the mean line of the
+    /// cosine alone is flat), has Ra = 2 a / pi and Rq = a / sqrt 2 (the
+    /// profile integrals), whatever tilt and offset are added.
     #[test]
-    fn a_tilted_sine_has_the_ra_of_the_sine() {
+    fn a_tilted_cosine_has_the_ra_of_the_cosine() {
         let (a, l) = (0.3, 2.0);
-        let n = 4000;
+        let n = 6000;
         let pts: Vec<[f64; 2]> = (0..=n)
             .map(|i| {
                 let x = 3.0 * l * i as f64 / n as f64;
                 [
                     x,
-                    5.0 + 0.01 * x + a * (2.0 * std::f64::consts::PI * x / l).sin(),
+                    5.0 + 0.01 * x + a * (2.0 * std::f64::consts::PI * x / l).cos(),
                 ]
             })
             .collect();
@@ -204,37 +205,35 @@ mod tests {
         assert_eq!(axis, 1);
         let r = roughness(&pts, axis);
         let ra = 2.0 * a / std::f64::consts::PI;
-        assert!((r.ra - ra).abs() < 1e-3 * ra, "{} vs {ra}", r.ra);
+        assert!((r.ra - ra).abs() < 1e-4 * ra, "{} vs {ra}", r.ra);
         let rq = a / 2f64.sqrt();
-        assert!((r.rq - rq).abs() < 1e-3 * rq, "{} vs {rq}", r.rq);
+        assert!((r.rq - rq).abs() < 1e-4 * rq, "{} vs {rq}", r.rq);
         // the mean height is the line's value at the centroid
         assert!((r.mean - (5.0 + 0.01 * 3.0)).abs() < 1e-3, "{}", r.mean);
     }
 
-    /// Nonuniform sampling: the tributary weights keep Ra the profile's,
-    /// equal weights would not (the dense half is the sine's crests).
+    /// Nonuniform sampling: the tributary weights keep Ra the profile's;
+    /// equal weights would not (the dense stretches are the crests).
     #[test]
     fn dense_sampling_of_a_stretch_does_not_bias_ra() {
         let a = 1.0;
-        let mut xs: Vec<f64> = (0..=400).map(|i| i as f64 / 400.0).collect();
-        // 10 times denser on the first quarter period of each period
-        for p in 0..4 {
-            for i in 1..100 {
-                xs.push(p as f64 + 0.25 * i as f64 / 100.0);
+        let mut xs: Vec<f64> = (0..=400).map(|i| 4.0 * i as f64 / 400.0).collect();
+        // 10 times denser over the crest of each period, x in [p - 0.1, p + 0.1]
+        for p in 1..4 {
+            for i in 0..20 {
+                xs.push(p as f64 - 0.1 + 0.2 * (i as f64 + 0.5) / 20.0);
             }
         }
         let pts: Vec<[f64; 2]> = xs
             .iter()
-            .map(|&x| {
-                [
-                    x * 4.0,
-                    a * (2.0 * std::f64::consts::PI * x * 4.0 / 4.0).sin(),
-                ]
-            })
+            .map(|&x| [x, a * (2.0 * std::f64::consts::PI * x).cos()])
             .collect();
         let r = roughness(&pts, 1);
         let ra = 2.0 * a / std::f64::consts::PI;
-        assert!((r.ra - ra).abs() < 1e-2 * ra, "{} vs {ra}", r.ra);
+        assert!((r.ra - ra).abs() < 1e-3 * ra, "{} vs {ra}", r.ra);
+        // equal weights: biased towards the crests
+        let equal: f64 = pts.iter().map(|p| p[1].abs()).sum::<f64>() / pts.len() as f64;
+        assert!(equal > 1.03 * ra, "{equal} vs {ra}");
     }
 
     /// A flat tilted plane in 3D has no roughness; a plane with a bump
