@@ -68,7 +68,7 @@ pub fn roughness<const D: usize>(points: &[[f64; D]], axis: usize) -> Roughness 
     let lengths: Vec<usize> = (0..D).filter(|&c| c != axis).collect();
     let weights = weights(points, &lengths);
     let total: f64 = weights.iter().sum();
-    if !(total > 0.0) {
+    if total.is_nan() || total <= 0.0 {
         return zero;
     }
     let mean = points
