@@ -44,6 +44,20 @@
 //! - mesh convergence of the transfer ratio: the full mesh against the
 //!   mesh of twice the cell sizes (roll Ra 30 um, 4 %).
 //!
+//! Measured (release, `ctc run`, 2 shared cores; Ra_roll 30 / 6 um):
+//!
+//! | deck | reduction | Ra_sheet | ratio | mean-height reduction | force (N/mm) | inc / iter / cutbacks | wall |
+//! | --- | --- | --- | --- | --- | --- | --- | --- |
+//! | skin_pass_rough (coarse) | 2 % | 2.04 um | 0.068 | - | 119 | 16 / 156 / 0 | 0.4 s |
+//! | skin_pass_ra30 | 1 % | 0.387 um | 0.013 | 0.04 % | 94 | 61 / 477 / 0 | 16 s |
+//! | skin_pass_ra30 | 2 % | 1.444 um | 0.048 | 0.22 % | 157 | 61 / 669 / 0 | 49 s |
+//! | skin_pass_ra30 | 4 % | 3.962 um | 0.132 | 0.68 % | 250 | 66 / 936 / 1 | 40 s |
+//! | skin_pass_ra30, cells x 2 | 4 % | 3.890 um | 0.130 | - | 257 | 61 / 714 / 0 | 7 s |
+//! | skin_pass_ra6 | 2 % | 1.886 um | 0.314 | 0.75 % | 361 | 143 / 2391 / 14 | 1522 s |
+//!
+//! (force: the roll's contact force along y at the end, per mm of width;
+//! the Ra 6 um deck at 1 % and 4 % was not run: 25 min each here.)
+//!
 //! Levels: 0 the coarse example (`ctc verify skin_pass`, the tests); 1
 //! roll Ra 30 um at 1, 2 and 4 % and the coarsened mesh at 4 %; 2 roll Ra
 //! 6 um at 1, 2 and 4 % (`--max-level 2`: the longest runs).
