@@ -545,6 +545,21 @@ where
             Err(e) => eprintln!("warning: no plots: {e}"),
         }
     }
+    if model
+        .output
+        .history
+        .iter()
+        .any(|h| matches!(h, ctc_engine::model::HistoryRequest::Roughness { .. }))
+    {
+        // skin pass: the surface roughness and the rolling force against time
+        match ctc_verification::history_plot::roughness_plots(dir, model.output.units.as_ref()) {
+            Ok(files) if !quiet && !files.is_empty() => {
+                println!("plots: {} in {}", files.join(", "), dir.display())
+            }
+            Ok(_) => {}
+            Err(e) => eprintln!("warning: no plots: {e}"),
+        }
+    }
     if model.output.thickness.is_some() {
         // sheets and tubes: the thickness along the first face set
         match ctc_verification::history_plot::thickness_plots(dir, model.output.units.as_ref()) {

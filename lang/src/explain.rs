@@ -467,7 +467,8 @@ pub fn explain(model: &Model) -> String {
             .iter()
             .map(|h| match h {
                 HistoryRequest::Reaction { label, nodes }
-                | HistoryRequest::Displacement { label, nodes } => {
+                | HistoryRequest::Displacement { label, nodes }
+                | HistoryRequest::Roughness { label, nodes, .. } => {
                     format!("{label} over {}", plural(nodes.len(), "node", "nodes"))
                 }
                 HistoryRequest::ContactForce { label, .. } => label.clone(),

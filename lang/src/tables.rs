@@ -1161,8 +1161,14 @@ pub static OUTPUT: [Key; 5] = [
             "reaction(set)",
             "displacement(set)",
             "contact_force(set -> master)",
+            "roughness(set)",
         ]),
-        "list of history.csv columns",
+        "list of history.csv columns: reaction sums, mean displacements and contact forces \
+         (`<label>_x`, `_y`[, `_z`]); `roughness(set)`: the profile roughness of the set's \
+         deformed nodes, detrended by the least-squares mean line (plane in 3d) of the heights \
+         along the axis of the set's smallest extent: `<label>_Ra` (arithmetic mean \
+         deviation), `_Rq` (root mean square), `_mean` (mean height); 2d weights are the \
+         nodes' tributary lengths",
     ),
     Key::new(
         "thickness",

@@ -1,7 +1,8 @@
 //! SVG line plots of a run's `history.csv` (one column against another):
 //! the force against the stroke and the temperature rise of the
 //! thermo-mechanical examples (`examples/shock_damper.ctc`,
-//! `examples/rivet_forming.ctc`), pressure cycles; and of `thickness.csv`
+//! `examples/rivet_forming.ctc`), pressure cycles, surface roughness and
+//! the rolling force of a skin pass ([`roughness_plots`]); and of `thickness.csv`
 //! (the thickness map along a sheet, [`thickness_plots`]).
 
 use crate::plot::colour;
@@ -365,6 +366,66 @@ pub fn pressure_time_plots(
     Ok(files)
 }
 
+/// The plots of `ctc run` for roughness histories (`history = [..,
+/// roughness(set)]`, e.g. `examples/skin_pass_rough.ctc`):
+/// `roughness.svg`, each `<label>_Ra` column against time (numbered `_2`,
+/// .. after the first), and `contact_force.svg`, the first contact force's
+/// largest component (the rolling force of a skin pass: along y) against
+/// time, negated when it is mostly negative (the force of the tool on the
+/// body pushes down). Returns the files written.
+pub fn roughness_plots(
+    dir: &Path,
+    units: Option<&ctc_engine::model::UnitNames>,
+) -> Result<Vec<String>, String> {
+    let (header, rows) = read_history(dir)?;
+    let with = |what: &str, unit: Unit| axis_title(what, unit, units);
+    let time = with("time", |u| &u.time);
+    let mut files = Vec::new();
+    let ras = header
+        .iter()
+        .filter(|h| h.starts_with("roughness(") && h.ends_with("_Ra"));
+    for (k, c) in ras.enumerate() {
+        let file = numbered("roughness", k);
+        let title = format!("surface roughness {c}");
+        if against_time(dir, &file, &title, &time, c, &with("Ra", |u| &u.length))? {
+            files.push(file);
+        }
+    }
+    // the contact force component that varies most
+    let forces: Vec<usize> = header
+        .iter()
+        .enumerate()
+        .filter(|(_, h)| h.starts_with("contact_force("))
+        .map(|(i, _)| i)
+        .collect();
+    let span = |i: usize| {
+        rows.iter()
+            .filter_map(|r| r.get(i))
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+    };
+    if let Some(&i) = forces.iter().max_by(|&&a, &&b| span(a).total_cmp(&span(b))) {
+        let sum: f64 = rows.iter().filter_map(|r| r.get(i)).sum();
+        let sign = if sum < 0.0 { -1.0 } else { 1.0 };
+        let name = &header[i];
+        let y_desc = if sign < 0.0 {
+            format!("-{name}")
+        } else {
+            name.clone()
+        };
+        if history_plot(
+            dir,
+            "contact_force.svg",
+            &format!("contact force {name} against time"),
+            ("time", 1.0, &time),
+            (name, sign, &with(&y_desc, |u| &u.force)),
+            0.0,
+        )? {
+            files.push("contact_force.svg".to_string());
+        }
+    }
+    Ok(files)
+}
+
 /// The plot of `ctc run` for a thickness map (`output { thickness = (a, b)
 /// }`): `thickness.svg`, the thickness of the first face set's nodes at the
 /// last written increment against their reference distance from the
@@ -489,6 +550,32 @@ mod tests {
         );
         let t = std::fs::read_to_string(dir.path().join("thickness.svg")).unwrap();
         assert!(t.contains("thickness [mm]"), "{t}");
+    }
+
+    #[test]
+    fn the_roughness_plots_read_ra_and_the_rolling_force() {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::write(
+            dir.path().join("history.csv"),
+            "time,\"contact_force(s.top -> roll)_x\",\"contact_force(s.top -> roll)_y\",\
+             roughness(s.rolled)_Ra,roughness(s.rolled)_Rq,roughness(s.rolled)_mean\n\
+             1,0.5,-100,0.001,0.0012,0.4\n2,-0.7,-150,0.002,0.0025,0.399\n",
+        )
+        .unwrap();
+        let units = ctc_lang::units::system("mm_N_s").map(|s| s.names());
+        assert_eq!(
+            roughness_plots(dir.path(), units.as_ref()).unwrap(),
+            ["roughness.svg", "contact_force.svg"]
+        );
+        let t = std::fs::read_to_string(dir.path().join("roughness.svg")).unwrap();
+        assert!(t.contains("Ra [mm]"), "{t}");
+        // the rolling force: the y component, negated (it pushes down)
+        let f = std::fs::read_to_string(dir.path().join("contact_force.svg")).unwrap();
+        assert!(
+            f.contains("-contact_force(s.top -&gt; roll)_y [N]")
+                || f.contains("-contact_force(s.top -> roll)_y [N]"),
+            "{f}"
+        );
     }
 
     #[test]

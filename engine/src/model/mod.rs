@@ -1218,6 +1218,17 @@ pub enum HistoryRequest {
         /// Index into `Model::contacts`.
         pair: usize,
     },
+    /// Surface roughness of a node set at the current configuration: the
+    /// columns `<label>_Ra`, `_Rq` and `_mean` ([`crate::output::roughness`]).
+    Roughness {
+        /// Column label, e.g. `roughness(sheet.rolled)`.
+        label: String,
+        /// Global node numbers.
+        nodes: Vec<usize>,
+        /// The height axis (0 x, 1 y, 2 z): the axis of smallest extent of
+        /// the set's reference positions.
+        axis: usize,
+    },
 }
 
 /// The thickness of a sheet or tube between two of its boundary face sets

@@ -1,7 +1,9 @@
 //! `history.csv`: one row per converged increment — the time, then `D`
 //! columns (x, y[, z]) per history request: reaction sums over a node set, mean
 //! displacement over a node set, total contact force of a pair (force of
-//! the tool on the body). Then, for each pair with friction, the work
+//! the tool on the body); a roughness request has the three columns
+//! `<label>_Ra`, `_Rq`, `_mean` of the deformed set ([`super::roughness`]).
+//! Then, for each pair with friction, the work
 //! dissipated by friction over the increment (`friction_work[<pair>]`;
 //! the cumulative work is the column's running sum, also in
 //! `summary.json`). Follower pressures from a time function: the applied
@@ -26,6 +28,10 @@ pub const ENERGY_COLUMNS: [&str; 7] = [
     "energy_balance",
     "energy_gain",
 ];
+
+/// The columns of a `roughness(set)` request, after its label
+/// ([`super::roughness`]).
+pub const ROUGHNESS_COLUMNS: [&str; 3] = ["Ra", "Rq", "mean"];
 
 /// CSV field quoting (RFC 4180).
 pub fn csv_field(s: &str) -> String {
@@ -52,6 +58,12 @@ pub fn columns<const D: usize>(model: &Model<D>) -> Vec<String> {
             HistoryRequest::Reaction { label, .. }
             | HistoryRequest::Displacement { label, .. }
             | HistoryRequest::ContactForce { label, .. } => label,
+            HistoryRequest::Roughness { label, .. } => {
+                for c in ROUGHNESS_COLUMNS {
+                    cols.push(format!("{label}_{c}"));
+                }
+                continue;
+            }
         };
         for axis in ["x", "y", "z"].iter().take(D) {
             cols.push(format!("{label}_{axis}"));
@@ -132,6 +144,21 @@ pub fn row<const D: usize>(
                     }
                 }
                 a
+            }
+            HistoryRequest::Roughness { nodes, axis, .. } => {
+                let current: Vec<[f64; D]> = nodes
+                    .iter()
+                    .map(|&n| {
+                        let mut p = model.mesh.nodes[n];
+                        for (pc, uc) in p.iter_mut().zip(&displacement[n]) {
+                            *pc += uc;
+                        }
+                        p
+                    })
+                    .collect();
+                let r = super::roughness::roughness(&current, *axis);
+                out.extend([r.ra, r.rq, r.mean]);
+                continue;
             }
         };
         out.extend(v);

@@ -41,6 +41,7 @@ pub mod contact_csv;
 pub mod encode;
 pub mod history;
 pub mod pvd;
+pub mod roughness;
 pub mod sta;
 pub mod thickness;
 pub mod tool_vtu;

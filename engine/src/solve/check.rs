@@ -430,7 +430,8 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
     for h in &model.output.history {
         match h {
             HistoryRequest::Reaction { label, nodes }
-            | HistoryRequest::Displacement { label, nodes } => {
+            | HistoryRequest::Displacement { label, nodes }
+            | HistoryRequest::Roughness { label, nodes, .. } => {
                 if nodes.iter().any(|&n| n >= nn) {
                     errors.push(format!(
                         "history `{label}` refers to a node outside the mesh"

@@ -878,6 +878,8 @@ pub enum History {
     Displacement(SetRef),
     /// `contact_force(ref -> tool)`.
     ContactForce(SetRef, Ident),
+    /// `roughness(ref)`: Ra, Rq and mean height of the deformed set.
+    Roughness(SetRef),
 }
 
 /// `output { .. }`.

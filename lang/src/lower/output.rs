@@ -2,6 +2,7 @@
 
 use super::Lowerer;
 use crate::ast;
+use crate::diagnostics::Diagnostic;
 use crate::validate::Need;
 use ctc_engine::model::{
     ContactPair, Field, HistoryRequest, OutputRequest, ThicknessRequest, VtuFormat,
@@ -88,6 +89,35 @@ impl Lowerer<'_> {
                         }
                     });
                 }
+                ast::History::Roughness(r) => {
+                    if self.body_failed(r) {
+                        continue;
+                    }
+                    let Some(res) = self.resolve(r, Need::Nodes, "roughness") else {
+                        continue;
+                    };
+                    if res.nodes.len() < 3 {
+                        self.diags.push(Diagnostic::error(
+                            format!(
+                                "`roughness({r})` needs at least 3 nodes, the set has {}",
+                                res.nodes.len()
+                            ),
+                            h.span,
+                            "a profile of fewer than 3 points has no roughness",
+                        ));
+                        continue;
+                    }
+                    let axis = if self.solid {
+                        height_axis(&self.mesh3.nodes, &res.nodes)
+                    } else {
+                        height_axis(&self.mesh.nodes, &res.nodes)
+                    };
+                    out.history.push(HistoryRequest::Roughness {
+                        label: format!("roughness({r})"),
+                        axis,
+                        nodes: res.nodes,
+                    });
+                }
                 ast::History::ContactForce(r, tool) => {
                     let name = format!("{r} -> {}", tool.name);
                     match contacts.iter().position(|c| c.name == name) {
@@ -126,4 +156,11 @@ impl Lowerer<'_> {
             nodes,
         })
     }
+}
+
+/// The height axis of the surface through the reference positions of
+/// `nodes` ([`ctc_engine::output::roughness::height_axis`]).
+fn height_axis<const D: usize>(all: &[[f64; D]], nodes: &[usize]) -> usize {
+    let reference: Vec<[f64; D]> = nodes.iter().filter_map(|&n| all.get(n).copied()).collect();
+    ctc_engine::output::roughness::height_axis(&reference)
 }

@@ -28,7 +28,7 @@ pub const FORMATS: [(&str, OutputFormat); 2] = [
     ("ascii", OutputFormat::Ascii),
 ];
 
-const HISTORIES: [&str; 3] = ["reaction", "displacement", "contact_force"];
+const HISTORIES: [&str; 4] = ["reaction", "displacement", "contact_force", "roughness"];
 
 /// Converts an `output` item.
 pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<Output> {
@@ -84,7 +84,7 @@ fn thickness(v: &Value, diags: &mut Diags) -> Option<Spanned<[crate::ast::SetRef
 }
 
 fn history(v: &Value, diags: &mut Diags) -> Option<Spanned<History>> {
-    let help = "expected `reaction(body.set)`, `displacement(body.set)` or `contact_force(body.set -> tool)`";
+    let help = "expected `reaction(body.set)`, `displacement(body.set)`, `contact_force(body.set -> tool)` or `roughness(body.set)`";
     let ValueKind::Call { path, args } = &v.kind else {
         diags.push(Diagnostic::error(
             format!("expected a history request, found {}", v.kind.describe()),
@@ -115,6 +115,7 @@ fn history(v: &Value, diags: &mut Diags) -> Option<Spanned<History>> {
         (ArgKind::Positional(r), "displacement") => {
             History::Displacement(values::set_ref(r, diags)?)
         }
+        (ArgKind::Positional(r), "roughness") => History::Roughness(values::set_ref(r, diags)?),
         (ArgKind::Arrow(r, tool), "contact_force") => {
             History::ContactForce(values::set_ref(r, diags)?, tool.clone())
         }

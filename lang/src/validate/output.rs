@@ -52,6 +52,9 @@ pub fn check(ctx: &mut Ctx<'_>) {
             History::Displacement(r) => {
                 sets::set_ref(r, Need::Nodes, "displacement", ctx);
             }
+            History::Roughness(r) => {
+                sets::set_ref(r, Need::Nodes, "roughness", ctx);
+            }
             History::ContactForce(r, tool) => {
                 let key = format!("{r} -> {}", tool.name);
                 if !pairs.contains(&key) && !deck.has_broken("contact") {

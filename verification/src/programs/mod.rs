@@ -36,6 +36,7 @@ pub mod quadratic_contact;
 pub mod quadratic_thermal;
 pub mod rigid_body;
 pub mod self_contact_3d;
+pub mod skin_pass;
 pub mod solid;
 pub mod solid_patch;
 pub mod superplastic_3d;
@@ -98,6 +99,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(gravity::cases());
     v.extend(johnson_cook::cases());
     v.extend(blankholder::cases());
+    v.extend(skin_pass::cases());
     v.extend(tube_bulge::cases());
     v.extend(superplastic_3d::cases());
     v

@@ -22,6 +22,7 @@ mod objectivity;
 mod penalty_scaling;
 mod quadratic;
 mod quadratic_contact;
+mod skin_pass;
 mod stress_reduced;
 mod superplastic_3d;
 mod traction_3d;
