@@ -13,8 +13,11 @@
 //! Small-strain linear elastic cells have a constant stiffness and
 //! `f_int = K_e u_e` exactly: their element matrices are computed once in
 //! [`Assembler::new`] and each assembly is a matrix-vector product and a
-//! scatter (the slow part of a linear contact iteration is then the
-//! factorization, as it should be).
+//! scatter. When every cell is one, the loop runs once per scatter map
+//! for the tangent and once per run for the stiffness over all dofs
+//! ([`super::bulk_tangent`]): an evaluation is then a copy of the
+//! assembled tangent and `f_int = K u` (the slow part of a linear contact
+//! iteration is the solve, as it should be).
 
 use super::bulk_tangent::{BulkTangent, DofMatrix};
 use super::linalg::{Scatter, NO_SLOT};
