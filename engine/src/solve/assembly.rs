@@ -499,7 +499,7 @@ where
     /// Whether the [`BulkTangent`] path applies: no integration points,
     /// the cache on, not a rank's share of a distributed assembly (whose
     /// partial forces stay the element loop's).
-    fn bulk_applies(&self) -> bool {
+    pub fn bulk_applies(&self) -> bool {
         !self.has_points() && !self.bulk.disabled && self.share.is_none()
     }
 
