@@ -132,7 +132,7 @@ fn the_bulk_tangent_gives_the_element_loops_residual_and_tangent() {
 #[test]
 fn a_contact_step_takes_the_same_iterations_with_the_bulk_tangent() {
     let m = model(3);
-    let settings = m.steps[0].newton.clone();
+    let settings = m.steps[0].newton;
     let mut runs = Vec::new();
     for bulk in [false, true] {
         let mut newton = Newton::new(&m).unwrap();
