@@ -13,9 +13,13 @@
 //! Small-strain linear elastic cells have a constant stiffness and
 //! `f_int = K_e u_e` exactly: their element matrices are computed once in
 //! [`Assembler::new`] and each assembly is a matrix-vector product and a
-//! scatter (the slow part of a linear contact iteration is then the
-//! factorization, as it should be).
+//! scatter. When every cell is one, the loop runs once per scatter map
+//! for the tangent and once per run for the stiffness over all dofs
+//! ([`super::bulk_tangent`]): an evaluation is then a copy of the
+//! assembled tangent and `f_int = K u` (the slow part of a linear contact
+//! iteration is the solve, as it should be).
 
+use super::bulk_tangent::{BulkTangent, DofMatrix};
 use super::linalg::{Scatter, NO_SLOT};
 use crate::element::kernel::{kernel_of, NonlinearInput};
 use crate::element::recovery::{blocks_of, cell_input, virgin, CellBlock};
@@ -70,6 +74,9 @@ pub struct Assembler<const D: usize = 2> {
     /// The partition of the cells among threads for the last thread count
     /// and scatter map ([`Plan`]).
     plan: Option<Arc<Plan>>,
+    /// The element tangent of a model without integration points,
+    /// assembled once per scatter map ([`BulkTangent`]).
+    bulk: BulkTangent,
 }
 
 /// Cells below which the element loop stays serial.
@@ -191,6 +198,7 @@ where
             share,
             assembled: 0,
             plan: None,
+            bulk: BulkTangent::default(),
         })
     }
 
@@ -439,8 +447,126 @@ where
 
     /// [`Assembler::assemble`] on `threads` threads when the model has at
     /// least `min_cells` cells (and is not a rank's share of a distributed
-    /// assembly): the same bits whatever `threads` ([`Plan`]).
+    /// assembly): the same bits whatever `threads` ([`Plan`]). Without
+    /// integration points (every cell small-strain linear elastic) the
+    /// tangent and the forces come from the [`BulkTangent`]
+    /// ([`Assembler::linear_tangent`]).
     pub fn assemble_with(
+        &mut self,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        values: Option<&mut [f64]>,
+        par: (usize, usize),
+    ) -> Result<(), String> {
+        if !self.bulk_applies() {
+            return self.element_loop(mesh, scatter, u, f_int, values, par);
+        }
+        if let Some(values) = values {
+            let mut bulk = vec![0.0; values.len()];
+            self.linear_tangent(mesh, scatter, u, f_int, &mut bulk, par)?;
+            for (v, b) in values.iter_mut().zip(&bulk) {
+                *v += b;
+            }
+            return Ok(());
+        }
+        self.linear_forces(mesh, u, f_int, par.0);
+        Ok(())
+    }
+
+    /// Like [`Assembler::assemble`] with the tangent: `values` are
+    /// overwritten by the element tangent (the caller needs not zero
+    /// them). For a model without integration points, a copy of the
+    /// [`BulkTangent`] (assembled by the element loop at the first call
+    /// for a scatter map) and `f_int = K u`; otherwise the element loop.
+    pub fn assemble_tangent(
+        &mut self,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        values: &mut [f64],
+    ) -> Result<(), String> {
+        let par = (super::parallel::threads(), PARALLEL_MIN_CELLS);
+        if !self.bulk_applies() {
+            values.fill(0.0);
+            return self.element_loop(mesh, scatter, u, f_int, Some(values), par);
+        }
+        self.linear_tangent(mesh, scatter, u, f_int, values, par)
+    }
+
+    /// Whether the [`BulkTangent`] path applies: no integration points,
+    /// the cache on, not a rank's share of a distributed assembly (whose
+    /// partial forces stay the element loop's).
+    pub fn bulk_applies(&self) -> bool {
+        !self.has_points() && !self.bulk.disabled && self.share.is_none()
+    }
+
+    /// The element tangent of a linear model into `values` (overwritten):
+    /// the bulk of `scatter`, assembled by the element loop into zeroed
+    /// values when not held yet; and the forces
+    /// ([`Assembler::linear_forces`]).
+    fn linear_tangent(
+        &mut self,
+        mesh: &Mesh<D>,
+        scatter: &Scatter,
+        u: &[[f64; D]],
+        f_int: &mut [f64],
+        values: &mut [f64],
+        par: (usize, usize),
+    ) -> Result<(), String> {
+        if !self.bulk.copy_to(scatter.id(), values) {
+            values.fill(0.0);
+            self.element_loop(mesh, scatter, u, f_int, Some(values), par)?;
+            self.bulk.store(scatter.id(), values.to_vec());
+        }
+        self.linear_forces(mesh, u, f_int, par.0);
+        Ok(())
+    }
+
+    /// `f_int = K u - eps_th f_unit` of a linear model: the stiffness over
+    /// all dofs of the [`BulkTangent`] (assembled from the element matrices
+    /// at the first call), then the thermal forces cell by cell.
+    fn linear_forces(&mut self, mesh: &Mesh<D>, u: &[[f64; D]], f_int: &mut [f64], threads: usize) {
+        let (blocks, linear_k, offset) = (&self.blocks, &self.linear_k, &self.linear_offset);
+        self.bulk.forces(u.as_flattened(), f_int, threads, || {
+            let cells: Vec<usize> = blocks.iter().flat_map(|b| b.cells.clone()).collect();
+            DofMatrix::assemble(mesh, &cells, |c| {
+                let nd = D * mesh.cells.nodes(c).len();
+                &linear_k[offset[c]..][..nd * nd]
+            })
+            .expect("the dof count was checked by the dof map")
+        });
+        self.assembled = self.blocks.iter().map(|b| b.cells.len()).sum();
+        for (c, &e) in self.thermal_strain.iter().enumerate() {
+            if e == 0.0 {
+                continue;
+            }
+            for (a, &n) in mesh.cells.nodes(c).iter().enumerate() {
+                for i in 0..D {
+                    f_int[D * n + i] -= e * self.thermal_unit[c][a][i];
+                }
+            }
+        }
+    }
+
+    /// Tangents taken from the [`BulkTangent`] instead of the element
+    /// loop, and bulk assemblies (one per scatter map).
+    pub fn bulk_counts(&self) -> (usize, usize) {
+        (self.bulk.reuses, self.bulk.builds)
+    }
+
+    /// Turns the [`BulkTangent`] off (`false`: the element loop assembles
+    /// every tangent and force) or on (the default).
+    pub fn set_bulk_tangent(&mut self, enabled: bool) {
+        self.bulk.disabled = !enabled;
+        self.bulk.clear();
+    }
+
+    /// The element loop of [`Assembler::assemble_with`]: forces, and the
+    /// tangent when `values` is given.
+    fn element_loop(
         &mut self,
         mesh: &Mesh<D>,
         scatter: &Scatter,

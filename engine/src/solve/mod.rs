@@ -35,6 +35,7 @@
 //!   penetrations large against the element size or the tool's travel).
 
 pub mod assembly;
+pub mod bulk_tangent;
 pub mod check;
 pub mod constraints;
 pub mod contact_assembly;

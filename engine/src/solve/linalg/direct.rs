@@ -206,7 +206,7 @@ impl LinearSolver {
     /// The free dofs whose rows and columns alone change between tangents
     /// (see [`LinearSystem::set_candidates`]): for matrices where low-rank
     /// updates apply, the next symbolic analysis orders them last when
-    /// they are at most [`LowRank::limit`], and tangents that differ from
+    /// they are at most [`Schur::limit`], and tangents that differ from
     /// the base only in their block are solved with its updated Schur
     /// complement ([`Schur`]).
     pub fn set_candidates(&mut self, dofs: &[usize]) {
@@ -222,7 +222,7 @@ impl LinearSolver {
         self.low_rank_enabled
             && n >= self.low_rank_min_rows
             && !self.candidates.is_empty()
-            && self.candidates.len() <= LowRank::limit(n)
+            && self.candidates.len() <= Schur::limit(n)
             && self.candidates.len() < n
             && self.candidates.iter().all(|&d| d < n)
     }

@@ -68,6 +68,15 @@ pub struct Schur {
 }
 
 impl Schur {
+    /// Largest candidate count for a matrix of order `n`: `3 sqrt(n)`.
+    /// The dense work of a base (`S0`, its LU and inverse: `O(m^3)`) then
+    /// stays of the order of a 2D factorization (`O(n^1.5)`); the bound of
+    /// the low-rank columns, `2 sqrt(n)` ([`LowRank::limit`]), left the top
+    /// surface of `ctc bench`'s block (566 dofs at `n` = 79,806) on them.
+    pub fn limit(n: usize) -> usize {
+        (3.0 * (n as f64).sqrt()).ceil() as usize
+    }
+
     /// The candidate dofs of `n` free dofs (out-of-range entries ignored);
     /// forgets the base.
     pub fn set_candidates(&mut self, n: usize, dofs: &[usize]) {

@@ -30,6 +30,9 @@ pub mod line_search;
 pub mod predictor;
 pub mod state;
 
+#[cfg(test)]
+mod bulk_tests;
+
 pub use convergence::Converged;
 pub use failure::{Failure, FailureKind};
 
@@ -387,6 +390,18 @@ where
         self.start_closed.as_deref().unwrap_or(&[])
     }
 
+    /// Tangents whose element part was a copy of the assembled bulk
+    /// (linear models, [`super::bulk_tangent`]), and bulk assemblies.
+    pub fn bulk_counts(&self) -> (usize, usize) {
+        self.assembler.bulk_counts()
+    }
+
+    /// Turns the assembled bulk tangent of linear models off (`false`:
+    /// the element loop assembles every tangent) or on (the default).
+    pub fn set_bulk_tangent(&mut self, enabled: bool) {
+        self.assembler.set_bulk_tangent(enabled);
+    }
+
     /// Counters of the tangent's factorizations.
     pub fn factor_stats(&self) -> FactorStats {
         self.linear.stats()
@@ -542,16 +557,20 @@ where
     }
 
     /// Contact, internal forces and residual at the current `u` and time
-    /// `t`; the tangent too if `with_tangent`.
+    /// `t`; the tangent too if `with_tangent`. A linear model (the
+    /// assembler's [`super::bulk_tangent::BulkTangent`]) puts the element
+    /// part first, a copy of the bulk (the element loop's bits), and adds
+    /// the contact and follower tangents to it; other models add the
+    /// contact and follower tangents into zeroed values and the element
+    /// loop after them. The springs, stabilization and inertia come last.
     fn evaluate(&mut self, t: f64, with_tangent: bool) -> Result<Eval, Failure> {
         let model = self.model;
+        let element_first = self.assembler.bulk_applies();
         let cpu0 = thread_cpu_seconds();
-        let zeroing = Instant::now();
-        if with_tangent {
+        let start = Instant::now();
+        if with_tangent && !element_first {
             self.values.fill(0.0);
         }
-        let start = Instant::now();
-        self.timings.assembly += (start - zeroing).as_secs_f64();
         self.f_c.fill(0.0);
         if !model.contacts.is_empty() {
             self.contacts
@@ -566,41 +585,35 @@ where
                     self.values = vec![0.0; self.scatter.n_values()];
                     self.linear.reset_pattern();
                 }
-                self.contacts
-                    .add_tangent(&self.scatter, &self.dofs, &mut self.values);
+                if !element_first {
+                    self.contacts
+                        .add_tangent(&self.scatter, &self.dofs, &mut self.values);
+                }
             }
             if self.saddle.is_some() {
                 self.contacts.build_constraints(model, &self.dofs);
             }
         }
-        if self.follower {
-            self.f_follow.fill(0.0);
-            let tangent = if with_tangent {
-                Some((&self.scatter, &self.dofs, &mut self.values[..]))
-            } else {
-                None
-            };
-            super::follower::add_follower_forces(
-                model,
-                t,
-                &self.load_scale,
-                &self.u,
-                &mut self.f_follow,
-                tangent,
-            );
+        if !element_first {
+            self.follower_forces(t, with_tangent);
         }
         let mid = Instant::now();
         let cpu1 = thread_cpu_seconds();
         self.timings.contact += (mid - start).as_secs_f64();
         self.timings.cpu[1] += cpu1 - cpu0;
-        let values = if with_tangent {
-            Some(&mut self.values[..])
+        let mut assembled = if with_tangent && element_first {
+            self.assembler.assemble_tangent(
+                &model.mesh,
+                &self.scatter,
+                &self.u,
+                &mut self.f_int,
+                &mut self.values,
+            )
         } else {
-            None
-        };
-        let mut assembled =
+            let values = with_tangent.then_some(&mut self.values[..]);
             self.assembler
-                .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values);
+                .assemble(&model.mesh, &self.scatter, &self.u, &mut self.f_int, values)
+        };
         self.timings.cells_assembled = self.assembler.assembled_cells();
         if self.share.as_ref().is_some_and(|s| s.split()) {
             // every rank fails together (an element another rank met), and
@@ -613,9 +626,21 @@ where
                 self.linear.sum_over_ranks(&mut self.f_int);
             }
         }
-        self.timings.assembly += mid.elapsed().as_secs_f64();
-        self.timings.cpu[0] += thread_cpu_seconds() - cpu1;
+        let end = Instant::now();
+        let cpu2 = thread_cpu_seconds();
+        self.timings.assembly += (end - mid).as_secs_f64();
+        self.timings.cpu[0] += cpu2 - cpu1;
         assembled.map_err(|detail| Failure::new(FailureKind::Element, detail))?;
+        if element_first {
+            // the contact and follower tangents, added to the element part
+            if with_tangent && !model.contacts.is_empty() {
+                self.contacts
+                    .add_tangent(&self.scatter, &self.dofs, &mut self.values);
+            }
+            self.follower_forces(t, with_tangent);
+            self.timings.contact += end.elapsed().as_secs_f64();
+            self.timings.cpu[1] += thread_cpu_seconds() - cpu2;
+        }
         let residual_start = Instant::now();
         // springs to the ground and between nodes: internal forces (their
         // energy is part of the internal work)
@@ -711,6 +736,29 @@ where
         self.last_eval = Some(ev);
         self.timings.residual += residual_start.elapsed().as_secs_f64();
         Ok(ev)
+    }
+
+    /// The follower pressures' forces at the current state into `f_follow`
+    /// (overwritten) and, `with_tangent`, their load stiffness added to
+    /// the tangent; nothing without a follower pressure.
+    fn follower_forces(&mut self, t: f64, with_tangent: bool) {
+        if !self.follower {
+            return;
+        }
+        self.f_follow.fill(0.0);
+        let tangent = if with_tangent {
+            Some((&self.scatter, &self.dofs, &mut self.values[..]))
+        } else {
+            None
+        };
+        super::follower::add_follower_forces(
+            self.model,
+            t,
+            &self.load_scale,
+            &self.u,
+            &mut self.f_follow,
+            tangent,
+        );
     }
 
     /// `out += K_fp dp` (the prescribed increment's forces on the free
