@@ -63,6 +63,37 @@ struct Printer<'t> {
     out: String,
 }
 
+/// Where the last token of `pair` ends. A pair that ends in a repetition
+/// (`let a = 4  # note` ends in the expression's `(infix primary)*`) has a
+/// span that runs on over the whitespace and comments pest skipped while
+/// trying one more round; those belong to what follows.
+fn content_end(src: &str, pair: &Pair<'_, Rule>) -> usize {
+    let end = pair.as_span().end();
+    match pair.clone().into_inner().last() {
+        Some(last) => {
+            let e = content_end(src, &last);
+            if only_trivia(&src[e..end]) {
+                e
+            } else {
+                end
+            }
+        }
+        None => end,
+    }
+}
+
+/// Whether `text` is only whitespace and `#` comments.
+fn only_trivia(text: &str) -> bool {
+    let mut rest = text.trim_start();
+    while let Some(comment) = rest.strip_prefix('#') {
+        rest = comment
+            .find('\n')
+            .map_or("", |i| &comment[i..])
+            .trim_start();
+    }
+    rest.is_empty()
+}
+
 /// Formats `text`; `Err` with the rendered syntax error when it does not
 /// parse.
 pub fn format(text: &str) -> Result<String, String> {
@@ -84,8 +115,9 @@ pub fn format(text: &str) -> Result<String, String> {
             p.blank_line();
         }
         p.item(item.clone());
-        last_end = Some(item.as_span().end());
-        p.trailing_comment(item.as_span().end());
+        let end = content_end(text, &item);
+        last_end = Some(end);
+        p.trailing_comment(end);
         p.newline();
     }
     p.flush_comments(text.len(), 0, last_end);
@@ -342,10 +374,10 @@ impl Printer<'_> {
 
     /// The canonical text, or the source text when a comment is inside.
     fn verbatim_or_flat(&mut self, v: Pair<'_, Rule>) {
-        let span = v.as_span();
-        if self.has_comment_in(span.start(), span.end()) {
-            self.out.push_str(span.as_str());
-            while self.next < self.comments.len() && self.comments[self.next].at < span.end() {
+        let (start, end) = (v.as_span().start(), content_end(self.src, &v));
+        if self.has_comment_in(start, end) {
+            self.out.push_str(&self.src[start..end]);
+            while self.next < self.comments.len() && self.comments[self.next].at < end {
                 self.next += 1;
             }
         } else {

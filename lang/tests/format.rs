@@ -119,6 +119,21 @@ fn fmt_canonical_layout() {
     );
 }
 
+/// Consecutive `let` lines with trailing comments: each comment stays on
+/// its own line (pest's span of an expression runs on over the comment it
+/// skipped looking for another operator; the comment of the next line used
+/// to move up and the value was copied verbatim).
+#[test]
+fn fmt_keeps_trailing_comments_of_consecutive_lets() {
+    let text = "let a = 4   # one\nlet b = (1,2)  # two\nlet c = 2*a # three\nanalysis {\n  x = 1\n}  # end\n";
+    let out = format(text).unwrap();
+    assert_eq!(
+        out,
+        "let a = 4  # one\nlet b = (1, 2)  # two\nlet c = 2 * a  # three\nanalysis { x = 1 }  # end\n"
+    );
+    assert_eq!(format(&out).unwrap(), out);
+}
+
 /// A mutation of a deck's lines.
 #[derive(Debug, Clone)]
 enum Mutation {

@@ -237,7 +237,7 @@ fn restart_mortar_friction_matches_uninterrupted_run() {
         ],
     );
     let (from, n) = restart_matches(&model, 7);
-    assert_eq!((from, n), (6, 8));
+    assert_eq!((from, n), (6, 11));
 }
 
 #[test]
