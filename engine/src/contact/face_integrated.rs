@@ -1428,19 +1428,7 @@ mod tests {
     /// normal tangent is `k int N_a N_b dA`.
     #[test]
     fn a_uniform_gap_gives_the_consistent_loads_of_a_uniform_pressure() {
-        let q: Vec<[f64; 3]> = [
-            [0.0, 0.0],
-            [2.0, 0.0],
-            [2.0, 1.0],
-            [0.0, 1.0],
-            [1.0, 0.0],
-            [2.0, 0.5],
-            [1.0, 1.0],
-            [0.0, 0.5],
-        ]
-        .iter()
-        .map(|p| [p[0], p[1], -0.01])
-        .collect();
+        let q = flat_quad8();
         let mut fp = FacetPair::new(FacetRule::solid(&q, vec![(0..8).collect()]), |_| 100.0);
         let c = fp.evaluate(&q, 0.0, |_, x| {
             Some(PointProjection {
@@ -1546,19 +1534,7 @@ mod tests {
     /// is every node's weighted gap.
     #[test]
     fn uniform_lagrange_pressure_gives_the_consistent_loads() {
-        let q: Vec<[f64; 3]> = [
-            [0.0, 0.0],
-            [2.0, 0.0],
-            [2.0, 1.0],
-            [0.0, 1.0],
-            [1.0, 0.0],
-            [2.0, 0.5],
-            [1.0, 1.0],
-            [0.0, 0.5],
-        ]
-        .iter()
-        .map(|p| [p[0], p[1], -0.01])
-        .collect();
+        let q = flat_quad8();
         let mut fp = FacetPair::new(FacetRule::solid(&q, vec![(0..8).collect()]), |_| 0.0);
         let p = 3.0;
         let lambda: Vec<Option<f64>> = fp.support.iter().map(|a| Some(p * a)).collect();
@@ -1588,6 +1564,24 @@ mod tests {
             assert!((dz - 1.0).abs() < 1e-14);
         }
         assert!((fp.loaded_point_gap() - 0.01).abs() < 1e-15);
+    }
+
+    /// A 2 x 1 quad8 face in the plane z = -0.01 (0.01 into a flat tool
+    /// `z = 0`).
+    fn flat_quad8() -> Vec<[f64; 3]> {
+        [
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+            [0.0, 1.0],
+            [1.0, 0.0],
+            [2.0, 0.5],
+            [1.0, 1.0],
+            [0.0, 0.5],
+        ]
+        .iter()
+        .map(|p| [p[0], p[1], -0.01])
+        .collect()
     }
 
     /// A quad8 (`kind` 0), tri6 (1) or quad9 (2) face in the plane z = 0
