@@ -69,6 +69,28 @@ fn model(cell: &str) -> Model<3> {
     }
 }
 
+/// `max |K v - FD| / max |K v|`: the pair's tangent along the direction `v`
+/// against central differences of its forces at `x` (the contact set must
+/// not change over the step).
+fn directional_fd_error(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> f64 {
+    let (_, kv, closed) = forces(model, x, v);
+    assert!(closed > 0);
+    let h = 1e-7;
+    let shift = |sign: f64| -> Vec<[f64; 3]> {
+        x.iter()
+            .zip(v)
+            .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
+            .collect()
+    };
+    let (fp, _, cp) = forces(model, &shift(1.0), v);
+    let (fm, _, cm) = forces(model, &shift(-1.0), v);
+    assert!(cp == closed && cm == closed);
+    let scale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+    (0..kv.len())
+        .map(|k| (-(fp[k] - fm[k]) / (2.0 * h) - kv[k]).abs() / scale)
+        .fold(0.0, f64::max)
+}
+
 /// The pair's forces at `x`, the tangent applied to `v` (`K v`), and the
 /// closed nodes.
 fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
@@ -126,24 +148,7 @@ fn mortar_pair_tangent_matches_finite_differences() {
                 })
                 .collect();
             let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
-            let (_, kv, closed) = forces(&model, &x, &v);
-            assert!(closed > 0);
-            let h = 1e-7;
-            let shift = |sign: f64| -> Vec<[f64; 3]> {
-                x.iter()
-                    .zip(&v)
-                    .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-                    .collect()
-            };
-            let (fp, _, cp) = forces(&model, &shift(1.0), &v);
-            let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
-            assert!(cp == closed && cm == closed);
-            let scale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
-            let mut e = 0.0f64;
-            for k in 0..kv.len() {
-                let fd = -(fp[k] - fm[k]) / (2.0 * h);
-                e = e.max((fd - kv[k]).abs() / scale);
-            }
+            let e = directional_fd_error(&model, &x, &v);
             println!("{cell} trial {trial}: {e:.2e}");
             worst = worst.max(e);
         }
@@ -245,24 +250,7 @@ fn frictional_mortar_pair_tangent_matches_finite_differences() {
                 })
                 .collect();
             let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
-            let (_, kv, closed) = forces(&model, &x, &v);
-            assert!(closed > 0);
-            let h = 1e-7;
-            let shift = |sign: f64| -> Vec<[f64; 3]> {
-                x.iter()
-                    .zip(&v)
-                    .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-                    .collect()
-            };
-            let (fp, _, cp) = forces(&model, &shift(1.0), &v);
-            let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
-            assert!(cp == closed && cm == closed);
-            let scale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
-            let mut e = 0.0f64;
-            for k in 0..kv.len() {
-                let fd = -(fp[k] - fm[k]) / (2.0 * h);
-                e = e.max((fd - kv[k]).abs() / scale);
-            }
+            let e = directional_fd_error(&model, &x, &v);
             worst = worst.max(e);
         }
         println!("{cell} mu {mu}: max |K v - FD| / max |K v| = {worst:.2e}");
