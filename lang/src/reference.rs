@@ -232,17 +232,22 @@ pub static ITEMS: &[Item] = &[
     },
     Item {
         name: "rigid_body",
-        syntax: "rigid_body NODES { center = (x, y)  mass  inertia  rotation | angular_velocity \
-                 | moment  stiffness  damping  tie_stiffness }",
-        doc: "The nodes of a set move as one rigid body (plane strain / plane stress): a pilot \
-              node at `center` carries its translation, mass and bearing (a spring and dashpot \
-              to the ground), a spin node its rotation and rotary inertia; each node is tied to \
-              its place `X_c + u_c + R(theta) (X - X_c)` at finite rotation by a stiff spring \
-              (`tie_stiffness`, a penalty with its exact tangent). The rotation is prescribed \
-              (`rotation` or `angular_velocity`) or free under `moment`. The kinetic energy of \
-              the mass and inertia and the ties' and bearing's energy are in the energy audit; \
-              history.csv has the columns `centre[NODES]_x`, `_y` (the orbit) and \
-              `rotation[NODES]_x` (the angle).",
+        syntax: "rigid_body NODES { center = (x, y[, z])  axis  mass  inertia | inertia_diagonal \
+                 inertia_products  rotation | angular_velocity | moment  stiffness  damping  \
+                 tie_stiffness }",
+        doc: "The nodes of a set move as one rigid body (plane strain / plane stress: 3 dofs; \
+              3d: 6 dofs): a pilot node at `center` carries its translation and bearing (a \
+              spring and dashpot to the ground), a spin node its rotation (planar: the angle, \
+              with the rotary inertia; 3d: the total rotation vector psi, R = exp(psi)); each \
+              node is tied to its place `X_c + u_c + R (X - X_c)` at finite rotation by a stiff \
+              spring (`tie_stiffness`, a penalty with its exact tangent). Planar, the mass sits \
+              on the pilot; 3d, the mass and the inertia tensor are carried by six point masses \
+              at body-fixed points tied like the nodes (their dynamics is the body's, \
+              gyroscopic terms included). The rotation is prescribed (`rotation` or \
+              `angular_velocity`, 3d about `axis`) or free (planar: under `moment`; 3d: up to \
+              a full turn of psi). The kinetic energy and the ties' and bearing's energy are in \
+              the energy audit; history.csv has the columns `centre[NODES]_x`, `_y` (`_z`) \
+              (the orbit) and `rotation[NODES]_x` (the angle; 3d `_x _y _z` psi).",
         blocks: &[("rigid_body", &crate::tables::RIGID_BODY)],
         example: "rigid_body disc.inner { center = (0, 0)  mass = 2  inertia = 0.01  \
                   angular_velocity = 100  stiffness = 1e5  tie_stiffness = 1e7 }",

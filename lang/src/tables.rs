@@ -1017,15 +1017,21 @@ pub static SPRING: [Key; 3] = [
     .dim(Dim::Time),
 ];
 
-/// `rigid_body NODES { .. }`: the nodes move as one rigid body (planar).
-pub static RIGID_BODY: [Key; 9] = [
+/// `rigid_body NODES { .. }`: the nodes move as one rigid body (planar: 3
+/// dofs; 3d: 6 dofs).
+pub static RIGID_BODY: [Key; 12] = [
     Key::new(
         "center",
-        KeyType::Point(P2),
-        "the body's centre: its pilot node (translation, bearings, mass) and the axis of its rotation",
+        KeyType::Point(Components::Analysis),
+        "the body's centre: its pilot node (translation, bearings, mass) and the point its rotation turns about",
     )
-    .required("add `center = (x, y)`")
+    .required("add `center = (x, y)` (3d: `(x, y, z)`)")
     .dim(Dim::Length),
+    Key::new(
+        "axis",
+        KeyType::Point(P3),
+        "3d: the axis of a prescribed `rotation` / `angular_velocity` (any length; default (0, 0, 1))",
+    ),
     Key::new(
         "mass",
         KeyType::Number,
@@ -1037,15 +1043,27 @@ pub static RIGID_BODY: [Key; 9] = [
     Key::new(
         "inertia",
         KeyType::Number,
-        "rotary inertia about the centre, besides its nodes' own (mass x length^2)",
+        "rotary inertia about the centre, besides its nodes' own (mass x length^2; planar: about the normal; 3d: the same about every axis)",
     )
     .default(Default::Number(0.0))
     .range(Range::NonNegative)
     .dim(Dim::Any),
     Key::new(
+        "inertia_diagonal",
+        KeyType::Numbers(P3),
+        "3d: the inertia tensor's diagonal (Jxx, Jyy, Jzz) about the centre (instead of `inertia`; needs `mass`: carried by six tied point masses)",
+    )
+    .dim(Dim::Any),
+    Key::new(
+        "inertia_products",
+        KeyType::Numbers(P3),
+        "3d: the inertia tensor's off-diagonal terms (Jxy, Jyz, Jzx) (default 0)",
+    )
+    .dim(Dim::Any),
+    Key::new(
         "rotation",
         KeyType::Number,
-        "prescribed rotation theta(t), counter-clockwise (time function); without it and `angular_velocity` the rotation is free under `moment`",
+        "prescribed rotation theta(t), counter-clockwise (3d: about `axis`; time function); without it and `angular_velocity` the rotation is free (planar: under `moment`)",
     )
     .dim(Dim::AngleRadians),
     Key::new(
@@ -1057,7 +1075,7 @@ pub static RIGID_BODY: [Key; 9] = [
     Key::new(
         "moment",
         KeyType::Number,
-        "moment applied to a free rotation, counter-clockwise (time function; default 0)",
+        "moment applied to a free planar rotation, counter-clockwise (time function; default 0; not in 3d)",
     )
     .dim(Dim::Any),
     Key::new(

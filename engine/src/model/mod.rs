@@ -88,20 +88,23 @@ pub enum Discrete {
         release_at: Option<f64>,
     },
     /// A rigid body (`solve/rigid_body.rs`): its nodes follow the motion
-    /// of a **pilot node** (translation `u_c`) and a **spin node** (its x
-    /// displacement is the rotation `theta`, y held), `x_a = X_c + u_c +
-    /// R(theta) (X_a - X_c)` at finite rotation, `X_c` the pilot's
-    /// position; tied by a stiff spring `stiffness` per node to that
-    /// position (a penalty: the energy `k/2 |x_a - p_a(u_c, theta)|^2`, in
-    /// `f_int` with its exact tangent). Planar models only.
+    /// of a **pilot node** (translation `u_c`) and a **spin node** (planar:
+    /// its x displacement is the rotation `theta`, y held; 3D: its
+    /// displacement is the total rotation vector `psi`), `x_a = X_c + u_c +
+    /// R (X_a - X_c)` at finite rotation, `X_c` the pilot's position; tied
+    /// by a stiff spring `stiffness` per node to that position (a penalty:
+    /// the energy `k/2 |x_a - p_a(u_c, R)|^2`, in `f_int` with its exact
+    /// tangent). Planar and 3D models (not axisymmetric).
     Rigid {
         /// Label.
         label: String,
-        /// The nodes moving with the body (global numbers).
+        /// The nodes moving with the body (global numbers; 3D: with the
+        /// inertia points appended by `make_rigid`).
         nodes: Vec<usize>,
         /// The pilot node (translation), appended at the centre.
         pilot: usize,
-        /// The spin node (angle on x, y held), appended at the centre.
+        /// The spin node (planar: angle on x, y held; 3D: the rotation
+        /// vector), appended at the centre.
         spin: usize,
         /// The tie stiffness per node (force / length), `> 0`.
         stiffness: f64,

@@ -1,26 +1,47 @@
 //! Rigid bodies with mass and rotary inertia (issue 19; `model::Discrete::
 //! Rigid`): a set of nodes moving as one rigid body, driven by a
-//! prescribed rotation or free, on spring bearings.
+//! prescribed rotation or free, on spring bearings; planar (3 dofs) and
+//! 3D (6 dofs).
 //!
 //! The body's motion is carried by two nodes appended at its centre
 //! `X_c` and attached to no cell ([`make_rigid`]), so the dof map, the
 //! Newton state, line search, cutbacks, commits and restart points carry
 //! it like any displacement (the scheme of `free_tool.rs`, Abaqus'
 //! reference node): the **pilot** node's displacement is the translation
-//! `u_c`, the **spin** node's x displacement the rotation `theta` (its y
-//! held). The body's mass is a point mass on the pilot, its rotary
-//! inertia `J` a point mass on the spin node (its x component is
-//! `theta`: kinetic energy `J theta'^2 / 2`, in the dynamics and the
-//! energy audit like any point mass; the held y carries nothing), the
-//! bearings ground springs and dashpots on the pilot, a prescribed
-//! rotation a `Dirichlet` on the spin node's x, an applied moment a nodal
-//! force on it. `history.csv` gets the columns `centre[NAME]_x`, `_y`
-//! (the orbit) and `rotation[NAME]_x` (the angle; `_y` the held 0).
+//! `u_c`, the **spin** node's displacement the rotation: planar, its x
+//! the angle `theta` (its y held); 3D, its three components the **total
+//! rotation vector** `psi` (`R = exp([psi]x)`, `rotation_vector.rs`). The
+//! body's mass is a point mass on the pilot; the bearings ground springs
+//! and dashpots on the pilot; a prescribed rotation a `Dirichlet` on the
+//! spin node (3D: `theta(t) a` on its three components, `a` the unit
+//! axis), a planar applied moment a nodal force on it. `history.csv` gets
+//! the columns `centre[NAME]_x`, `_y` (`_z`) (the orbit) and
+//! `rotation[NAME]_x` (the angle; `_y` the held 0), 3D `_x _y _z` the
+//! rotation vector.
+//!
+//! Rotary inertia: planar, `J` is a point mass on the spin node (its x
+//! component is `theta`: kinetic energy `J theta'^2 / 2`, in the dynamics
+//! and the energy audit like any point mass). 3D, the mass and the
+//! inertia tensor are carried by six point masses at body-fixed points
+//! tied to the body like its nodes (`inertia_points.rs`, the equimomental
+//! system): their translational time integration is the rotational
+//! dynamics of the body (gyroscopic coupling included; no Euler equation
+//! is written, the spin node carries no mass).
+//!
+//! Why the total rotation vector: the engine's state is the total
+//! displacement with additive updates (Newton, line search, cutback,
+//! restart all add to or scale `u`), which an additive parameterization
+//! fits as it is; an incremental rotation composed multiplicatively would
+//! need a committed rotation outside `u`. Its limit: the differential of
+//! `exp` is singular at `|psi| = 2 pi k` (`k >= 1`), so a **free** 3D body
+//! is solved up to a full turn of its rotation vector (a prescribed
+//! rotation about an axis has its three components prescribed: any
+//! angle).
 //!
 //! Each node `a` of the body is tied to its place on the rigid body at
-//! finite rotation, `p_a = X_c + u_c + R(theta) r_a` (`r_a = X_a - X_c`),
-//! by a stiff spring `k` (a penalty: the energy `k/2 |d_a|^2`, `d_a =
-//! x_a - p_a = u_a - u_c + r_a - R r_a`, part of the internal work). With
+//! finite rotation, `p_a = X_c + u_c + R r_a` (`r_a = X_a - X_c`), by a
+//! stiff spring `k` (a penalty: the energy `k/2 |d_a|^2`, `d_a = x_a - p_a
+//! = u_a - u_c + r_a - R r_a`, part of the internal work). Planar, with
 //! `R' = J R` (`J` the rotation by +90 degrees) and `R'' = -R`:
 //!
 //! - forces: `f_a = k d_a`, `f_c = -k d_a`, `f_theta = -k d_a . (J R r_a)`
@@ -30,12 +51,17 @@
 //!   k |r_a|^2 + k d_a . (R r_a)` (the last term the rotation's second
 //!   derivative); FD-checked below.
 //!
+//! 3D, with `G = d(R r_a)/d psi` and `H` its derivative
+//! (`rotation_vector::rotate`): `f_psi = -k G^T d_a`, `K_a psi = -k G`,
+//! `K_c psi = k G`, `K_psi psi = k G^T G - k sum_l d_l H_l`.
+//!
 //! A body moving rigidly leaves `d_a = 0` at any angle: the rigid motion
 //! is exact at large rotation; under load the ties stretch by `|f| / k`
 //! (the penalty's error, reported by [`max_tie_gap`]).
 
 use super::dofs::{Dof, DofMap};
 use super::linalg::Scatter;
+use super::rotation_vector::rotate;
 use crate::model::{AnalysisKind, Dirichlet, Discrete, HistoryRequest, Load, Model, TimeFunction};
 
 /// What [`make_rigid`] needs.
@@ -45,16 +71,20 @@ pub struct RigidSpec {
     pub label: String,
     /// The nodes moving with the body.
     pub nodes: Vec<usize>,
-    /// The centre `X_c` (reference position of the pilot).
-    pub centre: [f64; 2],
+    /// The centre `X_c` (reference position of the pilot; planar: `z`
+    /// unused).
+    pub centre: [f64; 3],
     /// Mass of the body (`0`: none besides its nodes').
     pub mass: f64,
-    /// Rotary inertia about the centre (`0`: none).
-    pub inertia: f64,
-    /// The prescribed rotation `theta(t)` (radians, counter-clockwise);
-    /// `None`: free, under `moment`.
+    /// Rotary inertia tensor about the centre (`0`: none); planar: only
+    /// `inertia[2][2]`, the inertia about the normal to the plane.
+    pub inertia: [[f64; 3]; 3],
+    /// The unit axis of a prescribed 3D rotation (planar: unused).
+    pub axis: [f64; 3],
+    /// The prescribed rotation `theta(t)` (radians, counter-clockwise
+    /// about the axis); `None`: free, under `moment`.
     pub rotation: Option<TimeFunction>,
-    /// The applied moment of a free rotation.
+    /// The applied moment of a free planar rotation (3D: must be 0).
     pub moment: TimeFunction,
     /// Bearing: a spring from the pilot to the ground (every direction).
     pub bearing_stiffness: f64,
@@ -118,10 +148,19 @@ pub fn bodies<const D: usize>(model: &Model<D>) -> impl Iterator<Item = (usize, 
     })
 }
 
-/// The pilot and spin nodes of every rigid body (active dofs although
-/// attached to no cell).
+/// The pilot and spin nodes of every rigid body and the nodes tied to it
+/// (active dofs although attached to no cell: the pilot, the spin node,
+/// the inertia points of a 3D body).
 pub fn pilot_nodes<const D: usize>(model: &Model<D>) -> impl Iterator<Item = usize> + '_ {
-    bodies(model).flat_map(|(p, s)| [p, s])
+    model.discrete.iter().flat_map(|d| match d {
+        Discrete::Rigid {
+            nodes, pilot, spin, ..
+        } => [*pilot, *spin]
+            .into_iter()
+            .chain(nodes.iter().copied())
+            .collect::<Vec<_>>(),
+        _ => Vec::new(),
+    })
 }
 
 /// Node couplings of one rigid body for the sparsity pattern: every node
@@ -136,16 +175,36 @@ pub fn couplings(nodes: &[usize], pilot: usize, spin: usize) -> Vec<(usize, usiz
     out
 }
 
+/// `s f(t)`.
+fn scaled(f: &TimeFunction, s: f64) -> TimeFunction {
+    match f {
+        TimeFunction::Constant(v) => TimeFunction::Constant(s * v),
+        TimeFunction::Ramp { t0, t1, v0, v1 } => TimeFunction::Ramp {
+            t0: *t0,
+            t1: *t1,
+            v0: s * v0,
+            v1: s * v1,
+        },
+        TimeFunction::Table(p) => TimeFunction::Table(p.iter().map(|&(t, v)| (t, s * v)).collect()),
+    }
+}
+
 /// Makes the nodes of `spec` one rigid body: appends the pilot and spin
-/// nodes at the centre, holds the spin node's y, prescribes its x
+/// nodes at the centre; planar: holds the spin node's y, prescribes its x
 /// (rotation) or loads it (moment), puts the mass and inertia on them as
-/// point masses and the bearing on the pilot as a ground spring and
-/// dashpot. Returns `(pilot, spin)`. Refused in axisymmetric models.
-pub fn make_rigid(model: &mut Model, spec: RigidSpec) -> Result<(usize, usize), String> {
-    if model.analysis.kind == AnalysisKind::Axisymmetric {
+/// point masses; 3D: prescribes the rotation vector `theta(t) axis` or
+/// leaves it free, and carries the mass and inertia tensor by six tied
+/// point masses ([`super::inertia_points`]; the mass alone on the pilot);
+/// the bearing on the pilot as a ground spring and dashpot. Returns
+/// `(pilot, spin)`. Refused in axisymmetric models.
+pub fn make_rigid<const D: usize>(
+    model: &mut Model<D>,
+    spec: RigidSpec,
+) -> Result<(usize, usize), String> {
+    if model.analysis.kind == AnalysisKind::Axisymmetric || !(D == 2 || D == 3) {
         return Err(
-            "a rigid body needs a plane strain or plane stress analysis: in an axisymmetric model \
-             a cross-section does not turn as a rigid body"
+            "a rigid body needs a plane strain, plane stress or 3d analysis: in an axisymmetric \
+             model a cross-section does not turn as a rigid body"
                 .into(),
         );
     }
@@ -166,43 +225,102 @@ pub fn make_rigid(model: &mut Model, spec: RigidSpec) -> Result<(usize, usize), 
         ));
     }
     let label = spec.label;
+    let mut nodes = spec.nodes;
+    // 3D: the mass and inertia as tied point masses (checked before the
+    // model changes)
+    let points = if D == 3 {
+        super::inertia_points::inertia_points(spec.mass, spec.inertia)
+            .map_err(|e| format!("{label}: {e}"))?
+    } else {
+        Vec::new()
+    };
+    if D == 3 {
+        if spec.rotation.is_none() && spec.moment != TimeFunction::Constant(0.0) {
+            return Err(format!(
+                "{label}: a moment on a free 3D rigid body is not available (its rotation vector \
+                 is not work-conjugate to a moment)"
+            ));
+        }
+        let n = spec.axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if spec.rotation.is_some() && !(n.is_finite() && n > 0.0) {
+            return Err(format!("{label}: the rotation axis is zero"));
+        }
+    }
+    let centre: [f64; D] = std::array::from_fn(|i| spec.centre[i]);
     let pilot = nn;
     let spin = nn + 1;
-    model.mesh.nodes.push(spec.centre);
-    model.mesh.nodes.push(spec.centre);
-    model.constraints.push(Dirichlet {
-        label: format!("{label}: spin node (y held)"),
-        nodes: vec![spin],
-        component: 1,
-        value: TimeFunction::Constant(0.0),
-    });
-    match spec.rotation {
-        Some(theta) => model.constraints.push(Dirichlet {
-            label: format!("{label}: rotation"),
+    model.mesh.nodes.push(centre);
+    model.mesh.nodes.push(centre);
+    if D == 2 {
+        model.constraints.push(Dirichlet {
+            label: format!("{label}: spin node (y held)"),
             nodes: vec![spin],
-            component: 0,
-            value: theta,
-        }),
-        None => model.loads.push(Load::NodalForce {
-            label: format!("{label}: moment"),
-            nodes: vec![spin],
-            component: 0,
-            value: spec.moment,
-        }),
-    }
-    if spec.mass > 0.0 {
-        model.discrete.push(Discrete::Mass {
-            label: format!("{label}: mass"),
-            nodes: vec![pilot],
-            mass: spec.mass,
+            component: 1,
+            value: TimeFunction::Constant(0.0),
         });
-    }
-    if spec.inertia > 0.0 {
-        model.discrete.push(Discrete::Mass {
-            label: format!("{label}: rotary inertia"),
-            nodes: vec![spin],
-            mass: spec.inertia,
-        });
+        match spec.rotation {
+            Some(theta) => model.constraints.push(Dirichlet {
+                label: format!("{label}: rotation"),
+                nodes: vec![spin],
+                component: 0,
+                value: theta,
+            }),
+            None => model.loads.push(Load::NodalForce {
+                label: format!("{label}: moment"),
+                nodes: vec![spin],
+                component: 0,
+                value: spec.moment,
+            }),
+        }
+        if spec.mass > 0.0 {
+            model.discrete.push(Discrete::Mass {
+                label: format!("{label}: mass"),
+                nodes: vec![pilot],
+                mass: spec.mass,
+            });
+        }
+        if spec.inertia[2][2] > 0.0 {
+            model.discrete.push(Discrete::Mass {
+                label: format!("{label}: rotary inertia"),
+                nodes: vec![spin],
+                mass: spec.inertia[2][2],
+            });
+        }
+    } else {
+        if let Some(theta) = &spec.rotation {
+            let n = spec.axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+            for c in 0..3 {
+                model.constraints.push(Dirichlet {
+                    label: format!("{label}: rotation"),
+                    nodes: vec![spin],
+                    component: c,
+                    value: scaled(theta, spec.axis[c] / n),
+                });
+            }
+        }
+        if points.is_empty() {
+            if spec.mass > 0.0 {
+                model.discrete.push(Discrete::Mass {
+                    label: format!("{label}: mass"),
+                    nodes: vec![pilot],
+                    mass: spec.mass,
+                });
+            }
+        } else {
+            for (k, (offset, mu)) in points.iter().enumerate() {
+                let n = model.mesh.nodes.len();
+                model
+                    .mesh
+                    .nodes
+                    .push(std::array::from_fn(|i| centre[i] + offset[i]));
+                nodes.push(n);
+                model.discrete.push(Discrete::Mass {
+                    label: format!("{label}: mass and inertia (point {k})"),
+                    nodes: vec![n],
+                    mass: *mu,
+                });
+            }
+        }
     }
     if spec.bearing_stiffness > 0.0 || spec.bearing_damping > 0.0 {
         model.discrete.push(Discrete::Ground {
@@ -213,7 +331,7 @@ pub fn make_rigid(model: &mut Model, spec: RigidSpec) -> Result<(usize, usize), 
         });
     }
     // history.csv: the centre's displacement (the shaft's orbit) and the
-    // angle (`rotation[..]_x`; its `_y` is the held 0)
+    // rotation (`rotation[..]_x`; planar: its `_y` is the held 0)
     let name = label.strip_prefix("rigid_body ").unwrap_or(&label);
     model.output.history.push(HistoryRequest::Displacement {
         label: format!("centre[{name}]"),
@@ -225,7 +343,7 @@ pub fn make_rigid(model: &mut Model, spec: RigidSpec) -> Result<(usize, usize), 
     });
     model.discrete.push(Discrete::Rigid {
         label,
-        nodes: spec.nodes,
+        nodes,
         pilot,
         spin,
         stiffness: spec.stiffness,
@@ -250,9 +368,9 @@ pub fn refusals<const D: usize>(model: &Model<D>) -> Vec<String> {
         else {
             continue;
         };
-        if D != 2 || model.analysis.kind == AnalysisKind::Axisymmetric {
+        if !(D == 2 || D == 3) || model.analysis.kind == AnalysisKind::Axisymmetric {
             out.push(format!(
-                "{label}: a rigid body needs a plane strain or plane stress analysis"
+                "{label}: a rigid body needs a plane strain, plane stress or 3d analysis"
             ));
         }
         for n in [*pilot, *spin] {
@@ -296,9 +414,96 @@ fn tie<const D: usize>(model: &Model<D>, u: &[f64], a: usize, pilot: usize, spin
     Tie { r, rr, jrr, d }
 }
 
+/// One 3D tie: the gap `d` of node `a` and the derivatives `g`, `h` of
+/// `R(psi) r_a` in the rotation vector `psi`.
+struct Tie3 {
+    d: [f64; 3],
+    g: [[f64; 3]; 3],
+    h: [[[f64; 3]; 3]; 3],
+}
+
+fn tie3<const D: usize>(model: &Model<D>, u: &[f64], a: usize, pilot: usize, spin: usize) -> Tie3 {
+    let (xa, xc) = (&model.mesh.nodes[a], &model.mesh.nodes[pilot]);
+    let r: [f64; 3] = std::array::from_fn(|i| xa[i] - xc[i]);
+    let psi: [f64; 3] = std::array::from_fn(|i| u[spin * D + i]);
+    let x = rotate(psi, r);
+    let d = std::array::from_fn(|i| u[a * D + i] - u[pilot * D + i] + r[i] - x.p[i]);
+    Tie3 { d, g: x.g, h: x.h }
+}
+
+/// The rigid bodies of `model`: `(nodes, pilot, spin, k)`.
+fn rigid<const D: usize>(model: &Model<D>) -> impl Iterator<Item = (&[usize], usize, usize, f64)> {
+    model.discrete.iter().filter_map(|d| match d {
+        Discrete::Rigid {
+            nodes,
+            pilot,
+            spin,
+            stiffness,
+            ..
+        } => Some((nodes.as_slice(), *pilot, *spin, *stiffness)),
+        _ => None,
+    })
+}
+
+/// The 3D tie forces: `f_a = k d`, `f_c = -k d`, `f_psi = -k G^T d`.
+fn add_forces_3d<const D: usize>(model: &Model<D>, u: &[f64], f: &mut [f64]) {
+    for (nodes, pilot, spin, k) in rigid(model) {
+        for &a in nodes {
+            let t = tie3(model, u, a, pilot, spin);
+            for c in 0..3 {
+                f[a * D + c] += k * t.d[c];
+                f[pilot * D + c] -= k * t.d[c];
+            }
+            for j in 0..3 {
+                f[spin * D + j] -= k * (0..3).map(|l| t.d[l] * t.g[l][j]).sum::<f64>();
+            }
+        }
+    }
+}
+
+/// The exact tangent of [`add_forces_3d`]: `K_aa = K_cc = k I`, `K_ac =
+/// -k I`, `K_a psi = -k G`, `K_c psi = k G`, `K_psi psi = k G^T G - k
+/// sum_l d_l H_l`.
+fn add_tangent_3d<const D: usize>(
+    model: &Model<D>,
+    u: &[f64],
+    add: &mut impl FnMut(usize, usize, f64),
+) {
+    for (nodes, pilot, spin, k) in rigid(model) {
+        for &a in nodes {
+            let t = tie3(model, u, a, pilot, spin);
+            for c in 0..3 {
+                let (ra, rc) = (a * D + c, pilot * D + c);
+                add(ra, ra, k);
+                add(rc, rc, k);
+                add(ra, rc, -k);
+                add(rc, ra, -k);
+                for j in 0..3 {
+                    let th = spin * D + j;
+                    add(ra, th, -k * t.g[c][j]);
+                    add(th, ra, -k * t.g[c][j]);
+                    add(rc, th, k * t.g[c][j]);
+                    add(th, rc, k * t.g[c][j]);
+                }
+            }
+            for i in 0..3 {
+                for j in 0..3 {
+                    let x: f64 = (0..3)
+                        .map(|l| t.g[l][i] * t.g[l][j] - t.d[l] * t.h[l][i][j])
+                        .sum();
+                    add(spin * D + i, spin * D + j, k * x);
+                }
+            }
+        }
+    }
+}
+
 /// `f += ` the tie forces of every rigid body at the displacements `u`
 /// (per dof `node D + c`).
 pub fn add_forces<const D: usize>(model: &Model<D>, u: &[f64], f: &mut [f64]) {
+    if D == 3 {
+        return add_forces_3d(model, u, f);
+    }
     if D != 2 {
         return;
     }
@@ -333,9 +538,6 @@ pub fn add_tangent<const D: usize>(
     scatter: &Scatter,
     values: &mut [f64],
 ) {
-    if D != 2 {
-        return;
-    }
     let mut add = |r: usize, c: usize, x: f64| {
         if let (Some(Dof::Free(i)), Some(Dof::Free(j))) = (dofs.dofs.get(r), dofs.dofs.get(c)) {
             if let Some(s) = scatter.pattern.find(*i, *j) {
@@ -343,6 +545,12 @@ pub fn add_tangent<const D: usize>(
             }
         }
     };
+    if D == 3 {
+        return add_tangent_3d(model, u, &mut add);
+    }
+    if D != 2 {
+        return;
+    }
     for d in &model.discrete {
         let Discrete::Rigid {
             nodes,
@@ -377,6 +585,16 @@ pub fn add_tangent<const D: usize>(
 /// The largest tie gap `|x_a - p_a|` over every rigid body at `u` (the
 /// penalty's violation of the rigid motion).
 pub fn max_tie_gap<const D: usize>(model: &Model<D>, u: &[f64]) -> f64 {
+    if D == 3 {
+        let mut worst: f64 = 0.0;
+        for (nodes, pilot, spin, _) in rigid(model) {
+            for &a in nodes {
+                let d = tie3(model, u, a, pilot, spin).d;
+                worst = worst.max((d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt());
+            }
+        }
+        return worst;
+    }
     if D != 2 {
         return 0.0;
     }
@@ -412,9 +630,10 @@ mod tests {
             RigidSpec {
                 label: "rigid_body a".into(),
                 nodes: vec![0, 1, 4],
-                centre: [0.7, 0.3],
+                centre: [0.7, 0.3, 0.0],
                 mass: 2.0,
-                inertia: 0.5,
+                inertia: [[0.0; 3], [0.0; 3], [0.0, 0.0, 0.5]],
+                axis: [0.0, 0.0, 1.0],
                 rotation: None,
                 moment: TimeFunction::Constant(0.0),
                 bearing_stiffness: 3.0,
@@ -546,5 +765,155 @@ mod tests {
         let mut axi = model.clone();
         axi.analysis.kind = AnalysisKind::Axisymmetric;
         assert_eq!(refusals(&axi).len(), 1);
+    }
+
+    /// A 3D body: a 2 x 1 x 1 hex8 block, three of its nodes tied, with
+    /// mass and a general inertia tensor (six inertia points).
+    fn model_3d(rotation: Option<TimeFunction>) -> (Model<3>, usize, usize) {
+        use crate::mesh::generate::solid::brick;
+        use crate::mesh::generate::Grading;
+        let mesh = brick(
+            [0.0; 3],
+            [2.0, 1.0, 1.0],
+            [2, 1, 1],
+            [Grading::Uniform; 3],
+            crate::mesh::CellKind::Hex8,
+        )
+        .unwrap();
+        let mut model = ModelBuilder::solid()
+            .elastic("m", 1.0, 0.0)
+            .body("a", mesh, "m")
+            .step("s", 1.0, 1)
+            .build();
+        let (p, s) = make_rigid(
+            &mut model,
+            RigidSpec {
+                label: "rigid_body a".into(),
+                nodes: vec![0, 1, 4, 7],
+                centre: [0.7, 0.3, 0.4],
+                mass: 2.0,
+                inertia: [[0.9, 0.1, -0.2], [0.1, 0.7, 0.05], [-0.2, 0.05, 1.1]],
+                axis: [1.0, 2.0, 2.0],
+                rotation,
+                moment: TimeFunction::Constant(0.0),
+                bearing_stiffness: 3.0,
+                bearing_damping: 0.1,
+                stiffness: 7.0,
+            },
+        )
+        .unwrap();
+        (model, p, s)
+    }
+
+    /// 3D: the tangent is the exact derivative of the forces (central
+    /// differences over every free dof, at a rotation of 2.9 rad and
+    /// stretched ties).
+    #[test]
+    fn the_3d_tangent_is_the_derivative_of_the_tie_forces() {
+        let (model, _, spin) = model_3d(None);
+        assert!(refusals(&model).is_empty(), "{:?}", refusals(&model));
+        let dofs = DofMap::new(&model);
+        let scatter = super::super::discrete::scatter_for(&model, &dofs, &[], None).unwrap();
+        let n = model.mesh.nodes.len() * 3;
+        let mut u: Vec<f64> = (0..n).map(|i| 0.05 * ((i * 7 % 11) as f64) - 0.2).collect();
+        u[spin * 3..spin * 3 + 3].copy_from_slice(&[1.2, -2.1, 1.6]);
+        let mut values = vec![0.0; scatter.n_values()];
+        add_tangent(&model, &u, &dofs, &scatter, &mut values);
+        let h = 1e-6;
+        let mut worst: f64 = 0.0;
+        for (j, &gj) in dofs.free.iter().enumerate() {
+            let (mut up, mut um) = (u.clone(), u.clone());
+            up[gj] += h;
+            um[gj] -= h;
+            let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
+            add_forces(&model, &up, &mut fp);
+            add_forces(&model, &um, &mut fm);
+            for (i, &gi) in dofs.free.iter().enumerate() {
+                let fd = (fp[gi] - fm[gi]) / (2.0 * h);
+                let k = scatter.pattern.find(i, j).map_or(0.0, |s| values[s]);
+                worst = worst.max((fd - k).abs() / (1.0 + k.abs()));
+            }
+        }
+        assert!(worst < 1e-7, "worst relative error {worst:e}");
+    }
+
+    /// 3D: a rigid motion (translation and a rotation of 2.9 rad about a
+    /// skew axis) leaves every tie, the inertia points' too, unstretched.
+    #[test]
+    fn a_3d_rigid_motion_is_exact_at_large_angle() {
+        let (model, pilot, spin) = model_3d(None);
+        let n = model.mesh.nodes.len();
+        let mut u = vec![0.0; n * 3];
+        let psi = [1.2, -2.1, 1.6];
+        let uc = [0.4, -1.1, 0.3];
+        u[pilot * 3..pilot * 3 + 3].copy_from_slice(&uc);
+        u[spin * 3..spin * 3 + 3].copy_from_slice(&psi);
+        let rot = nalgebra::Rotation3::from_scaled_axis(nalgebra::Vector3::from(psi));
+        let xc = nalgebra::Vector3::from(model.mesh.nodes[pilot]);
+        for a in 0..n {
+            if a == pilot || a == spin {
+                continue;
+            }
+            let x = nalgebra::Vector3::from(model.mesh.nodes[a]);
+            let moved = rot * (x - xc) + xc - x;
+            for c in 0..3 {
+                u[a * 3 + c] = uc[c] + moved[c];
+            }
+        }
+        assert!(
+            max_tie_gap(&model, &u) < 1e-14,
+            "{}",
+            max_tie_gap(&model, &u)
+        );
+        let mut f = vec![0.0; n * 3];
+        add_forces(&model, &u, &mut f);
+        assert!(f.iter().all(|x| x.abs() < 1e-13), "{f:?}");
+    }
+
+    /// 3D: six inertia points (a general tensor) are appended, tied and
+    /// active; a prescribed rotation fixes the three components of the
+    /// rotation vector along the unit axis; a moment on a free body and
+    /// rotary inertia without mass are refused.
+    #[test]
+    fn make_rigid_in_3d_appends_inertia_points_and_prescribes_the_axis() {
+        let (model, pilot, spin) = model_3d(Some(TimeFunction::Constant(3.0)));
+        assert_eq!((pilot, spin), (12, 13));
+        assert_eq!(model.mesh.nodes.len(), 20);
+        let dofs = DofMap::new(&model);
+        for c in 0..3 {
+            assert!(matches!(dofs.dofs[19 * 3 + c], Dof::Free(_)));
+            assert!(matches!(dofs.dofs[spin * 3 + c], Dof::Prescribed(_)));
+        }
+        let values: Vec<f64> = model
+            .constraints
+            .iter()
+            .map(|d| d.value.eval(0.5))
+            .collect();
+        assert_eq!(values, [1.0, 2.0, 2.0]);
+        let Some(Discrete::Rigid { nodes, .. }) = model.discrete.last() else {
+            panic!("no rigid body")
+        };
+        assert_eq!(nodes.len(), 10);
+        let mut bad = model_3d(None).0;
+        bad.mesh.nodes.truncate(12);
+        let spec = |mass: f64, moment: f64| RigidSpec {
+            label: "b".into(),
+            nodes: vec![0],
+            centre: [0.0; 3],
+            mass,
+            inertia: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            axis: [0.0, 0.0, 1.0],
+            rotation: None,
+            moment: TimeFunction::Constant(moment),
+            bearing_stiffness: 0.0,
+            bearing_damping: 0.0,
+            stiffness: 1.0,
+        };
+        assert!(make_rigid(&mut bad, spec(0.0, 0.0))
+            .unwrap_err()
+            .contains("mass"));
+        assert!(make_rigid(&mut bad, spec(1.0, 2.0))
+            .unwrap_err()
+            .contains("moment"));
     }
 }

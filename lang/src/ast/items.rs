@@ -741,10 +741,16 @@ pub struct DiscreteItem {
 /// (bearing) and `damping` (bearing).
 #[derive(Debug, Clone, PartialEq)]
 pub struct RigidKeys {
-    /// `center = (x, y)`.
-    pub center: Option<Point>,
-    /// `inertia`.
+    /// `center = (x, y)` (3d: `(x, y, z)`).
+    pub center: Option<super::values::Coords>,
+    /// `axis = (ax, ay, az)` (3d: the axis of a prescribed rotation).
+    pub axis: Option<Point3>,
+    /// `inertia` (planar: about the normal; 3d: the isotropic `J I`).
     pub inertia: Option<Spanned<f64>>,
+    /// `inertia_diagonal = (Jxx, Jyy, Jzz)` (3d).
+    pub inertia_diagonal: Option<Point3>,
+    /// `inertia_products = (Jxy, Jyz, Jzx)` (3d).
+    pub inertia_products: Option<Point3>,
     /// `rotation = F(t)`.
     pub rotation: Option<Spanned<TimeFn>>,
     /// `angular_velocity = F(t)`.

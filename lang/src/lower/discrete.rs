@@ -1,6 +1,6 @@
 //! `spring` and `point_mass` items -> `model::Discrete` (`Ground`,
 //! `Link`, `Mass`); `rigid_body` items -> `rigid_body::RigidSpec` (applied
-//! to the planar model by `rigid_body::make_rigid`).
+//! to the planar or 3d model by `rigid_body::make_rigid`).
 
 use super::Lowerer;
 use crate::ast::DiscreteKind;
@@ -102,7 +102,7 @@ impl Lowerer<'_> {
         out
     }
 
-    /// The rigid bodies of a planar deck, with the span of each item.
+    /// The rigid bodies of the deck, with the span of each item.
     pub(super) fn rigid_bodies(&mut self) -> Vec<(RigidSpec, crate::ast::Span)> {
         let mut out = Vec::new();
         for d in &self.deck.discrete {
@@ -122,13 +122,33 @@ impl Lowerer<'_> {
                 )),
                 (None, None) => None,
             };
+            let mut centre = [0.0; 3];
+            if let Some(c) = &keys.center {
+                for (x, y) in centre.iter_mut().zip(c.values()) {
+                    *x = *y;
+                }
+            }
+            // planar: the inertia about the normal; 3d: `inertia` the same
+            // about every axis, or the tensor's diagonal and products
+            let diagonal = match (&keys.inertia, &keys.inertia_diagonal) {
+                (Some(i), _) => [i.value; 3],
+                (None, Some(t)) => t.value,
+                (None, None) => [0.0; 3],
+            };
+            let p = keys.inertia_products.as_ref().map_or([0.0; 3], |p| p.value);
+            let inertia = [
+                [diagonal[0], p[0], p[2]],
+                [p[0], diagonal[1], p[1]],
+                [p[2], p[1], diagonal[2]],
+            ];
             out.push((
                 RigidSpec {
                     label: format!("rigid_body {}", d.target),
                     nodes: r.nodes.clone(),
-                    centre: keys.center.as_ref().map_or([0.0; 2], |c| c.value),
+                    centre,
                     mass: v(&d.mass),
-                    inertia: v(&keys.inertia),
+                    inertia,
+                    axis: keys.axis.as_ref().map_or([0.0, 0.0, 1.0], |a| a.value),
                     rotation,
                     moment: keys
                         .moment

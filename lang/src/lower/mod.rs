@@ -222,6 +222,7 @@ impl Lowerer<'_> {
             let output = self.output(&contacts);
             let initial_velocities = self.initial_velocities();
             let discrete = self.discrete();
+            let rigid_bodies = self.rigid_bodies();
             let (mesh3, body_nodes) = (&self.mesh3, &self.body_nodes);
             let thermal = thermal::lower(
                 self.deck,
@@ -233,7 +234,7 @@ impl Lowerer<'_> {
                 self.window,
                 &mut self.diags,
             );
-            return Some(AnyModel::D3(Model {
+            let mut model = Model {
                 analysis: analysis?,
                 mesh: std::mem::take(&mut self.mesh3),
                 bodies,
@@ -248,7 +249,13 @@ impl Lowerer<'_> {
                 thermal,
                 initial_velocities,
                 discrete,
-            }));
+            };
+            for (spec, span) in rigid_bodies {
+                if let Err(e) = ctc_engine::solve::rigid_body::make_rigid(&mut model, spec) {
+                    self.diags.push(Diagnostic::error(e, span, "rigid_body"));
+                }
+            }
+            return Some(AnyModel::D3(model));
         }
         let (tools, free_tools) = self.tools();
         let names: Vec<&str> = tools.iter().map(|t| t.name.as_str()).collect();

@@ -73,9 +73,20 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
             mass = f.number("mass", diags);
             stiffness = f.number("stiffness", diags);
             damping = f.number("damping", diags);
+            let mut three = |key: &str, diags: &mut Diags| {
+                f.value(key, diags).and_then(|v| triple(v, key, diags))
+            };
+            let axis = three("axis", diags);
+            let inertia_diagonal = three("inertia_diagonal", diags);
+            let inertia_products = three("inertia_products", diags);
             rigid = Some(RigidKeys {
-                center: f.point("center", diags),
+                center: f
+                    .value("center", diags)
+                    .and_then(|v| values::coords(v, diags)),
+                axis,
                 inertia: f.number("inertia", diags),
+                inertia_diagonal,
+                inertia_products,
                 rotation: f.time_fn("rotation", diags),
                 angular_velocity: f.time_fn("angular_velocity", diags),
                 moment: f.time_fn("moment", diags),
@@ -96,6 +107,29 @@ pub fn parse(item: ItemParts, diags: &mut Diags) -> Option<DiscreteItem> {
         rigid,
         span: item.span,
     })
+}
+
+/// Three numbers `(a, b, c)` (an axis, the inertia's diagonal or
+/// products).
+fn triple(
+    v: &crate::ast::syntax::Value,
+    key: &str,
+    diags: &mut Diags,
+) -> Option<crate::ast::Point3> {
+    match &v.kind {
+        crate::ast::syntax::ValueKind::Tuple(items) if items.len() == 3 => values::point3(v, diags),
+        _ => {
+            diags.push(
+                Diagnostic::error(
+                    format!("`{key}` takes three numbers `(a, b, c)`"),
+                    v.span,
+                    "expected three numbers",
+                )
+                .with_help("a 3d rigid body's axis and inertia have three components"),
+            );
+            None
+        }
+    }
 }
 
 #[cfg(test)]
@@ -137,10 +171,30 @@ mod tests {
         assert_eq!(r.kind, DiscreteKind::RigidBody);
         assert_eq!(r.mass.as_ref().unwrap().value, 3.0);
         let keys = r.rigid.as_ref().unwrap();
-        assert_eq!(keys.center.as_ref().unwrap().value, [1.0, 2.0]);
+        assert_eq!(keys.center.as_ref().unwrap().values(), [1.0, 2.0]);
         assert_eq!(keys.inertia.as_ref().unwrap().value, 0.5);
         assert!(keys.angular_velocity.is_some() && keys.rotation.is_none());
         assert_eq!(keys.tie_stiffness.as_ref().unwrap().value, 1e6);
+        let deck = parse_ok(
+            "rigid_body d.hub { center = (1, 2, 3)  axis = (0, 0, 1)  mass = 3  \
+             inertia_diagonal = (1, 2, 2.5)  inertia_products = (0.1, 0, 0)  rotation = 1  \
+             tie_stiffness = 1e6 }",
+        );
+        let keys = deck.discrete[0].rigid.as_ref().unwrap();
+        assert_eq!(keys.center.as_ref().unwrap().values(), [1.0, 2.0, 3.0]);
+        assert_eq!(keys.axis.as_ref().unwrap().value, [0.0, 0.0, 1.0]);
+        assert_eq!(
+            keys.inertia_diagonal.as_ref().unwrap().value,
+            [1.0, 2.0, 2.5]
+        );
+        assert_eq!(
+            keys.inertia_products.as_ref().unwrap().value,
+            [0.1, 0.0, 0.0]
+        );
+        assert_eq!(
+            parse_messages("rigid_body d.hub { center = (0, 0)  axis = (1, 0) }"),
+            ["`axis` takes three numbers `(a, b, c)`"]
+        );
         assert_eq!(
             parse_messages("rigid_body d.hub { center = (0, 0)  spin = 3 }"),
             ["unknown key `spin` in the `rigid_body` block"]

@@ -20,7 +20,7 @@ pub fn check(ctx: &mut Ctx<'_>) {
         values_not_negative(d, ctx);
         discrete_item_gives_a_value(d, what, ctx);
         release_needs_a_link(d, ctx);
-        rigid_body_is_planar_and_complete(d, ctx);
+        rigid_body_is_complete(d, ctx);
     }
 }
 
@@ -47,9 +47,13 @@ pub fn release_needs_a_link(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
     }
 }
 
-/// A rigid body: planar analysis, a centre, a tie stiffness, at most one
-/// of `rotation` / `angular_velocity`, and `moment` only when free.
-pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
+/// A rigid body: a plane strain, plane stress or 3d analysis, a centre
+/// with the analysis' coordinates, a tie stiffness, at most one of
+/// `rotation` / `angular_velocity`, and `moment` only when free; the 3d
+/// keys (`axis`, `inertia_diagonal`, `inertia_products`) only in 3d, no
+/// `moment` there, and an inertia tensor that a body with the given mass
+/// can have.
+pub fn rigid_body_is_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
     let Some(keys) = &d.rigid else { return };
     let dimension = ctx
         .deck
@@ -57,21 +61,64 @@ pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
         .first()
         .and_then(|a| a.dimension.as_ref())
         .map(|d| d.value);
-    if matches!(
-        dimension,
-        Some(crate::ast::Dimension::ThreeD | crate::ast::Dimension::Axisymmetric)
-    ) {
+    if matches!(dimension, Some(crate::ast::Dimension::Axisymmetric)) {
         ctx.err(
             Diagnostic::error(
-                "a rigid body needs a plane strain or plane stress analysis",
+                "a rigid body needs a plane strain, plane stress or 3d analysis",
                 d.keyword,
                 "rigid_body",
             )
-            .with_help("3D rigid bodies (6 dofs) are not available yet"),
+            .with_help("in an axisymmetric model a cross-section does not turn as a rigid body"),
         );
     }
+    let solid = matches!(dimension, Some(crate::ast::Dimension::ThreeD));
+    if let Some(c) = &keys.center {
+        let want = if solid { 3 } else { 2 };
+        if c.len() != want {
+            ctx.err(
+                Diagnostic::error(
+                    format!(
+                        "the centre has {} coordinates, the analysis {want}",
+                        c.len()
+                    ),
+                    c.span(),
+                    "center",
+                )
+                .with_help(if solid {
+                    "write `center = (x, y, z)`"
+                } else {
+                    "write `center = (x, y)`"
+                }),
+            );
+        }
+    }
+    if solid {
+        rigid_body_3d_keys(d, keys, ctx);
+    } else {
+        for (x, key) in [
+            (&keys.axis, "axis"),
+            (&keys.inertia_diagonal, "inertia_diagonal"),
+            (&keys.inertia_products, "inertia_products"),
+        ] {
+            if let Some(x) = x {
+                ctx.err(
+                    Diagnostic::error(format!("`{key}` is for 3d rigid bodies"), x.span, key)
+                        .with_help(
+                            "a planar body turns about the normal to its plane: give `inertia`",
+                        ),
+                );
+            }
+        }
+    }
     for (missing, what) in [
-        (keys.center.is_none(), "add `center = (x, y)`"),
+        (
+            keys.center.is_none(),
+            if solid {
+                "add `center = (x, y, z)`"
+            } else {
+                "add `center = (x, y)`"
+            },
+        ),
         (
             keys.tie_stiffness.is_none(),
             "add `tie_stiffness = <force/length>` (e.g. 1e3 x the element stiffness)",
@@ -143,6 +190,68 @@ pub fn rigid_body_is_planar_and_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
                 num(x.value).to_string(),
             ));
         }
+    }
+}
+
+/// The keys of a 3d rigid body: no `moment`, one inertia, a non-zero
+/// axis, an inertia tensor that a body of the given mass can have
+/// (`inertia_points::inertia_points`).
+fn rigid_body_3d_keys(d: &DiscreteItem, keys: &crate::ast::RigidKeys, ctx: &mut Ctx<'_>) {
+    if let Some(m) = &keys.moment {
+        ctx.err(
+            Diagnostic::error(
+                "a moment on a 3d rigid body is not available",
+                m.span,
+                "moment",
+            )
+            .with_help(
+                "its rotation vector is not work-conjugate to a moment: prescribe the \
+                     rotation (`rotation` or `angular_velocity` about `axis`) or leave it free",
+            ),
+        );
+    }
+    if let (Some(i), Some(t)) = (&keys.inertia, &keys.inertia_diagonal) {
+        ctx.err(
+            Diagnostic::error("the inertia is given twice", t.span, "inertia_diagonal")
+                .with_secondary(i.span, "inertia")
+                .with_help("give `inertia` (the same about every axis) or the tensor"),
+        );
+        return;
+    }
+    if let Some(a) = &keys.axis {
+        let n = a.value.iter().map(|x| x * x).sum::<f64>();
+        if !(n.is_finite() && n > 0.0) {
+            ctx.err(
+                Diagnostic::error("the rotation axis is zero", a.span, "axis")
+                    .with_help("give a direction, e.g. `axis = (0, 0, 1)`"),
+            );
+        }
+    }
+    let diagonal = match (&keys.inertia, &keys.inertia_diagonal) {
+        (Some(i), _) => Some(([i.value; 3], i.span)),
+        (None, Some(t)) => Some((t.value, t.span)),
+        (None, None) => None,
+    };
+    let products = keys.inertia_products.as_ref().map_or([0.0; 3], |p| p.value);
+    let span = match (diagonal, &keys.inertia_products) {
+        (Some((_, s)), _) => s,
+        (None, Some(p)) => p.span,
+        (None, None) => return,
+    };
+    let j = diagonal.map_or([0.0; 3], |x| x.0);
+    let tensor = [
+        [j[0], products[0], products[2]],
+        [products[0], j[1], products[1]],
+        [products[2], products[1], j[2]],
+    ];
+    let mass = d.mass.as_ref().map_or(0.0, |m| m.value);
+    if let Err(e) = ctc_engine::solve::inertia_points::inertia_points(mass, tensor) {
+        ctx.err(
+            Diagnostic::error("this rotary inertia cannot be modelled", span, e).with_help(
+                "a 3d body's mass and inertia are carried by six point masses tied to it: give \
+                 `mass`, and principal moments each at most the sum of the other two",
+            ),
+        );
     }
 }
 
@@ -245,5 +354,59 @@ mod tests {
         ] {
             assert!(m.contains(&want.to_string()), "{want}: {m:?}");
         }
+        // 3d keys in a planar deck
+        let m = messages(
+            "rigid_body block.top { center = (0, 0, 1)  axis = (0, 0, 1)  tie_stiffness = 1  \
+             rotation = 0 }",
+        );
+        for want in [
+            "the centre has 3 coordinates, the analysis 2",
+            "`axis` is for 3d rigid bodies",
+        ] {
+            assert!(m.contains(&want.to_string()), "{want}: {m:?}");
+        }
+    }
+
+    #[test]
+    fn rigid_bodies_in_3d_are_checked() {
+        let deck = |item: &str| {
+            crate::validate::test_support::messages_of(&format!(
+                "analysis {{ dimension = 3d }}\n\
+                 material m {{ neo_hookean {{ E = 1  nu = 0.3 }} }}\n\
+                 body b {{ mesh = box {{ origin = (0, 0, 0)  size = (1, 1, 1)  divisions = (1, 1, 1) }}  \
+                 material = m  kinematics = finite }}\n\
+                 {item}\nstep s {{ time = 0 .. 1  increments = 1 }}\n"
+            ))
+        };
+        assert!(
+            deck("rigid_body b.all { center = (0, 0, 0)  mass = 1  inertia_diagonal = (1, 1, 1.5)  tie_stiffness = 1 }")
+                .is_empty()
+        );
+        let m = deck(
+            "rigid_body b.all { center = (0, 0)  inertia = 1  inertia_diagonal = (1, 1, 1)  \
+             tie_stiffness = 1  moment = 1 }",
+        );
+        for want in [
+            "the centre has 2 coordinates, the analysis 3",
+            "a moment on a 3d rigid body is not available",
+            "the inertia is given twice",
+        ] {
+            assert!(m.contains(&want.to_string()), "{want}: {m:?}");
+        }
+        let m = deck(
+            "rigid_body b.all { center = (0, 0, 0)  inertia_diagonal = (1, 1, 3)  mass = 1  \
+             axis = (0, 0, 0)  rotation = 1  tie_stiffness = 1 }",
+        );
+        for want in [
+            "this rotary inertia cannot be modelled",
+            "the rotation axis is zero",
+        ] {
+            assert!(m.contains(&want.to_string()), "{want}: {m:?}");
+        }
+        let m = deck("rigid_body b.all { center = (0, 0, 0)  inertia = 1  tie_stiffness = 1 }");
+        assert!(
+            m.contains(&"this rotary inertia cannot be modelled".to_string()),
+            "{m:?}"
+        );
     }
 }

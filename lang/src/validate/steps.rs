@@ -235,11 +235,13 @@ pub fn dynamic_bodies_have_density(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
         let Some(mname) = b.material.as_ref() else {
             continue;
         };
-        if deck
-            .discrete
-            .iter()
-            .any(|p| p.kind == ast::DiscreteKind::PointMass && p.target.body.name == b.name.name)
-        {
+        // a point mass on its nodes, or a rigid body with a mass tying them
+        if deck.discrete.iter().any(|p| {
+            p.target.body.name == b.name.name
+                && (p.kind == ast::DiscreteKind::PointMass
+                    || p.kind == ast::DiscreteKind::RigidBody
+                        && p.mass.as_ref().is_some_and(|m| m.value > 0.0))
+        }) {
             continue;
         }
         let Some(m) = deck.materials.iter().find(|m| m.name.name == mname.name) else {

@@ -35,6 +35,7 @@ pub mod quadratic;
 pub mod quadratic_contact;
 pub mod quadratic_thermal;
 pub mod rigid_body;
+pub mod rigid_body_3d;
 pub mod self_contact_3d;
 pub mod skin_pass;
 pub mod solid;
@@ -96,6 +97,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
     v.extend(rigid_body::cases());
+    v.extend(rigid_body_3d::cases());
     v.extend(gravity::cases());
     v.extend(johnson_cook::cases());
     v.extend(blankholder::cases());

@@ -118,7 +118,7 @@ fn value(name: &'static str, computed: f64, reference: f64) -> Value {
 }
 
 /// Zero crossings of `x(t)` (linearly interpolated times).
-fn crossings(x: &[f64], t: &[f64]) -> Vec<f64> {
+pub(super) fn crossings(x: &[f64], t: &[f64]) -> Vec<f64> {
     let mut out = Vec::new();
     for i in 1..x.len() {
         if x[i - 1] < 0.0 && x[i] >= 0.0 || x[i - 1] > 0.0 && x[i] <= 0.0 {
