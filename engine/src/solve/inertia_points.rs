@@ -8,8 +8,8 @@
 //! triangle inequality of a body's principal moments, `J_k <= J_i + J_j`).
 //! Their total mass is `S / a^2`: `a = sqrt(S / m)` makes it the body's
 //! mass `m`, centred at the centre (the pairs are symmetric). Tied to the
-//! body like its nodes, the points carry its kinetic energy `m |v_c|^2 / 2
-//! + omega . J omega / 2` exactly for any rigid motion, and the
+//! body like its nodes, the points carry its kinetic energy
+//! `m |v_c|^2 / 2 + omega . J omega / 2` exactly for any rigid motion, and the
 //! translational time integration of the points gives the rotational
 //! dynamics, gyroscopic terms included (Euler's equations are not written:
 //! `d/dt (sum m_i x_i x v_i) = moment` is what the points' Newton laws sum
