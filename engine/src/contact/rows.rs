@@ -157,7 +157,13 @@ mod tests {
         assert!(rows[1].terms.is_empty() && rows[1].kind == RowKind::Stick);
         assert_eq!(rows[2].terms.len(), 15);
         assert!(rows.iter().all(|r| r.force.is_empty()));
-        r.push_split(RowKind::Normal, (0, 5), 0.0, [t(1, 0, 0.5)], [t(1, 0, 1.0), t(2, 1, -1.0)]);
+        r.push_split(
+            RowKind::Normal,
+            (0, 5),
+            0.0,
+            [t(1, 0, 0.5)],
+            [t(1, 0, 1.0), t(2, 1, -1.0)],
+        );
         r.push(RowKind::Normal, (0, 6), 0.0, [t(3, 0, 1.0)]);
         let rows: Vec<_> = r.iter().collect();
         assert_eq!(rows[3].terms, &[t(1, 0, 0.5)]);

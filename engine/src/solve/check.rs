@@ -315,8 +315,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                             crate::model::ContactMethod::Lagrange {
                                 formulation: crate::model::LagrangeFormulation::Doubled
                             }
-                        ))
-                {
+                        )) {
                     Some(
                         "mortar with a double pass or doubled Lagrange multipliers (mortar is \
                          single pass; its Lagrange multipliers are single, LU)",

@@ -329,7 +329,7 @@ pub fn assemble(
                     tangent,
                     slave: a,
                     gap_gradient: Vec::new(),
-force_direction: Vec::new(),
+                    force_direction: Vec::new(),
                 });
             }
         }
@@ -346,7 +346,7 @@ force_direction: Vec::new(),
             tangent: vec![diagonal + hold, 0.0, 0.0, 0.0],
             slave: p,
             gap_gradient: Vec::new(),
-force_direction: Vec::new(),
+            force_direction: Vec::new(),
         });
     }
 }

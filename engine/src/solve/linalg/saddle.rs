@@ -474,8 +474,13 @@ mod tests {
             let v2: Vec<f64> = v.iter().map(|x| 2.0 * x).collect();
             s.factorize(&k, &v2, &rows, &rows).unwrap();
             assert_eq!((s.symbolic_count, s.numeric_count), (1, 2));
-            s.factorize(&k, &v2, &ConstraintRows::default(), &ConstraintRows::default())
-                .unwrap();
+            s.factorize(
+                &k,
+                &v2,
+                &ConstraintRows::default(),
+                &ConstraintRows::default(),
+            )
+            .unwrap();
             assert_eq!(
                 (s.symbolic_count, s.numeric_count, s.constraints()),
                 (2, 3, 0)
