@@ -638,8 +638,9 @@ pub static CONTACT: [Key; 8] = [
         "contact between deformable bodies: node-to-segment elements (3d: node-to-facet on \
          tri3 / quad4 faces), or mortar segment-to-segment (weighted gaps, dual Lagrange \
          multipliers; 3d: tri3 / quad4 facets clipped on the slave facet's plane; single \
-         pass, penalty or augmented Lagrangian, and in 2d Lagrange multipliers; Coulomb \
-         friction on the weighted slip (2d and 3d), penalty or augmented Lagrangian)",
+         pass; penalty, augmented Lagrangian or Lagrange multipliers (2d and 3d, active set \
+         by a semi-smooth Newton); Coulomb friction on the weighted slip (2d and 3d), penalty \
+         or augmented Lagrangian)",
     )
     .default(Default::Choice("node_to_segment")),
     Key::new(

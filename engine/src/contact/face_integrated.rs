@@ -1370,6 +1370,7 @@ fn facet_coupling<const D: usize>(facet: &[usize]) -> (Coupling, Vec<usize>) {
         tangent: vec![0.0; nd * nd],
         slave: facet.first().copied().unwrap_or(0),
         gap_gradient: Vec::new(),
+        force_direction: Vec::new(),
     };
     (c, pos)
 }

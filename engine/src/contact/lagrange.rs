@@ -12,7 +12,9 @@
 //! saddle-point system use `d g / d x = n` ([`normal_rows`], in node terms;
 //! node-to-segment: `d g / d x` over the slave and the segment's ends;
 //! quadratic slave faces: the node's weighted gap over the nodes of its
-//! faces, [`super::face_integrated::FacetPair::evaluate_lagrange`]).
+//! faces, [`super::face_integrated::FacetPair::evaluate_lagrange`];
+//! mortar: the full derivative of the nodal gap, with the force `B / A` as
+//! a separate column, [`push_coupling`]).
 
 use super::augmented::normal_response;
 use super::penalty::Response;
@@ -73,17 +75,7 @@ pub fn normal_rows(
             // smoothed node-to-segment: the row over the coupling's nodes
             if let Some(rows_of_pair) = &pairs[pi].couplings {
                 if let Ok(k) = rows_of_pair.binary_search_by_key(&nc.node, |c| c.slave) {
-                    let c = &rows_of_pair[k];
-                    rows.push(
-                        RowKind::Normal,
-                        (pi, i),
-                        nc.gap,
-                        (0..c.gap_gradient.len()).map(|k| NodeTerm {
-                            node: c.nodes[k / dim],
-                            component: k % dim,
-                            coefficient: c.gap_gradient[k],
-                        }),
-                    );
+                    push_coupling(rows, (pi, i), nc.gap, &rows_of_pair[k], dim);
                 }
                 continue;
             }
@@ -119,6 +111,34 @@ pub fn normal_rows(
             }
         }
     }
+}
+
+/// Appends the constraint row of a coupling (`gap_gradient`; mortar: its
+/// `force_direction` as the saddle point's column).
+pub fn push_coupling(
+    rows: &mut NodeRows,
+    owner: (usize, usize),
+    gap: f64,
+    c: &super::mortar::Coupling,
+    dim: usize,
+) {
+    let terms = |v: &'_ [f64]| {
+        let nodes = &c.nodes;
+        (0..v.len())
+            .map(move |k| NodeTerm {
+                node: nodes[k / dim],
+                component: k % dim,
+                coefficient: v[k],
+            })
+            .collect::<Vec<_>>()
+    };
+    rows.push_split(
+        RowKind::Normal,
+        owner,
+        gap,
+        terms(&c.gap_gradient),
+        terms(&c.force_direction),
+    );
 }
 
 #[cfg(test)]

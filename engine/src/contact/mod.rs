@@ -62,6 +62,7 @@ pub mod rows;
 pub mod search;
 pub mod segment;
 pub mod segment_search;
+pub mod semismooth;
 pub mod smoothing;
 pub mod surface;
 pub mod tributary;

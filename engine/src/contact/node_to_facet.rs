@@ -1357,6 +1357,7 @@ pub fn evaluate(
                 tangent,
                 slave: node,
                 gap_gradient: row,
+                force_direction: Vec::new(),
             });
         } else {
             state.friction.open(i, xs);

@@ -693,6 +693,7 @@ pub fn evaluate(
                     tangent,
                     slave: node,
                     gap_gradient: row,
+                    force_direction: Vec::new(),
                 });
             }
         }

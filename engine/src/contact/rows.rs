@@ -39,6 +39,10 @@ pub struct NodeRow<'a> {
     pub owner: (usize, usize),
     /// Normal or stick.
     pub kind: RowKind,
+    /// The force per unit multiplier where it is not the row itself (the
+    /// saddle point's column; mortar: `D`, `M` and the normal held fixed
+    /// while `terms` is the full derivative of the gap); empty: `terms`.
+    pub force: &'a [NodeTerm],
 }
 
 /// Rows of every Lagrange pair at one evaluation (contiguous storage).
@@ -49,6 +53,9 @@ pub struct NodeRows {
     gap: Vec<f64>,
     owner: Vec<(usize, usize)>,
     kind: Vec<RowKind>,
+    /// Start of each row's force terms in `force` (empty: the row's own).
+    force_start: Vec<usize>,
+    force: Vec<NodeTerm>,
 }
 
 impl NodeRows {
@@ -59,6 +66,8 @@ impl NodeRows {
         self.gap.clear();
         self.owner.clear();
         self.kind.clear();
+        self.force_start.clear();
+        self.force.clear();
     }
 
     /// Number of rows.
@@ -84,14 +93,35 @@ impl NodeRows {
         self.gap.push(gap);
         self.owner.push(owner);
         self.kind.push(kind);
+        self.force_start.push(self.force.len());
+    }
+
+    /// Appends a row whose force per unit multiplier `force` (the saddle
+    /// point's column) differs from its terms `d g / d x` (the row).
+    pub fn push_split(
+        &mut self,
+        kind: RowKind,
+        owner: (usize, usize),
+        gap: f64,
+        terms: impl IntoIterator<Item = NodeTerm>,
+        force: impl IntoIterator<Item = NodeTerm>,
+    ) {
+        self.push(kind, owner, gap, terms);
+        self.force.extend(force);
     }
 
     /// Every row, in the order pushed.
     pub fn iter(&self) -> impl Iterator<Item = NodeRow<'_>> + '_ {
         (0..self.len()).map(move |k| {
             let end = self.start.get(k + 1).copied().unwrap_or(self.terms.len());
+            let force_end = self
+                .force_start
+                .get(k + 1)
+                .copied()
+                .unwrap_or(self.force.len());
             NodeRow {
                 terms: &self.terms[self.start[k]..end],
+                force: &self.force[self.force_start[k]..force_end],
                 gap: self.gap[k],
                 owner: self.owner[k],
                 kind: self.kind[k],
@@ -126,6 +156,19 @@ mod tests {
         assert_eq!((rows[0].gap, rows[0].owner), (-0.1, (0, 3)));
         assert!(rows[1].terms.is_empty() && rows[1].kind == RowKind::Stick);
         assert_eq!(rows[2].terms.len(), 15);
+        assert!(rows.iter().all(|r| r.force.is_empty()));
+        r.push_split(
+            RowKind::Normal,
+            (0, 5),
+            0.0,
+            [t(1, 0, 0.5)],
+            [t(1, 0, 1.0), t(2, 1, -1.0)],
+        );
+        r.push(RowKind::Normal, (0, 6), 0.0, [t(3, 0, 1.0)]);
+        let rows: Vec<_> = r.iter().collect();
+        assert_eq!(rows[3].terms, &[t(1, 0, 0.5)]);
+        assert_eq!(rows[3].force, &[t(1, 0, 1.0), t(2, 1, -1.0)]);
+        assert!(rows[4].force.is_empty() && rows[2].force.is_empty());
         r.clear();
         assert!(r.is_empty());
     }

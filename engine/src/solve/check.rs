@@ -310,11 +310,15 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                 let mortar = c.formulation == crate::model::ContactFormulation::Mortar;
                 let missing = if mortar
                     && (c.strategy != crate::model::ContactStrategy::SinglePass
-                        || matches!(c.method, crate::model::ContactMethod::Lagrange { .. }))
-                {
+                        || matches!(
+                            c.method,
+                            crate::model::ContactMethod::Lagrange {
+                                formulation: crate::model::LagrangeFormulation::Doubled
+                            }
+                        )) {
                     Some(
-                        "mortar with a double pass or Lagrange multipliers (mortar is single \
-                         pass, penalty or augmented Lagrangian)",
+                        "mortar with a double pass or doubled Lagrange multipliers (mortar is \
+                         single pass; its Lagrange multipliers are single, LU)",
                     )
                 } else if c.smoothing == crate::model::NormalSmoothing::Nodal {
                     Some("nodal normal smoothing (use Nagata patches)")

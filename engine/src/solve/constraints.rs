@@ -80,6 +80,12 @@ impl ConstraintRows {
 pub struct Constraints {
     /// Rows `G = -d g / d u_free`, one per constraint.
     pub rows: ConstraintRows,
+    /// Columns `-d f / d lambda` on the free dofs (the force per unit
+    /// multiplier), one per constraint: equal to `rows` unless the law
+    /// gives a separate force ([`crate::contact::rows::NodeRow::force`]).
+    pub columns: ConstraintRows,
+    /// Whether every column equals its row (a symmetric saddle point).
+    pub symmetric: bool,
     /// Gap of each constraint (normal gap, or tangential gap of a stick row).
     pub gap: Vec<f64>,
     /// `(pair, slave index)` of each constraint.
@@ -106,12 +112,15 @@ impl Constraints {
     /// Maps the node-term rows of the contact laws to dof terms.
     pub fn build<const D: usize>(&mut self, rows: &NodeRows, dofs: &DofMap<D>) {
         self.rows.clear();
+        self.columns.clear();
+        self.symmetric = true;
         self.prescribed.clear();
         self.gap.clear();
         self.owner.clear();
         self.kind.clear();
         let mut free = Vec::new();
         let mut presc = Vec::new();
+        let mut column = Vec::new();
         for row in rows.iter() {
             free.clear();
             presc.clear();
@@ -123,6 +132,18 @@ impl Constraints {
                 }
             }
             self.rows.push(free.iter().copied());
+            if row.force.is_empty() {
+                self.columns.push(free.iter().copied());
+            } else {
+                self.symmetric = false;
+                column.clear();
+                for t in row.force {
+                    if let Dof::Free(f) = dofs.dofs[dofs.dof(t.node, t.component)] {
+                        column.push((f, -t.coefficient));
+                    }
+                }
+                self.columns.push(column.iter().copied());
+            }
             // prescribed terms keep their order: they only enter sums, in
             // this order
             self.prescribed.push_unsorted(presc.iter().copied());

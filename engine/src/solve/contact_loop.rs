@@ -95,6 +95,12 @@ fn model_size(model: &Model) -> f64 {
     }
 }
 
+/// The gap below which an inactive Lagrange node of `model` is introduced
+/// (round-off of the model's size).
+pub fn introduce_threshold(model: &Model) -> f64 {
+    INTRODUCE_GAP * model_size(model)
+}
+
 /// Introduces the inactive Lagrange nodes that penetrate, releases the
 /// active ones in tension (`lambda < 0`) or no longer found by the search.
 pub fn update_active_sets(

@@ -329,6 +329,7 @@ pub fn assemble(
                     tangent,
                     slave: a,
                     gap_gradient: Vec::new(),
+                    force_direction: Vec::new(),
                 });
             }
         }
@@ -345,6 +346,7 @@ pub fn assemble(
             tangent: vec![diagonal + hold, 0.0, 0.0, 0.0],
             slave: p,
             gap_gradient: Vec::new(),
+            force_direction: Vec::new(),
         });
     }
 }

@@ -71,6 +71,10 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     /// Augmented Lagrangian with `update = newton`: updates the
     /// multipliers inside the Newton loop; whether any changed.
     fn newton_multiplier_update(&mut self, model: &Model<D>) -> bool;
+    /// Mortar with Lagrange multipliers: the semi-smooth Newton update of
+    /// the active sets at the current iterate
+    /// ([`crate::contact::semismooth`]); whether any node switched.
+    fn semismooth_update(&mut self, model: &Model<D>) -> bool;
     /// Contact evaluation of each pair at the last evaluated state (empty
     /// without contact).
     fn contact(&self) -> &[Vec<NodeContact<D>>];
@@ -205,6 +209,39 @@ impl ContactScene<2> for ContactAssembly {
             &self.contact,
             MultiplierUpdate::Newton,
         )
+    }
+
+    fn semismooth_update(&mut self, model: &Model) -> bool {
+        let threshold = super::contact_loop::introduce_threshold(model);
+        let mut switched = false;
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            if !crate::contact::semismooth::applies(cp) {
+                continue;
+            }
+            let young = crate::contact::semismooth::young(model, cp);
+            let ring = crate::contact::mortar::weight(model);
+            let state = &mut self.pairs[pi];
+            let slaves = &state.slaves;
+            let c = |i: usize| {
+                let w = match ring {
+                    crate::contact::mortar::integrals::Weight::Thickness(t) => t,
+                    crate::contact::mortar::integrals::Weight::Axisymmetric => {
+                        2.0 * std::f64::consts::PI * model.mesh.nodes[slaves[i]][0].abs()
+                    }
+                };
+                young * w
+            };
+            let s = crate::contact::semismooth::update(
+                slaves,
+                &mut state.active,
+                &mut state.multiplier,
+                &self.contact[pi],
+                c,
+                threshold,
+            );
+            switched |= !s.is_empty();
+        }
+        switched
     }
 
     fn contact(&self) -> &[Vec<NodeContact>] {
@@ -375,6 +412,10 @@ impl<const D: usize> ContactScene<D> for NoContact {
     fn apply_multiplier_corrections(&mut self, _: &[f64]) {}
 
     fn newton_multiplier_update(&mut self, _: &Model<D>) -> bool {
+        false
+    }
+
+    fn semismooth_update(&mut self, _: &Model<D>) -> bool {
         false
     }
 

@@ -465,16 +465,12 @@ impl ContactScene<3> for SurfaceAssembly {
                 // node-to-facet: the row G over the slave and the facet nodes
                 if let Some(fp) = &self.pairs[pi].deformable {
                     if let Ok(k) = fp.couplings.binary_search_by_key(&nc.node, |c| c.slave) {
-                        let c = &fp.couplings[k];
-                        self.rows.push(
-                            RowKind::Normal,
+                        crate::contact::lagrange::push_coupling(
+                            &mut self.rows,
                             (pi, i),
                             nc.gap,
-                            (0..c.gap_gradient.len()).map(|k| NodeTerm {
-                                node: c.nodes[k / 3],
-                                component: k % 3,
-                                coefficient: c.gap_gradient[k],
-                            }),
+                            &fp.couplings[k],
+                            3,
                         );
                     }
                     continue;
@@ -531,6 +527,30 @@ impl ContactScene<3> for SurfaceAssembly {
 
     fn newton_multiplier_update(&mut self, model: &Model<3>) -> bool {
         self.uzawa_update(model, MultiplierUpdate::Newton)
+    }
+
+    fn semismooth_update(&mut self, model: &Model<3>) -> bool {
+        let threshold = INTRODUCE_GAP * self.size;
+        let mut switched = false;
+        for (pi, cp) in model.contacts.iter().enumerate() {
+            if !crate::contact::semismooth::applies(cp) {
+                continue;
+            }
+            let young = crate::contact::semismooth::young(model, cp);
+            let state = &mut self.pairs[pi];
+            let area = &state.area;
+            let c = |i: usize| young * area.get(i).copied().unwrap_or(0.0).sqrt();
+            let s = crate::contact::semismooth::update(
+                &state.slaves,
+                &mut state.active,
+                &mut state.multiplier,
+                &self.contact[pi],
+                c,
+                threshold,
+            );
+            switched |= !s.is_empty();
+        }
+        switched
     }
 
     fn contact(&self) -> &[Vec<NodeContact<3>>] {

@@ -202,9 +202,9 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
 }
 
 /// `formulation = mortar`: a deformable master other than the slave
-/// surface, single pass, penalty, augmented Lagrangian or (2D, single
-/// multipliers) Lagrange multipliers; Coulomb friction in 2D (penalty or
-/// augmented Lagrangian).
+/// surface, single pass, penalty, augmented Lagrangian or (single
+/// multipliers, 2D and 3D) Lagrange multipliers; Coulomb friction (penalty
+/// or augmented Lagrangian).
 fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     let Some(f) = c
         .formulation
@@ -213,7 +213,6 @@ fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     else {
         return;
     };
-    let solid = super::analysis::is_solid(ctx);
     let mut refuse = |what: &str, span: Span, help: &str| {
         ctx.err(
             Diagnostic::error(
@@ -252,13 +251,7 @@ fn mortar_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
     }
     if let Some(m) = c.method.as_ref() {
         if let Method::Lagrange { formulation } = &m.value {
-            if solid {
-                refuse(
-                    "with Lagrange multipliers is 2D only for now",
-                    m.span,
-                    "use `method = penalty { .. }` or `augmented_lagrange { .. }` in 3D",
-                );
-            } else if formulation
+            if formulation
                 .as_ref()
                 .is_some_and(|f| f.value == crate::ast::LagrangeFormulation::Doubled)
             {

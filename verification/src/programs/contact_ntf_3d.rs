@@ -267,8 +267,8 @@ pub const LOADED: &[(&str, &str, &str, &str)] = &[
     ),
 ];
 
-/// Mortar combinations (single pass; Lagrange multipliers are refused
-/// with mortar): names of the pressure's deviation from uniform and of
+/// Mortar combinations (single pass; penalty, augmented Lagrangian and
+/// Lagrange multipliers with the semi-smooth active set): names of the pressure's deviation from uniform and of
 /// the total force, cell, base cells across, method, and the guard of the
 /// total force. The matching control (3 | 3) first. Issue 18's target:
 /// the deviation from uniform <= 1e-8 (measured 1.6e-11 penalty, 1.6e-13
@@ -317,6 +317,22 @@ pub const MORTAR: &[(&str, &str, &str, usize, &str, f64)] = &[
         AUGMENTED,
         1e-7,
     ),
+    (
+        "hex8 mortar lagrange p uniform",
+        "hex8 mortar lagrange F",
+        "hex8",
+        4,
+        LAGRANGE,
+        1e-8,
+    ),
+    (
+        "tet4 mortar lagrange p uniform",
+        "tet4 mortar lagrange F",
+        "tet4",
+        4,
+        LAGRANGE,
+        1e-8,
+    ),
 ];
 
 /// The applied traction of the load-controlled runs.
@@ -362,7 +378,7 @@ pub fn cases() -> Vec<VerifyCase> {
         VerifyCase {
             name: "contact_patch_mortar_3d",
             title: "3D contact patch test, two deformable blocks 3x3 | 4x4 facets (hex8, tet4): \
-                mortar segment-to-segment, penalty and augmented Lagrangian",
+                mortar segment-to-segment, penalty, augmented Lagrangian and Lagrange multipliers",
             source: "Taylor & Papadopoulos IJNME 31 (1991), in 3D; Puso & Laursen CMAME 193 \
                  (2004) 601; VERIFICATION-CASES.md §3",
             tags: &[
@@ -372,6 +388,7 @@ pub fn cases() -> Vec<VerifyCase> {
                 "patch",
                 "penalty",
                 "augmented_lagrange",
+                "lagrange",
             ],
             levels: 1,
             checks: MORTAR

@@ -25,6 +25,7 @@ pub mod johnson_cook;
 pub mod mortar;
 pub mod mortar_friction;
 pub mod mortar_friction_3d;
+pub mod mortar_lagrange_3d;
 pub mod mortar_quadratic;
 pub mod nagata_3d;
 pub mod norton_hoff;
@@ -83,6 +84,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(contact_3d::cases());
     v.extend(contact_ntf_3d::cases());
     v.extend(mortar_friction_3d::cases());
+    v.extend(mortar_lagrange_3d::cases());
     v.extend(hertz_3d_axi::cases());
     v.extend(friction_3d::cases());
     v.extend(friction_ntf_3d::cases());

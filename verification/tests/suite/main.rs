@@ -17,6 +17,7 @@ mod friction_3d;
 mod friction_ntf_3d;
 mod johnson_cook;
 mod methods;
+mod mortar_lagrange;
 mod mortar_quadratic;
 mod objectivity;
 mod penalty_scaling;

@@ -62,9 +62,15 @@ pub struct Coupling {
     pub tangent: Vec<f64>,
     /// Smoothed node-to-segment rows: the slave node of the row.
     pub slave: usize,
-    /// Smoothed node-to-segment rows: `d g / d x` over the nodes (the
-    /// Lagrange constraint row); empty for mortar rows.
+    /// Lagrange rows: `d g / d x` over the nodes (the linearized
+    /// constraint: smoothed node-to-segment, node-to-facet, mortar with
+    /// Lagrange multipliers); empty for penalty rows.
     pub gap_gradient: Vec<f64>,
+    /// Lagrange rows whose force per unit multiplier is not the constraint
+    /// gradient (mortar: `B / A`, with `D`, `M` and the normal held fixed,
+    /// while `gap_gradient` is the full derivative of the nodal gap): the
+    /// saddle point's column of the multiplier. Empty: `gap_gradient`.
+    pub force_direction: Vec<f64>,
 }
 
 /// One mortar segment seen from one of its two slave nodes.
@@ -280,6 +286,7 @@ impl<'a> Row<'a> {
                         tangent,
                         slave: node,
                         gap_gradient: Vec::new(),
+                        force_direction: Vec::new(),
                     }
                 });
                 (closed, pressure, coupling)
@@ -312,31 +319,38 @@ impl<'a> Row<'a> {
     }
 
     /// Lagrange multipliers: the constraint of an active node is its nodal
-    /// gap `g~ / A = 0`, its row `B / A` (the gap's gradient with `D`, `M`
-    /// and the normal held fixed, exact where the gap vanishes pointwise),
-    /// the multiplier `lambda` the nodal normal force: force `lambda B /
-    /// A`, tangent `-lambda d(B / A)/dx`, pressure `lambda / A` (per
-    /// covered current area, as the penalty's `R / T` with `|B| = A`).
-    /// Returns the pressure and the coupling (its `gap_gradient` the row).
+    /// gap `g = g~ / A = 0`, the multiplier `lambda` the nodal normal force:
+    /// force `lambda B / A` (`D`, `M` and the normal held fixed in the
+    /// variation: the mortar form, exact in equilibrium for a uniform
+    /// pressure), tangent `-lambda d(B / A)/dx`, pressure `lambda / A`
+    /// (per covered current area, as the penalty's `R / T` with `|B| =
+    /// A`). The constraint row is the full derivative of the nodal gap,
+    /// `(dg~ - g dA) / A` with `D`, `M` and the normals varying (the
+    /// segmentation included), so that Newton on the saddle point ends
+    /// quadratically; the saddle point is unsymmetric (row `dg/dx`, column
+    /// `B / A`). Returns the pressure and the coupling (`gap_gradient` the
+    /// row, `force_direction` the column).
     fn close_lagrange(&self, node: usize, lambda: f64) -> (f64, Coupling) {
         let area = self.area;
         let nd = self.bv.len();
-        let row: Vec<f64> = self.bv.iter().map(|b| b / area).collect();
-        let force: Vec<f64> = row.iter().map(|b| lambda * b).collect();
+        let column: Vec<f64> = self.bv.iter().map(|b| b / area).collect();
+        let force: Vec<f64> = column.iter().map(|b| lambda * b).collect();
         let mut tangent = vec![0.0; nd * nd];
         for r in 0..nd {
             for c in 0..nd {
                 // d(B/A)/dx = dB/A - B dA / A^2
-                let d = self.db[r * nd + c] / area - row[r] * self.da[c] / area;
+                let d = self.db[r * nd + c] / area - column[r] * self.da[c] / area;
                 tangent[r * nd + c] = -lambda * d;
             }
         }
+        let (_, row) = self.nodal_gap();
         let coupling = Coupling {
             nodes: self.nodes.to_vec(),
             force,
             tangent,
             slave: node,
             gap_gradient: row,
+            force_direction: column,
         };
         (lambda / area, coupling)
     }
@@ -1095,6 +1109,14 @@ pub fn evaluate_3d(
             0.0
         };
         let entity = pieces[list[0].0].master;
+        // Lagrange multipliers: the node's (active, multiplier), decided by
+        // the semi-smooth Newton ([`crate::contact::semismooth`])
+        let lagrange = matches!(method, ContactMethod::Lagrange { .. }).then(|| {
+            (
+                state.active.get(i).copied().unwrap_or(false),
+                state.multiplier.get(i).copied().unwrap_or(0.0),
+            )
+        });
         let closed = match (law, &scalar) {
             (Some(law), Some(scalar)) => {
                 let f = &state.friction;
@@ -1124,7 +1146,7 @@ pub fn evaluate_3d(
                     prof,
                     state.touching,
                     entity,
-                    None,
+                    lagrange,
                 )
                 .map(|(nc, c)| (nc, c, None)),
         };
@@ -1369,6 +1391,99 @@ mod tests {
             let (status, worst) = e.unwrap();
             prop_assert!(worst < 1e-6, "{status:?}: {worst}");
         }
+    }
+
+    /// The middle slave node's Lagrange row at `x` with multiplier
+    /// `lambda`: `(nodes, pieces' masters, nodal gap, coupling)`.
+    fn middle_lagrange_row(
+        x: &[[f64; 2]],
+        lambda: f64,
+    ) -> Option<(Vec<usize>, Vec<usize>, f64, Coupling)> {
+        let now = pieces(x);
+        let list = &now[1];
+        if list.is_empty() {
+            return None;
+        }
+        let mut nodes: Vec<usize> = list.iter().flat_map(|p| p.nodes).collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let (row, _) = rows_of(list, &nodes, false);
+        let (_, c) = row.close_lagrange(1, lambda);
+        let masters = list.iter().map(|p| p.master).collect();
+        let gap = row.g / row.area;
+        Some((nodes, masters, gap, c))
+    }
+
+    /// The Lagrange row of the middle node against central differences
+    /// (step 1e-7): the largest error of the constraint row `gap_gradient`
+    /// vs `d(g~ / A)/dx` relative to its largest entry, and of the tangent
+    /// vs `-d force / dx` relative to its largest entry; `None` when a
+    /// perturbation changes the pieces (a kink of the segmentation).
+    fn lagrange_fd_error(x: &[[f64; 2]], lambda: f64) -> Option<(f64, f64)> {
+        let (nodes, masters, _, c) = middle_lagrange_row(x, lambda)?;
+        let h = 1e-7;
+        let nd = 2 * nodes.len();
+        let row_scale = c.gap_gradient.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let k_scale = c.tangent.iter().fold(1e-300f64, |m, v| m.max(v.abs()));
+        let (mut row_err, mut k_err) = (0.0f64, 0.0f64);
+        for (k, &node) in nodes.iter().enumerate() {
+            for comp in 0..2 {
+                let at = |dh: f64| {
+                    let mut y = x.to_vec();
+                    y[node][comp] += dh;
+                    middle_lagrange_row(&y, lambda).filter(|r| r.0 == nodes && r.1 == masters)
+                };
+                let (p, m) = at(h).zip(at(-h))?;
+                let col = 2 * k + comp;
+                let fd = (p.2 - m.2) / (2.0 * h);
+                row_err = row_err.max((fd - c.gap_gradient[col]).abs() / row_scale);
+                for r in 0..nd {
+                    let fd = -(p.3.force[r] - m.3.force[r]) / (2.0 * h);
+                    k_err = k_err.max((fd - c.tangent[r * nd + col]).abs() / k_scale);
+                }
+            }
+        }
+        Some((row_err, k_err))
+    }
+
+    proptest! {
+        /// Lagrange multipliers: the constraint row is the full derivative
+        /// of the nodal gap (`D`, `M`, the normal and the segmentation
+        /// varying), the tangent minus the derivative of the force
+        /// `lambda B / A`, both by central differences; the force column
+        /// is `B / A` (differs from the row on a curved interface).
+        #[test]
+        fn lagrange_row_is_the_full_gap_derivative(
+            (x, _) in perturbation(),
+            lambda in 0.1f64..3.0,
+        ) {
+            let e = lagrange_fd_error(&x, lambda);
+            prop_assume!(e.is_some());
+            let (row_err, k_err) = e.unwrap();
+            prop_assert!(row_err < 1e-6 && k_err < 1e-6, "row {row_err}, K {k_err}");
+            let (_, _, _, c) = middle_lagrange_row(&x, lambda).unwrap();
+            prop_assert_eq!(c.force_direction.len(), c.gap_gradient.len());
+            for (f, d) in c.force.iter().zip(&c.force_direction) {
+                prop_assert!((f - lambda * d).abs() <= 1e-14 * lambda * d.abs().max(1.0));
+            }
+        }
+    }
+
+    #[test]
+    fn lagrange_row_differs_from_the_force_column_on_a_curved_interface() {
+        // the old row `B / A` missed `dD`, `dM` and `dn`: on a bent slave
+        // the two differ at first order in the bend; on a flat interface
+        // with a uniform gap they agree
+        let diff = |bend: f64| {
+            let (_, _, _, c) = middle_lagrange_row(&reference(bend, -0.01), 1.0).unwrap();
+            c.gap_gradient
+                .iter()
+                .zip(&c.force_direction)
+                .map(|(a, b)| (a - b).abs())
+                .fold(0.0f64, f64::max)
+        };
+        assert!(diff(0.0) < 1e-12, "{}", diff(0.0));
+        assert!(diff(0.08) > 1e-4, "{}", diff(0.08));
     }
 
     /// seg3 pair: slave corners 0, 1, 2 (walking -x near y = 0), midside

@@ -285,13 +285,15 @@ pub struct RankStats {
 /// The Lagrange-multiplier saddle-point system built from the tangent and
 /// the constraint rows.
 pub trait SaddlePointSystem {
-    /// Assembles and factorizes `[K G^T; G 0]` from the free-free block
-    /// (`k`, `k_values`) and the rows `G`.
+    /// Assembles and factorizes `[K C^T; G 0]` from the free-free block
+    /// (`k`, `k_values`), the rows `G` and the columns `C` (the force per
+    /// unit multiplier; `C = G` for a symmetric saddle point).
     fn factorize(
         &mut self,
         k: &SparsePattern,
         k_values: &[f64],
         rows: &ConstraintRows,
+        columns: &ConstraintRows,
     ) -> Result<(), LinearError>;
     /// On entry `du = -r_u` and `dl = g`; on exit the corrections.
     fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError>;

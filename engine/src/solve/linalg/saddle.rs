@@ -7,6 +7,11 @@
 //!
 //! `[K  G^T; G  0] [du; dlambda] = [-r_u; g]`
 //!
+//! (with a separate column `C` where the force per unit multiplier is not
+//! the constraint's gradient, `[K C^T; G 0]`: mortar rows, whose force
+//! holds `D`, `M` and the normal fixed while the row is the gap's full
+//! derivative; Single only, LU does not need the symmetry)
+//!
 //! - [`LagrangeFormulation::Single`]: the matrix above, factorized by sparse
 //!   LU with partial pivoting (the zero block makes it indefinite, Cholesky
 //!   does not apply).
@@ -107,7 +112,13 @@ impl SaddleSolver {
 
     /// Assembles the saddle-point matrix from the free-free block
     /// (`k`, `k_values`) and the constraint rows, in the formulation's order.
-    fn assemble(&mut self, k: &SparsePattern, k_values: &[f64], rows: &ConstraintRows) {
+    fn assemble(
+        &mut self,
+        k: &SparsePattern,
+        k_values: &[f64],
+        rows: &ConstraintRows,
+        columns: &ConstraintRows,
+    ) {
         let n = k.n;
         let m = rows.len();
         // per free dof: constraints touching it (k ascending)
@@ -137,8 +148,8 @@ impl SaddleSolver {
                     }
                     col_ptr.push(row_idx.len());
                 }
-                for row in rows.iter() {
-                    for &(dof, coef) in row {
+                for column in columns.iter() {
+                    for &(dof, coef) in column {
                         push(dof, coef, &mut row_idx, &mut values);
                     }
                     col_ptr.push(row_idx.len());
@@ -209,15 +220,25 @@ impl SaddleSolver {
     }
 
     /// Assembles and factorizes the saddle-point matrix of the free-free
-    /// block `k` (values `k_values`, first `k.nnz()` used) and `rows`.
+    /// block `k` (values `k_values`, first `k.nnz()` used), `rows` (`G`)
+    /// and `columns` (`C`, the multipliers' force columns; the doubled
+    /// form needs `C = G`).
     pub fn factorize(
         &mut self,
         k: &SparsePattern,
         k_values: &[f64],
         rows: &ConstraintRows,
+        columns: &ConstraintRows,
     ) -> Result<(), LinearError> {
         self.factor = Factor::None;
-        self.assemble(k, &k_values[..k.nnz()], rows);
+        if self.formulation == LagrangeFormulation::Doubled && rows != columns {
+            return Err(LinearError::Singular(
+                "the doubled Lagrange multipliers need a symmetric saddle point (a constraint \
+                 whose force is not its gradient: use `formulation = single`)"
+                    .into(),
+            ));
+        }
+        self.assemble(k, &k_values[..k.nnz()], rows, columns);
         let p = &self.pattern;
         if p.n == 0 {
             return Ok(());
@@ -342,8 +363,9 @@ impl SaddlePointSystem for SaddleSolver {
         k: &SparsePattern,
         k_values: &[f64],
         rows: &ConstraintRows,
+        columns: &ConstraintRows,
     ) -> Result<(), LinearError> {
-        SaddleSolver::factorize(self, k, k_values, rows)
+        SaddleSolver::factorize(self, k, k_values, rows, columns)
     }
 
     fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError> {
@@ -393,7 +415,7 @@ mod tests {
         let mut rows = ConstraintRows::default();
         rows.push([(1, -1.0)]);
         let mut s = SaddleSolver::new(form);
-        s.factorize(&k, &v, &rows).unwrap();
+        s.factorize(&k, &v, &rows, &rows).unwrap();
         // load f = (1, 0, 1): rhs -r = f; constraint -u1 = g = 0.5 -> u1 = -0.5
         let mut du = vec![1.0, 0.0, 1.0];
         let mut dl = vec![0.5];
@@ -416,17 +438,49 @@ mod tests {
     }
 
     #[test]
+    fn unsymmetric_column_solves_k_du_plus_c_dlambda() {
+        // [K C^T; G 0]: G = (0, -1, 0), C = (-1, -1, 0); load (1, 0, 1),
+        // g = 0.5. Exact: u1 = -0.5, and K u + C^T l = f:
+        // 2 u0 + 0.5 - l = 1, -u0 - 1 - u2 - l = 0, 0.5 + 2 u2 = 1
+        // -> u2 = 0.25, u0 = (0.5 + l) / 2, -(0.5 + l) / 2 - 1.25 = l
+        // -> l = -1, u0 = -0.25
+        let (k, v) = chain();
+        let mut rows = ConstraintRows::default();
+        rows.push([(1, -1.0)]);
+        let mut columns = ConstraintRows::default();
+        columns.push([(0, -1.0), (1, -1.0)]);
+        let mut s = SaddleSolver::new(LagrangeFormulation::Single);
+        s.factorize(&k, &v, &rows, &columns).unwrap();
+        let mut du = vec![1.0, 0.0, 1.0];
+        let mut dl = vec![0.5];
+        s.solve(&mut du, &mut dl).unwrap();
+        let exact = [-0.25, -0.5, 0.25];
+        for i in 0..3 {
+            assert!((du[i] - exact[i]).abs() < 1e-14, "{du:?}");
+        }
+        assert!((dl[0] + 1.0).abs() < 1e-14, "{dl:?}");
+        let mut d = SaddleSolver::new(LagrangeFormulation::Doubled);
+        assert!(d.factorize(&k, &v, &rows, &columns).is_err());
+    }
+
+    #[test]
     fn symbolic_factorization_reused_while_the_constraint_set_is_unchanged() {
         let (k, v) = chain();
         let mut rows = ConstraintRows::default();
         rows.push([(0, -1.0), (2, 0.5)]);
         for form in [LagrangeFormulation::Single, LagrangeFormulation::Doubled] {
             let mut s = SaddleSolver::new(form);
-            s.factorize(&k, &v, &rows).unwrap();
+            s.factorize(&k, &v, &rows, &rows).unwrap();
             let v2: Vec<f64> = v.iter().map(|x| 2.0 * x).collect();
-            s.factorize(&k, &v2, &rows).unwrap();
+            s.factorize(&k, &v2, &rows, &rows).unwrap();
             assert_eq!((s.symbolic_count, s.numeric_count), (1, 2));
-            s.factorize(&k, &v2, &ConstraintRows::default()).unwrap();
+            s.factorize(
+                &k,
+                &v2,
+                &ConstraintRows::default(),
+                &ConstraintRows::default(),
+            )
+            .unwrap();
             assert_eq!(
                 (s.symbolic_count, s.numeric_count, s.constraints()),
                 (2, 3, 0)

@@ -861,7 +861,12 @@ where
         };
         self.zero_mode.1 = false;
         let start = Instant::now();
-        let r = saddle.factorize(&self.scatter.pattern, &self.values, &constraints.rows);
+        let r = saddle.factorize(
+            &self.scatter.pattern,
+            &self.values,
+            &constraints.rows,
+            &constraints.columns,
+        );
         let mid = Instant::now();
         self.timings.factorization += (mid - start).as_secs_f64();
         r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
@@ -1291,7 +1296,11 @@ where
             }
             // augmented Lagrangian, `update = newton`: lambda* updated inside
             // the loop while a penetration exceeds its tolerance
-            let updated = newton_update && self.contacts.newton_multiplier_update(model);
+            let mut updated = newton_update && self.contacts.newton_multiplier_update(model);
+            // mortar with Lagrange multipliers: the semi-smooth Newton active
+            // set, decided at every iterate; converged only on an unchanged
+            // set
+            updated |= self.contacts.semismooth_update(model);
             if updated {
                 self.inner_updates += 1;
                 converged = false;
