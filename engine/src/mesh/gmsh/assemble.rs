@@ -25,7 +25,7 @@ impl CellKey {
     fn of(pos: &[usize]) -> Self {
         let mut k = [usize::MAX; 9];
         k[..pos.len()].copy_from_slice(pos);
-        k.sort_unstable();
+        k[..pos.len()].sort_unstable();
         CellKey(k)
     }
 }
