@@ -1,5 +1,6 @@
 //! `ctc`: check, run, verify and benchmark `.ctc` contact decks.
 
+mod heap;
 mod petsc_run;
 mod progress;
 mod sweep;
@@ -215,6 +216,7 @@ fn main() -> ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
+    heap::keep_freed_memory();
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Check { deck, explain } => check(&deck, explain),

@@ -39,6 +39,7 @@ mod assemble;
 mod cursor;
 mod raw;
 mod solid;
+mod tags;
 mod v2;
 mod v41;
 

@@ -6,7 +6,7 @@
 
 use super::quality::polygon_area;
 use super::{Mesh, MeshError};
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// At most this many problems of one kind are listed individually.
 pub const MAX_REPORTED: usize = 20;
@@ -318,7 +318,9 @@ fn check_duplicates<const D: usize>(mesh: &Mesh<D>, errors: &mut Vec<MeshError>)
         std::array::from_fn(|k| ((p[k] - lo[k]) / tol).floor() as i64)
     };
     let neighbours = 3usize.pow(D as u32);
-    let mut grid: HashMap<[i64; D], Vec<usize>> = HashMap::new();
+    // lookups only (no iteration): the Fx hash cannot change the report
+    let mut grid: FxHashMap<[i64; D], Vec<usize>> = FxHashMap::default();
+    grid.reserve(finite.len());
     for &i in &finite {
         let p = &mesh.nodes[i];
         let k = key(p);

@@ -203,9 +203,54 @@ impl Arrays {
     }
 }
 
+/// Arrays at least this large (bytes) are remembered by [`compress_into`].
+const MEMO_MIN: usize = 1 << 16;
+
+/// Most arrays remembered by [`compress_into`] (per thread).
+const MEMO_ENTRIES: usize = 16;
+
+thread_local! {
+    /// The last large arrays compressed on this thread, raw and
+    /// compressed (header included), newest last.
+    static MEMO: std::cell::RefCell<std::collections::VecDeque<(Vec<u8>, Vec<u8>)>> =
+        const { std::cell::RefCell::new(std::collections::VecDeque::new()) };
+}
+
 /// Appends `raw` compressed in [`BLOCK`]-byte zlib blocks behind the
 /// `UInt64` header `[blocks, BLOCK, last block size, compressed sizes..]`.
+///
+/// A large array equal byte for byte to one of the last ones compressed on
+/// this thread (the coordinates, connectivity, offsets, cell types and
+/// bodies of every increment's file) takes the remembered bytes: the same
+/// output as compressing it again (zlib is a function of its input), at a
+/// comparison's cost (issue 20: the mesh arrays were half the output phase
+/// of the tutorial deck).
 fn compress_into(raw: &[u8], out: &mut Vec<u8>) {
+    if raw.len() < MEMO_MIN {
+        return compress_blocks(raw, out);
+    }
+    let hit = MEMO.with_borrow(|memo| {
+        memo.iter()
+            .find(|(r, _)| r[..] == raw[..])
+            .map(|(_, z)| out.extend_from_slice(z))
+            .is_some()
+    });
+    if hit {
+        return;
+    }
+    let start = out.len();
+    compress_blocks(raw, out);
+    let z = out[start..].to_vec();
+    MEMO.with_borrow_mut(|memo| {
+        if memo.len() == MEMO_ENTRIES {
+            memo.pop_front();
+        }
+        memo.push_back((raw.to_vec(), z));
+    });
+}
+
+/// [`compress_into`] without the memo.
+fn compress_blocks(raw: &[u8], out: &mut Vec<u8>) {
     let blocks: Vec<&[u8]> = raw.chunks(BLOCK).collect();
     let compressed: Vec<Vec<u8>> = blocks
         .iter()
@@ -271,6 +316,29 @@ mod tests {
                 "{enc:?}"
             );
         }
+    }
+
+    #[test]
+    fn a_remembered_array_gives_the_bytes_of_a_new_compression() {
+        let raw: Vec<u8> = (0..(3 * MEMO_MIN + 7))
+            .map(|i| (i * 7 % 253) as u8)
+            .collect();
+        let mut fresh = Vec::new();
+        compress_blocks(&raw, &mut fresh);
+        let (mut first, mut second) = (vec![1u8], vec![2u8, 3]);
+        compress_into(&raw, &mut first);
+        compress_into(&raw, &mut second);
+        assert_eq!(&first[1..], &fresh[..]);
+        assert_eq!(&second[2..], &fresh[..]);
+        // one byte changed: compressed again, not the remembered bytes
+        let mut other = raw.clone();
+        other[MEMO_MIN + 3] ^= 0xff;
+        let (mut memo, mut plain) = (Vec::new(), Vec::new());
+        compress_into(&other, &mut memo);
+        compress_blocks(&other, &mut plain);
+        assert_eq!(memo, plain);
+        assert_ne!(memo, fresh);
+        assert_eq!(super::super::vtu_read::decompress(&memo, 8).unwrap(), other);
     }
 
     #[test]

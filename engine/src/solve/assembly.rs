@@ -1011,7 +1011,11 @@ where
     // each cell's matrix alone: chunks of cells on the threads, their
     // matrices concatenated in cell order (the same array on any count)
     let matrices = |part: &[(&CellBlock, usize)]| -> Result<Vec<f64>, String> {
-        let mut k = Vec::new();
+        let entries = part
+            .iter()
+            .map(|&(_, c)| (D * mesh.cells.nodes(c).len()).pow(2))
+            .sum();
+        let mut k = Vec::with_capacity(entries);
         let mut out = ElementMatrix::<D>::default();
         for &(block, c) in part {
             let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
@@ -1062,7 +1066,9 @@ where
     } else {
         vec![matrices(&cells)]
     };
-    let mut k = Vec::new();
+    let mut results = results.into_iter();
+    // one part (one thread): its array as it is, not a copy
+    let mut k = results.next().transpose()?.unwrap_or_default();
     for r in results {
         k.extend_from_slice(&r?);
     }

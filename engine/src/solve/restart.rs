@@ -113,10 +113,24 @@ pub struct RestartFile<const D: usize = 2> {
 /// loads, steps): two decks that lower to the same model have the same
 /// fingerprint.
 pub fn fingerprint<const D: usize>(model: &Model<D>) -> u64 {
-    let text = format!("{model:?}");
-    text.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
-    })
+    use std::fmt::Write as _;
+    // the Debug text streamed into the hash (never held: megabytes for
+    // a large mesh)
+    let mut h = Fnv(0xcbf2_9ce4_8422_2325);
+    let _ = write!(h, "{model:?}");
+    h.0
+}
+
+/// FNV-1a over the text written into it ([`fingerprint`]).
+struct Fnv(u64);
+
+impl std::fmt::Write for Fnv {
+    fn write_str(&mut self, s: &str) -> std::fmt::Result {
+        self.0 = s.bytes().fold(self.0, |h, b| {
+            (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+        });
+        Ok(())
+    }
 }
 
 /// Little-endian encoder.

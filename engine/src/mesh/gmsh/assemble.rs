@@ -9,9 +9,26 @@
 //! node sets all three nodes.
 
 use super::raw::{ElementType, RawMesh};
+use super::tags::TagIndex;
 use crate::mesh::quality::polygon_area;
 use crate::mesh::{Cell, CellKind, Mesh, MeshError};
-use std::collections::{BTreeMap, HashMap, HashSet};
+use rustc_hash::{FxHashMap, FxHashSet};
+use std::collections::BTreeMap;
+
+/// The sorted nodes of a planar cell (at most 9, the quad9), the key of
+/// its duplicates (MSH 2 repeats an element once per physical group).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+struct CellKey([usize; 9]);
+
+impl CellKey {
+    /// The key of a cell with nodes `pos` (at most 9).
+    fn of(pos: &[usize]) -> Self {
+        let mut k = [usize::MAX; 9];
+        k[..pos.len()].copy_from_slice(pos);
+        k[..pos.len()].sort_unstable();
+        CellKey(k)
+    }
+}
 
 /// What one physical group collects.
 #[derive(Default)]
@@ -21,7 +38,7 @@ struct Group {
     /// Boundary edges, oriented with the body on the left, file order.
     edges: Vec<[usize; 2]>,
     /// Undirected keys of the edges already taken.
-    seen: HashSet<(usize, usize)>,
+    seen: FxHashSet<(usize, usize)>,
     /// Line of the first line element shared by two cells.
     interior_line: Option<usize>,
     /// Line of the first element of the group.
@@ -45,21 +62,9 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     }
 
     // node tag -> position in raw.nodes
-    let mut by_tag: HashMap<u64, usize> = HashMap::with_capacity(raw.nodes.len());
-    for (i, n) in raw.nodes.iter().enumerate() {
-        if let Some(&j) = by_tag.get(&n.tag) {
-            return Err(MeshError::at_line(
-                n.line,
-                format!(
-                    "node tag {} is defined twice (first at line {})",
-                    n.tag, raw.nodes[j].line
-                ),
-            ));
-        }
-        by_tag.insert(n.tag, i);
-    }
+    let by_tag = TagIndex::new(&raw.nodes)?;
     let position = |tag: u64, line: usize| -> Result<usize, MeshError> {
-        by_tag.get(&tag).copied().ok_or_else(|| {
+        by_tag.get(tag).ok_or_else(|| {
             MeshError::at_line(
                 line,
                 format!("the element refers to node tag {tag}, which is not in $Nodes"),
@@ -70,18 +75,14 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     // cells (raw node positions), deduplicated (MSH 2 repeats an element once
     // per physical group it belongs to)
     let mut cells: Vec<Vec<usize>> = Vec::new();
-    let mut cell_keys: HashSet<Vec<usize>> = HashSet::new();
+    let mut cell_keys: FxHashSet<CellKey> = FxHashSet::default();
     for e in &raw.elements {
-        let mut pos = Vec::with_capacity(4);
+        let mut pos = Vec::with_capacity(e.kind.nodes());
         for &t in &e.nodes[..e.kind.nodes()] {
             pos.push(position(t, e.line)?);
         }
-        if e.kind.dim() == 2 {
-            let mut key = pos.clone();
-            key.sort_unstable();
-            if cell_keys.insert(key) {
-                cells.push(pos);
-            }
+        if e.kind.dim() == 2 && cell_keys.insert(CellKey::of(&pos)) {
+            cells.push(pos);
         }
     }
     if cells.is_empty() {
@@ -128,7 +129,8 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
     }
 
     // every cell edge: undirected key -> (count, direction in its first cell)
-    let mut edges: HashMap<(usize, usize), (usize, [usize; 2])> = HashMap::new();
+    let mut edges: FxHashMap<(usize, usize), (usize, [usize; 2])> = FxHashMap::default();
+    edges.reserve(2 * mesh.cells.len() + mesh.nodes.len());
     for c in &mesh.cells {
         let n = c.nodes;
         let corners = c.kind.corner_count();
@@ -147,8 +149,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh, MeshError> {
         let dim = e.kind.dim();
         let nodes: Vec<usize> = e.nodes[..e.kind.nodes()]
             .iter()
-            .map(|&t| by_tag[&t])
-            .map(|p| new_of[p])
+            .map(|&t| by_tag.get(t).and_then(|p| new_of[p]))
             .collect::<Option<Vec<usize>>>()
             .ok_or_else(|| {
                 MeshError::at_line(

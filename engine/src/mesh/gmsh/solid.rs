@@ -4,6 +4,7 @@
 //! (and points, lines) as node sets.
 
 use super::raw::{ElementType, RawMesh};
+use super::tags::TagIndex;
 use crate::mesh::{Cell, CellKind, Facet, Mesh, MeshError};
 use std::collections::{BTreeMap, BTreeSet, HashMap, HashSet};
 
@@ -62,24 +63,12 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh<3>, MeshError> {
             "the file has no $Elements section",
         ));
     }
-    let mut by_tag: HashMap<u64, usize> = HashMap::with_capacity(raw.nodes.len());
-    for (i, n) in raw.nodes.iter().enumerate() {
-        if let Some(&j) = by_tag.get(&n.tag) {
-            return Err(MeshError::at_line(
-                n.line,
-                format!(
-                    "node tag {} is defined twice (first at line {})",
-                    n.tag, raw.nodes[j].line
-                ),
-            ));
-        }
-        by_tag.insert(n.tag, i);
-    }
+    let by_tag = TagIndex::new(&raw.nodes)?;
     let mut positions: Vec<Vec<usize>> = Vec::with_capacity(raw.elements.len());
     for e in &raw.elements {
         let mut pos = Vec::with_capacity(e.kind.nodes());
         for &t in &e.nodes[..e.kind.nodes()] {
-            pos.push(*by_tag.get(&t).ok_or_else(|| {
+            pos.push(by_tag.get(t).ok_or_else(|| {
                 MeshError::at_line(
                     e.line,
                     format!("the element refers to node tag {t}, which is not in $Nodes"),

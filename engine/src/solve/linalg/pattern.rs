@@ -172,9 +172,30 @@ impl Scatter {
                 .filter(|&s| s != NO_SLOT)
                 .ok_or_else(|| "the model is too large (more than 4e9 matrix entries)".into())
         };
+        // the free-free slots of a cell without a search per entry: the
+        // column of a free dof of node `b` lists the free dofs of `adj[b]`
+        // in order, so the entry of node `a`'s free dof `i` sits at
+        // `col_ptr[col] + before[b][position of a in adj[b]] + (free dofs
+        // of a below i)`: one search per node pair (the slots of
+        // `pattern.find`, tested)
+        let free = |g: usize| matches!(dofs.dofs[g], Dof::Free(_));
+        let before: Vec<Vec<u32>> = adj
+            .iter()
+            .map(|a| {
+                let mut k = 0u32;
+                let mut out = Vec::with_capacity(a.len());
+                for &m in a {
+                    out.push(k);
+                    k += (0..D).filter(|&c| free(D * m as usize + c)).count() as u32;
+                }
+                out
+            })
+            .collect();
+        let below = |g: usize| (g - g % D..g).filter(|&h| free(h)).count();
         let mut cell_offset = Vec::with_capacity(mesh.cells.len() + 1);
         cell_offset.push(0);
         let mut slots = Vec::new();
+        let mut at = Vec::new();
         for (ci, c) in mesh.cells.iter().enumerate() {
             if !owns_cell(ci) {
                 cell_offset.push(slots.len());
@@ -182,9 +203,37 @@ impl Scatter {
             }
             let ns = c.nodes;
             let nd = D * ns.len();
+            // position of each row node in each column node's adjacency
+            at.clear();
+            for &b in ns {
+                for &a in ns {
+                    at.push(
+                        before[b][adj[b]
+                            .binary_search(&(a as u32))
+                            .map_err(|_| "internal error: a cell's node pair is not adjacent")?],
+                    );
+                }
+            }
             for j in 0..nd {
+                let gb = D * ns[j / D] + j % D;
                 for i in 0..nd {
-                    slots.push(slot_of(D * ns[i / D] + i % D, D * ns[j / D] + j % D)?);
+                    let ga = D * ns[i / D] + i % D;
+                    let slot = match (dofs.dofs[ga], dofs.dofs[gb]) {
+                        (Dof::Free(_), Dof::Free(col)) => {
+                            let k = pattern.col_ptr[col]
+                                + at[(j / D) * ns.len() + i / D] as usize
+                                + below(ga);
+                            u32::try_from(k)
+                                .ok()
+                                .filter(|&s| s != NO_SLOT)
+                                .ok_or_else(|| {
+                                    "the model is too large (more than 4e9 matrix entries)"
+                                        .to_string()
+                                })?
+                        }
+                        _ => slot_of(ga, gb)?,
+                    };
+                    slots.push(slot);
                 }
             }
             cell_offset.push(slots.len());
@@ -362,6 +411,35 @@ mod tests {
             .fix([0], 0)
             .fix([0], 1)
             .build()
+    }
+
+    #[test]
+    fn cell_slots_are_the_patterns_entries_with_partly_held_nodes() {
+        // node 0 held in x only, node 5 in y only: free and prescribed
+        // dofs mixed inside a node
+        let m = crate::testkit::ModelBuilder::plane_strain()
+            .mesh(model().mesh.clone())
+            .fix([0], 0)
+            .fix([5], 1)
+            .build();
+        let d = DofMap::new(&m);
+        let s = Scatter::new(&m.mesh, &d).unwrap();
+        let mut checked = 0;
+        for c in 0..m.mesh.cells.len() {
+            let ns = m.mesh.cells.nodes(c);
+            let nd = 2 * ns.len();
+            for j in 0..nd {
+                for i in 0..nd {
+                    let slot = s.slots[s.cell_offset[c] + i + j * nd];
+                    let (ga, gb) = (2 * ns[i / 2] + i % 2, 2 * ns[j / 2] + j % 2);
+                    if let (Dof::Free(r), Dof::Free(col)) = (d.dofs[ga], d.dofs[gb]) {
+                        assert_eq!(Some(slot as usize), s.pattern.find(r, col), "{c} {i} {j}");
+                        checked += 1;
+                    }
+                }
+            }
+        }
+        assert_eq!(checked, 2 * 49);
     }
 
     #[test]
