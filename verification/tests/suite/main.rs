@@ -18,6 +18,7 @@ mod friction_ntf_3d;
 mod johnson_cook;
 mod methods;
 mod mortar_quadratic;
+mod mortar_quadratic_3d;
 mod objectivity;
 mod penalty_scaling;
 mod quadratic;

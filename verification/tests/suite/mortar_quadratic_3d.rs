@@ -1,0 +1,168 @@
+//! 3D mortar contact on quadratic faces (issues 23 and 18; Puso, Laursen &
+//! Solberg, CMAME 197 (2008) 555): the contact patch test of `ctc verify
+//! contact_patch_mortar_quadratic_3d` (Taylor & Papadopoulos, IJNME 31
+//! (1991) 2205, in 3D; prints the table with
+//! `cargo test -p ctc-verification --test suite mortar_quadratic_3d:: -- --nocapture`),
+//! the assembled pair's tangent against central differences of its forces
+//! with the pair's force and moment balance, and the Hertz case's coarse
+//! level.
+//!
+//! ```text
+//!   top  2x2 hex20 (or tet10) cells across, top face pushed down by 0.01
+//!   ---- slave top.zmin (quad8 / tri6 faces) / master base.zmax (3x3 quad8) ----
+//!   base 3x3 hex20 cells across, bottom on rollers
+//! ```
+
+use ctc_engine::contact::surface::{evaluate_pair, SurfacePair};
+use ctc_engine::contact::ContactStatus;
+use ctc_engine::model::{AnyModel, Model};
+use ctc_verification::programs::contact_ntf_3d::run_patch_deck;
+use ctc_verification::programs::mortar_quadratic_3d::{patch_deck, PATCH};
+use ctc_verification::registry;
+
+#[test]
+fn contact_patch_mortar_quadratic_3d_passes() {
+    let report = registry::run_passing("contact_patch_mortar_quadratic_3d");
+    assert_eq!(report.levels.len(), 1);
+}
+
+#[test]
+fn table_of_the_quadratic_patch_runs() {
+    println!(
+        "| top | base | method | max |p - p_mean| / p_mean | F / F_exact - 1 | closed | Newton |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- | --- |");
+    for &(_, _, cell, top, base, method, _) in PATCH {
+        let text = patch_deck(cell, top, base, method).expect("deck");
+        let (o, _) = run_patch_deck(text, method).expect("run");
+        let m = method.split_whitespace().next().unwrap_or("");
+        println!(
+            "| {cell} order 2 {top}x{top} | hex20 {base}x{base} | {m} | {:.2e} | {:.2e} | {} | {} |",
+            o.uniformity,
+            o.force / o.exact - 1.0,
+            o.closed,
+            o.iterations
+        );
+        assert!(o.uniformity <= 1e-8, "{cell} {m}: {}", o.uniformity);
+    }
+}
+
+fn model(cell: &str) -> Model<3> {
+    let text = patch_deck(cell, 2, 3, "penalty { kind = area  stiffness = 1e3 }").expect("deck");
+    let src = ctc_lang::Source::new(std::path::Path::new("mortar_quadratic_3d.ctc"), &text);
+    match ctc_lang::compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("the patch deck is not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    }
+}
+
+/// The pair's forces at `x`, the tangent applied to `v` (`K v`), and the
+/// closed nodes.
+fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
+    let mut state = SurfacePair::new(model, 0);
+    let (res, _) = evaluate_pair(model, 0, x, 0.0, &mut state);
+    let closed = res
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .count();
+    let mut f = vec![0.0; 3 * x.len()];
+    let mut kv = vec![0.0; 3 * x.len()];
+    for c in &state.deformable.expect("a deformable pair").couplings {
+        let nd = 3 * c.nodes.len();
+        for r in 0..nd {
+            let gr = 3 * c.nodes[r / 3] + r % 3;
+            f[gr] += c.force[r];
+            for col in 0..nd {
+                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
+            }
+        }
+    }
+    (f, kv, closed)
+}
+
+#[test]
+fn quadratic_mortar_pair_tangent_matches_finite_differences_and_balances() {
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for cell in ["hex8", "tet4"] {
+        let model = model(cell);
+        let top = model.bodies[1].nodes.start;
+        // jittered (a flat interface puts master vertices on slave edges,
+        // a kink of the segmentation that central differences straddle)
+        // and bent: the top block's bottom bulges down by up to 0.01
+        let depth = 0.01 + 0.005 * rnd().abs();
+        let x: Vec<[f64; 3]> = model
+            .mesh
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let bulge = 0.01 * (1.0 - (p[0] - 0.5).powi(2) - (p[1] - 0.5).powi(2));
+                let dz = if k >= top { -depth - bulge } else { 0.0 };
+                [
+                    p[0] + 0.01 * rnd(),
+                    p[1] + 0.01 * rnd(),
+                    p[2] + dz + 0.002 * rnd(),
+                ]
+            })
+            .collect();
+        let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
+        let (f, kv, closed) = forces(&model, &x, &v);
+        assert!(closed > 0);
+        // force and moment balance of the pair's forces
+        let (mut sum, mut moment, mut scale) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
+        for (k, p) in x.iter().enumerate() {
+            let fk = [f[3 * k], f[3 * k + 1], f[3 * k + 2]];
+            scale = scale.max(fk.iter().fold(0.0f64, |a, b| a.max(b.abs())));
+            for c in 0..3 {
+                sum[c] += fk[c];
+            }
+            moment[0] += p[1] * fk[2] - p[2] * fk[1];
+            moment[1] += p[2] * fk[0] - p[0] * fk[2];
+            moment[2] += p[0] * fk[1] - p[1] * fk[0];
+        }
+        let imbalance = sum
+            .iter()
+            .chain(&moment)
+            .fold(0.0f64, |a, b| a.max(b.abs()))
+            / scale;
+        // the tangent along v against central differences
+        let h = 1e-7;
+        let shift = |sign: f64| -> Vec<[f64; 3]> {
+            x.iter()
+                .zip(&v)
+                .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
+                .collect()
+        };
+        let (fp, _, cp) = forces(&model, &shift(1.0), &v);
+        let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
+        assert!(cp == closed && cm == closed);
+        let kscale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+        let e = (0..kv.len())
+            .map(|k| (-(fp[k] - fm[k]) / (2.0 * h) - kv[k]).abs() / kscale)
+            .fold(0.0, f64::max);
+        println!(
+            "{cell} order 2: {closed} closed, max |K v - FD| / max |K v| = {e:.2e}, \
+             force / moment imbalance {imbalance:.1e}"
+        );
+        assert!(e <= 1e-5, "{cell}: {e}");
+        assert!(imbalance <= 1e-10, "{cell}: {imbalance}");
+    }
+}
+
+#[test]
+fn hertz_sphere_block_mortar_quadratic_3d_passes() {
+    let report = registry::run_passing("hertz_sphere_block_mortar_quadratic_3d");
+    for v in &report.levels[0].values {
+        println!(
+            "{:?}: {:.4e} vs {:?}: {:.2e}",
+            v.quantity, v.computed, v.reference, v.error
+        );
+    }
+}
