@@ -59,7 +59,7 @@ impl Lowerer<'_> {
             // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
             // whose Lagrange multipliers the mortar validation refuses)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
-            let Some(mortar) = mortar else {
+            if mortar.is_none() {
                 return refusal(
                     side.span,
                     format!(
@@ -71,7 +71,7 @@ impl Lowerer<'_> {
                     "add `formulation = mortar` (mortar integrates the gap over the quadratic \
                      faces), or mesh the pair with linear cells",
                 );
-            };
+            }
             if sides.len() == 1 {
                 return refusal(
                     side.span,

@@ -186,10 +186,10 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
 }
 
 /// Levels of the Hertz case: sphere `(radial, tangential)` cells and
-/// block cells across (one layer), all quadratic. Level 1 has the dofs of
-/// the linear `hertz_sphere_block_mortar_3d` (radial 3, tangential 16,
-/// block 8 x 8 x 2).
-pub const HERTZ_LEVELS: [(usize, usize, usize); 3] = [(1, 4, 2), (2, 8, 4), (2, 16, 8)];
+/// block cells across (one layer), all quadratic. Level 1 has about the
+/// dofs of the linear `hertz_sphere_block_mortar_3d` (radial 3, tangential
+/// 16, block 8 x 8 x 2: 10,002 free dofs).
+pub const HERTZ_LEVELS: [(usize, usize, usize); 3] = [(1, 4, 2), (2, 12, 6), (3, 16, 8)];
 
 /// Approach of the Hertz decks.
 const HERTZ_D: f64 = 0.01;

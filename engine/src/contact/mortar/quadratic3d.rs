@@ -13,9 +13,9 @@
 //! centre `x(0, 0)` (a quad9's centre node), each halved). Per slave
 //! sub-triangle its plane (centre, unit normal `n_S`, basis `t_1`, `t_2`);
 //! every master sub-triangle facing it is projected on that plane and
-//! clipped by it (Sutherland-Hodgman, [`super::facets`]), the clip polygon
-//! cut into triangles from its vertex average, Dunavant's 6-point degree-4
-//! rule on each. A point `p` of the plane lies in the projected slave
+//! clipped by it (Sutherland-Hodgman, [`super::facets`]), the (convex) clip
+//! polygon cut into a fan of triangles from its first vertex, Dunavant's
+//! 6-point degree-4 rule on each. A point `p` of the plane lies in the projected slave
 //! sub-triangle at barycentric `lambda`: its slave parameters are `xi =
 //! sum lambda_i xi_i` (the sub-triangle's corners in the parent domain: the
 //! sub-triangles partition the parent domain exactly, so the integrals are
@@ -542,16 +542,11 @@ fn integrate<const N: usize>(
                 continue;
             }
             out.overlap += area;
-            let k = 1.0 / poly.len() as f64;
-            let centre: P2<N> = std::array::from_fn(|c| {
-                let mut s = z;
-                for p in &poly {
-                    s += p[c];
-                }
-                s * k
-            });
-            for i in 0..poly.len() {
-                let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
+            // the clip polygon is convex: a fan from its first vertex (n - 2
+            // triangles, against n from its centre)
+            let centre = poly[0];
+            for i in 1..poly.len() - 1 {
+                let (a, b) = (poly[i], poly[i + 1]);
                 let at = cross2(sub2(a, centre), sub2(b, centre)) * 0.5;
                 for (l, w) in RULE {
                     let p: P2<N> =
