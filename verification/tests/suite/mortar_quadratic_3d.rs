@@ -184,3 +184,34 @@ fn hertz_quadratic_level() {
         );
     }
 }
+
+/// The catalogue snapshot's lines of this file's cases
+/// (`cases_coarse::verification_catalogue_on_default_levels`), to splice
+/// into its snapshot (`cargo test -p ctc-verification --test suite
+/// catalogue_lines -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn catalogue_lines() {
+    use crate::fenicsx_snapshots::{err2, sig4};
+    for name in [
+        "contact_patch_mortar_quadratic_3d",
+        "hertz_sphere_block_mortar_quadratic_3d",
+    ] {
+        let case = registry::find(name).expect("registered");
+        let c = registry::run_default(&case, &mut |l| eprintln!("{l}"));
+        let l = &c.levels[0];
+        println!(
+            "SNAP {} level {}: {} nodes, {} free dofs, {} increments, {} Newton iterations, {} cutbacks",
+            c.name, l.level, l.nodes, l.free_dofs, l.increments, l.newton_total, l.cutbacks
+        );
+        for v in &l.values {
+            println!(
+                "SNAP   {:?}: computed {} reference {} error {}",
+                v.quantity,
+                sig4(v.computed),
+                v.reference.map_or("-".into(), sig4),
+                err2(v.error)
+            );
+        }
+    }
+}

@@ -574,10 +574,10 @@ fn integrate<const N: usize>(
                     out.gap_range = [out.gap_range[0].min(g.v), out.gap_range[1].max(g.v)];
                     let jw = at * w * jac * ratio;
                     let nt = modified(ns, &n_sh);
-                    for j in 0..ns {
+                    for (j, cj) in coef.iter().enumerate().take(ns) {
                         let mut psi = z;
                         for q in 0..ns {
-                            psi += coef[j][q] * nt[q];
+                            psi += cj[q] * nt[q];
                         }
                         let pw = psi * jw;
                         out.area[j] += pw;
@@ -771,9 +771,9 @@ mod tests {
             // N~_j, g~_j = 0.05 A_j, each row's forces in balance
             let m = master(nn, -0.7, -0.6, 3.0, 0.3, 0.05, 0.0);
             let seg = face_pair(&s, &m).unwrap();
-            for j in 0..nn {
-                assert!((seg.area[j].v - w[j]).abs() < 1e-13, "{nn} {j}");
-                assert!((seg.gap[j].v - 0.05 * w[j]).abs() < 1e-14, "{nn} {j}");
+            for (j, wj) in w.iter().enumerate() {
+                assert!((seg.area[j].v - wj).abs() < 1e-13, "{nn} {j}");
+                assert!((seg.gap[j].v - 0.05 * wj).abs() < 1e-14, "{nn} {j}");
                 for c in 0..3 {
                     let sum: f64 = seg.b[j].iter().map(|b| b[c].v).sum();
                     assert!(sum.abs() < 1e-14, "{nn} {j} {c}: {sum:e}");
