@@ -149,19 +149,19 @@ pub fn cases() -> Vec<VerifyCase> {
             ],
             levels: 1,
             checks: vec![
-                // guards of the measured figures (see `hertz_level`: the
-                // quadratic mortar is too stiff on these curved meshes)
+                // measured (see `hertz_level`) times about 1.3; level 2
+                // not measured yet: level 1's
                 Check::new(
                     Quantity::Named("P stiff block mortar vs rigid plane"),
-                    &[0.3, 0.6, 0.6],
+                    &[0.3, 0.06, 0.06],
                 ),
                 Check::new(
                     Quantity::Named("P equal block mortar vs Hertz(E*)"),
-                    &[0.8, 0.8, 0.8],
+                    &[0.8, 0.3, 0.3],
                 ),
                 Check::new(
                     Quantity::Named("p0 equal block mortar vs Hertz(E*)"),
-                    &[0.25, 0.25, 0.25],
+                    &[0.25, 0.2, 0.2],
                 ),
             ],
             kind: CaseKind::Program(ProgramCase {
@@ -303,11 +303,16 @@ impl Observer<3> for Probe {
 /// 1,174 free dofs, 74 s debug): rigid plane 0.3828 (Hertz 0.3663: +4.5
 /// %), stiff block 0.4735 (+24 % over the rigid plane), equal block 0.3004
 /// (Hertz 0.1832: +64 %), its peak pressure 28.46 (Hertz 34.98: -19 %).
-/// The quadratic mortar is too stiff on these curved coarse meshes (the
-/// contact radius `a = 0.1` spans half a face at level 0; the linear
-/// mortar at level 0 of `hertz_sphere_block_mortar_3d`, 10,002 free dofs,
-/// is within 1.1e-3 of its rigid plane): the tolerances are guards of the
-/// measured figures, not a verification; see the issue's NOT-done list.
+/// Level 1 (`cargo test -p ctc-verification --test suite
+/// hertz_quadratic_level -- --ignored --nocapture`, 4,506 free dofs, 14
+/// min debug on the loaded machine): rigid plane 0.3959 (+8.1 % over
+/// Hertz), stiff block 0.3789 (-4.3 % from the rigid plane), equal block
+/// 0.2242 (+22 % over Hertz; the linear mortar at 10,002 free dofs: +14.9
+/// %), its peak pressure 40.08 (+14.6 %). The quadratic mortar is too
+/// stiff on the coarsest curved mesh (the contact radius `a = 0.1` spans
+/// half a face at level 0) and within 4.3 % of the rigid plane at level 1
+/// (the linear mortar at 10,002 free dofs: 1.1e-3): level 2 (2, 12, 6),
+/// about the linear case's dofs, is not measured yet.
 ///
 /// ```text
 ///            u_z = -d  (block top; or a rigid plane at z = 1)
