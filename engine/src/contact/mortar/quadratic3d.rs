@@ -835,9 +835,9 @@ mod tests {
                 &(0..ns).collect::<Vec<_>>(),
             );
             let (mut worst, mut coverage) = (0.0f64, 0.0f64);
-            for j in 0..ns {
+            for (j, wj) in w.iter().enumerate() {
                 worst = worst.max((seg.gap[j].v / seg.area[j].v - g).abs() / g);
-                coverage = coverage.max((seg.area[j].v / w[j] - 1.0).abs());
+                coverage = coverage.max((seg.area[j].v / wj - 1.0).abs());
             }
             println!(
                 "slave {ns}, master {nm}: nodal gap vs g: {worst:.2e}, A_j / T_j - 1: {coverage:.1e}"
