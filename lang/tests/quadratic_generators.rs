@@ -255,3 +255,61 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
         assert!(out.contains(expected), "{out}");
     }
 }
+
+/// Two deformable blocks of hex20 cells in contact (issues 23 and 18): 3D
+/// mortar on quad8 faces lowers (every face node is a contact node); node-
+/// to-facet, one linear side, friction and Lagrange multipliers are refused
+/// with a located error.
+#[test]
+fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
+    let deck = |top_order: usize, method: &str, contact_extra: &str| {
+        format!(
+            "analysis {{ dimension = 3d }}\n\
+             material m {{ elastic {{ E = 1000  nu = 0.3 }} }}\n\
+             body base {{\n  mesh = box {{ size = (1, 1, 0.5)  divisions = (3, 3, 1)  order = 2 }}\n  material = m\n}}\n\
+             body top {{\n  mesh = box {{ origin = (0, 0, 0.5)  size = (1, 1, 0.5)  divisions = (2, 2, 1)  order = {top_order} }}\n  material = m\n}}\n\
+             contact top.zmin -> base.zmax {{\n  method = {method}\n  {contact_extra}\n}}\n\
+             fix base.zmin {{ uz }}\nfix base.xmin {{ ux }}\nfix base.ymin {{ uy }}\n\
+             fix top.xmin {{ ux }}\nfix top.ymin {{ uy }}\n\
+             displace top.zmax {{ uz = ramp(0, -0.01) }}\n\
+             step s {{ time = 0 .. 1  increments = 1 }}\n"
+        )
+    };
+    let penalty = "penalty { kind = area  stiffness = 1e6 }";
+    let src = Source::new("pair3d.ctc", deck(2, penalty, "formulation = mortar"));
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    // 2 x 2 quad8 faces: 9 corners and 12 midside nodes
+    assert_eq!(m.contacts[0].nodes.len(), 21);
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    for (order, method, extra, expected) in [
+        (2, penalty, "", "formulation = mortar"),
+        (
+            1,
+            penalty,
+            "formulation = mortar",
+            "needs both surfaces quadratic",
+        ),
+        (
+            2,
+            penalty,
+            "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
+            "friction with mortar contact on quadratic faces",
+        ),
+        (
+            2,
+            "lagrange { }",
+            "formulation = mortar",
+            "lagrange multipliers",
+        ),
+    ] {
+        let src = Source::new("pair3d.ctc", deck(order, method, extra));
+        let out = check(&src).diagnostics.render(&src);
+        println!("{out}");
+        assert!(out.to_lowercase().contains(expected), "{out}");
+        assert!(out.contains("pair3d.ctc:"), "located: {out}");
+    }
+}

@@ -401,11 +401,31 @@ pub struct FacetSurface {
 impl FacetSurface {
     /// The surface of `faces` (3- and 4-node facets; others are ignored).
     pub fn new(faces: &[Facet]) -> Self {
-        let faces: Vec<Facet> = faces
-            .iter()
-            .copied()
-            .filter(|f| matches!(f.nodes().len(), 3 | 4))
-            .collect();
+        Self::of(
+            faces
+                .iter()
+                .copied()
+                .filter(|f| matches!(f.nodes().len(), 3 | 4))
+                .collect(),
+        )
+    }
+
+    /// The surface of the quadratic faces of `faces` (tri6, quad8, quad9;
+    /// others are ignored), for 3D mortar on quadratic faces
+    /// ([`super::mortar::quadratic3d`]): its faces, neighbours and broad
+    /// phase (the rim, read by node-to-facet only, joins consecutive nodes
+    /// of the node lists and has no meaning here).
+    pub fn quadratic(faces: &[Facet]) -> Self {
+        Self::of(
+            faces
+                .iter()
+                .copied()
+                .filter(|f| super::mortar::quadratic3d::is_quadratic_face(f.nodes().len()))
+                .collect(),
+        )
+    }
+
+    fn of(faces: Vec<Facet>) -> Self {
         // sorted (node, facet) lists: deterministic, no hash map
         let mut by_node: Vec<(usize, usize)> = faces
             .iter()
@@ -937,6 +957,11 @@ pub fn slave_nodes(model: &Model<3>, pair: usize) -> Vec<usize> {
 /// penalty gap is `p / k`).
 pub fn areas(model: &Model<3>, pair: usize, slaves: &[usize]) -> Vec<f64> {
     let cp = &model.contacts[pair];
+    if quadratic_mortar(model, pair) {
+        // the positive weights `int N~_j dA` of the quadratic mortar rows
+        let faces: Vec<&[usize]> = cp.faces.iter().map(|f| f.nodes()).collect();
+        return super::mortar::quadratic3d::supports(&model.mesh.nodes, &faces, slaves);
+    }
     let mut area = tributary_areas(&model.mesh, &cp.faces, slaves);
     if is_self_contact(model, pair) {
         for a in &mut area {
@@ -1032,6 +1057,20 @@ fn facing(
     });
 }
 
+/// Whether 3D pair `pair` is mortar between quadratic faces (its slave
+/// faces have midside nodes: [`super::mortar::quadratic3d`]; the
+/// validation refuses one side linear).
+pub fn quadratic_mortar(model: &Model<3>, pair: usize) -> bool {
+    model.contacts.get(pair).is_some_and(|cp| {
+        cp.formulation == crate::model::ContactFormulation::Mortar
+            && matches!(cp.master, ContactMaster::Surface { .. })
+            && cp
+                .faces
+                .first()
+                .is_some_and(|f| super::mortar::quadratic3d::is_quadratic_face(f.nodes().len()))
+    })
+}
+
 /// Prepares a 3D pair; `None` if the master is a rigid tool.
 pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<DeformablePair> {
     let cp = model.contacts.get(pair)?;
@@ -1055,7 +1094,14 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<Deform
     let self_contact = is_self_contact(model, pair);
     let mortar_friction =
         cp.formulation == crate::model::ContactFormulation::Mortar && cp.friction.is_some();
-    let sides = [FacetSurface::new(&cp.faces), FacetSurface::new(faces)];
+    let sides = if quadratic_mortar(model, pair) {
+        [
+            FacetSurface::quadratic(&cp.faces),
+            FacetSurface::quadratic(faces),
+        ]
+    } else {
+        [FacetSurface::new(&cp.faces), FacetSurface::new(faces)]
+    };
     let excluded = if self_contact {
         slaves
             .iter()

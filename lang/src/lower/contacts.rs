@@ -53,11 +53,13 @@ impl Lowerer<'_> {
                 .formulation
                 .as_ref()
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
-            // 2D mortar on seg3 faces: both sides quadratic, frictionless,
-            // area penalty / augmented Lagrangian / Lagrange multipliers
-            // (`ctc_engine::contact::mortar::seg3`)
+            // mortar on quadratic faces: both sides quadratic, frictionless,
+            // area penalty / augmented Lagrangian (2D seg3 also Lagrange
+            // multipliers: `ctc_engine::contact::mortar::seg3`; 3D tri6 /
+            // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
+            // whose Lagrange multipliers the mortar validation refuses)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
-            let Some(mortar) = mortar else {
+            if mortar.is_none() {
                 return refusal(
                     side.span,
                     format!(
@@ -68,16 +70,6 @@ impl Lowerer<'_> {
                     "this surface has midside nodes",
                     "add `formulation = mortar` (mortar integrates the gap over the quadratic \
                      faces), or mesh the pair with linear cells",
-                );
-            };
-            if self.solid {
-                return refusal(
-                    mortar.span,
-                    "mortar contact between deformable bodies on quadratic faces is planar only"
-                        .into(),
-                    "3D quadratic faces",
-                    "mesh 3D deformable contact pairs with linear cells (rigid tools accept \
-                     quadratic faces)",
                 );
             }
             if sides.len() == 1 {

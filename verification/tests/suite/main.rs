@@ -19,6 +19,7 @@ mod johnson_cook;
 mod methods;
 mod mortar_lagrange;
 mod mortar_quadratic;
+mod mortar_quadratic_3d;
 mod objectivity;
 mod penalty_scaling;
 mod quadratic;

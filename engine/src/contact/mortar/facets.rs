@@ -62,7 +62,7 @@ pub const MIN_FACING: f64 = 1e-6;
 
 /// Smallest clip-polygon area, as a fraction of the slave facet's
 /// projected area, integrated.
-const MIN_OVERLAP: f64 = 1e-12;
+pub(super) const MIN_OVERLAP: f64 = 1e-12;
 
 /// Distance from a clipping edge's line, as a fraction of the edge's
 /// length, within which a vertex counts as on the line (inside).
@@ -73,7 +73,7 @@ const MAX_INVERSE_ITERATIONS: usize = 30;
 
 /// Dunavant's degree-4 rule on a triangle: barycentric points and weights
 /// (summing to 1).
-const RULE: [([f64; 3], f64); 6] = {
+pub(super) const RULE: [([f64; 3], f64); 6] = {
     const A: f64 = 0.445_948_490_915_965;
     const WA: f64 = 0.223_381_589_678_011;
     const B: f64 = 0.091_576_213_509_771;
@@ -123,16 +123,16 @@ fn var<const N: usize>(p: [f64; 3], base: usize) -> P3<N> {
     })
 }
 
-fn cross2<const N: usize>(a: P2<N>, b: P2<N>) -> Ad<N> {
+pub(super) fn cross2<const N: usize>(a: P2<N>, b: P2<N>) -> Ad<N> {
     a[0] * b[1] - a[1] * b[0]
 }
 
-fn sub2<const N: usize>(a: P2<N>, b: P2<N>) -> P2<N> {
+pub(super) fn sub2<const N: usize>(a: P2<N>, b: P2<N>) -> P2<N> {
     [a[0] - b[0], a[1] - b[1]]
 }
 
 /// Twice the signed area of a polygon (counter-clockwise positive).
-fn twice_area<const N: usize>(poly: &[P2<N>]) -> Ad<N> {
+pub(super) fn twice_area<const N: usize>(poly: &[P2<N>]) -> Ad<N> {
     let mut s = Ad::cst(0.0);
     for k in 0..poly.len() {
         s += cross2(poly[k], poly[(k + 1) % poly.len()]);
@@ -142,7 +142,7 @@ fn twice_area<const N: usize>(poly: &[P2<N>]) -> Ad<N> {
 
 /// Sutherland-Hodgman: `subject` clipped by the convex counter-clockwise
 /// polygon `clipper`.
-fn clip<const N: usize>(subject: Vec<P2<N>>, clipper: &[P2<N>]) -> Vec<P2<N>> {
+pub(super) fn clip<const N: usize>(subject: Vec<P2<N>>, clipper: &[P2<N>]) -> Vec<P2<N>> {
     let mut out = subject;
     for i in 0..clipper.len() {
         let (a, b) = (clipper[i], clipper[(i + 1) % clipper.len()]);

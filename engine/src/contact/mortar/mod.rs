@@ -41,6 +41,7 @@ pub mod facets;
 pub mod friction;
 pub mod friction3d;
 pub mod integrals;
+pub mod quadratic3d;
 pub mod seg3;
 
 use super::surface::SurfacePair;
@@ -1046,6 +1047,15 @@ pub fn evaluate_3d(
     };
     state.evaluations += 1;
     let prof = state.prof;
+    if fp.sides[0]
+        .faces
+        .first()
+        .is_some_and(|f| quadratic3d::is_quadratic_face(f.nodes().len()))
+    {
+        evaluate_3d_quadratic(cp, &mut fp, x, state, &mut out);
+        state.deformable = Some(fp);
+        return out;
+    }
     let law = cp.friction.as_ref();
     if law.is_some() {
         state.friction.incremental = true;
@@ -1173,6 +1183,163 @@ pub fn evaluate_3d(
     state.counters.faces_tested += fp.tests as u64;
     state.deformable = Some(fp);
     out
+}
+
+/// One quadratic face pair of a 3D mortar pair ([`quadratic3d`]).
+struct QuadPiece {
+    /// Global node of each group of 3 variables: the slave face's nodes
+    /// at `0..ns`, the master face's at `MAX_NODES + l` ([`UNUSED`]
+    /// elsewhere).
+    vars: [usize; 2 * quadratic3d::MAX_NODES],
+    /// Master face index.
+    master: usize,
+    /// The integrals.
+    seg: quadratic3d::QuadSegment,
+}
+
+/// The quadratic face pairs of every slave node of a 3D mortar pair on
+/// quadratic faces (as [`facet_pieces`]: per slave face the master faces of
+/// the broad phase within the face's radius plus `prof` of its node
+/// average; pairs whose point gaps all exceed `prof` or lie deeper than
+/// `max(prof, h)`, `h` the face's diameter, dropped); returns the pieces,
+/// the rows (`(piece, row)` per slave index), the broad-phase queries and
+/// the face pairs tried.
+#[allow(clippy::type_complexity)]
+fn quadratic_pieces(
+    fp: &mut super::node_to_facet::DeformablePair,
+    slaves: &[usize],
+    x: &[[f64; 3]],
+    prof: f64,
+) -> (Vec<QuadPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
+    use quadratic3d::MAX_NODES;
+    fp.sides[1].update(x, prof);
+    let (mut queries, mut tests) = (0u64, 0usize);
+    let mut pieces: Vec<QuadPiece> = Vec::new();
+    let mut rows: Vec<Vec<(usize, usize)>> = vec![Vec::new(); slaves.len()];
+    let mut candidates = Vec::new();
+    for face in &fp.sides[0].faces {
+        let sn = face.nodes();
+        let Some(sx) = sn
+            .iter()
+            .map(|&n| x.get(n).copied())
+            .collect::<Option<Vec<_>>>()
+        else {
+            continue;
+        };
+        let k = 1.0 / sn.len() as f64;
+        let centre: [f64; 3] = std::array::from_fn(|c| sx.iter().map(|p| p[c]).sum::<f64>() * k);
+        let dist =
+            |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
+        let radius = sx.iter().map(|&p| dist(p, centre)).fold(0.0, f64::max);
+        let depth = prof.max(2.0 * radius);
+        fp.sides[1].query(centre, radius + prof, &mut candidates);
+        queries += 1;
+        for &m in &candidates {
+            let mn = fp.sides[1].faces[m].nodes();
+            let Some(mx) = mn
+                .iter()
+                .map(|&n| x.get(n).copied())
+                .collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
+            tests += 1;
+            let Some(seg) = quadratic3d::face_pair_within(&sx, &mx, prof, depth) else {
+                continue;
+            };
+            let mut vars = [UNUSED; 2 * MAX_NODES];
+            vars[..sn.len()].copy_from_slice(sn);
+            vars[MAX_NODES..MAX_NODES + mn.len()].copy_from_slice(mn);
+            for (j, &node) in sn.iter().enumerate() {
+                if let Ok(i) = slaves.binary_search(&node) {
+                    rows[i].push((pieces.len(), j));
+                }
+            }
+            pieces.push(QuadPiece {
+                vars,
+                master: m,
+                seg,
+            });
+        }
+    }
+    (pieces, rows, queries, tests)
+}
+
+/// The row of a slave node of a quadratic 3D mortar pair over `nodes`
+/// (sorted) from its pieces `list` (`(piece, row)`): the vector
+/// coefficients `B` of [`quadratic3d`] (the normal varies over the curved
+/// slave face).
+fn row_quadratic<'a>(pieces: &[QuadPiece], list: &[(usize, usize)], nodes: &'a [usize]) -> Row<'a> {
+    use quadratic3d::MAX_NODES;
+    let mut row = Row::new(nodes, 3);
+    for &(p, j) in list {
+        let QuadPiece { vars, seg, .. } = &pieces[p];
+        let b = &seg.b[j];
+        let coefficients = (0..seg.ns)
+            .map(|k| (vars[k], &b[k][..]))
+            .chain((0..seg.nm).map(|l| (vars[MAX_NODES + l], &b[MAX_NODES + l][..])));
+        row.add_vectors(vars, &seg.gap[j], &seg.area[j], coefficients);
+    }
+    row
+}
+
+/// The quadratic branch of [`evaluate_3d`] (tri6 / quad8 / quad9 faces on
+/// both sides; frictionless, penalty or augmented Lagrangian): per slave
+/// node (corners and midside nodes) its row over its face pairs, closed
+/// as the linear rows ([`Row::close`]) with the reference weight `T_j =
+/// int N~_j dA` ([`quadratic3d::supports`]).
+fn evaluate_3d_quadratic(
+    cp: &ContactPair,
+    fp: &mut super::node_to_facet::DeformablePair,
+    x: &[[f64; 3]],
+    state: &mut SurfacePair,
+    out: &mut Vec<NodeContact<3>>,
+) {
+    let prof = state.prof;
+    fp.couplings.clear();
+    let (pieces, rows, queries, tests) = quadratic_pieces(fp, &state.slaves, x, prof);
+    fp.tests = tests;
+    state.counters.queries += queries;
+    let mut nodes = Vec::new();
+    for (i, list) in rows.iter().enumerate() {
+        let node = state.slaves[i];
+        fp.last[i] = list.first().map(|&(p, _)| pieces[p].master);
+        if list.is_empty() {
+            continue;
+        }
+        nodes.clear();
+        for &(p, _) in list {
+            nodes.extend(pieces[p].vars.iter().copied().filter(|&n| n != UNUSED));
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        let row = row_quadratic(&pieces, list, &nodes);
+        let support = state.area.get(i).copied().unwrap_or(0.0);
+        let method = cp.method_at(node);
+        let alpha = super::surface::alpha(&method, support);
+        let shift = if matches!(method, ContactMethod::AugmentedLagrange { .. }) {
+            state.multiplier.get(i).copied().unwrap_or(0.0)
+        } else {
+            0.0
+        };
+        let entity = pieces[list[0].0].master;
+        let Some((nc, coupling)) = row.close(
+            node,
+            support,
+            alpha,
+            shift,
+            prof,
+            state.touching,
+            entity,
+            None,
+        ) else {
+            continue;
+        };
+        fp.couplings.extend(coupling);
+        out.push(nc);
+    }
+    total_forces(&fp.couplings, out);
+    state.counters.faces_tested += fp.tests as u64;
 }
 
 #[cfg(test)]

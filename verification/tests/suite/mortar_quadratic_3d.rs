@@ -1,0 +1,217 @@
+//! 3D mortar contact on quadratic faces (issues 23 and 18; Puso, Laursen &
+//! Solberg, CMAME 197 (2008) 555): the contact patch test of `ctc verify
+//! contact_patch_mortar_quadratic_3d` (Taylor & Papadopoulos, IJNME 31
+//! (1991) 2205, in 3D; prints the table with
+//! `cargo test -p ctc-verification --test suite mortar_quadratic_3d:: -- --nocapture`),
+//! the assembled pair's tangent against central differences of its forces
+//! with the pair's force and moment balance, and the Hertz case's coarse
+//! level.
+//!
+//! ```text
+//!   top  2x2 hex20 (or tet10) cells across, top face pushed down by 0.01
+//!   ---- slave top.zmin (quad8 / tri6 faces) / master base.zmax (3x3 quad8) ----
+//!   base 3x3 hex20 cells across, bottom on rollers
+//! ```
+
+use ctc_engine::contact::surface::{evaluate_pair, SurfacePair};
+use ctc_engine::contact::ContactStatus;
+use ctc_engine::model::{AnyModel, Model};
+use ctc_verification::programs::mortar_quadratic_3d::{patch_deck, PATCH};
+use ctc_verification::registry;
+
+#[test]
+fn contact_patch_mortar_quadratic_3d_passes() {
+    let report = registry::run_passing("contact_patch_mortar_quadratic_3d");
+    println!("| run | max |p - p_mean| / p_mean | F / F_exact - 1 |");
+    println!("| --- | --- | --- |");
+    let values = &report.levels[0].values;
+    for (&(pname, fname, ..), pair) in PATCH.iter().zip(values.chunks(2)) {
+        println!(
+            "| {} | {:.2e} | {:.2e} |",
+            pname.trim_end_matches(" p uniform"),
+            pair[0].computed,
+            pair[1].computed / pair[1].reference.unwrap_or(f64::NAN) - 1.0
+        );
+        assert!(pair[1].quantity.to_string().contains(fname), "{fname}");
+    }
+}
+
+fn model(cell: &str) -> Model<3> {
+    let text = patch_deck(cell, 2, 3, "penalty { kind = area  stiffness = 1e3 }").expect("deck");
+    let src = ctc_lang::Source::new(std::path::Path::new("mortar_quadratic_3d.ctc"), &text);
+    match ctc_lang::compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("the patch deck is not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    }
+}
+
+/// The pair's forces at `x`, the tangent applied to `v` (`K v`), and the
+/// closed nodes.
+fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
+    let mut state = SurfacePair::new(model, 0);
+    let (res, _) = evaluate_pair(model, 0, x, 0.0, &mut state);
+    let closed = res
+        .iter()
+        .filter(|c| c.status == ContactStatus::Closed)
+        .count();
+    let mut f = vec![0.0; 3 * x.len()];
+    let mut kv = vec![0.0; 3 * x.len()];
+    for c in &state.deformable.expect("a deformable pair").couplings {
+        let nd = 3 * c.nodes.len();
+        for r in 0..nd {
+            let gr = 3 * c.nodes[r / 3] + r % 3;
+            f[gr] += c.force[r];
+            for col in 0..nd {
+                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
+            }
+        }
+    }
+    (f, kv, closed)
+}
+
+#[test]
+fn quadratic_mortar_pair_tangent_matches_finite_differences_and_balances() {
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    for cell in ["hex8", "tet4"] {
+        let model = model(cell);
+        let top = model.bodies[1].nodes.start;
+        // jittered (a flat interface puts master vertices on slave edges,
+        // a kink of the segmentation that central differences straddle)
+        // and bent: the top block's bottom bulges down by up to 0.01
+        let depth = 0.01 + 0.005 * rnd().abs();
+        let x: Vec<[f64; 3]> = model
+            .mesh
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let bulge = 0.01 * (1.0 - (p[0] - 0.5).powi(2) - (p[1] - 0.5).powi(2));
+                let dz = if k >= top { -depth - bulge } else { 0.0 };
+                [
+                    p[0] + 0.01 * rnd(),
+                    p[1] + 0.01 * rnd(),
+                    p[2] + dz + 0.002 * rnd(),
+                ]
+            })
+            .collect();
+        let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
+        let (f, kv, closed) = forces(&model, &x, &v);
+        assert!(closed > 0);
+        // force and moment balance of the pair's forces
+        let (mut sum, mut moment, mut scale) = ([0.0f64; 3], [0.0f64; 3], 0.0f64);
+        for (k, p) in x.iter().enumerate() {
+            let fk = [f[3 * k], f[3 * k + 1], f[3 * k + 2]];
+            scale = scale.max(fk.iter().fold(0.0f64, |a, b| a.max(b.abs())));
+            for c in 0..3 {
+                sum[c] += fk[c];
+            }
+            moment[0] += p[1] * fk[2] - p[2] * fk[1];
+            moment[1] += p[2] * fk[0] - p[0] * fk[2];
+            moment[2] += p[0] * fk[1] - p[1] * fk[0];
+        }
+        let imbalance = sum
+            .iter()
+            .chain(&moment)
+            .fold(0.0f64, |a, b| a.max(b.abs()))
+            / scale;
+        // the tangent along v against central differences
+        let h = 1e-7;
+        let shift = |sign: f64| -> Vec<[f64; 3]> {
+            x.iter()
+                .zip(&v)
+                .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
+                .collect()
+        };
+        let (fp, _, cp) = forces(&model, &shift(1.0), &v);
+        let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
+        assert!(cp == closed && cm == closed);
+        let kscale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+        let e = (0..kv.len())
+            .map(|k| (-(fp[k] - fm[k]) / (2.0 * h) - kv[k]).abs() / kscale)
+            .fold(0.0, f64::max);
+        println!(
+            "{cell} order 2: {closed} closed, max |K v - FD| / max |K v| = {e:.2e}, \
+             force / moment imbalance {imbalance:.1e}"
+        );
+        assert!(e <= 1e-5, "{cell}: {e}");
+        assert!(imbalance <= 1e-10, "{cell}: {imbalance}");
+    }
+}
+
+#[test]
+fn hertz_sphere_block_mortar_quadratic_3d_passes() {
+    let report = registry::run_passing("hertz_sphere_block_mortar_quadratic_3d");
+    for v in &report.levels[0].values {
+        println!(
+            "{:?}: {:.4e} vs {:?}: {:.2e}",
+            v.quantity, v.computed, v.reference, v.error
+        );
+    }
+}
+
+/// The Hertz runs of one level (`QM_LEVEL`, default 1) side by side: the
+/// rigid plane, the stiff and the equal block (mortar on quadratic faces),
+/// total force, peak pressure and free dofs (`cargo test -p
+/// ctc-verification --test suite hertz_quadratic_level -- --ignored
+/// --nocapture`; minutes in debug, not run by CI).
+#[test]
+#[ignore]
+fn hertz_quadratic_level() {
+    use ctc_verification::programs::mortar_quadratic_3d::hertz_run;
+    let level: usize = std::env::var("QM_LEVEL")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(1);
+    let runs = [None, Some(1e6), Some(1000.0)];
+    let out: Vec<_> = std::thread::scope(|s| {
+        let handles: Vec<_> = runs
+            .iter()
+            .map(|&e| s.spawn(move || (e, hertz_run(level, e).expect("hertz run"))))
+            .collect();
+        handles.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    for (e, (force, p0, s)) in out {
+        println!(
+            "level {level}: block E {e:?}: P {force:.6e}, p0 {p0:.6e}, {} free dofs, {} Newton, {} increments",
+            s.free_dofs, s.newton_iterations, s.increments.len()
+        );
+    }
+}
+
+/// The catalogue snapshot's lines of this file's cases
+/// (`cases_coarse::verification_catalogue_on_default_levels`), to splice
+/// into its snapshot (`cargo test -p ctc-verification --test suite
+/// catalogue_lines -- --ignored --nocapture`).
+#[test]
+#[ignore]
+fn catalogue_lines() {
+    use crate::fenicsx_snapshots::{err2, sig4};
+    for name in [
+        "contact_patch_mortar_quadratic_3d",
+        "hertz_sphere_block_mortar_quadratic_3d",
+    ] {
+        let case = registry::find(name).expect("registered");
+        let c = registry::run_default(&case, &mut |l| eprintln!("{l}"));
+        let l = &c.levels[0];
+        println!(
+            "SNAP {} level {}: {} nodes, {} free dofs, {} increments, {} Newton iterations, {} cutbacks",
+            c.name, l.level, l.nodes, l.free_dofs, l.increments, l.newton_total, l.cutbacks
+        );
+        for v in &l.values {
+            println!(
+                "SNAP   {:?}: computed {} reference {} error {}",
+                v.quantity,
+                sig4(v.computed),
+                v.reference.map_or("-".into(), sig4),
+                err2(v.error)
+            );
+        }
+    }
+}
