@@ -57,7 +57,7 @@ impl Lowerer<'_> {
             // area penalty / augmented Lagrangian (2D seg3 also Lagrange
             // multipliers: `ctc_engine::contact::mortar::seg3`; 3D tri6 /
             // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
-            // whose Lagrange multipliers the mortar validation refuses)
+            // without Lagrange multipliers)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
             if mortar.is_none() {
                 return refusal(
@@ -106,6 +106,14 @@ impl Lowerer<'_> {
                         "use `kind = area` (a pressure per unit gap)",
                     )
                 }
+                Method::Lagrange { .. } if self.solid => refusal(
+                    method.span,
+                    "mortar with Lagrange multipliers on quadratic faces is 2D only for now".into(),
+                    "3D quadratic faces with Lagrange multipliers",
+                    "use `method = penalty { kind = area .. }` or `augmented_lagrange { .. }` \
+                     (3D mortar on quadratic faces), or mesh the pair with linear cells (3D \
+                     mortar with Lagrange multipliers)",
+                ),
                 _ => None,
             };
         }
