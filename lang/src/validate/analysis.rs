@@ -56,8 +56,10 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// Lagrange multipliers), with heat conduction and thermal contact against
 /// the tools, and two deformable solids in node-to-facet contact (every
 /// strategy and method; Coulomb friction with the penalty and augmented
-/// Lagrangian methods) or mortar contact (single pass, frictionless,
-/// penalty or augmented Lagrangian: [`super::contacts`] refuses the rest),
+/// Lagrangian methods) or mortar contact (single pass; penalty, augmented
+/// Lagrangian or single Lagrange multipliers; Coulomb friction with the
+/// penalty and augmented Lagrangian methods: [`super::contacts`] refuses
+/// the rest),
 /// self contact (penalty or augmented Lagrangian, frictionless); normal
 /// smoothing: `nagata` in 3d only (planar analyses have no facets; friction
 /// on the patches is refused in [`super::contacts`]), `nodal` (planar) is
