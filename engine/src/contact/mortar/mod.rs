@@ -857,9 +857,53 @@ fn facet_pieces(
     prof: f64,
 ) -> (Vec<FacetPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
     let basis = Basis::Dual;
+    face_pairs(fp, slaves, x, prof, |master, sn, sx, _, m| {
+        let h = (0..sx.len())
+            .map(|a| distance(sx[a], sx[(a + 1) % sx.len()]))
+            .fold(0.0, f64::max);
+        let (mp, nm) = master.points(m, x);
+        let seg = facets::facet_pair_within(sx, &mp[..nm], prof, prof.max(h), basis)?;
+        let mut vars = [UNUSED; 8];
+        vars[..sn.len()].copy_from_slice(sn);
+        vars[4..4 + nm].copy_from_slice(master.faces[m].nodes());
+        Some(FacetPiece {
+            vars,
+            master: m,
+            seg,
+        })
+    })
+}
+
+/// The distance between two points.
+fn distance(a: [f64; 3], b: [f64; 3]) -> f64 {
+    (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt()
+}
+
+/// The broad phase shared by the linear and quadratic 3D mortar pairs: per
+/// slave face (its nodes `sn` and points `sx` at `x`) the master faces
+/// `m` of the master side's tree (rebuilt at `x`) within the face's
+/// radius (about its node average) plus `prof`, each handed to `pair(master
+/// side, sn, sx, radius, m)`, which builds the pair's piece or leaves the
+/// pair out; the rows list `(piece, row)` per slave index (`slaves`,
+/// sorted). Returns the pieces, the rows, the broad-phase queries and the
+/// pairs tried.
+#[allow(clippy::type_complexity)]
+fn face_pairs<P>(
+    fp: &mut super::node_to_facet::DeformablePair,
+    slaves: &[usize],
+    x: &[[f64; 3]],
+    prof: f64,
+    mut pair: impl FnMut(
+        &super::node_to_facet::FacetSurface,
+        &[usize],
+        &[[f64; 3]],
+        f64,
+        usize,
+    ) -> Option<P>,
+) -> (Vec<P>, Vec<Vec<(usize, usize)>>, u64, usize) {
     fp.sides[1].update(x, prof);
     let (mut queries, mut tests) = (0u64, 0usize);
-    let mut pieces: Vec<FacetPiece> = Vec::new();
+    let mut pieces: Vec<P> = Vec::new();
     let mut rows: Vec<Vec<(usize, usize)>> = vec![Vec::new(); slaves.len()];
     let mut candidates = Vec::new();
     for face in &fp.sides[0].faces {
@@ -873,34 +917,20 @@ fn facet_pieces(
         };
         let k = 1.0 / sn.len() as f64;
         let centre: [f64; 3] = std::array::from_fn(|c| sx.iter().map(|p| p[c]).sum::<f64>() * k);
-        let dist =
-            |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
-        let radius = sx.iter().map(|&p| dist(p, centre)).fold(0.0, f64::max);
-        let h = (0..sx.len())
-            .map(|a| dist(sx[a], sx[(a + 1) % sx.len()]))
-            .fold(0.0, f64::max);
-        let depth = prof.max(h);
+        let radius = sx.iter().map(|&p| distance(p, centre)).fold(0.0, f64::max);
         fp.sides[1].query(centre, radius + prof, &mut candidates);
         queries += 1;
         for &m in &candidates {
-            let (mp, nm) = fp.sides[1].points(m, x);
             tests += 1;
-            let Some(seg) = facets::facet_pair_within(&sx, &mp[..nm], prof, depth, basis) else {
+            let Some(piece) = pair(&fp.sides[1], sn, &sx, radius, m) else {
                 continue;
             };
-            let mut vars = [UNUSED; 8];
-            vars[..sn.len()].copy_from_slice(sn);
-            vars[4..4 + nm].copy_from_slice(fp.sides[1].faces[m].nodes());
             for (j, &node) in sn.iter().enumerate() {
                 if let Ok(i) = slaves.binary_search(&node) {
                     rows[i].push((pieces.len(), j));
                 }
             }
-            pieces.push(FacetPiece {
-                vars,
-                master: m,
-                seg,
-            });
+            pieces.push(piece);
         }
     }
     (pieces, rows, queries, tests)
@@ -1212,57 +1242,22 @@ fn quadratic_pieces(
     prof: f64,
 ) -> (Vec<QuadPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
     use quadratic3d::MAX_NODES;
-    fp.sides[1].update(x, prof);
-    let (mut queries, mut tests) = (0u64, 0usize);
-    let mut pieces: Vec<QuadPiece> = Vec::new();
-    let mut rows: Vec<Vec<(usize, usize)>> = vec![Vec::new(); slaves.len()];
-    let mut candidates = Vec::new();
-    for face in &fp.sides[0].faces {
-        let sn = face.nodes();
-        let Some(sx) = sn
+    face_pairs(fp, slaves, x, prof, |master, sn, sx, radius, m| {
+        let mn = master.faces[m].nodes();
+        let mx = mn
             .iter()
             .map(|&n| x.get(n).copied())
-            .collect::<Option<Vec<_>>>()
-        else {
-            continue;
-        };
-        let k = 1.0 / sn.len() as f64;
-        let centre: [f64; 3] = std::array::from_fn(|c| sx.iter().map(|p| p[c]).sum::<f64>() * k);
-        let dist =
-            |a: [f64; 3], b: [f64; 3]| (0..3).map(|c| (a[c] - b[c]).powi(2)).sum::<f64>().sqrt();
-        let radius = sx.iter().map(|&p| dist(p, centre)).fold(0.0, f64::max);
-        let depth = prof.max(2.0 * radius);
-        fp.sides[1].query(centre, radius + prof, &mut candidates);
-        queries += 1;
-        for &m in &candidates {
-            let mn = fp.sides[1].faces[m].nodes();
-            let Some(mx) = mn
-                .iter()
-                .map(|&n| x.get(n).copied())
-                .collect::<Option<Vec<_>>>()
-            else {
-                continue;
-            };
-            tests += 1;
-            let Some(seg) = quadratic3d::face_pair_within(&sx, &mx, prof, depth) else {
-                continue;
-            };
-            let mut vars = [UNUSED; 2 * MAX_NODES];
-            vars[..sn.len()].copy_from_slice(sn);
-            vars[MAX_NODES..MAX_NODES + mn.len()].copy_from_slice(mn);
-            for (j, &node) in sn.iter().enumerate() {
-                if let Ok(i) = slaves.binary_search(&node) {
-                    rows[i].push((pieces.len(), j));
-                }
-            }
-            pieces.push(QuadPiece {
-                vars,
-                master: m,
-                seg,
-            });
-        }
-    }
-    (pieces, rows, queries, tests)
+            .collect::<Option<Vec<_>>>()?;
+        let seg = quadratic3d::face_pair_within(sx, &mx, prof, prof.max(2.0 * radius))?;
+        let mut vars = [UNUSED; 2 * MAX_NODES];
+        vars[..sn.len()].copy_from_slice(sn);
+        vars[MAX_NODES..MAX_NODES + mn.len()].copy_from_slice(mn);
+        Some(QuadPiece {
+            vars,
+            master: m,
+            seg,
+        })
+    })
 }
 
 /// The row of a slave node of a quadratic 3D mortar pair over `nodes`
