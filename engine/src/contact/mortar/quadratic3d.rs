@@ -106,29 +106,11 @@ fn midsides(nn: usize) -> &'static [(usize, usize, usize)] {
 /// Parent coordinates of local node `a` of a face of `nn` nodes (a quad's
 /// index 8 is its centre).
 fn parent(nn: usize, a: usize) -> [f64; 2] {
-    const TRI: [[f64; 2]; 6] = [
-        [0.0, 0.0],
-        [1.0, 0.0],
-        [0.0, 1.0],
-        [0.5, 0.0],
-        [0.5, 0.5],
-        [0.0, 0.5],
-    ];
-    const QUAD: [[f64; 2]; 9] = [
-        [-1.0, -1.0],
-        [1.0, -1.0],
-        [1.0, 1.0],
-        [-1.0, 1.0],
-        [0.0, -1.0],
-        [1.0, 0.0],
-        [0.0, 1.0],
-        [-1.0, 0.0],
-        [0.0, 0.0],
-    ];
+    use crate::element::reference::{quad9::Quad9, tri6::Tri6, ReferenceCell};
     if nn == 6 {
-        TRI[a]
+        <Tri6 as ReferenceCell<2, 6>>::NODES[a]
     } else {
-        QUAD[a]
+        <Quad9 as ReferenceCell<2, 9>>::NODES[a]
     }
 }
 
