@@ -651,29 +651,41 @@ mod tests {
     fn the_tangent_is_the_derivative_of_the_tie_forces() {
         let (model, _, spin) = model_with_body();
         assert!(refusals(&model).is_empty(), "{:?}", refusals(&model));
-        let dofs = DofMap::new(&model);
-        let scatter = super::super::discrete::scatter_for(&model, &dofs, &[], None).unwrap();
-        let n = model.mesh.nodes.len() * 2;
-        let mut u: Vec<f64> = (0..n).map(|i| 0.05 * ((i * 7 % 11) as f64) - 0.2).collect();
+        let mut u = scattered_state(model.mesh.nodes.len() * 2);
         u[spin * 2] = 1.3;
+        let worst = tangent_fd_error(&model, &u);
+        assert!(worst < 1e-7, "worst relative error {worst:e}");
+    }
+
+    /// A state with every component set, `0.05 (7 i mod 11) - 0.2`.
+    fn scattered_state(n: usize) -> Vec<f64> {
+        (0..n).map(|i| 0.05 * ((i * 7 % 11) as f64) - 0.2).collect()
+    }
+
+    /// The largest relative error, over the free dofs, of the ties'
+    /// tangent at `u` against central differences of their forces.
+    fn tangent_fd_error<const D: usize>(model: &Model<D>, u: &[f64]) -> f64 {
+        let dofs = DofMap::new(model);
+        let scatter = super::super::discrete::scatter_for(model, &dofs, &[], None).unwrap();
+        let n = u.len();
         let mut values = vec![0.0; scatter.n_values()];
-        add_tangent(&model, &u, &dofs, &scatter, &mut values);
+        add_tangent(model, u, &dofs, &scatter, &mut values);
         let h = 1e-6;
         let mut worst: f64 = 0.0;
         for (j, &gj) in dofs.free.iter().enumerate() {
-            let (mut up, mut um) = (u.clone(), u.clone());
+            let (mut up, mut um) = (u.to_vec(), u.to_vec());
             up[gj] += h;
             um[gj] -= h;
             let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
-            add_forces(&model, &up, &mut fp);
-            add_forces(&model, &um, &mut fm);
+            add_forces(model, &up, &mut fp);
+            add_forces(model, &um, &mut fm);
             for (i, &gi) in dofs.free.iter().enumerate() {
                 let fd = (fp[gi] - fm[gi]) / (2.0 * h);
                 let k = scatter.pattern.find(i, j).map_or(0.0, |s| values[s]);
                 worst = worst.max((fd - k).abs() / (1.0 + k.abs()));
             }
         }
-        assert!(worst < 1e-7, "worst relative error {worst:e}");
+        worst
     }
 
     /// A rigid motion (translation and a large rotation) leaves the ties
@@ -812,28 +824,9 @@ mod tests {
     fn the_3d_tangent_is_the_derivative_of_the_tie_forces() {
         let (model, _, spin) = model_3d(None);
         assert!(refusals(&model).is_empty(), "{:?}", refusals(&model));
-        let dofs = DofMap::new(&model);
-        let scatter = super::super::discrete::scatter_for(&model, &dofs, &[], None).unwrap();
-        let n = model.mesh.nodes.len() * 3;
-        let mut u: Vec<f64> = (0..n).map(|i| 0.05 * ((i * 7 % 11) as f64) - 0.2).collect();
+        let mut u = scattered_state(model.mesh.nodes.len() * 3);
         u[spin * 3..spin * 3 + 3].copy_from_slice(&[1.2, -2.1, 1.6]);
-        let mut values = vec![0.0; scatter.n_values()];
-        add_tangent(&model, &u, &dofs, &scatter, &mut values);
-        let h = 1e-6;
-        let mut worst: f64 = 0.0;
-        for (j, &gj) in dofs.free.iter().enumerate() {
-            let (mut up, mut um) = (u.clone(), u.clone());
-            up[gj] += h;
-            um[gj] -= h;
-            let (mut fp, mut fm) = (vec![0.0; n], vec![0.0; n]);
-            add_forces(&model, &up, &mut fp);
-            add_forces(&model, &um, &mut fm);
-            for (i, &gi) in dofs.free.iter().enumerate() {
-                let fd = (fp[gi] - fm[gi]) / (2.0 * h);
-                let k = scatter.pattern.find(i, j).map_or(0.0, |s| values[s]);
-                worst = worst.max((fd - k).abs() / (1.0 + k.abs()));
-            }
-        }
+        let worst = tangent_fd_error(&model, &u);
         assert!(worst < 1e-7, "worst relative error {worst:e}");
     }
 
