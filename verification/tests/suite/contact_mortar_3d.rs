@@ -92,8 +92,8 @@ fn directional_fd_error(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> f64
 }
 
 /// The pair's forces at `x`, the tangent applied to `v` (`K v`), and the
-/// closed nodes.
-fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
+/// closed nodes (also of the quadratic pairs' tests).
+pub fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
     let mut state = SurfacePair::new(model, 0);
     let (res, _) = evaluate_pair(model, 0, x, 0.0, &mut state);
     let closed = res

@@ -13,8 +13,7 @@
 //!   base 3x3 hex20 cells across, bottom on rollers
 //! ```
 
-use ctc_engine::contact::surface::{evaluate_pair, SurfacePair};
-use ctc_engine::contact::ContactStatus;
+use crate::contact_mortar_3d::forces;
 use ctc_engine::model::{AnyModel, Model};
 use ctc_verification::programs::mortar_quadratic_3d::{patch_deck, PATCH};
 use ctc_verification::registry;
@@ -44,30 +43,6 @@ fn model(cell: &str) -> Model<3> {
         Ok(_) => panic!("the patch deck is not 3d"),
         Err(d) => panic!("{}", d.render(&src)),
     }
-}
-
-/// The pair's forces at `x`, the tangent applied to `v` (`K v`), and the
-/// closed nodes.
-fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>, usize) {
-    let mut state = SurfacePair::new(model, 0);
-    let (res, _) = evaluate_pair(model, 0, x, 0.0, &mut state);
-    let closed = res
-        .iter()
-        .filter(|c| c.status == ContactStatus::Closed)
-        .count();
-    let mut f = vec![0.0; 3 * x.len()];
-    let mut kv = vec![0.0; 3 * x.len()];
-    for c in &state.deformable.expect("a deformable pair").couplings {
-        let nd = 3 * c.nodes.len();
-        for r in 0..nd {
-            let gr = 3 * c.nodes[r / 3] + r % 3;
-            f[gr] += c.force[r];
-            for col in 0..nd {
-                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
-            }
-        }
-    }
-    (f, kv, closed)
 }
 
 #[test]
