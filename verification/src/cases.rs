@@ -281,15 +281,32 @@ pub fn hertz_two_cylinders_nts_smoothed() -> Case {
         ],
         levels: 3,
         reference: two_cylinders_reference(),
-        // Measured (levels 0-2): a 4.0e-2 2.5e-2 1.0e-2; a (moment) 2.7e-2
-        // 1.1e-2 3.7e-3; p0 8.9e-2 8.5e-2 8.3e-2 (the plateau of the
-        // unsmoothed case: the patch-test defect, not the normal); L2 8.6e-2
-        // 4.8e-2 2.7e-2; Newton 33 / 36 / 51
+        // Measured (`ctc verify hertz_two_cylinders_nts_smoothed --max-level
+        // 2`, release): a 4.0e-2 2.5e-2 1.0e-2; a (moment) 2.7e-2 1.05e-2
+        // 3.7e-3; p0 8.85e-2 8.45e-2 8.34e-2 (low, a plateau); L2 8.6e-2
+        // 4.8e-2 2.7e-2; Newton 33 / 36 / 51. Why p0 plateaus (level 2,
+        // `ctc run` of the deck, contact CSV of the last increment): the
+        // double pass swaps the sides at every converged increment, so the
+        // last (5th) increment is a single pass with the top arc as slave,
+        // bit for bit (the same forces and pressures as `strategy =
+        // single_pass`). Only the axis node is off: slave pressures 37.10 /
+        // 41.49 / 41.07 / 38.35 at x = 0 / 0.0072 / 0.0165 / 0.0286 against
+        // Hertz 41.77 / 41.58 / 40.77 / 38.70 (-11 % at the axis, within 2
+        // % elsewhere). The top axis node projects onto the bottom axis
+        // node (xi = 1), which takes its whole force plus 27 % of the next
+        // node's: the master axis node's nodal traction (force / tributary
+        // length) is 46.8, +12 %; it sinks and the slave axis node's gap,
+        // hence `k g`, is 11 % short. Not the penalty (k = 1e6: 37.20 at
+        // the axis, the same; k = 1e8 chatters), not the normal (vertical
+        // at the axis by symmetry, smoothed or not). The modified double
+        // pass on the same mesh: per-pass pressure 36.06 at the axis (-14
+        // %), the pass split oscillating (43.9 / 41.7 / 37.5 / 47.0 / 28.1
+        // on the next nodes). Guarded at the measured figures.
         checks: hertz_checks(
-            &[0.05, 0.03, 0.015],
-            &[0.04, 0.015, 0.006],
-            &[0.11, 0.1, 0.1],
-            &[0.11, 0.06, 0.035],
+            &[0.045, 0.03, 0.013],
+            &[0.03, 0.013, 0.005],
+            &[0.095, 0.09, 0.09],
+            &[0.095, 0.055, 0.03],
             None,
         ),
     }

@@ -567,7 +567,8 @@ pub struct Last {
     pub contact: Vec<NodeContact<3>>,
     /// Reaction `z` summed over the top block's top face nodes.
     pub force: f64,
-    top: Vec<usize>,
+    /// The nodes whose reactions `force` sums (the top block's top face).
+    pub top: Vec<usize>,
 }
 
 impl Observer<3> for Last {

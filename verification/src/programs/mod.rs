@@ -20,6 +20,7 @@ pub mod friction_block;
 pub mod friction_ntf_3d;
 pub mod gravity;
 pub mod hertz_3d_axi;
+pub mod hertz_two_spheres_3d;
 pub mod impact;
 pub mod johnson_cook;
 pub mod mortar;
@@ -88,6 +89,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(mortar_friction_3d::cases());
     v.extend(mortar_lagrange_3d::cases());
     v.extend(hertz_3d_axi::cases());
+    v.extend(hertz_two_spheres_3d::cases());
     v.extend(friction_3d::cases());
     v.extend(friction_ntf_3d::cases());
     v.extend(nagata_3d::cases());

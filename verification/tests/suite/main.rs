@@ -15,6 +15,7 @@ mod fenicsx_snapshots;
 mod friction;
 mod friction_3d;
 mod friction_ntf_3d;
+mod hertz_two_spheres_3d;
 mod johnson_cook;
 mod methods;
 mod mortar_lagrange;

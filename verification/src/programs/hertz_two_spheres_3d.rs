@@ -1,0 +1,378 @@
+//! `hertz_two_spheres_3d` — Hertz between two elastic bodies in 3D on
+//! non-matching meshes (issue 18): a, p0 and L2(p)/p0 at three levels with
+//! rates, mortar (penalty; Lagrange multipliers) and node-to-facet for
+//! comparison.
+//!
+//! Reference: K. L. Johnson, Contact Mechanics (1985) §4.2 (Hertz 1882),
+//! VERIFICATION-CASES.md §2: two bodies of the same material (E = 1000,
+//! nu = 0.3) whose surfaces are spheres of radius `R = 2` near the contact,
+//! `1/E* = (1 - nu^2)/E + (1 - nu^2)/E`, `1/R* = 1/R + 1/R`:
+//! `a = (3 P R* / (4 E*))^(1/3)`, `p0 = 3 P / (2 pi a^2)`, `p(r) = p0
+//! sqrt(1 - r^2/a^2)`. As in the 2D and axisymmetric two-body cases
+//! (`hertz_two_cylinders_mortar`, `hertz_two_spheres_mortar`), Hertz is
+//! evaluated at the load `P` the run carried (the total contact force,
+//! four times the quarter's): the finite bodies are stiffer than Hertz's
+//! half-spaces (that changes `P` at a given approach, not the relation
+//! between `P`, `a` and `p0` while `a` is small against the bodies: here
+//! `a ~ 0.1`, the bodies 10 `a` wide and deep).
+//!
+//! ```text
+//!        u_z = -d on z = 1 (d = 0.01)
+//!   +-------------------+   top: [0,1]^2 x [s(x,y), 1], hex8, slave `zmin`
+//!   |                   |   graded towards the axis (x = y = 0, ratio 20)
+//!    \_______   _______/    and towards the contact
+//!            \_/  z = s(x,y) = R - sqrt(R^2 - x^2 - y^2)   (touch at 0)
+//!            /-\  z = -s(x,y)
+//!    _______/   \_______    bottom: [0,1]^2 x [-1, -s(x,y)], master `zmax`,
+//!   |                   |   graded with ratio 30: the interface nodes do
+//!   +-------------------+   not face each other; u_z = 0 on z = -1
+//!   symmetry u_x = 0 on x = 0, u_y = 0 on y = 0 (both bodies: a quarter)
+//! ```
+//!
+//! The bodies are boxes of the deck ([`deck`]) whose contact face is mapped
+//! onto the sphere after compiling ([`map_to_spheres`]: each vertical line
+//! of nodes is stretched linearly between the flat end and the sphere, so
+//! the surface is the exact sphere at the nodes). Measured on the slave
+//! (top) body, from the pressures the engine reported at its slave nodes
+//! (the points where it decided contact): p0 on the axis node; a at the
+//! edge of the profile along the symmetry plane `y = 0`
+//! ([`ContactProfile::half_width`]) and from the first moment of the
+//! contact forces over all slave nodes (`a = 16/(3 pi) sum |F| r / sum
+//! |F|`); L2(p)/p0 along the same meridian on `[0, 1.5 a]`
+//! ([`ContactProfile::l2_error`], the estimator of the axisymmetric
+//! cases); the contact force against the reaction on the top body's
+//! loaded face. Levels: `n = 6, 12, 24` cells across each body (`n / 2`
+//! through the height), 2 / 4 / 9 cells across `a`; `ctc verify
+//! hertz_two_spheres_3d` runs level 0, `--max-level 2` all three.
+
+use super::contact_ntf_3d::Last;
+use super::{error, value};
+use crate::analytical::hertz::{combined_modulus, combined_radius, HertzSphere};
+use crate::case::{Check, Quantity};
+use crate::profile::{ContactProfile, ProfilePoint};
+use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
+use ctc_engine::contact::{ContactStatus, NodeContact};
+use ctc_engine::model::{AnyModel, Model};
+use ctc_engine::solve::{run, RunSummary};
+use std::f64::consts::PI;
+
+/// Young's modulus and Poisson's ratio of both bodies.
+const E: f64 = 1000.0;
+const NU: f64 = 0.3;
+/// Radius of both spheres.
+const R: f64 = 2.0;
+/// Width (x and y) and height of each body.
+const SIZE: f64 = 1.0;
+/// Approach: the top face's displacement.
+const D: f64 = 0.01;
+/// Cells across each body per level (`n / 2` through the height).
+const CELLS: [usize; 3] = [6, 12, 18];
+/// In-plane gradings of the two bodies (last cell / first): different,
+/// so that the interface meshes do not match.
+const GRADING_TOP: f64 = 20.0;
+const GRADING_BOTTOM: f64 = 30.0;
+/// The penalty of the penalty runs.
+const PENALTY: &str = "penalty { kind = area  stiffness = 1e7 }";
+/// Force balance tolerance (Newton tolerance 1e-10).
+const BALANCE: f64 = 1e-7;
+
+/// One variant run at every level: the value names of a, a (moment), p0,
+/// L2(p)/p0, force balance and Newton iterations; the pair's method and
+/// formulation.
+struct Variant {
+    names: [&'static str; 6],
+    method: &'static str,
+    formulation: &'static str,
+}
+
+/// Mortar with the penalty (the judged formulation), mortar with Lagrange
+/// multipliers (semi-smooth active set), node-to-facet single pass.
+const VARIANTS: [Variant; 3] = [
+    Variant {
+        names: [
+            "a mortar",
+            "a (moment) mortar",
+            "p0 mortar",
+            "L2(p)/p0 mortar",
+            "force balance mortar",
+            "Newton iterations mortar",
+        ],
+        method: PENALTY,
+        formulation: "mortar",
+    },
+    Variant {
+        names: [
+            "a mortar lagrange",
+            "a (moment) mortar lagrange",
+            "p0 mortar lagrange",
+            "L2(p)/p0 mortar lagrange",
+            "force balance mortar lagrange",
+            "Newton iterations mortar lagrange",
+        ],
+        method: "lagrange { }",
+        formulation: "mortar",
+    },
+    Variant {
+        names: [
+            "a node-to-facet",
+            "a (moment) node-to-facet",
+            "p0 node-to-facet",
+            "L2(p)/p0 node-to-facet",
+            "force balance node-to-facet",
+            "Newton iterations node-to-facet",
+        ],
+        method: PENALTY,
+        formulation: "node_to_segment",
+    },
+];
+
+/// The registry entry of this file.
+pub fn cases() -> Vec<VerifyCase> {
+    // Measured: see [`level`].
+    let tolerances: [[&[f64]; 4]; 3] = [
+        [
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+        ],
+        [
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+        ],
+        [
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+            &[0.3, 0.3, 0.3],
+        ],
+    ];
+    let mut checks = Vec::new();
+    for (v, t) in VARIANTS.iter().zip(tolerances) {
+        for (name, tol) in v.names.iter().zip(t) {
+            checks.push(Check::new(Quantity::Named(name), tol));
+        }
+        checks.push(Check::new(Quantity::Named(v.names[4]), &[BALANCE; 3]));
+    }
+    vec![VerifyCase {
+        name: "hertz_two_spheres_3d",
+        title: "Hertz: two elastic spheres in 3D (quarter models), non-matching hex8 meshes, \
+                mortar (penalty, Lagrange) and node-to-facet",
+        source: "K. L. Johnson, Contact Mechanics (1985) §4.2 (E*, R combined); \
+                 VERIFICATION-CASES.md §2",
+        tags: &[
+            "3d",
+            "contact",
+            "hertz",
+            "mortar",
+            "node_to_segment",
+            "two_bodies",
+            "penalty",
+            "lagrange",
+            "closed_form",
+            "rate",
+        ],
+        levels: 1,
+        checks,
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: CELLS.len(),
+            run: level,
+        }),
+    }]
+}
+
+/// The deck of one level: two graded boxes, `n` cells across, in contact
+/// through the pair `top.zmin -> bottom.zmax` with `method` and
+/// `formulation` (the flat faces before [`map_to_spheres`]).
+pub fn deck(n: usize, method: &str, formulation: &str) -> String {
+    let nz = n / 2;
+    let (gt, gb) = (GRADING_TOP, GRADING_BOTTOM);
+    format!(
+        "# Hertz between two 3D bodies, generated by verification/src/programs/hertz_two_spheres_3d.rs\n\
+         analysis {{ dimension = 3d }}\n\
+         material soft {{ elastic {{ E = {E}  nu = {NU} }} }}\n\
+         body top {{\n  mesh = box {{ size = ({SIZE}, {SIZE}, {SIZE})  divisions = ({n}, {n}, {nz})\n    \
+         grading = (geometric({gt}), geometric({gt}), geometric({gt})) }}\n  material = soft\n}}\n\
+         body bottom {{\n  mesh = box {{ origin = (0, 0, -{SIZE})  size = ({SIZE}, {SIZE}, {SIZE})  divisions = ({n}, {n}, {nz})\n    \
+         grading = (geometric({gb}), geometric({gb}), geometric({})) }}\n  material = soft\n}}\n\
+         contact top.zmin -> bottom.zmax {{\n  method = {method}\n  formulation = {formulation}\n}}\n\
+         fix top.xmin {{ ux }}\nfix top.ymin {{ uy }}\nfix bottom.xmin {{ ux }}\nfix bottom.ymin {{ uy }}\n\
+         fix bottom.zmin {{ uz }}\n\
+         displace top.zmax {{ uz = ramp(0, -{D}) }}\n\
+         step press {{\n  time = 0 .. 1\n  increments = 4\n  newton {{ tol = 1e-10  max_iter = 30 }}\n}}\n",
+        1.0 / gb
+    )
+}
+
+/// Sag of the sphere of radius [`R`] touching the plane z = 0 at the
+/// origin, at `(x, y)`.
+fn sag(x: f64, y: f64) -> f64 {
+    R - (R * R - x * x - y * y).sqrt()
+}
+
+/// Maps the boxes of [`deck`] onto the two spheres: a node of the top body
+/// at height `z` in `[0, SIZE]` moves to `z + (1 - z / SIZE) s(x, y)`, one
+/// of the bottom body at `z` in `[-SIZE, 0]` to `z - (1 + z / SIZE) s(x,
+/// y)`: the contact faces become the spheres, the loaded and supported
+/// faces stay flat.
+fn map_to_spheres(model: &mut Model<3>) -> Result<(), String> {
+    for (name, sign) in [("top", 1.0), ("bottom", -1.0)] {
+        let body = model
+            .bodies
+            .iter()
+            .find(|b| b.name == name)
+            .ok_or_else(|| format!("the Hertz deck has no body `{name}`"))?;
+        for n in body.nodes.clone() {
+            let p = &mut model.mesh.nodes[n];
+            let s = sag(p[0], p[1]);
+            p[2] += sign * (1.0 - sign * p[2] / SIZE) * s;
+        }
+    }
+    Ok(())
+}
+
+/// One run: the model, the contact of its last increment, the total
+/// reaction on the top face, the summary.
+struct Outcome {
+    model: Model<3>,
+    last: Last,
+    summary: RunSummary,
+}
+
+fn solve(n: usize, variant: &Variant) -> Result<Outcome, String> {
+    let text = deck(n, variant.method, variant.formulation);
+    let path = std::path::Path::new("hertz_two_spheres_3d.ctc");
+    let src = ctc_lang::Source::new(path, &text);
+    let AnyModel::D3(mut model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
+        return Err("the Hertz deck is not a 3d deck".into());
+    };
+    map_to_spheres(&mut model)?;
+    let mut last = Last {
+        top: face_nodes(&model, "top.zmax")?,
+        ..Last::default()
+    };
+    let summary = run(&model, &mut last).map_err(|e| e.message)?;
+    if !summary.completed {
+        return Err("the run did not complete".into());
+    }
+    Ok(Outcome {
+        model,
+        last,
+        summary,
+    })
+}
+
+/// The nodes of face set `name`, sorted.
+fn face_nodes(model: &Model<3>, name: &str) -> Result<Vec<usize>, String> {
+    let faces = model
+        .mesh
+        .face_sets
+        .get(name)
+        .ok_or_else(|| format!("no face set {name}"))?;
+    let mut n: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+    n.sort_unstable();
+    n.dedup();
+    Ok(n)
+}
+
+/// The pressure profile along the symmetry plane `y = 0` (reference
+/// abscissa x = r), with the first moment and sum of the contact forces of
+/// every slave node about the axis (`r = sqrt(x^2 + y^2)`).
+fn meridian_profile(
+    model: &Model<3>,
+    slave: &[usize],
+    contact: &[NodeContact<3>],
+) -> ContactProfile {
+    let x = &model.mesh.nodes;
+    let tol = 1e-9 * SIZE;
+    let mut points: Vec<ProfilePoint> = slave
+        .iter()
+        .filter(|&&n| x[n][1].abs() <= tol)
+        .map(|&n| {
+            let nc = contact.iter().find(|c| c.node == n);
+            ProfilePoint {
+                node: n,
+                x: x[n][0],
+                x_ref: x[n][0],
+                pressure: nc.map_or(0.0, |c| c.pressure),
+                gap: nc.map(|c| c.gap),
+                closed: nc.is_some_and(|c| c.status == ContactStatus::Closed),
+            }
+        })
+        .collect();
+    points.sort_by(|a, b| a.x.total_cmp(&b.x));
+    let edges = points.windows(2).map(|w| [w[0].x, w[1].x]).collect();
+    let magnitude = |c: &NodeContact<3>| c.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+    ContactProfile {
+        points,
+        force: [0.0, contact.iter().map(|c| c.force[2]).sum()],
+        closed: contact
+            .iter()
+            .filter(|c| c.status == ContactStatus::Closed)
+            .count(),
+        moment: contact
+            .iter()
+            .map(|c| magnitude(c) * x[c.node][0].hypot(x[c.node][1]))
+            .sum(),
+        force_sum: contact.iter().map(magnitude).sum(),
+        edges,
+    }
+}
+
+/// The measured figures of one run against Hertz at the carried load:
+/// a, a (moment), p0, L2(p)/p0 (values), the force balance, and the mesh
+/// size across the contact zone.
+fn measure(
+    o: &Outcome,
+    names: &[&'static str; 6],
+) -> Result<(Vec<crate::measure::Value>, f64), String> {
+    let slave = face_nodes(&o.model, "top.zmin")?;
+    let profile = meridian_profile(&o.model, &slave, &o.last.contact);
+    let force = profile.force[1];
+    if force <= 0.0 || !force.is_finite() {
+        return Err(format!(
+            "the total contact force is {force:e}: no load went through the contact"
+        ));
+    }
+    let hertz = HertzSphere {
+        e_star: combined_modulus(E, NU, E, NU),
+        radius: combined_radius(R, R),
+        load: 4.0 * force,
+    };
+    let (a, p0) = (hertz.contact_radius(), hertz.peak_pressure());
+    let extent = (1.5 * a).min(profile.points.last().map_or(0.0, |p| p.x));
+    let l2 = profile.l2_error(|r| hertz.pressure(r), a, p0, extent);
+    let values = vec![
+        value(names[0], profile.half_width()?, a),
+        value(names[1], 16.0 / (3.0 * PI) * profile.moment_ratio(), a),
+        value(names[2], profile.axis_pressure()?, p0),
+        error(names[3], l2),
+        value(names[4], force, -o.last.force),
+        error(names[5], o.summary.newton_iterations as f64),
+    ];
+    Ok((values, profile.zone_mesh_size(a)))
+}
+
+/// One level: every [`VARIANTS`] run on the meshes of `n` cells across.
+/// Measured (`ctc verify hertz_two_spheres_3d --max-level 2`): TODO.
+fn level(level: usize) -> Result<ProgramLevel, String> {
+    let n = *CELLS
+        .get(level)
+        .ok_or_else(|| format!("no level {level}"))?;
+    let mut out = ProgramLevel {
+        h: f64::NAN,
+        ..ProgramLevel::default()
+    };
+    for v in &VARIANTS {
+        let o = solve(n, v).map_err(|e| format!("{}: {e}", v.names[0]))?;
+        let (values, h) = measure(&o, &v.names)?;
+        if out.h.is_nan() {
+            out.h = h;
+        }
+        out.add_run(&o.summary);
+        out.values.extend(values);
+    }
+    Ok(out)
+}
