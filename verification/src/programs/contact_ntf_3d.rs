@@ -656,17 +656,7 @@ fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), Strin
         return Err("the patch deck is not a 3d deck".into());
     };
     let mut last = Last {
-        top: model
-            .mesh
-            .face_sets
-            .get("top.zmax")
-            .map(|f| {
-                let mut n: Vec<usize> = f.iter().flat_map(|f| f.nodes().to_vec()).collect();
-                n.sort_unstable();
-                n.dedup();
-                n
-            })
-            .ok_or("no face set top.zmax")?,
+        top: face_nodes(&model, "top.zmax")?,
         ..Last::default()
     };
     let s = run(&model, &mut last).map_err(|e| e.message)?;
@@ -716,6 +706,19 @@ fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), Strin
         },
         level,
     ))
+}
+
+/// The nodes of face set `name`, sorted.
+pub fn face_nodes(model: &ctc_engine::model::Model<3>, name: &str) -> Result<Vec<usize>, String> {
+    let faces = model
+        .mesh
+        .face_sets
+        .get(name)
+        .ok_or_else(|| format!("no face set {name}"))?;
+    let mut n: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
+    n.sort_unstable();
+    n.dedup();
+    Ok(n)
 }
 
 /// Adds the work figures of one run's level to `out`.

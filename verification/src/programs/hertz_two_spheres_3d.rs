@@ -41,11 +41,11 @@
 //! |F|`); L2(p)/p0 along the same meridian on `[0, 1.5 a]`
 //! ([`ContactProfile::l2_error`], the estimator of the axisymmetric
 //! cases); the contact force against the reaction on the top body's
-//! loaded face. Levels: `n = 6, 12, 24` cells across each body (`n / 2`
-//! through the height), 2 / 4 / 9 cells across `a`; `ctc verify
+//! loaded face. Levels: `n = 6, 12, 18` cells across each body (`n / 2`
+//! through the height), 3 / 5 / 7 cells across `a` (a = 0.108); `ctc verify
 //! hertz_two_spheres_3d` runs level 0, `--max-level 2` all three.
 
-use super::contact_ntf_3d::Last;
+use super::contact_ntf_3d::{face_nodes, Last};
 use super::{error, value};
 use crate::analytical::hertz::{combined_modulus, combined_radius, HertzSphere};
 use crate::case::{Check, Quantity};
@@ -128,31 +128,35 @@ const VARIANTS: [Variant; 3] = [
 
 /// The registry entry of this file.
 pub fn cases() -> Vec<VerifyCase> {
-    // Measured: see [`level`].
-    let tolerances: [[&[f64]; 4]; 3] = [
-        [
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-        ],
-        [
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-        ],
-        [
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-            &[0.3, 0.3, 0.3],
-        ],
+    // Measured (levels 0-2) in the doc of [`level`]; tolerances with a
+    // margin; the finest level's p0 of mortar carries issue 18's 2 %.
+    let mortar: [&[f64]; 4] = [
+        &[0.03, 0.01, 0.05],
+        &[0.07, 0.025, 0.013],
+        &[0.025, 0.018, 0.012],
+        &[0.16, 0.065, 0.045],
     ];
+    // node-to-facet: guarded (p0 plateaus low, the axis node)
+    let node_to_facet: [&[f64]; 4] = [
+        &[0.08, 0.04, 0.045],
+        &[0.08, 0.025, 0.017],
+        &[0.25, 0.3, 0.3],
+        &[0.2, 0.15, 0.14],
+    ];
+    // minimum rates (last two levels) of a (moment) and L2(p)/p0
+    let rates: [Option<f64>; 3] = [Some(0.7), Some(0.7), None];
     let mut checks = Vec::new();
-    for (v, t) in VARIANTS.iter().zip(tolerances) {
-        for (name, tol) in v.names.iter().zip(t) {
-            checks.push(Check::new(Quantity::Named(name), tol));
+    for ((v, t), rate) in VARIANTS
+        .iter()
+        .zip([mortar, mortar, node_to_facet])
+        .zip(rates)
+    {
+        for (k, (name, tol)) in v.names.iter().zip(t).enumerate() {
+            let mut check = Check::new(Quantity::Named(name), tol);
+            if k == 1 || k == 3 {
+                check.min_rate = rate;
+            }
+            checks.push(check);
         }
         checks.push(Check::new(Quantity::Named(v.names[4]), &[BALANCE; 3]));
     }
@@ -264,19 +268,6 @@ fn solve(n: usize, variant: &Variant) -> Result<Outcome, String> {
     })
 }
 
-/// The nodes of face set `name`, sorted.
-fn face_nodes(model: &Model<3>, name: &str) -> Result<Vec<usize>, String> {
-    let faces = model
-        .mesh
-        .face_sets
-        .get(name)
-        .ok_or_else(|| format!("no face set {name}"))?;
-    let mut n: Vec<usize> = faces.iter().flat_map(|f| f.nodes().to_vec()).collect();
-    n.sort_unstable();
-    n.dedup();
-    Ok(n)
-}
-
 /// The pressure profile along the symmetry plane `y = 0` (reference
 /// abscissa x = r), with the first moment and sum of the contact forces of
 /// every slave node about the axis (`r = sqrt(x^2 + y^2)`).
@@ -356,7 +347,25 @@ fn measure(
 }
 
 /// One level: every [`VARIANTS`] run on the meshes of `n` cells across.
-/// Measured (`ctc verify hertz_two_spheres_3d --max-level 2`): TODO.
+/// Measured (`ctc verify hertz_two_spheres_3d --max-level 2`, release, 3
+/// levels, h = 0.077 / 0.037 / 0.024 the largest meridian edge reaching
+/// into the contact, 966 / 6,396 / 20,178 free dofs, 10 / 112 / 450 s for
+/// the three runs of a level on a loaded 2-core machine); against Hertz at
+/// the carried load:
+/// - mortar, penalty: p0 1.89e-2 / 1.36e-2 / 8.2e-3 (high); a (moment)
+///   6.0e-2 / 2.0e-2 / 1.07e-2 (rates 1.5, 1.5); a (edge) 2.3e-2 / 4.1e-3
+///   / 4.1e-2 (the edge is located within one cell, 0.024 at level 2:
+///   no rate); L2(p)/p0 0.134 / 0.053 / 0.037 (rates 1.3, 0.87); Newton
+///   24 / 43 / 64;
+/// - mortar, Lagrange multipliers: the penalty's figures within 6e-4 (p0
+///   1.94e-2 / 1.40e-2 / 8.5e-3, L2 0.134 / 0.053 / 0.037); Newton 14 / 16
+///   / 17;
+/// - node-to-facet (single pass, penalty): p0 -20.5 % / -25.9 % / -26.0 %
+///   (a plateau: the axis node, as node-to-segment's in 2D); a (moment)
+///   6.6e-2 / 1.8e-2 / 1.4e-2; L2 0.173 / 0.128 / 0.116; Newton 30 / 28 /
+///   27;
+/// - the contact force balances the top face's reaction to 1e-11 in
+///   every run.
 fn level(level: usize) -> Result<ProgramLevel, String> {
     let n = *CELLS
         .get(level)
