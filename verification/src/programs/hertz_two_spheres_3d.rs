@@ -136,7 +136,7 @@ pub fn cases() -> Vec<VerifyCase> {
         &[0.025, 0.018, 0.012],
         &[0.16, 0.065, 0.045],
     ];
-    // node-to-facet: guarded (p0 plateaus low, the axis node)
+    // node-to-facet: guarded (p0 plateaus low at the axis node)
     let node_to_facet: [&[f64]; 4] = [
         &[0.08, 0.04, 0.045],
         &[0.08, 0.025, 0.017],
@@ -361,9 +361,9 @@ fn measure(
 ///   1.94e-2 / 1.40e-2 / 8.5e-3, L2 0.134 / 0.053 / 0.037); Newton 14 / 16
 ///   / 17;
 /// - node-to-facet (single pass, penalty): p0 -20.5 % / -25.9 % / -26.0 %
-///   (a plateau: the axis node, as node-to-segment's in 2D); a (moment)
-///   6.6e-2 / 1.8e-2 / 1.4e-2; L2 0.173 / 0.128 / 0.116; Newton 30 / 28 /
-///   27;
+///   (a plateau, low, like node-to-segment's p0 in 2D; its cause in 3D
+///   not traced); a (moment) 6.6e-2 / 1.8e-2 / 1.4e-2; L2 0.173 / 0.128 /
+///   0.116; Newton 30 / 28 / 27;
 /// - the contact force balances the top face's reaction to 1e-11 in
 ///   every run.
 fn level(level: usize) -> Result<ProgramLevel, String> {

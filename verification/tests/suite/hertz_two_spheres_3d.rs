@@ -3,8 +3,8 @@
 //! runs it (level 0; levels 1 and 2 with `--max-level 2`).
 //!
 //! Source: K. L. Johnson, Contact Mechanics (1985) §4.2, two spheres of
-//! radius R = 2 (R* = 1), E = 1000, nu = 0.3 on both sides (E* = E / (2 (1
-//! - nu^2))), Hertz at the carried load; the program is
+//! radius R = 2 (R* = 1), E = 1000, nu = 0.3 on both sides (E* = E /
+//! (2 (1 - nu^2))), Hertz at the carried load; the program is
 //! `verification/src/programs/hertz_two_spheres_3d.rs`.
 //!
 //! ```text
