@@ -130,13 +130,41 @@ fn studies_section(s: &mut String, st: &Studies, plots: &[PlotFile]) {
                     let _ = writeln!(
                         s,
                         "| {} | {} | {} | {} | {:.2e} | {:.2e} | {:.3} |",
-                        r.deck,
-                        if r.quadratic { "quad8" } else { "quad4" },
-                        r.level,
-                        r.dofs,
-                        r.p0,
-                        r.l2,
-                        r.seconds
+                        r.deck, r.cells, r.level, r.dofs, r.p0, r.l2, r.seconds
+                    );
+                }
+            }
+        }
+    }
+    if let Some(q) = &st.quadratic_3d {
+        let _ = writeln!(
+            s,
+            "\n## Quadratic against linear elements: 3D Hertz work precision\n"
+        );
+        let _ = writeln!(
+            s,
+            "The rigid sphere pressed into the graded elastic block (quarter model, Lagrange \
+             multipliers) on hex8 cells and on hex27 / hex20 cells of about the same number of \
+             dofs, at the levels of `hertz_sphere_3d_quadratic` (issue 23): the p0 and L2(p) \
+             errors against Hertz at the carried force, against the free dofs and against the \
+             solve wall time of `ctc_engine::solve::run`.\n"
+        );
+        match q {
+            Err(e) => {
+                let _ = writeln!(s, "Could not run: `{e}`\n");
+            }
+            Ok(rows) => {
+                link_plots(s, plots, "hertz_sphere_3d_quadratic", "work-precision");
+                let _ = writeln!(
+                    s,
+                    "| cells | level | free dofs | p0 error | L2(p) error | solve [s] |"
+                );
+                let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|");
+                for r in rows {
+                    let _ = writeln!(
+                        s,
+                        "| {} | {} | {} | {:.2e} | {:.2e} | {:.3} |",
+                        r.cells, r.level, r.dofs, r.p0, r.l2, r.seconds
                     );
                 }
             }

@@ -145,14 +145,22 @@ pub fn work_precision_plot(c: &MethodComparison, dir: &Path) -> Result<Option<Pl
 }
 
 /// `hertz_quadratic_{deck}_work_precision.svg` (issue 23): the Hertz
-/// `deck` ("cylinder" or "sphere") on quad8 against quad4 through the
-/// levels of `hertz_quadratic`; two panels, the p0 and L2(p) errors
-/// against the free dofs and against the solve wall time.
+/// `deck` ("cylinder" or "sphere": quad8 against quad4 through the levels
+/// of `hertz_quadratic`; "sphere_3d": hex20 and hex27 against hex8
+/// through those of `hertz_sphere_3d_quadratic`); two panels, the p0 and
+/// L2(p) errors against the free dofs and against the solve wall time, one
+/// line per error and cell kind.
 pub fn quadratic_work_precision_plot(
     deck: &str,
     rows: &[crate::studies::QuadraticRow],
     dir: &Path,
 ) -> Result<Option<PlotFile>, String> {
+    let mut kinds: Vec<&str> = Vec::new();
+    for r in rows.iter().filter(|r| r.deck == deck) {
+        if !kinds.contains(&r.cells.as_str()) {
+            kinds.push(&r.cells);
+        }
+    }
     let series = |x: &dyn Fn(&crate::studies::QuadraticRow) -> f64| -> Vec<Series> {
         let mut out = Vec::new();
         for (what, y) in [
@@ -162,10 +170,10 @@ pub fn quadratic_work_precision_plot(
             ),
             ("L2(p)", |r| r.l2),
         ] {
-            for (cells, quadratic) in [("quad4", false), ("quad8", true)] {
+            for cells in &kinds {
                 let points = positive(
                     rows.iter()
-                        .filter(|r| r.deck == deck && r.quadratic == quadratic)
+                        .filter(|r| r.deck == deck && r.cells == *cells)
                         .map(|r| (x(r), y(r))),
                 );
                 if !points.is_empty() {
@@ -205,7 +213,12 @@ pub fn quadratic_work_precision_plot(
     root.present()
         .map_err(|e| format!("cannot write {}: {e:?}", path.display()))?;
     Ok(Some(PlotFile {
-        case: "hertz_quadratic".into(),
+        case: if deck == "sphere_3d" {
+            "hertz_sphere_3d_quadratic"
+        } else {
+            "hertz_quadratic"
+        }
+        .into(),
         kind: "work-precision".into(),
         file,
     }))

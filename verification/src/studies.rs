@@ -42,16 +42,23 @@ pub struct Studies {
     /// through the levels of `hertz_quadratic` (issue 23): the rows of the
     /// work-precision plot, or why they could not be run.
     pub quadratic: Option<Result<Vec<QuadraticRow>, String>>,
+    /// The rigid sphere into the 3D block, hex20 and hex27 against hex8 at
+    /// about equal dofs through the levels of `hertz_sphere_3d_quadratic`:
+    /// the rows of its work-precision plot (deck "sphere_3d"), or why they
+    /// could not be run.
+    pub quadratic_3d: Option<Result<Vec<QuadraticRow>, String>>,
 }
 
 /// One run of the quadratic-vs-linear Hertz study.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct QuadraticRow {
-    /// "cylinder" or "sphere".
+    /// "cylinder", "sphere" or "sphere_3d".
     pub deck: String,
-    /// quad8 (true) or quad4 cells.
+    /// Quadratic cells (quad8, hex20, hex27) or linear ones.
     pub quadratic: bool,
-    /// Level of `hertz_quadratic`.
+    /// The cell kind ("quad4", "quad8", "hex8", "hex20", "hex27").
+    pub cells: String,
+    /// Level of `hertz_quadratic` (or `hertz_sphere_3d_quadratic`).
     pub level: usize,
     /// Free dofs.
     pub dofs: usize,
@@ -75,8 +82,33 @@ pub fn quadratic_rows(levels: usize) -> Result<Vec<QuadraticRow>, String> {
             out.push(QuadraticRow {
                 deck: r.deck.to_string(),
                 quadratic: r.quadratic,
+                cells: if r.quadratic { "quad8" } else { "quad4" }.to_string(),
                 level,
                 dofs: r.dofs,
+                seconds: r.seconds,
+                p0: r.errors[1],
+                l2: r.errors[2],
+            });
+        }
+    }
+    Ok(out)
+}
+
+/// Levels of the 3D quadratic-vs-linear Hertz study (those of
+/// `hertz_sphere_3d_quadratic`).
+pub const QUADRATIC_3D_LEVELS: usize = 3;
+
+/// The rows of the 3D quadratic-vs-linear Hertz study (deck "sphere_3d").
+pub fn quadratic_3d_rows(levels: usize) -> Result<Vec<QuadraticRow>, String> {
+    let mut out = Vec::new();
+    for level in 0..levels {
+        for r in crate::programs::quadratic_contact::hertz_3d_work_precision(level)? {
+            out.push(QuadraticRow {
+                deck: "sphere_3d".to_string(),
+                quadratic: r.kind.order() == 2,
+                cells: r.kind.name().to_string(),
+                level,
+                dofs: r.summary.free_dofs,
                 seconds: r.seconds,
                 p0: r.errors[1],
                 l2: r.errors[2],
@@ -171,12 +203,17 @@ pub fn run_studies(
         progress("hertz_quadratic: quad8 vs quad4");
         quadratic_rows(QUADRATIC_LEVELS)
     });
+    let quadratic_3d = matches("hertz_sphere_3d_quadratic").then(|| {
+        progress("hertz_sphere_3d_quadratic: hex20 and hex27 vs hex8");
+        quadratic_3d_rows(QUADRATIC_3D_LEVELS)
+    });
     Studies {
         methods,
         sweep,
         scaling,
         target,
         quadratic,
+        quadratic_3d,
     }
 }
 
@@ -198,6 +235,13 @@ pub fn study_plots(s: &Studies, dir: &Path) -> Result<Vec<PlotFile>, String> {
                 deck, rows, dir,
             )?);
         }
+    }
+    if let Some(Ok(rows)) = &s.quadratic_3d {
+        out.extend(crate::method_plots::quadratic_work_precision_plot(
+            "sphere_3d",
+            rows,
+            dir,
+        )?);
     }
     Ok(out)
 }

@@ -615,9 +615,61 @@ pub(crate) fn hertz_run_on(
     names: [&'static str; 4],
     method: ContactMethod,
 ) -> Result<(Vec<crate::measure::Value>, RunSummary, usize, f64), String> {
-    let r_tool = 1.0;
+    let f = hertz_figures_on(kind, n, method)?;
+    let values = vec![
+        value(names[0], f.p0, f.p0_hertz),
+        error(names[1], f.profile),
+        value(names[2], f.force, f.force_half_space),
+        super::value(names[3], f.a_hertz, (HERTZ_R * D).sqrt()),
+    ];
+    Ok((values, f.summary, f.nodes, f.seconds))
+}
+
+/// Radius of the rigid sphere of the 3D Hertz runs.
+const HERTZ_R: f64 = 1.0;
+
+/// What one 3D Hertz run measured (the rigid sphere of radius
+/// [`HERTZ_R`] lowered by `D` into the graded block, quarter model).
+pub(crate) struct HertzFigures {
+    /// The carried force (4 x the quarter's contact forces).
+    pub force: f64,
+    /// The half-space's force at the approach `D` (the finite block is
+    /// about 9 % stiffer).
+    pub force_half_space: f64,
+    /// Hertz's contact radius at the carried force.
+    pub a_hertz: f64,
+    /// The contact radius from the first moment of the nodal contact
+    /// forces, `16 / (3 pi) sum f r / sum f` (the ratio of Hertz's
+    /// pressure over the disc).
+    pub a_moment: f64,
+    /// Hertz's peak pressure at the carried force.
+    pub p0_hertz: f64,
+    /// The reported pressure of the slave node nearest the axis.
+    pub p0: f64,
+    /// Largest `|p - p_H(r)| / p0` of a slave node inside `0.7 a`.
+    pub profile: f64,
+    /// L2 error of the reported pressure field over the quarter disc `r <
+    /// 1.5 a` ([`pressure_l2`]), relative to `p0` and the disc of radius
+    /// `a`.
+    pub l2: f64,
+    /// The run's summary.
+    pub summary: RunSummary,
+    /// Mesh nodes.
+    pub nodes: usize,
+    /// Solve wall time, seconds.
+    pub seconds: f64,
+}
+
+/// The rigid sphere into the block of `kind` on `n` graded divisions
+/// (the scene of `hertz_sphere_3d`), measured against Hertz at the
+/// carried force.
+pub(crate) fn hertz_figures_on(
+    kind: CellKind,
+    n: usize,
+    method: ContactMethod,
+) -> Result<HertzFigures, String> {
     let ball = Analytic::Sphere(
-        Sphere::new(Vec3::new(0.0, 0.0, 1.0 + r_tool), r_tool, Side::Outside).unwrap(),
+        Sphere::new(Vec3::new(0.0, 0.0, 1.0 + HERTZ_R), HERTZ_R, Side::Outside).unwrap(),
     );
     let grading = [
         Grading::Geometric { ratio: 8.0 },
@@ -630,8 +682,9 @@ pub(crate) fn hertz_run_on(
     let seconds = start.elapsed().as_secs_f64();
     let e_star = E / (1.0 - NU * NU);
     let p_total = -4.0 * last.0.iter().map(|c| c.force[2]).sum::<f64>();
-    let a = (3.0 * p_total * r_tool / (4.0 * e_star)).cbrt();
+    let a = (3.0 * p_total * HERTZ_R / (4.0 * e_star)).cbrt();
     let p0 = 3.0 * p_total / (2.0 * PI * a * a);
+    let hertz = |r: f64| p0 * (1.0 - (r / a).powi(2)).max(0.0).sqrt();
     let x = |c: &NodeContact<3>| {
         let x0 = model.mesh.nodes[c.node];
         let u = last.1[c.node];
@@ -650,19 +703,85 @@ pub(crate) fn hertz_run_on(
         .0
         .iter()
         .filter(|c| radius(c) < 0.7 * a)
-        .map(|c| {
-            let r = radius(c) / a;
-            ((c.pressure - p0 * (1.0 - r * r).sqrt()) / p0).abs()
-        })
+        .map(|c| ((c.pressure - hertz(radius(c))) / p0).abs())
         .fold(0.0, f64::max);
-    let p_half_space = 4.0 / 3.0 * e_star * r_tool.sqrt() * D.powf(1.5);
-    let values = vec![
-        value(names[0], axis.pressure, p0),
-        error(names[1], profile),
-        value(names[2], p_total, p_half_space),
-        super::value(names[3], a, (r_tool * D).sqrt()),
+    let (moment, fz) = last.0.iter().fold((0.0, 0.0), |(m, f), c| {
+        (m - c.force[2] * radius(c), f - c.force[2])
+    });
+    let mut pressure = vec![0.0; model.mesh.nodes.len()];
+    for c in &last.0 {
+        pressure[c.node] = c.pressure;
+    }
+    let l2 = pressure_l2(&model, &pressure, &hertz, 1.5 * a) / (0.25 * PI * a * a).sqrt() / p0;
+    Ok(HertzFigures {
+        force: p_total,
+        force_half_space: 4.0 / 3.0 * e_star * HERTZ_R.sqrt() * D.powf(1.5),
+        a_hertz: a,
+        a_moment: 16.0 / (3.0 * PI) * moment / fz,
+        p0_hertz: p0,
+        p0: axis.pressure,
+        profile,
+        l2,
+        summary: s,
+        nodes: model.mesh.nodes.len(),
+        seconds,
+    })
+}
+
+/// `sqrt(int (p_h - p_H(r))^2 dA)` over the part `r < extent` (reference
+/// radius from the z axis) of the first pair's slave faces, `p_h` the
+/// nodal pressures `pressure` interpolated by each face's shape functions
+/// (quad4, quad8, quad9; the field the nodal output describes), by 6 x 6
+/// Gauss points per face (the pressure's square-root edge is not
+/// polynomial).
+fn pressure_l2(
+    model: &Model<3>,
+    pressure: &[f64],
+    reference: &dyn Fn(f64) -> f64,
+    extent: f64,
+) -> f64 {
+    use ctc_engine::element::reference::{Quad4, Quad8, Quad9, ReferenceCell};
+    const G: [(f64, f64); 6] = [
+        (-0.932_469_514_203_152, 0.171_324_492_379_170_3),
+        (-0.661_209_386_466_264_5, 0.360_761_573_048_138_6),
+        (-0.238_619_186_083_196_9, 0.467_913_934_572_691),
+        (0.238_619_186_083_196_9, 0.467_913_934_572_691),
+        (0.661_209_386_466_264_5, 0.360_761_573_048_138_6),
+        (0.932_469_514_203_152, 0.171_324_492_379_170_3),
     ];
-    Ok((values, s, model.mesh.nodes.len(), seconds))
+    let mut sum = 0.0;
+    for face in model.contacts.first().map_or(&[][..], |c| &c.faces[..]) {
+        let nodes = face.nodes();
+        for (xi, wx) in G {
+            for (eta, wy) in G {
+                let q = [xi, eta];
+                let (n, g): (Vec<f64>, Vec<[f64; 2]>) = match nodes.len() {
+                    4 => (Quad4::shape(&q).to_vec(), Quad4::gradients(&q).to_vec()),
+                    8 => (Quad8::shape(&q).to_vec(), Quad8::gradients(&q).to_vec()),
+                    9 => (Quad9::shape(&q).to_vec(), Quad9::gradients(&q).to_vec()),
+                    _ => continue,
+                };
+                let (mut x, mut t, mut p) = ([0.0; 3], [[0.0; 3]; 2], 0.0);
+                for (a, &node) in nodes.iter().enumerate() {
+                    let xa = model.mesh.nodes[node];
+                    for c in 0..3 {
+                        x[c] += n[a] * xa[c];
+                        t[0][c] += g[a][0] * xa[c];
+                        t[1][c] += g[a][1] * xa[c];
+                    }
+                    p += n[a] * pressure[node];
+                }
+                let r = x[0].hypot(x[1]);
+                if r >= extent {
+                    continue;
+                }
+                let [t1, t2] = t;
+                let area = Vec3::from(t1).cross(&Vec3::from(t2)).norm();
+                sum += wx * wy * area * (p - reference(r)).powi(2);
+            }
+        }
+    }
+    sum.sqrt()
 }
 
 /// The work-precision table of `hertz_sphere_3d` at `level`: per method,

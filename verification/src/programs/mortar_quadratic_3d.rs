@@ -149,19 +149,18 @@ pub fn cases() -> Vec<VerifyCase> {
             ],
             levels: 1,
             checks: vec![
-                // measured (see `hertz_level`) times about 1.3; level 2
-                // not measured yet: level 1's
+                // measured (see `hertz_level`) times about 1.3-1.5
                 Check::new(
-                    Quantity::Named("P stiff block mortar vs rigid plane"),
-                    &[0.3, 0.06, 0.06],
+                    Quantity::Named("P stiff block mortar vs rigid plane (lagrange)"),
+                    &[7e-3, 3e-3, 2e-3],
                 ),
                 Check::new(
                     Quantity::Named("P equal block mortar vs Hertz(E*)"),
-                    &[0.8, 0.3, 0.3],
+                    &[0.8, 0.29, 0.21],
                 ),
                 Check::new(
                     Quantity::Named("p0 equal block mortar vs Hertz(E*)"),
-                    &[0.25, 0.2, 0.2],
+                    &[0.25, 0.19, 0.19],
                 ),
             ],
             kind: CaseKind::Program(ProgramCase {
@@ -200,17 +199,23 @@ const E: f64 = 1000.0;
 const NU: f64 = 0.3;
 
 /// The Hertz deck of level `level` against `block_e` (`None`: the rigid
-/// plane tool), the quadratic version of
+/// plane tool, with Lagrange multipliers: one weighted gap per slave node,
+/// the constraints the mortar rows impose), the quadratic version of
 /// [`super::contact_ntf_3d::hertz_deck_with`] (mortar).
 pub fn hertz_deck(level: usize, block_e: Option<f64>) -> Result<String, String> {
     let (radial, tangential, block) = *HERTZ_LEVELS.get(level).ok_or("no such level")?;
     let linear = hertz_deck_with(block_e, "mortar");
     let sphere = "radial = 3  tangential = 16 }";
     let cube = "divisions = (8, 8, 2) }";
-    if !linear.contains(sphere) || (block_e.is_some() && !linear.contains(cube)) {
-        return Err("the linear Hertz deck has changed: no mesh line to replace".into());
+    let plane_penalty = "-> plate { method = penalty { kind = area  stiffness = 1e7 } }";
+    if !linear.contains(sphere)
+        || (block_e.is_some() && !linear.contains(cube))
+        || (block_e.is_none() && !linear.contains(plane_penalty))
+    {
+        return Err("the linear Hertz deck has changed: no mesh or method line to replace".into());
     }
     Ok(linear
+        .replace(plane_penalty, "-> plate { method = lagrange }")
         .replace(
             sphere,
             &format!("radial = {radial}  tangential = {tangential}  order = 2 }}"),
@@ -289,8 +294,10 @@ impl Observer<3> for Probe {
 
 /// The Hertz check on quadratic meshes: the sphere pressed by a block 1000
 /// times stiffer (mortar on the quadratic faces) must give the force of
-/// the same sphere under a rigid plane tool (the face-integrated rigid
-/// path) up to the block's compliance; pressed by a block of its own
+/// the same sphere under a rigid plane tool up to the block's compliance;
+/// the rigid plane holds the same constraints as the mortar rows, one
+/// weighted gap per slave node (face-integrated Lagrange multipliers on
+/// the dual of the positive-weight basis); pressed by a block of its own
 /// material, Hertz with `E* = E / (2 (1 - nu^2))`: `P = 4/3 E* sqrt(R)
 /// d^(3/2) / 4` (quarter model), `p0 = 2 E* a / (pi R)`, `a = sqrt(R d)`
 /// (the finite sphere shell and block are stiffer than half-spaces: the
@@ -299,20 +306,32 @@ impl Observer<3> for Probe {
 /// nodes leaves out the pulling forces the rows' negative dual lobes put
 /// on open neighbours: 0.59 instead of 0.47 at level 0).
 ///
-/// Measured at level 0 (`ctc verify hertz_sphere_block_mortar_quadratic_3d`,
-/// 1,174 free dofs, 74 s debug): rigid plane 0.3828 (Hertz 0.3663: +4.5
-/// %), stiff block 0.4735 (+24 % over the rigid plane), equal block 0.3004
-/// (Hertz 0.1832: +64 %), its peak pressure 28.46 (Hertz 34.98: -19 %).
-/// Level 1 (`cargo test -p ctc-verification --test suite
-/// hertz_quadratic_level -- --ignored --nocapture`, 4,506 free dofs, 14
-/// min debug on the loaded machine): rigid plane 0.3959 (+8.1 % over
-/// Hertz), stiff block 0.3789 (-4.3 % from the rigid plane), equal block
-/// 0.2242 (+22 % over Hertz; the linear mortar at 10,002 free dofs: +14.9
-/// %), its peak pressure 40.08 (+14.6 %). The quadratic mortar is too
-/// stiff on the coarsest curved mesh (the contact radius `a = 0.1` spans
-/// half a face at level 0) and within 4.3 % of the rigid plane at level 1
-/// (the linear mortar at 10,002 free dofs: 1.1e-3): level 2 (2, 12, 6),
-/// about the linear case's dofs, is not measured yet.
+/// The former "+24 % over the rigid plane" at level 0 was the rigid
+/// plane's formulation, not a mortar defect: that plane had the
+/// face-integrated penalty, whose 9 points per face hold the gap pointwise
+/// (0.3828 at level 0, 0.3959 at level 1), while the mortar rows hold one
+/// weighted gap per node; with a = 0.1 inside one face (level 0: faces
+/// of ~0.39, level 1: ~0.2) the node's constraint averages the gap over
+/// its whole support, and the sphere is pushed in further: the rigid
+/// plane with the mortar's kind of constraint (Lagrange) carries 0.4757 /
+/// 0.3796, the stiff block 0.4735 / 0.3789 (-4.7e-3 / -2.0e-3: the
+/// block's compliance; the linear mortar at 10,002 free dofs: 1.1e-3).
+/// At level 2 (faces ~0.13) the plane carries 0.3542, the linear
+/// node-to-facet rigid plane of `hertz_sphere_block_ntf_3d` 0.3550, and
+/// the equal block 0.2128 against the linear 0.2129.
+///
+/// Measured (`ctc verify hertz_sphere_block_mortar_quadratic_3d
+/// --max-level 2`, release, loaded machine; free dofs 1,174, 4,506,
+/// 15,290; wall 14 s, 235 s, 417 s for the three runs):
+///
+/// | level | stiff block vs plane (Lagrange) | equal block P vs Hertz | p0 vs Hertz |
+/// | --- | --- | --- | --- |
+/// | 0 | -4.7e-3 | +64 % | -19 % |
+/// | 1 | -2.0e-3 | +22 % | +14.6 % |
+/// | 2 | -1.3e-3 | +16.2 % | +14.8 % |
+///
+/// (the finite bodies: the linear mortar at 10,002 free dofs +14.9 % on
+/// P). Tolerances: these times about 1.3-1.5.
 ///
 /// ```text
 ///            u_z = -d  (block top; or a rigid plane at z = 1)
@@ -337,8 +356,11 @@ fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
     let e_star = 0.5 * E / (1.0 - NU * NU);
     let hertz = 4.0 / 3.0 * e_star * HERTZ_D.powf(1.5) / 4.0;
     let hertz_p0 = 2.0 * e_star * HERTZ_D.sqrt() / std::f64::consts::PI;
-    out.values
-        .push(value("P stiff block mortar vs rigid plane", stiff, rigid));
+    out.values.push(value(
+        "P stiff block mortar vs rigid plane (lagrange)",
+        stiff,
+        rigid,
+    ));
     out.values
         .push(value("P equal block mortar vs Hertz(E*)", equal, hertz));
     out.values
