@@ -163,12 +163,12 @@ impl Chart {
 mod tests {
     use super::*;
 
-    /// A smooth path `psi(t)` crossing `|psi| = pi` near `t = 0`.
+    /// A smooth path `psi(t)` just past `|psi| = pi` (3.19 at `t = 0.3`).
     fn path(t: f64) -> [f64; 3] {
         [
             0.8 + 0.3 * t + 0.1 * t * t,
             -1.2 + 0.5 * t,
-            2.6 - 0.2 * t + 0.4 * t * t,
+            2.9 - 0.2 * t + 0.4 * t * t,
         ]
     }
 

@@ -99,16 +99,12 @@ where
             let Some(chart) = Chart::new(psi, new) else {
                 continue;
             };
-            for c in 0..3 {
-                self.u[spin][c] = new[c];
-                self.committed[spin][c] = new[c];
-            }
+            self.u[spin][..3].copy_from_slice(&new);
+            self.committed[spin][..3].copy_from_slice(&new);
             if let Some(h) = self.history.last.as_mut() {
                 let start: [f64; 3] = std::array::from_fn(|c| h.start[spin][c]);
                 let start = complement(start);
-                for c in 0..3 {
-                    h.start[spin][c] = start[c];
-                }
+                h.start[spin][..3].copy_from_slice(&start);
             }
             if let Some(dy) = self.dynamics.as_mut() {
                 dy.rechart(dofs, &chart);
