@@ -372,3 +372,67 @@ fn restart_quadratic_face_friction_matches_uninterrupted_run() {
     let (from, _) = restart_matches(&model, 6);
     assert_eq!(from, 5);
 }
+
+#[test]
+fn restart_free_top_through_its_rotation_chart_matches_uninterrupted_run() {
+    // a free 3D rigid body spun several turns (the torque-free top of
+    // `ctc verify free_top_several_turns_3d`): its rotation vector is
+    // carried over to psi (1 - 2 pi / |psi|) each time |psi| passes pi,
+    // before the restart point is written, so the restarted run continues
+    // bit for bit; the restart point (increment 40) is after several
+    // changes of chart
+    use ctc_engine::model::{Discrete, InitialVelocity};
+    let deck = "analysis { dimension = 3d }\n\
+         material m { elastic { E = 1e3  nu = 0.3 }  density = 0 }\n\
+         body top { mesh = box { origin = (-0.1, -0.1, -0.1)  size = (0.2, 0.2, 0.2)  divisions = (1, 1, 1) }  material = m  kinematics = finite }\n\
+         rigid_body top.all { center = (0, 0, 0)  mass = 1  inertia_diagonal = (1, 1, 1.5)  tie_stiffness = 1e6 }\n\
+         step spin {\n  time = 0 .. 1.2\n  increments = 60\n  dynamic { scheme = newmark }\n  newton { tol = 1e-11 }\n}\n\
+         output { every = 10 }\n";
+    let src = ctc_lang::Source::new("free_top_turns.ctc", deck.to_string());
+    let mut model =
+        match ctc_lang::compile_any(&src).unwrap_or_else(|d| panic!("{}", d.render(&src))) {
+            AnyModel::D3(m) => m,
+            AnyModel::D2(_) => panic!("a 3d deck"),
+        };
+    let (pilot, spin, nodes) = model
+        .discrete
+        .iter()
+        .find_map(|d| match d {
+            Discrete::Rigid {
+                nodes, pilot, spin, ..
+            } => Some((*pilot, *spin, nodes.clone())),
+            _ => None,
+        })
+        .expect("a rigid body");
+    // the rigid velocity omega x (X - X_c) at every tied node, omega as
+    // the rotation vector's rate (psi = 0)
+    let w = [4.0, 0.0, 10.0];
+    let xc = model.mesh.nodes[pilot];
+    let mut v0 = vec![(spin, w)];
+    for n in nodes {
+        let x = model.mesh.nodes[n];
+        let r = [x[0] - xc[0], x[1] - xc[1], x[2] - xc[2]];
+        v0.push((
+            n,
+            [
+                w[1] * r[2] - w[2] * r[1],
+                w[2] * r[0] - w[0] * r[2],
+                w[0] * r[1] - w[1] * r[0],
+            ],
+        ));
+    }
+    for (n, v) in v0 {
+        for (c, x) in v.iter().enumerate() {
+            model.initial_velocities.push(InitialVelocity {
+                label: format!("rigid velocity of node {n}"),
+                nodes: vec![n],
+                component: c,
+                value: *x,
+            });
+        }
+    }
+    // 77 increments: 17 cutbacks (Newton to 1e-11 at about 0.2 rad per
+    // increment), restarted from increment 40
+    let (from, n) = restart_matches(&model, 45);
+    assert_eq!((from, n), (40, 77));
+}

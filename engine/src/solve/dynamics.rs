@@ -977,6 +977,27 @@ impl Dynamics {
             .max(e.damping.abs());
     }
 
+    /// Carries the committed rates and forces of the three dofs `dofs` of
+    /// a free 3D body's rotation vector over to another chart
+    /// ([`super::rotation_chart`]).
+    pub fn rechart(&mut self, dofs: [usize; 3], chart: &super::rotation_chart::Chart) {
+        let get = |x: &[f64]| -> [f64; 3] { dofs.map(|g| x[g]) };
+        let put = |x: &mut [f64], y: [f64; 3]| {
+            for (g, y) in dofs.iter().zip(y) {
+                x[*g] = y;
+            }
+        };
+        let (v, a) = (get(&self.v), get(&self.a));
+        put(&mut self.v, chart.velocity(v));
+        put(&mut self.a, chart.acceleration(v, a));
+        let r0 = chart.force(get(&self.r0));
+        put(&mut self.r0, r0);
+        for f in &mut self.forces0 {
+            let y = chart.force(get(f));
+            put(f, y);
+        }
+    }
+
     /// The committed state carried by restart points (the mass is rebuilt
     /// from the model when the next dynamic increment begins).
     pub fn saved(&self) -> DynamicState {

@@ -58,6 +58,7 @@ pub mod newton;
 pub mod parallel;
 pub mod restart;
 pub mod rigid_body;
+pub mod rotation_chart;
 pub mod rotation_vector;
 pub mod scene;
 pub mod share;

@@ -33,10 +33,13 @@
 //! restart all add to or scale `u`), which an additive parameterization
 //! fits as it is; an incremental rotation composed multiplicatively would
 //! need a committed rotation outside `u`. Its limit: the differential of
-//! `exp` is singular at `|psi| = 2 pi k` (`k >= 1`), so a **free** 3D body
-//! is solved up to a full turn of its rotation vector (a prescribed
-//! rotation about an axis has its three components prescribed: any
-//! angle).
+//! `exp` is singular at `|psi| = 2 pi k` (`k >= 1`); a **free** 3D body
+//! whose `|psi|` ends a converged increment past `pi` is carried over to
+//! the equivalent `psi (1 - 2 pi / |psi|)` with its rates and forces
+//! (`rotation_chart.rs`, from `Newton::commit`), so it turns any number
+//! of times as long as one increment turns it by less than `pi` (a
+//! prescribed rotation about an axis has its three components
+//! prescribed: any angle, never re-charted).
 //!
 //! Each node `a` of the body is tied to its place on the rigid body at
 //! finite rotation, `p_a = X_c + u_c + R r_a` (`r_a = X_a - X_c`), by a

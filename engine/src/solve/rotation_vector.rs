@@ -23,7 +23,8 @@
 //! The map is smooth everywhere; its differential `G` loses rank where
 //! `|psi|` is a non-zero multiple of `2 pi` (the total rotation vector's
 //! known singularity), which a prescribed rotation never meets (its three
-//! components are prescribed) and a free body meets after a full turn.
+//! components are prescribed) and a free body avoids by its change of
+//! chart past `|psi| = pi` (`rotation_chart.rs`).
 
 /// `R(psi) r` and its derivatives in `psi`.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -152,6 +152,19 @@ impl Stabilization {
         }
     }
 
+    /// Carries the committed internal force of a free 3D body's rotation
+    /// vector (dofs `dofs`) over to another chart
+    /// ([`super::rotation_chart`]).
+    pub fn rechart(&mut self, dofs: [usize; 3], chart: &super::rotation_chart::Chart) {
+        if self.f_int_committed.is_empty() {
+            return;
+        }
+        let f = chart.force(dofs.map(|g| self.f_int_committed[g]));
+        for (g, f) in dofs.iter().zip(f) {
+            self.f_int_committed[*g] = f;
+        }
+    }
+
     /// Books the converged increment from `committed` to `u` with internal
     /// forces `f_int` (all dofs): stabilization and internal work, and the
     /// stabilization force at the converged state.

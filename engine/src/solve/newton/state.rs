@@ -63,12 +63,54 @@ where
         self.history.record(step, t0, t1, &self.committed);
         self.fresh = true;
         self.committed.copy_from_slice(&self.u);
+        self.rechart_rotations();
         self.assembler.commit();
         // distributed assembly: every rank receives the other ranks' points
         let linear = &self.linear;
         self.assembler
             .exchange_points(|v: &mut [f64]| linear.sum_over_ranks(v));
         self.contacts.commit();
+    }
+
+    /// Free 3D rigid bodies whose rotation vector ended the increment past
+    /// `pi`: the committed state carried over to the equivalent rotation
+    /// vector `psi (1 - 2 pi / |psi|)` ([`crate::solve::rotation_chart`]),
+    /// so a body turns any number of times away from the singular `|psi| =
+    /// 2 pi`. Bodies with a prescribed rotation component are left alone.
+    fn rechart_rotations(&mut self) {
+        use crate::solve::dofs::Dof;
+        use crate::solve::rotation_chart::{complement, equivalent, Chart};
+        if D != 3 {
+            return;
+        }
+        for (_, spin) in crate::solve::rigid_body::bodies(self.model) {
+            let dofs: [usize; 3] = std::array::from_fn(|c| self.dofs.dof(spin, c));
+            if dofs
+                .iter()
+                .any(|&g| !matches!(self.dofs.dofs[g], Dof::Free(_)))
+            {
+                continue;
+            }
+            let psi: [f64; 3] = std::array::from_fn(|c| self.u[spin][c]);
+            let Some(new) = equivalent(psi) else {
+                continue;
+            };
+            // regular: |psi| just past pi after a converged increment
+            let Some(chart) = Chart::new(psi, new) else {
+                continue;
+            };
+            self.u[spin][..3].copy_from_slice(&new);
+            self.committed[spin][..3].copy_from_slice(&new);
+            if let Some(h) = self.history.last.as_mut() {
+                let start: [f64; 3] = std::array::from_fn(|c| h.start[spin][c]);
+                let start = complement(start);
+                h.start[spin][..3].copy_from_slice(&start);
+            }
+            if let Some(dy) = self.dynamics.as_mut() {
+                dy.rechart(dofs, &chart);
+            }
+            self.stabilization.rechart(dofs, &chart);
+        }
     }
 
     /// Returns to the last converged state.
