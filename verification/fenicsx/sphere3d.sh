@@ -12,7 +12,7 @@
 # (sphere3d.py --table). Single-threaded everywhere (CTC_THREADS, default 1).
 #
 # Usage: bash verification/fenicsx/sphere3d.sh [REPS] [N]   (from anywhere;
-#        N cubes per direction, default 40: 198,476 free dofs;
+#        N cubes per direction, default 40: 198,440 free dofs;
 #        CTC_BIN=path/to/ctc to use a built binary)
 # Output: target/speed/sphere3d_<N>/ (sphere3d.msh, sphere3d.ctc, ctc_<rep>/,
 #         fx_<rep>/, load.txt, table.md)
