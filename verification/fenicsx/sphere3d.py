@@ -35,7 +35,7 @@ codes: DOLFINx receives them through `create_mesh`, ctc through the gmsh
 file), so `--export-only` needs numpy only (the CI test of the pair,
 python/tests/test_sphere3d.py, runs it and `ctc run` on a small mesh).
 
-Usage: sphere3d.py OUTDIR [--n 40] [--steps 4] [--export-only]
+Usage: sphere3d.py OUTDIR [--n 40] [--steps 4] [--export-only] [--stop-after K]
        sphere3d.py --table DIR   (the table of the runs sphere3d.sh left in
                                   DIR: ctc_<rep>/, fx_<rep>/fenicsx.json)
 Writes OUTDIR/sphere3d.msh (gmsh 2.2: nodes, tetrahedra, physical surfaces
@@ -303,7 +303,7 @@ def table(directory):
     )
 
 
-def solve(x, cells, faces, n, out, steps, pen):
+def solve(x, cells, faces, n, out, steps, pen, stop_after):
     # the wheel's shared libraries first (DOLFINx 0.11 from dolfinx-solver-real)
     try:
         import dolfinx_solver  # noqa: F401
@@ -369,7 +369,7 @@ def solve(x, cells, faces, n, out, steps, pen):
     snes = problem.solver
     its = []
     wall0, cpu0 = time.perf_counter(), time.process_time()
-    for k in range(1, steps + 1):
+    for k in range(1, min(steps, stop_after) + 1):
         d.value = DEPTH * k / steps
         problem.solve()
         reason = snes.getConvergedReason()
@@ -400,6 +400,7 @@ def solve(x, cells, faces, n, out, steps, pen):
         "h_min": float(np.min(np.diff(graded(n)))),
         "penalty": pen,
         "iterations_per_increment": its,
+        "steps_solved": len(its),
         "newton_iterations": int(sum(its)),
         "wall_time": wall,
         "cpu_time": cpu,
@@ -424,6 +425,8 @@ def main():
     ap.add_argument("--n", type=int, default=40, help="cubes per direction (40: ~200k free dofs)")
     ap.add_argument("--steps", type=int, default=4)
     ap.add_argument("--export-only", action="store_true")
+    ap.add_argument("--stop-after", type=int, default=10**9,
+                    help="solve only the first K steps (a per-iteration cost where a whole run is too long)")
     args = ap.parse_args()
     if args.n < 1:
         raise SystemExit("--n must be at least 1")
@@ -443,7 +446,7 @@ def main():
         with open(os.path.join(args.out, "mesh.json"), "w") as f:
             json.dump(info, f, indent=1)
         return
-    solve(x, cells, faces, args.n, args.out, args.steps, pen)
+    solve(x, cells, faces, args.n, args.out, args.steps, pen, args.stop_after)
 
 
 if __name__ == "__main__":
