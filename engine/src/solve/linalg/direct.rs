@@ -250,7 +250,13 @@ impl LinearSolver {
             && base
             && self.zero_mode.is_none()
         {
-            self.low_rank.rebase(pattern.n, values);
+            // the factor's size widens the column cache ([`LowRank::limit`]);
+            // an LU factor keeps the fixed bound
+            let factor_values = match self.factor {
+                Factor::Llt | Factor::Ldlt => self.l_values.len(),
+                _ => 0,
+            };
+            self.low_rank.rebase(pattern.n, values, factor_values);
             match (self.factor, self.symbolic.as_ref()) {
                 (Factor::Ldlt, Some(sym)) if !self.schur.is_empty() => {
                     self.schur.rebase(sym, &self.l_values);
@@ -310,7 +316,7 @@ impl LinearSolver {
         {
             return false;
         }
-        let limit = LowRank::limit(n);
+        let limit = self.low_rank.bound();
         let Some(s) = self
             .low_rank
             .changed_dofs(&pattern.col_ptr, &pattern.row_idx, values, limit)

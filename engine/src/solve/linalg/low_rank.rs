@@ -31,7 +31,8 @@
 /// factorization decides, and names a zero-energy mode if there is one).
 pub const SINGULAR: f64 = 1e-13;
 
-/// Values of `K0^{-1}` columns kept at most (256 MiB).
+/// Values of `K0^{-1}` columns kept at most (256 MiB), unless the factor
+/// of `K0` holds more ([`LowRank::limit`]).
 pub const CACHE_VALUES: usize = 32 << 20;
 
 /// The base matrix, the cached columns of `K0^{-1}` and the current update.
@@ -53,30 +54,44 @@ pub struct LowRank {
     /// diagonal) and the row permutation.
     lu: Vec<f64>,
     perm: Vec<usize>,
+    /// [`LowRank::limit`] of the base: largest `|S|` and cached column
+    /// count.
+    bound: usize,
     /// Whether the current factorization is the base plus this update.
     pub active: bool,
 }
 
 impl LowRank {
-    /// Largest `|S|` and cached column count for a matrix of order `n`:
-    /// `2 sqrt(n)` (the dense work and `Z y` stay below a triangular solve's
-    /// order of cost) and at most [`CACHE_VALUES`] cached values, at least
-    /// 16.
-    pub fn limit(n: usize) -> usize {
+    /// Largest `|S|` and cached column count for a matrix of order `n`
+    /// whose factor holds `factor_values` values: `2 sqrt(n)` (the dense
+    /// work and `Z y` stay below a triangular solve's order of cost) and at
+    /// most [`CACHE_VALUES`] cached values or, when the factor is larger
+    /// (3D tangents: 88M values at 85k dofs), as many as the factor (the
+    /// cache at most doubles the factor's memory), at least 16.
+    pub fn limit(n: usize, factor_values: usize) -> usize {
         let by_cost = (2.0 * (n as f64).sqrt()).ceil() as usize;
-        by_cost.min(CACHE_VALUES / n.max(1)).max(16)
+        by_cost
+            .min(CACHE_VALUES.max(factor_values) / n.max(1))
+            .max(16)
     }
 
-    /// Makes `values` (just factorized in full) the base; the cache is
+    /// The [`LowRank::limit`] of the base (0 without one).
+    pub fn bound(&self) -> usize {
+        self.bound
+    }
+
+    /// Makes `values` (just factorized in full, into a factor of
+    /// `factor_values` values; 0 when unknown) the base; the cache is
     /// emptied.
-    pub fn rebase(&mut self, n: usize, values: &[f64]) {
+    pub fn rebase(&mut self, n: usize, values: &[f64], factor_values: usize) {
         self.base.clear();
         self.base.extend_from_slice(values);
         self.n = n;
+        self.bound = Self::limit(n, factor_values);
         self.z.clear();
         // room for every column the bound allows: the cache never moves
         // (untouched capacity costs address space, not memory)
-        let room = Self::limit(n).saturating_mul(n);
+        let room = self.bound.saturating_mul(n);
         if self.z.capacity() < room {
             let _ = self.z.try_reserve_exact(room);
         }
@@ -91,6 +106,7 @@ impl LowRank {
     pub fn clear(&mut self) {
         self.base.clear();
         self.n = 0;
+        self.bound = 0;
         self.z.clear();
         self.col_of.clear();
         self.s.clear();
@@ -380,6 +396,28 @@ fn lu_solve(lu: &[f64], perm: &[usize], m: usize, b: &[f64]) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_factor_larger_than_the_cache_bound_widens_it_and_a_smaller_one_does_not() {
+        // 2D tutorial of issue 20: 80,200 dofs, 3.9M factor values: the
+        // fixed 32M-value bound, 418 columns (below 2 sqrt(n) = 567)
+        assert_eq!(LowRank::limit(80_200, 3_909_380), 418);
+        assert_eq!(LowRank::limit(80_200, 0), 418);
+        // 3D sphere, N = 40 (198,440 dofs): 169 columns by the fixed
+        // bound; a factor of 300M values allows 2 sqrt(n) = 891
+        assert_eq!(LowRank::limit(198_440, 0), 169);
+        assert_eq!(LowRank::limit(198_440, 300_000_000), 891);
+        // between the two: the factor's size over n
+        assert_eq!(LowRank::limit(198_440, 100_000_000), 503);
+        // small matrices: at least 16
+        assert_eq!(LowRank::limit(10, 0), 16);
+        let mut lr = LowRank::default();
+        assert_eq!(lr.bound(), 0);
+        lr.rebase(1000, &[1.0], 0);
+        assert_eq!(lr.bound(), 64);
+        lr.clear();
+        assert_eq!(lr.bound(), 0);
+    }
 
     #[test]
     fn dense_lu_solves_and_refuses_singular_matrices() {

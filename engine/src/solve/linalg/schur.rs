@@ -183,7 +183,7 @@ impl Schur {
             return false;
         }
         // every column of S0^{-1} for the dense updates
-        self.dense.rebase(m, &self.s0);
+        self.dense.rebase(m, &self.s0, 0);
         let all: Vec<usize> = (0..m).collect();
         let first = self.dense.push_unit_columns(&all);
         let cols = self.dense.new_columns(first);
