@@ -77,7 +77,9 @@
 //!   the L2 error of the nodal pressure field (interpolated by the faces'
 //!   shape functions, `r < 1.5 a`, over `p0` and the quarter disc of
 //!   radius `a`); the force against the half-space (the finite block is
-//!   ~9 % stiffer: the model's limit). Why not the
+//!   ~9.6 % stiffer: the model's limit) and against the finite block's
+//!   own force, that of the finest hex27 run ([`HERTZ_3D_P_BLOCK`]: the
+//!   discretization's error). Why not the
 //!   face-integrated penalty of the other quadratic cases: with the stiff
 //!   penalty Hertz needs (1e7, E = 1e3) its 9 points per quad8 / quad9
 //!   face hold more gaps than the faces have nodes, and the point
@@ -1047,11 +1049,18 @@ pub(crate) fn hertz_3d_mesh(
 }
 
 /// The 3D runs: cell kind and the names of the errors of (a, p0, L2(p),
-/// force against the half-space).
-const HERTZ_3D_RUNS: [(CellKind, [&str; 4]); 3] = [
+/// force against the half-space, force against the finite block's
+/// [`HERTZ_3D_P_BLOCK`]).
+const HERTZ_3D_RUNS: [(CellKind, [&str; 5]); 3] = [
     (
         CellKind::Hex8,
-        ["a hex8", "p0 hex8", "L2(p) hex8", "P vs half-space hex8"],
+        [
+            "a hex8",
+            "p0 hex8",
+            "L2(p) hex8",
+            "P vs half-space hex8",
+            "P vs finite block hex8",
+        ],
     ),
     (
         CellKind::Hex27,
@@ -1060,6 +1069,7 @@ const HERTZ_3D_RUNS: [(CellKind, [&str; 4]); 3] = [
             "p0 hex27",
             "L2(p) hex27",
             "P vs half-space hex27",
+            "P vs finite block hex27",
         ],
     ),
     (
@@ -1069,55 +1079,80 @@ const HERTZ_3D_RUNS: [(CellKind, [&str; 4]); 3] = [
             "p0 hex20",
             "L2(p) hex20",
             "P vs half-space hex20",
+            "P vs finite block hex20",
         ],
     ),
 ];
 
+/// The force the finite block (1 x 1 x 1 on rollers, quarter model x 4)
+/// carries at the approach 0.01: the finest quadratic run's, hex27 at
+/// level 2 (26,750 free dofs; `ctc verify hertz_sphere_3d_quadratic
+/// --max-level 2`, 2026-12-05), 9.6 % above the half-space's 1.4652. The
+/// finite-block reference of "P vs finite block": the force error of the
+/// discretization, not of the model (hex27 at levels 0 / 1: -1.2e-3 /
+/// -7.9e-4 of it; at level 2 it is the reference).
+const HERTZ_3D_P_BLOCK: f64 = 1.605511;
+
 /// Tolerances of the 3D Hertz errors per level (a, p0, L2(p), P vs the
-/// half-space) of each run: the errors measured on 2026-12-05 (`ctc
-/// verify hertz_sphere_3d_quadratic --max-level 1`, release, loaded
-/// machine) times about 1.5. Free dofs hex8 / hex27 / hex20: 2,607 /
-/// 2,266 / 2,770 (level 0), 7,840 / 8,874 / 9,894 (level 1).
+/// half-space, P vs the finite block) of each run: the errors measured on
+/// 2026-12-05 (`ctc verify hertz_sphere_3d_quadratic --max-level 2`,
+/// release, loaded machine) times about 1.5. Free dofs hex8 / hex27 /
+/// hex20: 2,607 / 2,266 / 2,770 (level 0), 7,840 / 8,874 / 9,894 (level
+/// 1), 30,940 / 26,750 / 34,260 (level 2); solve seconds at level 2: 629
+/// / 490 / 619 (loaded machine: ~15 % of a core).
 ///
-/// | run | a | p0 | L2(p) | P vs half-space |
-/// | --- | --- | --- | --- | --- |
-/// | hex8 | 1.2e-2 1.6e-2 | 1.1e-2 1.2e-2 | 0.074 0.037 | 0.108 0.111 |
-/// | hex27 | 2.6e-2 1.6e-2 | 2.5e-3 8.4e-3 | 0.089 0.044 | 0.094 0.095 |
-/// | hex20 | 3.5e-3 1.4e-2 | 1.4e-2 6.0e-3 | 0.098 0.037 | 0.099 0.090 |
+/// | run | a | p0 | L2(p) | P vs half-space | P vs finite block |
+/// | --- | --- | --- | --- | --- | --- |
+/// | hex8 | 1.2e-2 1.6e-2 1.6e-2 | 1.1e-2 1.2e-2 1.2e-2 | 0.074 0.037 0.020 | 0.108 0.111 0.111 | 1.1e-2 1.4e-2 1.3e-2 |
+/// | hex27 | 2.6e-2 1.6e-2 1.5e-2 | 2.5e-3 8.4e-3 8.1e-3 | 0.089 0.044 0.021 | 0.094 0.095 0.096 | 1.2e-3 7.9e-4 (ref.) |
+/// | hex20 | 3.5e-3 1.4e-2 1.4e-2 | 1.4e-2 6.0e-3 6.1e-3 | 0.098 0.037 0.022 | 0.099 0.090 0.090 | 3.4e-3 5.0e-3 4.9e-3 |
 ///
-/// L2(p) halves with h on every kind (rate 1.0: the square-root edge of
-/// the pressure bounds every order); `a` and p0 against Hertz at the
-/// carried force reach by level 1 the finite block's share (a -1.5 %
-/// on every kind: `a` of the carried force assumes a half-space).
+/// L2(p) halves with h on every kind (observed rates levels 0-1 / 1-2:
+/// hex8 0.98 / 0.91, hex27 1.00 / 1.11, hex20 1.39 / 0.74; the
+/// square-root edge of the pressure bounds every order at rate 1: a
+/// minimum rate of 0.6 is checked); `a` (-1.5 %) and p0 against Hertz at
+/// the carried force stop from level 1 at the finite block's share (`a`
+/// of the carried force assumes a half-space; all three kinds agree
+/// there to 2e-3 in `a`). The force: hex8 stays 1.3 % above the finite
+/// block (its outer cells, growing by 2 with aspect ratios up to ~70,
+/// are too stiff, and core refinement does not touch them), hex20 0.5 %
+/// below, hex27 within 1.2e-3 at every level.
 fn hertz_3d_checks() -> Vec<Check> {
-    let tolerances: [[&[f64]; 4]; 3] = [
+    let tolerances: [[&[f64]; 5]; 3] = [
         [
-            &[0.018, 0.024],
-            &[0.017, 0.018],
-            &[0.11, 0.056],
-            &[0.16, 0.17],
+            &[0.018, 0.024, 0.025],
+            &[0.017, 0.018, 0.018],
+            &[0.11, 0.056, 0.03],
+            &[0.16, 0.17, 0.17],
+            &[0.017, 0.021, 0.021],
         ],
         [
-            &[0.039, 0.024],
-            &[4e-3, 0.013],
-            &[0.13, 0.067],
-            &[0.14, 0.14],
+            &[0.039, 0.024, 0.023],
+            &[4e-3, 0.013, 0.012],
+            &[0.13, 0.067, 0.031],
+            &[0.14, 0.14, 0.14],
+            &[2e-3, 1.2e-3],
         ],
         [
-            &[6e-3, 0.021],
-            &[0.021, 9e-3],
-            &[0.15, 0.056],
-            &[0.15, 0.135],
+            &[6e-3, 0.021, 0.022],
+            &[0.021, 9e-3, 9.2e-3],
+            &[0.15, 0.056, 0.034],
+            &[0.15, 0.135, 0.135],
+            &[5e-3, 7.5e-3, 7.5e-3],
         ],
     ];
     HERTZ_3D_RUNS
         .iter()
         .zip(tolerances)
         .flat_map(|((_, names), tol)| {
-            names
-                .iter()
-                .zip(tol)
-                .map(|(n, t)| Check::new(Quantity::Named(n), t))
+            names.iter().zip(tol).map(|(n, t)| {
+                let c = Check::new(Quantity::Named(n), t);
+                if n.starts_with("L2(p)") {
+                    c.with_min_rate(0.6)
+                } else {
+                    c
+                }
+            })
         })
         .collect()
 }
@@ -1163,6 +1198,7 @@ pub fn hertz_3d_work_precision(level: usize) -> Result<Vec<Hertz3dRow>, String> 
                     error: f.l2,
                 },
                 value(names[3], f.force, f.force_half_space),
+                value(names[4], f.force, HERTZ_3D_P_BLOCK),
             ];
             Ok(Hertz3dRow {
                 kind,
