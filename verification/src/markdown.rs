@@ -143,8 +143,8 @@ fn studies_section(s: &mut String, st: &Studies, plots: &[PlotFile]) {
         );
         let _ = writeln!(
             s,
-            "The rigid sphere pressed into the graded elastic block (quarter model, Lagrange \
-             multipliers) on hex8 cells and on hex27 / hex20 cells of about the same number of \
+            "The rigid sphere pressed into the elastic block resolved under the contact (a \
+             spans 4 / 8 / 16 hex8 cells; quarter model, Lagrange multipliers) on hex8 cells and on hex27 / hex20 cells of about the same number of \
              dofs, at the levels of `hertz_sphere_3d_quadratic` (issue 23): the p0 and L2(p) \
              errors against Hertz at the carried force, against the free dofs and against the \
              solve wall time of `ctc_engine::solve::run`.\n"

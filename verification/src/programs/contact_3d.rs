@@ -382,9 +382,22 @@ fn block(
     method: ContactMethod,
     increments: usize,
 ) -> Result<Model<3>, String> {
-    // quadratic kinds: the linear brick elevated (straight midpoints)
-    let mut mesh = solid::brick([0.0; 3], [1.0; 3], [divisions; 3], grading, kind.linear())
+    let mesh = solid::brick([0.0; 3], [1.0; 3], [divisions; 3], grading, kind.linear())
         .map_err(|e| e.message)?;
+    block_on(kind, mesh, tool, motion, method, increments)
+}
+
+/// [`block`] on the linear mesh `mesh` of the unit cube (sets `xmin` ..
+/// `zmax`), elevated to `kind`.
+fn block_on(
+    kind: CellKind,
+    mut mesh: ctc_engine::mesh::Mesh<3>,
+    tool: Analytic,
+    motion: SurfaceMotion,
+    method: ContactMethod,
+    increments: usize,
+) -> Result<Model<3>, String> {
+    // quadratic kinds: the linear brick elevated (straight midpoints)
     if kind.order() == 2 {
         mesh = ctc_engine::mesh::elevate::elevate(&mesh, kind).map_err(|e| e.message)?;
     }
@@ -668,15 +681,29 @@ pub(crate) fn hertz_figures_on(
     n: usize,
     method: ContactMethod,
 ) -> Result<HertzFigures, String> {
-    let ball = Analytic::Sphere(
-        Sphere::new(Vec3::new(0.0, 0.0, 1.0 + HERTZ_R), HERTZ_R, Side::Outside).unwrap(),
-    );
     let grading = [
         Grading::Geometric { ratio: 8.0 },
         Grading::Geometric { ratio: 8.0 },
         Grading::Geometric { ratio: 0.125 },
     ];
-    let model = block(kind, n, grading, ball, lowered(D), method, 4)?;
+    let mesh =
+        solid::brick([0.0; 3], [1.0; 3], [n; 3], grading, kind.linear()).map_err(|e| e.message)?;
+    hertz_figures_on_mesh(kind, mesh, method, 4)
+}
+
+/// [`hertz_figures_on`] on the linear mesh `mesh` of the unit cube (sets
+/// `xmin` .. `zmax`; the contact at its corner `(0, 0, 1)`), elevated to
+/// `kind`, the approach applied in `increments` equal increments.
+pub(crate) fn hertz_figures_on_mesh(
+    kind: CellKind,
+    mesh: ctc_engine::mesh::Mesh<3>,
+    method: ContactMethod,
+    increments: usize,
+) -> Result<HertzFigures, String> {
+    let ball = Analytic::Sphere(
+        Sphere::new(Vec3::new(0.0, 0.0, 1.0 + HERTZ_R), HERTZ_R, Side::Outside).unwrap(),
+    );
+    let model = block_on(kind, mesh, ball, lowered(D), method, increments)?;
     let start = std::time::Instant::now();
     let (last, s) = solve(&model)?;
     let seconds = start.elapsed().as_secs_f64();

@@ -86,18 +86,20 @@ fn thermal_steady_quadratic_is_exact_on_quadratic_cells() {
 
 /// The 3D Hertz block (`hertz_sphere_3d_quadratic`, level 0; K. L.
 /// Johnson, Contact Mechanics (1985) §4.2: `a^3 = 3 P R / (4 E*)`, `p0 = 3
-/// P / (2 pi a^2)`) on hex27 and hex20 against hex8 at about equal dofs,
-/// Lagrange multipliers: the quadratic p0 within 3 % of Hertz at the
-/// carried force (the face-integrated penalty of 1e7 gave 24 % / 70 %
-/// here, its 9 points per face over-constrain the face), every
-/// work-precision row complete, and the plot written with one line per
-/// cell kind.
+/// P / (2 pi a^2)`) resolved under the contact (a spans 4 hex8 cells) on
+/// hex27 and hex20 against hex8 at about equal dofs, Lagrange multipliers:
+/// the quadratic p0 within 3 % of Hertz at the carried force (measured
+/// 9.4e-3 hex27, 1.7e-2 hex20; the face-integrated penalty of 1e7 gave
+/// 24 % / 70 % on the former graded block, its 9 points per face
+/// over-constrain the face), every work-precision row complete, and the
+/// plot written with one line per cell kind.
 ///
 /// ```text
 ///        ( sphere R = 1 )    lowered by d = 0.01
-///   +-------.-------+
-///   | graded block  |  hex8 n = 8 | hex27 n = 4 | hex20 n = 5
-///   +---------------+  (quarter model, rollers)
+///   +---.---------------+
+///   |:::| uniform core  |  hex8 h = a / 4 | hex27 2 h | hex20 1.59 h
+///   +---+ graded x 2    |  (quarter model, rollers)
+///   +-------------------+
 /// ```
 #[test]
 fn hertz_sphere_3d_quadratic_rows_and_plot() {

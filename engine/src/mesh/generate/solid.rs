@@ -165,6 +165,55 @@ pub fn brick(
     Ok(mesh)
 }
 
+/// The brick spanned by three lines of node coordinates (strictly
+/// increasing, finite, at least two points each): node `(i, j, k)` at
+/// `(x[i], y[j], z[k])` — any grading, e.g. a uniform fine core next to a
+/// geometric outer region (the resolved 3D Hertz block of
+/// `hertz_sphere_3d_quadratic`). Sets as for [`brick`]: faces and nodes
+/// `xmin` .. `zmax`, node set `origin` (the node `(x[0], y[0], z[0])`).
+pub fn brick_on_lines(lines: [&[f64]; 3], kind: CellKind) -> Result<Mesh<3>, MeshError> {
+    const G: &str = "box";
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let l = lines[k];
+        if l.len() < 2 {
+            return Err(MeshError::new(format!(
+                "{G}: the {axis} line needs at least 2 points, got {}",
+                l.len()
+            )));
+        }
+        if let Some(i) = (0..l.len()).find(|&i| !l[i].is_finite()) {
+            return Err(MeshError::new(format!(
+                "{G}: point {i} of the {axis} line is not finite"
+            )));
+        }
+        if let Some(i) = (1..l.len()).find(|&i| l[i] <= l[i - 1]) {
+            return Err(MeshError::new(format!(
+                "{G}: the {axis} line must increase strictly: point {i} ({}) after {}",
+                l[i],
+                l[i - 1]
+            )));
+        }
+    }
+    let n = lines.map(|l| l.len() - 1);
+    let mut mesh = block(G, n, kind, |i, j, k| {
+        [lines[0][i], lines[1][j], lines[2][k]]
+    })?;
+    let boundary = mesh.boundary_facets(0..mesh.cells.len());
+    let extent = lines.map(|l| l[l.len() - 1] - l[0]);
+    let e = tol(extent.iter().copied().fold(0.0, f64::max));
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let (lo, hi) = (lines[k][0], lines[k][n[k]]);
+        add_face_set(&mut mesh, &boundary, &format!("{axis}min"), |p| {
+            (p[k] - lo).abs() <= e
+        });
+        add_face_set(&mut mesh, &boundary, &format!("{axis}max"), |p| {
+            (p[k] - hi).abs() <= e
+        });
+    }
+    mesh.node_sets.insert("origin".into(), vec![0]);
+    Ok(mesh)
+}
+
 /// A sector of the tube `inner <= r <= outer` about the z axis, from angle
 /// 0 to `angle` degrees (in (0, 360]; 360 closes the ring), `0 <= z <=
 /// height`; `n` = (radial, circumferential, axial) divisions. Sets: `inner`,
@@ -514,6 +563,56 @@ mod tests {
             assert_eq!(total, quads * faces_per_quad);
             assert_eq!(m.node_sets["xmin"].len(), 4 * 3);
             assert_eq!(m.nodes[m.node_sets["origin"][0]], [1.0, 0.0, -1.0]);
+        }
+    }
+
+    #[test]
+    fn brick_on_lines_places_the_nodes_on_the_lines_and_refuses_bad_lines() {
+        let x = [0.0, 0.1, 0.2, 0.5, 1.0];
+        let y = [0.0, 0.25, 1.0];
+        let z = [-1.0, 0.0];
+        for kind in [CellKind::Hex8, CellKind::Tet4] {
+            let m = brick_on_lines([&x, &y, &z], kind).unwrap();
+            assert_eq!(m.nodes.len(), 5 * 3 * 2);
+            validate::check(&m).unwrap();
+            assert!((volume(&m) - 1.0).abs() < 1e-12);
+            let total: usize = m.face_sets.values().map(Vec::len).sum();
+            assert_eq!(total, m.boundary_facets(0..m.cells.len()).len());
+            // node (i, j, k) at (x[i], y[j], z[k]): every coordinate is a
+            // line point, and zmax holds the 15 nodes at z = 0
+            for p in &m.nodes {
+                assert!(x.contains(&p[0]) && y.contains(&p[1]) && z.contains(&p[2]));
+            }
+            assert_eq!(m.node_sets["zmax"].len(), 15);
+            assert!(m.node_sets["xmax"].iter().all(|&n| m.nodes[n][0] == 1.0));
+            assert_eq!(m.nodes[m.node_sets["origin"][0]], [0.0, 0.0, -1.0]);
+        }
+        // the same nodes as `brick` on uniform divisions
+        let u = [0.0, 0.5, 1.0];
+        let a = brick_on_lines([&u, &u, &u], CellKind::Hex8).unwrap();
+        let b = brick(
+            [0.0; 3],
+            [1.0; 3],
+            [2; 3],
+            [Grading::Uniform; 3],
+            CellKind::Hex8,
+        )
+        .unwrap();
+        assert_eq!(a.nodes, b.nodes);
+        assert_eq!(a.face_sets, b.face_sets);
+        for (lines, what) in [
+            ([&x[..], &y[..], &[0.0][..]], "at least 2 points"),
+            (
+                [&x[..], &[0.0, 0.5, 0.5][..], &z[..]],
+                "increase strictly: point 2",
+            ),
+            (
+                [&[0.0, f64::NAN][..], &y[..], &z[..]],
+                "point 1 of the x line is not finite",
+            ),
+        ] {
+            let e = brick_on_lines(lines, CellKind::Hex8).unwrap_err();
+            assert!(e.message.contains(what), "{}", e.message);
         }
     }
 
