@@ -184,9 +184,7 @@ fn body_mass(model: &Model, body: usize) -> f64 {
 
 #[test]
 fn blade_loss_whirl_friction_and_energy() {
-    let path = std::env::var("BLADE_DECK_TMP")
-        .map(std::path::PathBuf::from)
-        .unwrap_or_else(|_| Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/blade_loss.ctc")); // TMPHACK
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/blade_loss.ctc");
     let src = ctc_lang::Source::read(&path).expect("readable deck");
     let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
     let (pilot, spin) = ctc_engine::solve::rigid_body::bodies(&model)

@@ -382,8 +382,15 @@ fn closest(
         // vertex: the distance to it (continuous across the wedge, the
         // same from both segments); a node on the vertex keeps the line
         let k = match neighbour {
-            Some(_) => Kept {
-                projection: SegmentProjection::corner(xs, x[a], x[b], p.xi).unwrap_or(p),
+            Some(f) => Kept {
+                projection: SegmentProjection::corner_on_side(
+                    xs,
+                    x[a],
+                    x[b],
+                    p.xi,
+                    kink_side(surface, x, e, f, p.xi < 0.0),
+                )
+                .unwrap_or(p),
                 ..k
             },
             None => k,
@@ -393,6 +400,34 @@ fn closest(
         }
     }
     inside.or(outside).map(|(_, k)| k)
+}
+
+/// The side of the wedge of the kink between segment `e` and its
+/// neighbour `f` (`f` before `e` when `before`): `+1` (outside the body)
+/// at a convex vertex (the walk, body on its left, turns left), `-1`
+/// (inside) at a concave one, `None` when the segments are collinear (the
+/// wedge is empty; the line's side is kept). Every point of a convex
+/// kink's wedge is in front of one of the two faces, and every point of
+/// a concave kink's wedge behind one of them, whatever the angle.
+fn kink_side(surface: &Surface, x: &[[f64; 2]], e: usize, f: usize, before: bool) -> Option<f64> {
+    let dir = |s: usize| {
+        let [a, b] = surface.edges[s];
+        [x[b][0] - x[a][0], x[b][1] - x[a][1]]
+    };
+    let (din, dout) = if before {
+        (dir(f), dir(e))
+    } else {
+        (dir(e), dir(f))
+    };
+    let cross = din[0] * dout[1] - din[1] * dout[0];
+    let scale = din[0].hypot(din[1]) * dout[0].hypot(dout[1]);
+    if cross > 1e-12 * scale {
+        Some(1.0)
+    } else if cross < -1e-12 * scale {
+        Some(-1.0)
+    } else {
+        None
+    }
 }
 
 /// A smoothed projection (`smoothing = nodal`) and the far nodes of the
@@ -835,6 +870,40 @@ mod tests {
         let k = closest(&s, &x, [0.05, -0.01], &[0, 1], 0.5, &mut tests).unwrap();
         assert_eq!(k.segment, 0);
         assert!((k.projection.gap - 0.05).abs() < 1e-15);
+    }
+
+    #[test]
+    fn wedge_of_a_kink_that_is_not_a_right_angle_has_the_kink_side() {
+        // a convex corner of 88 degrees (the walk turns left by 92 degrees
+        // at the vertex (0, 0)): segment 0 (0, -1) -> (0, 0), normal
+        // (1, 0); segment 1 towards (-cos 2deg.., -sin 2deg..). A node in
+        // the corner's wedge near segment 0's normal is in front of
+        // segment 0 but behind segment 1's extended line: both segments
+        // must give it the same positive distance to the vertex (issue
+        // 19: the released blade's corner on another blade's tip corner
+        // got -7.4e-3 from one face and +2.8e-3 from the other and
+        // cycled between them to the smallest cutback)
+        let turn = 92f64.to_radians();
+        let dout = [-turn.sin(), turn.cos()];
+        let x = vec![[0.0, -1.0], [0.0, 0.0], dout];
+        let s = Surface::new(&[[0, 1], [1, 2]]);
+        let xs: [f64; 2] = [0.01, 1e-4];
+        let r = xs[0].hypot(xs[1]);
+        let mut tests = 0;
+        for order in [[0, 1], [1, 0]] {
+            let k = closest(&s, &x, xs, &order, 0.5, &mut tests).unwrap();
+            assert!(k.projection.corner, "{k:?}");
+            assert!((k.projection.gap - r).abs() < 1e-15, "{order:?}: {k:?}");
+        }
+        // the concave counterpart (the walk reversed): the wedge is inside
+        // (the same point is in its wedge, now behind segment 1 and in
+        // front of segment 0's extension: the vertex, inside the body)
+        let x = vec![dout, [0.0, 0.0], [0.0, -1.0]];
+        for order in [[0, 1], [1, 0]] {
+            let k = closest(&s, &x, xs, &order, 0.5, &mut tests).unwrap();
+            assert!(k.projection.corner, "{k:?}");
+            assert!((k.projection.gap + r).abs() < 1e-15, "{order:?}: {k:?}");
+        }
     }
 
     #[test]

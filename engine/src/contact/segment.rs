@@ -87,6 +87,25 @@ impl SegmentProjection {
     /// `None` when the node is on the vertex (within round-off of the
     /// segment length) or the segment is degenerate.
     pub fn corner(xs: [f64; 2], x1: [f64; 2], x2: [f64; 2], xi_end: f64) -> Option<Self> {
+        Self::corner_on_side(xs, x1, x2, xi_end, None)
+    }
+
+    /// [`SegmentProjection::corner`] with the side `s` of the node given
+    /// (`Some(1.0)`: outside the body, `Some(-1.0)`: inside) instead of
+    /// read from the segment's line. In the wedge of a kink the side is
+    /// the kink's: outside at a convex vertex, inside at a concave one
+    /// (`node_to_segment::closest`). The line's side differs from it in a
+    /// sliver of the wedge when the corner is not a right angle (a convex
+    /// 88 degree corner: the node in front of one face and behind the
+    /// other face's extension), and the two segments of the vertex then
+    /// gave the same distance with opposite signs.
+    pub fn corner_on_side(
+        xs: [f64; 2],
+        x1: [f64; 2],
+        x2: [f64; 2],
+        xi_end: f64,
+        side: Option<f64>,
+    ) -> Option<Self> {
         let line = SegmentProjection::new(xs, x1, x2)?;
         let xv = if xi_end < 0.5 { x1 } else { x2 };
         let d = sub(xs, xv);
@@ -94,7 +113,7 @@ impl SegmentProjection {
         if r.is_nan() || r <= 1e-12 * line.length {
             return None;
         }
-        let s = if line.gap < 0.0 { -1.0 } else { 1.0 };
+        let s = side.unwrap_or(if line.gap < 0.0 { -1.0 } else { 1.0 });
         let n = [s * d[0] / r, s * d[1] / r];
         Some(SegmentProjection {
             gap: s * r,
