@@ -109,8 +109,15 @@ impl ContactProfile {
         let mut closed = 0;
         let (mut moment, mut force_sum) = (0.0, 0.0);
         for nc in reported {
-            force[0] += nc.force[0];
-            force[1] += nc.force[1];
+            // the force on the slave body: a node of the master surface
+            // (double passes) carries the opposite of its pass's force
+            let sign = if cp.nodes.binary_search(&nc.node).is_ok() {
+                1.0
+            } else {
+                -1.0
+            };
+            force[0] += sign * nc.force[0];
+            force[1] += sign * nc.force[1];
             let f = nc.force[0].hypot(nc.force[1]);
             moment += f * coordinate(nc.node).abs();
             force_sum += f;

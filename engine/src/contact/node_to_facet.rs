@@ -1411,6 +1411,27 @@ pub fn evaluate(
         out.push(nc);
     }
     fp.candidates = candidates;
+    if cp.strategy == ContactStrategy::ModifiedDoublePass && !fp.self_contact {
+        // both passes at once: report the interface pressure (the total
+        // force on each node over its full area, `super::interface_pressures`)
+        let elements: Vec<super::ElementForces<'_>> = fp
+            .couplings
+            .iter()
+            .map(|r| super::ElementForces {
+                slave: r.slave,
+                nodes: &r.nodes,
+                force: &r.force,
+                gap_gradient: &r.gap_gradient,
+            })
+            .collect();
+        let (slaves, areas) = (&state.slaves, &state.area);
+        super::interface_pressures(&mut out, &elements, |n| {
+            slaves
+                .binary_search(&n)
+                .ok()
+                .and_then(|i| areas.get(i).copied())
+        });
+    }
     state.counters.faces_tested += fp.tests as u64;
     state.deformable = Some(fp);
     out

@@ -752,6 +752,53 @@ pub fn evaluate(
         });
     }
     sp.candidates = candidates;
+    if cp.strategy == ContactStrategy::ModifiedDoublePass && !sp.self_contact {
+        // both passes at once: report the interface pressure
+        // (`super::interface_pressures`)
+        let plain: Vec<([usize; 3], [f64; 6], [f64; 6])> = out
+            .iter()
+            .filter(|c| c.status == ContactStatus::Closed)
+            .filter_map(|c| {
+                let m = c.master.as_ref()?;
+                let f = [
+                    c.force[0],
+                    c.force[1],
+                    m.forces[0][0],
+                    m.forces[0][1],
+                    m.forces[1][0],
+                    m.forces[1][1],
+                ];
+                Some(([c.node, m.nodes[0], m.nodes[1]], f, m.gap_gradient))
+            })
+            .collect();
+        let elements: Vec<super::ElementForces<'_>> = match &couplings {
+            Some(rows) => rows
+                .iter()
+                .map(|r| super::ElementForces {
+                    slave: r.slave,
+                    nodes: &r.nodes,
+                    force: &r.force,
+                    gap_gradient: &r.gap_gradient,
+                })
+                .collect(),
+            None => plain
+                .iter()
+                .map(|(nodes, force, grad)| super::ElementForces {
+                    slave: nodes[0],
+                    nodes,
+                    force,
+                    gap_gradient: grad,
+                })
+                .collect(),
+        };
+        let (slaves, areas) = (&state.slaves, &state.tributary);
+        super::interface_pressures(&mut out, &elements, |n| {
+            slaves
+                .binary_search(&n)
+                .ok()
+                .and_then(|i| areas.get(i).copied())
+        });
+    }
     state.couplings = couplings;
     if super::log::debug_enabled() {
         for c in &out {
