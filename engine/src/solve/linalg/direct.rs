@@ -766,11 +766,11 @@ fn amd_by_blocks(
     // block of each column, first column of each block
     let mut block = vec![0usize; n];
     let mut first = Vec::with_capacity(n + 1);
-    for j in 0..n {
+    for (j, b) in block.iter_mut().enumerate() {
         if j == 0 || col(j) != col(j - 1) {
             first.push(j);
         }
-        block[j] = first.len() - 1;
+        *b = first.len() - 1;
     }
     let nb = first.len();
     first.push(n);
