@@ -24,7 +24,13 @@
 //! ```
 //!
 //! is one forward and one backward sweep over the interior supernodes and a
-//! dense solve of order `m`. The dense solve uses the LU of `S0` (once per
+//! dense solve of order `m`. The sweeps are plain loops over each
+//! supernode's columns ([`Supernode`]): 2D AMD gives supernodes of a few
+//! columns, on which faer's `matmul` and triangular solves spent more in
+//! dispatch than in arithmetic (issue 20, tutorial Hertz deck, `ctc run
+//! tutorial.ctc --threads 1` with either sweep, 2 alternating runs under
+//! load 11: the solve phase 0.93 -> 0.57 s wall, process CPU 0.93 -> 0.84
+//! s; `verification/fenicsx/SPEED.md`). The dense solve uses the LU of `S0` (once per
 //! base) and a [`LowRank`] (Woodbury) update of it for the changed dofs,
 //! whose columns `S0^{-1} e_j` are all computed with that LU: per Newton
 //! iteration a dense LU of order `|changed|` and `O(m |changed|)` work.
@@ -32,7 +38,6 @@
 
 use super::low_rank::{LowRank, SINGULAR};
 use faer::linalg::solvers::{PartialPivLu, Solve};
-use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLdltRef, SymbolicSupernodalCholesky};
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{Accum, Mat, MatMut, Par};
@@ -257,46 +262,13 @@ impl Schur {
         let (forward, _) = perm.arrays();
         let n_i = self.n_i;
         let mut x: Vec<f64> = forward.iter().map(|&d| rhs[d]).collect();
-        let ldlt = SupernodalLdltRef::new(sn, l_values);
         // the supernodes with interior columns (the last one may hold
         // candidate columns too)
         let last = sn.supernode_begin().partition_point(|&b| b < n_i);
         let mut tmp = Vec::new();
-        // forward: w_i = L_ii^{-1} b_i, r_c = b_c - L_ci w_i
         for s in 0..last {
-            let node = ldlt.supernode(s);
-            let (start, v) = (node.start(), node.val());
-            let (ncols, nrows) = (v.ncols(), v.nrows());
-            let p = ncols.min(n_i - start);
-            let top = v.submatrix(0, 0, p, p);
-            let rest = v.submatrix(p, 0, nrows - p, p);
-            let (head, _) = x.split_at_mut(start + p);
-            let mut xt = MatMut::from_column_major_slice_mut(&mut head[start..], p, 1);
-            faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place(
-                top,
-                xt.rb_mut(),
-                Par::Seq,
-            );
-            tmp.clear();
-            tmp.resize(nrows - p, 0.0);
-            faer::linalg::matmul::matmul(
-                MatMut::from_column_major_slice_mut(&mut tmp, nrows - p, 1),
-                Accum::Replace,
-                rest,
-                xt.rb(),
-                1.0,
-                Par::Seq,
-            );
-            for (k, t) in tmp[..ncols - p].iter().enumerate() {
-                x[start + p + k] -= t;
-            }
-            for (&row, t) in node.pattern().iter().zip(&tmp[ncols - p..]) {
-                x[row] -= t;
-            }
-            // D_i^{-1}
-            for k in 0..p {
-                x[start + k] /= v[(k, k)];
-            }
+            let node = Supernode::new(sn, l_values, s, n_i);
+            node.forward(&mut x, &mut tmp);
         }
         // x_c = (S0 + dK)^{-1} r_c
         lu.solve_in_place(MatMut::from_column_major_slice_mut(
@@ -305,37 +277,117 @@ impl Schur {
             1,
         ));
         self.dense.correct_with(&mut x[n_i..], 1);
-        // backward: x_i = L_ii^{-T} (D_i^{-1} w_i - L_ci^T x_c)
         for s in (0..last).rev() {
-            let node = ldlt.supernode(s);
-            let (start, v) = (node.start(), node.val());
-            let (ncols, nrows) = (v.ncols(), v.nrows());
-            let p = ncols.min(n_i - start);
-            let top = v.submatrix(0, 0, p, p);
-            let rest = v.submatrix(p, 0, nrows - p, p);
-            tmp.clear();
-            tmp.extend_from_slice(&x[start + p..start + ncols]);
-            tmp.extend(node.pattern().iter().map(|&row| x[row]));
-            let xt = &mut x[start..start + p];
-            let mut xt = MatMut::from_column_major_slice_mut(xt, p, 1);
-            faer::linalg::matmul::matmul(
-                xt.rb_mut(),
-                Accum::Add,
-                rest.transpose(),
-                faer::MatRef::from_column_major_slice(&tmp, nrows - p, 1),
-                -1.0,
-                Par::Seq,
-            );
-            faer::linalg::triangular_solve::solve_unit_upper_triangular_in_place(
-                top.transpose(),
-                xt,
-                Par::Seq,
-            );
+            let node = Supernode::new(sn, l_values, s, n_i);
+            node.backward(&mut x, &mut tmp);
         }
         for (&d, xv) in forward.iter().zip(&x) {
             rhs[d] = *xv;
         }
     }
+}
+
+/// One supernode of a supernodal `L D L^T` factor, as the sweeps of
+/// [`Schur::solve`] read it: its first column `start`, `p` interior columns
+/// (of its `ncols`), the rows below its columns (`pattern`), and its values
+/// (column-major, `ncols + pattern.len()` rows: the unit lower triangle
+/// with `D` on the diagonal, then the rows of `pattern`).
+struct Supernode<'a> {
+    start: usize,
+    ncols: usize,
+    p: usize,
+    pattern: &'a [usize],
+    values: &'a [f64],
+}
+
+impl<'a> Supernode<'a> {
+    fn new(
+        sn: &'a SymbolicSupernodalCholesky<usize>,
+        l_values: &'a [f64],
+        s: usize,
+        n_i: usize,
+    ) -> Self {
+        let start = sn.supernode_begin()[s];
+        let ncols = sn.supernode_end()[s] - start;
+        let rows = sn.col_ptr_for_row_idx();
+        let vals = sn.col_ptr_for_val();
+        Supernode {
+            start,
+            ncols,
+            p: ncols.min(n_i - start),
+            pattern: &sn.row_idx()[rows[s]..rows[s + 1]],
+            values: &l_values[vals[s]..vals[s + 1]],
+        }
+    }
+
+    /// Rows of the values.
+    fn nrows(&self) -> usize {
+        self.ncols + self.pattern.len()
+    }
+
+    /// Forward: `w = L^{-1} b` on the interior columns, the rows below
+    /// updated (`tmp`: scratch), then `D^{-1}` on the interior columns.
+    fn forward(&self, x: &mut [f64], tmp: &mut Vec<f64>) {
+        let (start, ncols, p, nrows) = (self.start, self.ncols, self.p, self.nrows());
+        tmp.clear();
+        tmp.resize(nrows - p, 0.0);
+        for k in 0..p {
+            let col = &self.values[k * nrows..(k + 1) * nrows];
+            let xk = x[start + k];
+            for (xr, l) in x[start + k + 1..start + p].iter_mut().zip(&col[k + 1..p]) {
+                *xr -= l * xk;
+            }
+            for (t, l) in tmp.iter_mut().zip(&col[p..]) {
+                *t += l * xk;
+            }
+        }
+        for (xr, t) in x[start + p..start + ncols].iter_mut().zip(&tmp[..]) {
+            *xr -= t;
+        }
+        for (&row, t) in self.pattern.iter().zip(&tmp[ncols - p..]) {
+            x[row] -= t;
+        }
+        for k in 0..p {
+            x[start + k] /= self.values[k * nrows + k];
+        }
+    }
+
+    /// Backward: `x = L^{-T} y` on the interior columns, the rows below
+    /// (candidates and later interior columns) already solved.
+    fn backward(&self, x: &mut [f64], tmp: &mut Vec<f64>) {
+        let (start, ncols, p, nrows) = (self.start, self.ncols, self.p, self.nrows());
+        tmp.clear();
+        tmp.extend_from_slice(&x[start + p..start + ncols]);
+        tmp.extend(self.pattern.iter().map(|&row| x[row]));
+        for k in (0..p).rev() {
+            let col = &self.values[k * nrows..(k + 1) * nrows];
+            let mut s = dot(&col[p..], tmp);
+            for (l, xr) in col[k + 1..p].iter().zip(&x[start + k + 1..start + p]) {
+                s += l * xr;
+            }
+            x[start + k] -= s;
+        }
+    }
+}
+
+/// `a . b` with four partial sums in a fixed order (deterministic; the
+/// compiler vectorizes it).
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0f64; 4];
+    let (ac, bc) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ar, br) = (ac.remainder(), bc.remainder());
+    for (x, y) in ac.zip(bc) {
+        for ((s, x), y) in acc.iter_mut().zip(x).zip(y) {
+            *s += x * y;
+        }
+    }
+    let mut s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+    for (x, y) in ar.iter().zip(br) {
+        s += x * y;
+    }
+    s
 }
 
 /// The first supernode with a column at or after `n_i` (the supernodes
