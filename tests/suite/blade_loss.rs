@@ -426,9 +426,13 @@ fn blade_loss_whirl_friction_and_energy() {
         eprintln!("  {name}: {d:.3e}");
     }
     // the penalty's own penetration at the largest pressure of the rotor
-    // pairs, doubled for the half tributary areas of the modified double
-    // pass: the released blade is never deeper in the (deformed) disc or
-    // another blade, and that depth is small against the cells (15 mm)
+    // pairs: the released blade is never deeper in the (deformed) disc or
+    // another blade, and that depth is small against the cells (15 mm).
+    // The modified double pass reports the interface pressure
+    // (`contact::interface_pressures`): a slave node's force eps g A / 2
+    // (half its area A) over its full area is eps g / 2, averaged with the
+    // other side's traction at its foot (>= 0, as low as 0 under a corner
+    // on a flat side): p >= eps g / 4 at the node, so g <= 4 p / eps
     let rotor_pairs = model
         .contacts
         .iter()
@@ -436,11 +440,11 @@ fn blade_loss_whirl_friction_and_energy() {
         .filter(|(_, c)| c.body == blade1 && c.name != "blade1.boundary -> casing.inner")
         .map(|(p, _)| p);
     let p_rotor = rotor_pairs.map(|p| probe.pressure[p]).fold(0.0, f64::max);
-    let tolerance = 2.0 * p_rotor / eps;
+    let tolerance = 4.0 * p_rotor / eps;
     assert!(p_rotor > 0.0, "the released blade touches the rotor");
     assert!(
         deepest <= tolerance,
-        "the released blade {deepest:e} deep in the rotor ({}), more than 2 p / eps = {tolerance:e}",
+        "the released blade {deepest:e} deep in the rotor ({}), more than 4 p / eps = {tolerance:e}",
         worst_surface.0
     );
     assert!(tolerance < 0.5, "penalty penetration {tolerance:e} mm");

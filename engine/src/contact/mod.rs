@@ -574,6 +574,19 @@ pub struct ElementForces<'a> {
     pub gap_gradient: &'a [f64],
 }
 
+impl<'a> ElementForces<'a> {
+    /// The element of one coupling row (a closed slave node and its master
+    /// nodes).
+    pub fn of_coupling(r: &'a mortar::Coupling) -> Self {
+        ElementForces {
+            slave: r.slave,
+            nodes: &r.nodes,
+            force: &r.force,
+            gap_gradient: &r.gap_gradient,
+        }
+    }
+}
+
 /// The interface pressure of the modified double pass (both sides slave at
 /// once, each node with half its tributary area), replacing each entry's
 /// per-pass pressure:

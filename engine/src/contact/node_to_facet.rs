@@ -1417,12 +1417,7 @@ pub fn evaluate(
         let elements: Vec<super::ElementForces<'_>> = fp
             .couplings
             .iter()
-            .map(|r| super::ElementForces {
-                slave: r.slave,
-                nodes: &r.nodes,
-                force: &r.force,
-                gap_gradient: &r.gap_gradient,
-            })
+            .map(super::ElementForces::of_coupling)
             .collect();
         let (slaves, areas) = (&state.slaves, &state.area);
         super::interface_pressures(&mut out, &elements, |n| {

@@ -772,15 +772,7 @@ pub fn evaluate(
             })
             .collect();
         let elements: Vec<super::ElementForces<'_>> = match &couplings {
-            Some(rows) => rows
-                .iter()
-                .map(|r| super::ElementForces {
-                    slave: r.slave,
-                    nodes: &r.nodes,
-                    force: &r.force,
-                    gap_gradient: &r.gap_gradient,
-                })
-                .collect(),
+            Some(rows) => rows.iter().map(super::ElementForces::of_coupling).collect(),
             None => plain
                 .iter()
                 .map(|(nodes, force, grad)| super::ElementForces {

@@ -150,19 +150,27 @@ pub fn brick(
     let mut mesh = block(G, n, kind, |i, j, k| {
         [coord(0, i), coord(1, j), coord(2, k)]
     })?;
+    let lo = origin;
+    let hi = [0, 1, 2].map(|k| origin[k] + size[k]);
+    brick_sets(&mut mesh, lo, hi, size);
+    Ok(mesh)
+}
+
+/// The sets of a brick spanning `lo` .. `hi` (edge lengths `extent`):
+/// faces and nodes `xmin` .. `zmax` (boundary facets within round-off of
+/// each bounding plane), node set `origin` (node 0).
+fn brick_sets(mesh: &mut Mesh<3>, lo: [f64; 3], hi: [f64; 3], extent: [f64; 3]) {
     let boundary = mesh.boundary_facets(0..mesh.cells.len());
-    let e = tol(size.iter().copied().fold(0.0, f64::max));
+    let e = tol(extent.iter().copied().fold(0.0, f64::max));
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        let (lo, hi) = (origin[k], origin[k] + size[k]);
-        add_face_set(&mut mesh, &boundary, &format!("{axis}min"), |p| {
-            (p[k] - lo).abs() <= e
+        add_face_set(mesh, &boundary, &format!("{axis}min"), |p| {
+            (p[k] - lo[k]).abs() <= e
         });
-        add_face_set(&mut mesh, &boundary, &format!("{axis}max"), |p| {
-            (p[k] - hi).abs() <= e
+        add_face_set(mesh, &boundary, &format!("{axis}max"), |p| {
+            (p[k] - hi[k]).abs() <= e
         });
     }
     mesh.node_sets.insert("origin".into(), vec![0]);
-    Ok(mesh)
 }
 
 /// The brick spanned by three lines of node coordinates (strictly
@@ -198,19 +206,12 @@ pub fn brick_on_lines(lines: [&[f64]; 3], kind: CellKind) -> Result<Mesh<3>, Mes
     let mut mesh = block(G, n, kind, |i, j, k| {
         [lines[0][i], lines[1][j], lines[2][k]]
     })?;
-    let boundary = mesh.boundary_facets(0..mesh.cells.len());
-    let extent = lines.map(|l| l[l.len() - 1] - l[0]);
-    let e = tol(extent.iter().copied().fold(0.0, f64::max));
-    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-        let (lo, hi) = (lines[k][0], lines[k][n[k]]);
-        add_face_set(&mut mesh, &boundary, &format!("{axis}min"), |p| {
-            (p[k] - lo).abs() <= e
-        });
-        add_face_set(&mut mesh, &boundary, &format!("{axis}max"), |p| {
-            (p[k] - hi).abs() <= e
-        });
-    }
-    mesh.node_sets.insert("origin".into(), vec![0]);
+    brick_sets(
+        &mut mesh,
+        [0, 1, 2].map(|k| lines[k][0]),
+        [0, 1, 2].map(|k| lines[k][n[k]]),
+        lines.map(|l| l[l.len() - 1] - l[0]),
+    );
     Ok(mesh)
 }
 
