@@ -109,14 +109,7 @@ impl Observer<2> for Probe {
             self.contact_force_max = self.contact_force_max.max(force[0].hypot(force[1]));
         }
         self.rub.push(rub);
-        let at: Vec<[f64; 2]> = v
-            .model
-            .mesh
-            .nodes
-            .iter()
-            .zip(v.displacement)
-            .map(|(x, u)| [x[0] + u[0], x[1] + u[1]])
-            .collect();
+        let at: Vec<[f64; 2]> = v.positions();
         let c = at[self.pilot];
         let mean = self
             .root
@@ -145,15 +138,7 @@ impl Observer<2> for Probe {
         if self.at_release.is_none() && v.time >= self.release {
             // the state the blade is released from: the last increment
             // before (this one has it free already; its positions then)
-            self.at_release = Some(
-                v.model
-                    .mesh
-                    .nodes
-                    .iter()
-                    .zip(v.displacement)
-                    .map(|(x, u)| [x[0] + u[0], x[1] + u[1]])
-                    .collect(),
-            );
+            self.at_release = Some(v.positions());
         }
         Ok(())
     }

@@ -144,6 +144,19 @@ pub struct IncrementView<'a, const D: usize = 2> {
     pub acceleration: Option<&'a [f64]>,
 }
 
+impl<const D: usize> IncrementView<'_, D> {
+    /// The deformed nodal positions `x + u` of this increment.
+    pub fn positions(&self) -> Vec<[f64; D]> {
+        self.model
+            .mesh
+            .nodes
+            .iter()
+            .zip(self.displacement)
+            .map(|(x, u)| std::array::from_fn(|k| x[k] + u[k]))
+            .collect()
+    }
+}
+
 /// Receives progress and converged states (writers, progress bars, tests)
 /// of a run of dimension `D` (`Observer` without a parameter: planar).
 pub trait Observer<const D: usize = 2> {

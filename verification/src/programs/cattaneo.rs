@@ -113,14 +113,7 @@ pub(crate) struct Last {
 impl Observer for Last {
     fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
         self.contact = v.contact.first().ok_or("no contact pair")?.clone();
-        self.x = v
-            .model
-            .mesh
-            .nodes
-            .iter()
-            .zip(v.displacement)
-            .map(|(x, u)| [x[0] + u[0], x[1] + u[1]])
-            .collect();
+        self.x = v.positions();
         Ok(())
     }
 }
