@@ -23,6 +23,7 @@ pub mod hertz_3d_axi;
 pub mod hertz_two_spheres_3d;
 pub mod impact;
 pub mod johnson_cook;
+pub mod lame_sphere_quadratic;
 pub mod mortar;
 pub mod mortar_friction;
 pub mod mortar_friction_3d;
@@ -80,6 +81,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(solid::cases());
     v.extend(solid_patch::cases());
     v.extend(quadratic::cases());
+    v.extend(lame_sphere_quadratic::cases());
     v.extend(quadratic_contact::cases());
     v.extend(quadratic_thermal::cases());
     v.extend(upsetting_3d::cases());
