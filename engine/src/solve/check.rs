@@ -838,9 +838,10 @@ fn free_solid_motions<const D: usize>(
 /// if it cannot: a deformable master or slave with quadratic cells
 /// (node-to-segment and mortar are linear), Lagrange-multiplier friction
 /// (frictionless Lagrange multipliers are built on a positive-weight
-/// basis, `contact::face_integrated::multiplier_basis`), thermal contact (nodal areas), or a nodal penalty (a force per node
+/// basis, `contact::face_integrated::multiplier_basis`), or a nodal penalty (a force per node
 /// has no meaning at integration points). Friction is integrated at the
-/// points (`contact::face_integrated`).
+/// points (`contact::face_integrated`), and so is the heat exchange of a
+/// thermal pair against a tool (`thermal::contact_faces`).
 pub fn quadratic_contact_refusal<const D: usize>(
     model: &Model<D>,
     c: &crate::model::ContactPair,
@@ -904,18 +905,6 @@ pub fn quadratic_contact_refusal<const D: usize>(
         _ if nodal => {
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
-        }
-        _ if model.thermal.as_ref().is_some_and(|t| {
-            model
-                .contacts
-                .iter()
-                .position(|p| std::ptr::eq(p, c))
-                .and_then(|i| t.contacts.get(i))
-                .is_some_and(Option::is_some)
-        }) =>
-        {
-            "thermal contact is not available on quadratic faces (its nodal areas would be \
-             zero or negative at the corners)"
         }
         _ => return None,
     };

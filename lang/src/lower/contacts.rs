@@ -139,14 +139,7 @@ impl Lowerer<'_> {
                     "use `kind = area` (a pressure per unit gap)",
                 ))
             }
-            _ => c.thermal.as_ref().map(|t| {
-                (
-                    t.span,
-                    "thermal contact is not available on quadratic faces".into(),
-                    "the slave body has quadratic cells",
-                    "mesh the contact body with linear cells, or leave the thermal block out",
-                )
-            }),
+            _ => None,
         }
     }
 

@@ -48,6 +48,7 @@ pub mod superplastic_3d;
 pub mod taylor_bar;
 pub mod thermal_3d;
 pub mod thermal_contact;
+pub mod thermal_contact_quadratic;
 pub mod thermal_coupling;
 pub mod traction_3d;
 pub mod tube_bulge;
@@ -84,6 +85,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(lame_sphere_quadratic::cases());
     v.extend(quadratic_contact::cases());
     v.extend(quadratic_thermal::cases());
+    v.extend(thermal_contact_quadratic::cases());
     v.extend(upsetting_3d::cases());
     v.extend(contact_3d::cases());
     v.extend(contact_ntf_3d::cases());
