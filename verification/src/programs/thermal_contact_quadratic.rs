@@ -23,7 +23,10 @@
 //! strain, and axisymmetric: the block a solid cylinder r <= 1, contact
 //! area pi), hex20 and tet10 (the 1 x 0.5 x 2 brick, area 0.5); and quad9
 //! (plane strain, axisymmetric) / hex27, which no deck key makes: the same
-//! models built by the test kit on the elevated meshes ([`built`]).
+//! models built by the test kit on the elevated meshes ([`built`]). All
+//! with the decks' area penalty; quad8 (plane strain) and tet10 also with
+//! Lagrange multipliers (the nodal pressures of the dual basis of
+//! `contact::face_integrated`).
 //! The pressure is uniform and the temperature linear in the height, both
 //! in the cells' spaces, so flux and interface temperatures are exact to
 //! round-off; the interface temperature is judged at every slave node,
@@ -65,6 +68,10 @@ const AXI: (&str, &str) = ("plane_strain", "axisymmetric");
 const HEX20: (&str, &str) = (
     "divisions = (4, 2, 8)",
     "divisions = (4, 2, 8)  element = hex8  order = 2",
+);
+const LAGRANGE: (&str, &str) = (
+    "method = penalty { kind = area  stiffness = 1e7 }",
+    "method = lagrange { }",
 );
 const TET10: (&str, &str) = (
     "divisions = (4, 2, 8)",
@@ -153,6 +160,24 @@ fn runs() -> Vec<Run> {
             CellKind::Tet10,
             SOLID,
             &[TET10],
+            0.5,
+        ),
+        (
+            "flux quad8 plane strain lagrange",
+            "T_i quad8 plane strain lagrange",
+            "p uniform quad8 plane strain lagrange",
+            CellKind::Quad8,
+            PLANAR,
+            &[QUAD8, LAGRANGE],
+            1.0,
+        ),
+        (
+            "flux tet10 lagrange",
+            "T_i tet10 lagrange",
+            "p uniform tet10 lagrange",
+            CellKind::Tet10,
+            SOLID,
+            &[TET10, LAGRANGE],
             0.5,
         ),
     ]
