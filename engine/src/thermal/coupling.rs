@@ -64,8 +64,19 @@ impl Coupling {
         let tributary = (0..model.contacts.len())
             .map(|p| pair_areas(model, p))
             .collect();
+        // the face rules of the thermal pairs only
+        let thermal = |p: usize| {
+            model
+                .thermal
+                .as_ref()
+                .is_some_and(|t| matches!(t.contacts.get(p), Some(Some(_))))
+        };
         let faces = (0..model.contacts.len())
-            .map(|p| contact_faces::pair_rule(model, p))
+            .map(|p| {
+                thermal(p)
+                    .then(|| contact_faces::pair_rule(model, p))
+                    .flatten()
+            })
             .collect();
         Ok(Some(Coupling {
             source: vec![0.0; solver.active.len()],
