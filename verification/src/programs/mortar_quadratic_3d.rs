@@ -583,6 +583,29 @@ impl Observer<3> for Probe {
 /// (the finite bodies: the linear mortar at 10,002 free dofs +14.9 % on
 /// P). Tolerances: these times about 1.3-1.5.
 ///
+/// The +16 % is mostly the finite bodies (a block 2.5 `a` thick pushed by
+/// its whole top face, the shell 5 `a` thick), the rest discretization:
+/// the same geometry with the linear mortar (equal block, Lagrange
+/// multipliers, force by the base reaction; `QM_TANGENTIAL=t cargo test
+/// -p ctc-verification --test suite hertz_linear_refinement -- --ignored
+/// --nocapture`, debug, loaded machine) refined to 7 times the dofs:
+///
+/// | tangential | radial | block | free dofs | P / Hertz - 1 | wall |
+/// | --- | --- | --- | --- | --- | --- |
+/// | 16 | 3 | 8 x 8 x 2 | 10,002 | +14.9 % | 21 s |
+/// | 20 | 4 | 10 x 10 x 2 | 19,202 | +18.2 % | 147 s |
+/// | 24 | 5 | 12 x 12 x 3 | 33,291 | +13.7 % | 148 s |
+/// | 28 | 5 | 14 x 14 x 3 | 45,195 | +14.7 % | 239 s |
+/// | 32 | 6 | 16 x 16 x 4 | 69,060 | +13.3 % | 550 s |
+///
+/// The linear force settles near +13 to +14 % (the finite geometry's
+/// share of the excess over the half-space); at 10k-20k dofs it still
+/// scatters by 3-5 points with the mesh (the contact radius `a = 0.1`
+/// spans 2-3 faces), and the quadratic level 2 (15,290 dofs, +16.2 %)
+/// lies inside that scatter: the quadratic mesh is not finer near the
+/// contact than the linear ones of equal dofs, so about 3 points of its
+/// +16 % are discretization, not a defect of the quadratic mortar.
+///
 /// Lagrange multipliers (the equal block, [`hertz_deck_lagrange`]: one
 /// multiplier per slave node on its weighted gap, semi-smooth Newton)
 /// against the penalty run (`k = 1e7`) on the same mesh, in units of the
