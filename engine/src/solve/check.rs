@@ -866,16 +866,13 @@ pub fn quadratic_contact_refusal<const D: usize>(
             .collect();
         let first = *quadratic.first()?;
         // mortar on quadratic faces: both sides quadratic, frictionless,
-        // area penalty / augmented Lagrangian; 2D seg3
-        // (`contact::mortar::seg3`) also single Lagrange multipliers, 3D
-        // tri6 / quad8 / quad9 (`contact::mortar::quadratic3d`) not
+        // area penalty / augmented Lagrangian / single Lagrange multipliers
+        // (2D seg3: `contact::mortar::seg3`; 3D tri6 / quad8 / quad9:
+        // `contact::mortar::quadratic3d`)
         let what = if c.formulation != crate::model::ContactFormulation::Mortar {
             "node-to-segment contact between deformable bodies on quadratic faces is not \
              available (its nodal weights are wrong at the corners); use `formulation = \
              mortar`"
-        } else if D == 3 && matches!(c.method, ContactMethod::Lagrange { .. }) {
-            "Lagrange multipliers with 3D mortar on quadratic faces are not available (use \
-             `penalty` or `augmented_lagrange` with `kind = area`)"
         } else if quadratic.len() == 1 {
             "mortar on quadratic faces needs both surfaces quadratic (mesh both bodies with \
              quadratic cells, or both with linear cells)"
