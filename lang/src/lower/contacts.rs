@@ -53,8 +53,9 @@ impl Lowerer<'_> {
                 .formulation
                 .as_ref()
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
-            // mortar on quadratic faces: both sides quadratic, frictionless,
-            // area penalty / augmented Lagrangian (2D seg3 also Lagrange
+            // mortar on quadratic faces: both sides quadratic, area penalty
+            // / augmented Lagrangian with or without friction (2D seg3 also
+            // frictionless Lagrange
             // multipliers: `ctc_engine::contact::mortar::seg3`; 3D tri6 /
             // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
             // without Lagrange multipliers)
@@ -85,16 +86,19 @@ impl Lowerer<'_> {
                      cells",
                 );
             }
-            if let Some(f) = &c.friction {
+            let method = c.method.as_ref()?;
+            // Coulomb friction on quadratic faces: penalty and augmented
+            // Lagrangian (`ctc_engine::contact::mortar::friction_quadratic`)
+            if let (Some(f), Method::Lagrange { .. }) = (&c.friction, &method.value) {
                 return refusal(
                     f.span,
-                    "friction with mortar contact on quadratic faces is not available".into(),
-                    "quadratic faces with friction",
-                    "drop `friction` (frictionless mortar on quadratic faces is available), or \
-                     mesh the pair with linear cells",
+                    "Lagrange-multiplier friction with mortar on quadratic faces is not available"
+                        .into(),
+                    "quadratic faces with friction and Lagrange multipliers",
+                    "use `method = penalty { kind = area .. }` or `augmented_lagrange { .. }` \
+                     with friction, or drop `friction`",
                 );
             }
-            let method = c.method.as_ref()?;
             return match &method.value {
                 Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }
                     if nodal(kind) =>
