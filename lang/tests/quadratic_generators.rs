@@ -261,7 +261,7 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
             2,
             "lagrange { }",
             "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
-            "Lagrange-multiplier friction with mortar on quadratic faces",
+            "Lagrange-multiplier friction against a deformable master",
         ),
     ] {
         let src = Source::new("pair.ctc", deck_with(order, method, extra));
@@ -317,7 +317,7 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
             2,
             "lagrange { }",
             "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
-            "lagrange-multiplier friction with mortar on quadratic faces",
+            "lagrange-multiplier friction against a deformable master",
         ),
         (
             2,

@@ -55,10 +55,10 @@ impl Lowerer<'_> {
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
             // mortar on quadratic faces: both sides quadratic, area penalty
             // / augmented Lagrangian with or without friction (2D seg3 also
-            // frictionless Lagrange
-            // multipliers: `ctc_engine::contact::mortar::seg3`; 3D tri6 /
-            // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
-            // without Lagrange multipliers)
+            // frictionless Lagrange multipliers:
+            // `ctc_engine::contact::mortar::seg3`; 3D tri6 / quad8 / quad9:
+            // `ctc_engine::contact::mortar::quadratic3d`, without Lagrange
+            // multipliers)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
             if mortar.is_none() {
                 return refusal(
@@ -86,19 +86,11 @@ impl Lowerer<'_> {
                      cells",
                 );
             }
+            // Coulomb friction (penalty, augmented Lagrangian:
+            // `ctc_engine::contact::mortar::friction_quadratic`) lowers;
+            // Lagrange-multiplier friction against a deformable master is
+            // refused for every pair (`validate::contacts`)
             let method = c.method.as_ref()?;
-            // Coulomb friction on quadratic faces: penalty and augmented
-            // Lagrangian (`ctc_engine::contact::mortar::friction_quadratic`)
-            if let (Some(f), Method::Lagrange { .. }) = (&c.friction, &method.value) {
-                return refusal(
-                    f.span,
-                    "Lagrange-multiplier friction with mortar on quadratic faces is not available"
-                        .into(),
-                    "quadratic faces with friction and Lagrange multipliers",
-                    "use `method = penalty { kind = area .. }` or `augmented_lagrange { .. }` \
-                     with friction, or drop `friction`",
-                );
-            }
             return match &method.value {
                 Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }
                     if nodal(kind) =>

@@ -257,16 +257,29 @@ pub(super) fn evaluate_seg3(
             anchor: f.base[i].or(f.committed_anchor[i]).map_or(0.0, |a| a[0]),
             slip: pairing.map_or_else(|| (0.0, vec![0.0; 2 * nodes.len()]), |p| p.slip(x, &nodes)),
         };
-        let closed = row.close_with_friction(
-            &tangential,
-            node,
-            support,
-            alpha,
-            shift,
-            prof,
-            list[0].master,
-            &inputs,
-        );
+        // a normal force of a round-off penetration: open (the seg3
+        // integrals of two meshes touching on a flat interface give nodal
+        // gaps of round-off of either sign; closed with friction, such a
+        // node sticks or slips in a direction of noise: the press of
+        // `contact_patch_friction_quadratic` chattered on the interface's
+        // end nodes and cut back to the smallest increment), as in 3D
+        // ([`friction3d::ROUND_OFF`])
+        let rn = shift - alpha * row.g / row.area;
+        let closed = if rn <= alpha * friction3d::ROUND_OFF * support.max(0.0).sqrt() {
+            row.close::<2>(node, support, 0.0, 0.0, prof, 0.0, list[0].master, None)
+                .map(|(nc, _)| (nc, None, None))
+        } else {
+            row.close_with_friction(
+                &tangential,
+                node,
+                support,
+                alpha,
+                shift,
+                prof,
+                list[0].master,
+                &inputs,
+            )
+        };
         let Some((nc, coupling, response)) = closed else {
             state.friction.open(i, [0.0; 2]);
             continue;
