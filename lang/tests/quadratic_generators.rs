@@ -216,41 +216,55 @@ fn quarter_disc_of_order_two_is_tri6_and_quad8_with_its_arc_on_the_circle() {
 }
 
 /// Two deformable blocks of quad8 cells in contact (issues 23 and 18):
-/// mortar lowers (the slave midside nodes are contact nodes); node-to-
-/// segment, one linear side and friction are refused with a caret.
+/// mortar lowers (the slave midside nodes are contact nodes), with or
+/// without friction; node-to-segment, one linear side and friction with
+/// Lagrange multipliers are refused with a caret.
 #[test]
 fn deformable_quadratic_pair_lowers_with_mortar_only() {
-    let deck = |top_order: usize, contact_extra: &str| {
+    let penalty = "penalty { kind = area  stiffness = 1e6 }";
+    let deck_with = |top_order: usize, method: &str, contact_extra: &str| {
         format!(
             "analysis {{ dimension = plane_strain }}\n\
              material m {{ elastic {{ E = 1000  nu = 0.3 }} }}\n\
              body base {{\n  mesh = rectangle {{ origin = (0, 0)  size = (1, 1)  divisions = (4, 2)  order = 2 }}\n  material = m\n}}\n\
              body top {{\n  mesh = rectangle {{ origin = (0, 1)  size = (1, 1)  divisions = (3, 2)  order = {top_order} }}\n  material = m\n}}\n\
-             contact top.bottom -> base.top {{\n  method = penalty {{ kind = area  stiffness = 1e6 }}\n  {contact_extra}\n}}\n\
+             contact top.bottom -> base.top {{\n  method = {method}\n  {contact_extra}\n}}\n\
              fix base.bottom {{ uy }}\nfix base.left {{ ux }}\nfix top.left {{ ux }}\n\
              displace top.top {{ uy = ramp(0, -0.01) }}\n\
              step s {{ time = 0 .. 1  increments = 1 }}\n"
         )
     };
-    let src = Source::new("pair.ctc", deck(2, "formulation = mortar"));
-    let m = match compile_any(&src) {
-        Ok(AnyModel::D2(m)) => m,
-        Ok(_) => panic!("not planar"),
-        Err(d) => panic!("{}", d.render(&src)),
-    };
-    // 3 edges: 4 corners and 3 midside nodes
-    assert_eq!(m.contacts[0].nodes.len(), 7);
-    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
-    for (order, extra, expected) in [
-        (2, "", "add `formulation = mortar`"),
-        (1, "formulation = mortar", "needs both surfaces quadratic"),
+    let deck = |top_order: usize, contact_extra: &str| deck_with(top_order, penalty, contact_extra);
+    for extra in [
+        "formulation = mortar",
+        "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
+    ] {
+        let src = Source::new("pair.ctc", deck(2, extra));
+        let m = match compile_any(&src) {
+            Ok(AnyModel::D2(m)) => m,
+            Ok(_) => panic!("not planar"),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        // 3 edges: 4 corners and 3 midside nodes
+        assert_eq!(m.contacts[0].nodes.len(), 7);
+        assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    }
+    for (order, method, extra, expected) in [
+        (2, penalty, "", "add `formulation = mortar`"),
+        (
+            1,
+            penalty,
+            "formulation = mortar",
+            "needs both surfaces quadratic",
+        ),
         (
             2,
+            "lagrange { }",
             "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
-            "friction with mortar contact on quadratic faces",
+            "Lagrange-multiplier friction against a deformable master",
         ),
     ] {
-        let src = Source::new("pair.ctc", deck(order, extra));
+        let src = Source::new("pair.ctc", deck_with(order, method, extra));
         let out = check(&src).diagnostics.render(&src);
         assert!(out.contains(expected), "{out}");
     }
@@ -258,8 +272,9 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
 
 /// Two deformable blocks of hex20 cells in contact (issues 23 and 18): 3D
 /// mortar on quad8 faces lowers (every face node is a contact node), with
-/// the penalty and with Lagrange multipliers; node-to-facet, one linear
-/// side and friction are refused with a located error.
+/// or without friction, and with Lagrange multipliers; node-to-facet, one
+/// linear side and Lagrange-multiplier friction are refused with a located
+/// error.
 #[test]
 fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
     let deck = |top_order: usize, method: &str, contact_extra: &str| {
@@ -276,15 +291,20 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
         )
     };
     let penalty = "penalty { kind = area  stiffness = 1e6 }";
-    let src = Source::new("pair3d.ctc", deck(2, penalty, "formulation = mortar"));
-    let m = match compile_any(&src) {
-        Ok(AnyModel::D3(m)) => m,
-        Ok(_) => panic!("not 3d"),
-        Err(d) => panic!("{}", d.render(&src)),
-    };
-    // 2 x 2 quad8 faces: 9 corners and 12 midside nodes
-    assert_eq!(m.contacts[0].nodes.len(), 21);
-    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    for extra in [
+        "formulation = mortar",
+        "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
+    ] {
+        let src = Source::new("pair3d.ctc", deck(2, penalty, extra));
+        let m = match compile_any(&src) {
+            Ok(AnyModel::D3(m)) => m,
+            Ok(_) => panic!("not 3d"),
+            Err(d) => panic!("{}", d.render(&src)),
+        };
+        // 2 x 2 quad8 faces: 9 corners and 12 midside nodes
+        assert_eq!(m.contacts[0].nodes.len(), 21);
+        assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    }
     // Lagrange multipliers (one per slave node, corners and midside nodes)
     let src = Source::new(
         "pair3d.ctc",
@@ -308,9 +328,9 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
         ),
         (
             2,
-            penalty,
+            "lagrange { }",
             "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
-            "friction with mortar contact on quadratic faces",
+            "lagrange-multiplier friction against a deformable master",
         ),
     ] {
         let src = Source::new("pair3d.ctc", deck(order, method, extra));

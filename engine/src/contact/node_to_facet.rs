@@ -866,6 +866,9 @@ pub struct DeformablePair {
     /// configuration ([`super::mortar::friction3d`], recomputed once per
     /// increment from `committed_positions`).
     pub pairing: Option<super::mortar::friction3d::CommittedPairing>,
+    /// Mortar friction on quadratic faces: the slave nodes' committed
+    /// pairings ([`super::mortar::friction_quadratic`], once per increment).
+    pub quadratic_pairing: Option<super::mortar::friction_quadratic::CommittedPairing3>,
     /// Mortar friction: per slave index, the tangential force vector of
     /// the latest evaluation (the augmented Lagrangian's next shift).
     pub tangential: Vec<[f64; 3]>,
@@ -910,6 +913,7 @@ impl DeformablePair {
             self.committed_positions = positions.to_vec();
             self.positions = positions.to_vec();
             self.pairing = None;
+            self.quadratic_pairing = None;
         }
     }
 

@@ -164,6 +164,9 @@ pub struct SurfacePair {
     /// configuration (recomputed once per increment from
     /// `committed_positions`).
     pub pairing: Option<super::mortar::friction::CommittedPairing>,
+    /// Mortar friction on seg3 faces: the slave nodes' committed pairings
+    /// ([`super::mortar::friction_quadratic`], once per increment).
+    pub seg3_pairing: Option<super::mortar::friction_quadratic::CommittedPairing2>,
     /// Per side, per segment: its midside node when the side's body has
     /// quadratic cells (seg3 segments `[a, b, m]`, mortar only,
     /// [`super::mortar::seg3`]); empty for a linear side.

@@ -865,10 +865,11 @@ pub fn quadratic_contact_refusal<const D: usize>(
             .filter(|&b| body_is_quadratic(model, b))
             .collect();
         let first = *quadratic.first()?;
-        // mortar on quadratic faces: both sides quadratic, frictionless,
-        // area penalty / augmented Lagrangian / single Lagrange multipliers
-        // (2D seg3: `contact::mortar::seg3`; 3D tri6 / quad8 / quad9:
-        // `contact::mortar::quadratic3d`)
+        // mortar on quadratic faces: both sides quadratic, area penalty /
+        // augmented Lagrangian, with or without Coulomb friction
+        // (`contact::mortar::friction_quadratic`), or frictionless single
+        // Lagrange multipliers (2D seg3: `contact::mortar::seg3`; 3D tri6 /
+        // quad8 / quad9: `contact::mortar::quadratic3d`)
         let what = if c.formulation != crate::model::ContactFormulation::Mortar {
             "node-to-segment contact between deformable bodies on quadratic faces is not \
              available (its nodal weights are wrong at the corners); use `formulation = \
@@ -876,9 +877,11 @@ pub fn quadratic_contact_refusal<const D: usize>(
         } else if quadratic.len() == 1 {
             "mortar on quadratic faces needs both surfaces quadratic (mesh both bodies with \
              quadratic cells, or both with linear cells)"
-        } else if c.friction.is_some() {
-            "friction with mortar contact on quadratic faces is not available (frictionless \
-             mortar is)"
+        } else if c.friction.is_some() && matches!(c.method, ContactMethod::Lagrange { .. }) {
+            // Coulomb friction is built for the penalty and the augmented
+            // Lagrangian (`contact::mortar::friction_quadratic`)
+            "Lagrange-multiplier friction with mortar on quadratic faces is not available (use \
+             `penalty` or `augmented_lagrange` with friction, or drop `friction`)"
         } else if nodal {
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
@@ -1010,7 +1013,8 @@ mod tests {
     }
 
     /// Deformable pairs on quadratic faces: 2D mortar, both sides
-    /// quadratic, frictionless, area penalty; the rest refused.
+    /// quadratic, area penalty with or without friction; the rest (friction
+    /// with Lagrange multipliers among it) refused.
     #[test]
     fn deformable_pairs_on_quadratic_faces_need_mortar_on_both_sides() {
         use crate::mesh::CellKind::{Quad4, Quad8};
@@ -1050,12 +1054,15 @@ mod tests {
                 false,
                 Some("needs both surfaces quadratic"),
             ),
+            (Quad8, F::Mortar, area.clone(), true, None),
             (
                 Quad8,
                 F::Mortar,
-                area.clone(),
+                ContactMethod::Lagrange {
+                    formulation: LagrangeFormulation::Single,
+                },
                 true,
-                Some("friction with mortar"),
+                Some("Lagrange-multiplier friction with mortar on quadratic faces"),
             ),
             (
                 Quad8,

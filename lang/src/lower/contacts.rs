@@ -53,10 +53,11 @@ impl Lowerer<'_> {
                 .formulation
                 .as_ref()
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
-            // mortar on quadratic faces: both sides quadratic, frictionless,
-            // area penalty / augmented Lagrangian / single Lagrange
-            // multipliers (2D seg3: `ctc_engine::contact::mortar::seg3`; 3D
-            // tri6 / quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`)
+            // mortar on quadratic faces: both sides quadratic, area penalty
+            // / augmented Lagrangian with or without friction, or
+            // frictionless single Lagrange multipliers (2D seg3:
+            // `ctc_engine::contact::mortar::seg3`; 3D tri6 / quad8 / quad9:
+            // `ctc_engine::contact::mortar::quadratic3d`)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
             if mortar.is_none() {
                 return refusal(
@@ -84,15 +85,10 @@ impl Lowerer<'_> {
                      cells",
                 );
             }
-            if let Some(f) = &c.friction {
-                return refusal(
-                    f.span,
-                    "friction with mortar contact on quadratic faces is not available".into(),
-                    "quadratic faces with friction",
-                    "drop `friction` (frictionless mortar on quadratic faces is available), or \
-                     mesh the pair with linear cells",
-                );
-            }
+            // Coulomb friction (penalty, augmented Lagrangian:
+            // `ctc_engine::contact::mortar::friction_quadratic`) lowers;
+            // Lagrange-multiplier friction against a deformable master is
+            // refused for every pair (`validate::contacts`)
             let method = c.method.as_ref()?;
             return match &method.value {
                 Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }

@@ -30,6 +30,7 @@ pub mod mortar_friction_3d;
 pub mod mortar_lagrange_3d;
 pub mod mortar_quadratic;
 pub mod mortar_quadratic_3d;
+pub mod mortar_quadratic_friction;
 pub mod nagata_3d;
 pub mod norton_hoff;
 pub mod objectivity;
@@ -91,6 +92,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(contact_ntf_3d::cases());
     v.extend(mortar_quadratic_3d::cases());
     v.extend(mortar_friction_3d::cases());
+    v.extend(mortar_quadratic_friction::cases());
     v.extend(mortar_lagrange_3d::cases());
     v.extend(hertz_3d_axi::cases());
     v.extend(hertz_two_spheres_3d::cases());

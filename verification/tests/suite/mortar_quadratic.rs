@@ -36,3 +36,23 @@ fn hertz_two_cylinders_mortar_quadratic_meets_hertz() {
         println!("{:?}: {:.2e}", v.quantity, v.error);
     }
 }
+
+/// The frictional patch test on quadratic faces (`ctc verify
+/// contact_patch_friction_quadratic`; Taylor & Papadopoulos, IJNME 31
+/// (1991) 2205; Gitterle, Popp, Gee & Wall, IJNME 84 (2010) 543;
+/// `verification/src/programs/mortar_quadratic_friction.rs`): a quad8 block
+/// pressed on and pushed along a quad8 block (3 | 4 cells across, seg3
+/// mortar), below `mu N` every node sticks and the shear is carried, past
+/// it every node slips on the cone and the friction work is `mu N` times
+/// the slide; every value within its tolerance (0.4 s debug).
+///
+/// ```text
+///   top  quad8 3 x 2, u = (delta, -d) on top
+///   ---- slave top.bottom (seg3) / master base.top, mu = 0.3 ----
+///   base quad8 4 x 2, fixed bottom; side tractions of the uniform state
+/// ```
+#[test]
+fn contact_patch_friction_quadratic_passes() {
+    let report = registry::run_passing("contact_patch_friction_quadratic");
+    assert_eq!(report.levels[0].values.len(), 7);
+}

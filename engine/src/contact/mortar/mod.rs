@@ -40,6 +40,7 @@ pub mod ad;
 pub mod facets;
 pub mod friction;
 pub mod friction3d;
+pub mod friction_quadratic;
 pub mod integrals;
 pub mod quadratic3d;
 pub mod seg3;
@@ -713,7 +714,22 @@ pub fn evaluate(
     let w = weight(model);
     let prof = state.prof;
     if !sp.midsides[0].is_empty() && !sp.midsides[1].is_empty() {
-        let tests = evaluate_seg3(cp, state, &mut sp, x, w, &mut couplings, &mut out);
+        let tests = match &cp.friction {
+            // Coulomb friction on seg3 faces (penalty, augmented Lagrangian)
+            Some(law) if !matches!(cp.method, ContactMethod::Lagrange { .. }) => {
+                friction_quadratic::evaluate_seg3(
+                    cp,
+                    law,
+                    state,
+                    &mut sp,
+                    x,
+                    w,
+                    &mut couplings,
+                    &mut out,
+                )
+            }
+            _ => evaluate_seg3(cp, state, &mut sp, x, w, &mut couplings, &mut out),
+        };
         total_forces(&couplings, &mut out);
         state.last_projection_tests = tests;
         state.last_brute_force_tests = sp.sides[0].edges.len() * sp.sides[1].edges.len();
@@ -1082,7 +1098,10 @@ pub fn evaluate_3d(
         .first()
         .is_some_and(|f| quadratic3d::is_quadratic_face(f.nodes().len()))
     {
-        evaluate_3d_quadratic(cp, &mut fp, x, state, &mut out);
+        match &cp.friction {
+            Some(law) => friction_quadratic::evaluate_3d(cp, law, &mut fp, x, state, &mut out),
+            None => evaluate_3d_quadratic(cp, &mut fp, x, state, &mut out),
+        }
         state.deformable = Some(fp);
         return out;
     }

@@ -334,6 +334,26 @@ pub struct QuadSegment {
     pub overlap: f64,
     /// Smallest and largest gap over the integration points.
     pub gap_range: [f64; 2],
+    /// Friction ([`face_pair_frictional`]; empty otherwise): the scalar
+    /// mortar integrals per row, `D_jk = int psi_j N_k dA` at `k` and `M_jl
+    /// = int psi_j N^_l dA` at [`MAX_NODES`] `+ l`.
+    pub d: Vec<Vec<Ad54>>,
+    /// Friction: the integration points (values), where the weighted
+    /// tangential slip is measured ([`super::friction_quadratic`]).
+    pub points: Vec<QuadPoint>,
+}
+
+/// One integration point of a quadratic face pair (values): the slave
+/// parameters `xi`, the master parameters `eta` of the point facing it,
+/// and per row `j` the weight `psi_j dA`.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct QuadPoint {
+    /// Slave parameters.
+    pub xi: [f64; 2],
+    /// Master parameters.
+    pub eta: [f64; 2],
+    /// Per row (slave node `j < ns`): `psi_j dA`.
+    pub weight: [f64; MAX_NODES],
 }
 
 /// The master parameters where the line through `xs` along the slave
@@ -431,6 +451,8 @@ struct Integrals<const N: usize> {
     b: Vec<Vec<[Ad<N>; 3]>>,
     overlap: f64,
     gap_range: [f64; 2],
+    d: Vec<Vec<Ad<N>>>,
+    points: Vec<QuadPoint>,
 }
 
 /// Point `p` as variables `base..base + 3` (constants past `N`).
@@ -445,11 +467,13 @@ fn var<const N: usize>(p: [f64; 3], base: usize) -> P3<N> {
 }
 
 /// [`face_pair`] in dual numbers of `N` directions; `vectors`: also the
-/// force coefficients `B`.
+/// force coefficients `B`; `friction`: also the scalar integrals `d` and
+/// the points.
 fn integrate<const N: usize>(
     slave: &[[f64; 3]],
     master: &[[f64; 3]],
     vectors: bool,
+    friction: bool,
 ) -> Option<Integrals<N>> {
     let (ns, nm) = (slave.len(), master.len());
     let xs: Vec<P3<N>> = slave
@@ -474,6 +498,12 @@ fn integrate<const N: usize>(
         },
         overlap: 0.0,
         gap_range: [f64::INFINITY, f64::NEG_INFINITY],
+        d: if friction {
+            vec![vec![z; MAX_NODES + nm]; ns]
+        } else {
+            Vec::new()
+        },
+        points: Vec::new(),
     };
     let masters = sub_triangles(&xm);
     for (ps, xi_s) in sub_triangles(&xs) {
@@ -556,12 +586,26 @@ fn integrate<const N: usize>(
                     out.gap_range = [out.gap_range[0].min(g.v), out.gap_range[1].max(g.v)];
                     let jw = at * w * jac * ratio;
                     let nt = modified(ns, &n_sh);
+                    let mut point = QuadPoint {
+                        xi: xi.map(|v| v.v),
+                        eta: eta.map(|v| v.v),
+                        weight: [0.0; MAX_NODES],
+                    };
                     for (j, cj) in coef.iter().enumerate().take(ns) {
                         let mut psi = z;
                         for q in 0..ns {
                             psi += cj[q] * nt[q];
                         }
                         let pw = psi * jw;
+                        point.weight[j] = pw.v;
+                        if let Some(row) = out.d.get_mut(j) {
+                            for q in 0..ns {
+                                row[q] += pw * n_sh[q];
+                            }
+                            for q in 0..nm {
+                                row[MAX_NODES + q] += pw * n_ma[q];
+                            }
+                        }
                         out.area[j] += pw;
                         out.gap[j] += pw * g;
                         if !vectors {
@@ -579,6 +623,9 @@ fn integrate<const N: usize>(
                                 row[MAX_NODES + q][c] += pn[c] * n_ma[q];
                             }
                         }
+                    }
+                    if friction {
+                        out.points.push(point);
                     }
                 }
             }
@@ -603,16 +650,36 @@ pub fn face_pair_within(
     max_gap: f64,
     max_depth: f64,
 ) -> Option<QuadSegment> {
+    face_pair_with(slave, master, max_gap, max_depth, false)
+}
+
+/// [`face_pair_within`] with the friction integrals (`d` and the points).
+pub fn face_pair_frictional(
+    slave: &[[f64; 3]],
+    master: &[[f64; 3]],
+    max_gap: f64,
+    max_depth: f64,
+) -> Option<QuadSegment> {
+    face_pair_with(slave, master, max_gap, max_depth, true)
+}
+
+fn face_pair_with(
+    slave: &[[f64; 3]],
+    master: &[[f64; 3]],
+    max_gap: f64,
+    max_depth: f64,
+    friction: bool,
+) -> Option<QuadSegment> {
     let (ns, nm) = (slave.len(), master.len());
     if !is_quadratic_face(ns) || !is_quadratic_face(nm) {
         return None;
     }
-    let values = integrate::<0>(slave, master, false)?;
+    let values = integrate::<0>(slave, master, false, false)?;
     let [lo, hi] = values.gap_range;
     if lo > max_gap || hi < -max_depth {
         return None;
     }
-    let i = integrate::<NVAR>(slave, master, true)?;
+    let i = integrate::<NVAR>(slave, master, true, friction)?;
     Some(QuadSegment {
         ns,
         nm,
@@ -621,6 +688,8 @@ pub fn face_pair_within(
         b: i.b,
         overlap: i.overlap,
         gap_range: i.gap_range,
+        d: i.d,
+        points: i.points,
     })
 }
 
@@ -833,7 +902,7 @@ mod tests {
 
     /// The values of a face pair's integrals (`g~`, `A`, `B`) flattened.
     fn values(slave: &[[f64; 3]], master: &[[f64; 3]]) -> Option<Vec<f64>> {
-        let i = integrate::<0>(slave, master, true)?;
+        let i = integrate::<0>(slave, master, true, false)?;
         let mut v: Vec<f64> = i.gap.iter().chain(&i.area).map(|x| x.v).collect();
         for row in &i.b {
             v.extend(row.iter().flatten().map(|x| x.v));

@@ -131,7 +131,8 @@ fn at(x: &[[f64; 2]; 3], n: [f64; 3]) -> [f64; 2] {
     std::array::from_fn(|c| n[0] * x[0][c] + n[1] * x[1][c] + n[2] * x[2][c])
 }
 
-fn dshape(xi: f64) -> [f64; 3] {
+/// The derivatives of the seg3 shape functions at `xi`.
+pub fn dshape(xi: f64) -> [f64; 3] {
     [4.0 * xi - 3.0, 4.0 * xi - 1.0, 4.0 - 8.0 * xi]
 }
 
@@ -278,6 +279,23 @@ pub struct Seg3Segment {
     pub gap: [Ad12; 3],
     /// The smallest and the largest gap at the integration points.
     pub gap_range: [f64; 2],
+    /// The integration points (values): where the weighted tangential
+    /// slip of mortar friction is measured ([`super::friction_quadratic`]).
+    pub points: [Seg3Point; GAUSS.len()],
+}
+
+/// One integration point of a seg3 segment pair (values): the slave
+/// parameter `xi`, the master parameter `eta` of the point facing it, and
+/// per row `j` the weight `psi_j(xi) w J dxi` (the dual weight of the
+/// integrals `D_jk`, `g~_j`).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Seg3Point {
+    /// Slave parameter.
+    pub xi: f64,
+    /// Master parameter.
+    pub eta: f64,
+    /// Per row: `psi_j w ds`.
+    pub weight: [f64; 3],
 }
 
 /// The mortar integrals of slave segment `[x_a, x_b, x_m]` against master
@@ -337,7 +355,8 @@ pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Se
     let mut b = [[[zero; 2]; 6]; 3];
     let mut gap = [zero; 3];
     let mut gap_range = [f64::INFINITY, f64::NEG_INFINITY];
-    for (s, gw) in GAUSS {
+    let mut points = [Seg3Point::default(); GAUSS.len()];
+    for (q, (s, gw)) in GAUSS.into_iter().enumerate() {
         let xi = lo + span * s;
         let (ps, j, n) = slave_frame(&xs, xi);
         let t = [-n[1], n[0]];
@@ -355,9 +374,12 @@ pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Se
         let jw = span * j * weight_at(weight, ps) * gw;
         let ns = shape_ad(xi);
         let nm = shape_ad(eta);
+        points[q].xi = xi.v;
+        points[q].eta = eta.v;
         for r in 0..3 {
             let psi = coef[r][0] * ns[0] + coef[r][1] * ns[1] + coef[r][2] * ns[2];
             let pw = psi * jw;
+            points[q].weight[r] = pw.v;
             gap[r] += pw * g;
             for k in 0..3 {
                 d[r][k] += pw * ns[k];
@@ -375,6 +397,7 @@ pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Se
         b,
         gap,
         gap_range,
+        points,
     })
 }
 
