@@ -254,7 +254,7 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             }
         }
     }
-    for c in &model.contacts {
+    for (p, c) in model.contacts.iter().enumerate() {
         let master_ok = match &c.master {
             crate::model::ContactMaster::Tool(t) if D == 3 => *t < model.surfaces.len(),
             crate::model::ContactMaster::Tool(t) => *t < model.tools.len(),
@@ -285,6 +285,20 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
         // node-based answers that are wrong (negative corner weights)
         if let Some(why) = quadratic_contact_refusal(model, c) {
             errors.push(format!("contact `{}`: {why}", c.name));
+        }
+        // heat across a 3D pair of deformable bodies: node-to-facet gives
+        // the heat solver no master facet (`thermal::coupling::
+        // contact_elements`), so the pair would exchange no heat at all
+        let thermal = model
+            .thermal
+            .as_ref()
+            .is_some_and(|t| t.contacts.get(p).is_some_and(Option::is_some));
+        if D == 3 && thermal && matches!(c.master, crate::model::ContactMaster::Surface { .. }) {
+            errors.push(format!(
+                "contact `{}`: thermal contact between two deformable bodies is not available in \
+                 3D yet (heat crosses 3D contact against rigid tools only)",
+                c.name
+            ));
         }
         if c.nodes
             .iter()

@@ -157,6 +157,26 @@ impl Lowerer<'_> {
                     .push(Diagnostic::error(message, span, label).with_help(help));
                 continue;
             }
+            // heat across a 3D pair of deformable bodies: the node-to-facet
+            // contact does not give the heat solver the master facet's
+            // nodes (`thermal::coupling::contact_elements`), so such a pair
+            // would exchange no heat at all; refused, not silently wrong
+            if let (true, Some(_), Some(t)) = (self.solid, &c.master, &c.thermal) {
+                self.diags.push(
+                    Diagnostic::error(
+                        "thermal contact between two deformable bodies is not available in 3D \
+                         yet (heat crosses 3D contact against rigid tools only)",
+                        t.span,
+                        "heat exchange with a deformable master surface",
+                    )
+                    .with_help(
+                        "make the master a rigid tool at a prescribed temperature \
+                         (`tool_temperature`), or model the pair in 2D / axisymmetric \
+                         (node-to-segment thermal contact)",
+                    ),
+                );
+                continue;
+            }
             let master = match &c.master {
                 Some(m) => {
                     if self.body_failed(m) {
