@@ -216,8 +216,9 @@ fn quarter_disc_of_order_two_is_tri6_and_quad8_with_its_arc_on_the_circle() {
 }
 
 /// Two deformable blocks of quad8 cells in contact (issues 23 and 18):
-/// mortar lowers (the slave midside nodes are contact nodes); node-to-
-/// segment, one linear side and friction are refused with a caret.
+/// mortar lowers (the slave midside nodes are contact nodes), also with
+/// one side linear (mixed orders); node-to-segment and friction are
+/// refused with a caret.
 #[test]
 fn deformable_quadratic_pair_lowers_with_mortar_only() {
     let deck = |top_order: usize, contact_extra: &str| {
@@ -241,9 +242,17 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
     // 3 edges: 4 corners and 3 midside nodes
     assert_eq!(m.contacts[0].nodes.len(), 7);
     assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    // mixed orders (a quad4 slave on the quad8 base) lower: 4 corners
+    let src = Source::new("pair.ctc", deck(1, "formulation = mortar"));
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D2(m)) => m,
+        Ok(_) => panic!("not planar"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    assert_eq!(m.contacts[0].nodes.len(), 4);
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
     for (order, extra, expected) in [
         (2, "", "add `formulation = mortar`"),
-        (1, "formulation = mortar", "needs both surfaces quadratic"),
         (
             2,
             "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
@@ -257,9 +266,9 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
 }
 
 /// Two deformable blocks of hex20 cells in contact (issues 23 and 18): 3D
-/// mortar on quad8 faces lowers (every face node is a contact node); node-
-/// to-facet, one linear side, friction and Lagrange multipliers are refused
-/// with a located error.
+/// mortar on quad8 faces lowers (every face node is a contact node), also
+/// with one side linear (mixed orders); node-to-facet, friction and
+/// Lagrange multipliers are refused with a located error.
 #[test]
 fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
     let deck = |top_order: usize, method: &str, contact_extra: &str| {
@@ -285,14 +294,17 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
     // 2 x 2 quad8 faces: 9 corners and 12 midside nodes
     assert_eq!(m.contacts[0].nodes.len(), 21);
     assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    // mixed orders (hex8 slave faces on the hex20 base) lower: 9 corners
+    let src = Source::new("pair3d.ctc", deck(1, penalty, "formulation = mortar"));
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    assert_eq!(m.contacts[0].nodes.len(), 9);
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
     for (order, method, extra, expected) in [
         (2, penalty, "", "formulation = mortar"),
-        (
-            1,
-            penalty,
-            "formulation = mortar",
-            "needs both surfaces quadratic",
-        ),
         (
             2,
             penalty,

@@ -864,8 +864,9 @@ pub fn quadratic_contact_refusal<const D: usize>(
             .filter(|&b| body_is_quadratic(model, b))
             .collect();
         let first = *quadratic.first()?;
-        // mortar on quadratic faces: both sides quadratic, frictionless,
-        // area penalty / augmented Lagrangian; 2D seg3
+        // mortar on quadratic faces (one side linear or both quadratic:
+        // mixed orders take the linear side's own shape functions),
+        // frictionless, area penalty / augmented Lagrangian; 2D seg3
         // (`contact::mortar::seg3`) also single Lagrange multipliers, 3D
         // tri6 / quad8 / quad9 (`contact::mortar::quadratic3d`) not
         let what = if c.formulation != crate::model::ContactFormulation::Mortar {
@@ -875,9 +876,6 @@ pub fn quadratic_contact_refusal<const D: usize>(
         } else if D == 3 && matches!(c.method, ContactMethod::Lagrange { .. }) {
             "Lagrange multipliers with 3D mortar on quadratic faces are not available (use \
              `penalty` or `augmented_lagrange` with `kind = area`)"
-        } else if quadratic.len() == 1 {
-            "mortar on quadratic faces needs both surfaces quadratic (mesh both bodies with \
-             quadratic cells, or both with linear cells)"
         } else if c.friction.is_some() {
             "friction with mortar contact on quadratic faces is not available (frictionless \
              mortar is)"
@@ -1023,8 +1021,8 @@ mod tests {
         }
     }
 
-    /// Deformable pairs on quadratic faces: 2D mortar, both sides
-    /// quadratic, frictionless, area penalty; the rest refused.
+    /// Deformable pairs on quadratic faces: 2D mortar (both sides quadratic
+    /// or mixed orders), frictionless, area penalty; the rest refused.
     #[test]
     fn deformable_pairs_on_quadratic_faces_need_mortar_on_both_sides() {
         use crate::mesh::CellKind::{Quad4, Quad8};
@@ -1057,13 +1055,8 @@ mod tests {
                 false,
                 Some("use `formulation = mortar`"),
             ),
-            (
-                Quad4,
-                F::Mortar,
-                area.clone(),
-                false,
-                Some("needs both surfaces quadratic"),
-            ),
+            // mixed orders (quad4 | quad8): the linear side's own functions
+            (Quad4, F::Mortar, area.clone(), false, None),
             (
                 Quad8,
                 F::Mortar,

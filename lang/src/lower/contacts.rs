@@ -53,8 +53,8 @@ impl Lowerer<'_> {
                 .formulation
                 .as_ref()
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
-            // mortar on quadratic faces: both sides quadratic, frictionless,
-            // area penalty / augmented Lagrangian (2D seg3 also Lagrange
+            // mortar on quadratic faces (both sides, or one: mixed orders),
+            // frictionless, area penalty / augmented Lagrangian (2D seg3 also Lagrange
             // multipliers: `ctc_engine::contact::mortar::seg3`; 3D tri6 /
             // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
             // without Lagrange multipliers)
@@ -70,19 +70,6 @@ impl Lowerer<'_> {
                     "this surface has midside nodes",
                     "add `formulation = mortar` (mortar integrates the gap over the quadratic \
                      faces), or mesh the pair with linear cells",
-                );
-            }
-            if sides.len() == 1 {
-                return refusal(
-                    side.span,
-                    format!(
-                        "mortar on quadratic faces needs both surfaces quadratic: body `{}` has \
-                         quadratic cells, the other side linear ones",
-                        side.body.name
-                    ),
-                    "this surface has midside nodes",
-                    "mesh both bodies with quadratic cells (`order = 2`), or both with linear \
-                     cells",
                 );
             }
             if let Some(f) = &c.friction {
