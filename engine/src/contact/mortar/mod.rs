@@ -657,7 +657,8 @@ fn pieces_seg3(
     pieces
 }
 
-/// The seg3 branch of [`evaluate`] (both surfaces quadratic; frictionless):
+/// The seg3 branch of [`evaluate`] (a quadratic side, the other quadratic
+/// or linear: mixed orders; frictionless):
 /// per slave node (corners and midside nodes) its row over its pieces,
 /// closed as the seg2 rows ([`Row::close`]); returns the projection tests.
 fn evaluate_seg3(
@@ -1308,7 +1309,8 @@ fn row_quadratic<'a>(pieces: &[QuadPiece], list: &[(usize, usize)], nodes: &'a [
 }
 
 /// The quadratic branch of [`evaluate_3d`] (tri6 / quad8 / quad9 faces on
-/// both sides; frictionless, penalty or augmented Lagrangian): per slave
+/// both sides or, mixed orders, on one side and tri3 / quad4 on the
+/// other; frictionless, penalty or augmented Lagrangian): per slave
 /// node (corners and midside nodes) its row over its face pairs, closed
 /// as the linear rows ([`Row::close`]) with the reference weight `T_j =
 /// int N~_j dA` ([`quadratic3d::supports`]).
