@@ -85,7 +85,6 @@ decks!(
     contact_misspelled_gmsh_group,
     contact_quadratic_faces,
     contact_quadratic_generator,
-    contact_quadratic_thermal,
     quadratic_order_three,
     quadratic_reduced_triangles,
     quadratic_reduced_without_order,

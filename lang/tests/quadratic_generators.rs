@@ -266,9 +266,10 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
 }
 
 /// Two deformable blocks of hex20 cells in contact (issues 23 and 18): 3D
-/// mortar on quad8 faces lowers (every face node is a contact node), also
-/// with one side linear (mixed orders); node-to-facet, friction and
-/// Lagrange multipliers are refused with a located error.
+/// mortar on quad8 faces lowers (every face node is a contact node), with
+/// the penalty and with Lagrange multipliers, also with one side linear
+/// (mixed orders); node-to-facet and friction are refused with a located
+/// error.
 #[test]
 fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
     let deck = |top_order: usize, method: &str, contact_extra: &str| {
@@ -303,6 +304,19 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
     };
     assert_eq!(m.contacts[0].nodes.len(), 9);
     assert!(ctc_engine::solve::check::check_model(&m).is_empty());
+    // Lagrange multipliers (one per slave node, corners and midside nodes)
+    let src = Source::new(
+        "pair3d.ctc",
+        deck(2, "lagrange { }", "formulation = mortar"),
+    );
+    match compile_any(&src) {
+        Ok(AnyModel::D3(m)) => {
+            let errors = ctc_engine::solve::check::check_model(&m);
+            assert!(errors.is_empty(), "{errors:?}");
+        }
+        Ok(_) => panic!("not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    }
     for (order, method, extra, expected) in [
         (2, penalty, "", "formulation = mortar"),
         (
@@ -310,12 +324,6 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
             penalty,
             "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
             "friction with mortar contact on quadratic faces",
-        ),
-        (
-            2,
-            "lagrange { }",
-            "formulation = mortar",
-            "lagrange multipliers",
         ),
     ] {
         let src = Source::new("pair3d.ctc", deck(order, method, extra));

@@ -98,7 +98,7 @@ impl<const D: usize> Mesh<D> {
     }
 
     /// [`Mesh::edge_midsides`] of a planar mesh (empty in 3D).
-    fn planar_midsides(&self) -> std::collections::HashMap<(usize, usize), usize> {
+    pub(crate) fn planar_midsides(&self) -> std::collections::HashMap<(usize, usize), usize> {
         let mut out = std::collections::HashMap::new();
         if D == 2 {
             for cell in self.cells.iter() {

@@ -838,9 +838,10 @@ fn free_solid_motions<const D: usize>(
 /// if it cannot: a deformable master or slave with quadratic cells
 /// (node-to-segment and mortar are linear), Lagrange-multiplier friction
 /// (frictionless Lagrange multipliers are built on a positive-weight
-/// basis, `contact::face_integrated::multiplier_basis`), thermal contact (nodal areas), or a nodal penalty (a force per node
+/// basis, `contact::face_integrated::multiplier_basis`), or a nodal penalty (a force per node
 /// has no meaning at integration points). Friction is integrated at the
-/// points (`contact::face_integrated`).
+/// points (`contact::face_integrated`), and so is the heat exchange of a
+/// thermal pair against a tool (`thermal::contact_faces`).
 pub fn quadratic_contact_refusal<const D: usize>(
     model: &Model<D>,
     c: &crate::model::ContactPair,
@@ -864,18 +865,15 @@ pub fn quadratic_contact_refusal<const D: usize>(
             .filter(|&b| body_is_quadratic(model, b))
             .collect();
         let first = *quadratic.first()?;
-        // mortar on quadratic faces (one side linear or both quadratic:
-        // mixed orders take the linear side's own shape functions),
-        // frictionless, area penalty / augmented Lagrangian; 2D seg3
-        // (`contact::mortar::seg3`) also single Lagrange multipliers, 3D
-        // tri6 / quad8 / quad9 (`contact::mortar::quadratic3d`) not
+        // mortar on quadratic faces (both sides quadratic, or one side
+        // linear: mixed orders take the linear side's own shape functions),
+        // frictionless, area penalty / augmented Lagrangian / single
+        // Lagrange multipliers (2D seg3: `contact::mortar::seg3`; 3D tri6 /
+        // quad8 / quad9: `contact::mortar::quadratic3d`)
         let what = if c.formulation != crate::model::ContactFormulation::Mortar {
             "node-to-segment contact between deformable bodies on quadratic faces is not \
              available (its nodal weights are wrong at the corners); use `formulation = \
              mortar`"
-        } else if D == 3 && matches!(c.method, ContactMethod::Lagrange { .. }) {
-            "Lagrange multipliers with 3D mortar on quadratic faces are not available (use \
-             `penalty` or `augmented_lagrange` with `kind = area`)"
         } else if c.friction.is_some() {
             "friction with mortar contact on quadratic faces is not available (frictionless \
              mortar is)"
@@ -902,18 +900,6 @@ pub fn quadratic_contact_refusal<const D: usize>(
         _ if nodal => {
             "a nodal penalty has no meaning on quadratic faces (the gap is integrated over \
              the faces); use `kind = area`"
-        }
-        _ if model.thermal.as_ref().is_some_and(|t| {
-            model
-                .contacts
-                .iter()
-                .position(|p| std::ptr::eq(p, c))
-                .and_then(|i| t.contacts.get(i))
-                .is_some_and(Option::is_some)
-        }) =>
-        {
-            "thermal contact is not available on quadratic faces (its nodal areas would be \
-             zero or negative at the corners)"
         }
         _ => return None,
     };

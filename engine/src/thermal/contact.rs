@@ -14,6 +14,13 @@
 //! (node-to-segment): the element is then the 3-node conductance
 //! `h A w w^T`, `w = [1, -(1 - xi), -xi]`, which conserves heat exactly
 //! (what leaves the slave enters the master).
+//!
+//! Quadratic slave faces against a rigid tool (tri6 / quad8 / quad9 bodies
+//! and 3-node edges, tet10 / hex20 / hex27 faces) have no usable nodal
+//! areas (`int N_a dA` is 0 at a tri6 corner, negative at a quad8 one), so
+//! their exchange is integrated at the faces' points instead
+//! ([`super::contact_faces`]): one element per point, `h(p_g) w_g` with the
+//! shape values `N_a(xi_g)` as weights.
 
 use crate::contact::{ContactStatus, NodeContact};
 use crate::model::thermal::ContactThermal;
@@ -46,19 +53,26 @@ pub enum ThermalMaster {
     },
 }
 
-/// Conductance element of one contact node: nodes and weights of the
-/// temperature jump `T_master - T_slave = -(w . T)`, and the prescribed
-/// part (tool temperature).
+/// Most nodes of a conductance element (a quad9 face's integration point).
+pub const MAX_ELEMENT_NODES: usize = 9;
+
+/// Conductance element of one contact node (or of one integration point of
+/// a quadratic slave face): nodes and weights of the temperature jump
+/// `T_master - T_slave = -(w . T)`, and the prescribed part (tool
+/// temperature).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ConductanceElement {
     /// `h A` (power / temperature).
     pub ha: f64,
-    /// Slave node, then the master segment's nodes if any.
-    pub nodes: [usize; 3],
-    /// Number of nodes used (1 against a tool, 3 on a segment).
+    /// Slave node, then the master segment's nodes if any (a face point:
+    /// the face's nodes).
+    pub nodes: [usize; MAX_ELEMENT_NODES],
+    /// Number of nodes used (1 against a tool, 3 on a segment, the face's
+    /// node count at a face point).
     pub count: usize,
-    /// Weights `w` (slave +1, master nodes -(1 - xi), -xi).
-    pub weights: [f64; 3],
+    /// Weights `w` (slave +1, master nodes -(1 - xi), -xi; a face point:
+    /// the shape values `N_a` of its face there).
+    pub weights: [f64; MAX_ELEMENT_NODES],
     /// Tool temperature (rigid master), else 0.
     pub tool_temperature: f64,
 }
@@ -67,21 +81,32 @@ impl ConductanceElement {
     /// The element of slave node `node` with `h A = ha` against `master`.
     pub fn new(node: usize, ha: f64, master: ThermalMaster) -> Self {
         match master {
-            ThermalMaster::Tool(t) => ConductanceElement {
+            ThermalMaster::Tool(t) => Self::on_nodes(ha, &[node], &[1.0], t),
+            ThermalMaster::Segment { nodes, xi } => Self::on_nodes(
                 ha,
-                nodes: [node, 0, 0],
-                count: 1,
-                weights: [1.0, 0.0, 0.0],
-                tool_temperature: t,
-            },
-            ThermalMaster::Segment { nodes, xi } => ConductanceElement {
-                ha,
-                nodes: [node, nodes[0], nodes[1]],
-                count: 3,
-                weights: [1.0, -(1.0 - xi), -xi],
-                tool_temperature: 0.0,
-            },
+                &[node, nodes[0], nodes[1]],
+                &[1.0, -(1.0 - xi), -xi],
+                0.0,
+            ),
         }
+    }
+
+    /// The element `h A = ha` on `nodes` with the weights `weights` against
+    /// the prescribed `tool_temperature` (a face point against a tool: the
+    /// face's nodes and their shape values at the point); nodes beyond
+    /// [`MAX_ELEMENT_NODES`] are dropped (no facet has more).
+    pub fn on_nodes(ha: f64, nodes: &[usize], weights: &[f64], tool_temperature: f64) -> Self {
+        let count = nodes.len().min(weights.len()).min(MAX_ELEMENT_NODES);
+        let mut e = ConductanceElement {
+            ha,
+            nodes: [0; MAX_ELEMENT_NODES],
+            count,
+            weights: [0.0; MAX_ELEMENT_NODES],
+            tool_temperature,
+        };
+        e.nodes[..count].copy_from_slice(&nodes[..count]);
+        e.weights[..count].copy_from_slice(&weights[..count]);
+        e
     }
 
     /// Heat flowing from the master side into the slave node (power) at

@@ -19,9 +19,11 @@
 
 use super::boundary::facet_integrals;
 use super::contact::{node_conductance, ConductanceElement, ThermalMaster};
+use super::contact_faces;
 use super::expansion::{cell_temperatures, cell_thermal_strains};
 use super::properties::{is_temperature_dependent, law_at};
 use super::solver::{ThermalIncrement, ThermalSolver};
+use crate::contact::face_integrated::FacetRule;
 use crate::contact::NodeContact;
 use crate::element::MaterialPoint;
 use crate::geom::Dimension;
@@ -38,6 +40,10 @@ pub struct Coupling {
     pub solver: ThermalSolver,
     /// Tributary area of each slave node, per pair (the mechanical ones).
     tributary: Vec<Vec<f64>>,
+    /// Per pair: the face rule of a quadratic slave body against a tool
+    /// (its exchange is integrated at the faces' points,
+    /// [`super::contact_faces`]), else `None`.
+    faces: Vec<Option<FacetRule>>,
     /// Heat generated at each node during the last increment (energy).
     pub source: Vec<f64>,
     /// Plastic dissipation of the last increment turned into heat (energy).
@@ -58,10 +64,25 @@ impl Coupling {
         let tributary = (0..model.contacts.len())
             .map(|p| pair_areas(model, p))
             .collect();
+        // the face rules of the thermal pairs only
+        let thermal = |p: usize| {
+            model
+                .thermal
+                .as_ref()
+                .is_some_and(|t| matches!(t.contacts.get(p), Some(Some(_))))
+        };
+        let faces = (0..model.contacts.len())
+            .map(|p| {
+                thermal(p)
+                    .then(|| contact_faces::pair_rule(model, p))
+                    .flatten()
+            })
+            .collect();
         Ok(Some(Coupling {
             source: vec![0.0; solver.active.len()],
             solver,
             tributary,
+            faces,
             plastic_heat: 0.0,
             elements: Vec::new(),
         }))
@@ -130,7 +151,7 @@ impl Coupling {
         self.source.fill(0.0);
         self.plastic_heat = plastic_heat(model, scene, before, after, &mut self.source);
         let friction = friction_heat(model, scene, contact, &mut self.source);
-        self.elements = contact_elements(model, scene, contact, &self.tributary, t);
+        self.elements = contact_elements(model, scene, contact, &self.tributary, &self.faces, t);
         self.solver
             .solve_increment(model, t, dt, &self.elements, &self.source)?;
         self.solver.last.plastic = self.plastic_heat;
@@ -161,12 +182,14 @@ pub fn pair_areas<const D: usize>(model: &Model<D>, pair: usize) -> Vec<f64> {
 }
 
 /// Conductance elements of the converged contact state (pairs with a
-/// thermal block only).
+/// thermal block only): per slave node, or per integration point for the
+/// pairs with a face rule in `faces` ([`contact_faces::face_elements`]).
 pub fn contact_elements<const D: usize>(
     model: &Model<D>,
     scene: &ThermalScene,
     contact: &[Vec<NodeContact<D>>],
     tributary: &[Vec<f64>],
+    faces: &[Option<FacetRule>],
     t: f64,
 ) -> Vec<(usize, ConductanceElement)> {
     let mut out = Vec::new();
@@ -180,6 +203,11 @@ pub fn contact_elements<const D: usize>(
             (Some(_), None) => continue, // adiabatic tool
             (None, _) => None,
         };
+        if let (Some(Some(rule)), Some(tt)) = (faces.get(p), tool_temperature) {
+            let elements = contact_faces::face_elements(rule, settings, nodes, tt);
+            out.extend(elements.into_iter().map(|e| (p, e)));
+            continue;
+        }
         for c in nodes {
             let Ok(i) = cp.nodes.binary_search(&c.node) else {
                 continue;

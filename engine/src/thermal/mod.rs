@@ -10,6 +10,8 @@
 //! - [`boundary`]: edge integrals of fluxes and convection films;
 //! - [`contact`]: pressure- and gap-dependent contact conductance, the
 //!   conductance element against a tool or a master segment;
+//! - [`contact_faces`]: the same exchange integrated at the points of
+//!   quadratic slave faces against a tool (no nodal areas there);
 //! - [`solver`]: the implicit (backward Euler) transient on its own scalar
 //!   dof numbering, sparse Cholesky;
 //! - [`expansion`]: thermal strains handed to the mechanics;
@@ -20,6 +22,7 @@
 pub mod boundary;
 pub mod conduction;
 pub mod contact;
+pub mod contact_faces;
 pub mod coupling;
 pub mod expansion;
 pub mod properties;

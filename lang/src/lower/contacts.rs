@@ -54,10 +54,9 @@ impl Lowerer<'_> {
                 .as_ref()
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
             // mortar on quadratic faces (both sides, or one: mixed orders),
-            // frictionless, area penalty / augmented Lagrangian (2D seg3 also Lagrange
-            // multipliers: `ctc_engine::contact::mortar::seg3`; 3D tri6 /
-            // quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`,
-            // without Lagrange multipliers)
+            // frictionless, area penalty / augmented Lagrangian / single
+            // Lagrange multipliers (2D seg3: `ctc_engine::contact::mortar::seg3`;
+            // 3D tri6 / quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
             if mortar.is_none() {
                 return refusal(
@@ -93,14 +92,6 @@ impl Lowerer<'_> {
                         "use `kind = area` (a pressure per unit gap)",
                     )
                 }
-                Method::Lagrange { .. } if self.solid => refusal(
-                    method.span,
-                    "mortar with Lagrange multipliers on quadratic faces is 2D only for now".into(),
-                    "3D quadratic faces with Lagrange multipliers",
-                    "use `method = penalty { kind = area .. }` or `augmented_lagrange { .. }` \
-                     (3D mortar on quadratic faces), or mesh the pair with linear cells (3D \
-                     mortar with Lagrange multipliers)",
-                ),
                 _ => None,
             };
         }
@@ -126,14 +117,7 @@ impl Lowerer<'_> {
                     "use `kind = area` (a pressure per unit gap)",
                 ))
             }
-            _ => c.thermal.as_ref().map(|t| {
-                (
-                    t.span,
-                    "thermal contact is not available on quadratic faces".into(),
-                    "the slave body has quadratic cells",
-                    "mesh the contact body with linear cells, or leave the thermal block out",
-                )
-            }),
+            _ => None,
         }
     }
 

@@ -46,7 +46,8 @@
 //! --nocapture`): penalty hex8 | hex20 1.1e-11, hex20 | hex8 9.1e-12, tet4
 //! | hex20 1.3e-11, force 5.96e-6 each (the penalty's compliance per
 //! current area, as the same-order pairs'); augmented Lagrangian hex8 |
-//! hex20 1.2e-13, force -2.4e-8. The 2D runs: deviation and mean error
+//! hex20 1.2e-13, force -2.4e-8; Lagrange multipliers (hex20 | hex8, the
+//! same-order 3D rows of `mortar_quadratic_3d`) see the catalogue. The 2D runs: deviation and mean error
 //! <= 4.7e-13 on both levels.
 //!
 //! `hertz_two_cylinders_mortar_mixed` — see [`hertz_case`].
@@ -238,6 +239,18 @@ const PATCH_3D: &[(
         1e-7,
         16,
     ),
+    (
+        "hex20 | hex8 mortar lagrange p uniform",
+        "hex20 | hex8 mortar lagrange F",
+        "hex8",
+        2,
+        2,
+        1,
+        3,
+        "lagrange { }",
+        1e-10,
+        21,
+    ),
 ];
 
 const AUGMENTED: &str = "augmented_lagrange { kind = area  penalty = 1e4  tolerance = 1e-9 }";
@@ -373,7 +386,7 @@ fn patch_3d_case() -> VerifyCase {
         name: "contact_patch_mortar_mixed_3d",
         title: "3D contact patch test, a linear block on a quadratic one and the reverse (hex8 | \
                 hex20, hex20 | hex8, tet4 | hex20), non-matching, one layer each: mixed-order \
-                mortar, penalty and augmented Lagrangian",
+                mortar, penalty, augmented Lagrangian and Lagrange multipliers",
         source: "Taylor & Papadopoulos IJNME 31 (1991), in 3D; Puso, Laursen & Solberg CMAME \
                  197 (2008) 555",
         tags: &[

@@ -408,23 +408,23 @@ pub fn cases() -> Vec<VerifyCase> {
 
 /// One point of a cell's measuring rule: shape values, Cartesian
 /// gradients, position and volume weight.
-struct CellPoint<const D: usize> {
-    n: Vec<f64>,
-    dndx: Vec<[f64; D]>,
-    x: [f64; D],
-    dv: f64,
+pub(crate) struct CellPoint<const D: usize> {
+    pub(crate) n: Vec<f64>,
+    pub(crate) dndx: Vec<[f64; D]>,
+    pub(crate) x: [f64; D],
+    pub(crate) dv: f64,
 }
 
 /// The points of cell `c` of `mesh` on the cell's mass rule (exact for
 /// `N_a N_b` on an undistorted cell: 3x3 Gauss on quadrilaterals, 16 / 64
 /// collapsed points on triangles / tetrahedra), per dimension.
-trait CellRules<const D: usize> {
+pub(crate) trait CellRules<const D: usize> {
     /// The points of cell `c`.
     fn points(mesh: &Mesh<D>, c: usize, section: &Section) -> Result<Vec<CellPoint<D>>, String>;
 }
 
 /// The dimension marker the rules are implemented on.
-struct Rules;
+pub(crate) struct Rules;
 
 fn on<const D: usize, const NN: usize, C: ReferenceCell<D, NN>>(
     mesh: &Mesh<D>,

@@ -84,6 +84,21 @@ fn thermal_steady_quadratic_is_exact_on_quadratic_cells() {
     }
 }
 
+/// Thermal contact of quadratic slave faces against a cold rigid tool
+/// (`thermal_contact_tool_quadratic`,
+/// `verification/src/programs/thermal_contact_quadratic.rs`;
+/// VERIFICATION-CASES.md §8, `q = (T_hot - T_cold) / (L / k + 1 / h(p))`):
+/// the conductance integrated at the faces' points gives the flux and the
+/// interface temperature of every slave node (corners and midsides) to
+/// round-off on quad8 / quad9 / tri6 (plane strain, axisymmetric) and
+/// hex27 / hex20 / tet10, at two pressures (area penalty; quad8 and tet10
+/// also with Lagrange multipliers).
+#[test]
+fn thermal_contact_tool_quadratic_is_exact_on_quadratic_faces() {
+    let report = registry::run_passing("thermal_contact_tool_quadratic");
+    assert_eq!(report.levels[0].values.len(), 33);
+}
+
 /// The 3D Hertz block (`hertz_sphere_3d_quadratic`, level 0; K. L.
 /// Johnson, Contact Mechanics (1985) §4.2: `a^3 = 3 P R / (4 E*)`, `p0 = 3
 /// P / (2 pi a^2)`) resolved under the contact (a spans 4 hex8 cells) on

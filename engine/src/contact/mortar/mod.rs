@@ -1308,12 +1308,31 @@ fn row_quadratic<'a>(pieces: &[QuadPiece], list: &[(usize, usize)], nodes: &'a [
     row
 }
 
+/// The Lagrange multipliers of slave `i` of a 3D pair under `method`
+/// (the node's): its `(active, multiplier)`, decided by the semi-smooth
+/// Newton ([`crate::contact::semismooth`]); `None` for the penalty and
+/// the augmented Lagrangian.
+fn lagrange_of(method: &ContactMethod, state: &SurfacePair, i: usize) -> Option<(bool, f64)> {
+    matches!(method, ContactMethod::Lagrange { .. }).then(|| {
+        (
+            state.active.get(i).copied().unwrap_or(false),
+            state.multiplier.get(i).copied().unwrap_or(0.0),
+        )
+    })
+}
+
 /// The quadratic branch of [`evaluate_3d`] (tri6 / quad8 / quad9 faces on
 /// both sides or, mixed orders, on one side and tri3 / quad4 on the
-/// other; frictionless, penalty or augmented Lagrangian): per slave
-/// node (corners and midside nodes) its row over its face pairs, closed
-/// as the linear rows ([`Row::close`]) with the reference weight `T_j =
-/// int N~_j dA` ([`quadratic3d::supports`]).
+/// other; frictionless): per slave node (corners and midside nodes)
+/// its row over its face pairs, closed as the linear rows ([`Row::close`])
+/// with the reference weight `T_j = int N~_j dA`
+/// ([`quadratic3d::supports`]): penalty, augmented Lagrangian, or one
+/// Lagrange multiplier per slave node whose constraint is the nodal gap
+/// `g~_j / A_j = 0` (`A_j = int psi_j dA > 0` over the covered part: the
+/// dual of the positive-weight basis makes every row's area positive,
+/// corners included, so the rows are those of the linear 3D mortar's
+/// multipliers, [`Row::close_lagrange`]: the force column `B_j / A_j`,
+/// the constraint row the full derivative of `g~_j / A_j`).
 fn evaluate_3d_quadratic(
     cp: &ContactPair,
     fp: &mut super::node_to_facet::DeformablePair,
@@ -1357,7 +1376,7 @@ fn evaluate_3d_quadratic(
             prof,
             state.touching,
             entity,
-            None,
+            lagrange_of(&method, state, i),
         ) else {
             continue;
         };
@@ -1367,6 +1386,9 @@ fn evaluate_3d_quadratic(
     total_forces(&fp.couplings, out);
     state.counters.faces_tested += fp.tests as u64;
 }
+
+#[cfg(test)]
+mod quadratic3d_lagrange_tests;
 
 #[cfg(test)]
 mod tests {
