@@ -217,8 +217,9 @@ fn quarter_disc_of_order_two_is_tri6_and_quad8_with_its_arc_on_the_circle() {
 
 /// Two deformable blocks of quad8 cells in contact (issues 23 and 18):
 /// mortar lowers (the slave midside nodes are contact nodes), with or
-/// without friction; node-to-segment, one linear side and friction with
-/// Lagrange multipliers are refused with a caret.
+/// without friction, also with one side linear (mixed orders, frictionless);
+/// node-to-segment, friction with mixed orders and friction with Lagrange
+/// multipliers are refused with a caret.
 #[test]
 fn deformable_quadratic_pair_lowers_with_mortar_only() {
     let penalty = "penalty { kind = area  stiffness = 1e6 }";
@@ -249,13 +250,22 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
         assert_eq!(m.contacts[0].nodes.len(), 7);
         assert!(ctc_engine::solve::check::check_model(&m).is_empty());
     }
+    // mixed orders (a quad4 slave on the quad8 base) lower: 4 corners
+    let src = Source::new("pair.ctc", deck(1, "formulation = mortar"));
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D2(m)) => m,
+        Ok(_) => panic!("not planar"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    assert_eq!(m.contacts[0].nodes.len(), 4);
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
     for (order, method, extra, expected) in [
         (2, penalty, "", "add `formulation = mortar`"),
         (
             1,
             penalty,
-            "formulation = mortar",
-            "needs both surfaces quadratic",
+            "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
+            "friction with mortar between a linear and a quadratic side",
         ),
         (
             2,
@@ -272,8 +282,9 @@ fn deformable_quadratic_pair_lowers_with_mortar_only() {
 
 /// Two deformable blocks of hex20 cells in contact (issues 23 and 18): 3D
 /// mortar on quad8 faces lowers (every face node is a contact node), with
-/// or without friction, and with Lagrange multipliers; node-to-facet, one
-/// linear side and Lagrange-multiplier friction are refused with a located
+/// or without friction, with Lagrange multipliers, also with one side
+/// linear (mixed orders, frictionless); node-to-facet, friction with mixed
+/// orders and Lagrange-multiplier friction are refused with a located
 /// error.
 #[test]
 fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
@@ -305,6 +316,15 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
         assert_eq!(m.contacts[0].nodes.len(), 21);
         assert!(ctc_engine::solve::check::check_model(&m).is_empty());
     }
+    // mixed orders (hex8 slave faces on the hex20 base) lower: 9 corners
+    let src = Source::new("pair3d.ctc", deck(1, penalty, "formulation = mortar"));
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    assert_eq!(m.contacts[0].nodes.len(), 9);
+    assert!(ctc_engine::solve::check::check_model(&m).is_empty());
     // Lagrange multipliers (one per slave node, corners and midside nodes)
     let src = Source::new(
         "pair3d.ctc",
@@ -323,8 +343,8 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
         (
             1,
             penalty,
-            "formulation = mortar",
-            "needs both surfaces quadratic",
+            "formulation = mortar\n  friction = coulomb { mu = 0.2 }",
+            "friction with mortar between a linear and a quadratic side",
         ),
         (
             2,

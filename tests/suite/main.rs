@@ -13,6 +13,7 @@ mod example_files;
 mod example_iges_punch;
 mod example_superplastic_forming;
 mod example_tube_hydroforming;
+mod example_two_cylinders_mixed_3d;
 mod examples;
 mod follower_plate;
 mod friction_cattaneo;

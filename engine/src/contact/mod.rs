@@ -242,7 +242,9 @@ impl PairState {
         let n = slaves.len();
         let surface = node_to_segment::prepare(model, pair, &slaves);
         let tributary = match &surface {
-            Some(sp) if seg3 && !sp.midsides[0].is_empty() && !sp.midsides[1].is_empty() => {
+            // a quadratic slave (against a quadratic or, mixed orders, a
+            // linear master): the seg3 weights; a linear slave: its own
+            Some(sp) if seg3 && !sp.midsides[0].is_empty() => {
                 mortar::seg3::reference_areas(model, &cp.edges, &sp.midsides[0], &slaves)
             }
             _ => node_to_segment::tributary_areas(model, pair, &slaves),

@@ -411,7 +411,8 @@ impl FacetSurface {
     }
 
     /// The surface of the quadratic faces of `faces` (tri6, quad8, quad9;
-    /// others are ignored), for 3D mortar on quadratic faces
+    /// and tri3 / quad4 for a linear side of a mixed-order pair: every face
+    /// of [`super::mortar::quadratic3d::is_mortar_face`]), for 3D mortar on quadratic faces
     /// ([`super::mortar::quadratic3d`]): its faces, neighbours and broad
     /// phase (the rim, read by node-to-facet only, joins consecutive nodes
     /// of the node lists and has no meaning here).
@@ -420,7 +421,7 @@ impl FacetSurface {
             faces
                 .iter()
                 .copied()
-                .filter(|f| super::mortar::quadratic3d::is_quadratic_face(f.nodes().len()))
+                .filter(|f| super::mortar::quadratic3d::is_mortar_face(f.nodes().len()))
                 .collect(),
         )
     }
@@ -1061,17 +1062,19 @@ fn facing(
     });
 }
 
-/// Whether 3D pair `pair` is mortar between quadratic faces (its slave
-/// faces have midside nodes: [`super::mortar::quadratic3d`]; the
-/// validation refuses one side linear).
+/// Whether 3D pair `pair` is mortar on quadratic faces (its slave or its
+/// master faces have midside nodes: [`super::mortar::quadratic3d`], which
+/// also takes the linear side of a mixed-order pair).
 pub fn quadratic_mortar(model: &Model<3>, pair: usize) -> bool {
     model.contacts.get(pair).is_some_and(|cp| {
-        cp.formulation == crate::model::ContactFormulation::Mortar
-            && matches!(cp.master, ContactMaster::Surface { .. })
-            && cp
-                .faces
+        let quadratic = |faces: &[crate::mesh::Facet]| {
+            faces
                 .first()
                 .is_some_and(|f| super::mortar::quadratic3d::is_quadratic_face(f.nodes().len()))
+        };
+        cp.formulation == crate::model::ContactFormulation::Mortar
+            && matches!(&cp.master, ContactMaster::Surface { faces, .. }
+                if quadratic(&cp.faces) || quadratic(faces))
     })
 }
 

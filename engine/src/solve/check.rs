@@ -879,18 +879,22 @@ pub fn quadratic_contact_refusal<const D: usize>(
             .filter(|&b| body_is_quadratic(model, b))
             .collect();
         let first = *quadratic.first()?;
-        // mortar on quadratic faces: both sides quadratic, area penalty /
-        // augmented Lagrangian, with or without Coulomb friction
-        // (`contact::mortar::friction_quadratic`), or frictionless single
+        // mortar on quadratic faces (both sides quadratic, or one side
+        // linear: mixed orders take the linear side's own shape functions):
+        // area penalty / augmented Lagrangian, with or without Coulomb
+        // friction (`contact::mortar::friction_quadratic`; both sides
+        // quadratic only), or frictionless single
         // Lagrange multipliers (2D seg3: `contact::mortar::seg3`; 3D tri6 /
         // quad8 / quad9: `contact::mortar::quadratic3d`)
         let what = if c.formulation != crate::model::ContactFormulation::Mortar {
             "node-to-segment contact between deformable bodies on quadratic faces is not \
              available (its nodal weights are wrong at the corners); use `formulation = \
              mortar`"
-        } else if quadratic.len() == 1 {
-            "mortar on quadratic faces needs both surfaces quadratic (mesh both bodies with \
-             quadratic cells, or both with linear cells)"
+        } else if c.friction.is_some() && quadratic.len() == 1 {
+            // the friction of `contact::mortar::friction_quadratic` is
+            // verified with both sides quadratic only
+            "friction with mortar between a linear and a quadratic side is not available \
+             (mesh both bodies with quadratic cells, or drop `friction`)"
         } else if c.friction.is_some() && matches!(c.method, ContactMethod::Lagrange { .. }) {
             // Coulomb friction is built for the penalty and the augmented
             // Lagrangian (`contact::mortar::friction_quadratic`)
@@ -1026,9 +1030,10 @@ mod tests {
         }
     }
 
-    /// Deformable pairs on quadratic faces: 2D mortar, both sides
-    /// quadratic, area penalty with or without friction; the rest (friction
-    /// with Lagrange multipliers among it) refused.
+    /// Deformable pairs on quadratic faces: 2D mortar (both sides quadratic
+    /// or mixed orders), area penalty, with friction when both sides are
+    /// quadratic; the rest (friction with Lagrange multipliers or with
+    /// mixed orders among it) refused.
     #[test]
     fn deformable_pairs_on_quadratic_faces_need_mortar_on_both_sides() {
         use crate::mesh::CellKind::{Quad4, Quad8};
@@ -1061,12 +1066,14 @@ mod tests {
                 false,
                 Some("use `formulation = mortar`"),
             ),
+            // mixed orders (quad4 | quad8): the linear side's own functions
+            (Quad4, F::Mortar, area.clone(), false, None),
             (
                 Quad4,
                 F::Mortar,
                 area.clone(),
-                false,
-                Some("needs both surfaces quadratic"),
+                true,
+                Some("friction with mortar between a linear and a quadratic side"),
             ),
             (Quad8, F::Mortar, area.clone(), true, None),
             (

@@ -53,11 +53,11 @@ impl Lowerer<'_> {
                 .formulation
                 .as_ref()
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
-            // mortar on quadratic faces: both sides quadratic, area penalty
-            // / augmented Lagrangian with or without friction, or
-            // frictionless single Lagrange multipliers (2D seg3:
-            // `ctc_engine::contact::mortar::seg3`; 3D tri6 / quad8 / quad9:
-            // `ctc_engine::contact::mortar::quadratic3d`)
+            // mortar on quadratic faces (both sides, or one: mixed orders),
+            // area penalty / augmented Lagrangian, with or without friction
+            // (both sides quadratic only), or frictionless single Lagrange
+            // multipliers (2D seg3: `ctc_engine::contact::mortar::seg3`;
+            // 3D tri6 / quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
             if mortar.is_none() {
                 return refusal(
@@ -72,23 +72,20 @@ impl Lowerer<'_> {
                      faces), or mesh the pair with linear cells",
                 );
             }
-            if sides.len() == 1 {
+            // Coulomb friction (penalty, augmented Lagrangian:
+            // `ctc_engine::contact::mortar::friction_quadratic`) lowers with
+            // both sides quadratic; Lagrange-multiplier friction against a
+            // deformable master is refused for every pair (`validate::contacts`)
+            if let (Some(f), 1) = (&c.friction, sides.len()) {
                 return refusal(
-                    side.span,
-                    format!(
-                        "mortar on quadratic faces needs both surfaces quadratic: body `{}` has \
-                         quadratic cells, the other side linear ones",
-                        side.body.name
-                    ),
-                    "this surface has midside nodes",
-                    "mesh both bodies with quadratic cells (`order = 2`), or both with linear \
-                     cells",
+                    f.span,
+                    "friction with mortar between a linear and a quadratic side is not available"
+                        .into(),
+                    "mixed orders with friction",
+                    "mesh both bodies with quadratic cells (friction on quadratic mortar is \
+                     available), or drop `friction`",
                 );
             }
-            // Coulomb friction (penalty, augmented Lagrangian:
-            // `ctc_engine::contact::mortar::friction_quadratic`) lowers;
-            // Lagrange-multiplier friction against a deformable master is
-            // refused for every pair (`validate::contacts`)
             let method = c.method.as_ref()?;
             return match &method.value {
                 Method::Penalty { kind, .. } | Method::AugmentedLagrange { kind, .. }

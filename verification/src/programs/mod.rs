@@ -28,6 +28,7 @@ pub mod mortar;
 pub mod mortar_friction;
 pub mod mortar_friction_3d;
 pub mod mortar_lagrange_3d;
+pub mod mortar_mixed;
 pub mod mortar_quadratic;
 pub mod mortar_quadratic_3d;
 pub mod mortar_quadratic_friction;
@@ -91,6 +92,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(contact_3d::cases());
     v.extend(contact_ntf_3d::cases());
     v.extend(mortar_quadratic_3d::cases());
+    v.extend(mortar_mixed::cases());
     v.extend(mortar_friction_3d::cases());
     v.extend(mortar_quadratic_friction::cases());
     v.extend(mortar_lagrange_3d::cases());

@@ -43,15 +43,15 @@ use ctc_engine::testkit::{ramp, ModelBuilder};
 /// Levels: (base cells, top cells) across the interface.
 const MESHES: [(usize, usize); 2] = [(4, 3), (7, 5)];
 
-const E: f64 = 2e6;
+pub(super) const E: f64 = 2e6;
 /// Area penalty.
-const K: f64 = 1e8;
+pub(super) const K: f64 = 1e8;
 /// Travel of the top edge.
-const TRAVEL: f64 = 0.1;
+pub(super) const TRAVEL: f64 = 0.1;
 
 /// How a run enforces contact.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Enforce {
+pub(super) enum Enforce {
     Penalty,
     Augmented,
     Lagrange,
@@ -200,8 +200,8 @@ fn patch_case() -> VerifyCase {
 }
 
 /// A block `[0, 1] x [y0, y0 + 1]` of `n` x 2 `kind` cells (the `linear`
-/// cells elevated).
-fn block(y0: f64, n: usize, linear: CellKind, kind: CellKind) -> Result<Mesh, String> {
+/// cells elevated; `kind == linear`: the linear cells).
+pub(super) fn block(y0: f64, n: usize, linear: CellKind, kind: CellKind) -> Result<Mesh, String> {
     let m = generate(&MeshSpec::Rectangle {
         origin: [0.0, y0],
         size: [1.0, 1.0],
@@ -210,10 +210,13 @@ fn block(y0: f64, n: usize, linear: CellKind, kind: CellKind) -> Result<Mesh, St
         kind: linear,
     })
     .map_err(|e| e.message)?;
+    if kind == linear {
+        return Ok(m);
+    }
     elevate(&m, kind).map_err(|e| e.message)
 }
 
-fn method(enforce: Enforce) -> ContactMethod {
+pub(super) fn method(enforce: Enforce) -> ContactMethod {
     match enforce {
         Enforce::Penalty => ContactMethod::Penalty {
             kind: PenaltyKind::Area,
@@ -232,7 +235,7 @@ fn method(enforce: Enforce) -> ContactMethod {
 }
 
 #[derive(Default)]
-struct Last(Vec<NodeContact>);
+pub(super) struct Last(pub(super) Vec<NodeContact>);
 
 impl Observer for Last {
     fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {

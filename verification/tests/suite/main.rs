@@ -19,6 +19,7 @@ mod hertz_two_spheres_3d;
 mod johnson_cook;
 mod methods;
 mod mortar_lagrange;
+mod mortar_mixed;
 mod mortar_quadratic;
 mod mortar_quadratic_3d;
 mod objectivity;

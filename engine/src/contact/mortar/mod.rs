@@ -582,14 +582,36 @@ fn pieces_seg3(
     tests: &mut usize,
 ) -> Vec<Vec<Seg3Piece>> {
     let basis = Basis::Dual;
-    sp.sides[1].update_with_midsides(x, &sp.midsides[1]);
+    // a side without midside nodes is linear (mixed orders): its segments
+    // are seg2, their midside slot `UNUSED` (`seg3::segment_pair_orders`)
+    let linear = [sp.midsides[0].is_empty(), sp.midsides[1].is_empty()];
+    if linear[1] {
+        sp.sides[1].update(x);
+    } else {
+        sp.sides[1].update_with_midsides(x, &sp.midsides[1]);
+    }
+    let midside = |side: usize, e: usize| {
+        if linear[side] {
+            Some(UNUSED)
+        } else {
+            sp.midsides[side].get(e).copied()
+        }
+    };
+    let point = |n: usize, a: usize, b: usize| match x.get(n) {
+        Some(&p) => Some(p),
+        None if n == UNUSED => Some([0.5 * (x[a][0] + x[b][0]), 0.5 * (x[a][1] + x[b][1])]),
+        None => None,
+    };
     let mut pieces: Vec<Vec<Seg3Piece>> = vec![Vec::new(); slaves.len()];
     let mut candidates = std::mem::take(&mut sp.candidates);
     for (e, &[a, b]) in sp.sides[0].edges.iter().enumerate() {
-        let Some(&m) = sp.midsides[0].get(e) else {
+        let Some(m) = midside(0, e) else {
             continue;
         };
-        let (Some(&xa), Some(&xb), Some(&xm)) = (x.get(a), x.get(b), x.get(m)) else {
+        let (Some(&xa), Some(&xb)) = (x.get(a), x.get(b)) else {
+            continue;
+        };
+        let Some(xm) = point(m, a, b) else {
             continue;
         };
         let len = (xb[0] - xa[0]).hypot(xb[1] - xa[1]);
@@ -604,11 +626,16 @@ fn pieces_seg3(
         let depth = prof.max(len);
         for &f in &candidates {
             let [c, d] = sp.sides[1].edges[f];
-            let Some(&mm) = sp.midsides[1].get(f) else {
+            let Some(mm) = midside(1, f) else {
+                continue;
+            };
+            let Some(xmm) = point(mm, c, d) else {
                 continue;
             };
             *tests += 1;
-            let Some(seg) = seg3::segment_pair([xa, xb, xm, x[c], x[d], x[mm]], w, basis) else {
+            let Some(seg) =
+                seg3::segment_pair_orders([xa, xb, xm, x[c], x[d], xmm], w, basis, linear)
+            else {
                 continue;
             };
             let [gmin, gmax] = seg.gap_range;
@@ -631,7 +658,8 @@ fn pieces_seg3(
     pieces
 }
 
-/// The seg3 branch of [`evaluate`] (both surfaces quadratic; frictionless):
+/// The seg3 branch of [`evaluate`] (a quadratic side, the other quadratic
+/// or linear: mixed orders; frictionless):
 /// per slave node (corners and midside nodes) its row over its pieces,
 /// closed as the seg2 rows ([`Row::close`]); returns the projection tests.
 fn evaluate_seg3(
@@ -656,7 +684,7 @@ fn evaluate_seg3(
         }
         nodes.clear();
         for p in list {
-            nodes.extend_from_slice(&p.nodes);
+            nodes.extend(p.nodes.iter().copied().filter(|&n| n != UNUSED));
         }
         nodes.sort_unstable();
         nodes.dedup();
@@ -669,7 +697,9 @@ fn evaluate_seg3(
                 &p.nodes,
                 &s.gap[j],
                 &area,
-                (0..6).map(|k| (p.nodes[k], &s.b[j][k][..])),
+                (0..6)
+                    .filter(|&k| p.nodes[k] != UNUSED)
+                    .map(|k| (p.nodes[k], &s.b[j][k][..])),
             );
         }
         let support = state.tributary.get(i).copied().unwrap_or(0.0);
@@ -713,7 +743,7 @@ pub fn evaluate(
     };
     let w = weight(model);
     let prof = state.prof;
-    if !sp.midsides[0].is_empty() && !sp.midsides[1].is_empty() {
+    if !sp.midsides[0].is_empty() || !sp.midsides[1].is_empty() {
         let tests = match &cp.friction {
             // Coulomb friction on seg3 faces (penalty, augmented Lagrangian)
             Some(law) if !matches!(cp.method, ContactMethod::Lagrange { .. }) => {
@@ -1093,11 +1123,11 @@ pub fn evaluate_3d(
     };
     state.evaluations += 1;
     let prof = state.prof;
-    if fp.sides[0]
-        .faces
-        .first()
-        .is_some_and(|f| quadratic3d::is_quadratic_face(f.nodes().len()))
-    {
+    if fp.sides.iter().any(|side| {
+        side.faces
+            .first()
+            .is_some_and(|f| quadratic3d::is_quadratic_face(f.nodes().len()))
+    }) {
         match &cp.friction {
             Some(law) => friction_quadratic::evaluate_3d(cp, law, &mut fp, x, state, &mut out),
             None => evaluate_3d_quadratic(cp, &mut fp, x, state, &mut out),
@@ -1311,7 +1341,8 @@ fn lagrange_of(method: &ContactMethod, state: &SurfacePair, i: usize) -> Option<
 }
 
 /// The quadratic branch of [`evaluate_3d`] (tri6 / quad8 / quad9 faces on
-/// both sides; frictionless): per slave node (corners and midside nodes)
+/// both sides or, mixed orders, on one side and tri3 / quad4 on the
+/// other; frictionless): per slave node (corners and midside nodes)
 /// its row over its face pairs, closed as the linear rows ([`Row::close`])
 /// with the reference weight `T_j = int N~_j dA`
 /// ([`quadratic3d::supports`]): penalty, augmented Lagrangian, or one
@@ -1691,14 +1722,21 @@ mod tests {
 
     /// seg3 pair: slave corners 0, 1, 2 (walking -x near y = 0), midside
     /// nodes 3 (of [0, 1]) and 4 (of [1, 2]); master corners 5..=8 below
-    /// walking +x, midside nodes 9, 10, 11; both curved by `bend`.
-    fn seg3_pair() -> SurfacePair {
+    /// walking +x, midside nodes 9, 10, 11; both curved by `bend`. A side
+    /// of `linear` has no midside nodes (mixed orders: its segments are
+    /// seg2, the curve through its corners).
+    fn seg3_pair(linear: [bool; 2]) -> SurfacePair {
         let mut sp = SurfacePair::default();
         sp.sides = [
             Surface::new(&[[0, 1], [1, 2]]),
             Surface::new(&[[5, 6], [6, 7], [7, 8]]),
         ];
         sp.midsides = [vec![3, 4], vec![9, 10, 11]];
+        for (side, lin) in linear.into_iter().enumerate() {
+            if lin {
+                sp.midsides[side].clear();
+            }
+        }
         sp
     }
 
@@ -1725,12 +1763,17 @@ mod tests {
         node: usize,
         w: Weight,
         shift: f64,
+        linear: [bool; 2],
     ) -> Option<(Vec<usize>, Vec<usize>, Coupling)> {
         let slaves = [0, 1, 2, 3, 4];
         let mut tests = 0;
-        let pieces = pieces_seg3(&mut seg3_pair(), &slaves, x, w, 1.0, &mut tests);
+        let pieces = pieces_seg3(&mut seg3_pair(linear), &slaves, x, w, 1.0, &mut tests);
         let list = &pieces[slaves.binary_search(&node).ok()?];
+        if list.is_empty() {
+            return None;
+        }
         let mut nodes: Vec<usize> = list.iter().flat_map(|p| p.nodes).collect();
+        nodes.retain(|&n| n != UNUSED);
         nodes.sort_unstable();
         nodes.dedup();
         let mut row = Row::new(&nodes, 2);
@@ -1741,7 +1784,9 @@ mod tests {
                 &p.nodes,
                 &s.gap[p.row],
                 &area,
-                (0..6).map(|k| (p.nodes[k], &s.b[p.row][k][..])),
+                (0..6)
+                    .filter(|&k| p.nodes[k] != UNUSED)
+                    .map(|k| (p.nodes[k], &s.b[p.row][k][..])),
             );
         }
         let (_, c) = row.close::<2>(node, 0.5, 50.0, shift, 1.0, 0.0, 0, None)?;
@@ -1755,73 +1800,80 @@ mod tests {
     }
 
     /// The seg3 rows (corner and midside slave nodes, plane and
-    /// axisymmetric, penalty and augmented shift): the tangent is minus
-    /// the derivative of the forces (central differences), and the forces
+    /// axisymmetric, penalty and augmented shift; both sides quadratic and
+    /// mixed orders, either side linear): the tangent is minus the
+    /// derivative of the forces (central differences), and the forces
     /// balance in force and moment.
     #[test]
     fn seg3_rows_balance_and_their_tangent_matches_finite_differences() {
         let mut checked = 0;
-        for (bend, gap, dx) in [
-            (0.0, -0.01, 0.0),
-            (0.05, -0.02, 0.13),
-            (-0.04, -0.015, -0.21),
-        ] {
-            let x: Vec<[f64; 2]> = seg3_reference(bend, gap)
-                .into_iter()
-                .enumerate()
-                .map(|(k, p)| [p[0] + 3.0 + if k < 5 { dx } else { 0.0 }, p[1]])
-                .collect();
-            for w in [Weight::Thickness(1.0), Weight::Axisymmetric] {
-                for node in [1, 3, 4, 0] {
-                    for shift in [0.0, 0.7] {
-                        let Some((nodes, masters, c)) = seg3_row(&x, node, w, shift) else {
-                            continue;
-                        };
-                        // force and moment balance
-                        let nn = nodes.len();
-                        let fsum: [f64; 2] = std::array::from_fn(|comp| {
-                            (0..nn).map(|k| c.force[2 * k + comp]).sum()
-                        });
-                        let moment: f64 = (0..nn)
-                            .map(|k| {
-                                let p = x[nodes[k]];
-                                p[0] * c.force[2 * k + 1] - p[1] * c.force[2 * k]
-                            })
-                            .sum();
-                        let scale = c.force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-                        assert!(scale > 0.0);
-                        assert!(
-                            fsum[0].abs() < 1e-12 * scale && fsum[1].abs() < 1e-12 * scale,
-                            "{w:?} node {node}: {fsum:?}"
-                        );
-                        assert!(moment.abs() < 1e-11 * scale, "{w:?} node {node}: {moment}");
-                        // tangent against central differences
-                        let h = 1e-7;
-                        let kscale = c.tangent.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-                        let nd = 2 * nn;
-                        for (k, &n) in nodes.iter().enumerate() {
-                            for comp in 0..2 {
-                                let at = |dh: f64| {
-                                    let mut y = x.clone();
-                                    y[n][comp] += dh;
-                                    seg3_row(&y, node, w, shift)
-                                        .filter(|r| r.0 == nodes && r.1 == masters)
-                                };
-                                let (p, m) = at(h).zip(at(-h)).expect("same pieces");
-                                let col = 2 * k + comp;
-                                for r in 0..nd {
-                                    let fd = -(p.2.force[r] - m.2.force[r]) / (2.0 * h);
-                                    let err = (fd - c.tangent[r * nd + col]).abs() / kscale;
-                                    assert!(err < 1e-6, "{w:?} node {node} K[{r}][{col}]: {err}");
+        for linear in [[false, false], [true, false], [false, true]] {
+            for (bend, gap, dx) in [
+                (0.0, -0.01, 0.0),
+                (0.05, -0.02, 0.13),
+                (-0.04, -0.015, -0.21),
+            ] {
+                let x: Vec<[f64; 2]> = seg3_reference(bend, gap)
+                    .into_iter()
+                    .enumerate()
+                    .map(|(k, p)| [p[0] + 3.0 + if k < 5 { dx } else { 0.0 }, p[1]])
+                    .collect();
+                for w in [Weight::Thickness(1.0), Weight::Axisymmetric] {
+                    for node in [1, 3, 4, 0] {
+                        for shift in [0.0, 0.7] {
+                            let Some((nodes, masters, c)) = seg3_row(&x, node, w, shift, linear)
+                            else {
+                                continue;
+                            };
+                            // force and moment balance
+                            let nn = nodes.len();
+                            let fsum: [f64; 2] = std::array::from_fn(|comp| {
+                                (0..nn).map(|k| c.force[2 * k + comp]).sum()
+                            });
+                            let moment: f64 = (0..nn)
+                                .map(|k| {
+                                    let p = x[nodes[k]];
+                                    p[0] * c.force[2 * k + 1] - p[1] * c.force[2 * k]
+                                })
+                                .sum();
+                            let scale = c.force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+                            assert!(scale > 0.0);
+                            assert!(
+                                fsum[0].abs() < 1e-12 * scale && fsum[1].abs() < 1e-12 * scale,
+                                "{w:?} node {node}: {fsum:?}"
+                            );
+                            assert!(moment.abs() < 1e-11 * scale, "{w:?} node {node}: {moment}");
+                            // tangent against central differences
+                            let h = 1e-7;
+                            let kscale = c.tangent.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+                            let nd = 2 * nn;
+                            for (k, &n) in nodes.iter().enumerate() {
+                                for comp in 0..2 {
+                                    let at = |dh: f64| {
+                                        let mut y = x.clone();
+                                        y[n][comp] += dh;
+                                        seg3_row(&y, node, w, shift, linear)
+                                            .filter(|r| r.0 == nodes && r.1 == masters)
+                                    };
+                                    let (p, m) = at(h).zip(at(-h)).expect("same pieces");
+                                    let col = 2 * k + comp;
+                                    for r in 0..nd {
+                                        let fd = -(p.2.force[r] - m.2.force[r]) / (2.0 * h);
+                                        let err = (fd - c.tangent[r * nd + col]).abs() / kscale;
+                                        assert!(
+                                            err < 1e-6,
+                                            "{w:?} node {node} K[{r}][{col}]: {err}"
+                                        );
+                                    }
                                 }
                             }
+                            checked += 1;
                         }
-                        checked += 1;
                     }
                 }
             }
         }
-        assert!(checked >= 30, "{checked} rows checked");
+        assert!(checked >= 80, "{checked} rows checked");
     }
 
     /// The same over 400 seeded random rows: both statuses are exercised

@@ -46,6 +46,16 @@
 //! degree <= 4 in the plane and the rule is exact: a uniform pressure
 //! gives the consistent nodal forces on both sides (the patch test).
 //!
+//! **Mixed orders** (a linear side against a quadratic one, issue 23): a
+//! tri3 / quad4 face is a face of 3 / 4 nodes with its own (bi)linear
+//! shape functions ([`shapes`]; parent domain the tri6's / quad9's
+//! corners), cut into 1 / 4 sub-triangles (a quad4 through its centre
+//! `x(0, 0)`); without midside nodes `N~ = N`, so a linear slave's rows are
+//! weighted by the plain dual functions of its (bi)linear basis (positive
+//! weights `int N_j dA`), and a linear master's forces go to its corners
+//! by `N^_l`. On flat faces with affine cells the integrands stay
+//! polynomials of degree <= 4 (patch test exact).
+//!
 //! Every quantity is an [`Ad54`] over the 54 coordinates `[slave node a,
 //! component c] -> 3 a + c` and `[master node b, c] -> 27 + 3 b + c`: the
 //! exact derivative of the segmentation, the mapping and the projections
@@ -83,6 +93,9 @@ const OUTSIDE_PARENT: f64 = 0.5;
 /// domain).
 const TRI6_SUB: [[usize; 3]; 4] = [[0, 3, 5], [3, 1, 4], [5, 4, 2], [3, 4, 5]];
 
+/// Sub-triangles of a quad4 (index 8: the centre `x(0, 0)`).
+const QUAD4_SUB: [[usize; 3]; 4] = [[0, 1, 8], [1, 2, 8], [2, 3, 8], [3, 0, 8]];
+
 /// Sub-triangles of a quad8 / quad9 (index 8: the centre).
 const QUAD_SUB: [[usize; 3]; 8] = [
     [0, 4, 8],
@@ -95,19 +108,21 @@ const QUAD_SUB: [[usize; 3]; 8] = [
     [7, 6, 3],
 ];
 
-/// The midside nodes of a quadratic face as `(midside, corner, corner)`.
+/// The midside nodes of a quadratic face as `(midside, corner, corner)`
+/// (none on a linear face).
 fn midsides(nn: usize) -> &'static [(usize, usize, usize)] {
     match nn {
+        3 | 4 => &[],
         6 => &[(3, 0, 1), (4, 1, 2), (5, 2, 0)],
         _ => &[(4, 0, 1), (5, 1, 2), (6, 2, 3), (7, 3, 0)],
     }
 }
 
 /// Parent coordinates of local node `a` of a face of `nn` nodes (a quad's
-/// index 8 is its centre).
+/// index 8 is its centre; a tri3 / quad4 face: the corners).
 fn parent(nn: usize, a: usize) -> [f64; 2] {
     use crate::element::reference::{quad9::Quad9, tri6::Tri6, ReferenceCell};
-    if nn == 6 {
+    if is_triangle(nn) {
         <Tri6 as ReferenceCell<2, 6>>::NODES[a]
     } else {
         <Quad9 as ReferenceCell<2, 9>>::NODES[a]
@@ -117,6 +132,19 @@ fn parent(nn: usize, a: usize) -> [f64; 2] {
 /// Whether `nn` is the node count of a quadratic face.
 pub fn is_quadratic_face(nn: usize) -> bool {
     matches!(nn, 6 | 8 | 9)
+}
+
+/// Whether `nn` is the node count of a face these integrals take: the
+/// quadratic ones and, for mixed-order pairs (a linear side against a
+/// quadratic one, issue 23), tri3 and quad4 with their own (bi)linear
+/// shape functions (no midside nodes: `N~ = N`, the plain dual basis).
+pub fn is_mortar_face(nn: usize) -> bool {
+    matches!(nn, 3 | 4 | 6 | 8 | 9)
+}
+
+/// Whether a face of `nn` nodes is a triangle (tri3, tri6).
+fn is_triangle(nn: usize) -> bool {
+    matches!(nn, 3 | 6)
 }
 
 /// Shape functions and their parameter derivatives at `xi` of a quadratic
@@ -129,6 +157,21 @@ pub fn shapes<const N: usize>(nn: usize, xi: [Ad<N>; 2]) -> ([Ad<N>; 9], [[Ad<N>
     let mut g = [[z; 2]; 9];
     let [r, s] = xi;
     match nn {
+        3 => {
+            n[..3].copy_from_slice(&[Ad::cst(1.0) - r - s, r, s]);
+            g[0] = [Ad::cst(-1.0), Ad::cst(-1.0)];
+            g[1] = [Ad::cst(1.0), z];
+            g[2] = [z, Ad::cst(1.0)];
+        }
+        4 => {
+            for a in 0..4 {
+                let [pi, qi] = parent(4, a);
+                // 1/4 (1 + r ri)(1 + s si)
+                let (u, v) = (Ad::cst(1.0) + r * pi, Ad::cst(1.0) + s * qi);
+                n[a] = u * v * 0.25;
+                g[a] = [v * (0.25 * pi), u * (0.25 * qi)];
+            }
+        }
         6 => {
             let l = [Ad::cst(1.0) - r - s, r, s];
             let dl = [[-1.0, -1.0], [1.0, 0.0], [0.0, 1.0]];
@@ -221,7 +264,7 @@ fn face_point<const N: usize>(x: &[P3<N>], xi: [Ad<N>; 2]) -> (P3<N>, [P3<N>; 2]
 /// The cell's mass rule on the parent face (tri6: the 16-point collapsed
 /// rule; quads: 3 x 3 Gauss points).
 fn face_rule(nn: usize) -> &'static [([f64; 2], f64)] {
-    if nn == 6 {
+    if is_triangle(nn) {
         &COLLAPSED_TRI16
     } else {
         &GAUSS3X3
@@ -290,7 +333,7 @@ pub fn supports(x: &[[f64; 3]], faces: &[&[usize]], nodes: &[usize]) -> Vec<f64>
     let mut out = vec![0.0; nodes.len()];
     for face in faces {
         let nn = face.len();
-        if !is_quadratic_face(nn) {
+        if !is_mortar_face(nn) {
             continue;
         }
         let Some(pts) = face
@@ -412,7 +455,7 @@ fn project_master<const N: usize>(
 /// How far parameters `eta` lie outside the parent domain of a face of
 /// `nn` nodes (0 inside).
 fn outside(nn: usize, eta: [f64; 2]) -> f64 {
-    if nn == 6 {
+    if is_triangle(nn) {
         (-eta[0]).max(-eta[1]).max(eta[0] + eta[1] - 1.0).max(0.0)
     } else {
         (eta[0].abs() - 1.0).max(eta[1].abs() - 1.0).max(0.0)
@@ -424,13 +467,18 @@ fn outside(nn: usize, eta: [f64; 2]) -> f64 {
 #[allow(clippy::type_complexity)]
 fn sub_triangles<const N: usize>(x: &[P3<N>]) -> Vec<([P3<N>; 3], [[f64; 2]; 3])> {
     let nn = x.len();
-    let centre = if nn == 8 {
+    let centre = if matches!(nn, 4 | 8) {
         face_point(x, [Ad::cst(0.0), Ad::cst(0.0)]).0
     } else {
         x[nn - 1]
     };
     let at = |a: usize| if a < nn { x[a] } else { centre };
-    let list: &[[usize; 3]] = if nn == 6 { &TRI6_SUB } else { &QUAD_SUB };
+    let list: &[[usize; 3]] = match nn {
+        3 => &[[0, 1, 2]],
+        4 => &QUAD4_SUB,
+        6 => &TRI6_SUB,
+        _ => &QUAD_SUB,
+    };
     list.iter()
         .map(|t| (t.map(at), t.map(|a| parent(nn, a))))
         .collect()
@@ -671,7 +719,7 @@ fn face_pair_with(
     friction: bool,
 ) -> Option<QuadSegment> {
     let (ns, nm) = (slave.len(), master.len());
-    if !is_quadratic_face(ns) || !is_quadratic_face(nm) {
+    if !is_mortar_face(ns) || !is_mortar_face(nm) {
         return None;
     }
     let values = integrate::<0>(slave, master, false, false)?;
@@ -708,7 +756,7 @@ mod tests {
     /// bend (x^2 + y^2)`, outward `+z`.
     fn slave(nn: usize, bend: f64) -> Vec<[f64; 3]> {
         face(nn, &|[r, s]| {
-            let (x, y) = if nn == 6 {
+            let (x, y) = if is_triangle(nn) {
                 (r, s)
             } else {
                 (0.5 * (1.0 + r), 0.5 * (1.0 + s))
@@ -729,7 +777,7 @@ mod tests {
         bend: f64,
     ) -> Vec<[f64; 3]> {
         face(nn, &|[r, s]| {
-            let (u, v) = if nn == 6 {
+            let (u, v) = if is_triangle(nn) {
                 (s, r)
             } else {
                 (0.5 * (1.0 + s), 0.5 * (1.0 + r))
@@ -1000,6 +1048,105 @@ mod tests {
             }
             println!(
                 "slave {ns}, master {nm}: {count} pairs, FD error {worst:.1e}, moment {moment:.1e}"
+            );
+            assert!(count >= 2 && worst < 1e-6, "{ns} {nm}: {count} {worst:e}");
+            assert!(moment < 1e-10, "{ns} {nm}: moment {moment:e}");
+        }
+    }
+    /// Mixed orders (issue 23): tri3 / quad4 faces are faces of 3 / 4
+    /// nodes with their own (bi)linear functions: the shapes are the
+    /// reference cells', the weights `int N_j dA` (a quarter of a flat
+    /// quad4, a third of a tri3), a partly covering master gives a
+    /// uniform nodal gap (either side linear), and every integral's
+    /// derivative matches central differences on curved jittered pairs,
+    /// each row in moment balance.
+    #[test]
+    fn linear_faces_against_quadratic_ones() {
+        use crate::element::reference::{Quad4, Tri3};
+        let mut worst = 0.0f64;
+        for p in [[0.2, 0.3], [0.05, 0.7], [-0.4, 0.6], [0.9, -0.8]] {
+            let (n, g) = shapes::<0>(4, p.map(Ad::cst));
+            let (rn, rg) = (Quad4::shape(&p), Quad4::gradients(&p));
+            for a in 0..4 {
+                worst = worst.max((n[a].v - rn[a]).abs());
+                for k in 0..2 {
+                    worst = worst.max((g[a][k].v - rg[a][k]).abs());
+                }
+            }
+            let (n, g) = shapes::<0>(3, p.map(Ad::cst));
+            let (rn, rg) = (Tri3::shape(&p), Tri3::gradients(&p));
+            for a in 0..3 {
+                worst = worst.max((n[a].v - rn[a]).abs());
+                for k in 0..2 {
+                    worst = worst.max((g[a][k].v - rg[a][k]).abs());
+                }
+            }
+        }
+        assert!(worst < 1e-15, "{worst:e}");
+        for nn in [3, 4] {
+            let s = slave(nn, 0.0);
+            let nodes: Vec<usize> = (0..nn).collect();
+            let w = supports(&s, &[&nodes], &nodes);
+            let share = if nn == 3 { 0.5 / 3.0 } else { 0.25 };
+            for v in &w {
+                assert!((v - share).abs() < 1e-14, "{nn}: {v}");
+            }
+        }
+        for (ns, nm) in [
+            (3, 6),
+            (4, 8),
+            (4, 9),
+            (3, 8),
+            (6, 3),
+            (8, 4),
+            (9, 4),
+            (8, 3),
+        ] {
+            let s = slave(ns, 0.0);
+            let m = master(nm, 0.35, -0.2, 0.9, 0.4, -0.02, 0.0);
+            let seg = face_pair(&s, &m).unwrap();
+            let total: f64 = seg.area.iter().map(|a| a.v).sum();
+            assert!((total - seg.overlap).abs() < 1e-13, "{ns} {nm}");
+            for j in 0..ns {
+                assert!(
+                    (seg.gap[j].v + 0.02 * seg.area[j].v).abs() < 1e-14,
+                    "{ns} {nm} {j}"
+                );
+            }
+        }
+        let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+        let mut rnd = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        for (ns, nm) in [(3, 8), (4, 6), (4, 9), (6, 4), (8, 3), (9, 4)] {
+            let (mut worst, mut moment, mut count) = (0.0f64, 0.0f64, 0);
+            for _ in 0..3 {
+                let mut s = slave(ns, 0.3 * rnd());
+                let mut m = master(
+                    nm,
+                    0.3 + 0.2 * rnd(),
+                    -0.1 + 0.2 * rnd(),
+                    0.8 + 0.2 * rnd(),
+                    0.5 * rnd(),
+                    0.05 * rnd(),
+                    0.2 * rnd(),
+                );
+                for p in s.iter_mut().chain(m.iter_mut()) {
+                    for v in p.iter_mut() {
+                        *v += 0.02 * rnd();
+                    }
+                }
+                if let Some((e, mo)) = fd_error(&s, &m) {
+                    worst = worst.max(e);
+                    moment = moment.max(mo);
+                    count += 1;
+                }
+            }
+            println!(
+                "mixed: slave {ns}, master {nm}: {count} pairs, FD error {worst:.1e}, moment {moment:.1e}"
             );
             assert!(count >= 2 && worst < 1e-6, "{ns} {nm}: {count} {worst:e}");
             assert!(moment < 1e-10, "{ns} {nm}: moment {moment:e}");

@@ -262,6 +262,57 @@ pub fn dual_coefficients(basis: Basis, weight: Weight, xs: &[V; 3]) -> Option<[[
     }))
 }
 
+/// The coefficients `A` of the seg2 dual functions `psi_j = sum_k A_jk
+/// N_k` (`N = (1 - xi, xi)`) of a linear slave segment `xs` (its midside
+/// slot the middle), in the 3 x 3 layout of [`dual_coefficients`] with row
+/// and column 2 zero: `A = D_e M_e^-1` from the 2 x 2 mass matrix with the
+/// weight (constant weight: `[[2, -1], [-1, 2]]`); the identity on the
+/// corners for [`Basis::Standard`]. `None` for a singular mass matrix.
+pub fn dual_coefficients_linear(
+    basis: Basis,
+    weight: Weight,
+    xs: &[V; 3],
+) -> Option<[[Ad12; 3]; 3]> {
+    let one = Ad12::cst(1.0);
+    let zero = Ad12::cst(0.0);
+    if basis == Basis::Standard {
+        return Some(std::array::from_fn(|j| {
+            std::array::from_fn(|k| if j == k && j < 2 { one } else { zero })
+        }));
+    }
+    let mut me = [[zero; 2]; 2];
+    for (s, gw) in GAUSS {
+        let xi = Ad12::cst(s);
+        let (p, j, _) = slave_frame(xs, xi);
+        let w = weight_at(weight, p) * j * gw;
+        let n = [one - xi, xi];
+        for r in 0..2 {
+            for c in 0..2 {
+                me[r][c] += n[r] * n[c] * w;
+            }
+        }
+    }
+    let de = [me[0][0] + me[0][1], me[1][0] + me[1][1]];
+    let det = me[0][0] * me[1][1] - me[0][1] * me[1][0];
+    let scale = de[0].v.abs().max(de[1].v.abs());
+    if !det.v.is_finite() || det.v.abs() <= 1e-12 * scale * scale {
+        return None;
+    }
+    let inv = [
+        [me[1][1] / det, -(me[0][1] / det)],
+        [-(me[1][0] / det), me[0][0] / det],
+    ];
+    Some(std::array::from_fn(|j| {
+        std::array::from_fn(|c| {
+            if j < 2 && c < 2 {
+                de[j] * inv[j][c]
+            } else {
+                zero
+            }
+        })
+    }))
+}
+
 /// Mortar integrals of one slave seg3 segment against one master seg3
 /// segment (module doc).
 #[derive(Debug, Clone, Copy)]
@@ -303,8 +354,40 @@ pub struct Seg3Point {
 /// functions of `basis`; `None` when the master does not face the slave,
 /// its projection misses it, or a projection fails.
 pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Seg3Segment> {
-    let p: [V; 6] =
+    segment_pair_orders(x, weight, basis, [false, false])
+}
+
+/// [`segment_pair`] with either side possibly linear (`linear[0]`: the
+/// slave, `linear[1]`: the master; mixed-order pairs, issue 23): a linear
+/// side is a seg2 `[a, b]` taken as the seg3 whose midside node is its
+/// middle (its slot in `x` is ignored and carries no derivative), so the
+/// curve and the projections are the straight segment's, and its own
+/// shape functions `(1 - xi, xi, 0)` weigh the integrals; a linear slave's
+/// rows are the two corners' (row 2 is zero), weighted by the seg2 dual
+/// functions ([`dual_coefficients_linear`]).
+pub fn segment_pair_orders(
+    x: [[f64; 2]; 6],
+    weight: Weight,
+    basis: Basis,
+    linear: [bool; 2],
+) -> Option<Seg3Segment> {
+    let mut x = x;
+    let mut p: [V; 6] =
         std::array::from_fn(|k| [Ad12::var(x[k][0], 2 * k), Ad12::var(x[k][1], 2 * k + 1)]);
+    for (side, &lin) in linear.iter().enumerate() {
+        if lin {
+            let (a, b, m) = (3 * side, 3 * side + 1, 3 * side + 2);
+            p[m] = std::array::from_fn(|c| (p[a][c] + p[b][c]) * 0.5);
+            x[m] = std::array::from_fn(|c| 0.5 * (x[a][c] + x[b][c]));
+        }
+    }
+    let values = |lin: bool, xi: Ad12| {
+        if lin {
+            [Ad12::cst(1.0) - xi, xi, Ad12::cst(0.0)]
+        } else {
+            shape_ad(xi)
+        }
+    };
     let xs = [p[0], p[1], p[2]];
     let xm = [p[3], p[4], p[5]];
     let sv = [x[0], x[1], x[2]];
@@ -348,7 +431,11 @@ pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Se
     if hi.v.is_nan() || lo.v.is_nan() || hi.v <= lo.v {
         return None;
     }
-    let coef = dual_coefficients(basis, weight, &xs)?;
+    let coef = if linear[0] {
+        dual_coefficients_linear(basis, weight, &xs)?
+    } else {
+        dual_coefficients(basis, weight, &xs)?
+    };
     let span = hi - lo;
     let zero = Ad12::cst(0.0);
     let mut d = [[zero; 3]; 3];
@@ -372,8 +459,8 @@ pub fn segment_pair(x: [[f64; 2]; 6], weight: Weight, basis: Basis) -> Option<Se
         let g = dot(sub(pm, ps), n);
         gap_range = [gap_range[0].min(g.v), gap_range[1].max(g.v)];
         let jw = span * j * weight_at(weight, ps) * gw;
-        let ns = shape_ad(xi);
-        let nm = shape_ad(eta);
+        let ns = values(linear[0], xi);
+        let nm = values(linear[1], eta);
         points[q].xi = xi.v;
         points[q].eta = eta.v;
         for r in 0..3 {
@@ -665,6 +752,93 @@ mod tests {
                 xp[k / 2][k % 2] += h;
                 xm[k / 2][k % 2] -= h;
                 let (Some(p), Some(m)) = (segment_pair(xp, w, basis), segment_pair(xm, w, basis)) else {
+                    continue;
+                };
+                prop_assume!((p.lo == 0.0) == (s.lo == 0.0) && (m.lo == 0.0) == (s.lo == 0.0));
+                prop_assume!((p.hi == 1.0) == (s.hi == 1.0) && (m.hi == 1.0) == (s.hi == 1.0));
+                let close = |fd: f64, ad: f64| (fd - ad).abs() < 1e-5 * (1.0 + fd.abs());
+                for j in 0..3 {
+                    let fd = (p.gap[j].v - m.gap[j].v) / (2.0 * h);
+                    prop_assert!(close(fd, s.gap[j].d[k]), "gap {j} var {k}: {fd} vs {}", s.gap[j].d[k]);
+                    for l in 0..3 {
+                        let fd = (p.d[j][l].v - m.d[j][l].v) / (2.0 * h);
+                        prop_assert!(close(fd, s.d[j][l].d[k]), "D {j}{l} var {k}");
+                    }
+                    for l in 0..6 {
+                        for c in 0..2 {
+                            let fd = (p.b[j][l][c].v - m.b[j][l][c].v) / (2.0 * h);
+                            prop_assert!(close(fd, s.b[j][l][c].d[k]), "B {j}{l}{c} var {k}: {fd} vs {}", s.b[j][l][c].d[k]);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    /// Mixed orders (issue 23): a linear slave on a curved quadratic
+    /// master has the seg2 dual rows (`D` diagonal on a covered segment,
+    /// row and column 2 zero) and the nodal gap of a linear gap field; a
+    /// quadratic slave under a linear master the nodal values of its
+    /// linear gap; the linear side's midside slot is ignored.
+    #[test]
+    fn mixed_orders_give_the_linear_sides_own_rows() {
+        for weight in [Weight::Thickness(1.0), Weight::Axisymmetric] {
+            // linear slave [2, 1] on y = 0, master curve y = gfun(x) above
+            let gfun = |x: f64| 0.1 + 0.05 * x;
+            let mut s = straight([2.0, 0.0], [1.0, 0.0]);
+            s[2] = [7.0, 3.0]; // ignored
+            let m = [[0.5, gfun(0.5)], [2.5, gfun(2.5)], [1.5, gfun(1.5)]];
+            let seg = segment_pair_orders(join(s, m), weight, Basis::Dual, [true, false]).unwrap();
+            for j in 0..3 {
+                for k in 0..3 {
+                    if j != k || j == 2 {
+                        assert!(seg.d[j][k].v.abs() < 1e-13, "{weight:?} D_{j}{k}");
+                    }
+                }
+                // the ignored slot carries no derivative, row 2 is zero
+                assert!(seg.gap[j].d[4] == 0.0 && seg.gap[j].d[5] == 0.0);
+                assert!(seg.gap[2].v == 0.0 && seg.gap[2].d.iter().all(|&d| d == 0.0));
+            }
+            for (j, node) in s.iter().take(2).enumerate() {
+                let g = seg.gap[j].v / seg.d[j][j].v;
+                assert!((g - gfun(node[0])).abs() < 1e-12, "{weight:?} {j}: {g}");
+            }
+            // quadratic slave, linear master (its midside slot ignored)
+            let s = straight([2.0, 0.0], [1.0, 0.0]);
+            let m = [[0.5, gfun(0.5)], [2.5, gfun(2.5)], [-4.0, 9.0]];
+            let seg = segment_pair_orders(join(s, m), weight, Basis::Dual, [false, true]).unwrap();
+            for (j, node) in s.iter().enumerate() {
+                let g = seg.gap[j].v / seg.d[j][j].v;
+                assert!((g - gfun(node[0])).abs() < 1e-12, "{weight:?} {j}: {g}");
+                assert!(seg.gap[j].d[10] == 0.0 && seg.gap[j].d[11] == 0.0);
+                // forces on the master corners only
+                assert!(seg.b[j][5].iter().all(|b| b.v == 0.0));
+            }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn mixed_order_integrals_match_finite_differences(
+            x in pair_coords(),
+            slave_linear in proptest::bool::ANY,
+            axi in proptest::bool::ANY,
+        ) {
+            let w = if axi { Weight::Axisymmetric } else { Weight::Thickness(1.0) };
+            let linear = [slave_linear, !slave_linear];
+            let basis = Basis::Dual;
+            let Some(s) = segment_pair_orders(x, w, basis, linear) else { return Ok(()) };
+            prop_assume!(s.lo > 1e-4 || s.lo == 0.0);
+            prop_assume!(s.hi < 1.0 - 1e-4 || s.hi == 1.0);
+            let h = 1e-6;
+            for k in 0..12 {
+                let mut xp = x;
+                let mut xm = x;
+                xp[k / 2][k % 2] += h;
+                xm[k / 2][k % 2] -= h;
+                let (Some(p), Some(m)) = (
+                    segment_pair_orders(xp, w, basis, linear),
+                    segment_pair_orders(xm, w, basis, linear),
+                ) else {
                     continue;
                 };
                 prop_assume!((p.lo == 0.0) == (s.lo == 0.0) && (m.lo == 0.0) == (s.lo == 0.0));
