@@ -85,6 +85,7 @@ decks!(
     contact_misspelled_gmsh_group,
     contact_quadratic_faces,
     contact_quadratic_generator,
+    contact_thermal_deformable_3d,
     quadratic_order_three,
     quadratic_reduced_triangles,
     quadratic_reduced_without_order,
