@@ -882,19 +882,21 @@ pub fn quadratic_contact_refusal<const D: usize>(
         // mortar on quadratic faces (both sides quadratic, or one side
         // linear: mixed orders take the linear side's own shape functions):
         // area penalty / augmented Lagrangian, with or without Coulomb
-        // friction (`contact::mortar::friction_quadratic`; both sides
-        // quadratic only), or frictionless single
+        // friction (`contact::mortar::friction_quadratic`; mixed orders in
+        // 3D only), or frictionless single
         // Lagrange multipliers (2D seg3: `contact::mortar::seg3`; 3D tri6 /
         // quad8 / quad9: `contact::mortar::quadratic3d`)
         let what = if c.formulation != crate::model::ContactFormulation::Mortar {
             "node-to-segment contact between deformable bodies on quadratic faces is not \
              available (its nodal weights are wrong at the corners); use `formulation = \
              mortar`"
-        } else if c.friction.is_some() && quadratic.len() == 1 {
-            // the friction of `contact::mortar::friction_quadratic` is
-            // verified with both sides quadratic only
-            "friction with mortar between a linear and a quadratic side is not available \
-             (mesh both bodies with quadratic cells, or drop `friction`)"
+        } else if D == 2 && c.friction.is_some() && quadratic.len() == 1 {
+            // the friction of `contact::mortar::friction_quadratic` with one
+            // side linear is verified in 3D only
+            // (`contact_patch_friction_quadratic_3d`: hex8 | hex20, hex20 |
+            // hex8)
+            "friction with mortar between a linear and a quadratic side is not available in \
+             2D (mesh both bodies with quadratic cells, or drop `friction`)"
         } else if c.friction.is_some() && matches!(c.method, ContactMethod::Lagrange { .. }) {
             // Coulomb friction is built for the penalty and the augmented
             // Lagrangian (`contact::mortar::friction_quadratic`)

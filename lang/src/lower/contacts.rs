@@ -55,7 +55,7 @@ impl Lowerer<'_> {
                 .filter(|f| f.value == ast::ContactFormulation::Mortar);
             // mortar on quadratic faces (both sides, or one: mixed orders),
             // area penalty / augmented Lagrangian, with or without friction
-            // (both sides quadratic only), or frictionless single Lagrange
+            // (mixed orders: 3D only), or frictionless single Lagrange
             // multipliers (2D seg3: `ctc_engine::contact::mortar::seg3`;
             // 3D tri6 / quad8 / quad9: `ctc_engine::contact::mortar::quadratic3d`)
             let refusal = |span, message: String, label, help| Some((span, message, label, help));
@@ -74,12 +74,14 @@ impl Lowerer<'_> {
             }
             // Coulomb friction (penalty, augmented Lagrangian:
             // `ctc_engine::contact::mortar::friction_quadratic`) lowers with
-            // both sides quadratic; Lagrange-multiplier friction against a
+            // both sides quadratic, and in 3D with mixed orders (verified
+            // there only); Lagrange-multiplier friction against a
             // deformable master is refused for every pair (`validate::contacts`)
-            if let (Some(f), 1) = (&c.friction, sides.len()) {
+            if let (Some(f), 1, false) = (&c.friction, sides.len(), self.solid) {
                 return refusal(
                     f.span,
-                    "friction with mortar between a linear and a quadratic side is not available"
+                    "friction with mortar between a linear and a quadratic side is not available \
+                     in 2D"
                         .into(),
                     "mixed orders with friction",
                     "mesh both bodies with quadratic cells (friction on quadratic mortar is \

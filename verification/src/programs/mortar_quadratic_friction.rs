@@ -133,11 +133,24 @@ pub const CHECKS_2D: [(&str, f64); 7] = [
     ),
 ];
 
-const RUNS_3D: [Run; 4] = [
+/// 3D runs; a cell `hex8@1` keeps the top block linear (mixed orders: a
+/// quad4 slave on the quad8 master faces), `hex8@2@1` the base (quad8
+/// slave faces on a quad4 master).
+const RUNS_3D: [Run; 8] = [
     ("hex20 | hex20 stick penalty", "hex8", PENALTY, 1e9, false),
     ("hex20 | hex20 slip penalty", "hex8", PENALTY, 1e9, true),
     ("tet10 | hex20 stick penalty", "tet4", PENALTY, 1e9, false),
     ("tet10 | hex20 slip penalty", "tet4", PENALTY, 1e9, true),
+    ("hex8 | hex20 stick penalty", "hex8@1", PENALTY, 1e9, false),
+    ("hex8 | hex20 slip penalty", "hex8@1", PENALTY, 1e9, true),
+    (
+        "hex20 | hex8 stick penalty",
+        "hex8@2@1",
+        PENALTY,
+        1e9,
+        false,
+    ),
+    ("hex20 | hex8 slip penalty", "hex8@2@1", PENALTY, 1e9, true),
 ];
 
 /// Names and tolerances of the 3D values (shear along 30 degrees): measured
@@ -148,8 +161,13 @@ const RUNS_3D: [Run; 4] = [
 /// 3.8e-16, `|sum R_T| / (mu sum R_N) - 1` hex20 2.8e-7 / 1.3e-6, tet10
 /// 4.1e-7 / 8.6e-7 (the nodes' slip directions spread by the rim's
 /// overhang, as in `contact_patch_friction_3d`); the friction work hex20
-/// 7.0e-4 / 1.4e-3, tet10 8.3e-4 / 8.3e-4 off `mu F_N s`.
-pub const CHECKS_3D: [(&str, f64); 8] = [
+/// 7.0e-4 / 1.4e-3, tet10 8.3e-4 / 8.3e-4 off `mu F_N s`. Mixed orders
+/// (the same command, 67 / 68 Newton iterations per level over the 8 runs,
+/// 10.0 / 47.5 s debug): hex8 | hex20 stick 1.13e-5 / 1.10e-5, cone
+/// 3.1e-16, sum 9.0e-7 / 6.1e-7, work 5.4e-4 / 4.0e-4; hex20 | hex8 stick
+/// 9.8e-6 / 1.13e-5, cone 4.0e-16, sum 2.1e-8 / 2.9e-7, work 3.7e-4 /
+/// 5.4e-4.
+pub const CHECKS_3D: [(&str, f64); 16] = [
     ("hex20 | hex20 stick penalty: |F_T| / tau - 1", 5e-5),
     (
         "hex20 | hex20 slip penalty: max |R_T - mu R_N| / (mu R_N)",
@@ -170,6 +188,26 @@ pub const CHECKS_3D: [(&str, f64); 8] = [
         1e-5,
     ),
     ("tet10 | hex20 slip penalty: W / (mu F_N s) - 1", 5e-3),
+    ("hex8 | hex20 stick penalty: |F_T| / tau - 1", 5e-5),
+    (
+        "hex8 | hex20 slip penalty: max |R_T - mu R_N| / (mu R_N)",
+        1e-12,
+    ),
+    (
+        "hex8 | hex20 slip penalty: |sum R_T| / (mu sum R_N) - 1",
+        1e-5,
+    ),
+    ("hex8 | hex20 slip penalty: W / (mu F_N s) - 1", 5e-3),
+    ("hex20 | hex8 stick penalty: |F_T| / tau - 1", 5e-5),
+    (
+        "hex20 | hex8 slip penalty: max |R_T - mu R_N| / (mu R_N)",
+        1e-12,
+    ),
+    (
+        "hex20 | hex8 slip penalty: |sum R_T| / (mu sum R_N) - 1",
+        1e-5,
+    ),
+    ("hex20 | hex8 slip penalty: W / (mu F_N s) - 1", 5e-3),
 ];
 
 const TAGS: &[&str] = &[
@@ -456,6 +494,10 @@ fn level_3d(level: usize) -> Result<ProgramLevel, String> {
     };
     for r in &RUNS_3D {
         let &(name, cell, method, k_t, slip) = r;
+        let mut orders = cell.split('@');
+        let cell = orders.next().unwrap_or(cell);
+        let top_order = orders.next().unwrap_or("2");
+        let base_order = orders.next().unwrap_or("2");
         let augmented = method.starts_with("augmented");
         let (delta, tau, t_lim) = load(augmented, k_t, slip, 1.0);
         let text = super::mortar_friction_3d::deck(
@@ -477,11 +519,15 @@ fn level_3d(level: usize) -> Result<ProgramLevel, String> {
         let text = text
             .replace(
                 &base,
-                &format!("divisions = ({base_n}, {base_n}, 1)  element = hex8  order = 2 }}"),
+                &format!(
+                    "divisions = ({base_n}, {base_n}, 1)  element = hex8  order = {base_order} }}"
+                ),
             )
             .replace(
                 &top,
-                &format!("divisions = ({top_n}, {top_n}, 1)  element = {cell}  order = 2 }}"),
+                &format!(
+                    "divisions = ({top_n}, {top_n}, 1)  element = {cell}  order = {top_order} }}"
+                ),
             );
         let src =
             ctc_lang::Source::new(Path::new("contact_patch_friction_quadratic_3d.ctc"), &text);
