@@ -45,8 +45,8 @@ use super::integrals::Weight;
 use super::quadratic3d::{self, QuadSegment, MAX_NODES};
 use super::seg3::{self, Seg3Segment};
 use super::{
-    enforcement, face_pairs, friction3d, pieces_seg3, total_forces, Coupling, FrictionInputs,
-    FrictionInputs3, QuadPiece, Row, UNUSED,
+    enforcement, friction3d, pieces_seg3, total_forces, Coupling, FrictionInputs, FrictionInputs3,
+    QuadPiece, Row, UNUSED,
 };
 use crate::contact::surface::SurfacePair as PairState3;
 use crate::contact::{NodeContact, PairState};
@@ -452,33 +452,6 @@ pub struct CommittedPairing3 {
     pub rows: Vec<Pairing3>,
 }
 
-/// [`super::quadratic_pieces`] with the friction integrals
-/// ([`quadratic3d::face_pair_frictional`]).
-#[allow(clippy::type_complexity)]
-fn frictional_pieces(
-    fp: &mut crate::contact::node_to_facet::DeformablePair,
-    slaves: &[usize],
-    x: &[[f64; 3]],
-    prof: f64,
-) -> (Vec<QuadPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
-    face_pairs(fp, slaves, x, prof, |master, sn, sx, radius, m| {
-        let mn = master.faces[m].nodes();
-        let mx = mn
-            .iter()
-            .map(|&n| x.get(n).copied())
-            .collect::<Option<Vec<_>>>()?;
-        let seg = quadratic3d::face_pair_frictional(sx, &mx, prof, prof.max(2.0 * radius))?;
-        let mut vars = [UNUSED; 2 * MAX_NODES];
-        vars[..sn.len()].copy_from_slice(sn);
-        vars[MAX_NODES..MAX_NODES + mn.len()].copy_from_slice(mn);
-        Some(QuadPiece {
-            vars,
-            master: m,
-            seg,
-        })
-    })
-}
-
 /// The normal row of a quadratic 3D slave node ([`super::row_quadratic`])
 /// and its scalar row `[-D_jk, M_jl]` with the gradient (the distribution
 /// of the friction forces).
@@ -535,7 +508,13 @@ pub(super) fn evaluate_3d(
         if xn.len() != x.len() {
             xn = x.to_vec();
         }
-        let (old, old_rows, _, _) = frictional_pieces(fp, &state.slaves, &xn, prof);
+        let (old, old_rows, _, _) = super::quadratic_pieces(
+            fp,
+            &state.slaves,
+            &xn,
+            prof,
+            quadratic3d::face_pair_frictional,
+        );
         fp.committed_positions = xn;
         let rows = old_rows
             .iter()
@@ -554,7 +533,13 @@ pub(super) fn evaluate_3d(
     fp.tangential.clear();
     fp.tangential.resize(state.slaves.len(), [0.0; 3]);
     fp.couplings.clear();
-    let (pieces, rows, queries, tests) = frictional_pieces(fp, &state.slaves, x, prof);
+    let (pieces, rows, queries, tests) = super::quadratic_pieces(
+        fp,
+        &state.slaves,
+        x,
+        prof,
+        quadratic3d::face_pair_frictional,
+    );
     fp.tests = tests;
     state.counters.queries += queries;
     let mut nodes = Vec::new();

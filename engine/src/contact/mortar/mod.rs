@@ -1282,13 +1282,16 @@ struct QuadPiece {
 /// average; pairs whose point gaps all exceed `prof` or lie deeper than
 /// `max(prof, h)`, `h` the face's diameter, dropped); returns the pieces,
 /// the rows (`(piece, row)` per slave index), the broad-phase queries and
-/// the face pairs tried.
+/// the face pairs tried. `integrals` is the face pair's integration
+/// ([`quadratic3d::face_pair_within`], or
+/// [`quadratic3d::face_pair_frictional`] with the friction integrals).
 #[allow(clippy::type_complexity)]
 fn quadratic_pieces(
     fp: &mut super::node_to_facet::DeformablePair,
     slaves: &[usize],
     x: &[[f64; 3]],
     prof: f64,
+    integrals: fn(&[[f64; 3]], &[[f64; 3]], f64, f64) -> Option<quadratic3d::QuadSegment>,
 ) -> (Vec<QuadPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
     use quadratic3d::MAX_NODES;
     face_pairs(fp, slaves, x, prof, |master, sn, sx, radius, m| {
@@ -1297,7 +1300,7 @@ fn quadratic_pieces(
             .iter()
             .map(|&n| x.get(n).copied())
             .collect::<Option<Vec<_>>>()?;
-        let seg = quadratic3d::face_pair_within(sx, &mx, prof, prof.max(2.0 * radius))?;
+        let seg = integrals(sx, &mx, prof, prof.max(2.0 * radius))?;
         let mut vars = [UNUSED; 2 * MAX_NODES];
         vars[..sn.len()].copy_from_slice(sn);
         vars[MAX_NODES..MAX_NODES + mn.len()].copy_from_slice(mn);
@@ -1361,7 +1364,8 @@ fn evaluate_3d_quadratic(
 ) {
     let prof = state.prof;
     fp.couplings.clear();
-    let (pieces, rows, queries, tests) = quadratic_pieces(fp, &state.slaves, x, prof);
+    let (pieces, rows, queries, tests) =
+        quadratic_pieces(fp, &state.slaves, x, prof, quadratic3d::face_pair_within);
     fp.tests = tests;
     state.counters.queries += queries;
     let mut nodes = Vec::new();
