@@ -122,8 +122,9 @@ pub static ITEMS: &[Item] = &[
         doc: "A contact pair: the slave surface (boundary edges; faces in 3d) against a rigid \
               tool or a deformable master surface (node-to-segment; 3d: node-to-facet). The \
               same surface on both sides is self contact: each node against the surface's \
-              facets except its own patch (in 3d only the facets facing it, both directions \
-              with half the tributary areas, penalty or augmented Lagrangian, frictionless). \
+              facets except its own patch, both directions at once with half the tributary \
+              areas (the reported pressure is the interface pressure; in 3d only the facets \
+              facing it, penalty or augmented Lagrangian, frictionless). \
               In 3d a tool is a surface. The gap is positive when open; the pressure is \
               positive in compression.",
         blocks: &[

@@ -1418,9 +1418,10 @@ pub fn evaluate(
         out.push(nc);
     }
     fp.candidates = candidates;
-    if cp.strategy == ContactStrategy::ModifiedDoublePass && !fp.self_contact {
-        // both passes at once: report the interface pressure (the total
-        // force on each node over its full area, `super::interface_pressures`)
+    if cp.strategy == ContactStrategy::ModifiedDoublePass || fp.self_contact {
+        // both passes at once (self contact: both directions): report the
+        // interface pressure (the total force on each node over its full
+        // area, `super::interface_pressures`)
         let elements: Vec<super::ElementForces<'_>> = fp
             .couplings
             .iter()

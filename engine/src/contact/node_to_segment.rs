@@ -286,7 +286,9 @@ pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePa
 
 /// Tributary area of each slave node: the deck's slave edges for side-0
 /// nodes, the master edges for side-1 nodes; halved for the modified
-/// double pass (both passes carry the load).
+/// double pass and for self contact (both directions carry the load at
+/// once, so that a penalty gap is `p / k` with `p` the interface pressure,
+/// as in 3D: `node_to_facet::areas`).
 pub fn tributary_areas(model: &Model, pair: usize, slaves: &[usize]) -> Vec<f64> {
     let Some(cp) = model.contacts.get(pair) else {
         return Vec::new();
@@ -295,7 +297,11 @@ pub fn tributary_areas(model: &Model, pair: usize, slaves: &[usize]) -> Vec<f64>
         return super::tributary::tributary_areas(model, pair);
     };
     let mut area = super::tributary::edge_areas(model, &cp.edges, slaves);
-    if edges != &cp.edges {
+    if edges == &cp.edges {
+        for a in &mut area {
+            *a *= 0.5;
+        }
+    } else {
         let side1: Vec<usize> = slaves
             .iter()
             .copied()
@@ -755,9 +761,9 @@ pub fn evaluate(
         });
     }
     sp.candidates = candidates;
-    if cp.strategy == ContactStrategy::ModifiedDoublePass && !sp.self_contact {
-        // both passes at once: report the interface pressure
-        // (`super::interface_pressures`)
+    if cp.strategy == ContactStrategy::ModifiedDoublePass || sp.self_contact {
+        // both passes at once (self contact: both directions): report the
+        // interface pressure (`super::interface_pressures`)
         let plain: Vec<([usize; 3], [f64; 6], [f64; 6])> = out
             .iter()
             .filter(|c| c.status == ContactStatus::Closed)

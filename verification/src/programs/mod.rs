@@ -43,6 +43,7 @@ pub mod quadratic_thermal;
 pub mod rigid_body;
 pub mod rigid_body_3d;
 pub mod self_contact_3d;
+pub mod self_contact_patch;
 pub mod skin_pass;
 pub mod solid;
 pub mod solid_patch;
@@ -102,6 +103,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(friction_ntf_3d::cases());
     v.extend(nagata_3d::cases());
     v.extend(self_contact_3d::cases());
+    v.extend(self_contact_patch::cases());
     v.extend(traction_3d::cases());
     v.extend(follower::cases());
     v.extend(dynamics::cases());
