@@ -30,5 +30,6 @@ mod skin_pass;
 mod stress_reduced;
 mod superplastic_3d;
 mod traction_3d;
+mod tube_bulge;
 mod upsetting;
 mod viscoplastic;
