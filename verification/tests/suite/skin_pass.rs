@@ -103,3 +103,30 @@ fn get_grade(text: &str) -> f64 {
         .map(|v| v.trim().parse::<f64>().unwrap())
         .unwrap()
 }
+
+#[test]
+fn the_refined_mesh_splits_every_full_mesh_column_in_two() {
+    let lets = skin_pass::refined("skin_pass_ra30").unwrap();
+    assert_eq!(lets, vec![("nx", "288".to_string())]);
+    let (path, text) = skin_pass::deck("skin_pass_ra30", &lets).unwrap();
+    let fine = ctc_verification::deck::compile_text(&path, &text).unwrap();
+    let (path, text) = skin_pass::deck("skin_pass_ra30", &[]).unwrap();
+    let full = ctc_verification::deck::compile_text(&path, &text).unwrap();
+    // every node of the full mesh is a node of the refined one (the
+    // full mesh's nodes are what `sampled_ratio` reads back)
+    let mut fine_nodes: Vec<[f64; 2]> = fine.mesh.nodes.clone();
+    fine_nodes.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    for p in &full.mesh.nodes {
+        let k = fine_nodes.partition_point(|q| q[0] < p[0] - 1e-9);
+        let hit = fine_nodes[k..]
+            .iter()
+            .take_while(|q| q[0] <= p[0] + 1e-9)
+            .any(|q| (q[1] - p[1]).abs() < 1e-12);
+        assert!(hit, "full mesh node {p:?} is not a refined mesh node");
+    }
+    assert_eq!(
+        fine.mesh.nodes.len(),
+        (2 * 144 + 1) * (24 + 1),
+        "288 x 24 cells"
+    );
+}
