@@ -16,8 +16,9 @@ what the script exports (numpy only), and `ctc run` of that deck must
   R/2) within 1e-9 of DOLFINx's (measured 5.1e-11 at most, increment 9,
   where ctc stopped at a relative residual of 7.8e-11; both Newton
   tolerances 1e-10);
-- need no more Newton iterations than DOLFINx (issue 20's bar; measured 70
-  against 71, `bash verification/fenicsx/neo_indent.sh 1 24`).
+- need no more Newton iterations than DOLFINx (issue 20's bar; measured 31
+  against 71, `bash verification/fenicsx/neo_indent.sh 1 24`; 70 before
+  the increment predictor was used at finite strain).
 
     rigid circle R = 1 pressed to R/2 into a plane strain Neo-Hooke block
     [-3, 3] x [-3, 0] (E = 10, nu = 0.3), bottom clamped, area penalty
