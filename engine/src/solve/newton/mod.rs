@@ -1124,8 +1124,15 @@ where
         let mut residuals: Vec<f64> = Vec::new();
         let mut divergence = DivergenceMonitor::default();
         let mut tangent_valid = false;
+        // the first iteration of the increment's start: 1, or the one after
+        // an abandoned predicted start (`predictor::guarded`)
+        let mut first_k = 1;
+        let mut may_predict = fresh;
+        // the prescribed increment of the plain start while a predicted
+        // start is in use
+        let mut plain_dp: Option<Vec<f64>> = None;
         for k in 1..=settings.max_iter {
-            let first = k == 1;
+            let first = k == first_k;
             // 1. residual and tangent at the current state (the first of the
             // analysis with the touching contact nodes closed)
             if !tangent_valid {
@@ -1152,11 +1159,13 @@ where
                     self.start_closed = Some(closed);
                 }
                 ev.map_err(|f| f.with_residuals(&residuals))?;
-                if first && fresh && settings.predictor && predictor::applies(model) {
+                if first && may_predict && settings.predictor && predictor::applies(model) {
                     let is_dynamic = model.steps.get(step).is_some_and(|s| s.dynamic.is_some());
                     if let Some(ratio) = self.history.ratio(step, t).filter(|_| !is_dynamic) {
+                        let dp = self.dp.clone();
                         if self.predict(t, ratio)? {
                             dp_norm = 0.0;
+                            plain_dp = Some(dp);
                         }
                     }
                 }
@@ -1256,6 +1265,33 @@ where
             let dp_step = if first { dp_norm } else { 0.0 };
             let rel_du = convergence::relative_correction(s, du_norm, dp_step, u_norm);
             residuals.push(ev.rel);
+            // a predicted start whose first step had to be shortened is
+            // abandoned at finite strain: on from the plain start
+            if first && s < 1.0 && predictor::guarded(model) {
+                if let Some(dp) = plain_dp.take() {
+                    observer.iteration(&IterationInfo {
+                        step,
+                        increment,
+                        iteration: k,
+                        residual: ev.rel,
+                        displacement: rel_du,
+                        step_length: s,
+                        active_contacts: self.active_contacts(),
+                    });
+                    self.u.copy_from_slice(&self.committed);
+                    self.dp.copy_from_slice(&dp);
+                    dp_norm = norm(&self.dp);
+                    first_k = k + 1;
+                    may_predict = false;
+                    tangent_valid = false;
+                    // the divergence test sees the residuals from there on
+                    divergence = DivergenceMonitor::default();
+                    continue;
+                }
+            }
+            if first {
+                plain_dp = None;
+            }
             self.flips.record(self.contacts.contact());
             let mut reported_du = rel_du;
             let mut converged = false;
@@ -1324,7 +1360,7 @@ where
                 });
             }
             // a multiplier update changes the problem: no divergence test
-            if divergence.diverges(&residuals, updated, ev.rel_floor()) {
+            if divergence.diverges(&residuals[first_k - 1..], updated, ev.rel_floor()) {
                 return Err(Failure::new(
                     FailureKind::Diverged,
                     format!(
