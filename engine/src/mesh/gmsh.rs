@@ -297,6 +297,64 @@ $Elements\n3\n1 1 2 1 1 1 2\n2 2 2 2 1 1 3 2\n3 2 2 2 1 1 4 3\n$EndElements\n";
         assert_eq!(m.node_sets["body"], vec![0, 1, 2, 3]);
     }
 
+    /// MSH 2 repeats an element once per physical group: the second
+    /// triangle comes three times (twice as in the file, once with its
+    /// nodes rotated) and a line twice; the first of each is kept, in
+    /// file order, and every group gets its nodes.
+    #[test]
+    fn repeated_elements_are_one_cell_the_first_in_file_order() {
+        let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\
+$PhysicalNames\n3\n1 1 \"bottom\"\n2 2 \"body\"\n2 3 \"upper\"\n$EndPhysicalNames\n\
+$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n$EndNodes\n\
+$Elements\n7\n1 1 2 1 1 1 2\n2 2 2 2 1 1 3 2\n3 2 2 2 1 1 4 3\n4 2 2 3 1 1 4 3\n\
+5 2 2 3 1 3 1 4\n6 1 2 1 1 1 2\n7 2 2 3 1 3 2 1\n$EndElements\n";
+        let m = parse(text).unwrap();
+        assert_eq!(m.cells.len(), 2);
+        assert_eq!(m.cells.nodes(0), &[0, 1, 2]);
+        assert_eq!(m.cells.nodes(1), &[0, 2, 3]);
+        assert_eq!(m.edge_sets["bottom"], vec![[0, 1]]);
+        assert_eq!(m.node_sets["body"], vec![0, 1, 2, 3]);
+        assert_eq!(m.node_sets["upper"], vec![0, 1, 2, 3]);
+    }
+
+    /// `Mesh::boundary_edges` (a counting sort) against the count of every
+    /// edge in a `BTreeMap` (the order it replaced): a grid of quads and
+    /// triangles, whole and as a range of its cells.
+    #[test]
+    fn boundary_edges_are_the_edges_met_once_in_key_order() {
+        let mut m = crate::testkit::grid::grid(7, 5, [0.0, 0.0], [1.0, 1.0], 0.1, 3, true);
+        let tris = crate::testkit::grid::grid(4, 3, [2.0, 0.0], [1.0, 1.0], 0.0, 1, false);
+        let shift = m.nodes.len();
+        m.nodes.extend_from_slice(&tris.nodes);
+        for c in tris.cells.iter() {
+            let n: Vec<usize> = c.nodes.iter().map(|&k| k + shift).collect();
+            m.cells.push_nodes(CellKind::Tri3, &[n[0], n[1], n[2]]);
+            m.cells.push_nodes(CellKind::Tri3, &[n[0], n[2], n[3]]);
+        }
+        let reference = |cells: std::ops::Range<usize>| {
+            let mut count = std::collections::BTreeMap::new();
+            for c in cells {
+                let n = m.cells.nodes(c);
+                let k = m.cells.kind(c).corner_count();
+                for i in 0..k {
+                    let (a, b) = (n[i], n[(i + 1) % k]);
+                    count.entry((a.min(b), a.max(b))).or_insert((0, [a, b])).0 += 1;
+                }
+            }
+            count
+                .into_values()
+                .filter(|(k, _)| *k == 1)
+                .map(|(_, e)| e)
+                .collect::<Vec<_>>()
+        };
+        let all = 0..m.cells.len();
+        for range in [all.clone(), 3..20, 35..all.end, 0..0] {
+            let got = m.boundary_edges(range.clone());
+            assert_eq!(got, reference(range.clone()), "{range:?}");
+        }
+        assert!(!m.boundary_edges(all).is_empty());
+    }
+
     /// A clockwise quad8 (top midside node off the chord, as gmsh puts it
     /// on a curved boundary) with a 3-node physical line, and a tri6.
     const QUAD8_V2: &str = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n\

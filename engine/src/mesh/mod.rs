@@ -167,21 +167,66 @@ impl Mesh<2> {
     /// Quadratic cells give the corner pairs of their edges (the midside
     /// node is [`Mesh::edge_midsides`]'s).
     pub fn boundary_edges(&self, cells: std::ops::Range<usize>) -> Vec<[usize; 2]> {
-        let mut count: BTreeMap<(usize, usize), (usize, [usize; 2])> = BTreeMap::new();
-        for c in cells {
+        // every cell edge bucketed by its smaller node (counting sort);
+        // an edge met once is on the boundary. Output in increasing
+        // (smaller node, larger node) order.
+        let edges_of = |c: usize| {
             let n = self.cells.nodes(c);
             let corners = self.cells.kind(c).corner_count();
-            for i in 0..corners {
-                let (a, b) = (n[i], n[(i + 1) % corners]);
-                let key = (a.min(b), a.max(b));
-                count.entry(key).or_insert((0, [a, b])).0 += 1;
+            (0..corners).map(move |i| [n[i], n[(i + 1) % corners]])
+        };
+        // the buckets span the cells' nodes only (a body's block)
+        let first = cells
+            .clone()
+            .flat_map(|c| self.cells.nodes(c).iter().copied())
+            .min()
+            .unwrap_or(0);
+        let last = cells
+            .clone()
+            .flat_map(|c| self.cells.nodes(c).iter().copied())
+            .max()
+            .unwrap_or(0);
+        let nn = if cells.is_empty() {
+            0
+        } else {
+            last - first + 1
+        };
+        let mut start = vec![0usize; nn + 1];
+        for c in cells.clone() {
+            for [a, b] in edges_of(c) {
+                start[a.min(b) - first + 1] += 1;
             }
         }
-        count
-            .into_values()
-            .filter(|(k, _)| *k == 1)
-            .map(|(_, e)| e)
-            .collect()
+        for i in 0..nn {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        // (larger node, the edge as met)
+        let mut slots = vec![(0usize, [0usize; 2]); start[nn]];
+        for c in cells {
+            for [a, b] in edges_of(c) {
+                let lo = a.min(b) - first;
+                slots[fill[lo]] = (a.max(b), [a, b]);
+                fill[lo] += 1;
+            }
+        }
+        let mut out = Vec::new();
+        for lo in 0..nn {
+            let bucket = &mut slots[start[lo]..start[lo + 1]];
+            bucket.sort_unstable_by_key(|e| e.0);
+            let mut i = 0;
+            while i < bucket.len() {
+                let mut j = i + 1;
+                while j < bucket.len() && bucket[j].0 == bucket[i].0 {
+                    j += 1;
+                }
+                if j == i + 1 {
+                    out.push(bucket[i].1);
+                }
+                i = j;
+            }
+        }
+        out
     }
 
     /// The midside node of every edge of the quadratic cells, by the

@@ -176,10 +176,14 @@ fn check_areas<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut Ve
             continue;
         }
         let nodes = cell.nodes;
-        let pts: Vec<[f64; 2]> = nodes
-            .iter()
-            .map(|&k| [mesh.nodes[k][0], mesh.nodes[k][1]])
-            .collect();
+        // the corners of the largest planar cell (quad9) without an
+        // allocation per cell
+        let mut corners = [[0.0; 2]; 9];
+        let pts = &mut corners[..nodes.len().min(9)];
+        for (p, &k) in pts.iter_mut().zip(nodes) {
+            *p = [mesh.nodes[k][0], mesh.nodes[k][1]];
+        }
+        let pts: &[[f64; 2]] = pts;
         if pts.iter().flatten().any(|v| !v.is_finite()) {
             continue;
         }
@@ -189,17 +193,20 @@ fn check_areas<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut Ve
                 (q[0] - p[0]).hypot(q[1] - p[1])
             })
             .fold(0.0, f64::max);
-        let area = polygon_area(&pts);
+        let area = polygon_area(pts);
         let tiny = 1e-12 * longest * longest;
         let kind = cell.kind.name();
-        let list = node_list(nodes);
+        // formatted only for a reported cell
+        let list = || node_list(nodes);
         if area.abs() <= tiny {
             r.push(format!(
-                "cell {c} ({kind}, nodes {list}) has zero area ({area:e}): degenerate"
+                "cell {c} ({kind}, nodes {}) has zero area ({area:e}): degenerate",
+                list()
             ));
         } else if area < 0.0 {
             r.push(format!(
-                "cell {c} ({kind}, nodes {list}) has negative area {area:e}: inverted (clockwise)"
+                "cell {c} ({kind}, nodes {}) has negative area {area:e}: inverted (clockwise)",
+                list()
             ));
         } else if pts.len() == 4 {
             for i in 0..4 {
@@ -208,7 +215,8 @@ fn check_areas<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut Ve
                     (next[0] - p[0]) * (prev[1] - p[1]) - (next[1] - p[1]) * (prev[0] - p[0]);
                 if cross <= tiny {
                     r.push(format!(
-                        "cell {c} (quad4, nodes {list}) is not convex at node {}: its Jacobian is not positive there",
+                        "cell {c} (quad4, nodes {}) is not convex at node {}: its Jacobian is not positive there",
+                        list(),
                         nodes[i]
                     ));
                     break;
@@ -245,27 +253,32 @@ fn check_volumes<const D: usize>(mesh: &Mesh<D>, cell_ok: &[bool], errors: &mut 
         }
         let tiny = 1e-12 * longest.powi(3);
         let kind = cell.kind.name();
-        let list = node_list(cell.nodes);
+        // formatted only for a reported cell
+        let list = || node_list(cell.nodes);
         if volume.abs() <= tiny {
             r.push(format!(
-                "cell {c} ({kind}, nodes {list}) has zero volume ({volume:e}): degenerate"
+                "cell {c} ({kind}, nodes {}) has zero volume ({volume:e}): degenerate",
+                list()
             ));
         } else if volume < 0.0 {
             r.push(format!(
-                "cell {c} ({kind}, nodes {list}) has negative volume {volume:e}: inverted (the \
-                 node order must follow gmsh's)"
+                "cell {c} ({kind}, nodes {}) has negative volume {volume:e}: inverted (the \
+                 node order must follow gmsh's)",
+                list()
             ));
         } else if let Some(i) = corners.iter().position(|&j| j <= tiny) {
             if let Some(node) = cell.nodes.get(i) {
                 r.push(format!(
-                    "cell {c} ({kind}, nodes {list}) is inverted or twisted at node {node}: its \
-                     Jacobian is not positive there"
+                    "cell {c} ({kind}, nodes {}) is inverted or twisted at node {node}: its \
+                     Jacobian is not positive there",
+                    list()
                 ));
             } else {
                 r.push(format!(
-                    "cell {c} ({kind}, nodes {list}) is inverted or twisted at its integration \
+                    "cell {c} ({kind}, nodes {}) is inverted or twisted at its integration \
                      point {}: its Jacobian is not positive there (a midside node too far off \
                      the middle of its edge?)",
+                    list(),
                     i - cell.nodes.len()
                 ));
             }
@@ -318,9 +331,14 @@ fn check_duplicates<const D: usize>(mesh: &Mesh<D>, errors: &mut Vec<MeshError>)
         std::array::from_fn(|k| ((p[k] - lo[k]) / tol).floor() as i64)
     };
     let neighbours = 3usize.pow(D as u32);
-    // lookups only (no iteration): the Fx hash cannot change the report
-    let mut grid: FxHashMap<[i64; D], Vec<usize>> = FxHashMap::default();
+    // lookups only (no iteration): the Fx hash cannot change the report;
+    // each grid cell's nodes are a list threaded through `next` (no
+    // allocation per cell; the order within a list does not matter, the
+    // smallest coincident node is reported)
+    const END: usize = usize::MAX;
+    let mut grid: FxHashMap<[i64; D], usize> = FxHashMap::default();
     grid.reserve(finite.len());
+    let mut next = vec![END; mesh.nodes.len()];
     for &i in &finite {
         let p = &mesh.nodes[i];
         let k = key(p);
@@ -332,12 +350,12 @@ fn check_duplicates<const D: usize>(mesh: &Mesh<D>, errors: &mut Vec<MeshError>)
                 *c = c.saturating_add((code % 3) as i64 - 1);
                 code /= 3;
             }
-            if let Some(list) = grid.get(&cell) {
-                for &j in list {
-                    if dist(p, &mesh.nodes[j]) <= tol {
-                        first = Some(first.map_or(j, |f: usize| f.min(j)));
-                    }
+            let mut j = grid.get(&cell).copied().unwrap_or(END);
+            while j != END {
+                if dist(p, &mesh.nodes[j]) <= tol {
+                    first = Some(first.map_or(j, |f: usize| f.min(j)));
                 }
+                j = next[j];
             }
         }
         if let Some(j) = first {
@@ -346,7 +364,9 @@ fn check_duplicates<const D: usize>(mesh: &Mesh<D>, errors: &mut Vec<MeshError>)
                 coords(p)
             ));
         }
-        grid.entry(k).or_default().push(i);
+        let head = grid.entry(k).or_insert(END);
+        next[i] = *head;
+        *head = i;
     }
 }
 

@@ -1017,15 +1017,22 @@ where
             .sum();
         let mut k = Vec::with_capacity(entries);
         let mut out = ElementMatrix::<D>::default();
+        // the nodes of a cell without an allocation per cell
+        let mut points = [Point::<D>::zeros(); MAX_DOFS];
+        let zero = [Point::<D>::zeros(); MAX_DOFS];
         for &(block, c) in part {
             let err = |e: crate::element::ElementError| format!("cell {c}: {}", e.message);
             let kernel = kernel_of::<D>(mesh.cells.kind(c)).map_err(err)?;
-            let x = mesh.cell_points(c);
-            let zero = vec![Point::<D>::zeros(); x.len()];
+            let nodes = mesh.cells.nodes(c);
+            let x = &mut points[..nodes.len()];
+            for (p, &n) in x.iter_mut().zip(nodes) {
+                *p = Point::<D>::from(mesh.nodes[n]);
+            }
+            let x: &[Point<D>] = x;
             kernel
                 .linear(
-                    &x,
-                    &zero,
+                    x,
+                    &zero[..x.len()],
                     section,
                     block.formulation,
                     &block.law,

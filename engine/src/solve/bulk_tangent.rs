@@ -125,22 +125,16 @@ impl DofMatrix {
     ) -> Result<Self, String> {
         let nn = mesh.nodes.len();
         u32::try_from(D * nn).map_err(|_| "the model has more than 4e9 dofs".to_string())?;
-        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nn];
-        for &c in cells {
-            let nodes = mesh.cells.nodes(c);
-            for &a in nodes {
-                adj[a].extend(nodes.iter().map(|&b| b as u32));
-            }
-        }
-        for a in &mut adj {
-            a.sort_unstable();
-            a.dedup();
-        }
+        let adj = super::linalg::pattern::NodeGraph::new(
+            nn,
+            cells.iter().map(|&c| mesh.cells.nodes(c)),
+            &[],
+        );
         // row `D a + i`: the blocks of a's neighbours, `D` columns each
         let mut row_ptr = Vec::with_capacity(D * nn + 1);
         row_ptr.push(0);
-        let mut cols = Vec::new();
-        for a in &adj {
+        let mut cols = Vec::with_capacity(D * D * adj.idx.len());
+        for a in (0..nn).map(|a| adj.row(a)) {
             for _ in 0..D {
                 cols.extend(
                     a.iter()
@@ -159,7 +153,7 @@ impl DofMatrix {
             at.clear();
             for &a in nodes {
                 for &b in nodes {
-                    let p = adj[a].binary_search(&(b as u32)).expect("built above");
+                    let p = adj.row(a).binary_search(&(b as u32)).expect("built above");
                     at.push(D * p);
                 }
             }

@@ -39,9 +39,6 @@ pub enum ElementType {
     Hexahedron27,
 }
 
-/// Most nodes of an element read (the 27-node hexahedron).
-pub const MAX_ELEMENT_NODES: usize = 27;
-
 impl ElementType {
     /// The supported type of gmsh type number `t` in a planar (`solid =
     /// false`) or solid mesh, or why it is not.
@@ -140,15 +137,21 @@ pub struct RawNode {
     pub line: usize,
 }
 
-/// One element as read.
+/// One element as read; its node tags and physical groups are ranges of
+/// [`RawMesh::element_nodes`] and [`RawMesh::element_physicals`] (issue
+/// 20: one flat array instead of a 27-tag array and a vector per element,
+/// 256 bytes and an allocation for each of the 80,000 triangles of the
+/// tutorial mesh).
 #[derive(Debug, Clone)]
 pub struct RawElement {
     /// Topology.
     pub kind: ElementType,
-    /// gmsh node tags (first `kind.nodes()` used).
-    pub nodes: [u64; MAX_ELEMENT_NODES],
-    /// Physical group tags it belongs to (of dimension `kind.dim()`).
-    pub physicals: Vec<i64>,
+    /// Start of its `kind.nodes()` gmsh node tags in
+    /// [`RawMesh::element_nodes`].
+    pub first_node: usize,
+    /// Its physical group tags (of dimension `kind.dim()`) in
+    /// [`RawMesh::element_physicals`].
+    pub physicals: std::ops::Range<usize>,
     /// Line of the element.
     pub line: usize,
 }
@@ -160,6 +163,10 @@ pub struct RawMesh {
     pub nodes: Vec<RawNode>,
     /// Elements in file order.
     pub elements: Vec<RawElement>,
+    /// The node tags of the elements, in file order.
+    pub element_nodes: Vec<u64>,
+    /// The physical group tags of the elements, in file order.
+    pub element_physicals: Vec<i64>,
     /// `(dim, tag)` -> name, from `$PhysicalNames`.
     pub names: BTreeMap<(usize, i64), String>,
     /// Whether a `$Nodes` section was read.
@@ -169,4 +176,16 @@ pub struct RawMesh {
     /// Whether the mesh is read as a solid (3D) one: tetrahedra and
     /// hexahedra are its cells.
     pub solid: bool,
+}
+
+impl RawMesh {
+    /// The gmsh node tags of element `e`.
+    pub fn nodes_of(&self, e: &RawElement) -> &[u64] {
+        &self.element_nodes[e.first_node..e.first_node + e.kind.nodes()]
+    }
+
+    /// The physical group tags of element `e`.
+    pub fn physicals_of(&self, e: &RawElement) -> &[i64] {
+        &self.element_physicals[e.physicals.clone()]
+    }
 }

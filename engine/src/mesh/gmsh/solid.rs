@@ -67,7 +67,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh<3>, MeshError> {
     let mut positions: Vec<Vec<usize>> = Vec::with_capacity(raw.elements.len());
     for e in &raw.elements {
         let mut pos = Vec::with_capacity(e.kind.nodes());
-        for &t in &e.nodes[..e.kind.nodes()] {
+        for &t in raw.nodes_of(e) {
             pos.push(by_tag.get(t).ok_or_else(|| {
                 MeshError::at_line(
                     e.line,
@@ -154,7 +154,7 @@ pub fn assemble(raw: RawMesh, eof_line: usize) -> Result<Mesh<3>, MeshError> {
     let mut groups: BTreeMap<String, Group> = BTreeMap::new();
     for (e, pos) in raw.elements.iter().zip(&positions) {
         let dim = e.kind.dim();
-        for &tag in &e.physicals {
+        for &tag in raw.physicals_of(e) {
             let name = raw
                 .names
                 .get(&(dim, tag))

@@ -38,27 +38,29 @@ pub fn nodes(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
 /// Reads the body of `$Elements` and `$EndElements`.
 pub fn elements(c: &mut Cursor, raw: &mut RawMesh) -> Result<(), MeshError> {
     let n = c.usize("the number of elements")?;
+    raw.elements.reserve(n.min(c.remaining_bytes() / 8));
     for _ in 0..n {
         c.tag("an element tag")?;
         let line = c.line();
         let t = c.i64("the element type")?;
         let kind = ElementType::from_gmsh(t, raw.solid).map_err(|m| MeshError::at_line(line, m))?;
         let ntags = c.usize("the number of element tags")?;
-        let mut physicals = Vec::new();
+        let physicals_start = raw.element_physicals.len();
         for k in 0..ntags {
             let v = c.i64("an element tag value")?;
             if k == 0 && v != 0 {
-                physicals.push(v);
+                raw.element_physicals.push(v);
             }
         }
-        let mut nodes = [0u64; super::raw::MAX_ELEMENT_NODES];
-        for slot in nodes.iter_mut().take(kind.nodes()) {
-            *slot = c.tag("a node tag of the element")?;
+        let first_node = raw.element_nodes.len();
+        for _ in 0..kind.nodes() {
+            let tag = c.tag("a node tag of the element")?;
+            raw.element_nodes.push(tag);
         }
         raw.elements.push(RawElement {
             kind,
-            nodes,
-            physicals,
+            first_node,
+            physicals: physicals_start..raw.element_physicals.len(),
             line,
         });
     }

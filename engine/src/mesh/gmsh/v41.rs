@@ -158,14 +158,17 @@ pub fn elements(
         for _ in 0..n {
             c.tag("an element tag")?;
             let line = c.line();
-            let mut nodes = [0u64; super::raw::MAX_ELEMENT_NODES];
-            for slot in nodes.iter_mut().take(kind.nodes()) {
-                *slot = c.tag("a node tag of the element")?;
+            let first_node = raw.element_nodes.len();
+            for _ in 0..kind.nodes() {
+                let tag = c.tag("a node tag of the element")?;
+                raw.element_nodes.push(tag);
             }
+            let start = raw.element_physicals.len();
+            raw.element_physicals.extend_from_slice(&physicals);
             raw.elements.push(RawElement {
                 kind,
-                nodes,
-                physicals: physicals.clone(),
+                first_node,
+                physicals: start..raw.element_physicals.len(),
                 line,
             });
         }

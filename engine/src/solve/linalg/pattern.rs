@@ -51,6 +51,91 @@ impl SparsePattern {
     }
 }
 
+/// The node adjacency of a set of cells: per node, the sorted distinct
+/// nodes it shares a cell (or an extra coupling) with, itself included,
+/// in compressed rows (two flat arrays instead of a vector per node;
+/// issue 20).
+#[derive(Debug, Clone, Default)]
+pub struct NodeGraph {
+    /// Start of each node's row in `idx` (`nodes + 1` entries).
+    pub ptr: Vec<usize>,
+    /// Neighbours, row by row.
+    pub idx: Vec<u32>,
+}
+
+impl NodeGraph {
+    /// The adjacency over `nn` nodes of `cells` (each cell's node list:
+    /// every pair of its nodes) and of the `extra` node pairs (both ways;
+    /// pairs with a node out of range are left out). Node numbers must fit
+    /// in `u32`.
+    pub fn new<'c>(
+        nn: usize,
+        cells: impl Iterator<Item = &'c [usize]> + Clone,
+        extra: &[(usize, usize)],
+    ) -> Self {
+        let extra = || extra.iter().filter(|&&(a, b)| a < nn && b < nn);
+        // room per node: every entry before removing the repetitions
+        let mut start = vec![0usize; nn + 1];
+        for ns in cells.clone() {
+            for &a in ns {
+                start[a + 1] += ns.len();
+            }
+        }
+        for &(a, b) in extra() {
+            start[a + 1] += 2;
+            start[b + 1] += 2;
+        }
+        for i in 0..nn {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut idx = vec![0u32; start[nn]];
+        for ns in cells {
+            for &a in ns {
+                let at = fill[a];
+                for (slot, &b) in idx[at..at + ns.len()].iter_mut().zip(ns) {
+                    *slot = b as u32;
+                }
+                fill[a] += ns.len();
+            }
+        }
+        for &(a, b) in extra() {
+            for n in [a, b] {
+                idx[fill[n]] = a as u32;
+                idx[fill[n] + 1] = b as u32;
+                fill[n] += 2;
+            }
+        }
+        // each row sorted, repetitions removed, rows moved down in place
+        let mut ptr = Vec::with_capacity(nn + 1);
+        ptr.push(0);
+        let mut w = 0;
+        for a in 0..nn {
+            let row = start[a]..start[a + 1];
+            idx[row.clone()].sort_unstable();
+            let mut last = None;
+            for k in row {
+                let v = idx[k];
+                if last != Some(v) {
+                    idx[w] = v;
+                    w += 1;
+                    last = Some(v);
+                }
+            }
+            ptr.push(w);
+        }
+        idx.truncate(w);
+        NodeGraph { ptr, idx }
+    }
+
+    /// The neighbours of node `a` (sorted, itself included if it is in a
+    /// cell).
+    #[inline]
+    pub fn row(&self, a: usize) -> &[u32] {
+        &self.idx[self.ptr[a]..self.ptr[a + 1]]
+    }
+}
+
 /// Where each element matrix entry goes.
 #[derive(Debug, Clone)]
 pub struct Scatter {
@@ -111,34 +196,22 @@ impl Scatter {
         let nn = mesh.nodes.len();
         let owns_cell = |c: usize| share.as_ref().is_none_or(|s| s.owns_cell(c));
         // node adjacency (sorted, unique, including the node itself)
-        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); nn];
-        for (ci, c) in mesh.cells.iter().enumerate() {
-            if !owns_cell(ci) {
-                continue;
-            }
-            let ns = c.nodes;
-            for &a in ns {
-                for &b in ns {
-                    adj[a].push(b as u32);
-                }
-            }
-        }
-        for &(a, b) in extra {
-            if a < nn && b < nn {
-                adj[a].extend([a as u32, b as u32]);
-                adj[b].extend([a as u32, b as u32]);
-            }
-        }
-        for a in &mut adj {
-            a.sort_unstable();
-            a.dedup();
-        }
+        let adj = NodeGraph::new(
+            nn,
+            mesh.cells
+                .iter()
+                .enumerate()
+                .filter(|&(ci, _)| owns_cell(ci))
+                .map(|(_, c)| c.nodes),
+            extra,
+        );
         let n = dofs.n_free();
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0usize);
-        let mut row_idx = Vec::new();
+        let mut row_idx =
+            Vec::with_capacity(dofs.free.iter().map(|&g| D * adj.row(g / D).len()).sum());
         for &g in &dofs.free {
-            for &m in &adj[g / D] {
+            for &m in adj.row(g / D) {
                 for c in 0..D {
                     if let Dof::Free(i) = dofs.dofs[D * m as usize + c] {
                         row_idx.push(i);
@@ -179,18 +252,19 @@ impl Scatter {
         // of a below i)`: one search per node pair (the slots of
         // `pattern.find`, tested)
         let free = |g: usize| matches!(dofs.dofs[g], Dof::Free(_));
-        let before: Vec<Vec<u32>> = adj
-            .iter()
-            .map(|a| {
-                let mut k = 0u32;
-                let mut out = Vec::with_capacity(a.len());
-                for &m in a {
-                    out.push(k);
-                    k += (0..D).filter(|&c| free(D * m as usize + c)).count() as u32;
-                }
-                out
-            })
+        // `before[b][k]` at `adj`'s entry `k` of node `b`
+        let free_of: Vec<u32> = (0..nn)
+            .map(|m| (0..D).filter(|&c| free(D * m + c)).count() as u32)
             .collect();
+        let mut before: Vec<u32> = Vec::with_capacity(adj.idx.len());
+        for b in 0..nn {
+            let mut k = 0u32;
+            for &m in adj.row(b) {
+                before.push(k);
+                k += free_of[m as usize];
+            }
+        }
+        let before = |b: usize| &before[adj.ptr[b]..adj.ptr[b + 1]];
         let below = |g: usize| (g - g % D..g).filter(|&h| free(h)).count();
         let mut cell_offset = Vec::with_capacity(mesh.cells.len() + 1);
         cell_offset.push(0);
@@ -208,7 +282,8 @@ impl Scatter {
             for &b in ns {
                 for &a in ns {
                     at.push(
-                        before[b][adj[b]
+                        before(b)[adj
+                            .row(b)
                             .binary_search(&(a as u32))
                             .map_err(|_| "internal error: a cell's node pair is not adjacent")?],
                     );
@@ -240,7 +315,7 @@ impl Scatter {
         }
         let mut node_block = vec![NO_SLOT; D * D * nn];
         for (node, block) in node_block.chunks_exact_mut(D * D).enumerate() {
-            if adj[node].is_empty() || share.as_ref().is_some_and(|s| !s.owns_node(node)) {
+            if adj.row(node).is_empty() || share.as_ref().is_some_and(|s| !s.owns_node(node)) {
                 continue;
             }
             for j in 0..D {
