@@ -29,20 +29,12 @@ STEPS=${3:-10}
 NY=$((NX / 2))
 LS=${LINESEARCH:-bt}
 HERE=$(cd "$(dirname "$0")" && pwd)
-ROOT=$(cd "$HERE/../.." && pwd)
-OUT="$ROOT/target/speed/neo_indent_$NX"
-export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
-bash "$HERE/install-0.11.sh" >/dev/null
-PY=$(bash "$HERE/install-0.11.sh" --python)
-mkdir -p "$OUT"
-rm -rf "$OUT"/ctc_* "$OUT"/fx_* "$OUT"/load.txt
-cd "$ROOT"
+# shellcheck source=side_by_side.sh
+. "$HERE/side_by_side.sh"
 # CTC_BIN: an already built ctc (skips the release build)
-if [ -z "${CTC_BIN:-}" ]; then cargo build --release -q -p ctc --bin ctc; fi
-CTC=${CTC_BIN:-$ROOT/target/release/ctc}
+side_by_side_setup "neo_indent_$NX"
 "$PY" "$HERE/neo_indent.py" "$OUT" --nx "$NX" --ny "$NY" --steps "$STEPS" --export-only
 
-load() { echo "$(date -u +%H:%M:%S) $1: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT/load.txt"; }
 for rep in $(seq 1 "$REPS"); do
   load "before ctc $rep"
   mkdir -p "$OUT/ctc_$rep"
@@ -58,14 +50,5 @@ for rep in $(seq 1 "$REPS"); do
   load "after FEniCSx $rep"
 done
 
-{
-  echo "## Neo-Hooke indentation: ctc vs DOLFINx 0.11 ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc --all) cores, reps $REPS, $NX x $NY cells, $STEPS increments, DOLFINx line search $LS)"
-  echo
+side_by_side_table "Neo-Hooke indentation: ctc vs DOLFINx 0.11 ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc --all) cores, reps $REPS, $NX x $NY cells, $STEPS increments, DOLFINx line search $LS)" \
   "$PY" "$HERE/neo_indent.py" --table "$OUT"
-  echo
-  echo "Load average (1, 5, 15 min) around each run:"
-  echo
-  echo '```text'
-  cat "$OUT/load.txt"
-  echo '```'
-} | tee "$OUT/table.md"

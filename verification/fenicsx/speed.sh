@@ -23,6 +23,8 @@ PY=${FENICSX_PYTHON:-/usr/bin/python3}
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
 OUT="$ROOT/target/speed/$SIZE"
+# shellcheck source=side_by_side.sh
+. "$HERE/side_by_side.sh"
 export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
 mkdir -p "$OUT"
 rm -f "$OUT"/ctc_*.json "$OUT"/ctc_*.cpu "$OUT"/A_*.json "$OUT"/B_*.json "$OUT"/load.txt
@@ -35,7 +37,6 @@ CTC="$ROOT/target/release/ctc"
 "$ROOT/target/release/examples/fenicsx_export" --bench "$SIZE" "$OUT" >/dev/null
 PROBLEM="$OUT/bench_$SIZE.problem.json"
 
-load() { echo "$(date -u +%H:%M:%S) $1: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT/load.txt"; }
 for rep in $(seq 1 "$REPS"); do
   load "before ctc $rep"
   # CPU (user + sys) of the whole ctc process: an upper bound of its loop's
@@ -47,14 +48,5 @@ for rep in $(seq 1 "$REPS"); do
   load "after B $rep"
 done
 
-{
-  echo "## ctc bench --size $SIZE vs FEniCSx ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc --all) cores, reps $REPS)"
-  echo
+side_by_side_table "ctc bench --size $SIZE vs FEniCSx ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc --all) cores, reps $REPS)" \
   "$PY" "$HERE/speed.py" --table "$OUT"
-  echo
-  echo "Load average (1, 5, 15 min) around each run:"
-  echo
-  echo '```text'
-  cat "$OUT/load.txt"
-  echo '```'
-} | tee "$OUT/table.md"

@@ -15,20 +15,12 @@
 set -euo pipefail
 REPS=${1:-3}
 HERE=$(cd "$(dirname "$0")" && pwd)
-ROOT=$(cd "$HERE/../.." && pwd)
-OUT="$ROOT/target/speed/tutorial"
-export OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
-bash "$HERE/install-0.11.sh" >/dev/null
-PY=$(bash "$HERE/install-0.11.sh" --python)
-mkdir -p "$OUT"
-rm -rf "$OUT"/ctc_* "$OUT"/fx_* "$OUT"/load.txt
-cd "$ROOT"
+# shellcheck source=side_by_side.sh
+. "$HERE/side_by_side.sh"
 # CTC_BIN: an already built ctc (skips the release build)
-if [ -z "${CTC_BIN:-}" ]; then cargo build --release -q -p ctc --bin ctc; fi
-CTC=${CTC_BIN:-$ROOT/target/release/ctc}
+side_by_side_setup "tutorial"
 "$PY" "$HERE/tutorial.py" "$OUT" --export-only 2>/dev/null
 
-load() { echo "$(date -u +%H:%M:%S) $1: $(cut -d' ' -f1-3 /proc/loadavg)" >>"$OUT/load.txt"; }
 for rep in $(seq 1 "$REPS"); do
   load "before ctc $rep"
   mkdir -p "$OUT/ctc_$rep"
@@ -38,14 +30,5 @@ for rep in $(seq 1 "$REPS"); do
   load "after FEniCSx $rep"
 done
 
-{
-  echo "## tutorial 2D Hertz: ctc vs DOLFINx 0.11 ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc --all) cores, reps $REPS)"
-  echo
+side_by_side_table "tutorial 2D Hertz: ctc vs DOLFINx 0.11 ($(date -u +%Y-%m-%dT%H:%MZ), $(nproc --all) cores, reps $REPS)" \
   "$PY" "$HERE/tutorial.py" --table "$OUT"
-  echo
-  echo "Load average (1, 5, 15 min) around each run:"
-  echo
-  echo '```text'
-  cat "$OUT/load.txt"
-  echo '```'
-} | tee "$OUT/table.md"
