@@ -172,21 +172,18 @@ fn mesh(dim: usize, lower: usize, upper: usize, height: f64, gap: f64) -> String
          $Elements\n{}\n",
         faces.len() + cells.len()
     );
-    for (e, (kind, nodes)) in faces
+    // element lines `id type 2 physical elementary nodes..`: the faces in
+    // group 1 (`s`), the cells in group 2 (`block`)
+    let groups = faces
         .iter()
         .map(|f| (1, f))
-        .chain(cells.iter().map(|c| (2, c)))
-        .enumerate()
-        .map(|(e, (phys, (kind, nodes)))| (e, ((*kind, phys), nodes)))
-    {
+        .chain(cells.iter().map(|c| (2, c)));
+    for (e, (group, (gmsh_type, nodes))) in groups.enumerate() {
         let list: Vec<String> = nodes.iter().map(ToString::to_string).collect();
         let _ = writeln!(
             text,
-            "{} {} 2 {} {} {}",
+            "{} {gmsh_type} 2 {group} {group} {}",
             e + 1,
-            kind.0,
-            kind.1,
-            kind.1,
             list.join(" ")
         );
     }
