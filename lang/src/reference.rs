@@ -124,7 +124,7 @@ pub static ITEMS: &[Item] = &[
               same surface on both sides is self contact: each node against the surface's \
               facets except its own patch, both directions at once with half the tributary \
               areas (the reported pressure is the interface pressure; in 3d only the facets \
-              facing it, penalty or augmented Lagrangian, frictionless). \
+              facing it; penalty or augmented Lagrangian, with or without friction). \
               In 3d a tool is a surface. The gap is positive when open; the pressure is \
               positive in compression.",
         blocks: &[

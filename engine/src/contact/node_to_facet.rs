@@ -708,8 +708,16 @@ impl FacetSurface {
         if best.is_some() {
             return best;
         }
-        // every foot outside: the nearest interior edge or vertex
-        let mut near: Option<(f64, usize, usize, Option<usize>)> = None;
+        // every foot outside: the nearest edge or vertex of the candidates;
+        // when it lies on the surface's free boundary (a free edge or
+        // vertex) the node has left the surface (no element: open), else
+        // the edge or vertex element of that interior feature. Looking for
+        // the nearest *interior* feature only would pair a node that slid
+        // off a free edge with an interior edge a whole facet away, with
+        // that distance as a penetration (measured: a block sliding 2.75 %
+        // of a facet past its master's edge got gaps of -0.256 on 0.25
+        // facets, and the Newton loop lost every contact).
+        let mut near: Option<(f64, usize, usize, Option<usize>, bool)> = None;
         for &k in candidates {
             let (p, n) = self.points(k, x);
             let nodes = self.faces[k].nodes();
@@ -733,19 +741,19 @@ impl FacetSurface {
                     Some(b) => !self.is_free_edge(nodes[a], nodes[b]),
                     None => !self.is_free_node(nodes[which]),
                 };
-                if !interior {
-                    continue;
-                }
                 let d: f64 = (0..3)
                     .map(|c| (xs[c] - p[a][c] - t * e[c]).powi(2))
                     .sum::<f64>()
                     .sqrt();
                 if near.is_none_or(|(best, ..)| d < best) {
-                    near = Some((d, k, which, other));
+                    near = Some((d, k, which, other, interior));
                 }
             }
         }
-        let (_, k, a, b) = near?;
+        let (_, k, a, b, interior) = near?;
+        if !interior {
+            return None;
+        }
         let (p, n) = self.points(k, x);
         let pts = &p[..n];
         let nrm = centre_normal(pts);
@@ -1695,6 +1703,38 @@ pub(crate) mod tests {
                 Facet::new(&[id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
             })
             .collect()
+    }
+
+    #[test]
+    fn a_node_past_a_free_edge_leaves_the_surface() {
+        // 4 x 4 unit grid (x, y in [0, 4], z = 0): a node slid past the free
+        // edge x = 4 by more than FREE_EDGE_TOL, just below the plane. The
+        // nearest feature is the free edge: no element. (The rule once took
+        // the nearest *interior* edge, x = 3, one facet away: gap -1.0.)
+        let s = FacetSurface::new(&grid(4));
+        let x: Vec<[f64; 3]> = (0..25)
+            .map(|n| [(n % 5) as f64, (n / 5) as f64, 0.0])
+            .collect();
+        let mut tests = 0;
+        let all: Vec<usize> = (0..16).collect();
+        let past = [4.0 + 2.0 * FREE_EDGE_TOL, 1.5, -1e-3];
+        assert!(s.closest(&x, past, &all, None, 2.0, &mut tests).is_none());
+        // past a free corner too
+        let corner = [4.1, 4.1, -1e-3];
+        assert!(s.closest(&x, corner, &all, None, 2.0, &mut tests).is_none());
+        // within FREE_EDGE_TOL the extended facet keeps it
+        let (k, el) = s
+            .closest(
+                &x,
+                [4.0 + 0.5 * FREE_EDGE_TOL, 1.5, -1e-3],
+                &all,
+                None,
+                2.0,
+                &mut tests,
+            )
+            .unwrap();
+        assert_eq!((k, el.feature), (7, Feature::Face));
+        assert!((el.gap + 1e-3).abs() < 1e-15, "{}", el.gap);
     }
 
     #[test]

@@ -348,12 +348,11 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                          Lagrangian with friction)",
                     )
                 } else if faces == &c.faces
-                    && (c.friction.is_some()
-                        || matches!(c.method, crate::model::ContactMethod::Lagrange { .. }))
+                    && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
                 {
                     Some(
-                        "self contact with friction or Lagrange multipliers (self contact is \
-                         frictionless, penalty or augmented Lagrangian)",
+                        "self contact with Lagrange multipliers (self contact is penalty or \
+                         augmented Lagrangian)",
                     )
                 } else if faces.is_empty() {
                     Some("master faces (the master set has no face)")

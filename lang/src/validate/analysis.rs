@@ -60,7 +60,8 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// Lagrangian or single Lagrange multipliers; Coulomb friction with the
 /// penalty and augmented Lagrangian methods: [`super::contacts`] refuses
 /// the rest),
-/// self contact (penalty or augmented Lagrangian, frictionless); normal
+/// self contact (penalty or augmented Lagrangian, with or without
+/// Coulomb friction); normal
 /// smoothing: `nagata` in 3d only (planar analyses have no facets; friction
 /// on the patches is refused in [`super::contacts`]), `nodal` (planar) is
 /// refused in 3d.
@@ -111,8 +112,8 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
         }
         if m.to_string() == c.target.to_string() {
             // self contact: both directions at once (the modified double
-            // pass of one surface), penalty or augmented Lagrangian,
-            // frictionless
+            // pass of one surface), penalty or augmented Lagrangian, with
+            // or without friction
             if let Some(me) = c
                 .method
                 .as_ref()
@@ -124,13 +125,6 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
                      singular)",
                     me.span,
                     "use `method = penalty { .. }` or `augmented_lagrange { .. }` for self contact",
-                );
-            }
-            if let Some(f) = &c.friction {
-                refuse(
-                    "friction in self contact",
-                    f.span,
-                    "drop `friction` (self contact is frictionless in 3d)",
                 );
             }
         }
