@@ -244,6 +244,9 @@ pub fn explain(model: &Model) -> String {
                         plural(facets.len(), "edge", "edges")
                     );
                 }
+                Load::RigidMoment { label, value, .. } => {
+                    let _ = writeln!(o, "  {label}: M = {}", time_function(value));
+                }
                 Load::NodalForce {
                     label,
                     nodes,
@@ -865,6 +868,19 @@ pub fn explain_solid(model: &ctc_engine::model::Model<3>) -> String {
                     "  {label}: p = {} on {} (positive pushes into the body)",
                     time_function(value),
                     plural(facets.len(), "face", "faces")
+                );
+            }
+            Load::RigidMoment {
+                label, axis, value, ..
+            } => {
+                let _ = writeln!(
+                    o,
+                    "  {label}: M = {} along ({:.4}, {:.4}, {:.4}) (fixed in space), on the \
+                     body's rotation (work-conjugate)",
+                    time_function(value),
+                    axis[0],
+                    axis[1],
+                    axis[2]
                 );
             }
             Load::NodalForce {

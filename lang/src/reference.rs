@@ -245,9 +245,10 @@ pub static ITEMS: &[Item] = &[
               on the pilot; 3d, the mass and the inertia tensor are carried by six point masses \
               at body-fixed points tied like the nodes (their dynamics is the body's, \
               gyroscopic terms included). The rotation is prescribed (`rotation` or \
-              `angular_velocity`, 3d about `axis`) or free (planar: under `moment`; 3d: any \
-              number of turns, less than half a turn per increment: past |psi| = pi psi is \
-              replaced by the same rotation psi (1 - 2 pi / |psi|)). The kinetic energy and the \
+              `angular_velocity`, 3d about `axis`) or free, under `moment` (3d: a moment \
+              `moment(t) axis` fixed in space, work-conjugate to the rotation: T(psi)^T m on \
+              psi; any number of turns, less than half a turn per increment: past |psi| = pi \
+              psi is replaced by the same rotation psi (1 - 2 pi / |psi|)). The kinetic energy and the \
               ties' and bearing's energy are in the energy audit; history.csv has the columns \
               `centre[NODES]_x`, `_y` (`_z`) (the orbit) and `rotation[NODES]_x` (the angle; 3d \
               `_x _y _z` psi, |psi| <= pi for a free body).",

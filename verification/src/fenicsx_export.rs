@@ -207,6 +207,11 @@ pub fn export(model: &Model, case: &str) -> Result<ProblemExport, String> {
                     "FEniCSx export: follower pressure ({label}) is not supported"
                 ))
             }
+            Load::RigidMoment { label, .. } => {
+                return Err(format!(
+                    "FEniCSx export: a rigid body's moment ({label}) is not supported"
+                ))
+            }
         }
     }
     let mut contacts = Vec::new();

@@ -551,6 +551,23 @@ pub enum Load {
         /// Force per node as a function of time.
         value: TimeFunction,
     },
+    /// A moment on a free 3D rigid body (deck: `rigid_body .. { moment =
+    /// M  axis = (..) }`): the spatial moment `m(t) = value(t) axis`, its
+    /// direction fixed in space, applied work-conjugately on the body's
+    /// total rotation vector `psi` (the spin node's displacement): `f_psi
+    /// = T(psi)^T m`, `T` the differential of `exp` in the spatial frame
+    /// (`solve::rigid_body::add_moments`). Configuration dependent: it is
+    /// assembled with the follower loads (non-symmetric tangent).
+    RigidMoment {
+        /// Human-readable origin.
+        label: String,
+        /// The body's spin node.
+        spin: usize,
+        /// Unit direction of the moment (fixed in space).
+        axis: [f64; 3],
+        /// Magnitude of the moment as a function of time.
+        value: TimeFunction,
+    },
 }
 
 /// A rigid tool described analytically (exact CAD-like geometry, no mesh).

@@ -210,6 +210,22 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     ));
                 }
             }
+            Load::RigidMoment {
+                label, spin, axis, ..
+            } => {
+                let spins = model.discrete.iter().any(
+                    |d| matches!(d, crate::model::Discrete::Rigid { spin: s, .. } if s == spin),
+                );
+                if D != 3 || !spins {
+                    errors.push(format!(
+                        "`{label}`: a moment needs the spin node of a 3D rigid body (node {spin})"
+                    ));
+                }
+                let n = axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if (n - 1.0).abs().is_nan() || (n - 1.0).abs() >= 1e-12 {
+                    errors.push(format!("`{label}`: the moment's axis is not a unit vector"));
+                }
+            }
             Load::FollowerPressure { label, facets, .. } => {
                 let sizes: &[usize] = if D == 2 { &[2, 3] } else { &[3, 4, 6, 8, 9] };
                 if let Some(f) = facets.iter().find(|f| {
@@ -431,7 +447,8 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
             | Load::Pressure { label, value, .. }
             | Load::FacetPressure { label, value, .. }
             | Load::FollowerPressure { label, value, .. }
-            | Load::FacetTraction { label, value, .. } => (label.as_str(), value),
+            | Load::FacetTraction { label, value, .. }
+            | Load::RigidMoment { label, value, .. } => (label.as_str(), value),
         }));
     for (label, f) in functions {
         times.truncate(2 * model.steps.len());

@@ -101,7 +101,9 @@ where
                 }
             }
             // on the deformed surface: `solve/follower.rs`, per evaluation
-            Load::FollowerPressure { .. } => {}
+            // configuration dependent: with the follower loads
+            // (`rigid_body::add_moments`)
+            Load::FollowerPressure { .. } | Load::RigidMoment { .. } => {}
             Load::Pressure { edges, value, .. } => {
                 let p = value.eval(t);
                 if p == 0.0 {

@@ -82,12 +82,14 @@ pub struct RigidSpec {
     /// Rotary inertia tensor about the centre (`0`: none); planar: only
     /// `inertia[2][2]`, the inertia about the normal to the plane.
     pub inertia: [[f64; 3]; 3],
-    /// The unit axis of a prescribed 3D rotation (planar: unused).
+    /// The axis of a prescribed 3D rotation, or the direction of a free
+    /// 3D body's moment (fixed in space; planar: unused).
     pub axis: [f64; 3],
     /// The prescribed rotation `theta(t)` (radians, counter-clockwise
     /// about the axis); `None`: free, under `moment`.
     pub rotation: Option<TimeFunction>,
-    /// The applied moment of a free planar rotation (3D: must be 0).
+    /// The applied moment of a free rotation (3D: its magnitude along
+    /// `axis`, a [`Load::RigidMoment`]).
     pub moment: TimeFunction,
     /// Bearing: a spring from the pilot to the ground (every direction).
     pub bearing_stiffness: f64,
@@ -237,15 +239,16 @@ pub fn make_rigid<const D: usize>(
     } else {
         Vec::new()
     };
+    let moment_3d = D == 3 && spec.rotation.is_none() && spec.moment != TimeFunction::Constant(0.0);
     if D == 3 {
-        if spec.rotation.is_none() && spec.moment != TimeFunction::Constant(0.0) {
+        if spec.rotation.is_some() && spec.moment != TimeFunction::Constant(0.0) {
             return Err(format!(
-                "{label}: a moment on a free 3D rigid body is not available (its rotation vector \
-                 is not work-conjugate to a moment)"
+                "{label}: a moment on a rigid body whose rotation is prescribed (give one of \
+                 them)"
             ));
         }
         let n = spec.axis.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if spec.rotation.is_some() && !(n.is_finite() && n > 0.0) {
+        if (spec.rotation.is_some() || moment_3d) && !(n.is_finite() && n > 0.0) {
             return Err(format!("{label}: the rotation axis is zero"));
         }
     }
@@ -290,6 +293,15 @@ pub fn make_rigid<const D: usize>(
             });
         }
     } else {
+        if moment_3d {
+            let n = spec.axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+            model.loads.push(Load::RigidMoment {
+                label: format!("{label}: moment"),
+                spin,
+                axis: spec.axis.map(|a| a / n),
+                value: spec.moment.clone(),
+            });
+        }
         if let Some(theta) = &spec.rotation {
             let n = spec.axis.iter().map(|x| x * x).sum::<f64>().sqrt();
             for c in 0..3 {
@@ -581,6 +593,62 @@ pub fn add_tangent<const D: usize>(
             }
             let r2 = t.r[0] * t.r[0] + t.r[1] * t.r[1];
             add(th, th, k * r2 + k * (t.d[0] * t.rr[0] + t.d[1] * t.rr[1]));
+        }
+    }
+}
+
+/// Whether `model` has a moment on a 3D rigid body ([`Load::RigidMoment`]).
+pub fn has_moments<const D: usize>(model: &Model<D>) -> bool {
+    model
+        .loads
+        .iter()
+        .any(|l| matches!(l, Load::RigidMoment { .. }))
+}
+
+/// Adds to `f` (`D` per node) the generalized forces of the 3D rigid
+/// bodies' moments at time `t` and displacements `u` (`f_psi = T(psi)^T
+/// m` on the spin node, [`super::rotation_vector::moment_force`]) and,
+/// with `tangent`, subtracts their derivative from the free-free entries
+/// of the tangent (the residual is `f_int - f_ext - f_follow - ..`: the
+/// load stiffness `-d f / d psi`, not symmetric).
+pub fn add_moments<const D: usize>(
+    model: &Model<D>,
+    t: f64,
+    u: &[[f64; D]],
+    f: &mut [f64],
+    mut tangent: Option<(&Scatter, &DofMap<D>, &mut [f64])>,
+) {
+    if D != 3 {
+        return;
+    }
+    for load in &model.loads {
+        let Load::RigidMoment {
+            spin, axis, value, ..
+        } = load
+        else {
+            continue;
+        };
+        let v = value.eval(t);
+        let Some(us) = u.get(*spin) else { continue };
+        let m = axis.map(|a| a * v);
+        let psi = [us[0], us[1], us[2]];
+        let (force, df) = super::rotation_vector::moment_force(psi, m);
+        for (i, fi) in force.iter().enumerate() {
+            f[spin * D + i] += fi;
+        }
+        if let Some((scatter, dofs, values)) = tangent.as_mut() {
+            for (i, row) in df.iter().enumerate() {
+                for (j, dij) in row.iter().enumerate() {
+                    let (r, c) = (spin * D + i, spin * D + j);
+                    if let (Some(Dof::Free(a)), Some(Dof::Free(b))) =
+                        (dofs.dofs.get(r), dofs.dofs.get(c))
+                    {
+                        if let Some(slot) = scatter.pattern.find(*a, *b) {
+                            values[slot] -= dij;
+                        }
+                    }
+                }
+            }
         }
     }
 }
@@ -908,8 +976,17 @@ mod tests {
         assert!(make_rigid(&mut bad, spec(0.0, 0.0))
             .unwrap_err()
             .contains("mass"));
-        assert!(make_rigid(&mut bad, spec(1.0, 2.0))
-            .unwrap_err()
-            .contains("moment"));
+        // a free body's moment: a `RigidMoment` load along the unit axis
+        let mut free = bad.clone();
+        let (_, spin) = make_rigid(&mut free, spec(1.0, 2.0)).unwrap();
+        assert!(matches!(
+            free.loads.last(),
+            Some(Load::RigidMoment { spin: s, axis, value, .. })
+                if *s == spin && *axis == [0.0, 0.0, 1.0] && *value == TimeFunction::Constant(2.0)
+        ));
+        // with a prescribed rotation, a moment is refused
+        let mut turned = spec(1.0, 2.0);
+        turned.rotation = Some(TimeFunction::Constant(1.0));
+        assert!(make_rigid(&mut bad, turned).unwrap_err().contains("moment"));
     }
 }

@@ -49,10 +49,10 @@ pub fn release_needs_a_link(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
 
 /// A rigid body: a plane strain, plane stress or 3d analysis, a centre
 /// with the analysis' coordinates, a tie stiffness, at most one of
-/// `rotation` / `angular_velocity`, and `moment` only when free; the 3d
-/// keys (`axis`, `inertia_diagonal`, `inertia_products`) only in 3d, no
-/// `moment` there, and an inertia tensor that a body with the given mass
-/// can have.
+/// `rotation` / `angular_velocity`, and `moment` only when free (3d: along
+/// `axis`); the 3d keys (`axis`, `inertia_diagonal`, `inertia_products`)
+/// only in 3d, and an inertia tensor that a body with the given mass can
+/// have.
 pub fn rigid_body_is_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
     let Some(keys) = &d.rigid else { return };
     let dimension = ctx
@@ -193,23 +193,11 @@ pub fn rigid_body_is_complete(d: &DiscreteItem, ctx: &mut Ctx<'_>) {
     }
 }
 
-/// The keys of a 3d rigid body: no `moment`, one inertia, a non-zero
-/// axis, an inertia tensor that a body of the given mass can have
+/// The keys of a 3d rigid body: one inertia, a non-zero axis (of the
+/// prescribed rotation, or of the moment of a free body: a moment fixed
+/// in space, work-conjugate to the body's rotation), an inertia tensor that a body of the given mass can have
 /// (`inertia_points::inertia_points`).
 fn rigid_body_3d_keys(d: &DiscreteItem, keys: &crate::ast::RigidKeys, ctx: &mut Ctx<'_>) {
-    if let Some(m) = &keys.moment {
-        ctx.err(
-            Diagnostic::error(
-                "a moment on a 3d rigid body is not available",
-                m.span,
-                "moment",
-            )
-            .with_help(
-                "its rotation vector is not work-conjugate to a moment: prescribe the \
-                     rotation (`rotation` or `angular_velocity` about `axis`) or leave it free",
-            ),
-        );
-    }
     if let (Some(i), Some(t)) = (&keys.inertia, &keys.inertia_diagonal) {
         ctx.err(
             Diagnostic::error("the inertia is given twice", t.span, "inertia_diagonal")
@@ -388,11 +376,16 @@ mod tests {
         );
         for want in [
             "the centre has 2 coordinates, the analysis 3",
-            "a moment on a 3d rigid body is not available",
             "the inertia is given twice",
         ] {
             assert!(m.contains(&want.to_string()), "{want}: {m:?}");
         }
+        // a moment along an axis turns a free 3d body
+        assert!(deck(
+            "rigid_body b.all { center = (0, 0, 0)  mass = 1  inertia = 1  axis = (1, 2, 2)  \
+             moment = ramp(0, 3)  tie_stiffness = 1 }"
+        )
+        .is_empty());
         let m = deck(
             "rigid_body b.all { center = (0, 0, 0)  inertia_diagonal = (1, 1, 3)  mass = 1  \
              axis = (0, 0, 0)  rotation = 1  tie_stiffness = 1 }",

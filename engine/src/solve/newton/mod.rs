@@ -224,7 +224,7 @@ where
             f_ext: vec![0.0; n_dofs],
             f_c: vec![0.0; n_dofs],
             f_follow: vec![0.0; n_dofs],
-            follower: super::follower::has_follower(model),
+            follower: super::follower::has_follower(model) || super::rigid_body::has_moments(model),
             r_free: vec![0.0; n_free],
             reactions: vec![0.0; n_presc],
             target: vec![0.0; n_presc],
@@ -738,9 +738,10 @@ where
         Ok(ev)
     }
 
-    /// The follower pressures' forces at the current state into `f_follow`
-    /// (overwritten) and, `with_tangent`, their load stiffness added to
-    /// the tangent; nothing without a follower pressure.
+    /// The follower pressures' forces and the 3D rigid bodies' moments at
+    /// the current state into `f_follow` (overwritten) and,
+    /// `with_tangent`, their load stiffness added to the tangent; nothing
+    /// without either.
     fn follower_forces(&mut self, t: f64, with_tangent: bool) {
         if !self.follower {
             return;
@@ -759,6 +760,12 @@ where
             &mut self.f_follow,
             tangent,
         );
+        let tangent = if with_tangent {
+            Some((&self.scatter, &self.dofs, &mut self.values[..]))
+        } else {
+            None
+        };
+        super::rigid_body::add_moments(self.model, t, &self.u, &mut self.f_follow, tangent);
     }
 
     /// `out += K_fp dp` (the prescribed increment's forces on the free
