@@ -86,7 +86,20 @@ pub struct NodeFriction<const D: usize = 2> {
     /// Frictional work dissipated at this node over the increment,
     /// `-R_T ds = mu R_N |ds|` (>= 0 once the status loop has settled;
     /// axisymmetric: over 2*pi). This is the heat source of frictional
-    /// heating.
+    /// heating. `R_N` is the normal part of `NodeContact::force`, `(force -
+    /// traction) . normal`: against a deformable master the friction acts
+    /// along the segment, and where the node projects on a vertex (the
+    /// dead zone of a kink: `normal` points to the vertex) `force .
+    /// normal` also holds `R_T t . n` (examples/blade_loss.ctc: 1.2e-4 of
+    /// the friction work to 12 ms, one node on a casing vertex). The
+    /// force is the one at the end of the increment (backward Euler, like
+    /// plastic dissipation): when the normal force varies within the
+    /// increments of a dynamic step this is not the trapezoidal work of
+    /// the friction forces that the energy audit's `contact_work` holds
+    /// (a block sliding to rest under generalized-alpha: 0.96 of its
+    /// kinetic energy, 0.77 with the rocking unresolved, while the
+    /// contact work is 0.9996; `ctc verify
+    /// energy_audit_generalized_alpha`).
     pub dissipation: f64,
 }
 

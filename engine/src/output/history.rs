@@ -19,7 +19,7 @@ use std::io::Write;
 
 /// The energy-audit columns of models with a dynamic step
 /// (`crate::solve::dynamics::Energy`).
-pub const ENERGY_COLUMNS: [&str; 7] = [
+pub const ENERGY_COLUMNS: [&str; 9] = [
     "kinetic_energy",
     "internal_work",
     "external_work",
@@ -27,6 +27,8 @@ pub const ENERGY_COLUMNS: [&str; 7] = [
     "damping_work",
     "energy_balance",
     "energy_gain",
+    "numerical_dissipation",
+    "energy_error",
 ];
 
 /// The columns of a `roughness(set)` request, after its label

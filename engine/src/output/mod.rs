@@ -556,7 +556,15 @@ where
         );
         if let Some(e) = view.energy {
             row.extend([
-                e.kinetic, e.internal, e.external, e.contact, e.damping, e.balance, e.gain,
+                e.kinetic,
+                e.internal,
+                e.external,
+                e.contact,
+                e.damping,
+                e.balance,
+                e.gain,
+                e.numerical,
+                e.error,
             ]);
         }
         for c in view.controls {

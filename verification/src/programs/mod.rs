@@ -11,6 +11,7 @@ pub mod contact_ntf_3d;
 pub mod discrete;
 pub mod dynamic_buckling;
 pub mod dynamics;
+pub mod energy_audit;
 pub mod fenicsx;
 pub mod follower;
 pub mod free_bulge;
@@ -108,6 +109,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(follower::cases());
     v.extend(dynamics::cases());
     v.extend(impact::cases());
+    v.extend(energy_audit::cases());
     v.extend(taylor_bar::cases());
     v.extend(dynamic_buckling::cases());
     v.extend(thermal_3d::cases());
