@@ -243,6 +243,25 @@ const HERTZ_CHECKS: [(&str, &[f64]); 6] = [
 /// against the saddle point's 326 / 1,169 / 4,486 (6 / 11 / 22 active
 /// multipliers); p0 vs Hertz 3.1e-2 / 1.8e-2 / 9.9e-3 as the saddle
 /// point's.
+///
+/// Cost (`cargo test -p ctc-verification --test suite -- --ignored
+/// condensed_vs_saddle_point_cost --nocapture`, debug profile with the
+/// dependencies (faer) at opt-level 3, machine load ~10 on 2 cores; CPU
+/// seconds, factorization = assembly of the system + sparse LU):
+///
+/// | level | free dofs | order saddle / condensed | entries saddle / condensed | Newton | factorize CPU saddle / condensed | process CPU | asymmetry of A |
+/// | --- | --- | --- | --- | --- | --- | --- | --- |
+/// | 1 | 1,158 | 1,169 / 1,158 | 19,784 / 20,025 | 25 / 25 | 0.117 / 0.122 | 0.150 / 0.140 | 8.0e-2 |
+/// | 2 | 4,464 | 4,486 / 4,464 | 78,336 / 78,941 | 27 / 27 | 0.729 / 0.649 | 0.880 / 0.770 | 5.7e-2 |
+/// | 3 | 17,556 | 17,598 / 17,556 | 311,864 / 313,057 | 29 / 29 | 4.151 / 4.314 | 4.720 / 4.880 | 4.2e-2 |
+///
+/// In 2D the active multipliers are few against the dofs (11 / 22 / 42):
+/// the condensed system is smaller by them but carries the slave rows onto
+/// the master nodes (+0.4 to +1.2 % entries), and the factorizations cost
+/// the same within the machine's noise. The condensed matrix is
+/// unsymmetric (and the mortar tangent `K` already is, 1.3e-2 in
+/// `newton/condensed_tests.rs`): LU, not LDL^T / Cholesky. What it gives
+/// is a system in the displacements alone (no zero block).
 fn hertz_case() -> VerifyCase {
     VerifyCase {
         name: "hertz_two_cylinders_mortar_condensed",
