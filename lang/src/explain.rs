@@ -774,6 +774,10 @@ fn method_plan(c: &ctc_engine::model::ContactPair) -> String {
             LagrangeFormulation::Doubled => "Lagrange multipliers (exact, active set), \
                 doubled multipliers (lambda1, q, lambda2) by LDL^T without pivoting"
                 .to_string(),
+            LagrangeFormulation::Condensed => "Lagrange multipliers (exact, active set), \
+                condensed at the slave nodes: the displacements alone by sparse LU, the \
+                multipliers recovered after each solve"
+                .to_string(),
         },
         ContactMethod::AugmentedLagrange {
             kind,

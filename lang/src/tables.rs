@@ -677,8 +677,10 @@ pub static PENALTY: [Key; 2] = [
 /// `lagrange { .. }`.
 pub static LAGRANGE: [Key; 1] = [Key::new(
     "formulation",
-    KeyType::Choice(&["single", "doubled"]),
-    "saddle point [K G^T; G 0], or doubled multipliers (lambda1, q, lambda2)",
+    KeyType::Choice(&["single", "doubled", "condensed"]),
+    "saddle point [K G^T; G 0], doubled multipliers (lambda1, q, lambda2), or the \
+     multipliers condensed out at their slave nodes (dual mortar: D diagonal; the \
+     displacements alone by LU, the same solution)",
 )
 .default(Default::Choice("single"))];
 

@@ -135,6 +135,7 @@ pub fn push_coupling(
     rows.push_split(
         RowKind::Normal,
         owner,
+        c.slave,
         gap,
         terms(&c.gap_gradient),
         terms(&c.force_direction),

@@ -43,6 +43,11 @@ pub struct NodeRow<'a> {
     /// saddle point's column; mortar: `D`, `M` and the normal held fixed
     /// while `terms` is the full derivative of the gap); empty: `terms`.
     pub force: &'a [NodeTerm],
+    /// The node of the multiplier (the slave node), whose equilibrium
+    /// equations the condensed solver eliminates the multiplier from
+    /// (`crate::solve::linalg::condensed`); `usize::MAX` for a row
+    /// without terms.
+    pub node: usize,
 }
 
 /// Rows of every Lagrange pair at one evaluation (contiguous storage).
@@ -56,6 +61,8 @@ pub struct NodeRows {
     /// Start of each row's force terms in `force` (empty: the row's own).
     force_start: Vec<usize>,
     force: Vec<NodeTerm>,
+    /// The multiplier's node of each row.
+    node: Vec<usize>,
 }
 
 impl NodeRows {
@@ -68,6 +75,7 @@ impl NodeRows {
         self.kind.clear();
         self.force_start.clear();
         self.force.clear();
+        self.node.clear();
     }
 
     /// Number of rows.
@@ -80,7 +88,9 @@ impl NodeRows {
         self.gap.is_empty()
     }
 
-    /// Appends a row with `terms` (`(node, component, d g / d x)`).
+    /// Appends a row with `terms` (`(node, component, d g / d x)`); the
+    /// multiplier's node is the first term's (the slave node: rigid tools,
+    /// node-to-segment, stick rows list it first).
     pub fn push(
         &mut self,
         kind: RowKind,
@@ -88,26 +98,34 @@ impl NodeRows {
         gap: f64,
         terms: impl IntoIterator<Item = NodeTerm>,
     ) {
-        self.start.push(self.terms.len());
+        let begin = self.terms.len();
+        self.start.push(begin);
         self.terms.extend(terms);
         self.gap.push(gap);
         self.owner.push(owner);
         self.kind.push(kind);
         self.force_start.push(self.force.len());
+        self.node
+            .push(self.terms.get(begin).map_or(usize::MAX, |t| t.node));
     }
 
     /// Appends a row whose force per unit multiplier `force` (the saddle
-    /// point's column) differs from its terms `d g / d x` (the row).
+    /// point's column) differs from its terms `d g / d x` (the row); the
+    /// multiplier lives on `node` (mortar: the slave node).
     pub fn push_split(
         &mut self,
         kind: RowKind,
         owner: (usize, usize),
+        node: usize,
         gap: f64,
         terms: impl IntoIterator<Item = NodeTerm>,
         force: impl IntoIterator<Item = NodeTerm>,
     ) {
         self.push(kind, owner, gap, terms);
         self.force.extend(force);
+        if let Some(last) = self.node.last_mut() {
+            *last = node;
+        }
     }
 
     /// Every row, in the order pushed.
@@ -125,6 +143,7 @@ impl NodeRows {
                 gap: self.gap[k],
                 owner: self.owner[k],
                 kind: self.kind[k],
+                node: self.node[k],
             }
         })
     }
@@ -160,6 +179,7 @@ mod tests {
         r.push_split(
             RowKind::Normal,
             (0, 5),
+            2,
             0.0,
             [t(1, 0, 0.5)],
             [t(1, 0, 1.0), t(2, 1, -1.0)],
@@ -168,6 +188,8 @@ mod tests {
         let rows: Vec<_> = r.iter().collect();
         assert_eq!(rows[3].terms, &[t(1, 0, 0.5)]);
         assert_eq!(rows[3].force, &[t(1, 0, 1.0), t(2, 1, -1.0)]);
+        assert_eq!((rows[3].node, rows[4].node, rows[0].node), (2, 3, 7));
+        assert_eq!(rows[1].node, usize::MAX);
         assert!(rows[4].force.is_empty() && rows[2].force.is_empty());
         r.clear();
         assert!(r.is_empty());

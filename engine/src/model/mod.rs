@@ -805,6 +805,11 @@ pub enum LagrangeFormulation {
     /// Doubled multipliers `lambda1, q, lambda2` (seed, "Main difficulties
     /// (1)"), symmetric `L D L^T` without pivoting.
     Doubled,
+    /// The multipliers eliminated at their slave nodes (dual mortar: `D`
+    /// diagonal), the displacements alone by sparse LU
+    /// (`crate::solve::linalg::condensed`); the multipliers recovered
+    /// after each solve.
+    Condensed,
 }
 
 /// When the augmented-Lagrangian multipliers are updated.

@@ -86,6 +86,11 @@ pub struct Constraints {
     pub columns: ConstraintRows,
     /// Whether every column equals its row (a symmetric saddle point).
     pub symmetric: bool,
+    /// Per constraint: its column restricted to the free dofs of the
+    /// multiplier's node ([`crate::contact::rows::NodeRow::node`]), the
+    /// equations the condensed solver eliminates the multiplier from
+    /// ([`super::linalg::condensed`]).
+    pub pivots: ConstraintRows,
     /// Gap of each constraint (normal gap, or tangential gap of a stick row).
     pub gap: Vec<f64>,
     /// `(pair, slave index)` of each constraint.
@@ -113,6 +118,7 @@ impl Constraints {
     pub fn build<const D: usize>(&mut self, rows: &NodeRows, dofs: &DofMap<D>) {
         self.rows.clear();
         self.columns.clear();
+        self.pivots.clear();
         self.symmetric = true;
         self.prescribed.clear();
         self.gap.clear();
@@ -121,12 +127,19 @@ impl Constraints {
         let mut free = Vec::new();
         let mut presc = Vec::new();
         let mut column = Vec::new();
+        let mut pivot = Vec::new();
         for row in rows.iter() {
             free.clear();
             presc.clear();
+            pivot.clear();
             for t in row.terms {
                 match dofs.dofs[dofs.dof(t.node, t.component)] {
-                    Dof::Free(f) => free.push((f, -t.coefficient)),
+                    Dof::Free(f) => {
+                        free.push((f, -t.coefficient));
+                        if row.force.is_empty() && t.node == row.node {
+                            pivot.push((f, -t.coefficient));
+                        }
+                    }
                     Dof::Prescribed(p) => presc.push((p, t.coefficient)),
                     Dof::Inactive => {}
                 }
@@ -140,10 +153,14 @@ impl Constraints {
                 for t in row.force {
                     if let Dof::Free(f) = dofs.dofs[dofs.dof(t.node, t.component)] {
                         column.push((f, -t.coefficient));
+                        if t.node == row.node {
+                            pivot.push((f, -t.coefficient));
+                        }
                     }
                 }
                 self.columns.push(column.iter().copied());
             }
+            self.pivots.push(pivot.iter().copied());
             // prescribed terms keep their order: they only enter sums, in
             // this order
             self.prescribed.push_unsorted(presc.iter().copied());

@@ -359,6 +359,15 @@ pub struct RunSummary {
     /// Numeric factorizations of the saddle-point system (sparse LU, or
     /// `L D L^T` for the doubled-multiplier formulation).
     pub saddle_factorizations: usize,
+    /// Order and stored entries of the largest Lagrange-multiplier matrix
+    /// factorized (the saddle point's `n + m`, or `n` with the multipliers
+    /// condensed); not written to `summary.json`.
+    #[serde(skip)]
+    pub saddle_system: (usize, usize),
+    /// `|A - A^T|_F / |A|_F` of the last condensed matrix (`None`: not
+    /// condensed); not written to `summary.json`.
+    #[serde(skip)]
+    pub saddle_asymmetry: Option<f64>,
     /// Wall time per phase.
     pub timings: Timings,
     /// Temperature unknowns (0: the scene has no thermal part).
@@ -644,6 +653,8 @@ where
         summary.saddle_symbolic_factorizations,
         summary.saddle_factorizations,
     ) = newton.saddle_factorizations();
+    summary.saddle_system = newton.saddle_largest_system();
+    summary.saddle_asymmetry = newton.saddle_asymmetry();
     match result {
         Ok(()) => {
             summary.completed = true;

@@ -565,6 +565,9 @@ pub enum LagrangeFormulation {
     Single,
     /// `doubled`: multipliers `lambda1, q, lambda2`.
     Doubled,
+    /// `condensed`: the multipliers eliminated at their slave nodes, the
+    /// displacements alone.
+    Condensed,
 }
 
 /// `augmented_lagrange { update = .. }` values.

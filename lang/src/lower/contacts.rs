@@ -228,6 +228,9 @@ impl Lowerer<'_> {
                 Some(Method::Lagrange { formulation }) => ContactMethod::Lagrange {
                     formulation: match formulation.as_ref().map(|f| f.value) {
                         Some(ast::LagrangeFormulation::Doubled) => m::LagrangeFormulation::Doubled,
+                        Some(ast::LagrangeFormulation::Condensed) => {
+                            m::LagrangeFormulation::Condensed
+                        }
                         _ => m::LagrangeFormulation::Single,
                     },
                 },

@@ -18,9 +18,10 @@ pub const METHODS: [&str; 3] = ["penalty", "lagrange", "augmented_lagrange"];
 const KINDS: [(&str, PenaltyKind); 2] =
     [("nodal", PenaltyKind::Nodal), ("area", PenaltyKind::Area)];
 
-const FORMULATIONS: [(&str, LagrangeFormulation); 2] = [
+const FORMULATIONS: [(&str, LagrangeFormulation); 3] = [
     ("single", LagrangeFormulation::Single),
     ("doubled", LagrangeFormulation::Doubled),
+    ("condensed", LagrangeFormulation::Condensed),
 ];
 
 const STRATEGIES: [(&str, Strategy); 3] = [
@@ -350,6 +351,7 @@ mod tests {
         let deck = parse_ok(
             "contact a.b -> t { method = lagrange { formulation = doubled } }\n\
              contact a.c -> t { method = lagrange { } }\n\
+             contact a.e -> t { method = lagrange { formulation = condensed } }\n\
              contact a.d -> t { method = augmented_lagrange { penalty = 1e3  tolerance = 1e-6  \
              update = newton  kind = nodal } }",
         );
@@ -361,7 +363,11 @@ mod tests {
             &deck.contacts[1].method.as_ref().unwrap().value,
             Method::Lagrange { formulation: None }
         ));
-        match &deck.contacts[2].method.as_ref().unwrap().value {
+        assert!(matches!(
+            &deck.contacts[2].method.as_ref().unwrap().value,
+            Method::Lagrange { formulation: Some(f) } if f.value == LagrangeFormulation::Condensed
+        ));
+        match &deck.contacts[3].method.as_ref().unwrap().value {
             Method::AugmentedLagrange {
                 kind,
                 penalty,

@@ -658,6 +658,15 @@ pub fn run_patch_deck(text: String, method: &str) -> Result<(Outcome, ProgramLev
 
 /// Runs a patch deck; `method` decides the exact pressure.
 fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), String> {
+    run_patch_deck_with_contact(text, method).map(|(o, level, _)| (o, level))
+}
+
+/// A patch run: its outcome, its level figures and the contact of the last
+/// converged increment.
+pub type PatchRun = (Outcome, ProgramLevel, Vec<NodeContact<3>>);
+
+/// [`run_patch_deck`], with the contact of the last converged increment.
+pub fn run_patch_deck_with_contact(text: String, method: &str) -> Result<PatchRun, String> {
     let path = std::path::Path::new("contact_patch_ntf_3d.ctc");
     let src = ctc_lang::Source::new(path, &text);
     let AnyModel::D3(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
@@ -713,6 +722,7 @@ fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), Strin
             iterations: s.newton_iterations,
         },
         level,
+        last.contact,
     ))
 }
 

@@ -26,6 +26,7 @@ pub mod impact;
 pub mod johnson_cook;
 pub mod lame_sphere_quadratic;
 pub mod mortar;
+pub mod mortar_condensed;
 pub mod mortar_friction;
 pub mod mortar_friction_3d;
 pub mod mortar_lagrange_3d;
@@ -98,6 +99,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(mortar_friction_3d::cases());
     v.extend(mortar_quadratic_friction::cases());
     v.extend(mortar_lagrange_3d::cases());
+    v.extend(mortar_condensed::cases());
     v.extend(hertz_3d_axi::cases());
     v.extend(hertz_two_spheres_3d::cases());
     v.extend(friction_3d::cases());

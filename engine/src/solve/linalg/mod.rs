@@ -11,7 +11,9 @@
 //! - [`SaddlePointSystem`]: the Lagrange-multiplier system
 //!   `[K G^T; G 0]` built from the tangent and variable-length constraint
 //!   rows ([`crate::solve::constraints::ConstraintRows`]). Today:
-//!   [`saddle::SaddleSolver`] (faer LU, or `L D L^T` of the doubled form).
+//!   [`saddle::SaddleSolver`] (faer LU, or `L D L^T` of the doubled form),
+//!   or the multipliers condensed out locally ([`condensed::CondensedSolver`]:
+//!   the displacements alone, by LU).
 //!
 //! Contract shared by both: `solve` uses the last successful `factorize`;
 //! without one (never factorized, the last factorization failed, or the
@@ -22,6 +24,7 @@
 //! [`pattern`] holds the CSC pattern and the scatter map (dof-numbering
 //! aware: element and contact blocks -> value slots).
 
+pub mod condensed;
 pub mod direct;
 pub mod export;
 pub mod low_rank;
@@ -32,7 +35,7 @@ pub mod schur;
 
 pub use pattern::{Scatter, SparsePattern, NO_SLOT};
 
-use super::constraints::ConstraintRows;
+use super::constraints::Constraints;
 
 /// Why a factorization or a solve failed.
 #[derive(Debug, Clone, PartialEq)]
@@ -286,14 +289,14 @@ pub struct RankStats {
 /// the constraint rows.
 pub trait SaddlePointSystem {
     /// Assembles and factorizes `[K C^T; G 0]` from the free-free block
-    /// (`k`, `k_values`), the rows `G` and the columns `C` (the force per
-    /// unit multiplier; `C = G` for a symmetric saddle point).
+    /// (`k`, `k_values`), the rows `G` and the columns `C` of
+    /// `constraints` (the force per unit multiplier; `C = G` for a
+    /// symmetric saddle point), or its condensed form.
     fn factorize(
         &mut self,
         k: &SparsePattern,
         k_values: &[f64],
-        rows: &ConstraintRows,
-        columns: &ConstraintRows,
+        constraints: &Constraints,
     ) -> Result<(), LinearError>;
     /// On entry `du = -r_u` and `dl = g`; on exit the corrections.
     fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError>;
@@ -302,4 +305,11 @@ pub trait SaddlePointSystem {
     fn factorized_rows(&self) -> Option<usize>;
     /// Symbolic and numeric factorizations computed.
     fn counts(&self) -> (usize, usize);
+    /// Order and stored entries of the last factorized matrix.
+    fn system(&self) -> (usize, usize);
+    /// `|A - A^T|_F / |A|_F` of the last factorized matrix, where the
+    /// solver measures it (the condensed one).
+    fn asymmetry(&self) -> Option<f64> {
+        None
+    }
 }

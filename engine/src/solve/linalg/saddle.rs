@@ -85,7 +85,8 @@ impl std::fmt::Debug for SaddleSolver {
 }
 
 impl SaddleSolver {
-    /// A solver for `formulation`.
+    /// A solver for `formulation` (`Condensed` factorizes the saddle point
+    /// as `Single`: it is [`super::condensed::CondensedSolver`]'s fallback).
     pub fn new(formulation: LagrangeFormulation) -> Self {
         SaddleSolver {
             formulation,
@@ -137,7 +138,7 @@ impl SaddleSolver {
         };
         let k_col = |j: usize| k.col_ptr[j]..k.col_ptr[j + 1];
         match self.formulation {
-            LagrangeFormulation::Single => {
+            LagrangeFormulation::Single | LagrangeFormulation::Condensed => {
                 // order: q (0..n), lambda (n..n+m)
                 for (j, touch) in touching.iter().enumerate() {
                     for s in k_col(j) {
@@ -201,7 +202,7 @@ impl SaddleSolver {
             }
         }
         let total = match self.formulation {
-            LagrangeFormulation::Single => n + m,
+            LagrangeFormulation::Single | LagrangeFormulation::Condensed => n + m,
             LagrangeFormulation::Doubled => n + 2 * m,
         };
         let pattern = SparsePattern {
@@ -246,7 +247,7 @@ impl SaddleSolver {
         let symbolic = SymbolicSparseColMatRef::new_checked(p.n, p.n, &p.col_ptr, None, &p.row_idx);
         let mat = SparseColMatRef::new(symbolic, &self.values);
         match self.formulation {
-            LagrangeFormulation::Single => {
+            LagrangeFormulation::Single | LagrangeFormulation::Condensed => {
                 if self.symbolic_lu.is_none() {
                     self.symbolic_lu = Some(SymbolicLu::try_new(symbolic).map_err(|e| {
                         LinearError::Symbolic(format!(
@@ -321,7 +322,9 @@ impl SaddleSolver {
             return Err(LinearError::NotFactorized);
         }
         let mut x = match self.formulation {
-            LagrangeFormulation::Single => [&du[..], &dl[..]].concat(),
+            LagrangeFormulation::Single | LagrangeFormulation::Condensed => {
+                [&du[..], &dl[..]].concat()
+            }
             LagrangeFormulation::Doubled => [&dl[..], &du[..], &dl[..]].concat(),
         };
         if x.is_empty() {
@@ -342,7 +345,7 @@ impl SaddleSolver {
             Factor::None => return Err(LinearError::NotFactorized),
         }
         match self.formulation {
-            LagrangeFormulation::Single => {
+            LagrangeFormulation::Single | LagrangeFormulation::Condensed => {
                 du.copy_from_slice(&x[..n]);
                 dl.copy_from_slice(&x[n..]);
             }
@@ -362,10 +365,9 @@ impl SaddlePointSystem for SaddleSolver {
         &mut self,
         k: &SparsePattern,
         k_values: &[f64],
-        rows: &ConstraintRows,
-        columns: &ConstraintRows,
+        constraints: &crate::solve::constraints::Constraints,
     ) -> Result<(), LinearError> {
-        SaddleSolver::factorize(self, k, k_values, rows, columns)
+        SaddleSolver::factorize(self, k, k_values, &constraints.rows, &constraints.columns)
     }
 
     fn solve(&self, du: &mut [f64], dl: &mut [f64]) -> Result<(), LinearError> {
@@ -378,6 +380,10 @@ impl SaddlePointSystem for SaddleSolver {
 
     fn counts(&self) -> (usize, usize) {
         (self.symbolic_count, self.numeric_count)
+    }
+
+    fn system(&self) -> (usize, usize) {
+        (self.pattern.n, self.pattern.nnz())
     }
 }
 

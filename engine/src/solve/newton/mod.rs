@@ -32,6 +32,8 @@ pub mod state;
 
 #[cfg(test)]
 mod bulk_tests;
+#[cfg(test)]
+mod condensed_tests;
 
 pub use convergence::Converged;
 pub use failure::{Failure, FailureKind};
@@ -39,6 +41,7 @@ pub use failure::{Failure, FailureKind};
 use super::assembly::Assembler;
 use super::contact_loop::NewtonLoop;
 use super::dofs::{Dof, DofMap};
+use super::linalg::condensed::CondensedSolver;
 use super::linalg::direct::LinearSolver;
 use super::linalg::saddle::SaddleSolver;
 use super::linalg::{FactorStats, LinearError, LinearSystem, SaddlePointSystem, Scatter, ZeroMode};
@@ -48,7 +51,7 @@ use super::scene::ContactScene;
 use super::{IterationInfo, Observer, Timings};
 use crate::contact::{NodeContact, PairState};
 use crate::geom::Dimension;
-use crate::model::{ContactMethod, Model, MultiplierUpdate, NewtonSettings};
+use crate::model::{ContactMethod, LagrangeFormulation, Model, MultiplierUpdate, NewtonSettings};
 use convergence::{norm, Criteria, DivergenceMonitor, Eval, TINY};
 use nalgebra::Const;
 use std::time::Instant;
@@ -83,6 +86,9 @@ where
     saddle: Option<Box<dyn SaddlePointSystem>>,
     /// Multiplier corrections of the last saddle-point solve.
     dlambda: Vec<f64>,
+    /// Order and stored entries of the largest saddle-point (or condensed)
+    /// matrix factorized.
+    saddle_largest: (usize, usize),
     /// Augmented-Lagrangian updates made inside the current Newton loop.
     inner_updates: usize,
     values: Vec<f64>,
@@ -213,12 +219,16 @@ where
             committed: vec![[0.0; D]; nn],
             contacts: ContactOf::<D>::new(model),
             saddle: model.contacts.iter().find_map(|c| match c.method {
+                ContactMethod::Lagrange {
+                    formulation: LagrangeFormulation::Condensed,
+                } => Some(Box::new(CondensedSolver::new()) as Box<dyn SaddlePointSystem>),
                 ContactMethod::Lagrange { formulation } => {
                     Some(Box::new(SaddleSolver::new(formulation)) as Box<dyn SaddlePointSystem>)
                 }
                 _ => None,
             }),
             dlambda: Vec::new(),
+            saddle_largest: (0, 0),
             inner_updates: 0,
             f_int: vec![0.0; n_dofs],
             f_ext: vec![0.0; n_dofs],
@@ -418,6 +428,18 @@ where
     /// active set changes.
     pub fn saddle_factorizations(&self) -> (usize, usize) {
         self.saddle.as_ref().map_or((0, 0), |s| s.counts())
+    }
+
+    /// The largest Lagrange-multiplier system factorized: its order (the
+    /// saddle point's `n + m`, or `n` condensed) and stored entries.
+    pub fn saddle_largest_system(&self) -> (usize, usize) {
+        self.saddle_largest
+    }
+
+    /// `|A - A^T|_F / |A|_F` of the last condensed matrix (`None`: the
+    /// saddle point, or nothing factorized).
+    pub fn saddle_asymmetry(&self) -> Option<f64> {
+        self.saddle.as_ref().and_then(|s| s.asymmetry())
     }
 
     /// Number of nonzeros of the free-free matrix (both triangles).
@@ -868,15 +890,14 @@ where
         };
         self.zero_mode.1 = false;
         let start = Instant::now();
-        let r = saddle.factorize(
-            &self.scatter.pattern,
-            &self.values,
-            &constraints.rows,
-            &constraints.columns,
-        );
+        let cpu0 = thread_cpu_seconds();
+        let r = saddle.factorize(&self.scatter.pattern, &self.values, constraints);
         let mid = Instant::now();
+        let cpu1 = thread_cpu_seconds();
         self.timings.factorization += (mid - start).as_secs_f64();
+        self.timings.cpu[2] += cpu1 - cpu0;
         r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
+        self.saddle_largest = self.saddle_largest.max(saddle.system());
         // G du = g + (d g / d u_p) dp
         for (k, g) in constraints.gap.iter().enumerate() {
             let mut v = *g;
@@ -892,6 +913,7 @@ where
             .map_err(|e| Failure::new(FailureKind::Singular, e.to_string()))?;
         self.contacts.apply_multiplier_corrections(&self.dlambda);
         self.timings.solve += mid.elapsed().as_secs_f64();
+        self.timings.cpu[3] += thread_cpu_seconds() - cpu1;
         Ok(())
     }
 
