@@ -9,7 +9,9 @@
 //! node-to-segment contact (examples/two_cylinders_hertz.ctc) and two
 //! deformable 3D blocks in mortar contact
 //! (examples/contact_blocks_mortar_3d.ctc), and the Hertz cylinder on
-//! quadratic cells (examples/hertz_cylinder_quadratic.ctc), all
+//! quadratic cells (examples/hertz_cylinder_quadratic.ctc) and a tube
+//! expanded by a follower pressure into a die
+//! (examples/tube_hydroforming.ctc without its thermal coupling), all
 //! assembled distributed; the pieces of each increment's parallel VTU
 //! (`.pvtu`) join into the serial VTU; CG + GAMG chosen by PETSc options
 //! converges to the same answer; a failing run stops every rank with one
@@ -323,6 +325,62 @@ fn mortar_blocks_3d_on_one_and_two_ranks_are_the_serial_run() {
     let deck = tmp.path().join("mortar3d.ctc");
     std::fs::write(&deck, text).unwrap();
     same_as_serial(deck.to_str().unwrap(), "mortar3d", 1e-9);
+}
+
+/// `examples/tube_hydroforming.ctc` without its thermal coupling (the
+/// material's, the body's and the contact's `thermal` blocks left out),
+/// coarser (2 x 2 x 6 cells, 10 increments: the tube still reaches the
+/// die) and without the thickness history (the place of the thinnest
+/// point jumps between nodes whose thickness ties to round-off).
+fn tube_hydroforming_isothermal() -> String {
+    let text = std::fs::read_to_string(root().join("examples/tube_hydroforming.ctc")).unwrap();
+    let mut out = String::new();
+    let mut in_block = false;
+    for line in text.lines() {
+        let t = line.trim();
+        if in_block {
+            in_block = t != "}";
+            continue;
+        }
+        if t.starts_with("thermal {") {
+            in_block = !t.ends_with('}');
+            continue;
+        }
+        if t.starts_with("thickness =") {
+            continue;
+        }
+        let line = match t {
+            "let nc = 4" => "let nc = 2",
+            "let nz = 12" => "let nz = 6",
+            "let steps = 20" => "let steps = 10",
+            _ => line,
+        };
+        out.push_str(line);
+        out.push('\n');
+    }
+    let code: Vec<&str> = out.lines().filter(|l| !l.starts_with('#')).collect();
+    assert!(!code.iter().any(|l| l.contains("thermal")), "{out}");
+    assert!(out.contains("follower = true") && out.contains("let nz = 6"));
+    out
+}
+
+#[test]
+fn follower_pressure_tube_on_one_and_two_ranks_is_the_serial_run() {
+    // examples/tube_hydroforming.ctc (3D J2 tube at finite strain, F-bar,
+    // expanded by an internal follower pressure into a rigid IGES die)
+    // without its thermal coupling: each follower facet evaluated by the
+    // rank of its cell, the forces summed over the ranks
+    // (`follower::FollowerShare`)
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = tmp.path().join("tube.ctc");
+    std::fs::write(&deck, tube_hydroforming_isothermal()).unwrap();
+    // the die's IGES file is found next to the deck
+    std::fs::copy(
+        root().join("examples/tube_hydroforming_die.igs"),
+        tmp.path().join("tube_hydroforming_die.igs"),
+    )
+    .unwrap();
+    same_as_serial(deck.to_str().unwrap(), "tube_follower", 1e-9);
 }
 
 #[test]

@@ -28,6 +28,10 @@
 //! grows its pattern at the same evaluation with the same couplings
 //! (`Scatter::contact_coupled`).
 //!
+//! A follower pressure's facet is evaluated by the rank of its cell, like
+//! an element; its forces are summed over the ranks
+//! ([`super::follower::FollowerShare`]).
+//!
 //! Only models whose every contribution is split this way are assembled
 //! distributed ([`replicated_reason`] says why another one is not): the
 //! others are assembled whole by every rank, as before.
@@ -76,7 +80,9 @@ impl AssemblyShare {
 /// commit, `crate::solve::assembly::Assembler::exchange_points`), every
 /// contact by penalty or augmented Lagrangian, against a rigid tool or a
 /// deformable surface (the contact elements are evaluated by every rank,
-/// the rows of a node added by its owner, `Scatter::adds_rows_of`), no follower pressure, no
+/// the rows of a node added by its owner, `Scatter::adds_rows_of`), a
+/// follower pressure (each facet evaluated by the rank of its cell, its
+/// forces summed over the ranks, [`super::follower::FollowerShare`]); no
 /// spring, mass or dashpot, no dynamic step, no stabilization, no thermal
 /// coupling, no free tool.
 pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
@@ -87,9 +93,6 @@ pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static st
     }
     if model.tools.iter().any(|t| t.free_rotation.is_some()) {
         return Some("a free tool");
-    }
-    if super::follower::has_follower(model) {
-        return Some("a follower pressure");
     }
     if !model.discrete.is_empty() {
         return Some("springs, masses or dashpots");
@@ -162,6 +165,47 @@ mod tests {
             }],
         );
         assert_eq!(replicated_reason(&quadratic), None);
+    }
+
+    #[test]
+    fn a_follower_pressure_is_distributed_springs_and_dynamics_are_not() {
+        let elastic = square(MaterialLaw::LinearElastic {
+            young: 1.0,
+            poisson: 0.3,
+        });
+        let mut follower = elastic.clone();
+        follower.loads.push(crate::model::Load::FollowerPressure {
+            label: "p".into(),
+            facets: vec![crate::mesh::Facet::new(&[1, 0])],
+            value: crate::model::TimeFunction::Constant(1.0),
+            control: None,
+        });
+        assert!(super::super::follower::has_follower(&follower));
+        // each facet evaluated by the rank of its cell
+        // (`follower::FollowerShare`)
+        assert_eq!(replicated_reason(&follower), None);
+        let spring = crate::testkit::ModelBuilder::plane_strain()
+            .material(
+                "m",
+                MaterialLaw::LinearElastic {
+                    young: 1.0,
+                    poisson: 0.3,
+                },
+            )
+            .body(
+                "sq",
+                Mesh::new(
+                    vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                    vec![Cell::quad(0, 1, 2, 3)],
+                ),
+                "m",
+            )
+            .ground_spring([2], 1.0, 0.0)
+            .build();
+        assert_eq!(
+            replicated_reason(&spring),
+            Some("springs, masses or dashpots")
+        );
     }
 
     #[test]
