@@ -30,7 +30,10 @@
 //!
 //! A follower pressure's facet is evaluated by the rank of its cell, like
 //! an element; its forces are summed over the ranks
-//! ([`super::follower::FollowerShare`]).
+//! ([`super::follower::FollowerShare`]). Springs, dashpots and the
+//! inertia of a dynamic step are computed whole by every rank from the
+//! replicated model (the serial bits); their tangent rows are added by
+//! the node's owner, a cell's mass by the cell's rank.
 //!
 //! Only models whose every contribution is split this way are assembled
 //! distributed ([`replicated_reason`] says why another one is not): the
@@ -82,9 +85,14 @@ impl AssemblyShare {
 /// deformable surface (the contact elements are evaluated by every rank,
 /// the rows of a node added by its owner, `Scatter::adds_rows_of`), a
 /// follower pressure (each facet evaluated by the rank of its cell, its
-/// forces summed over the ranks, [`super::follower::FollowerShare`]); no
-/// spring, mass or dashpot, no dynamic step, no stabilization, no thermal
-/// coupling, no free tool.
+/// forces summed over the ranks, [`super::follower::FollowerShare`]),
+/// springs, point masses and dashpots and dynamic steps (their forces and
+/// the inertia forces computed whole by every rank from the replicated
+/// masses, their tangent rows added by the node's owner, the cell masses
+/// by the cell's rank: `discrete::add_tangent`, `Dynamics::add_tangent`);
+/// no rigid body, no stiffness-proportional Rayleigh damping (it needs
+/// the reference stiffness of every cell, which a rank has of its own
+/// cells only), no stabilization, no thermal coupling, no free tool.
 pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
     for c in &model.contacts {
         if matches!(c.method, ContactMethod::Lagrange { .. }) {
@@ -94,11 +102,20 @@ pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static st
     if model.tools.iter().any(|t| t.free_rotation.is_some()) {
         return Some("a free tool");
     }
-    if !model.discrete.is_empty() {
-        return Some("springs, masses or dashpots");
+    if model
+        .discrete
+        .iter()
+        .any(|d| matches!(d, crate::model::Discrete::Rigid { .. }))
+    {
+        return Some("a rigid body");
     }
-    if model.steps.iter().any(|s| s.dynamic.is_some()) {
-        return Some("a dynamic step");
+    if model
+        .steps
+        .iter()
+        .filter_map(|s| s.dynamic.as_ref())
+        .any(|d| d.rayleigh.beta != 0.0)
+    {
+        return Some("stiffness-proportional Rayleigh damping");
     }
     if model.steps.iter().any(|s| s.newton.stabilize.is_some()) {
         return Some("stabilization");
@@ -168,7 +185,7 @@ mod tests {
     }
 
     #[test]
-    fn a_follower_pressure_is_distributed_springs_and_dynamics_are_not() {
+    fn follower_pressures_springs_and_dynamics_are_distributed() {
         let elastic = square(MaterialLaw::LinearElastic {
             young: 1.0,
             poisson: 0.3,
@@ -200,11 +217,33 @@ mod tests {
                 ),
                 "m",
             )
-            .ground_spring([2], 1.0, 0.0)
+            .ground_spring([2], 1.0, 0.5)
+            .point_mass([3], 2.0)
+            .step("s", 1.0, 1)
             .build();
+        // their rows added by the node's owner (`discrete::add_tangent`)
+        assert_eq!(replicated_reason(&spring), None);
+        let mut dynamic = spring.clone();
+        let mut d = crate::model::Dynamic {
+            scheme: crate::model::Scheme::Newmark {
+                beta: 0.25,
+                gamma: 0.5,
+            },
+            mass: crate::model::MassMatrix::Consistent,
+            contact_mass: crate::model::ContactMass::Full,
+            rayleigh: crate::model::Rayleigh {
+                alpha: 0.1,
+                beta: 0.0,
+            },
+            adaptive: None,
+        };
+        dynamic.steps[0].dynamic = Some(d);
+        assert_eq!(replicated_reason(&dynamic), None);
+        d.rayleigh.beta = 0.01;
+        dynamic.steps[0].dynamic = Some(d);
         assert_eq!(
-            replicated_reason(&spring),
-            Some("springs, masses or dashpots")
+            replicated_reason(&dynamic),
+            Some("stiffness-proportional Rayleigh damping")
         );
     }
 
