@@ -334,6 +334,12 @@ fn mortar_blocks_3d_on_one_and_two_ranks_are_the_serial_run() {
 /// die) and without the thickness history (the place of the thinnest
 /// point jumps between nodes whose thickness ties to round-off).
 fn tube_hydroforming_isothermal() -> String {
+    tube_hydroforming_small(false)
+}
+
+/// `examples/tube_hydroforming.ctc` as [`tube_hydroforming_isothermal`],
+/// with its thermal coupling when `thermal`.
+fn tube_hydroforming_small(thermal: bool) -> String {
     let text = std::fs::read_to_string(root().join("examples/tube_hydroforming.ctc")).unwrap();
     let mut out = String::new();
     let mut in_block = false;
@@ -343,7 +349,7 @@ fn tube_hydroforming_isothermal() -> String {
             in_block = t != "}";
             continue;
         }
-        if t.starts_with("thermal {") {
+        if !thermal && t.starts_with("thermal {") {
             in_block = !t.ends_with('}');
             continue;
         }
@@ -360,7 +366,7 @@ fn tube_hydroforming_isothermal() -> String {
         out.push('\n');
     }
     let code: Vec<&str> = out.lines().filter(|l| !l.starts_with('#')).collect();
-    assert!(!code.iter().any(|l| l.contains("thermal")), "{out}");
+    assert_eq!(code.iter().any(|l| l.contains("thermal")), thermal, "{out}");
     assert!(out.contains("follower = true") && out.contains("let nz = 6"));
     out
 }
@@ -382,6 +388,23 @@ fn follower_pressure_tube_on_one_and_two_ranks_is_the_serial_run() {
     )
     .unwrap();
     same_as_serial(deck.to_str().unwrap(), "tube_follower", 1e-9);
+}
+
+#[test]
+fn thermal_tube_on_one_and_two_ranks_is_the_serial_run() {
+    // the coarse tube of `follower_pressure_tube_..` with its thermal
+    // coupling (conductance to the cold die, plastic heating, flow stress
+    // falling with temperature): the mechanical part assembled
+    // distributed, the staggered heat step computed whole by every rank
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = tmp.path().join("tube.ctc");
+    std::fs::write(&deck, tube_hydroforming_small(true)).unwrap();
+    std::fs::copy(
+        root().join("examples/tube_hydroforming_die.igs"),
+        tmp.path().join("tube_hydroforming_die.igs"),
+    )
+    .unwrap();
+    same_as_serial(deck.to_str().unwrap(), "tube_thermal", 1e-9);
 }
 
 #[test]

@@ -90,9 +90,13 @@ impl AssemblyShare {
 /// the inertia forces computed whole by every rank from the replicated
 /// masses, their tangent rows added by the node's owner, the cell masses
 /// by the cell's rank: `discrete::add_tangent`, `Dynamics::add_tangent`);
+/// thermal coupling (the mechanical part: the element thermal forces of
+/// a rank's cells; the staggered heat step, its assembly, contact
+/// conductance and faer solve, is computed whole by every rank on the
+/// replicated contact and exchanged integration points: not distributed);
 /// no rigid body, no stiffness-proportional Rayleigh damping (it needs
 /// the reference stiffness of every cell, which a rank has of its own
-/// cells only), no stabilization, no thermal coupling, no free tool.
+/// cells only), no stabilization, no free tool.
 pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
     for c in &model.contacts {
         if matches!(c.method, ContactMethod::Lagrange { .. }) {
@@ -119,9 +123,6 @@ pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static st
     }
     if model.steps.iter().any(|s| s.newton.stabilize.is_some()) {
         return Some("stabilization");
-    }
-    if model.thermal.is_some() {
-        return Some("thermal coupling");
     }
     None
 }
@@ -185,7 +186,7 @@ mod tests {
     }
 
     #[test]
-    fn follower_pressures_springs_and_dynamics_are_distributed() {
+    fn follower_pressures_springs_dynamics_and_thermal_are_distributed() {
         let elastic = square(MaterialLaw::LinearElastic {
             young: 1.0,
             poisson: 0.3,
@@ -245,6 +246,19 @@ mod tests {
             replicated_reason(&dynamic),
             Some("stiffness-proportional Rayleigh damping")
         );
+        // thermal coupling: the mechanical part distributed, the
+        // staggered heat step computed whole by every rank
+        let mut thermal = spring.clone();
+        thermal.thermal = Some(crate::model::thermal::ThermalScene {
+            materials: vec![None],
+            initial: vec![20.0],
+            temperatures: Vec::new(),
+            fluxes: Vec::new(),
+            convection: Vec::new(),
+            contacts: Vec::new(),
+            scheme: crate::model::thermal::CouplingScheme::Staggered,
+        });
+        assert_eq!(replicated_reason(&thermal), None);
     }
 
     #[test]
