@@ -9,8 +9,11 @@
 //! node-to-segment contact (examples/two_cylinders_hertz.ctc) and two
 //! deformable 3D blocks in mortar contact
 //! (examples/contact_blocks_mortar_3d.ctc), and the Hertz cylinder on
-//! quadratic cells (examples/hertz_cylinder_quadratic.ctc), all
-//! assembled distributed; the pieces of each increment's parallel VTU
+//! quadratic cells (examples/hertz_cylinder_quadratic.ctc) and a tube
+//! expanded by a follower pressure into a die
+//! (examples/tube_hydroforming.ctc without its thermal coupling), and a
+//! bar impact in implicit dynamics with springs, dashpots and point
+//! masses (examples/bar_impact.ctc), all assembled distributed; the pieces of each increment's parallel VTU
 //! (`.pvtu`) join into the serial VTU; CG + GAMG chosen by PETSc options
 //! converges to the same answer; a failing run stops every rank with one
 //! diagnosis and a non-zero exit.
@@ -323,6 +326,121 @@ fn mortar_blocks_3d_on_one_and_two_ranks_are_the_serial_run() {
     let deck = tmp.path().join("mortar3d.ctc");
     std::fs::write(&deck, text).unwrap();
     same_as_serial(deck.to_str().unwrap(), "mortar3d", 1e-9);
+}
+
+/// `examples/tube_hydroforming.ctc` without its thermal coupling (the
+/// material's, the body's and the contact's `thermal` blocks left out),
+/// coarser (2 x 2 x 6 cells, 10 increments: the tube still reaches the
+/// die) and without the thickness history (the place of the thinnest
+/// point jumps between nodes whose thickness ties to round-off).
+fn tube_hydroforming_isothermal() -> String {
+    tube_hydroforming_small(false)
+}
+
+/// `examples/tube_hydroforming.ctc` as [`tube_hydroforming_isothermal`],
+/// with its thermal coupling when `thermal`.
+fn tube_hydroforming_small(thermal: bool) -> String {
+    let text = std::fs::read_to_string(root().join("examples/tube_hydroforming.ctc")).unwrap();
+    let mut out = String::new();
+    let mut in_block = false;
+    for line in text.lines() {
+        let t = line.trim();
+        if in_block {
+            in_block = t != "}";
+            continue;
+        }
+        if !thermal && t.starts_with("thermal {") {
+            in_block = !t.ends_with('}');
+            continue;
+        }
+        if t.starts_with("thickness =") {
+            continue;
+        }
+        let line = match t {
+            "let nc = 4" => "let nc = 2",
+            "let nz = 12" => "let nz = 6",
+            "let steps = 20" => "let steps = 10",
+            _ => line,
+        };
+        out.push_str(line);
+        out.push('\n');
+    }
+    let code: Vec<&str> = out.lines().filter(|l| !l.starts_with('#')).collect();
+    assert_eq!(code.iter().any(|l| l.contains("thermal")), thermal, "{out}");
+    assert!(out.contains("follower = true") && out.contains("let nz = 6"));
+    out
+}
+
+#[test]
+fn follower_pressure_tube_on_one_and_two_ranks_is_the_serial_run() {
+    // examples/tube_hydroforming.ctc (3D J2 tube at finite strain, F-bar,
+    // expanded by an internal follower pressure into a rigid IGES die)
+    // without its thermal coupling: each follower facet evaluated by the
+    // rank of its cell, the forces summed over the ranks
+    // (`follower::FollowerShare`)
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = tmp.path().join("tube.ctc");
+    std::fs::write(&deck, tube_hydroforming_isothermal()).unwrap();
+    // the die's IGES file is found next to the deck
+    std::fs::copy(
+        root().join("examples/tube_hydroforming_die.igs"),
+        tmp.path().join("tube_hydroforming_die.igs"),
+    )
+    .unwrap();
+    same_as_serial(deck.to_str().unwrap(), "tube_follower", 1e-9);
+}
+
+#[test]
+fn thermal_tube_on_one_and_two_ranks_is_the_serial_run() {
+    // the coarse tube of `follower_pressure_tube_..` with its thermal
+    // coupling (conductance to the cold die, plastic heating, flow stress
+    // falling with temperature): the mechanical part assembled
+    // distributed, the staggered heat step computed whole by every rank
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = tmp.path().join("tube.ctc");
+    std::fs::write(&deck, tube_hydroforming_small(true)).unwrap();
+    std::fs::copy(
+        root().join("examples/tube_hydroforming_die.igs"),
+        tmp.path().join("tube_hydroforming_die.igs"),
+    )
+    .unwrap();
+    same_as_serial(deck.to_str().unwrap(), "tube_thermal", 1e-9);
+}
+
+#[test]
+fn dynamics_springs_and_masses_on_one_and_two_ranks_are_the_serial_run() {
+    // examples/bar_impact.ctc (implicit generalized-alpha dynamics, a
+    // consistent mass, penalty contact with a rigid wall) with
+    // mass-proportional Rayleigh damping, a spring and dashpot from the
+    // right end to the ground, a link spring from the left end to the
+    // right end (nodes sharing no cell, on two ranks' parts) and point
+    // masses at the right end, 60 increments to t = 15 (in contact from
+    // t = 0.1 to 20): the inertia, spring and dashpot forces whole on
+    // every rank, their tangent rows added by the node's (cell's) owner
+    let text = std::fs::read_to_string(root().join("examples/bar_impact.ctc"))
+        .unwrap()
+        .replace("time = 0 .. 30", "time = 0 .. 15")
+        .replace("increments = 300", "increments = 60")
+        // its reactions (the held uy of a bar pushed along x) are
+        // round-off, 4e-16, which the serial and PETSc runs do not share
+        .replace("stress, reaction, contact", "stress, contact")
+        .replace(
+            "mass = consistent }",
+            "mass = consistent  rayleigh_alpha = 0.01 }",
+        )
+        .replace(
+            "initial_velocity bar.all",
+            "spring bar.right { stiffness = 2e-3  damping = 1e-2 }\n\
+             spring bar.left -> bar.right { stiffness = 1e-3  damping = 1e-3 }\n\
+             point_mass bar.right { mass = 0.05 }\n\
+             initial_velocity bar.all",
+        );
+    assert!(text.contains("rayleigh_alpha") && text.contains("point_mass"));
+    assert!(text.contains("time = 0 .. 15") && !text.contains("reaction,"));
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = tmp.path().join("bar_impact.ctc");
+    std::fs::write(&deck, text).unwrap();
+    same_as_serial(deck.to_str().unwrap(), "bar_impact", 1e-9);
 }
 
 #[test]

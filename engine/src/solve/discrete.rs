@@ -126,7 +126,11 @@ pub fn times<const D: usize>(
 }
 
 /// Adds `scale` times the operator of [`times`] (coefficient `pick(k,
-/// c)`, time `t`) to the free-free tangent `values`.
+/// c)`, time `t`) to the free-free tangent `values`. Under a distributed
+/// assembly split over ranks a node's rows are added by its owner only
+/// (`Scatter::adds_rows_of`; the links' couplings are in every rank's
+/// pattern, [`scatter_for`]); the forces ([`times`]) are whole on every
+/// rank.
 pub fn add_tangent<const D: usize>(
     model: &Model<D>,
     dofs: &DofMap<D>,
@@ -136,6 +140,9 @@ pub fn add_tangent<const D: usize>(
     pick: impl Fn(f64, f64) -> f64,
 ) {
     let mut add = |r: usize, c: usize, x: f64| {
+        if !scatter.adds_rows_of(r / D) {
+            return;
+        }
         if let (Some(Dof::Free(i)), Some(Dof::Free(j))) = (dofs.dofs.get(r), dofs.dofs.get(c)) {
             if let Some(s) = scatter.pattern.find(*i, *j) {
                 values[s] += x;

@@ -729,7 +729,10 @@ impl Dynamics {
     }
 
     /// Adds `(1 - am) / ((1 - af) beta dt^2) M` to the tangent values
-    /// (free-free and free-prescribed slots of every cell).
+    /// (free-free and free-prescribed slots of every cell). Under a
+    /// distributed assembly split over ranks: the cells of the rank's
+    /// share (the others have no slots) and the point masses and nodal
+    /// blocks of its nodes (`Scatter::adds_rows_of`).
     pub fn add_tangent<const D: usize>(
         &self,
         model: &Model<D>,
@@ -745,7 +748,7 @@ impl Dynamics {
         let cdamp = k.gamma / (k.beta * dt);
         // point masses: the diagonal of their free dofs
         for (n, m) in self.node_mass.iter().enumerate() {
-            if *m == 0.0 {
+            if *m == 0.0 || !scatter.adds_rows_of(n) {
                 continue;
             }
             for q in 0..D {
@@ -758,6 +761,9 @@ impl Dynamics {
         }
         // the nodal blocks of contact_mass = normal
         for (n, t) in self.node_tensor.chunks_exact(D * D).enumerate() {
+            if !scatter.adds_rows_of(n) {
+                continue;
+            }
             for p in 0..D {
                 for q in 0..D {
                     let (Some(Dof::Free(i)), Some(Dof::Free(j))) =
@@ -799,6 +805,10 @@ impl Dynamics {
             let nn = model.mesh.cells.nodes(c).len();
             let nd = nn * D;
             let slots = scatter.cell_slots(c);
+            if slots.len() < nd * nd {
+                // another rank's cell
+                continue;
+            }
             for a in 0..nn {
                 for b in 0..nn {
                     let mab = m[a * nn + b];

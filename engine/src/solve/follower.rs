@@ -21,11 +21,24 @@
 //! factorization. It enters the free-free block only: a prescribed facet
 //! node's column is left out of `K_fp`, which changes the first iteration's
 //! predictor of a moving boundary, not the converged state.
+//!
+//! Under a distributed assembly ([`super::share`], `ctc run --solver petsc`
+//! on several MPI ranks) a facet is evaluated by one rank, the rank of its
+//! cell ([`FollowerShare`]), as an element is: it adds the facet's forces
+//! and the load stiffness of all its rows (its cell's couplings are in
+//! that rank's pattern), and the forces are summed over the ranks on the
+//! facets' dofs only ([`FollowerShare::sum`]: the same bits on every rank).
+//! A node's force is the serial run's bits when all its facets are one
+//! rank's (the rank sums them in the serial order and the other ranks add
+//! 0); a node on the partition boundary with three or more facets (3D)
+//! may get the partial sums in another order, a difference of the order
+//! of one rounding of its force (`two_ranks_sum_to_the_serial_forces`).
 
-use super::dofs::DofMap;
-use super::linalg::{Scatter, NO_SLOT};
+use super::dofs::{Dof, DofMap};
+use super::linalg::{Scatter, MAX_BLOCK, NO_SLOT};
 use crate::element::reference::{Quad4, Quad8, Quad9, ReferenceCell, Tri3, Tri6};
 use crate::model::{AnalysisKind, Load, Model};
+use crate::solve::share::AssemblyShare;
 
 /// Whether `model` has a follower pressure.
 pub fn has_follower<const D: usize>(model: &Model<D>) -> bool {
@@ -35,11 +48,115 @@ pub fn has_follower<const D: usize>(model: &Model<D>) -> bool {
         .any(|l| matches!(l, Load::FollowerPressure { .. }))
 }
 
+/// The follower facets one rank evaluates under a distributed assembly
+/// split over ranks, and the dofs their forces are summed over.
+///
+/// A facet belongs to the lowest-numbered cell holding all its nodes (a
+/// boundary facet has one; the rule only has to give every rank the same
+/// answer) and is evaluated by the rank assembling that cell, whose
+/// pattern holds the facet's couplings. A facet of no cell (not made by
+/// the deck's sets) goes to the owner of its first node; its load
+/// stiffness then lacks the entries missing from that rank's pattern.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct FollowerShare {
+    /// Per load of the model, per facet: whether this rank evaluates it
+    /// (empty for the other loads).
+    mine: Vec<Vec<bool>>,
+    /// Global dofs (`D node + c`) of every follower facet's nodes, sorted
+    /// and unique: the entries of the force vector summed over the ranks.
+    dofs: Vec<usize>,
+}
+
+impl FollowerShare {
+    /// The facets of `model`'s follower pressures that the rank of `share`
+    /// evaluates.
+    pub fn new<const D: usize>(model: &Model<D>, share: &AssemblyShare) -> Self {
+        let cells = &model.mesh.cells;
+        // cells around each node (CSR), for the facets' cells
+        let nn = model.mesh.nodes.len();
+        let mut start = vec![0usize; nn + 1];
+        for c in 0..cells.len() {
+            for &n in cells.nodes(c) {
+                start[n + 1] += 1;
+            }
+        }
+        for n in 0..nn {
+            start[n + 1] += start[n];
+        }
+        let mut at = start.clone();
+        let mut around = vec![0usize; start[nn]];
+        for c in 0..cells.len() {
+            for &n in cells.nodes(c) {
+                around[at[n]] = c;
+                at[n] += 1;
+            }
+        }
+        let mut dofs = Vec::new();
+        let mine = model
+            .loads
+            .iter()
+            .map(|load| {
+                let Load::FollowerPressure { facets, .. } = load else {
+                    return Vec::new();
+                };
+                facets
+                    .iter()
+                    .map(|facet| {
+                        let nodes = facet.nodes();
+                        dofs.extend(nodes.iter().flat_map(|&n| (0..D).map(move |c| D * n + c)));
+                        // cells are listed increasing around a node: the
+                        // first holding every facet node is the lowest
+                        let cell = around[start[nodes[0]]..start[nodes[0] + 1]]
+                            .iter()
+                            .copied()
+                            .find(|&c| nodes.iter().all(|n| cells.nodes(c).contains(n)));
+                        match cell {
+                            Some(c) => share.owns_cell(c),
+                            None => share.owns_node(nodes[0]),
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        dofs.sort_unstable();
+        dofs.dedup();
+        FollowerShare { mine, dofs }
+    }
+
+    /// Whether this rank evaluates facet `k` of load `load`.
+    #[inline]
+    pub fn evaluates(&self, load: usize, k: usize) -> bool {
+        self.mine
+            .get(load)
+            .and_then(|m| m.get(k))
+            .copied()
+            .unwrap_or(false)
+    }
+
+    /// Number of facets this rank evaluates.
+    pub fn facets(&self) -> usize {
+        self.mine.iter().flatten().filter(|&&m| m).count()
+    }
+
+    /// Sums the rank's partial forces `f` (`D` per node) over the ranks on
+    /// the facets' dofs: packs them, calls `sum` (the linear system's
+    /// `sum_over_ranks`, collective) and unpacks the totals.
+    pub fn sum(&self, f: &mut [f64], sum: impl FnOnce(&mut [f64])) {
+        let mut packed: Vec<f64> = self.dofs.iter().map(|&g| f[g]).collect();
+        sum(&mut packed);
+        for (&g, v) in self.dofs.iter().zip(&packed) {
+            f[g] = *v;
+        }
+    }
+}
+
 /// Adds to `f` (`D` per node) the nodal forces of every follower pressure
 /// of `model` at time `t` on the configuration `X + u`, load `i` scaled by
 /// `scales[i]` (a pressure controller's factor; 1 when absent); with
 /// `tangent`, subtracts their derivative `d f / d u` from the free-free
 /// entries of the tangent `values` (the residual is `f_int - f_ext - ..`).
+/// With `share`, only the facets this rank evaluates (the partial forces
+/// to sum over the ranks, [`FollowerShare::sum`]).
 pub fn add_follower_forces<const D: usize>(
     model: &Model<D>,
     t: f64,
@@ -47,6 +164,7 @@ pub fn add_follower_forces<const D: usize>(
     u: &[[f64; D]],
     f: &mut [f64],
     mut tangent: Option<(&Scatter, &DofMap<D>, &mut [f64])>,
+    share: Option<&FollowerShare>,
 ) {
     let measure = Measure::of(model);
     for (i, load) in model.loads.iter().enumerate() {
@@ -57,7 +175,10 @@ pub fn add_follower_forces<const D: usize>(
         if p == 0.0 {
             continue;
         }
-        for facet in facets {
+        for (k, facet) in facets.iter().enumerate() {
+            if share.is_some_and(|s| !s.evaluates(i, k)) {
+                continue;
+            }
             let nodes = facet.nodes();
             let x: Vec<[f64; D]> = nodes
                 .iter()
@@ -77,8 +198,10 @@ pub fn add_follower_forces<const D: usize>(
             };
             for (a, &na) in nodes.iter().enumerate() {
                 for (b, &nb) in nodes.iter().enumerate() {
-                    // facet nodes share a cell: the block is in the pattern
-                    let Some(slots) = scatter.pair_slots(dofs, na, nb) else {
+                    // facet nodes share a cell: the block is in the
+                    // pattern (split over ranks: the pattern of the rank
+                    // assembling that cell, the one evaluating the facet)
+                    let Some(slots) = block_slots(scatter, dofs, na, nb) else {
                         continue;
                     };
                     for j in 0..D {
@@ -93,6 +216,30 @@ pub fn add_follower_forces<const D: usize>(
             }
         }
     }
+}
+
+/// The free-free slots of the `D x D` block of rows of node `a` and
+/// columns of node `b`, column-major (`i + D j`), searched in the pattern
+/// (`NO_SLOT` for a prescribed or inactive dof; `None` if a free-free entry
+/// is missing). Unlike [`Scatter::pair_slots`] a node's self block too:
+/// under a distributed assembly that one gives the node's owner alone its
+/// self block (contact rows), while a facet's rows are all added by the
+/// rank of its cell, as the cell's element rows are.
+fn block_slots<const D: usize>(
+    scatter: &Scatter,
+    dofs: &DofMap<D>,
+    a: usize,
+    b: usize,
+) -> Option<[u32; MAX_BLOCK]> {
+    let mut out = [NO_SLOT; MAX_BLOCK];
+    for j in 0..D {
+        for i in 0..D {
+            if let (Dof::Free(r), Dof::Free(c)) = (dofs.dofs[D * a + i], dofs.dofs[D * b + j]) {
+                out[i + D * j] = u32::try_from(scatter.pattern.find(r, c)?).ok()?;
+            }
+        }
+    }
+    Some(out)
 }
 
 /// The measure of a planar edge: thickness or the ring `2 pi r`; solids
@@ -356,6 +503,154 @@ mod tests {
         let (fe, _) = facet_force(Measure::Area, &top, 2.0).unwrap();
         let fz: f64 = (0..4).map(|a| fe[3 * a + 2]).sum();
         assert!((fz + 2.0).abs() < 1e-14, "{fz}");
+    }
+
+    #[test]
+    fn two_ranks_sum_to_the_serial_forces() {
+        // a 2 x 2 x 1 hex8 block under a follower pressure on its 4 bottom
+        // faces (the middle node of the bottom carries all 4), on a
+        // deformed state; the cells split over two ranks like a
+        // checkerboard (rank 0: cells 0, 3; rank 1: cells 1, 2), each rank
+        // its cells' facets (`FollowerShare`), the forces summed as the
+        // MPI reduction does (rank 0's + rank 1's) and the tangents added
+        // into the whole pattern (PETSc's ADD_VALUES)
+        use crate::mesh::{Cell, Facet, Mesh};
+        use crate::model::{Load, MaterialLaw, TimeFunction};
+        use crate::solve::share::AssemblyShare;
+        use std::sync::Arc;
+        let n = |i: usize, j: usize, k: usize| i + 3 * j + 9 * k;
+        let mut nodes = Vec::new();
+        for k in 0..2 {
+            for j in 0..3 {
+                for i in 0..3 {
+                    nodes.push([i as f64, j as f64, 0.5 * k as f64]);
+                }
+            }
+        }
+        let mut cells = Vec::new();
+        let mut faces = Vec::new();
+        for j in 0..2 {
+            for i in 0..2 {
+                cells.push(Cell::hex([
+                    n(i, j, 0),
+                    n(i + 1, j, 0),
+                    n(i + 1, j + 1, 0),
+                    n(i, j + 1, 0),
+                    n(i, j, 1),
+                    n(i + 1, j, 1),
+                    n(i + 1, j + 1, 1),
+                    n(i, j + 1, 1),
+                ]));
+                // outward (-z): counter-clockwise seen from below
+                faces.push(Facet::new(&[
+                    n(i, j, 0),
+                    n(i, j + 1, 0),
+                    n(i + 1, j + 1, 0),
+                    n(i + 1, j, 0),
+                ]));
+            }
+        }
+        let model = crate::testkit::ModelBuilder::solid()
+            .material(
+                "m",
+                MaterialLaw::LinearElastic {
+                    young: 1.0,
+                    poisson: 0.3,
+                },
+            )
+            .body("b", Mesh::new(nodes, cells), "m")
+            .load(Load::FollowerPressure {
+                label: "p".into(),
+                facets: faces,
+                value: TimeFunction::Constant(1.7),
+                control: None,
+            })
+            .build();
+        let nn = model.mesh.nodes.len();
+        let u: Vec<[f64; 3]> = (0..nn)
+            .map(|a| {
+                let s = a as f64;
+                [
+                    0.013 * (s * 0.7).sin(),
+                    -0.021 * (s * 1.3).cos(),
+                    0.017 * s.sqrt(),
+                ]
+            })
+            .collect();
+        let dofs = DofMap::new(&model);
+        let whole = Scatter::new(&model.mesh, &dofs).unwrap();
+        let mut f = vec![0.0; 3 * nn];
+        let mut k = vec![0.0; whole.n_values()];
+        let tangent = Some((&whole, &dofs, &mut k[..]));
+        add_follower_forces(&model, 0.0, &[], &u, &mut f, tangent, None);
+        let mut partial = Vec::new();
+        let mut k_sum = vec![0.0; whole.pattern.nnz()];
+        for cells in [[true, false, false, true], [false, true, true, false]] {
+            let share = Arc::new(AssemblyShare {
+                ranks: 2,
+                cells: cells.to_vec(),
+                nodes: (0..nn).map(|a| (a % 2 == 0) == cells[0]).collect(),
+            });
+            let fs = FollowerShare::new(&model, &share);
+            assert_eq!(fs.facets(), 2);
+            let scatter = Scatter::with_share(&model.mesh, &dofs, &[], Some(share)).unwrap();
+            let mut fr = vec![0.0; 3 * nn];
+            let mut kr = vec![0.0; scatter.n_values()];
+            let tangent = Some((&scatter, &dofs, &mut kr[..]));
+            add_follower_forces(&model, 0.0, &[], &u, &mut fr, tangent, Some(&fs));
+            let p = &scatter.pattern;
+            for j in 0..p.n {
+                let range = p.col_ptr[j]..p.col_ptr[j + 1];
+                for (&i, v) in p.row_idx[range.clone()].iter().zip(&kr[range]) {
+                    k_sum[whole.pattern.find(i, j).unwrap()] += v;
+                }
+            }
+            partial.push((fs, fr));
+        }
+        // the reduction over the packed facet dofs, as `sum_over_ranks`
+        let packed: Vec<Vec<f64>> = partial
+            .iter()
+            .map(|(fs, fr)| {
+                let mut v = Vec::new();
+                fs.clone().sum(&mut fr.clone(), |p| v = p.to_vec());
+                v
+            })
+            .collect();
+        let total: Vec<f64> = packed[0]
+            .iter()
+            .zip(&packed[1])
+            .map(|(a, b)| a + b)
+            .collect();
+        let mut f_sum = partial[0].1.clone();
+        partial[0].0.sum(&mut f_sum, |v| v.copy_from_slice(&total));
+        let scale = f.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut worst = 0.0f64;
+        for a in 0..nn {
+            let ranks_of_node: Vec<bool> = (0..4)
+                .filter(|&c| model.mesh.cells.nodes(c)[..4].contains(&a) && a < 9)
+                .map(|c| c == 0 || c == 3)
+                .collect();
+            for c in 0..3 {
+                let (x, y) = (f_sum[3 * a + c], f[3 * a + c]);
+                let one_rank = ranks_of_node.iter().all(|&r| r == ranks_of_node[0]);
+                if one_rank {
+                    // all its facets on one rank: the serial bits
+                    assert_eq!(x.to_bits(), y.to_bits(), "node {a} component {c}");
+                } else {
+                    worst = worst.max((x - y).abs() / scale);
+                }
+            }
+        }
+        // the middle node's partial sums in another order: measured
+        // 1.3e-16 of the largest force (`cargo test -p ctc-engine --lib
+        // two_ranks_sum -- --nocapture`), about one rounding
+        eprintln!("largest difference from the serial forces: {worst:e} of the largest force");
+        assert!(worst <= 4.0 * f64::EPSILON, "{worst:e}");
+        let k_scale = k.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (a, b) in k_sum.iter().zip(&k) {
+            assert!((a - b).abs() <= 4.0 * f64::EPSILON * k_scale, "{a} vs {b}");
+        }
+        assert!(k_scale > 0.0 && scale > 0.0);
     }
 
     #[test]

@@ -28,6 +28,13 @@
 //! grows its pattern at the same evaluation with the same couplings
 //! (`Scatter::contact_coupled`).
 //!
+//! A follower pressure's facet is evaluated by the rank of its cell, like
+//! an element; its forces are summed over the ranks
+//! ([`super::follower::FollowerShare`]). Springs, dashpots and the
+//! inertia of a dynamic step are computed whole by every rank from the
+//! replicated model (the serial bits); their tangent rows are added by
+//! the node's owner, a cell's mass by the cell's rank.
+//!
 //! Only models whose every contribution is split this way are assembled
 //! distributed ([`replicated_reason`] says why another one is not): the
 //! others are assembled whole by every rank, as before.
@@ -76,9 +83,20 @@ impl AssemblyShare {
 /// commit, `crate::solve::assembly::Assembler::exchange_points`), every
 /// contact by penalty or augmented Lagrangian, against a rigid tool or a
 /// deformable surface (the contact elements are evaluated by every rank,
-/// the rows of a node added by its owner, `Scatter::adds_rows_of`), no follower pressure, no
-/// spring, mass or dashpot, no dynamic step, no stabilization, no thermal
-/// coupling, no free tool.
+/// the rows of a node added by its owner, `Scatter::adds_rows_of`), a
+/// follower pressure (each facet evaluated by the rank of its cell, its
+/// forces summed over the ranks, [`super::follower::FollowerShare`]),
+/// springs, point masses and dashpots and dynamic steps (their forces and
+/// the inertia forces computed whole by every rank from the replicated
+/// masses, their tangent rows added by the node's owner, the cell masses
+/// by the cell's rank: `discrete::add_tangent`, `Dynamics::add_tangent`);
+/// thermal coupling (the mechanical part: the element thermal forces of
+/// a rank's cells; the staggered heat step, its assembly, contact
+/// conductance and faer solve, is computed whole by every rank on the
+/// replicated contact and exchanged integration points: not distributed);
+/// no rigid body, no stiffness-proportional Rayleigh damping (it needs
+/// the reference stiffness of every cell, which a rank has of its own
+/// cells only), no stabilization, no free tool.
 pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static str> {
     for c in &model.contacts {
         if matches!(c.method, ContactMethod::Lagrange { .. }) {
@@ -88,20 +106,23 @@ pub fn replicated_reason<const D: usize>(model: &Model<D>) -> Option<&'static st
     if model.tools.iter().any(|t| t.free_rotation.is_some()) {
         return Some("a free tool");
     }
-    if super::follower::has_follower(model) {
-        return Some("a follower pressure");
+    if model
+        .discrete
+        .iter()
+        .any(|d| matches!(d, crate::model::Discrete::Rigid { .. }))
+    {
+        return Some("a rigid body");
     }
-    if !model.discrete.is_empty() {
-        return Some("springs, masses or dashpots");
-    }
-    if model.steps.iter().any(|s| s.dynamic.is_some()) {
-        return Some("a dynamic step");
+    if model
+        .steps
+        .iter()
+        .filter_map(|s| s.dynamic.as_ref())
+        .any(|d| d.rayleigh.beta != 0.0)
+    {
+        return Some("stiffness-proportional Rayleigh damping");
     }
     if model.steps.iter().any(|s| s.newton.stabilize.is_some()) {
         return Some("stabilization");
-    }
-    if model.thermal.is_some() {
-        return Some("thermal coupling");
     }
     None
 }
@@ -162,6 +183,82 @@ mod tests {
             }],
         );
         assert_eq!(replicated_reason(&quadratic), None);
+    }
+
+    #[test]
+    fn follower_pressures_springs_dynamics_and_thermal_are_distributed() {
+        let elastic = square(MaterialLaw::LinearElastic {
+            young: 1.0,
+            poisson: 0.3,
+        });
+        let mut follower = elastic.clone();
+        follower.loads.push(crate::model::Load::FollowerPressure {
+            label: "p".into(),
+            facets: vec![crate::mesh::Facet::new(&[1, 0])],
+            value: crate::model::TimeFunction::Constant(1.0),
+            control: None,
+        });
+        assert!(super::super::follower::has_follower(&follower));
+        // each facet evaluated by the rank of its cell
+        // (`follower::FollowerShare`)
+        assert_eq!(replicated_reason(&follower), None);
+        let spring = crate::testkit::ModelBuilder::plane_strain()
+            .material(
+                "m",
+                MaterialLaw::LinearElastic {
+                    young: 1.0,
+                    poisson: 0.3,
+                },
+            )
+            .body(
+                "sq",
+                Mesh::new(
+                    vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]],
+                    vec![Cell::quad(0, 1, 2, 3)],
+                ),
+                "m",
+            )
+            .ground_spring([2], 1.0, 0.5)
+            .point_mass([3], 2.0)
+            .step("s", 1.0, 1)
+            .build();
+        // their rows added by the node's owner (`discrete::add_tangent`)
+        assert_eq!(replicated_reason(&spring), None);
+        let mut dynamic = spring.clone();
+        let mut d = crate::model::Dynamic {
+            scheme: crate::model::Scheme::Newmark {
+                beta: 0.25,
+                gamma: 0.5,
+            },
+            mass: crate::model::MassMatrix::Consistent,
+            contact_mass: crate::model::ContactMass::Full,
+            rayleigh: crate::model::Rayleigh {
+                alpha: 0.1,
+                beta: 0.0,
+            },
+            adaptive: None,
+        };
+        dynamic.steps[0].dynamic = Some(d);
+        assert_eq!(replicated_reason(&dynamic), None);
+        d.rayleigh.beta = 0.01;
+        dynamic.steps[0].dynamic = Some(d);
+        assert_eq!(
+            replicated_reason(&dynamic),
+            Some("stiffness-proportional Rayleigh damping")
+        );
+        // thermal coupling: the mechanical part distributed, the
+        // staggered heat step computed whole by every rank
+        let mut thermal = spring.clone();
+        thermal.thermal = Some(crate::model::thermal::ThermalScene {
+            materials: vec![None],
+            initial: vec![20.0],
+            temperatures: Vec::new(),
+            fluxes: Vec::new(),
+            convection: Vec::new(),
+            contacts: Vec::new(),
+            scheme: crate::model::thermal::CouplingScheme::Staggered,
+        });
+        assert_eq!(replicated_reason(&thermal), None);
     }
 
     #[test]

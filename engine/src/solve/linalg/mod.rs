@@ -33,7 +33,7 @@ pub mod pattern;
 pub mod saddle;
 pub mod schur;
 
-pub use pattern::{Scatter, SparsePattern, NO_SLOT};
+pub use pattern::{Scatter, SparsePattern, MAX_BLOCK, NO_SLOT};
 
 use super::constraints::Constraints;
 

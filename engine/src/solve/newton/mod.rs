@@ -158,6 +158,10 @@ where
     /// ([`super::share`]): partial internal forces and tangent, the forces
     /// summed over the ranks by the linear system.
     share: Option<std::sync::Arc<super::share::AssemblyShare>>,
+    /// The follower facets this rank evaluates, under a distributed
+    /// assembly split over ranks with a follower pressure
+    /// ([`super::follower::FollowerShare`]).
+    follower_share: Option<super::follower::FollowerShare>,
     /// The converged history the increment predictor extrapolates
     /// ([`predictor`]).
     pub(super) history: predictor::History<D>,
@@ -264,6 +268,10 @@ where
             r_static: vec![0.0; n_dofs],
             damping: vec![0.0; n_dofs],
             load_scale: vec![1.0; model.loads.len()],
+            follower_share: share
+                .as_ref()
+                .filter(|s| s.split() && super::follower::has_follower(model))
+                .map(|s| super::follower::FollowerShare::new(model, s)),
             share,
             history: predictor::History::default(),
             fresh: true,
@@ -781,7 +789,14 @@ where
             &self.u,
             &mut self.f_follow,
             tangent,
+            self.follower_share.as_ref(),
         );
+        if let Some(fs) = &self.follower_share {
+            // each rank evaluated the facets of its cells
+            fs.sum(&mut self.f_follow, |v| self.linear.sum_over_ranks(v));
+        }
+        // the rigid bodies' moments, whole on every rank (after the sum: a
+        // model with a rigid body is assembled replicated)
         let tangent = if with_tangent {
             Some((&self.scatter, &self.dofs, &mut self.values[..]))
         } else {
