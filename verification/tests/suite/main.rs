@@ -16,6 +16,7 @@ mod friction;
 mod friction_3d;
 mod friction_ntf_3d;
 mod hertz_two_spheres_3d;
+mod ironing_mortar_3d;
 mod johnson_cook;
 mod methods;
 mod mortar_lagrange;
