@@ -196,6 +196,42 @@ fn rigid_velocity(model: &mut Model<3>, pilot: usize, spin: usize, v: [f64; 3], 
     push(spin, w);
 }
 
+/// The point masses of `model` per node (the inertia points of its rigid
+/// bodies; the cubes of these cases are massless).
+fn node_masses(model: &Model<3>) -> Vec<f64> {
+    let mut mass = vec![0.0; model.mesh.nodes.len()];
+    for d in &model.discrete {
+        if let Discrete::Mass { nodes, mass: m, .. } = d {
+            for &a in nodes {
+                mass[a] += m;
+            }
+        }
+    }
+    mass
+}
+
+/// The angular momentum about the origin `sum m x x v` and the kinetic
+/// energy of the point masses `mass` at displacements `u`, velocities `v`.
+fn momentum_and_kinetic(
+    model: &Model<3>,
+    mass: &[f64],
+    u: &[[f64; 3]],
+    v: &[f64],
+) -> ([f64; 3], f64) {
+    let (mut l, mut k) = ([0.0; 3], 0.0);
+    for (a, m) in mass.iter().enumerate().filter(|(_, m)| **m > 0.0) {
+        let x = model.mesh.nodes[a];
+        let x = [x[0] + u[a][0], x[1] + u[a][1], x[2] + u[a][2]];
+        let va = [v[3 * a], v[3 * a + 1], v[3 * a + 2]];
+        let c = cross(x, va);
+        for i in 0..3 {
+            l[i] += m * c[i];
+        }
+        k += 0.5 * m * dot(va, va);
+    }
+    (l, k)
+}
+
 fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
@@ -420,14 +456,7 @@ fn torqued(level: usize) -> Result<ProgramLevel, String> {
     let (mut model, pilot, spin) = compile("torqued_body.ctc", deck)?;
     rigid_velocity(&mut model, pilot, spin, [0.0; 3], TOP_OMEGA);
     let (trace, summary) = run(&model)?;
-    let mut mass = vec![0.0; model.mesh.nodes.len()];
-    for d in &model.discrete {
-        if let Discrete::Mass { nodes, mass: m, .. } = d {
-            for &a in nodes {
-                mass[a] += m;
-            }
-        }
-    }
+    let mass = node_masses(&model);
     let norm = dot(TORQUE_AXIS, TORQUE_AXIS).sqrt();
     let axis = TORQUE_AXIS.map(|a| a / norm);
     let j = 1.0;
@@ -443,17 +472,7 @@ fn torqued(level: usize) -> Result<ProgramLevel, String> {
         if v.is_empty() {
             return Err("no velocity in the increment view".into());
         }
-        let (mut l, mut k) = ([0.0; 3], 0.0);
-        for (a, ma) in mass.iter().enumerate().filter(|(_, m)| **m > 0.0) {
-            let x = model.mesh.nodes[a];
-            let x = [x[0] + u[a][0], x[1] + u[a][1], x[2] + u[a][2]];
-            let va = [v[3 * a], v[3 * a + 1], v[3 * a + 2]];
-            let c = cross(x, va);
-            for i in 0..3 {
-                l[i] += ma * c[i];
-            }
-            k += 0.5 * ma * dot(va, va);
-        }
+        let (l, k) = momentum_and_kinetic(&model, &mass, u, v);
         let le = l_exact(t);
         let d: [f64; 3] = std::array::from_fn(|i| l[i] - le[i]);
         dl = dl.max(dot(d, d).sqrt() / (0.5 * TORQUE * t_end * t_end));
@@ -553,50 +572,21 @@ fn spun_top(omega: [f64; 3], n: usize) -> Result<(Top, RunSummary), String> {
     let (mut model, pilot, spin) = compile("free_top.ctc", deck)?;
     rigid_velocity(&mut model, pilot, spin, [0.0; 3], omega);
     let (trace, summary) = run(&model)?;
-    // the node masses (the inertia points; the cube is massless)
-    let mut mass = vec![0.0; model.mesh.nodes.len()];
-    for d in &model.discrete {
-        if let Discrete::Mass { nodes, mass: m, .. } = d {
-            for &a in nodes {
-                mass[a] += m;
-            }
-        }
-    }
-    let momentum = |u: &[[f64; 3]], v: &[f64]| {
-        let mut l = [0.0; 3];
-        for (a, m) in mass.iter().enumerate().filter(|(_, m)| **m > 0.0) {
-            let x = model.mesh.nodes[a];
-            let x = [x[0] + u[a][0], x[1] + u[a][1], x[2] + u[a][2]];
-            let va = [v[3 * a], v[3 * a + 1], v[3 * a + 2]];
-            let c = cross(x, va);
-            for k in 0..3 {
-                l[k] += m * c[k];
-            }
-        }
-        l
-    };
+    let mass = node_masses(&model);
     // the closed form's momentum J omega0 (the body starts unrotated)
     let l0 = [TOP_J1 * omega[0], TOP_J1 * omega[1], TOP_J3 * omega[2]];
     let l0n = dot(l0, l0).sqrt();
     let lhat = l0.map(|x| x / l0n);
-    let kinetic = |v: &[f64]| -> f64 {
-        mass.iter()
-            .enumerate()
-            .map(|(a, m)| {
-                0.5 * m * (v[3 * a].powi(2) + v[3 * a + 1].powi(2) + v[3 * a + 2].powi(2))
-            })
-            .sum()
-    };
     let k0 = 0.5 * dot(omega, l0);
     let (mut dl, mut dk): (f64, f64) = (0.0, 0.0);
     for (u, v) in trace.u.iter().zip(&trace.v) {
         if v.is_empty() {
             return Err("no velocity in the increment view".into());
         }
-        let l = momentum(u, v);
+        let (l, k) = momentum_and_kinetic(&model, &mass, u, v);
         let d = [l[0] - l0[0], l[1] - l0[1], l[2] - l0[2]];
         dl = dl.max(dot(d, d).sqrt() / l0n);
-        dk = dk.max((kinetic(v) - k0).abs() / k0);
+        dk = dk.max((k - k0).abs() / k0);
     }
     // the symmetry axis e3 = R(psi) e_z: its angle to L and its azimuth
     // about L (unwrapped)

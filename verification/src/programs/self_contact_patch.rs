@@ -400,6 +400,23 @@ fn scratch(dim: usize) -> Result<PathBuf, String> {
     Ok(dir)
 }
 
+/// Runs `model` (the `what` run of this case) to its end: the last
+/// converged increment and the run summary.
+fn last_increment<const D: usize>(
+    model: &Model<D>,
+    what: &str,
+) -> Result<(Last<D>, ctc_engine::solve::RunSummary), String>
+where
+    nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
+{
+    let mut last = Last::<D>::default();
+    let summary = run(model, &mut last).map_err(|e| e.message)?;
+    if !summary.completed {
+        return Err(format!("the {D}D self-contact {what} did not complete"));
+    }
+    Ok((last, summary))
+}
+
 /// Deviations of one model: (reported, total force, per-direction), and
 /// its run summary.
 fn judge<const D: usize>(
@@ -410,11 +427,7 @@ fn judge<const D: usize>(
 where
     nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
 {
-    let mut last = Last::<D>::default();
-    let summary = run(model, &mut last).map_err(|e| e.message)?;
-    if !summary.completed {
-        return Err(format!("the {D}D self-contact patch did not complete"));
-    }
+    let (last, summary) = last_increment(model, "patch")?;
     let p = setup.pressure();
     let (slaves, half) = half_areas(model);
     let (mut reported, mut per_direction, mut closed) = (0.0f64, 0.0f64, 0usize);
@@ -453,11 +466,7 @@ where
     nalgebra::Const<D>: ctc_engine::geom::Dimension<D>,
 {
     use ctc_engine::contact::friction::FrictionStatus;
-    let mut last = Last::<D>::default();
-    let summary = run(model, &mut last).map_err(|e| e.message)?;
-    if !summary.completed {
-        return Err(format!("the {D}D self-contact slide did not complete"));
-    }
+    let (last, summary) = last_increment(model, "slide")?;
     let (mut coulomb, mut sticking, mut closed) = (0.0f64, 0usize, 0usize);
     for c in last
         .contact
