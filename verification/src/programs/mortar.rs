@@ -213,10 +213,10 @@ fn patch_level(level: usize) -> Result<ProgramLevel, String> {
 // ------------------------------------------- Hertz, Lagrange vs penalty
 
 /// The deck of `ctc verify hertz_two_cylinders_mortar` (penalty).
-const HERTZ_DECK: &str = "hertz_two_cylinders_mortar.ctc";
+pub(super) const HERTZ_DECK: &str = "hertz_two_cylinders_mortar.ctc";
 
 /// Its method, replaced by Lagrange multipliers for the second run.
-const HERTZ_PENALTY: &str = "penalty { kind = area  stiffness = 1e7 }";
+pub(super) const HERTZ_PENALTY: &str = "penalty { kind = area  stiffness = 1e7 }";
 
 /// Names of the values of [`hertz_lagrange_level`], with their tolerances
 /// per level (measured values in the case's doc).
@@ -335,7 +335,9 @@ pub(super) fn hertz_run(
     Ok((measured, contact, summary))
 }
 
-fn hertz_lagrange_level(level: usize) -> Result<ProgramLevel, String> {
+/// The Hertz deck ([`HERTZ_DECK`]) at `level` with its method replaced by
+/// `method`.
+pub fn hertz_deck(level: usize, method: &str) -> Result<(std::path::PathBuf, String), String> {
     let (path, text) = super::read_case_deck(HERTZ_DECK)?;
     let deck = crate::refine::RefinableDeck::parse(&text)?;
     if level >= deck.levels() {
@@ -347,15 +349,23 @@ fn hertz_lagrange_level(level: usize) -> Result<ProgramLevel, String> {
             "{HERTZ_DECK}: `method = {HERTZ_PENALTY}` not found once"
         ));
     }
+    Ok((path, text.replace(HERTZ_PENALTY, method)))
+}
+
+/// The computed value and error of quantity `q` in `m`.
+pub(super) fn measured(m: &crate::measure::Measured, q: Quantity) -> Result<(f64, f64), String> {
+    m.values
+        .iter()
+        .find(|v| v.quantity == q)
+        .map(|v| (v.computed, v.error))
+        .ok_or_else(|| format!("{q:?} not measured"))
+}
+
+fn hertz_lagrange_level(level: usize) -> Result<ProgramLevel, String> {
+    let (path, text) = hertz_deck(level, HERTZ_PENALTY)?;
     let (penalty, _, ps) = hertz_run(&path, &text)?;
     let (lagrange, contact, ls) = hertz_run(&path, &text.replace(HERTZ_PENALTY, "lagrange"))?;
-    let of = |m: &crate::measure::Measured, q: Quantity| {
-        m.values
-            .iter()
-            .find(|v| v.quantity == q)
-            .map(|v| (v.computed, v.error))
-            .ok_or_else(|| format!("{q:?} not measured"))
-    };
+    let of = measured;
     let (p0_l, p0_err) = of(&lagrange, Quantity::PeakPressure)?;
     let (p0_p, _) = of(&penalty, Quantity::PeakPressure)?;
     let (force_l, _) = of(&lagrange, Quantity::ContactForce)?;

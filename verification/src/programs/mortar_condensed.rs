@@ -21,7 +21,7 @@
 //!     two quarter cylinders R = 1, non-matching arcs, flat pushed 0.02
 //! ```
 
-use super::mortar::{deviation, hertz_run, patch_deck};
+use super::mortar::{deviation, hertz_deck, hertz_run, measured, patch_deck};
 use super::{compile, error};
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
@@ -213,12 +213,6 @@ fn run_3d(cell: &str, method: &str) -> Result<super::contact_ntf_3d::PatchRun, S
 
 // ------------------------------------------------------------------ Hertz
 
-/// The deck of `ctc verify hertz_two_cylinders_mortar` (penalty).
-const HERTZ_DECK: &str = "hertz_two_cylinders_mortar.ctc";
-
-/// Its method, replaced by the two Lagrange methods.
-const HERTZ_PENALTY: &str = "penalty { kind = area  stiffness = 1e7 }";
-
 /// Checks of the Hertz comparison (per level 0, 1, 2).
 const HERTZ_CHECKS: [(&str, &[f64]); 6] = [
     ("p0 condensed vs saddle", &[1e-10]),
@@ -289,34 +283,12 @@ fn hertz_case() -> VerifyCase {
     }
 }
 
-/// The Hertz deck at `level` with `method`.
-pub fn hertz_deck(level: usize, method: &str) -> Result<(std::path::PathBuf, String), String> {
-    let (path, text) = super::read_case_deck(HERTZ_DECK)?;
-    let deck = crate::refine::RefinableDeck::parse(&text)?;
-    if level >= deck.levels() {
-        return Err(format!("{HERTZ_DECK} has no level {level}"));
-    }
-    let text = deck.render(level)?;
-    if text.matches(HERTZ_PENALTY).count() != 1 {
-        return Err(format!(
-            "{HERTZ_DECK}: `method = {HERTZ_PENALTY}` not found once"
-        ));
-    }
-    Ok((path, text.replace(HERTZ_PENALTY, method)))
-}
-
 fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
     let (path, saddle_text) = hertz_deck(level, SADDLE)?;
     let (_, condensed_text) = hertz_deck(level, CONDENSED)?;
     let (sm, s_contact, ss) = hertz_run(&path, &saddle_text)?;
     let (cm, c_contact, cs) = hertz_run(&path, &condensed_text)?;
-    let of = |m: &crate::measure::Measured, q: Quantity| {
-        m.values
-            .iter()
-            .find(|v| v.quantity == q)
-            .map(|v| (v.computed, v.error))
-            .ok_or_else(|| format!("{q:?} not measured"))
-    };
+    let of = measured;
     let (p0_c, p0_err) = of(&cm, Quantity::PeakPressure)?;
     let (p0_s, _) = of(&sm, Quantity::PeakPressure)?;
     let (force_c, _) = of(&cm, Quantity::ContactForce)?;

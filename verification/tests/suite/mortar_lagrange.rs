@@ -121,7 +121,8 @@ impl Observer for Quiet {}
 #[ignore = "measurement, ~10 s CPU in debug"]
 fn condensed_vs_saddle_point_cost() {
     use ctc_engine::solve::memory::process_cpu_seconds;
-    use ctc_verification::programs::mortar_condensed::{hertz_deck, CONDENSED, SADDLE};
+    use ctc_verification::programs::mortar::hertz_deck;
+    use ctc_verification::programs::mortar_condensed::{CONDENSED, SADDLE};
     println!("| level | method | free dofs | order (entries) | Newton | factorize CPU [s] | solve CPU [s] | process CPU [s] | asymmetry |");
     println!("| --- | --- | --- | --- | --- | --- | --- | --- | --- |");
     for level in 1..=3 {
