@@ -100,9 +100,17 @@ pub fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Ve
         .iter()
         .filter(|c| c.status == ContactStatus::Closed)
         .count();
-    let mut f = vec![0.0; 3 * x.len()];
-    let mut kv = vec![0.0; 3 * x.len()];
-    for c in &state.deformable.expect("a deformable pair").couplings {
+    let (f, kv) = scatter(&state, x.len(), v);
+    (f, kv, closed)
+}
+
+/// The forces of the pair's couplings (`state` evaluated) and their
+/// tangent times `v`, over `nodes` nodes.
+pub fn scatter(state: &SurfacePair, nodes: usize, v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>) {
+    let mut f = vec![0.0; 3 * nodes];
+    let mut kv = vec![0.0; 3 * nodes];
+    let pair = state.deformable.as_ref().expect("a deformable pair");
+    for c in &pair.couplings {
         let nd = 3 * c.nodes.len();
         for r in 0..nd {
             let gr = 3 * c.nodes[r / 3] + r % 3;
@@ -112,7 +120,7 @@ pub fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Ve
             }
         }
     }
-    (f, kv, closed)
+    (f, kv)
 }
 
 #[test]

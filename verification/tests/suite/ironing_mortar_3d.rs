@@ -64,18 +64,7 @@ fn forces(
         .filter(|c| c.status == ContactStatus::Closed)
         .map(|c| c.node)
         .collect();
-    let mut f = vec![0.0; 3 * x.len()];
-    let mut kv = vec![0.0; 3 * x.len()];
-    for c in &state.deformable.expect("a deformable pair").couplings {
-        let nd = 3 * c.nodes.len();
-        for r in 0..nd {
-            let gr = 3 * c.nodes[r / 3] + r % 3;
-            f[gr] += c.force[r];
-            for col in 0..nd {
-                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
-            }
-        }
-    }
+    let (f, kv) = crate::contact_mortar_3d::scatter(&state, x.len(), v);
     (f, kv, closed)
 }
 
