@@ -22,11 +22,12 @@
 //! ```
 
 use super::mortar::{deviation, hertz_deck, hertz_run, measured, patch_deck};
+use super::mortar_quadratic::Last;
 use super::{compile, error};
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::contact::{ContactStatus, NodeContact};
-use ctc_engine::solve::{IncrementView, Observer, RunSummary};
+use ctc_engine::solve::RunSummary;
 use std::path::Path;
 
 /// The condensed method as deck text.
@@ -91,16 +92,6 @@ fn patch_case() -> VerifyCase {
             max_levels: MESHES.len(),
             run: patch_level,
         }),
-    }
-}
-
-#[derive(Default)]
-struct Last(Vec<NodeContact>);
-
-impl Observer for Last {
-    fn converged(&mut self, v: &IncrementView<'_>) -> Result<(), String> {
-        self.0 = v.contact.first().cloned().unwrap_or_default();
-        Ok(())
     }
 }
 
