@@ -33,6 +33,7 @@ pub fn all() -> Vec<Case> {
         hertz_two_spheres_mortar(),
         hertz_two_cylinders_nts_nonmatching(),
         hertz_two_cylinders_nts_smoothed(),
+        hertz_two_cylinders_nts_lagrange(),
     ]
 }
 
@@ -313,6 +314,46 @@ pub fn hertz_two_cylinders_nts_smoothed() -> Case {
             &[0.2, 0.03, 0.05],
             &[0.05, 0.015, 0.006],
             &[0.04, 0.025, 0.02],
+            &[0.1, 0.055, 0.03],
+            Some(0.7),
+        ),
+    }
+}
+
+/// The smoothed modified-double-pass deck with Lagrange multipliers:
+/// two curved deformable bodies with exact enforcement (issue 18, the
+/// redundant rows of the two passes dropped, `contact::redundancy`).
+pub fn hertz_two_cylinders_nts_lagrange() -> Case {
+    Case {
+        name: "hertz_two_cylinders_nts_lagrange",
+        title: "Hertz: two elastic cylinders, non-matching arcs, node-to-segment modified double \
+                pass, nodal normal smoothing, Lagrange multipliers",
+        source: "VERIFICATION-CASES.md §1; Johnson, Contact Mechanics §4.3 (E*, R combined)",
+        deck: "hertz_two_cylinders_nts_lagrange.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "node_to_segment",
+            "smoothing",
+            "lagrange",
+            "plane_strain",
+            "closed_form",
+        ],
+        levels: 3,
+        reference: two_cylinders_reference(),
+        // Measured (`ctc verify hertz_two_cylinders_nts --max-level 2 -j 1`,
+        // debug): a 1.7e-1 2.1e-2 4.2e-2 (the last closed node decides, as
+        // with the penalty); a (moment) 4.3e-2 1.3e-2 4.3e-3; p0 3.7e-2
+        // 1.6e-2 8.4e-3 (the penalty deck: 3.5e-2 2.1e-2 1.7e-2; rates 1.22,
+        // 0.90); L2 8.8e-2 4.6e-2 2.5e-2 (rates 0.92, 0.91); force balance
+        // 4.4e-13. Newton iterations 62 / 228 / 181 against the penalty's
+        // 26 / 28 / 35: the active-set loop restarts Newton at every change
+        // (no semi-smooth Newton for node-to-segment yet). One row dropped
+        // per evaluation (the two axis nodes coincide; `CTC_LOG=debug`).
+        checks: hertz_checks(
+            &[0.2, 0.03, 0.05],
+            &[0.05, 0.015, 0.006],
+            &[0.045, 0.02, 0.011],
             &[0.1, 0.055, 0.03],
             Some(0.7),
         ),

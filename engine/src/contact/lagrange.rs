@@ -61,7 +61,9 @@ pub fn normal_rows(
             let Some(i) = pairs[pi].slave_index(nc.node) else {
                 continue;
             };
-            if !pairs[pi].active.get(i).copied().unwrap_or(false) {
+            if !pairs[pi].active.get(i).copied().unwrap_or(false)
+                || pairs[pi].redundant.get(i).copied().unwrap_or(false)
+            {
                 continue;
             }
             let dim = nc.normal.len();

@@ -17,7 +17,8 @@
 //! - [`lagrange`], [`augmented`]: Lagrange multipliers (exact, active set)
 //!   and augmented Lagrangian (penalty with a multiplier shift, Uzawa);
 //!   [`rows`]: Lagrange constraint rows in node terms (the solver maps
-//!   them to dofs);
+//!   them to dofs); [`redundancy`]: the redundant rows of the modified
+//!   double pass and self contact;
 //! - [`tributary`]: tributary areas of slave nodes;
 //! - [`friction`], [`friction_lagrange`], [`impact`]: Coulomb friction
 //!   (return map, Lagrange stick/slip status loop) and the first impact
@@ -58,6 +59,7 @@ pub mod node_to_facet;
 pub mod node_to_segment;
 pub mod penalty;
 pub mod prof;
+pub mod redundancy;
 pub mod rows;
 pub mod search;
 pub mod segment;
@@ -167,6 +169,10 @@ pub struct PairState {
     pub active: Vec<bool>,
     /// Per slave node: active set at the last converged increment.
     pub committed_active: Vec<bool>,
+    /// Per slave node: its Lagrange row was redundant at the last
+    /// evaluation (modified double pass, self contact: [`redundancy`]):
+    /// active, without multiplier or force.
+    pub redundant: Vec<bool>,
     /// Friction history (stick points, tangential multipliers, statuses).
     pub friction: friction::FrictionState,
     /// Broad phase over the tool's entities (reference frame, built once).
@@ -298,6 +304,7 @@ impl PairState {
             committed_multiplier: vec![0.0; n],
             active: vec![false; n],
             committed_active: vec![false; n],
+            redundant: vec![false; n],
             friction: friction::FrictionState::new(positions),
             tool_grid: shape
                 .as_ref()

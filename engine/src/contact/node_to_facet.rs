@@ -1448,6 +1448,74 @@ pub fn evaluate(
     out
 }
 
+/// Drops the redundant Lagrange rows of a two-way pair (modified double
+/// pass, self contact; [`super::redundancy`]), after the evaluation,
+/// before the forces are assembled: the rows `G` of the active nodes'
+/// couplings in slave order over the free coordinates (`free(node,
+/// component)`). A redundant node keeps its place in the active set but
+/// loses its multiplier, its force and its coupling (so its row: the
+/// solver builds the rows from the couplings). Other pairs: nothing.
+pub fn drop_redundant(
+    cp: &crate::model::ContactPair,
+    state: &mut SurfacePair,
+    out: &mut [NodeContact<3>],
+    free: &dyn Fn(usize, usize) -> bool,
+) {
+    let Some(mut fp) = state.deformable.take() else {
+        return;
+    };
+    if matches!(cp.method, ContactMethod::Lagrange { .. })
+        && (cp.strategy == ContactStrategy::ModifiedDoublePass || fp.self_contact)
+    {
+        let couplings = &mut fp.couplings;
+        let mut owners = Vec::new();
+        let mut rows: Vec<Vec<super::rows::NodeTerm>> = Vec::new();
+        for (k, nc) in out.iter().enumerate() {
+            let Some(i) = state.slave_index(nc.node) else {
+                continue;
+            };
+            if !state.active.get(i).copied().unwrap_or(false) {
+                continue;
+            }
+            let Ok(j) = couplings.binary_search_by_key(&nc.node, |c| c.slave) else {
+                continue;
+            };
+            let c = &couplings[j];
+            owners.push((k, i));
+            rows.push(
+                (0..c.gap_gradient.len())
+                    .map(|d| super::rows::NodeTerm {
+                        node: c.nodes[d / 3],
+                        component: d % 3,
+                        coefficient: c.gap_gradient[d],
+                    })
+                    .filter(|t| free(t.node, t.component))
+                    .collect(),
+            );
+        }
+        let views: Vec<&[super::rows::NodeTerm]> = rows.iter().map(Vec::as_slice).collect();
+        let drop = super::redundancy::redundant_rows(&views);
+        if super::log::debug_enabled() {
+            let n = drop.iter().filter(|&&d| d).count();
+            eprintln!(
+                "[ctc contact] pair '{}': {n} redundant Lagrange rows dropped of {}",
+                cp.name,
+                drop.len()
+            );
+        }
+        for (&(k, i), _) in owners.iter().zip(&drop).filter(|(_, &d)| d) {
+            state.multiplier[i] = 0.0;
+            let nc = &mut out[k];
+            nc.force = [0.0; 3];
+            nc.stiffness = [[0.0; 3]; 3];
+            if let Ok(j) = couplings.binary_search_by_key(&nc.node, |c| c.slave) {
+                couplings.remove(j);
+            }
+        }
+    }
+    state.deformable = Some(fp);
+}
+
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;

@@ -60,7 +60,7 @@ use super::smoothing;
 use super::{augmented, lagrange, penalty, ContactStatus, MasterSegment, NodeContact, PairState};
 use crate::geom::Aabb;
 use crate::model::{
-    ContactMaster, ContactMethod, ContactStrategy, LocalSearch, Model, NormalSmoothing,
+    ContactMaster, ContactMethod, ContactPair, ContactStrategy, LocalSearch, Model, NormalSmoothing,
 };
 
 /// Relative tolerance on `xi` for "inside the segment".
@@ -816,6 +816,92 @@ pub fn evaluate(
     state.total_projection_tests += tests as u64;
     state.surface = Some(sp);
     out
+}
+
+/// Drops the redundant Lagrange rows of a two-way pair (modified double
+/// pass, self contact; [`super::redundancy`]), after the evaluation and
+/// the closed-gap start, before the forces are assembled: the active
+/// nodes' rows in slave order (smoothed: the coupling's row; faceted: the
+/// element's `d g / d x`) over the free coordinates (`free(node,
+/// component)`: a row that differs from another only in prescribed
+/// components is the same constraint on the unknowns). A redundant node
+/// keeps its place in the active set but loses its multiplier, its force
+/// and its row (its coupling). Other pairs: nothing.
+pub fn drop_redundant(
+    cp: &ContactPair,
+    state: &mut PairState,
+    out: &mut [NodeContact],
+    free: &dyn Fn(usize, usize) -> bool,
+) {
+    let self_contact = state.surface.as_ref().is_some_and(|sp| sp.self_contact);
+    if !matches!(cp.method, ContactMethod::Lagrange { .. })
+        || !(cp.strategy == ContactStrategy::ModifiedDoublePass || self_contact)
+    {
+        return;
+    }
+    let mut couplings = state.couplings.take();
+    let n = state.slaves.len();
+    state.redundant.clear();
+    state.redundant.resize(n, false);
+    let mut owners = Vec::new();
+    let mut rows: Vec<Vec<super::rows::NodeTerm>> = Vec::new();
+    for (k, nc) in out.iter().enumerate() {
+        let Some(i) = state.slave_index(nc.node) else {
+            continue;
+        };
+        if !state.active.get(i).copied().unwrap_or(false) {
+            continue;
+        }
+        let terms = |nodes: &[usize], grad: &[f64]| {
+            (0..grad.len())
+                .map(|c| super::rows::NodeTerm {
+                    node: nodes[c / 2],
+                    component: c % 2,
+                    coefficient: grad[c],
+                })
+                .filter(|t| free(t.node, t.component))
+                .collect::<Vec<_>>()
+        };
+        let row = match couplings.as_deref() {
+            Some(list) => match list.binary_search_by_key(&nc.node, |c| c.slave) {
+                Ok(j) => terms(&list[j].nodes, &list[j].gap_gradient),
+                Err(_) => continue,
+            },
+            None => match &nc.master {
+                Some(ms) => terms(&[nc.node, ms.nodes[0], ms.nodes[1]], &ms.gap_gradient),
+                None => continue,
+            },
+        };
+        owners.push((k, i));
+        rows.push(row);
+    }
+    let views: Vec<&[super::rows::NodeTerm]> = rows.iter().map(Vec::as_slice).collect();
+    let drop = super::redundancy::redundant_rows(&views);
+    if super::log::debug_enabled() {
+        let n = drop.iter().filter(|&&d| d).count();
+        eprintln!(
+            "[ctc contact] pair '{}': {n} redundant Lagrange rows dropped of {}",
+            cp.name,
+            drop.len()
+        );
+    }
+    for (&(k, i), _) in owners.iter().zip(&drop).filter(|(_, &d)| d) {
+        state.redundant[i] = true;
+        state.multiplier[i] = 0.0;
+        let nc = &mut out[k];
+        nc.force = [0.0; 2];
+        nc.stiffness = [[0.0; 2]; 2];
+        if let Some(ms) = &mut nc.master {
+            ms.forces = [[0.0; 2]; 2];
+            ms.tangent = [[0.0; 6]; 6];
+        }
+        if let Some(list) = couplings.as_mut() {
+            if let Ok(j) = list.binary_search_by_key(&nc.node, |c| c.slave) {
+                list.remove(j);
+            }
+        }
+    }
+    state.couplings = couplings;
 }
 
 /// Nodes of the master surface near segment `segment` of the side opposite

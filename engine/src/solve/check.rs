@@ -363,22 +363,8 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                         "Lagrange-multiplier friction (use the penalty or the augmented \
                          Lagrangian with friction)",
                     )
-                } else if faces == &c.faces
-                    && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
-                {
-                    Some(
-                        "self contact with Lagrange multipliers (self contact is penalty or \
-                         augmented Lagrangian)",
-                    )
                 } else if faces.is_empty() {
                     Some("master faces (the master set has no face)")
-                } else if c.strategy == crate::model::ContactStrategy::ModifiedDoublePass
-                    && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
-                {
-                    Some(
-                        "modified double pass with Lagrange multipliers (over-constrained: use \
-                         the double pass or a penalty)",
-                    )
                 } else {
                     None
                 };

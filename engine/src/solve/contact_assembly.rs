@@ -13,7 +13,7 @@
 //! nodal arrays), not a literal.
 
 use super::constraints::Constraints;
-use super::dofs::DofMap;
+use super::dofs::{Dof, DofMap};
 use super::linalg::{Scatter, NO_SLOT};
 use crate::contact::rows::NodeRows;
 use crate::contact::{self, ContactStatus, NodeContact, PairState};
@@ -80,9 +80,18 @@ impl ContactAssembly {
             super::free_tool::set_angles(model, u, &mut self.pairs);
         }
         for (i, state) in self.pairs.iter_mut().enumerate() {
-            let res = contact::evaluate_pair(model, i, &self.x, t, state);
+            let mut res = contact::evaluate_pair(model, i, &self.x, t, state);
+            let free = |n: usize, c: usize| matches!(dofs.dofs[dofs.dof(n, c)], Dof::Free(_));
             // mortar: the coupling rows carry the forces (the node entries
             // repeat their sums at the slave nodes, for output)
+            if state.couplings.is_some() {
+                contact::node_to_segment::drop_redundant(
+                    &model.contacts[i],
+                    state,
+                    &mut res,
+                    &free,
+                );
+            }
             if let Some(rows) = &state.couplings {
                 for c in rows {
                     for (k, &n) in c.nodes.iter().enumerate() {
@@ -111,6 +120,8 @@ impl ContactAssembly {
                     }
                 }
             }
+            // two-way Lagrange pairs: the rows that repeat a neighbour's
+            contact::node_to_segment::drop_redundant(&model.contacts[i], state, &mut res, &free);
             for nc in &res {
                 for (c, f) in nc.force.iter().enumerate() {
                     f_c[dofs.dof(nc.node, c)] += f;

@@ -493,6 +493,30 @@ where
     if model.analysis.kind == AnalysisKind::Axisymmetric {
         summary.notes.push(AXISYMMETRIC_NOTE.to_string());
     }
+    for cp in &model.contacts {
+        // self contact: the master surface's nodes are the slave nodes
+        let self_contact = match &cp.master {
+            crate::model::ContactMaster::Surface { nodes, .. } => {
+                let mut slaves = cp.nodes.clone();
+                slaves.sort_unstable();
+                slaves.dedup();
+                &slaves == nodes
+            }
+            crate::model::ContactMaster::Tool(_) => false,
+        };
+        if matches!(cp.method, crate::model::ContactMethod::Lagrange { .. })
+            && (cp.strategy == crate::model::ContactStrategy::ModifiedDoublePass || self_contact)
+        {
+            summary.notes.push(format!(
+                "contact `{}`: Lagrange multipliers on both sides at once (modified double \
+                 pass or self contact) over-constrain the interface; a node's row nearly \
+                 dependent on the rows of its neighbours (a node lying on a node of the other \
+                 side) is redundant and dropped, its node held by those rows \
+                 (`CTC_LOG=debug` counts them per evaluation)",
+                cp.name
+            ));
+        }
+    }
     let fail = |mut summary: RunSummary, message: String| {
         summary.failure = Some(message.clone());
         summary.timings.total = start.elapsed().as_secs_f64();

@@ -18,7 +18,7 @@
 use super::constraints::Constraints;
 use super::contact_loop::{CyclingGuard, SetChange, MAX_CONTACT_ITERATIONS};
 use super::diagnosis::PenaltyRatio;
-use super::dofs::DofMap;
+use super::dofs::{Dof, DofMap};
 use super::linalg::{Scatter, NO_SLOT};
 use super::newton::{Converged, Failure, FailureKind, Newton};
 use super::restart::PairHistory;
@@ -320,7 +320,15 @@ impl ContactScene<3> for SurfaceAssembly {
         self.failures.clear();
         self.time = t;
         for (i, state) in self.pairs.iter_mut().enumerate() {
-            let (res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
+            let (mut res, failed) = surface::evaluate_pair(model, i, &self.x, t, state);
+            // two-way Lagrange pairs: the rows that repeat a neighbour's
+            let free = |n: usize, c: usize| matches!(dofs.dofs[dofs.dof(n, c)], Dof::Free(_));
+            crate::contact::node_to_facet::drop_redundant(
+                &model.contacts[i],
+                state,
+                &mut res,
+                &free,
+            );
             self.failures
                 .extend(failed.into_iter().map(|(n, e)| (i, n, e)));
             match &state.deformable {

@@ -60,8 +60,9 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// Lagrangian or single Lagrange multipliers; Coulomb friction with the
 /// penalty and augmented Lagrangian methods: [`super::contacts`] refuses
 /// the rest),
-/// self contact (penalty or augmented Lagrangian, with or without
-/// Coulomb friction); normal
+/// self contact (every method; Coulomb friction with the penalty and
+/// augmented Lagrangian methods; the redundant Lagrange rows of two-way
+/// pairs are dropped by the engine, `contact::redundancy`); normal
 /// smoothing: `nagata` in 3d only (planar analyses have no facets; friction
 /// on the patches is refused in [`super::contacts`]), `nodal` (planar) is
 /// refused in 3d.
@@ -97,8 +98,7 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
             .with_help(help.to_string()),
         );
     };
-    for c in &deck.contacts {
-        let Some(m) = &c.master else { continue };
+    for c in deck.contacts.iter().filter(|c| c.master.is_some()) {
         if let Some(s) = c
             .smoothing
             .as_ref()
@@ -108,41 +108,6 @@ pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
                 "nodal normal smoothing (the planar nodal normals along segments)",
                 s.span,
                 "drop `smoothing` (faceted master)",
-            );
-        }
-        if m.to_string() == c.target.to_string() {
-            // self contact: both directions at once (the modified double
-            // pass of one surface), penalty or augmented Lagrangian, with
-            // or without friction
-            if let Some(me) = c
-                .method
-                .as_ref()
-                .filter(|me| matches!(me.value, crate::ast::Method::Lagrange { .. }))
-            {
-                refuse(
-                    "self contact with Lagrange multipliers (every node is constrained from \
-                     both sides, as in the modified double pass: the saddle-point system is \
-                     singular)",
-                    me.span,
-                    "use `method = penalty { .. }` or `augmented_lagrange { .. }` for self contact",
-                );
-            }
-        }
-        let lagrange = c
-            .method
-            .as_ref()
-            .is_some_and(|m| matches!(m.value, crate::ast::Method::Lagrange { .. }));
-        if let Some(st) = c
-            .strategy
-            .as_ref()
-            .filter(|s| lagrange && s.value == crate::ast::Strategy::ModifiedDoublePass)
-        {
-            refuse(
-                "modified double pass with Lagrange multipliers (every interface node is \
-                 constrained from both sides: the saddle-point system is singular)",
-                st.span,
-                "use `strategy = double_pass`, or `method = penalty { .. }` / \
-                 `augmented_lagrange { .. }` with the modified double pass",
             );
         }
     }
