@@ -208,9 +208,9 @@ fn orbit_difference(a: &Probe, reference: &Probe, until: f64) -> (f64, f64, usiz
     (worst / peak, peak, common)
 }
 
-/// The slice held axially follows the planar run's orbit, through the
-/// spin-up (the tips touching the casing) and 0.5 ms after the release;
-/// the free slice departs from it by the Poisson effect.
+/// The slice held axially against the planar run, both with the full
+/// contact mass, to 0.5 ms after the release: the orbit through the
+/// spin-up, and its departure after the released blade's impacts.
 #[test]
 fn blade_loss_3d_slice_follows_the_planar_orbit() {
     let (end, n) = ("6.5e-3", 20);
@@ -218,7 +218,7 @@ fn blade_loss_3d_slice_follows_the_planar_orbit() {
         let text = src
             .text
             .replace("dynamic { }", "dynamic { contact_mass = full }");
-        assert_eq!(text.matches("contact_mass = full").count(), 2);
+        assert_eq!(text.matches("dynamic { contact_mass = full }").count(), 2);
         ctc_lang::Source::new(src.path, text)
     };
     let (planar, s2, w2) = run(&full(deck("blade_loss.ctc", end, n, "")));
@@ -262,16 +262,17 @@ fn blade_loss_3d_slice_follows_the_planar_orbit() {
     assert!(axial == 0.0, "the held slice moved axially: {axial:e}");
 }
 
-/// The deck as written (the slice free axially) to 7 ms: its orbit
-/// against the planar run's, the friction work, the energy audit, and
-/// the released blade outside the disc.
+/// The deck as written (the slice free axially) to 7 ms: the friction
+/// work, the energy audit, and the released blade outside the disc. (Its
+/// orbit against the planar run's, measured with this test's run and the
+/// planar deck to 7 ms: 4.68e-1 of the planar peak 5.91e-1 mm, the
+/// contact-mass unbalance of the slice, see above, in it; not asserted:
+/// the held slice above is the comparison.)
 #[test]
 fn blade_loss_3d_whirl_friction_and_energy() {
     let (end, n) = ("7e-3", 40);
-    let (planar, _, w2) = run(&deck("blade_loss.ctc", end, n, ""));
     let src = deck_3d_to(end, n);
     let (free, summary, w3) = run(&src);
-    let (free_error, peak, common) = orbit_difference(&free, &planar, 1.0);
     let friction_total: f64 = summary.friction_work.iter().sum();
     let friction_error = (free.dissipation - free.mu_rn_slip).abs() / free.mu_rn_slip;
     let (error, balance, numerical) = (
@@ -286,9 +287,14 @@ fn blade_loss_3d_whirl_friction_and_energy() {
         .fold(f64::INFINITY, f64::min);
     let root_end = *free.root_radius.last().unwrap();
     let axial = free.centre.iter().map(|c| c[2].abs()).fold(0.0, f64::max);
+    let peak = free
+        .centre
+        .iter()
+        .map(|c| c[0].hypot(c[1]))
+        .fold(0.0, f64::max);
     eprintln!(
         "blade loss 3D (free slice) to {end}: {} increments, {} iterations, {} cutbacks, \
-         {w3:.1} s (planar {w2:.1} s); orbit peak {peak:.4e}, free vs planar {free_error:.2e} ({common} times); \
+         {w3:.1} s; orbit peak {peak:.4e}; \
          axial {axial:.2e}; friction work {friction_total:.4e} vs sum mu R_N slip {:.4e} \
          ({friction_error:.1e}); balance {balance:.2e}, numerical {numerical:.2e}, error \
          {error:.2e} of max K {:.4e}; root radius min {root_min:.3} end {root_end:.3}; max \
@@ -300,12 +306,12 @@ fn blade_loss_3d_whirl_friction_and_energy() {
         free.kinetic,
         free.contact_force_max,
     );
-    // measured: 4.68e-1 of the planar peak (5.91e-1 mm); the held
-    // slice's 2.0e-1 (above) is part of it
-    assert!(
-        free_error < 0.6,
-        "free slice vs planar orbit {free_error:e}"
-    );
+    // measured (`cargo test -p ctc --test suite -- blade_loss_3d
+    // --nocapture`): friction work 5.97e4 mJ, against sum mu R_N |slip|
+    // 2.4e-16; energy error 2.37e-5 of the largest K (2.85e6 mJ), the
+    // balance 1.08e-4, the numerical dissipation 7.1e-5; the released
+    // blade's root at least 100.136 mm from the shaft (the rim at 100),
+    // 100.562 at 7 ms
     assert!(friction_total > 0.0, "the released blade rubs");
     assert!(
         (friction_total - free.dissipation).abs() <= 1e-9 * friction_total,
