@@ -155,3 +155,44 @@ fn an_unknown_swept_set_is_diagnosed_against_the_built_mesh() {
     assert!(text.contains("lefft"), "{text}");
     assert!(text.contains("left"), "{text}");
 }
+
+/// A `set` naming the boundary less the extruded ends is a face set: the
+/// sides of a slice, taken by contact and pressure (the blades of
+/// `examples/blade_loss_3d.ctc`, whose end faces must not be masters).
+#[test]
+fn the_sides_of_an_extruded_slice_are_a_face_set() {
+    let src = Source::new(
+        "sides.ctc",
+        "analysis { dimension = 3d }\n\
+         material m { elastic { E = 1000  nu = 0.3 } }\n\
+         body a {\n  mesh = extrude { base = rectangle { size = (2, 1)  divisions = (4, 2) }  \
+         length = 0.5  layers = 1 }\n  material = m\n}\n\
+         body b {\n  mesh = extrude { base = rectangle { origin = (0, 1)  size = (2, 1)  \
+         divisions = (4, 2) }  length = 0.5  layers = 1 }\n  material = m\n}\n\
+         set sides = a.boundary - a.zmin - a.zmax\n\
+         set sides = b.boundary - b.zmin - b.zmax\n\
+         fix a.zmin { ux uy uz }\n\
+         fix b.zmin { ux uy uz }\n\
+         pressure b.sides { p = 1 }\n\
+         contact a.sides -> b.sides { method = penalty { kind = area  stiffness = 1e3 } }\n\
+         step s { time = 0 .. 1  increments = 1 }\n",
+    );
+    let m = match compile_any(&src) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(_) => panic!("not 3d"),
+        Err(d) => panic!("{}", d.render(&src)),
+    };
+    // the four sides of a 4 x 2 x 1 block: 2 (4 + 2) faces, no end face
+    for body in ["a", "b"] {
+        let sides = &m.mesh.face_sets[&format!("{body}.sides")];
+        assert_eq!(sides.len(), 12, "{body}");
+        let boundary = &m.mesh.face_sets[&format!("{body}.boundary")];
+        assert_eq!(boundary.len(), 12 + 2 * 8, "{body}");
+        for f in sides {
+            assert!(boundary.contains(f), "{body}: a side is a boundary face");
+        }
+    }
+    // the slave nodes: those on a side (not the 3 in-plane interior ones
+    // of either layer)
+    assert_eq!(m.contacts[0].nodes.len(), 5 * 3 * 2 - 3 * 2);
+}

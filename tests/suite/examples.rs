@@ -98,6 +98,10 @@ fn compile(path: &Path) -> AnyModel {
     // debug CPU: `crate::blade_loss::deck_to_10_ms`)
     let src = if path.file_stem().is_some_and(|s| s == "blade_loss") {
         crate::blade_loss::deck_to_10_ms()
+    } else if path.file_stem().is_some_and(|s| s == "blade_loss_3d") {
+        // its spin-up and the release (a run to 13 ms: ~150 s of debug
+        // CPU; `crate::blade_loss_3d` runs it to 6.5 / 7 ms)
+        crate::blade_loss_3d::deck_3d_to("6.1e-3", 4)
     } else {
         ctc_lang::Source::read(path).expect("readable deck")
     };

@@ -3,6 +3,7 @@
 //! its own binary. `petsc_run.rs` stays apart: it needs the `petsc` feature.
 
 mod blade_loss;
+mod blade_loss_3d;
 mod cli;
 mod cli_bench_search;
 mod contact_deformable;

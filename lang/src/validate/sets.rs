@@ -42,6 +42,11 @@ pub fn check(ctx: &mut Ctx<'_>) {
             // Unknown kind (set of a mesh file): be permissive here, the
             // lowering checks it against the mesh.
             SetRefKind::Named(_) => ok.unwrap_or(SetKind::Edges),
+            // a union / difference of edge (face) sets keeps its edges
+            // (faces): `set sides = b.boundary - b.zmin - b.zmax`; terms of
+            // unknown kind (sets of a mesh file, of `extrude`): permissive,
+            // as for a named set
+            SetRefKind::Combination(_) => ok.unwrap_or(SetKind::Edges),
             _ => SetKind::Nodes,
         };
         if let Some(info) = ctx.bodies.get_mut(&s.target.body.name) {
@@ -254,12 +259,16 @@ fn combination(
     if kinds.iter().any(Option::is_none) {
         return None;
     }
-    let kind = if kinds.iter().all(|k| *k == Some(SetKind::Edges)) {
-        SetKind::Edges
-    } else if kinds.iter().all(|k| *k == Some(SetKind::Faces)) {
+    // the built-in `boundary` is recorded as edges in every analysis: in
+    // 3d it is the boundary faces, so edges and faces mix into faces
+    // (`b.boundary - b.zmin - b.zmax`)
+    let facets = |k: &Option<SetKind>| matches!(k, Some(SetKind::Edges | SetKind::Faces));
+    let kind = if !kinds.iter().all(facets) {
+        SetKind::Nodes
+    } else if super::analysis::is_solid(ctx) {
         SetKind::Faces
     } else {
-        SetKind::Nodes
+        SetKind::Edges
     };
     if need == Need::Edges && kind == SetKind::Nodes {
         let (_, nodes_only) = terms
@@ -316,6 +325,33 @@ mod tests {
             "set clamp = block.edges(y = 0)\npressure block.clamp { p = 1 }\nset clamp = block.top",
         );
         assert_eq!(m, ["set `block.clamp` is defined twice"]);
+    }
+
+    /// A `set` item naming a union / difference keeps the terms' edges
+    /// (faces in 3d): pressure and contact take it; with a node-only term
+    /// it is a set of nodes.
+    #[test]
+    fn deck_sets_of_combinations_keep_their_facets() {
+        let m = messages(
+            "set sides = block.boundary - block.top
+pressure block.sides { p = 1 }
+             set mixed = block.top + block.nodes(y = 0)
+pressure block.mixed { p = 1 }",
+        );
+        assert_eq!(
+            m,
+            ["`pressure` needs boundary edges, but `block.mixed` is a set of nodes"]
+        );
+        let m = solid(
+            "set sides = block.boundary - block.zmin - block.zmax
+             pressure block.sides { p = 1 }
+             set mixed = block.zmax + block.nodes(z = 0)
+pressure block.mixed { p = 1 }",
+        );
+        assert_eq!(
+            m,
+            ["`pressure` needs boundary faces, but `block.mixed` is a set of nodes"]
+        );
     }
 
     /// A unit-cube `block` (hex8) in a 3d analysis followed by `extra`.
