@@ -462,7 +462,7 @@ mod tests {
         let reference = [[0.0, 0.0], [1.0, 0.0]];
         let (x1, x2) = ([0.01, -0.02], [1.03, 0.05]);
         // beyond x_2, on the body's side of the segment's line
-        let xs = [1.08, 0.09];
+        let xs: [f64; 2] = [1.08, 0.09];
         let vertex = Some(Vertex { end: 1, side: -1.0 });
         let r = (xs[0] - x2[0]).hypot(xs[1] - x2[1]);
         let n = [-(xs[0] - x2[0]) / r, -(xs[1] - x2[1]) / r];
