@@ -118,7 +118,7 @@ pub fn respond(
             let xv = if vx.end == 0 { p1 } else { p2 };
             let r = [s[0] - xv[0], s[1] - xv[1]];
             let dist = (r[0] * r[0] + r[1] * r[1]).sqrt();
-            if !(dist.re() > 0.0) {
+            if dist.re().is_nan() || dist.re() <= 0.0 {
                 return None;
             }
             let n = [r[0] * vx.side / dist, r[1] * vx.side / dist];

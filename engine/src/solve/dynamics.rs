@@ -1214,7 +1214,7 @@ impl Dynamics {
         // rule carry no friction forces: from none
         // (two per pair: forces and elastic energies)
         let friction = &s.forces0[FORCES..];
-        self.friction0 = if friction.len() % 2 == 0 {
+        self.friction0 = if friction.len().is_multiple_of(2) {
             friction.to_vec()
         } else {
             Vec::new()

@@ -24,8 +24,8 @@
 //!     contact forces (the audit's trapezoidal `contact_work`, whose
 //!     normal part, the penalty's energy, is ~`(m g)^2 / k`) over `K0` and
 //!     the distance are judged, and so is the engine's `friction_work`
-//!     over `K0`: the trapezoidal rule of the audit's other terms, `-(T_0
-//!     + T_1) / 2 . slip`, plus the tangential springs' energy lost when
+//!     over `K0`: the trapezoidal rule of the audit's other terms,
+//!     `-(T_0 + T_1) / 2 . slip`, plus the tangential springs' energy lost when
 //!     a node lifts off (`Dynamics::friction_work`). The return map's own
 //!     `-T_1 . slip` (the force at the end of the increment, backward
 //!     Euler) is reported beside it, not judged, and checked against the

@@ -86,10 +86,13 @@ where
         // symmetric when K is)
         let mut values = self.values[..pattern.nnz()].to_vec();
         for j in 0..pattern.n {
-            for k in pattern.col_ptr[j]..pattern.col_ptr[j + 1] {
-                let i = pattern.row_idx[k];
+            let range = pattern.col_ptr[j]..pattern.col_ptr[j + 1];
+            for (v, &i) in values[range.clone()]
+                .iter_mut()
+                .zip(&pattern.row_idx[range])
+            {
                 if !(q[i] && q[j]) {
-                    values[k] = if i == j { 1.0 } else { 0.0 };
+                    *v = if i == j { 1.0 } else { 0.0 };
                 }
             }
         }
