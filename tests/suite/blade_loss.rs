@@ -50,8 +50,10 @@ struct Probe {
     /// pairs acting on the rotor: blades 2..6 on the casing, the released
     /// blade on the disc and the other blades (every pair but the first).
     rub: Vec<f64>,
-    /// Sum of the nodes' friction dissipation, and of mu |R_N| |slip|.
+    /// Sum of the nodes' friction dissipation (the time scheme's), of the
+    /// return map's `-T_1 . slip` and of mu |R_N| |slip|.
     dissipation: f64,
+    return_map: f64,
     mu_rn_slip: f64,
     /// Largest `|energy_balance|` and `|energy_error|` over the run, and
     /// the numerical dissipation at the end.
@@ -118,6 +120,8 @@ impl Observer<2> for Probe {
                 ];
                 let rn = (normal[0] * n.normal[0] + normal[1] * n.normal[1]).abs();
                 self.dissipation += n.friction.dissipation;
+                let (t, s) = (n.friction.traction, n.friction.slip_vector);
+                self.return_map -= t[0] * s[0] + t[1] * s[1];
                 self.mu_rn_slip += mu * rn * n.friction.slip.abs();
                 force[0] += n.force[0];
                 force[1] += n.force[1];
@@ -360,7 +364,7 @@ fn blade_loss_whirl_friction_and_energy() {
         peak = peak.max(y[0].hypot(y[1]));
     }
     let whirl_error = err / peak;
-    let friction_error = (probe.dissipation - probe.mu_rn_slip).abs() / probe.mu_rn_slip;
+    let friction_error = (probe.return_map - probe.mu_rn_slip).abs() / probe.mu_rn_slip;
     let balance = probe.balance / probe.kinetic;
     let error = probe.error / probe.kinetic;
     let numerical = probe.numerical / probe.kinetic;
@@ -375,11 +379,13 @@ fn blade_loss_whirl_friction_and_energy() {
          {r_b:.2} m_rotor {m_rotor:.4e}; release at increment {i0}, first rub at {first_rub} (contact force on the rotor \
          before it {graze:.3e}, unbalance force {unbalance:.3e}); \
          whirl vs ODE {whirl_error:.2e} (peak {peak:.3e}); max orbit radius {radius_max:.3e}; \
-         friction work {friction_total:.4e} vs sum mu R_N slip {:.4e} ({friction_error:.1e}); \
+         friction work {friction_total:.4e} (the return map's {:.4e}) vs sum mu R_N slip {:.4e} \
+         ({friction_error:.1e}); \
          balance {balance:.2e} of max K {:.4e} (numerical dissipation {numerical:.2e}, \
          error {error:.2e}); max contact force {:.4e}",
         summary.increments.len(),
         summary.newton_iterations,
+        probe.return_map,
         probe.mu_rn_slip,
         probe.kinetic,
         probe.contact_force_max,
@@ -398,8 +404,10 @@ fn blade_loss_whirl_friction_and_energy() {
         "friction work {friction_total} vs nodes {}",
         probe.dissipation
     );
-    // round-off since R_N is the force's normal part (1.4e-15; it was
-    // 1.2e-4 to 12 ms with `force . normal`)
+    // the return map's `-T_1 . slip` on Coulomb's cone: round-off since R_N
+    // is the force's normal part (1.4e-15; it was 1.2e-4 to 12 ms with
+    // `force . normal`) and the friction at a vertex projection acts in
+    // the vertex's tangent
     assert!(
         friction_error < 1e-12,
         "friction vs mu R_N slip {friction_error:e}"

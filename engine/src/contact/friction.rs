@@ -79,7 +79,7 @@ pub struct NodeFriction<const D: usize = 2> {
     /// Tangential force vector on the node (current frame; 2D: `R_T t`).
     pub traction: [f64; D],
     /// Slip increment vector of the node relative to the tool since the
-    /// last converged increment (current frame; 3D only, zeros in 2D).
+    /// last converged increment (current frame; 2D: `slip t`).
     pub slip_vector: [f64; D],
     /// `d g_T / d x` at the slave node (the Lagrange stick row; planar).
     pub gap_gradient: [f64; D],
@@ -403,6 +403,7 @@ pub fn respond_tool(
     // slip over the whole increment (the base may have moved with Uzawa)
     let slip = ds + dot(t_ref, sub(anchor, start));
     tangential.friction.slip = slip;
+    tangential.friction.slip_vector = scale(slip, t);
     tangential.friction.dissipation = -rt * slip;
     // d g_T / d x; in the increment of the first impact the stick point
     // itself depends on x: X_a = X0 + tau (X - X0), with tau = g0 / (g0 - g)

@@ -57,8 +57,36 @@ pub struct SegmentResponse {
     pub anchor: [f64; 2],
 }
 
+/// The slave node projects on a master vertex, the end of the segment
+/// seen as a circle of radius 0 ([`super::segment::SegmentProjection::corner`]):
+/// the normal points from the vertex to the node (`side` times), and the
+/// friction acts in the tangent of that normal.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Vertex {
+    /// The segment's end: 0 (`x_1`) or 1 (`x_2`).
+    pub end: usize,
+    /// `1`: the node is outside the body (convex kink), `-1`: inside.
+    pub side: f64,
+}
+
+/// The smallest `t . tau` (cosine between the segment and the vertex's
+/// tangent) the stick point's update divides by: 84 degrees, beyond any
+/// kink a node slides over (the normal turns by the kink's angle across
+/// the vertex's wedge).
+const MIN_COSINE: f64 = 0.1;
+
 /// Friction on the element `x_s` against `x_1 -> x_2` (current positions;
 /// `reference` = `[X_1, X_2]`), stick point `anchor` (reference frame).
+///
+/// The tangent `tau` is the one of the normal that gives the gap ("one
+/// geometry everywhere"): the segment's `t` when the node projects inside
+/// the segment, and at a vertex projection (`vertex`) the perpendicular to
+/// the vertex's normal, so the friction force is orthogonal to the normal
+/// force (along the segment it was off by the normal's turn, 3.5 degrees
+/// on examples/blade_loss.ctc's casing). The tangential gap is `g_T =
+/// (x_s - x_a) . tau`, `x_a` the stick point on the segment's line, and
+/// the reaction `-R_T tau` acts at the projection point (the vertex).
+#[allow(clippy::too_many_arguments)]
 pub fn respond(
     law: &SegmentFriction,
     xs: [f64; 2],
@@ -67,6 +95,7 @@ pub fn respond(
     reference: [[f64; 2]; 2],
     anchor: [f64; 2],
     anchor_rate: Option<[f64; 6]>,
+    vertex: Option<Vertex>,
 ) -> Option<SegmentResponse> {
     let v = |x: [f64; 2], k: usize| [D6::var(x[0], k), D6::var(x[1], k + 1)];
     let (s, p1, p2) = (v(xs, 0), v(x1, 2), v(x2, 4));
@@ -76,11 +105,26 @@ pub fn respond(
         return None;
     }
     let t = [a[0] / len, a[1] / len];
-    let n = [t[1], -t[0]];
     let d = [s[0] - p1[0], s[1] - p1[1]];
-    let gap = d[0] * n[0] + d[1] * n[1];
-    let along = d[0] * t[0] + d[1] * t[1];
-    let xi = along / len;
+    // the normal, its tangent (`tau = (-n_y, n_x)`, `t` on the segment),
+    // the gap and the projection's parameter
+    let (tau, gap, xi) = match vertex {
+        None => {
+            let n = [t[1], -t[0]];
+            let along = d[0] * t[0] + d[1] * t[1];
+            (t, d[0] * n[0] + d[1] * n[1], along / len)
+        }
+        Some(vx) => {
+            let xv = if vx.end == 0 { p1 } else { p2 };
+            let r = [s[0] - xv[0], s[1] - xv[1]];
+            let dist = (r[0] * r[0] + r[1] * r[1]).sqrt();
+            if dist.re().is_nan() || dist.re() <= 0.0 {
+                return None;
+            }
+            let n = [r[0] * vx.side / dist, r[1] * vx.side / dist];
+            ([n[1] * -1.0, n[0]], dist * vx.side, D6::cst(vx.end as f64))
+        }
+    };
     // stick point parameter on the current segment (reference geometry)
     let [r1, r2] = reference;
     let ar = [r2[0] - r1[0], r2[1] - r1[1]];
@@ -94,7 +138,8 @@ pub fn respond(
         Some(d) => D6 { v: xi_a_value, d },
         None => D6::cst(xi_a_value),
     };
-    let gt = along - len * xi_a;
+    // g_T = (x_s - x_a) . tau, x_a = x_1 + xi_a (x_2 - x_1)
+    let gt = (d[0] - a[0] * xi_a) * tau[0] + (d[1] - a[1] * xi_a) * tau[1];
     let xi_a = xi_a_value;
     let rn = (gap * -law.normal_stiffness) + law.normal_shift;
     let rn = if rn.re() > 0.0 { rn } else { D6::cst(0.0) };
@@ -116,25 +161,27 @@ pub fn respond(
     let mut tangent = [[0.0; 6]; 6];
     for node in 0..3 {
         for c in 0..2 {
-            let f = rt * w[node] * t[c] * sign[node];
+            let f = rt * w[node] * tau[c] * sign[node];
             forces[2 * node + c] = f.re();
             for (j, dj) in f.d.iter().enumerate() {
                 tangent[2 * node + c][j] = -dj;
             }
         }
     }
-    // the stick point moves by the slip along the segment
-    let xi_new = xi_a + ds / len.re();
+    // the stick point moves along the segment's line so that `g_T` drops
+    // by the slip: by `ds / (t . tau)` (1 inside the segment)
+    let cosine = (t[0].re() * tau[0].re() + t[1].re() * tau[1].re()).max(MIN_COSINE);
+    let xi_new = xi_a + ds / (len.re() * cosine);
     Some(SegmentResponse {
         friction: NodeFriction {
             status,
             tangential_force: rt.re(),
             tangential_gap: gt.re(),
             slip: ds,
-            gap_gradient: [t[0].re(), t[1].re()],
+            gap_gradient: [tau[0].re(), tau[1].re()],
             dissipation: -rt.re() * ds,
-            traction: [rt.re() * t[0].re(), rt.re() * t[1].re()],
-            slip_vector: [0.0; 2],
+            traction: [rt.re() * tau[0].re(), rt.re() * tau[1].re()],
+            slip_vector: [ds * tau[0].re(), ds * tau[1].re()],
         },
         forces,
         tangent,
@@ -159,6 +206,8 @@ pub struct Element {
     pub status: super::ContactStatus,
     /// Tributary area of the slave node.
     pub tributary: f64,
+    /// The projection is the segment's end (`None`: inside the segment).
+    pub vertex: Option<Vertex>,
 }
 
 /// Adds the friction forces and tangent of a node-to-segment element to
@@ -234,11 +283,18 @@ pub fn apply(
     };
     // R_N(x) = R_N + alpha_N (g_now - g): pass the law through the current
     // force (penalty and augmented Lagrangian alike)
-    let gap_now = {
-        let a = [x2[0] - x1[0], x2[1] - x1[1]];
-        let l = a[0].hypot(a[1]);
-        let n = [a[1] / l, -a[0] / l];
-        (e.xs[0] - x1[0]) * n[0] + (e.xs[1] - x1[1]) * n[1]
+    // (the vertex's gap at a vertex projection)
+    let gap_now = match e.vertex {
+        None => {
+            let a = [x2[0] - x1[0], x2[1] - x1[1]];
+            let l = a[0].hypot(a[1]);
+            let n = [a[1] / l, -a[0] / l];
+            (e.xs[0] - x1[0]) * n[0] + (e.xs[1] - x1[1]) * n[1]
+        }
+        Some(v) => {
+            let xv = if v.end == 0 { x1 } else { x2 };
+            v.side * (e.xs[0] - xv[0]).hypot(e.xs[1] - xv[1])
+        }
     };
     let seg = SegmentFriction {
         mu: law.mu,
@@ -249,7 +305,7 @@ pub fn apply(
     };
     // the Uzawa base (augmented Lagrangian) is a fixed stick point
     let anchor_rate = anchor_rate.filter(|_| state.base[i].is_none());
-    let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor, anchor_rate) else {
+    let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor, anchor_rate, e.vertex) else {
         return NodeFriction::default();
     };
     for ((f, row), (rf, rrow)) in forces
@@ -355,7 +411,7 @@ mod tests {
             (0.2, [0.2, 0.0], FrictionStatus::Slip),
         ] {
             let xs = [0.45, 0.03];
-            let r = respond(&law(mu), xs, x1, x2, reference, anchor, None).unwrap();
+            let r = respond(&law(mu), xs, x1, x2, reference, anchor, None, None).unwrap();
             assert_eq!(r.friction.status, status, "{:?}", r.friction);
             for c in 0..2 {
                 let sum: f64 = (0..3).map(|k| r.forces[2 * k + c]).sum();
@@ -370,6 +426,7 @@ mod tests {
                     [x[4], x[5]],
                     reference,
                     anchor,
+                    None,
                     None,
                 )
                 .unwrap()
@@ -387,6 +444,83 @@ mod tests {
                         (fd - r.tangent[i][j]).abs() < 1e-6 * (1.0 + fd.abs()),
                         "mu {mu} K[{i}][{j}]: {fd} vs {}",
                         r.tangent[i][j]
+                    );
+                }
+            }
+        }
+    }
+
+    /// A node pressed into the wedge of a concave kink of the master
+    /// projects on the vertex `x_2` (normal from the node to the vertex):
+    /// the friction acts in the tangent of that normal, `T . n = 0`, with
+    /// `|T| = mu R_N` in slip (along the segment it was off by the angle
+    /// between the segment and the vertex's tangent, 45 degrees here);
+    /// forces balance; the tangent is minus the derivative of the forces
+    /// (central differences), in stick and in slip.
+    #[test]
+    fn friction_at_a_vertex_is_orthogonal_to_its_normal_and_tangent_matches_finite_differences() {
+        let reference = [[0.0, 0.0], [1.0, 0.0]];
+        let (x1, x2) = ([0.01, -0.02], [1.03, 0.05]);
+        // beyond x_2, on the body's side of the segment's line
+        let xs: [f64; 2] = [1.08, 0.09];
+        let vertex = Some(Vertex { end: 1, side: -1.0 });
+        let r = (xs[0] - x2[0]).hypot(xs[1] - x2[1]);
+        let n = [-(xs[0] - x2[0]) / r, -(xs[1] - x2[1]) / r];
+        for (mu, anchor, status) in [
+            (0.5, [1.05, 0.0], FrictionStatus::Stick),
+            (0.05, [0.9, 0.0], FrictionStatus::Slip),
+        ] {
+            let out = respond(&law(mu), xs, x1, x2, reference, anchor, None, vertex).unwrap();
+            assert_eq!(out.friction.status, status, "{:?}", out.friction);
+            let t = out.friction.traction;
+            let tn = t[0] * n[0] + t[1] * n[1];
+            let tl = t[0].hypot(t[1]);
+            assert!(
+                tl > 0.0 && tn.abs() <= 1e-14 * tl,
+                "T . n {tn:e}, |T| {tl:e}"
+            );
+            // the slave's friction force is the traction; the reaction is at
+            // the vertex
+            assert_eq!([out.forces[0], out.forces[1]], t);
+            assert!(out.forces[2].abs() + out.forces[3].abs() < 1e-15);
+            if status == FrictionStatus::Slip {
+                // R_N = alpha_N r (the vertex's gap -r)
+                let rn = 100.0 * r;
+                assert!((tl - mu * rn).abs() <= 1e-13 * tl, "{tl} vs {}", mu * rn);
+                let s = out.friction.slip_vector;
+                assert!((s[0] * n[0] + s[1] * n[1]).abs() < 1e-15);
+            }
+            let x0 = [xs[0], xs[1], x1[0], x1[1], x2[0], x2[1]];
+            let eval = |x: [f64; 6]| {
+                respond(
+                    &law(mu),
+                    [x[0], x[1]],
+                    [x[2], x[3]],
+                    [x[4], x[5]],
+                    reference,
+                    anchor,
+                    None,
+                    vertex,
+                )
+                .unwrap()
+                .forces
+            };
+            for c in 0..2 {
+                let sum: f64 = (0..3).map(|k| out.forces[2 * k + c]).sum();
+                assert!(sum.abs() < 1e-14, "{sum}");
+            }
+            let h = 1e-7;
+            for j in 0..6 {
+                let (mut xp, mut xm) = (x0, x0);
+                xp[j] += h;
+                xm[j] -= h;
+                let (fp, fm) = (eval(xp), eval(xm));
+                for i in 0..6 {
+                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
+                    assert!(
+                        (fd - out.tangent[i][j]).abs() < 1e-6 * (1.0 + fd.abs()),
+                        "mu {mu} K[{i}][{j}]: {fd} vs {}",
+                        out.tangent[i][j]
                     );
                 }
             }
@@ -440,6 +574,7 @@ mod tests {
             [2.0, 0.0],
             reference,
             [1.0, 0.0],
+            None,
             None,
         )
         .unwrap();

@@ -676,6 +676,14 @@ pub fn evaluate(
                     normal_force: rn,
                     status: resp.status,
                     tributary,
+                    // a vertex projection: the friction in the tangent of
+                    // the vertex's normal
+                    vertex: (smoothed.is_none() && p.corner).then(|| {
+                        super::friction_segment::Vertex {
+                            end: usize::from(p.xi > 0.5),
+                            side: if p.gap < 0.0 { -1.0 } else { 1.0 },
+                        }
+                    }),
                 },
                 &mut state.friction,
                 &mut f,

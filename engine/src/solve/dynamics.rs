@@ -41,6 +41,8 @@
 
 use super::dofs::{Dof, DofMap};
 use super::linalg::{Scatter, NO_SLOT};
+use crate::contact::friction::FrictionStatus;
+use crate::contact::NodeContact;
 use crate::element::kernel::kernel_of;
 use crate::element::Section;
 use crate::geom::Dimension;
@@ -208,7 +210,9 @@ pub struct DynamicState {
     /// `f_int - f_ext - f_c` per dof (the `alpha_f` term).
     pub r0: Vec<f64>,
     /// Internal, external + reactions, contact, damping forces per dof
-    /// (the work integrals).
+    /// (the work integrals), then each contact pair's friction forces on
+    /// its slave nodes (per dof, empty: none; the friction work's
+    /// trapezoidal rule, [`Dynamics::friction_work`]).
     pub forces0: Vec<Vec<f64>>,
     /// Kinetic energy at the start.
     pub kinetic0: f64,
@@ -301,6 +305,10 @@ pub struct Dynamics {
     /// Cells with every node on a contact surface, whose lumped mass was
     /// kept (no other node to move it to).
     pub contact_cells_kept: usize,
+    /// Committed friction force on each slave node per contact pair, per
+    /// dof (the start of the friction work's trapezoidal rule,
+    /// [`Dynamics::friction_work`]; empty until a pair has friction).
+    friction0: Vec<Vec<f64>>,
 }
 
 impl Dynamics {
@@ -336,6 +344,7 @@ impl Dynamics {
             kinetic0: 0.0,
             energy: Energy::default(),
             contact_cells_kept: 0,
+            friction0: Vec::new(),
         }
     }
 
@@ -827,27 +836,9 @@ impl Dynamics {
         }
     }
 
-    /// The initial acceleration `M_ff a_f = -r_f` (prescribed dofs: 0) of
-    /// the state with residual `r` (`f_int - f_ext - f_c` per dof), by
-    /// Jacobi-preconditioned conjugate gradients; `r` becomes the
-    /// committed residual.
-    pub fn start<const D: usize>(&mut self, model: &Model<D>, dofs: &DofMap<D>, r: &[f64]) {
-        // the damping force of the initial velocities is part of it, and
-        // the start of the damping work integral
-        let mut d0 = vec![0.0; r.len()];
-        self.damping_times(model, &self.v, &mut d0);
-        let r: Vec<f64> = r.iter().zip(&d0).map(|(r, d)| r + d).collect();
-        let r = &r[..];
-        self.forces0[3] = d0;
-        // free dofs that carry mass (contact nodes may not: their
-        // acceleration is left 0, they follow the constraint statically)
-        let mut free: Vec<bool> = dofs
-            .dofs
-            .iter()
-            .map(|d| matches!(d, Dof::Free(_)))
-            .collect();
-        let n = r.len();
-        // the diagonal of M: the Jacobi preconditioner
+    /// The diagonal of the mass matrix per dof (`n` dofs; point masses
+    /// included).
+    fn mass_diagonal<const D: usize>(&self, model: &Model<D>, n: usize) -> Vec<f64> {
         let mut diag = vec![0.0; n];
         for (node, m) in self.node_mass.iter().enumerate() {
             for k in 0..D {
@@ -868,6 +859,50 @@ impl Dynamics {
                 }
             }
         }
+        diag
+    }
+
+    /// Per dof: whether it is free and carries no mass (the spin node of
+    /// a 3D rigid body, a spring's end node, the contact nodes of
+    /// `contact_mass = redistributed`): the dofs whose equation is static
+    /// ([`Dynamics::start`]).
+    pub fn massless_free<const D: usize>(&self, model: &Model<D>, dofs: &DofMap<D>) -> Vec<bool> {
+        let diag = self.mass_diagonal(model, dofs.dofs.len());
+        dofs.dofs
+            .iter()
+            .zip(&diag)
+            .map(|(d, m)| matches!(d, Dof::Free(_)) && *m <= 0.0)
+            .collect()
+    }
+
+    /// The initial acceleration `M_ff a_f = -r_f` (prescribed dofs: 0) of
+    /// the state with residual `r` (`f_int - f_ext - f_c` per dof), by
+    /// Jacobi-preconditioned conjugate gradients; `r` becomes the
+    /// committed residual. The massless free dofs ([`Dynamics::massless_free`])
+    /// get no acceleration: their equation is static, so `r` must hold it
+    /// (`r = 0` there): the caller solves their static condensation first
+    /// (`Newton::consistent_start`), else a load on them at the start (a
+    /// moment on a 3D rigid body's spin node) would reach the masses one
+    /// increment late (a first-order error) and its share `alpha_f r0` would
+    /// stay in the next increment's equation.
+    pub fn start<const D: usize>(&mut self, model: &Model<D>, dofs: &DofMap<D>, r: &[f64]) {
+        // the damping force of the initial velocities is part of it, and
+        // the start of the damping work integral
+        let mut d0 = vec![0.0; r.len()];
+        self.damping_times(model, &self.v, &mut d0);
+        let r: Vec<f64> = r.iter().zip(&d0).map(|(r, d)| r + d).collect();
+        let r = &r[..];
+        self.forces0[3] = d0;
+        // free dofs that carry mass (contact nodes may not: their
+        // acceleration is left 0, they follow the constraint statically)
+        let mut free: Vec<bool> = dofs
+            .dofs
+            .iter()
+            .map(|d| matches!(d, Dof::Free(_)))
+            .collect();
+        let n = r.len();
+        // the diagonal of M: the Jacobi preconditioner
+        let mut diag = self.mass_diagonal(model, n);
         for (f, d) in free.iter_mut().zip(&mut diag) {
             *f = *f && *d > 0.0;
             if !*f {
@@ -930,6 +965,19 @@ impl Dynamics {
     pub fn start_forces(&mut self, forces: [&[f64]; 3]) {
         for (f0, f) in self.forces0.iter_mut().zip(forces) {
             f0.copy_from_slice(f);
+        }
+    }
+
+    /// Adds `internal` and `contact` (per dof) to the start of the internal
+    /// and contact work integrals: the forces `K du` of the massless dofs'
+    /// static condensation at the start (`Newton::consistent_start`), so
+    /// that the audit's net force at the start is the committed residual
+    /// the scheme uses.
+    pub fn add_start_forces(&mut self, internal: &[f64], contact: &[f64]) {
+        for (k, forces) in [(0, internal), (2, contact)] {
+            for (f0, f) in self.forces0[k].iter_mut().zip(forces) {
+                *f0 += f;
+            }
         }
     }
 
@@ -1025,6 +1073,80 @@ impl Dynamics {
             .max(e.numerical.abs());
     }
 
+    /// The friction work of the converged increment as the time scheme
+    /// does it, written over each node's `friction.dissipation` of
+    /// `contact` (per pair, the lists of the increment's end): the
+    /// trapezoidal rule of the audit's other work terms, `-(T_0 + T_1) / 2
+    /// . s` with `T_0`, `T_1` the node's friction force at the ends of the
+    /// increment and `s` its slip increment vector, that is the return
+    /// map's `-T_1 . s` plus `-(T_0 - T_1) . s / 2`. The friction forces
+    /// are part of the contact force whose work the audit integrates by
+    /// the same rule, so the pair's friction work and the normal forces'
+    /// work add up to `contact` (but for the energy stored in the
+    /// regularized tangential springs of closed nodes); what the scheme's
+    /// `alpha_f` weighting does beyond it is in [`numerical_dissipation`],
+    /// for every force alike. A node that opens also dissipates its
+    /// tangential spring's energy `|R_T| |g_e| / 2` (the stick point is
+    /// dropped with it): a block hopping as it slides loses it at every
+    /// lift-off. (The force at the end alone, the return map's, is
+    /// backward Euler.) A quasi-static increment keeps the return map's
+    /// value and only records `T_1`. Mortar pairs in 2D, which report no
+    /// slip vector, keep the return map's value but for the spring's
+    /// energy.
+    pub fn friction_work<const D: usize>(&mut self, contact: &mut [Vec<NodeContact<D>>]) {
+        let n = self.v.len();
+        let dynamic = self.active.is_some();
+        // per pair: the friction forces and the elastic energies (at the
+        // node's first dof) of the increment's start
+        self.friction0.resize(2 * contact.len(), Vec::new());
+        for (p, pair) in contact.iter_mut().enumerate() {
+            let [f0, e0] = &mut self.friction0[2 * p..2 * p + 2] else {
+                continue;
+            };
+            let any = pair
+                .iter()
+                .any(|c| c.friction.traction.iter().any(|t| *t != 0.0));
+            if !any && f0.is_empty() {
+                continue;
+            }
+            for v in [&mut *f0, &mut *e0] {
+                if v.len() != n {
+                    *v = vec![0.0; n];
+                }
+            }
+            let (mut f1, mut e1) = (vec![0.0; n], vec![0.0; n]);
+            for c in pair.iter_mut() {
+                let at = c.node * D;
+                if at + D > n {
+                    continue;
+                }
+                let fr = &mut c.friction;
+                // no friction force at the end: open, or a zero cone
+                let open = fr.status == FrictionStatus::Frictionless
+                    || fr.traction.iter().all(|t| *t == 0.0);
+                if dynamic {
+                    let change: f64 = (0..D)
+                        .map(|k| (f0[at + k] - fr.traction[k]) * fr.slip_vector[k])
+                        .sum();
+                    fr.dissipation -= 0.5 * change;
+                    if open {
+                        // the tangential spring's energy, lost with the
+                        // stick point
+                        fr.dissipation += e0[at];
+                    }
+                }
+                for k in 0..D {
+                    f1[at + k] += fr.traction[k];
+                }
+                if !open {
+                    e1[at] += elastic_energy(fr);
+                }
+            }
+            *f0 = f1;
+            *e0 = e1;
+        }
+    }
+
     /// Carries the committed rates and forces of the three dofs `dofs` of
     /// a free 3D body's rotation vector over to another chart
     /// ([`super::rotation_chart`]).
@@ -1054,7 +1176,13 @@ impl Dynamics {
             v: self.v.clone(),
             a: self.a.clone(),
             r0: self.r0.clone(),
-            forces0: self.forces0.clone(),
+            // the pairs' committed friction forces follow the work integrals'
+            forces0: self
+                .forces0
+                .iter()
+                .chain(&self.friction0)
+                .cloned()
+                .collect(),
             kinetic0: self.kinetic0,
             energy: self.energy.values(),
         }
@@ -1065,8 +1193,14 @@ impl Dynamics {
         let n = self.v.len();
         let lens = [s.v.len(), s.a.len(), s.r0.len()]
             .into_iter()
-            .chain(s.forces0.iter().map(Vec::len));
-        if s.forces0.len() != FORCES || lens.into_iter().any(|l| l != n) {
+            .chain(s.forces0.iter().take(FORCES).map(Vec::len));
+        // past the work integrals' forces: each pair's friction forces
+        // (empty: none yet)
+        let friction = s.forces0.iter().skip(FORCES).map(Vec::len);
+        if s.forces0.len() < FORCES
+            || lens.into_iter().any(|l| l != n)
+            || friction.into_iter().any(|l| l != n && l != 0)
+        {
             return Err(format!(
                 "the restart point's velocities do not match the model ({n} dofs)"
             ));
@@ -1075,7 +1209,16 @@ impl Dynamics {
         self.v.clone_from(&s.v);
         self.a.clone_from(&s.a);
         self.r0.clone_from(&s.r0);
-        self.forces0.clone_from(&s.forces0);
+        self.forces0 = s.forces0[..FORCES].to_vec();
+        // restart points written before the friction work's trapezoidal
+        // rule carry no friction forces: from none
+        // (two per pair: forces and elastic energies)
+        let friction = &s.forces0[FORCES..];
+        self.friction0 = if friction.len().is_multiple_of(2) {
+            friction.to_vec()
+        } else {
+            Vec::new()
+        };
         self.kinetic0 = s.kinetic0;
         self.energy = Energy::from_values(&s.energy)
             .ok_or("the restart point's energy audit does not match this version")?;
@@ -1141,6 +1284,19 @@ pub fn numerical_dissipation(
         force += (f[1][g] - f[0][g]) * du;
     }
     -kinematic - (k.alpha_f - 0.5) * force
+}
+
+/// The energy `|R_T| |g_e| / 2` of a node's regularized tangential spring,
+/// `g_e` the elastic part of its tangential gap (`g_T - slip`: planar,
+/// signed components; 3D, magnitudes along the same direction); 0 under
+/// Lagrange multipliers (no elastic part).
+fn elastic_energy<const D: usize>(f: &crate::contact::friction::NodeFriction<D>) -> f64 {
+    let elastic = if D == 2 {
+        f.tangential_gap - f.slip
+    } else {
+        f.tangential_gap.abs() - f.slip.abs()
+    };
+    0.5 * f.tangential_force.abs() * elastic.abs()
 }
 
 #[cfg(test)]

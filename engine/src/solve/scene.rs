@@ -78,6 +78,9 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     /// Contact evaluation of each pair at the last evaluated state (empty
     /// without contact).
     fn contact(&self) -> &[Vec<NodeContact<D>>];
+    /// The same, to amend at a commit (the time scheme's friction work,
+    /// [`super::dynamics::Dynamics::friction_work`]).
+    fn contact_mut(&mut self) -> &mut [Vec<NodeContact<D>>];
     /// Closed contact nodes at the last evaluation.
     fn active_contacts(&self) -> usize;
     /// Largest penetration at the last evaluation.
@@ -246,6 +249,10 @@ impl ContactScene<2> for ContactAssembly {
 
     fn contact(&self) -> &[Vec<NodeContact>] {
         &self.contact
+    }
+
+    fn contact_mut(&mut self) -> &mut [Vec<NodeContact>] {
+        &mut self.contact
     }
 
     fn active_contacts(&self) -> usize {
@@ -421,6 +428,10 @@ impl<const D: usize> ContactScene<D> for NoContact {
 
     fn contact(&self) -> &[Vec<NodeContact<D>>] {
         &[]
+    }
+
+    fn contact_mut(&mut self) -> &mut [Vec<NodeContact<D>>] {
+        &mut []
     }
 
     fn active_contacts(&self) -> usize {

@@ -565,6 +565,10 @@ impl ContactScene<3> for SurfaceAssembly {
         &self.contact
     }
 
+    fn contact_mut(&mut self) -> &mut [Vec<NodeContact<3>>] {
+        &mut self.contact
+    }
+
     fn active_contacts(&self) -> usize {
         self.contact
             .iter()

@@ -28,6 +28,7 @@ pub mod convergence;
 pub mod failure;
 pub mod line_search;
 pub mod predictor;
+mod start;
 pub mod state;
 
 #[cfg(test)]
@@ -379,8 +380,22 @@ where
             if out.is_ok() && !dy.started {
                 external_forces(model, t0, &mut self.f_ext);
                 out = self.evaluate(t0, false).map(|_| ());
-                if out.is_ok() {
-                    dy.start(model, &self.dofs, &self.r_static);
+                // the massless dofs' static condensation (`start.rs`)
+                let r0 = match out {
+                    Ok(()) => self.consistent_start(&dy, t0),
+                    Err(e) => Err(e),
+                };
+                out = r0.as_ref().map(|_| ()).map_err(Clone::clone);
+                if let Ok(start) = r0 {
+                    let r0 = &start.residual;
+                    dy.start(model, &self.dofs, r0);
+                    // the condensation's forces `K du` start the work
+                    // integrals (the audit's forces are those of the
+                    // scheme's committed residual): the contact's share
+                    // and the internal forces' rest
+                    let internal: Vec<f64> = (0..r0.len())
+                        .map(|g| r0[g] - self.r_static[g] + start.contact[g])
+                        .collect();
                     if !self.any_committed {
                         // the work integrals start from the forces of the
                         // initial state (a load present at t0, e.g.
@@ -394,6 +409,7 @@ where
                         }
                         dy.start_forces([&self.f_int, &ext, &self.f_c]);
                     }
+                    dy.add_start_forces(&internal, &start.contact);
                 }
             }
         }

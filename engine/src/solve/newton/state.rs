@@ -51,6 +51,8 @@ where
                 [&self.f_int, &ext, &self.f_c, &self.damping],
                 &prescribed,
             );
+            // the friction work by the rule of the other work integrals
+            dy.friction_work(self.contacts.contact_mut());
         }
         // the increment's start: the end of the last one recorded (exact
         // grid times), else the assembler's accumulated time
