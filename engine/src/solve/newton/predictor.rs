@@ -199,7 +199,8 @@ fn edge_distance(g: f64) -> f64 {
 /// stops short of the node by [`EDGE_MARGIN`] times its advance; `None`
 /// where it does not (or the node is not such a node).
 pub fn edge_gap(g_n: f64, g: f64, ratio: f64) -> Option<f64> {
-    if !(g_n > 0.0 && g < 0.0 && ratio > 0.0) {
+    let closing = g_n > 0.0 && g < 0.0 && ratio > 0.0;
+    if !closing {
         return None;
     }
     let g_prev = g_n + (g_n - g) / ratio;
