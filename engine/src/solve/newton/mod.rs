@@ -842,8 +842,12 @@ where
     /// The increment predictor ([`predictor`]), called with the plain start
     /// evaluated (the converged state, tangent included): moves the free
     /// dofs to the extrapolation by `ratio` of the last converged
-    /// increment and the prescribed dofs to their targets, evaluates
-    /// there, and keeps that start when its residual `||r_f||` is smaller
+    /// increment and the prescribed dofs to their targets; with a
+    /// rigid-tool pair, the nodes the extrapolation closes but the contact
+    /// edge does not reach are moved back out of the tool
+    /// ([`predictor::edge_moves`], against the gaps of the converged state
+    /// `t_n`); evaluates there, and keeps that start when its residual
+    /// `||r_f||` is smaller
     /// than the plain start's `||r_f + K_fp dp||`; otherwise (or when the
     /// predicted state inverts an element, or fails otherwise) the plain
     /// start is evaluated again. Returns whether the predicted start is
@@ -852,16 +856,41 @@ where
         let Some(last) = self.history.last.as_ref() else {
             return Ok(false);
         };
+        let t_n = last.times.1;
         let mut plain = self.r_free.clone();
         // summed over the ranks: every rank must take the same decision
         // below (an evaluation is collective)
         self.add_kfp_dp(&mut plain);
         let plain_norm = norm(&plain);
+        // the converged gaps of the rigid-tool pairs' nodes (the committed
+        // state against the tool at t_n)
+        let model = self.model;
+        let converged_gaps = if model.contacts.iter().any(|c| c.master.tool().is_some()) {
+            self.contacts
+                .evaluate(model, &self.dofs, &self.u, t_n, &mut self.f_c);
+            Some(predictor::gaps(model, self.contacts.contact()))
+        } else {
+            None
+        };
         {
             let u = self.u.as_flattened_mut();
             predictor::extrapolate(u, last.start.as_flattened(), &self.dofs.free, ratio);
             for (p, v) in self.dofs.prescribed.iter().zip(&self.target) {
                 u[p.dof] = *v;
+            }
+        }
+        // the contact edge's advance: the nodes the extrapolation closes
+        // that the edge does not reach are moved back out of the tool (a
+        // predicted state that fails to evaluate is left to the test below)
+        if let Some(g_n) = converged_gaps.filter(|_| self.evaluate(t, false).is_ok()) {
+            let moves = predictor::edge_moves(model, self.contacts.contact(), &g_n, ratio);
+            for (node, d) in moves {
+                for (c, v) in d.iter().enumerate() {
+                    let g = self.dofs.dof(node, c);
+                    if matches!(self.dofs.dofs[g], Dof::Free(_)) {
+                        self.u[node][c] += v;
+                    }
+                }
             }
         }
         let predicted = self.evaluate(t, true);

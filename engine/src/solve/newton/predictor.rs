@@ -21,6 +21,18 @@
 //! survives cutbacks (the ratio follows the attempted `dt`) and restarts
 //! (the history is part of the restart point, `restart.rs`).
 //!
+//! A closing contact (a penalty pair against a rigid tool): the
+//! extrapolation closes the nodes near the contact edge too early (near
+//! the edge of a smooth elastic contact the gap closes as the edge
+//! distance to the power 3/2, ever more slowly as the edge arrives), and
+//! each extra closed node costs Newton iterations opening again, ring by
+//! ring. [`edge_moves`] moves the nodes the extrapolated edge does not
+//! reach back out of the tool (the edge extrapolated through `g^(2/3)`,
+//! [`edge_gap`]): on the 3D Hertz sphere of
+//! `verification/fenicsx/sphere3d.py` 15 -> 13 iterations at N = 20
+//! (18 at N = 30 unchanged: see [`EDGE_MARGIN`]); the 2D tutorial 18 -> 16
+//! (SPEED.md, 2026-12-06).
+//!
 //! Dynamic steps keep their integrator's own predictor (the first iterate
 //! is the converged state); `newton { predictor = false }` turns it off.
 //! Models with a material other than linear elasticity (Hencky at finite
@@ -148,6 +160,118 @@ pub fn extrapolate(u: &mut [f64], start: &[f64], free: &[usize], ratio: f64) {
     }
 }
 
+/// The gaps of the nodes of every rigid-tool pair in `contact` (one list
+/// per pair, sorted by node; empty for the other pairs): the converged
+/// gaps the edge rule of [`edge_moves`] starts from.
+pub fn gaps<const D: usize>(
+    model: &Model<D>,
+    contact: &[Vec<crate::contact::NodeContact<D>>],
+) -> Vec<Vec<(usize, f64)>> {
+    contact
+        .iter()
+        .zip(&model.contacts)
+        .map(|(pair, cp)| {
+            if cp.master.tool().is_none() {
+                return Vec::new();
+            }
+            let mut g: Vec<(usize, f64)> = pair.iter().map(|c| (c.node, c.gap)).collect();
+            g.sort_by_key(|x| x.0);
+            g
+        })
+        .collect()
+}
+
+/// `h(g) = g^(2/3)`: near the edge of a smooth frictionless elastic
+/// contact the gap opens as the distance to the edge to the power 3/2, so
+/// `h` is linear in that distance.
+fn edge_distance(g: f64) -> f64 {
+    g.max(0.0).powf(2.0 / 3.0)
+}
+
+/// The edge rule for one node open at the converged state (gap `g_n > 0`)
+/// that the extrapolation by `ratio` closes (gap `g < 0`): the gap the
+/// extrapolation implies at the previous converged state is
+/// `g_{n-1} = g_n + (g_n - g) / ratio`; extrapolating `h = g^(2/3)`
+/// (linear in the distance to the contact edge) instead of `g` gives
+/// `h = (1 + ratio) h(g_n) - ratio h(g_{n-1})`, the edge's advance over
+/// the increment `ratio (h(g_{n-1}) - h(g_n))`. `Some(gap)`, the gap
+/// `h^(3/2)` (at least `1e-3 |g|`, clear of round-off), where the edge
+/// stops short of the node by [`EDGE_MARGIN`] times its advance; `None`
+/// where it does not (or the node is not such a node).
+pub fn edge_gap(g_n: f64, g: f64, ratio: f64) -> Option<f64> {
+    let closing = g_n > 0.0 && g < 0.0 && ratio > 0.0;
+    if !closing {
+        return None;
+    }
+    let g_prev = g_n + (g_n - g) / ratio;
+    let advance = ratio * (edge_distance(g_prev) - edge_distance(g_n));
+    let h = edge_distance(g_n) - advance;
+    (h >= EDGE_MARGIN * advance).then(|| h.powf(1.5).max(1e-3 * -g))
+}
+
+/// How far short of a node the extrapolated edge must stop, in units of
+/// its advance over the increment, for [`edge_gap`] to open the node: a
+/// node wrongly opened costs more (its first step penetrates deeply and
+/// the line search shortens it: 5 iterations at step lengths 1/4..1/64 in
+/// the last increment of `verification/cases/rigid_cylinder_block.ctc`)
+/// than one left closed (one ring opens per iteration). Measured (`ctc
+/// run -v` of the decks, total iterations before: 15, 7, 15, 18): margin 0:
+/// rigid_cylinder_block 19, fenicsx hertz_sphere_tri3 12, the 3D sphere of
+/// `sphere3d.py` at N = 20 13, the 2D tutorial 15; margin 0.5: 15, 12, 13,
+/// 16; margin 1: 15, 7, 15, 18 (no gain left). The margin costs the 3D
+/// sphere at N = 30 its gain (margin 0: 18 -> 14 iterations; 0.5: 18).
+const EDGE_MARGIN: f64 = 0.5;
+
+/// The fewest closed nodes of a pair at `t_n` for [`edge_moves`] to move
+/// any: the 3/2 law is that of a resolved edge. Measured with the margin
+/// of [`EDGE_MARGIN`]: the fenicsx hertz_sphere_tri3 deck (5 closed
+/// nodes) went from 7 to 12 iterations with the rule, the 3D sphere at
+/// N = 10 (8 to 15 closed nodes) kept its 12; the gains came at 22 or
+/// more (3D sphere N = 20, 30; 2D tutorial 31).
+const EDGE_MIN_CLOSED: usize = 16;
+
+/// The moves of a closing increment's predicted state (`contact`,
+/// evaluated there; `g_n` the converged gaps of [`gaps`]): every closed
+/// node of a penalty pair against a rigid tool with at least
+/// [`EDGE_MIN_CLOSED`] nodes closed at `t_n` that [`edge_gap`] opens is moved along the
+/// tool's normal to that gap. The extrapolation closes the nodes near the
+/// edge too early (their gap closes ever more slowly as the edge
+/// arrives): on the 3D Hertz sphere of `verification/fenicsx/sphere3d.py`
+/// (N = 20) it closed 44, 52 and 59 nodes where 33, 44 and 56 are closed
+/// at convergence, and each extra node cost Newton iterations opening
+/// again ring by ring; with the rule 33, 44 and 54. Returns `(node,
+/// displacement)`, in pair and node order.
+pub fn edge_moves<const D: usize>(
+    model: &Model<D>,
+    contact: &[Vec<crate::contact::NodeContact<D>>],
+    g_n: &[Vec<(usize, f64)>],
+    ratio: f64,
+) -> Vec<(usize, [f64; D])> {
+    let mut moves = Vec::new();
+    for ((pair, cp), converged) in contact.iter().zip(&model.contacts).zip(g_n) {
+        let closed = converged.iter().filter(|x| x.1 <= 0.0).count();
+        if cp.master.tool().is_none()
+            || !matches!(cp.method, crate::model::ContactMethod::Penalty { .. })
+            || closed < EDGE_MIN_CLOSED
+        {
+            continue;
+        }
+        for c in pair {
+            if c.status != crate::contact::ContactStatus::Closed {
+                continue;
+            }
+            let Ok(k) = converged.binary_search_by_key(&c.node, |x| x.0) else {
+                continue;
+            };
+            if let Some(target) = edge_gap(converged[k].1, c.gap, ratio) {
+                let d = target - c.gap;
+                moves.push((c.node, std::array::from_fn(|i| d * c.normal[i])));
+            }
+        }
+    }
+    moves
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -185,5 +309,35 @@ mod tests {
         }
         // a prescribed dof is not touched
         assert_eq!(u[2], a[2] * 0.4);
+    }
+
+    #[test]
+    fn edge_rule_follows_a_gap_closing_as_the_edge_distance_to_the_three_halves() {
+        // g = c s^(3/2), s the distance to the edge, shrinking by 1 per
+        // increment: s = 2.6 at t_{n-1}, 1.6 at t_n, 0.6 at t
+        let c = 2e-4;
+        let g = |s: f64| c * s.max(0.0).powf(1.5);
+        let (g_prev, g_n) = (g(2.6), g(1.6));
+        // the linear extrapolation of the gap closes the node ...
+        let g_lin = g_n + (g_n - g_prev);
+        assert!(g_lin < 0.0, "{g_lin}");
+        // ... the edge stops 0.6 short of it (>= 0.5 of its advance of
+        // 1): open, at its gap
+        let open = edge_gap(g_n, g_lin, 1.0).expect("the edge does not reach it");
+        assert!((open - g(0.6)).abs() < 1e-12 * c, "{open} vs {}", g(0.6));
+        // the edge stops 0.2 short (less than half its advance of 1):
+        // left closed
+        let (g_prev, g_n) = (g(2.2), g(1.2));
+        let g_lin = g_n + (g_n - g_prev);
+        assert!(g_lin < 0.0);
+        assert_eq!(edge_gap(g_n, g_lin, 1.0), None);
+        // the edge passes the node (s = 1.0 -> -0.5 at a ratio of 1.5)
+        let (g_prev, g_n) = (g(2.0), g(1.0));
+        let g_lin = g_n + 1.5 * (g_n - g_prev);
+        assert!(g_lin < 0.0);
+        assert_eq!(edge_gap(g_n, g_lin, 1.5), None);
+        // a node closed at t_n, or left open by the extrapolation: untouched
+        assert_eq!(edge_gap(-1e-6, -2e-6, 1.0), None);
+        assert_eq!(edge_gap(1e-6, 5e-7, 1.0), None);
     }
 }
