@@ -152,6 +152,7 @@ fn lift<const G: usize>(x: &Ad24, map: &[usize; 24]) -> Ad<G> {
 }
 
 /// The covered-part integrals of every pair of one slave facet.
+#[allow(clippy::needless_range_loop)]
 fn transform<const G: usize>(group: &[FacetPiece], masters: &[usize]) -> Option<Vec<Part<G>>> {
     let ns = group[0].seg.ns;
     let z = Ad::<G>::cst(0.0);
@@ -241,7 +242,8 @@ fn invert<const G: usize>(a: &[[Ad<G>; 4]; 4], n: usize) -> Option<[[Ad<G>; 4]; 
         .fold(0.0, f64::max);
     for c in 0..n {
         let p = (c..n).max_by(|&r, &s| a[r][c].v.abs().total_cmp(&a[s][c].v.abs()))?;
-        if !(a[p][c].v.abs() > PIVOT * scale) {
+        let size = a[p][c].v.abs();
+        if size.is_nan() || size <= PIVOT * scale {
             return None;
         }
         a.swap(p, c);
@@ -321,6 +323,7 @@ mod tests {
     }
 
     #[test]
+    #[allow(clippy::needless_range_loop)]
     fn a_partly_covered_facet_gets_positive_areas_and_a_diagonal_d() {
         let x = nodes();
         let (pieces, outcome) = pieces(&x);
