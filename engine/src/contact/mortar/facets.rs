@@ -30,7 +30,9 @@
 //! `psi_j = N_j` (standard multipliers) or the dual functions of the
 //! projected slave facet ([`dual_coefficients`]: biorthogonal to `N_k`
 //! over the whole facet, `D` diagonal where the master covers it; the
-//! full-facet variant, as in 2D, see [`super::integrals`]).
+//! full-facet variant, as in 2D, see [`super::integrals`]; a partly
+//! covered facet's pairs are changed to the covered part's duals by
+//! [`super::covered`] from `lumped`).
 //! A uniform gap gives `g~_j = g sum_k D_jk` whatever the rule, and the
 //! forces `p sum_j D_jk` (`p sum_j M_jl`) are the rule's integral of a
 //! uniform pressure: the contact patch test passes. On flat rectangular or
@@ -119,6 +121,13 @@ pub struct FacetSegment {
     pub area: f64,
     /// Smallest and largest gap over the integration points.
     pub gap_range: [f64; 2],
+    /// `int N_j dA` over the clip polygon (the standard functions: the
+    /// part of node `j`'s lumped mass this master facet covers, > 0), by
+    /// the same rule as `D`: the covered-part dual basis
+    /// ([`super::covered`]) makes `D` this diagonal.
+    pub lumped: [Ad24; 4],
+    /// The slave facet's projected area (on its auxiliary plane).
+    pub slave_area: f64,
 }
 
 /// Point `p` as variables `base..base + 3` (constants when `N` is 0: the
@@ -285,6 +294,8 @@ pub fn facet_pair_within(
         polygon,
         area,
         gap_range,
+        lumped: seg.lumped,
+        slave_area: seg.slave_area,
     })
 }
 
@@ -368,6 +379,8 @@ struct Integrals<const N: usize> {
     m: [[Ad<N>; 4]; 4],
     normal: [Ad<N>; 3],
     gap: [Ad<N>; 4],
+    lumped: [Ad<N>; 4],
+    slave_area: f64,
 }
 
 /// [`facet_pair`] in dual numbers of `N` directions (`N = 0`: values
@@ -457,6 +470,7 @@ fn integrate<const N: usize>(
     let z = Ad::<N>::cst(0.0);
     let mut d = [[z; 4]; 4];
     let mut m = [[z; 4]; 4];
+    let mut lumped = [z; 4];
     let mut gap_range = [f64::INFINITY, f64::NEG_INFINITY];
     for i in 0..poly.len() {
         let (a, b) = (poly[i], poly[(i + 1) % poly.len()]);
@@ -471,6 +485,7 @@ fn integrate<const N: usize>(
             gap_range = [gap_range[0].min(g), gap_range[1].max(g)];
             let jw = at * w;
             for j in 0..ns {
+                lumped[j] += nsf[j] * jw;
                 let mut psi = z;
                 for q in 0..ns {
                     psi += coef[j][q] * nsf[q];
@@ -503,6 +518,8 @@ fn integrate<const N: usize>(
             m,
             normal: n,
             gap,
+            lumped,
+            slave_area,
         },
         poly.iter().map(|p| [p[0].v, p[1].v]).collect(),
         area,

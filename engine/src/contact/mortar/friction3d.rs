@@ -72,7 +72,14 @@ impl Pairing {
     /// Adds facet pair `seg` (variables `vars`: slave facet nodes in slots
     /// 0..4, master ones in 4..8) seen from the slave facet's node `j`.
     pub fn add(&mut self, vars: &[usize; 8], j: usize, seg: &FacetSegment) {
-        self.area += (0..seg.ns).map(|k| seg.d[j][k].v).sum::<f64>();
+        let (d, m) = (seg.d[j].map(|v| v.v), seg.m[j].map(|v| v.v));
+        self.add_row(vars, seg.ns, seg.nm, d, m);
+    }
+
+    /// [`Pairing::add`] from the values of row `j`: `D_jk` (`ns` slave
+    /// nodes) and `M_jl` (`nm` master nodes).
+    pub fn add_row(&mut self, vars: &[usize; 8], ns: usize, nm: usize, d: [f64; 4], m: [f64; 4]) {
+        self.area += d[..ns].iter().sum::<f64>();
         let facet = [vars[0], vars[1], vars[2], vars[3]];
         let k = match self.facets.iter().position(|(f, _)| *f == facet) {
             Some(k) => k,
@@ -82,9 +89,9 @@ impl Pairing {
             }
         };
         let coefs = &mut self.facets[k].1;
-        let terms = (0..seg.ns)
-            .map(|k| (vars[k], -seg.d[j][k].v))
-            .chain((0..seg.nm).map(|l| (vars[4 + l], seg.m[j][l].v)));
+        let terms = (0..ns)
+            .map(|k| (vars[k], -d[k]))
+            .chain((0..nm).map(|l| (vars[4 + l], m[l])));
         for (n, c) in terms {
             match coefs.binary_search_by_key(&n, |t| t.0) {
                 Ok(p) => coefs[p].1 += c,
@@ -481,6 +488,7 @@ mod tests {
                     vars,
                     master: m,
                     seg,
+                    covered: None,
                 });
             }
         }

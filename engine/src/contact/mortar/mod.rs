@@ -37,6 +37,7 @@
 //! total force on the slave node).
 
 pub mod ad;
+pub mod covered;
 pub mod facets;
 pub mod friction;
 pub mod friction3d;
@@ -884,6 +885,69 @@ struct FacetPiece {
     vars: [usize; 8],
     master: usize,
     seg: facets::FacetSegment,
+    /// The integrals in the dual basis of the covered part of a partly
+    /// covered slave facet ([`covered`]); `None`: `seg`'s (full facet).
+    covered: Option<covered::Covered>,
+}
+
+impl FacetPiece {
+    /// Calls `f` with the piece's integrals as dual numbers over their
+    /// variables (`seg`'s over `vars`, or the covered-part ones).
+    fn with_integrals<R>(&self, f: impl IntegralsFn<R>) -> R {
+        let (s, ns, nm) = (&self.seg, self.seg.ns, self.seg.nm);
+        match &self.covered {
+            None => f.call(&self.vars, ns, nm, &s.d, &s.m, &s.gap, &s.normal),
+            Some(covered::Covered::G36(p)) => {
+                f.call(&p.vars, ns, nm, &p.d, &p.m, &p.gap, &p.normal)
+            }
+            Some(covered::Covered::G60(p)) => {
+                f.call(&p.vars, ns, nm, &p.d, &p.m, &p.gap, &p.normal)
+            }
+            Some(covered::Covered::G108(p)) => {
+                f.call(&p.vars, ns, nm, &p.d, &p.m, &p.gap, &p.normal)
+            }
+            Some(covered::Covered::G204(p)) => {
+                f.call(&p.vars, ns, nm, &p.d, &p.m, &p.gap, &p.normal)
+            }
+        }
+    }
+
+    /// Row `j`'s values: `sum_k D_jk`, `D_jk` and `M_jl`.
+    fn row_values(&self, j: usize) -> ([f64; 4], [f64; 4]) {
+        struct Values(usize);
+        impl IntegralsFn<([f64; 4], [f64; 4])> for Values {
+            fn call<const N: usize>(
+                self,
+                _: &[usize],
+                _: usize,
+                _: usize,
+                d: &[[Ad<N>; 4]; 4],
+                m: &[[Ad<N>; 4]; 4],
+                _: &[Ad<N>; 4],
+                _: &[Ad<N>; 3],
+            ) -> ([f64; 4], [f64; 4]) {
+                (d[self.0].map(|v| v.v), m[self.0].map(|v| v.v))
+            }
+        }
+        self.with_integrals(Values(j))
+    }
+}
+
+/// A function of a piece's integrals whatever their number of dual
+/// directions (see [`FacetPiece::with_integrals`]): derivative variables
+/// (3 per node), slave and master node counts, `D`, `M`, `g~`, normal.
+trait IntegralsFn<R> {
+    #[allow(clippy::too_many_arguments)]
+    fn call<const N: usize>(
+        self,
+        vars: &[usize],
+        ns: usize,
+        nm: usize,
+        d: &[[Ad<N>; 4]; 4],
+        m: &[[Ad<N>; 4]; 4],
+        gap: &[Ad<N>; 4],
+        normal: &[Ad<N>; 3],
+    ) -> R;
 }
 
 /// The facet pairs of a 3D pair at coordinates `x` and, per slave index
@@ -903,21 +967,25 @@ fn facet_pieces(
     prof: f64,
 ) -> (Vec<FacetPiece>, Vec<Vec<(usize, usize)>>, u64, usize) {
     let basis = Basis::Dual;
-    face_pairs(fp, slaves, x, prof, |master, sn, sx, _, m| {
-        let h = (0..sx.len())
-            .map(|a| distance(sx[a], sx[(a + 1) % sx.len()]))
-            .fold(0.0, f64::max);
-        let (mp, nm) = master.points(m, x);
-        let seg = facets::facet_pair_within(sx, &mp[..nm], prof, prof.max(h), basis)?;
-        let mut vars = [UNUSED; 8];
-        vars[..sn.len()].copy_from_slice(sn);
-        vars[4..4 + nm].copy_from_slice(master.faces[m].nodes());
-        Some(FacetPiece {
-            vars,
-            master: m,
-            seg,
-        })
-    })
+    let (mut pieces, rows, queries, tests) =
+        face_pairs(fp, slaves, x, prof, |master, sn, sx, _, m| {
+            let h = (0..sx.len())
+                .map(|a| distance(sx[a], sx[(a + 1) % sx.len()]))
+                .fold(0.0, f64::max);
+            let (mp, nm) = master.points(m, x);
+            let seg = facets::facet_pair_within(sx, &mp[..nm], prof, prof.max(h), basis)?;
+            let mut vars = [UNUSED; 8];
+            vars[..sn.len()].copy_from_slice(sn);
+            vars[4..4 + nm].copy_from_slice(master.faces[m].nodes());
+            Some(FacetPiece {
+                vars,
+                master: m,
+                seg,
+                covered: None,
+            })
+        });
+    covered::cover(&mut pieces);
+    (pieces, rows, queries, tests)
 }
 
 /// The distance between two points.
@@ -998,27 +1066,57 @@ fn row_3d<'a>(
         coef: vec![0.0; nodes.len()],
         dcoef: vec![0.0; nodes.len() * nd],
     });
-    for &(p, j) in list {
-        let FacetPiece { vars, seg, .. } = &pieces[p];
-        let area = seg.d[j].iter().fold(Ad::cst(0.0), |a, &b| a + b);
-        let terms = (0..seg.ns)
-            .map(|k| (vars[k], -seg.d[j][k]))
-            .chain((0..seg.nm).map(|l| (vars[4 + l], seg.m[j][l])));
-        if let Some(s) = &mut scalar {
-            for (node, coef) in terms.clone() {
-                if let Ok(q) = nodes.binary_search(&node) {
-                    accumulate(
-                        nodes,
-                        3,
-                        vars,
-                        &coef,
-                        &mut s.coef[q],
-                        &mut s.dcoef[q * nd..(q + 1) * nd],
-                    );
+    /// Adds row `j` of one piece to `row` and `scalar`.
+    struct AddRow<'r, 'a> {
+        row: &'r mut Row<'a>,
+        scalar: Option<&'r mut friction3d::CoefficientRow>,
+        nodes: &'r [usize],
+        at: &'r [usize; 8],
+        j: usize,
+    }
+    impl IntegralsFn<()> for AddRow<'_, '_> {
+        fn call<const N: usize>(
+            self,
+            vars: &[usize],
+            ns: usize,
+            nm: usize,
+            d: &[[Ad<N>; 4]; 4],
+            m: &[[Ad<N>; 4]; 4],
+            gap: &[Ad<N>; 4],
+            normal: &[Ad<N>; 3],
+        ) {
+            let (j, nodes, at) = (self.j, self.nodes, self.at);
+            let nd = 3 * nodes.len();
+            let area = d[j].iter().fold(Ad::cst(0.0), |a, &b| a + b);
+            let terms = (0..ns)
+                .map(|k| (at[k], -d[j][k]))
+                .chain((0..nm).map(|l| (at[4 + l], m[j][l])));
+            if let Some(s) = self.scalar {
+                for (node, coef) in terms.clone() {
+                    if let Ok(q) = nodes.binary_search(&node) {
+                        accumulate(
+                            nodes,
+                            3,
+                            vars,
+                            &coef,
+                            &mut s.coef[q],
+                            &mut s.dcoef[q * nd..(q + 1) * nd],
+                        );
+                    }
                 }
             }
+            self.row.add(vars, &gap[j], &area, terms, normal);
         }
-        row.add(vars, &seg.gap[j], &area, terms, &seg.normal);
+    }
+    for &(p, j) in list {
+        let piece = &pieces[p];
+        piece.with_integrals(AddRow {
+            row: &mut row,
+            scalar: scalar.as_mut(),
+            nodes,
+            at: &piece.vars,
+            j,
+        });
     }
     (row, scalar)
 }
@@ -1151,7 +1249,8 @@ pub fn evaluate_3d(
                 .map(|list| {
                     let mut p = friction3d::Pairing::default();
                     for &(k, j) in list {
-                        p.add(&old[k].vars, j, &old[k].seg);
+                        let (d, m) = old[k].row_values(j);
+                        p.add_row(&old[k].vars, old[k].seg.ns, old[k].seg.nm, d, m);
                     }
                     p
                 })
