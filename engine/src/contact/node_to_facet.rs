@@ -1482,27 +1482,14 @@ pub fn drop_redundant(
             };
             let c = &couplings[j];
             owners.push((k, i));
-            rows.push(
-                (0..c.gap_gradient.len())
-                    .map(|d| super::rows::NodeTerm {
-                        node: c.nodes[d / 3],
-                        component: d % 3,
-                        coefficient: c.gap_gradient[d],
-                    })
-                    .filter(|t| free(t.node, t.component))
-                    .collect(),
-            );
+            rows.push(super::redundancy::free_row(
+                &c.nodes,
+                &c.gap_gradient,
+                3,
+                free,
+            ));
         }
-        let views: Vec<&[super::rows::NodeTerm]> = rows.iter().map(Vec::as_slice).collect();
-        let drop = super::redundancy::redundant_rows(&views);
-        if super::log::debug_enabled() {
-            let n = drop.iter().filter(|&&d| d).count();
-            eprintln!(
-                "[ctc contact] pair '{}': {n} redundant Lagrange rows dropped of {}",
-                cp.name,
-                drop.len()
-            );
-        }
+        let drop = super::redundancy::redundant_rows_of(&cp.name, &rows);
         for (&(k, i), _) in owners.iter().zip(&drop).filter(|(_, &d)| d) {
             state.multiplier[i] = 0.0;
             let nc = &mut out[k];

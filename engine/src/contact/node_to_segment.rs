@@ -860,16 +860,8 @@ pub fn drop_redundant(
         if !state.active.get(i).copied().unwrap_or(false) {
             continue;
         }
-        let terms = |nodes: &[usize], grad: &[f64]| {
-            (0..grad.len())
-                .map(|c| super::rows::NodeTerm {
-                    node: nodes[c / 2],
-                    component: c % 2,
-                    coefficient: grad[c],
-                })
-                .filter(|t| free(t.node, t.component))
-                .collect::<Vec<_>>()
-        };
+        let terms =
+            |nodes: &[usize], grad: &[f64]| super::redundancy::free_row(nodes, grad, 2, free);
         let row = match couplings.as_deref() {
             Some(list) => match list.binary_search_by_key(&nc.node, |c| c.slave) {
                 Ok(j) => terms(&list[j].nodes, &list[j].gap_gradient),
@@ -883,16 +875,7 @@ pub fn drop_redundant(
         owners.push((k, i));
         rows.push(row);
     }
-    let views: Vec<&[super::rows::NodeTerm]> = rows.iter().map(Vec::as_slice).collect();
-    let drop = super::redundancy::redundant_rows(&views);
-    if super::log::debug_enabled() {
-        let n = drop.iter().filter(|&&d| d).count();
-        eprintln!(
-            "[ctc contact] pair '{}': {n} redundant Lagrange rows dropped of {}",
-            cp.name,
-            drop.len()
-        );
-    }
+    let drop = super::redundancy::redundant_rows_of(&cp.name, &rows);
     for (&(k, i), _) in owners.iter().zip(&drop).filter(|(_, &d)| d) {
         state.redundant[i] = true;
         state.multiplier[i] = 0.0;

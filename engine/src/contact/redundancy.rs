@@ -62,6 +62,40 @@ pub fn redundant_rows(rows: &[&[NodeTerm]]) -> Vec<bool> {
     out
 }
 
+/// The row of a node over `nodes` (`dim` components each, node-major) from
+/// its gradient `grad`, restricted to the free coordinates (`free(node,
+/// component)`).
+pub fn free_row(
+    nodes: &[usize],
+    grad: &[f64],
+    dim: usize,
+    free: &dyn Fn(usize, usize) -> bool,
+) -> Vec<NodeTerm> {
+    (0..grad.len())
+        .map(|k| NodeTerm {
+            node: nodes[k / dim],
+            component: k % dim,
+            coefficient: grad[k],
+        })
+        .filter(|t| free(t.node, t.component))
+        .collect()
+}
+
+/// [`redundant_rows`] of pair `pair` (its name for the `CTC_LOG=debug`
+/// count of the rows dropped).
+pub fn redundant_rows_of(pair: &str, rows: &[Vec<NodeTerm>]) -> Vec<bool> {
+    let views: Vec<&[NodeTerm]> = rows.iter().map(Vec::as_slice).collect();
+    let drop = redundant_rows(&views);
+    if super::log::debug_enabled() {
+        let n = drop.iter().filter(|&&d| d).count();
+        eprintln!(
+            "[ctc contact] pair '{pair}': {n} redundant Lagrange rows dropped of {}",
+            drop.len()
+        );
+    }
+    drop
+}
+
 /// Whether `row` lies within [`REDUNDANT`] (relative) of the span of
 /// `basis`.
 fn in_span<'a>(row: &[NodeTerm], basis: impl Iterator<Item = &'a [NodeTerm]>) -> bool {
