@@ -402,6 +402,31 @@ mod tests {
 
     /// Forces balance; the tangent is minus the derivative of the forces
     /// (central differences), in stick and in slip.
+    /// The element tangent `K = -d f / d x` against central differences of
+    /// the forces `eval` at `x0` (6 dofs: slave, segment ends).
+    fn tangent_matches_fd(
+        eval: impl Fn([f64; 6]) -> [f64; 6],
+        x0: [f64; 6],
+        tangent: &[[f64; 6]; 6],
+        mu: f64,
+    ) {
+        let h = 1e-7;
+        for j in 0..6 {
+            let (mut xp, mut xm) = (x0, x0);
+            xp[j] += h;
+            xm[j] -= h;
+            let (fp, fm) = (eval(xp), eval(xm));
+            for i in 0..6 {
+                let fd = -(fp[i] - fm[i]) / (2.0 * h);
+                assert!(
+                    (fd - tangent[i][j]).abs() < 1e-6 * (1.0 + fd.abs()),
+                    "mu {mu} K[{i}][{j}]: {fd} vs {}",
+                    tangent[i][j]
+                );
+            }
+        }
+    }
+
     #[test]
     fn segment_friction_balances_and_tangent_matches_finite_differences() {
         let reference = [[0.0, 0.0], [1.0, 0.0]];
@@ -432,21 +457,7 @@ mod tests {
                 .unwrap()
                 .forces
             };
-            let h = 1e-7;
-            for j in 0..6 {
-                let (mut xp, mut xm) = (x0, x0);
-                xp[j] += h;
-                xm[j] -= h;
-                let (fp, fm) = (eval(xp), eval(xm));
-                for i in 0..6 {
-                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
-                    assert!(
-                        (fd - r.tangent[i][j]).abs() < 1e-6 * (1.0 + fd.abs()),
-                        "mu {mu} K[{i}][{j}]: {fd} vs {}",
-                        r.tangent[i][j]
-                    );
-                }
-            }
+            tangent_matches_fd(eval, x0, &r.tangent, mu);
         }
     }
 
@@ -509,21 +520,7 @@ mod tests {
                 let sum: f64 = (0..3).map(|k| out.forces[2 * k + c]).sum();
                 assert!(sum.abs() < 1e-14, "{sum}");
             }
-            let h = 1e-7;
-            for j in 0..6 {
-                let (mut xp, mut xm) = (x0, x0);
-                xp[j] += h;
-                xm[j] -= h;
-                let (fp, fm) = (eval(xp), eval(xm));
-                for i in 0..6 {
-                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
-                    assert!(
-                        (fd - out.tangent[i][j]).abs() < 1e-6 * (1.0 + fd.abs()),
-                        "mu {mu} K[{i}][{j}]: {fd} vs {}",
-                        out.tangent[i][j]
-                    );
-                }
-            }
+            tangent_matches_fd(eval, x0, &out.tangent, mu);
         }
     }
 
