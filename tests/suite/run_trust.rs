@@ -535,7 +535,8 @@ fn peak_pressure(stdout: &str) -> f64 {
 /// vertex, whose normal is undefined; the node switched segments at every
 /// iteration and the run stopped, diagnosed as a status change. Now the
 /// diagnosis names the segment switches and `smoothing = nodal`, and with
-/// it the run converges. Measured: 31 Newton iterations, force 1390.85
+/// it the run converges. Measured: 31 Newton iterations (22 with the
+/// semi-smooth active set, the faceted run still stops), force 1390.85
 /// (penalty k = 1e7 on the same meshes: 1371.2, lower by its penetration
 /// p / k ~ 2e-4 against a stroke of 0.01).
 #[test]
@@ -593,7 +594,7 @@ fn lagrange_punch_converges_with_nodal_smoothing_and_faceted_is_diagnosed() {
 /// stalled at 6.5e-5 (every slave node of the mirrored meshes sits on a
 /// master vertex). With `smoothing = nodal` it converges; the answer is
 /// the penalty example's within the penalty error. Measured: 4 increments,
-/// 26 Newton iterations; force 8.4994 (penalty 8.4794, -0.24 %: its
+/// 26 Newton iterations (17 with the semi-smooth active set); force 8.4994 (penalty 8.4794, -0.24 %: its
 /// penetration p / k = 4.4e-4 over a stroke of 0.16 is 0.28 %); peak
 /// pressure 8.803 (penalty 8.769; Hertz 2 P / (pi a) = 8.62 for the
 /// half-space, a / R = 0.16).
@@ -636,6 +637,36 @@ fn lagrange_two_cylinders_converge_with_nodal_smoothing_like_penalty() {
         (p_lagrange - p_penalty).abs() < 0.01 * p_lagrange,
         "{p_lagrange} {p_penalty}"
     );
+}
+
+/// Item 1 without smoothing (issue 18, the semi-smooth active set of
+/// node-to-segment Lagrange pairs, `contact::semismooth`):
+/// `examples/two_cylinders_hertz.ctc` with `method = lagrange { }` on the
+/// faceted master stopped at t = 0.031 after 10 cutbacks while the active
+/// set was decided between Newton loops. Decided inside Newton it
+/// completes. Measured (`ctc run`, debug): 4 increments, 18 Newton
+/// iterations, no cutback, force 8.4994 (the smoothed deck's 8.4994;
+/// penalty 8.4794), penetration 2.6e-15.
+#[test]
+fn lagrange_two_cylinders_converge_on_the_faceted_master() {
+    let example = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two_cylinders_hertz.ctc");
+    let text = std::fs::read_to_string(example).unwrap();
+    let penalty = "method   = penalty { kind = area  stiffness = 2e4 }";
+    assert!(text.contains(penalty));
+    let dir = tempfile::tempdir().unwrap();
+    let (o, out) = run_text(
+        dir.path(),
+        "faceted.ctc",
+        &text.replace(penalty, "method = lagrange { }"),
+    );
+    assert!(o.success, "{}{}", o.stdout, o.stderr);
+    let s = summary(&out);
+    assert_eq!(s["cutbacks"], 0);
+    assert!(s["newton_iterations"].as_u64().unwrap() <= 24, "{s}");
+    // the smoothed deck's force (tests/decks/two_cylinders_lagrange.ctc,
+    // 8.4994): the faceted and smoothed normals agree at the nodes
+    let force = last_history(&out, "contact_force(upper.arc -> lower.arc)_y");
+    assert!((force - 8.4994).abs() < 1e-3, "{force}");
 }
 
 /// The last `reaction(upper.top)` (x, y) of a run of `text` (a deck).

@@ -347,9 +347,13 @@ pub fn hertz_two_cylinders_nts_lagrange() -> Case {
         // 1.6e-2 8.4e-3 (the penalty deck: 3.5e-2 2.1e-2 1.7e-2; rates 1.22,
         // 0.90); L2 8.8e-2 4.6e-2 2.5e-2 (rates 0.92, 0.91); force balance
         // 4.4e-13. Newton iterations 62 / 228 / 181 against the penalty's
-        // 26 / 28 / 35: the active-set loop restarts Newton at every change
-        // (no semi-smooth Newton for node-to-segment yet). One row dropped
-        // per evaluation (the two axis nodes coincide; `CTC_LOG=debug`).
+        // 26 / 28 / 35 with the active-set loop around Newton (7 / 12 / 18
+        // Newton loops of 3-5 iterations in the first increment); with the
+        // semi-smooth active set inside Newton (`contact::semismooth`, same
+        // command) **29 / 47 / 70**, the same a, p0, L2 to 3 digits, force
+        // balance 4.7e-13 / 7.4e-14 / 2.8e-13 (15 s at level 2, was 54). One
+        // row dropped per evaluation (the two axis nodes coincide;
+        // `CTC_LOG=debug`).
         checks: hertz_checks(
             &[0.2, 0.03, 0.05],
             &[0.05, 0.015, 0.006],

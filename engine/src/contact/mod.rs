@@ -173,6 +173,10 @@ pub struct PairState {
     /// evaluation (modified double pass, self contact: [`redundancy`]):
     /// active, without multiplier or force.
     pub redundant: Vec<bool>,
+    /// Per slave node: switches of the semi-smooth active set in the
+    /// current increment attempt ([`semismooth::MAX_SWITCHES`]: the cycle
+    /// guard); cleared at commit and rollback.
+    pub switches: Vec<u8>,
     /// Friction history (stick points, tangential multipliers, statuses).
     pub friction: friction::FrictionState,
     /// Broad phase over the tool's entities (reference frame, built once).
@@ -305,6 +309,7 @@ impl PairState {
             active: vec![false; n],
             committed_active: vec![false; n],
             redundant: vec![false; n],
+            switches: vec![0; n],
             friction: friction::FrictionState::new(positions),
             tool_grid: shape
                 .as_ref()
@@ -342,6 +347,7 @@ impl PairState {
         self.committed_entity.clone_from(&self.last_entity);
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
+        self.switches.fill(0);
         self.friction.commit();
         if let Some(sp) = &mut self.surface {
             sp.commit();
@@ -361,6 +367,7 @@ impl PairState {
         self.last_entity.clone_from(&self.committed_entity);
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
+        self.switches.fill(0);
         self.friction.rollback();
         if let Some(sp) = &mut self.surface {
             sp.rollback();

@@ -1454,7 +1454,8 @@ pub fn evaluate(
 /// couplings in slave order over the free coordinates (`free(node,
 /// component)`). A redundant node keeps its place in the active set but
 /// loses its multiplier, its force and its coupling (so its row: the
-/// solver builds the rows from the couplings). Other pairs: nothing.
+/// solver builds the rows from the couplings), flagged in
+/// `state.redundant`. Other pairs: nothing.
 pub fn drop_redundant(
     cp: &crate::model::ContactPair,
     state: &mut SurfacePair,
@@ -1464,6 +1465,8 @@ pub fn drop_redundant(
     let Some(mut fp) = state.deformable.take() else {
         return;
     };
+    state.redundant.clear();
+    state.redundant.resize(state.slaves.len(), false);
     if matches!(cp.method, ContactMethod::Lagrange { .. })
         && (cp.strategy == ContactStrategy::ModifiedDoublePass || fp.self_contact)
     {
@@ -1491,6 +1494,7 @@ pub fn drop_redundant(
         }
         let drop = super::redundancy::redundant_rows_of(&cp.name, &rows);
         for (&(k, i), _) in owners.iter().zip(&drop).filter(|(_, &d)| d) {
+            state.redundant[i] = true;
             state.multiplier[i] = 0.0;
             let nc = &mut out[k];
             nc.force = [0.0; 3];

@@ -105,6 +105,14 @@ pub struct SurfacePair {
     /// latest evaluation (`node` is the point's index; the friction
     /// history `friction` is then per point), read by the Uzawa update.
     pub point_contact: Vec<NodeContact<3>>,
+    /// Per slave node: its Lagrange row was redundant at the last
+    /// evaluation (modified double pass, self contact:
+    /// [`super::redundancy`]): active, without multiplier or force.
+    pub redundant: Vec<bool>,
+    /// Per slave node: switches of the semi-smooth active set in the
+    /// current increment attempt ([`super::semismooth::MAX_SWITCHES`]:
+    /// the cycle guard); cleared at commit and rollback.
+    pub switches: Vec<u8>,
     committed_multiplier: Vec<f64>,
     committed_active: Vec<bool>,
     committed_search: Vec<SearchState>,
@@ -204,6 +212,8 @@ impl SurfacePair {
             stick: vec![None; n],
             committed_multiplier: vec![0.0; n],
             committed_search: vec![SearchState::new(); n],
+            redundant: vec![false; n],
+            switches: vec![0; n],
         }
     }
 
@@ -212,6 +222,7 @@ impl SurfacePair {
         self.committed_multiplier.clone_from(&self.multiplier);
         self.committed_active.clone_from(&self.active);
         self.committed_search.clone_from(&self.search);
+        self.switches.fill(0);
         self.friction.commit();
         if let Some(f) = &mut self.deformable {
             f.commit();
@@ -226,6 +237,7 @@ impl SurfacePair {
         self.multiplier.clone_from(&self.committed_multiplier);
         self.active.clone_from(&self.committed_active);
         self.search.clone_from(&self.committed_search);
+        self.switches.fill(0);
         self.friction.rollback();
         if let Some(f) = &mut self.deformable {
             f.rollback();

@@ -19,6 +19,12 @@
 //! multipliers are instead updated inside the Newton loop
 //! ([`crate::contact::augmented::uzawa_update`] called at every iteration).
 //!
+//! Every Lagrange pair's active set is decided inside the Newton loop, by
+//! the semi-smooth Newton of [`crate::contact::semismooth`]: a converged
+//! Newton loop has a set this loop leaves as it is, but for the nodes the
+//! semi-smooth decision froze (its cycle guard) and a round-off tensile
+//! multiplier; this loop decides those, and the friction statuses.
+//!
 //! The loop drives a [`NewtonLoop`] (the solver of one Newton loop) and
 //! changes only the contact state it exposes: it never reaches into the
 //! Newton solver, and the Newton solver never calls back into it. The

@@ -216,13 +216,13 @@ impl ContactScene<2> for ContactAssembly {
 
     fn semismooth_update(&mut self, model: &Model) -> bool {
         let threshold = super::contact_loop::introduce_threshold(model);
+        let ring = crate::contact::mortar::weight(model);
         let mut switched = false;
         for (pi, cp) in model.contacts.iter().enumerate() {
             if !crate::contact::semismooth::applies(cp) {
                 continue;
             }
             let young = crate::contact::semismooth::young(model, cp);
-            let ring = crate::contact::mortar::weight(model);
             let state = &mut self.pairs[pi];
             let slaves = &state.slaves;
             let c = |i: usize| {
@@ -234,14 +234,19 @@ impl ContactScene<2> for ContactAssembly {
                 };
                 young * w
             };
+            let redundant = &state.redundant;
+            let keep = |i: usize| redundant.get(i).copied().unwrap_or(false);
             let s = crate::contact::semismooth::update(
                 slaves,
                 &mut state.active,
                 &mut state.multiplier,
+                &mut state.switches,
                 &self.contact[pi],
                 c,
+                keep,
                 threshold,
             );
+            crate::contact::semismooth::log(&cp.name, &s);
             switched |= !s.is_empty();
         }
         switched

@@ -548,14 +548,44 @@ impl ContactScene<3> for SurfaceAssembly {
             let state = &mut self.pairs[pi];
             let area = &state.area;
             let c = |i: usize| young * area.get(i).copied().unwrap_or(0.0).sqrt();
+            let redundant = &state.redundant;
+            let keep = |i: usize| redundant.get(i).copied().unwrap_or(false);
             let s = crate::contact::semismooth::update(
                 &state.slaves,
                 &mut state.active,
                 &mut state.multiplier,
+                &mut state.switches,
                 &self.contact[pi],
                 c,
+                keep,
                 threshold,
             );
+            crate::contact::semismooth::log(&cp.name, &s);
+            // Lagrange friction against a tool: a node introduced again in
+            // the increment comes back slipping (as in the active-set loop)
+            if cp.friction.is_some() && !s.introduced.is_empty() {
+                let placement = cp
+                    .master
+                    .tool()
+                    .and_then(|k| model.surfaces.get(k))
+                    .map_or_else(Placement::identity, |tool| {
+                        surface::placement(&tool.motion, self.time)
+                    });
+                for nc in &self.contact[pi] {
+                    if s.introduced.binary_search(&nc.node).is_err() {
+                        continue;
+                    }
+                    if let Some(i) = state.slave_index(nc.node) {
+                        friction_lagrange::reintroduce_slipping(
+                            &mut state.friction,
+                            i,
+                            self.x[nc.node].into(),
+                            nc.normal.into(),
+                            &placement,
+                        );
+                    }
+                }
+            }
             switched |= !s.is_empty();
         }
         switched
