@@ -62,6 +62,21 @@
 //! --max-level 1`) is the benchmark (slab `9 x 3 x 4`, die 28 x 5, press
 //! 1.4 in 7, slide 4.0 in 20) with the five variants.
 //!
+//! The mortar mu = 0.3 press cycle (its contact set 15 <-> 11 at the
+//! second press increment of the benchmark, 9 <-> 3 at level 0's) is not
+//! mortar's: node-to-facet faceted mu = 0.3 cycles at the same stage of
+//! the same deck (level 0: 9 <-> 7, third press increment), the
+//! frictionless runs do not; the assembled tangent matches central
+//! differences there (`ironing_mortar_press_tangent_matches_finite_differences`,
+//! every closed node sticking: 2e-9..5e-9); the friction stiffness moves
+//! it (level-0 press, mortar: `alpha_T` = 50 (the default, 0.1 x 500)
+//! cycles and cuts back, 5 switches once and converges in 7 iterations,
+//! 500 does not switch but halves its steps at a fixed contact set in the
+//! next increment). A Newton on a piecewise smooth residual (open/closed
+//! and stick/slip kinks at the nodes closing under the die's flank)
+//! without a cycling guard; penalty mortar has no semi-smooth decision
+//! (`contact::semismooth::applies` is for Lagrange multipliers only).
+//!
 //! ```text
 //!            die top: u_y = -1.4, then u_x = 4
 //!          .-''''''-.   die, R = 3 (cap 200..340 deg), E = 1000
