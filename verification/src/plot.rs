@@ -58,7 +58,135 @@ pub fn case_plots(case: &CaseReport, dir: &Path) -> Result<Vec<PlotFile>, String
             });
         }
     }
+    // the figures of a program case (histories of its runs): those of the
+    // finest level that measured some
+    if let Some(level) = ok.iter().rev().find(|l| !l.figures.is_empty()) {
+        for f in &level.figures {
+            let file = format!("{}_{}.svg", case.name, f.name);
+            if figure_plot(f, level.level, &dir.join(&file))? {
+                files.push(PlotFile {
+                    case: case.name.clone(),
+                    kind: f.name.clone(),
+                    file,
+                });
+            }
+        }
+    }
     Ok(files)
+}
+
+/// One curve of a [`Panel`]: its legend and its points.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct Curve {
+    /// Legend.
+    pub label: String,
+    /// `(x, y)` points in order (non-finite ones are not drawn).
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One chart of a [`Figure`]: linear axes, one colour per curve.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct Panel {
+    /// Title of the chart.
+    pub title: String,
+    /// Abscissa title.
+    pub x_desc: String,
+    /// Ordinate title.
+    pub y_desc: String,
+    /// The curves (the i-th in [`colour`] `i` on every panel).
+    pub curves: Vec<Curve>,
+}
+
+/// A figure a program case measures (e.g. the force histories of its
+/// runs), drawn by [`case_plots`] into `{case}_{name}.svg` for the finest
+/// level that has it: its panels stacked vertically.
+#[derive(Debug, Clone, Default, PartialEq, serde::Serialize)]
+pub struct Figure {
+    /// File suffix and plot kind (`forces`, `iterations`).
+    pub name: String,
+    /// The panels, top to bottom.
+    pub panels: Vec<Panel>,
+}
+
+/// Draws `figure` (of level `level`) into `path`. Returns false (and
+/// writes nothing) when no panel has a finite point.
+fn figure_plot(figure: &Figure, level: usize, path: &Path) -> Result<bool, String> {
+    let bounds = |p: &Panel| {
+        let pts = p.curves.iter().flat_map(|c| c.points.iter());
+        let (mut x0, mut x1, mut y0, mut y1) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+        for &(x, y) in pts.filter(|q| q.0.is_finite() && q.1.is_finite()) {
+            (x0, x1, y0, y1) = (x0.min(x), x1.max(x), y0.min(y), y1.max(y));
+        }
+        Some((
+            crate::history_plot::axis_range(x0, x1)?,
+            crate::history_plot::axis_range(y0, y1)?,
+        ))
+    };
+    let panels: Vec<_> = figure
+        .panels
+        .iter()
+        .filter_map(|p| Some((p, bounds(p)?)))
+        .collect();
+    if panels.is_empty() {
+        return Ok(false);
+    }
+    let e = err(path);
+    let height = SIZE.1 * panels.len() as u32;
+    let root = SVGBackend::new(path, (SIZE.0, height)).into_drawing_area();
+    root.fill(&WHITE).map_err(&e)?;
+    let areas = root.split_evenly((panels.len(), 1));
+    for (area, (panel, ((x0, x1), (y0, y1)))) in areas.iter().zip(panels) {
+        let mut chart = ChartBuilder::on(area)
+            .caption(
+                format!("{} (level {level})", panel.title),
+                ("sans-serif", 20),
+            )
+            .margin(15)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(x0..x1, y0..y1)
+            .map_err(&e)?;
+        chart
+            .configure_mesh()
+            .x_desc(panel.x_desc.as_str())
+            .y_desc(panel.y_desc.as_str())
+            .x_label_formatter(&|x| tick(*x))
+            .y_label_formatter(&|y| tick(*y))
+            .draw()
+            .map_err(&e)?;
+        for (i, c) in panel.curves.iter().enumerate() {
+            let colour = colour(i);
+            let pts: Vec<(f64, f64)> = c
+                .points
+                .iter()
+                .copied()
+                .filter(|q| q.0.is_finite() && q.1.is_finite())
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), colour.stroke_width(2)))
+                .map_err(&e)?;
+            chart
+                .draw_series(
+                    pts.into_iter()
+                        .map(move |q| Circle::new(q, 3, colour.filled())),
+                )
+                .map_err(&e)?
+                .label(c.label.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2))
+                });
+        }
+        chart
+            .configure_series_labels()
+            .background_style(WHITE.mix(0.8))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .position(SeriesLabelPosition::UpperLeft)
+            .draw()
+            .map_err(&e)?;
+    }
+    root.present().map_err(&e)?;
+    Ok(true)
 }
 
 /// Colour of the i-th series.
@@ -311,6 +439,7 @@ mod tests {
             failure: None,
             max_penetration: 0.0,
             contact_iterations: 0,
+            figures: Vec::new(),
             profile: Some(ProfileData {
                 points: (0..20)
                     .map(|i| {
@@ -351,6 +480,74 @@ mod tests {
         let conv = std::fs::read_to_string(dir.path().join("hertz_test_convergence.svg")).unwrap();
         assert!(conv.contains("(rate 2.00)"), "{conv}");
         assert!(conv.contains("mesh size h [deck length unit]"));
+    }
+
+    /// A program level's figures are drawn from the finest level that has
+    /// them, one SVG per figure, every panel and legend in it; a figure
+    /// without a finite point gives no file.
+    #[test]
+    fn figures_of_a_program_case_are_drawn() {
+        let dir = tempfile::tempdir().unwrap();
+        let curve = |label: &str, k: f64| Curve {
+            label: label.into(),
+            points: (0..10).map(|i| (i as f64, k * i as f64)).collect(),
+        };
+        let panel = |title: &str| Panel {
+            title: title.into(),
+            x_desc: "time".into(),
+            y_desc: "force".into(),
+            curves: vec![curve("run a", 1.0), curve("run b", 2.0)],
+        };
+        let mut coarse = level(0, 0.02, 0.04);
+        coarse.profile = None;
+        let mut fine = level(1, 0.01, 0.01);
+        fine.profile = None;
+        coarse.figures = vec![Figure {
+            name: "forces".into(),
+            panels: vec![panel("coarse")],
+        }];
+        fine.figures = vec![
+            Figure {
+                name: "forces".into(),
+                panels: vec![panel("normal force"), panel("tangential force")],
+            },
+            Figure {
+                name: "empty".into(),
+                panels: vec![Panel {
+                    curves: vec![Curve {
+                        label: "nothing".into(),
+                        points: vec![(f64::NAN, 1.0)],
+                    }],
+                    ..Panel::default()
+                }],
+            },
+        ];
+        let case = CaseReport {
+            name: "program_test".into(),
+            title: "t".into(),
+            source: "s".into(),
+            deck: String::new(),
+            levels: vec![coarse, fine],
+            rates: vec![],
+            failure: None,
+        };
+        let files = case_plots(&case, dir.path()).unwrap();
+        let kinds: Vec<&str> = files.iter().map(|f| f.kind.as_str()).collect();
+        assert_eq!(kinds, ["convergence", "time", "forces"]);
+        let svg = std::fs::read_to_string(dir.path().join("program_test_forces.svg")).unwrap();
+        for text in [
+            "normal force (level 1)",
+            "tangential force (level 1)",
+            "run a",
+            "run b",
+        ] {
+            assert!(svg.contains(text), "no `{text}` in the figure");
+        }
+        assert!(
+            !svg.contains("coarse"),
+            "the coarse level's figure was drawn"
+        );
+        assert!(!dir.path().join("program_test_empty.svg").exists());
     }
 
     #[test]

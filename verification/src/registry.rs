@@ -42,6 +42,8 @@ pub struct ProgramLevel {
     pub newton_max: usize,
     /// Cutbacks (all runs).
     pub cutbacks: usize,
+    /// Figures drawn into the report ([`crate::plot::Figure`]).
+    pub figures: Vec<crate::plot::Figure>,
 }
 
 impl ProgramLevel {
@@ -199,6 +201,7 @@ impl VerifyCase {
                 profile: None,
                 max_penetration: 0.0,
                 contact_iterations: 0,
+                figures: Vec::new(),
             };
             match outcome {
                 Ok(m) => {
@@ -209,6 +212,7 @@ impl VerifyCase {
                     l.newton_total = m.newton_total;
                     l.newton_max = m.newton_max;
                     l.cutbacks = m.cutbacks;
+                    l.figures = m.figures;
                     l.values = runner::judge(&self.checks, level, m.values);
                     if l.values.is_empty() {
                         l.failure = Some("the case measured nothing".into());

@@ -58,6 +58,10 @@ pub struct LevelReport {
     /// Contact iterations of all converged increments: Lagrange active-set
     /// changes plus augmented-Lagrangian (Uzawa) updates (0 for penalty).
     pub contact_iterations: usize,
+    /// Figures a program case measured (histories of its runs), drawn by
+    /// [`crate::plot::case_plots`]; not written to `report.json`.
+    #[serde(skip)]
+    pub figures: Vec<crate::plot::Figure>,
 }
 
 impl LevelReport {
@@ -379,6 +383,7 @@ mod tests {
             profile: None,
             max_penetration: 0.0,
             contact_iterations: 0,
+            figures: Vec::new(),
         }
     }
 

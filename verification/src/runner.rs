@@ -97,6 +97,7 @@ pub fn run_level_with(
         profile: None,
         max_penetration: 0.0,
         contact_iterations: 0,
+        figures: Vec::new(),
     };
     let t0 = Instant::now();
     let compiled = match method {
@@ -274,6 +275,7 @@ mod tests {
             profile: None,
             max_penetration: 0.0,
             contact_iterations: 0,
+            figures: Vec::new(),
         }
     }
 

@@ -68,6 +68,7 @@ fn run(level: usize) -> Result<ProgramLevel, String> {
         return Err(format!("only {closed} closed nodes"));
     }
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             super::value("c/a", ca, theory),
             super::error("q RMS / (mu p0)", rms),

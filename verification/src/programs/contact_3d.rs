@@ -295,6 +295,7 @@ fn stl_sphere_level(level: usize) -> Result<ProgramLevel, String> {
     let (pa, p0a, sa) = measure(&model)?;
     let (pf, p0f, sf) = measure(&faceted)?;
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             value("P STL vs analytical", pf, pa),
             value("p0 STL vs analytical", p0f, p0a),
@@ -550,6 +551,7 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
     )?;
     values.push(error("pressure spread", spread));
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values,
         h: 1.0 / 3.0,
         nodes,
@@ -848,6 +850,7 @@ fn hertz_level(level: usize) -> Result<ProgramLevel, String> {
         match out.as_mut() {
             None => {
                 out = Some(ProgramLevel {
+                    figures: Vec::new(),
                     values,
                     h: 1.0 / n as f64,
                     nodes,
@@ -953,6 +956,7 @@ fn cad_patch_level(_level: usize) -> Result<ProgramLevel, String> {
     }
     let around = m2.contacts[0].nodes.len() - under;
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             value("sigma flat NURBS face", p, sigma_penalty),
             error("pressure spread", spread),
@@ -1040,6 +1044,7 @@ fn cad_sphere_level(_level: usize) -> Result<ProgramLevel, String> {
     let (pa, p0a, sa) = measure(&model)?;
     let (pc, p0c, sc) = measure(&cad)?;
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             value("P NURBS vs analytical", pc, pa),
             value("p0 NURBS vs analytical", p0c, p0a),

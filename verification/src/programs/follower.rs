@@ -203,6 +203,7 @@ fn level(_level: usize) -> Result<ProgramLevel, String> {
             .unwrap_or(0);
         newton_max = newton_max.max(m);
         let level = out.get_or_insert(ProgramLevel {
+            figures: Vec::new(),
             values: Vec::new(),
             h: 0.0,
             nodes: 0,

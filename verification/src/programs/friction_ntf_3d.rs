@@ -290,6 +290,16 @@ pub struct Rows {
     nodes: Vec<usize>,
 }
 
+impl Rows {
+    /// Rows summing the reactions of `nodes`.
+    pub fn on(nodes: Vec<usize>) -> Rows {
+        Rows {
+            nodes,
+            ..Rows::default()
+        }
+    }
+}
+
 impl Observer<3> for Rows {
     fn converged(&mut self, v: &IncrementView<'_, 3>) -> Result<(), String> {
         let mut r = [0.0; 3];

@@ -309,6 +309,7 @@ fn level(level: usize) -> Result<ProgramLevel, String> {
     // the first cell at the axis and the top: the mesh size at the contact
     let first = Grading::Geometric { ratio: GRADING }.points(n)[1];
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             value("P 3d vs axi", m3.force, ma.force),
             value("a 3d vs axi", m3.radius, ma.radius),

@@ -23,6 +23,7 @@ pub mod gravity;
 pub mod hertz_3d_axi;
 pub mod hertz_two_spheres_3d;
 pub mod impact;
+pub mod ironing_3d;
 pub mod johnson_cook;
 pub mod lame_sphere_quadratic;
 pub mod mortar;
@@ -105,6 +106,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(friction_3d::cases());
     v.extend(friction_ntf_3d::cases());
     v.extend(nagata_3d::cases());
+    v.extend(ironing_3d::cases());
     v.extend(self_contact_3d::cases());
     v.extend(self_contact_patch::cases());
     v.extend(traction_3d::cases());

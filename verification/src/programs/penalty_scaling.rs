@@ -76,6 +76,7 @@ fn run_level(level: usize) -> Result<ProgramLevel, String> {
     let k_fixed = fixed.penalty / h;
     let runs: [&ScalingPoint; 3] = [&area, &fixed, &scaled];
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             value(AREA_PRESSURE, area.pressure, p),
             value(AREA_GAP, area.gap_middle, -p / k),

@@ -410,6 +410,7 @@ where
 
 fn level_of<const D: usize>(summary: &RunSummary, model: &Model<D>, h: f64) -> ProgramLevel {
     ProgramLevel {
+        figures: Vec::new(),
         values: Vec::new(),
         h,
         nodes: model.mesh.nodes.len(),

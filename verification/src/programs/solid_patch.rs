@@ -244,6 +244,7 @@ pub fn cases() -> Vec<VerifyCase> {
 
 fn empty_level() -> ProgramLevel {
     ProgramLevel {
+        figures: Vec::new(),
         values: Vec::new(),
         h: f64::NAN,
         nodes: 0,

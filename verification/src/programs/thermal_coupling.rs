@@ -83,6 +83,7 @@ fn adiabatic() -> Result<ProgramLevel, String> {
         .map(|t| (t - 20.0 - dt).abs() / dt)
         .fold(0.0, f64::max);
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             super::value("heat / beta W", probe.plastic, heat),
             error("T rise", worst),

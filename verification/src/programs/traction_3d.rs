@@ -131,6 +131,7 @@ const NAMES: [[&str; 3]; 2] = [
 
 fn level(_level: usize) -> Result<ProgramLevel, String> {
     let mut out = ProgramLevel {
+        figures: Vec::new(),
         values: Vec::new(),
         h: f64::NAN,
         nodes: 0,

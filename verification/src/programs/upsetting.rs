@@ -244,6 +244,7 @@ pub(crate) fn measure_on(
     }
     let final_height = rec.rows.last().map_or(f64::NAN, |r| r.0);
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             error("F vs exact (Kirchhoff yield)", worst_model),
             error("F vs case 6 (Cauchy yield)", worst_case6),
@@ -290,6 +291,7 @@ fn measure_small_strain() -> Result<ProgramLevel, String> {
     }
     let final_height = rec.rows.last().map_or(f64::NAN, |r| r.0);
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             error("F vs uniaxial closed form", worst),
             super::value("final h / h0", final_height, 0.99),

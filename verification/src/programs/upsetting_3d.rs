@@ -171,6 +171,7 @@ fn level(_level: usize) -> Result<ProgramLevel, String> {
     }
     let final_h = rec.rows.last().map_or(f64::NAN, |r| r.0);
     Ok(ProgramLevel {
+        figures: Vec::new(),
         values: vec![
             error("F 3d vs axi", vs_axi),
             error("F 3d vs exact (pi r0^2)", vs_exact),

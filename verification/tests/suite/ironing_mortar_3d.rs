@@ -25,6 +25,7 @@
 //!   +----------------------+
 //! ```
 
+use ctc_engine::contact::friction::FrictionStatus;
 use ctc_engine::contact::surface::{evaluate_pair, SurfacePair};
 use ctc_engine::contact::ContactStatus;
 use ctc_engine::model::{AnyModel, Model};
@@ -144,4 +145,73 @@ fn ironing_mortar_tangent_matches_finite_differences() {
         // the measured 7.2e-9 with a margin for other platforms' round-off
         assert!(worst <= 1e-6, "friction {friction}: {worst:.2e}");
     }
+}
+
+/// The press of the frictional ironing (`examples/ironing_3d.ctc` with
+/// `formulation = mortar`, mu = 0.3): the die moved straight down from
+/// the committed configuration (no slide), so the nodes that close under
+/// it have a committed pairing, a slip of the slab's lateral bulge only,
+/// and stick or slip by the return map: the assembled pair tangent
+/// against central differences of its forces, as above.
+#[test]
+fn ironing_mortar_press_tangent_matches_finite_differences() {
+    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    let model = mortar_model(true);
+    let die = model.bodies[1].nodes.clone();
+    let mut worst = 0.0f64;
+    for (dy, back) in [(-0.2, 0.1), (-0.35, 0.15), (-0.6, 0.2)] {
+        let x: Vec<[f64; 3]> = model
+            .mesh
+            .nodes
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let oy = if die.contains(&k) { dy } else { 0.0 };
+                [
+                    p[0] + 0.01 * rnd(),
+                    p[1] + oy + 0.01 * rnd(),
+                    p[2] + 0.01 * rnd(),
+                ]
+            })
+            .collect();
+        // committed: the die `back` higher, the slab's lateral bulge
+        // smaller (every slab node 2 % closer to the die's axis in x)
+        let committed: Vec<[f64; 3]> = x
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                if die.contains(&k) {
+                    [p[0], p[1] + back, p[2]]
+                } else {
+                    [p[0] - 0.02 * (p[0] - 2.0) * p[1] / 3.6, p[1], p[2]]
+                }
+            })
+            .collect();
+        let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
+        let (e, k) = fd_error(&model, Some(&committed[..]), &x, &v);
+        // the closed nodes' friction states at x (the return map's two
+        // branches, both in the tangent checked)
+        let mut state = SurfacePair::new(&model, 0);
+        let _ = evaluate_pair(&model, 0, &committed, 0.0, &mut state);
+        let (res, _) = evaluate_pair(&model, 0, &x, 0.0, &mut state);
+        let closed = res.iter().filter(|c| c.status == ContactStatus::Closed);
+        let stick = closed
+            .clone()
+            .filter(|c| c.friction.status == FrictionStatus::Stick)
+            .count();
+        println!(
+            "press dy {dy} back {back}: {e:.2e} at node {} c {} ({} closed, {stick} stick)",
+            k / 3,
+            k % 3,
+            closed.count()
+        );
+        worst = worst.max(e);
+    }
+    assert!(worst <= 1e-6, "press: {worst:.2e}");
 }
