@@ -852,9 +852,9 @@ where
     /// predicted state inverts an element, or fails otherwise) the plain
     /// start is evaluated again. Returns whether the predicted start is
     /// kept (then `dp = 0`: the prescribed increment is in the state).
-    fn predict(&mut self, t: f64, ratio: f64) -> Result<bool, Failure> {
+    fn predict(&mut self, t: f64, ratio: f64, edge: bool) -> Result<(bool, bool), Failure> {
         let Some(last) = self.history.last.as_ref() else {
-            return Ok(false);
+            return Ok((false, false));
         };
         let t_n = last.times.1;
         let mut plain = self.r_free.clone();
@@ -882,8 +882,10 @@ where
         // the contact edge's advance: the nodes the extrapolation closes
         // that the edge does not reach are moved back out of the tool (a
         // predicted state that fails to evaluate is left to the test below)
-        if let Some(g_n) = converged_gaps.filter(|_| self.evaluate(t, false).is_ok()) {
+        let mut moved = false;
+        if let Some(g_n) = converged_gaps.filter(|_| edge && self.evaluate(t, false).is_ok()) {
             let moves = predictor::edge_moves(model, self.contacts.contact(), &g_n, ratio);
+            moved = !moves.is_empty();
             for (node, d) in moves {
                 for (c, v) in d.iter().enumerate() {
                     let g = self.dofs.dof(node, c);
@@ -896,11 +898,11 @@ where
         let predicted = self.evaluate(t, true);
         if matches!(predicted, Ok(ev) if ev.abs.is_finite() && ev.abs < plain_norm) {
             self.dp.fill(0.0);
-            return Ok(true);
+            return Ok((true, moved));
         }
         self.u.copy_from_slice(&self.committed);
         self.evaluate(t, true)?;
-        Ok(false)
+        Ok((false, false))
     }
 
     /// Sets the free dofs to `base + s * rhs` and, in the first iteration,
@@ -1220,6 +1222,10 @@ where
         // the prescribed increment of the plain start while a predicted
         // start is in use
         let mut plain_dp: Option<Vec<f64>> = None;
+        // the edge rule of the predictor (off after a moved start is
+        // retaken) and whether the start in use was moved by it
+        let mut edge_rule = true;
+        let mut moved_start = false;
         for k in 1..=settings.max_iter {
             let first = k == first_k;
             // 1. residual and tangent at the current state (the first of the
@@ -1252,9 +1258,11 @@ where
                     let is_dynamic = model.steps.get(step).is_some_and(|s| s.dynamic.is_some());
                     if let Some(ratio) = self.history.ratio(step, t).filter(|_| !is_dynamic) {
                         let dp = self.dp.clone();
-                        if self.predict(t, ratio)? {
+                        let (kept, moved) = self.predict(t, ratio, edge_rule)?;
+                        if kept {
                             dp_norm = 0.0;
                             plain_dp = Some(dp);
+                            moved_start = moved;
                         }
                     }
                 }
@@ -1354,6 +1362,32 @@ where
             let dp_step = if first { dp_norm } else { 0.0 };
             let rel_du = convergence::relative_correction(s, du_norm, dp_step, u_norm);
             residuals.push(ev.rel);
+            // a moved start (`predictor::edge_moves`) whose
+            // first step had to be shortened opened a node that belongs
+            // closed: retaken from the unmoved start (the abandoned
+            // iteration counts)
+            if first && s < 1.0 && moved_start {
+                observer.iteration(&IterationInfo {
+                    step,
+                    increment,
+                    iteration: k,
+                    residual: ev.rel,
+                    displacement: rel_du,
+                    step_length: s,
+                    active_contacts: self.active_contacts(),
+                });
+                self.u.copy_from_slice(&self.committed);
+                if let Some(dp) = plain_dp.take() {
+                    self.dp.copy_from_slice(&dp);
+                }
+                dp_norm = norm(&self.dp);
+                first_k = k + 1;
+                edge_rule = false;
+                moved_start = false;
+                tangent_valid = false;
+                divergence = DivergenceMonitor::default();
+                continue;
+            }
             // a predicted start whose first step had to be shortened is
             // abandoned at finite strain: on from the plain start
             if first && s < 1.0 && predictor::guarded(model) {
