@@ -379,13 +379,13 @@ fn blade_loss_3d_redistributed_mass_keeps_each_body_centre() {
         let mut m = vec![[0.0; 3]; n];
         for k in 0..3 {
             let mut e = vec![0.0; 3 * n];
-            for i in 0..n {
-                e[3 * i + k] = 1.0;
+            for v in e.chunks_exact_mut(3) {
+                v[k] = 1.0;
             }
             let mut out = vec![0.0; 3 * n];
             dy.mass_times(&model, &e, &mut out);
-            for i in 0..n {
-                m[i][k] = out[3 * i + k];
+            for (mi, o) in m.iter_mut().zip(out.chunks_exact(3)) {
+                mi[k] = o[k];
             }
         }
         let bodies: Vec<(f64, [f64; 3], f64)> = model

@@ -855,12 +855,9 @@ mod tests {
                     let xa = point_at(&pts, moved);
                     let d: [f64; 3] = std::array::from_fn(|c| xs[c] - xa[c]);
                     let dn: f64 = (0..3).map(|c| d[c] * n[c]).sum();
-                    for c in 0..3 {
-                        let gt = d[c] - dn * n[c];
-                        assert!(
-                            (gt + t[c] / law.alpha_t).abs() < 1e-12,
-                            "{name}: {gt} {t:?}"
-                        );
+                    for ((dc, nc), tc) in d.iter().zip(&n).zip(&t) {
+                        let gt = dc - dn * nc;
+                        assert!((gt + tc / law.alpha_t).abs() < 1e-12, "{name}: {gt} {t:?}");
                     }
                 }
                 let (err, st) = check(&law, xs, &pts, &pts, xi_a, at).unwrap();

@@ -139,16 +139,23 @@ pub fn restore_centre(
     if total <= 0.0 || receivers.iter().any(|r| r.1.len() != d) {
         return Centre::Moved(shift);
     }
-    let centre: Vec<f64> = (0..d)
-        .map(|c| receivers.iter().map(|r| r.0 * r.1[c]).sum::<f64>() / total)
-        .collect();
+    let mut centre = vec![0.0; d];
+    for (w, x) in receivers {
+        for (c, x) in centre.iter_mut().zip(x) {
+            *c += w * x;
+        }
+    }
+    for c in &mut centre {
+        *c /= total;
+    }
     let mut a = nalgebra::DMatrix::<f64>::zeros(d, d);
     let mut extent = 0.0f64;
     for (w, x) in receivers {
-        for p in 0..d {
-            extent = extent.max((x[p] - centre[p]).abs());
-            for q in 0..d {
-                a[(p, q)] += w * (x[p] - centre[p]) * (x[q] - centre[q]);
+        let r: Vec<f64> = x.iter().zip(&centre).map(|(x, c)| x - c).collect();
+        for (p, rp) in r.iter().enumerate() {
+            extent = extent.max(rp.abs());
+            for (q, rq) in r.iter().enumerate() {
+                a[(p, q)] += w * rp * rq;
             }
         }
     }
@@ -156,8 +163,7 @@ pub fn restore_centre(
     let largest = eig.eigenvalues.iter().fold(0.0f64, |m, v| m.max(v.abs()));
     let b = nalgebra::DVector::from_column_slice(missing);
     let mut lambda = nalgebra::DVector::<f64>::zeros(d);
-    for k in 0..d {
-        let e = eig.eigenvalues[k];
+    for (k, &e) in eig.eigenvalues.iter().enumerate() {
         if largest > 0.0 && e > 1e-12 * largest {
             let v = eig.eigenvectors.column(k);
             lambda += v * (v.dot(&b) / e);
@@ -169,7 +175,13 @@ pub fn restore_centre(
     }
     let factors: Vec<f64> = receivers
         .iter()
-        .map(|(_, x)| (0..d).map(|c| (x[c] - centre[c]) * lambda[c]).sum())
+        .map(|(_, x)| {
+            x.iter()
+                .zip(&centre)
+                .zip(lambda.iter())
+                .map(|((x, c), l)| (x - c) * l)
+                .sum()
+        })
         .collect();
     if factors.iter().any(|f| !(*f >= -1.0)) {
         return Centre::Moved(shift);

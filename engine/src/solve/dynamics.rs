@@ -536,12 +536,18 @@ impl Dynamics {
                 let mut lo = [f64::INFINITY; D];
                 let mut hi = [f64::NEG_INFINITY; D];
                 for n in b.nodes.clone() {
-                    for k in 0..D {
-                        lo[k] = lo[k].min(model.mesh.nodes[n][k]);
-                        hi[k] = hi[k].max(model.mesh.nodes[n][k]);
+                    let x = model.mesh.nodes[n];
+                    for ((l, h), v) in lo.iter_mut().zip(hi.iter_mut()).zip(x) {
+                        *l = l.min(v);
+                        *h = h.max(v);
                     }
                 }
-                let size = (0..D).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt();
+                let size = lo
+                    .iter()
+                    .zip(&hi)
+                    .map(|(l, h)| (h - l).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
                 match super::contact_mass::restore_centre(&input, &missing, body_mass, size) {
                     super::contact_mass::Centre::Restored(f) => {
                         for &(c, a, w) in &received {
