@@ -133,7 +133,7 @@ pub fn restore_centre(
     } else {
         0.0
     };
-    if !(shift > 1e-12 * size) {
+    if shift.is_nan() || shift <= 1e-12 * size {
         return Centre::Unmoved;
     }
     if total <= 0.0 || receivers.iter().any(|r| r.1.len() != d) {
@@ -183,7 +183,7 @@ pub fn restore_centre(
                 .sum()
         })
         .collect();
-    if factors.iter().any(|f| !(*f >= -1.0)) {
+    if factors.iter().any(|f| f.is_nan() || *f < -1.0) {
         return Centre::Moved(shift);
     }
     Centre::Restored(factors)
