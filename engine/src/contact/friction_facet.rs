@@ -33,6 +33,22 @@
 //! foot, as [`super::node_to_facet::face_element`] does; it is not
 //! symmetric.
 //!
+//! At an edge or vertex projection ([`Feature::Edge`], [`Feature::Vertex`]:
+//! the node in the wedge in front of a convex edge or the corner in front
+//! of a vertex, [`super::node_to_facet::edge_element`]) the normal that
+//! gives the gap is the direction from the closest point `p` of the edge
+//! (vertex) to the node, `n = s (x_s - p) / |x_s - p|`, and the friction
+//! acts in *its* tangent plane ("one geometry everywhere", as
+//! [`super::friction_segment::Vertex`] in 2D): `P = I - n ⊗ n` with that
+//! `n`, the reaction `-N_b t` at `p` (edge weights `1 - t`, `t`; vertex 1),
+//! so `t . n = 0` and the moment is still `g n x t`. The stick point stays
+//! a material point of a facet; after a slip it is the point of facet `k`
+//! (extended) on the line through `x_a + delta` along `n`, so that its
+//! tangential gap `P (x_s - x_a)` is the elastic part `-t / k_T` (the
+//! foot along the facet's own normal would add the tilt between the two
+//! normals to it). The facet's tangent plane was used there before: off by
+//! the turn of the normal across the wedge (up to the kink angle).
+//!
 //! First touch (no committed stick point): `first_impact = frictionless`
 //! leaves that increment without tangential force (the stick point is the
 //! foot at its end); `intersect` (the default) sticks the node where its
@@ -45,7 +61,9 @@
 
 use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeFriction};
 use super::mortar::ad::Ad;
-use super::node_to_facet::{cross, dot, foot, foot_system, newton_step, sub, surface_point};
+use super::node_to_facet::{
+    cross, dot, foot, foot_system, newton_step, sub, surface_point, Feature,
+};
 use crate::model::{ContactMethod, FirstImpact, Friction};
 
 /// Coordinates a friction element depends on: the slave node, up to 4
@@ -92,9 +110,121 @@ fn cst3(p: [f64; 3]) -> [A; 3] {
     p.map(A::cst)
 }
 
+/// Where the slave node projects on the contact facet: its interior
+/// (`Feature::Face`: the facet's normal at the foot), or an edge or vertex
+/// of it (the radius-0 cylinder or sphere of
+/// [`super::node_to_facet::edge_element`], the node on the `side` (+1 or
+/// -1) of the facet).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Projection {
+    /// The facet's part.
+    pub feature: Feature,
+    /// The side of the facet the node lies on (edge and vertex).
+    pub side: f64,
+}
+
+impl Projection {
+    /// The facet's interior.
+    pub const FACE: Projection = Projection {
+        feature: Feature::Face,
+        side: 1.0,
+    };
+}
+
+/// The closest point of the edge `(a, b)` (or vertex `a`, `b = None`) of
+/// the facet `p` to `xs`, its weights over the facet's nodes and the unit
+/// normal `side (xs - p) / |xs - p|`; `None` on the edge itself or for a
+/// node index beyond the facet.
+#[allow(clippy::type_complexity)]
+fn edge_point<const N: usize>(
+    xs: [Ad<N>; 3],
+    p: &[[Ad<N>; 3]],
+    a: usize,
+    b: Option<usize>,
+    side: f64,
+) -> Option<([Ad<N>; 4], [Ad<N>; 3], [Ad<N>; 3])> {
+    let z = Ad::cst(0.0);
+    let mut w = [z; 4];
+    let pa = *p.get(a)?;
+    let x = match b {
+        Some(b) => {
+            let e = sub(*p.get(b)?, pa);
+            let t = dot(sub(xs, pa), e) / dot(e, e);
+            w[a] = Ad::cst(1.0) - t;
+            w[b] = t;
+            [0, 1, 2].map(|c| pa[c] + e[c] * t)
+        }
+        None => {
+            w[a] = Ad::cst(1.0);
+            pa
+        }
+    };
+    let d = sub(xs, x);
+    let len = dot(d, d).sqrt();
+    if len.v.is_nan() || len.v <= 1e-300 {
+        return None;
+    }
+    Some((w, x, d.map(|v| v * side / len)))
+}
+
+/// The edge / vertex of `at` as `(a, Some(b))` / `(a, None)`; `None` for
+/// the face.
+fn edge_of(at: Projection) -> Option<(usize, Option<usize>)> {
+    match at.feature {
+        Feature::Face => None,
+        Feature::Edge(a, b) => Some((a, Some(b))),
+        Feature::Vertex(a) => Some((a, None)),
+    }
+}
+
+/// The parameters of the point of the (extended) facet `pts` on the line
+/// `q + lambda n` (Newton on `x(xi) - q - lambda n = 0` from `xi`); `None`
+/// when the line runs nearly along the facet (`|n . n_facet| < 0.1`, the
+/// 2D rule's [`super::friction_segment`] `MIN_COSINE`) or Newton does not
+/// converge.
+fn along_normal(q: [f64; 3], n: [f64; 3], pts: &[[f64; 3]], xi: [f64; 2]) -> Option<[f64; 2]> {
+    let p: Vec<[Ad<0>; 3]> = pts.iter().map(|&v| v.map(Ad::cst)).collect();
+    let (mut xi, mut lambda) = (xi, 0.0);
+    for _ in 0..30 {
+        let (_, x, a1, a2, _) = surface_point(&p, xi.map(Ad::cst));
+        let (x, a1, a2) = (x.map(|v| v.v), a1.map(|v| v.v), a2.map(|v| v.v));
+        let r: [f64; 3] = std::array::from_fn(|c| x[c] - q[c] - lambda * n[c]);
+        // J = [a1 a2 -n]: Cramer's rule for J d = -r
+        let det3 = |c0: [f64; 3], c1: [f64; 3], c2: [f64; 3]| {
+            c0[0] * (c1[1] * c2[2] - c1[2] * c2[1]) - c1[0] * (c0[1] * c2[2] - c0[2] * c2[1])
+                + c2[0] * (c0[1] * c1[2] - c0[2] * c1[1])
+        };
+        let mn = [-n[0], -n[1], -n[2]];
+        let det = det3(a1, a2, mn);
+        let area = {
+            let c = [
+                a1[1] * a2[2] - a1[2] * a2[1],
+                a1[2] * a2[0] - a1[0] * a2[2],
+                a1[0] * a2[1] - a1[1] * a2[0],
+            ];
+            (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt()
+        };
+        if det.is_nan() || det.abs() < 0.1 * area || area <= 0.0 {
+            return None;
+        }
+        let rhs = r.map(|v| -v);
+        let d0 = det3(rhs, a2, mn) / det;
+        let d1 = det3(a1, rhs, mn) / det;
+        let dl = det3(a1, a2, rhs) / det;
+        xi = [xi[0] + d0, xi[1] + d1];
+        lambda += dl;
+        if d0.abs().max(d1.abs()) <= 1e-13 {
+            return Some(xi);
+        }
+    }
+    None
+}
+
 /// The friction law on the element: slave `xs` projected on the facet
-/// `pts` at the converged foot `xi`; stick point at `xi_a` on the facet
-/// `anchor_pts`. `None` for a degenerate facet.
+/// `pts` at the converged foot `xi` (`at` the face; at an edge or vertex,
+/// `xi` is the foot on the extended facet, the start of the stick point's
+/// update); stick point at `xi_a` on the facet `anchor_pts`. `None` for a
+/// degenerate facet, or a node on the edge (vertex) itself.
 pub fn respond(
     law: &FacetFriction,
     xs: [f64; 3],
@@ -102,6 +232,7 @@ pub fn respond(
     xi: [f64; 2],
     anchor_pts: &[[f64; 3]],
     xi_a: [f64; 2],
+    at: Projection,
 ) -> Option<FacetResponse> {
     let xs_d: [A; 3] = std::array::from_fn(|c| A::var(xs[c], c));
     let p: Vec<[A; 3]> = pts
@@ -114,17 +245,24 @@ pub fn respond(
         .enumerate()
         .map(|(a, q)| std::array::from_fn(|c| A::var(q[c], 15 + 3 * a + c)))
         .collect();
-    // the foot and its derivative by one Newton step at the converged foot
-    let (r, j) = foot_system(xs_d, &p, xi.map(A::cst));
-    let step = newton_step(r, j)?;
-    let xi_d = [A::cst(xi[0]) + step[0], A::cst(xi[1]) + step[1]];
-    let (w, x, a1, a2, _) = surface_point(&p, xi_d);
-    let m = cross(a1, a2);
-    let len = dot(m, m).sqrt();
-    if len.v.is_nan() || len.v <= 0.0 {
-        return None;
-    }
-    let n = m.map(|v| v / len);
+    let (w, x, n) = match edge_of(at) {
+        None => {
+            // the foot and its derivative by one Newton step at the
+            // converged foot
+            let (r, j) = foot_system(xs_d, &p, xi.map(A::cst));
+            let step = newton_step(r, j)?;
+            let xi_d = [A::cst(xi[0]) + step[0], A::cst(xi[1]) + step[1]];
+            let (w, x, a1, a2, _) = surface_point(&p, xi_d);
+            let m = cross(a1, a2);
+            let len = dot(m, m).sqrt();
+            if len.v.is_nan() || len.v <= 0.0 {
+                return None;
+            }
+            (w, x, m.map(|v| v / len))
+        }
+        // the closest point of the edge (vertex) and its normal
+        Some((a, b)) => edge_point(xs_d, &p, a, b, at.side)?,
+    };
     let gap = dot(sub(xs_d, x), n);
     // the stick point on its facet (convected)
     let (_, xa, ..) = surface_point(&pa, xi_a.map(A::cst));
@@ -173,7 +311,13 @@ pub fn respond(
         }
     }
     let point: [f64; 3] = std::array::from_fn(|c| xa[c].v + delta[c]);
-    let moved = (status == FrictionStatus::Slip).then(|| foot(point, pts).map_or(xi, |(f, _)| f));
+    let moved = (status == FrictionStatus::Slip).then(|| match at.feature {
+        Feature::Face => foot(point, pts).map_or(xi, |(f, _)| f),
+        // the facet's point on the line through `point` along `n`
+        _ => along_normal(point, n.map(|v| v.v), pts, xi)
+            .or_else(|| foot(point, pts).map(|f| f.0))
+            .unwrap_or(xi),
+    });
     let slip = delta;
     let dissipation = -(0..3).map(|c| tv[c] * slip[c]).sum::<f64>() + 0.0;
     let norm3 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
@@ -207,8 +351,11 @@ pub struct FacetContact<'a> {
     pub facet: usize,
     /// See `facet`.
     pub pts: &'a [[f64; 3]],
-    /// Converged foot parameters on the facet.
+    /// Converged foot parameters on the facet (on the extended facet at an
+    /// edge or vertex projection).
     pub xi: [f64; 2],
+    /// Where the node projects (face, edge or vertex).
+    pub at: Projection,
     /// Gap at the foot.
     pub gap: f64,
     /// Normal force `R_N >= 0`.
@@ -258,44 +405,53 @@ pub fn apply(
     };
     // a first touch fixed at an earlier iteration of this increment is
     // held in the base (convected from then on)
-    let start =
-        match decode(state.committed_anchor[i], facets).or_else(|| decode(state.base[i], facets)) {
-            Some(a) => a,
-            None => {
-                // first touch in this increment
-                let x0 = state.committed_position[i];
-                let (_, x, ..) = surface_point(
-                    &c.pts
-                        .iter()
-                        .map(|&q| q.map(Ad::<0>::cst))
-                        .collect::<Vec<_>>(),
-                    c.xi.map(Ad::<0>::cst),
-                );
-                let x = x.map(|v| v.v);
-                let n = facet_normal(c.pts, c.xi);
-                let g0: f64 = (0..3).map(|k| (x0[k] - x[k]) * n[k]).sum();
-                if c.gap < 0.0 {
-                    let tau = if g0 > 0.0 { g0 / (g0 - c.gap) } else { 0.0 };
-                    state.record_impact(tau);
+    let start = match decode(state.committed_anchor[i], facets)
+        .or_else(|| decode(state.base[i], facets))
+    {
+        Some(a) => a,
+        None => {
+            // first touch in this increment
+            let x0 = state.committed_position[i];
+            let (_, x, ..) = surface_point(
+                &c.pts
+                    .iter()
+                    .map(|&q| q.map(Ad::<0>::cst))
+                    .collect::<Vec<_>>(),
+                c.xi.map(Ad::<0>::cst),
+            );
+            let (x, n) = match edge_of(c.at) {
+                None => (x.map(|v| v.v), facet_normal(c.pts, c.xi)),
+                // the tangent plane of the edge's (vertex's) normal
+                // through its closest point
+                Some((a, b)) => {
+                    let p: Vec<[Ad<0>; 3]> = c.pts.iter().map(|&q| q.map(Ad::<0>::cst)).collect();
+                    let (_, x, n) = edge_point(c.xs.map(Ad::<0>::cst), &p, a, b, c.at.side)?;
+                    (x.map(|v| v.v), n.map(|v| v.v))
                 }
-                let hit: [f64; 3] = match law.first_impact {
-                    FirstImpact::Frictionless => {
-                        state.anchor[i] = Some(encode(c.facet, c.xi));
-                        return None;
-                    }
-                    FirstImpact::Intersect if g0 > 0.0 && c.gap < 0.0 => {
-                        let tau = g0 / (g0 - c.gap);
-                        std::array::from_fn(|k| x0[k] + tau * (c.xs[k] - x0[k]))
-                    }
-                    // not there yet at a positive gap (augmented Lagrangian)
-                    FirstImpact::Intersect if g0 > 0.0 => c.xs,
-                    FirstImpact::Intersect => x0,
-                };
-                let first = (c.facet, foot(hit, c.pts).map_or(c.xi, |(f, _)| f));
-                state.base[i] = Some(encode(first.0, first.1));
-                first
+            };
+            let g0: f64 = (0..3).map(|k| (x0[k] - x[k]) * n[k]).sum();
+            if c.gap < 0.0 {
+                let tau = if g0 > 0.0 { g0 / (g0 - c.gap) } else { 0.0 };
+                state.record_impact(tau);
             }
-        };
+            let hit: [f64; 3] = match law.first_impact {
+                FirstImpact::Frictionless => {
+                    state.anchor[i] = Some(encode(c.facet, c.xi));
+                    return None;
+                }
+                FirstImpact::Intersect if g0 > 0.0 && c.gap < 0.0 => {
+                    let tau = g0 / (g0 - c.gap);
+                    std::array::from_fn(|k| x0[k] + tau * (c.xs[k] - x0[k]))
+                }
+                // not there yet at a positive gap (augmented Lagrangian)
+                FirstImpact::Intersect if g0 > 0.0 => c.xs,
+                FirstImpact::Intersect => x0,
+            };
+            let first = (c.facet, foot(hit, c.pts).map_or(c.xi, |(f, _)| f));
+            state.base[i] = Some(encode(first.0, first.1));
+            first
+        }
+    };
     let (ka, xi_a) = decode(state.base[i], facets).unwrap_or(start);
     let anchor_pts = if ka == c.facet {
         c.pts.to_vec()
@@ -309,7 +465,7 @@ pub fn apply(
         normal_shift: c.normal_force + c.normal_stiffness * c.gap,
         normal_stiffness: c.normal_stiffness,
     };
-    let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a)?;
+    let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a, c.at)?;
     state.anchor[i] = Some(match r.moved {
         Some(xi) => encode(c.facet, xi),
         None => encode(ka, xi_a),
@@ -391,13 +547,30 @@ mod tests {
         n: usize,
         m: usize,
         xi_a: [f64; 2],
+        at: Projection,
     ) -> Option<FacetResponse> {
         let pt = |k: usize| [v[3 * k], v[3 * k + 1], v[3 * k + 2]];
         let xs = pt(0);
         let pts: Vec<[f64; 3]> = (1..=n).map(pt).collect();
         let apts: Vec<[f64; 3]> = (1 + n..=n + m).map(pt).collect();
         let (xi, _) = foot(xs, &pts)?;
-        respond(law, xs, &pts, xi, &apts, xi_a)
+        respond(law, xs, &pts, xi, &apts, xi_a, at)
+    }
+
+    /// The contact point of `xs` on `pts` at `at` (the foot, or the
+    /// closest point of the edge / vertex) and its normal.
+    fn contact_point(xs: [f64; 3], pts: &[[f64; 3]], at: Projection) -> ([f64; 3], [f64; 3]) {
+        match edge_of(at) {
+            None => {
+                let (xi, _) = foot(xs, pts).unwrap();
+                (point_at(pts, xi), facet_normal(pts, xi))
+            }
+            Some((a, b)) => {
+                let p: Vec<[Ad<0>; 3]> = pts.iter().map(|&q| q.map(Ad::cst)).collect();
+                let (_, x, n) = edge_point(xs.map(Ad::cst), &p, a, b, at.side).unwrap();
+                (x.map(|v| v.v), n.map(|v| v.v))
+            }
+        }
     }
 
     /// Largest relative FD error of the tangent of one element (status
@@ -409,6 +582,7 @@ mod tests {
         pts: &[[f64; 3]],
         apts: &[[f64; 3]],
         xi_a: [f64; 2],
+        at: Projection,
     ) -> Option<(f64, FrictionStatus)> {
         let (n, m) = (pts.len(), apts.len());
         let v0: Vec<f64> = xs
@@ -417,7 +591,7 @@ mod tests {
             .chain(apts.iter().flatten())
             .copied()
             .collect();
-        let r0 = forces_at(law, &v0, n, m, xi_a)?;
+        let r0 = forces_at(law, &v0, n, m, xi_a, at)?;
         // local dof of packed coordinate j
         let dof = |j: usize| {
             let k = j / 3;
@@ -428,8 +602,8 @@ mod tests {
             }
         };
         // balance: sum of forces zero; moment = g n x t
-        let (xi, _) = foot(xs, pts)?;
-        let x = point_at(pts, xi);
+        foot(xs, pts)?;
+        let (x, _) = contact_point(xs, pts, at);
         let fmax = r0.forces.iter().fold(1e-300f64, |a, f| a.max(f.abs()));
         let (mut sum, mut moment) = ([0.0; 3], [0.0; 3]);
         for k in 0..(1 + n + m) {
@@ -464,8 +638,8 @@ mod tests {
             vp[j] += h;
             vm[j] -= h;
             let (rp, rm) = (
-                forces_at(law, &vp, n, m, xi_a)?,
-                forces_at(law, &vm, n, m, xi_a)?,
+                forces_at(law, &vp, n, m, xi_a, at)?,
+                forces_at(law, &vm, n, m, xi_a, at)?,
             );
             if rp.friction.status != r0.friction.status || rm.friction.status != r0.friction.status
             {
@@ -540,7 +714,7 @@ mod tests {
                 },
                 normal_stiffness: 100.0,
             };
-            let Some((err, status)) = check(&law, xs, &pts, &apts, xi_a) else {
+            let Some((err, status)) = check(&law, xs, &pts, &apts, xi_a, Projection::FACE) else {
                 continue;
             };
             match status {
@@ -576,7 +750,7 @@ mod tests {
         };
         let xs = [0.7, 0.5, -0.01];
         let (xi, _) = foot(xs, &pts).unwrap();
-        let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0]).unwrap();
+        let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0], Projection::FACE).unwrap();
         assert_eq!(r.friction.status, FrictionStatus::Slip);
         assert!(
             (r.friction.traction[0] + 0.3).abs() < 1e-12,
@@ -590,7 +764,7 @@ mod tests {
         // below the limit: stick, force -k_T g_T
         let xs = [0.52, 0.5, -0.01];
         let (xi, _) = foot(xs, &pts).unwrap();
-        let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0]).unwrap();
+        let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0], Projection::FACE).unwrap();
         assert_eq!(r.friction.status, FrictionStatus::Stick);
         assert!((r.friction.traction[0] + 0.2).abs() < 1e-12);
         assert!(r.moved.is_none());
@@ -598,8 +772,100 @@ mod tests {
         let shifted = facet(4, &[0.0; 12], [0.2, 0.0, 0.0]);
         let xs = [0.7, 0.5, -0.01];
         let (xi, _) = foot(xs, &shifted).unwrap();
-        let r = respond(&law, xs, &shifted, xi, &shifted, [0.0, 0.0]).unwrap();
+        let r = respond(
+            &law,
+            xs,
+            &shifted,
+            xi,
+            &shifted,
+            [0.0, 0.0],
+            Projection::FACE,
+        )
+        .unwrap();
         assert!(r.friction.tangential_force < 1e-12, "{:?}", r.friction);
+    }
+
+    /// A node past the edge x = 1 of the flat unit quad (below its plane,
+    /// in the wedge of a convex edge) and past its vertex (1, 1): the
+    /// normal is the one of the radius-0 cylinder / sphere
+    /// (`node_to_facet::edge_element`), the friction force is orthogonal
+    /// to it, `|T| = mu R_N` in slip, the forces balance with the moment
+    /// `g n x t`, and the tangent is minus the central-difference
+    /// derivative of the forces (h = 1e-6) within 1e-6 of its largest
+    /// entry, in stick and in slip (`cargo test -p ctc-engine --lib
+    /// friction_facet -- --nocapture` prints the errors: 1e-9 and below).
+    /// With the facet's tangent plane (the rule before) `|T . n|` was
+    /// 0.74 |T| at the edge (`T` along `-(0.15, 0.1, 0)`, `n` 63 degrees
+    /// off the facet's normal).
+    #[test]
+    fn friction_at_an_edge_or_vertex_acts_in_the_tangent_plane_of_its_normal() {
+        let pts = facet(4, &[0.0; 12], [0.0; 3]);
+        for (name, at, xs) in [
+            (
+                "edge",
+                Projection {
+                    feature: Feature::Edge(1, 2),
+                    side: -1.0,
+                },
+                [1.1, 0.5, -0.05],
+            ),
+            (
+                "vertex",
+                Projection {
+                    feature: Feature::Vertex(2),
+                    side: -1.0,
+                },
+                [1.1, 1.08, -0.05],
+            ),
+        ] {
+            let (p, n) = contact_point(xs, &pts, at);
+            let dist = (0..3).map(|c| (xs[c] - p[c]).powi(2)).sum::<f64>().sqrt();
+            for (mu, status) in [(0.5, FrictionStatus::Stick), (0.05, FrictionStatus::Slip)] {
+                let law = FacetFriction {
+                    mu,
+                    alpha_t: 10.0,
+                    shift: [0.0; 3],
+                    normal_shift: 0.0,
+                    normal_stiffness: 100.0,
+                };
+                // stick point at (0.95, 0.4, 0) on a copy of the facet
+                let xi_a = [0.9, -0.2];
+                let (xi, _) = foot(xs, &pts).unwrap();
+                let r = respond(&law, xs, &pts, xi, &pts, xi_a, at).unwrap();
+                assert_eq!(r.friction.status, status, "{name}: {:?}", r.friction);
+                let t = r.friction.traction;
+                let tl = (t[0] * t[0] + t[1] * t[1] + t[2] * t[2]).sqrt();
+                let tn: f64 = (0..3).map(|c| t[c] * n[c]).sum();
+                assert!(
+                    tl > 0.1 && tn.abs() <= 1e-14 * tl,
+                    "{name}: T . n {tn:e}, |T| {tl:e}"
+                );
+                if status == FrictionStatus::Slip {
+                    // R_N = alpha_N |x_s - p| (the gap -|x_s - p|)
+                    let limit = mu * 100.0 * dist;
+                    assert!(
+                        (tl - limit).abs() <= 1e-13 * limit,
+                        "{name}: {tl} vs {limit}"
+                    );
+                    let s = r.friction.slip_vector;
+                    assert!((0..3).map(|c| s[c] * n[c]).sum::<f64>().abs() < 1e-15);
+                    // the new stick point leaves the elastic part -t / k_T
+                    // as the tangential gap
+                    let moved = r.moved.unwrap();
+                    let xa = point_at(&pts, moved);
+                    let d: [f64; 3] = std::array::from_fn(|c| xs[c] - xa[c]);
+                    let dn: f64 = (0..3).map(|c| d[c] * n[c]).sum();
+                    for ((dc, nc), tc) in d.iter().zip(&n).zip(&t) {
+                        let gt = dc - dn * nc;
+                        assert!((gt + tc / law.alpha_t).abs() < 1e-12, "{name}: {gt} {t:?}");
+                    }
+                }
+                let (err, st) = check(&law, xs, &pts, &pts, xi_a, at).unwrap();
+                println!("friction_facet {name} {st:?}: max rel. FD error {err:.2e}");
+                assert_eq!(st, status);
+                assert!(err <= 1e-6, "{name} {status:?}: {err:e}");
+            }
+        }
     }
 
     #[test]

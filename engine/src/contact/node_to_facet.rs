@@ -1331,6 +1331,12 @@ pub fn evaluate(
                     facet: k,
                     pts: &pts,
                     xi,
+                    // the normal that gives the gap (an edge's or vertex's
+                    // at such a projection: `gap = side |x_s - p|`)
+                    at: super::friction_facet::Projection {
+                        feature: el.feature,
+                        side: if el.gap < 0.0 { -1.0 } else { 1.0 },
+                    },
                     gap: el.gap,
                     normal_force: rn,
                     normal_stiffness: -slope,

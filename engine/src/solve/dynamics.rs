@@ -305,6 +305,9 @@ pub struct Dynamics {
     /// Cells with every node on a contact surface, whose lumped mass was
     /// kept (no other node to move it to).
     pub contact_cells_kept: usize,
+    /// What the contact-mass redistribution could not do (cells kept
+    /// lumped, centres of mass it moved), for the run's notes.
+    pub mass_notes: Vec<String>,
     /// Committed friction force on each slave node per contact pair, per
     /// dof (the start of the friction work's trapezoidal rule,
     /// [`Dynamics::friction_work`]; empty until a pair has friction).
@@ -344,6 +347,7 @@ impl Dynamics {
             kinetic0: 0.0,
             energy: Energy::default(),
             contact_cells_kept: 0,
+            mass_notes: Vec::new(),
             friction0: Vec::new(),
         }
     }
@@ -403,8 +407,16 @@ impl Dynamics {
         let section = Section::new(&model.analysis);
         let mut masses = vec![Vec::new(); model.mesh.cells.len()];
         let mut kept = 0;
+        let mut notes = Vec::new();
         for b in &model.bodies {
             let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
+            // the body's mass, its first moment before minus after the
+            // redistribution, the mass each (cell, local node) received,
+            // its cells that kept their lumped mass
+            let mut body_mass = 0.0;
+            let mut missing = [0.0; D];
+            let mut received: Vec<(usize, usize, f64)> = Vec::new();
+            let kept_before = kept;
             for c in b.cells.clone() {
                 let nodes = model.mesh.cells.nodes(c);
                 if rho == 0.0 {
@@ -438,6 +450,24 @@ impl Dynamics {
                 } else {
                     Vec::new()
                 };
+                let nn = nodes.len();
+                body_mass += m.iter().sum::<f64>();
+                // the first moment sum M_ab X_b and the lumped diagonal
+                // before the redistribution
+                let lumped = if touches {
+                    for a in 0..nn {
+                        for (bb, &nb) in nodes.iter().enumerate() {
+                            for (k, mk) in missing.iter_mut().enumerate() {
+                                *mk += m[a * nn + bb] * model.mesh.nodes[nb][k];
+                            }
+                        }
+                    }
+                    let mut l = m.clone();
+                    crate::element::kernel::lump(&mut l, nn);
+                    l
+                } else {
+                    Vec::new()
+                };
                 if touches && !super::contact_mass::redistribute(&mut m, nodes.len(), &flags) {
                     kept += 1;
                 } else if !moved.is_empty() {
@@ -460,9 +490,88 @@ impl Dynamics {
                         }
                     }
                 }
+                if touches {
+                    for (a, &na) in nodes.iter().enumerate() {
+                        let maa = m[a * nn + a];
+                        for (k, mk) in missing.iter_mut().enumerate() {
+                            *mk -= maa * model.mesh.nodes[na][k];
+                        }
+                        let got = maa - lumped[a * nn + a];
+                        if !flags[a] && got > 0.0 {
+                            received.push((c, a, got));
+                        }
+                    }
+                }
                 masses[c] = m;
             }
+            if kept > kept_before {
+                notes.push(format!(
+                    "body `{}`: {} cells have every node on a contact surface and keep their \
+                     lumped mass (`contact_mass = redistributed` has no other node of theirs to \
+                     move it to)",
+                    b.name,
+                    kept - kept_before
+                ));
+            }
+            // the body's centre of mass put back by the receivers (not
+            // under `contact_mass = normal`, whose tangential share stays
+            // on the contact nodes)
+            if d.contact_mass == ContactMass::Redistributed && !received.is_empty() {
+                let mut by_node: Vec<(usize, f64)> = received
+                    .iter()
+                    .map(|&(c, a, w)| (model.mesh.cells.nodes(c)[a], w))
+                    .collect();
+                by_node.sort_by_key(|r| r.0);
+                let mut receivers: Vec<(usize, f64)> = Vec::new();
+                for (n, w) in by_node {
+                    match receivers.last_mut() {
+                        Some(last) if last.0 == n => last.1 += w,
+                        _ => receivers.push((n, w)),
+                    }
+                }
+                let input: Vec<(f64, Vec<f64>)> = receivers
+                    .iter()
+                    .map(|&(n, w)| (w, model.mesh.nodes[n].to_vec()))
+                    .collect();
+                let mut lo = [f64::INFINITY; D];
+                let mut hi = [f64::NEG_INFINITY; D];
+                for n in b.nodes.clone() {
+                    let x = model.mesh.nodes[n];
+                    for ((l, h), v) in lo.iter_mut().zip(hi.iter_mut()).zip(x) {
+                        *l = l.min(v);
+                        *h = h.max(v);
+                    }
+                }
+                let size = lo
+                    .iter()
+                    .zip(&hi)
+                    .map(|(l, h)| (h - l).powi(2))
+                    .sum::<f64>()
+                    .sqrt();
+                match super::contact_mass::restore_centre(&input, &missing, body_mass, size) {
+                    super::contact_mass::Centre::Restored(f) => {
+                        for &(c, a, w) in &received {
+                            let n = model.mesh.cells.nodes(c)[a];
+                            let Ok(k) = receivers.binary_search_by_key(&n, |r| r.0) else {
+                                continue;
+                            };
+                            let nn = model.mesh.cells.nodes(c).len();
+                            masses[c][a * nn + a] += w * f[k];
+                        }
+                    }
+                    super::contact_mass::Centre::Moved(shift) => {
+                        notes.push(format!(
+                            "body `{}`: the redistributed contact mass moves its centre of \
+                             mass by {shift:.3e} (the nodes that take the contact nodes' mass \
+                             cannot carry the first moment back)",
+                            b.name
+                        ));
+                    }
+                    _ => {}
+                }
+            }
         }
+        self.mass_notes = notes;
         self.contact_cells_kept = kept;
         self.cell_mass = masses;
         self.node_tensor = tensor;

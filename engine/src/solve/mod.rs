@@ -625,6 +625,7 @@ where
     }
     if let Some(dy) = newton.dynamics() {
         summary.energy = Some(dy.energy);
+        summary.notes.extend(dy.mass_notes.iter().cloned());
         if dy.energy_grew() {
             let e = dy.energy;
             let w = format!(
