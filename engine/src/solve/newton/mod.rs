@@ -534,6 +534,24 @@ where
     }
 
     /// Closed contact nodes at the last evaluated state.
+    /// Abandons an increment's first iteration (reported to `observer`:
+    /// it counts) and starts again from the last converged state with the
+    /// prescribed increment `plain_dp` (the current one when `None`):
+    /// returns the norm of the increment now prescribed.
+    fn abandon_first_step(
+        &mut self,
+        info: &IterationInfo,
+        plain_dp: Option<&[f64]>,
+        observer: &mut dyn Observer<D>,
+    ) -> f64 {
+        observer.iteration(info);
+        self.u.copy_from_slice(&self.committed);
+        if let Some(dp) = plain_dp {
+            self.dp.copy_from_slice(dp);
+        }
+        norm(&self.dp)
+    }
+
     pub fn active_contacts(&self) -> usize {
         self.contacts.active_contacts()
     }
@@ -1367,7 +1385,7 @@ where
             // closed: retaken from the unmoved start (the abandoned
             // iteration counts)
             if first && s < 1.0 && moved_start {
-                observer.iteration(&IterationInfo {
+                let info = IterationInfo {
                     step,
                     increment,
                     iteration: k,
@@ -1375,12 +1393,8 @@ where
                     displacement: rel_du,
                     step_length: s,
                     active_contacts: self.active_contacts(),
-                });
-                self.u.copy_from_slice(&self.committed);
-                if let Some(dp) = plain_dp.take() {
-                    self.dp.copy_from_slice(&dp);
-                }
-                dp_norm = norm(&self.dp);
+                };
+                dp_norm = self.abandon_first_step(&info, plain_dp.take().as_deref(), observer);
                 first_k = k + 1;
                 edge_rule = false;
                 moved_start = false;
@@ -1392,7 +1406,7 @@ where
             // abandoned at finite strain: on from the plain start
             if first && s < 1.0 && predictor::guarded(model) {
                 if let Some(dp) = plain_dp.take() {
-                    observer.iteration(&IterationInfo {
+                    let info = IterationInfo {
                         step,
                         increment,
                         iteration: k,
@@ -1400,10 +1414,8 @@ where
                         displacement: rel_du,
                         step_length: s,
                         active_contacts: self.active_contacts(),
-                    });
-                    self.u.copy_from_slice(&self.committed);
-                    self.dp.copy_from_slice(&dp);
-                    dp_norm = norm(&self.dp);
+                    };
+                    dp_norm = self.abandon_first_step(&info, Some(&dp), observer);
                     first_k = k + 1;
                     may_predict = false;
                     tangent_valid = false;
