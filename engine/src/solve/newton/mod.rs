@@ -1384,17 +1384,18 @@ where
             // first step had to be shortened opened a node that belongs
             // closed: retaken from the unmoved start (the abandoned
             // iteration counts)
-            if first && s < 1.0 && moved_start {
-                let info = IterationInfo {
-                    step,
-                    increment,
-                    iteration: k,
-                    residual: ev.rel,
-                    displacement: rel_du,
-                    step_length: s,
-                    active_contacts: self.active_contacts(),
-                };
-                dp_norm = self.abandon_first_step(&info, plain_dp.take().as_deref(), observer);
+            // the iteration reported when the first step is abandoned
+            let shortened_first = (first && s < 1.0).then(|| IterationInfo {
+                step,
+                increment,
+                iteration: k,
+                residual: ev.rel,
+                displacement: rel_du,
+                step_length: s,
+                active_contacts: self.active_contacts(),
+            });
+            if let (Some(info), true) = (&shortened_first, moved_start) {
+                dp_norm = self.abandon_first_step(info, plain_dp.take().as_deref(), observer);
                 first_k = k + 1;
                 edge_rule = false;
                 moved_start = false;
@@ -1404,18 +1405,9 @@ where
             }
             // a predicted start whose first step had to be shortened is
             // abandoned at finite strain: on from the plain start
-            if first && s < 1.0 && predictor::guarded(model) {
+            if let (Some(info), true) = (&shortened_first, predictor::guarded(model)) {
                 if let Some(dp) = plain_dp.take() {
-                    let info = IterationInfo {
-                        step,
-                        increment,
-                        iteration: k,
-                        residual: ev.rel,
-                        displacement: rel_du,
-                        step_length: s,
-                        active_contacts: self.active_contacts(),
-                    };
-                    dp_norm = self.abandon_first_step(&info, Some(&dp), observer);
+                    dp_norm = self.abandon_first_step(info, Some(&dp), observer);
                     first_k = k + 1;
                     may_predict = false;
                     tangent_valid = false;
