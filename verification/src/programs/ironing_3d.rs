@@ -48,8 +48,7 @@
 //!   `F_n` oscillation to the faceted node-to-facet one (below 1 is the
 //!   point of smoothing).
 //! - Equilibrium: the contact force against the die's reaction.
-//! - The runs reaching the end (`t = 2`), except where they are known not
-//!   to (see the tolerances).
+//! - Every run reaching the end (`t = 2`).
 //!
 //! Levels: level 0 (the default, in the catalogue of every CI run) is the
 //! coarse short deck of `ironing_nagata_3d` (slab `6 x 3 x 2` cells, die
@@ -487,8 +486,11 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 5] = [
     [[1e-9, 1e-9], [0.2, 0.2], [0.08, 0.08], [8.0, 8.0]],
     // ntf nagata mu 0: 0.027, 0.048, 6.56 (64 increments, 13 cutbacks)
     [[1e-9, 1e-9], [0.05, 0.05], [0.07, 0.07], [9.0, 9.0]],
-    // mortar mu 0: stops at t = 1.70 (cutbacks from t ~ 1.125, open)
-    [[0.2, 0.2], [0.05, 0.05], [0.01, 0.01], [8.0, 8.0]],
+    // mortar mu 0: 0.038, 0.019, 5.96 (87 increments, 17 cutbacks; it
+    // reaches t = 2 on the main of stop 42, where the stop-41 binary
+    // stopped at t = 1.70: `ctc verify ironing_3d --max-level 1 -j 2`,
+    // debug, 2,448 s wall)
+    [[1e-9, 1e-9], [0.05, 0.05], [0.03, 0.03], [8.0, 8.0]],
     // ntf faceted mu 0.3: level 0 F_n oscillation 0.079, F_t / F_n 0.302
     // (error 8e-3), 7.45 iterations; level 1 0.134, 0.396, 10.0
     [[1e-9, 1e-9], [0.15, 0.2], [0.03, 0.4], [10.0, 12.0]],
@@ -497,7 +499,8 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 5] = [
 ];
 
 /// Tolerances of [`RATIOS`] (level 1): nagata / faceted 0.23, mortar /
-/// faceted 0.24 (mu 0, over t 1.5..1.70) and 0.49 (mu 0.3).
+/// faceted 0.33 (mu 0) and 0.48 (mu 0.3), measured by the run of
+/// [`LEVEL_FIGURES`].
 pub const RATIO_TOLERANCES: [f64; 3] = [0.4, 0.5, 0.7];
 
 /// The registry entry.
