@@ -23,6 +23,7 @@ The replay of ctc's own solve gives ctc's Krylov count to +-1 (the
 coordinates come from the VTU, which ctc writes in the reference
 configuration or not: the modes may differ in the last digits).
 """
+import os
 import sys
 import time
 
@@ -39,7 +40,9 @@ for i in range(index + 1):
     if i < index:
         A.destroy()
 b = None
-rhsfile = matfile.replace("mat", "rhs")
+# the right-hand sides beside the matrices: mat.bin -> rhs.bin
+head, tail = os.path.split(matfile)
+rhsfile = os.path.join(head, tail.replace("mat", "rhs", 1))
 try:
     vb = PETSc.Viewer().createBinary(rhsfile, "r")
     for i in range(index + 1):
