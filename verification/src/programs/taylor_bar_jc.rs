@@ -1,6 +1,6 @@
-//! The Taylor bar with Johnson-Cook plasticity and adiabatic heating (tags
-//! `dynamics`, `contact`, `plasticity`, `thermal`, `finite_strain`,
-//! `rate`): an OFHC copper cylinder hits a rigid frictionless wall at 190
+//! The Taylor bar with Johnson-Cook plasticity and adiabatic heating,
+//! axisymmetric and 3D quarter (tags `dynamics`, `contact`, `plasticity`,
+//! `thermal`, `finite_strain`, `rate`): an OFHC copper cylinder hits a rigid frictionless wall at 190
 //! m/s (Johnson & Cook 1983, Proc. 7th Int. Symp. on Ballistics, The
 //! Hague, 541-547: the copper constants of table 1 and the cylinder-impact
 //! tests of p. 546; the 190 m/s cylinder re-run by Zerilli & Armstrong
@@ -93,6 +93,16 @@
 //! heat takes each increment's end stress, the audit's work the
 //! trapezoidal rule),
 //! and the balance error is the numerical dissipation of rho_inf = 0.5.
+//!
+//! `taylor_bar_jc_3d`: the heated 3D quarter (hex8 cylinder O-grid,
+//! divisions (2, 1, 16), symmetry planes x = 0 and y = 0 held, dt 0.5 us,
+//! 200 increments) beside the heated axisymmetric level 0. Measured
+//! (`ctc verify taylor_bar_jc_3d --max-level 0`, debug build, 26.6 s CPU
+//! for both runs, 1351 Newton iterations, no cutback): length 17.05 mm
+//! (the axisymmetric 17.13: -4.9e-3; the test +5.2e-2), face radius 7.42
+//! mm (7.44: -2.8e-3; the test +9.4e-2), largest plastic strain 2.37,
+//! temperature rise 264.5 K (the adiabatic Johnson-Cook rise at that
+//! strain +1.8e-2), balance error 8.8e-3 K0.
 
 use super::taylor_bar::{deck, kinetic0, solve, Bar, Final};
 use crate::case::{Check, Quantity};
@@ -206,7 +216,42 @@ fn measure_axi(l: usize) -> Result<ProgramLevel, String> {
     Ok(out)
 }
 
-/// The registry entry.
+/// The names of the 3D quarter's values.
+const NAMES_3D: [&str; 7] = [
+    "3D: final length / axisymmetric 4 x 27 - 1",
+    "3D: impact-face radius / axisymmetric 4 x 27 - 1",
+    "3D: final length / 16.21 mm - 1",
+    "3D: impact-face radius / 6.78 mm - 1",
+    "3D: max temperature rise / JC adiabatic rise at max ep - 1",
+    "3D: energy balance error / K0",
+    "3D: max equivalent plastic strain (not judged)",
+];
+
+/// The heated 3D quarter (cylinder O-grid (2, 1, 16), dt 0.5 us) against
+/// the heated axisymmetric level 0.
+fn measure_3d(_level: usize) -> Result<ProgramLevel, String> {
+    let (axi, s_axi): (Final, _) = solve(deck(&bar(true), false, (4, 27, 0), 250))?;
+    let (q, s_q): (Final, _) = solve(deck(&bar(true), true, (2, 1, 16), 200))?;
+    let k0 = kinetic0(&bar(true), true);
+    let mut out = ProgramLevel {
+        h: L0 / 16.0,
+        ..ProgramLevel::default()
+    };
+    out.values = vec![
+        rel(NAMES_3D[0], q.length, axi.length),
+        rel(NAMES_3D[1], q.radius, axi.radius),
+        rel(NAMES_3D[2], q.length, REFERENCE[0]),
+        rel(NAMES_3D[3], q.radius, REFERENCE[1]),
+        rel(NAMES_3D[4], q.temperature - T0, adiabatic_rise(q.ep)),
+        super::error(NAMES_3D[5], q.balance.abs() / k0),
+        super::error(NAMES_3D[6], q.ep),
+    ];
+    out.add_run(&s_axi);
+    out.add_run(&s_q);
+    Ok(out)
+}
+
+/// The registry entries.
 pub fn cases() -> Vec<VerifyCase> {
     let c = |k: usize, tol: &[f64]| Check::new(Quantity::Named(NAMES[k]), tol);
     vec![VerifyCase {
@@ -236,6 +281,35 @@ pub fn cases() -> Vec<VerifyCase> {
         kind: CaseKind::Program(ProgramCase {
             max_levels: AXI.len(),
             run: measure_axi,
+        }),
+    },
+    VerifyCase {
+        name: "taylor_bar_jc_3d",
+        title: "Taylor bar with Johnson-Cook plasticity and adiabatic heating, 3D quarter (hex8 O-grid, symmetry planes held): final length, impact-face radius and max temperature against the axisymmetric run and the test",
+        source: "Johnson & Cook 1983, Proc. 7th Int. Symp. on Ballistics, 541-547 (table 1, p. 546); Zerilli & Armstrong 1987, J. Appl. Phys. 61:1816 (p. 1822)",
+        tags: &[
+            "dynamics",
+            "contact",
+            "plasticity",
+            "thermal",
+            "finite_strain",
+            "rate",
+            "3d",
+        ],
+        levels: 1,
+        // measured (ctc verify taylor_bar_jc_3d --max-level 0): 4.9e-3,
+        // 2.8e-3, 5.2e-2, 9.4e-2, 1.8e-2, 8.8e-3
+        checks: vec![
+            Check::new(Quantity::Named(NAMES_3D[0]), &[1e-2]),
+            Check::new(Quantity::Named(NAMES_3D[1]), &[1e-2]),
+            Check::new(Quantity::Named(NAMES_3D[2]), &[7e-2]),
+            Check::new(Quantity::Named(NAMES_3D[3]), &[0.11]),
+            Check::new(Quantity::Named(NAMES_3D[4]), &[4e-2]),
+            Check::new(Quantity::Named(NAMES_3D[5]), &[1.5e-2]),
+        ],
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: 1,
+            run: measure_3d,
         }),
     }]
 }
