@@ -120,7 +120,8 @@ pub struct Bar {
     pub law: String,
     /// Adiabatic heating: `Some((rho c, Taylor-Quinney factor, initial
     /// temperature))` adds the material's `thermal` block (insulated:
-    /// conductivity 1e-3, its diffusion length over 80 us is 0.5 um) and
+    /// conductivity 1e-3 N/(s K): its diffusion length sqrt(k t / (rho c))
+    /// over 100 us is 0.2 um, against cells of 0.5-1 mm) and
     /// the body's initial temperature; `None` is isothermal.
     pub heat: Option<(f64, f64, f64)>,
     /// End of the run (s).
