@@ -52,6 +52,7 @@ pub mod solid;
 pub mod solid_patch;
 pub mod superplastic_3d;
 pub mod taylor_bar;
+pub mod taylor_bar_jc;
 pub mod thermal_3d;
 pub mod thermal_contact;
 pub mod thermal_contact_quadratic;
@@ -115,6 +116,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(impact::cases());
     v.extend(energy_audit::cases());
     v.extend(taylor_bar::cases());
+    v.extend(taylor_bar_jc::cases());
     v.extend(dynamic_buckling::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());

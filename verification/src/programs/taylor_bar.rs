@@ -105,15 +105,69 @@ const NAMES: [&str; 5] = [
 /// Axisymmetric divisions (radial, axial) and increments per level.
 const AXI: [(usize, usize, usize); 3] = [(4, 40, 400), (6, 60, 800), (8, 80, 800)];
 
-/// The deck: axisymmetric with `divisions`, or the 3D quarter with the
-/// cylinder divisions `(core, ring, axial)`; `increments` over 80 us.
-pub fn deck(three_d: bool, divisions: (usize, usize, usize), increments: usize) -> String {
+/// A Taylor bar: the cylinder, its speed, its material and the run's end.
+#[derive(Debug, Clone)]
+pub struct Bar {
+    /// Initial length (mm).
+    pub length: f64,
+    /// Radius (mm).
+    pub radius: f64,
+    /// Impact speed (mm/s).
+    pub speed: f64,
+    /// Density (t/mm^3).
+    pub density: f64,
+    /// The material's `elastic` and `plastic` blocks (deck text).
+    pub law: String,
+    /// Adiabatic heating: `Some((rho c, Taylor-Quinney factor, initial
+    /// temperature))` adds the material's `thermal` block (insulated:
+    /// conductivity 1e-3 N/(s K): its diffusion length sqrt(k t / (rho c))
+    /// over 100 us is 0.2 um, against cells of 0.5-1 mm) and
+    /// the body's initial temperature; `None` is isothermal.
+    pub heat: Option<(f64, f64, f64)>,
+    /// End of the run (s).
+    pub end: f64,
+}
+
+/// Wilkins & Guinan's copper bar with linear hardening (`taylor_bar_axi`,
+/// `taylor_bar_3d`).
+pub fn wilkins() -> Bar {
     let h = E * ET / (E - ET);
+    Bar {
+        length: L0,
+        radius: R0,
+        speed: V0,
+        density: RHO,
+        law: format!(
+            "elastic {{ E = {E}  nu = 0.35 }}\n  plastic {{ yield = 400  hardening = linear {{ H = {h} }} }}"
+        ),
+        heat: None,
+        end: 80e-6,
+    }
+}
+
+/// The deck of `bar`: axisymmetric with `divisions`, or the 3D quarter
+/// with the cylinder divisions `(core, ring, axial)`; `increments` over
+/// `bar.end`.
+pub fn deck(
+    bar: &Bar,
+    three_d: bool,
+    divisions: (usize, usize, usize),
+    increments: usize,
+) -> String {
+    let Bar {
+        length,
+        radius,
+        speed,
+        density,
+        ref law,
+        heat,
+        end,
+    } = *bar;
     let (analysis, mesh, wall, contact, fixes, velocity) = if three_d {
         (
             "3d",
             format!(
-                "cylinder {{ radius = {R0}  angle = 90  height = {L0}  divisions = ({}, {}, {}) }}",
+                "cylinder {{ radius = {radius}  angle = 90  height = {length}  divisions = ({}, {}, {}) }}",
                 divisions.0, divisions.1, divisions.2
             ),
             "plane { point = (0, 0, 0)  normal = (0, 0, 1) }",
@@ -125,7 +179,7 @@ pub fn deck(three_d: bool, divisions: (usize, usize, usize), increments: usize) 
         (
             "axisymmetric",
             format!(
-                "rectangle {{ origin = (0, 0)  size = ({R0}, {L0})  divisions = ({}, {}) }}",
+                "rectangle {{ origin = (0, 0)  size = ({radius}, {length})  divisions = ({}, {}) }}",
                 divisions.0, divisions.1
             ),
             "plane { point = (0, 0)  normal = (0, 1) }",
@@ -134,30 +188,51 @@ pub fn deck(three_d: bool, divisions: (usize, usize, usize), increments: usize) 
             "vy",
         )
     };
+    let (thermal, initial) = match heat {
+        Some((rho_c, beta, t0)) => (
+            format!(
+                "  thermal {{ conductivity = 1e-3  capacity = {rho_c}  density = 1  taylor_quinney = {beta} }}\n"
+            ),
+            format!("  thermal {{ initial = {t0} }}\n"),
+        ),
+        None => (String::new(), String::new()),
+    };
     format!(
         "analysis {{ dimension = {analysis} }}\n\
-         material copper {{\n  elastic {{ E = {E}  nu = 0.35 }}\n  \
-         plastic {{ yield = 400  hardening = linear {{ H = {h} }} }}\n  density = {RHO:e}\n}}\n\
+         material copper {{\n  {law}\n  density = {density:e}\n{thermal}}}\n\
          body bar {{\n  mesh = {mesh}\n  material = copper\n  kinematics = finite\n  \
-         formulation = selective_reduced\n}}\n\
+         formulation = selective_reduced\n{initial}}}\n\
          tool wall = {wall}\n\
          contact {contact} -> wall {{ method = penalty {{ kind = area  stiffness = 1e7 }} }}\n\
          {fixes}\
-         initial_velocity bar.all {{ {velocity} = -{V0:e} }}\n\
-         step impact {{\n  time = 0 .. 80e-6\n  increments = {increments}\n  \
+         initial_velocity bar.all {{ {velocity} = -{speed:e} }}\n\
+         step impact {{\n  time = 0 .. {end:e}\n  increments = {increments}\n  \
          dynamic {{ scheme = generalized_alpha  rho_inf = 0.5  contact_mass = normal }}\n  \
          newton {{ tol = 1e-8 }}\n}}\n"
     )
 }
 
-/// The figures of the last converged increment.
+/// The figures of the last converged increment (the heat summed over the
+/// increments).
 #[derive(Default)]
-struct Final {
-    length: f64,
-    radius: f64,
-    ep: f64,
-    balance: f64,
-    kinetic: f64,
+pub struct Final {
+    /// Top face minus the lowest node (mm).
+    pub length: f64,
+    /// Largest radius of the nodes that started on the impact face (mm).
+    pub radius: f64,
+    /// Largest equivalent plastic strain over the integration points.
+    pub ep: f64,
+    /// The audit's energy balance error (mJ).
+    pub balance: f64,
+    /// Kinetic energy left (mJ).
+    pub kinetic: f64,
+    /// Internal work: stored elastic energy plus plastic work (mJ).
+    pub internal: f64,
+    /// Largest nodal temperature (thermal runs; 0 otherwise).
+    pub temperature: f64,
+    /// Plastic work turned into heat over the run (mJ, the Taylor-Quinney
+    /// factor included).
+    pub heat: f64,
 }
 
 impl<const D: usize> Observer<D> for Final {
@@ -185,13 +260,20 @@ impl<const D: usize> Observer<D> for Final {
         if let Some(e) = view.energy {
             self.balance = e.balance;
             self.kinetic = e.kinetic;
+            self.internal = e.internal;
+        }
+        if let Some(t) = view.temperature {
+            self.temperature = t.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        }
+        if let Some(th) = view.thermal {
+            self.heat += th.plastic;
         }
         Ok(())
     }
 }
 
 /// Runs `text`; the final figures and the summary.
-fn solve(text: String) -> Result<(Final, RunSummary), String> {
+pub fn solve(text: String) -> Result<(Final, RunSummary), String> {
     let src = ctc_lang::Source::new("taylor_bar.ctc", text);
     let mut fin = Final::default();
     let summary = match ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? {
@@ -205,10 +287,10 @@ fn solve(text: String) -> Result<(Final, RunSummary), String> {
     Ok((fin, summary))
 }
 
-/// `K0 = 1/2 m v0^2` of the whole bar (a quarter in 3D).
-fn kinetic0(quarter: bool) -> f64 {
-    let m = RHO * std::f64::consts::PI * R0 * R0 * L0;
-    0.5 * m * V0 * V0 * if quarter { 0.25 } else { 1.0 }
+/// `K0 = 1/2 m v0^2` of the whole `bar` (a quarter in 3D).
+pub fn kinetic0(bar: &Bar, quarter: bool) -> f64 {
+    let m = bar.density * std::f64::consts::PI * bar.radius * bar.radius * bar.length;
+    0.5 * m * bar.speed * bar.speed * if quarter { 0.25 } else { 1.0 }
 }
 
 /// The values of a run.
@@ -217,7 +299,7 @@ fn level(fin: &Final, summary: &RunSummary, h: f64, quarter: bool) -> ProgramLev
         h,
         ..ProgramLevel::default()
     };
-    let k0 = kinetic0(quarter);
+    let k0 = kinetic0(&wilkins(), quarter);
     let rel = |name: &'static str, computed: f64, reference: f64| Value {
         quantity: Quantity::Named(name),
         reference: Some(reference),
@@ -236,12 +318,12 @@ fn level(fin: &Final, summary: &RunSummary, h: f64, quarter: bool) -> ProgramLev
 
 fn measure_axi(l: usize) -> Result<ProgramLevel, String> {
     let (nr, nz, increments) = AXI[l.min(AXI.len() - 1)];
-    let (fin, summary) = solve(deck(false, (nr, nz, 0), increments))?;
+    let (fin, summary) = solve(deck(&wilkins(), false, (nr, nz, 0), increments))?;
     Ok(level(&fin, &summary, R0 / nr as f64, false))
 }
 
 fn measure_3d(_level: usize) -> Result<ProgramLevel, String> {
-    let (fin, summary) = solve(deck(true, (2, 1, 20), 160))?;
+    let (fin, summary) = solve(deck(&wilkins(), true, (2, 1, 20), 160))?;
     Ok(level(&fin, &summary, L0 / 20.0, true))
 }
 
