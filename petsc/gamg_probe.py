@@ -10,7 +10,8 @@ to study the CG + GAMG preconditioner away from the Newton loop.
    rigid-body near-null space ctc gives GAMG (needs meshio):
      python3 petsc/vtu_coords.py OUT/run/inc_0001_p0.vtu OUT/x.npy
 3. Replay solve INDEX (0-based, in the order of the run) with any PETSc options
-   (needs the Debian python3-petsc4py, scipy for -probe_levels):
+   (needs the Debian python3-petsc4py, scipy for -probe_levels: `bash
+   petsc/install.sh --probe` installs them):
      /usr/bin/python3 petsc/gamg_probe.py OUT/mat.bin OUT/x.npy INDEX [options]
    -probe_symmetry      ||A - A^T||_F / ||A||_F and MatIsSymmetric(1e-10)
    -probe_random N      N more solves with random right-hand sides (-probe_seed S)

@@ -2,7 +2,9 @@
 # Installs what the `petsc` feature of ctc-petsc needs on Debian: the system
 # PETSc (real scalars, with Open MPI, MUMPS, hypre, ParMETIS) and libclang for
 # bindgen. Idempotent: a second run only checks that everything is there.
-#   bash petsc/install.sh
+#   bash petsc/install.sh           the feature
+#   bash petsc/install.sh --probe   and what the diagnostic replay
+#                                   petsc/gamg_probe.py needs (petsc4py, scipy)
 set -euo pipefail
 
 # libopenblas0-serial: an optimised BLAS for MUMPS's dense kernels (Debian's
@@ -10,6 +12,9 @@ set -euo pipefail
 # 3D tangent took 2.5 s instead of 0.2 s); serial, since MPI ranks already
 # use the cores.
 packages=(libpetsc-real-dev libclang-dev clang pkg-config openmpi-bin libopenmpi-dev libmetis-dev libopenblas0-serial)
+if [ "${1:-}" = "--probe" ]; then
+  packages+=(python3-petsc4py python3-scipy python3-numpy)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
