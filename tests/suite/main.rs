@@ -19,6 +19,7 @@ mod examples;
 mod follower_plate;
 mod friction_cattaneo;
 mod pattern_growth_3d;
+mod predictor_retake;
 mod pressure_cap;
 
 mod relative_penalty;

@@ -328,6 +328,12 @@ pub struct RunSummary {
     pub newton_iterations: usize,
     /// Total cutbacks.
     pub cutbacks: usize,
+    /// Increment starts moved by the predictor's edge or first-touch rule
+    /// whose first Newton step the line search shortened, retaken from the
+    /// unmoved start (`newton::predictor`; their abandoned iterations are
+    /// in `newton_iterations`); absent: none.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub predictor_retakes: usize,
     /// Every cutback: the failed attempt, its reason and its full residual
     /// sequence (the console shows one line each).
     pub cutback_log: Vec<CutbackRecord>,
@@ -652,6 +658,7 @@ where
     summary.timings.output = output;
     summary.timings.setup = setup;
     summary.newton_iterations = newton.iterations;
+    summary.predictor_retakes = newton.predictor_retakes;
     let stats = newton.factor_stats();
     summary.linear_solver = stats.most_general().to_string();
     if let Some(d) = newton.distributed_stats() {

@@ -62,7 +62,9 @@ fn bench_predictor_keeps_results_and_saves_iterations() {
         on.iterations_per_increment,
         off.iterations_per_increment
     );
-    // the first increment has no history: identical
+    // the first increment has no history, and its first touch closes too
+    // few nodes for the first-touch rule (`predictor::first_touch_moves`,
+    // 16): identical
     assert_eq!(
         on.iterations_per_increment[0],
         off.iterations_per_increment[0]

@@ -114,6 +114,11 @@ where
     pub timings: Timings,
     /// Newton iterations done, all attempts included.
     pub iterations: usize,
+    /// Starts moved by the predictor's edge rule ([`predictor::edge_moves`])
+    /// or first-touch rule ([`predictor::first_touch_moves`]) whose first
+    /// step the line search shortened, retaken from the unmoved start (all
+    /// attempts included).
+    pub predictor_retakes: usize,
     /// Contact status flips in the failed attempts since the last
     /// converged increment (diagnosis).
     pub flips: super::diagnosis::FlipTracker,
@@ -250,6 +255,7 @@ where
             dofs,
             timings: Timings::default(),
             iterations: 0,
+            predictor_retakes: 0,
             flips: Default::default(),
             floor: 0.0,
             last_eval: None,
@@ -923,6 +929,52 @@ where
         Ok((false, false))
     }
 
+    /// The first-touch rule of the predictor ([`predictor::first_touch_moves`]),
+    /// called with the plain start of the analysis' first increment
+    /// evaluated (the undeformed state against the tool at `t`): the
+    /// closed nodes of a first touch that penetrate less than half the
+    /// deepest are moved out of the tool, and that start is evaluated and
+    /// kept when its `||r_f + K_fp dp||` is below the plain start's;
+    /// otherwise the plain start is evaluated again. `t_n`: the time of
+    /// the converged state. Returns whether the moved start is kept (the
+    /// prescribed increment `dp` still to apply, as from the plain start).
+    fn first_touch(&mut self, t: f64, t_n: f64) -> Result<bool, Failure> {
+        let model = self.model;
+        // the cheap test first: a pair the rule would act on without the
+        // gaps at t_n (a pair that touched at t_n is left alone below)
+        let at_t: Vec<Vec<NodeContact<D>>> = self.contacts.contact().to_vec();
+        let none = vec![Vec::new(); at_t.len()];
+        if predictor::first_touch_moves(model, &at_t, &none).is_empty() {
+            return Ok(false);
+        }
+        let mut plain = self.r_free.clone();
+        self.add_kfp_dp(&mut plain);
+        let plain_norm = norm(&plain);
+        self.contacts
+            .evaluate(model, &self.dofs, &self.u, t_n, &mut self.f_c);
+        let g_n = predictor::gaps(model, self.contacts.contact());
+        let moves = predictor::first_touch_moves(model, &at_t, &g_n);
+        for &(node, d) in &moves {
+            for (c, v) in d.iter().enumerate() {
+                let g = self.dofs.dof(node, c);
+                if matches!(self.dofs.dofs[g], Dof::Free(_)) {
+                    self.u[node][c] += v;
+                }
+            }
+        }
+        if !moves.is_empty() && self.evaluate(t, true).is_ok() {
+            let mut moved = self.r_free.clone();
+            self.add_kfp_dp(&mut moved);
+            let moved_norm = norm(&moved);
+            if moved_norm.is_finite() && moved_norm < plain_norm {
+                return Ok(true);
+            }
+        }
+        self.u.copy_from_slice(&self.committed);
+        self.evaluate(t, true)?;
+        Ok(false)
+    }
+
     /// Sets the free dofs to `base + s * rhs` and, in the first iteration,
     /// the prescribed dofs to their target values.
     fn set_state(&mut self, s: f64, prescribed: bool) {
@@ -1240,8 +1292,9 @@ where
         // the prescribed increment of the plain start while a predicted
         // start is in use
         let mut plain_dp: Option<Vec<f64>> = None;
-        // the edge rule of the predictor (off after a moved start is
-        // retaken) and whether the start in use was moved by it
+        // the edge and first-touch rules of the predictor (off after a
+        // moved start is retaken) and whether the start in use was moved
+        // by one
         let mut edge_rule = true;
         let mut moved_start = false;
         for k in 1..=settings.max_iter {
@@ -1282,6 +1335,11 @@ where
                             plain_dp = Some(dp);
                             moved_start = moved;
                         }
+                    } else if edge_rule && !is_dynamic && !self.any_committed {
+                        // the analysis' first increment: no history, the
+                        // first-touch rule (retaken like a moved start)
+                        let t_n = model.steps.get(step).map_or(t, |s| s.t_start);
+                        moved_start = self.first_touch(t, t_n)?;
                     }
                 }
             }
@@ -1380,7 +1438,8 @@ where
             let dp_step = if first { dp_norm } else { 0.0 };
             let rel_du = convergence::relative_correction(s, du_norm, dp_step, u_norm);
             residuals.push(ev.rel);
-            // a moved start (`predictor::edge_moves`) whose
+            // a moved start (`predictor::edge_moves`, or
+            // `predictor::first_touch_moves` in the first increment) whose
             // first step had to be shortened opened a node that belongs
             // closed: retaken from the unmoved start (the abandoned
             // iteration counts)
@@ -1395,6 +1454,7 @@ where
                 active_contacts: self.active_contacts(),
             });
             if let (Some(info), true) = (&shortened_first, moved_start) {
+                self.predictor_retakes += 1;
                 dp_norm = self.abandon_first_step(info, plain_dp.take().as_deref(), observer);
                 first_k = k + 1;
                 edge_rule = false;

@@ -31,9 +31,15 @@
 //! [`edge_gap`]): on the 3D Hertz sphere of
 //! `verification/fenicsx/sphere3d.py` 15 -> 13 iterations at N = 20,
 //! 18 -> 14 at N = 30 (see [`EDGE_MARGIN`]); the 2D tutorial 18 -> 15
-//! (SPEED.md, 2026-12-06). A moved start whose first Newton step has to
-//! be shortened (a node opened that belongs closed) is retaken from the
-//! unmoved extrapolation, the abandoned iteration counted.
+//! (SPEED.md, 2026-12-06). The analysis' first increment has no history:
+//! its plain start closes every node of the undeformed intersection with
+//! the tool, more than the contact holds; [`first_touch_moves`] opens the
+//! shallow ones (3D sphere 13 -> 12 at N = 20, 14 -> 12 at N = 30; 2D
+//! tutorial 15 -> 14; SPEED.md, 2026-12-06, "first touch"). A moved start
+//! whose first Newton step has to be shortened (a node opened that
+//! belongs closed) is retaken from the unmoved start, the abandoned
+//! iteration counted (`predictor_retakes` in summary.json;
+//! `tests/suite/predictor_retake.rs`).
 //!
 //! Dynamic steps keep their integrator's own predictor (the first iterate
 //! is the converged state); `newton { predictor = false }` turns it off.
@@ -276,6 +282,84 @@ pub fn edge_moves<const D: usize>(
     moves
 }
 
+/// The fraction of the deepest penetration below which
+/// [`first_touch_moves`] opens a node of a first touch: 1/2, Hertz's
+/// sphere (contact radius `sqrt(R d)` where the undeformed intersection
+/// has `sqrt(2 R d)`: the nodes in contact are those whose undeformed
+/// penetration exceeds `d / 2`). Measured (`ctc run sphere3d.ctc -v
+/// --threads 1` of `sphere3d.py OUT --n 20 --export-only`, a temporary
+/// switch, SPEED.md 2026-12-06): the first increment takes 3 iterations
+/// with 0.3, 0.4, 0.5 and 0.6 (4 without the rule; its 22 closed nodes
+/// reached in the first iteration with each), the residual after the
+/// first iteration 0.14, 0.029, 0.31, 0.87; the 2D tutorial's first
+/// increment 5 with 0.4 and 0.5 (6 without). In plane strain the
+/// contact is narrower still (the approach `d` grows with the log of the
+/// body's size over the half-width `a`: `d ~ a^2 / (4 R) (2 ln(2 h / a) -
+/// 1)`, so the edge penetrates about 3/4 of the deepest node for `h / a
+/// ~ 80`; an estimate, not measured), and 1/2 leaves closed more nodes
+/// than belong: the safe side (a node wrongly opened costs a shortened
+/// step and a retake).
+const FIRST_TOUCH_FRACTION: f64 = 0.5;
+
+/// The first-touch rule for one node closed at the plain start of a first
+/// touch (undeformed penetration `-g > 0`, the pair's deepest `deepest`):
+/// `Some(gap)`, a small positive gap (`1e-3 |g|`, clear of round-off) to
+/// move it to, when it penetrates less than [`FIRST_TOUCH_FRACTION`] of
+/// the deepest node; `None` otherwise.
+pub fn first_touch_gap(g: f64, deepest: f64) -> Option<f64> {
+    (g < 0.0 && -g < FIRST_TOUCH_FRACTION * deepest).then(|| 1e-3 * -g)
+}
+
+/// The moves of the plain start of a first touch (`contact` evaluated at
+/// the plain start, the tool at `t`; `g_n` the gaps of the same state
+/// against the tool at `t_n`, [`gaps`]): with a penalty pair against a
+/// rigid tool that no node penetrates at `t_n` and that closes at least
+/// [`EDGE_MIN_CLOSED`] nodes at the start, the closed nodes
+/// [`first_touch_gap`] opens are moved along the tool's normal out of it.
+///
+/// Why it is general: a frictionless elastic body pressed by a convex
+/// rigid tool sinks everywhere around the contact (the surface
+/// displacement under a compressive load is into the body), so its
+/// contact set is inside the undeformed intersection of body and tool,
+/// the set the plain start closes; the nodes near the intersection's rim
+/// (the shallowest ones) are the ones outside. The fraction 1/2 is
+/// exact for a sphere (or any paraboloid) on a half-space; where the
+/// contact is wider than that (a cone: radius `2 / pi` of the
+/// intersection's, the nodes between 1/2 and 0.64 of it open wrongly) or
+/// the tool is flat (every node penetrates alike: nothing opens) the rule
+/// is wrong or idle; a wrong opening makes the first step penetrate,
+/// the line search shortens it and the start is retaken without the rule
+/// (`Newton::newton_iterations`, as for [`edge_moves`]). Returns `(node,
+/// displacement)`, in pair and node order.
+pub fn first_touch_moves<const D: usize>(
+    model: &Model<D>,
+    contact: &[Vec<crate::contact::NodeContact<D>>],
+    g_n: &[Vec<(usize, f64)>],
+) -> Vec<(usize, [f64; D])> {
+    let mut moves = Vec::new();
+    for ((pair, cp), converged) in contact.iter().zip(&model.contacts).zip(g_n) {
+        let closed = || {
+            pair.iter()
+                .filter(|c| c.status == crate::contact::ContactStatus::Closed && c.gap < 0.0)
+        };
+        if cp.master.tool().is_none()
+            || !matches!(cp.method, crate::model::ContactMethod::Penalty { .. })
+            || converged.iter().any(|x| x.1 < 0.0)
+            || closed().count() < EDGE_MIN_CLOSED
+        {
+            continue;
+        }
+        let deepest = closed().fold(0.0, |m: f64, c| m.max(-c.gap));
+        for c in closed() {
+            if let Some(target) = first_touch_gap(c.gap, deepest) {
+                let d = target - c.gap;
+                moves.push((c.node, std::array::from_fn(|i| d * c.normal[i])));
+            }
+        }
+    }
+    moves
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -344,5 +428,24 @@ mod tests {
         // a node closed at t_n, or left open by the extrapolation: untouched
         assert_eq!(edge_gap(-1e-6, -2e-6, 1.0), None);
         assert_eq!(edge_gap(1e-6, 5e-7, 1.0), None);
+    }
+
+    #[test]
+    fn first_touch_opens_the_nodes_outside_a_paraboloid_contact() {
+        // a paraboloid z = r^2 / (2 R) pressed d into a half-space: the
+        // undeformed penetration at r is d - r^2 / (2 R); Hertz's contact
+        // radius sqrt(R d) is where it is d / 2
+        let (r_tool, d) = (1.0, 0.01);
+        let pen = |r: f64| d - r * r / (2.0 * r_tool);
+        let a = (r_tool * d).sqrt();
+        // inside the contact radius: kept closed
+        assert_eq!(first_touch_gap(-pen(0.9 * a), d), None);
+        assert_eq!(first_touch_gap(-pen(0.0), d), None);
+        // between it and the intersection's sqrt(2 R d): opened, just out
+        let g = -pen(1.1 * a);
+        let open = first_touch_gap(g, d).expect("outside the contact radius");
+        assert!(open > 0.0 && open < 1e-3 * d, "{open}");
+        // an open node is not touched
+        assert_eq!(first_touch_gap(1e-6, d), None);
     }
 }
