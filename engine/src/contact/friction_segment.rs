@@ -42,10 +42,6 @@ pub struct SegmentFriction {
     pub normal_shift: f64,
     /// See `normal_shift`.
     pub normal_stiffness: f64,
-    /// The segment's free start / end across whose band the normal force
-    /// fades ([`super::node_to_segment::projection_fade`]: `mu w R_N`,
-    /// with the derivative of `w` in the tangent); `[false; 2]`: none.
-    pub fade: [bool; 2],
 }
 
 /// Friction contribution of one element.
@@ -146,21 +142,7 @@ pub fn respond(
     let gt = (d[0] - a[0] * xi_a) * tau[0] + (d[1] - a[1] * xi_a) * tau[1];
     let xi_a = xi_a_value;
     let rn = (gap * -law.normal_stiffness) + law.normal_shift;
-    let faded = match vertex {
-        None => {
-            let (w, dw) = super::node_to_segment::projection_fade(xi.re(), law.fade);
-            D6 {
-                v: w,
-                d: xi.d.map(|v| v * dw),
-            }
-        }
-        Some(_) => D6::cst(1.0),
-    };
-    let rn = if rn.re() > 0.0 {
-        rn * faded
-    } else {
-        D6::cst(0.0)
-    };
+    let rn = if rn.re() > 0.0 { rn } else { D6::cst(0.0) };
     let limit = rn * law.mu;
     let trial = (gt * -law.alpha_t) + law.shift;
     let (rt, status) = if trial.re().abs() <= limit.re() && limit.re() > 0.0 {
@@ -226,9 +208,6 @@ pub struct Element {
     pub tributary: f64,
     /// The projection is the segment's end (`None`: inside the segment).
     pub vertex: Option<Vertex>,
-    /// The segment's free start / end whose band fades the normal force
-    /// ([`SegmentFriction::fade`]).
-    pub free_ends: [bool; 2],
 }
 
 /// Adds the friction forces and tangent of a node-to-segment element to
@@ -323,7 +302,6 @@ pub fn apply(
         shift,
         normal_shift: e.normal_force + alpha_n * gap_now,
         normal_stiffness: alpha_n,
-        fade: e.free_ends,
     };
     // the Uzawa base (augmented Lagrangian) is a fixed stick point
     let anchor_rate = anchor_rate.filter(|_| state.base[i].is_none());
@@ -419,7 +397,6 @@ mod tests {
             shift: 0.0,
             normal_shift: 0.0,
             normal_stiffness: 100.0,
-            fade: [false; 2],
         }
     }
 

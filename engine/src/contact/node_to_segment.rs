@@ -46,11 +46,7 @@
 //!    5.) The vertex is used only when the node is in the kink's wedge
 //!    (beyond the neighbour's near end as well). At a free end of the
 //!    surface the segment is **extended** past its end (`g` and `xi` of the
-//!    segment line) only by [`FREE_END_XI`] segment lengths, across which
-//!    a penalty node's force (and its friction cone) fades to zero with a
-//!    C1 weight of `xi` ([`projection_fade`], its derivative in the
-//!    tangent; Lagrange, the augmented Lagrangian and smoothed masters keep
-//!    the hard end), as across the free-edge band of node-to-facet;
+//!    segment line) only by [`FREE_END_XI`] segment lengths;
 //! 3. penetrations deeper than `max(prof, L)` are ignored (a node of the
 //!    far side of a thin body is not in contact with this face).
 //!
@@ -72,86 +68,8 @@ const XI_TOL: f64 = 1e-10;
 
 /// How far (in segment lengths) a slave node may pass the free end of the
 /// master surface and keep the extended segment: iterates wobble around a
-/// node that sits exactly at the end (patch test corners). Across that
-/// band a penalty node's force fades to zero ([`projection_fade`]).
-pub const FREE_END_XI: f64 = 0.02;
-
-/// The weight of the free-end band at the excess `e` (segment lengths
-/// past a free end) and its derivative: 1 for `e <= 0`, 0 for `e >=`
-/// [`FREE_END_XI`], the C1 smoothstep `1 - 3 s^2 + 2 s^3` (`s = e /
-/// FREE_END_XI`) in between (the 2D form of
-/// [`super::node_to_facet::fade`]).
-pub fn end_fade(e: f64) -> (f64, f64) {
-    if e <= 0.0 {
-        (1.0, 0.0)
-    } else if e >= FREE_END_XI {
-        (0.0, 0.0)
-    } else {
-        let s = e / FREE_END_XI;
-        (
-            1.0 - s * s * (3.0 - 2.0 * s),
-            -6.0 * s * (1.0 - s) / FREE_END_XI,
-        )
-    }
-}
-
-/// The fade `w` and `dw/dxi` of a projection at `xi` on a segment whose
-/// start (`free[0]`) or end (`free[1]`) is a free end of the master: a
-/// penalty node that slides off a free end into the band of the extended
-/// segment loses its force continuously (with its derivative) instead of
-/// all at once at the band's outer boundary.
-pub fn projection_fade(xi: f64, free: [bool; 2]) -> (f64, f64) {
-    if free[0] && xi < 0.0 {
-        let (w, d) = end_fade(-xi);
-        (w, -d)
-    } else if free[1] && xi > 1.0 {
-        end_fade(xi - 1.0)
-    } else {
-        (1.0, 0.0)
-    }
-}
-
-/// Fades the element forces `f` and tangent `kt` over `[x_s, x_1, x_2]`
-/// of a projection at `xi` on `x_1 -> x_2` across the free-end band
-/// ([`projection_fade`]): `w f`, `w K - f (dw/dx)^T`; returns `w`.
-pub fn fade_element(
-    xs: [f64; 2],
-    x1: [f64; 2],
-    x2: [f64; 2],
-    xi: f64,
-    free: [bool; 2],
-    f: &mut [f64; 6],
-    kt: &mut [[f64; 6]; 6],
-) -> f64 {
-    let (fw, dfw) = projection_fade(xi, free);
-    if fw < 1.0 {
-        let dxi = xi_gradient(xs, x1, x2, xi);
-        for (i, row) in kt.iter_mut().enumerate() {
-            for (j, kij) in row.iter_mut().enumerate() {
-                *kij = fw * *kij - f[i] * dfw * dxi[j];
-            }
-        }
-        for fi in f.iter_mut() {
-            *fi *= fw;
-        }
-    }
-    fw
-}
-
-/// `d xi / dx` over `[x_s, x_1, x_2]` of the projection parameter `xi =
-/// (x_s - x_1) . (x_2 - x_1) / L^2`.
-fn xi_gradient(xs: [f64; 2], x1: [f64; 2], x2: [f64; 2], xi: f64) -> [f64; 6] {
-    let d = [x2[0] - x1[0], x2[1] - x1[1]];
-    let r = [xs[0] - x1[0], xs[1] - x1[1]];
-    let l2 = d[0] * d[0] + d[1] * d[1];
-    let mut out = [0.0; 6];
-    for c in 0..2 {
-        out[c] = d[c] / l2;
-        out[2 + c] = (-r[c] + (2.0 * xi - 1.0) * d[c]) / l2;
-        out[4 + c] = (r[c] - 2.0 * xi * d[c]) / l2;
-    }
-    out
-}
+/// node that sits exactly at the end (patch test corners).
+const FREE_END_XI: f64 = 0.02;
 
 /// One surface of a deformable pair.
 #[derive(Debug, Clone, Default)]
@@ -743,20 +661,6 @@ pub fn evaluate(
             Some(_) => ([0.0; 6], [[0.0; 6]; 6]),
             None => p.element(rn, dr_dg),
         };
-        // the free-end band (penalty, faceted, not a vertex): `w R_N`,
-        // `-d(w f)/dx = w K - f (dw/dx)^T`; Lagrange and the augmented
-        // Lagrangian keep the hard end of the band (a multiplier is not
-        // faded), the smoothed master too
-        let free_ends =
-            if matches!(method, ContactMethod::Penalty { .. }) && smoothed.is_none() && !p.corner {
-                [
-                    surface.prev[k.segment].is_none(),
-                    surface.next[k.segment].is_none(),
-                ]
-            } else {
-                [false; 2]
-            };
-        let fw = fade_element(xs, x[m1], x[m2], p.xi, free_ends, &mut f, &mut kt);
         let friction = match &cp.friction {
             Some(law) => super::friction_segment::apply(
                 law,
@@ -772,7 +676,6 @@ pub fn evaluate(
                     normal_force: rn,
                     status: resp.status,
                     tributary,
-                    free_ends,
                     // a vertex projection: the friction in the tangent of
                     // the vertex's normal
                     vertex: (smoothed.is_none() && p.corner).then(|| {
@@ -852,7 +755,7 @@ pub fn evaluate(
             normal: n,
             force: [f[0], f[1]],
             stiffness: [[kt[0][0], kt[0][1]], [kt[1][0], kt[1][1]]],
-            pressure: resp.pressure * fw,
+            pressure: resp.pressure,
             status: resp.status,
             entity: k.segment,
             master: Some(MasterSegment {
@@ -1125,92 +1028,6 @@ mod tests {
             let k = closest(&s, &x, xs, &order, 0.5, &mut tests).unwrap();
             assert!(k.projection.corner, "{k:?}");
             assert!((k.projection.gap + r).abs() < 1e-15, "{order:?}: {k:?}");
-        }
-    }
-
-    /// The penalty element (`alpha = 100`) of `x = [x_s, x_1, x_2]` faded
-    /// across the free end of `x_2`, with Coulomb friction (`mu`, stick
-    /// point `anchor`) when `mu > 0`: forces and tangent.
-    fn faded_penalty(x: [f64; 6], mu: f64, anchor: [f64; 2]) -> ([f64; 6], [[f64; 6]; 6], f64) {
-        let (xs, x1, x2) = ([x[0], x[1]], [x[2], x[3]], [x[4], x[5]]);
-        let p = SegmentProjection::new(xs, x1, x2).unwrap();
-        let rn = (-100.0 * p.gap).max(0.0);
-        let (mut f, mut kt) = p.element(rn, if p.gap < 0.0 { -100.0 } else { 0.0 });
-        let w = fade_element(xs, x1, x2, p.xi, [false, true], &mut f, &mut kt);
-        if mu > 0.0 {
-            let law = super::super::friction_segment::SegmentFriction {
-                mu,
-                alpha_t: 30.0,
-                shift: 0.0,
-                normal_shift: 0.0,
-                normal_stiffness: 100.0,
-                fade: [false, true],
-            };
-            let reference = [[0.0, 0.0], [1.0, 0.0]];
-            let r = super::super::friction_segment::respond(
-                &law, xs, x1, x2, reference, anchor, None, None,
-            )
-            .unwrap();
-            for i in 0..6 {
-                f[i] += r.forces[i];
-                for j in 0..6 {
-                    kt[i][j] += r.tangent[i][j];
-                }
-            }
-        }
-        (f, kt, w)
-    }
-
-    #[test]
-    fn a_node_sliding_off_a_free_end_loses_its_force_continuously() {
-        // a slave 0.01 into the segment (0, 0) -> (1, 0) (its outside is
-        // -y) slides past its free end x = 1: the force, 1.0 inside, is 0
-        // past the band 1 + FREE_END_XI (it jumped from 1.0 to 0 there
-        // before); the largest jump between samples falls with the sampling
-        let force = |xn: f64| -faded_penalty([xn, 0.01, 0.0, 0.0, 1.0, 0.0], 0.0, [0.0; 2]).0[1];
-        assert!((force(0.99) - 1.0).abs() < 1e-12);
-        assert_eq!(force(1.0 + 1.01 * FREE_END_XI), 0.0);
-        let jump = |n: usize| {
-            (0..n)
-                .map(|k| {
-                    let a = 0.97 + 0.06 * k as f64 / n as f64;
-                    let b = 0.97 + 0.06 * (k + 1) as f64 / n as f64;
-                    (force(b) - force(a)).abs()
-                })
-                .fold(0.0, f64::max)
-        };
-        let (j1, j2, j3) = (jump(60), jump(240), jump(960));
-        // expected ~ 1.5 alpha_N |g| dx / band: 0.075, 0.019, 0.0047 (the
-        // hard end: 1.0 at any sampling)
-        assert!(j1 < 0.1 && j2 < 0.3 * j1 && j3 < 0.3 * j2, "{j1} {j2} {j3}");
-        // the tangent in the band, frictionless and with friction in stick
-        // and slip, against central differences; forces balance
-        let x0 = [1.0 + 0.5 * FREE_END_XI, 0.016, 0.01, -0.02, 1.0, 0.005];
-        for (mu, anchor) in [(0.0, [0.0; 2]), (0.5, [1.0099, 0.0]), (0.2, [0.8, 0.0])] {
-            let (f, kt, w) = faded_penalty(x0, mu, anchor);
-            assert!(w > 0.2 && w < 0.8, "{w}");
-            for c in 0..2 {
-                let sum: f64 = (0..3).map(|k| f[2 * k + c]).sum();
-                assert!(sum.abs() < 1e-14, "{sum}");
-            }
-            let h = 1e-8;
-            let mut err = 0.0f64;
-            let scale = kt.iter().flatten().fold(1e-12, |a: f64, v| a.max(v.abs()));
-            for j in 0..6 {
-                let (mut xp, mut xm) = (x0, x0);
-                xp[j] += h;
-                xm[j] -= h;
-                let (fp, fm) = (
-                    faded_penalty(xp, mu, anchor).0,
-                    faded_penalty(xm, mu, anchor).0,
-                );
-                for i in 0..6 {
-                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
-                    err = err.max((fd - kt[i][j]).abs() / scale);
-                }
-            }
-            // the tolerance of `friction_segment`'s finite-difference checks
-            assert!(err < 1e-6, "mu {mu}: {err}");
         }
     }
 
