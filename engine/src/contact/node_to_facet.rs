@@ -1417,11 +1417,12 @@ pub fn evaluate(
             // Lagrangian keep the hard edge of the band (a multiplier, or
             // its Uzawa update, is not faded)
             let penalty = matches!(method, ContactMethod::Penalty { .. });
-            let (fw, dfw): (f64, &[f64]) = match &faceted {
+            // (a Nagata element spans more than NDOF coordinates: no fade)
+            let (fw, dfw): (f64, Option<&[f64]>) = match &faceted {
                 Some((_, el)) if penalty && smooth.is_none() => {
-                    (el.fade, &el.fade_gradient[..dofs])
+                    (el.fade, Some(&el.fade_gradient[..dofs]))
                 }
-                _ => (1.0, &[0.0; NDOF][..dofs]),
+                _ => (1.0, None),
             };
             let free_edges: [bool; 4] = if penalty && smooth.is_none() {
                 std::array::from_fn(|a| {
@@ -1488,7 +1489,8 @@ pub fn evaluate(
             let mut tangent = vec![0.0; nd * nd];
             let g = &grad;
             let k_rc = |r: usize, c: usize| {
-                fw * (-slope * g[r] * g[c] - rn * hess[r * dofs + c]) - rn * g[r] * dfw[c]
+                fw * (-slope * g[r] * g[c] - rn * hess[r * dofs + c])
+                    - dfw.map_or(0.0, |d| rn * g[r] * d[c])
             };
             for r in 0..dofs {
                 let pr = pos(r);
