@@ -1492,16 +1492,16 @@ pub fn evaluate(
                 fw * (-slope * g[r] * g[c] - rn * hess[r * dofs + c])
                     - dfw.map_or(0.0, |d| rn * g[r] * d[c])
             };
-            for r in 0..dofs {
+            for (r, &gr) in g.iter().enumerate() {
                 let pr = pos(r);
-                force[pr] += fw * rn * g[r];
-                row[pr] += g[r];
+                force[pr] += fw * rn * gr;
+                row[pr] += gr;
                 for c in 0..dofs {
                     tangent[pr * nd + pos(c)] += k_rc(r, c);
                 }
             }
-            for r in 0..3 {
-                nc.force[r] = fw * rn * g[r];
+            for (r, &gr) in g.iter().enumerate().take(3) {
+                nc.force[r] = fw * rn * gr;
                 for c in 0..3 {
                     nc.stiffness[r][c] = k_rc(r, c);
                 }
