@@ -62,7 +62,7 @@
 use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeFriction};
 use super::mortar::ad::Ad;
 use super::node_to_facet::{
-    cross, dot, foot, foot_system, newton_step, sub, surface_point, Feature,
+    cross, dot, edge_fade, foot, foot_system, newton_step, sub, surface_point, Feature,
 };
 use crate::model::{ContactMethod, FirstImpact, Friction};
 
@@ -86,6 +86,12 @@ pub struct FacetFriction {
     pub normal_shift: f64,
     /// See `normal_shift`.
     pub normal_stiffness: f64,
+    /// The facet's local edges across which the normal force fades
+    /// ([`super::node_to_facet::edge_fade`]: the rim of a penalty pair's
+    /// master; all `false` for none): `R_N` is `w R_N`, so the cone
+    /// `mu w R_N` shrinks to zero across the band, with the derivative of
+    /// `w` in the tangent.
+    pub fade: [bool; 4],
 }
 
 /// Friction contribution of one element.
@@ -245,6 +251,7 @@ pub fn respond(
         .enumerate()
         .map(|(a, q)| std::array::from_fn(|c| A::var(q[c], 15 + 3 * a + c)))
         .collect();
+    let mut faded = A::cst(1.0);
     let (w, x, n) = match edge_of(at) {
         None => {
             // the foot and its derivative by one Newton step at the
@@ -252,6 +259,7 @@ pub fn respond(
             let (r, j) = foot_system(xs_d, &p, xi.map(A::cst));
             let step = newton_step(r, j)?;
             let xi_d = [A::cst(xi[0]) + step[0], A::cst(xi[1]) + step[1]];
+            faded = edge_fade(pts.len(), xi_d, law.fade);
             let (w, x, a1, a2, _) = surface_point(&p, xi_d);
             let m = cross(a1, a2);
             let len = dot(m, m).sqrt();
@@ -273,7 +281,7 @@ pub fn respond(
     let sn = dot(shift, n);
     let trial: [A; 3] = std::array::from_fn(|c| shift[c] - n[c] * sn - gt[c] * law.alpha_t);
     let rn = gap * -law.normal_stiffness + law.normal_shift;
-    let rn = if rn.v > 0.0 { rn } else { A::cst(0.0) };
+    let rn = if rn.v > 0.0 { rn * faded } else { A::cst(0.0) };
     let limit = rn * law.mu;
     let norm2 = dot(trial, trial);
     let zero = [A::cst(0.0); 3];
@@ -364,6 +372,9 @@ pub struct FacetContact<'a> {
     pub normal_stiffness: f64,
     /// Tributary area of the slave node.
     pub area: f64,
+    /// The facet's local edges across which the normal force fades
+    /// ([`FacetFriction::fade`]).
+    pub free_edges: [bool; 4],
 }
 
 /// The stick point `(facet, xi)` stored in a friction state's anchor.
@@ -464,6 +475,7 @@ pub fn apply(
         shift,
         normal_shift: c.normal_force + c.normal_stiffness * c.gap,
         normal_stiffness: c.normal_stiffness,
+        fade: c.free_edges,
     };
     let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a, c.at)?;
     state.anchor[i] = Some(match r.moved {
@@ -492,7 +504,11 @@ pub fn apply(
             ContactMethod::AugmentedLagrange { tolerance, .. } => fl.alpha_t * tolerance,
             _ => 0.0,
         };
-        let limit = law.mu * c.normal_force;
+        let faded = match edge_of(c.at) {
+            None => edge_fade::<0>(c.pts.len(), c.xi.map(Ad::cst), c.free_edges).v,
+            Some(_) => 1.0,
+        };
+        let limit = law.mu * c.normal_force * faded;
         if f.status == FrictionStatus::Stick
             && limit > 0.0
             && f.tangential_force >= limit * (1.0 - 1e-9) - near
@@ -713,6 +729,7 @@ mod tests {
                     0.0
                 },
                 normal_stiffness: 100.0,
+                fade: [false; 4],
             };
             let Some((err, status)) = check(&law, xs, &pts, &apts, xi_a, Projection::FACE) else {
                 continue;
@@ -747,6 +764,7 @@ mod tests {
             shift: [0.0; 3],
             normal_shift: 0.0,
             normal_stiffness: 100.0,
+            fade: [false; 4],
         };
         let xs = [0.7, 0.5, -0.01];
         let (xi, _) = foot(xs, &pts).unwrap();
@@ -827,6 +845,7 @@ mod tests {
                     shift: [0.0; 3],
                     normal_shift: 0.0,
                     normal_stiffness: 100.0,
+                    fade: [false; 4],
                 };
                 // stick point at (0.95, 0.4, 0) on a copy of the facet
                 let xi_a = [0.9, -0.2];

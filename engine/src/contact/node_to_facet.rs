@@ -40,6 +40,28 @@
 //! 3. penetrations deeper than `max(prof, h)` (`h` the facet's longest
 //!    edge) are ignored (a node of the far side of a thin body).
 //!
+//! Free-edge band: a penalty node whose foot lies past a free edge, in the
+//! [`FREE_EDGE_TOL`] band of the extended facet, gets the force `w R_N G`
+//! with `w` the C1 smoothstep of the excess past the rim ([`edge_fade`]:
+//! 1 on the edge, 0 at the band's outer boundary, where the node leaves
+//! the surface), so the force goes to zero continuously instead of jumping
+//! from `R_N` to 0 (the 3D blade loss stopped on a blade corner 1.0 mm
+//! inside the casing at that boundary: moves of 5e-5 mm switched the
+//! force of a 1 mm penetration on and off). `w` depends on the slave's and
+//! the facet's positions through the foot's parameters: its gradient, a
+//! dual number carried through the foot's `dxi/dx`, enters the tangent
+//! `w (-dR_N/dg G G^T - R_N H) - R_N G (dw/dx)^T` (not symmetric), and the
+//! friction cone is `mu w R_N` ([`super::friction_facet`]). The band keeps
+//! its width (2 % of the facet's parametric width): Abaqus/Standard's
+//! node-to-surface contact extends an open master by an extension zone of
+//! 10 % of the end facet's edge by default (0 to 0.2 allowed), with the
+//! geometry extrapolated and contact lost outside it (no fade documented);
+//! LS-DYNA's automatic contacts wrap a shell's free edge in a half-cylinder
+//! of radius half the contact thickness, a continuous surface. Lagrange
+//! multipliers and the augmented Lagrangian keep the hard edge (a
+//! multiplier, or its Uzawa update, is not faded), and so do Nagata
+//! patches.
+//!
 //! Kinematics ([`FacetElement`]): with `N_a` the shape functions at the
 //! foot (edge: `1 - t`, `t`; vertex: 1), `G = dg/dx = [n, -N_1 n, ..,
 //! -N_k n]` over `[x_s, x_1 .. x_k]` exactly (the foot-point equations make
@@ -82,7 +104,8 @@ type A = Ad<NDOF>;
 pub const INSIDE_TOL: f64 = 1e-10;
 
 /// How far (fraction of the facet's parametric width) a foot may fall
-/// beyond a free edge of the master surface and keep the extended facet.
+/// beyond a free edge of the master surface and keep the extended facet;
+/// across that band the penalty force fades to zero ([`edge_fade`]).
 pub const FREE_EDGE_TOL: f64 = 0.02;
 
 /// How far (fraction of the facet's parametric width) the foot on the
@@ -130,6 +153,11 @@ pub struct FacetElement {
     pub gradient: [f64; NDOF],
     /// `d^2 g / dx^2` (symmetric).
     pub hessian: [[f64; NDOF]; NDOF],
+    /// The free-edge fade `w` of the foot ([`edge_fade`]; 1 inside the
+    /// facet, at an edge or vertex element and where no edge fades).
+    pub fade: f64,
+    /// `dw/dx` (zero where `w` is 1 or 0).
+    pub fade_gradient: [f64; NDOF],
 }
 
 pub(crate) fn cross<const N: usize>(a: [Ad<N>; 3], b: [Ad<N>; 3]) -> [Ad<N>; 3] {
@@ -276,6 +304,56 @@ pub fn edge_excess(n: usize, xi: [f64; 2]) -> [f64; 4] {
     }
 }
 
+/// The weight of the free-edge band at the excess `e` past a free edge
+/// (fraction of the parametric width): 1 for `e <= 0`, 0 for `e >=`
+/// [`FREE_EDGE_TOL`], the C1 smoothstep `1 - 3 s^2 + 2 s^3` (`s = e /
+/// FREE_EDGE_TOL`) in between, with its derivative.
+pub fn fade<const N: usize>(e: Ad<N>) -> Ad<N> {
+    if e.v <= 0.0 {
+        Ad::cst(1.0)
+    } else if e.v >= FREE_EDGE_TOL {
+        Ad::cst(0.0)
+    } else {
+        let s = e * (1.0 / FREE_EDGE_TOL);
+        Ad::cst(1.0) - s * s * (Ad::cst(3.0) - s * 2.0)
+    }
+}
+
+/// The free-edge fade of a foot `xi` on a facet of `n` nodes whose local
+/// edges `(a, a + 1)` with `free[a]` lie on the rim of the surface: the
+/// product of [`fade`] of the excess past each free edge
+/// ([`edge_excess`]), so that a node whose foot slides off a free edge
+/// into the band of the extended facet loses its penalty force
+/// continuously (and with a continuous derivative) instead of all at once
+/// at the band's outer boundary (the product keeps C1 at a corner of two
+/// free edges). Carried as a dual number through the foot's derivative
+/// `dxi/dx`, so its gradient is the weight's dependence on the slave's and
+/// the facet's positions.
+pub fn edge_fade<const N: usize>(n: usize, xi: [Ad<N>; 2], free: [bool; 4]) -> Ad<N> {
+    let excess = if n == 3 {
+        [
+            -xi[1],
+            xi[0] + xi[1] + (-1.0),
+            -xi[0],
+            Ad::cst(f64::NEG_INFINITY),
+        ]
+    } else {
+        [
+            (xi[1] + 1.0) * -0.5,
+            (xi[0] + (-1.0)) * 0.5,
+            (xi[1] + (-1.0)) * 0.5,
+            (xi[0] + 1.0) * -0.5,
+        ]
+    };
+    let mut w = Ad::cst(1.0);
+    for (a, e) in excess.iter().enumerate().take(n) {
+        if free[a] && e.v > 0.0 {
+            w = w * fade(*e);
+        }
+    }
+    w
+}
+
 /// The dual variables of an element: slave `x_s` (dofs 0..3) and the
 /// facet nodes (dofs `3 + 3a + c`).
 fn variables(xs: [f64; 3], pts: &[[f64; 3]]) -> ([A; 3], Vec<[A; 3]>) {
@@ -305,12 +383,25 @@ fn finish(feature: Feature, xi: [f64; 2], gap: A, n: [A; 3], w: [A; 4]) -> Facet
         weights: w.map(|v| v.v),
         gradient: gv.map(|v| v.v),
         hessian: gv.map(|v| v.d),
+        fade: 1.0,
+        fade_gradient: [0.0; NDOF],
     }
 }
 
 /// The element of `xs` on the face of facet `pts` at the converged foot
 /// `xi` ([`foot`]); `None` for a degenerate facet.
 pub fn face_element(xs: [f64; 3], pts: &[[f64; 3]], xi: [f64; 2]) -> Option<FacetElement> {
+    face_element_faded(xs, pts, xi, [false; 4])
+}
+
+/// [`face_element`] with the free-edge fade of the local edges `free`
+/// ([`edge_fade`]): its weight and gradient in the element.
+pub fn face_element_faded(
+    xs: [f64; 3],
+    pts: &[[f64; 3]],
+    xi: [f64; 2],
+    free: [bool; 4],
+) -> Option<FacetElement> {
     let (xs_d, p) = variables(xs, pts);
     // one Newton step at the converged foot: value xi, derivative dxi/dx
     let (r, j) = foot_system(xs_d, &p, xi.map(A::cst));
@@ -324,7 +415,11 @@ pub fn face_element(xs: [f64; 3], pts: &[[f64; 3]], xi: [f64; 2]) -> Option<Face
     }
     let n = m.map(|v| v / len);
     let gap = dot(sub(xs_d, x), n);
-    Some(finish(Feature::Face, xi, gap, n, w))
+    let mut el = finish(Feature::Face, xi, gap, n, w);
+    let wf = edge_fade(pts.len(), xi_d, free);
+    el.fade = wf.v;
+    el.fade_gradient = wf.d;
+    Some(el)
 }
 
 /// The element of `xs` on local edge `(a, b)` (a radius-0 cylinder) or,
@@ -689,7 +784,9 @@ impl FacetSurface {
             if !inside {
                 continue;
             }
-            let Some(el) = face_element(xs, pts, xi) else {
+            let free: [bool; 4] =
+                std::array::from_fn(|a| a < n && self.is_free_edge(nodes[a], nodes[(a + 1) % n]));
+            let Some(el) = face_element_faded(xs, pts, xi, free) else {
                 continue;
             };
             if el.gap < -depth_of(k) {
@@ -1207,6 +1304,10 @@ pub fn evaluate(
         && (fp.increments == 0 || cp.strategy == ContactStrategy::DoublePass);
     fp.evaluated = fp.increments;
     let mut candidates = std::mem::take(&mut fp.candidates);
+    // `CTC_LOG=debug`: the closed nodes of this evaluation (node, facet,
+    // feature, gap, free-edge fade), to find a node that cycles
+    let debug = super::log::debug_enabled();
+    let mut closed_log = String::new();
     for (i, &node) in state.slaves.iter().enumerate() {
         let side = fp.side_of[i] as usize;
         let Some(&xs) = x.get(node) else {
@@ -1309,6 +1410,27 @@ pub fn evaluate(
                 (None, None) => unreachable!("a kept element"),
             };
             let dofs = grad.len();
+            // the free-edge band (penalty, faceted face element): the
+            // normal force is `w R_N` with `w` the fade of the foot past
+            // the rim ([`edge_fade`]), `-d(w R_N G)/dx = w (-dR_N/dg) G G^T
+            // - w R_N H - R_N G (dw/dx)^T`; Lagrange and the augmented
+            // Lagrangian keep the hard edge of the band (a multiplier, or
+            // its Uzawa update, is not faded)
+            let penalty = matches!(method, ContactMethod::Penalty { .. });
+            // (a Nagata element spans more than NDOF coordinates: no fade)
+            let (fw, dfw): (f64, Option<&[f64]>) = match &faceted {
+                Some((_, el)) if penalty && smooth.is_none() => {
+                    (el.fade, Some(&el.fade_gradient[..dofs]))
+                }
+                _ => (1.0, None),
+            };
+            let free_edges: [bool; 4] = if penalty && smooth.is_none() {
+                std::array::from_fn(|a| {
+                    a < face.len() && surface.is_free_edge(face[a], face[(a + 1) % face.len()])
+                })
+            } else {
+                [false; 4]
+            };
             // Coulomb friction (penalty, augmented Lagrangian; faceted
             // master): its forces over the slave, the facet and the stick
             // point's facet
@@ -1341,6 +1463,7 @@ pub fn evaluate(
                     normal_force: rn,
                     normal_stiffness: -slope,
                     area: state.area[i],
+                    free_edges,
                 };
                 let points = |f: usize| surface.faces[f].nodes().iter().map(|&m| x[m]).collect();
                 let (r, ka) = super::friction_facet::apply(
@@ -1365,18 +1488,22 @@ pub fn evaluate(
             let mut row = vec![0.0; nd];
             let mut tangent = vec![0.0; nd * nd];
             let g = &grad;
-            for r in 0..dofs {
+            let k_rc = |r: usize, c: usize| {
+                fw * (-slope * g[r] * g[c] - rn * hess[r * dofs + c])
+                    - dfw.map_or(0.0, |d| rn * g[r] * d[c])
+            };
+            for (r, &gr) in g.iter().enumerate() {
                 let pr = pos(r);
-                force[pr] += rn * g[r];
-                row[pr] += g[r];
+                force[pr] += fw * rn * gr;
+                row[pr] += gr;
                 for c in 0..dofs {
-                    tangent[pr * nd + pos(c)] += -slope * g[r] * g[c] - rn * hess[r * dofs + c];
+                    tangent[pr * nd + pos(c)] += k_rc(r, c);
                 }
             }
-            for r in 0..3 {
-                nc.force[r] = rn * g[r];
+            for (r, &gr) in g.iter().enumerate().take(3) {
+                nc.force[r] = fw * rn * gr;
                 for c in 0..3 {
-                    nc.stiffness[r][c] = -slope * g[r] * g[c] - rn * hess[r * dofs + c];
+                    nc.stiffness[r][c] = k_rc(r, c);
                 }
             }
             if let Some((r, anchor_face)) = friction {
@@ -1413,11 +1540,20 @@ pub fn evaluate(
                 state.friction.position[i] = xs;
             }
             nc.pressure = if state.area[i] > 0.0 {
-                rn / state.area[i]
+                fw * rn / state.area[i]
             } else {
                 0.0
             };
             nc.status = ContactStatus::Closed;
+            if debug {
+                let feature = match faceted.as_ref().map(|f| f.1.feature) {
+                    Some(Feature::Face) => "f",
+                    Some(Feature::Edge(..)) => "e",
+                    Some(Feature::Vertex(..)) => "v",
+                    None => "n",
+                };
+                closed_log.push_str(&format!(" {node}:{k}{feature}:{gap:.3e}:{fw:.3}"));
+            }
             fp.couplings.push(Coupling {
                 nodes,
                 force,
@@ -1432,6 +1568,12 @@ pub fn evaluate(
         out.push(nc);
     }
     fp.candidates = candidates;
+    if debug {
+        eprintln!(
+            "[ctc ntf] pair '{}' evaluation {}: closed (node:facet feature:gap:fade){closed_log}",
+            cp.name, state.evaluations
+        );
+    }
     if cp.strategy == ContactStrategy::ModifiedDoublePass || fp.self_contact {
         // both passes at once (self contact: both directions): report the
         // interface pressure (the total force on each node over its full
@@ -1516,6 +1658,7 @@ pub fn drop_redundant(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::contact::friction::FrictionStatus;
     use proptest::prelude::*;
 
     /// Force `R G` of a penalty element (`R = -k g`) on the feature
@@ -1846,6 +1989,207 @@ pub(crate) mod tests {
         let mut cand: Vec<usize> = vec![4, 5];
         facing(&s, &[3], 13, &x, &mut cand);
         assert!(cand.is_empty());
+    }
+
+    /// A penalty pair (nodal `alpha_N = 100`) of one slave triangle
+    /// (nodes 9, 10, 11; 10 and 11 far above, out of the window) against a
+    /// 2 x 2 grid of unit quads in `z ~ 0` (slightly warped, so the foot,
+    /// the normal and the fade's gradient are not trivial), whose rim has
+    /// the free edge `x = 2`; with Coulomb friction `mu = 0.3`, `alpha_T =
+    /// 25` if `friction`. The slave node 9 at `xs`.
+    fn band_pair(xs: [f64; 3], friction: bool) -> Model<3> {
+        use crate::model::{ContactPair, FirstImpact, Friction, PenaltyKind};
+        let mut nodes: Vec<[f64; 3]> = (0..9)
+            .map(|n| {
+                let (i, j) = ((n % 3) as f64, (n / 3) as f64);
+                [i, j, 0.02 * (1.3 * i + 0.7 * j).sin()]
+            })
+            .collect();
+        nodes.extend([xs, [0.0, 0.0, 3.0], [0.0, 1.0, 3.0]]);
+        let mesh = crate::mesh::Mesh::new(nodes, vec![]);
+        let mut m = crate::testkit::ModelBuilder::solid()
+            .elastic("m", 1.0, 0.3)
+            .body("b", mesh, "m")
+            .build();
+        let id = |i: usize, j: usize| i + 3 * j;
+        let faces: Vec<Facet> = (0..4)
+            .map(|k| {
+                let (i, j) = (k % 2, k / 2);
+                Facet::new(&[id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])
+            })
+            .collect();
+        m.contacts.push(ContactPair {
+            name: "slave -> grid".into(),
+            body: 0,
+            edges: vec![],
+            faces: vec![Facet::new(&[9, 10, 11])],
+            nodes: vec![9, 10, 11],
+            master: ContactMaster::Surface {
+                body: 0,
+                edges: vec![],
+                faces,
+                nodes: (0..9).collect(),
+            },
+            strategy: ContactStrategy::SinglePass,
+            search: Default::default(),
+            formulation: Default::default(),
+            smoothing: Default::default(),
+            method: ContactMethod::Penalty {
+                kind: PenaltyKind::Nodal,
+                stiffness: 100.0,
+            },
+            prof: Some(0.5),
+            friction: friction.then_some(Friction {
+                mu: 0.3,
+                stiffness: Some(25.0),
+                first_impact: FirstImpact::Intersect,
+                cut_at_impact: false,
+            }),
+            local_penalty: Vec::new(),
+        });
+        m
+    }
+
+    /// The coupling of slave node 9 at the coordinates `x` (`None`: open).
+    fn band_coupling(m: &Model<3>, x: &[[f64; 3]], state: &SurfacePair) -> Option<Coupling> {
+        let mut st = state.clone();
+        evaluate(m, 0, x, &mut st);
+        let fp = st.deformable.as_ref()?;
+        fp.couplings.iter().find(|c| c.slave == 9).cloned()
+    }
+
+    #[test]
+    fn a_node_sliding_across_the_free_edge_band_loses_its_force_continuously() {
+        // node 9 slides along y = 0.5 at 0.01 below the master from x =
+        // 1.97 (inside facet 1) to 2.03 (past the band, which ends at x =
+        // 2 + FREE_EDGE_TOL: unit facets). Before the fade its normal
+        // force, alpha_N 0.01 = 1.0, dropped to 0 at x = 2.02 between two
+        // samples whatever the sampling; now the largest jump between
+        // consecutive samples falls as the sampling refines (C1 weight:
+        // ~ 1 / samples).
+        let m = band_pair([1.97, 0.5, -0.01], false);
+        let state = SurfacePair::new(&m, 0);
+        let force = |xn: f64| {
+            let mut x = m.mesh.nodes.clone();
+            let z = 0.02 * (1.3 * 2.0 + 0.7 * 0.5f64).sin();
+            x[9] = [xn, 0.5, z - 0.01];
+            band_coupling(&m, &x, &state).map_or(0.0, |c| {
+                let k = c.nodes.binary_search(&9).unwrap();
+                c.force[3 * k + 2]
+            })
+        };
+        // full force inside the facet, none past the band
+        assert!((force(1.99) - 1.0).abs() < 0.05, "{}", force(1.99));
+        assert_eq!(force(2.0 + 1.01 * FREE_EDGE_TOL), 0.0);
+        let max_jump = |samples: usize| {
+            let xs: Vec<f64> = (0..=samples)
+                .map(|k| 1.97 + 0.06 * k as f64 / samples as f64)
+                .collect();
+            xs.windows(2)
+                .map(|w| (force(w[1]) - force(w[0])).abs())
+                .fold(0.0, f64::max)
+        };
+        let (j1, j2, j3) = (max_jump(60), max_jump(240), max_jump(960));
+        // expected ~ 1.5 alpha_N |g| dx / band (the smoothstep's largest
+        // slope): 0.075, 0.019, 0.0047 (the hard edge: 1.0 at any
+        // sampling); the bounds ask for a fall at least ~ 1 / samples
+        assert!(j1 < 0.1 && j2 < 0.3 * j1 && j3 < 0.3 * j2, "{j1} {j2} {j3}");
+    }
+
+    /// `-d f / d x` of slave node 9's coupling against central differences
+    /// over every coordinate it couples, the forces' sum and (frictionless)
+    /// moment; returns the largest relative error of the tangent.
+    fn band_fd(m: &Model<3>, state: &SurfacePair, friction: bool) -> f64 {
+        let x0 = m.mesh.nodes.clone();
+        let c = band_coupling(m, &x0, state).expect("closed in the band");
+        let nd = c.force.len();
+        let scale = c.tangent.iter().fold(1e-12, |a: f64, v| a.max(v.abs()));
+        let fmax = c.force.iter().fold(1e-12, |a: f64, v| a.max(v.abs()));
+        let mut sum = [0.0; 3];
+        let mut moment = [0.0; 3];
+        for (k, &n) in c.nodes.iter().enumerate() {
+            let (p, f) = (x0[n], &c.force[3 * k..3 * k + 3]);
+            for a in 0..3 {
+                sum[a] += f[a];
+            }
+            moment[0] += p[1] * f[2] - p[2] * f[1];
+            moment[1] += p[2] * f[0] - p[0] * f[2];
+            moment[2] += p[0] * f[1] - p[1] * f[0];
+        }
+        for a in 0..3 {
+            assert!(sum[a].abs() <= 1e-13 * fmax, "force balance {sum:?}");
+            if !friction {
+                assert!(moment[a].abs() <= 1e-12 * fmax, "moment balance {moment:?}");
+            }
+        }
+        let h = 1e-7;
+        let mut err = 0.0f64;
+        for col in 0..nd {
+            let f = |s: f64| {
+                let mut x = x0.clone();
+                x[c.nodes[col / 3]][col % 3] += s;
+                let e = band_coupling(m, &x, state).expect("closed at +-h");
+                assert_eq!(e.nodes, c.nodes);
+                e.force
+            };
+            let (fp, fm) = (f(h), f(-h));
+            for r in 0..nd {
+                let fd = -(fp[r] - fm[r]) / (2.0 * h);
+                err = err.max((fd - c.tangent[r * nd + col]).abs() / scale);
+            }
+        }
+        err
+    }
+
+    #[test]
+    fn the_band_s_tangent_matches_finite_differences_and_its_forces_balance() {
+        // node 9 at x = 2.01 (the middle of the band: w = 0.5, its slope
+        // the largest), 0.01 under the warped grid
+        let z = 0.02 * (1.3 * 2.0 + 0.7 * 0.5f64).sin();
+        let xs = [2.0 + 0.5 * FREE_EDGE_TOL, 0.5, z - 0.01];
+        let m = band_pair(xs, false);
+        let state = SurfacePair::new(&m, 0);
+        let x0 = m.mesh.nodes.clone();
+        let mut st = state.clone();
+        let out = evaluate(&m, 0, &x0, &mut st);
+        let nc = out.iter().find(|c| c.node == 9).unwrap();
+        // about half the force alpha_N |g| (the warp moves the foot)
+        let f = nc.force.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let w = f / (100.0 * nc.gap.abs());
+        assert!(nc.gap < 0.0 && w > 0.3 && w < 0.7, "{w} {:?}", nc.force);
+        // the reported pressure is the faded force's
+        let rn = nc.pressure * st.area[0];
+        assert!((rn - nc.force[2]).abs() < 0.01 * nc.force[2], "{rn}");
+        let e = band_fd(&m, &state, false);
+        // the tolerance of the module's other finite-difference checks
+        assert!(e < 1e-6, "frictionless: {e}");
+        // friction: stick point on facet 1 near (stick) or far from (slip)
+        // the foot
+        let m = band_pair(xs, true);
+        for (xi_a, want) in [
+            ([1.019, 0.0], FrictionStatus::Stick),
+            ([0.5, 0.3], FrictionStatus::Slip),
+        ] {
+            let mut state = SurfacePair::new(&m, 0);
+            state.friction.committed_anchor[0] =
+                Some(super::super::friction_facet::encode(1, xi_a));
+            let mut st = state.clone();
+            let out = evaluate(&m, 0, &x0, &mut st);
+            let nc = out.iter().find(|c| c.node == 9).unwrap();
+            assert_eq!(nc.friction.status, want);
+            if want == FrictionStatus::Slip {
+                // the cone of the faded normal force
+                let rn = nc.pressure * st.area[0];
+                assert!(
+                    (nc.friction.tangential_force - 0.3 * rn).abs() < 1e-12,
+                    "{} vs {rn}",
+                    nc.friction.tangential_force
+                );
+            }
+            let e = band_fd(&m, &state, true);
+            // the tolerance of the module's other finite-difference checks
+            assert!(e < 1e-6, "{want:?}: {e}");
+        }
     }
 
     #[test]
