@@ -1324,11 +1324,13 @@ pub fn evaluate_3d(
                         },
                         |p| p.slip(x, &nodes),
                     ),
-                    // penalty: a node open in the committed state (no stick
-                    // point there) touches in this increment
+                    // a node open in the committed state (no stick point
+                    // there, no Uzawa base) touches in this increment; a
+                    // committed gap of round-off is a touching node
                     start_gap: pairing
                         .filter(|_| f.base[i].is_none() && f.committed_anchor[i].is_none())
-                        .map(|p| p.normal_gap(&fp.committed_positions)),
+                        .map(|p| p.normal_gap(&fp.committed_positions))
+                        .filter(|&g0| g0 > friction3d::ROUND_OFF * support.max(0.0).sqrt()),
                 };
                 row.close_with_friction_3d(
                     scalar, node, support, alpha, shift, prof, entity, &inputs,
