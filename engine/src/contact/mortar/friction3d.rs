@@ -258,9 +258,9 @@ impl Law {
     /// The slip from the stick point, `e = s - a`, and its gradient over
     /// the row's coordinates (`ds` the slip's, `dgap` the nodal gap's).
     /// Without a first touch the stick point is fixed: `e = s - anchor`.
-    /// At a first touch `a = anchor + tau (s - anchor)`: `e = (1 - tau) (s
-    /// - anchor)`, `de = (1 - tau) ds - (s - anchor) dtau`, `dtau = tau /
-    /// (g0 - g) dg` (0 at `g >= 0`). The tangential force of a node that
+    /// At a first touch `a = anchor + tau (s - anchor)`: `e = (1 - tau)
+    /// (s - anchor)`, `de = (1 - tau) ds - (s - anchor) dtau`, `dtau =
+    /// tau / (g0 - g) dg` (0 at `g >= 0`). The tangential force of a node that
     /// closes vanishes with its gap, as its normal force does: no slip of
     /// the approach (the relative motion of the two surfaces before they
     /// touch) is charged to the stick point. Before this rule the stick
