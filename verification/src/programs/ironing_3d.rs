@@ -505,7 +505,9 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 5] = [
     // ntf faceted mu 0.3: level 0 F_n oscillation 0.079, F_t / F_n 0.302
     // (error 8e-3), 7.45 iterations; level 1 0.134, 0.396, 10.0
     [[1e-9, 1e-9], [0.15, 0.2], [0.03, 0.4], [10.0, 12.0]],
-    // mortar mu 0.3: 0.065, 0.341, 10.0
+    // mortar mu 0.3: 0.065, 0.341, 10.0; with the first-touch stick
+    // point 0.067, 0.340, 10.0 (t = 2, 54 increments, 12 cutbacks, none
+    // at the second press increment: `ctc run` of [`deck`], debug)
     [[1e-9, 1e-9], [0.1, 0.1], [0.2, 0.2], [12.0, 12.0]],
 ];
 
