@@ -62,19 +62,30 @@
 //! 1.4 in 7, slide 4.0 in 20) with the five variants.
 //!
 //! The mortar mu = 0.3 press cycle (its contact set 15 <-> 11 at the
-//! second press increment of the benchmark, 9 <-> 3 at level 0's) is not
-//! mortar's: node-to-facet faceted mu = 0.3 cycles at the same stage of
-//! the same deck (level 0: 9 <-> 7, third press increment), the
-//! frictionless runs do not; the assembled tangent matches central
-//! differences there (`ironing_mortar_press_tangent_matches_finite_differences`,
-//! every closed node sticking: 2e-9..5e-9); the friction stiffness moves
-//! it (level-0 press, mortar: `alpha_T` = 50 (the default, 0.1 x 500)
-//! cycles and cuts back, 5 switches once and converges in 7 iterations,
-//! 500 does not switch but halves its steps at a fixed contact set in the
-//! next increment). A Newton on a piecewise smooth residual (open/closed
-//! and stick/slip kinks at the nodes closing under the die's flank)
-//! without a cycling guard; penalty mortar has no semi-smooth decision
-//! (`contact::semismooth::applies` is for Lagrange multipliers only).
+//! second press increment of the benchmark, 9 <-> 3 at level 0's) was the
+//! stick point of the nodes closing in the increment under the die's
+//! flank: their committed position, so the relative motion of the two
+//! surfaces before they touched counted as slip (a trial force `alpha_T
+//! |s|`, `|s|` about 0.014 at level 0's press), and they slipped where the
+//! converged state has them sticking with a third of the middle node's
+//! pressure (0.064 vs 0.209, gap -1.3e-4): from the slipping state Newton opened them
+//! (gap +8e-5), from the open one it drove them 0.1 into the die (the slab
+//! is 500 times softer than the area penalty) and the line search halved
+//! down to 1/64. Measured by a trace of every node's status per
+//! evaluation (`ctc run -v` of level 0's mortar mu = 0.3 deck). Such a
+//! node now sticks where its path crossed the master
+//! (`friction3d::Law::impact`, `a = tau s`, `tau = g0 / (g0 - g)`): its
+//! tangential force vanishes with its gap. Level-0 deck, `ctc run`
+//! (debug): that increment 30 iterations and a cutback -> 7; the run 203
+//! -> 147 Newton iterations (18 -> 17 increments, 10.8 -> 8.1 per slide
+//! increment), `F_t / F_n` 0.2875 -> 0.2876, `F_n` oscillation 0.049 ->
+//! 0.050; its 3 cutbacks are now in the slide (t 1.62, and twice at
+//! 1.81; not traced: the frictionless mortar press also cuts back twice in
+//! the same press increment at level 0, the open/closed kink of a slab
+//! 500 times softer than its penalty). Node-to-facet faceted mu = 0.3 (its
+//! stick point of a first touch fixed at the first closed iterate,
+//! `friction_facet`) still cycles at level 0's third press increment
+//! (9 <-> 7), not changed here.
 //!
 //! ```text
 //!            die top: u_y = -1.4, then u_x = 4
@@ -494,7 +505,9 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 5] = [
     // ntf faceted mu 0.3: level 0 F_n oscillation 0.079, F_t / F_n 0.302
     // (error 8e-3), 7.45 iterations; level 1 0.134, 0.396, 10.0
     [[1e-9, 1e-9], [0.15, 0.2], [0.03, 0.4], [10.0, 12.0]],
-    // mortar mu 0.3: 0.065, 0.341, 10.0
+    // mortar mu 0.3: 0.065, 0.341, 10.0; with the first-touch stick
+    // point 0.067, 0.340, 10.0 (t = 2, 54 increments, 12 cutbacks, none
+    // at the second press increment: `ctc run` of [`deck`], debug)
     [[1e-9, 1e-9], [0.1, 0.1], [0.2, 0.2], [12.0, 12.0]],
 ];
 

@@ -100,6 +100,27 @@ impl Pairing {
         }
     }
 
+    /// The nodal gap `sum_e n_e . C^n_je(x) / A^n` at `x`: in the
+    /// committed configuration (where `C^n_je` is parallel to `n_e`) the
+    /// node's committed nodal gap `g~ / A` (positive open). 0 without a
+    /// committed pairing.
+    pub fn normal_gap(&self, x: &[[f64; 3]]) -> f64 {
+        if self.area.is_nan() || self.area <= 0.0 {
+            return 0.0;
+        }
+        let mut g = 0.0;
+        for (facet, coefs) in &self.facets {
+            let Some(n) = facet_normal(facet, x) else {
+                continue;
+            };
+            for &(m, k) in coefs {
+                let xm = x.get(m).copied().unwrap_or([0.0; 3]);
+                g += k * (n[0].v * xm[0] + n[1].v * xm[1] + n[2].v * xm[2]);
+            }
+        }
+        g / self.area
+    }
+
     /// Every node the slip depends on.
     pub fn nodes(&self) -> impl Iterator<Item = usize> + '_ {
         self.facets.iter().flat_map(|(f, c)| {
@@ -224,6 +245,54 @@ pub struct Law {
     pub area: f64,
     /// Stick point (slip vector) the trial force is measured from.
     pub anchor: [f64; 3],
+    /// First touch in this increment (the node open in the committed
+    /// state): `[g0, g]`, its nodal gap in the committed configuration
+    /// (`> 0`) and the current one. The stick point is then where the
+    /// straight path from the committed configuration crosses the master,
+    /// `a = anchor + tau (s - anchor)`, `tau = g0 / (g0 - g)` (1 at `g >=
+    /// 0`), a function of the current state (see [`Law::offset`]).
+    pub impact: Option<[f64; 2]>,
+}
+
+impl Law {
+    /// The slip from the stick point, `e = s - a`, and its gradient over
+    /// the row's coordinates (`ds` the slip's, `dgap` the nodal gap's).
+    /// Without a first touch the stick point is fixed: `e = s - anchor`.
+    /// At a first touch `a = anchor + tau (s - anchor)`: `e = (1 - tau)
+    /// (s - anchor)`, `de = (1 - tau) ds - (s - anchor) dtau`, `dtau =
+    /// tau / (g0 - g) dg` (0 at `g >= 0`). The tangential force of a node that
+    /// closes vanishes with its gap, as its normal force does: no slip of
+    /// the approach (the relative motion of the two surfaces before they
+    /// touch) is charged to the stick point. Before this rule the stick
+    /// point of a node closing in the increment was its committed
+    /// position: the approach counted as slip, the node slipped where it
+    /// sticks, and Newton cycled (`ironing_3d`'s mortar mu = 0.3 press:
+    /// its flank nodes 9 <-> 3 closed at level 0).
+    pub fn offset(
+        &self,
+        s: &[f64; 3],
+        ds: &[Vec<f64>; 3],
+        dgap: &[f64],
+    ) -> ([f64; 3], [Vec<f64>; 3]) {
+        let mut e: [f64; 3] = std::array::from_fn(|c| s[c] - self.anchor[c]);
+        let mut de = ds.clone();
+        if let Some([g0, g]) = self.impact.filter(|i| i[0] > 0.0) {
+            let (tau, k) = if g < 0.0 {
+                let tau = g0 / (g0 - g);
+                (tau, tau / (g0 - g))
+            } else {
+                (1.0, 0.0)
+            };
+            for c in 0..3 {
+                let full = e[c];
+                e[c] = (1.0 - tau) * full;
+                for (v, dg) in de[c].iter_mut().zip(dgap) {
+                    *v = (1.0 - tau) * *v - full * k * dg;
+                }
+            }
+        }
+        (e, de)
+    }
 }
 
 /// The scalar mortar row of one slave node over its nodes: `-D_jk` on the
@@ -318,17 +387,17 @@ pub fn respond(
             }
         }
     }
-    let e: [f64; 3] = std::array::from_fn(|c| s[c] - law.anchor[c]);
+    let (e, de) = law.offset(s, ds, dgap);
     let ne = dot3(nu, e);
     let g_t: [f64; 3] = std::array::from_fn(|c| e[c] - nu[c] * ne);
     // trial t* = P w, w = m - alpha_T (s - a)
     let w: [f64; 3] = std::array::from_fn(|c| law.shift[c] - law.alpha_t * e[c]);
     let nw = dot3(nu, w);
     let trial: [f64; 3] = std::array::from_fn(|c| w[c] - nu[c] * nw);
-    // d t* = dw - dnu (nu . w) - nu (dnu . w + nu . dw), dw = -alpha_T ds
+    // d t* = dw - dnu (nu . w) - nu (dnu . w + nu . dw), dw = -alpha_T de
     let mut dtrial = [vec![0.0; nd], vec![0.0; nd], vec![0.0; nd]];
     for col in 0..nd {
-        let dw: [f64; 3] = std::array::from_fn(|c| -law.alpha_t * ds[c][col]);
+        let dw: [f64; 3] = std::array::from_fn(|c| -law.alpha_t * de[c][col]);
         let dn: [f64; 3] = std::array::from_fn(|c| dnu[c][col]);
         let dnw = dot3(dn, w) + dot3(nu, dw);
         for c in 0..3 {
@@ -402,7 +471,7 @@ pub fn respond(
         tangent,
         traction: t,
         position: *s,
-        anchor: std::array::from_fn(|c| law.anchor[c] + delta[c]),
+        anchor: std::array::from_fn(|c| s[c] - e[c] + delta[c]),
     }
 }
 
@@ -513,6 +582,7 @@ mod tests {
         mu: f64,
         anchor: [f64; 3],
         shift: ([f64; 3], f64),
+        start_gap: Option<f64>,
     ) -> Option<(
         Vec<usize>,
         Vec<(usize, usize)>,
@@ -534,6 +604,7 @@ mod tests {
             shift: shift.0,
             anchor,
             slip: pairing.slip(x, &nodes),
+            start_gap,
         };
         let (nc, c, _) =
             row.close_with_friction_3d(&scalar.unwrap(), 4, 1.0, 100.0, shift.1, 1.0, 0, &inputs)?;
@@ -675,9 +746,10 @@ mod tests {
         mu: f64,
         anchor: [f64; 3],
         shift: ([f64; 3], f64),
+        start_gap: Option<f64>,
     ) -> Option<(FrictionStatus, f64)> {
         let pairing = pairing_at(xn);
-        let (nodes, shape, nc, c) = middle_row(x, &pairing, mu, anchor, shift)?;
+        let (nodes, shape, nc, c) = middle_row(x, &pairing, mu, anchor, shift, start_gap)?;
         let h = 1e-7;
         let scale = c.tangent.iter().fold(1.0f64, |m, v| m.max(v.abs()));
         let nd = 3 * nodes.len();
@@ -687,7 +759,7 @@ mod tests {
                 let at = |dh: f64| {
                     let mut y = x.to_vec();
                     y[node][comp] += dh;
-                    middle_row(&y, &pairing, mu, anchor, shift)
+                    middle_row(&y, &pairing, mu, anchor, shift, start_gap)
                         .filter(|r| r.0 == nodes && r.1 == shape)
                         .filter(|r| r.2.friction.status == nc.friction.status)
                 };
@@ -728,7 +800,7 @@ mod tests {
             } else {
                 ([0.2 * rnd(), 0.2 * rnd(), 0.05 * rnd()], 0.5 + 0.3 * rnd())
             };
-            let Some((status, worst)) = fd_error(&x, &xn, mu, anchor, shift) else {
+            let Some((status, worst)) = fd_error(&x, &xn, mu, anchor, shift, None) else {
                 continue;
             };
             let slot = if status == FrictionStatus::Stick {
@@ -763,7 +835,7 @@ mod tests {
             .collect();
         for (mu, status) in [(0.9, FrictionStatus::Stick), (0.1, FrictionStatus::Slip)] {
             let (nodes, _, nc, c) =
-                middle_row(&x, &pairing_at(&xn), mu, [0.0; 3], ([0.0; 3], 0.0)).unwrap();
+                middle_row(&x, &pairing_at(&xn), mu, [0.0; 3], ([0.0; 3], 0.0), None).unwrap();
             assert_eq!(nc.friction.status, status);
             for comp in 0..3 {
                 let sum: f64 = (0..nodes.len()).map(|k| c.force[3 * k + comp]).sum();
@@ -784,6 +856,71 @@ mod tests {
                 "{tr:?}"
             );
             assert!(tr[0] < 0.0, "{tr:?}");
+        }
+    }
+
+    /// A node open in the committed state that touches in the increment
+    /// (`Law::impact`): its committed nodal gap is the pairing's normal
+    /// gap there; its stick point is where its path crosses the master,
+    /// so its trial force is `(1 - tau)` times the one from the committed
+    /// stick point and vanishes with its gap; the tangent (with the
+    /// stick point's motion, `dtau`) matches central differences in
+    /// stick and slip.
+    #[test]
+    fn a_node_touching_in_the_increment_sticks_where_it_touched() {
+        // the committed configuration: the master 0.01 below the slave,
+        // then 0.03 above it (open, g0 = 0.02)
+        let lifted = |x: &[[f64; 3]], dz: f64| -> Vec<[f64; 3]> {
+            x.iter()
+                .enumerate()
+                .map(|(n, q)| if n < 9 { *q } else { [q[0], q[1], q[2] + dz] })
+                .collect()
+        };
+        let mut rnd = stream(7);
+        let xn = lifted(&jittered(&reference(), &mut rnd, 0.05, 0.002), 0.03);
+        let pairing = pairing_at(&xn);
+        let g0 = pairing.normal_gap(&xn);
+        // open there (no coupling); the normal gap is the row's nodal gap
+        // (-0.01 in the reference configuration, within round-off)
+        assert!(middle_row(&xn, &pairing, 0.9, [0.0; 3], ([0.0; 3], 0.0), None).is_none());
+        assert!((g0 - 0.02).abs() < 2e-3, "{g0}");
+        let r = reference();
+        assert!((pairing_at(&r).normal_gap(&r) + 0.01).abs() < 1e-15);
+        // the slave slid by (0.02, 0.01) and the master came down by 0.024:
+        // penetration about 0.005
+        let slide = |x: &[[f64; 3]]| -> Vec<[f64; 3]> {
+            x.iter()
+                .enumerate()
+                .map(|(n, q)| {
+                    if n < 9 {
+                        [q[0] + 0.02, q[1] + 0.01, q[2]]
+                    } else {
+                        [q[0], q[1], q[2] - 0.024]
+                    }
+                })
+                .collect()
+        };
+        let x = slide(&xn);
+        let (_, _, fixed, _) =
+            middle_row(&x, &pairing, 5.0, [0.0; 3], ([0.0; 3], 0.0), None).unwrap();
+        let (_, _, touched, _) =
+            middle_row(&x, &pairing, 5.0, [0.0; 3], ([0.0; 3], 0.0), Some(g0)).unwrap();
+        let g = touched.gap;
+        assert!(g < 0.0 && g > -0.01, "{g}");
+        assert_eq!(fixed.friction.status, FrictionStatus::Stick);
+        assert_eq!(touched.friction.status, FrictionStatus::Stick);
+        let ratio = touched.friction.tangential_force / fixed.friction.tangential_force;
+        let expected = 1.0 - g0 / (g0 - g);
+        println!(
+            "first touch: g0 {g0:.4e}, g {g:.4e}, force ratio {ratio:.6e} (1 - tau {expected:.6e})"
+        );
+        assert!((ratio - expected).abs() < 1e-12, "{ratio} {expected}");
+        // the tangent, stick (mu 0.9) and slip (mu 0.01)
+        for (mu, status) in [(0.9, FrictionStatus::Stick), (0.01, FrictionStatus::Slip)] {
+            let (s, worst) = fd_error(&x, &xn, mu, [0.0; 3], ([0.0; 3], 0.0), Some(g0)).unwrap();
+            println!("first touch, {s:?}: K vs central differences {worst:.1e}");
+            assert_eq!(s, status);
+            assert!(worst < 1e-6, "{worst}");
         }
     }
 }

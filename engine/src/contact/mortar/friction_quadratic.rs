@@ -584,6 +584,7 @@ pub(super) fn evaluate_3d(
                 },
                 |p| p.slip(x, &nodes),
             ),
+            start_gap: None,
         };
         let closed =
             row.close_with_friction_3d(&scalar, node, support, alpha, shift, prof, entity, &inputs);
@@ -981,6 +982,7 @@ mod tests {
             shift: [0.3 * shift, -0.2 * shift, 0.0],
             anchor,
             slip: pairing.slip(x, &nodes),
+            start_gap: None,
         };
         let (nc, c, r) =
             row.close_with_friction_3d(&scalar, j, 0.25, 50.0, shift, 1.0, 0, &inputs)?;

@@ -1133,6 +1133,9 @@ struct FrictionInputs3 {
     anchor: [f64; 3],
     /// The node's slip since the committed configuration and its gradient.
     slip: ([f64; 3], [Vec<f64>; 3]),
+    /// A node open in the committed state: its committed nodal gap (the
+    /// first touch of [`friction3d::Law::impact`]).
+    start_gap: Option<f64>,
 }
 
 impl Row<'_> {
@@ -1179,6 +1182,7 @@ impl Row<'_> {
             support,
             area: self.area,
             anchor: inputs.anchor,
+            impact: inputs.start_gap.map(|g0| [g0, gap]),
         };
         let nd = self.bv.len();
         let at = 3 * self.pos(node);
@@ -1320,6 +1324,13 @@ pub fn evaluate_3d(
                         },
                         |p| p.slip(x, &nodes),
                     ),
+                    // a node open in the committed state (no stick point
+                    // there, no Uzawa base) touches in this increment; a
+                    // committed gap of round-off is a touching node
+                    start_gap: pairing
+                        .filter(|_| f.base[i].is_none() && f.committed_anchor[i].is_none())
+                        .map(|p| p.normal_gap(&fp.committed_positions))
+                        .filter(|&g0| g0 > friction3d::ROUND_OFF * support.max(0.0).sqrt()),
                 };
                 row.close_with_friction_3d(
                     scalar, node, support, alpha, shift, prof, entity, &inputs,
