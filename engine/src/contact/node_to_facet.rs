@@ -42,7 +42,7 @@
 //!
 //! Free-edge band: a penalty node whose foot lies past a free edge, in the
 //! [`FREE_EDGE_TOL`] band of the extended facet, gets the force `w R_N G`
-//! with `w` the C1 smoothstep of the excess past the rim ([`edge_fade`]:
+//! with `w` the C2 smootherstep of the excess past the rim ([`edge_fade`]:
 //! 1 on the edge, 0 at the band's outer boundary, where the node leaves
 //! the surface), so the force goes to zero continuously instead of jumping
 //! from `R_N` to 0 (the 3D blade loss stopped on a blade corner 1.0 mm
@@ -306,8 +306,15 @@ pub fn edge_excess(n: usize, xi: [f64; 2]) -> [f64; 4] {
 
 /// The weight of the free-edge band at the excess `e` past a free edge
 /// (fraction of the parametric width): 1 for `e <= 0`, 0 for `e >=`
-/// [`FREE_EDGE_TOL`], the C1 smoothstep `1 - 3 s^2 + 2 s^3` (`s = e /
-/// FREE_EDGE_TOL`) in between, with its derivative.
+/// [`FREE_EDGE_TOL`], the C2 smootherstep `1 - s^3 (10 - 15 s + 6 s^2)`
+/// (`s = e / FREE_EDGE_TOL`) in between, with its derivative. C2, not C1:
+/// with the C1 smoothstep `1 - 3 s^2 + 2 s^3` a node lying on the rim (`e`
+/// = 0, every corner node of a matching mesh) sat on a jump of the second
+/// derivative, so the tangent differed from central differences by 9.1e-6
+/// (`self_contact_3d`, 9.3e-10 without the fade) and Newton lost its
+/// quadratic rate in the sliding blocks of `friction_ntf_3d`
+/// (`newton_converges_quadratically_while_the_block_slides`: 1.3e-6 ->
+/// 5.1e-11).
 pub fn fade<const N: usize>(e: Ad<N>) -> Ad<N> {
     if e.v <= 0.0 {
         Ad::cst(1.0)
@@ -315,7 +322,7 @@ pub fn fade<const N: usize>(e: Ad<N>) -> Ad<N> {
         Ad::cst(0.0)
     } else {
         let s = e * (1.0 / FREE_EDGE_TOL);
-        Ad::cst(1.0) - s * s * (Ad::cst(3.0) - s * 2.0)
+        Ad::cst(1.0) - s * s * s * (Ad::cst(10.0) - s * 15.0 + s * s * 6.0)
     }
 }
 
@@ -325,7 +332,7 @@ pub fn fade<const N: usize>(e: Ad<N>) -> Ad<N> {
 /// ([`edge_excess`]), so that a node whose foot slides off a free edge
 /// into the band of the extended facet loses its penalty force
 /// continuously (and with a continuous derivative) instead of all at once
-/// at the band's outer boundary (the product keeps C1 at a corner of two
+/// at the band's outer boundary (the product keeps C2 at a corner of two
 /// free edges). Carried as a dual number through the foot's derivative
 /// `dxi/dx`, so its gradient is the weight's dependence on the slave's and
 /// the facet's positions.
@@ -2090,8 +2097,8 @@ pub(crate) mod tests {
                 .fold(0.0, f64::max)
         };
         let (j1, j2, j3) = (max_jump(60), max_jump(240), max_jump(960));
-        // expected ~ 1.5 alpha_N |g| dx / band (the smoothstep's largest
-        // slope): 0.075, 0.019, 0.0047 (the hard edge: 1.0 at any
+        // expected ~ 1.875 alpha_N |g| dx / band (the smootherstep's
+        // largest slope): 0.094, 0.023, 0.0059 (the hard edge: 1.0 at any
         // sampling); the bounds ask for a fall at least ~ 1 / samples
         assert!(j1 < 0.1 && j2 < 0.3 * j1 && j3 < 0.3 * j2, "{j1} {j2} {j3}");
     }

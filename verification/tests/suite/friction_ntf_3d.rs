@@ -103,9 +103,14 @@ fn friction_ntf_3d_restarts_bit_for_bit_in_the_slide() {
 
 /// The exact tangent: in the slip stage of the single-pass penalty run,
 /// once the relative residual is below 1e-3 and above round-off, each
-/// Newton iteration squares it (`r_k+1 <= 10 r_k^2`; measured: e.g.
+/// Newton iteration squares it (`r_k+1 <= 30 r_k^2`; measured: e.g.
 /// 2.7e-4 -> 1.3e-7 -> 4.0e-13, 4.3e-5 -> 1.4e-8 -> 2.9e-13; the first
-/// iterations of an increment switch nodes from stick to slip).
+/// iterations of an increment switch nodes from stick to slip). The
+/// constant was 10 before the free-edge band's fade: the upper block's
+/// nodes crossing the lower block's rim now lose their force over the band
+/// (`node_to_facet::edge_fade`), a sharper but smooth (C2) nonlinearity:
+/// increment 8 4.4e-4 -> 2.8e-6 -> 4.0e-12 (constants 14.4, then 0.5),
+/// increment 10 3.3e-4 -> 2.0e-6 -> 1.5e-12 (18.2, 0.4).
 #[test]
 fn newton_converges_quadratically_while_the_block_slides() {
     let model = blocks_model("single_pass", "penalty { kind = area  stiffness = 1e5 }").unwrap();
@@ -120,7 +125,7 @@ fn newton_converges_quadratically_while_the_block_slides() {
         }
         if a.residual < 1e-3 && b.residual > 1e-12 {
             assert!(
-                b.residual <= 10.0 * a.residual * a.residual,
+                b.residual <= 30.0 * a.residual * a.residual,
                 "increment {} iteration {}: {:.3e} -> {:.3e}",
                 a.increment,
                 a.iteration,
