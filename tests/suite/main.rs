@@ -6,6 +6,7 @@ mod blade_loss;
 mod blade_loss_3d;
 mod cli;
 mod cli_bench_search;
+mod common;
 mod contact_deformable;
 mod contact_search_jump;
 mod determinism;

@@ -18,19 +18,11 @@
 //! summary.json), and the answer is the run's without the predictor
 //! (`newton { predictor = false }`) to the Newton tolerance.
 
+use super::common::run_quiet;
 use std::path::Path;
-use std::process::Command;
 
 fn run(deck: &Path, out: &Path) -> serde_json::Value {
-    let status = Command::new(env!("CARGO_BIN_EXE_ctc"))
-        .arg("run")
-        .arg(deck)
-        .arg("-o")
-        .arg(out)
-        .arg("-q")
-        .status()
-        .expect("ctc starts");
-    assert!(status.success(), "{}", deck.display());
+    run_quiet(deck, out);
     let text = std::fs::read_to_string(out.join("summary.json")).expect("summary.json");
     serde_json::from_str(&text).expect("summary.json is JSON")
 }

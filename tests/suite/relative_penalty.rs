@@ -16,21 +16,9 @@
 //! coefficients differ. The total force is within 0.5% of the absolute
 //! penalty of the example (2e4, close to the relative one at the bottom).
 
+use super::common::run_quiet as run;
 use ctc_engine::model::AnyModel;
 use std::path::Path;
-use std::process::Command;
-
-fn run(deck: &Path, out: &Path) {
-    let status = Command::new(env!("CARGO_BIN_EXE_ctc"))
-        .arg("run")
-        .arg(deck)
-        .arg("-o")
-        .arg(out)
-        .arg("-q")
-        .status()
-        .expect("ctc starts");
-    assert!(status.success(), "{}", deck.display());
-}
 
 /// Last line of `history.csv`, as numbers.
 fn last_history(out: &Path) -> Vec<f64> {
