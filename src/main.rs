@@ -206,7 +206,14 @@ enum Command {
     },
 }
 
+/// The system allocator, counting the live heap when `CTC_MEMORY_TRACE`
+/// is set (the memory of each phase of a run, `solve::memory::trace`).
+#[global_allocator]
+static TRACE_ALLOC: ctc_engine::solve::memory::CountingAllocator =
+    ctc_engine::solve::memory::CountingAllocator;
+
 fn main() -> ExitCode {
+    ctc_engine::solve::memory::trace_start();
     // A closed output pipe (`ctc verify --list | head`) ends the process
     // quietly, as it does any Unix filter, instead of a panic in
     // `println!`.

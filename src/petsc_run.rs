@@ -48,9 +48,11 @@ pub fn run(
     let env = ctc_petsc::Environment::initialize(&options.join(" "))
         .map_err(|e| format!("error: cannot start MPI and PETSc: {e}"))?;
     let rank = env.world().rank();
+    ctc_engine::solve::memory::trace("mpi + petsc initialized");
     // every rank compiles the deck; only rank 0 reports the errors
     let model = crate::read(deck)
         .and_then(|source| ctc_lang::compile_any(&source).map_err(|diags| diags.render(&source)));
+    ctc_engine::solve::memory::trace("model compiled");
     let dir = output.map_or_else(|| crate::default_output(deck, ""), Path::to_path_buf);
     let r = model.and_then(|model| match &model {
         AnyModel::D2(m) => run_model(&env, m, &dir, quiet, verbose, restart),
@@ -95,6 +97,7 @@ where
     }
     let system = PetscSystem::new(env, model, SolverChoice::MumpsLu, "")
         .map_err(|e| format!("error: cannot set up PETSc for this model: {e}"))?;
+    ctc_engine::solve::memory::trace("petsc system built");
     // each rank writes its cells' piece of every written increment
     let pieces = ctc_engine::output::Pieces {
         rank: system.rank(),

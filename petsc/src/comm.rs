@@ -131,6 +131,34 @@ impl<'e> Comm<'e> {
         root.broadcast_into(v);
     }
 
+    /// Every rank's `local` values (any count per rank), rank by rank, on
+    /// rank 0; `None` on the others.
+    pub fn gather_on_first(&self, local: &[f64]) -> Option<Vec<f64>> {
+        let root = self.inner.process_at_rank(0);
+        let count = i32::try_from(local.len()).expect("fewer than 2^31 values per rank");
+        if self.rank() == 0 {
+            let mut counts = vec![0i32; self.size()];
+            root.gather_into_root(&count, &mut counts[..]);
+            let displs: Vec<i32> = counts
+                .iter()
+                .scan(0i32, |at, &c| {
+                    let d = *at;
+                    *at += c;
+                    Some(d)
+                })
+                .collect();
+            let total = counts.iter().map(|&c| c as usize).sum();
+            let mut out = vec![0.0; total];
+            let mut partition = mpi::datatype::PartitionMut::new(&mut out[..], counts, displs);
+            root.gather_varcount_into_root(local, &mut partition);
+            Some(out)
+        } else {
+            root.gather_into(&count);
+            root.gather_varcount_into(local);
+            None
+        }
+    }
+
     /// Every rank's `local` values (the same count on every rank), rank by
     /// rank, on every rank.
     pub fn all_gather(&self, local: &[f64]) -> Vec<f64> {

@@ -185,7 +185,9 @@ impl<'e> PetscSystem<'e> {
         // faces in 3D, edges in 2D (the first D nodes of a face are enough
         // for linear and quadratic cells alike)
         let part = partition_cells(&cells, n_nodes, ranks, D)?;
+        ctc_engine::solve::memory::trace("partition (metis)");
         let layout = DofLayout::new(&cells, &part, n_nodes, ranks, rank, D)?;
+        ctc_engine::solve::memory::trace("dof layout");
         let dofs = DofMap::<D>::new(model);
         let petsc_of: Vec<usize> = dofs
             .free
@@ -210,6 +212,7 @@ impl<'e> PetscSystem<'e> {
             .flat_map(|&nd| model.mesh.nodes[nd])
             .collect();
         let modes = rigid_body_modes(&coords, D, &centre);
+        ctc_engine::solve::memory::trace("petsc numbering, rigid modes");
         let reason = replicated_reason(model);
         let (mut halo_blocks, mut halo_ranks) = (0, 0);
         let assembly = match reason {
@@ -244,6 +247,7 @@ impl<'e> PetscSystem<'e> {
                     ranks,
                     cells: mine,
                     nodes,
+                    exchanged: AssemblyShare::exchanged_cells(&cells, &part, n_nodes),
                 };
                 Some(Distributed {
                     share: Arc::new(share),
@@ -253,6 +257,7 @@ impl<'e> PetscSystem<'e> {
                 })
             }
         };
+        ctc_engine::solve::memory::trace("share + preallocation");
         let stats = DistributedStats {
             // replaced by the KSP's own description at the first set-up
             solver: "petsc".into(),
@@ -792,6 +797,10 @@ impl LinearSystem for PetscSystem<'_> {
 
     fn any_rank(&self, flag: bool) -> bool {
         self.comm.any(flag)
+    }
+
+    fn gather_on_first(&self, local: &[f64]) -> Option<Vec<f64>> {
+        self.comm.gather_on_first(local)
     }
 
     fn distributed(&self, timings: &Timings) -> Option<DistributedStats> {

@@ -204,7 +204,7 @@ pub fn nodal_fields<const D: usize>(
 where
     Const<D>: Dimension<D>,
 {
-    nodal_fields_from_points(mesh, blocks, section, u, &[], &[])
+    nodal_fields_from_points(mesh, blocks, section, u, &[], &[], None)
 }
 
 /// Values packed per point for the recovery: stress, strain, `ep`.
@@ -213,7 +213,9 @@ const WIDTH: usize = 13;
 /// Nodal-averaged stress, strain, von Mises and equivalent plastic strain:
 /// cells with stored integration points (`points[c]` non-empty, the
 /// solver's converged state of history-dependent laws) use them; the others
-/// are evaluated from `u`.
+/// are evaluated from `u`. `only`: the cells to recover (the others add
+/// nothing: the nodes around them and their cell values are only right
+/// where every cell around a node is recovered); `None`: every cell.
 pub fn nodal_fields_from_points<const D: usize>(
     mesh: &Mesh<D>,
     blocks: &[CellBlock],
@@ -221,10 +223,12 @@ pub fn nodal_fields_from_points<const D: usize>(
     u: &[[f64; D]],
     points: &[Vec<MaterialPoint>],
     thermal_strain: &[f64],
+    only: Option<&[bool]>,
 ) -> Result<NodalFields, ElementError>
 where
     Const<D>: Dimension<D>,
 {
+    let only = |c: usize| only.is_none_or(|o| o.get(c).copied().unwrap_or(false));
     let nn = mesh.nodes.len();
     let nc = mesh.cells.len();
     let mut sum = vec![[0.0f64; WIDTH]; nn];
@@ -233,7 +237,7 @@ where
     let mut weights = Vec::new();
     let mut cell_sum = vec![[0.0f64; WIDTH + 1]; nc];
     for block in blocks {
-        for c in block.cells.clone() {
+        for c in block.cells.clone().filter(|&c| only(c)) {
             packed.clear();
             weights.clear();
             let mut pack = |s: &PointState, ep: f64| {
@@ -338,16 +342,22 @@ where
 /// integration points ([`crate::solve::IncrementView::points`]) and the
 /// cells' thermal strains of the increment
 /// ([`crate::solve::IncrementView::thermal_strain`], empty without heat).
+/// `piece`: the cells of one rank's piece of a parallel output (the
+/// points of the cells around its nodes are enough, and only they are
+/// recovered: the piece's values are those of the whole recovery, bit for
+/// bit); `None`: the whole mesh.
 pub fn nodal_fields_of_model_with_points<const D: usize>(
     model: &Model<D>,
     u: &[[f64; D]],
     points: &[Vec<MaterialPoint>],
     thermal_strain: &[f64],
+    piece: Option<&[usize]>,
 ) -> Result<NodalFields, String>
 where
     Const<D>: Dimension<D>,
 {
     let blocks = blocks_of(model)?;
+    let only = piece.map(|cells| piece_and_ring(&model.mesh, cells));
     nodal_fields_from_points(
         &model.mesh,
         &blocks,
@@ -355,8 +365,25 @@ where
         u,
         points,
         thermal_strain,
+        only.as_deref(),
     )
     .map_err(|e| e.message)
+}
+
+/// The cells of `piece` and those sharing a node with them: every cell
+/// around a node of the piece, whose extrapolated values its nodal
+/// average sums (in the order of the whole mesh's cells, so the piece's
+/// nodes get the whole recovery's bits).
+fn piece_and_ring<const D: usize>(mesh: &Mesh<D>, piece: &[usize]) -> Vec<bool> {
+    let mut node = vec![false; mesh.nodes.len()];
+    for &c in piece {
+        for &n in mesh.cells.nodes(c) {
+            node[n] = true;
+        }
+    }
+    (0..mesh.cells.len())
+        .map(|c| mesh.cells.nodes(c).iter().any(|&n| node[n]))
+        .collect()
 }
 
 #[cfg(test)]
@@ -411,6 +438,57 @@ mod tests {
             assert!((f.cells.von_mises[c] - vm).abs() < 1e-12);
         }
         assert!(f.cells.equivalent_plastic_strain.is_empty());
+    }
+
+    #[test]
+    fn a_piece_recovers_its_cells_and_ring_with_the_whole_bits() {
+        // a strip of four quads with a non-uniform displacement: the
+        // piece of cells 2, 3 recovers them and cell 1 (sharing nodes 2
+        // and 7); its nodes and cells get the whole recovery's bits
+        let nodes: Vec<[f64; 2]> = (0..10)
+            .map(|n| [(n % 5) as f64 + 0.1 * (n / 5) as f64, (n / 5) as f64])
+            .collect();
+        let cells = (0..4).map(|c| Cell::quad(c, c + 1, c + 6, c + 5)).collect();
+        let mesh = Mesh::new(nodes, cells);
+        let u: Vec<[f64; 2]> = mesh
+            .nodes
+            .iter()
+            .map(|p| {
+                [
+                    0.01 * p[0] * p[1] + 0.003 * p[0] * p[0],
+                    -0.02 * p[1] * p[0],
+                ]
+            })
+            .collect();
+        let law = LinearElastic::new(100.0, 0.25, AnalysisKind::PlaneStrain).unwrap();
+        let blocks = [CellBlock {
+            cells: 0..4,
+            law,
+            formulation: Formulation::Full,
+            kinematics: Kinematics::Small,
+            nonlinear: None,
+        }];
+        let sec = Section {
+            kind: AnalysisKind::PlaneStrain,
+            thickness: 1.0,
+        };
+        let whole = nodal_fields(&mesh, &blocks, &sec, &u).unwrap();
+        let only = piece_and_ring(&mesh, &[2, 3]);
+        assert_eq!(only, [false, true, true, true]);
+        let piece =
+            nodal_fields_from_points(&mesh, &blocks, &sec, &u, &[], &[], Some(&only)).unwrap();
+        for n in [2, 3, 4, 7, 8, 9] {
+            assert_eq!(piece.stress[n], whole.stress[n], "node {n}");
+            assert_eq!(piece.strain[n], whole.strain[n]);
+            assert_eq!(piece.von_mises[n], whole.von_mises[n]);
+        }
+        for c in [2, 3] {
+            assert_eq!(piece.cells.stress[c], whole.cells.stress[c], "cell {c}");
+        }
+        // node 1 lacks cell 0: not the whole value (the piece does not
+        // write it)
+        assert_ne!(piece.stress[1], whole.stress[1]);
+        assert_eq!(piece.cells.stress[0], [0.0; 6]);
     }
 
     #[test]

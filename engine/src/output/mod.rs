@@ -109,10 +109,11 @@ where
     }
 
     /// The recovered nodal and cell stresses and strains, when a field
-    /// asks for them.
+    /// asks for them (those of `piece`'s cells and nodes only, when given).
     fn nodal_fields(
         &self,
         model: &Model<D>,
+        piece: Option<&[usize]>,
     ) -> Result<Option<crate::element::recovery::NodalFields>, String> {
         let needs_recovery = model
             .output
@@ -127,6 +128,7 @@ where
             &self.displacement,
             &self.points,
             &self.thermal_strain,
+            piece,
         )
         .map(Some)
     }
@@ -188,6 +190,10 @@ pub struct PieceWriter<'m, const D: usize = 2> {
     model: &'m Model<D>,
     pieces: Pieces,
     pending: Option<Snapshot<D>>,
+    /// Whether the last converged increment was written: rank 0's
+    /// [`ResultWriter`] then writes a restart point, whose integration
+    /// points every rank helps gather ([`Observer::wants_checkpoint`]).
+    written_last: bool,
 }
 
 impl<'m, const D: usize> PieceWriter<'m, D>
@@ -201,12 +207,14 @@ where
             model,
             pieces,
             pending: None,
+            written_last: false,
         }
     }
 
     fn write(&self, snap: &Snapshot<D>) -> Result<(), String> {
         let model = self.model;
-        let nodal = snap.nodal_fields(model)?;
+        let nodal = snap.nodal_fields(model, Some(&self.pieces.cells))?;
+        crate::solve::memory::trace("output: stress recovery");
         let thickness = model
             .output
             .thickness
@@ -253,13 +261,24 @@ where
 {
     fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
         let snap = Snapshot::of(self.model, view);
-        if written_now(self.model, view) {
+        crate::solve::memory::trace("output: snapshot");
+        self.written_last = written_now(self.model, view);
+        if self.written_last {
             self.pending = None;
-            self.write(&snap)
+            let r = self.write(&snap);
+            crate::solve::memory::trace("output: vtu piece written");
+            r
         } else {
             self.pending = Some(snap);
             Ok(())
         }
+    }
+
+    /// When rank 0 writes a restart point: building the checkpoint gathers
+    /// the integration points on rank 0 (collective); this rank's copy is
+    /// not kept.
+    fn wants_checkpoint(&self) -> bool {
+        self.written_last
     }
 }
 
@@ -448,7 +467,8 @@ where
     fn write_increment(&mut self, snap: &Snapshot<D>) -> Result<(), String> {
         let model = &self.model;
         let fields = &model.output.fields;
-        let nodal = snap.nodal_fields(model)?;
+        let nodal = snap.nodal_fields(model, self.pieces.as_ref().map(|p| &p.cells[..]))?;
+        crate::solve::memory::trace("output: stress recovery");
         let io = |e: std::io::Error| format!("cannot write results in {}: {e}", self.dir.display());
         let thickness = model
             .output
@@ -589,10 +609,13 @@ where
             .increment(view)
             .map_err(|e| format!("cannot write {STA_FILE} in {}: {e}", self.dir.display()))?;
         let snap = Snapshot::of(&self.model, view);
+        crate::solve::memory::trace("output: snapshot");
         if written_now(&self.model, view) {
             self.pending = None;
             self.written_last = true;
-            self.write_increment(&snap)
+            let r = self.write_increment(&snap);
+            crate::solve::memory::trace("output: vtu written (rank 0)");
+            r
         } else {
             self.pending = Some(snap);
             self.written_last = false;

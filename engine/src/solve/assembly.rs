@@ -40,7 +40,8 @@ pub struct Assembler<const D: usize = 2> {
     /// Cross-section (kind, thickness).
     pub section: Section,
     /// Committed integration points per global cell (empty for
-    /// small-strain linear elastic cells).
+    /// small-strain linear elastic cells, and under a split distributed
+    /// assembly for the cells this rank does not hold: [`Assembler::holds`]).
     committed: Vec<Vec<MaterialPoint>>,
     /// Points of the last evaluation.
     trial: Vec<Vec<MaterialPoint>>,
@@ -69,6 +70,11 @@ pub struct Assembler<const D: usize = 2> {
     /// The cells this rank assembles (distributed assembly,
     /// [`crate::solve::share`]); `None`: all cells.
     share: Option<Arc<AssemblyShare>>,
+    /// Whether every rank holds the committed points of every cell (a
+    /// heat step or a pressure control reads them all,
+    /// [`points_held_whole`]); otherwise a rank of a split share holds
+    /// those of its cells and of the exchanged cells only.
+    whole_points: bool,
     /// Cells evaluated by the last [`Assembler::assemble`].
     assembled: usize,
     /// The partition of the cells among threads for the last thread count
@@ -143,6 +149,24 @@ fn unpack_point(v: &[f64], p: &mut MaterialPoint) {
 /// Marks a cell without a cached stiffness matrix.
 const NO_MATRIX: usize = usize::MAX;
 
+/// Whether every rank keeps the committed points of every cell: the heat
+/// step of a thermal coupling (the plastic dissipation of every point)
+/// and a pressure control (the plastic strain rate of its cells) read
+/// them all on every rank.
+fn points_held_whole<const D: usize>(model: &Model<D>) -> bool {
+    model.thermal.is_some() || !super::control::controls(model).is_empty()
+}
+
+/// Whether a rank of `share` holds the committed points of cell `c`: every
+/// cell without a split share or when they are held whole, else its own
+/// cells and the exchanged ones.
+fn holds(share: Option<&AssemblyShare>, whole: bool, c: usize) -> bool {
+    match share {
+        Some(s) if s.split() && !whole => s.owns_cell(c) || s.exchanged(c),
+        _ => true,
+    }
+}
+
 /// Most dofs of a cell (a 27-node hexahedron).
 const MAX_DOFS: usize = 81;
 
@@ -160,13 +184,18 @@ where
     /// its cells, the others skipped by [`Assembler::assemble`].
     pub fn with_share(model: &Model<D>, share: Option<Arc<AssemblyShare>>) -> Result<Self, String> {
         let blocks = blocks_of(model)?;
-        // the committed points of every cell, also those of other ranks
-        // (kept current by `Assembler::exchange_points`): the output, the
-        // pressure controls and a restart file see the whole body
+        // the committed points of the cells this rank holds: every cell
+        // (serial, or a heat step or pressure control reading them all),
+        // or, under a split share, its own cells and the exchanged ones
+        // (kept current by `Assembler::exchange_points`: the output's
+        // nodal averages on either side of a part's border); a restart
+        // file gathers them (`Assembler::gathered_points`)
+        let whole_points = points_held_whole(model);
+        let holds = |c: usize| holds(share.as_deref(), whole_points, c);
         let mut committed = vec![Vec::new(); model.mesh.cells.len()];
         for b in &blocks {
             if b.nonlinear.is_some() {
-                for c in b.cells.clone() {
+                for c in b.cells.clone().filter(|&c| holds(c)) {
                     let kernel = kernel_of::<D>(model.mesh.cells.kind(c))
                         .map_err(|e| format!("cell {c}: {}", e.message))?;
                     committed[c] = vec![virgin(b.kinematics); kernel.point_count()];
@@ -196,6 +225,7 @@ where
             cell_law: Vec::new(),
             thermal_scale: 0.0,
             share,
+            whole_points,
             assembled: 0,
             plan: None,
             bulk: BulkTangent::default(),
@@ -331,26 +361,42 @@ where
         }
     }
 
+    /// Whether this rank holds the committed points of cell `c`
+    /// ([`Assembler::points`]; every cell without a split share).
+    pub fn holds(&self, c: usize) -> bool {
+        holds(self.share.as_deref(), self.whole_points, c)
+    }
+
     /// Distributed assembly ([`crate::solve::share`]): after a commit, the
-    /// committed points of the other ranks' cells, which only their rank
+    /// committed points of the other ranks' cells this rank holds (the
+    /// exchanged cells, [`crate::solve::share::AssemblyShare::exchanged`],
+    /// or every cell when they are held whole), which only their rank
     /// evaluated, received through `sum` (a sum over the ranks of a flat
-    /// vector, the same bits on every rank): each rank puts its cells'
-    /// values and `-0.0` elsewhere, and `x + (-0.0) = x` for every `x`, so
-    /// every rank then holds every cell's points bit for bit as their
-    /// owner computed them. Trial points of those cells are set alike (a
-    /// rollback leaves them unchanged). Nothing to do without a split share
-    /// or without nonlinear cells.
+    /// vector over the exchanged cells, the same bits on every rank): each
+    /// rank puts its cells' values and `-0.0` elsewhere, and `x + (-0.0) =
+    /// x` for every `x`, so every rank then holds those cells' points bit
+    /// for bit as their owner computed them. Trial points of those cells
+    /// are set alike (a rollback leaves them unchanged). Nothing to do
+    /// without a split share or without nonlinear cells.
     pub fn exchange_points(&mut self, sum: impl FnOnce(&mut [f64])) {
         let Some(share) = self.share.clone().filter(|s| s.split()) else {
             return;
         };
-        let n: usize = self.committed.iter().map(Vec::len).sum();
+        let whole = self.whole_points;
+        let exchanged = |c: usize| whole || share.exchanged(c);
+        let n: usize = (0..self.committed.len())
+            .filter(|&c| exchanged(c))
+            .map(|c| self.committed[c].len())
+            .sum();
         if n == 0 {
             return;
         }
         let mut flat = vec![-0.0; n * POINT_VALUES];
         let mut at = 0;
         for (c, cell) in self.committed.iter().enumerate() {
+            if !exchanged(c) {
+                continue;
+            }
             let len = cell.len() * POINT_VALUES;
             if share.owns_cell(c) {
                 for (p, out) in cell.iter().zip(flat[at..at + len].chunks_mut(POINT_VALUES)) {
@@ -362,6 +408,9 @@ where
         sum(&mut flat);
         let mut at = 0;
         for (c, (cell, trial)) in self.committed.iter_mut().zip(&mut self.trial).enumerate() {
+            if !exchanged(c) {
+                continue;
+            }
             let len = cell.len() * POINT_VALUES;
             if !share.owns_cell(c) {
                 for ((p, t), v) in cell
@@ -377,8 +426,66 @@ where
         }
     }
 
+    /// The committed points of every cell, for a restart file: under a
+    /// split share whose ranks hold only their part (and a model with
+    /// integration points), each rank's own cells (`[cell, points,
+    /// values..]` per cell) are gathered on the first rank by `gather`
+    /// (the concatenation of the ranks' vectors on rank 0, `None`
+    /// elsewhere, collective), which returns the whole layout; the other
+    /// ranks get an empty list (they write no restart file). Otherwise a
+    /// copy of [`Assembler::points`].
+    pub fn gathered_points(
+        &self,
+        gather: impl FnOnce(&[f64]) -> Option<Vec<f64>>,
+    ) -> Vec<Vec<MaterialPoint>> {
+        let Some(share) = self
+            .share
+            .as_ref()
+            .filter(|s| s.split() && !self.whole_points && self.has_points())
+        else {
+            return self.committed.clone();
+        };
+        let mut local = Vec::new();
+        for (c, cell) in self.committed.iter().enumerate() {
+            if share.owns_cell(c) && !cell.is_empty() {
+                local.push(c as f64);
+                local.push(cell.len() as f64);
+                let at = local.len();
+                local.resize(at + cell.len() * POINT_VALUES, 0.0);
+                for (p, out) in cell.iter().zip(local[at..].chunks_mut(POINT_VALUES)) {
+                    pack_point(p, out);
+                }
+            }
+        }
+        let Some(all) = gather(&local) else {
+            return Vec::new();
+        };
+        drop(local);
+        let mut out = vec![Vec::new(); self.committed.len()];
+        let mut at = 0;
+        while at + 2 <= all.len() {
+            let (c, n) = (all[at] as usize, all[at + 1] as usize);
+            at += 2;
+            let Some(cell) = out.get_mut(c) else {
+                break;
+            };
+            *cell = all[at..at + n * POINT_VALUES]
+                .chunks(POINT_VALUES)
+                .map(|v| {
+                    // every field is overwritten
+                    let mut p = virgin(crate::model::Kinematics::Small);
+                    unpack_point(v, &mut p);
+                    p
+                })
+                .collect();
+            at += n * POINT_VALUES;
+        }
+        out
+    }
+
     /// Committed integration points per global cell (empty for small-strain
-    /// linear elastic cells).
+    /// linear elastic cells, and for the cells this rank does not hold:
+    /// [`Assembler::holds`]).
     pub fn points(&self) -> &[Vec<MaterialPoint>] {
         &self.committed
     }
@@ -389,19 +496,23 @@ where
     }
 
     /// Replaces the committed (and trial) points and their time by those of
-    /// a restart point; the layout (cells, points per cell) must match.
+    /// a restart point (the points of every cell; this rank keeps those of
+    /// the cells it holds); the layout (cells, points per cell) must match.
     pub fn restore(&mut self, points: &[Vec<MaterialPoint>], t: f64) -> Result<(), String> {
         let same = points.len() == self.committed.len()
             && points
                 .iter()
                 .zip(&self.committed)
-                .all(|(a, b)| a.len() == b.len());
+                .enumerate()
+                .all(|(c, (a, b))| a.len() == b.len() || (b.is_empty() && !self.holds(c)));
         if !same {
             return Err("the restart point's integration points do not match the model".into());
         }
         for ((c, tr), p) in self.committed.iter_mut().zip(&mut self.trial).zip(points) {
-            c.copy_from_slice(p);
-            tr.copy_from_slice(p);
+            if !c.is_empty() {
+                c.copy_from_slice(p);
+                tr.copy_from_slice(p);
+            }
         }
         self.t_committed = t;
         self.dt = 0.0;
@@ -1292,6 +1403,7 @@ mod tests {
                 ranks: 2,
                 cells: cells.to_vec(),
                 nodes: nodes.to_vec(),
+                exchanged: vec![true; cells.len()],
             });
             let scatter =
                 Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
@@ -1355,10 +1467,18 @@ mod tests {
         assert!(whole.points()[1][0].history.ep > 0.0, "plastic");
         let mut ranks = Vec::new();
         for cells in [[true, false], [false, true]] {
+            // the two quads share an edge: both cells are exchanged
+            let exchanged = AssemblyShare::exchanged_cells(
+                &[model.mesh.cells.nodes(0), model.mesh.cells.nodes(1)],
+                &[0, 1],
+                6,
+            );
+            assert_eq!(exchanged, [true, true]);
             let share = Arc::new(AssemblyShare {
                 ranks: 2,
                 cells: cells.to_vec(),
                 nodes: vec![cells[0]; 6],
+                exchanged,
             });
             let scatter =
                 Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
@@ -1391,6 +1511,105 @@ mod tests {
         // one rank: nothing exchanged
         let mut one = whole.clone();
         one.exchange_points(|_| panic!("no exchange without a split share"));
+    }
+
+    #[test]
+    fn a_rank_holds_its_own_points_and_the_restart_file_gathers_them_all() {
+        // the plastic two quads, each cell on its rank, no cell exchanged
+        // (as cells far from the border between the parts): a rank holds
+        // the points of its cell only; gathered on the first rank they are
+        // the whole assembler's, bit for bit, and a restart from them gives
+        // each rank its own cell's points back
+        let mut model = two_quads();
+        let plastic = plastic_square();
+        model.materials = plastic.materials.clone();
+        let dofs = DofMap::new(&model);
+        let u: Vec<[f64; 2]> = (0..6)
+            .map(|n| [0.02 * (n % 3) as f64, -0.01 * (n / 3) as f64])
+            .collect();
+        let mut whole = Assembler::new(&model).unwrap();
+        let scatter = Scatter::new(&model.mesh, &dofs).unwrap();
+        let mut f = vec![0.0; 12];
+        whole.begin_increment(1.0);
+        whole
+            .assemble(&model.mesh, &scatter, &u, &mut f, None)
+            .unwrap();
+        whole.commit();
+        assert!(whole.points().iter().all(|p| p.len() == 4));
+        let mut ranks = Vec::new();
+        for cells in [[true, false], [false, true]] {
+            let share = Arc::new(AssemblyShare {
+                ranks: 2,
+                cells: cells.to_vec(),
+                nodes: vec![cells[0]; 6],
+                exchanged: vec![false; 2],
+            });
+            let scatter =
+                Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
+            let mut asm = Assembler::with_share(&model, Some(share)).unwrap();
+            asm.begin_increment(1.0);
+            asm.assemble(&model.mesh, &scatter, &u, &mut f, None)
+                .unwrap();
+            asm.commit();
+            // nothing to exchange
+            asm.exchange_points(|v| assert!(v.is_empty()));
+            ranks.push(asm);
+        }
+        for (r, asm) in ranks.iter().enumerate() {
+            assert!(asm.holds(r) && !asm.holds(1 - r));
+            assert_eq!(asm.points()[1 - r].len(), 0, "the other rank's cell");
+            assert_eq!(
+                format!("{:?}", asm.points()[r]),
+                format!("{:?}", whole.points()[r])
+            );
+        }
+        // the gather: each rank's vector, concatenated on the first
+        let locals: Vec<Vec<f64>> = ranks
+            .iter()
+            .map(|a| {
+                let mut mine = Vec::new();
+                a.gathered_points(|v| {
+                    mine = v.to_vec();
+                    None
+                });
+                mine
+            })
+            .collect();
+        let all: Vec<f64> = locals.concat();
+        let gathered = ranks[0].gathered_points(|_| Some(all.clone()));
+        assert_eq!(format!("{gathered:?}"), format!("{:?}", whole.points()));
+        // another rank keeps no copy
+        assert!(ranks[1].gathered_points(|_| None).is_empty());
+        // restart: each rank keeps its own cell's points
+        for (r, asm) in ranks.iter_mut().enumerate() {
+            let mut fresh = asm.clone();
+            fresh.rollback();
+            fresh.restore(&gathered, 1.0).unwrap();
+            assert_eq!(
+                format!("{:?}", fresh.points()[r]),
+                format!("{:?}", whole.points()[r])
+            );
+            assert!(fresh.points()[1 - r].is_empty());
+            // a layout that does not match is refused
+            let mut short = gathered.clone();
+            short[r].pop();
+            assert!(fresh.restore(&short, 1.0).is_err());
+        }
+        // an elastic model: nothing gathered, the empty layout of every cell
+        let elastic = two_quads();
+        let share = Arc::new(AssemblyShare {
+            ranks: 2,
+            cells: vec![true, false],
+            nodes: vec![true; 6],
+            exchanged: vec![false; 2],
+        });
+        let asm = Assembler::with_share(&elastic, Some(share)).unwrap();
+        assert_eq!(asm.gathered_points(|_| panic!("no gather")).len(), 2);
+        // serial: the points are the committed ones
+        assert_eq!(
+            format!("{:?}", whole.gathered_points(|_| panic!("no gather"))),
+            format!("{:?}", whole.points())
+        );
     }
 
     #[test]

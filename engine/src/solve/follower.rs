@@ -590,6 +590,7 @@ mod tests {
                 ranks: 2,
                 cells: cells.to_vec(),
                 nodes: (0..nn).map(|a| (a % 2 == 0) == cells[0]).collect(),
+                exchanged: Vec::new(),
             });
             let fs = FollowerShare::new(&model, &share);
             assert_eq!(fs.facets(), 2);

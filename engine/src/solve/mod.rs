@@ -542,6 +542,7 @@ where
         Err(e) => return Err(fail(summary, format!("the model cannot be solved: {e}"))),
     };
     let mut newton = newton;
+    memory::trace("newton built");
     let setup = start.elapsed().as_secs_f64();
     let thermal = match <Const<D> as Dimension<D>>::Heat::new(model) {
         Ok(t) => t,
@@ -1005,6 +1006,7 @@ where
         }
         let start = Instant::now();
         let cp = self.newton.checkpoint(self.increment, *resume);
+        memory::trace("restart checkpoint built");
         let r = self.observer.checkpoint(&cp);
         self.summary.timings.output += start.elapsed().as_secs_f64();
         r

@@ -50,6 +50,13 @@ pub struct AssemblyShare {
     pub cells: Vec<bool>,
     /// Whether this rank owns each global node (adds its contact block).
     pub nodes: Vec<bool>,
+    /// Whether each global cell's committed integration points are held
+    /// by every rank (the same on all ranks): the cells with a node that
+    /// cells of several ranks share, whose points the output's nodal
+    /// averages on either side of a border read. The points of the other
+    /// cells stay with their rank (`Assembler::exchange_points`); empty:
+    /// no cell.
+    pub exchanged: Vec<bool>,
 }
 
 impl AssemblyShare {
@@ -63,6 +70,37 @@ impl AssemblyShare {
     #[inline]
     pub fn owns_node(&self, n: usize) -> bool {
         self.nodes.get(n).copied().unwrap_or(false)
+    }
+
+    /// Whether every rank holds cell `c`'s integration points.
+    #[inline]
+    pub fn exchanged(&self, c: usize) -> bool {
+        self.exchanged.get(c).copied().unwrap_or(false)
+    }
+
+    /// The cells whose points are exchanged, from every cell's rank
+    /// `part`: those with a node that cells of two ranks or more share.
+    pub fn exchanged_cells<C: AsRef<[usize]>>(
+        cells: &[C],
+        part: &[usize],
+        n_nodes: usize,
+    ) -> Vec<bool> {
+        // per node: the first rank seen, and whether another one touches it
+        let mut first = vec![usize::MAX; n_nodes];
+        let mut border = vec![false; n_nodes];
+        for (cell, &r) in cells.iter().zip(part) {
+            for &n in cell.as_ref() {
+                if first[n] == usize::MAX {
+                    first[n] = r;
+                } else if first[n] != r {
+                    border[n] = true;
+                }
+            }
+        }
+        cells
+            .iter()
+            .map(|cell| cell.as_ref().iter().any(|&n| border[n]))
+            .collect()
     }
 
     /// Number of cells this rank assembles.
@@ -267,10 +305,28 @@ mod tests {
             ranks: 2,
             cells: vec![true, false, true],
             nodes: vec![false, true],
+            exchanged: vec![false, true],
         };
         assert_eq!(s.owned_cells(), 2);
         assert!(s.owns_cell(2) && !s.owns_cell(1) && !s.owns_cell(7));
         assert!(s.owns_node(1) && !s.owns_node(0));
         assert!(s.split());
+        assert!(s.exchanged(1) && !s.exchanged(0) && !s.exchanged(7));
+    }
+
+    #[test]
+    fn the_cells_at_a_border_between_ranks_are_exchanged() {
+        // a strip of four quads 0-1-2-3 (nodes 0..5 below, 5..10 above),
+        // cells 0, 1 on rank 0 and 2, 3 on rank 1: the border is the
+        // line of nodes 2 and 7, shared by cells 1 and 2
+        let cells: Vec<[usize; 4]> = (0..4).map(|c| [c, c + 1, c + 6, c + 5]).collect();
+        let exchanged = AssemblyShare::exchanged_cells(&cells, &[0, 0, 1, 1], 10);
+        assert_eq!(exchanged, [false, true, true, false]);
+        // one rank: no border
+        let one = AssemblyShare::exchanged_cells(&cells, &[0; 4], 10);
+        assert_eq!(one, [false; 4]);
+        // a part in the middle: its neighbours on both sides are exchanged
+        let corner = AssemblyShare::exchanged_cells(&cells, &[0, 1, 0, 0], 10);
+        assert_eq!(corner, [true, true, true, false]);
     }
 }

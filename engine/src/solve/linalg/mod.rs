@@ -184,6 +184,12 @@ pub trait LinearSystem {
     fn any_rank(&self, flag: bool) -> bool {
         flag
     }
+    /// The ranks' `local` vectors concatenated rank by rank on the first
+    /// rank, `None` on the others (collective under a distributed
+    /// assembly; `local` otherwise).
+    fn gather_on_first(&self, local: &[f64]) -> Option<Vec<f64>> {
+        Some(local.to_vec())
+    }
 }
 
 pub use super::memory::peak_memory_bytes;

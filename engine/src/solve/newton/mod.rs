@@ -214,8 +214,11 @@ where
         let dofs = DofMap::new(model);
         // a distributed assembly (`super::share`): this rank's cells only
         let share = linear.share();
+        crate::solve::memory::trace("newton: dof map");
         let scatter = super::discrete::scatter_for(model, &dofs, &[], share.as_ref())?;
+        crate::solve::memory::trace("newton: scatter (pattern)");
         let assembler = Assembler::with_share(model, share.clone())?;
+        crate::solve::memory::trace("newton: assembler (element k)");
         let n_free = dofs.n_free();
         let n_presc = dofs.prescribed.len();
         let n_dofs = dofs.dofs.len();
@@ -343,6 +346,7 @@ where
                 .map(|j| p.find(j, j).map_or(0.0, |k| values[k]))
                 .collect();
         }
+        crate::solve::memory::trace("newton: vectors, first f_int");
         newton.stabilization = super::stabilize::Stabilization::new(model, &newton.dofs, |j| {
             diag.get(j).copied().unwrap_or(0.0)
         });
@@ -1001,7 +1005,9 @@ where
             let start = Instant::now();
             let cpu0 = thread_cpu_seconds();
             let updates = self.linear.stats().low_rank;
+            crate::solve::memory::trace("before factorize (assembled)");
             let r = self.linear.factorize(&self.scatter.pattern, &self.values);
+            crate::solve::memory::trace("factorized (petsc matrix, pc)");
             let mid = Instant::now();
             let cpu1 = thread_cpu_seconds();
             self.timings.factorization += (mid - start).as_secs_f64();
@@ -1016,6 +1022,7 @@ where
                 self.zero_mode.0 = mode;
             }
             let r = self.linear.solve(&mut self.rhs);
+            crate::solve::memory::trace("solved");
             self.timings.solve += mid.elapsed().as_secs_f64();
             self.timings.cpu[3] += thread_cpu_seconds() - cpu1;
             return r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()));

@@ -136,7 +136,11 @@ where
             resume,
             displacement: self.committed.clone(),
             pairs,
-            points: self.assembler.points().to_vec(),
+            // a split share: gathered on the first rank, which writes the
+            // restart file (collective: every rank builds the checkpoint)
+            points: self
+                .assembler
+                .gathered_points(|local| self.linear.gather_on_first(local)),
             points_time: self.assembler.committed_time(),
             couplings,
             dynamics: self.dynamics.as_ref().map(|d| d.saved()),
