@@ -706,6 +706,58 @@ impl FacetSurface {
         nagata::element(node, xs, nodes, &rings, x, xi).map(|e| (k, e))
     }
 
+    /// Whether the point `xs` lies beside the surface, past its free rim
+    /// and below its extension: the foot on the extension of one of the
+    /// facets `candidates` falls outside the facet across free edges only,
+    /// beyond the free-edge band ([`FREE_EDGE_TOL`]) of at least one, and
+    /// the gap to that extension lies in `[-max(prof, h), -below)` (`h` the
+    /// facet's longest edge, the depth window of [`Self::closest`]). Such
+    /// a node has no element (the nearest feature is the free rim), but if
+    /// it moves into the band, or over the facet, while still below, its
+    /// penetration is not one it made through the surface: see
+    /// [`DeformablePair::beside`].
+    pub fn below_past_rim(
+        &self,
+        x: &[[f64; 3]],
+        xs: [f64; 3],
+        candidates: &[usize],
+        prof: f64,
+        below: f64,
+    ) -> bool {
+        candidates.iter().any(|&k| {
+            let (p, n) = self.points(k, x);
+            let pts = &p[..n];
+            let Some((xi, _)) = foot(xs, pts) else {
+                return false;
+            };
+            let nodes = self.faces[k].nodes();
+            let excess = edge_excess(n, xi);
+            let free = |a: usize| self.is_free_edge(nodes[a], nodes[(a + 1) % n]);
+            let past_rim = (0..n).any(|a| free(a) && excess[a] > FREE_EDGE_TOL);
+            let only_free = (0..n).all(|a| excess[a] <= INSIDE_TOL || free(a));
+            if !past_rim || !only_free {
+                return false;
+            }
+            let q: Vec<[Ad<0>; 3]> = pts.iter().map(|&v| constants(v)).collect();
+            let (_, foot_x, a1, a2, _) = surface_point(&q, xi.map(Ad::cst));
+            let m = cross(a1, a2);
+            let len = dot(m, m).sqrt().v;
+            if len.is_nan() || len <= 0.0 {
+                return false;
+            }
+            let gap = (0..3)
+                .map(|c| (xs[c] - foot_x[c].v) * m[c].v / len)
+                .sum::<f64>();
+            let depth = (0..n)
+                .map(|a| {
+                    let (u, v) = (p[a], p[(a + 1) % n]);
+                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
+                })
+                .fold(prof, f64::max);
+            gap < -below && gap >= -depth
+        })
+    }
+
     /// Whether global node `n` is on the rim.
     pub fn is_free_node(&self, n: usize) -> bool {
         self.free_nodes.binary_search(&n).is_ok()
@@ -969,6 +1021,28 @@ pub struct DeformablePair {
     /// Per slave index, self contact only: the facets excluded for the
     /// node (see [`excluded_facets`]), sorted.
     pub excluded: Vec<Vec<usize>>,
+    /// Per slave index, penalty: the node lay beside the master surface at
+    /// the latest evaluation — past its free rim below its extension
+    /// ([`FacetSurface::below_past_rim`]), or, having been beside at the
+    /// last converged increment, still deeper than `touch` under the
+    /// facet it now projects on. Such a node gets no force: its
+    /// penetration was not made through the surface (it came round the
+    /// rim, beside the master), and the penalty `k g^2 / 2` switched on at
+    /// that depth as it slides into the free-edge band, or over the facet,
+    /// is energy the contact creates. Measured in the 3D blade loss
+    /// (examples/blade_loss_3d.ctc) flown to 20 ms: the released blade,
+    /// tumbled out of the slice's plane, had corner nodes beside the
+    /// casing (z < 0, 1.8 to 7.8 mm radially past its inner face) slide
+    /// axially into the band of its rim `z = 0`; the fade turned their
+    /// force on with no work done against it (the force is normal, the
+    /// motion axial), and pushed out radially they gave the bodies +6.0e5,
+    /// +8.5e5, +7.0e6 and +8.5e6 mJ of contact work in single increments
+    /// (kinetic energy 2.5e6 -> 1.27e7 mJ) before the run stopped at
+    /// 10.875 ms. The flag clears once the node is in front of the
+    /// surface again (gap `>= -touch`); with no facet in reach it keeps
+    /// its value.
+    pub beside: Vec<bool>,
+    committed_beside: Vec<bool>,
     /// Mortar friction: current coordinates of every node at the latest
     /// evaluation (empty for other pairs).
     pub positions: Vec<[f64; 3]>,
@@ -1001,6 +1075,7 @@ impl DeformablePair {
         self.increments += 1;
         self.committed_increments = self.increments;
         self.committed_last.clone_from(&self.last);
+        self.committed_beside.clone_from(&self.beside);
         self.committed_positions.clone_from(&self.positions);
     }
 
@@ -1008,6 +1083,7 @@ impl DeformablePair {
     pub fn rollback(&mut self) {
         self.increments = self.committed_increments;
         self.last.clone_from(&self.committed_last);
+        self.beside.clone_from(&self.committed_beside);
         self.positions.clone_from(&self.committed_positions);
         self.evaluated = usize::MAX;
     }
@@ -1015,9 +1091,13 @@ impl DeformablePair {
     /// Restart: `increments` converged increments were done, `memory` the
     /// committed facet of each slave ([`DeformablePair::memory`]),
     /// `positions` the committed coordinates of every node (kept by mortar
-    /// friction pairs only).
+    /// friction pairs only). The [`Self::beside`] flags are not in restart
+    /// points: they restart cleared (a node beside the master at the
+    /// restart point is found again once it lies past the rim).
     pub fn restore(&mut self, increments: usize, memory: &[Option<usize>], positions: &[[f64; 3]]) {
         self.increments = increments;
+        self.beside = vec![false; memory.len()];
+        self.committed_beside = vec![false; memory.len()];
         self.committed_increments = increments;
         self.committed_last = memory.to_vec();
         self.last = memory.to_vec();
@@ -1245,6 +1325,8 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<Deform
             .collect(),
         last: vec![None; slaves.len()],
         committed_last: vec![None; slaves.len()],
+        beside: vec![false; slaves.len()],
+        committed_beside: vec![false; slaves.len()],
         // mortar friction: the committed configuration of the weighted slip
         positions: if mortar_friction {
             model.mesh.nodes.clone()
@@ -1342,6 +1424,7 @@ pub fn evaluate(
             facing(surface, ex, node, x, &mut candidates);
         }
         state.counters.queries += 1;
+        let penalty_node = matches!(cp.method, ContactMethod::Penalty { .. });
         let memory = fp.last[i];
         // Nagata patches first; the faceted rules where no patch holds the
         // node's foot (the wedges of a patch-less corner)
@@ -1360,11 +1443,26 @@ pub fn evaluate(
             (None, Some((k, el))) => (*k, el.gap, el.normal),
             (None, None) => {
                 fp.last[i] = None;
+                if penalty_node && !candidates.is_empty() {
+                    fp.beside[i] = surface.below_past_rim(x, xs, &candidates, prof, fp.touch);
+                }
                 state.friction.open(i, xs);
                 continue;
             }
         };
         fp.last[i] = Some(k);
+        if penalty_node {
+            // a node that came round the rim stays open while it is below
+            // ([`DeformablePair::beside`])
+            fp.beside[i] = fp.committed_beside[i] && gap < -fp.touch;
+            if fp.beside[i] {
+                if debug {
+                    closed_log.push_str(&format!(" {node}:{k}beside:{gap:.3e}"));
+                }
+                state.friction.open(i, xs);
+                continue;
+            }
+        }
         let active = state.active[i];
         if gap > prof && !active {
             state.friction.open(i, xs);
@@ -2146,6 +2244,74 @@ pub(crate) mod tests {
             }
         }
         err
+    }
+
+    #[test]
+    fn a_node_that_came_round_the_free_rim_below_the_master_gets_no_force() {
+        // node 9 lies past the free edge x = 2 (beyond the band) 0.3 below
+        // the grid's extension, then moves into the band and over facet 1
+        // at that depth: it came round the rim, not through the surface,
+        // and stays open until it is in front again; then pressed in it
+        // closes. Without the flag the band switched on alpha_N 0.3 w at
+        // that depth with no work done against it: pushed out along the
+        // normal the node gained alpha_N 0.3^2 / 2 = 4.5 w.
+        let m = band_pair([2.1, 0.5, -0.3], false);
+        let z = |xn: f64, yn: f64| 0.02 * (1.3 * xn + 0.7 * yn).sin();
+        let at = |xn: f64, dz: f64| {
+            let mut x = m.mesh.nodes.clone();
+            x[9] = [xn, 0.5, z(xn, 0.5) + dz];
+            x
+        };
+        let normal_force = |c: &Coupling| {
+            let k = c.nodes.binary_search(&9).unwrap();
+            c.force[3 * k + 2]
+        };
+        let slave = |st: &SurfacePair| st.slaves.binary_search(&9).unwrap();
+        let fresh = SurfacePair::new(&m, 0);
+        // a node found in the band for the first time keeps the old rule
+        // (nothing says where it came from): the faded force at 0.3
+        let old = band_coupling(&m, &at(2.005, -0.3), &fresh).expect("band element");
+        assert!(normal_force(&old) > 1.0, "{}", normal_force(&old));
+        let mut st = fresh.clone();
+        let step = |x: Vec<[f64; 3]>, st: &mut SurfacePair| {
+            evaluate(&m, 0, &x, st);
+            let coupled = st
+                .deformable
+                .as_ref()
+                .and_then(|f| f.couplings.iter().find(|c| c.slave == 9).cloned());
+            let beside = st.deformable.as_ref().unwrap().beside[slave(st)];
+            st.commit();
+            (coupled, beside)
+        };
+        // past the band, below the extension: no element, beside
+        let (c, beside) = step(at(2.1, -0.3), &mut st);
+        assert!(c.is_none() && beside);
+        // into the band, then over the facet, still 0.3 below: open
+        for xn in [2.005, 1.99, 1.5] {
+            let (c, beside) = step(at(xn, -0.3), &mut st);
+            assert!(c.is_none() && beside, "x = {xn}");
+        }
+        // a rollback keeps the committed flag
+        st.rollback();
+        assert!(st.deformable.as_ref().unwrap().beside[slave(&st)]);
+        // in front of the surface: cleared; pressed in again: closed
+        let (c, beside) = step(at(1.5, 0.01), &mut st);
+        assert!(c.is_none() && !beside);
+        let (c, beside) = step(at(1.5, -0.3), &mut st);
+        let c = c.expect("closed from the front");
+        assert!(
+            !beside && (normal_force(&c) - 30.0).abs() < 1.0,
+            "{}",
+            normal_force(&c)
+        );
+        // past the rim above the extension, or within touch (1e-3 of the
+        // unit facets) below it: not beside (the extension of facet 1 at
+        // x = 2.1, y = 0.5 lies at z = 0.00207, the warp's z there is
+        // 0.00123: dz = 0.00034 is 0.0005 below it)
+        let mut st = SurfacePair::new(&m, 0);
+        assert!(!step(at(2.1, 0.3), &mut st).1);
+        assert!(!step(at(2.1, 0.00034), &mut st).1);
+        assert!(step(at(2.1, -0.01), &mut st).1);
     }
 
     #[test]
