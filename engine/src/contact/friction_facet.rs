@@ -52,12 +52,32 @@
 //! First touch (no committed stick point): `first_impact = frictionless`
 //! leaves that increment without tangential force (the stick point is the
 //! foot at its end); `intersect` (the default) sticks the node where its
-//! straight path from the converged position `x_0` crossed the facet's
-//! tangent plane (`tau = g_0 / (g_0 - g)`; a node already behind it at the
-//! start sticks at the foot of `x_0`), computed at the first evaluation of
-//! the increment in which the node is closed and convected with the facet
-//! from then on (kept in [`FrictionState::base`] until the increment
-//! converges or is cut back).
+//! straight path from the converged position `x_0` crosses the tangent
+//! plane of the iterate evaluated ([`FacetFriction::impact`]: `x_0 + tau
+//! (x_s - x_0)`, `tau = g_0 / (g_0 - g)` recomputed at every evaluation),
+//! with the stick point's motion (w.r.t. the slave and the facet's nodes)
+//! in the tangent: the trial force `-k_T (1 - tau) P (x_s - x_0)` vanishes with
+//! the gap, and the answer does not depend on the iterates. The stick
+//! point recorded is the facet's material point at the crossing. That is
+//! the penalty method's rule (as mortar's). A node behind the plane at the
+//! start (`g_0 <= 0`) sticks at the facet's material point at the foot of
+//! `x_0`, and with the augmented Lagrangian a node sticks at the foot of
+//! the crossing (of `x_s` at a positive gap), all fixed at the first
+//! closed evaluation and convected with the facet (held in
+//! [`FrictionState::base`]; a spatial `x_0` would count the master's own
+//! motion as slip: `friction_blocks_ntf_3d`, whose block overlaps its base
+//! by 1e-6, then stopped in its press; and the crossing following the
+//! iterate in the augmented Lagrangian's double pass, where every swap of
+//! sides is a first touch, took 7.7 % off its `|F_t| / (mu F_n)`).
+//! `g_0` is measured to the *current* plane: a master moving onto the node
+//! (the ironing die's press) leaves `x_0` behind it, so those nodes take
+//! the foot rule (the relative path, with the facet's committed
+//! positions, would be needed there). Before, the crossing was computed
+//! once, at the first closed iterate of the increment, and then held: a node closing deep in the first iterate
+//! (`ironing_3d` level 0, press increment 2: gap -0.08, the converged one
+//! -1.1e-4) kept a stick point 0.013 away from where it touched and
+//! converged slipping at `mu R_N` (trial 0.67 against a limit of 0.016;
+//! traced per evaluation with `ctc run -v` of that deck).
 
 use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeFriction};
 use super::mortar::ad::Ad;
@@ -92,6 +112,16 @@ pub struct FacetFriction {
     /// `mu w R_N` shrinks to zero across the band, with the derivative of
     /// `w` in the tangent.
     pub fade: [bool; 4],
+    /// First touch in this increment (`first_impact = intersect`, no
+    /// committed stick point): the slave's converged position `x_0`. The
+    /// stick point is then where the straight path from `x_0` to `x_s`
+    /// crosses the tangent plane at the contact point `x` (normal `n`),
+    /// `x_0 + tau (x_s - x_0)`, `tau = g_0 / (g_0 - g)`, `g_0 = (x_0 - x)
+    /// . n` (`x_s` itself at `g >= 0`, `x_0` at `g_0 <= 0`), a function of
+    /// the current iterate with its derivative in the tangent (the anchor
+    /// facet and `xi_a` unused). `None`: the stick point is `xi_a` on the
+    /// anchor facet.
+    pub impact: Option<[f64; 3]>,
 }
 
 /// Friction contribution of one element.
@@ -272,8 +302,26 @@ pub fn respond(
         Some((a, b)) => edge_point(xs_d, &p, a, b, at.side)?,
     };
     let gap = dot(sub(xs_d, x), n);
-    // the stick point on its facet (convected)
-    let (_, xa, ..) = surface_point(&pa, xi_a.map(A::cst));
+    let xa: [A; 3] = match law.impact {
+        // first touch: where the path from `x_0` crosses the tangent plane
+        // of the current iterate
+        Some(x0) => {
+            let x0 = cst3(x0);
+            let g0 = dot(sub(x0, x), n);
+            if g0.v > 0.0 && gap.v < 0.0 {
+                let tau = g0 / (g0 - gap);
+                std::array::from_fn(|c| x0[c] + (xs_d[c] - x0[c]) * tau)
+            } else if g0.v > 0.0 {
+                // not there yet at a positive gap (augmented Lagrangian)
+                xs_d
+            } else {
+                // behind the plane at the start
+                x0
+            }
+        }
+        // the stick point on its facet (convected)
+        None => surface_point(&pa, xi_a.map(A::cst)).1,
+    };
     let d = sub(xs_d, xa);
     let dn = dot(d, n);
     let gt: [A; 3] = std::array::from_fn(|c| d[c] - n[c] * dn);
@@ -414,8 +462,9 @@ pub fn apply(
         ContactMethod::AugmentedLagrange { .. } => state.shift[i],
         ContactMethod::Lagrange { .. } => return None,
     };
-    // a first touch fixed at an earlier iteration of this increment is
-    // held in the base (convected from then on)
+    // the base: the stick point after an augmented-Lagrangian update, or
+    // of a node behind the facet's plane at the start
+    let mut impact = None;
     let start = match decode(state.committed_anchor[i], facets)
         .or_else(|| decode(state.base[i], facets))
     {
@@ -445,22 +494,32 @@ pub fn apply(
                 let tau = if g0 > 0.0 { g0 / (g0 - c.gap) } else { 0.0 };
                 state.record_impact(tau);
             }
-            let hit: [f64; 3] = match law.first_impact {
-                FirstImpact::Frictionless => {
-                    state.anchor[i] = Some(encode(c.facet, c.xi));
-                    return None;
-                }
-                FirstImpact::Intersect if g0 > 0.0 && c.gap < 0.0 => {
+            if law.first_impact == FirstImpact::Frictionless {
+                state.anchor[i] = Some(encode(c.facet, c.xi));
+                return None;
+            }
+            let penalty = matches!(method, ContactMethod::Penalty { .. });
+            if penalty && g0 > 0.0 && c.gap < 0.0 {
+                // the stick point follows the iterate (`FacetFriction::impact`)
+                impact = Some(x0);
+                (c.facet, c.xi)
+            } else {
+                // behind the plane at the start (`x_0`), or the augmented
+                // Lagrangian (the crossing, or `x_s` at a positive gap): the
+                // facet's material point at the foot, held in the base
+                // and convected with the facet
+                let at = if g0 <= 0.0 {
+                    x0
+                } else if c.gap < 0.0 {
                     let tau = g0 / (g0 - c.gap);
                     std::array::from_fn(|k| x0[k] + tau * (c.xs[k] - x0[k]))
-                }
-                // not there yet at a positive gap (augmented Lagrangian)
-                FirstImpact::Intersect if g0 > 0.0 => c.xs,
-                FirstImpact::Intersect => x0,
-            };
-            let first = (c.facet, foot(hit, c.pts).map_or(c.xi, |(f, _)| f));
-            state.base[i] = Some(encode(first.0, first.1));
-            first
+                } else {
+                    c.xs
+                };
+                let first = (c.facet, foot(at, c.pts).map_or(c.xi, |(f, _)| f));
+                state.base[i] = Some(encode(first.0, first.1));
+                first
+            }
         }
     };
     let (ka, xi_a) = decode(state.base[i], facets).unwrap_or(start);
@@ -476,10 +535,13 @@ pub fn apply(
         normal_shift: c.normal_force + c.normal_stiffness * c.gap,
         normal_stiffness: c.normal_stiffness,
         fade: c.free_edges,
+        impact,
     };
     let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a, c.at)?;
     state.anchor[i] = Some(match r.moved {
         Some(xi) => encode(c.facet, xi),
+        // a first touch sticks at the crossing: the material point there
+        None if impact.is_some() => encode(c.facet, foot(r.point, c.pts).map_or(c.xi, |f| f.0)),
         None => encode(ka, xi_a),
     });
     // the slip of the increment: from the committed (or first-touch) stick
@@ -687,6 +749,8 @@ mod tests {
         };
         let (mut worst_stick, mut worst_slip) = (0.0f64, 0.0f64);
         let (mut sticks, mut slips) = (0, 0);
+        // first-touch elements (`FacetFriction::impact`)
+        let (mut worst_touch, mut touch_sticks, mut touch_slips) = (0.0f64, 0, 0);
         for case in 0..1200 {
             let n = if case % 2 == 0 { 4 } else { 3 };
             let other = case % 3 == 0;
@@ -730,10 +794,29 @@ mod tests {
                 },
                 normal_stiffness: 100.0,
                 fade: [false; 4],
+                // a third of the elements touch in the increment: from a
+                // converged position above the facet (g_0 0.08..0.12, the
+                // path 0.15 long across it), the stick point follows the
+                // iterate (the random stream left as it was)
+                impact: (case % 3 == 1).then(|| {
+                    let a = case as f64;
+                    [
+                        xs[0] + 0.15 * a.sin(),
+                        xs[1] + 0.15 * a.cos(),
+                        0.08 + 0.04 * (case % 7) as f64 / 6.0,
+                    ]
+                }),
             };
             let Some((err, status)) = check(&law, xs, &pts, &apts, xi_a, Projection::FACE) else {
                 continue;
             };
+            if law.impact.is_some() {
+                worst_touch = worst_touch.max(err);
+                match status {
+                    FrictionStatus::Stick => touch_sticks += 1,
+                    _ => touch_slips += 1,
+                }
+            }
             match status {
                 FrictionStatus::Stick => {
                     sticks += 1;
@@ -749,7 +832,15 @@ mod tests {
             "friction_facet: {sticks} stick elements, max rel. FD error {worst_stick:.2e}; \
              {slips} slip elements, max rel. FD error {worst_slip:.2e}"
         );
+        println!(
+            "friction_facet first touch: {touch_sticks} stick, {touch_slips} slip elements, \
+             max rel. FD error {worst_touch:.2e}"
+        );
         assert!(sticks > 100 && slips > 100, "{sticks} {slips}");
+        assert!(
+            touch_sticks > 50 && touch_slips > 50,
+            "{touch_sticks} {touch_slips}"
+        );
         assert!(worst_stick <= 1e-6 && worst_slip <= 1e-6);
     }
 
@@ -765,6 +856,7 @@ mod tests {
             normal_shift: 0.0,
             normal_stiffness: 100.0,
             fade: [false; 4],
+            impact: None,
         };
         let xs = [0.7, 0.5, -0.01];
         let (xi, _) = foot(xs, &pts).unwrap();
@@ -846,6 +938,7 @@ mod tests {
                     normal_shift: 0.0,
                     normal_stiffness: 100.0,
                     fade: [false; 4],
+                    impact: None,
                 };
                 // stick point at (0.95, 0.4, 0) on a copy of the facet
                 let xi_a = [0.9, -0.2];
@@ -884,6 +977,100 @@ mod tests {
                 assert_eq!(st, status);
                 assert!(err <= 1e-6, "{name} {status:?}: {err:e}");
             }
+        }
+    }
+
+    /// A node open at the converged state (0.02 above the flat unit quad
+    /// at x = 0.3) closes in the increment: its stick point is where its
+    /// straight path from there crosses the facet's plane *at the iterate
+    /// evaluated*, `tau = g_0 / (g_0 - g)`, whatever iterate closed it
+    /// first (the rule before fixed it at the first closed iterate, so the
+    /// same state gave another force after a deeper first iterate: here
+    /// x = 0.36 instead of 0.3667); its tangential force `(1 - tau) k_T
+    /// |P (x_s - x_0)|` vanishes with its gap, and the stick point
+    /// recorded is the material point of the crossing.
+    #[test]
+    fn a_node_touching_in_the_increment_sticks_where_it_touched() {
+        let pts = facet(4, &[0.0; 12], [0.0; 3]);
+        let x0 = [0.3, 0.5, 0.02];
+        let law = Friction {
+            mu: 0.5,
+            stiffness: Some(10.0),
+            first_impact: FirstImpact::Intersect,
+            cut_at_impact: false,
+        };
+        let method = ContactMethod::Penalty {
+            kind: crate::model::PenaltyKind::Nodal,
+            stiffness: 100.0,
+        };
+        let eval = |state: &mut FrictionState<3>, xs: [f64; 3]| {
+            let (xi, _) = foot(xs, &pts).unwrap();
+            let c = FacetContact {
+                slave: 0,
+                xs,
+                facet: 0,
+                pts: &pts,
+                xi,
+                at: Projection::FACE,
+                gap: xs[2],
+                normal_force: -100.0 * xs[2],
+                normal_stiffness: 100.0,
+                area: 1.0,
+                free_edges: [false; 4],
+            };
+            apply(&law, &method, &c, 1, |_| pts.clone(), state)
+                .unwrap()
+                .0
+        };
+        // a deeper first iterate, then the one evaluated
+        let (deep, xs) = ([0.45, 0.5, -0.03], [0.4, 0.5, -0.01]);
+        let mut state = FrictionState::new(vec![x0]);
+        let r_deep = eval(&mut state, deep);
+        let r = eval(&mut state, xs);
+        let fresh = eval(&mut FrictionState::new(vec![x0]), xs);
+        assert_eq!(r.friction.status, FrictionStatus::Stick);
+        assert_eq!(r.forces, fresh.forces);
+        assert_eq!(r.tangent, fresh.tangent);
+        // tau = 0.02 / 0.03: crossing at x = 0.3 + 0.1 tau, T = -k_T (1 -
+        // tau) 0.1 along x
+        let tau = 0.02 / 0.03;
+        let t = r.friction.traction;
+        assert!((t[0] + 10.0 * (1.0 - tau) * 0.1).abs() < 1e-13, "{t:?}");
+        assert!(t[1].abs() < 1e-15 && t[2].abs() < 1e-15, "{t:?}");
+        let deep_tau = 0.02 / 0.05;
+        assert!(
+            (r_deep.friction.traction[0] + 10.0 * (1.0 - deep_tau) * 0.15).abs() < 1e-13,
+            "{:?}",
+            r_deep.friction
+        );
+        let (k, xi_a) = decode(state.anchor[0], 1).unwrap();
+        assert_eq!(k, 0);
+        let crossing = point_at(&pts, xi_a);
+        assert!(
+            (crossing[0] - (0.3 + 0.1 * tau)).abs() < 1e-13,
+            "{crossing:?}"
+        );
+        // closing: the force vanishes with the gap
+        let grazing = eval(&mut FrictionState::new(vec![x0]), [0.4, 0.5, -1e-9]);
+        let expected = 10.0 * 0.1 * 1e-9 / (0.02 + 1e-9);
+        let f = grazing.friction.tangential_force;
+        assert!((f - expected).abs() < 1e-6 * expected, "{f:e} {expected:e}");
+        // the tangent of a first touch against central differences, stick
+        // and slip (mu 0.5 and 0.01)
+        for (mu, status) in [(0.5, FrictionStatus::Stick), (0.01, FrictionStatus::Slip)] {
+            let fl = FacetFriction {
+                mu,
+                alpha_t: 10.0,
+                shift: [0.0; 3],
+                normal_shift: 0.0,
+                normal_stiffness: 100.0,
+                fade: [false; 4],
+                impact: Some(x0),
+            };
+            let (err, st) = check(&fl, xs, &pts, &pts, [0.0; 2], Projection::FACE).unwrap();
+            println!("friction_facet first touch {st:?}: max rel. FD error {err:.2e}");
+            assert_eq!(st, status);
+            assert!(err <= 1e-6, "{status:?}: {err:e}");
         }
     }
 

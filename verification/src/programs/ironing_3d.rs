@@ -82,10 +82,44 @@
 //! 0.050; its 3 cutbacks are now in the slide (t 1.62, and twice at
 //! 1.81; not traced: the frictionless mortar press also cuts back twice in
 //! the same press increment at level 0, the open/closed kink of a slab
-//! 500 times softer than its penalty). Node-to-facet faceted mu = 0.3 (its
-//! stick point of a first touch fixed at the first closed iterate,
-//! `friction_facet`) still cycles at level 0's third press increment
-//! (9 <-> 7), not changed here.
+//! 500 times softer than its penalty).
+//!
+//! Node-to-facet faceted mu = 0.3 cycles at level 0's third press
+//! increment (9 <-> 7 contacts: 30 iterations twice, cut back to a
+//! quarter), traced per node and evaluation (`ctc run -v` of level 0's
+//! deck, a temporary print in `friction_facet::apply`). Not a first
+//! touch: no node touches for the first time in that increment. The two
+//! flank nodes that switch (slab x = 3, z = 1.6 and x = 1, z = 2.6) hold
+//! stick points from increment 2, where they closed barely (`R_N` 0.05,
+//! 0.02); the converged answer (at a quarter of the increment) has them
+//! sticking, carried down with the die (`|T|` 0.015, 0.008 within cones
+//! of 0.023, 0.010). The predictor leaves them open, the Newton step of
+//! an open node puts it 0.19 into the die (the slab is 500 times softer
+//! than the penalty), the line search cuts to 1/64, where they are closed
+//! shallow (gap -6e-4..-3e-3) but 0.05..0.07 from their stick point:
+//! slipping (trial 1.1..2.9 against `mu R_N` 0.05..0.45), a state whose
+//! tangent holds them nowhere along the flank, and the next full step
+//! opens them again: an open / closed and stick / slip globalization issue
+//! at small normal forces, open. In increment 2 the same nodes did close
+//! for the first time, but the die moving onto them leaves their
+//! converged position behind the facet's *current* plane (`g_0 <= 0`), so
+//! they take the foot of `x_0` on the facet at the first closed iterate
+//! (convected from then on), not the crossing rule: that point depends on
+//! the iterate (first closed gap -0.08, converged -1.1e-4: the stick
+//! point 0.013 off, and they converged slipping, trial 0.67 against `mu
+//! R_N` 0.016). The crossing rule now follows the iterate (`friction_facet`,
+//! penalty, as mortar's), which leaves level 0's figures bit-for-bit
+//! unchanged (`ctc verify ironing_3d`: 180 iterations, 17 increments) and
+//! moves the benchmark deck's (`ctc verify ironing_ntf_3d`, debug: 364 ->
+//! 352 iterations, 32 -> 34 increments, 3 cutbacks, `F_n` oscillation
+//! 0.134 -> 0.091, `F_t / F_n` 0.396 -> 0.391, `F_t` oscillation 0.133 ->
+//! 0.146);
+//! taking the spatial `x_0` for the nodes behind the plane instead gave
+//! level 0 180 -> 167 iterations and 3 -> 2 cutbacks (the press cycle
+//! unchanged) but stopped `friction_blocks_ntf_3d` in its press (its block
+//! overlaps the base: the master's own motion counted as slip). The fix
+//! for those nodes is the path relative to the facet (the facet's committed
+//! node positions, which `DeformablePair` keeps for mortar friction only).
 //!
 //! ```text
 //!            die top: u_y = -1.4, then u_x = 4
@@ -681,7 +715,9 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 5] = [
     // debug, 2,448 s wall)
     [[1e-9, 1e-9], [0.05, 0.05], [0.03, 0.03], [8.0, 8.0]],
     // ntf faceted mu 0.3: level 0 F_n oscillation 0.079, F_t / F_n 0.302
-    // (error 8e-3), 7.45 iterations; level 1 0.134, 0.396, 10.0
+    // (error 8e-3), 7.45 iterations; level 1 0.134, 0.396, 10.0 (0.091,
+    // 0.391 by `ironing_ntf_3d` with the first-touch crossing following the
+    // iterate)
     [[1e-9, 1e-9], [0.15, 0.2], [0.03, 0.4], [10.0, 12.0]],
     // mortar mu 0.3: 0.065, 0.341, 10.0; with the first-touch stick
     // point 0.067, 0.340, 10.0 (t = 2, 54 increments, 12 cutbacks, none
