@@ -616,6 +616,20 @@ mod tests {
             .collect()
     }
 
+    /// The law of the hand-made cases: `alpha_T = 10`, normal stiffness
+    /// 100, no shift, no fade; `impact` the first-touch start, if any.
+    fn plain_law(mu: f64, impact: Option<[f64; 3]>) -> FacetFriction {
+        FacetFriction {
+            mu,
+            alpha_t: 10.0,
+            shift: [0.0; 3],
+            normal_shift: 0.0,
+            normal_stiffness: 100.0,
+            fade: [false; 4],
+            impact,
+        }
+    }
+
     /// The forces of the element at the packed coordinates `v` (slave, the
     /// contact facet's `n` nodes, the anchor facet's `m` nodes), the foot
     /// found again by Newton.
@@ -849,15 +863,7 @@ mod tests {
         // flat unit quad, node 0.01 below at (0.7, 0.5), stick point at
         // the centre (0.5, 0.5): g_T = 0.2 along x, R_N = 100 x 0.01 = 1
         let pts = facet(4, &[0.0; 12], [0.0; 3]);
-        let law = FacetFriction {
-            mu: 0.3,
-            alpha_t: 10.0,
-            shift: [0.0; 3],
-            normal_shift: 0.0,
-            normal_stiffness: 100.0,
-            fade: [false; 4],
-            impact: None,
-        };
+        let law = plain_law(0.3, None);
         let xs = [0.7, 0.5, -0.01];
         let (xi, _) = foot(xs, &pts).unwrap();
         let r = respond(&law, xs, &pts, xi, &pts, [0.0, 0.0], Projection::FACE).unwrap();
@@ -931,15 +937,7 @@ mod tests {
             let (p, n) = contact_point(xs, &pts, at);
             let dist = (0..3).map(|c| (xs[c] - p[c]).powi(2)).sum::<f64>().sqrt();
             for (mu, status) in [(0.5, FrictionStatus::Stick), (0.05, FrictionStatus::Slip)] {
-                let law = FacetFriction {
-                    mu,
-                    alpha_t: 10.0,
-                    shift: [0.0; 3],
-                    normal_shift: 0.0,
-                    normal_stiffness: 100.0,
-                    fade: [false; 4],
-                    impact: None,
-                };
+                let law = plain_law(mu, None);
                 // stick point at (0.95, 0.4, 0) on a copy of the facet
                 let xi_a = [0.9, -0.2];
                 let (xi, _) = foot(xs, &pts).unwrap();
@@ -1058,15 +1056,7 @@ mod tests {
         // the tangent of a first touch against central differences, stick
         // and slip (mu 0.5 and 0.01)
         for (mu, status) in [(0.5, FrictionStatus::Stick), (0.01, FrictionStatus::Slip)] {
-            let fl = FacetFriction {
-                mu,
-                alpha_t: 10.0,
-                shift: [0.0; 3],
-                normal_shift: 0.0,
-                normal_stiffness: 100.0,
-                fade: [false; 4],
-                impact: Some(x0),
-            };
+            let fl = plain_law(mu, Some(x0));
             let (err, st) = check(&fl, xs, &pts, &pts, [0.0; 2], Projection::FACE).unwrap();
             println!("friction_facet first touch {st:?}: max rel. FD error {err:.2e}");
             assert_eq!(st, status);

@@ -1443,15 +1443,13 @@ mod tests {
         }
     }
 
-    #[test]
-    fn two_ranks_exchange_their_committed_points_bit_for_bit() {
-        // the plastic finite-strain law on the two quads: each rank
-        // evaluates its cell; after commit and exchange both hold the
-        // points the whole assembler computed, bit for bit
+    /// The plastic two quads (`plastic_square`'s material) with the body's
+    /// kinematics `kin`, its dofs, a displacement that yields them, and the
+    /// whole assembler after one committed assembly at that displacement.
+    fn plastic_two_quads_committed(kin: Kinematics) -> (Model, DofMap, Vec<[f64; 2]>, Assembler) {
         let mut model = two_quads();
-        let plastic = plastic_square();
-        model.materials = plastic.materials.clone();
-        model.bodies[0].kinematics = Kinematics::Finite;
+        model.materials = plastic_square().materials.clone();
+        model.bodies[0].kinematics = kin;
         let dofs = DofMap::new(&model);
         let u: Vec<[f64; 2]> = (0..6)
             .map(|n| [0.02 * (n % 3) as f64, -0.01 * (n / 3) as f64])
@@ -1464,6 +1462,32 @@ mod tests {
             .assemble(&model.mesh, &scatter, &u, &mut f, None)
             .unwrap();
         whole.commit();
+        (model, dofs, u, whole)
+    }
+
+    /// A rank's assembler of `share` after one committed assembly at `u`.
+    fn rank_assembler_committed(
+        model: &Model,
+        dofs: &DofMap,
+        u: &[[f64; 2]],
+        share: Arc<AssemblyShare>,
+    ) -> Assembler {
+        let scatter = Scatter::with_share(&model.mesh, dofs, &[], Some(share.clone())).unwrap();
+        let mut asm = Assembler::with_share(model, Some(share)).unwrap();
+        let mut f = vec![0.0; 12];
+        asm.begin_increment(1.0);
+        asm.assemble(&model.mesh, &scatter, u, &mut f, None)
+            .unwrap();
+        asm.commit();
+        asm
+    }
+
+    #[test]
+    fn two_ranks_exchange_their_committed_points_bit_for_bit() {
+        // the plastic finite-strain law on the two quads: each rank
+        // evaluates its cell; after commit and exchange both hold the
+        // points the whole assembler computed, bit for bit
+        let (model, dofs, u, whole) = plastic_two_quads_committed(Kinematics::Finite);
         assert!(whole.points()[1][0].history.ep > 0.0, "plastic");
         let mut ranks = Vec::new();
         for cells in [[true, false], [false, true]] {
@@ -1480,13 +1504,7 @@ mod tests {
                 nodes: vec![cells[0]; 6],
                 exchanged,
             });
-            let scatter =
-                Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
-            let mut asm = Assembler::with_share(&model, Some(share)).unwrap();
-            asm.begin_increment(1.0);
-            asm.assemble(&model.mesh, &scatter, &u, &mut f, None)
-                .unwrap();
-            asm.commit();
+            let asm = rank_assembler_committed(&model, &dofs, &u, share);
             ranks.push(asm);
         }
         // before the exchange a rank holds virgin points of the other cell
@@ -1520,21 +1538,9 @@ mod tests {
         // the points of its cell only; gathered on the first rank they are
         // the whole assembler's, bit for bit, and a restart from them gives
         // each rank its own cell's points back
-        let mut model = two_quads();
-        let plastic = plastic_square();
-        model.materials = plastic.materials.clone();
-        let dofs = DofMap::new(&model);
-        let u: Vec<[f64; 2]> = (0..6)
-            .map(|n| [0.02 * (n % 3) as f64, -0.01 * (n / 3) as f64])
-            .collect();
-        let mut whole = Assembler::new(&model).unwrap();
-        let scatter = Scatter::new(&model.mesh, &dofs).unwrap();
-        let mut f = vec![0.0; 12];
-        whole.begin_increment(1.0);
-        whole
-            .assemble(&model.mesh, &scatter, &u, &mut f, None)
-            .unwrap();
-        whole.commit();
+        // the small-strain kinematics of `two_quads`
+        let small = two_quads().bodies[0].kinematics;
+        let (model, dofs, u, whole) = plastic_two_quads_committed(small);
         assert!(whole.points().iter().all(|p| p.len() == 4));
         let mut ranks = Vec::new();
         for cells in [[true, false], [false, true]] {
@@ -1544,13 +1550,7 @@ mod tests {
                 nodes: vec![cells[0]; 6],
                 exchanged: vec![false; 2],
             });
-            let scatter =
-                Scatter::with_share(&model.mesh, &dofs, &[], Some(share.clone())).unwrap();
-            let mut asm = Assembler::with_share(&model, Some(share)).unwrap();
-            asm.begin_increment(1.0);
-            asm.assemble(&model.mesh, &scatter, &u, &mut f, None)
-                .unwrap();
-            asm.commit();
+            let mut asm = rank_assembler_committed(&model, &dofs, &u, share);
             // nothing to exchange
             asm.exchange_points(|v| assert!(v.is_empty()));
             ranks.push(asm);
