@@ -674,22 +674,24 @@ fn large_contact_deck_by_cg_gamg_reports_every_rank() {
     }
 }
 
-#[test]
-fn restart_under_mpirun_finishes_a_stopped_run_as_the_serial_run() {
-    // the coarse 3D Hertz sphere in 40 increments, output (and restart
-    // point) at each: stopped (SIGTERM to mpirun) once two increments are
-    // written, then `mpirun -n 2 ctc run --restart --solver petsc`
-    let tmp = tempfile::tempdir().unwrap();
-    let text = std::fs::read_to_string(root().join("tests/decks/hertz_sphere_3d_coarse.ctc"))
-        .unwrap()
-        .replace("increments = 4", "increments = 40")
-        .replace("output {", "output {\n  every = 1");
-    let deck = tmp.path().join("sphere40.ctc");
-    std::fs::write(&deck, text).unwrap();
+/// The deck `text` (written as `name.ctc`, every increment an output and
+/// restart point) run serially, then under `mpirun -n 2 --solver petsc`
+/// stopped (SIGTERM to mpirun) once two increments are written, then
+/// `--restart`ed to its end; asserts the restarted run completes on 2
+/// ranks with the serial history to 1e-9 and returns the serial and the
+/// restarted output directories.
+fn stopped_and_restarted_on_two_ranks(
+    tmp: &Path,
+    name: &str,
+    text: &str,
+    increments: usize,
+) -> (PathBuf, PathBuf) {
+    let deck = tmp.join(format!("{name}.ctc"));
+    std::fs::write(&deck, text.replace("output {", "output {\n  every = 1")).unwrap();
     let deck = deck.to_str().unwrap();
-    let serial = tmp.path().join("serial");
+    let serial = tmp.join("serial");
     ok(run(deck, &serial, None, &[]), "serial run");
-    let dir = tmp.path().join("petsc2");
+    let dir = tmp.join("petsc2");
     let mut child = Command::new("mpirun")
         .args(["--allow-run-as-root", "--oversubscribe", "-n", "2"])
         .arg(env!("CARGO_BIN_EXE_ctc"))
@@ -728,7 +730,10 @@ fn restart_under_mpirun_finishes_a_stopped_run_as_the_serial_run() {
         .unwrap()
         .matches("part=\"0\"")
         .count();
-    assert!((2..40).contains(&written), "{written} increments written");
+    assert!(
+        (2..increments).contains(&written),
+        "{written} increments written"
+    );
     ok(
         run(deck, &dir, Some(2), &["--restart", "--solver", "petsc"]),
         "restarted petsc run",
@@ -738,6 +743,18 @@ fn restart_under_mpirun_finishes_a_stopped_run_as_the_serial_run() {
     assert_eq!(s["distributed"]["ranks"], 2);
     let h = history_difference(&serial, &dir);
     assert!(h < 1e-9, "restarted history differs by {h:.2e}");
+    (serial, dir)
+}
+
+#[test]
+fn restart_under_mpirun_finishes_a_stopped_run_as_the_serial_run() {
+    // the coarse 3D Hertz sphere in 40 increments, stopped and restarted
+    // (`stopped_and_restarted_on_two_ranks`): history and pressures
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root().join("tests/decks/hertz_sphere_3d_coarse.ctc"))
+        .unwrap()
+        .replace("increments = 4", "increments = 40");
+    let (serial, dir) = stopped_and_restarted_on_two_ranks(tmp.path(), "sphere40", &text, 40);
     let (p0, peak0) = pressures(&serial, 40);
     let (p, _) = pressures(&dir, 40);
     let dp = p0
@@ -746,4 +763,24 @@ fn restart_under_mpirun_finishes_a_stopped_run_as_the_serial_run() {
         .fold(0.0f64, |m, (x, y)| m.max((x - y).abs()))
         / peak0;
     assert!(dp < 1e-9, "pressures differ by {dp:.2e} of p0");
+}
+
+#[test]
+fn plastic_restart_under_mpirun_gathers_every_rank_s_points() {
+    // examples/upsetting.ctc (J2 at finite strain) on a 32 x 16 mesh in
+    // 100 increments (the example's 4 x 2 in 200 increments ran whole in
+    // 1.6 s on 2 ranks, before the stop could reach it; this one 4.9 s),
+    // stopped and restarted on 2 ranks: each rank holds the committed
+    // points of its own cells (and the border's), the restart file
+    // gathers them on rank 0 and the restart gives each rank its own
+    // back; the history and the last increment's fields (stress,
+    // strain, von Mises) are the serial ones (a point lost or misplaced
+    // in the gather changes the stresses of the last increment)
+    let tmp = tempfile::tempdir().unwrap();
+    let text = std::fs::read_to_string(root().join("examples/upsetting.ctc"))
+        .unwrap()
+        .replace("increments = 10", "increments = 100")
+        .replace("divisions = (4, 2)", "divisions = (32, 16)");
+    let (serial, dir) = stopped_and_restarted_on_two_ranks(tmp.path(), "upsetting", &text, 100);
+    pieces_are_the_serial_vtu(&serial, &dir, 2, 1e-9);
 }
