@@ -46,8 +46,8 @@
 //!   ==============  rigid floor (Lagrange)
 //! ```
 
+use super::value;
 use crate::case::{Check, Quantity};
-use crate::measure::Value;
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 use ctc_engine::model::AnyModel;
 use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
@@ -162,15 +162,6 @@ impl Observer<3> for Bounce {
     }
 }
 
-fn rel(name: &'static str, computed: f64, reference: f64) -> Value {
-    Value {
-        quantity: Quantity::Named(name),
-        reference: Some(reference),
-        computed,
-        error: (computed / reference - 1.0).abs(),
-    }
-}
-
 fn bounce(level: usize) -> Result<ProgramLevel, String> {
     let n = 70 << level;
     let dt = T_END / n as f64;
@@ -222,8 +213,8 @@ fn bounce(level: usize) -> Result<ProgramLevel, String> {
         h: dt,
         values: vec![
             super::error(TRAJECTORY, trajectory),
-            rel(COMPRESSION, compression, d_s + r),
-            rel(REBOUND, v_r, v_i),
+            value(COMPRESSION, compression, d_s + r),
+            value(REBOUND, v_r, v_i),
             super::error(BALANCE, trace.balance / (M * G * H0)),
         ],
         ..ProgramLevel::default()
@@ -309,9 +300,9 @@ fn columns(_level: usize) -> Result<ProgramLevel, String> {
             _ => l,
         };
         out.values
-            .push(rel(COLUMN_NAMES[s], c.top, -rho * g * l * l / (2.0 * e)));
+            .push(value(COLUMN_NAMES[s], c.top, -rho * g * l * l / (2.0 * e)));
         out.values
-            .push(rel(WEIGHT_NAMES[s], c.reaction, rho * g * volume));
+            .push(value(WEIGHT_NAMES[s], c.reaction, rho * g * volume));
         out.add_run(&summary);
     }
     Ok(out)

@@ -108,8 +108,8 @@
 //! strain +1.8e-2), balance error 8.8e-3 K0.
 
 use super::taylor_bar::{deck, kinetic0, solve, Bar, Final};
+use super::value;
 use crate::case::{Check, Quantity};
-use crate::measure::Value;
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
 
 /// Initial length (mm).
@@ -184,15 +184,6 @@ fn bar(heated: bool) -> Bar {
     }
 }
 
-fn rel(name: &'static str, computed: f64, reference: f64) -> Value {
-    Value {
-        quantity: Quantity::Named(name),
-        reference: Some(reference),
-        computed,
-        error: (computed / reference - 1.0).abs(),
-    }
-}
-
 fn measure_axi(l: usize) -> Result<ProgramLevel, String> {
     let (nr, nz, increments) = AXI[l.min(AXI.len() - 1)];
     let (hot, s_hot): (Final, _) = solve(deck(&bar(true), false, (nr, nz, 0), increments))?;
@@ -203,14 +194,14 @@ fn measure_axi(l: usize) -> Result<ProgramLevel, String> {
         ..ProgramLevel::default()
     };
     out.values = vec![
-        rel(NAMES[0], hot.length, REFERENCE[0]),
-        rel(NAMES[1], hot.radius, REFERENCE[1]),
-        rel(NAMES[2], hot.heat, BETA * hot.internal),
+        value(NAMES[0], hot.length, REFERENCE[0]),
+        value(NAMES[1], hot.radius, REFERENCE[1]),
+        value(NAMES[2], hot.heat, BETA * hot.internal),
         super::error(NAMES[3], hot.balance.abs() / k0),
-        rel(NAMES[4], iso.length, REFERENCE[0]),
-        rel(NAMES[5], iso.radius, REFERENCE[1]),
+        value(NAMES[4], iso.length, REFERENCE[0]),
+        value(NAMES[5], iso.radius, REFERENCE[1]),
         super::error(NAMES[6], hot.ep),
-        rel(NAMES[7], hot.temperature - T0, adiabatic_rise(hot.ep)),
+        value(NAMES[7], hot.temperature - T0, adiabatic_rise(hot.ep)),
         super::error(NAMES[8], hot.length - iso.length),
         super::error(NAMES[9], hot.kinetic / k0),
     ];
@@ -241,11 +232,11 @@ fn measure_3d(_level: usize) -> Result<ProgramLevel, String> {
         ..ProgramLevel::default()
     };
     out.values = vec![
-        rel(NAMES_3D[0], q.length, axi.length),
-        rel(NAMES_3D[1], q.radius, axi.radius),
-        rel(NAMES_3D[2], q.length, REFERENCE[0]),
-        rel(NAMES_3D[3], q.radius, REFERENCE[1]),
-        rel(NAMES_3D[4], q.temperature - T0, adiabatic_rise(q.ep)),
+        value(NAMES_3D[0], q.length, axi.length),
+        value(NAMES_3D[1], q.radius, axi.radius),
+        value(NAMES_3D[2], q.length, REFERENCE[0]),
+        value(NAMES_3D[3], q.radius, REFERENCE[1]),
+        value(NAMES_3D[4], q.temperature - T0, adiabatic_rise(q.ep)),
         super::error(NAMES_3D[5], q.balance.abs() / k0),
         super::error(NAMES_3D[6], q.ep),
     ];
