@@ -5,8 +5,10 @@
 //! A pair has two surfaces: side 0 (the deck's left of `->`) and side 1
 //! (the master surface, right of `->`). Each slave node is projected on
 //! the candidate segments of the opposite side (bucket-grid broad phase
-//! inflated by `prof`, plus the segment of the last evaluation and its
-//! neighbours, so a node that penetrated deeper than `prof` is not lost);
+//! inflated by `prof`, plus its memory: the segment of the last
+//! evaluation, its neighbours and the segments walked from it towards the
+//! node's foot, [`memory_walk`], so a node that penetrated deeper than
+//! `prof` is not lost);
 //! the kept projection gives a 3-node element (slave, `m1`, `m2`) with the
 //! kinematics of [`super::segment`].
 //!
@@ -48,7 +50,14 @@
 //!    surface the segment is **extended** past its end (`g` and `xi` of the
 //!    segment line) only by [`FREE_END_XI`] segment lengths;
 //! 3. penetrations deeper than `max(prof, L)` are ignored (a node of the
-//!    far side of a thin body is not in contact with this face).
+//!    far side of a thin body is not in contact with this face), except
+//!    on the node's memory ([`memory_walk`]): a node that had a
+//!    projection on this surface at the last evaluation (in contact, or
+//!    open within the window) and is now deeper crossed the face during
+//!    one Newton step; it is not on the far side. (Dropping it left it
+//!    inside the master for good: the 2D ironing slide at slab cells
+//!    1/2, 1/4, where a Newton step from an open predictor put a slab
+//!    node 0.54 inside the die, past `max(prof, L) = 0.5`, issue 18.)
 //!
 //! The gap that decides contact is the one that gives the force and the
 //! reported pressure.
@@ -173,6 +182,8 @@ pub struct SurfacePair {
     pub midsides: [Vec<usize>; 2],
     /// Scratch: candidate segments of one query.
     pub(crate) candidates: Vec<usize>,
+    /// Scratch: the memory segments of one query ([`memory_walk`]).
+    memory: Vec<usize>,
 }
 
 impl SurfacePair {
@@ -329,13 +340,73 @@ struct Kept {
     projection: SegmentProjection,
 }
 
+/// The memory of a slave node at `xs` whose last evaluation kept segment
+/// `start` of `surface`, appended to `out` (sorted, without duplicates):
+/// `start`, its neighbours, and the segments walked from `start` towards
+/// the node's foot (to the previous segment while the projection falls
+/// before the segment's start, to the next while it falls past its end;
+/// at most once round a closed surface). The segments a node can have
+/// reached by crossing the face since the last evaluation, however far it
+/// slid along it: exempt from the depth window (rule 3 of the module
+/// documentation). `tests` counts projections.
+fn memory_walk(
+    surface: &Surface,
+    x: &[[f64; 2]],
+    xs: [f64; 2],
+    start: usize,
+    tests: &mut usize,
+    out: &mut Vec<usize>,
+) {
+    out.push(start);
+    out.extend(surface.prev[start]);
+    out.extend(surface.next[start]);
+    let mut e = start;
+    let mut dir = 0i8;
+    for _ in 0..surface.edges.len() {
+        let [a, b] = surface.edges[e];
+        let Some(p) = SegmentProjection::new(xs, x[a], x[b]) else {
+            break;
+        };
+        *tests += 1;
+        let step = if p.xi < -XI_TOL {
+            -1
+        } else if p.xi > 1.0 + XI_TOL {
+            1
+        } else {
+            0
+        };
+        // inside the segment, or turned back (a kink's wedge): done
+        if step == 0 || (dir != 0 && step != dir) {
+            break;
+        }
+        dir = step;
+        let next = if step < 0 {
+            surface.prev[e]
+        } else {
+            surface.next[e]
+        };
+        match next {
+            Some(f) if f != start => {
+                out.push(f);
+                e = f;
+            }
+            _ => break,
+        }
+    }
+    out.sort_unstable();
+    out.dedup();
+}
+
 /// Projects `xs` on the candidates of `surface` and keeps one projection
-/// (rules of the module documentation); `tests` counts projections.
+/// (rules of the module documentation): the segments of `memory` (sorted,
+/// [`memory_walk`]) at any depth, the others within `max(depth, L)`;
+/// `tests` counts projections.
 fn closest(
     surface: &Surface,
     x: &[[f64; 2]],
     xs: [f64; 2],
     candidates: &[usize],
+    memory: &[usize],
     depth: f64,
     tests: &mut usize,
 ) -> Option<Kept> {
@@ -347,7 +418,7 @@ fn closest(
             continue;
         };
         *tests += 1;
-        if p.gap < -depth.max(p.length) {
+        if p.gap < -depth.max(p.length) && memory.binary_search(&e).is_err() {
             continue;
         }
         let k = Kept {
@@ -479,6 +550,7 @@ fn closest_smoothed(
     x: &[[f64; 2]],
     xs: [f64; 2],
     candidates: &[usize],
+    memory: &[usize],
     depth: f64,
     tests: &mut usize,
 ) -> Option<SmoothKept> {
@@ -509,7 +581,7 @@ fn closest_smoothed(
             continue;
         }
         let gap = p.gap(xi).0;
-        if gap < -depth.max(line.length) {
+        if gap < -depth.max(line.length) && memory.binary_search(&e).is_err() {
             continue;
         }
         if best.is_none_or(|(d, _, _)| gap.abs() < d) {
@@ -554,6 +626,7 @@ pub fn evaluate(
     let mut tests = 0usize;
     let mut brute = 0usize;
     let mut candidates = std::mem::take(&mut sp.candidates);
+    let mut memory = std::mem::take(&mut sp.memory);
     let smooth = cp.smoothing == NormalSmoothing::Nodal;
     let mut couplings = state.couplings.take();
     if let Some(c) = &mut couplings {
@@ -577,11 +650,12 @@ pub fn evaluate(
         if let Some(grid) = &surface.grid {
             grid.query(xs, prof, &mut candidates);
         }
-        // memory: the last segment and its neighbours are always tested
+        // memory: the last segment, its neighbours and the walk from it
+        // towards the node's foot are always tested, at any depth
+        memory.clear();
         if let Some(e) = state.last_entity[i].filter(|&e| e < surface.edges.len()) {
-            candidates.push(e);
-            candidates.extend(surface.prev[e]);
-            candidates.extend(surface.next[e]);
+            memory_walk(surface, x, xs, e, &mut tests, &mut memory);
+            candidates.extend_from_slice(&memory);
         }
         candidates.sort_unstable();
         candidates.dedup();
@@ -598,7 +672,7 @@ pub fn evaluate(
             });
         }
         let smoothed = if smooth {
-            closest_smoothed(surface, x, xs, &candidates, prof, &mut tests)
+            closest_smoothed(surface, x, xs, &candidates, &memory, prof, &mut tests)
         } else {
             None
         };
@@ -610,7 +684,7 @@ pub fn evaluate(
                     projection,
                 })
             }
-            None => closest(surface, x, xs, &candidates, prof, &mut tests),
+            None => closest(surface, x, xs, &candidates, &memory, prof, &mut tests),
         };
         let Some(k) = kept else {
             state.last_entity[i] = None;
@@ -769,6 +843,7 @@ pub fn evaluate(
         });
     }
     sp.candidates = candidates;
+    sp.memory = memory;
     if cp.strategy == ContactStrategy::ModifiedDoublePass || sp.self_contact {
         // both passes at once (self contact: both directions): report the
         // interface pressure (`super::interface_pressures`)
@@ -963,7 +1038,7 @@ mod tests {
         // the kink): the extended nearest segment keeps the contact
         let (s, x) = kinked(true);
         let mut tests = 0;
-        let k = closest(&s, &x, [-0.05, -0.03], &[0, 1], 0.5, &mut tests)
+        let k = closest(&s, &x, [-0.05, -0.03], &[0, 1], &[], 0.5, &mut tests)
             .expect("contact kept in the dead zone");
         assert!(k.projection.gap < 0.0, "{k:?}");
         // the vertex: gap = minus the distance to it, normal towards it
@@ -973,7 +1048,7 @@ mod tests {
         let n = k.projection.normal;
         assert!((n[0] - 0.05 / r).abs() < 1e-15 && (n[1] - 0.03 / r).abs() < 1e-15);
         // the same answer from either segment (continuous across the wedge)
-        let k1 = closest(&s, &x, [-0.05, -0.03], &[1, 0], 0.5, &mut tests).unwrap();
+        let k1 = closest(&s, &x, [-0.05, -0.03], &[1, 0], &[], 0.5, &mut tests).unwrap();
         assert_eq!(k1.projection.gap, k.projection.gap);
         assert_eq!(k1.projection.normal, k.projection.normal);
     }
@@ -984,15 +1059,15 @@ mod tests {
         let mut tests = 0;
         // inside the body near a convex corner: both projections inside
         // their segments, the nearer face wins
-        let k = closest(&s, &x, [-0.1, -0.05], &[0, 1], 0.5, &mut tests).unwrap();
+        let k = closest(&s, &x, [-0.1, -0.05], &[0, 1], &[], 0.5, &mut tests).unwrap();
         assert_eq!(k.segment, 1);
         assert!((k.projection.gap + 0.05).abs() < 1e-15);
         // outside, beyond the corner: extended lines give positive gaps
-        let k = closest(&s, &x, [0.1, 0.1], &[0, 1], 0.5, &mut tests).unwrap();
+        let k = closest(&s, &x, [0.1, 0.1], &[0, 1], &[], 0.5, &mut tests).unwrap();
         assert!(k.projection.gap > 0.0);
         // outside, in front of one face: no false contact from the other
         // face's extension
-        let k = closest(&s, &x, [0.05, -0.01], &[0, 1], 0.5, &mut tests).unwrap();
+        let k = closest(&s, &x, [0.05, -0.01], &[0, 1], &[], 0.5, &mut tests).unwrap();
         assert_eq!(k.segment, 0);
         assert!((k.projection.gap - 0.05).abs() < 1e-15);
     }
@@ -1016,7 +1091,7 @@ mod tests {
         let r = xs[0].hypot(xs[1]);
         let mut tests = 0;
         for order in [[0, 1], [1, 0]] {
-            let k = closest(&s, &x, xs, &order, 0.5, &mut tests).unwrap();
+            let k = closest(&s, &x, xs, &order, &[], 0.5, &mut tests).unwrap();
             assert!(k.projection.corner, "{k:?}");
             assert!((k.projection.gap - r).abs() < 1e-15, "{order:?}: {k:?}");
         }
@@ -1025,10 +1100,77 @@ mod tests {
         // front of segment 0's extension: the vertex, inside the body)
         let x = vec![dout, [0.0, 0.0], [0.0, -1.0]];
         for order in [[0, 1], [1, 0]] {
-            let k = closest(&s, &x, xs, &order, 0.5, &mut tests).unwrap();
+            let k = closest(&s, &x, xs, &order, &[], 0.5, &mut tests).unwrap();
             assert!(k.projection.corner, "{k:?}");
             assert!((k.projection.gap + r).abs() < 1e-15, "{order:?}: {k:?}");
         }
+    }
+
+    /// A node deep inside a convex sliding master keeps its segment (issue
+    /// 18, the 2D ironing slide): the die's arc (radius 3, 200..340
+    /// degrees in 28 segments of 5 degrees, body on the left: the walk is
+    /// counterclockwise), a slab node touching segment 14 (272.5 deg);
+    /// then the die slides 0.6 along x (2.3 segment lengths) and a Newton
+    /// step puts the node 0.56 inside it, past `max(prof, L) = 0.5`.
+    /// Searched from its memory it keeps the segment under it, at its
+    /// depth; a node without memory there is not taken (rule 3: the far
+    /// side of a thin body), nor was it from the last segment and its
+    /// neighbours alone (the search before the walk: the node was lost
+    /// and stayed inside the die).
+    #[test]
+    fn node_deep_inside_a_convex_sliding_master_keeps_its_segment() {
+        let (r, prof) = (3.0f64, 0.5);
+        let arc = |c: [f64; 2]| -> Vec<[f64; 2]> {
+            (0..=28)
+                .map(|k| {
+                    let t = (200.0 + 5.0 * k as f64).to_radians();
+                    [c[0] + r * t.cos(), c[1] + r * t.sin()]
+                })
+                .collect()
+        };
+        let edges: Vec<[usize; 2]> = (0..28).map(|k| [k, k + 1]).collect();
+        let s = Surface::new(&edges);
+        let mut tests = 0;
+        // touching: a node just inside the chord of segment 14
+        let t = 272.5f64.to_radians();
+        let c0 = [0.0, 3.0];
+        let chord = r * 2.5f64.to_radians().cos();
+        let xs = [
+            c0[0] + (chord - 1e-3) * t.cos(),
+            c0[1] + (chord - 1e-3) * t.sin(),
+        ];
+        let x = arc(c0);
+        let k = closest(&s, &x, xs, &[13, 14, 15], &[], prof, &mut tests).unwrap();
+        assert_eq!(k.segment, 14);
+        assert!((k.projection.gap + 1e-3).abs() < 1e-12, "{k:?}");
+        // the die slides 0.6 along x, the node is 0.56 inside it
+        let c1 = [0.6, 3.0];
+        let x = arc(c1);
+        let xs = [xs[0], xs[1] + 0.6];
+        let (dx, dy) = (xs[0] - c1[0], xs[1] - c1[1]);
+        let angle = dy.atan2(dx).to_degrees().rem_euclid(360.0);
+        let under = ((angle - 200.0) / 5.0).floor() as usize;
+        assert!(under + 2 <= 14, "the foot is 2+ segments away: {under}");
+        let half = 2.5f64.to_radians();
+        let mid = (200.0 + 5.0 * under as f64 + 2.5).to_radians();
+        // depth below the chord of segment `under`
+        let depth = r * half.cos() - (dx * mid.cos() + dy * mid.sin());
+        assert!(depth > prof && depth > k.projection.length, "{depth}");
+        // the last segment and its neighbours alone: lost
+        assert!(closest(&s, &x, xs, &[13, 14, 15], &[], prof, &mut tests).is_none());
+        // no memory, every segment a candidate: not taken (too deep)
+        let all: Vec<usize> = (0..28).collect();
+        assert!(closest(&s, &x, xs, &all, &[], prof, &mut tests).is_none());
+        // from its memory: the walk reaches the segment under it
+        let mut memory = Vec::new();
+        memory_walk(&s, &x, xs, 14, &mut tests, &mut memory);
+        assert!(memory.contains(&under), "{memory:?} lacks {under}");
+        assert!(memory.windows(2).all(|w| w[0] < w[1]), "{memory:?}");
+        let k = closest(&s, &x, xs, &memory, &memory, prof, &mut tests).expect("kept");
+        assert_eq!(k.segment, under);
+        assert!((k.projection.gap + depth).abs() < 1e-12, "{k:?} vs {depth}");
+        // memory exempts from the depth window only its own segments
+        assert!(closest(&s, &x, xs, &all, &[14], prof, &mut tests).is_none());
     }
 
     #[test]
@@ -1036,8 +1178,8 @@ mod tests {
         let s = Surface::new(&[[0, 1]]);
         let x = vec![[1.0, 0.0], [0.0, 0.0]];
         let mut tests = 0;
-        assert!(closest(&s, &x, [-0.01, -0.001], &[0], 0.5, &mut tests).is_some());
-        assert!(closest(&s, &x, [-0.1, -0.001], &[0], 0.5, &mut tests).is_none());
+        assert!(closest(&s, &x, [-0.01, -0.001], &[0], &[], 0.5, &mut tests).is_some());
+        assert!(closest(&s, &x, [-0.1, -0.001], &[0], &[], 0.5, &mut tests).is_none());
     }
 
     #[test]

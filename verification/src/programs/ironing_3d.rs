@@ -173,11 +173,23 @@
 //! 8 cells across z: 2.4604, +2.2 %, mean slide 2.679): the ~7 % of
 //! mortar over node-to-facet there is this coarse-mesh difference.
 //!
-//! Not settled: the 2D node-to-segment slide at cells 1/2 and 1/4 loses
-//! slab nodes under the die (from `t = 1.43` at 1/2 a node about 0.5
-//! inside the die has no master; `F_n` 2.74 -> 2.30, later 2.44 -> 0.97,
-//! `ctc run` with `fields = [contact]`), so its slide means there (1.70,
-//! 2.83) are no reference; 2D mortar's and 3D node-to-facet's are smooth.
+//! The 2D node-to-segment slide at cells 1/2 and 1/4 lost slab nodes
+//! under the die (`F_n` 2.74 -> 2.47 at t = 1.1, 2.74 -> 2.30 at 1.5,
+//! 2.44 -> 0.97 at 1.65 at cell 1/2; slide means over `t >= 1.5` 1.70 and
+//! 2.83): at cell 1/2 the predictor of the second slide increment
+//! started slab node 120 (x = 3) open (gap +5.7e-4), the Newton step
+//! with it free put it 0.54 inside the die, past the depth window
+//! `max(prof, L) = 0.5` of `node_to_segment`, so it lost its segment and
+//! the converged state had it inside the die (`CTC_LOG=debug ctc run
+//! -v`). A node now keeps, at any depth, the segments of its memory (the
+//! last segment, its neighbours and the walk from it towards the foot:
+//! `node_to_segment::memory_walk`). After: the 2D slide follows the 3D
+//! plane-strain node-to-facet run at cell 1/2 to 8e-6 at 16 of its 20
+//! slide times (5e-4..4.5e-3 at the other 4), slide mean 2.965 (3D
+//! 2.964), minimum 2.740 (3D 2.740). The case's level `l` runs that 2D
+//! slide at cells `1 / 2^(l + 1)` against 2D mortar's (the two converge
+//! together: slide means 3.032 / 2.999 for mortar at 1/2, 1/4) and its
+//! minimum `F_n` against the press's end.
 
 use super::friction_ntf_3d::Rows;
 use super::{error, value};
@@ -731,11 +743,13 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 5] = [
 pub const RATIO_TOLERANCES: [f64; 3] = [0.4, 0.5, 0.7];
 
 /// Quantities of `ironing_plane_strain_3d`.
-pub const PLANE_NAMES: [&str; 4] = [
+pub const PLANE_NAMES: [&str; 6] = [
     "mortar: F_n per width, 3D slab in plane strain vs 2D",
     "node-to-facet: F_n per width, 3D slab in plane strain vs 2D node-to-segment",
     "2D: F_n mortar vs node-to-segment",
     "3D: F_n mortar vs node-to-facet (plane strain)",
+    "2D slide, slab cells halved: mean F_n over t >= 1.5, node-to-segment vs mortar",
+    "2D node-to-segment slide, slab cells halved: min F_n over the slide vs F_n at t = 1",
 ];
 
 /// The press of `ironing_plane_strain_3d` at `level`: the benchmark's
@@ -754,6 +768,89 @@ pub fn plane_setup(level: usize) -> Setup {
         plane_strain: true,
         ..Setup::level(1)
     }
+}
+
+/// The slide of `ironing_plane_strain_3d` at `level`: the 2D section of
+/// [`plane_setup`] with slab cells of half the level's size (`1 /
+/// 2^(level + 1)`: the defect it guards showed at cells 1/2 and 1/4, not
+/// at 1) and the benchmark's slide (4.0 in 20 increments after the
+/// press).
+pub fn slide_setup(level: usize) -> Setup {
+    Setup {
+        refine: 2 << level,
+        increments: (7, 20),
+        ..plane_setup(level)
+    }
+}
+
+/// The slave's total contact force along y at every converged increment.
+#[derive(Default)]
+struct Forces {
+    rows: Vec<(f64, f64)>,
+}
+
+impl<const D: usize> Observer<D> for Forces {
+    fn converged(&mut self, v: &IncrementView<'_, D>) -> Result<(), String> {
+        let fy = v
+            .contact
+            .first()
+            .map_or(0.0, |c| c.iter().map(|n| n.force[1]).sum());
+        self.rows.push((v.time, fy));
+        Ok(())
+    }
+}
+
+/// The die's push on the slab `F_n` in a 2D slide run: at the end of
+/// the press (`t = 1`), its minimum over the slide (`t > 1`) and its mean
+/// over the second half of the slide (`t >= 1.5`).
+struct Slide {
+    press: f64,
+    lowest: f64,
+    late: f64,
+}
+
+/// Runs the 2D slide of [`slide_setup`] with `formulation` to its end
+/// (`t = 2`).
+fn slide_2d(
+    level: usize,
+    formulation: &'static str,
+    out: &mut ProgramLevel,
+) -> Result<Slide, String> {
+    let name = format!("{formulation}_slide_2d.ctc");
+    let text = deck_2d(&slide_setup(level), formulation);
+    let src = ctc_lang::Source::new(std::path::Path::new(&name), &text);
+    let AnyModel::D2(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
+        return Err(format!("{name}: not a 2d deck"));
+    };
+    let mut forces = Forces::default();
+    let summary = run(&model, &mut forces).map_err(|e| format!("{name}: {}", e.message))?;
+    let end = forces.rows.last().map_or(0.0, |r| r.0);
+    if !summary.completed || (end - END).abs() > 1e-9 {
+        return Err(format!("{name}: the slide stopped at t = {end}"));
+    }
+    out.add_run(&summary);
+    let press = forces
+        .rows
+        .iter()
+        .find(|r| (r.0 - 1.0).abs() < 1e-9)
+        .ok_or(format!("{name}: no increment at t = 1"))?;
+    let lowest = forces
+        .rows
+        .iter()
+        .filter(|r| r.0 > 1.0 + 1e-9)
+        .map(|r| -r.1)
+        .fold(f64::INFINITY, f64::min);
+    let late: Vec<f64> = forces
+        .rows
+        .iter()
+        .filter(|r| r.0 >= 1.5 - 1e-9)
+        .map(|r| -r.1)
+        .collect();
+    Ok(Slide {
+        press: -press.1,
+        lowest,
+        late: late.iter().sum::<f64>() / late.len() as f64,
+    })
 }
 
 /// The slave's total contact force along y at the last converged
@@ -812,6 +909,12 @@ fn plane_strain_level(level: usize) -> Result<ProgramLevel, String> {
     out.values.push(value(PLANE_NAMES[1], n3, n2));
     out.values.push(value(PLANE_NAMES[2], m2, n2));
     out.values.push(value(PLANE_NAMES[3], m3, n3));
+    let nts = slide_2d(level, "node_to_segment", &mut out)?;
+    let mortar = slide_2d(level, "mortar", &mut out)?;
+    out.values
+        .push(value(PLANE_NAMES[4], nts.late, mortar.late));
+    out.values
+        .push(value(PLANE_NAMES[5], nts.lowest, nts.press));
     Ok(out)
 }
 
@@ -822,11 +925,21 @@ fn plane_strain_level(level: usize) -> Result<ProgramLevel, String> {
 /// node-to-facet vs 2D node-to-segment 1.0e-2 (the tie at the die's
 /// vertex, module doc) / 6.9e-6 / 7.3e-6; 2D mortar vs node-to-segment
 /// 9.19e-2 / 1.66e-2 / 2.82e-3 (rate 2.5), 3D 1.03e-1 / 1.66e-2 / 2.82e-3.
-pub const PLANE_TOLERANCES: [[f64; 3]; 4] = [
+/// The slide (slab cells halved, [`slide_setup`]): node-to-segment vs
+/// mortar slide mean 2.21e-2 at level 0 (2.965 vs 3.032; before the
+/// memory depth rule of `node_to_segment` 1.70: 0.44), the minimum
+/// `F_n` over the slide vs the press's end 1.34e-2 (before: 0.97, 0.64),
+/// `ctc verify ironing_plane_strain_3d --max-level 0 -j 1` (debug, 15.0 s
+/// CPU); levels 1, 2 not run by the case here: at cell 1/4 `ctc run` of
+/// the 2D decks gives mortar slide mean 2.999 and 3D node-to-facet 2.987
+/// (4e-3; before the fix node-to-segment's 2.83: 5.7e-2).
+pub const PLANE_TOLERANCES: [[f64; 3]; 6] = [
     [2e-5, 2e-5, 2e-5],
     [0.015, 2e-5, 2e-5],
     [0.1, 0.025, 0.005],
     [0.12, 0.025, 0.005],
+    [0.03, 0.01, 0.01],
+    [0.05, 0.05, 0.05],
 ];
 
 /// The registry entry.
