@@ -1091,13 +1091,24 @@ impl DeformablePair {
     /// Restart: `increments` converged increments were done, `memory` the
     /// committed facet of each slave ([`DeformablePair::memory`]),
     /// `positions` the committed coordinates of every node (kept by mortar
-    /// friction pairs only). The [`Self::beside`] flags are not in restart
-    /// points: they restart cleared (a node beside the master at the
-    /// restart point is found again once it lies past the rim).
-    pub fn restore(&mut self, increments: usize, memory: &[Option<usize>], positions: &[[f64; 3]]) {
+    /// friction pairs only), `beside` the committed [`Self::beside`] flags
+    /// ([`DeformablePair::committed_beside`]; empty, from a restart file
+    /// of a format without them: cleared, a node beside the master is
+    /// found again once it lies past the rim).
+    pub fn restore(
+        &mut self,
+        increments: usize,
+        memory: &[Option<usize>],
+        positions: &[[f64; 3]],
+        beside: &[bool],
+    ) {
         self.increments = increments;
-        self.beside = vec![false; memory.len()];
-        self.committed_beside = vec![false; memory.len()];
+        self.committed_beside = if beside.len() == memory.len() {
+            beside.to_vec()
+        } else {
+            vec![false; memory.len()]
+        };
+        self.beside.clone_from(&self.committed_beside);
         self.committed_increments = increments;
         self.committed_last = memory.to_vec();
         self.last = memory.to_vec();
@@ -1108,6 +1119,12 @@ impl DeformablePair {
             self.pairing = None;
             self.quadratic_pairing = None;
         }
+    }
+
+    /// The committed beside flags of each slave ([`Self::beside`] at the
+    /// last converged increment), for restart points.
+    pub fn committed_beside(&self) -> &[bool] {
+        &self.committed_beside
     }
 
     /// The committed facet of each slave (the search memory), for restart
