@@ -94,6 +94,18 @@ fn restart_matches<const D: usize>(model: &Model<D>, stop_after: usize) -> (usiz
 where
     Const<D>: Dimension<D>,
 {
+    let (from, n, _) = restart_matches_from(model, stop_after);
+    (from, n)
+}
+
+/// [`restart_matches`], also returning the restart point it continued from.
+fn restart_matches_from<const D: usize>(
+    model: &Model<D>,
+    stop_after: usize,
+) -> (usize, usize, Checkpoint<D>)
+where
+    Const<D>: Dimension<D>,
+{
     let tmp = tempfile::tempdir().unwrap();
     let full_dir = tmp.path().join("full");
     let cut_dir = tmp.path().join("cut");
@@ -161,7 +173,7 @@ where
     let sta = lines(&full_dir);
     assert_eq!(sta.len(), full.increments.len());
     assert_eq!(sta, lines(&cut_dir));
-    (from, full.increments.len())
+    (from, full.increments.len(), cp)
 }
 
 #[test]
@@ -442,4 +454,57 @@ fn restart_free_top_through_its_rotation_chart_matches_uninterrupted_run() {
     // increment), restarted from increment 40
     let (from, n) = restart_matches(&model, 45);
     assert_eq!((from, n), (40, 77));
+}
+
+#[test]
+fn restart_with_nodes_beside_the_rim_matches_uninterrupted_run() {
+    // tests/decks/beside_rim_3d.ctc: a puck flies in under the free rim of
+    // the base's top face (node-to-facet penalty, dynamics), its bottom
+    // nodes 0.1 below the face's extension: flagged beside past the rim,
+    // kept open by the committed flag over the face. The restart point
+    // (increment 8, t = 0.08) has flagged nodes over the face (x < 1):
+    // restored cleared, they would close at that depth at the first
+    // evaluation (the restart files before CTCRST08 carried no flags)
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/decks/beside_rim_3d.ctc");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let source = ctc_lang::Source::new(&path, text);
+    let model = match ctc_lang::compile_any(&source) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(AnyModel::D2(_)) => panic!("a 3d deck"),
+        Err(d) => panic!("{}", d.render(&source)),
+    };
+    let (from, n, cp) = restart_matches_from(&model, 9);
+    assert_eq!((from, n), (8, 20));
+    let slaves = ctc_engine::contact::node_to_facet::slave_nodes(&model, 0);
+    let beside = &cp.pairs[0].beside;
+    assert_eq!(beside.len(), slaves.len());
+    let over: Vec<usize> = slaves
+        .iter()
+        .zip(beside)
+        .filter(|&(&node, &b)| b && model.mesh.nodes[node][0] + cp.displacement[node][0] < 1.0)
+        .map(|(&node, _)| node)
+        .collect();
+    assert!(
+        !over.is_empty(),
+        "no flagged node over the face: {beside:?}"
+    );
+    // the same restart point without its flags (as a CTCRST07 file
+    // restores it): the continued run leaves the uninterrupted one
+    struct Quiet;
+    impl Observer<3> for Quiet {}
+    let full = solve::run(&model, &mut Quiet).expect("uninterrupted run");
+    let mut cleared = cp.clone();
+    cleared.pairs[0].beside.clear();
+    let bits = |r: &[f64]| r.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let differs = solve::run_from(&model, &mut Quiet, Some(&cleared)).map_or(true, |rest| {
+        rest.increments
+            .iter()
+            .zip(&full.increments[from..])
+            .any(|(a, b)| {
+                a.active_contacts != b.active_contacts
+                    || bits(&a.residuals) != bits(&b.residuals)
+                    || a.max_penetration.to_bits() != b.max_penetration.to_bits()
+            })
+    });
+    assert!(differs, "the flags made no difference");
 }

@@ -912,7 +912,16 @@ impl FacetSurface {
         }
         let (p, n) = self.points(k, x);
         let pts = &p[..n];
-        let nrm = centre_normal(pts);
+        // the side from the feature's pseudo-normal, not from facet k's
+        // normal alone: a node in front of one facet of a convex edge and
+        // behind the other's plane is outside ([`Self::feature_normal`])
+        let nodes = self.faces[k].nodes();
+        let nrm = self.feature_normal(x, nodes[a], b.map(|b| nodes[b]));
+        let nrm = if nrm.iter().all(|v| *v == 0.0) {
+            centre_normal(pts)
+        } else {
+            nrm
+        };
         let side = if (0..3).map(|c| (xs[c] - p[a][c]) * nrm[c]).sum::<f64>() < 0.0 {
             -1.0
         } else {
@@ -921,6 +930,62 @@ impl FacetSurface {
         *tests += 1;
         let el = edge_element(xs, pts, a, b, side)?;
         (el.gap >= -depth_of(k)).then_some((k, el))
+    }
+
+    /// The pseudo-normal of an interior feature of the surface at the
+    /// coordinates `x`: for the edge between global nodes `ga` and `gb`
+    /// the sum of the centre normals of the facets holding both, for the
+    /// vertex `ga` (`gb = None`) the sum of the facets' centre normals
+    /// weighted by their angle at the vertex (Baerentzen & Aanaes, "Signed
+    /// distance computation using the angle weighted pseudonormal", IEEE
+    /// TVCG 11 (2005) 243). For a point whose nearest feature is that edge
+    /// or vertex, the sign of its distance along this normal says whether
+    /// it lies in front of the surface; one facet's normal does not: a
+    /// node in front of the end face of a block, past its edge with a side
+    /// face, lies behind the side face's plane. Measured in the 3D blade
+    /// loss flown to 20 ms (examples/blade_loss_3d.ctc): blade 6's tip
+    /// nodes 452 and 467, 7.8 mm in front of the released blade's end face
+    /// and just past its edge with a side face, were paired with that edge
+    /// through the side face (gap -7.8 mm, closed) or through the end face
+    /// (open) depending on which facet the candidate order put first, which
+    /// the search memory changed from one Newton iteration to the next:
+    /// the residual went back to its start value every 6 to 8 iterations
+    /// and the run stopped at 9.42 ms on "chattering" nodes 452, 465-467.
+    /// Zero when no facet holds the feature (the caller falls back to the
+    /// facet's normal).
+    pub fn feature_normal(&self, x: &[[f64; 3]], ga: usize, gb: Option<usize>) -> [f64; 3] {
+        let s = self.by_node.partition_point(|&(m, _)| m < ga);
+        let mut sum = [0.0; 3];
+        for &(_, j) in self.by_node[s..].iter().take_while(|&&(m, _)| m == ga) {
+            let nodes = self.faces[j].nodes();
+            if gb.is_some_and(|g| !nodes.contains(&g)) {
+                continue;
+            }
+            let (p, n) = self.points(j, x);
+            let cn = centre_normal(&p[..n]);
+            let weight = match gb {
+                Some(_) => 1.0,
+                None => {
+                    let Some(i) = nodes.iter().position(|&m| m == ga) else {
+                        continue;
+                    };
+                    let e1: [f64; 3] = std::array::from_fn(|c| p[(i + 1) % n][c] - p[i][c]);
+                    let e2: [f64; 3] = std::array::from_fn(|c| p[(i + n - 1) % n][c] - p[i][c]);
+                    let l = (e1.iter().map(|v| v * v).sum::<f64>()
+                        * e2.iter().map(|v| v * v).sum::<f64>())
+                    .sqrt();
+                    if l.is_nan() || l <= 0.0 {
+                        continue;
+                    }
+                    let cos = (0..3).map(|c| e1[c] * e2[c]).sum::<f64>() / l;
+                    cos.clamp(-1.0, 1.0).acos()
+                }
+            };
+            for c in 0..3 {
+                sum[c] += weight * cn[c];
+            }
+        }
+        sum
     }
 }
 
@@ -1091,13 +1156,24 @@ impl DeformablePair {
     /// Restart: `increments` converged increments were done, `memory` the
     /// committed facet of each slave ([`DeformablePair::memory`]),
     /// `positions` the committed coordinates of every node (kept by mortar
-    /// friction pairs only). The [`Self::beside`] flags are not in restart
-    /// points: they restart cleared (a node beside the master at the
-    /// restart point is found again once it lies past the rim).
-    pub fn restore(&mut self, increments: usize, memory: &[Option<usize>], positions: &[[f64; 3]]) {
+    /// friction pairs only), `beside` the committed [`Self::beside`] flags
+    /// ([`DeformablePair::committed_beside`]; empty, from a restart file
+    /// of a format without them: cleared, a node beside the master is
+    /// found again once it lies past the rim).
+    pub fn restore(
+        &mut self,
+        increments: usize,
+        memory: &[Option<usize>],
+        positions: &[[f64; 3]],
+        beside: &[bool],
+    ) {
         self.increments = increments;
-        self.beside = vec![false; memory.len()];
-        self.committed_beside = vec![false; memory.len()];
+        self.committed_beside = if beside.len() == memory.len() {
+            beside.to_vec()
+        } else {
+            vec![false; memory.len()]
+        };
+        self.beside.clone_from(&self.committed_beside);
         self.committed_increments = increments;
         self.committed_last = memory.to_vec();
         self.last = memory.to_vec();
@@ -1108,6 +1184,12 @@ impl DeformablePair {
             self.pairing = None;
             self.quadratic_pairing = None;
         }
+    }
+
+    /// The committed beside flags of each slave ([`Self::beside`] at the
+    /// last converged increment), for restart points.
+    pub fn committed_beside(&self) -> &[bool] {
+        &self.committed_beside
     }
 
     /// The committed facet of each slave (the search memory), for restart
@@ -1935,6 +2017,46 @@ pub(crate) mod tests {
             .closest(&x, [0.5, 0.5, 0.0], &[0, 1], None, 1.0, &mut tests)
             .unwrap();
         assert_eq!((k, el.feature), (1, Feature::Face));
+    }
+
+    #[test]
+    fn a_node_past_a_sharp_edge_is_outside_whichever_facet_comes_first() {
+        // a wedge of two quads along the edge x = 1, z = 0 (63 degrees
+        // inside): the top z = 0 (normal +z) and a face going down and back
+        // (normal (1, 0, -0.5) / |.|). The node (1.5, 0.5, -0.1) lies in
+        // front of the sloping face, past both facets' edges (its nearest
+        // feature the edge) and below the top's plane: outside the wedge.
+        // With the top's normal alone its gap was -0.51 (closed) when the
+        // top came first among the candidates, +0.51 (open) otherwise; the
+        // edge's pseudo-normal gives +0.51 either way (the 3D blade loss's
+        // chatter of blade 6's tip nodes on the released blade's end)
+        let faces = [Facet::new(&[0, 1, 2, 3]), Facet::new(&[1, 4, 5, 2])];
+        let x = vec![
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.5, 0.0, -1.0],
+            [0.5, 1.0, -1.0],
+        ];
+        let s = FacetSurface::new(&faces);
+        assert!(!s.is_free_edge(1, 2));
+        let xs = [1.5, 0.5, -0.1];
+        let d = (0.5f64 * 0.5 + 0.1 * 0.1).sqrt();
+        let mut tests = 0;
+        for order in [[0, 1], [1, 0]] {
+            let (_, el) = s.closest(&x, xs, &order, None, 1.0, &mut tests).unwrap();
+            assert!(matches!(el.feature, Feature::Edge(..)), "{:?}", el.feature);
+            assert!((el.gap - d).abs() < 1e-14, "{order:?}: {}", el.gap);
+        }
+        // inside the wedge, nearest the edge (behind both planes): negative
+        let inside = [0.95, 0.5, -0.02];
+        for order in [[0, 1], [1, 0]] {
+            let (_, el) = s
+                .closest(&x, inside, &order, None, 1.0, &mut tests)
+                .unwrap();
+            assert!(el.gap < 0.0, "{order:?}: {}", el.gap);
+        }
     }
 
     #[test]

@@ -9,19 +9,23 @@
 //! restart with a different deck is refused). [`RestartFile`] adds what the
 //! result writer needs to append to the same directory (the PVD entries).
 //!
-//! Format (`restart.bin`, little endian): the magic `CTCRST06`, the
+//! Format (`restart.bin`, little endian): the magic `CTCRST08`, the
 //! dimension (2 or 3; a restart file is read only by a model of the same
 //! dimension), then fields in a fixed order, ending with the state of the
 //! dynamic integrator (a flag, then velocities, accelerations, committed
-//! residual and forces, energies: [`DynamicState`]), then the increment
+//! residual and forces, energies: [`DynamicState`]), the increment
 //! predictor's history (a flag, then the step, the start and end times of
 //! the last converged increment and the displacements at its start:
-//! [`PredictorHistory`]); every `f64` is stored as its 8 bytes, so the
-//! values read back are the values written, bit for bit. `CTCRST06` files
-//! (the same without the predictor's history: the first increment after the
-//! restart starts from the converged state) and `CTCRST05` files (also
-//! without the dynamic state, read as quasi-static restart points) are
-//! read; older formats are refused with their version named.
+//! [`PredictorHistory`]) and the committed beside flags of the
+//! node-to-facet penalty pairs (per pair a count, then one byte per slave
+//! node: [`PairHistory::beside`]); every `f64` is stored as its 8 bytes,
+//! so the values read back are the values written, bit for bit.
+//! `CTCRST07` files (the same without the beside flags: they restart
+//! cleared), `CTCRST06` files (also without the predictor's history: the
+//! first increment after the restart starts from the converged state) and
+//! `CTCRST05` files (also without the dynamic state, read as quasi-static
+//! restart points) are read; older formats are refused with their version
+//! named.
 
 use crate::element::{MaterialPoint, PointState};
 use crate::material::History;
@@ -31,12 +35,15 @@ pub use crate::solve::newton::predictor::PredictorHistory;
 use std::path::Path;
 
 /// File magic and format version.
-const MAGIC: &[u8; 8] = b"CTCRST07";
+const MAGIC: &[u8; 8] = b"CTCRST08";
 
-/// The previous format: no predictor history.
+/// The previous format: no beside flags.
+const MAGIC_07: &[u8; 8] = b"CTCRST07";
+
+/// The format before: no predictor history.
 const MAGIC_06: &[u8; 8] = b"CTCRST06";
 
-/// The format before: no dynamic state (read, as quasi-static points).
+/// The oldest format read: no dynamic state (read, as quasi-static points).
 const MAGIC_05: &[u8; 8] = b"CTCRST05";
 
 /// Values stored per integration point: position (3), volume, strain (6),
@@ -68,6 +75,11 @@ pub struct PairHistory {
     /// Committed friction state, flattened
     /// ([`crate::contact::friction::FrictionState::committed_values`]).
     pub friction: Vec<f64>,
+    /// Per slave node, node-to-facet penalty pairs: the node lay beside the
+    /// master at the last converged increment
+    /// ([`crate::contact::node_to_facet::DeformablePair::beside`]); empty
+    /// for other pairs and in files of a previous format (restart cleared).
+    pub beside: Vec<bool>,
 }
 
 /// The state of a run of dimension `D` at a converged increment.
@@ -285,6 +297,11 @@ impl<const D: usize> RestartFile<D> {
                 e.f64s(h.start.as_flattened());
             }
         }
+        e.usize(c.pairs.len());
+        for p in &c.pairs {
+            e.usize(p.beside.len());
+            e.0.extend(p.beside.iter().map(|b| u8::from(*b)));
+        }
         e.0
     }
 
@@ -293,13 +310,15 @@ impl<const D: usize> RestartFile<D> {
         let magic = data.get(..MAGIC.len()).unwrap_or(&[]);
         let previous = magic == MAGIC_05;
         let no_predictor = previous || magic == MAGIC_06;
-        if magic != MAGIC && !no_predictor {
+        let no_beside = no_predictor || magic == MAGIC_07;
+        if magic != MAGIC && !no_beside {
             if magic.starts_with(b"CTCRST") {
                 return Err(format!(
-                    "restart file of format {} (an older ctc): this version reads {}, {} \
-                     and {}; run from the start",
+                    "restart file of format {} (an older ctc): this version reads {}, {}, \
+                     {} and {}; run from the start",
                     String::from_utf8_lossy(magic),
                     String::from_utf8_lossy(MAGIC),
+                    String::from_utf8_lossy(MAGIC_07),
                     String::from_utf8_lossy(MAGIC_06),
                     String::from_utf8_lossy(MAGIC_05)
                 ));
@@ -362,6 +381,7 @@ impl<const D: usize> RestartFile<D> {
                 multiplier,
                 active,
                 friction,
+                beside: Vec::new(),
             });
         }
         let nc = d.len(8)?;
@@ -440,6 +460,17 @@ impl<const D: usize> RestartFile<D> {
                     .collect(),
             })
         };
+        if !no_beside {
+            if d.len(8)? != pairs.len() {
+                return Err(
+                    "restart file corrupted: the beside flags do not match the pairs".into(),
+                );
+            }
+            for p in &mut pairs {
+                let n = d.len(1)?;
+                p.beside = d.bytes(n)?.iter().map(|b| *b != 0).collect();
+            }
+        }
         if d.pos != data.len() {
             return Err(format!(
                 "restart file corrupted: {} trailing bytes",
@@ -511,6 +542,7 @@ mod tests {
                     multiplier: vec![0.0, 12.5, -1e-9],
                     active: vec![false, true, true],
                     friction: vec![1.0, 0.5, -0.25, 3.0, -1.0, 0.1 + 0.2, 2.0],
+                    beside: vec![false, true, false],
                 }],
                 points: vec![vec![], vec![point; 4]],
                 points_time: 0.30000000000000004,
@@ -576,16 +608,31 @@ mod tests {
 
     #[test]
     fn previous_format_files_are_read_without_dynamic_state_and_older_ones_refused() {
+        // the format 07: its magic, no beside flags at the end (a count of
+        // pairs, then per pair a count and its bytes): read with none
         let mut s = sample();
+        let mut bytes = s.encode();
+        let tail = 8 * (1 + s.checkpoint.pairs.len())
+            + s.checkpoint
+                .pairs
+                .iter()
+                .map(|p| p.beside.len())
+                .sum::<usize>();
+        bytes.truncate(bytes.len() - tail);
+        bytes[..8].copy_from_slice(MAGIC_07);
+        s.checkpoint.pairs.iter_mut().for_each(|p| p.beside.clear());
+        assert_eq!(RestartFile::<2>::decode(&bytes).unwrap(), s);
         s.checkpoint.predictor = None;
         let mut bytes = s.encode();
-        // the format 06: its magic, no predictor flag at the end
+        // the format 06: its magic, no predictor flag, no beside flags
+        bytes.truncate(bytes.len() - 8 * (1 + s.checkpoint.pairs.len()));
         bytes[..8].copy_from_slice(MAGIC_06);
         bytes.pop();
         assert_eq!(RestartFile::<2>::decode(&bytes).unwrap(), s);
         s.checkpoint.dynamics = None;
         let mut bytes = s.encode();
         // the format 05: its magic, no dynamic and no predictor flag
+        bytes.truncate(bytes.len() - 8 * (1 + s.checkpoint.pairs.len()));
         bytes[..8].copy_from_slice(MAGIC_05);
         bytes.pop();
         bytes.pop();
@@ -596,6 +643,23 @@ mod tests {
             e.contains("format CTCRST04") && e.contains("run from the start"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn beside_flags_that_do_not_match_the_pairs_are_an_error() {
+        // a file whose beside section counts another number of pairs
+        let s = sample();
+        let mut bytes = s.encode();
+        let tail = 8 * (1 + s.checkpoint.pairs.len())
+            + s.checkpoint
+                .pairs
+                .iter()
+                .map(|p| p.beside.len())
+                .sum::<usize>();
+        let at = bytes.len() - tail;
+        bytes[at..at + 8].copy_from_slice(&0u64.to_le_bytes());
+        let e = RestartFile::<2>::decode(&bytes).unwrap_err();
+        assert!(e.contains("beside flags do not match"), "{e}");
     }
 
     #[test]

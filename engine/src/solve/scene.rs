@@ -331,6 +331,7 @@ impl ContactScene<2> for ContactAssembly {
                     .collect(),
                 active: p.committed_active.clone(),
                 friction: p.friction.committed_values(),
+                beside: Vec::new(),
             })
             .collect();
         (pairs, self.couplings.clone())

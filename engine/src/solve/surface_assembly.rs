@@ -774,6 +774,11 @@ impl ContactScene<3> for SurfaceAssembly {
                         .collect(),
                     active: active.to_vec(),
                     friction: p.friction.committed_values(),
+                    // node-to-facet penalty: the nodes beside the master
+                    beside: p
+                        .deformable
+                        .as_ref()
+                        .map_or_else(Vec::new, |f| f.committed_beside().to_vec()),
                 }
             })
             .collect();
@@ -804,10 +809,10 @@ impl ContactScene<3> for SurfaceAssembly {
                 s.friction.restore_committed(&h.friction)?;
             }
             if let Some(f) = &mut s.deformable {
-                if h.entity.len() != n {
+                if h.entity.len() != n || !(h.beside.is_empty() || h.beside.len() == n) {
                     return Err("the restart point does not match the model (slave nodes)".into());
                 }
-                f.restore(increment, &h.entity, positions);
+                f.restore(increment, &h.entity, positions, &h.beside);
             }
             s.restore(&h.multiplier[..n], &h.active);
         }
