@@ -501,6 +501,89 @@ fn a_failing_run_stops_every_rank_with_one_diagnosis() {
     assert!(err.contains("MUMPS found 1 null pivot"), "{err}");
 }
 
+/// A Krylov solve that stops before its tolerance (issue 21): CG + GAMG
+/// capped at 2 iterations (`-ksp_max_it 2`) on the large contact deck at
+/// its own size (n = 6, 8k dofs; 37-40 iterations a solve uncapped, see
+/// `large_contact_deck_by_cg_gamg_reports_every_rank`). Every solve ends
+/// `DIVERGED_ITS`, the increment is cut back to its smallest size and the
+/// run stops, on 1 and 2 ranks alike: a non-zero exit, one diagnosis by
+/// rank 0 naming the linear solver and PETSc's reason (not "singular": the
+/// matrix is fine), a summary saying the run did not complete after the
+/// same attempts as the 1-rank run, and no result of an unconverged state
+/// (no increment in the history, no `.pvtu` listed).
+///
+/// ```text
+///   mpirun -n 1|2 ctc run large_contact_3d.ctc --solver petsc --
+///       -ksp_type cg -pc_type gamg -ksp_max_it 2
+///   K du = r: CG 2 its -> DIVERGED_ITS -> LinearError::NotConverged
+///     -> FailureKind::LinearSolver -> cutbacks -> exit 1, "error: ..."
+/// ```
+#[test]
+fn a_krylov_solve_that_does_not_converge_stops_every_rank_with_its_reason() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "tests/decks/large_contact_3d.ctc";
+    let opts = [
+        "--solver",
+        "petsc",
+        "--",
+        "-ksp_type",
+        "cg",
+        "-pc_type",
+        "gamg",
+        "-ksp_max_it",
+        "2",
+    ];
+    let mut attempts = Vec::new();
+    for ranks in [1, 2] {
+        let dir = tmp.path().join(format!("capped{ranks}"));
+        let out = run(deck, &dir, Some(ranks), &opts);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(
+            !out.status.success(),
+            "{ranks} ranks: the run must fail\n{err}"
+        );
+        assert_eq!(
+            err.matches("error:").count(),
+            1,
+            "{ranks} ranks: one diagnosis, by rank 0:\n{err}"
+        );
+        for words in [
+            "the Krylov solver did not converge: DIVERGED_ITS",
+            "after 2 iterations",
+            "the iterative linear solver did not converge",
+            "-ksp_max_it",
+        ] {
+            assert!(err.contains(words), "{ranks} ranks: no `{words}` in\n{err}");
+        }
+        assert!(
+            !err.contains("singular"),
+            "{ranks} ranks: a capped Krylov solve is not a singular matrix:\n{err}"
+        );
+        let s = summary(&dir);
+        assert_eq!(s["completed"], false, "{ranks} ranks");
+        let failure = s["failure"].as_str().unwrap();
+        assert!(failure.contains("DIVERGED_ITS"), "{failure}");
+        assert_eq!(s["distributed"]["ranks"], ranks);
+        assert_eq!(s["distributed"]["fallbacks"], 0, "no GMRES fallback");
+        assert!(iterations(&s).is_empty(), "no converged increment");
+        attempts.push((s["cutbacks"].clone(), s["distributed"]["solves"].clone()));
+        // nothing of an unconverged state: the history has no row, the PVD
+        // lists no parallel VTU
+        let (_, rows) = csv(&dir.join("history.csv"));
+        assert!(
+            rows.len() <= 1,
+            "{ranks} ranks: {} history rows",
+            rows.len()
+        );
+        let pvd = std::fs::read_to_string(dir.join("results.pvd")).unwrap_or_default();
+        assert_eq!(pvd.matches(".pvtu").count(), rows.len(), "{pvd}");
+    }
+    assert_eq!(
+        attempts[0], attempts[1],
+        "the same cutbacks and solves on 1 and 2 ranks"
+    );
+}
+
 #[test]
 fn petsc_options_without_the_petsc_solver_are_refused() {
     let tmp = tempfile::tempdir().unwrap();

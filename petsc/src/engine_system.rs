@@ -746,10 +746,16 @@ impl<'e> PetscSystem<'e> {
     }
 }
 
-/// A PETSc failure as the engine sees it: a failed set-up (a singular
-/// matrix met by the factorization) or a diverged Krylov solve.
+/// A PETSc failure as the engine sees it: a Krylov solve that stopped
+/// before its tolerance (`DIVERGED_ITS`, a breakdown: the same reason on
+/// every rank) is [`LinearError::NotConverged`], so the run's diagnosis
+/// names the linear solver; a failed set-up (a singular matrix met by the
+/// factorization) and the other failures are [`LinearError::Singular`].
 fn to_linear(e: PetscError) -> LinearError {
-    LinearError::Singular(format!("PETSc: {e}"))
+    match e {
+        PetscError::Diverged { .. } => LinearError::NotConverged(format!("PETSc: {e}")),
+        e => LinearError::Singular(format!("PETSc: {e}")),
+    }
 }
 
 impl LinearSystem for PetscSystem<'_> {

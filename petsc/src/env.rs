@@ -42,10 +42,27 @@ pub struct Environment {
 }
 
 impl Environment {
-    /// Starts MPI and PETSc and inserts `options` (PETSc command-line
-    /// syntax, e.g. `-ksp_type cg -pc_type gamg`) into the options database.
-    /// Fails if MPI was already started in this process.
+    /// Starts MPI and PETSc with `options` (PETSc command-line syntax, e.g.
+    /// `-ksp_type cg -pc_type gamg`) in the options database. They are
+    /// given to `PetscInitialize` itself (through `PETSC_OPTIONS`, after
+    /// what that variable already holds), so the options PETSc reads only
+    /// while it starts work too: `-log_view`, `-log_view_memory`,
+    /// `-memory_view`, `-malloc_view`, `-info` (inserted after the start,
+    /// they were silently ignored). Fails if MPI was already started in
+    /// this process.
     pub fn initialize(options: &str) -> Result<Environment, PetscError> {
+        if options.contains('\0') {
+            return Err(PetscError::Init("PETSc options contain a NUL byte".into()));
+        }
+        if !options.trim().is_empty() {
+            let all = match std::env::var("PETSC_OPTIONS") {
+                Ok(before) if !before.trim().is_empty() => format!("{before} {options}"),
+                _ => options.to_string(),
+            };
+            // read by PetscOptionsInsert inside PetscInitialize; set before
+            // MPI starts any thread
+            std::env::set_var("PETSC_OPTIONS", all);
+        }
         let universe = mpi::initialize()
             .ok_or_else(|| PetscError::Init("MPI is already initialized".into()))?;
         // SAFETY: MPI is initialized; PETSc is initialized once per process
@@ -64,9 +81,7 @@ impl Environment {
             )?;
         }
         let leaving = mpi::traits::Communicator::duplicate(&universe.world());
-        let env = Environment { leaving, universe };
-        env.insert_options(options)?;
-        Ok(env)
+        Ok(Environment { leaving, universe })
     }
 
     /// Inserts options into PETSc's database (later ones win).

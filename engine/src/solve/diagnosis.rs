@@ -397,6 +397,16 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
              contact closed"
                 .into(),
         ),
+        FailureKind::LinearSolver => (
+            "the iterative linear solver did not converge (not the Newton loop: each \
+             linear solve stopped before its tolerance, and a smaller increment did not \
+             help)"
+                .into(),
+            "allow more Krylov iterations (`-ksp_max_it`), a looser `-ksp_rtol`, a stronger \
+             preconditioner, or the direct solver (`--solver petsc` without `-ksp_type`: \
+             MUMPS LU)"
+                .into(),
+        ),
         FailureKind::ActiveSetCycling => (
             "the contact active set cycles: nodes are introduced and released in turn \
              (a node close to the contact boundary, or an increment too large for the \
@@ -560,5 +570,25 @@ mod tests {
         let grew =
             Failure::new(FailureKind::Diverged, "grew").with_residuals(&[1e-14, 2e-14, 4e-14]);
         assert!(failure_cause(&grew, &settings, 0.0).0.contains("stagnates"));
+    }
+
+    #[test]
+    fn a_krylov_solve_that_stopped_is_named_as_such_not_as_a_singular_matrix() {
+        // `--solver petsc -- -ksp_max_it 2`: PETSc's DIVERGED_ITS reaches the
+        // Newton loop as FailureKind::LinearSolver (issue 21)
+        let settings = NewtonSettings::default();
+        let f = Failure::new(
+            FailureKind::LinearSolver,
+            "PETSc: the Krylov solver did not converge: DIVERGED_ITS (-3) after 2 iterations",
+        );
+        let (cause, remedy) = failure_cause(&f, &settings, 0.0);
+        assert!(
+            cause.contains("the iterative linear solver did not converge"),
+            "{cause}"
+        );
+        assert!(!cause.contains("singular"), "{cause}");
+        assert!(remedy.contains("-ksp_max_it"), "{remedy}");
+        let (cause, _) = failure_cause(&Failure::new(FailureKind::Singular, ""), &settings, 0.0);
+        assert!(cause.contains("singular"), "{cause}");
     }
 }

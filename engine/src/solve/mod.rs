@@ -706,8 +706,10 @@ where
             // a singular tangent (its zero pivot names the free motion) and a
             // residual stalled at round-off are not the contact's doing;
             // otherwise the contact health first
-            let (cause, remedy) = if failure.kind == newton::FailureKind::Singular
-                || diagnosis::stagnates(&failure.residuals)
+            let (cause, remedy) = if matches!(
+                failure.kind,
+                newton::FailureKind::Singular | newton::FailureKind::LinearSolver
+            ) || diagnosis::stagnates(&failure.residuals)
             {
                 diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
             } else {

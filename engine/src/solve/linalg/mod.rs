@@ -46,6 +46,11 @@ pub enum LinearError {
     Singular(String),
     /// `solve` without a factorization of the current pattern.
     NotFactorized,
+    /// An iterative solver stopped before its tolerance (a Krylov method at
+    /// its iteration cap, a breakdown): what, in words. Not a property of
+    /// the matrix: the Newton loop reports it as
+    /// [`crate::solve::newton::FailureKind::LinearSolver`].
+    NotConverged(String),
     /// The (symmetric) matrix is singular: `L D L^T` met a pivot at
     /// round-off level, and one step of inverse iteration with that factor
     /// gives a vector `v` with `||K v|| <= ZERO_MODE * ||diag(K) v||`, a
@@ -69,7 +74,9 @@ pub struct ZeroMode {
 impl std::fmt::Display for LinearError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            LinearError::Symbolic(s) | LinearError::Singular(s) => f.write_str(s),
+            LinearError::Symbolic(s) | LinearError::Singular(s) | LinearError::NotConverged(s) => {
+                f.write_str(s)
+            }
             LinearError::ZeroPivot(m) => write!(
                 f,
                 "the stiffness matrix is singular: a zero pivot, free dof {} (a zero-energy mode \

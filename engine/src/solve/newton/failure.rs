@@ -15,6 +15,9 @@ pub enum FailureKind {
     NotFinite,
     /// The linear system could not be factorized.
     Singular,
+    /// An iterative linear solver (a Krylov method under `--solver petsc`)
+    /// stopped before its tolerance: at its iteration cap, or broken down.
+    LinearSolver,
     /// An element could not be evaluated.
     Element,
     /// The Lagrange-multiplier active set came back to a set already met

@@ -1025,7 +1025,7 @@ where
             crate::solve::memory::trace("solved");
             self.timings.solve += mid.elapsed().as_secs_f64();
             self.timings.cpu[3] += thread_cpu_seconds() - cpu1;
-            return r.map_err(|e| Failure::new(FailureKind::Singular, e.to_string()));
+            return r.map_err(|e| self.linear_failure(e));
         };
         self.zero_mode.1 = false;
         let start = Instant::now();
@@ -1090,7 +1090,11 @@ where
     /// by its node, body and component, and the direction of the motion.
     fn linear_failure(&self, e: LinearError) -> Failure {
         let LinearError::ZeroPivot(mode) = &e else {
-            return Failure::new(FailureKind::Singular, e.to_string());
+            let kind = match e {
+                LinearError::NotConverged(_) => FailureKind::LinearSolver,
+                _ => FailureKind::Singular,
+            };
+            return Failure::new(kind, e.to_string());
         };
         let nc = self.dofs.components();
         let model = self.model;
