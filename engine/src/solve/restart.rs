@@ -606,18 +606,20 @@ mod tests {
         assert!(e.contains("2D run"), "{e}");
     }
 
+    /// Bytes of the beside section at the end of a file (format 08): a
+    /// count of pairs, then per pair a count and one byte per slave node.
+    fn beside_section_len(s: &RestartFile<2>) -> usize {
+        let pairs = &s.checkpoint.pairs;
+        8 * (1 + pairs.len()) + pairs.iter().map(|p| p.beside.len()).sum::<usize>()
+    }
+
     #[test]
     fn previous_format_files_are_read_without_dynamic_state_and_older_ones_refused() {
         // the format 07: its magic, no beside flags at the end (a count of
         // pairs, then per pair a count and its bytes): read with none
         let mut s = sample();
         let mut bytes = s.encode();
-        let tail = 8 * (1 + s.checkpoint.pairs.len())
-            + s.checkpoint
-                .pairs
-                .iter()
-                .map(|p| p.beside.len())
-                .sum::<usize>();
+        let tail = beside_section_len(&s);
         bytes.truncate(bytes.len() - tail);
         bytes[..8].copy_from_slice(MAGIC_07);
         s.checkpoint.pairs.iter_mut().for_each(|p| p.beside.clear());
@@ -650,12 +652,7 @@ mod tests {
         // a file whose beside section counts another number of pairs
         let s = sample();
         let mut bytes = s.encode();
-        let tail = 8 * (1 + s.checkpoint.pairs.len())
-            + s.checkpoint
-                .pairs
-                .iter()
-                .map(|p| p.beside.len())
-                .sum::<usize>();
+        let tail = beside_section_len(&s);
         let at = bytes.len() - tail;
         bytes[at..at + 8].copy_from_slice(&0u64.to_le_bytes());
         let e = RestartFile::<2>::decode(&bytes).unwrap_err();
