@@ -40,7 +40,10 @@ class Sphere3dPairInStep(unittest.TestCase):
             with open(os.path.join(tmp, "mesh.json")) as f:
                 mesh = json.load(f)
             self.assertEqual(mesh["free_dofs"], ref["free_dofs"])
-            self.assertEqual(mesh["penalty"], ref["penalty"])
+            # 10 E / h_min from numpy: its last bit moves with numpy's
+            # version (python/test.sh installs the newest: 2.4.6 on
+            # 2026-12-06 gave 190264.2071506396, the reference ...962)
+            self.assertLess(abs(mesh["penalty"] / ref["penalty"] - 1.0), 1e-12, (mesh["penalty"], ref["penalty"]))
             out = os.path.join(tmp, "ctc")
             subprocess.run([CLI, "run", os.path.join(tmp, "sphere3d.ctc"), "-q", "-o", out], check=True)
             with open(os.path.join(out, "summary.json")) as f:
