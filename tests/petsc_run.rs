@@ -443,14 +443,10 @@ fn dynamics_springs_and_masses_on_one_and_two_ranks_are_the_serial_run() {
     same_as_serial(deck.to_str().unwrap(), "bar_impact", 1e-9);
 }
 
-#[test]
-fn cg_gamg_from_petsc_options_converges_to_the_serial_answer() {
-    let tmp = tempfile::tempdir().unwrap();
-    let deck = "tests/decks/hertz_sphere_3d_coarse.ctc";
-    let serial = tmp.path().join("faer");
-    ok(run(deck, &serial, None, &[]), "serial run");
-    let dir = tmp.path().join("gamg");
-    let opts = [
+/// `ctc run` arguments for `--solver petsc` with CG + GAMG, then `extra`
+/// PETSc options.
+fn cg_gamg<'a>(extra: &[&'a str]) -> Vec<&'a str> {
+    let mut opts = vec![
         "--solver",
         "petsc",
         "--",
@@ -458,9 +454,19 @@ fn cg_gamg_from_petsc_options_converges_to_the_serial_answer() {
         "cg",
         "-pc_type",
         "gamg",
-        "-ksp_rtol",
-        "1e-12",
     ];
+    opts.extend_from_slice(extra);
+    opts
+}
+
+#[test]
+fn cg_gamg_from_petsc_options_converges_to_the_serial_answer() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = "tests/decks/hertz_sphere_3d_coarse.ctc";
+    let serial = tmp.path().join("faer");
+    ok(run(deck, &serial, None, &[]), "serial run");
+    let dir = tmp.path().join("gamg");
+    let opts = cg_gamg(&["-ksp_rtol", "1e-12"]);
     ok(run(deck, &dir, Some(2), &opts), "CG + GAMG run");
     let s = summary(&dir);
     let d = &s["distributed"];
@@ -522,17 +528,7 @@ fn a_failing_run_stops_every_rank_with_one_diagnosis() {
 fn a_krylov_solve_that_does_not_converge_stops_every_rank_with_its_reason() {
     let tmp = tempfile::tempdir().unwrap();
     let deck = "tests/decks/large_contact_3d.ctc";
-    let opts = [
-        "--solver",
-        "petsc",
-        "--",
-        "-ksp_type",
-        "cg",
-        "-pc_type",
-        "gamg",
-        "-ksp_max_it",
-        "2",
-    ];
+    let opts = cg_gamg(&["-ksp_max_it", "2"]);
     let mut attempts = Vec::new();
     for ranks in [1, 2] {
         let dir = tmp.path().join(format!("capped{ranks}"));
@@ -672,17 +668,7 @@ fn large_contact_deck_by_cg_gamg_reports_every_rank() {
     let deck = "tests/decks/large_contact_3d.ctc";
     let serial = tmp.path().join("faer");
     ok(run(deck, &serial, None, &[]), "serial run");
-    let opts = [
-        "--solver",
-        "petsc",
-        "--",
-        "-ksp_type",
-        "cg",
-        "-pc_type",
-        "gamg",
-        "-ksp_rtol",
-        "1e-10",
-    ];
+    let opts = cg_gamg(&["-ksp_rtol", "1e-10"]);
     for ranks in [1, 2] {
         let dir = tmp.path().join(format!("gamg{ranks}"));
         ok(run(deck, &dir, Some(ranks), &opts), "CG + GAMG run");

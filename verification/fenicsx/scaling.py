@@ -16,17 +16,15 @@ import math
 import os
 import sys
 
-
-def process(d):
-    with open(os.path.join(d, "time.txt")) as f:
-        wall, user, sys_, rss = f.read().split()[:4]
-    return float(wall), float(user) + float(sys_), int(rss) / 1024.0
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from sphere3d import process  # noqa: E402  (the /usr/bin/time file of a run)
 
 
 def run_2d(d):
     with open(os.path.join(d, "bench.json")) as f:
         b = json.load(f)
-    wall, cpu, rss = process(d)
+    t = process(d)
+    wall, cpu, rss = t["process_wall"], t["cpu_time"], t["peak_rss_mib"]
     return {
         "label": os.path.basename(d)[3:],
         "dofs": b["free_dofs"],
@@ -41,7 +39,8 @@ def run_2d(d):
 def run_3d(d):
     with open(os.path.join(d, "run", "summary.json")) as f:
         s = json.load(f)
-    wall, cpu, rss = process(d)
+    t = process(d)
+    wall, cpu, rss = t["process_wall"], t["cpu_time"], t["peak_rss_mib"]
     return {
         "label": "N = " + os.path.basename(d)[3:],
         "dofs": s["free_dofs"],
