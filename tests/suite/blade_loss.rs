@@ -35,12 +35,14 @@
 //!        '-~~~~~~~~~~~-'
 //! ```
 
+use crate::examples::{run_example_with, SharedRun};
 use ctc_engine::model::{ContactMaster, ContactStrategy, Discrete, Model};
 use ctc_engine::solve::{IncrementView, Observer};
 use std::path::Path;
+use std::sync::OnceLock;
 
 #[derive(Default)]
-struct Probe {
+pub(crate) struct Probe {
     pilot: usize,
     spin: usize,
     angle: Vec<f64>,
@@ -210,39 +212,26 @@ pub fn deck_to_10_ms() -> ctc_lang::Source {
     ctc_lang::Source::new(path, short)
 }
 
-#[test]
-fn blade_loss_whirl_friction_and_energy() {
-    let src = deck_to_10_ms();
-    let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
-    let (pilot, spin) = ctc_engine::solve::rigid_body::bodies(&model)
-        .next()
-        .unwrap();
-    let (mut k, mut c, mut m_shaft, mut release) = (0.0, 0.0, 0.0, f64::INFINITY);
-    for d in &model.discrete {
-        match d {
-            Discrete::Ground {
-                nodes,
-                stiffness,
-                damping,
-                ..
-            } if nodes == &[pilot] => (k, c) = (*stiffness, *damping),
-            Discrete::Mass { nodes, mass, .. } if nodes == &[pilot] => m_shaft = *mass,
+/// The probe of the run: the rigid body's pilot and spin nodes, the
+/// release time, the released blade's root, the rotor's surfaces against
+/// the released blade.
+fn probe_of(model: &Model) -> Probe {
+    let (pilot, spin) = ctc_engine::solve::rigid_body::bodies(model).next().unwrap();
+    let release = model
+        .discrete
+        .iter()
+        .filter_map(|d| match d {
             Discrete::Link {
                 release_at: Some(t),
                 ..
-            } => release = *t,
-            _ => {}
-        }
-    }
+            } => Some(*t),
+            _ => None,
+        })
+        .next_back()
+        .unwrap_or(f64::INFINITY);
     let names: Vec<&str> = model.bodies.iter().map(|b| b.name.as_str()).collect();
     let blade1 = names.iter().position(|n| *n == "blade1").unwrap();
     let casing = names.iter().position(|n| *n == "casing").unwrap();
-    let m_b = body_mass(&model, blade1);
-    let m_rotor = m_shaft
-        + (0..model.bodies.len())
-            .filter(|&b| b != blade1 && b != casing)
-            .map(|b| body_mass(&model, b))
-            .sum::<f64>();
     // the released blade's root: the first side of its released links
     let root: Vec<usize> = model
         .discrete
@@ -278,18 +267,64 @@ fn blade_loss_whirl_friction_and_energy() {
         }
     }
     assert_eq!(rotor.len(), 11, "the disc and five blades both ways");
-    let mut probe = Probe {
+    Probe {
         pilot,
         spin,
         release,
         root,
         rotor,
         ..Probe::default()
-    };
-    let wall = std::time::Instant::now();
-    let summary = ctc_engine::solve::run(&model, &mut probe).expect("the deck runs");
-    let seconds = wall.elapsed().as_secs_f64();
-    assert!(summary.completed);
+    }
+}
+
+/// The example's first 10 ms ([`deck_to_10_ms`]), run once for this file's
+/// test and the examples test ([`crate::examples::SharedRun`]).
+pub(crate) fn shared_10_ms() -> &'static SharedRun<Probe> {
+    static RUN: OnceLock<SharedRun<Probe>> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let src = deck_to_10_ms();
+        let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
+        let probe = probe_of(&model);
+        run_example_with(&src.path, &model, probe)
+    })
+}
+
+#[test]
+fn blade_loss_whirl_friction_and_energy() {
+    let src = deck_to_10_ms();
+    let model = ctc_lang::compile(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)));
+    let (pilot, _) = ctc_engine::solve::rigid_body::bodies(&model)
+        .next()
+        .unwrap();
+    let (mut k, mut c, mut m_shaft, mut release) = (0.0, 0.0, 0.0, f64::INFINITY);
+    for d in &model.discrete {
+        match d {
+            Discrete::Ground {
+                nodes,
+                stiffness,
+                damping,
+                ..
+            } if nodes == &[pilot] => (k, c) = (*stiffness, *damping),
+            Discrete::Mass { nodes, mass, .. } if nodes == &[pilot] => m_shaft = *mass,
+            Discrete::Link {
+                release_at: Some(t),
+                ..
+            } => release = *t,
+            _ => {}
+        }
+    }
+    let names: Vec<&str> = model.bodies.iter().map(|b| b.name.as_str()).collect();
+    let blade1 = names.iter().position(|n| *n == "blade1").unwrap();
+    let casing = names.iter().position(|n| *n == "casing").unwrap();
+    let m_b = body_mass(&model, blade1);
+    let m_rotor = m_shaft
+        + (0..model.bodies.len())
+            .filter(|&b| b != blade1 && b != casing)
+            .map(|b| body_mass(&model, b))
+            .sum::<f64>();
+    // the run, shared with the examples test (its summary snapshot)
+    let run = shared_10_ms();
+    let (probe, summary, seconds) = (&run.probe, &run.summary, run.seconds);
     // the released blade's centre of mass (its cells' area centroids) at
     // the release
     let at = probe.at_release.as_ref().expect("released");

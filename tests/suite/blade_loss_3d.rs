@@ -36,11 +36,13 @@
 //!        |  '-~~~~~~~~~~~-'                 spun about z (tilt held)
 //! ```
 
+use crate::examples::{run_example_with, SharedRun};
 use ctc_engine::geom::Dimension;
 use ctc_engine::model::{AnyModel, Model};
 use ctc_engine::solve::{IncrementView, Observer, RunSummary};
 use nalgebra::Const;
 use std::path::Path;
+use std::sync::OnceLock;
 
 /// An example deck with its flight step ended at `end` in `increments`
 /// (the decks' `let flight_end` / `let flight_increments`), and `extra`
@@ -70,14 +72,15 @@ fn deck(name: &str, end: &str, increments: usize, extra: &str) -> ctc_lang::Sour
 }
 
 /// `examples/blade_loss_3d.ctc` to `end` (increments of 25 us after the
-/// release at 6 ms, as the deck's): the examples test runs it to 6.1 ms.
+/// release at 6 ms, as the deck's): the examples test's run is
+/// [`shared_7_ms`].
 pub fn deck_3d_to(end: &str, increments: usize) -> ctc_lang::Source {
     deck("blade_loss_3d.ctc", end, increments, "")
 }
 
 /// The shaft's orbit and the audit of a run, in either dimension.
 #[derive(Default)]
-struct Probe {
+pub(crate) struct Probe {
     pilot: usize,
     time: Vec<f64>,
     /// The pilot's displacement in the plane (and its z in 3D).
@@ -165,6 +168,17 @@ fn run_model<const D: usize>(model: &Model<D>) -> (Probe, RunSummary)
 where
     Const<D>: Dimension<D>,
 {
+    let mut probe = probe_of(model);
+    let summary = ctc_engine::solve::run(model, &mut probe).expect("the deck runs");
+    assert!(summary.completed);
+    (probe, summary)
+}
+
+/// The probe of a run: the rigid body's pilot, the released blade's root.
+fn probe_of<const D: usize>(model: &Model<D>) -> Probe
+where
+    Const<D>: Dimension<D>,
+{
     let (pilot, _) = ctc_engine::solve::rigid_body::bodies(model)
         .next()
         .expect("a rigid body");
@@ -181,14 +195,28 @@ where
             _ => Vec::new(),
         })
         .collect();
-    let mut probe = Probe {
+    Probe {
         pilot,
         root,
         ..Probe::default()
-    };
-    let summary = ctc_engine::solve::run(model, &mut probe).expect("the deck runs");
-    assert!(summary.completed);
-    (probe, summary)
+    }
+}
+
+/// The deck as written to 7 ms (40 flight increments), run once for
+/// [`blade_loss_3d_whirl_friction_and_energy`] and the examples test
+/// ([`crate::examples::SharedRun`]).
+pub(crate) fn shared_7_ms() -> &'static SharedRun<Probe> {
+    static RUN: OnceLock<SharedRun<Probe>> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let src = deck_3d_to("7e-3", 40);
+        let AnyModel::D3(model) =
+            ctc_lang::compile_any(&src).unwrap_or_else(|d| panic!("{}", d.render(&src)))
+        else {
+            panic!("a 3D deck")
+        };
+        let probe = probe_of(&model);
+        run_example_with(&src.path, &model, probe)
+    })
 }
 
 /// The largest distance between two orbits at the times up to `until`
@@ -276,9 +304,9 @@ fn blade_loss_3d_slice_follows_the_planar_orbit() {
 /// the held slice above is the comparison.)
 #[test]
 fn blade_loss_3d_whirl_friction_and_energy() {
-    let (end, n) = ("7e-3", 40);
-    let src = deck_3d_to(end, n);
-    let (free, summary, w3) = run(&src);
+    // the run, shared with the examples test (its summary snapshot)
+    let run = shared_7_ms();
+    let (free, summary, w3) = (&run.probe, &run.summary, run.seconds);
     let friction_total: f64 = summary.friction_work.iter().sum();
     let friction_error = (free.return_map - free.mu_rn_slip).abs() / free.mu_rn_slip;
     let (error, balance, numerical) = (
@@ -299,7 +327,7 @@ fn blade_loss_3d_whirl_friction_and_energy() {
         .map(|c| c[0].hypot(c[1]))
         .fold(0.0, f64::max);
     eprintln!(
-        "blade loss 3D (free slice) to {end}: {} increments, {} iterations, {} cutbacks, \
+        "blade loss 3D (free slice) to 7e-3: {} increments, {} iterations, {} cutbacks, \
          {w3:.1} s; orbit peak {peak:.4e}; \
          axial {axial:.2e}; friction work {friction_total:.4e} (the return map's {:.4e}) vs \
          sum mu R_N slip {:.4e} ({friction_error:.1e}); balance {balance:.2e}, numerical {numerical:.2e}, error \

@@ -19,11 +19,13 @@
 //!     z = 0 (symmetry)   9        24               50
 //! ```
 
+use crate::examples::{run_example_with, SharedRun};
 use ctc_engine::model::Model;
 use ctc_engine::solve::{IncrementView, Observer};
 use ctc_geom::iges::Writer;
 use ctc_geom::nurbs::{build, NurbsCurve};
 use ctc_geom::Vec3;
+use std::sync::OnceLock;
 
 /// Cavity radius of the bulge zone.
 const R_BULGE: f64 = 24.0;
@@ -93,7 +95,7 @@ fn the_die_read_back_is_the_cavity_with_free_space_inside() {
 }
 
 /// Wall thickness and die contact of the last converged increment.
-struct Wall {
+pub(crate) struct Wall {
     /// (inner node, outer node) pairs on the same reference (theta, z).
     pairs: Vec<(usize, usize)>,
     reference: Vec<[f64; 3]>,
@@ -175,12 +177,9 @@ fn full_run() {
     ])
 }
 
-/// Runs the example with its `let` lines replaced, prints and checks the
-/// thinning, die contact and bulge radius.
-fn form(replace: &[(&str, &str)]) {
-    let model = crate::example_files::compile_3d("examples/tube_hydroforming.ctc", replace);
-    let start = std::time::Instant::now();
-    let pairs = through_thickness_pairs(&model, 19.5, 20.5);
+/// The probe of a run of `model`.
+fn wall_of(model: &Model<3>) -> Wall {
+    let pairs = through_thickness_pairs(model, 19.5, 20.5);
     assert!(!pairs.is_empty());
     let pole = (0..model.mesh.nodes.len())
         .find(|&n| {
@@ -188,15 +187,45 @@ fn form(replace: &[(&str, &str)]) {
             (x[0] - 20.5).abs() < 1e-9 && x[1].abs() < 1e-9 && x[2].abs() < 1e-9
         })
         .expect("the outer node at theta = 0, z = 0");
-    let mut wall = Wall {
+    Wall {
         pairs,
         pole,
         reference: model.mesh.nodes.clone(),
         rows: Vec::new(),
         u: Vec::new(),
+    }
+}
+
+const DECK: &str = "examples/tube_hydroforming.ctc";
+
+/// The example as written, run once for this file's test and the examples
+/// test ([`crate::examples::SharedRun`]).
+pub(crate) fn shared() -> &'static SharedRun<Wall> {
+    static RUN: OnceLock<SharedRun<Wall>> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let model = crate::example_files::compile_3d(DECK, &[]);
+        let deck = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(DECK);
+        run_example_with(&deck, &model, wall_of(&model))
+    })
+}
+
+/// Runs the example with its `let` lines replaced (the run shared with the
+/// examples test when none is), prints and checks the thinning, die
+/// contact and bulge radius.
+fn form(replace: &[(&str, &str)]) {
+    let model = crate::example_files::compile_3d(DECK, replace);
+    let own;
+    let (wall, summary, seconds) = if replace.is_empty() {
+        let run = shared();
+        (&run.probe, &run.summary, run.seconds)
+    } else {
+        let start = std::time::Instant::now();
+        let mut wall = wall_of(&model);
+        let summary = ctc_engine::solve::run(&model, &mut wall).unwrap();
+        assert!(summary.completed);
+        own = (wall, summary);
+        (&own.0, &own.1, start.elapsed().as_secs_f64())
     };
-    let summary = ctc_engine::solve::run(&model, &mut wall).unwrap();
-    assert!(summary.completed);
     let (thin, contact, bulge) = *wall.rows.last().unwrap();
     eprintln!(
         "tube_hydroforming: {} nodes, {} increments, {} iterations, {} cutbacks, {:.1} s, max \
@@ -205,7 +234,7 @@ fn form(replace: &[(&str, &str)]) {
         summary.increments.len(),
         summary.newton_iterations,
         summary.cutbacks,
-        start.elapsed().as_secs_f64()
+        seconds
     );
     // the deck's thickness map (`output { thickness = (tube.outer,
     // tube.inner) }`) on the outer face: the distance to the deformed

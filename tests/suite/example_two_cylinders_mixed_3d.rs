@@ -19,16 +19,18 @@
 //!   x = 0 symmetry; uz = 0 on z = 0 and z = 0.1 (plane strain)
 //! ```
 
+use crate::examples::{run_example_with, SharedRun};
 use ctc_engine::model::{AnyModel, Model};
 use ctc_engine::solve::{IncrementView, Observer};
 use std::path::Path;
+use std::sync::OnceLock;
 
 /// The 2D reference force per unit length (module doc) times the thickness.
 const P_REF: f64 = 2.489 * 0.1;
 
 /// The force on the pushed flat (`-` its reaction `y`) at the last increment.
 #[derive(Default)]
-struct Force {
+pub(crate) struct Force {
     nodes: Vec<usize>,
     p: f64,
 }
@@ -40,7 +42,8 @@ impl Observer<3> for Force {
     }
 }
 
-fn force(text: &str) -> (f64, usize) {
+/// The deck `text` compiled, and its probe.
+fn model_and_probe(text: &str) -> (Model<3>, Force) {
     let src = ctc_lang::Source::new(Path::new("two_cylinders_mixed_3d.ctc"), text);
     let model: Model<3> = match ctc_lang::compile_any(&src) {
         Ok(AnyModel::D3(m)) => m,
@@ -53,13 +56,33 @@ fn force(text: &str) -> (f64, usize) {
         .collect();
     nodes.sort_unstable();
     nodes.dedup();
-    let mut probe = Force {
+    let probe = Force {
         nodes,
         ..Force::default()
     };
+    (model, probe)
+}
+
+fn force(text: &str) -> (f64, usize) {
+    let (model, mut probe) = model_and_probe(text);
     let s = ctc_engine::solve::run(&model, &mut probe).expect("the run");
     assert!(s.completed);
     (probe.p, s.free_dofs)
+}
+
+fn deck_path() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two_cylinders_mixed_3d.ctc")
+}
+
+/// The example as written, run once for this file's test and the examples
+/// test ([`crate::examples::SharedRun`]).
+pub(crate) fn shared() -> &'static SharedRun<Force> {
+    static RUN: OnceLock<SharedRun<Force>> = OnceLock::new();
+    RUN.get_or_init(|| {
+        let text = std::fs::read_to_string(deck_path()).expect("the example deck");
+        let (model, probe) = model_and_probe(&text);
+        run_example_with(&deck_path(), &model, probe)
+    })
 }
 
 /// The mixed-order run against the 2D reference and against the same
@@ -69,9 +92,10 @@ fn force(text: &str) -> (f64, usize) {
 /// reference than the linear one.
 #[test]
 fn two_cylinders_mixed_3d_carries_the_plane_strain_hertz_force() {
-    let deck = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/two_cylinders_mixed_3d.ctc");
-    let text = std::fs::read_to_string(&deck).expect("the example deck");
-    let (mixed, dofs) = force(&text);
+    let text = std::fs::read_to_string(deck_path()).expect("the example deck");
+    // the example's run, shared with the examples test (its snapshot)
+    let run = shared();
+    let (mixed, dofs) = (run.probe.p, run.summary.free_dofs);
     let linear_text = text
         .replace(
             "radial = 3  circumferential = 6",

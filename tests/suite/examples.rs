@@ -94,17 +94,7 @@ fn examples() -> Vec<PathBuf> {
 }
 
 fn compile(path: &Path) -> AnyModel {
-    // the blade loss runs its first 10 ms here (its 20 ms cost ~45 s of
-    // debug CPU: `crate::blade_loss::deck_to_10_ms`)
-    let src = if path.file_stem().is_some_and(|s| s == "blade_loss") {
-        crate::blade_loss::deck_to_10_ms()
-    } else if path.file_stem().is_some_and(|s| s == "blade_loss_3d") {
-        // its spin-up and the release (a run to 13 ms: ~150 s of debug
-        // CPU; `crate::blade_loss_3d` runs it to 6.5 / 7 ms)
-        crate::blade_loss_3d::deck_3d_to("6.1e-3", 4)
-    } else {
-        ctc_lang::Source::read(path).expect("readable deck")
-    };
+    let src = ctc_lang::Source::read(path).expect("readable deck");
     match ctc_lang::compile_any(&src) {
         Ok(m) => m,
         Err(d) => panic!("{}", d.render(&src)),
@@ -144,11 +134,12 @@ fn every_example_opens_with_goal_reference_and_run_command() {
 /// compared in deck order whatever the order of the runs). Measured
 /// (wall under load 13-18, where wall is ~10x CPU): this test's own
 /// lines (`cargo test --workspace -- examples:: --nocapture`: each deck
-/// prints its time) ironing_3d 293 s, taylor_bar 42 s; the tests running
-/// the same decks: blade_loss_3d 140 s to 7 ms (here to 6.1 ms),
-/// two_cylinders_mixed_3d over 60 s (with its hex8 twin), blade_loss 43 s
-/// to 10 ms (as here), superplastic_forming_3d 39 s, tube_hydroforming
-/// 29 s; blankholder 22 s (the catalogue's level 0, both roller kinds).
+/// prints its time) ironing_3d 293 s, taylor_bar 42 s; the decks whose
+/// run is shared with their own test ([`SharedRun`]): blade_loss_3d 140 s
+/// to 7 ms, two_cylinders_mixed_3d over 60 s (with its hex8 twin, which
+/// that test runs alone), blade_loss 43 s to 10 ms, superplastic_forming_3d
+/// 39 s, tube_hydroforming 29 s; blankholder 22 s (the catalogue's level
+/// 0, both roller kinds).
 /// In file-name order ironing_3d started 24th of 40 and ended the test
 /// alone (867 s).
 const SLOW_EXAMPLES_FIRST: &[&str] = &[
@@ -218,10 +209,11 @@ fn every_example_runs_and_matches_its_summary_snapshot() {
                 let Some(&i) = order.get(k) else { break };
                 let deck = &decks[i];
                 let start = std::time::Instant::now();
-                let lines = match compile(deck) {
+                let stem = deck.file_stem().unwrap().to_string_lossy();
+                let lines = shared_lines(&stem).unwrap_or_else(|| match compile(deck) {
                     AnyModel::D2(m) => run_example(deck, &m),
                     AnyModel::D3(m) => run_example(deck, &m),
-                };
+                });
                 // the time budget of this test (docs/ARCHITECTURE.md, "CI
                 // time budget"): `-- --nocapture` lists each deck's wall
                 eprintln!(
@@ -245,24 +237,104 @@ fn run_example<const D: usize>(deck: &Path, model: &Model<D>) -> Vec<String>
 where
     Const<D>: Dimension<D>,
 {
+    run_example_with(deck, model, Nothing).lines
+}
+
+/// An observer that keeps nothing.
+struct Nothing;
+
+impl<const D: usize> Observer<D> for Nothing {}
+
+/// One run of an example deck, shared by the examples test (its summary
+/// snapshot: [`SharedRun::lines`]) and the deck's own test (its physics:
+/// [`SharedRun::probe`]), so that `cargo test` runs the deck once (the CI
+/// time budget of `docs/ARCHITECTURE.md`). A deck's module keeps it in a
+/// `OnceLock`; [`shared_lines`] lists those decks.
+pub(crate) struct SharedRun<P> {
+    /// The deck's own observer after the run.
+    pub probe: P,
+    /// The run's summary.
+    pub summary: ctc_engine::solve::RunSummary,
+    /// The examples test's snapshot lines.
+    pub lines: Vec<String>,
+    /// Wall seconds of the run (results written included).
+    pub seconds: f64,
+}
+
+/// Runs one example deck into a temporary directory (results and summary
+/// written as `ctc run` does) with `probe` observing it too.
+pub(crate) fn run_example_with<const D: usize, P: Observer<D>>(
+    deck: &Path,
+    model: &Model<D>,
+    mut probe: P,
+) -> SharedRun<P>
+where
+    Const<D>: Dimension<D>,
+{
+    let start = std::time::Instant::now();
     let dir = tempfile::tempdir().unwrap();
     let mut writer = ctc_engine::output::ResultWriter::create(dir.path(), model).unwrap();
-    let mut probe = Probe::default();
-    struct Both<'a, const D: usize>(&'a mut Probe, &'a mut ctc_engine::output::ResultWriter<D>);
-    impl<const D: usize> Observer<D> for Both<'_, D>
+    let mut lines = Probe::default();
+    struct All<'a, const D: usize> {
+        lines: &'a mut Probe,
+        writer: &'a mut ctc_engine::output::ResultWriter<D>,
+        probe: &'a mut dyn Observer<D>,
+    }
+    impl<const D: usize> Observer<D> for All<'_, D>
     where
         Const<D>: Dimension<D>,
     {
+        fn iteration(&mut self, info: &ctc_engine::solve::IterationInfo) {
+            self.probe.iteration(info)
+        }
         fn converged(&mut self, v: &IncrementView<'_, D>) -> Result<(), String> {
-            self.0.converged(v)?;
-            self.1.converged(v)
+            self.lines.converged(v)?;
+            self.writer.converged(v)?;
+            self.probe.converged(v)
+        }
+        fn cutback(&mut self, reason: &str, new_dt: f64) {
+            self.probe.cutback(reason, new_dt)
+        }
+        fn warning(&mut self, message: &str) {
+            self.probe.warning(message)
         }
     }
-    let summary = ctc_engine::solve::run(model, &mut Both(&mut probe, &mut writer))
-        .unwrap_or_else(|e| panic!("{}: {}", deck.display(), e.message));
+    let summary = ctc_engine::solve::run(
+        model,
+        &mut All {
+            lines: &mut lines,
+            writer: &mut writer,
+            probe: &mut probe,
+        },
+    )
+    .unwrap_or_else(|e| panic!("{}: {}", deck.display(), e.message));
     writer.finish(&summary).unwrap();
-    assert!(summary.completed);
+    assert!(
+        summary.completed,
+        "{}: the run did not complete",
+        deck.display()
+    );
     assert!(dir.path().join("results.pvd").exists());
     assert!(dir.path().join("summary.json").exists());
-    probe.lines
+    SharedRun {
+        probe,
+        summary,
+        lines: lines.lines,
+        seconds: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// The snapshot lines of the example decks whose run is shared with the
+/// deck's own test ([`SharedRun`]), `None` for the others.
+fn shared_lines(stem: &str) -> Option<Vec<String>> {
+    Some(match stem {
+        "blade_loss" => crate::blade_loss::shared_10_ms().lines.clone(),
+        "blade_loss_3d" => crate::blade_loss_3d::shared_7_ms().lines.clone(),
+        "two_cylinders_mixed_3d" => crate::example_two_cylinders_mixed_3d::shared()
+            .lines
+            .clone(),
+        "superplastic_forming_3d" => crate::example_superplastic_forming::shared().lines.clone(),
+        "tube_hydroforming" => crate::example_tube_hydroforming::shared().lines.clone(),
+        _ => return None,
+    })
 }

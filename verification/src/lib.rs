@@ -38,6 +38,7 @@ pub mod fenicsx_export;
 pub mod history_plot;
 pub mod markdown;
 pub mod measure;
+pub mod memo;
 #[cfg(feature = "meshio")]
 pub mod meshio;
 pub mod method_plots;

@@ -695,8 +695,12 @@ pub fn run_patch_deck(text: String, method: &str) -> Result<(Outcome, ProgramLev
 }
 
 /// Runs a patch deck; `method` decides the exact pressure.
+/// Shared within the process ([`crate::memo`]): the catalogue's case and a
+/// test printing the same run's table run it once.
 fn run_deck(text: String, method: &str) -> Result<(Outcome, ProgramLevel), String> {
-    run_patch_deck_with_contact(text, method).map(|(o, level, _)| (o, level))
+    crate::memo::once(format!("contact_ntf_3d::run_deck {method}\n{text}"), || {
+        run_patch_deck_with_contact(text.clone(), method).map(|(o, level, _)| (o, level))
+    })
 }
 
 /// A patch run: its outcome, its level figures and the contact of the last
@@ -878,8 +882,16 @@ pub fn hertz_force_with(
     formulation: &str,
 ) -> Result<(f64, ctc_engine::solve::RunSummary), String> {
     let text = hertz_deck_with(block_e, formulation);
+    // shared within the process ([`crate::memo`]): the catalogue's case and
+    // the tests printing the forces run it once
+    crate::memo::once(format!("contact_ntf_3d::hertz_force_with\n{text}"), || {
+        hertz_force_once(&text)
+    })
+}
+
+fn hertz_force_once(text: &str) -> Result<(f64, ctc_engine::solve::RunSummary), String> {
     let path = std::path::Path::new("hertz_ntf_3d.ctc");
-    let src = ctc_lang::Source::new(path, &text);
+    let src = ctc_lang::Source::new(path, text);
     let AnyModel::D3(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
         return Err("the Hertz deck is not a 3d deck".into());
     };

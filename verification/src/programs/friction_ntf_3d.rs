@@ -285,7 +285,7 @@ pub fn blocks_model(strategy: &str, method: &str) -> Result<ctc_engine::model::M
 
 /// The contact evaluation of pair 0 and the summed reaction of some nodes
 /// at every converged increment.
-#[derive(Default)]
+#[derive(Default, Clone)]
 pub struct Rows {
     /// `(time, contact of pair 0, reaction summed over `nodes`)`.
     pub rows: Vec<(f64, Vec<NodeContact<3>>, [f64; 3])>,
@@ -318,7 +318,17 @@ impl Observer<3> for Rows {
 
 /// Compiles and runs a 3D deck; `reaction_set` names the face set whose
 /// nodes' reactions are summed.
+///
+/// Shared within the process ([`crate::memo`]): the catalogue's case and a
+/// test printing the same run's table run it once.
 pub fn run_deck(name: &str, text: &str, reaction_set: &str) -> Result<(Rows, RunSummary), String> {
+    crate::memo::once(
+        format!("friction_ntf_3d::run_deck {name} {reaction_set}\n{text}"),
+        || run_deck_once(name, text, reaction_set),
+    )
+}
+
+fn run_deck_once(name: &str, text: &str, reaction_set: &str) -> Result<(Rows, RunSummary), String> {
     let path = std::path::Path::new(name);
     let src = ctc_lang::Source::new(path, text);
     let AnyModel::D3(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
