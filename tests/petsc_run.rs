@@ -511,18 +511,21 @@ fn a_failing_run_stops_every_rank_with_one_diagnosis() {
 /// capped at 2 iterations (`-ksp_max_it 2`) on the large contact deck at
 /// its own size (n = 6, 8k dofs; 37-40 iterations a solve uncapped, see
 /// `large_contact_deck_by_cg_gamg_reports_every_rank`). Every solve ends
-/// `DIVERGED_ITS`, the increment is cut back to its smallest size and the
-/// run stops, on 1 and 2 ranks alike: a non-zero exit, one diagnosis by
-/// rank 0 naming the linear solver and PETSc's reason (not "singular": the
-/// matrix is fine), a summary saying the run did not complete after the
-/// same attempts as the 1-rank run, and no result of an unconverged state
-/// (no increment in the history, no `.pvtu` listed).
+/// `DIVERGED_ITS`; the increment is cut back once, fails the same way at
+/// half its size and the run stops there (before, it halved down to the
+/// smallest size: 10 cutbacks, a GAMG set-up each), on 1 and 2 ranks
+/// alike: a non-zero exit, one diagnosis by rank 0 naming the linear
+/// solver, PETSc's reason and the options to change (not "singular": the
+/// matrix is fine), a summary saying the run did not complete after one
+/// cutback and the same solves as the 1-rank run, and no result of an
+/// unconverged state (no increment in the history, no `.pvtu` listed).
 ///
 /// ```text
 ///   mpirun -n 1|2 ctc run large_contact_3d.ctc --solver petsc --
 ///       -ksp_type cg -pc_type gamg -ksp_max_it 2
 ///   K du = r: CG 2 its -> DIVERGED_ITS -> LinearError::NotConverged
-///     -> FailureKind::LinearSolver -> cutbacks -> exit 1, "error: ..."
+///     -> FailureKind::LinearSolver -> 1 cutback -> the same at dt / 2
+///     -> exit 1, "error: ..."
 /// ```
 #[test]
 fn a_krylov_solve_that_does_not_converge_stops_every_rank_with_its_reason() {
@@ -547,7 +550,9 @@ fn a_krylov_solve_that_does_not_converge_stops_every_rank_with_its_reason() {
             "the Krylov solver did not converge: DIVERGED_ITS",
             "after 2 iterations",
             "the iterative linear solver did not converge",
+            "failed the same way at dt = 5.000e-1 and, cut back once, at dt = 2.500e-1",
             "-ksp_max_it",
+            "-ksp_rtol",
         ] {
             assert!(err.contains(words), "{ranks} ranks: no `{words}` in\n{err}");
         }
@@ -562,6 +567,10 @@ fn a_krylov_solve_that_does_not_converge_stops_every_rank_with_its_reason() {
         assert_eq!(s["distributed"]["ranks"], ranks);
         assert_eq!(s["distributed"]["fallbacks"], 0, "no GMRES fallback");
         assert!(iterations(&s).is_empty(), "no converged increment");
+        assert_eq!(
+            s["cutbacks"], 1,
+            "{ranks} ranks: one cutback, not down to the smallest"
+        );
         attempts.push((s["cutbacks"].clone(), s["distributed"]["solves"].clone()));
         // nothing of an unconverged state: the history has no row, the PVD
         // lists no parallel VTU
