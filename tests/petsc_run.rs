@@ -16,7 +16,7 @@
 //! masses (examples/bar_impact.ctc), all assembled distributed; the pieces of each increment's parallel VTU
 //! (`.pvtu`) join into the serial VTU; CG + GAMG chosen by PETSc options
 //! converges to the same answer; a failing run stops every rank with one
-//! diagnosis and a non-zero exit.
+//! diagnosis and a non-zero exit; `-- -log_view` prints PETSc's log.
 //!
 //! ```text
 //!   serial:  ctc run deck                 ──▶ out/faer  ┐
@@ -587,6 +587,51 @@ fn a_krylov_solve_that_does_not_converge_stops_every_rank_with_its_reason() {
         attempts[0], attempts[1],
         "the same cutbacks and solves on 1 and 2 ranks"
     );
+}
+
+/// `-log_view` after `--` reaches PETSc (issue 21). PETSc reads it only
+/// inside `PetscInitialize`: the run's options are handed to it there
+/// (`PETSC_OPTIONS`, `petsc/src/env.rs`); inserted into the options
+/// database after the start, as before last session's fix, it was
+/// silently ignored and no log was printed. One rank, the Hertz cylinder
+/// (examples/hertz_cylinder.ctc) in one increment: with the option,
+/// PETSc's performance log with its events is on the standard output
+/// (printed by `PetscFinalize`); without it, none of those words is (what
+/// ctc prints under `-q` names no PETSc event), so the check can fail.
+///
+/// ```text
+///   mpirun -n 1 ctc run hertz.ctc -q --solver petsc -- -log_view
+///     PETSC_OPTIONS="-log_view" -> PetscInitialize ... PetscFinalize
+///     -> stdout: "PETSc Performance Summary", "KSPSolve", "MatAssemblyEnd"
+/// ```
+#[test]
+fn log_view_reaches_petsc_and_prints_its_log() {
+    let tmp = tempfile::tempdir().unwrap();
+    let deck = hertz_one_increment(tmp.path(), 20);
+    let deck = deck.to_str().unwrap();
+    let words = ["PETSc Performance Summary", "KSPSolve", "MatAssemblyEnd"];
+    for (opts, logged) in [
+        (vec!["--solver", "petsc"], false),
+        (vec!["--solver", "petsc", "--", "-log_view"], true),
+    ] {
+        let dir = tmp.path().join(format!("log{logged}"));
+        let out = run(deck, &dir, Some(1), &opts);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{opts:?} failed:\n{stdout}\n{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        for w in words {
+            assert_eq!(
+                stdout.contains(w),
+                logged,
+                "{opts:?}: `{w}` in the standard output: {}, expected {logged}\n{stdout}",
+                stdout.contains(w)
+            );
+        }
+        assert_eq!(summary(&dir)["completed"], true);
+    }
 }
 
 #[test]
