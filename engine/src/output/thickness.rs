@@ -104,22 +104,38 @@ pub fn face_nodes(request: &ThicknessRequest) -> Vec<usize> {
     v
 }
 
+/// Thicknesses within this fraction of the minimum tie (see [`minimum`]).
+const TIE: f64 = 1e-9;
+
 /// The thinnest node of the first face set: `(thickness, reference
-/// position)` (NaN without nodes).
+/// position)` (NaN without nodes): the smallest thickness, at the
+/// lowest-numbered node within [`TIE`] of it. Nodes that symmetry makes
+/// equally thin (a ring of a tube) differ by round-off, which the thread
+/// count or the MPI ranks' summation order changes: the strict minimum's
+/// node jumped between them (issue 21: the tube hydroforming example's
+/// thinnest point at (7.85, 18.94, 0) serial and (20.5, 0, 0) on 2 ranks,
+/// thicknesses equal to 3e-13); the lowest-numbered tied node does not.
 pub fn minimum<const D: usize>(
     mesh: &Mesh<D>,
     request: &ThicknessRequest,
     thickness: &[f64],
 ) -> (f64, [f64; 3]) {
-    let mut best = (f64::NAN, [f64::NAN; 3]);
-    for n in face_nodes(request) {
-        let t = thickness[n];
-        if best.0.is_nan() || t < best.0 {
+    let nodes = face_nodes(request);
+    // f64::min skips NaN; all NaN (or none) stays NaN and finds no node
+    let min = nodes.iter().map(|&n| thickness[n]).fold(f64::NAN, f64::min);
+    match nodes
+        .iter()
+        .find(|&&n| thickness[n] <= min + TIE * min.abs())
+    {
+        Some(&n) => {
             let x0 = &mesh.nodes[n];
-            best = (t, std::array::from_fn(|k| if k < D { x0[k] } else { 0.0 }));
+            (
+                min,
+                std::array::from_fn(|k| if k < D { x0[k] } else { 0.0 }),
+            )
         }
+        None => (f64::NAN, [f64::NAN; 3]),
     }
-    best
 }
 
 /// `thickness.csv`: the nodes of the first face set, sorted by their
@@ -238,5 +254,31 @@ mod tests {
             })
             .unwrap();
         assert!((t[below] - 0.3).abs() < 1e-12, "{}", t[below]);
+    }
+
+    #[test]
+    fn nodes_thin_to_round_off_alike_give_the_lowest_numbered_place() {
+        let (mesh, request) = plate();
+        let top = |x: f64, y: f64| {
+            (0..mesh.nodes.len())
+                .find(|&n| mesh.nodes[n] == [x, y, 0.5])
+                .unwrap()
+        };
+        let (a, b) = (top(1.0, 1.0), top(3.0, 2.0));
+        assert!(a < b);
+        let place = |dent_b: f64| {
+            let mut u = vec![[0.0; 3]; mesh.nodes.len()];
+            u[a][2] = -0.2;
+            u[b][2] = -dent_b;
+            let t = nodal(&mesh, &request, &u);
+            let (tmin, at) = minimum(&mesh, &request, &t);
+            assert_eq!(tmin, t[a].min(t[b]), "the value is the minimum");
+            at
+        };
+        // b thinner by round-off: a's place (the strict minimum gave b's)
+        assert_eq!(place(0.2 + 1e-14), [1.0, 1.0, 0.5]);
+        assert_eq!(place(0.2 - 1e-14), [1.0, 1.0, 0.5]);
+        // b thinner by more than the tie: b's place
+        assert_eq!(place(0.2 + 1e-6), [3.0, 2.0, 0.5]);
     }
 }

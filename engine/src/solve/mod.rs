@@ -701,6 +701,7 @@ where
             dt,
             min_dt,
             failure,
+            linear_repeat,
         }) => {
             let s = &model.steps[step];
             // a singular tangent (its zero pivot names the free motion) and a
@@ -736,10 +737,25 @@ where
                 .iter()
                 .map(|r| format!("{r:.2e}"))
                 .collect();
+            // the linear solver failed the same way at dt and 2 dt: stopped
+            // above the smallest increment (`stepping`, issue 21)
+            let how = if linear_repeat {
+                format!(
+                    "the iterative linear solver failed the same way at dt = {:.3e} and, cut \
+                     back once, at dt = {dt:.3e}: a smaller increment does not help it (the \
+                     matrix hardly changes with the increment), so the run stopped without \
+                     cutting back to the smallest allowed {min_dt:.3e}",
+                    2.0 * dt
+                )
+            } else {
+                format!(
+                    "the increment was cut back to dt = {dt:.3e} and still failed; the smallest \
+                     allowed is {min_dt:.3e}"
+                )
+            };
             let message = format!(
-                "step `{}` (step {} of {}) could not advance from time t = {time}: the increment \
-                 was cut back to dt = {dt:.3e} and still failed; the smallest allowed is \
-                 {min_dt:.3e} (min_increment {} x initial increment {:.3e}).\n  what: {}\n  last relative \
+                "step `{}` (step {} of {}) could not advance from time t = {time}: {how} \
+                 (min_increment {} x initial increment {:.3e}).\n  what: {}\n  last relative \
                  residuals: [{}]\n  likely cause: {cause}\n  remedy: {remedy}",
                 s.name,
                 step + 1,

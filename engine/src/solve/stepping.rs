@@ -4,6 +4,16 @@
 //! Each step starts with `(t_end - t_start) / increments`. A failed
 //! increment is retried from the last converged state with half the size;
 //! below `min_fraction` of the initial size the run stops with a diagnosis.
+//! An iterative linear solver that stopped before its tolerance
+//! ([`FailureKind::LinearSolver`]: a Krylov method at `-ksp_max_it`, a
+//! breakdown) is cut back once: if the attempt at half the size fails the
+//! same way (the same words: the solver's reason and iteration count), the
+//! run stops there instead of halving down to `min_fraction` — the matrix
+//! hardly changes with the increment size, so neither does the linear
+//! solve (issue 21: `-ksp_max_it 2` took 10 cutbacks, each a preconditioner
+//! set-up, to say the same thing). Those words come from the solver's
+//! collective result (PETSc's converged reason and iteration count are
+//! the same on every rank), so every rank stops at the same attempt.
 //! After two consecutive easy increments (first attempt, at most half of
 //! `max_iter` iterations) the size grows by 1.5, never above the initial one.
 //! The last increment of a step ends exactly at `t_end`. Times on the
@@ -26,7 +36,7 @@
 //! — halves the next size. The first increment after a restart sees no
 //! contact event (the count is not in the restart point).
 
-use super::newton::{Converged, Failure};
+use super::newton::{Converged, Failure, FailureKind};
 use super::restart::Resume;
 use crate::model::Step;
 
@@ -111,9 +121,22 @@ pub enum StepError {
         min_dt: f64,
         /// The last failure.
         failure: Failure,
+        /// Stopped above `min_dt`: the iterative linear solver failed the
+        /// same way at this size and at twice it (see the module notes).
+        linear_repeat: bool,
     },
     /// Accepting an increment failed (e.g. writing results).
     Aborted(String),
+}
+
+/// True when `failure` repeats `previous`, the failure of the attempt just
+/// before it (at twice the size) within the same increment, as a linear
+/// solver failure with the same words: a smaller increment did not help
+/// the linear solver and will not (see the module notes).
+fn repeats_linear_failure(previous: Option<&Failure>, failure: &Failure) -> bool {
+    failure.kind == FailureKind::LinearSolver
+        && previous
+            .is_some_and(|p| p.kind == FailureKind::LinearSolver && p.detail == failure.detail)
 }
 
 /// Runs all `steps` with `solver`.
@@ -147,6 +170,8 @@ pub fn drive_from(
         while step.t_end - t > 1e-9 * dt0 {
             let mut cutbacks = 0;
             let mut impact_cut = false;
+            // the failure of the attempt just before, in this increment
+            let mut previous: Option<Failure> = None;
             loop {
                 let remaining = step.t_end - t;
                 let (this_dt, t_new) = if dt >= remaining - 1e-6 * dt0 {
@@ -166,13 +191,14 @@ pub fn drive_from(
                         let tau = solver.impact_fraction().unwrap_or(1.0);
                         let new_dt = this_dt * tau;
                         let failure = Failure {
-                            kind: super::newton::FailureKind::ImpactCut,
+                            kind: FailureKind::ImpactCut,
                             residuals: conv.residuals,
                             detail: format!("first impact at {tau:.4} of the increment"),
                         };
                         solver.reject(si, &failure, new_dt);
                         dt = new_dt;
                         impact_cut = true;
+                        previous = None;
                     }
                     Ok(conv)
                         if adaptive.is_some()
@@ -188,7 +214,7 @@ pub fn drive_from(
                             .max(this_dt / 4.0)
                             .max(min_dt);
                         let failure = Failure {
-                            kind: super::newton::FailureKind::ErrorEstimate,
+                            kind: FailureKind::ErrorEstimate,
                             residuals: conv.residuals,
                             detail: format!(
                                 "local error estimate {eta:.2e} above {ERROR_REJECT} x error_tol \
@@ -198,6 +224,7 @@ pub fn drive_from(
                         solver.reject(si, &failure, new_dt);
                         dt = new_dt;
                         easy = 0;
+                        previous = None;
                     }
                     Ok(conv) => {
                         let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
@@ -257,19 +284,22 @@ pub fn drive_from(
                     }
                     Err(failure) => {
                         let new_dt = this_dt * CUT;
-                        if new_dt < min_dt * (1.0 - 1e-9) {
+                        let linear_repeat = repeats_linear_failure(previous.as_ref(), &failure);
+                        if linear_repeat || new_dt < min_dt * (1.0 - 1e-9) {
                             return Err(StepError::Cutbacks {
                                 step: si,
                                 time: t,
                                 dt: this_dt,
                                 min_dt,
                                 failure,
+                                linear_repeat,
                             });
                         }
                         solver.reject(si, &failure, new_dt);
                         dt = new_dt;
                         cutbacks += 1;
                         easy = 0;
+                        previous = Some(failure);
                     }
                 }
             }
@@ -622,5 +652,115 @@ mod tests {
         assert_eq!(m.accepted.len(), 3);
         assert_eq!(m.accepted[2].0, 1.0);
         assert!((m.accepted[0].0 - 1.0 / 3.0).abs() < 1e-15);
+    }
+
+    /// Fails every attempt larger than `max_dt` with what `failure` says
+    /// for the attempt's size; converges otherwise.
+    struct Scripted {
+        mock: Mock,
+        failure: fn(f64) -> Failure,
+    }
+
+    impl IncrementSolver for Scripted {
+        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+            let dt = t - self.mock.t;
+            self.mock.attempt(step, t).map_err(|_| (self.failure)(dt))
+        }
+        fn accept(
+            &mut self,
+            s: usize,
+            t: f64,
+            dt: f64,
+            cutbacks: usize,
+            c: Converged,
+        ) -> Result<(), String> {
+            self.mock.accept(s, t, dt, cutbacks, c)
+        }
+        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
+            self.mock.reject(s, f, new_dt);
+        }
+    }
+
+    /// A Krylov solve capped at its iteration limit, at any size.
+    fn capped(_dt: f64) -> Failure {
+        Failure::new(
+            FailureKind::LinearSolver,
+            "PETSc: the Krylov solver did not converge: DIVERGED_ITS (-3) after 2 iterations",
+        )
+    }
+
+    #[test]
+    fn a_linear_solver_failing_the_same_way_at_half_the_size_stops_the_run() {
+        // issue 21: every attempt's Krylov solve stops at its cap; the old
+        // rule halved 1 -> 1/1024 (10 cutbacks) before stopping
+        let mut m = Scripted {
+            mock: mock(0.0),
+            failure: capped,
+        };
+        let e = drive(&[step(1.0, 1, 1.0 / 1024.0)], &mut m).unwrap_err();
+        let StepError::Cutbacks {
+            dt,
+            min_dt,
+            linear_repeat,
+            failure,
+            ..
+        } = e
+        else {
+            panic!("{e:?}")
+        };
+        assert!(linear_repeat);
+        assert_eq!((dt, min_dt), (0.5, 1.0 / 1024.0));
+        assert_eq!(failure.kind, FailureKind::LinearSolver);
+        assert_eq!(m.mock.attempts, vec![1.0, 0.5]);
+        assert_eq!(m.mock.rejected, vec![0.5], "one cutback");
+
+        // the same failure cured by the cutback: the run goes on
+        let mut m = Scripted {
+            mock: mock(0.5),
+            failure: capped,
+        };
+        drive(&[step(1.0, 1, 1.0 / 1024.0)], &mut m).unwrap();
+        assert_eq!(m.mock.accepted[0], (0.5, 1));
+
+        // different words at each size (a breakdown after a number of
+        // iterations that changes with the size): cut back as before, down
+        // to the attempt that converges
+        let mut m = Scripted {
+            mock: mock(0.1),
+            failure: |dt| {
+                Failure::new(
+                    FailureKind::LinearSolver,
+                    format!(
+                        "DIVERGED_BREAKDOWN after {} iterations",
+                        (dt * 64.0) as usize
+                    ),
+                )
+            },
+        };
+        drive(&[step(1.0, 1, 1.0 / 1024.0)], &mut m).unwrap();
+        assert_eq!(m.mock.rejected[..4], [0.5, 0.25, 0.125, 0.0625]);
+        assert_eq!(m.mock.accepted[0], (0.0625, 4));
+
+        // a Newton failure between two equal linear failures: not
+        // consecutive, no stop
+        let mut m = Scripted {
+            mock: mock(0.0),
+            failure: |dt| {
+                if dt == 0.5 {
+                    Failure::new(FailureKind::MaxIterations, "no convergence")
+                } else {
+                    capped(dt)
+                }
+            },
+        };
+        let e = drive(&[step(1.0, 1, 1.0 / 1024.0)], &mut m).unwrap_err();
+        let StepError::Cutbacks { dt, .. } = e else {
+            panic!("{e:?}")
+        };
+        assert_eq!(
+            dt, 0.125,
+            "1 and 0.25 are not consecutive: 0.125 repeats 0.25"
+        );
+        assert_eq!(m.mock.rejected, vec![0.5, 0.25, 0.125]);
     }
 }
