@@ -11,6 +11,7 @@ mod contact_deformable;
 mod contact_search_jump;
 mod determinism;
 mod dynamic_fields;
+mod energy_alarm;
 mod example_files;
 mod example_iges_punch;
 mod example_superplastic_forming;

@@ -55,6 +55,8 @@ pub struct CellFields {
 /// The cells of one body with their law and formulation.
 #[derive(Debug, Clone)]
 pub struct CellBlock {
+    /// The body's name (`body NAME { .. }`): failures name it.
+    pub body: String,
     /// Global cell numbers.
     pub cells: Range<usize>,
     /// Small-strain linear elastic law of the block (for nonlinear
@@ -81,6 +83,7 @@ pub fn blocks_of<const D: usize>(model: &Model<D>) -> Result<Vec<CellBlock>, Str
                 )
             })?;
             Ok(CellBlock {
+                body: b.name.clone(),
                 cells: b.cells.clone(),
                 law: material::build(m, model.analysis.kind)?,
                 formulation: b.formulation,
@@ -406,6 +409,7 @@ mod tests {
             .collect();
         let law = LinearElastic::new(100.0, 0.25, AnalysisKind::PlaneStress).unwrap();
         let blocks = [CellBlock {
+            body: "b".into(),
             cells: 0..2,
             law,
             formulation: Formulation::Full,
@@ -462,6 +466,7 @@ mod tests {
             .collect();
         let law = LinearElastic::new(100.0, 0.25, AnalysisKind::PlaneStrain).unwrap();
         let blocks = [CellBlock {
+            body: "b".into(),
             cells: 0..4,
             law,
             formulation: Formulation::Full,
@@ -507,6 +512,7 @@ mod tests {
             .collect();
         let law = LinearElastic::new(100.0, 0.0, AnalysisKind::PlaneStress).unwrap();
         let blocks = [CellBlock {
+            body: "b".into(),
             cells: 0..1,
             law,
             formulation: Formulation::Full,

@@ -986,7 +986,14 @@ where
                     &mut out.scratch,
                     trial,
                 )
-                .map_err(|e| format!("cell {c}: {}", e.message))?;
+                .map_err(|e| {
+                    format!(
+                        "body `{}` cell {} (global {c}): {}",
+                        block.body,
+                        c - block.cells.start,
+                        e.message
+                    )
+                })?;
             let r = &out.scratch;
             for (a, f) in r.force.iter().enumerate() {
                 out.fe[D * a..D * (a + 1)].copy_from_slice(f.as_slice());

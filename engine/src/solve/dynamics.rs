@@ -36,8 +36,12 @@
 //! (trapezoidal `C v . du`), and the balance error `K + W_int + W_d -
 //! W_ext - W_c - K_0` (the integrator's: negative is numerical
 //! dissipation), and the gain `K + W_int + W_d - W_ext - K_0` (energy
-//! created, e.g. by contact chatter: a run whose gain exceeds
-//! [`ENERGY_GROWTH_TOL`] of the largest energy is warned about).
+//! created, e.g. by contact chatter). A run is warned about at the first
+//! increment where the gain, the balance or minus the internal work
+//! exceeds [`ENERGY_GROWTH_TOL`] of the largest energy ([`EnergyAlarm`]:
+//! a negative internal work is a kinetic energy beyond the work put in,
+//! which the balance does not see when the trapezoidal internal work
+//! follows the blow-up).
 
 use super::dofs::{Dof, DofMap};
 use super::linalg::{Scatter, NO_SLOT};
@@ -1333,11 +1337,93 @@ impl Dynamics {
             .ok_or("the restart point's energy audit does not match this version")?;
         Ok(())
     }
+}
 
-    /// Whether the energy grew (`Energy::gain`) by more than
-    /// [`ENERGY_GROWTH_TOL`] of its scale.
-    pub fn energy_grew(&self) -> bool {
-        self.energy.gain > ENERGY_GROWTH_TOL * self.energy.scale
+/// What the energy audit of a committed increment shows the physics
+/// cannot do, each beyond [`ENERGY_GROWTH_TOL`] of the largest energy
+/// ([`Energy::alarms`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum EnergyAlarm {
+    /// The internal work is negative: the bodies' strain energy plus
+    /// their plastic dissipation cannot be, so the kinetic energy exceeds
+    /// the work put in (an integrator whose trapezoidal work no longer
+    /// follows a stiff nonlinear response: `kinetic + internal` balances
+    /// while both blow up).
+    NegativeInternal,
+    /// `Energy::gain`: kinetic + internal energy beyond the work of the
+    /// loads and supports (energy created, e.g. by contact chatter).
+    Gain,
+    /// `Energy::balance`: kinetic + internal energy beyond the work of the
+    /// loads, supports and contact forces (energy created by the
+    /// integrator).
+    Created,
+}
+
+impl EnergyAlarm {
+    /// Every alarm, in the order [`Energy::alarms`] gives them.
+    pub const ALL: [EnergyAlarm; 3] = [
+        EnergyAlarm::NegativeInternal,
+        EnergyAlarm::Gain,
+        EnergyAlarm::Created,
+    ];
+}
+
+impl Energy {
+    /// The alarms the energies raise (in [`EnergyAlarm::ALL`] order), each
+    /// against [`ENERGY_GROWTH_TOL`] of [`Energy::scale`]; with
+    /// `thermal_strain` the internal work may go negative (a body heated
+    /// against a constraint does work on it) and is not checked.
+    pub fn alarms(&self, thermal_strain: bool) -> Vec<EnergyAlarm> {
+        let tol = ENERGY_GROWTH_TOL * self.scale;
+        EnergyAlarm::ALL
+            .into_iter()
+            .filter(|a| match a {
+                EnergyAlarm::NegativeInternal => !thermal_strain && self.internal < -tol,
+                EnergyAlarm::Gain => self.gain > tol,
+                EnergyAlarm::Created => self.balance > tol,
+            })
+            .collect()
+    }
+
+    /// The warning for `alarm` raised at increment `increment` ending at
+    /// time `t`.
+    pub fn warning(&self, alarm: EnergyAlarm, increment: usize, t: f64) -> String {
+        let (what, value, remedy) = match alarm {
+            EnergyAlarm::NegativeInternal => (
+                "the internal work went negative (strain energy and plastic dissipation \
+                 cannot: the kinetic energy exceeds the work put in)",
+                self.internal,
+                "the response is no longer resolved in time (a stiff or distorted cell, a \
+                 node driven through a surface): smaller increments (`dynamic { adaptive = \
+                 true }`), and look at the cells and contact nodes of the largest velocities",
+            ),
+            EnergyAlarm::Gain => (
+                "the total energy grew beyond the work of the loads and supports",
+                self.gain,
+                "a smaller time increment, or a dissipative scheme (`dynamic { scheme = \
+                 generalized_alpha  rho_inf = 0.8 }`) against contact chatter",
+            ),
+            EnergyAlarm::Created => (
+                "the integrator created energy: kinetic + internal energy beyond the work of \
+                 the loads, supports and contact forces",
+                self.balance,
+                "a smaller time increment, or a dissipative scheme (`dynamic { scheme = \
+                 generalized_alpha  rho_inf = 0.8 }`)",
+            ),
+        };
+        format!(
+            "energy audit, increment {increment} (t = {t:.6e}): {what}: {value:.3e} ({:.2} % of \
+             the largest energy {:.3e}, tolerance {} %); kinetic {:.4e}, internal work {:.4e}, \
+             external work {:.4e}, contact work {:.4e}, balance {:.4e}; {remedy}",
+            100.0 * value.abs() / self.scale,
+            self.scale,
+            100.0 * ENERGY_GROWTH_TOL,
+            self.kinetic,
+            self.internal,
+            self.external,
+            self.contact,
+            self.balance,
+        )
     }
 }
 
@@ -1472,6 +1558,56 @@ mod tests {
                 assert!(total.abs() <= 1e-13 * e_start, "{scheme:?}: {total:e}");
             }
         }
+    }
+
+    /// The audit of the 3D blade loss flown to 20 ms (issue 19; debug
+    /// `ctc run` of examples/blade_loss_3d.ctc with `flight_end = 20e-3`,
+    /// history.csv at 13.475 and 13.5 ms): the kinetic energy jumped 5.3e6
+    /// -> 1.6e7 mJ while the trapezoidal internal work went -1.0e7, so the
+    /// gain and the balance stayed negative and no warning was given. The
+    /// negative internal work is the alarm (not under thermal strains);
+    /// the gain and the balance raise theirs when positive.
+    #[test]
+    fn a_negative_internal_work_raises_an_alarm_the_balance_does_not() {
+        let energy = |kinetic: f64, internal: f64, external: f64, contact: f64, damping: f64| {
+            let balance = kinetic + internal + damping - external - contact;
+            Energy {
+                kinetic,
+                internal,
+                external,
+                contact,
+                damping,
+                balance,
+                gain: balance + contact,
+                scale: [kinetic, internal, external, contact, damping]
+                    .iter()
+                    .fold(0.0, |m: f64, x| m.max(x.abs())),
+                numerical: -balance,
+                error: 0.0,
+            }
+        };
+        // 13.475 ms (increment 361): sound
+        let before = energy(5.261e6, 3.702e5, 2.331e7, -1.643e7, 1.088e6);
+        assert!(before.alarms(false).is_empty(), "{before:?}");
+        // 13.5 ms: the blow-up's first increment
+        let after = energy(1.603e7, -1.013e7, 2.415e7, -1.673e7, 1.104e6);
+        assert!(after.gain < 0.0 && after.balance < 0.0, "{after:?}");
+        assert_eq!(after.alarms(false), vec![EnergyAlarm::NegativeInternal]);
+        assert!(after.alarms(true).is_empty());
+        let w = after.warning(EnergyAlarm::NegativeInternal, 362, 0.013500000000000002);
+        assert!(
+            w.contains("increment 362 (t = 1.350000e-2)")
+                && w.contains("internal work went negative"),
+            "{w}"
+        );
+        // energy created by contact (gain) and by the integrator (balance)
+        let chatter = energy(2.0, 1.0, 1.0, 2.0, 0.0);
+        assert_eq!(chatter.alarms(false), vec![EnergyAlarm::Gain]);
+        let created = energy(2.0, 1.0, 1.0, 0.0, 0.0);
+        assert_eq!(
+            created.alarms(false),
+            vec![EnergyAlarm::Gain, EnergyAlarm::Created]
+        );
     }
 
     #[test]

@@ -608,6 +608,7 @@ where
         increment,
         thermal,
         health: health::RunHealth::new(model),
+        energy_alarms: Vec::new(),
         controls: control::controls(model),
         control_trend: vec![control::Trend::default(); control::controls(model).len()],
         attempt_span: (
@@ -633,26 +634,6 @@ where
     if let Some(dy) = newton.dynamics() {
         summary.energy = Some(dy.energy);
         summary.notes.extend(dy.mass_notes.iter().cloned());
-        if dy.energy_grew() {
-            let e = dy.energy;
-            let w = format!(
-                "the total energy grew by {:.3e} ({:.2} % of the largest energy {:.3e}, \
-                 tolerance {} %): kinetic {:.4e}, internal work {:.4e}, external work {:.4e}, \
-                 contact work {:.4e}; a smaller time increment, or a dissipative scheme \
-                 (`dynamic {{ scheme = generalized_alpha  rho_inf = 0.8 }}`) against contact \
-                 chatter",
-                e.gain,
-                100.0 * e.gain / e.scale,
-                e.scale,
-                100.0 * dynamics::ENERGY_GROWTH_TOL,
-                e.kinetic,
-                e.internal,
-                e.external,
-                e.contact
-            );
-            observer.warning(&w);
-            summary.warnings.push(w);
-        }
     }
     let output = summary.timings.output;
     summary.timings = newton.timings.clone();
@@ -786,6 +767,9 @@ where
     attempt_span: (f64, f64),
     /// Contact health over the converged increments (warnings at the end).
     health: health::RunHealth,
+    /// The energy audit's alarms raised so far (each warned about once, at
+    /// the first increment that raises it).
+    energy_alarms: Vec<dynamics::EnergyAlarm>,
     /// Pressure-cycle controllers: load index and control.
     controls: Vec<(usize, crate::model::RateControl)>,
     /// Each controller's last estimate of the pressure factor that holds
@@ -866,6 +850,28 @@ where
             self.summary.warnings.push(w);
         }
         Some(increment)
+    }
+}
+
+impl<const D: usize> Driver<'_, '_, D>
+where
+    Const<D>: Dimension<D>,
+{
+    /// The warnings of the energy audit's alarms that the increment just
+    /// committed (ending at `t`) raises for the first time.
+    fn energy_warnings(&mut self, t: f64) -> Vec<String> {
+        let Some(dy) = self.newton.dynamics() else {
+            return Vec::new();
+        };
+        let e = dy.energy;
+        let mut out = Vec::new();
+        for alarm in e.alarms(self.thermal.is_some()) {
+            if !self.energy_alarms.contains(&alarm) {
+                self.energy_alarms.push(alarm);
+                out.push(e.warning(alarm, self.increment, t));
+            }
+        }
+        out
     }
 }
 
@@ -1011,7 +1017,7 @@ where
             energy: self.newton.dynamics().map(|d| d.energy),
             tools: tool_records,
         });
-        for w in warnings {
+        for w in warnings.into_iter().chain(self.energy_warnings(t)) {
             self.observer.warning(&w);
             self.summary.warnings.push(w);
         }
