@@ -1124,6 +1124,12 @@ pub struct DeformablePair {
     /// Mortar friction: per slave index, the tangential force vector of
     /// the latest evaluation (the augmented Lagrangian's next shift).
     pub tangential: Vec<[f64; 3]>,
+    /// 3D mortar (linear faces): `(increments, cap)`, the cap on the
+    /// pressure of the rows' load-stiffness term `p dB/dx` in the
+    /// increment after `increments` converged ones, set by its first
+    /// evaluation (at the committed state; see
+    /// `mortar::LOAD_STIFFNESS_CAP`).
+    pub load_stiffness_cap: Option<(usize, f64)>,
 }
 
 impl DeformablePair {

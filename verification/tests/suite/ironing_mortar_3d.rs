@@ -48,16 +48,35 @@ fn mortar_model(friction: bool) -> Model<3> {
 }
 
 /// The pair's forces at `x` and `K v` (state evaluated once at `committed`
-/// first when given: the friction pairing).
+/// first when given: the friction pairing). The exact tangent: the
+/// load-stiffness cap that the committed evaluation sets
+/// (`mortar::LOAD_STIFFNESS_CAP`) is cleared, so `x` sets its own.
 fn forces(
     model: &Model<3>,
     committed: Option<&[[f64; 3]]>,
     x: &[[f64; 3]],
     v: &[[f64; 3]],
 ) -> (Vec<f64>, Vec<f64>, Vec<usize>) {
+    forces_capped(model, committed, x, v, false)
+}
+
+/// [`forces`], with the load-stiffness cap of the committed evaluation
+/// kept (`capped`) or cleared.
+fn forces_capped(
+    model: &Model<3>,
+    committed: Option<&[[f64; 3]]>,
+    x: &[[f64; 3]],
+    v: &[[f64; 3]],
+    capped: bool,
+) -> (Vec<f64>, Vec<f64>, Vec<usize>) {
     let mut state = SurfacePair::new(model, 0);
     if let Some(xn) = committed {
         let _ = evaluate_pair(model, 0, xn, 0.0, &mut state);
+        if !capped {
+            if let Some(fp) = state.deformable.as_mut() {
+                fp.load_stiffness_cap = None;
+            }
+        }
     }
     let (res, _) = evaluate_pair(model, 0, x, 0.0, &mut state);
     let closed = res
@@ -214,4 +233,74 @@ fn ironing_mortar_press_tangent_matches_finite_differences() {
         worst = worst.max(e);
     }
     assert!(worst <= 1e-6, "press: {worst:.2e}");
+}
+
+/// The load-stiffness cap (`mortar::LOAD_STIFFNESS_CAP`): the frictionless
+/// pair evaluated first at a shallow press (the committed state of the
+/// increment: the die 0.1 down), then 0.4 deeper (an iterate that
+/// overshoots, as a Newton step that closes slab nodes under a penalty
+/// 500 times stiffer than the slab). There the pressures exceed twice the
+/// committed largest one, and the tangent's load-stiffness term is taken
+/// at the cap: `K v` departs from the central differences of the forces
+/// (the residual is exact; Newton is a modified one there); the same
+/// state evaluated first (its own cap, above its pressures) gives the
+/// exact tangent. Without the cap both match.
+#[test]
+fn ironing_mortar_load_stiffness_is_capped_past_twice_the_committed_pressure() {
+    let model = mortar_model(false);
+    let die = model.bodies[1].nodes.clone();
+    let mut seed: u64 = 0x1234_5678_9abc_def1;
+    let mut rnd = move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    };
+    // every node jittered (no die vertex over a slab edge), then the die
+    // moved down
+    let jittered: Vec<[f64; 3]> = model
+        .mesh
+        .nodes
+        .iter()
+        .map(|p| {
+            [
+                p[0] + 0.01 * rnd(),
+                p[1] + 0.01 * rnd(),
+                p[2] + 0.01 * rnd(),
+            ]
+        })
+        .collect();
+    let moved = |dy: f64| -> Vec<[f64; 3]> {
+        jittered
+            .iter()
+            .enumerate()
+            .map(|(k, p)| {
+                let oy = if die.contains(&k) { dy } else { 0.0 };
+                [p[0], p[1] + oy, p[2]]
+            })
+            .collect()
+    };
+    let (committed, x) = (moved(-0.1), moved(-0.5));
+    let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
+    let h = 1e-7;
+    let shift = |sign: f64| -> Vec<[f64; 3]> {
+        x.iter()
+            .zip(&v)
+            .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
+            .collect()
+    };
+    let error = |capped: bool| -> f64 {
+        let (_, kv, closed) = forces_capped(&model, Some(&committed), &x, &v, capped);
+        assert!(!closed.is_empty());
+        let (fp, _, _) = forces_capped(&model, Some(&committed), &shift(1.0), &v, capped);
+        let (fm, _, _) = forces_capped(&model, Some(&committed), &shift(-1.0), &v, capped);
+        let scale = kv.iter().fold(1e-300f64, |a, b| a.max(b.abs()));
+        (0..kv.len())
+            .map(|k| (-(fp[k] - fm[k]) / (2.0 * h) - kv[k]).abs() / scale)
+            .fold(0.0, f64::max)
+    };
+    let (exact, capped) = (error(false), error(true));
+    println!("load-stiffness cap: K v vs FD exact {exact:.2e}, capped {capped:.2e}");
+    assert!(exact <= 1e-6, "exact tangent: {exact:.2e}");
+    assert!(capped > 1e-3, "the cap did not act: {capped:.2e}");
 }

@@ -92,6 +92,23 @@ struct Piece {
 /// 4-node slots).
 const UNUSED: usize = usize::MAX;
 
+/// The penalty tangent of a 3D mortar row (linear faces) takes its
+/// load-stiffness term `p dB/dx` (the rotation of the slave facets'
+/// normals and the segmentation under the nodal pressure) with the
+/// pressure capped at this factor times the pair's largest nodal pressure
+/// at the committed state (the first evaluation of the increment; no cap
+/// while it carries none). Issue 18, the 3D ironing (`ironing_3d`, slab
+/// 500 times softer than the area penalty): a node the step closes
+/// penetrates ~0.1, 50 times its equilibrium depth, and at that pressure
+/// the load stiffness, about `p h` against the slab's `E h`, made the
+/// Newton steps move slab nodes up to 5 along the surface and into the
+/// die (`CTC_LOG=debug ctc run -v`): 20 + 5 + 8 iterations and two
+/// cutbacks in level 0's second press increment. Near the solution the
+/// pressures lie below the cap and the tangent is exact (quadratic
+/// convergence); above it Newton is a modified one (the residual is
+/// exact, the answer unchanged).
+pub const LOAD_STIFFNESS_CAP: f64 = 2.0;
+
 /// The row of one slave node, summed over its mortar pieces (2D segment
 /// pairs, 3D facet pairs): the weighted gap `g~`, the covered area `A`,
 /// `B` (`-D_jk n` on the slave nodes, `M_jl n` on the master ones) and
@@ -106,6 +123,10 @@ struct Row<'a> {
     bv: Vec<f64>,
     /// `d B / d x`, row-major `nd x nd`.
     db: Vec<f64>,
+    /// Largest pressure of the penalty tangent's load-stiffness term `p
+    /// dB/dx` ([`Row::close`]; infinite but on 3D linear faces, see
+    /// [`LOAD_STIFFNESS_CAP`]).
+    load_cap: f64,
 }
 
 /// Adds `v` (gradient over a piece's variables: variable `k` is
@@ -142,6 +163,7 @@ impl<'a> Row<'a> {
             da: vec![0.0; nd],
             bv: vec![0.0; nd],
             db: vec![0.0; nd * nd],
+            load_cap: f64::INFINITY,
         }
     }
 
@@ -277,10 +299,13 @@ impl<'a> Row<'a> {
                     let dp: Vec<f64> = dgap.iter().map(|v| -alpha / support * v).collect();
                     let force: Vec<f64> = self.bv.iter().map(|b| pressure * b).collect();
                     let mut tangent = vec![0.0; nd * nd];
+                    // the load-stiffness term's pressure, capped (see
+                    // `LOAD_STIFFNESS_CAP`; infinite: the exact tangent)
+                    let pgeo = pressure.min(self.load_cap);
                     for r in 0..nd {
                         for c in 0..nd {
                             tangent[r * nd + c] =
-                                -(self.bv[r] * dp[c] + pressure * self.db[r * nd + c]);
+                                -(self.bv[r] * dp[c] + pgeo * self.db[r * nd + c]);
                         }
                     }
                     Coupling {
@@ -1270,6 +1295,14 @@ pub fn evaluate_3d(
     let (pieces, rows, queries, tests) = facet_pieces(&mut fp, &state.slaves, x, prof);
     fp.tests = tests;
     state.counters.queries += queries;
+    // the load-stiffness cap of this increment (`LOAD_STIFFNESS_CAP`): set
+    // below by its first evaluation, at the committed state
+    let cap_key = fp.increments;
+    let load_cap = match fp.load_stiffness_cap {
+        Some((k, cap)) if k == cap_key => cap,
+        _ => f64::INFINITY,
+    };
+    let mut largest = 0.0f64;
     let mut nodes = Vec::new();
     for (i, list) in rows.iter().enumerate() {
         let node = state.slaves[i];
@@ -1290,7 +1323,8 @@ pub fn evaluate_3d(
         }
         nodes.sort_unstable();
         nodes.dedup();
-        let (row, scalar) = row_3d(&pieces, list, &nodes, law.is_some());
+        let (mut row, scalar) = row_3d(&pieces, list, &nodes, law.is_some());
+        row.load_cap = load_cap;
         let support = state.area.get(i).copied().unwrap_or(0.0);
         let method = cp.method_at(node);
         let alpha = super::surface::alpha(&method, support);
@@ -1365,8 +1399,43 @@ pub fn evaluate_3d(
                 None => state.friction.open(i, [0.0; 3]),
             }
         }
+        if coupling.is_some() && support > 0.0 && lagrange.is_none() {
+            largest = largest.max((shift - alpha * nc.gap).max(0.0) / support);
+        }
+        // `CTC_LOG=debug`: every slave node with a row (evaluation, node,
+        // position, nodal gap, covered area over the reference one, normal
+        // force, closed, facet pairs and those in the covered-part basis),
+        // to find a node that cycles
+        if super::log::debug_enabled() {
+            let xs = x.get(node).copied().unwrap_or([0.0; 3]);
+            let partly = list
+                .iter()
+                .filter(|&&(p, _)| pieces[p].covered.is_some())
+                .count();
+            eprintln!(
+                "mortar 3d: evaluation {} node {node} x ({:.3} {:.3} {:.3}) gap {:.4e} \
+                 A/T {:.4} R {:.4e} closed {} pairs {} covered {partly}",
+                state.evaluations,
+                xs[0],
+                xs[1],
+                xs[2],
+                nc.gap,
+                row.area / support,
+                nc.pressure * support,
+                coupling.is_some(),
+                list.len()
+            );
+        }
         fp.couplings.extend(coupling);
         out.push(nc);
+    }
+    if fp.load_stiffness_cap.map(|(k, _)| k) != Some(cap_key) {
+        let cap = if largest > 0.0 {
+            LOAD_STIFFNESS_CAP * largest
+        } else {
+            f64::INFINITY
+        };
+        fp.load_stiffness_cap = Some((cap_key, cap));
     }
     total_forces(&fp.couplings, &mut out);
     state.counters.faces_tested += fp.tests as u64;
