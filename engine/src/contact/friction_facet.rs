@@ -122,6 +122,12 @@ pub struct FacetFriction {
     /// facet and `xi_a` unused). `None`: the stick point is `xi_a` on the
     /// anchor facet.
     pub impact: Option<[f64; 3]>,
+    /// Held by the penalty cycling guard
+    /// ([`super::node_to_facet::DeformablePair::held`]): frozen sticking,
+    /// the force is the trial force at any size (no return map, the stick
+    /// point does not move); the status reported is the law's (slip
+    /// outside the cone), for the guard's consistency check.
+    pub held: bool,
 }
 
 /// Friction contribution of one element.
@@ -345,6 +351,8 @@ pub fn respond(
         let s = limit / norm;
         (FrictionStatus::Slip, trial.map(|v| v * s))
     };
+    // held by the cycling guard: frozen sticking, the law's status kept
+    let t = if law.held { trial } else { t };
     let tv = t.map(|v| v.v);
     let trial_v = trial.map(|v| v.v);
     let delta: [f64; 3] = if law.alpha_t > 0.0 {
@@ -367,7 +375,7 @@ pub fn respond(
         }
     }
     let point: [f64; 3] = std::array::from_fn(|c| xa[c].v + delta[c]);
-    let moved = (status == FrictionStatus::Slip).then(|| match at.feature {
+    let moved = (status == FrictionStatus::Slip && !law.held).then(|| match at.feature {
         Feature::Face => foot(point, pts).map_or(xi, |(f, _)| f),
         // the facet's point on the line through `point` along `n`
         _ => along_normal(point, n.map(|v| v.v), pts, xi)
@@ -423,6 +431,8 @@ pub struct FacetContact<'a> {
     /// The facet's local edges across which the normal force fades
     /// ([`FacetFriction::fade`]).
     pub free_edges: [bool; 4],
+    /// Held by the penalty cycling guard ([`FacetFriction::held`]).
+    pub held: bool,
 }
 
 /// The stick point `(facet, xi)` stored in a friction state's anchor.
@@ -536,6 +546,7 @@ pub fn apply(
         normal_stiffness: c.normal_stiffness,
         fade: c.free_edges,
         impact,
+        held: c.held,
     };
     let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a, c.at)?;
     state.anchor[i] = Some(match r.moved {
@@ -627,6 +638,7 @@ mod tests {
             normal_stiffness: 100.0,
             fade: [false; 4],
             impact,
+            held: false,
         }
     }
 
@@ -820,6 +832,7 @@ mod tests {
                         0.08 + 0.04 * (case % 7) as f64 / 6.0,
                     ]
                 }),
+                held: false,
             };
             let Some((err, status)) = check(&law, xs, &pts, &apts, xi_a, Projection::FACE) else {
                 continue;
@@ -856,6 +869,57 @@ mod tests {
             "{touch_sticks} {touch_slips}"
         );
         assert!(worst_stick <= 1e-6 && worst_slip <= 1e-6);
+    }
+
+    /// The penalty cycling guard (`node_to_facet::DeformablePair::held`):
+    /// a held node outside its cone is frozen sticking: the forces and
+    /// tangent of the same element with an unbounded cone (the trial force
+    /// `-k_T g_T`, its tangent minus the central-difference derivative of
+    /// those forces on the slave, h = 1e-6), the stick point unmoved, the
+    /// law's status (slip) reported for the consistency check. Unheld:
+    /// `|T| = mu R_N`, and the slip tangent holds nothing along the slip
+    /// (0 in the x x entry).
+    #[test]
+    fn a_held_node_is_frozen_sticking_and_reports_the_law_s_status() {
+        // the slip case below: 0.01 deep at (0.7, 0.5), stick point at the
+        // centre, trial 2 against mu R_N = 0.3
+        let pts = facet(4, &[0.0; 12], [0.0; 3]);
+        let run = |law: &FacetFriction, xs: [f64; 3]| {
+            let (xi, _) = foot(xs, &pts).unwrap();
+            respond(law, xs, &pts, xi, &pts, [0.0, 0.0], Projection::FACE).unwrap()
+        };
+        let xs = [0.7, 0.5, -0.01];
+        let plain = plain_law(0.3, None);
+        let held = FacetFriction {
+            held: true,
+            ..plain
+        };
+        let unbounded = plain_law(1e6, None);
+        let (slip, kept, stick) = (run(&plain, xs), run(&held, xs), run(&unbounded, xs));
+        assert_eq!(kept.friction.status, FrictionStatus::Slip);
+        assert_eq!(stick.friction.status, FrictionStatus::Stick);
+        assert_eq!((kept.forces, kept.moved), (stick.forces, None));
+        assert!((slip.friction.tangential_force - 0.3).abs() < 1e-12);
+        assert!((kept.friction.tangential_force - 2.0).abs() < 1e-12);
+        for r in 0..NDOF {
+            for c in 0..NDOF {
+                let (a, b) = (kept.tangent[r * NDOF + c], stick.tangent[r * NDOF + c]);
+                assert!((a - b).abs() <= 1e-12, "row {r} col {c}: {a} vs {b}");
+            }
+        }
+        let h = 1e-6;
+        for c in 0..3 {
+            let (mut p, mut m) = (xs, xs);
+            p[c] += h;
+            m[c] -= h;
+            let (fp, fm) = (run(&unbounded, p), run(&unbounded, m));
+            for r in 0..3 {
+                let fd = -(fp.forces[r] - fm.forces[r]) / (2.0 * h);
+                let k = kept.tangent[r * NDOF + c];
+                assert!((fd - k).abs() <= 1e-5, "({r}, {c}): {k} vs {fd}");
+            }
+        }
+        assert!(slip.tangent[0].abs() < 1e-9 && (kept.tangent[0] - 10.0).abs() < 1e-9);
     }
 
     #[test]
@@ -1015,6 +1079,7 @@ mod tests {
                 normal_stiffness: 100.0,
                 area: 1.0,
                 free_edges: [false; 4],
+                held: false,
             };
             apply(&law, &method, &c, 1, |_| pts.clone(), state)
                 .unwrap()

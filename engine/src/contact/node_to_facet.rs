@@ -85,6 +85,7 @@
 //! pattern and builds the Lagrange rows from them.
 
 use super::broad::BroadPhase;
+use super::friction::FrictionStatus;
 use super::mortar::ad::Ad;
 use super::mortar::Coupling;
 use super::surface::{alpha, normal_force, tributary_areas, SurfacePair};
@@ -1130,6 +1131,28 @@ pub struct DeformablePair {
     /// evaluation (at the committed state; see
     /// `mortar::LOAD_STIFFNESS_CAP`).
     pub load_stiffness_cap: Option<(usize, f64)>,
+    /// Penalty cycling guard ([`DeformablePair::guard_cycle`]): per slave
+    /// index, the node's contact status cycled in the current Newton loop
+    /// and is frozen closed for the rest of it: the penalty `R_N = -alpha_N
+    /// g` at any gap (tensile above the master) with its exact tangent;
+    /// its friction frozen sticking (the trial force `-k_T g_T` at any
+    /// size, no return map) unless [`DeformablePair::held_slip`]. A smooth
+    /// law, whose converged state is a solution of the contact law only
+    /// where it agrees with it ([`DeformablePair::guard_consistent`]).
+    /// Cleared at the start of every Newton loop.
+    pub held: Vec<bool>,
+    /// Per slave index, a held node whose friction follows the law (the
+    /// return map) instead of sticking: a node that slipped at either
+    /// iterate of its cycle, or one held sticking found slipping at a
+    /// converged iterate ([`DeformablePair::guard_cycle`],
+    /// [`DeformablePair::guard_consistent`]).
+    pub held_slip: Vec<bool>,
+    /// Status codes of the slaves at the last two accepted Newton iterates
+    /// of the current Newton loop (the guard's memory).
+    guard_keys: Vec<Vec<u8>>,
+    /// The guard released its nodes in the current Newton loop (a held
+    /// node open or above its master at convergence): it holds no more.
+    guard_released: bool,
 }
 
 impl DeformablePair {
@@ -1196,6 +1219,120 @@ impl DeformablePair {
     /// last converged increment), for restart points.
     pub fn committed_beside(&self) -> &[bool] {
         &self.committed_beside
+    }
+
+    /// A Newton loop starts: nothing held, no memory.
+    pub fn guard_start(&mut self) {
+        self.held.clear();
+        self.held_slip.clear();
+        self.guard_keys.clear();
+        self.guard_released = false;
+    }
+
+    /// Whether the frozen state of the held nodes agrees with the contact
+    /// law at the converged iterate whose contact is `contact`: each held
+    /// node closed (`g < 0`) and, held sticking, inside its friction cone.
+    /// A held node closed but outside its cone keeps its hold with the
+    /// law's friction ([`DeformablePair::held_slip`]; not consistent yet,
+    /// Newton goes on). A held node open or above its master releases
+    /// every node (the Newton loop goes on with the law, and this loop
+    /// holds no more).
+    pub fn guard_consistent(&mut self, slaves: &[usize], contact: &[NodeContact<3>]) -> bool {
+        if !self.held.contains(&true) {
+            return true;
+        }
+        let debug = super::log::debug_enabled();
+        let n = self.held.len();
+        self.held_slip.resize(n, false);
+        let mut seen = vec![false; n];
+        let mut released = false;
+        let mut freed = false;
+        for nc in contact {
+            let Ok(i) = slaves.binary_search(&nc.node) else {
+                continue;
+            };
+            if !self.held.get(i).copied().unwrap_or(false) {
+                continue;
+            }
+            seen[i] = true;
+            if nc.status != ContactStatus::Closed || nc.gap >= 0.0 {
+                released = true;
+            } else if nc.friction.status == FrictionStatus::Slip && !self.held_slip[i] {
+                self.held_slip[i] = true;
+                freed = true;
+                if debug {
+                    eprintln!(
+                        "[ctc ntf] cycling guard: node {} held sticking slips at convergence \
+                         (T {:.3e}, p {:.3e}): its friction back to the law",
+                        nc.node, nc.friction.tangential_force, nc.pressure
+                    );
+                }
+            }
+        }
+        released |= self.held.iter().zip(&seen).any(|(&h, &s)| h && !s);
+        if released {
+            if debug {
+                eprintln!(
+                    "[ctc ntf] cycling guard: a held node open or above its master at \
+                     convergence, all released"
+                );
+            }
+            self.held.clear();
+            self.held_slip.clear();
+            self.guard_released = true;
+        }
+        !released && !freed
+    }
+
+    /// The cycling guard of a penalty pair, after an accepted Newton
+    /// iterate whose contact is `contact` (`slaves` the pair's slave nodes):
+    /// when the statuses of the slaves (open, closed sticking, closed
+    /// slipping) come back to those of two iterates ago after a change
+    /// (A -> B -> A), the nodes that switch are held closed (see
+    /// [`DeformablePair::held`]): sticking, or with the law's friction if
+    /// slipping at either of the two iterates
+    /// ([`DeformablePair::held_slip`]). Returns the number of nodes newly
+    /// held.
+    pub fn guard_cycle(&mut self, slaves: &[usize], contact: &[NodeContact<3>]) -> usize {
+        let mut key = vec![0u8; slaves.len()];
+        for nc in contact {
+            if nc.status != ContactStatus::Closed {
+                continue;
+            }
+            if let Ok(i) = slaves.binary_search(&nc.node) {
+                key[i] = match nc.friction.status {
+                    FrictionStatus::Slip => 2,
+                    _ => 1,
+                };
+            }
+        }
+        let mut newly = 0;
+        if self.guard_keys.len() == 2 && !self.guard_released {
+            let (a, b) = (&self.guard_keys[0], &self.guard_keys[1]);
+            if *a == key && *b != key {
+                // the nodes that switched between B and A
+                self.held.resize(slaves.len(), false);
+                self.held_slip.resize(slaves.len(), false);
+                for (((held, slip), &k), &was) in self
+                    .held
+                    .iter_mut()
+                    .zip(self.held_slip.iter_mut())
+                    .zip(&key)
+                    .zip(b)
+                {
+                    if was != k && !*held {
+                        *held = true;
+                        *slip = was == 2 || k == 2;
+                        newly += 1;
+                    }
+                }
+            }
+        }
+        if self.guard_keys.len() == 2 {
+            self.guard_keys.remove(0);
+        }
+        self.guard_keys.push(key);
+        newly
     }
 
     /// The committed facet of each slave (the search memory), for restart
@@ -1583,8 +1720,15 @@ pub fn evaluate(
             master: None,
             friction: Default::default(),
         };
-        let closed = response(&method, a, state.multiplier[i], active, gap)
-            .or_else(|| (touching && a > 0.0).then_some((0.0, -a)));
+        // the cycling guard: a held penalty node is frozen closed, `R_N =
+        // -alpha_N g` at any gap ([`DeformablePair::held`])
+        let held = penalty_node && a > 0.0 && fp.held.get(i).copied().unwrap_or(false);
+        let closed = if held {
+            Some((-a * gap, -a))
+        } else {
+            response(&method, a, state.multiplier[i], active, gap)
+                .or_else(|| (touching && a > 0.0).then_some((0.0, -a)))
+        };
         if let Some((rn, slope)) = closed {
             let face = surface.faces[k].nodes();
             // the element's nodes (slave first), G and H over them
@@ -1657,6 +1801,7 @@ pub fn evaluate(
                     normal_stiffness: -slope,
                     area: state.area[i],
                     free_edges,
+                    held: held && !fp.held_slip.get(i).copied().unwrap_or(false),
                 };
                 let points = |f: usize| surface.faces[f].nodes().iter().map(|&m| x[m]).collect();
                 let (r, ka) = super::friction_facet::apply(
@@ -2440,6 +2585,148 @@ pub(crate) mod tests {
         assert!(!step(at(2.1, 0.3), &mut st).1);
         assert!(!step(at(2.1, 0.00034), &mut st).1);
         assert!(step(at(2.1, -0.01), &mut st).1);
+    }
+
+    /// The penalty cycling guard ([`DeformablePair::guard_cycle`]): node 9
+    /// over the middle of the warped grid (penalty 100, mu 0.3) accepted
+    /// closed 0.05 deep, open 0.05 above, closed again: the third status
+    /// set repeats the first (A -> B -> A) and node 9 is held; a monotone
+    /// sequence holds nothing. Held above the master it stays closed with
+    /// the tensile penalty force `-alpha_N g n`, which the consistency
+    /// check refuses (the node is released and no more held in that
+    /// Newton loop); held below it, sticking, it is consistent; a new
+    /// Newton loop forgets it (open above the master, no coupling).
+    #[test]
+    fn the_cycling_guard_holds_a_node_whose_status_comes_back() {
+        let m = band_pair([1.5, 1.5, -0.05], true);
+        let at = |dz: f64| {
+            let mut x = m.mesh.nodes.clone();
+            x[9] = [1.5, 1.5, dz];
+            x
+        };
+        let coupling = |st: &SurfacePair| {
+            let fp = st.deformable.as_ref().unwrap();
+            fp.couplings.iter().find(|c| c.slave == 9).cloned()
+        };
+        let accept = |st: &mut SurfacePair, dz: f64| {
+            let out = evaluate(&m, 0, &at(dz), st);
+            let slaves = st.slaves.clone();
+            st.deformable.as_mut().unwrap().guard_cycle(&slaves, &out)
+        };
+        let mut st = SurfacePair::new(&m, 0);
+        let i = st.slave_index(9).unwrap();
+        for dz in [-0.05, -0.04, 0.05, 0.06] {
+            assert_eq!(accept(&mut st, dz), 0, "monotone: {dz}");
+        }
+        st.deformable.as_mut().unwrap().guard_start();
+        assert_eq!(accept(&mut st, -0.05), 0);
+        assert_eq!(accept(&mut st, 0.05), 0);
+        assert_eq!(accept(&mut st, -0.05), 1);
+        assert!(st.deformable.as_ref().unwrap().held[i]);
+        // held below the master: closed, sticking, consistent
+        let out = evaluate(&m, 0, &at(-0.05), &mut st);
+        let slaves = st.slaves.clone();
+        let fp = st.deformable.as_mut().unwrap();
+        assert!(fp.guard_consistent(&slaves, &out) && fp.held[i]);
+        // held above it: closed, pulled in by -alpha_N g n; inconsistent,
+        // released, and no more held in this Newton loop
+        let out = evaluate(&m, 0, &at(0.05), &mut st);
+        let nc = out.iter().find(|c| c.node == 9).unwrap();
+        assert!(
+            nc.gap > 0.04 && nc.status == ContactStatus::Closed,
+            "{nc:?}"
+        );
+        // (the friction force, frozen sticking, lies in the tangent plane)
+        let fnormal: f64 = (0..3).map(|c| nc.force[c] * nc.normal[c]).sum();
+        assert!(
+            (fnormal + 100.0 * nc.gap).abs() < 1e-9,
+            "{fnormal} {}",
+            nc.gap
+        );
+        assert!(coupling(&st).is_some());
+        let fp = st.deformable.as_mut().unwrap();
+        assert!(!fp.guard_consistent(&slaves, &out) && !fp.held.contains(&true));
+        for dz in [0.05, -0.05, 0.05, -0.05] {
+            assert_eq!(accept(&mut st, dz), 0, "released: {dz}");
+        }
+        // a new Newton loop: open, no coupling
+        st.deformable.as_mut().unwrap().guard_start();
+        evaluate(&m, 0, &at(0.05), &mut st);
+        assert!(coupling(&st).is_none());
+    }
+
+    /// The cycling guard's friction (issue 18, the ironing slide: nodes
+    /// held sticking came out of their cones at every convergence of
+    /// `ctc verify ironing_ntf_3d`): node 9 over the middle of facet 3
+    /// (penalty 100, mu 0.3, k_T 25, R_N 5, mu R_N 1.5), its committed
+    /// stick point there. Cycling closed sticking / open / closed sticking
+    /// it is held sticking; moved 0.4 along x at a converged iterate it
+    /// slips (trial about 10 > 1.5): not consistent, but still held, with the
+    /// law's friction (`held_slip`); the next evaluation gives `|T| = mu
+    /// R_N`, consistent. With its stick point 0.4 away it cycles closed
+    /// slipping / open and is held with the law's friction from the start.
+    #[test]
+    fn a_held_node_that_slips_keeps_its_hold_with_the_law_s_friction() {
+        use super::super::friction_facet::encode;
+        let m = band_pair([1.5, 1.5, -0.05], true);
+        let at = |dx: f64, dz: f64| {
+            let mut x = m.mesh.nodes.clone();
+            x[9] = [1.5 + dx, 1.5, dz];
+            x
+        };
+        let accept = |st: &mut SurfacePair, dx: f64, dz: f64| {
+            let out = evaluate(&m, 0, &at(dx, dz), st);
+            let slaves = st.slaves.clone();
+            let n = st.deformable.as_mut().unwrap().guard_cycle(&slaves, &out);
+            (n, out.into_iter().find(|c| c.node == 9))
+        };
+        let consistent = |st: &mut SurfacePair, dx: f64| {
+            let out = evaluate(&m, 0, &at(dx, -0.05), st);
+            let slaves = st.slaves.clone();
+            let ok = st
+                .deformable
+                .as_mut()
+                .unwrap()
+                .guard_consistent(&slaves, &out);
+            (ok, out.into_iter().find(|c| c.node == 9).unwrap())
+        };
+        let mut st = SurfacePair::new(&m, 0);
+        let i = st.slave_index(9).unwrap();
+        // facet 3 spans [1, 2] x [1, 2]: its centre is xi = (0, 0)
+        st.friction.committed_anchor[i] = Some(encode(3, [0.0, 0.0]));
+        st.deformable.as_mut().unwrap().guard_start();
+        let (_, c) = accept(&mut st, 0.0, -0.05);
+        assert_eq!(c.unwrap().friction.status, FrictionStatus::Stick);
+        assert_eq!(accept(&mut st, 0.0, 0.05).0, 0);
+        assert_eq!(accept(&mut st, 0.0, -0.05).0, 1);
+        let fp = st.deformable.as_ref().unwrap();
+        assert!(fp.held[i] && !fp.held_slip[i]);
+        // moved 0.4: frozen sticking it carries the trial force, outside
+        // its cone: friction given back to the law, not consistent yet
+        let (ok, c) = consistent(&mut st, 0.4);
+        assert!(!ok && c.friction.status == FrictionStatus::Slip);
+        assert!(c.friction.tangential_force > 5.0, "{c:?}");
+        let fp = st.deformable.as_ref().unwrap();
+        assert!(fp.held[i] && fp.held_slip[i]);
+        let (ok, c) = consistent(&mut st, 0.4);
+        let rn = c.pressure * st.area[i];
+        assert!(ok && c.status == ContactStatus::Closed);
+        assert!(
+            (c.friction.tangential_force - 0.3 * rn).abs() < 1e-12,
+            "{} vs {rn}",
+            c.friction.tangential_force
+        );
+        // slipping when the set comes back: held with the law's friction
+        let mut st = SurfacePair::new(&m, 0);
+        st.friction.committed_anchor[i] = Some(encode(3, [-0.8, 0.0]));
+        st.deformable.as_mut().unwrap().guard_start();
+        let (_, c) = accept(&mut st, 0.0, -0.05);
+        assert_eq!(c.unwrap().friction.status, FrictionStatus::Slip);
+        assert_eq!(accept(&mut st, 0.0, 0.05).0, 0);
+        assert_eq!(accept(&mut st, 0.0, -0.05).0, 1);
+        let fp = st.deformable.as_ref().unwrap();
+        assert!(fp.held[i] && fp.held_slip[i]);
+        assert!(consistent(&mut st, 0.0).0);
     }
 
     #[test]

@@ -141,6 +141,22 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     /// Turns the closed-gap start (slave nodes touching their master count
     /// as closed) on or off; planar pairs only (`PairState::touching`).
     fn set_touching(&mut self, _model: &Model<D>, _on: bool) {}
+    /// A Newton loop starts: the penalty cycling guard forgets what it
+    /// held (3D node-to-facet pairs,
+    /// `crate::contact::node_to_facet::DeformablePair::guard_cycle`).
+    fn guard_start(&mut self) {}
+    /// After an accepted Newton iterate: the penalty cycling guard holds
+    /// the nodes whose statuses cycle; whether it held new ones (the
+    /// tangent at hand is then stale).
+    fn guard_cycle(&mut self, _model: &Model<D>) -> bool {
+        false
+    }
+    /// At a converged iterate: whether the nodes the guard froze agree
+    /// with the contact law there (if not, they are released and the
+    /// Newton loop goes on).
+    fn guard_consistent(&mut self) -> bool {
+        true
+    }
     /// One increment attempt: the Newton loops of `newton` inside the
     /// contact loop (Lagrange active set, Uzawa updates).
     fn attempt(

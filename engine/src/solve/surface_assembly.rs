@@ -621,6 +621,50 @@ impl ContactScene<3> for SurfaceAssembly {
         }
     }
 
+    fn guard_start(&mut self) {
+        for fp in self.pairs.iter_mut().filter_map(|p| p.deformable.as_mut()) {
+            fp.guard_start();
+        }
+    }
+
+    fn guard_cycle(&mut self, model: &Model<3>) -> bool {
+        let mut held = 0;
+        for ((state, cp), res) in self
+            .pairs
+            .iter_mut()
+            .zip(&model.contacts)
+            .zip(&self.contact)
+        {
+            // node-to-facet penalty pairs (mortar is evaluated elsewhere)
+            if !matches!(cp.method, ContactMethod::Penalty { .. })
+                || cp.formulation == ContactFormulation::Mortar
+            {
+                continue;
+            }
+            if let Some(fp) = state.deformable.as_mut() {
+                let n = fp.guard_cycle(&state.slaves, res);
+                if n > 0 && crate::contact::log::debug_enabled() {
+                    eprintln!(
+                        "[ctc ntf] pair '{}': cycling guard holds {n} more nodes",
+                        cp.name
+                    );
+                }
+                held += n;
+            }
+        }
+        held > 0
+    }
+
+    fn guard_consistent(&mut self) -> bool {
+        let mut ok = true;
+        for (state, res) in self.pairs.iter_mut().zip(&self.contact) {
+            if let Some(fp) = state.deformable.as_mut() {
+                ok &= fp.guard_consistent(&state.slaves, res);
+            }
+        }
+        ok
+    }
+
     fn rollback(&mut self) {
         for p in &mut self.pairs {
             p.rollback();

@@ -231,7 +231,8 @@ pub fn cases() -> Vec<VerifyCase> {
                 // alone: the coarse faceted die makes the force history
                 // path-sensitive, 0.136; 0.391, 0.091, 0.146 with the
                 // first-touch crossing following the iterate,
-                // `friction_facet`); level 1 not measured by the tests
+                // `friction_facet`; 0.390, 0.093, 0.137 with the penalty
+                // cycling guard); level 1 not measured by the tests
                 Check::new(
                     Quantity::Named("F_t / F_n (slide mean) vs mu"),
                     &[0.35, 0.5],

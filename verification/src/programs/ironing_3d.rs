@@ -148,7 +148,18 @@
 //! slipping (trial 1.1..2.9 against `mu R_N` 0.05..0.45), a state whose
 //! tangent holds them nowhere along the flank, and the next full step
 //! opens them again: an open / closed and stick / slip globalization issue
-//! at small normal forces, open. In increment 2 the same nodes did close
+//! at small normal forces. Now the penalty cycling guard of node-to-facet
+//! (`node_to_facet::DeformablePair::held`) sees the contact set come back
+//! (7 -> 9 -> 7 at the third iterate) and freezes the two nodes closed
+//! and sticking (nodes that slipped in the cycle keep the law's
+//! friction); the press converges in its 3 increments, with the frozen
+//! nodes closed and inside their cones (consistent): level 0 180 -> 119
+//! Newton iterations (press 98 -> 29), 17 -> 14 increments, 3 -> 1
+//! cutbacks (the one left in the slide, whose 11 increments take 82 ->
+//! 90 iterations), `F_t / F_n` 0.3024 unchanged, `F_n` oscillation 0.079
+//! unchanged (`ctc verify ironing_3d`, debug; freezing every cycling node
+//! sticking gave 86 iterations and no cutback here but cost the benchmark
+//! deck, see `docs/ARCHITECTURE.md`). In increment 2 the same nodes did close
 //! for the first time, but the die moving onto them leaves their
 //! converged position behind the facet's *current* plane (`g_0 <= 0`), so
 //! they take the foot of `x_0` on the facet at the first closed iterate

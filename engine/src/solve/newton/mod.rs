@@ -1242,6 +1242,7 @@ where
         let model = self.model;
         self.inner_updates = 0;
         self.flips.start_attempt();
+        self.contacts.guard_start();
         let newton_update = model.contacts.iter().any(|c| {
             matches!(
                 c.method,
@@ -1540,6 +1541,12 @@ where
                 converged = false;
                 tangent_valid = false;
             }
+            // the penalty cycling guard's frozen nodes must agree with the
+            // contact law at the converged state; else released, on
+            if converged && !self.contacts.guard_consistent() {
+                converged = false;
+                tangent_valid = false;
+            }
             if converged && self.zero_mode.1 {
                 // converged with a singular tangent: the motion along its
                 // zero-energy mode is arbitrary
@@ -1556,6 +1563,11 @@ where
                     contact_iterations: self.inner_updates,
                     max_penetration: self.max_penetration(),
                 });
+            }
+            // the penalty cycling guard: nodes whose contact statuses came
+            // back (A -> B -> A) are frozen closed and sticking from here on
+            if self.contacts.guard_cycle(model) {
+                tangent_valid = false;
             }
             // a multiplier update changes the problem: no divergence test
             if divergence.diverges(&residuals[first_k - 1..], updated, ev.rel_floor()) {
