@@ -76,12 +76,7 @@ fn directional_fd_error(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> f64
     let (_, kv, closed) = forces(model, x, v);
     assert!(closed > 0);
     let h = 1e-7;
-    let shift = |sign: f64| -> Vec<[f64; 3]> {
-        x.iter()
-            .zip(v)
-            .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-            .collect()
-    };
+    let shift = |sign: f64| shifted(x, v, sign * h);
     let (fp, _, cp) = forces(model, &shift(1.0), v);
     let (fm, _, cm) = forces(model, &shift(-1.0), v);
     assert!(cp == closed && cm == closed);
@@ -102,6 +97,14 @@ pub fn forces(model: &Model<3>, x: &[[f64; 3]], v: &[[f64; 3]]) -> (Vec<f64>, Ve
         .count();
     let (f, kv) = scatter(&state, x.len(), v);
     (f, kv, closed)
+}
+
+/// The points `x + step v` (a central difference's two sides, `step = +-h`).
+pub fn shifted(x: &[[f64; 3]], v: &[[f64; 3]], step: f64) -> Vec<[f64; 3]> {
+    x.iter()
+        .zip(v)
+        .map(|(p, d)| std::array::from_fn(|c| p[c] + step * d[c]))
+        .collect()
 }
 
 /// The forces of the pair's couplings (`state` evaluated) and their

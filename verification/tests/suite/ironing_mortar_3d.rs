@@ -25,6 +25,7 @@
 //!   +----------------------+
 //! ```
 
+use crate::contact_mortar_3d::shifted;
 use ctc_engine::contact::friction::FrictionStatus;
 use ctc_engine::contact::surface::{evaluate_pair, SurfacePair};
 use ctc_engine::contact::ContactStatus;
@@ -98,12 +99,7 @@ fn fd_error(
     let (_, kv, closed) = forces(model, committed, x, v);
     assert!(!closed.is_empty());
     let h = 1e-7;
-    let shift = |sign: f64| -> Vec<[f64; 3]> {
-        x.iter()
-            .zip(v)
-            .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-            .collect()
-    };
+    let shift = |sign: f64| shifted(x, v, sign * h);
     let (fp, _, cp) = forces(model, committed, &shift(1.0), v);
     let (fm, _, cm) = forces(model, committed, &shift(-1.0), v);
     assert!(cp == closed && cm == closed, "the contact set changed");
@@ -283,12 +279,7 @@ fn ironing_mortar_load_stiffness_is_capped_past_twice_the_committed_pressure() {
     let (committed, x) = (moved(-0.1), moved(-0.5));
     let v: Vec<[f64; 3]> = x.iter().map(|_| [rnd(), rnd(), rnd()]).collect();
     let h = 1e-7;
-    let shift = |sign: f64| -> Vec<[f64; 3]> {
-        x.iter()
-            .zip(&v)
-            .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-            .collect()
-    };
+    let shift = |sign: f64| shifted(&x, &v, sign * h);
     let error = |capped: bool| -> f64 {
         let (_, kv, closed) = forces_capped(&model, Some(&committed), &x, &v, capped);
         assert!(!closed.is_empty());

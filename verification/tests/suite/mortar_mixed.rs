@@ -14,6 +14,7 @@
 //! ```
 
 use crate::contact_mortar_3d::forces;
+use crate::contact_mortar_3d::shifted;
 use crate::fenicsx_snapshots::{err2, sig4};
 use ctc_engine::model::{AnyModel, Model};
 use ctc_verification::programs::mortar_mixed::patch_3d_deck;
@@ -120,12 +121,7 @@ fn mixed_mortar_pair_tangent_matches_finite_differences_and_balances() {
             .fold(0.0f64, |a, b| a.max(b.abs()))
             / scale;
         let h = 1e-7;
-        let shift = |sign: f64| -> Vec<[f64; 3]> {
-            x.iter()
-                .zip(&v)
-                .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-                .collect()
-        };
+        let shift = |sign: f64| shifted(&x, &v, sign * h);
         let (fp, _, cp) = forces(&model, &shift(1.0), &v);
         let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
         assert!(cp == closed && cm == closed, "{name}");

@@ -15,6 +15,7 @@
 //! ```
 
 use crate::contact_mortar_3d::forces;
+use crate::contact_mortar_3d::shifted;
 use ctc_engine::model::{AnyModel, Model};
 use ctc_verification::programs::mortar_quadratic_3d::{patch_deck, LAGRANGE_PATCH, PATCH};
 use ctc_verification::registry;
@@ -116,12 +117,7 @@ fn quadratic_mortar_pair_tangent_matches_finite_differences_and_balances() {
             / scale;
         // the tangent along v against central differences
         let h = 1e-7;
-        let shift = |sign: f64| -> Vec<[f64; 3]> {
-            x.iter()
-                .zip(&v)
-                .map(|(p, d)| std::array::from_fn(|c| p[c] + sign * h * d[c]))
-                .collect()
-        };
+        let shift = |sign: f64| shifted(&x, &v, sign * h);
         let (fp, _, cp) = forces(&model, &shift(1.0), &v);
         let (fm, _, cm) = forces(&model, &shift(-1.0), &v);
         assert!(cp == closed && cm == closed);
