@@ -1131,6 +1131,24 @@ pub struct DeformablePair {
     /// evaluation (at the committed state; see
     /// `mortar::LOAD_STIFFNESS_CAP`).
     pub load_stiffness_cap: Option<(usize, f64)>,
+    /// 3D mortar penalty pairs (linear faces): per slave index, the node
+    /// carried a normal force at the last accepted Newton iterate (at the
+    /// Newton loop's first evaluation, then after each accepted iterate:
+    /// [`DeformablePair::accept_iterate`]); such a node found open within
+    /// `mortar::HOLD_BAND` keeps the penalty tangent with no force.
+    pub mortar_closed: Vec<bool>,
+    /// The same flags at the latest evaluation (set by every 3D mortar
+    /// evaluation; copied into [`DeformablePair::mortar_closed`] when its
+    /// iterate is accepted).
+    pub mortar_last: Vec<bool>,
+    /// Set by [`DeformablePair::guard_start`]: the next 3D mortar
+    /// evaluation is a Newton loop's first (no hold; it records
+    /// [`DeformablePair::mortar_closed`]).
+    pub mortar_fresh: bool,
+    /// 3D mortar: the nodes held at the latest evaluation (open, with the
+    /// closed branch's tensile force): a converged iterate must have none
+    /// ([`DeformablePair::guard_consistent`]).
+    pub mortar_holds: usize,
     /// Penalty cycling guard ([`DeformablePair::guard_cycle`]): per slave
     /// index, the node's contact status cycled in the current Newton loop
     /// and is frozen closed for the rest of it: the penalty `R_N = -alpha_N
@@ -1223,10 +1241,20 @@ impl DeformablePair {
 
     /// A Newton loop starts: nothing held, no memory.
     pub fn guard_start(&mut self) {
+        self.mortar_closed.clear();
+        self.mortar_holds = 0;
+        self.mortar_fresh = true;
         self.held.clear();
         self.held_slip.clear();
         self.guard_keys.clear();
         self.guard_released = false;
+    }
+
+    /// After an accepted Newton iterate (3D mortar): the nodes carrying a
+    /// normal force there are those a hold may keep at the next iterate
+    /// ([`DeformablePair::mortar_closed`]).
+    pub fn accept_iterate(&mut self) {
+        self.mortar_closed.clone_from(&self.mortar_last);
     }
 
     /// Whether the frozen state of the held nodes agrees with the contact
@@ -1238,6 +1266,12 @@ impl DeformablePair {
     /// every node (the Newton loop goes on with the law, and this loop
     /// holds no more).
     pub fn guard_consistent(&mut self, slaves: &[usize], contact: &[NodeContact<3>]) -> bool {
+        if self.mortar_holds > 0 {
+            // 3D mortar holds (`mortar::HOLD_BAND`): their tensile forces
+            // are no solution; the next evaluation (at the same iterate)
+            // holds none
+            return false;
+        }
         if !self.held.contains(&true) {
             return true;
         }

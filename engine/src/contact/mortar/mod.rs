@@ -106,8 +106,44 @@ const UNUSED: usize = usize::MAX;
 /// cutbacks in level 0's second press increment. Near the solution the
 /// pressures lie below the cap and the tangent is exact (quadratic
 /// convergence); above it Newton is a modified one (the residual is
-/// exact, the answer unchanged).
+/// exact, the answer unchanged). A force of a round-off penetration (two
+/// meshes touching at the start: nodal gaps of `+-1e-17`) is no pressure
+/// (the threshold of `friction3d::ROUND_OFF`): at a first contact the
+/// cap is infinite and the tangent exact. Before, the cap was twice that
+/// round-off pressure there, the term dropped in the whole first
+/// increment (`examples/contact_blocks_mortar_3d.ctc` increment 1 in 6
+/// iterations instead of 4; `ctc verify contact_patch_mortar_3d` 69 ->
+/// 91).
 pub const LOAD_STIFFNESS_CAP: f64 = 2.0;
+
+/// Hold band (fraction of `sqrt(T_j)`, `T_j` the node's reference
+/// tributary area): a node of a 3D mortar penalty row (frictionless,
+/// linear faces) that carried a normal force at the last accepted Newton
+/// iterate (the Newton loop's first evaluation, then each accepted
+/// iterate: `DeformablePair::mortar_closed`) and is open by less than
+/// this at the current one keeps the closed branch of the penalty law,
+/// the tensile force `-alpha g` with its tangent, for that iterate only;
+/// reported open, and no iterate with a hold is a converged one
+/// (`DeformablePair::guard_consistent`): an active-set hysteresis, as a
+/// semi-smooth Newton keeps a node active on its last multiplier. Issue
+/// 18, the frictionless 3D ironing's slide: the first step of a slide
+/// increment (the die's prescribed motion through the committed
+/// tangent) leaves every closed node open by 0.0015..0.0019, the linear
+/// model's error over the step, more than their equilibrium penetration
+/// (~5e-4, the slab 500 times softer than the penalty); from there the
+/// tangent held no contact and the next step threw the slab 0.28..0.49
+/// into the die (level 0: line search to 1/64; the benchmark cut back).
+/// A hold that kept the tangent with no force did not help (the step
+/// from it stays where the node is: the spring's force is zero at the
+/// open gap); the closed branch pulls the node back to its penetration.
+/// The band: the benchmark's 0.2 slide step opens the nodes by
+/// 0.004..0.0085 (cells of 1, `sqrt(T)` 0.7..1; level 0's 0.125 step on
+/// the same cells by 0.0015..0.0019: the error grows as the step
+/// squared); at `1e-2` the benchmark's first slide increment took 13
+/// iterations and the next one cut back, at `5e-2` 6 and 5 (`CTC_LOG=debug
+/// ctc run -v`, rows per evaluation). A node that really separates is
+/// held one iterate at most.
+pub const HOLD_BAND: f64 = 5e-2;
 
 /// The row of one slave node, summed over its mortar pieces (2D segment
 /// pairs, 3D facet pairs): the weighted gap `g~`, the covered area `A`,
@@ -127,6 +163,10 @@ struct Row<'a> {
     /// dB/dx` ([`Row::close`]; infinite but on 3D linear faces, see
     /// [`LOAD_STIFFNESS_CAP`]).
     load_cap: f64,
+    /// Hold band of the node ([`HOLD_BAND`]; 0: no hold): open by at most
+    /// this, the row keeps the closed branch of the penalty law (a
+    /// tensile force `-alpha g`, its tangent), reported open.
+    hold: f64,
 }
 
 /// Adds `v` (gradient over a piece's variables: variable `k` is
@@ -164,6 +204,7 @@ impl<'a> Row<'a> {
             bv: vec![0.0; nd],
             db: vec![0.0; nd * nd],
             load_cap: f64::INFINITY,
+            hold: 0.0,
         }
     }
 
@@ -284,6 +325,7 @@ impl<'a> Row<'a> {
         } else {
             [0.0; D]
         };
+        let mut held = false;
         let (closed, pressure, coupling) = match lagrange {
             Some((active, lambda)) => {
                 let (pressure, coupling) = self.close_lagrange(node, lambda);
@@ -291,9 +333,13 @@ impl<'a> Row<'a> {
             }
             None => {
                 let (_, dgap) = self.nodal_gap();
-                let rn = (shift - alpha * gap).max(0.0);
-                let closed =
-                    rn > 0.0 || (touching > 0.0 && (0.0..=touching).contains(&gap) && alpha > 0.0);
+                let free = shift - alpha * gap;
+                // held (`HOLD_BAND`): the closed branch, tensile
+                held = self.hold > 0.0 && free <= 0.0 && gap <= self.hold && alpha > 0.0;
+                let rn = if held { free } else { free.max(0.0) };
+                let closed = rn > 0.0
+                    || held
+                    || (touching > 0.0 && (0.0..=touching).contains(&gap) && alpha > 0.0);
                 let pressure = rn / support;
                 let coupling = closed.then(|| {
                     let dp: Vec<f64> = dgap.iter().map(|v| -alpha / support * v).collect();
@@ -329,12 +375,12 @@ impl<'a> Row<'a> {
             // reported per reference area (the nominal pressure, as
             // node-to-segment's and node-to-facet's): the slave force
             // `pressure A` over the reference tributary area
-            pressure: if closed {
+            pressure: if closed && !held {
                 pressure * area / support
             } else {
                 0.0
             },
-            status: if closed {
+            status: if closed && !held {
                 ContactStatus::Closed
             } else {
                 ContactStatus::Open
@@ -1303,6 +1349,10 @@ pub fn evaluate_3d(
         _ => f64::INFINITY,
     };
     let mut largest = 0.0f64;
+    let fresh = std::mem::take(&mut fp.mortar_fresh);
+    let mut holds = 0;
+    fp.mortar_last.clear();
+    fp.mortar_last.resize(state.slaves.len(), false);
     let mut nodes = Vec::new();
     for (i, list) in rows.iter().enumerate() {
         let node = state.slaves[i];
@@ -1370,8 +1420,14 @@ pub fn evaluate_3d(
                     scalar, node, support, alpha, shift, prof, entity, &inputs,
                 )
             }
-            _ => row
-                .close(
+            _ => {
+                // the hold of a node closed at the last accepted iterate
+                // (`HOLD_BAND`)
+                if !fresh && lagrange.is_none() && fp.mortar_closed.get(i).copied().unwrap_or(false)
+                {
+                    row.hold = HOLD_BAND * support.max(0.0).sqrt();
+                }
+                row.close(
                     node,
                     support,
                     alpha,
@@ -1381,7 +1437,8 @@ pub fn evaluate_3d(
                     entity,
                     lagrange,
                 )
-                .map(|(nc, c)| (nc, c, None)),
+                .map(|(nc, c)| (nc, c, None))
+            }
         };
         let Some((nc, coupling, response)) = closed else {
             if law.is_some() {
@@ -1389,6 +1446,10 @@ pub fn evaluate_3d(
             }
             continue;
         };
+        if coupling.is_some() && nc.status == ContactStatus::Open {
+            // held: a tensile force in this iterate's residual
+            holds += 1;
+        }
         if law.is_some() {
             match response {
                 Some(r) => {
@@ -1400,7 +1461,15 @@ pub fn evaluate_3d(
             }
         }
         if coupling.is_some() && support > 0.0 && lagrange.is_none() {
-            largest = largest.max((shift - alpha * nc.gap).max(0.0) / support);
+            let rn = (shift - alpha * nc.gap).max(0.0);
+            if rn > 0.0 {
+                fp.mortar_last[i] = true;
+            }
+            // a force of a round-off penetration (two meshes touching at
+            // the start) is no pressure: no cap from it
+            if rn > alpha * friction3d::ROUND_OFF * support.max(0.0).sqrt() {
+                largest = largest.max(rn / support);
+            }
         }
         // `CTC_LOG=debug`: every slave node with a row (evaluation, node,
         // position, nodal gap, covered area over the reference one, normal
@@ -1428,6 +1497,12 @@ pub fn evaluate_3d(
         }
         fp.couplings.extend(coupling);
         out.push(nc);
+    }
+    fp.mortar_holds = holds;
+    if fresh {
+        // the Newton loop's first evaluation: the nodes a hold may keep at
+        // its first iterate
+        fp.mortar_closed.clone_from(&fp.mortar_last);
     }
     if fp.load_stiffness_cap.map(|(k, _)| k) != Some(cap_key) {
         let cap = if largest > 0.0 {
@@ -1589,6 +1664,8 @@ fn evaluate_3d_quadratic(
     state.counters.faces_tested += fp.tests as u64;
 }
 
+#[cfg(test)]
+mod cap_hold_tests;
 #[cfg(test)]
 mod quadratic3d_lagrange_tests;
 
