@@ -8,5 +8,10 @@ venv=${CTC_VENV:-$here/target/venv}
 [ -x "$venv/bin/python" ] || python3 -m venv "$venv"
 "$venv/bin/pip" install -q "maturin>=1.5,<2" numpy
 cd "$here"
+# The repository's target directory: the registry crates the workspace's
+# `cargo test` built are reused (python/Cargo.toml says how they resolve
+# alike); only pyo3 and the ctc crates of this package are compiled.
+CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-$here/../target}
+export CARGO_TARGET_DIR
 VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" maturin develop -q
 CTC_BIN=${CTC_BIN:-$here/../target/debug/ctc} "$venv/bin/python" -m unittest discover -s "$here/tests" -v

@@ -156,28 +156,32 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
     Ok(report)
 }
 
-/// The cases whose default levels took longest (debug build, seconds of
-/// the level lines of `PROPTEST_RNG_SEED=20261203 cargo test --workspace
-/// -- --nocapture`, 2 cores, three runners sharing them): with several
-/// jobs they start first, so that no long case starts last and runs alone
-/// while the other cores idle (longest-first scheduling). Before, in
-/// registry order, `blankholder` (levels 0 and 1: 22 + 45 s) started
-/// 132nd of 136 and ended the catalogue test alone. A scheduling hint
-/// only: every case is independent and the reports stay in registry
+/// The cases whose default levels took longest (debug build; seconds of
+/// CPU, estimated as the level lines' wall of `ctc verify --json -j 2`
+/// times the run's CPU over their sum, 618 / 3967, at load ~10, stop 47):
+/// with several jobs they start first, so that no long case starts last
+/// and runs alone while the other cores idle (longest-first scheduling).
+/// Before, in registry order, `blankholder` (levels 0 and 1) started 132nd
+/// of 136 and ended the catalogue test alone; `hertz_sphere_3d` (its level
+/// 1) and `taylor_bar_jc_3d` were missing here until stop 47. A scheduling
+/// hint only: every case is independent and the reports stay in registry
 /// order; a name not in the registry is skipped (a unit test keeps the
 /// list true).
 pub const SLOW_CASES_FIRST: &[&str] = &[
     "hertz_sphere_block_mortar_quadratic_3d", // 81 s
-    "blankholder",                            // 67 s
-    "taylor_bar_3d",                          // 49 s
-    "contact_patch_mortar_quadratic_3d",      // 42 s
-    "ironing_ntf_3d",                         // 39 s
-    "hertz_sphere_block_mortar_3d",           // 36 s
-    "contact_patch_mortar_mixed_3d",          // 26 s
-    "hertz_two_spheres_3d",                   // 17 s
-    "hertz_sphere_block_mortar_lagrange_3d",  // 16 s
-    "contact_patch_friction_quadratic_3d",    // 15 s
-    "superplastic_free_bulge",                // 12 s
+    "blankholder",                            // 24 + 48 s
+    "taylor_bar_3d",                          // 56 s
+    "hertz_sphere_block_mortar_3d",           // 56 s
+    "contact_patch_mortar_quadratic_3d",      // 51 s
+    "hertz_sphere_3d",                        // 4 + 44 s
+    "ironing_ntf_3d",                         // 41 s
+    "contact_patch_mortar_mixed_3d",          // 24 s
+    "taylor_bar_jc_3d",                       // 22 s
+    "contact_patch_friction_3d",              // 16 s
+    "hertz_two_spheres_3d",                   // 14 s
+    "hertz_sphere_block_mortar_lagrange_3d",  // 13 s
+    "contact_patch_friction_quadratic_3d",    // 12 s
+    "superplastic_free_bulge",                // 11 s
 ];
 
 /// The order in which [`run_cases`] starts `cases`: the indices of the

@@ -805,9 +805,12 @@ mod tests {
             seed ^= seed << 17;
             (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
         };
+        // 60 pairs per combination (a pair whose polygon changes its vertex
+        // count under the step is skipped): 150 took 28 s of debug CPU, the
+        // longest of the engine's unit tests, for the same verdict
         for (ns, nm) in [(3, 3), (3, 4), (4, 3), (4, 4)] {
             let (mut worst, mut count) = (0.0f64, 0);
-            for k in 0..150 {
+            for k in 0..60 {
                 let (sl, ma) = random_pair(&mut rnd, ns, nm);
                 // standard and dual rows on alternate pairs
                 let basis = if k % 2 == 0 {
@@ -824,7 +827,7 @@ mod tests {
                 "slave {ns} nodes, master {nm} nodes: {count} pairs, max rel. FD error {worst:.2e}"
             );
             assert!(
-                count > 100 && worst <= 1e-6,
+                count > 40 && worst <= 1e-6,
                 "{ns} {nm}: {count} pairs, {worst}"
             );
         }
