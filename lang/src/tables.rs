@@ -882,7 +882,7 @@ pub static STEP: [Key; 5] = [
         "dynamic",
         KeyType::Choice(&[
             "{ scheme rho_inf beta gamma mass contact_mass rayleigh_alpha rayleigh_beta adaptive dt_min \
-             dt_max error_tol }",
+             dt_max error_tol max_rotation }",
         ]),
         "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
          step is quasi-static",
@@ -890,7 +890,7 @@ pub static STEP: [Key; 5] = [
 ];
 
 /// `dynamic { .. }` of a step.
-pub static DYNAMIC: [Key; 12] = [
+pub static DYNAMIC: [Key; 13] = [
     Key::new(
         "scheme",
         KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
@@ -987,6 +987,18 @@ pub static DYNAMIC: [Key; 12] = [
     )
     .default(Default::Number(1e-2))
     .range(Range::NonNegative)
+    .dim(Dim::None),
+    Key::new(
+        "max_rotation",
+        KeyType::Number,
+        "largest rotation of a cell in one increment, in radians (the rigid rotation best \
+         fitting its nodes' motion): a converged increment that turns a cell by more is redone \
+         at 0.9 dt max_rotation / rotation, and the next increment is kept below the same \
+         bound (adaptive or not); generalized-alpha's trapezoidal work follows the strain \
+         energy only while increments turn the bodies by small angles (a fast-spinning free \
+         part gains energy: e.g. 0.05); absent: no limit",
+    )
+    .range(Range::Positive)
     .dim(Dim::None),
 ];
 

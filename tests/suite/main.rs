@@ -20,6 +20,7 @@ mod example_two_cylinders_mixed_3d;
 mod examples;
 mod follower_plate;
 mod friction_cattaneo;
+mod inverted_cell;
 mod pattern_growth_3d;
 mod predictor_retake;
 mod pressure_cap;

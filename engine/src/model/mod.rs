@@ -1104,6 +1104,11 @@ pub struct Dynamic {
     /// Adaptive time stepping (`None`: the step's increments, cut back
     /// and grown back to at most the initial size).
     pub adaptive: Option<Adaptive>,
+    /// The largest rotation of a cell in one increment, in radians
+    /// (`dynamic { max_rotation }`; `None`: no limit): an increment that
+    /// turns a cell by more is redone smaller, and the next size is kept
+    /// below it (`solve::stepping`, `solve::cell_rotation`).
+    pub max_rotation: Option<f64>,
 }
 
 /// Adaptive time stepping of a dynamic step (`dynamic { adaptive = true

@@ -422,6 +422,12 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
                 .into(),
             "raise `error_tol` or lower `dt_min`".into(),
         ),
+        FailureKind::Rotation => (
+            "a cell turns by more than `max_rotation` per increment down to the smallest \
+             increment"
+                .into(),
+            "raise `max_rotation` or lower `dt_min` / `min_increment`".into(),
+        ),
         FailureKind::ImpactCut => (
             "increments are cut at each first impact (`cut_at_impact = true`)".into(),
             "set `cut_at_impact = false` or use more `increments`".into(),

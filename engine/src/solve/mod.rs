@@ -36,6 +36,7 @@
 
 pub mod assembly;
 pub mod bulk_tangent;
+pub mod cell_rotation;
 pub mod check;
 pub mod constraints;
 pub mod contact_assembly;
@@ -1042,6 +1043,26 @@ where
 
     fn local_error(&self) -> Option<f64> {
         self.newton.local_error()
+    }
+
+    fn rotation(&self) -> Option<(f64, String)> {
+        let (theta, cell) = self.newton.cell_rotation()?;
+        let at = self
+            .model
+            .bodies
+            .iter()
+            .find(|b| b.cells.contains(&cell))
+            .map_or_else(
+                || format!("cell {cell}"),
+                |b| {
+                    format!(
+                        "body `{}` cell {} (global {cell})",
+                        b.name,
+                        cell - b.cells.start
+                    )
+                },
+            );
+        Some((theta, at))
     }
 
     fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64) {

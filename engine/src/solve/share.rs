@@ -275,6 +275,7 @@ mod tests {
                 beta: 0.0,
             },
             adaptive: None,
+            max_rotation: None,
         };
         dynamic.steps[0].dynamic = Some(d);
         assert_eq!(replicated_reason(&dynamic), None);

@@ -35,6 +35,17 @@
 //! changed since the last accepted increment (a first contact, a release)
 //! — halves the next size. The first increment after a restart sees no
 //! contact event (the count is not in the restart point).
+//!
+//! Rotation control of dynamic steps (`dynamic { max_rotation }`,
+//! adaptive or not): after each converged attempt the largest rotation of
+//! a cell over the increment `theta` ([`IncrementSolver::rotation`],
+//! `solve::cell_rotation`) is compared with `max_rotation`: above it the
+//! increment is redone with `0.9 dt max_rotation / theta` (at least a
+//! quarter of it, at least the smallest size; [`FailureKind::Rotation`]);
+//! accepted, the next size is at most `0.9 dt max_rotation / theta`, and
+//! grows back by the rules above. The scheme's trapezoidal work follows
+//! the strain energy only while increments turn the bodies by small
+//! angles (see `solve::cell_rotation`).
 
 use super::newton::{Converged, Failure, FailureKind};
 use super::restart::Resume;
@@ -83,6 +94,12 @@ pub trait IncrementSolver {
     fn local_error(&self) -> Option<f64> {
         None
     }
+    /// After a converged attempt: the largest rotation of a cell over the
+    /// increment, in radians, and where (words), for the rotation control
+    /// of dynamic steps (`dynamic { max_rotation }`; `None`: none).
+    fn rotation(&self) -> Option<(f64, String)> {
+        None
+    }
 }
 
 /// Safety factor of the error-controlled size.
@@ -97,6 +114,17 @@ fn error_controlled(dt: f64, eta: Option<f64>, tol: f64) -> f64 {
     match eta {
         Some(e) if tol > 0.0 && e > 0.0 => dt * ERROR_SAFETY * (tol / e).cbrt(),
         _ => dt * GROW,
+    }
+}
+
+/// The size whose rotation is [`ERROR_SAFETY`] of `limit`, after an
+/// increment of size `dt` turned a cell by `theta` (the rotation of an
+/// increment grows with its size; `theta == 0`: no limit).
+fn rotation_controlled(dt: f64, theta: f64, limit: f64) -> f64 {
+    if theta > 0.0 && limit.is_finite() {
+        dt * ERROR_SAFETY * limit / theta
+    } else {
+        f64::INFINITY
     }
 }
 
@@ -159,6 +187,7 @@ pub fn drive_from(
         let min_dt = adaptive.map_or(dt0 * step.min_fraction, |a| a.dt_min.min(dt0));
         let max_dt = adaptive.map_or(dt0, |a| a.dt_max.max(min_dt));
         let error_tol = adaptive.map_or(0.0, |a| a.error_tol);
+        let max_rotation = step.dynamic.and_then(|d| d.max_rotation);
         // active contact nodes at the last accepted increment (contact
         // events of adaptive stepping)
         let mut last_active: Option<usize> = None;
@@ -226,6 +255,31 @@ pub fn drive_from(
                         easy = 0;
                         previous = None;
                     }
+                    Ok(conv)
+                        if max_rotation.is_some_and(|m| {
+                            this_dt > min_dt * (1.0 + 1e-9)
+                                && solver.rotation().is_some_and(|(r, _)| r > m)
+                        }) =>
+                    {
+                        // a cell turned too far: redo it smaller
+                        let limit = max_rotation.unwrap_or(f64::INFINITY);
+                        let (theta, at) = solver.rotation().unwrap_or((0.0, String::new()));
+                        let new_dt = rotation_controlled(this_dt, theta, limit)
+                            .max(this_dt / 4.0)
+                            .max(min_dt);
+                        let failure = Failure {
+                            kind: FailureKind::Rotation,
+                            residuals: conv.residuals,
+                            detail: format!(
+                                "{at} turned by {theta:.3e} rad in the increment, above \
+                                 max_rotation = {limit:.3e}"
+                            ),
+                        };
+                        solver.reject(si, &failure, new_dt);
+                        dt = new_dt;
+                        easy = 0;
+                        previous = None;
+                    }
                     Ok(conv) => {
                         let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
                         let eta = if adaptive.is_some() {
@@ -234,6 +288,11 @@ pub fn drive_from(
                             None
                         };
                         let active = conv.active_contacts;
+                        // the size the rotation of this increment allows
+                        // the next one
+                        let rotation_cap = max_rotation
+                            .and_then(|m| solver.rotation().map(|(r, _)| (r, m)))
+                            .map_or(f64::INFINITY, |(r, m)| rotation_controlled(this_dt, r, m));
                         solver
                             .accept(si, t_new, this_dt, cutbacks, conv)
                             .map_err(StepError::Aborted)?;
@@ -260,6 +319,9 @@ pub fn drive_from(
                         } else if easy >= EASY_BEFORE_GROW && dt < dt0 {
                             dt = (dt * GROW).min(dt0);
                             easy = 0;
+                        }
+                        if rotation_cap < dt {
+                            dt = rotation_cap.max(min_dt);
                         }
                         let resume = if step.t_end - t > 1e-9 * dt0 {
                             Resume {
@@ -529,6 +591,7 @@ mod tests {
                 dt_max,
                 error_tol,
             }),
+            max_rotation: None,
         });
         s
     }
@@ -586,6 +649,100 @@ mod tests {
         let before = acc[i].0 - acc[i - 1].0;
         let after = acc[i + 1].0 - acc[i].0;
         assert!((after - 0.5 * before).abs() < 1e-12, "{before} {after}");
+    }
+
+    /// Converges always; every increment turns a cell by `rate` times its
+    /// size until `stop`, then by nothing.
+    struct Spinning {
+        mock: Mock,
+        rate: f64,
+        stop: f64,
+        last: (f64, f64),
+    }
+
+    impl IncrementSolver for Spinning {
+        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+            self.last = (self.mock.t, t);
+            self.mock.attempt(step, t)
+        }
+        fn accept(
+            &mut self,
+            s: usize,
+            t: f64,
+            dt: f64,
+            cutbacks: usize,
+            c: Converged,
+        ) -> Result<(), String> {
+            self.mock.accept(s, t, dt, cutbacks, c)
+        }
+        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
+            assert_eq!(f.kind, FailureKind::Rotation, "{f:?}");
+            assert!(f.detail.starts_with("cell 7 turned by"), "{}", f.detail);
+            self.mock.t = self.mock.accepted.last().map_or(0.0, |a| a.0);
+            self.mock.reject(s, f, new_dt);
+        }
+        fn rotation(&self) -> Option<(f64, String)> {
+            let (t0, t1) = self.last;
+            let spun = (t1.min(self.stop) - t0.min(self.stop)).max(0.0);
+            Some((self.rate * spun, "cell 7".into()))
+        }
+    }
+
+    #[test]
+    fn a_rotation_limit_redoes_and_caps_the_increments_that_turn_a_cell_too_far() {
+        // fixed increments of 0.1 over 10, a cell turning 1.5 rad per unit
+        // time to t = 5 (0.15 rad per increment), the limit 0.05: the first
+        // increment is redone at 0.9 x 0.05 / 0.15 of it, then every
+        // increment stays at that size (never above the limit); once the
+        // spin stops the size grows back to the initial one
+        let mut s = step(10.0, 100, 1e-3);
+        s.dynamic = adaptive_step(1.0, 0.0)
+            .dynamic
+            .map(|d| crate::model::Dynamic {
+                adaptive: None,
+                max_rotation: Some(0.05),
+                ..d
+            });
+        let mut m = Spinning {
+            mock: mock(10.0),
+            rate: 1.5,
+            stop: 5.0,
+            last: (0.0, 0.0),
+        };
+        drive(&[s.clone()], &mut m).unwrap();
+        let acc = &m.mock.accepted;
+        assert_eq!(m.mock.rejected.len(), 1, "{:?}", m.mock.rejected);
+        assert!((m.mock.rejected[0] - 0.03).abs() < 1e-12);
+        let dts: Vec<(f64, f64)> = std::iter::once((0.0, acc[0].0))
+            .chain(acc.windows(2).map(|w| (w[0].0, w[1].0)))
+            .collect();
+        for &(t0, t1) in &dts {
+            let spun = 1.5 * (t1.min(5.0) - t0.min(5.0));
+            assert!(spun <= 0.05 * (1.0 + 1e-9), "{t0} {t1}: {spun}");
+            if t1 < 5.0 {
+                assert!((t1 - t0 - 0.03).abs() < 1e-9, "{t0} {t1}");
+            }
+        }
+        assert!(
+            dts.iter()
+                .any(|&(t0, t1)| t0 > 6.0 && (t1 - t0 - 0.1).abs() < 1e-9),
+            "{dts:?}"
+        );
+        assert_eq!(acc.last().unwrap().0, 10.0);
+        // without the limit: the 100 increments, none redone
+        s.dynamic = s.dynamic.map(|d| crate::model::Dynamic {
+            max_rotation: None,
+            ..d
+        });
+        let mut m = Spinning {
+            mock: mock(10.0),
+            rate: 1.5,
+            stop: 5.0,
+            last: (0.0, 0.0),
+        };
+        drive(&[s], &mut m).unwrap();
+        assert_eq!(m.mock.accepted.len(), 100);
+        assert!(m.mock.rejected.is_empty());
     }
 
     /// Records the restart points reported by the stepper.

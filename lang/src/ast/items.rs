@@ -825,6 +825,9 @@ pub struct Dynamic {
     pub dt_max: Option<Spanned<f64>>,
     /// `error_tol`: tolerance of the local error estimate.
     pub error_tol: Option<Spanned<f64>>,
+    /// `max_rotation`: the largest rotation of a cell per increment
+    /// (radians).
+    pub max_rotation: Option<Spanned<f64>>,
     /// The `dynamic` entry.
     pub span: Span,
 }

@@ -104,5 +104,6 @@ fn dynamic(d: &ast::Dynamic, dt0: f64, min_fraction: f64) -> Dynamic {
                 dt_max: v(&d.dt_max, 10.0 * dt0),
                 error_tol: v(&d.error_tol, 1e-2),
             }),
+        max_rotation: d.max_rotation.as_ref().map(|m| m.value),
     }
 }

@@ -90,6 +90,7 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
                 dt_min: None,
                 dt_max: None,
                 error_tol: None,
+                max_rotation: None,
                 span: e.span,
             })
         }
@@ -146,6 +147,7 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
         dt_min: d.number("dt_min", diags),
         dt_max: d.number("dt_max", diags),
         error_tol: d.number("error_tol", diags),
+        max_rotation: d.number("max_rotation", diags),
         span: e.span,
     };
     d.finish(diags);

@@ -87,6 +87,7 @@ fn oscillator(steps_per_period: usize, c: f64) -> Result<(Vec<f64>, f64, RunSumm
             contact_mass: ContactMass::Redistributed,
             rayleigh: Rayleigh::default(),
             adaptive: None,
+            max_rotation: None,
         })
         .newton(NewtonSettings {
             tol: 1e-12,

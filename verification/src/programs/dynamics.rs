@@ -98,6 +98,7 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
                 contact_mass: ContactMass::Redistributed,
                 rayleigh: Rayleigh::default(),
                 adaptive: None,
+                max_rotation: None,
             })
             .newton(newton())
             .build();
@@ -170,6 +171,7 @@ fn one_mode(
             contact_mass: ContactMass::Redistributed,
             rayleigh,
             adaptive: None,
+            max_rotation: None,
         })
         .newton(newton())
         .build();

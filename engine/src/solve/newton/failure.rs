@@ -31,6 +31,9 @@ pub enum FailureKind {
     /// stepping exceeds twice its tolerance; the increment is redone
     /// smaller (`dynamic { adaptive = true  error_tol }`).
     ErrorEstimate,
+    /// Not a failure: a cell turned by more than `dynamic { max_rotation
+    /// }` in the increment; it is redone smaller.
+    Rotation,
 }
 
 /// A failed increment attempt.

@@ -368,6 +368,17 @@ where
         )
     }
 
+    /// The largest rotation of a cell over the last attempt (from the
+    /// committed state), in radians, and the global cell
+    /// ([`super::cell_rotation::largest`]).
+    pub fn cell_rotation(&self) -> Option<(f64, usize)> {
+        super::cell_rotation::largest(
+            self.model,
+            self.u.as_flattened(),
+            self.committed.as_flattened(),
+        )
+    }
+
     /// Sets the integrator of the increment ending at `t` of step `step`;
     /// at the first dynamic increment, builds the mass and the initial
     /// acceleration `M a_0 = f_ext - f_int + f_c` of the committed state.
