@@ -162,11 +162,11 @@ pub fn run(opts: &VerifyOptions) -> Result<Report, String> {
 /// with several jobs they start first, so that no long case starts last
 /// and runs alone while the other cores idle (longest-first scheduling).
 /// Before, in registry order, `blankholder` (levels 0 and 1) started 132nd
-/// of 136 and ended the catalogue test alone; `hertz_sphere_3d` (its level
-/// 1) and `taylor_bar_jc_3d` were missing here until stop 47. A scheduling
-/// hint only: every case is independent and the reports stay in registry
-/// order; a name not in the registry is skipped (a unit test keeps the
-/// list true).
+/// of 136 and ended the catalogue test alone; `hertz_sphere_3d` (its
+/// level 1) and `taylor_bar_jc_3d` were missing here until stop 47. A
+/// scheduling hint only: every case is independent and the reports stay
+/// in registry order; a name not in the registry is skipped (a unit test
+/// keeps the list true).
 pub const SLOW_CASES_FIRST: &[&str] = &[
     "hertz_sphere_block_mortar_quadratic_3d", // 81 s
     "blankholder",                            // 24 + 48 s
