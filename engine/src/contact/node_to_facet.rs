@@ -1174,6 +1174,26 @@ pub struct DeformablePair {
 }
 
 impl DeformablePair {
+    /// The forces of the latest evaluation's couplings and their tangent
+    /// times `v`, scattered over `nodes` nodes (three dofs each): what a
+    /// finite-difference check of the pair compares (the engine's tests
+    /// and the verification suite's).
+    pub fn forces_and_tangent_times(&self, nodes: usize, v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>) {
+        let mut f = vec![0.0; 3 * nodes];
+        let mut kv = vec![0.0; 3 * nodes];
+        for c in &self.couplings {
+            let nd = 3 * c.nodes.len();
+            for r in 0..nd {
+                let gr = 3 * c.nodes[r / 3] + r % 3;
+                f[gr] += c.force[r];
+                for col in 0..nd {
+                    kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
+                }
+            }
+        }
+        (f, kv)
+    }
+
     /// Which sides act as slave now: `[side 0 is slave, side 1 is slave]`.
     pub fn slave_sides(&self, strategy: ContactStrategy) -> [bool; 2] {
         if self.self_contact {

@@ -110,20 +110,8 @@ pub fn shifted(x: &[[f64; 3]], v: &[[f64; 3]], step: f64) -> Vec<[f64; 3]> {
 /// The forces of the pair's couplings (`state` evaluated) and their
 /// tangent times `v`, over `nodes` nodes.
 pub fn scatter(state: &SurfacePair, nodes: usize, v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>) {
-    let mut f = vec![0.0; 3 * nodes];
-    let mut kv = vec![0.0; 3 * nodes];
     let pair = state.deformable.as_ref().expect("a deformable pair");
-    for c in &pair.couplings {
-        let nd = 3 * c.nodes.len();
-        for r in 0..nd {
-            let gr = 3 * c.nodes[r / 3] + r % 3;
-            f[gr] += c.force[r];
-            for col in 0..nd {
-                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
-            }
-        }
-    }
-    (f, kv)
+    pair.forces_and_tangent_times(nodes, v)
 }
 
 #[test]

@@ -72,20 +72,8 @@ fn model(zs: f64) -> Model<3> {
 /// The pair's forces and `K v` at `x` from the couplings of `state`'s
 /// last evaluation.
 fn scatter(state: &SurfacePair, n: usize, v: &[[f64; 3]]) -> (Vec<f64>, Vec<f64>) {
-    let mut f = vec![0.0; 3 * n];
-    let mut kv = vec![0.0; 3 * n];
     let pair = state.deformable.as_ref().expect("a deformable pair");
-    for c in &pair.couplings {
-        let nd = 3 * c.nodes.len();
-        for r in 0..nd {
-            let gr = 3 * c.nodes[r / 3] + r % 3;
-            f[gr] += c.force[r];
-            for col in 0..nd {
-                kv[gr] += c.tangent[r * nd + col] * v[c.nodes[col / 3]][col % 3];
-            }
-        }
-    }
-    (f, kv)
+    pair.forces_and_tangent_times(n, v)
 }
 
 /// A pressed, tilted and jittered configuration of [`model`] (the slave
