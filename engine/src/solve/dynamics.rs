@@ -241,6 +241,27 @@ impl Energy {
         ]
     }
 
+    /// Closes an increment's audit once its totals (kinetic, internal,
+    /// external, contact, damping, numerical) are set: the balance
+    /// `K + W_int + W_damp - W_ext - W_contact - K_0`, the gain (the
+    /// balance without the contact work), the error (the balance plus the
+    /// scheme's numerical dissipation) and the running scale (the largest
+    /// magnitude so far).
+    pub fn close(&mut self, kinetic0: f64) {
+        self.balance =
+            self.kinetic + self.internal + self.damping - self.external - self.contact - kinetic0;
+        self.gain = self.kinetic + self.internal + self.damping - self.external - kinetic0;
+        self.error = self.balance + self.numerical;
+        self.scale = self
+            .scale
+            .max(self.kinetic)
+            .max(self.internal.abs())
+            .max(self.external.abs())
+            .max(self.contact.abs())
+            .max(self.damping.abs())
+            .max(self.numerical.abs());
+    }
+
     /// The inverse of [`Energy::values`] (`None`: a wrong count).
     pub fn from_values(v: &[f64]) -> Option<Self> {
         let &[kinetic, internal, external, contact, damping, balance, gain, scale, numerical, error] =
@@ -1172,18 +1193,8 @@ impl Dynamics {
         let kinetic = self.kinetic(model);
         let e = &mut self.energy;
         e.kinetic = kinetic;
-        e.balance = e.kinetic + e.internal + e.damping - e.external - e.contact - self.kinetic0;
-        e.gain = e.kinetic + e.internal + e.damping - e.external - self.kinetic0;
         e.numerical += numerical;
-        e.error = e.balance + e.numerical;
-        e.scale = e
-            .scale
-            .max(e.kinetic)
-            .max(e.internal.abs())
-            .max(e.external.abs())
-            .max(e.contact.abs())
-            .max(e.damping.abs())
-            .max(e.numerical.abs());
+        e.close(self.kinetic0);
     }
 
     /// The friction work of the converged increment as the time scheme
@@ -1570,21 +1581,16 @@ mod tests {
     #[test]
     fn a_negative_internal_work_raises_an_alarm_the_balance_does_not() {
         let energy = |kinetic: f64, internal: f64, external: f64, contact: f64, damping: f64| {
-            let balance = kinetic + internal + damping - external - contact;
-            Energy {
+            let mut e = Energy {
                 kinetic,
                 internal,
                 external,
                 contact,
                 damping,
-                balance,
-                gain: balance + contact,
-                scale: [kinetic, internal, external, contact, damping]
-                    .iter()
-                    .fold(0.0, |m: f64, x| m.max(x.abs())),
-                numerical: -balance,
-                error: 0.0,
-            }
+                ..Energy::default()
+            };
+            e.close(0.0);
+            e
         };
         // 13.475 ms (increment 361): sound
         let before = energy(5.261e6, 3.702e5, 2.331e7, -1.643e7, 1.088e6);
