@@ -1131,24 +1131,25 @@ pub struct DeformablePair {
     /// evaluation (at the committed state; see
     /// `mortar::LOAD_STIFFNESS_CAP`).
     pub load_stiffness_cap: Option<(usize, f64)>,
-    /// 3D mortar penalty pairs (linear faces): per slave index, the node
-    /// carried a normal force at the last accepted Newton iterate (at the
-    /// Newton loop's first evaluation, then after each accepted iterate:
-    /// [`DeformablePair::accept_iterate`]); such a node found open within
-    /// `mortar::HOLD_BAND` keeps the penalty tangent with no force.
-    pub mortar_closed: Vec<bool>,
-    /// The same flags at the latest evaluation (set by every 3D mortar
-    /// evaluation; copied into [`DeformablePair::mortar_closed`] when its
-    /// iterate is accepted).
-    pub mortar_last: Vec<bool>,
-    /// Set by [`DeformablePair::guard_start`]: the next 3D mortar
-    /// evaluation is a Newton loop's first (no hold; it records
-    /// [`DeformablePair::mortar_closed`]).
-    pub mortar_fresh: bool,
-    /// 3D mortar: the nodes held at the latest evaluation (open, with the
-    /// closed branch's tensile force): a converged iterate must have none
+    /// Penalty pairs (3D mortar rows on linear faces, node-to-facet
+    /// rows): per slave index, the node carried a normal force at the last
+    /// accepted Newton iterate (at the Newton loop's first evaluation, then
+    /// after each accepted iterate: [`DeformablePair::accept_iterate`]);
+    /// such a node found open within `mortar::HOLD_BAND` keeps the closed
+    /// branch of the penalty law for that iterate.
+    pub hold_closed: Vec<bool>,
+    /// The same flags at the latest evaluation (set by every evaluation of
+    /// a pair that holds; copied into [`DeformablePair::hold_closed`] when
+    /// its iterate is accepted).
+    pub hold_last: Vec<bool>,
+    /// Set by [`DeformablePair::guard_start`]: the next evaluation is a
+    /// Newton loop's first (no hold; it records
+    /// [`DeformablePair::hold_closed`]).
+    pub hold_fresh: bool,
+    /// The nodes held at the latest evaluation (open, with the closed
+    /// branch's tensile force): a converged iterate must have none
     /// ([`DeformablePair::guard_consistent`]).
-    pub mortar_holds: usize,
+    pub holds: usize,
     /// Penalty cycling guard ([`DeformablePair::guard_cycle`]): per slave
     /// index, the node's contact status cycled in the current Newton loop
     /// and is frozen closed for the rest of it: the penalty `R_N = -alpha_N
@@ -1261,20 +1262,20 @@ impl DeformablePair {
 
     /// A Newton loop starts: nothing held, no memory.
     pub fn guard_start(&mut self) {
-        self.mortar_closed.clear();
-        self.mortar_holds = 0;
-        self.mortar_fresh = true;
+        self.hold_closed.clear();
+        self.holds = 0;
+        self.hold_fresh = true;
         self.held.clear();
         self.held_slip.clear();
         self.guard_keys.clear();
         self.guard_released = false;
     }
 
-    /// After an accepted Newton iterate (3D mortar): the nodes carrying a
-    /// normal force there are those a hold may keep at the next iterate
-    /// ([`DeformablePair::mortar_closed`]).
+    /// After an accepted Newton iterate (penalty pairs): the nodes carrying
+    /// a normal force there are those a hold may keep at the next iterate
+    /// ([`DeformablePair::hold_closed`]).
     pub fn accept_iterate(&mut self) {
-        self.mortar_closed.clone_from(&self.mortar_last);
+        self.hold_closed.clone_from(&self.hold_last);
     }
 
     /// Whether the frozen state of the held nodes agrees with the contact
@@ -1286,10 +1287,10 @@ impl DeformablePair {
     /// every node (the Newton loop goes on with the law, and this loop
     /// holds no more).
     pub fn guard_consistent(&mut self, slaves: &[usize], contact: &[NodeContact<3>]) -> bool {
-        if self.mortar_holds > 0 {
-            // 3D mortar holds (`mortar::HOLD_BAND`): their tensile forces
-            // are no solution; the next evaluation (at the same iterate)
-            // holds none
+        if self.holds > 0 {
+            // holds (`mortar::HOLD_BAND`): their tensile forces are no
+            // solution; the iterate is accepted (`accept_iterate`) and the
+            // next evaluation holds none of them
             return false;
         }
         if !self.held.contains(&true) {
@@ -1664,6 +1665,12 @@ pub fn evaluate(
     }
     fp.couplings.clear();
     fp.tests = 0;
+    // the hold (`mortar::HOLD_BAND`): a Newton loop's first evaluation
+    // records the nodes carrying a force, later ones may hold them
+    let hold_fresh = std::mem::take(&mut fp.hold_fresh);
+    let mut holds = 0;
+    fp.hold_last.clear();
+    fp.hold_last.resize(state.slaves.len(), false);
     // Lagrange: the first evaluation of the run, and of a double-pass swap
     // (the new slave side was not evaluated in the last increment: none of
     // its nodes is active, and a body that only this contact holds would
@@ -1783,6 +1790,18 @@ pub fn evaluate(
             response(&method, a, state.multiplier[i], active, gap)
                 .or_else(|| (touching && a > 0.0).then_some((0.0, -a)))
         };
+        // the hold (`mortar::HOLD_BAND`): a node of a frictionless penalty
+        // pair that carried a normal force at the last accepted iterate and
+        // is open within the band keeps the closed branch, the tensile
+        // `-alpha_N g` and its tangent, for this iterate; reported open
+        let hold = closed.is_none()
+            && !hold_fresh
+            && cp.friction.is_none()
+            && matches!(method, ContactMethod::Penalty { .. })
+            && a > 0.0
+            && fp.hold_closed.get(i).copied().unwrap_or(false)
+            && gap <= super::mortar::HOLD_BAND * state.area[i].max(0.0).sqrt();
+        let closed = if hold { Some((-a * gap, -a)) } else { closed };
         if let Some((rn, slope)) = closed {
             let face = surface.faces[k].nodes();
             // the element's nodes (slave first), G and H over them
@@ -1931,12 +1950,17 @@ pub fn evaluate(
             } else if cp.friction.is_some() {
                 state.friction.position[i] = xs;
             }
-            nc.pressure = if state.area[i] > 0.0 {
-                fw * rn / state.area[i]
+            if hold {
+                holds += 1;
             } else {
-                0.0
-            };
-            nc.status = ContactStatus::Closed;
+                nc.pressure = if state.area[i] > 0.0 {
+                    fw * rn / state.area[i]
+                } else {
+                    0.0
+                };
+                nc.status = ContactStatus::Closed;
+                fp.hold_last[i] = fw * rn > 0.0;
+            }
             if debug {
                 let feature = match faceted.as_ref().map(|f| f.1.feature) {
                     Some(Feature::Face) => "f",
@@ -1944,7 +1968,8 @@ pub fn evaluate(
                     Some(Feature::Vertex(..)) => "v",
                     None => "n",
                 };
-                closed_log.push_str(&format!(" {node}:{k}{feature}:{gap:.3e}:{fw:.3}"));
+                let tag = if hold { ":held" } else { "" };
+                closed_log.push_str(&format!(" {node}:{k}{feature}:{gap:.3e}:{fw:.3}{tag}"));
             }
             fp.couplings.push(Coupling {
                 nodes,
@@ -1960,6 +1985,12 @@ pub fn evaluate(
         out.push(nc);
     }
     fp.candidates = candidates;
+    fp.holds = holds;
+    if hold_fresh {
+        // the Newton loop's first evaluation: the nodes a hold may keep at
+        // its first iterate
+        fp.hold_closed.clone_from(&fp.hold_last);
+    }
     if debug {
         eprintln!(
             "[ctc ntf] pair '{}' evaluation {}: closed (node:facet feature:gap:fade){closed_log}",
@@ -2707,6 +2738,105 @@ pub(crate) mod tests {
         st.deformable.as_mut().unwrap().guard_start();
         evaluate(&m, 0, &at(0.05), &mut st);
         assert!(coupling(&st).is_none());
+    }
+
+    /// The hold of node-to-facet penalty rows (`mortar::HOLD_BAND`, issue
+    /// 18: the 3D ironing benchmark's slide, where the die's prescribed
+    /// step opened the closed slab nodes and the next step threw them
+    /// through the die): node 9 over the middle of the warped grid
+    /// (penalty 100, nodal; the master's z there 0.0021), 0.012 deep at a
+    /// Newton loop's first evaluation (closed, `R_N` 1.2), then lifted
+    /// 0.0131, about 1e-3 above the master (within the band `5e-2
+    /// sqrt(T)`): it keeps the closed branch, the tensile `-alpha_N g`
+    /// along the normal and the penalty tangent (`n . K n = alpha_N`),
+    /// reported open with no pressure, and the iterate is not a converged
+    /// one. Lifted 0.1 (past the band): nothing. The hold lasts one
+    /// iterate (accepted held, the next evaluation holds none), a new
+    /// Newton loop's first evaluation holds none, a node open at the
+    /// loop's start is not held, and a frictional pair holds nothing.
+    #[test]
+    fn a_node_closed_at_the_last_iterate_and_open_within_the_band_keeps_the_closed_branch() {
+        for friction in [false, true] {
+            let m = band_pair([1.5, 1.5, -0.01], friction);
+            let at = |dz: f64| {
+                let mut x = m.mesh.nodes.clone();
+                x[9][2] = m.mesh.nodes[9][2] + dz;
+                x
+            };
+            // (the node's coupling, its entry, consistent)
+            let eval = |st: &mut SurfacePair, dz: f64| {
+                let out = evaluate(&m, 0, &at(dz), st);
+                let slaves = st.slaves.clone();
+                let fp = st.deformable.as_mut().unwrap();
+                let ok = fp.guard_consistent(&slaves, &out);
+                let c = fp.couplings.iter().find(|c| c.slave == 9).cloned();
+                (c, out.into_iter().find(|c| c.node == 9), ok)
+            };
+            let start = |st: &mut SurfacePair| {
+                st.deformable.as_mut().unwrap().guard_start();
+                let (c, nc, _) = eval(st, 0.0);
+                let nc = nc.unwrap();
+                assert!(c.is_some() && nc.status == ContactStatus::Closed, "{nc:?}");
+            };
+            let accept = |st: &mut SurfacePair| st.deformable.as_mut().unwrap().accept_iterate();
+            let mut st = SurfacePair::new(&m, 0);
+            let i = st.slave_index(9).unwrap();
+            let band = crate::contact::mortar::HOLD_BAND * st.area[i].sqrt();
+            assert!(band > 2e-3, "band {band}");
+            start(&mut st);
+            let (c, nc, ok) = eval(&mut st, 0.0131);
+            let nc = nc.unwrap();
+            assert!(nc.gap > 5e-4 && nc.gap < 1.5e-3, "{nc:?}");
+            assert!(nc.status == ContactStatus::Open && nc.pressure == 0.0);
+            if friction {
+                assert!(c.is_none() && ok, "a frictional pair holds nothing");
+                continue;
+            }
+            let c = c.expect("held");
+            assert!(!ok, "an iterate with a hold is not converged");
+            let fnormal: f64 = (0..3).map(|k| nc.force[k] * nc.normal[k]).sum();
+            let ftotal: f64 = nc.force.iter().map(|f| f * f).sum::<f64>().sqrt();
+            // K v for v = the normal at node 9: alpha_N (the curvature
+            // term `R_N H` is of the order 0.1 x 0.02)
+            let nd = 3 * c.nodes.len();
+            let p = 3 * c.nodes.iter().position(|&n| n == 9).unwrap();
+            let kv: f64 = (0..3)
+                .map(|r| {
+                    (0..3)
+                        .map(|q| c.tangent[(p + r) * nd + p + q] * nc.normal[q])
+                        .sum::<f64>()
+                        * nc.normal[r]
+                })
+                .sum();
+            println!(
+                "held: gap {:.4e}, f.n {fnormal:.4e}, |f| {ftotal:.4e}, n.K n {kv:.4e}",
+                nc.gap
+            );
+            assert!((fnormal + 100.0 * nc.gap).abs() < 1e-12, "{fnormal}");
+            assert!((ftotal - fnormal.abs()).abs() < 1e-12, "along the normal");
+            assert!((kv - 100.0).abs() < 0.1, "{kv}");
+            // past the band
+            let mut st = SurfacePair::new(&m, 0);
+            start(&mut st);
+            let (c, _, ok) = eval(&mut st, 0.1);
+            assert!(c.is_none() && ok);
+            // one iterate only: accepted held, the next holds none
+            let mut st = SurfacePair::new(&m, 0);
+            start(&mut st);
+            assert!(eval(&mut st, 0.0131).0.is_some());
+            accept(&mut st);
+            assert!(eval(&mut st, 0.0131).0.is_none());
+            // accepted closed, the next iterate holds
+            accept(&mut st);
+            assert!(eval(&mut st, 0.0).0.is_some());
+            accept(&mut st);
+            assert!(eval(&mut st, 0.0131).0.is_some());
+            // a new Newton loop's first evaluation holds none; open at
+            // that start, the next iterate holds none either
+            st.deformable.as_mut().unwrap().guard_start();
+            assert!(eval(&mut st, 0.0131).0.is_none());
+            assert!(eval(&mut st, 0.0131).0.is_none());
+        }
     }
 
     /// The cycling guard's friction (issue 18, the ironing slide: nodes

@@ -629,13 +629,10 @@ impl ContactScene<3> for SurfaceAssembly {
 
     fn guard_cycle(&mut self, model: &Model<3>) -> bool {
         let mut held = 0;
-        // 3D mortar: the nodes closed at this iterate (the hold of the next)
-        for (state, cp) in self.pairs.iter_mut().zip(&model.contacts) {
-            if cp.formulation == ContactFormulation::Mortar {
-                if let Some(fp) = state.deformable.as_mut() {
-                    fp.accept_iterate();
-                }
-            }
+        // 3D mortar and node-to-facet: the nodes closed at this iterate
+        // (the hold of the next, `mortar::HOLD_BAND`)
+        for fp in self.pairs.iter_mut().filter_map(|p| p.deformable.as_mut()) {
+            fp.accept_iterate();
         }
         for ((state, cp), res) in self
             .pairs

@@ -118,9 +118,11 @@ pub const LOAD_STIFFNESS_CAP: f64 = 2.0;
 
 /// Hold band (fraction of `sqrt(T_j)`, `T_j` the node's reference
 /// tributary area): a node of a 3D mortar penalty row (frictionless,
-/// linear faces) that carried a normal force at the last accepted Newton
+/// linear faces) or of a frictionless node-to-facet penalty pair
+/// (faceted or Nagata: `node_to_facet::evaluate`) that carried a normal
+/// force at the last accepted Newton
 /// iterate (the Newton loop's first evaluation, then each accepted
-/// iterate: `DeformablePair::mortar_closed`) and is open by less than
+/// iterate: `DeformablePair::hold_closed`) and is open by less than
 /// this at the current one keeps the closed branch of the penalty law,
 /// the tensile force `-alpha g` with its tangent, for that iterate only;
 /// reported open, and no iterate with a hold is a converged one
@@ -142,7 +144,20 @@ pub const LOAD_STIFFNESS_CAP: f64 = 2.0;
 /// squared); at `1e-2` the benchmark's first slide increment took 13
 /// iterations and the next one cut back, at `5e-2` 6 and 5 (`CTC_LOG=debug
 /// ctc run -v`, rows per evaluation). A node that really separates is
-/// held one iterate at most.
+/// held one iterate at most. Node-to-facet (the same benchmark, faceted,
+/// mu 0): without the hold the step after the opening threw slab nodes
+/// 0.5..1 into the die, whose radial thickness is 1; nodes 35 and 195
+/// (the slab's z edges) converged through it at t = 1.7284, past the
+/// projection's depth window (`max(prof, longest facet edge)` = 1.04),
+/// with no force, and every later increment's first iterate found them
+/// back inside the window with 500 x 0.5 x 1.04 of penalty force
+/// (residual 0.98 whatever the step): the run stopped at t = 1.8725 after
+/// 25 cutbacks. Held (gaps of the held nodes 5e-7..4.9e-2, median
+/// 2.6e-3) it slides to t = 2. Frictional node-to-facet pairs hold
+/// nothing: held without friction (open for the friction law) the
+/// benchmark at mu 0.3 (`ctc verify ironing_ntf_3d`) took 447 iterations,
+/// 39 increments, 5 cutbacks instead of 315, 30, 2 (level 0 of
+/// `ironing_3d`, mu 0.3 on the coarse deck: 119 -> 96).
 pub const HOLD_BAND: f64 = 5e-2;
 
 /// The row of one slave node, summed over its mortar pieces (2D segment
@@ -1349,10 +1364,10 @@ pub fn evaluate_3d(
         _ => f64::INFINITY,
     };
     let mut largest = 0.0f64;
-    let fresh = std::mem::take(&mut fp.mortar_fresh);
+    let fresh = std::mem::take(&mut fp.hold_fresh);
     let mut holds = 0;
-    fp.mortar_last.clear();
-    fp.mortar_last.resize(state.slaves.len(), false);
+    fp.hold_last.clear();
+    fp.hold_last.resize(state.slaves.len(), false);
     let mut nodes = Vec::new();
     for (i, list) in rows.iter().enumerate() {
         let node = state.slaves[i];
@@ -1423,8 +1438,7 @@ pub fn evaluate_3d(
             _ => {
                 // the hold of a node closed at the last accepted iterate
                 // (`HOLD_BAND`)
-                if !fresh && lagrange.is_none() && fp.mortar_closed.get(i).copied().unwrap_or(false)
-                {
+                if !fresh && lagrange.is_none() && fp.hold_closed.get(i).copied().unwrap_or(false) {
                     row.hold = HOLD_BAND * support.max(0.0).sqrt();
                 }
                 row.close(
@@ -1463,7 +1477,7 @@ pub fn evaluate_3d(
         if coupling.is_some() && support > 0.0 && lagrange.is_none() {
             let rn = (shift - alpha * nc.gap).max(0.0);
             if rn > 0.0 {
-                fp.mortar_last[i] = true;
+                fp.hold_last[i] = true;
             }
             // a force of a round-off penetration (two meshes touching at
             // the start) is no pressure: no cap from it
@@ -1498,11 +1512,11 @@ pub fn evaluate_3d(
         fp.couplings.extend(coupling);
         out.push(nc);
     }
-    fp.mortar_holds = holds;
+    fp.holds = holds;
     if fresh {
         // the Newton loop's first evaluation: the nodes a hold may keep at
         // its first iterate
-        fp.mortar_closed.clone_from(&fp.mortar_last);
+        fp.hold_closed.clone_from(&fp.hold_last);
     }
     if fp.load_stiffness_cap.map(|(k, _)| k) != Some(cap_key) {
         let cap = if largest > 0.0 {
