@@ -882,7 +882,7 @@ pub static STEP: [Key; 5] = [
         "dynamic",
         KeyType::Choice(&[
             "{ scheme rho_inf beta gamma mass contact_mass rayleigh_alpha rayleigh_beta adaptive dt_min \
-             dt_max error_tol max_rotation }",
+             dt_max error_tol max_rotation energy_tol }",
         ]),
         "implicit dynamics (inertia; a bare `dynamic` takes every default); without it the \
          step is quasi-static",
@@ -890,7 +890,7 @@ pub static STEP: [Key; 5] = [
 ];
 
 /// `dynamic { .. }` of a step.
-pub static DYNAMIC: [Key; 13] = [
+pub static DYNAMIC: [Key; 14] = [
     Key::new(
         "scheme",
         KeyType::Choice(&["newmark", "hht", "generalized_alpha"]),
@@ -997,6 +997,20 @@ pub static DYNAMIC: [Key; 13] = [
          bound (adaptive or not); generalized-alpha's trapezoidal work follows the strain \
          energy only while increments turn the bodies by small angles (a fast-spinning free \
          part gains energy: e.g. 0.05); absent: no limit",
+    )
+    .range(Range::Positive)
+    .dim(Dim::None),
+    Key::new(
+        "energy_tol",
+        KeyType::Number,
+        "largest energy one increment may create, relative to the largest energy of the run: \
+         a converged increment whose kinetic energy, internal and damping work and stored \
+         penalty energy (1/2 f_n (-g) of the closed contact nodes) grow by more than the work \
+         of the loads and supports plus this share is redone at 0.9 dt sqrt(energy_tol / \
+         created) (at least dt / 4), and the next increment is kept below the same bound \
+         (adaptive or not): penalty contact whose springs give back more than they stored (a \
+         node released from deeper than it closed through, chatter) is resolved in time \
+         instead of feeding the bodies (e.g. 1e-3); absent: no control",
     )
     .range(Range::Positive)
     .dim(Dim::None),

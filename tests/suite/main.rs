@@ -12,6 +12,7 @@ mod contact_search_jump;
 mod determinism;
 mod dynamic_fields;
 mod energy_alarm;
+mod energy_control;
 mod example_files;
 mod example_iges_punch;
 mod example_superplastic_forming;

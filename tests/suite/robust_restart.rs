@@ -508,3 +508,58 @@ fn restart_with_nodes_beside_the_rim_matches_uninterrupted_run() {
     });
     assert!(differs, "the flags made no difference");
 }
+
+#[test]
+fn restart_dynamic_friction_continues_the_friction_work() {
+    // issue 19: a restarted dynamic run's `friction_work[..]` columns go on
+    // from the restart point (the trapezoidal rule's committed friction
+    // forces are in the restart point), and its summary's total is the
+    // continued increments' share of the uninterrupted run's. A block
+    // (1 x 1 x 0.5, rho 1e-3) pressed on a rigid floor (tz = -1, mu =
+    // 0.3) slides at vx = 2 and is stopped by friction within the 16
+    // increments (4e-3 s): friction work in every increment of the tail
+    let text = "analysis { dimension = 3d }
+material soft { elastic { E = 1e5  nu = 0 }  density = 1e-3 }
+body block {
+  mesh = box { size = (1, 1, 0.5)  divisions = (2, 2, 1) }
+  material = soft
+}
+tool floor = plane { point = (0, 0, 0)  normal = (0, 0, 1) }
+contact block.zmin -> floor {
+  method = penalty { kind = area  stiffness = 1e7 }
+  friction = coulomb { mu = 0.3 }
+  prof = 0.1
+}
+traction block.zmax { tz = -1 }
+initial_velocity block.all { vx = 2 }
+step slide { time = 0 .. 0.004  increments = 16  dynamic { }  newton { tol = 1e-9 } }
+output { every = 4 }
+";
+    let source = ctc_lang::Source::new(Path::new("slide.ctc"), text.to_string());
+    let model: Model<3> = match ctc_lang::compile_any(&source) {
+        Ok(AnyModel::D3(m)) => m,
+        Ok(AnyModel::D2(_)) => panic!("a 3d deck"),
+        Err(d) => panic!("{}", d.render(&source)),
+    };
+    // history.csv (the friction_work column with the energy columns) is
+    // compared byte for byte by restart_matches_from
+    let (from, n, cp) = restart_matches_from(&model, 10);
+    assert_eq!((from, n), (8, 16));
+    struct Quiet;
+    impl Observer<3> for Quiet {}
+    let full = solve::run(&model, &mut Quiet).expect("uninterrupted run");
+    let rest = solve::run_from(&model, &mut Quiet, Some(&cp)).expect("restarted run");
+    let tail: Vec<f64> = full.increments[from..]
+        .iter()
+        .map(|r| r.friction_work[0])
+        .collect();
+    assert!(tail.iter().filter(|w| **w != 0.0).count() >= 5, "{tail:?}");
+    let continued: Vec<f64> = rest.increments.iter().map(|r| r.friction_work[0]).collect();
+    assert_eq!(continued, tail);
+    let sum: f64 = tail.iter().sum();
+    assert!(
+        (rest.friction_work[0] - sum).abs() <= 1e-12 * sum.abs(),
+        "{} {sum}",
+        rest.friction_work[0]
+    );
+}

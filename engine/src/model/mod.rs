@@ -1109,6 +1109,14 @@ pub struct Dynamic {
     /// turns a cell by more is redone smaller, and the next size is kept
     /// below it (`solve::stepping`, `solve::cell_rotation`).
     pub max_rotation: Option<f64>,
+    /// The largest energy one increment may create, relative to the
+    /// largest energy of the run (`dynamic { energy_tol }`; `None`: no
+    /// control): an increment whose kinetic energy, internal and damping
+    /// work and stored penalty energy grow by more than the work of the
+    /// loads and supports plus this share is redone smaller, and the next
+    /// size is kept below it (`solve::stepping`,
+    /// `solve::dynamics::Energy::created_since`).
+    pub energy_tol: Option<f64>,
 }
 
 /// Adaptive time stepping of a dynamic step (`dynamic { adaptive = true

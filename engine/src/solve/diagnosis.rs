@@ -428,6 +428,12 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
                 .into(),
             "raise `max_rotation` or lower `dt_min` / `min_increment`".into(),
         ),
+        FailureKind::Energy => (
+            "increments create more energy than `energy_tol` allows down to the smallest \
+             increment"
+                .into(),
+            "raise `energy_tol` or lower `dt_min` / `min_increment`".into(),
+        ),
         FailureKind::ImpactCut => (
             "increments are cut at each first impact (`cut_at_impact = true`)".into(),
             "set `cut_at_impact = false` or use more `increments`".into(),

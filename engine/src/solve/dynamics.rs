@@ -198,6 +198,12 @@ pub struct Energy {
     /// (their tolerance) and of any force the scheme uses but the audit
     /// does not (0 to round-off when both are consistent and converged).
     pub error: f64,
+    /// The energy stored in the penalty springs of the closed contact
+    /// nodes, `sum 1/2 f_n (-g)` ([`penalty_energy`]; 0 under Lagrange
+    /// multipliers, whose gap is closed): with the contact work, what the
+    /// energy control of dynamic steps weighs (`dynamic { energy_tol }`,
+    /// [`Energy::created_since`]).
+    pub penalty: f64,
 }
 
 /// The committed state of the integrator in a restart point
@@ -238,7 +244,20 @@ impl Energy {
             self.scale,
             self.numerical,
             self.error,
+            self.penalty,
         ]
+    }
+
+    /// The energy created from the committed audit `before` to this one:
+    /// the growth of the kinetic energy, the internal and damping work and
+    /// the stored penalty energy beyond the work of the loads and supports
+    /// (`gain + penalty`). Positive: the contact forces gave the bodies
+    /// more than their springs stored (a penalty released from a deeper
+    /// penetration than it was loaded through) or the integrator created
+    /// energy; a consistent increment keeps it at or below 0 (the scheme's
+    /// numerical dissipation).
+    pub fn created_since(&self, before: &Energy) -> f64 {
+        (self.gain + self.penalty) - (before.gain + before.penalty)
     }
 
     /// Closes an increment's audit once its totals (kinetic, internal,
@@ -262,13 +281,20 @@ impl Energy {
             .max(self.numerical.abs());
     }
 
-    /// The inverse of [`Energy::values`] (`None`: a wrong count).
+    /// The inverse of [`Energy::values`] (`None`: a wrong count; the ten
+    /// values of restart points written before the penalty energy was
+    /// kept read with a penalty energy of 0).
     pub fn from_values(v: &[f64]) -> Option<Self> {
-        let &[kinetic, internal, external, contact, damping, balance, gain, scale, numerical, error] =
-            v
+        let (
+            &[kinetic, internal, external, contact, damping, balance, gain, scale, numerical, error],
+            penalty,
+        ) = (v.get(..10)?, v.get(10).copied().unwrap_or(0.0))
         else {
             return None;
         };
+        if v.len() > 11 {
+            return None;
+        }
         Some(Energy {
             kinetic,
             internal,
@@ -280,8 +306,40 @@ impl Energy {
             scale,
             numerical,
             error,
+            penalty,
         })
     }
+}
+
+/// The energy stored in the penalty springs of the closed contact nodes
+/// of `contact` (per pair, an evaluation's lists): `sum 1/2 f_n (-g)`, `f_n
+/// = force . normal` the normal force on a node and `g < 0` its gap (the
+/// spring's energy for a penalty linear in the gap; Lagrange multipliers
+/// keep the gap at 0 and add nothing).
+pub fn penalty_energy<const D: usize>(contact: &[Vec<NodeContact<D>>]) -> f64 {
+    contact
+        .iter()
+        .flatten()
+        .filter(|c| c.status == crate::contact::ContactStatus::Closed && c.gap < 0.0)
+        .map(|c| {
+            let normal: f64 = c.force.iter().zip(&c.normal).map(|(f, n)| f * n).sum();
+            0.5 * normal.max(0.0) * (-c.gap)
+        })
+        .sum()
+}
+
+/// What committing an increment makes of the dynamic state
+/// ([`Dynamics::audit`]).
+#[derive(Debug, Clone)]
+pub struct Audit {
+    /// Velocities and accelerations at the end (`None`: quasi-static, at
+    /// rest).
+    pub rates: Option<(Vec<f64>, Vec<f64>)>,
+    /// External forces plus the reactions and the inertia of the
+    /// prescribed dofs (the start of the next increment's external work).
+    pub external: Vec<f64>,
+    /// The energies at the end.
+    pub energy: Energy,
 }
 
 /// Mass, velocities, accelerations and energies of a model with dynamic
@@ -1130,9 +1188,44 @@ impl Dynamics {
         forces: [&[f64]; FORCES],
         prescribed: &[usize],
     ) {
+        let audit = self.audit(model, u, u0, forces, prescribed);
+        match audit.rates {
+            Some((v, a)) => {
+                self.v = v;
+                self.a = a;
+            }
+            None => {
+                // a quasi-static increment ends at rest
+                self.v.fill(0.0);
+                self.a.fill(0.0);
+            }
+        }
+        self.r0.copy_from_slice(r);
+        for (k, (f0, f1)) in self.forces0.iter_mut().zip(forces).enumerate() {
+            f0.copy_from_slice(if k == 1 { &audit.external } else { f1 });
+        }
+        self.energy = audit.energy;
+    }
+
+    /// What committing the increment ending at `u` (committed `u0`) would
+    /// make of the state, without committing it ([`Dynamics::commit`]; the
+    /// energy control of dynamic steps weighs an attempt by it): the
+    /// velocities and accelerations (`None`: a quasi-static increment, which
+    /// ends at rest), the external forces with the inertia of the
+    /// `prescribed` dofs, and the energies (`penalty` kept from the last
+    /// commit: the caller sets it).
+    pub fn audit<const D: usize>(
+        &self,
+        model: &Model<D>,
+        u: &[f64],
+        u0: &[f64],
+        forces: [&[f64]; FORCES],
+        prescribed: &[usize],
+    ) -> Audit {
         let mut external = forces[1].to_vec();
         let mut forces = forces;
         let mut numerical = 0.0;
+        let mut rates = None;
         if let Some((k, dt)) = self.active {
             let a1 = self.acceleration(&k, dt, u, u0);
             if !prescribed.is_empty() {
@@ -1143,19 +1236,19 @@ impl Dynamics {
                 }
             }
             forces[1] = &external;
-            let v0 = self.v.clone();
             // the net force f_int - f_ext - f_c + C v the audit integrates
             let net = |f: &[&[f64]]| -> Vec<f64> {
                 (0..u.len())
                     .map(|g| f[0][g] - f[1][g] - f[2][g] + f[3][g])
                     .collect()
             };
-            for ((v, a0), a1) in self.v.iter_mut().zip(&self.a).zip(&a1) {
+            let mut v1 = self.v.clone();
+            for ((v, a0), a1) in v1.iter_mut().zip(&self.a).zip(&a1) {
                 *v += dt * ((1.0 - k.gamma) * a0 + k.gamma * a1);
             }
             numerical = numerical_dissipation(
                 &k,
-                [&v0, &self.v],
+                [&self.v, &v1],
                 [&self.a, &a1],
                 [
                     &net(&self.forces0.iter().map(Vec::as_slice).collect::<Vec<_>>()),
@@ -1165,13 +1258,8 @@ impl Dynamics {
                 u0,
                 |x, out| self.mass_times(model, x, out),
             );
-            self.a = a1;
-        } else {
-            // a quasi-static increment ends at rest
-            self.v.fill(0.0);
-            self.a.fill(0.0);
+            rates = Some((v1, a1));
         }
-        self.r0.copy_from_slice(r);
         let mut work = [0.0; FORCES];
         for (w, (f1, f0)) in work.iter_mut().zip(forces.iter().zip(&self.forces0)) {
             *w = f1
@@ -1181,20 +1269,35 @@ impl Dynamics {
                 .map(|((f1, f0), (u1, u0))| 0.5 * (f1 + f0) * (u1 - u0))
                 .sum();
         }
-        for (f0, f1) in self.forces0.iter_mut().zip(forces) {
-            f0.copy_from_slice(f1);
-        }
-        let e = &mut self.energy;
+        let mut e = self.energy;
         e.internal += work[0];
         e.external += work[1];
         e.contact += work[2];
         e.damping += work[3];
-        e.kinetic = 0.0;
-        let kinetic = self.kinetic(model);
-        let e = &mut self.energy;
-        e.kinetic = kinetic;
+        e.kinetic = match &rates {
+            Some((v1, _)) => {
+                let mut mv = vec![0.0; v1.len()];
+                self.mass_times(model, v1, &mut mv);
+                0.5 * mv.iter().zip(v1).map(|(a, b)| a * b).sum::<f64>()
+            }
+            None => self.kinetic_of_rest(model),
+        };
         e.numerical += numerical;
         e.close(self.kinetic0);
+        Audit {
+            rates,
+            external,
+            energy: e,
+        }
+    }
+
+    /// The kinetic energy of the bodies at rest (0; the same operations as
+    /// [`Dynamics::kinetic`] on zero velocities).
+    fn kinetic_of_rest<const D: usize>(&self, model: &Model<D>) -> f64 {
+        let zero = vec![0.0; self.v.len()];
+        let mut mv = vec![0.0; zero.len()];
+        self.mass_times(model, &zero, &mut mv);
+        0.5 * mv.iter().zip(&zero).map(|(a, b)| a * b).sum::<f64>()
     }
 
     /// The friction work of the converged increment as the time scheme
@@ -1290,6 +1393,12 @@ impl Dynamics {
             let y = chart.force(get(f));
             put(f, y);
         }
+    }
+
+    /// The committed contact forces per dof (the start of the contact
+    /// work integral).
+    pub fn contact_force0(&self) -> &[f64] {
+        &self.forces0[2]
     }
 
     /// The committed state carried by restart points (the mass is rebuilt

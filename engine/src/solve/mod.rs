@@ -1065,6 +1065,10 @@ where
         Some((theta, at))
     }
 
+    fn energy_created(&self) -> Option<(f64, f64, String)> {
+        self.newton.energy_created()
+    }
+
     fn reject(&mut self, step: usize, failure: &Failure, new_dt: f64) {
         self.newton.rollback();
         self.summary.cutbacks += 1;

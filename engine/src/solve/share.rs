@@ -276,6 +276,7 @@ mod tests {
             },
             adaptive: None,
             max_rotation: None,
+            energy_tol: None,
         };
         dynamic.steps[0].dynamic = Some(d);
         assert_eq!(replicated_reason(&dynamic), None);

@@ -46,6 +46,23 @@
 //! grows back by the rules above. The scheme's trapezoidal work follows
 //! the strain energy only while increments turn the bodies by small
 //! angles (see `solve::cell_rotation`).
+//!
+//! Energy control of dynamic steps (`dynamic { energy_tol }`, adaptive or
+//! not): after each converged attempt the energy the increment would
+//! create ([`IncrementSolver::energy_created`]: the growth of the kinetic
+//! energy, internal and damping work and stored penalty energy beyond the
+//! work of the loads and supports, `dynamics::Energy::created_since`) is
+//! compared with `energy_tol` times the largest energy of the run: above
+//! it the increment is redone with `0.9 dt sqrt(energy_tol scale /
+//! created)` (at least a quarter of it, at least the smallest size;
+//! [`FailureKind::Energy`]); accepted, the next size is at most the same.
+//! A penalty node that ends an increment open after beginning it closed
+//! gets the start's force over the whole separating motion: the energy it
+//! creates grows with `dt^2`.
+//!
+//! A restart point is continued by [`drive_from`] through [`resumable`]:
+//! a point without a next size (a completed run's) takes the step's
+//! planned size.
 
 use super::newton::{Converged, Failure, FailureKind};
 use super::restart::Resume;
@@ -100,6 +117,13 @@ pub trait IncrementSolver {
     fn rotation(&self) -> Option<(f64, String)> {
         None
     }
+    /// After a converged attempt of a dynamic increment: the energy it
+    /// would create if accepted, the largest energy of the run it is
+    /// weighed against and where (words), for the energy control of
+    /// dynamic steps (`dynamic { energy_tol }`; `None`: none).
+    fn energy_created(&self) -> Option<(f64, f64, String)> {
+        None
+    }
 }
 
 /// Safety factor of the error-controlled size.
@@ -123,6 +147,18 @@ fn error_controlled(dt: f64, eta: Option<f64>, tol: f64) -> f64 {
 fn rotation_controlled(dt: f64, theta: f64, limit: f64) -> f64 {
     if theta > 0.0 && limit.is_finite() {
         dt * ERROR_SAFETY * limit / theta
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The size whose created energy is [`ERROR_SAFETY`]^2 of `limit` after
+/// an increment of size `dt` created `created` (a penalty node released
+/// from a depth `v dt` past the surface by `v dt`: the energy grows with
+/// `dt^2`; `created <= 0`: no limit).
+fn energy_controlled(dt: f64, created: f64, limit: f64) -> f64 {
+    if created > 0.0 && limit > 0.0 {
+        dt * ERROR_SAFETY * (limit / created).sqrt()
     } else {
         f64::INFINITY
     }
@@ -180,6 +216,7 @@ pub fn drive_from(
     solver: &mut dyn IncrementSolver,
     from: Option<Resume>,
 ) -> Result<(), StepError> {
+    let from = from.map(|r| resumable(steps, r));
     let first = from.map_or(0, |r| r.step);
     for (si, step) in steps.iter().enumerate().skip(first) {
         let dt0 = (step.t_end - step.t_start) / step.increments as f64;
@@ -188,6 +225,7 @@ pub fn drive_from(
         let max_dt = adaptive.map_or(dt0, |a| a.dt_max.max(min_dt));
         let error_tol = adaptive.map_or(0.0, |a| a.error_tol);
         let max_rotation = step.dynamic.and_then(|d| d.max_rotation);
+        let energy_tol = step.dynamic.and_then(|d| d.energy_tol);
         // active contact nodes at the last accepted increment (contact
         // events of adaptive stepping)
         let mut last_active: Option<usize> = None;
@@ -208,7 +246,14 @@ pub fn drive_from(
                 } else {
                     (dt, grid_time(step, t + dt))
                 };
-                match solver.attempt(si, t_new) {
+                let attempt = solver.attempt(si, t_new);
+                // the energy the converged attempt would create (once:
+                // the audit is a pass over every dof)
+                let created = match (&attempt, energy_tol) {
+                    (Ok(_), Some(_)) => solver.energy_created(),
+                    _ => None,
+                };
+                match attempt {
                     Ok(conv)
                         if !impact_cut
                             && solver.impact_fraction().is_some_and(|tau| {
@@ -280,6 +325,34 @@ pub fn drive_from(
                         easy = 0;
                         previous = None;
                     }
+                    Ok(conv)
+                        if energy_tol.is_some_and(|tol| {
+                            this_dt > min_dt * (1.0 + 1e-9)
+                                && created
+                                    .as_ref()
+                                    .is_some_and(|(e, scale, _)| *e > tol * scale)
+                        }) =>
+                    {
+                        // the increment created too much energy: redo it
+                        // smaller
+                        let tol = energy_tol.unwrap_or(f64::INFINITY);
+                        let (created, scale, at) = created.unwrap_or((0.0, 0.0, String::new()));
+                        let new_dt = energy_controlled(this_dt, created, tol * scale)
+                            .max(this_dt / 4.0)
+                            .max(min_dt);
+                        let failure = Failure {
+                            kind: FailureKind::Energy,
+                            residuals: conv.residuals,
+                            detail: format!(
+                                "the increment created {created:.3e} of energy, above \
+                                 energy_tol = {tol:.3e} of {scale:.3e}; {at}"
+                            ),
+                        };
+                        solver.reject(si, &failure, new_dt);
+                        dt = new_dt;
+                        easy = 0;
+                        previous = None;
+                    }
                     Ok(conv) => {
                         let is_easy = cutbacks == 0 && conv.iterations <= easy_iterations;
                         let eta = if adaptive.is_some() {
@@ -293,6 +366,12 @@ pub fn drive_from(
                         let rotation_cap = max_rotation
                             .and_then(|m| solver.rotation().map(|(r, _)| (r, m)))
                             .map_or(f64::INFINITY, |(r, m)| rotation_controlled(this_dt, r, m));
+                        // and the size its created energy allows
+                        let energy_cap = energy_tol
+                            .zip(created.as_ref())
+                            .map_or(f64::INFINITY, |(tol, (e, scale, _))| {
+                                energy_controlled(this_dt, *e, tol * scale)
+                            });
                         solver
                             .accept(si, t_new, this_dt, cutbacks, conv)
                             .map_err(StepError::Aborted)?;
@@ -322,6 +401,9 @@ pub fn drive_from(
                         }
                         if rotation_cap < dt {
                             dt = rotation_cap.max(min_dt);
+                        }
+                        if energy_cap < dt {
+                            dt = energy_cap.max(min_dt);
                         }
                         let resume = if step.t_end - t > 1e-9 * dt0 {
                             Resume {
@@ -368,6 +450,37 @@ pub fn drive_from(
         }
     }
     Ok(())
+}
+
+/// Where a run continues from the restart point `r` among `steps`: the
+/// point itself, but for a size that is not a positive number (the restart
+/// point of a completed run carries 0: there was no next increment), which
+/// becomes the step's planned size, and for a point inside a step it had
+/// completed (`r` past step `s - 1`, whose end now lies beyond `r.time`: a
+/// longer step), which continues that step from `r.time` at its planned
+/// size. Without it a continued step would attempt zero-length increments
+/// forever.
+pub fn resumable(steps: &[Step], r: Resume) -> Resume {
+    let planned = |s: &Step| (s.t_end - s.t_start) / s.increments.max(1) as f64;
+    if let Some(prev) = r.step.checked_sub(1).and_then(|s| steps.get(s)) {
+        let dt0 = planned(prev);
+        if prev.t_end - r.time > 1e-9 * dt0 && r.time >= prev.t_start {
+            return Resume {
+                step: r.step - 1,
+                time: r.time,
+                dt: dt0,
+                easy: 0,
+            };
+        }
+    }
+    match steps.get(r.step) {
+        Some(s) if !(r.dt > 0.0 && r.dt.is_finite()) => Resume {
+            dt: planned(s),
+            easy: 0,
+            ..r
+        },
+        _ => r,
+    }
 }
 
 /// The position of `t` on the grid of step `step` in units of its
@@ -592,6 +705,7 @@ mod tests {
                 error_tol,
             }),
             max_rotation: None,
+            energy_tol: None,
         });
         s
     }
@@ -732,6 +846,7 @@ mod tests {
         // without the limit: the 100 increments, none redone
         s.dynamic = s.dynamic.map(|d| crate::model::Dynamic {
             max_rotation: None,
+            energy_tol: None,
             ..d
         });
         let mut m = Spinning {
@@ -800,6 +915,143 @@ mod tests {
             assert_eq!(rest.mock.accepted, full.mock.accepted[k + 1..], "from {k}");
             assert_eq!(rest.resumes, full.resumes[k + 1..], "from {k}");
         }
+    }
+
+    #[test]
+    fn a_restart_point_without_a_next_size_continues_at_the_planned_size() {
+        // the restart point of a completed run carries dt = 0 (there was
+        // no next increment): continued into a step added after it, or
+        // into its own last step made longer, the run takes the step's
+        // planned size instead of zero-length increments (which never
+        // reach the step's end)
+        let first = step(2.0, 2, 1e-3);
+        let done = Resume {
+            step: 1,
+            time: 2.0,
+            dt: 0.0,
+            easy: 0,
+        };
+        // a new step 2 -> 3 in 4 increments
+        let added = Step {
+            t_start: 2.0,
+            t_end: 3.0,
+            ..step(1.0, 4, 1e-3)
+        };
+        let mut m = mock(1.0);
+        m.t = 2.0;
+        drive_from(&[first.clone(), added], &mut m, Some(done)).unwrap();
+        let times: Vec<f64> = m.accepted.iter().map(|a| a.0).collect();
+        assert_eq!(times, [2.25, 2.5, 2.75, 3.0]);
+        // the first step made longer: 0 -> 3 in 3 increments, continued
+        // from t = 2 at its planned size 1
+        let longer = step(3.0, 3, 1e-3);
+        let mut m = mock(1.0);
+        m.t = 2.0;
+        drive_from(std::slice::from_ref(&longer), &mut m, Some(done)).unwrap();
+        assert_eq!(m.accepted.iter().map(|a| a.0).collect::<Vec<_>>(), [3.0]);
+        // a point with a size, and a completed run, are left as they are
+        let mid = Resume {
+            step: 0,
+            time: 1.0,
+            dt: 0.5,
+            easy: 1,
+        };
+        assert_eq!(resumable(std::slice::from_ref(&longer), mid), mid);
+        let end = Resume {
+            step: 1,
+            time: 3.0,
+            dt: 0.0,
+            easy: 0,
+        };
+        assert_eq!(resumable(&[longer], end), end);
+    }
+
+    /// Converges always; an increment from `t0` to `t1` creates `rate
+    /// (t1 - t0)^2` of energy inside `window`, nothing elsewhere, against
+    /// a scale of 1.
+    struct Creating {
+        mock: Mock,
+        rate: f64,
+        window: (f64, f64),
+        last: (f64, f64),
+    }
+
+    impl IncrementSolver for Creating {
+        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
+            self.last = (self.mock.t, t);
+            self.mock.attempt(step, t)
+        }
+        fn accept(
+            &mut self,
+            s: usize,
+            t: f64,
+            dt: f64,
+            cutbacks: usize,
+            c: Converged,
+        ) -> Result<(), String> {
+            self.mock.accept(s, t, dt, cutbacks, c)
+        }
+        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
+            assert_eq!(f.kind, FailureKind::Energy, "{f:?}");
+            assert!(f.detail.contains("node 3"), "{}", f.detail);
+            self.mock.t = self.mock.accepted.last().map_or(0.0, |a| a.0);
+            self.mock.reject(s, f, new_dt);
+        }
+        fn energy_created(&self) -> Option<(f64, f64, String)> {
+            let (t0, t1) = self.last;
+            let inside = t1 > self.window.0 && t0 < self.window.1;
+            let e = if inside {
+                self.rate * (t1 - t0).powi(2)
+            } else {
+                0.0
+            };
+            Some((e, 1.0, "node 3".into()))
+        }
+    }
+
+    #[test]
+    fn an_energy_limit_redoes_and_caps_the_increments_that_create_energy() {
+        // increments of 0.1 over 10; between t = 4 and 6 an increment
+        // creates 10 dt^2 (0.1 at the planned size), the limit 1e-3: the
+        // first increment there is redone at 0.9 sqrt(1e-3 / 0.1) dt
+        // (0.009, at least dt / 4 = 0.025), and every accepted one creates
+        // at most the limit; past t = 6 the size grows back
+        let mut s = step(10.0, 100, 1e-4);
+        s.dynamic = adaptive_step(1.0, 0.0)
+            .dynamic
+            .map(|d| crate::model::Dynamic {
+                adaptive: None,
+                energy_tol: Some(1e-3),
+                ..d
+            });
+        let mut m = Creating {
+            mock: mock(10.0),
+            rate: 10.0,
+            window: (4.0, 6.0),
+            last: (0.0, 0.0),
+        };
+        drive(&[s.clone()], &mut m).unwrap();
+        let acc = &m.mock.accepted;
+        assert!(!m.mock.rejected.is_empty());
+        assert!(
+            (m.mock.rejected[0] - 0.025).abs() < 1e-12,
+            "{:?}",
+            m.mock.rejected
+        );
+        let dts: Vec<(f64, f64)> = std::iter::once((0.0, acc[0].0))
+            .chain(acc.windows(2).map(|w| (w[0].0, w[1].0)))
+            .collect();
+        for &(t0, t1) in &dts {
+            if t1 > 4.0 && t0 < 6.0 {
+                assert!(10.0 * (t1 - t0).powi(2) <= 1e-3 * (1.0 + 1e-9), "{t0} {t1}");
+            }
+        }
+        assert!(
+            dts.iter()
+                .any(|&(t0, t1)| t0 > 7.0 && (t1 - t0 - 0.1).abs() < 1e-9),
+            "{dts:?}"
+        );
+        assert_eq!(acc.last().unwrap().0, 10.0);
     }
 
     #[test]

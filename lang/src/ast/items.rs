@@ -828,6 +828,9 @@ pub struct Dynamic {
     /// `max_rotation`: the largest rotation of a cell per increment
     /// (radians).
     pub max_rotation: Option<Spanned<f64>>,
+    /// `energy_tol`: the largest energy an increment may create, relative
+    /// to the largest energy of the run.
+    pub energy_tol: Option<Spanned<f64>>,
     /// The `dynamic` entry.
     pub span: Span,
 }

@@ -105,5 +105,6 @@ fn dynamic(d: &ast::Dynamic, dt0: f64, min_fraction: f64) -> Dynamic {
                 error_tol: v(&d.error_tol, 1e-2),
             }),
         max_rotation: d.max_rotation.as_ref().map(|m| m.value),
+        energy_tol: d.energy_tol.as_ref().map(|m| m.value),
     }
 }

@@ -91,6 +91,7 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
                 dt_max: None,
                 error_tol: None,
                 max_rotation: None,
+                energy_tol: None,
                 span: e.span,
             })
         }
@@ -148,6 +149,7 @@ fn dynamic(f: &mut Fields, diags: &mut Diags) -> Option<Dynamic> {
         dt_max: d.number("dt_max", diags),
         error_tol: d.number("error_tol", diags),
         max_rotation: d.number("max_rotation", diags),
+        energy_tol: d.number("energy_tol", diags),
         span: e.span,
     };
     d.finish(diags);

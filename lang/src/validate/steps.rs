@@ -153,6 +153,7 @@ pub fn dynamic_parameters_fit_scheme(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
     }
     ctx.must_be_positive(&d.beta, "beta");
     ctx.must_be_positive(&d.max_rotation, "max_rotation");
+    ctx.must_be_positive(&d.energy_tol, "energy_tol");
     rayleigh_damping_not_negative(d, ctx);
     adaptive_bounds(d, ctx);
 }

@@ -88,6 +88,7 @@ fn oscillator(steps_per_period: usize, c: f64) -> Result<(Vec<f64>, f64, RunSumm
             rayleigh: Rayleigh::default(),
             adaptive: None,
             max_rotation: None,
+            energy_tol: None,
         })
         .newton(NewtonSettings {
             tol: 1e-12,

@@ -99,6 +99,7 @@ fn cantilever(_level: usize) -> Result<ProgramLevel, String> {
                 rayleigh: Rayleigh::default(),
                 adaptive: None,
                 max_rotation: None,
+                energy_tol: None,
             })
             .newton(newton())
             .build();
@@ -172,6 +173,7 @@ fn one_mode(
             rayleigh,
             adaptive: None,
             max_rotation: None,
+            energy_tol: None,
         })
         .newton(newton())
         .build();

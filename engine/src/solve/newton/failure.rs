@@ -34,6 +34,9 @@ pub enum FailureKind {
     /// Not a failure: a cell turned by more than `dynamic { max_rotation
     /// }` in the increment; it is redone smaller.
     Rotation,
+    /// Not a failure: the increment created more energy than `dynamic {
+    /// energy_tol }` allows; it is redone smaller.
+    Energy,
 }
 
 /// A failed increment attempt.

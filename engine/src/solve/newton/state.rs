@@ -30,29 +30,22 @@ where
             self.committed.as_flattened(),
             &self.f_int,
         );
-        if let Some(dy) = self.dynamics.as_mut() {
-            let mut ext = self.f_ext.clone();
-            for (e, f) in ext.iter_mut().zip(&self.f_follow) {
-                *e += f;
+        if self.dynamics.is_some() {
+            let (ext, prescribed) = self.audit_forces();
+            let penalty = crate::solve::dynamics::penalty_energy(self.contacts.contact());
+            if let Some(dy) = self.dynamics.as_mut() {
+                dy.commit(
+                    self.model,
+                    self.u.as_flattened(),
+                    self.committed.as_flattened(),
+                    &self.r_static,
+                    [&self.f_int, &ext, &self.f_c, &self.damping],
+                    &prescribed,
+                );
+                dy.energy.penalty = penalty;
+                // the friction work by the rule of the other work integrals
+                dy.friction_work(self.contacts.contact_mut());
             }
-            // the reactions at the end of the increment: the static part
-            // here, `M a1` added by `commit` (not the generalized-alpha
-            // weighted reactions of the residual, whose `alpha_f r(u0)`
-            // share would count the drive's work 1 / (1 - alpha_f) times)
-            let prescribed: Vec<usize> = self.dofs.prescribed.iter().map(|p| p.dof).collect();
-            for &g in &prescribed {
-                ext[g] += self.r_static[g];
-            }
-            dy.commit(
-                self.model,
-                self.u.as_flattened(),
-                self.committed.as_flattened(),
-                &self.r_static,
-                [&self.f_int, &ext, &self.f_c, &self.damping],
-                &prescribed,
-            );
-            // the friction work by the rule of the other work integrals
-            dy.friction_work(self.contacts.contact_mut());
         }
         // the increment's start: the end of the last one recorded (exact
         // grid times), else the assembler's accumulated time
@@ -72,6 +65,91 @@ where
         self.assembler
             .exchange_points(|v: &mut [f64]| linear.sum_over_ranks(v));
         self.contacts.commit();
+    }
+
+    /// The external forces of the energy audit at the end of the attempt
+    /// and the prescribed dofs: the loads, follower loads and the
+    /// reactions at the end of the increment (the static part here, `M
+    /// a1` added by [`crate::solve::dynamics::Dynamics::audit`]; not the
+    /// generalized-alpha weighted reactions of the residual, whose
+    /// `alpha_f r(u0)` share would count the drive's work `1 / (1 -
+    /// alpha_f)` times).
+    fn audit_forces(&self) -> (Vec<f64>, Vec<usize>) {
+        let mut ext = self.f_ext.clone();
+        for (e, f) in ext.iter_mut().zip(&self.f_follow) {
+            *e += f;
+        }
+        let prescribed: Vec<usize> = self.dofs.prescribed.iter().map(|p| p.dof).collect();
+        for &g in &prescribed {
+            ext[g] += self.r_static[g];
+        }
+        (ext, prescribed)
+    }
+
+    /// The energy the last converged attempt of a dynamic increment would
+    /// create if committed ([`crate::solve::dynamics::Energy::created_since`]:
+    /// the growth of the kinetic energy, internal and damping work and
+    /// stored penalty energy beyond the work of the loads and supports),
+    /// the scale it is weighed against (the largest energy of the run,
+    /// this attempt's included) and where (words: the node whose contact
+    /// forces did the most work in the attempt, its gap at the end). `None`:
+    /// a quasi-static increment.
+    pub fn energy_created(&self) -> Option<(f64, f64, String)> {
+        let dy = self.dynamics.as_ref()?;
+        dy.active()?;
+        let (ext, prescribed) = self.audit_forces();
+        let u = self.u.as_flattened();
+        let u0 = self.committed.as_flattened();
+        let mut audit = dy.audit(
+            self.model,
+            u,
+            u0,
+            [&self.f_int, &ext, &self.f_c, &self.damping],
+            &prescribed,
+        );
+        audit.energy.penalty = crate::solve::dynamics::penalty_energy(self.contacts.contact());
+        let created = audit.energy.created_since(&dy.energy);
+        let scale = audit.energy.scale.max(audit.energy.penalty);
+        // the node whose contact forces did the most work in the attempt
+        let f0 = dy.contact_force0();
+        let mut best = (0.0, usize::MAX);
+        for n in 0..u.len() / D {
+            let w: f64 = (n * D..n * D + D)
+                .map(|g| 0.5 * (self.f_c[g] + f0[g]) * (u[g] - u0[g]))
+                .sum();
+            if w > best.0 {
+                best = (w, n);
+            }
+        }
+        let at = if best.1 == usize::MAX {
+            "no node's contact forces did positive work".to_string()
+        } else {
+            let n = best.1;
+            let gap = self
+                .contacts
+                .contact()
+                .iter()
+                .enumerate()
+                .flat_map(|(p, l)| l.iter().map(move |c| (p, c)))
+                .filter(|(_, c)| c.node == n)
+                .map(|(p, c)| format!(" (pair {p}: gap {:.3e})", c.gap))
+                .next()
+                .unwrap_or_default();
+            format!("node {n}'s contact forces did {:.3e} of work{gap}", best.0)
+        };
+        if crate::contact::log::debug_enabled() {
+            eprintln!(
+                "energy control: t = {:.6e}: created {created:.4e} (contact work {:.4e}, \
+                 penalty energy {:.4e} -> {:.4e}, balance {:.4e} -> {:.4e}), scale {scale:.4e}; {at}",
+                self.attempt.1,
+                audit.energy.contact - dy.energy.contact,
+                dy.energy.penalty,
+                audit.energy.penalty,
+                dy.energy.balance,
+                audit.energy.balance,
+            );
+        }
+        Some((created, scale, at))
     }
 
     /// Free 3D rigid bodies whose rotation vector ended the increment past
