@@ -359,3 +359,50 @@ fn deformable_quadratic_3d_pair_lowers_with_mortar_only() {
         assert!(out.contains("pair3d.ctc:"), "located: {out}");
     }
 }
+
+/// `imperfection` on `tube`: every node, the hex20 midside nodes too,
+/// sits at its perfect radius plus `a cos(n theta) sin(m pi z / h)`; an
+/// amplitude of the inner radius is a diagnostic, not a panic.
+#[test]
+fn tube_imperfection_moves_every_node_of_a_quadratic_tube() {
+    let (a, n, m_half, h) = (0.05, 2.0, 1.0, 0.5);
+    let m = solid(
+        "tube { inner = 1  outer = 2  angle = 90  height = 0.5  divisions = (2, 3, 2)  \
+         order = 2  imperfection = 0.05  imperfection_waves = 2 }",
+        "fix b.zmin { uz }",
+    );
+    let perfect = solid(
+        "tube { inner = 1  outer = 2  angle = 90  height = 0.5  divisions = (2, 3, 2)  \
+         order = 2 }",
+        "fix b.zmin { uz }",
+    );
+    assert_eq!(m.mesh.nodes.len(), perfect.mesh.nodes.len());
+    let mut moved = 0;
+    for (p, q) in perfect.mesh.nodes.iter().zip(&m.mesh.nodes) {
+        let theta = p[1].atan2(p[0]);
+        let want = a * (n * theta).cos() * (m_half * std::f64::consts::PI * p[2] / h).sin();
+        let dr = q[0].hypot(q[1]) - p[0].hypot(p[1]);
+        assert!((dr - want).abs() < 1e-12, "{p:?}: {dr} against {want}");
+        moved += usize::from(want.abs() > 1e-3);
+    }
+    assert!(moved > 10, "{moved}");
+    // the sets are the perfect tube's
+    assert_eq!(
+        m.mesh.node_sets["b.inner"],
+        perfect.mesh.node_sets["b.inner"]
+    );
+    let src = Source::new(
+        "bad.ctc",
+        "analysis { dimension = 3d }\n\
+         material m { elastic { E = 1000  nu = 0.3 } }\n\
+         body b {\n  mesh = tube { inner = 1  outer = 2  height = 1  divisions = (1, 8, 2)  \
+         imperfection = 1 }\n  material = m\n}\n\
+         fix b.zmin { uz }\n\
+         step s { time = 0 .. 1 }\n",
+    );
+    let Err(e) = compile_any(&src) else {
+        panic!("an amplitude of the inner radius compiled")
+    };
+    let text = e.render(&src);
+    assert!(text.contains("imperfection amplitude 1"), "{text}");
+}

@@ -140,7 +140,7 @@ fn build_box_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError
 }
 
 /// The keys of `tube`.
-pub static TUBE_KEYS: [Key; 9] = [
+pub static TUBE_KEYS: [Key; 12] = [
     Key::new("inner", KeyType::Number, "inner radius")
         .required("add `inner = <radius>`")
         .range(Range::Positive)
@@ -179,6 +179,33 @@ pub static TUBE_KEYS: [Key; 9] = [
     )
     .default(Default::Uniform)
     .range(Range::Positive),
+    Key::new(
+        "imperfection",
+        KeyType::Number,
+        "amplitude a of a seeded geometric imperfection: every node moves radially (the whole \
+         wall alike) by a cos(n theta) sin(m pi z / height), n = `imperfection_waves`, m = \
+         `imperfection_half_waves` (m = 0: uniform along z); the sets are those of the perfect \
+         tube; |a| < inner",
+    )
+    .default(Default::Number(0.0))
+    .dim(Dim::Length),
+    Key::new(
+        "imperfection_waves",
+        KeyType::Integer,
+        "circumferential waves n of the imperfection (0: axisymmetric; a sector with symmetry \
+         planes keeps a cos(n theta) shape when n times its angle is a multiple of 180 degrees)",
+    )
+    .default(Default::Integer(0))
+    .range(Range::AtLeast(0))
+    .labels(&["imperfection waves"]),
+    Key::new(
+        "imperfection_half_waves",
+        KeyType::Integer,
+        "axial half-waves m of the imperfection over the height (0: uniform along z)",
+    )
+    .default(Default::Integer(1))
+    .range(Range::AtLeast(0))
+    .labels(&["imperfection half-waves"]),
     SOLID_ELEMENT,
     super::ORDER,
     super::INTEGRATION,
@@ -220,12 +247,31 @@ fn tube_cells(s: &Settings) -> i64 {
 }
 
 fn build_tube(s: &Settings, inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {
-    super::with_order(
+    let mut mesh = super::with_order(
         s,
         &TUBE_KEYS,
         build_tube_linear(s, inputs)?,
         super::Arcs::Axis(2),
-    )
+    )?;
+    // the imperfection moves every node, the quadratic cells' new nodes too
+    let amplitude = s.number("imperfection", &TUBE_KEYS).unwrap_or(0.0);
+    if amplitude != 0.0 {
+        let whole = |k: &str| {
+            s.integer(k, &TUBE_KEYS)
+                .and_then(|v| usize::try_from(v).ok())
+                .unwrap_or(0)
+        };
+        let num = |k: &str| s.number(k, &TUBE_KEYS).ok_or_else(|| missing("tube", k));
+        solid::tube_imperfection(
+            &mut mesh,
+            amplitude,
+            whole("imperfection_waves"),
+            whole("imperfection_half_waves"),
+            num("height")?,
+            num("inner")?,
+        )?;
+    }
+    Ok(mesh)
 }
 
 fn build_tube_linear(s: &Settings, _inputs: &[Mesh]) -> Result<Mesh<3>, MeshError> {

@@ -183,6 +183,12 @@ pub fn effective_ratio() -> f64 {
 
 /// The deck of `nt` x `nz` cells and `increments` increments.
 pub fn deck(nt: usize, nz: usize, increments: usize) -> String {
+    deck_to(nt, nz, increments, T_END)
+}
+
+/// The deck of `nt` x `nz` cells and `increments` increments to `end`
+/// (s): the axisymmetric twin of the 3D case's shorter levels.
+pub fn deck_to(nt: usize, nz: usize, increments: usize, end: f64) -> String {
     let inner = RADIUS - THICKNESS / 2.0;
     let node_mass = STRIKER / (nt + 1) as f64;
     // the striker face: every top node but the outer corner tied to it
@@ -207,7 +213,7 @@ pub fn deck(nt: usize, nz: usize, increments: usize) -> String {
          spring tube.nodes(box(({box_lo}, {box_y0}), ({box_hi}, {box_y1}))) -> tube.node(near({outer}, {LENGTH})) \
          {{ stiffness = 1e8 }}\n\
          initial_velocity tube.all {{ vy = -{V0:e} }}\n\
-         step crush {{\n  time = 0 .. {T_END:e}\n  increments = {increments}\n  dynamic {{ }}\n  \
+         step crush {{\n  time = 0 .. {end:e}\n  increments = {increments}\n  dynamic {{ }}\n  \
          newton {{ tol = 1e-8  max_iter = 25 }}\n}}\n"
     )
 }

@@ -10,6 +10,7 @@ pub mod contact_3d;
 pub mod contact_ntf_3d;
 pub mod discrete;
 pub mod dynamic_buckling;
+pub mod dynamic_buckling_3d;
 pub mod dynamics;
 pub mod energy_audit;
 pub mod fenicsx;
@@ -118,6 +119,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(taylor_bar::cases());
     v.extend(taylor_bar_jc::cases());
     v.extend(dynamic_buckling::cases());
+    v.extend(dynamic_buckling_3d::cases());
     v.extend(thermal_3d::cases());
     v.extend(discrete::cases());
     v.extend(rigid_body::cases());

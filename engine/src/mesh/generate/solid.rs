@@ -293,6 +293,50 @@ pub fn tube(
     Ok(mesh)
 }
 
+/// A seeded geometric imperfection of a tube about the z axis (the shape
+/// a buckling analysis starts from): every node moves radially, the whole
+/// wall alike, by `amplitude cos(waves theta) f(z)`, with `f(z) =
+/// sin(half_waves pi z / height)` (the ends stay circular), or `f = 1`
+/// when `half_waves` is 0; `waves = 0` is an axisymmetric bulge. A node
+/// on a plane through the axis stays on it (symmetry planes of a sector
+/// keep their normal); the face and node sets are unchanged. The
+/// amplitude must be smaller than the tube's inner radius.
+pub fn tube_imperfection(
+    mesh: &mut Mesh<3>,
+    amplitude: f64,
+    waves: usize,
+    half_waves: usize,
+    height: f64,
+    inner: f64,
+) -> Result<(), MeshError> {
+    const G: &str = "tube";
+    if !(amplitude.is_finite() && amplitude.abs() < inner) {
+        return Err(MeshError::new(format!(
+            "{G}: imperfection amplitude {amplitude} must be smaller than the inner radius {inner}"
+        )));
+    }
+    positive(G, "height", height)?;
+    if amplitude == 0.0 {
+        return Ok(());
+    }
+    for p in &mut mesh.nodes {
+        let r = p[0].hypot(p[1]);
+        if r == 0.0 {
+            continue;
+        }
+        let theta = p[1].atan2(p[0]);
+        let along = if half_waves == 0 {
+            1.0
+        } else {
+            (half_waves as f64 * std::f64::consts::PI * p[2] / height).sin()
+        };
+        let scale = 1.0 + amplitude * (waves as f64 * theta).cos() * along / r;
+        p[0] *= scale;
+        p[1] *= scale;
+    }
+    Ok(())
+}
+
 /// The octant `x, y, z >= 0` of the spherical shell `inner <= r <= outer`,
 /// hex-structured as a cubed sphere: the three faces `x = 1`, `y = 1`,
 /// `z = 1` of the unit cube, each with `tangential x tangential` divisions,
@@ -666,6 +710,72 @@ mod tests {
                 assert!(!s.face_sets[axis].is_empty());
             }
         }
+    }
+
+    /// A seeded imperfection `a cos(n theta) sin(m pi z / h)`: each node
+    /// moves radially by exactly that (hand values at theta = 0 and 45
+    /// degrees, z = h / 2), the ends stay circular, the symmetry planes'
+    /// nodes stay on them, the cells stay valid, and an amplitude of the
+    /// inner radius is refused.
+    #[test]
+    fn tube_imperfection_moves_nodes_radially_by_the_seeded_shape() {
+        let (inner, outer, h) = (19.0, 21.0, 40.0);
+        let base = tube(
+            inner,
+            outer,
+            90.0,
+            h,
+            [2, 8, 4],
+            Grading::Uniform,
+            CellKind::Hex8,
+        )
+        .unwrap();
+        let mut m = base.clone();
+        tube_imperfection(&mut m, 0.05, 2, 1, h, inner).unwrap();
+        validate::check(&m).unwrap();
+        let radius = |p: [f64; 3]| p[0].hypot(p[1]);
+        let mut checked = 0;
+        for (p, q) in base.nodes.iter().zip(&m.nodes) {
+            let theta = p[1].atan2(p[0]);
+            // the node moved along its radius
+            assert!((theta - q[1].atan2(q[0])).abs() < 1e-12, "{p:?} -> {q:?}");
+            assert_eq!(p[2], q[2]);
+            let dr = radius(*q) - radius(*p);
+            if p[2] == 0.0 || p[2] == h {
+                assert!(dr.abs() < 1e-15, "end node {p:?}: {dr}");
+            }
+            if (p[2] - h / 2.0).abs() < 1e-12 {
+                // cos(2 * 0) = 1, cos(2 * 45 deg) = 0, cos(2 * 90 deg) = -1
+                let want = if p[1].abs() < 1e-12 {
+                    0.05
+                } else if p[0].abs() < 1e-12 {
+                    -0.05
+                } else if (p[0] - p[1]).abs() < 1e-9 {
+                    0.0
+                } else {
+                    continue;
+                };
+                assert!((dr - want).abs() < 1e-12, "{p:?}: {dr} against {want}");
+                checked += 1;
+            }
+        }
+        // 3 nodes through the wall at each of the three angles
+        assert_eq!(checked, 9);
+        for n in &m.node_sets["start"] {
+            assert!(m.nodes[*n][1].abs() < 1e-12);
+        }
+        for n in &m.node_sets["end"] {
+            assert!(m.nodes[*n][0].abs() < 1e-12);
+        }
+        // waves = 0, half_waves = 0: a uniform radial shift
+        let mut u = base.clone();
+        tube_imperfection(&mut u, 0.1, 0, 0, h, inner).unwrap();
+        for (p, q) in base.nodes.iter().zip(&u.nodes) {
+            assert!((radius(*q) - radius(*p) - 0.1).abs() < 1e-12);
+        }
+        let e = tube_imperfection(&mut u, inner, 2, 1, h, inner).unwrap_err();
+        assert!(e.message.contains("imperfection"), "{}", e.message);
+        assert!(tube_imperfection(&mut u, f64::NAN, 2, 1, h, inner).is_err());
     }
 
     /// Regression: with angle 180 the end plane is the plane of the start

@@ -1,0 +1,595 @@
+//! Dynamic axial buckling of a thin-walled circular tube in 3D, with a
+//! seeded geometric imperfection (tags `dynamics`, `contact`,
+//! `self_contact`, `friction`, `plasticity`, `3d`): the tube, striker and
+//! die of [`super::dynamic_buckling`] (steel, mean radius 20 mm, wall 2 mm,
+//! D/t = 20, 40 mm long, 20 kg at 10 m/s onto a rigid die, mu = 0.2) as a
+//! quarter of hex8 with an ovalizing imperfection.
+//!
+//! ```text
+//!        striker: 5 kg on the quarter's top nodes (ux, uy held, tied in z)
+//!          ____________           y ^    end: ux = 0 (x = 0 plane)
+//!         |            |            |   .-~~-.
+//!         |  quarter   |  v0        |  /      \  r = 20 + a cos(2 theta) sin(pi z / L)
+//!         |  tube, hex8|  10 m/s    | |  wall  |    a = 0.05 mm = 2.5 % of t
+//!         |  2 x nc x nz            +-|--------|---> x   start: uy = 0 (y = 0 plane)
+//!         |____________|
+//!   ======================= rigid die z = 0, mu = 0.2 (end and both faces)
+//!   self contact: tube.inner -> tube.inner (node-to-facet)
+//! ```
+//!
+//! Why a quarter: its symmetry planes x = 0 and y = 0 keep every
+//! deformation even about both, i.e. the axisymmetric (concertina) mode
+//! and the circumferential waves `cos(n theta)` with n even (n = 2: the
+//! ovalization seeded here; n = 4, ...); they exclude the odd waves (n = 1
+//! bending, n = 3 the three-lobe diamond). For D/t = 20 the concertina
+//! mode is expected (Abramowicz & Jones 1984: tubes with D/t below about
+//! 40-50 collapse axisymmetrically), so the quarter keeps the mode
+//! claimed and the seeded one; a claim about diamond modes would need the
+//! full tube.
+//!
+//! Only the inner face is in self contact (the outward concertina fold
+//! closes on its inner face; the axisymmetric deck also pairs the outer
+//! face, for inward folds): with `tube.outer -> tube.outer` the run stops
+//! at t = 1.007 ms (level 1; release: cut back to the smallest increment,
+//! the contact status of outer-face nodes 122, 197, 125, 200, 206
+//! flipping). Those nodes sit on the two arms of the outward bulge (r =
+//! 24.5 mm, z = 12.9 and 20.7 mm, the fold's crest at r = 26.5): a node of
+//! one arm projects onto the outer facets of the other arm, whose outward
+//! normal opposes its own once the arms are steep, from behind, through
+//! the bulge; node-to-facet accepts penetrations down to `max(prof, h)`,
+//! `h` the facet's longest edge, here the 8.2 mm circumferential chord of
+//! a 22.5 degree cell, far more than the wall (2 mm): a spurious deep
+//! contact whose force is the penalty times mm. Without the outer pair
+//! the same run passes that time with 2 cutbacks. (An engine fix, e.g.
+//! an explicit `prof` capping the accepted depth, is left to the
+//! node-to-facet owners.)
+//!
+//! The perfect quarter is not axisymmetric to round-off (a defect found
+//! here, not fixed): the default `contact_mass = redistributed` moves the
+//! contact nodes' mass (here the inner and outer faces and the end: the
+//! die pair's slaves) to the mid-wall nodes, then restores each body's
+//! centre of mass by a change of the receivers' masses linear in x, y, z
+//! (`solve/contact_mass.rs`, `restore_centre`). A quarter's centre lies
+//! off the axis and moves inward: its restoration adds mass towards theta
+//! = 45 degrees, a non-axisymmetric mass. Measured after 3 increments of
+//! 10 us (release, mid-wall ring at z = 2 mm): radial displacements
+//! 0.016975 / 0.016867 / 0.016835 / 0.016975 mm at theta = 0 / 22.5 / 45
+//! / 90 degrees (spread 1.4e-4 mm); the full ring (2 x 16 x 20, no
+//! symmetry planes) 1.0e-8 mm; the quarter with `contact_mass = full`
+//! 8.9e-8 mm. For a sector with symmetry planes the restoration should
+//! leave the components normal to the planes alone (the whole body's
+//! centre lies on them).
+//!
+//! References: as [`super::dynamic_buckling`] (Alexander 1960, Q. J. Mech.
+//! Appl. Math. 13:10; Abramowicz & Jones 1984, Int. J. Impact Engng
+//! 2:263; Jones, Structural Impact (1989) section 7.3): fold half-length
+//! `H = sqrt(pi R t / sqrt 3)` = 8.52 mm, mean crush force `M0 (20.79
+//! sqrt(D/t) + 11.90) / (0.86 - 0.568 sqrt(t/D))` = 49.6 kN with the
+//! effective crushing distance; and the axisymmetric model itself: the 3D
+//! run against the axisymmetric deck at the same cells through the wall
+//! and along the axis and the same dt (crush force and shortening).
+//!
+//! Measured per level (forces and energies of the full tube: the
+//! quarter's times 4):
+//! - against the axisymmetric run: the first force peak, the mean crush
+//!   force `(K0 - K_end) / delta` and the shortening `delta` (the
+//!   striker's largest travel);
+//! - the departure from axisymmetry: for each ring of nodes (one radial
+//!   layer, one axial row), the spread `max - min` over theta of the
+//!   radial displacement, its largest value over the rings, over the
+//!   largest radial excursion of the mid-surface (the fold depth); and the
+//!   same spread over the seeded `2 a` (the growth of the imperfection, not
+//!   judged). The perfect tube's spread (levels >= 1: the twin run without
+//!   the imperfection) should be round-off;
+//! - at the first fold (levels >= 1), as the axisymmetric case: closed
+//!   folds (clusters of closed inner-face self-contact nodes with their
+//!   master facets, merged closer than H / 2) against `floor(delta / delta_e)`,
+//!   fold depth against H, mean crush force against Abramowicz-Jones;
+//! - the energy audit: `|balance| / K0`, energy created `max(gain, 0) / K0`,
+//!   friction work on the die / K0 (not judged).
+//!
+//! Levels (quarter: 2 cells through the wall, `nc` around the quarter,
+//! `nz` along the axis): 0 (the default, CI) a coarse, short crush (2 x 4
+//! x 20 cells, dt = 10 us, to 0.1 ms: the impact peak, 1 mm of crush); 1
+//! (`examples/dynamic_buckling_3d.ctc`) the same cells at dt = 10 us to
+//! 2.8 ms: the first fold, closed on its inner face (the axisymmetric
+//! run's fold closes at 2.6 ms, its striker stops at 3.9 ms); 2: the same
+//! at dt = 5 us; 3: 2 x 8 x 40 at 10 us (the axisymmetric level 0's axial
+//! cells). Not the full crush: without the outer pair the coarse quarter
+//! stops at t = 2.97 ms, inverted cells near the top of the tube with the
+//! inner face's nodes 279-297 (z = 36-38 mm at the start) flipping
+//! status, the same spurious deep matches on the inner face. The
+//! axisymmetric twin of each level is
+//! [`super::dynamic_buckling::deck_to`] at the same nt, nz, dt and end.
+//!
+//! Measured (`ctc verify dynamic_buckling_tube_3d --max-level 2 -j 1`,
+//! release build, 2-core machine at load ~10: 898 s wall, 184 s CPU;
+//! `--max-level 1`: 368 s wall, 87 s CPU; the 3D figures against the
+//! axisymmetric twin's):
+//!
+//! | level | cells      | dt    | to     | first peak kN | mean kN     | crush mm      | departure | perfect | depth mm | closed folds | balance / K0 | iterations (max) |
+//! | ----- | ---------- | ----- | ------ | ------------- | ----------- | ------------- | --------- | ------- | -------- | ------------ | ------------ | ---------------- |
+//! | 0     | 2 x 4 x 20 | 10 us | 0.1 ms | 95.7 / 98.0   | 70.5 / 72.1 | 0.984 / 0.984 | 5.5e-2    | -       | -        | -            | 1.6e-5       | 218 (24)         |
+//! | 1     | 2 x 4 x 20 | 10 us | 2.8 ms | 95.7 / 98.0   | 50.9 / 49.1 | 17.39 / 17.68 | 5.6e-3    | 4.3e-5  | 8.42     | 0 (1 due)    | 2.6e-5       | 5747 (24)        |
+//! | 2     | 2 x 4 x 20 | 5 us  | 2.8 ms | 96.2 / 98.5   | 51.7 / 49.9 | 17.25 / 17.53 | 5.8e-3    | 4.1e-5  | 8.43     | 0 (1 due)    | 1.0e-5       | 7494 (18)        |
+//!
+//! (Iterations: the 3D run, its perfect twin and the axisymmetric one.)
+//! The 3D quarter follows the axisymmetric run at the same axial cells
+//! and dt: first peak 2.3 % lower, mean force over the crush 2.2 % lower
+//! at 0.1 ms and 3.7 % higher at 2.8 ms, shortening 1.6 % shorter, the
+//! same at dt = 5 us (2.3 %, 3.6 %, 1.6 %; halving dt moves the 3D figures
+//! by 0.6 %, 1.5 %, 0.8 %) (the
+//! hex8 chords of 22.5 degrees make the wall's section 2.5 % smaller). The
+//! wall bulges outward, a fold 8.42 mm deep (1.1 % below Alexander's H):
+//! the concertina mode, the seeded ovalization did not change it (its
+//! ring spread grew from 2 a = 0.1 mm to 0.047 mm of radial displacement
+//! difference, 5.6e-3 of the fold depth; the perfect twin's 4.3e-5 is the
+//! contact-mass defect above). The fold has not closed on its inner face
+//! at 2.8 ms (the inner pair never closed; the axisymmetric 2 x 40 deck's
+//! fold closes at 2.6 ms): the closed-fold check fails at level 1. Crush
+//! force history (`examples/dynamic_buckling_3d.ctc`, `ctc run`, 284
+//! increments, 2006 Newton iterations, 2 cutbacks, 289 s wall, 47 s CPU;
+//! the quarter's force x 4): the impact peak 95.7 kN at 10 us (1.27
+//! squash loads), 80 kN at 0.05 ms, 67 kN at 0.4 ms, 48 kN at 1 ms, 36 kN
+//! at 2 ms, 33 kN at 2.8 ms as the bulge grows (no rise yet: the fold is
+//! open), crush 17.4 mm, kinetic energy 1.19e5 of 1.00e6 mJ left; balance
+//! -26 mJ (2.6e-5 of K0, the scheme's dissipation), no energy created;
+//! friction on the die 1.5e-4 of K0 by this program's sum of the nodes'
+//! dissipations, while history.csv's `friction_work[..]` column ends at
+//! 0.041 mJ (x 4: 0.17 mJ): not reconciled. Level 3 (2 x 8 x 40) was not
+//! run in this session.
+
+use super::dynamic_buckling::{
+    abramowicz_jones, alexander_h, effective_ratio, folds, Trace as AxiTrace, LENGTH, MU, RADIUS,
+    SIGMA0, STRIKER, THICKNESS, V0,
+};
+use crate::case::{Check, Quantity};
+use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
+use ctc_engine::contact::ContactStatus;
+use ctc_engine::model::AnyModel;
+use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
+use std::f64::consts::PI;
+
+/// Density (t/mm^3).
+const RHO: f64 = 7.85e-9;
+/// Amplitude of the seeded imperfection (mm): 2.5 % of the wall.
+pub const IMPERFECTION: f64 = 0.05;
+/// Circumferential waves of the imperfection (ovalization).
+pub const WAVES: usize = 2;
+
+/// One level: cells through the wall, around the quarter and along the
+/// axis; increments; end time (s).
+#[derive(Debug, Clone, Copy)]
+pub struct Level {
+    /// Cells through the wall.
+    pub nt: usize,
+    /// Cells around the quarter.
+    pub nc: usize,
+    /// Cells along the axis.
+    pub nz: usize,
+    /// Increments to `end`.
+    pub increments: usize,
+    /// End of the run (s).
+    pub end: f64,
+}
+
+/// The levels (see the module doc).
+pub const LEVELS: [Level; 4] = [
+    Level {
+        nt: 2,
+        nc: 4,
+        nz: 20,
+        increments: 10,
+        end: 0.1e-3,
+    },
+    Level {
+        nt: 2,
+        nc: 4,
+        nz: 20,
+        increments: 280,
+        end: 2.8e-3,
+    },
+    Level {
+        nt: 2,
+        nc: 4,
+        nz: 20,
+        increments: 560,
+        end: 2.8e-3,
+    },
+    Level {
+        nt: 2,
+        nc: 8,
+        nz: 40,
+        increments: 280,
+        end: 2.8e-3,
+    },
+];
+
+/// The names of the measured values.
+const NAMES: [&str; 15] = [
+    "first force peak / axisymmetric run's - 1",
+    "mean crush force / axisymmetric run's - 1",
+    "shortening / axisymmetric run's - 1",
+    "departure from axisymmetry: max ring spread of u_r / fold depth",
+    "departure from axisymmetry of the perfect tube: max ring spread of u_r / fold depth (not judged)",
+    "energy balance error / K0",
+    "energy created / K0",
+    "closed folds - floor(crush / effective crushing distance)",
+    "fold depth / H - 1 (Alexander H = sqrt(pi R t / sqrt 3))",
+    "mean crush force / Abramowicz-Jones with effective crushing distance - 1",
+    "growth of the imperfection: max ring spread of u_r / 2 a (not judged)",
+    "friction work / K0 (not judged)",
+    "first force peak / squash load 2 pi R t sigma_0 (not judged)",
+    "crush distance / L (not judged)",
+    "mean crush force / Abramowicz-Jones 20.79 sqrt(D/t) + 11.90 - 1 (not judged)",
+];
+
+/// The quarter deck of `level`, with the seeded imperfection of amplitude
+/// `imperfection` (0: the perfect tube).
+pub fn deck(level: &Level, imperfection: f64) -> String {
+    let Level {
+        nt,
+        nc,
+        nz,
+        increments,
+        end,
+    } = *level;
+    let inner = RADIUS - THICKNESS / 2.0;
+    let outer = RADIUS + THICKNESS / 2.0;
+    let node_mass = STRIKER / 4.0 / ((nt + 1) * (nc + 1)) as f64;
+    let imperfection = if imperfection == 0.0 {
+        String::new()
+    } else {
+        format!("\n                imperfection = {imperfection}  imperfection_waves = {WAVES}")
+    };
+    // the striker face: every top node tied in z to the outer one at
+    // theta = 0 (the nodes off y = 0, then the two others on it)
+    let (lo, hi) = (inner - 0.1, outer - 0.1);
+    let (z0, z1) = (LENGTH - 0.1, LENGTH + 0.1);
+    format!(
+        "analysis {{ dimension = 3d }}\n\
+         material steel {{\n  elastic {{ E = 210e3  nu = 0.3 }}\n  \
+         plastic {{ yield = {SIGMA0}  hardening = linear {{ H = 200 }} }}\n  density = {RHO:e}\n}}\n\
+         body tube {{\n  mesh = tube {{ inner = {inner}  outer = {outer}  angle = 90  height = {LENGTH}\n                \
+         divisions = ({nt}, {nc}, {nz})  element = hex8{imperfection} }}\n  material = steel\n  \
+         kinematics = finite\n  formulation = selective_reduced\n}}\n\
+         tool die = plane {{ point = (0, 0, 0)  normal = (0, 0, 1) }}\n\
+         contact tube.zmin + tube.inner + tube.outer -> die {{\n  \
+         method = penalty {{ kind = area  stiffness = 1e6 }}\n  friction = coulomb {{ mu = {MU} }}\n}}\n\
+         contact tube.inner -> tube.inner {{ method = penalty {{ kind = area  stiffness = 1e6 }} }}\n\
+         fix tube.start {{ uy }}\n\
+         fix tube.end {{ ux }}\n\
+         fix tube.zmax {{ ux uy }}\n\
+         point_mass tube.zmax {{ mass = {node_mass:e} }}\n\
+         spring tube.nodes(box((-{o}, 0.01, {z0}), ({o}, {o}, {z1}))) -> tube.node(near({outer}, 0, {LENGTH})) \
+         {{ stiffness = 1e8 }}\n\
+         spring tube.nodes(box(({lo}, -0.01, {z0}), ({hi}, 0.01, {z1}))) -> tube.node(near({outer}, 0, {LENGTH})) \
+         {{ stiffness = 1e8 }}\n\
+         initial_velocity tube.all {{ vz = -{V0:e} }}\n\
+         step crush {{\n  time = 0 .. {end:e}\n  increments = {increments}\n  dynamic {{ }}\n  \
+         newton {{ tol = 1e-8  max_iter = 25 }}\n}}\n",
+        o = outer + 1.0,
+    )
+}
+
+/// What a 3D run records.
+#[derive(Default)]
+pub struct Trace {
+    /// Per converged increment: time, the die's axial force on the full
+    /// tube, the striker's displacement (down positive).
+    pub rows: Vec<(f64, f64, f64)>,
+    /// Kinetic energy of the quarter at the start (from the audit).
+    pub kinetic0: f64,
+    /// Kinetic energy of the quarter at the end.
+    pub kinetic: f64,
+    /// The audit's balance at the end (quarter).
+    pub balance: f64,
+    /// The audit's gain at the end (quarter).
+    pub gain: f64,
+    /// Friction work on the die (quarter).
+    pub friction: f64,
+    /// Reference coordinates.
+    pub nodes: Vec<[f64; 3]>,
+    /// Final displacement of every node.
+    pub displacement: Vec<[f64; 3]>,
+    /// Closed self-contact nodes at the end with the first node of their
+    /// master facet: inner face, outer face (empty: no outer pair).
+    pub closed: [Vec<(usize, usize)>; 2],
+}
+
+impl Observer<3> for Trace {
+    fn converged(&mut self, view: &IncrementView<'_, 3>) -> Result<(), String> {
+        let nodes = &view.model.mesh.nodes;
+        let (mut top, mut count) = (0.0, 0usize);
+        for (x, u) in nodes.iter().zip(view.displacement) {
+            if (x[2] - LENGTH).abs() < 1e-9 {
+                top -= u[2];
+                count += 1;
+            }
+        }
+        let die = view.contact.first();
+        let force: f64 = die.map_or(0.0, |p| p.iter().map(|n| n.force[2]).sum());
+        self.friction += die.map_or(0.0, |p| p.iter().map(|n| n.friction.dissipation).sum());
+        self.rows
+            .push((view.time, 4.0 * force, top / count.max(1) as f64));
+        if let Some(e) = view.energy {
+            self.kinetic = e.kinetic;
+            self.balance = e.balance;
+            self.gain = e.gain;
+            self.kinetic0 = e.kinetic + e.internal - e.external - e.contact - e.balance;
+        }
+        self.displacement = view.displacement.to_vec();
+        if self.nodes.is_empty() {
+            self.nodes = nodes.clone();
+        }
+        // the inner face's self contact (pair 1); no outer pair (module doc)
+        for (k, closed) in self.closed.iter_mut().enumerate().take(1) {
+            closed.clear();
+            let (Some(pair), Some(cp)) = (view.contact.get(k + 1), view.model.contacts.get(k + 1))
+            else {
+                continue;
+            };
+            closed.extend(
+                pair.iter()
+                    .filter(|n| n.status == ContactStatus::Closed)
+                    .filter_map(|n| Some((n.node, *cp.faces.get(n.entity)?.nodes().first()?))),
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Runs a 3D deck; the trace and the summary.
+pub fn solve(text: String) -> Result<(Trace, RunSummary), String> {
+    let src = ctc_lang::Source::new("dynamic_buckling_3d.ctc", text);
+    let mut trace = Trace::default();
+    let summary = match ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? {
+        AnyModel::D3(m) => run(&m, &mut trace),
+        AnyModel::D2(_) => return Err("the tube deck is 3d".into()),
+    }
+    .map_err(|e| e.message)?;
+    if !summary.completed {
+        return Err("the 3D tube crush did not complete".into());
+    }
+    Ok((trace, summary))
+}
+
+/// The perfect tube's radius of a node at `p` (the imperfection moves a
+/// node by less than half a cell through the wall).
+fn ring_of(p: &[f64; 3], nt: usize, dz: f64) -> (usize, usize) {
+    let inner = RADIUS - THICKNESS / 2.0;
+    let r = p[0].hypot(p[1]);
+    let i = ((r - inner) / (THICKNESS / nt as f64)).round().max(0.0) as usize;
+    (i, (p[2] / dz).round().max(0.0) as usize)
+}
+
+/// The radial displacement of node `k` (along its reference radius).
+fn radial(trace: &Trace, k: usize) -> f64 {
+    let (p, u) = (trace.nodes[k], trace.displacement[k]);
+    let r = p[0].hypot(p[1]);
+    if r == 0.0 {
+        0.0
+    } else {
+        (u[0] * p[0] + u[1] * p[1]) / r
+    }
+}
+
+/// The largest spread over theta (`max - min`) of the radial displacement
+/// over the rings of nodes (one radial layer, one axial row).
+pub fn ring_spread(trace: &Trace, nt: usize, dz: f64) -> f64 {
+    let mut rings: std::collections::BTreeMap<(usize, usize), (f64, f64)> = Default::default();
+    for (k, p) in trace.nodes.iter().enumerate() {
+        let w = radial(trace, k);
+        let e = rings
+            .entry(ring_of(p, nt, dz))
+            .or_insert((f64::INFINITY, f64::NEG_INFINITY));
+        e.0 = e.0.min(w);
+        e.1 = e.1.max(w);
+    }
+    rings.values().map(|(lo, hi)| hi - lo).fold(0.0, f64::max)
+}
+
+/// The run as the axisymmetric measures see it: each node at `(r, z)`
+/// with its radial and axial displacement (the fold measures of
+/// [`super::dynamic_buckling::folds`] average the rows over theta too).
+fn as_axisymmetric(trace: &Trace) -> AxiTrace {
+    let mut t = AxiTrace::default();
+    for (k, p) in trace.nodes.iter().enumerate() {
+        t.nodes.push([p[0].hypot(p[1]), p[2]]);
+        t.displacement
+            .push([radial(trace, k), trace.displacement[k][2]]);
+    }
+    t.closed = trace.closed.clone();
+    t
+}
+
+/// `K0 = 1/2 (M / 4 + m) v0^2` of the quarter, `m` the mass of its hex8
+/// cells: `nc` chords of the angle `d = (pi / 2) / nc` bound each cell's
+/// section, of area `(r_o^2 - r_i^2) sin(d) / 2` (the seeded imperfection
+/// moves both faces of the wall alike: the area to second order in it).
+pub fn kinetic0_quarter(nc: usize) -> f64 {
+    let (ri, ro) = (RADIUS - THICKNESS / 2.0, RADIUS + THICKNESS / 2.0);
+    let d = PI / 2.0 / nc as f64;
+    let tube = RHO * nc as f64 * 0.5 * (ro * ro - ri * ri) * d.sin() * LENGTH;
+    0.5 * (STRIKER / 4.0 + tube) * V0 * V0
+}
+
+/// The figures of one run (3D: the full tube).
+struct Figures {
+    first_peak: f64,
+    crush: f64,
+    mean: f64,
+}
+
+fn figures(rows: &[(f64, f64, f64)], k0: f64, kinetic: f64) -> Figures {
+    let crush = rows.iter().map(|r| r.2).fold(0.0, f64::max);
+    Figures {
+        first_peak: rows.iter().map(|r| r.1).fold(0.0, f64::max),
+        crush,
+        mean: (k0 - kinetic) / crush,
+    }
+}
+
+fn measure(level: usize) -> Result<ProgramLevel, String> {
+    let l = LEVELS[level.min(LEVELS.len() - 1)];
+    let (trace, summary) = solve(deck(&l, IMPERFECTION))?;
+    let k0 = 4.0 * trace.kinetic0;
+    let expected = kinetic0_quarter(l.nc) * 4.0;
+    if (k0 / expected - 1.0).abs() > 1e-6 {
+        return Err(format!(
+            "initial kinetic energy of the quarter {:e}, expected {:e}",
+            trace.kinetic0,
+            expected / 4.0
+        ));
+    }
+    let (axi, axi_summary) = super::dynamic_buckling::solve(super::dynamic_buckling::deck_to(
+        l.nt,
+        l.nz,
+        l.increments,
+        l.end,
+    ))?;
+    let f3 = figures(&trace.rows, k0, 4.0 * trace.kinetic);
+    let f2 = figures(&axi.rows, super::dynamic_buckling::kinetic0(), axi.kinetic);
+    let dz = LENGTH / l.nz as f64;
+    let shape = folds(&as_axisymmetric(&trace), dz);
+    let spread = ring_spread(&trace, l.nt, dz);
+    let mut out = ProgramLevel {
+        h: THICKNESS / l.nt as f64,
+        ..ProgramLevel::default()
+    };
+    out.values
+        .push(super::value(NAMES[0], f3.first_peak, f2.first_peak));
+    out.values.push(super::value(NAMES[1], f3.mean, f2.mean));
+    out.values.push(super::value(NAMES[2], f3.crush, f2.crush));
+    out.values
+        .push(super::error(NAMES[3], spread / shape.depth.max(1e-300)));
+    if level > 0 {
+        // the perfect twin: the same run without the imperfection
+        let (perfect, perfect_summary) = solve(deck(&l, 0.0))?;
+        let depth = folds(&as_axisymmetric(&perfect), dz).depth;
+        out.values.push(super::error(
+            NAMES[4],
+            ring_spread(&perfect, l.nt, dz) / depth.max(1e-300),
+        ));
+        out.add_run(&perfect_summary);
+    }
+    out.values
+        .push(super::error(NAMES[5], 4.0 * trace.balance.abs() / k0));
+    out.values
+        .push(super::error(NAMES[6], 4.0 * trace.gain.max(0.0) / k0));
+    let h = alexander_h();
+    if level > 0 {
+        let effective = effective_ratio() * 2.0 * h;
+        let predicted = (f3.crush / effective).floor();
+        out.values.push(crate::measure::Value {
+            quantity: Quantity::Named(NAMES[7]),
+            reference: Some(predicted),
+            computed: shape.closed as f64,
+            error: (shape.closed as f64 - predicted).abs(),
+        });
+        out.values.push(super::value(NAMES[8], shape.depth, h));
+        out.values.push(super::value(
+            NAMES[9],
+            f3.mean,
+            abramowicz_jones() / effective_ratio(),
+        ));
+    }
+    out.values
+        .push(super::error(NAMES[10], spread / (2.0 * IMPERFECTION)));
+    out.values
+        .push(super::error(NAMES[11], 4.0 * trace.friction / k0));
+    out.values.push(super::error(
+        NAMES[12],
+        f3.first_peak / (2.0 * PI * RADIUS * THICKNESS * SIGMA0),
+    ));
+    out.values.push(super::error(NAMES[13], f3.crush / LENGTH));
+    if level > 0 {
+        out.values
+            .push(super::value(NAMES[14], f3.mean, abramowicz_jones()));
+    }
+    out.add_run(&summary);
+    out.add_run(&axi_summary);
+    Ok(out)
+}
+
+/// The registry entry.
+pub fn cases() -> Vec<VerifyCase> {
+    vec![VerifyCase {
+        name: "dynamic_buckling_tube_3d",
+        title: "Dynamic axial buckling of a steel tube (D/t = 20) in 3D: a hex8 quarter with a seeded ovalizing imperfection (2.5 % of t), 20 kg striker at 10 m/s onto a rigid die, finite-strain J2, node-to-facet self contact of the inner face, friction mu = 0.2 on the die, implicit generalized-alpha: crush force and shortening against the axisymmetric run, departure from axisymmetry, folds against Alexander and Abramowicz-Jones, energy balance",
+        source: "Alexander 1960, Q. J. Mech. Appl. Math. 13:10; Abramowicz & Jones 1984, Int. J. Impact Engng 2:263; Jones, Structural Impact (1989) section 7.3; the axisymmetric case dynamic_buckling_tube_axi",
+        tags: &["dynamics", "contact", "self_contact", "friction", "plasticity", "3d"],
+        levels: 1,
+        checks: vec![
+            Check::new(Quantity::Named(NAMES[0]), &[0.05]),
+            Check::new(Quantity::Named(NAMES[1]), &[0.05]),
+            Check::new(Quantity::Named(NAMES[2]), &[0.05]),
+            Check::new(Quantity::Named(NAMES[3]), &[0.1, 0.02]),
+            Check::new(Quantity::Named(NAMES[5]), &[2e-4]),
+            Check::new(Quantity::Named(NAMES[6]), &[1e-4]),
+            Check::new(Quantity::Named(NAMES[7]), &[0.0]),
+            Check::new(Quantity::Named(NAMES[8]), &[0.1]),
+            Check::new(Quantity::Named(NAMES[9]), &[0.1]),
+        ],
+        kind: CaseKind::Program(ProgramCase {
+            max_levels: LEVELS.len(),
+            run: measure,
+        }),
+    }]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A synthetic quarter: two rings (one axial row, two radial layers)
+    /// of three nodes at theta = 0, 45, 90 degrees; the radial
+    /// displacements 1, 1.5, 1 on the inner ring and 2, 2, 2 on the outer
+    /// give a spread of 0.5; the axisymmetric view averages the row.
+    #[test]
+    fn ring_spread_is_the_largest_spread_over_theta_of_a_ring() {
+        let mut trace = Trace::default();
+        let s = std::f64::consts::FRAC_1_SQRT_2;
+        for (r, w) in [(19.0, [1.0, 1.5, 1.0]), (21.0, [2.0, 2.0, 2.0])] {
+            for (k, (c, sn)) in [(1.0, 0.0), (s, s), (0.0, 1.0)].into_iter().enumerate() {
+                trace.nodes.push([r * c, r * sn, 10.0]);
+                trace.displacement.push([w[k] * c, w[k] * sn, -0.5]);
+            }
+        }
+        let spread = ring_spread(&trace, 2, 1.0);
+        assert!((spread - 0.5).abs() < 1e-12, "{spread}");
+        let axi = as_axisymmetric(&trace);
+        assert!((axi.nodes[4][0] - 21.0).abs() < 1e-12);
+        assert!((axi.displacement[1][0] - 1.5).abs() < 1e-12);
+        assert_eq!(axi.displacement[1][1], -0.5);
+    }
+
+    /// The hex8 quarter's kinetic energy: 250961.30 mJ at nc = 4 (the
+    /// audit's figure of level 0, hand-checked: tube 1.9226e-5 t, striker
+    /// 5e-3 t, at 1e4 mm/s), and the exact ring's quarter as nc grows.
+    #[test]
+    fn the_quarter_kinetic_energy_counts_the_chords() {
+        assert!(
+            (kinetic0_quarter(4) - 250961.30).abs() < 0.01,
+            "{}",
+            kinetic0_quarter(4)
+        );
+        let exact = super::super::dynamic_buckling::kinetic0() / 4.0;
+        assert!((kinetic0_quarter(4096) / exact - 1.0).abs() < 1e-9);
+    }
+
+    /// The quarter's striker is a quarter of the full one, the imperfection
+    /// key is written only for an imperfect tube.
+    #[test]
+    fn the_deck_carries_a_quarter_of_the_striker_and_the_imperfection() {
+        let l = LEVELS[0];
+        let d = deck(&l, IMPERFECTION);
+        assert!(
+            d.contains("imperfection = 0.05  imperfection_waves = 2"),
+            "{d}"
+        );
+        assert!(!deck(&l, 0.0).contains("imperfection"));
+        let m = 0.02 / 4.0 / 15.0;
+        assert!(d.contains(&format!("mass = {m:e}")), "{d}");
+    }
+}
