@@ -218,14 +218,16 @@ pub fn deck_to(nt: usize, nz: usize, increments: usize, end: f64) -> String {
     )
 }
 
-/// What a run records.
+/// What a run records: the axisymmetric deck (`D = 2`) or the 3D quarter
+/// of [`super::dynamic_buckling_3d`] (`D = 3`: the die's force taken four
+/// times, for the full tube).
 #[derive(Default)]
-pub struct Trace {
-    /// Per converged increment: time, the die's axial force on the tube,
-    /// the striker's displacement (down positive).
+pub struct Trace<const D: usize = 2> {
+    /// Per converged increment: time, the die's axial force on the (full)
+    /// tube, the striker's displacement (down positive).
     pub rows: Vec<(f64, f64, f64)>,
     /// Kinetic energy at the start (from the audit: `K + W_int - W_ext -
-    /// W_c - balance`).
+    /// W_c - balance`; the quarter's in 3D).
     pub kinetic0: f64,
     /// Kinetic energy at the end.
     pub kinetic: f64,
@@ -236,29 +238,33 @@ pub struct Trace {
     /// Friction work on the die (sum of the nodes' dissipations).
     pub friction: f64,
     /// Final displacement of every node.
-    pub displacement: Vec<[f64; 2]>,
+    pub displacement: Vec<[f64; D]>,
     /// Reference coordinates.
-    pub nodes: Vec<[f64; 2]>,
+    pub nodes: Vec<[f64; D]>,
     /// Closed self-contact nodes at the end with the first node of their
-    /// master segment: inner face, outer face.
+    /// master segment (facet in 3D): inner face, outer face (empty: no
+    /// such pair, as in 3D).
     pub closed: [Vec<(usize, usize)>; 2],
 }
 
-impl Observer<2> for Trace {
-    fn converged(&mut self, view: &IncrementView<'_, 2>) -> Result<(), String> {
+impl<const D: usize> Observer<D> for Trace<D> {
+    fn converged(&mut self, view: &IncrementView<'_, D>) -> Result<(), String> {
         let nodes = &view.model.mesh.nodes;
+        let axis = D - 1;
+        // the 3D model is a quarter of the tube
+        let whole = if D == 3 { 4.0 } else { 1.0 };
         let (mut top, mut count) = (0.0, 0usize);
         for (x, u) in nodes.iter().zip(view.displacement) {
-            if (x[1] - LENGTH).abs() < 1e-9 {
-                top -= u[1];
+            if (x[axis] - LENGTH).abs() < 1e-9 {
+                top -= u[axis];
                 count += 1;
             }
         }
         let die = view.contact.first();
-        let force: f64 = die.map_or(0.0, |p| p.iter().map(|n| n.force[1]).sum());
+        let force: f64 = die.map_or(0.0, |p| p.iter().map(|n| n.force[axis]).sum());
         self.friction += die.map_or(0.0, |p| p.iter().map(|n| n.friction.dissipation).sum());
         self.rows
-            .push((view.time, force, top / count.max(1) as f64));
+            .push((view.time, whole * force, top / count.max(1) as f64));
         if let Some(e) = view.energy {
             self.kinetic = e.kinetic;
             self.balance = e.balance;
@@ -271,13 +277,20 @@ impl Observer<2> for Trace {
         }
         for (k, closed) in self.closed.iter_mut().enumerate() {
             closed.clear();
-            if let Some(pair) = view.contact.get(k + 1) {
-                closed.extend(
-                    pair.iter()
-                        .filter(|n| n.status == ContactStatus::Closed)
-                        .filter_map(|n| n.master.as_ref().map(|m| (n.node, m.nodes[0]))),
-                );
-            }
+            let (Some(pair), Some(cp)) = (view.contact.get(k + 1), view.model.contacts.get(k + 1))
+            else {
+                continue;
+            };
+            // a node-to-segment master (2D) or the facet it projects on
+            closed.extend(
+                pair.iter()
+                    .filter(|n| n.status == ContactStatus::Closed)
+                    .filter_map(|n| match &n.master {
+                        Some(m) if D == 2 => Some((n.node, m.nodes[0])),
+                        _ if D == 2 => None,
+                        _ => Some((n.node, *cp.faces.get(n.entity)?.nodes().first()?)),
+                    }),
+            );
         }
         Ok(())
     }

@@ -145,9 +145,8 @@ use super::dynamic_buckling::{
 };
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
-use ctc_engine::contact::ContactStatus;
 use ctc_engine::model::AnyModel;
-use ctc_engine::solve::{run, IncrementView, Observer, RunSummary};
+use ctc_engine::solve::{run, RunSummary};
 use std::f64::consts::PI;
 
 /// Density (t/mm^3).
@@ -272,72 +271,8 @@ pub fn deck(level: &Level, imperfection: f64) -> String {
     )
 }
 
-/// What a 3D run records.
-#[derive(Default)]
-pub struct Trace {
-    /// Per converged increment: time, the die's axial force on the full
-    /// tube, the striker's displacement (down positive).
-    pub rows: Vec<(f64, f64, f64)>,
-    /// Kinetic energy of the quarter at the start (from the audit).
-    pub kinetic0: f64,
-    /// Kinetic energy of the quarter at the end.
-    pub kinetic: f64,
-    /// The audit's balance at the end (quarter).
-    pub balance: f64,
-    /// The audit's gain at the end (quarter).
-    pub gain: f64,
-    /// Friction work on the die (quarter).
-    pub friction: f64,
-    /// Reference coordinates.
-    pub nodes: Vec<[f64; 3]>,
-    /// Final displacement of every node.
-    pub displacement: Vec<[f64; 3]>,
-    /// Closed self-contact nodes at the end with the first node of their
-    /// master facet: inner face, outer face (empty: no outer pair).
-    pub closed: [Vec<(usize, usize)>; 2],
-}
-
-impl Observer<3> for Trace {
-    fn converged(&mut self, view: &IncrementView<'_, 3>) -> Result<(), String> {
-        let nodes = &view.model.mesh.nodes;
-        let (mut top, mut count) = (0.0, 0usize);
-        for (x, u) in nodes.iter().zip(view.displacement) {
-            if (x[2] - LENGTH).abs() < 1e-9 {
-                top -= u[2];
-                count += 1;
-            }
-        }
-        let die = view.contact.first();
-        let force: f64 = die.map_or(0.0, |p| p.iter().map(|n| n.force[2]).sum());
-        self.friction += die.map_or(0.0, |p| p.iter().map(|n| n.friction.dissipation).sum());
-        self.rows
-            .push((view.time, 4.0 * force, top / count.max(1) as f64));
-        if let Some(e) = view.energy {
-            self.kinetic = e.kinetic;
-            self.balance = e.balance;
-            self.gain = e.gain;
-            self.kinetic0 = e.kinetic + e.internal - e.external - e.contact - e.balance;
-        }
-        self.displacement = view.displacement.to_vec();
-        if self.nodes.is_empty() {
-            self.nodes = nodes.clone();
-        }
-        // the inner face's self contact (pair 1); no outer pair (module doc)
-        for (k, closed) in self.closed.iter_mut().enumerate().take(1) {
-            closed.clear();
-            let (Some(pair), Some(cp)) = (view.contact.get(k + 1), view.model.contacts.get(k + 1))
-            else {
-                continue;
-            };
-            closed.extend(
-                pair.iter()
-                    .filter(|n| n.status == ContactStatus::Closed)
-                    .filter_map(|n| Some((n.node, *cp.faces.get(n.entity)?.nodes().first()?))),
-            );
-        }
-        Ok(())
-    }
-}
+/// What a 3D run records (the quarter: the die's force taken four times).
+pub type Trace = super::dynamic_buckling::Trace<3>;
 
 /// Runs a 3D deck; the trace and the summary.
 pub fn solve(text: String) -> Result<(Trace, RunSummary), String> {
