@@ -765,16 +765,50 @@ mod tests {
         assert!((after - 0.5 * before).abs() < 1e-12, "{before} {after}");
     }
 
-    /// Converges always; every increment turns a cell by `rate` times its
-    /// size until `stop`, then by nothing.
-    struct Spinning {
+    /// Converges always; `amount(t0, t1)` of the increment from `t0` to
+    /// `t1` is what a dynamic limit weighs: the rotation of cell 7 (`kind`
+    /// Rotation) or the energy created at node 3 against a scale of 1
+    /// (`kind` Energy); a rejection must name that kind and place.
+    struct Watched {
         mock: Mock,
-        rate: f64,
-        stop: f64,
+        kind: FailureKind,
+        amount: Box<dyn Fn(f64, f64) -> f64>,
         last: (f64, f64),
     }
 
-    impl IncrementSolver for Spinning {
+    impl Watched {
+        /// A cell turning by `rate` times the increment's size until
+        /// `stop`, then by nothing.
+        fn spinning(rate: f64, stop: f64) -> Watched {
+            Watched {
+                mock: mock(10.0),
+                kind: FailureKind::Rotation,
+                amount: Box::new(move |t0: f64, t1: f64| {
+                    rate * (t1.min(stop) - t0.min(stop)).max(0.0)
+                }),
+                last: (0.0, 0.0),
+            }
+        }
+
+        /// An increment creating `rate (t1 - t0)^2` of energy inside
+        /// `window`, nothing elsewhere.
+        fn creating(rate: f64, window: (f64, f64)) -> Watched {
+            Watched {
+                mock: mock(10.0),
+                kind: FailureKind::Energy,
+                amount: Box::new(move |t0: f64, t1: f64| {
+                    if t1 > window.0 && t0 < window.1 {
+                        rate * (t1 - t0).powi(2)
+                    } else {
+                        0.0
+                    }
+                }),
+                last: (0.0, 0.0),
+            }
+        }
+    }
+
+    impl IncrementSolver for Watched {
         fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
             self.last = (self.mock.t, t);
             self.mock.attempt(step, t)
@@ -790,15 +824,27 @@ mod tests {
             self.mock.accept(s, t, dt, cutbacks, c)
         }
         fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
-            assert_eq!(f.kind, FailureKind::Rotation, "{f:?}");
-            assert!(f.detail.starts_with("cell 7 turned by"), "{}", f.detail);
+            assert_eq!(f.kind, self.kind, "{f:?}");
+            if self.kind == FailureKind::Rotation {
+                assert!(f.detail.starts_with("cell 7 turned by"), "{}", f.detail);
+            } else {
+                assert!(f.detail.contains("node 3"), "{}", f.detail);
+            }
             self.mock.t = self.mock.accepted.last().map_or(0.0, |a| a.0);
             self.mock.reject(s, f, new_dt);
         }
         fn rotation(&self) -> Option<(f64, String)> {
-            let (t0, t1) = self.last;
-            let spun = (t1.min(self.stop) - t0.min(self.stop)).max(0.0);
-            Some((self.rate * spun, "cell 7".into()))
+            (self.kind == FailureKind::Rotation)
+                .then(|| ((self.amount)(self.last.0, self.last.1), "cell 7".into()))
+        }
+        fn energy_created(&self) -> Option<(f64, f64, String)> {
+            (self.kind == FailureKind::Energy).then(|| {
+                (
+                    (self.amount)(self.last.0, self.last.1),
+                    1.0,
+                    "node 3".into(),
+                )
+            })
         }
     }
 
@@ -817,12 +863,7 @@ mod tests {
                 max_rotation: Some(0.05),
                 ..d
             });
-        let mut m = Spinning {
-            mock: mock(10.0),
-            rate: 1.5,
-            stop: 5.0,
-            last: (0.0, 0.0),
-        };
+        let mut m = Watched::spinning(1.5, 5.0);
         drive(&[s.clone()], &mut m).unwrap();
         let acc = &m.mock.accepted;
         assert_eq!(m.mock.rejected.len(), 1, "{:?}", m.mock.rejected);
@@ -849,12 +890,7 @@ mod tests {
             energy_tol: None,
             ..d
         });
-        let mut m = Spinning {
-            mock: mock(10.0),
-            rate: 1.5,
-            stop: 5.0,
-            last: (0.0, 0.0),
-        };
+        let mut m = Watched::spinning(1.5, 5.0);
         drive(&[s], &mut m).unwrap();
         assert_eq!(m.mock.accepted.len(), 100);
         assert!(m.mock.rejected.is_empty());
@@ -966,49 +1002,6 @@ mod tests {
         assert_eq!(resumable(&[longer], end), end);
     }
 
-    /// Converges always; an increment from `t0` to `t1` creates `rate
-    /// (t1 - t0)^2` of energy inside `window`, nothing elsewhere, against
-    /// a scale of 1.
-    struct Creating {
-        mock: Mock,
-        rate: f64,
-        window: (f64, f64),
-        last: (f64, f64),
-    }
-
-    impl IncrementSolver for Creating {
-        fn attempt(&mut self, step: usize, t: f64) -> Result<Converged, Failure> {
-            self.last = (self.mock.t, t);
-            self.mock.attempt(step, t)
-        }
-        fn accept(
-            &mut self,
-            s: usize,
-            t: f64,
-            dt: f64,
-            cutbacks: usize,
-            c: Converged,
-        ) -> Result<(), String> {
-            self.mock.accept(s, t, dt, cutbacks, c)
-        }
-        fn reject(&mut self, s: usize, f: &Failure, new_dt: f64) {
-            assert_eq!(f.kind, FailureKind::Energy, "{f:?}");
-            assert!(f.detail.contains("node 3"), "{}", f.detail);
-            self.mock.t = self.mock.accepted.last().map_or(0.0, |a| a.0);
-            self.mock.reject(s, f, new_dt);
-        }
-        fn energy_created(&self) -> Option<(f64, f64, String)> {
-            let (t0, t1) = self.last;
-            let inside = t1 > self.window.0 && t0 < self.window.1;
-            let e = if inside {
-                self.rate * (t1 - t0).powi(2)
-            } else {
-                0.0
-            };
-            Some((e, 1.0, "node 3".into()))
-        }
-    }
-
     #[test]
     fn an_energy_limit_redoes_and_caps_the_increments_that_create_energy() {
         // increments of 0.1 over 10; between t = 4 and 6 an increment
@@ -1024,12 +1017,7 @@ mod tests {
                 energy_tol: Some(1e-3),
                 ..d
             });
-        let mut m = Creating {
-            mock: mock(10.0),
-            rate: 10.0,
-            window: (4.0, 6.0),
-            last: (0.0, 0.0),
-        };
+        let mut m = Watched::creating(10.0, (4.0, 6.0));
         drive(&[s.clone()], &mut m).unwrap();
         let acc = &m.mock.accepted;
         assert!(!m.mock.rejected.is_empty());
