@@ -491,6 +491,7 @@ impl Dynamics {
         let mut masses = vec![Vec::new(); model.mesh.cells.len()];
         let mut kept = 0;
         let mut notes = Vec::new();
+        let mut held: Option<Vec<[bool; D]>> = None;
         for b in &model.bodies {
             let rho = model.materials.get(b.material).map_or(0.0, |m| m.density);
             // the body's mass, its first moment before minus after the
@@ -612,10 +613,6 @@ impl Dynamics {
                         _ => receivers.push((n, w)),
                     }
                 }
-                let input: Vec<(f64, Vec<f64>)> = receivers
-                    .iter()
-                    .map(|&(n, w)| (w, model.mesh.nodes[n].to_vec()))
-                    .collect();
                 let mut lo = [f64::INFINITY; D];
                 let mut hi = [f64::NEG_INFINITY; D];
                 for n in b.nodes.clone() {
@@ -631,6 +628,27 @@ impl Dynamics {
                     .map(|(l, h)| (h - l).powi(2))
                     .sum::<f64>()
                     .sqrt();
+                // along the body's symmetry planes only (the mirrored
+                // whole's centre stays on them)
+                let held = held.get_or_insert_with(|| super::contact_mass::held_at_zero(model));
+                let free = super::contact_mass::free_directions(
+                    &model.mesh.nodes,
+                    b.nodes.clone(),
+                    held,
+                    size,
+                );
+                let along = |x: &[f64]| -> Vec<f64> {
+                    x.iter()
+                        .zip(&free)
+                        .filter(|(_, f)| **f)
+                        .map(|(x, _)| *x)
+                        .collect()
+                };
+                let input: Vec<(f64, Vec<f64>)> = receivers
+                    .iter()
+                    .map(|&(n, w)| (w, along(&model.mesh.nodes[n])))
+                    .collect();
+                let missing = along(&missing);
                 match super::contact_mass::restore_centre(&input, &missing, body_mass, size) {
                     super::contact_mass::Centre::Restored(f) => {
                         for &(c, a, w) in &received {

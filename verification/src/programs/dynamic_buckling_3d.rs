@@ -44,21 +44,25 @@
 //! an explicit `prof` capping the accepted depth, is left to the
 //! node-to-facet owners.)
 //!
-//! The perfect quarter is not axisymmetric to round-off (a defect found
-//! here, not fixed): the default `contact_mass = redistributed` moves the
+//! The perfect quarter was not axisymmetric to round-off (a defect found
+//! here, fixed since): the default `contact_mass = redistributed` moves the
 //! contact nodes' mass (here the inner and outer faces and the end: the
 //! die pair's slaves) to the mid-wall nodes, then restores each body's
 //! centre of mass by a change of the receivers' masses linear in x, y, z
 //! (`solve/contact_mass.rs`, `restore_centre`). A quarter's centre lies
-//! off the axis and moves inward: its restoration adds mass towards theta
+//! off the axis and moves inward: its restoration added mass towards theta
 //! = 45 degrees, a non-axisymmetric mass. Measured after 3 increments of
 //! 10 us (release, mid-wall ring at z = 2 mm): radial displacements
 //! 0.016975 / 0.016867 / 0.016835 / 0.016975 mm at theta = 0 / 22.5 / 45
 //! / 90 degrees (spread 1.4e-4 mm); the full ring (2 x 16 x 20, no
 //! symmetry planes) 1.0e-8 mm; the quarter with `contact_mass = full`
-//! 8.9e-8 mm. For a sector with symmetry planes the restoration should
-//! leave the components normal to the planes alone (the whole body's
-//! centre lies on them).
+//! 8.9e-8 mm. Now the planes x = 0 and y = 0 (their nodes hold ux, uy)
+//! are found as symmetry planes and the centre is restored along z only
+//! (`contact_mass::free_directions`): the same ring's spread is 5.1e-8 mm
+//! (0.016886 mm at every theta; debug `ctc run` of
+//! `examples/dynamic_buckling_3d.ctc`, the level-0 cells and dt, with
+//! `imperfection = 0` to 3e-5 s, as measured before). The table's
+//! `perfect` column (levels >= 1) was measured before the fix.
 //!
 //! References: as [`super::dynamic_buckling`] (Alexander 1960, Q. J. Mech.
 //! Appl. Math. 13:10; Abramowicz & Jones 1984, Int. J. Impact Engng
