@@ -38,8 +38,10 @@
 //!    (vertex), `s` the side of the facet it belongs to. The normal turns
 //!    continuously from one facet's normal to the next across the wedge,
 //!    so a node above a seam of a curved master does not jump;
-//! 3. penetrations deeper than `max(prof, h)` (`h` the facet's longest
-//!    edge) are ignored (a node of the far side of a thin body), except
+//! 3. penetrations deeper than `prof` (the pair's search window; by
+//!    default the longest edge of the pair's faces in the reference
+//!    configuration) are ignored (a node of the far side of a thin body),
+//!    except
 //!    on the node's memory ([`FacetSurface::memory_walk`]): a node that
 //!    had a projection on this surface at the last evaluation (in
 //!    contact, or open within the window) and is now deeper crossed the
@@ -50,7 +52,14 @@
 //!    thickness 1) and the increment converged with them past the window
 //!    (1.04), open, no force; every later increment found them at gap
 //!    -1.040 and cut back 25 times. The same holds for Nagata patches
-//!    and for the beside test ([`FacetSurface::below_past_rim`]). 3D
+//!    and for the beside test ([`FacetSurface::below_past_rim`]). The
+//!    window was `max(prof, h)` (`h` the facet's longest edge) so that a
+//!    node that crossed deeper than `prof` in one step was not lost; the
+//!    memory keeps such a node, and the window is `prof`, which a deck
+//!    can set below a thin body's thickness (`h` could not be: the 3D
+//!    tube's outer self contact, whose 8.2 mm chords let outer nodes of
+//!    one arm of the bulge match the other arm's outer facets from
+//!    behind at -7.8 mm, through two walls of 2 mm). 3D
 //!    mortar's facet pairs keep the window for every pair (no memory:
 //!    its pieces are rebuilt at each evaluation from the broad phase, and
 //!    a pair is left out only when all its integration-point gaps lie
@@ -631,7 +640,7 @@ impl FacetSurface {
     /// patch within [`NAGATA_OUTSIDE`] (the projection may fall slightly
     /// outside a patch where two patches' tangent planes part along their
     /// common edge). `None`: no patch holds the node (the faceted rules
-    /// apply) or a penetration deeper than `max(prof, h)` on a facet not
+    /// apply) or a penetration deeper than `prof` on a facet not
     /// in `exempt` (the node's memory, sorted: [`Self::memory_walk`]).
     #[allow(clippy::too_many_arguments)]
     pub fn closest_nagata(
@@ -671,14 +680,7 @@ impl FacetSurface {
                 continue;
             }
             let gap = (0..3).map(|c| (xs[c] - p[c]) * m[c]).sum::<f64>() / ml;
-            let (pts, _) = self.points(k, x);
-            let depth = (0..n)
-                .map(|a| {
-                    let (u, v) = (pts[a], pts[(a + 1) % n]);
-                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(prof, f64::max);
-            if gap < -depth && exempt.binary_search(&k).is_err() {
+            if gap < -prof && exempt.binary_search(&k).is_err() {
                 continue;
             }
             let seam = if memory == Some(k) {
@@ -797,10 +799,10 @@ impl FacetSurface {
     /// and below its extension: the foot on the extension of one of the
     /// facets `candidates` falls outside the facet across free edges only,
     /// beyond the free-edge band ([`FREE_EDGE_TOL`]) of at least one, and
-    /// the gap to that extension lies in `[-max(prof, h), -below)` (`h` the
-    /// facet's longest edge, the depth window of [`Self::closest`]; below
-    /// `-below` at any depth on the facets of `exempt`, the node's memory,
-    /// sorted, as in [`Self::closest`]). Such
+    /// the gap to that extension lies in `[-prof, -below)` (the depth
+    /// window of [`Self::closest`]; below `-below` at any depth on the
+    /// facets of `exempt`, the node's memory, sorted, as in
+    /// [`Self::closest`]). Such
     /// a node has no element (the nearest feature is the free rim), but if
     /// it moves into the band, or over the facet, while still below, its
     /// penetration is not one it made through the surface: see
@@ -838,13 +840,7 @@ impl FacetSurface {
             let gap = (0..3)
                 .map(|c| (xs[c] - foot_x[c].v) * m[c].v / len)
                 .sum::<f64>();
-            let depth = (0..n)
-                .map(|a| {
-                    let (u, v) = (p[a], p[(a + 1) % n]);
-                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(prof, f64::max);
-            gap < -below && (gap >= -depth || exempt.binary_search(&k).is_ok())
+            gap < -below && (gap >= -prof || exempt.binary_search(&k).is_ok())
         })
     }
 
@@ -910,15 +906,10 @@ impl FacetSurface {
         let mut best: Option<(usize, FacetElement)> = None;
         let depth_of = |k: usize| {
             if exempt.binary_search(&k).is_ok() {
-                return f64::INFINITY;
+                f64::INFINITY
+            } else {
+                prof
             }
-            let (p, n) = self.points(k, x);
-            (0..n)
-                .map(|a| {
-                    let (u, v) = (p[a], p[(a + 1) % n]);
-                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(prof, f64::max)
         };
         for &k in candidates {
             let (p, n) = self.points(k, x);
