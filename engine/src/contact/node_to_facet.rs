@@ -7,9 +7,10 @@
 //! of tet4 and hex8 bodies): side 0 (the deck's left of `->`) and side 1
 //! (the master, right of `->`). A slave node `x_s` is projected on the
 //! candidate facets of the opposite side (a [`BroadPhase`] over the facet
-//! boxes inflated by `prof`, plus the facet of the last evaluation and the
-//! facets sharing a node with it: memory first, so a node that penetrated
-//! deeper than `prof` is not lost). On a facet `x(xi) = sum N_a(xi) x_a`
+//! boxes inflated by `prof`, plus its memory: the facet of the last
+//! evaluation, the facets sharing a node with it and the facets walked
+//! from it towards the node's foot, [`FacetSurface::memory_walk`], so a
+//! node that penetrated deeper than `prof` is not lost). On a facet `x(xi) = sum N_a(xi) x_a`
 //! (linear triangle, bilinear quadrilateral) the foot point solves
 //!
 //! `r_alpha = (x_s - x(xi)) . a_alpha = 0`, `a_alpha = dx/dxi_alpha`
@@ -37,8 +38,33 @@
 //!    (vertex), `s` the side of the facet it belongs to. The normal turns
 //!    continuously from one facet's normal to the next across the wedge,
 //!    so a node above a seam of a curved master does not jump;
-//! 3. penetrations deeper than `max(prof, h)` (`h` the facet's longest
-//!    edge) are ignored (a node of the far side of a thin body).
+//! 3. penetrations deeper than `prof` (the pair's search window; by
+//!    default the longest edge of the pair's faces in the reference
+//!    configuration) are ignored (a node of the far side of a thin body),
+//!    except
+//!    on the node's memory ([`FacetSurface::memory_walk`]): a node that
+//!    had a projection on this surface at the last evaluation (in
+//!    contact, or open within the window) and is now deeper crossed the
+//!    face during one Newton step; it is not on the far side (the rule
+//!    of [`super::node_to_segment`] in 2D). Dropping it left it inside
+//!    the master for good: the 3D ironing slide (issue 18), where a
+//!    Newton step threw slab nodes 35 and 195 0.537 into the die (radial
+//!    thickness 1) and the increment converged with them past the window
+//!    (1.04), open, no force; every later increment found them at gap
+//!    -1.040 and cut back 25 times. The same holds for Nagata patches
+//!    and for the beside test ([`FacetSurface::below_past_rim`]). The
+//!    window was `max(prof, h)` (`h` the facet's longest edge) so that a
+//!    node that crossed deeper than `prof` in one step was not lost; the
+//!    memory keeps such a node, and the window is `prof`, which a deck
+//!    can set below a thin body's thickness (`h` could not be: the 3D
+//!    tube's outer self contact, whose 8.2 mm chords let outer nodes of
+//!    one arm of the bulge match the other arm's outer facets from
+//!    behind at -7.8 mm, through two walls of 2 mm). 3D
+//!    mortar's facet pairs keep the window for every pair (no memory:
+//!    its pieces are rebuilt at each evaluation from the broad phase, and
+//!    a pair is left out only when all its integration-point gaps lie
+//!    deeper, a whole slave facet through the master; no run has shown
+//!    it, the ironing benchmark's mortar variants reach the end).
 //!
 //! Free-edge band: a penalty node whose foot lies past a free edge, in the
 //! [`FREE_EDGE_TOL`] band of the extended facet, gets the force `w R_N G`
@@ -614,7 +640,8 @@ impl FacetSurface {
     /// patch within [`NAGATA_OUTSIDE`] (the projection may fall slightly
     /// outside a patch where two patches' tangent planes part along their
     /// common edge). `None`: no patch holds the node (the faceted rules
-    /// apply) or a penetration deeper than `max(prof, h)`.
+    /// apply) or a penetration deeper than `prof` on a facet not
+    /// in `exempt` (the node's memory, sorted: [`Self::memory_walk`]).
     #[allow(clippy::too_many_arguments)]
     pub fn closest_nagata(
         &self,
@@ -623,6 +650,7 @@ impl FacetSurface {
         xs: [f64; 3],
         candidates: &[usize],
         memory: Option<usize>,
+        exempt: &[usize],
         prof: f64,
         tests: &mut usize,
     ) -> Option<(usize, super::nagata::NagataElement)> {
@@ -652,14 +680,7 @@ impl FacetSurface {
                 continue;
             }
             let gap = (0..3).map(|c| (xs[c] - p[c]) * m[c]).sum::<f64>() / ml;
-            let (pts, _) = self.points(k, x);
-            let depth = (0..n)
-                .map(|a| {
-                    let (u, v) = (pts[a], pts[(a + 1) % n]);
-                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(prof, f64::max);
-            if gap < -depth {
+            if gap < -prof && exempt.binary_search(&k).is_err() {
                 continue;
             }
             let seam = if memory == Some(k) {
@@ -707,12 +728,81 @@ impl FacetSurface {
         nagata::element(node, xs, nodes, &rings, x, xi).map(|e| (k, e))
     }
 
+    /// The memory of a slave node at `xs` whose last evaluation kept facet
+    /// `start`, in `out` (cleared first; sorted, without duplicates): `start`,
+    /// the facets sharing a node with it, and the facets walked from
+    /// `start` towards the node's foot across shared edges (from a facet
+    /// to the one across the edge its foot lies farthest past; the walk
+    /// ends on a facet holding the foot, at a free edge, when it would
+    /// step back to the facet it came from (the wedge in front of an
+    /// edge) or onto a facet it walked, and after at most as many steps as
+    /// the surface has facets) with the facets sharing a node with the
+    /// last one (its edges and vertices, rule 2 of the module). The facets
+    /// a node can have reached by crossing the face since the last
+    /// evaluation, however far it slid along it: exempt from the depth
+    /// window (rule 3 of the module documentation), as
+    /// [`super::node_to_segment`]'s walk in 2D. `tests` counts the
+    /// projections.
+    pub fn memory_walk(
+        &self,
+        x: &[[f64; 3]],
+        xs: [f64; 3],
+        start: usize,
+        tests: &mut usize,
+        out: &mut Vec<usize>,
+    ) {
+        out.clear();
+        out.push(start);
+        out.extend_from_slice(&self.neighbours[start]);
+        let mut walked = vec![start];
+        let mut k = start;
+        for _ in 0..self.faces.len() {
+            let (p, n) = self.points(k, x);
+            *tests += 1;
+            let Some((xi, _)) = foot(xs, &p[..n]) else {
+                break;
+            };
+            // the edge the foot lies farthest past (the first on ties)
+            let excess = edge_excess(n, xi);
+            let mut far: Option<(usize, f64)> = None;
+            for (a, &e) in excess.iter().enumerate().take(n) {
+                if e > INSIDE_TOL && far.is_none_or(|(_, f)| e > f) {
+                    far = Some((a, e));
+                }
+            }
+            let Some((a, _)) = far else {
+                break;
+            };
+            let nodes = self.faces[k].nodes();
+            let (u, v) = (nodes[a], nodes[(a + 1) % n]);
+            let across = self.neighbours[k].iter().copied().find(|&g| {
+                let m = self.faces[g].nodes();
+                m.contains(&u) && m.contains(&v)
+            });
+            let Some(next) = across else {
+                break;
+            };
+            // back to the facet it came from (a wedge) or round a loop
+            if walked.contains(&next) {
+                break;
+            }
+            walked.push(next);
+            out.push(next);
+            k = next;
+        }
+        out.extend_from_slice(&self.neighbours[k]);
+        out.sort_unstable();
+        out.dedup();
+    }
+
     /// Whether the point `xs` lies beside the surface, past its free rim
     /// and below its extension: the foot on the extension of one of the
     /// facets `candidates` falls outside the facet across free edges only,
     /// beyond the free-edge band ([`FREE_EDGE_TOL`]) of at least one, and
-    /// the gap to that extension lies in `[-max(prof, h), -below)` (`h` the
-    /// facet's longest edge, the depth window of [`Self::closest`]). Such
+    /// the gap to that extension lies in `[-prof, -below)` (the depth
+    /// window of [`Self::closest`]; below `-below` at any depth on the
+    /// facets of `exempt`, the node's memory, sorted, as in
+    /// [`Self::closest`]). Such
     /// a node has no element (the nearest feature is the free rim), but if
     /// it moves into the band, or over the facet, while still below, its
     /// penetration is not one it made through the surface: see
@@ -722,6 +812,7 @@ impl FacetSurface {
         x: &[[f64; 3]],
         xs: [f64; 3],
         candidates: &[usize],
+        exempt: &[usize],
         prof: f64,
         below: f64,
     ) -> bool {
@@ -749,13 +840,7 @@ impl FacetSurface {
             let gap = (0..3)
                 .map(|c| (xs[c] - foot_x[c].v) * m[c].v / len)
                 .sum::<f64>();
-            let depth = (0..n)
-                .map(|a| {
-                    let (u, v) = (p[a], p[(a + 1) % n]);
-                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(prof, f64::max);
-            gap < -below && gap >= -depth
+            gap < -below && (gap >= -prof || exempt.binary_search(&k).is_ok())
         })
     }
 
@@ -804,25 +889,27 @@ impl FacetSurface {
 
     /// The element kept for the point `xs` among the facets `candidates`
     /// (rules 1-3 of the module; `memory` the facet of the previous
-    /// evaluation), with its facet; `tests` counts the projections.
+    /// evaluation, `exempt` the facets of the node's memory, sorted,
+    /// exempt from the depth window: [`Self::memory_walk`]), with its
+    /// facet; `tests` counts the projections.
+    #[allow(clippy::too_many_arguments)]
     pub fn closest(
         &self,
         x: &[[f64; 3]],
         xs: [f64; 3],
         candidates: &[usize],
         memory: Option<usize>,
+        exempt: &[usize],
         prof: f64,
         tests: &mut usize,
     ) -> Option<(usize, FacetElement)> {
         let mut best: Option<(usize, FacetElement)> = None;
         let depth_of = |k: usize| {
-            let (p, n) = self.points(k, x);
-            (0..n)
-                .map(|a| {
-                    let (u, v) = (p[a], p[(a + 1) % n]);
-                    ((0..3).map(|c| (u[c] - v[c]).powi(2)).sum::<f64>()).sqrt()
-                })
-                .fold(prof, f64::max)
+            if exempt.binary_search(&k).is_ok() {
+                f64::INFINITY
+            } else {
+                prof
+            }
         };
         for &k in candidates {
             let (p, n) = self.points(k, x);
@@ -1026,7 +1113,7 @@ pub fn jumps(
         // the node's own facets are not a master for it
         candidates.retain(|&k| !master.faces[k].nodes().contains(&node));
         let mut tests = 0;
-        let Some((k, el)) = master.closest(x1, b, &candidates, None, reach, &mut tests) else {
+        let Some((k, el)) = master.closest(x1, b, &candidates, None, &[], reach, &mut tests) else {
             continue;
         };
         let face = master.faces[k].nodes();
@@ -1081,6 +1168,9 @@ pub struct DeformablePair {
     touch: f64,
     /// Scratch: candidate facets of one query.
     candidates: Vec<usize>,
+    /// Scratch: the memory facets of one query
+    /// ([`FacetSurface::memory_walk`]).
+    memory_facets: Vec<usize>,
     /// Self contact (the deck's `a.s -> a.s`): both sides are the same
     /// surface, every node is slave and master at once.
     pub self_contact: bool,
@@ -1679,6 +1769,7 @@ pub fn evaluate(
         && (fp.increments == 0 || cp.strategy == ContactStrategy::DoublePass);
     fp.evaluated = fp.increments;
     let mut candidates = std::mem::take(&mut fp.candidates);
+    let mut memory_facets = std::mem::take(&mut fp.memory_facets);
     // `CTC_LOG=debug`: the closed nodes of this evaluation (node, facet,
     // feature, gap, free-edge fade), to find a node that cycles
     let debug = super::log::debug_enabled();
@@ -1696,10 +1787,12 @@ pub fn evaluate(
         let surface = &fp.sides[1 - side];
         candidates.clear();
         surface.grid.query(xs, prof, &mut candidates);
-        // memory: the last facet and its neighbours are always tested
+        // memory: the last facet, its neighbours and the walk from it
+        // towards the node's foot are always tested, at any depth (rule 3)
+        memory_facets.clear();
         if let Some(k) = fp.last[i].filter(|&k| k < surface.faces.len()) {
-            candidates.push(k);
-            candidates.extend_from_slice(&surface.neighbours[k]);
+            surface.memory_walk(x, xs, k, &mut fp.tests, &mut memory_facets);
+            candidates.extend_from_slice(&memory_facets);
             candidates.sort_unstable();
             candidates.dedup();
         }
@@ -1715,12 +1808,29 @@ pub fn evaluate(
         // Nagata patches first; the faceted rules where no patch holds the
         // node's foot (the wedges of a patch-less corner)
         let smooth = if nagata {
-            surface.closest_nagata(x, node, xs, &candidates, memory, prof, &mut fp.tests)
+            surface.closest_nagata(
+                x,
+                node,
+                xs,
+                &candidates,
+                memory,
+                &memory_facets,
+                prof,
+                &mut fp.tests,
+            )
         } else {
             None
         };
         let faceted = if smooth.is_none() {
-            surface.closest(x, xs, &candidates, memory, prof, &mut fp.tests)
+            surface.closest(
+                x,
+                xs,
+                &candidates,
+                memory,
+                &memory_facets,
+                prof,
+                &mut fp.tests,
+            )
         } else {
             None
         };
@@ -1730,7 +1840,8 @@ pub fn evaluate(
             (None, None) => {
                 fp.last[i] = None;
                 if penalty_node && !candidates.is_empty() {
-                    fp.beside[i] = surface.below_past_rim(x, xs, &candidates, prof, fp.touch);
+                    fp.beside[i] =
+                        surface.below_past_rim(x, xs, &candidates, &memory_facets, prof, fp.touch);
                 }
                 state.friction.open(i, xs);
                 continue;
@@ -1985,6 +2096,7 @@ pub fn evaluate(
         out.push(nc);
     }
     fp.candidates = candidates;
+    fp.memory_facets = memory_facets;
     fp.holds = holds;
     if hold_fresh {
         // the Newton loop's first evaluation: the nodes a hold may keep at
@@ -2244,13 +2356,15 @@ pub(crate) mod tests {
         let s = FacetSurface::new(&faces);
         assert!(!s.is_free_edge(1, 2) && s.is_free_edge(0, 1));
         let mut tests = 0;
-        let (_, el) = s.closest(&x, x[6], &[0, 1], None, 1.0, &mut tests).unwrap();
+        let (_, el) = s
+            .closest(&x, x[6], &[0, 1], None, &[], 1.0, &mut tests)
+            .unwrap();
         assert!(matches!(el.feature, Feature::Edge(..)), "{:?}", el.feature);
         let d = (0.05f64 * 0.05 + 0.09).sqrt();
         assert!((el.gap - d).abs() < 1e-14, "{}", el.gap);
         // inside a prism: the face
         let (k, el) = s
-            .closest(&x, [0.5, 0.5, 0.0], &[0, 1], None, 1.0, &mut tests)
+            .closest(&x, [0.5, 0.5, 0.0], &[0, 1], None, &[], 1.0, &mut tests)
             .unwrap();
         assert_eq!((k, el.feature), (1, Feature::Face));
     }
@@ -2281,7 +2395,9 @@ pub(crate) mod tests {
         let d = (0.5f64 * 0.5 + 0.1 * 0.1).sqrt();
         let mut tests = 0;
         for order in [[0, 1], [1, 0]] {
-            let (_, el) = s.closest(&x, xs, &order, None, 1.0, &mut tests).unwrap();
+            let (_, el) = s
+                .closest(&x, xs, &order, None, &[], 1.0, &mut tests)
+                .unwrap();
             assert!(matches!(el.feature, Feature::Edge(..)), "{:?}", el.feature);
             assert!((el.gap - d).abs() < 1e-14, "{order:?}: {}", el.gap);
         }
@@ -2289,7 +2405,7 @@ pub(crate) mod tests {
         let inside = [0.95, 0.5, -0.02];
         for order in [[0, 1], [1, 0]] {
             let (_, el) = s
-                .closest(&x, inside, &order, None, 1.0, &mut tests)
+                .closest(&x, inside, &order, None, &[], 1.0, &mut tests)
                 .unwrap();
             assert!(el.gap < 0.0, "{order:?}: {}", el.gap);
         }
@@ -2311,11 +2427,13 @@ pub(crate) mod tests {
         let mut tests = 0;
         let xs = [0.5, 0.504, -0.01];
         assert_eq!(
-            s.closest(&x, xs, &[0, 1], None, 1.0, &mut tests).unwrap().0,
+            s.closest(&x, xs, &[0, 1], None, &[], 1.0, &mut tests)
+                .unwrap()
+                .0,
             1
         );
         assert_eq!(
-            s.closest(&x, xs, &[0, 1], Some(0), 1.0, &mut tests)
+            s.closest(&x, xs, &[0, 1], Some(0), &[], 1.0, &mut tests)
                 .unwrap()
                 .0,
             0
@@ -2323,11 +2441,164 @@ pub(crate) mod tests {
         // beyond the tolerance the memory lets go
         let far = [0.4, 0.6, -0.01];
         assert_eq!(
-            s.closest(&x, far, &[0, 1], Some(0), 1.0, &mut tests)
+            s.closest(&x, far, &[0, 1], Some(0), &[], 1.0, &mut tests)
                 .unwrap()
                 .0,
             1
         );
+    }
+
+    /// The die of the 3D ironing as a strip of a cylinder (radius 3, axis
+    /// z, 200..340 degrees in 28 facets of 5 degrees, two rows of 0.4 in z:
+    /// facet `k + 28 j`, outward normal away from the axis) centred at
+    /// `c`, and its nodes (`k + 29 j`).
+    fn die_strip(c: [f64; 2]) -> (FacetSurface, Vec<[f64; 3]>) {
+        let id = |k: usize, j: usize| k + 29 * j;
+        let faces: Vec<Facet> = (0..2)
+            .flat_map(|j| {
+                (0..28).map(move |k| {
+                    Facet::new(&[id(k, j), id(k + 1, j), id(k + 1, j + 1), id(k, j + 1)])
+                })
+            })
+            .collect();
+        let x = (0..3)
+            .flat_map(|j| {
+                (0..=28).map(move |k| {
+                    let t = (200.0 + 5.0 * k as f64).to_radians();
+                    [c[0] + 3.0 * t.cos(), c[1] + 3.0 * t.sin(), 0.4 * j as f64]
+                })
+            })
+            .collect();
+        (FacetSurface::new(&faces), x)
+    }
+
+    /// A node thrown deep into a thin sliding master keeps its facet (issue
+    /// 18, the 3D ironing slide: slab nodes 35 and 195 thrown 0.537 into
+    /// the die, past `max(prof, h)`, converged open inside it). The 2D
+    /// case of `node_to_segment` (`node_deep_inside_a_convex_sliding_master_keeps_its_segment`)
+    /// on a strip of the die ([`die_strip`], `h` = 0.4, `prof` 0.5): a slab
+    /// node touching facet 14 (272.5 deg) at depth 1e-3; the die slides
+    /// 0.6 along x (2.3 facet widths) and a Newton step puts the node 0.56
+    /// inside it. Searched from its memory it keeps the facet under it at
+    /// its depth (a flat facet: the depth below the 2D chord); the same
+    /// node without memory is not taken (rule 3: the far side of a thin
+    /// body), nor from the last facet and its neighbours alone (the
+    /// search before the walk); memory exempts only its own facets. The
+    /// same with Nagata patches (the gap to the curved patch).
+    #[test]
+    fn a_node_thrown_deep_into_a_thin_sliding_master_keeps_its_facet() {
+        let (r, prof, z) = (3.0f64, 0.5, 0.2);
+        let (s, x) = die_strip([0.0, 3.0]);
+        let mut tests = 0;
+        let t = 272.5f64.to_radians();
+        let chord = r * 2.5f64.to_radians().cos();
+        let xs = [(chord - 1e-3) * t.cos(), 3.0 + (chord - 1e-3) * t.sin(), z];
+        let near = [13, 14, 15];
+        let (k, el) = s
+            .closest(&x, xs, &near, None, &[], prof, &mut tests)
+            .unwrap();
+        assert_eq!(k, 14);
+        assert!((el.gap + 1e-3).abs() < 1e-12, "{}", el.gap);
+        // the die slides 0.6 along x, the node is 0.56 inside it
+        let c1 = [0.6, 3.0];
+        let (_, x) = die_strip(c1);
+        let xs = [xs[0], xs[1] + 0.6, z];
+        let (dx, dy) = (xs[0] - c1[0], xs[1] - c1[1]);
+        let angle = dy.atan2(dx).to_degrees().rem_euclid(360.0);
+        let under = ((angle - 200.0) / 5.0).floor() as usize;
+        assert!(under + 2 <= 14, "the foot is 2+ facets away: {under}");
+        let mid = (200.0 + 5.0 * under as f64 + 2.5).to_radians();
+        let depth = chord - (dx * mid.cos() + dy * mid.sin());
+        let h = 0.4f64.max(2.0 * r * 2.5f64.to_radians().sin());
+        assert!(depth > prof.max(h), "{depth}");
+        // the last facet and its neighbours alone: lost
+        let mut around = vec![14];
+        around.extend_from_slice(&s.neighbours[14]);
+        assert!(s
+            .closest(&x, xs, &around, Some(14), &[], prof, &mut tests)
+            .is_none());
+        // no memory, every facet a candidate: not taken (too deep)
+        let all: Vec<usize> = (0..56).collect();
+        assert!(s
+            .closest(&x, xs, &all, None, &[], prof, &mut tests)
+            .is_none());
+        // from its memory: the walk reaches the facet under it
+        let mut memory = Vec::new();
+        s.memory_walk(&x, xs, 14, &mut tests, &mut memory);
+        assert!(memory.contains(&under), "{memory:?} lacks {under}");
+        assert!(memory.windows(2).all(|w| w[0] < w[1]), "{memory:?}");
+        let (k, el) = s
+            .closest(&x, xs, &memory, Some(14), &memory, prof, &mut tests)
+            .expect("kept");
+        assert_eq!((k, el.feature), (under, Feature::Face));
+        assert!((el.gap + depth).abs() < 1e-12, "{} vs {depth}", el.gap);
+        // memory exempts from the depth window only its own facets
+        let (_, e) = s
+            .closest(&x, xs, &all, Some(14), &memory, prof, &mut tests)
+            .unwrap();
+        assert!((e.gap + depth).abs() < 1e-12, "{}", e.gap);
+        assert!(s
+            .closest(&x, xs, &all, Some(14), &[14], prof, &mut tests)
+            .is_none());
+        // Nagata patches: the same rule
+        let node = 999;
+        let nagata = |cand: &[usize], exempt: &[usize], tests: &mut usize| {
+            s.closest_nagata(&x, node, xs, cand, Some(14), exempt, prof, tests)
+        };
+        let (k, e) = nagata(&memory, &memory, &mut tests).expect("kept");
+        assert_eq!(k, under);
+        assert!(
+            e.gap < -prof.max(h) && (e.gap + depth).abs() < 0.05,
+            "{}",
+            e.gap
+        );
+        assert!(nagata(&all, &[], &mut tests).is_none());
+        assert!(nagata(&all, &[14], &mut tests).is_none());
+    }
+
+    /// The walk of [`FacetSurface::memory_walk`] ends (a ring of 36
+    /// facets round the z axis, radius 1, z in [0, 1], outward normals):
+    /// on the facet holding the foot, seen from inside the tube 30 degrees
+    /// past the start facet's centre; in the wedge in front of a convex
+    /// edge (a point outside the ring on the edge between facets 9 and 10:
+    /// each foot lies past the edge towards the other facet) after one
+    /// step, without going round; at the rim (a point far past z = 1: no
+    /// facet across the free edge) at once.
+    #[test]
+    fn the_memory_walk_stops_on_the_foot_at_a_wedge_and_at_the_rim() {
+        let id = |k: usize, j: usize| k % 36 + 36 * j;
+        let faces: Vec<Facet> = (0..36)
+            .map(|k| Facet::new(&[id(k, 0), id(k + 1, 0), id(k + 1, 1), id(k, 1)]))
+            .collect();
+        let x: Vec<[f64; 3]> = (0..2)
+            .flat_map(|j| {
+                (0..36).map(move |k| {
+                    let t = (10.0 * k as f64).to_radians();
+                    [t.cos(), t.sin(), j as f64]
+                })
+            })
+            .collect();
+        let s = FacetSurface::new(&faces);
+        let polar = |r: f64, deg: f64, z: f64| {
+            let t = deg.to_radians();
+            [r * t.cos(), r * t.sin(), z]
+        };
+        let mut tests = 0;
+        let mut memory = Vec::new();
+        // inside, at 124 degrees, r 0.9: facets 9 -> 10 -> 11 -> 12, whose
+        // foot it holds (4 projections)
+        s.memory_walk(&x, polar(0.9, 124.0, 0.5), 9, &mut tests, &mut memory);
+        assert_eq!(tests, 4);
+        assert_eq!(memory, (8..=13).collect::<Vec<_>>());
+        // outside on the edge at 100 degrees: 9 -> 10, whose foot lies back
+        // past the same edge (2 projections)
+        s.memory_walk(&x, polar(2.0, 100.0, 0.5), 9, &mut tests, &mut memory);
+        assert_eq!(tests, 6);
+        assert_eq!(memory, (8..=11).collect::<Vec<_>>());
+        // far past the rim: one projection, the facet and its neighbours
+        s.memory_walk(&x, polar(1.0, 5.0, 50.0), 0, &mut tests, &mut memory);
+        assert_eq!(tests, 7);
+        assert_eq!(memory, vec![0, 1, 35]);
     }
 
     #[test]
@@ -2389,10 +2660,14 @@ pub(crate) mod tests {
         let mut tests = 0;
         let all: Vec<usize> = (0..16).collect();
         let past = [4.0 + 2.0 * FREE_EDGE_TOL, 1.5, -1e-3];
-        assert!(s.closest(&x, past, &all, None, 2.0, &mut tests).is_none());
+        assert!(s
+            .closest(&x, past, &all, None, &[], 2.0, &mut tests)
+            .is_none());
         // past a free corner too
         let corner = [4.1, 4.1, -1e-3];
-        assert!(s.closest(&x, corner, &all, None, 2.0, &mut tests).is_none());
+        assert!(s
+            .closest(&x, corner, &all, None, &[], 2.0, &mut tests)
+            .is_none());
         // within FREE_EDGE_TOL the extended facet keeps it
         let (k, el) = s
             .closest(
@@ -2400,6 +2675,7 @@ pub(crate) mod tests {
                 [4.0 + 0.5 * FREE_EDGE_TOL, 1.5, -1e-3],
                 &all,
                 None,
+                &[],
                 2.0,
                 &mut tests,
             )
@@ -2971,10 +3247,10 @@ pub(crate) mod tests {
         let s = FacetSurface::new(&faces);
         let mut tests = 0;
         assert!(s
-            .closest(&x, [1.01, 0.5, -0.01], &[0], None, 1.0, &mut tests)
+            .closest(&x, [1.01, 0.5, -0.01], &[0], None, &[], 1.0, &mut tests)
             .is_some());
         assert!(s
-            .closest(&x, [1.05, 0.5, -0.01], &[0], None, 1.0, &mut tests)
+            .closest(&x, [1.05, 0.5, -0.01], &[0], None, &[], 1.0, &mut tests)
             .is_none());
     }
 
