@@ -249,10 +249,20 @@ fn orbit_difference(a: &Probe, reference: &Probe, until: f64) -> (f64, f64, usiz
 fn blade_loss_3d_slice_follows_the_planar_orbit() {
     let (end, n) = ("6.5e-3", 20);
     let full = |src: ctc_lang::Source| {
-        let text = src
+        // each step's `dynamic {` block (not the comments quoting one)
+        let mut steps = 0;
+        let text: String = src
             .text
-            .replace("dynamic { }", "dynamic { contact_mass = full }");
-        assert_eq!(text.matches("dynamic { contact_mass = full }").count(), 2);
+            .lines()
+            .map(|l| match l.strip_prefix("  dynamic { ") {
+                Some(rest) => {
+                    steps += 1;
+                    format!("  dynamic {{ contact_mass = full {rest}\n")
+                }
+                None => format!("{l}\n"),
+            })
+            .collect();
+        assert_eq!(steps, 2, "the spin-up's and the flight's dynamic blocks");
         ctc_lang::Source::new(src.path, text)
     };
     let (planar, s2, w2) = run(&full(deck("blade_loss.ctc", end, n, "")));
