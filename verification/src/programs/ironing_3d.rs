@@ -274,6 +274,57 @@
 //! slide at cells `1 / 2^(l + 1)` against 2D mortar's (the two converge
 //! together: slide means 3.032 / 2.999 for mortar at 1/2, 1/4) and its
 //! minimum `F_n` against the press's end.
+//!
+//! ## The lateral force `F_z` of the benchmark deck at mu = 0.3 (traced)
+//!
+//! The benchmark deck (`examples/ironing_3d.ctc`, `ironing_ntf_3d`'s
+//! level 0, this program's level-1 `ntf faceted mu 0.3` row) is symmetric
+//! about the slab's mid-width plane `z = 2.6` (slab `z` 0.6..4.6 in 4
+//! cells, die 0..5.2 in 5 layers; the mirror takes the slab's top-node row
+//! `j` to `4 - j`, die facet `(layer l, arc a)` to `(4 - l, a)`), so `F_z`
+//! is round-off. With the memory rule (ff1057d) it was 1e-3..6e-3 from `t
+//! = 1.6` (before it, up to 4.6e-7: already above round-off). Traced
+//! (`CTC_LOG=debug ctc run -v --threads 1` of the example, every closed
+//! node's `node:facet:gap` per evaluation compared with its mirror's): the
+//! converged states of slide increments 1..18 are mirror images (facets
+//! mirrored, gaps equal to the log's 4 digits, `F_z` <= 2.8e-8); the
+//! first iterate of increment 19 is not (node 75 closed at -8.2e-4 on
+//! facet 50, its mirror 155 open), and the increment converged with
+//! mirror nodes 0.13 apart (74 / 154), three of them on facets one arc
+//! apart (32 / 192 on facets 8 / 119, 33 / 193 on 13 / 124, 74 / 154 on
+//! 46 / 101), `F_z` 6.0e-3, then 1.3e-3..1.6e-3 to the end. Not the
+//! search: up to the diverging iterate no node was matched off its
+//! mirror's facet, and no memory facet was kept past a closer one. The
+//! cause was the tangent of the increment's first step: a node that
+//! slipped in increment 18 starts increment 19 from the stick point the
+//! return map left, so its trial force lies on the cone `mu R_N` to
+//! round-off and `|t*| <= mu R_N` chose stick (tangent `k_T` along the
+//! surface) or slip (none) by the last bits; mirror nodes got different
+//! tangents, the first steps differed, and the path-dependent answer
+//! (first-touch stick points, the seam rule) kept the difference. A trial
+//! within [`ctc_engine::contact::friction_facet::CONE_TIE`] (1e-9) below
+//! the cone now slips (test
+//! `a_node_that_slipped_starts_the_next_increment_slipping_whatever_the_round_off`).
+//! Measured (`ctc run --threads 1` of the example deck, debug; `ctc
+//! verify NAME --max-level 0 -j 1 --json`):
+//!
+//! | run | before | after |
+//! |---|---|---|
+//! | example: increments / its / cutbacks | 28 / 339 / 1 | 27 / 266 / 0 |
+//! | example: largest `|F_z|` | 6.0e-3 | 1.9e-13 |
+//! | `ironing_ntf_3d`: `F_n` oscillation | 0.136 | 0.0913 |
+//! | `ironing_ntf_3d`: `F_t / F_n`, `F_t` oscillation | 0.3930, 0.132 | 0.3898, 0.132 |
+//! | `ironing_3d` level 0: increments / its / cutbacks | 14 / 119 / 1 | 16 / 134 / 3 |
+//! | `ironing_3d` level 0: `F_t / F_n`, its per slide increment | 0.3024, 8.18 | 0.2998, 5.80 |
+//! | `friction_blocks_ntf_3d`: its | 751 | 683 |
+//!
+//! (`ironing_ntf_3d`'s `F_n` oscillation is back to its 0.093 before the
+//! memory rule: the 0.136 was the asymmetric path. `ironing_3d` level 0
+//! now cuts back twice in its third press increment, the press cycle of
+//! the cycling guard above; its slide is cheaper.) The other tie rule
+//! (a trial on the cone to round-off sticks) is as deterministic but
+//! slower where nodes keep sliding: example 39 / 486 / 3, blocks 766,
+//! `ironing_3d` level 0 11 / 101 / 0.
 
 use super::friction_ntf_3d::Rows;
 use super::{error, value};
