@@ -325,6 +325,61 @@
 //! (a trial on the cone to round-off sticks) is as deterministic but
 //! slower where nodes keep sliding: example 39 / 486 / 3, blocks 766,
 //! `ironing_3d` level 0 11 / 101 / 0.
+//!
+//! ## `F_t / F_n` at mu = 0.3: node-to-facet vs mortar (traced)
+//!
+//! The 0.393 (node-to-facet) against 0.287 (mortar) of the last closing
+//! note compared two decks: 0.393 is the benchmark's (press 1.4), 0.287
+//! level 0's (press 0.5). On one deck the two differ by 4 % (level 0)
+//! and 15 % (the benchmark). The split, per converged increment from the
+//! contact CSVs (`ctc run --threads 1`, debug; per closed slab node the
+//! `force` minus its `tangential` part is the normal force `N`; `F_x =
+//! sum N_x + sum T_x`, `F_n = -(sum N_y + sum T_y)`; means over `t >
+//! 1.25` of the per-increment ratios, as [`run_variant`]'s `F_t / F_n`):
+//!
+//! | deck | slab cells | `F_t / F_n` | normal part `N_x / F_n` | friction part `T_x / F_n` |
+//! |---|---|---|---|---|
+//! | level 0, node-to-facet | 6 x 3 x 2 | 0.2998 | +0.0007 | 0.2991 |
+//! | level 0, mortar | 6 x 3 x 2 | 0.2870 | -0.0135 | 0.3005 |
+//! | level 0, node-to-facet | 12 x 6 x 4 | 0.2874 | -0.0089 | 0.2963 |
+//! | level 0, mortar | 12 x 6 x 4 | 0.2854 | -0.0128 | 0.2982 |
+//! | benchmark, node-to-facet | 9 x 3 x 4 | 0.3898 | +0.0858 | 0.3040 |
+//! | benchmark, mortar | 9 x 3 x 4 | 0.3394 | +0.0343 | 0.3051 |
+//! | benchmark, node-to-facet | 18 x 6 x 8 | 0.3598 | +0.0578 | 0.3020 |
+//!
+//! - The friction parts agree (to 1 %), the difference is all in the
+//!   normal forces' x-component (the ploughing). Coulomb holds node by
+//!   node in both: node-to-facet's slipping nodes carry `|T| = mu |N|`
+//!   to 7e-16; a mortar node carries `|T| = mu R_N A_j / T_j` and `|N| =
+//!   R_N |sum_e D_jj n_e| / T_j`, so `|T| / (mu |N|) = A_j / |sum_e D_jj
+//!   n_e| >= 1` (the facet normals of the node's support turn: 1 + 1.4e-2
+//!   at most on level 0's slab, 5e-3 on the refined one), the same
+//!   pressure integrated over the support, its normals summed.
+//! - The normal: node-to-facet takes the master's (the die's facet, or its
+//!   edge's), mortar the slave's (the slab's nodal normal, `-sum_e D_jj
+//!   n_e`); each takes one normal for its gap, its normal force and its
+//!   friction's tangent plane. Under a convex die the slab's 1-cell
+//!   facets are chords, so the two normals differ by up to half a chord's
+//!   angle and the normal forces' x-parts differ with them.
+//! - Which is right: refining the slab (cells halved; die unchanged)
+//!   moves node-to-facet onto mortar (level 0: 0.2998 -> 0.2874, mortar
+//!   0.2870 -> 0.2854; the normal part +0.0007 -> -0.0089 against
+//!   mortar's -0.0135 -> -0.0128), and on the benchmark node-to-facet
+//!   goes 0.3898 -> 0.3598 (its normal part 0.086 -> 0.058, against
+//!   mortar's 0.034 on the coarse slab; the refined run: 41 increments,
+//!   621 iterations, 5 cutbacks, 116 s CPU; `ironing_ntf_3d` level 1,
+//!   with the die's facets halved too, gave 0.354 before the memory
+//!   rule; mortar on the refined benchmark slab was not run, ~8x its
+//!   191 s). Mortar, whose weighted gap and normal
+//!   average over each node's support, moves least: on these coarse
+//!   slabs it is the closer one, and node-to-facet's excess over it is
+//!   its discretization error, which the refinement shrinks (level 0:
+//!   0.0128 -> 0.0020). Not a defect.
+//! - Against mu: the friction part is mu (0.296..0.305), the normal part
+//!   is the die's ploughing: negative at the shallow press (the slab
+//!   carries more pressure behind the die's axis), +3.4 % of `F_n` for
+//!   mortar at the benchmark's 1.4. `F_t / F_n` of the benchmark is mu
+//!   plus 0.034..0.086 of ploughing; mortar's 0.34 is the better figure.
 
 use super::friction_ntf_3d::Rows;
 use super::{error, value};
