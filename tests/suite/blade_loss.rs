@@ -192,8 +192,8 @@ fn body_mass(model: &Model, body: usize) -> f64 {
 }
 
 /// `examples/blade_loss.ctc` with its flight ended at 10 ms (160
-/// increments of 25 us): the deck's 20 ms take ~35 s CPU in debug (`ctc
-/// run`, 664 increments), too long for every CI run; the tests (this one
+/// increments of 25 us): the deck's 20 ms take ~45 s CPU in debug (`ctc
+/// run`, 657 increments), too long for every CI run; the tests (this one
 /// and the examples' summary) run the first 10 ms (9 s CPU). Not the
 /// same bits as the 20 ms run's first 10 ms: the prescribed angle's
 /// table (`rigid_body::angle_of`) is sampled over the whole analysis, so
