@@ -1006,9 +1006,7 @@ pub static DYNAMIC: [Key; 14] = [
         "largest energy one increment may create, relative to the largest energy of the run: \
          a converged increment whose kinetic energy, internal and damping work and stored \
          penalty energy (1/2 f_n (-g) of the closed contact nodes) grow by more than the work \
-         of the loads and supports and the scheme's numerical dissipation of the other forces \
-         than the contact's (generalized-alpha's, of either sign per increment) plus this share \
-         is redone at 0.9 dt sqrt(energy_tol / \
+         of the loads and supports plus this share is redone at 0.9 dt sqrt(energy_tol / \
          created) (at least dt / 4), and the next increment is kept below the same bound \
          (adaptive or not): penalty contact whose springs give back more than they stored (a \
          node released from deeper than it closed through, chatter) is resolved in time \

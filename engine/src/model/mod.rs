@@ -1113,9 +1113,8 @@ pub struct Dynamic {
     /// largest energy of the run (`dynamic { energy_tol }`; `None`: no
     /// control): an increment whose kinetic energy, internal and damping
     /// work and stored penalty energy grow by more than the work of the
-    /// loads and supports and the scheme's numerical dissipation of the
-    /// other forces than the contact's plus this share is redone smaller,
-    /// and the next size is kept below it (`solve::stepping`,
+    /// loads and supports plus this share is redone smaller, and the next
+    /// size is kept below it (`solve::stepping`,
     /// `solve::dynamics::Energy::created_since`).
     pub energy_tol: Option<f64>,
 }

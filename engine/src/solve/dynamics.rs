@@ -204,12 +204,6 @@ pub struct Energy {
     /// energy control of dynamic steps weighs (`dynamic { energy_tol }`,
     /// [`Energy::created_since`]).
     pub penalty: f64,
-    /// The contact forces' share of `numerical`, summed over the
-    /// increments: [`numerical_dissipation`]'s `-(af - 1/2) (f1 - f0) .
-    /// du` of the contact forces alone, the energy a penalty force switched
-    /// on or off within an increment takes (negative: gives) through the
-    /// scheme's `alpha_f` weighting ([`Energy::created_since`]).
-    pub numerical_contact: f64,
 }
 
 /// The committed state of the integrator in a restart point
@@ -251,28 +245,19 @@ impl Energy {
             self.numerical,
             self.error,
             self.penalty,
-            self.numerical_contact,
         ]
     }
 
     /// The energy created from the committed audit `before` to this one:
     /// the growth of the kinetic energy, the internal and damping work and
     /// the stored penalty energy beyond the work of the loads and supports
-    /// and the scheme's numerical dissipation of the other forces than the
-    /// contact's, `d(error + contact + penalty - numerical_contact)`.
-    /// Positive: the contact forces gave the bodies more than their
-    /// springs stored (a penalty released from a deeper penetration than
-    /// it was loaded through, directly or through the scheme's `alpha_f`
-    /// weighting of a force switched within the increment), or the audit
-    /// does not close. The rest of the numerical dissipation is not
-    /// counted: generalized-alpha is monotone in its own energy, not in
-    /// `K + U`, and its dissipation of `K + U` per increment takes either
-    /// sign (a spin-up from rest without contact, the planar blade loss's:
-    /// +2.9e-4, -1.5e-4, +7.7e-4 mJ in successive increments; counted as
-    /// creation it made `energy_tol = 1e-4` redo 597 of 1098 increments).
+    /// (`gain + penalty`). Positive: the contact forces gave the bodies
+    /// more than their springs stored (a penalty released from a deeper
+    /// penetration than it was loaded through) or the integrator created
+    /// energy; a consistent increment keeps it at or below 0 (the scheme's
+    /// numerical dissipation).
     pub fn created_since(&self, before: &Energy) -> f64 {
-        let own = |e: &Energy| e.error + e.contact + e.penalty - e.numerical_contact;
-        own(self) - own(before)
+        (self.gain + self.penalty) - (before.gain + before.penalty)
     }
 
     /// Closes an increment's audit once its totals (kinetic, internal,
@@ -297,23 +282,17 @@ impl Energy {
     }
 
     /// The inverse of [`Energy::values`] (`None`: a wrong count; the ten
-    /// or eleven values of restart points written before the penalty
-    /// energy and the contact's numerical dissipation were kept read with
-    /// 0 for them).
+    /// values of restart points written before the penalty energy was
+    /// kept read with a penalty energy of 0).
     pub fn from_values(v: &[f64]) -> Option<Self> {
         let (
             &[kinetic, internal, external, contact, damping, balance, gain, scale, numerical, error],
             penalty,
-            numerical_contact,
-        ) = (
-            v.get(..10)?,
-            v.get(10).copied().unwrap_or(0.0),
-            v.get(11).copied().unwrap_or(0.0),
-        )
+        ) = (v.get(..10)?, v.get(10).copied().unwrap_or(0.0))
         else {
             return None;
         };
-        if v.len() > 12 {
+        if v.len() > 11 {
             return None;
         }
         Some(Energy {
@@ -328,7 +307,6 @@ impl Energy {
             numerical,
             error,
             penalty,
-            numerical_contact,
         })
     }
 }
@@ -1265,7 +1243,6 @@ impl Dynamics {
         let mut external = forces[1].to_vec();
         let mut forces = forces;
         let mut numerical = 0.0;
-        let mut numerical_contact = 0.0;
         let mut rates = None;
         if let Some((k, dt)) = self.active {
             let a1 = self.acceleration(&k, dt, u, u0);
@@ -1299,15 +1276,6 @@ impl Dynamics {
                 u0,
                 |x, out| self.mass_times(model, x, out),
             );
-            // its contact share: the contact forces enter the net force
-            // as `-f_c`
-            numerical_contact = (k.alpha_f - 0.5)
-                * forces[2]
-                    .iter()
-                    .zip(&self.forces0[2])
-                    .zip(u.iter().zip(u0))
-                    .map(|((f1, f0), (u1, u0))| (f1 - f0) * (u1 - u0))
-                    .sum::<f64>();
             rates = Some((v1, a1));
         }
         let mut work = [0.0; FORCES];
@@ -1333,7 +1301,6 @@ impl Dynamics {
             None => self.kinetic_of_rest(model),
         };
         e.numerical += numerical;
-        e.numerical_contact += numerical_contact;
         e.close(self.kinetic0);
         Audit {
             rates,

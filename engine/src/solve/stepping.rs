@@ -51,9 +51,7 @@
 //! not): after each converged attempt the energy the increment would
 //! create ([`IncrementSolver::energy_created`]: the growth of the kinetic
 //! energy, internal and damping work and stored penalty energy beyond the
-//! work of the loads and supports and the scheme's numerical dissipation
-//! of the other forces than the contact's,
-//! `dynamics::Energy::created_since`) is
+//! work of the loads and supports, `dynamics::Energy::created_since`) is
 //! compared with `energy_tol` times the largest energy of the run: above
 //! it the increment is redone with `0.9 dt sqrt(energy_tol scale /
 //! created)` (at least a quarter of it, at least the smallest size;

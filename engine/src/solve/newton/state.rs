@@ -89,9 +89,7 @@ where
     /// The energy the last converged attempt of a dynamic increment would
     /// create if committed ([`crate::solve::dynamics::Energy::created_since`]:
     /// the growth of the kinetic energy, internal and damping work and
-    /// stored penalty energy beyond the work of the loads and supports and
-    /// the scheme's numerical dissipation of the other forces than the
-    /// contact's),
+    /// stored penalty energy beyond the work of the loads and supports),
     /// the scale it is weighed against (the largest energy of the run,
     /// this attempt's included) and where (words: the node whose contact
     /// forces did the most work in the attempt, its gap at the end). `None`:
@@ -142,15 +140,11 @@ where
         if crate::contact::log::debug_enabled() {
             eprintln!(
                 "energy control: t = {:.6e}: created {created:.4e} (contact work {:.4e}, \
-                 penalty energy {:.4e} -> {:.4e}, the contact's numerical dissipation {:.4e}, \
-                 audit error {:.4e} -> {:.4e}; balance {:.4e} -> {:.4e}), scale {scale:.4e}; {at}",
+                 penalty energy {:.4e} -> {:.4e}, balance {:.4e} -> {:.4e}), scale {scale:.4e}; {at}",
                 self.attempt.1,
                 audit.energy.contact - dy.energy.contact,
                 dy.energy.penalty,
                 audit.energy.penalty,
-                audit.energy.numerical_contact - dy.energy.numerical_contact,
-                dy.energy.error,
-                audit.energy.error,
                 dy.energy.balance,
                 audit.energy.balance,
             );
