@@ -228,6 +228,13 @@ impl VerifyCase {
     }
 }
 
+/// The cases whose default level the `ctc` crate's cargo tests run (the
+/// run shared with the examples test's summary of the deck, and judged
+/// by the case's checks there): the catalogue test of this crate
+/// (`cases_coarse`) leaves them out, so that `cargo test` runs each
+/// flight once. `ctc verify` runs them as any other case.
+pub const RUN_BY_THE_CTC_SUITE: &[&str] = &["blade_loss", "blade_loss_3d"];
+
 /// Every case, in report order.
 pub fn all() -> Vec<VerifyCase> {
     let mut v: Vec<VerifyCase> = crate::cases::all()

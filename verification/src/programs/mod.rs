@@ -4,6 +4,8 @@
 //! comparisons with other codes. Each file opens with its reference and
 //! registers its cases in [`all`]; the cargo tests run the same entries.
 
+pub mod blade_loss;
+pub mod blade_loss_3d;
 pub mod blankholder;
 pub mod cattaneo;
 pub mod contact_3d;
@@ -130,6 +132,8 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(skin_pass::cases());
     v.extend(tube_bulge::cases());
     v.extend(superplastic_3d::cases());
+    v.extend(blade_loss::cases());
+    v.extend(blade_loss_3d::cases());
     v
 }
 
