@@ -159,3 +159,88 @@ step vibrate {
     // kinetic energy of the total mass 8 (4 cell + 4 point) at v0 = 1
     assert!((e.kinetic + e.internal - 4.0).abs() < 1e-11, "{e:?}");
 }
+
+/// `history.csv`'s `friction_work[..]` column is the friction work of
+/// each increment, not a running total (the energy columns beside it are
+/// totals since the start): its rows are the summary's increments'
+/// `friction_work`, its sum summary.json's `friction_work`, and `ctc doc
+/// outputs` says so. The 3D tube's "8.1e-3 mJ from history.csv against
+/// the case's 128 mJ" (stop 50's NOT-done list) was the column's last row:
+/// `ctc run examples/dynamic_buckling_3d.ctc` (debug, --threads 1): the
+/// last row 2.03e-3 mJ (x 4 for the full tube: 8.1e-3), the column's sum
+/// 32.107 mJ (x 4: 128.4 mJ, the case's sum of the die nodes'
+/// dissipations), summary.json's `friction_work` 32.107 mJ. The deck: a
+/// block (1 x 1 x 0.5, rho 1e-3) pressed on a rigid floor (tz = -1, mu =
+/// 0.3) slides at vx = 2 and is stopped by friction within the 16
+/// increments (as `robust_restart`'s).
+#[test]
+fn history_friction_work_is_per_increment() {
+    let text = "analysis { dimension = 3d }
+material soft { elastic { E = 1e5  nu = 0 }  density = 1e-3 }
+body block {
+  mesh = box { size = (1, 1, 0.5)  divisions = (2, 2, 1) }
+  material = soft
+}
+tool floor = plane { point = (0, 0, 0)  normal = (0, 0, 1) }
+contact block.zmin -> floor {
+  method = penalty { kind = area  stiffness = 1e7 }
+  friction = coulomb { mu = 0.3 }
+  prof = 0.1
+}
+traction block.zmax { tz = -1 }
+initial_velocity block.all { vx = 2 }
+step slide { time = 0 .. 0.004  increments = 16  dynamic { }  newton { tol = 1e-9 } }
+output { every = 4 }
+";
+    let source = ctc_lang::Source::new(std::path::Path::new("slide.ctc"), text.to_string());
+    let model = match ctc_lang::compile_any(&source) {
+        Ok(ctc_engine::model::AnyModel::D3(m)) => m,
+        Ok(_) => panic!("a 3d deck"),
+        Err(d) => panic!("{}", d.render(&source)),
+    };
+    let tmp = tempfile::tempdir().unwrap();
+    let mut w = ResultWriter::create(tmp.path(), &model).unwrap();
+    let summary = solve::run(&model, &mut w).unwrap();
+    w.finish(&summary).unwrap();
+    let history = std::fs::read_to_string(tmp.path().join("history.csv")).unwrap();
+    let mut lines = history.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<f64>> = lines
+        .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+        .collect();
+    let col = |name: &str| {
+        let k = header
+            .iter()
+            .position(|h| h.starts_with(name))
+            .unwrap_or_else(|| panic!("no column {name} in {header:?}"));
+        rows.iter().map(|r| r[k]).collect::<Vec<f64>>()
+    };
+    let friction = col("friction_work[");
+    assert_eq!(friction.len(), summary.increments.len());
+    for (row, inc) in friction.iter().zip(&summary.increments) {
+        assert_eq!(*row, inc.friction_work[0]);
+    }
+    let total: f64 = friction.iter().sum();
+    assert!(
+        friction.iter().filter(|w| **w > 0.0).count() >= 5,
+        "{friction:?}"
+    );
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(tmp.path().join("summary.json")).unwrap())
+            .unwrap();
+    let reported = json["friction_work"][0].as_f64().unwrap();
+    assert!(
+        (reported - total).abs() <= 1e-12 * total,
+        "summary.json {reported} vs the column's sum {total}"
+    );
+    assert!(*friction.last().unwrap() < 0.5 * total, "{friction:?}");
+    // the energy columns are totals: the last row is the run's
+    let e = summary.energy.unwrap();
+    assert_eq!(*col("contact_work").last().unwrap(), e.contact);
+    let doc = ctc_lang::reference::doc(Some("outputs")).unwrap();
+    assert!(
+        doc.contains("the friction work of the increment per pair")
+            && doc.contains("totals since the start"),
+        "{doc}"
+    );
+}
