@@ -361,7 +361,11 @@ fn blade_loss_3d_whirl_friction_and_energy() {
     // error 2.57e-5 of the largest K (2.84e6 mJ), the balance 2.24e-4, the
     // numerical dissipation 2.40e-4; the released blade's root at least
     // 99.936 mm from the shaft (the rim at 100), 100.416 at 7 ms (before:
-    // 5.30e4 / 5.97e4, 2.37e-5, 100.136 / 100.562)
+    // 5.30e4 / 5.97e4, 2.37e-5, 100.136 / 100.562); with the energy
+    // control on the spin-up too (the default; its first increment redone
+    // at t = 0): 103 increments, 450 iterations, 2 cutbacks, friction work
+    // 3.35e4 mJ (the return map's 4.27e4), energy error 3.42e-6 of K
+    // (2.85e6 mJ), root radius >= 100.046
     assert!(friction_total > 0.0, "the released blade rubs");
     assert!(
         (friction_total - free.dissipation).abs() <= 1e-9 * friction_total,
@@ -373,7 +377,13 @@ fn blade_loss_3d_whirl_friction_and_energy() {
         "friction vs mu R_N slip {friction_error:e}"
     );
     assert!(error < 1e-4, "energy error {error:e}");
-    assert!(numerical > 0.0, "numerical dissipation {numerical:e}");
+    // the scheme's dissipation of K + U is not signed under a varying
+    // step and nonlinear forces: `ctc run` of the deck to 20 ms dips to
+    // -1.9e2 mJ (6e-5 of K, at 6.2 ms) with the energy control of both
+    // steps (the default), -1.6e2 mJ without it on the spin-up; to 7 ms
+    // here -1.22e-5 of K with the default (+2.40e-4 before it); over the
+    // flight it dissipates (+4.5e4 mJ by 20 ms)
+    assert!(numerical > -1e-4, "numerical dissipation {numerical:e}");
     // the disc's rim is at 100 mm
     assert!(
         root_min > 99.0,
