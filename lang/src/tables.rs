@@ -1010,9 +1010,10 @@ pub static DYNAMIC: [Key; 14] = [
          created) (at least dt / 4), and the next increment is kept below the same bound \
          (adaptive or not): penalty contact whose springs give back more than they stored (a \
          node released from deeper than it closed through, chatter) is resolved in time \
-         instead of feeding the bodies (e.g. 1e-3); absent: no control",
+         instead of feeding the bodies; only increments in which contact forces act are \
+         weighed (a run without contact is not touched); absent: 1e-3; 0: no control",
     )
-    .range(Range::Positive)
+    .range(Range::NonNegative)
     .dim(Dim::None),
 ];
 

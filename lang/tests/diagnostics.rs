@@ -38,6 +38,7 @@ decks!(
     rate_laws,
     pressure_control_errors,
     negative_thickness,
+    energy_tol_negative,
     zero_divisions,
     empty_time_range,
     unknown_tool,

@@ -205,7 +205,11 @@ fn blade_loss_3d_whirl_friction_and_energy() {
     // energy error 5.7e-6 of the largest K (2.84e6 mJ), the balance
     // 2.35e-4, the numerical dissipation 2.41e-4; the released blade's
     // root at least 99.936 mm from the shaft (the rim at 100), 100.419 at
-    // 7 ms; orbit up to 0.574 mm
+    // 7 ms; orbit up to 0.574 mm. With the energy control on the spin-up
+    // too (the default since 31bad3b; its first increment redone at t =
+    // 0): 103 increments, 450 iterations, 2 cutbacks, friction work 3.35e4
+    // mJ (the return map's 4.27e4), energy error 3.42e-6 of K (2.85e6
+    // mJ), the numerical dissipation -1.22e-5 of K, root radius >= 100.046
     let case = registry::find("blade_loss_3d").expect("the case");
     let judged = runner::judge(&case.checks, 0, m.values());
     for v in &judged {
@@ -222,7 +226,12 @@ fn blade_loss_3d_whirl_friction_and_energy() {
         "every check judged"
     );
     assert!(m.friction_total > 0.0, "the released blade rubs");
-    assert!(m.numerical > 0.0, "numerical dissipation {:e}", m.numerical);
+    // the scheme's dissipation of K + U is not signed under a varying
+    // step and nonlinear forces: `ctc run` of the deck to 20 ms dips to
+    // -1.9e2 mJ (6e-5 of K, at 6.2 ms) with the energy control of both
+    // steps (the default), -1.6e2 mJ without it on the spin-up; over the
+    // flight it dissipates (+4.5e4 mJ by 20 ms)
+    assert!(m.numerical > -1e-4, "numerical dissipation {:e}", m.numerical);
 }
 
 /// `contact_mass = redistributed` (the decks' default in dynamics) keeps

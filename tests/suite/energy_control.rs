@@ -23,8 +23,9 @@
 //!         (8 % of the kinetic energy 0.5): the audit's alarm
 //! ```
 //!
-//! With `energy_tol = 1e-3` the release is redone smaller and the block
-//! leaves with at most the energy it came with.
+//! With `energy_tol = 1e-3` (the default: `energy_tol = 0` turns it off)
+//! the release is redone smaller and the block leaves with at most the
+//! energy it came with.
 
 use ctc_engine::model::Model;
 use ctc_engine::solve::{self, Observer, RunSummary};
@@ -60,7 +61,7 @@ fn a_penalty_release_that_creates_energy_is_redone_smaller() {
     let k0 = 0.5;
     // without the control: the release increment creates energy, the
     // block leaves faster than it came, the audit warns
-    let plain = run("");
+    let plain = run("energy_tol = 0");
     let e = plain.energy.expect("the run's audit");
     assert!(e.gain > 0.05 * k0, "{e:?}");
     assert!(e.kinetic > k0, "{e:?}");
@@ -105,4 +106,24 @@ fn a_penalty_release_that_creates_energy_is_redone_smaller() {
     let e = controlled.energy.expect("the run's audit");
     assert!(e.gain < 1e-3 * k0 && e.kinetic < k0, "{e:?}");
     assert!(controlled.warnings.is_empty(), "{:?}", controlled.warnings);
+}
+
+#[test]
+fn the_energy_control_is_on_by_default_and_off_at_zero() {
+    // absent: the same run as `energy_tol = 1e-3`, bit for bit
+    let default = run("");
+    let explicit = run("energy_tol = 1e-3");
+    assert!(default.cutbacks > 0, "the default redid nothing");
+    assert_eq!(default.cutbacks, explicit.cutbacks);
+    let x = |s: &RunSummary| -> Vec<u64> {
+        s.increments
+            .iter()
+            .map(|r| r.energy.expect("audit").kinetic.to_bits())
+            .collect()
+    };
+    assert_eq!(x(&default), x(&explicit));
+    // 0: no control, the release creates energy
+    let off = run("energy_tol = 0");
+    assert_eq!(off.cutbacks, 0);
+    assert!(off.energy.expect("audit").kinetic > 0.5);
 }

@@ -47,8 +47,10 @@
 //! the strain energy only while increments turn the bodies by small
 //! angles (see `solve::cell_rotation`).
 //!
-//! Energy control of dynamic steps (`dynamic { energy_tol }`, adaptive or
-//! not): after each converged attempt the energy the increment would
+//! Energy control of dynamic steps (`dynamic { energy_tol }`, absent
+//! [`crate::model::DEFAULT_ENERGY_TOL`], adaptive or not): after each
+//! converged attempt in which contact forces act (at its start or end)
+//! the energy the increment would
 //! create ([`IncrementSolver::energy_created`]: the growth of the kinetic
 //! energy, internal and damping work and stored penalty energy beyond the
 //! work of the loads and supports, `dynamics::Energy::created_since`) is

@@ -105,6 +105,12 @@ fn dynamic(d: &ast::Dynamic, dt0: f64, min_fraction: f64) -> Dynamic {
                 error_tol: v(&d.error_tol, 1e-2),
             }),
         max_rotation: d.max_rotation.as_ref().map(|m| m.value),
-        energy_tol: d.energy_tol.as_ref().map(|m| m.value),
+        // absent: the default; 0: no control
+        energy_tol: d
+            .energy_tol
+            .as_ref()
+            .map_or(Some(ctc_engine::model::DEFAULT_ENERGY_TOL), |m| {
+                (m.value > 0.0).then_some(m.value)
+            }),
     }
 }

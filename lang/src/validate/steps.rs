@@ -153,7 +153,7 @@ pub fn dynamic_parameters_fit_scheme(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
     }
     ctx.must_be_positive(&d.beta, "beta");
     ctx.must_be_positive(&d.max_rotation, "max_rotation");
-    ctx.must_be_positive(&d.energy_tol, "energy_tol");
+    energy_tol_not_negative(d, ctx);
     rayleigh_damping_not_negative(d, ctx);
     adaptive_bounds(d, ctx);
 }
@@ -260,6 +260,16 @@ pub fn dynamic_bodies_have_density(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
                 .with_help("write e.g. `material steel { elastic { E = 210e9  nu = 0.3 }  density = 7800 }`"),
             );
         }
+    }
+}
+
+/// `energy_tol >= 0` (0: no energy control; absent: the default).
+pub fn energy_tol_not_negative(d: &ast::Dynamic, ctx: &mut Ctx<'_>) {
+    if let Some(e) = d.energy_tol.as_ref().filter(|e| e.value < 0.0) {
+        ctx.err(
+            Diagnostic::error("energy_tol must not be negative", e.span, "must be >= 0")
+                .with_help("energy_tol = 0 turns the energy control off; absent, it is 1e-3"),
+        );
     }
 }
 
