@@ -231,7 +231,11 @@ fn blade_loss_3d_whirl_friction_and_energy() {
     // -1.9e2 mJ (6e-5 of K, at 6.2 ms) with the energy control of both
     // steps (the default), -1.6e2 mJ without it on the spin-up; over the
     // flight it dissipates (+4.5e4 mJ by 20 ms)
-    assert!(m.numerical > -1e-4, "numerical dissipation {:e}", m.numerical);
+    assert!(
+        m.numerical > -1e-4,
+        "numerical dissipation {:e}",
+        m.numerical
+    );
 }
 
 /// `contact_mass = redistributed` (the decks' default in dynamics) keeps
