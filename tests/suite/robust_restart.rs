@@ -248,8 +248,10 @@ fn restart_mortar_friction_matches_uninterrupted_run() {
             ("radial = 12", "radial = 5"),
         ],
     );
+    // (8 increments since the mortar friction's cone tie: a trial on the
+    // cone to round-off slips; 11 with 2 cutbacks in the press before it)
     let (from, n) = restart_matches(&model, 7);
-    assert_eq!((from, n), (6, 11));
+    assert_eq!((from, n), (6, 8));
 }
 
 #[test]

@@ -33,6 +33,7 @@ pub fn all() -> Vec<Case> {
         hertz_two_spheres_mortar(),
         hertz_two_cylinders_nts_nonmatching(),
         hertz_two_cylinders_nts_smoothed(),
+        hertz_two_spheres_nts_smoothed(),
         hertz_two_cylinders_nts_lagrange(),
     ]
 }
@@ -316,6 +317,56 @@ pub fn hertz_two_cylinders_nts_smoothed() -> Case {
             &[0.04, 0.025, 0.02],
             &[0.1, 0.055, 0.03],
             Some(0.7),
+        ),
+    }
+}
+
+/// The axisymmetric twin of `hertz_two_cylinders_nts_smoothed`: the deck of
+/// `hertz_two_spheres_mortar` with node-to-segment contact, modified double
+/// pass and nodal normal smoothing.
+pub fn hertz_two_spheres_nts_smoothed() -> Case {
+    Case {
+        name: "hertz_two_spheres_nts_smoothed",
+        title: "Hertz: two elastic spheres, non-matching arcs, node-to-segment modified double \
+                pass, nodal normal smoothing, axisymmetric",
+        source: "VERIFICATION-CASES.md §2; Johnson, Contact Mechanics §4.2 (E*, R combined)",
+        deck: "hertz_two_spheres_nts_smoothed.ctc",
+        tags: &[
+            "contact",
+            "hertz",
+            "node_to_segment",
+            "smoothing",
+            "two_bodies",
+            "penalty",
+            "axisymmetric",
+            "closed_form",
+        ],
+        levels: 3,
+        reference: Reference::HertzSphere {
+            young: 1e3,
+            poisson: 0.3,
+            radius: 1.0,
+            pair: 0,
+        },
+        // Measured (`ctc verify hertz_two_spheres_nts_smoothed --max-level
+        // 2 -j 1`, debug, 1.4 s CPU for the three levels): a 1.5e-1 3.0e-2
+        // 2.6e-3 (the last closed node: the edge within one cell, as for
+        // the cylinders); a (moment) 3.2e-2 1.4e-2 2.8e-3 (rates 1.18,
+        // 2.11); p0 4.2e-3 1.1e-2 1.1e-2 (high, no rate: a plateau at +1.1
+        // %); L2 9.9e-2 4.0e-2 1.6e-2 (rates 1.30, 1.20); Newton 26 / 32 /
+        // 40. Where the plateau is (level 2, `ctc run` of the deck refined
+        // to radial 32, circumferential 64, the contact CSV of the last
+        // increment): the two axis nodes coincide and carry the reported
+        // peak, +1.1 % over Hertz (the cylinders' +1.7 %: equal gaps, loads
+        // split by area); every other interface pressure of the first 12
+        // is within -1.0 % .. -0.2 % of Hertz's at its radius. Issue 18's 2
+        // % at the finest level holds.
+        checks: hertz_checks(
+            &[0.2, 0.04, 0.01],
+            &[0.04, 0.02, 0.005],
+            &[0.01, 0.015, 0.015],
+            &[0.12, 0.05, 0.02],
+            Some(1.0),
         ),
     }
 }

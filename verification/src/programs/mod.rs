@@ -51,6 +51,7 @@ pub mod rigid_body_3d;
 pub mod self_contact_3d;
 pub mod self_contact_patch;
 pub mod skin_pass;
+pub mod sliding_cylinder;
 pub mod solid;
 pub mod solid_patch;
 pub mod superplastic_3d;
@@ -111,6 +112,7 @@ pub fn all() -> Vec<VerifyCase> {
     v.extend(friction_ntf_3d::cases());
     v.extend(nagata_3d::cases());
     v.extend(ironing_3d::cases());
+    v.extend(sliding_cylinder::cases());
     v.extend(self_contact_3d::cases());
     v.extend(self_contact_patch::cases());
     v.extend(traction_3d::cases());

@@ -45,6 +45,7 @@
 
 use super::integrals::MortarSegment;
 use crate::contact::friction::{FrictionStatus, NodeFriction};
+use crate::contact::friction_facet::CONE_TIE;
 
 /// Coefficients `(node, c)` of a linear combination of node positions.
 pub type Coefficients = Vec<(usize, f64)>;
@@ -209,7 +210,11 @@ pub fn respond(
     let g_t = s - law.anchor;
     let trial = law.shift - law.alpha_t * g_t;
     let limit = law.mu * law.normal_force;
-    let (rt, drt, status): (f64, Vec<f64>, _) = if trial.abs() <= limit && limit > 0.0 {
+    // a trial within `CONE_TIE` below the cone slips (node-to-facet's tie
+    // rule: a node that slipped starts the next increment on the cone to
+    // round-off, and its tangent must not depend on the last bits)
+    let inside = trial.abs() <= limit * (1.0 - CONE_TIE) && limit > 0.0;
+    let (rt, drt, status): (f64, Vec<f64>, _) = if inside {
         let d = ds_dx.iter().map(|v| -law.alpha_t * v).collect();
         (trial, d, FrictionStatus::Stick)
     } else {
@@ -270,5 +275,44 @@ pub fn respond(
         tangent,
         position: s,
         anchor: law.anchor + ds,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The 2D twin of `friction3d`'s tie test: a node that slipped starts
+    /// the next increment with its trial force on the cone `mu R_N` to
+    /// round-off; moved by +-1e-13 of that slip it must get one status and
+    /// one tangent, the slip's (`d R_T / d x` along the slip 0). One slave
+    /// node over a row of 2 coordinates, `R_N = 1`, mu = 0.3, `alpha_T =
+    /// 40`, the tangential row `bt = [1, 0]`.
+    #[test]
+    fn a_node_on_the_cone_to_round_off_slips_whatever_the_last_bits() {
+        let law = Law {
+            mu: 0.3,
+            alpha_t: 40.0,
+            shift: 0.0,
+            alpha_n: 100.0,
+            normal_force: 1.0,
+            support: 1.0,
+            area: 1.0,
+            anchor: 0.0,
+        };
+        let (ds, dgap, bt, dbt) = ([1.0, 0.0], [0.0, 1.0], [1.0, 0.0], [0.0; 4]);
+        let cone = 0.3 / 40.0;
+        for rel in [-1e-13, 0.0, 1e-13] {
+            let r = respond(&law, 0, (-cone * (1.0 + rel), &ds), &dgap, &bt, &dbt);
+            assert_eq!(r.friction.status, FrictionStatus::Slip, "rel {rel:e}");
+            assert!((r.friction.tangential_force - 0.3).abs() < 1e-9);
+            assert!(
+                r.tangent[0].abs() < 1e-9,
+                "rel {rel:e}: K_xx {}",
+                r.tangent[0]
+            );
+        }
+        let r = respond(&law, 0, (-0.5 * cone, &ds), &dgap, &bt, &dbt);
+        assert_eq!(r.friction.status, FrictionStatus::Stick);
     }
 }

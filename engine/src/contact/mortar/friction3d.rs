@@ -50,6 +50,7 @@
 use super::facets::FacetSegment;
 use super::UNUSED;
 use crate::contact::friction::{FrictionState, FrictionStatus, NodeFriction};
+use crate::contact::friction_facet::CONE_TIE;
 use crate::contact::mortar::ad::Ad;
 use crate::contact::node_to_facet::{cross, dot, sub};
 use crate::contact::NodeContact;
@@ -413,9 +414,12 @@ pub fn respond(
     };
     // a trial force of a round-off slip sticks whatever `mu R_N` (a node
     // closed by a gap of round-off carries an `R_N` of round-off, and the
-    // direction of a slip there would be noise)
+    // direction of a slip there would be noise); a trial within
+    // `CONE_TIE` below the cone slips (node-to-facet's tie rule: a node
+    // that slipped starts the next increment on the cone to round-off)
     let noise = law.alpha_t * ROUND_OFF * law.support.max(0.0).sqrt();
-    let (t, dt, status) = if (norm <= limit && limit > 0.0) || norm <= noise {
+    let inside = norm <= limit * (1.0 - CONE_TIE) && limit > 0.0;
+    let (t, dt, status) = if inside || norm <= noise {
         (trial, dtrial, FrictionStatus::Stick)
     } else if norm > 0.0 {
         let u = trial.map(|v| v / norm);
@@ -613,6 +617,65 @@ mod tests {
             .map(|&(k, _)| (p[k].master, p[k].seg.polygon.len()))
             .collect();
         Some((nodes, shape, nc, c?))
+    }
+
+    /// The law of a node that slipped in the last increment: its stick
+    /// point is where the return map put it, so at the next increment's
+    /// start its trial force lies on the cone `mu R_N` to round-off. Flat
+    /// tangent plane (`nu = +z`), `R_N = 1`, mu = 0.3, `alpha_T = 40`: the
+    /// node moved by +-1e-13 of the cone's slip along x (two mirror nodes'
+    /// round-off) must get one status and one tangent, the slip's (its
+    /// `d t_x / d x` is 0): before the tie rule (`CONE_TIE`) the trial
+    /// just inside the cone stuck, with `alpha_T` = 40 there.
+    #[test]
+    fn a_node_on_the_cone_to_round_off_slips_whatever_the_last_bits() {
+        let nd = 3;
+        let ds: [Vec<f64>; 3] =
+            std::array::from_fn(|c| (0..nd).map(|k| if k == c { 1.0 } else { 0.0 }).collect());
+        let zero = vec![0.0; nd];
+        let own = OwnNormal {
+            sn: [0.0, 0.0, -1.0],
+            dsn: [&zero, &zero, &zero],
+        };
+        let law = |anchor: [f64; 3]| Law {
+            mu: 0.3,
+            alpha_t: 40.0,
+            shift: [0.0; 3],
+            alpha_n: 100.0,
+            normal_force: 1.0,
+            support: 1.0,
+            area: 1.0,
+            anchor,
+            impact: None,
+        };
+        let row = CoefficientRow {
+            coef: vec![1.0],
+            dcoef: vec![0.0; nd],
+        };
+        let dgap = [0.0, 0.0, 1.0];
+        // the slip that puts the trial force on the cone
+        let cone = 0.3 / 40.0;
+        for rel in [-1e-13, 0.0, 1e-13] {
+            let s = [cone * (1.0 + rel), 0.0, 0.0];
+            let r = respond(&law([0.0; 3]), &own, &(s, ds.clone()), &dgap, &row);
+            assert_eq!(r.friction.status, FrictionStatus::Slip, "rel {rel:e}");
+            assert!((r.friction.tangential_force - 0.3).abs() < 1e-9);
+            // tangent row-major nd x nd: d f_x / d x_x
+            assert!(
+                r.tangent[0].abs() < 1e-9,
+                "rel {rel:e}: K_xx {}",
+                r.tangent[0]
+            );
+        }
+        // a trial clearly inside the cone still sticks
+        let r = respond(
+            &law([0.0; 3]),
+            &own,
+            &([0.5 * cone, 0.0, 0.0], ds),
+            &dgap,
+            &row,
+        );
+        assert_eq!(r.friction.status, FrictionStatus::Stick);
     }
 
     /// A xorshift stream in `[-1, 1)`.
