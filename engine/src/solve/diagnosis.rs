@@ -201,11 +201,13 @@ pub fn penalty_ratio(
 }
 
 /// Likely cause and remedy from the contact health, or `None` when the
-/// contact does not explain the failure. `pair_name` names pair `i`.
+/// contact does not explain the failure. `pair_name` names pair `i`;
+/// `smoothed` says whether pair `i` already smooths its master's normal.
 pub fn contact_cause(
     ratio: Option<&PenaltyRatio>,
     flips: &FlipTracker,
     pair_name: &dyn Fn(usize) -> String,
+    smoothed: &dyn Fn(usize) -> bool,
 ) -> Option<(String, String)> {
     let chatter = flips.chattering();
     let switches = flips.entity_switches();
@@ -282,11 +284,25 @@ pub fn contact_cause(
                     pair_name(first.pair),
                     list.join(", ")
                 ),
-                format!(
-                    "set `smoothing = nodal` in the contact block of pair `{}` (a normal \
-                     continuous across the master nodes), or refine the master surface",
-                    pair_name(first.pair)
-                ),
+                if smoothed(first.pair) {
+                    // issue 18: with the normal smoothed, a node on a
+                    // master vertex to round-off still switches, the |g|
+                    // tie broken by round-off and the friction basis the
+                    // segment's own tangent
+                    format!(
+                        "pair `{}` already smooths its normal: a slave node lying on a master \
+                         vertex to round-off still switches segments there (the friction \
+                         tangent is the segment's own); shift or refine the master surface so \
+                         no slave node starts on a master vertex, or use `formulation = mortar`",
+                        pair_name(first.pair)
+                    )
+                } else {
+                    format!(
+                        "set `smoothing = nodal` in the contact block of pair `{}` (a normal \
+                         continuous across the master nodes), or refine the master surface",
+                        pair_name(first.pair)
+                    )
+                },
             ))
         }
         _ => None,
@@ -519,11 +535,16 @@ mod tests {
             (s[0].node, s[0].count, s[0].entities.clone()),
             (158, 3, vec![7, 8])
         );
-        let (cause, remedy) = contact_cause(None, &t, &|_| "punch -> block".into()).unwrap();
+        let (cause, remedy) =
+            contact_cause(None, &t, &|_| "punch -> block".into(), &|_| false).unwrap();
         assert!(cause.starts_with("no contact status changes"), "{cause}");
         assert!(cause.contains("158 (3x, segments [7, 8])"), "{cause}");
         assert!(!cause.contains("chattering"), "{cause}");
         assert!(remedy.contains("smoothing = nodal"), "{remedy}");
+        // a pair that already smooths is not told to smooth
+        let (_, remedy) = contact_cause(None, &t, &|_| "punch -> block".into(), &|_| true).unwrap();
+        assert!(!remedy.contains("set `smoothing"), "{remedy}");
+        assert!(remedy.contains("already smooths"), "{remedy}");
         // a new attempt does not count a switch against the last iteration
         t.start_attempt();
         t.record(&[vec![on(9)]]);
@@ -542,7 +563,7 @@ mod tests {
             pair: "top-punch".into(),
             stiffness: 2.5e10,
         };
-        let (cause, remedy) = contact_cause(Some(&r), &t, &|_| "p".into()).unwrap();
+        let (cause, remedy) = contact_cause(Some(&r), &t, &|_| "p".into(), &|_| false).unwrap();
         assert!(
             cause.starts_with("penalty too high for this mesh"),
             "{cause}"
@@ -555,7 +576,13 @@ mod tests {
         assert!(remedy.contains("augmented_lagrange"));
         // a moderate penalty without chattering does not explain a failure
         let soft = PenaltyRatio { ratio: 10.0, ..r };
-        assert!(contact_cause(Some(&soft), &FlipTracker::default(), &|_| "p".into()).is_none());
+        assert!(contact_cause(
+            Some(&soft),
+            &FlipTracker::default(),
+            &|_| "p".into(),
+            &|_| false
+        )
+        .is_none());
     }
 
     #[test]

@@ -702,10 +702,21 @@ where
                         .get(i)
                         .map_or_else(|| format!("{i}"), |c| c.name.clone())
                 };
-                diagnosis::contact_cause(newton.penalty_ratio().as_ref(), &newton.flips, &name)
-                    .unwrap_or_else(|| {
-                        diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
-                    })
+                let smoothed = |i: usize| {
+                    model
+                        .contacts
+                        .get(i)
+                        .is_some_and(|c| c.smoothing != crate::model::NormalSmoothing::None)
+                };
+                diagnosis::contact_cause(
+                    newton.penalty_ratio().as_ref(),
+                    &newton.flips,
+                    &name,
+                    &smoothed,
+                )
+                .unwrap_or_else(|| {
+                    diagnosis::failure_cause(&failure, &s.newton, newton.residual_floor().0)
+                })
             };
             // a body that only contact holds, singular at the step's start:
             // the stabilization is the remedy (issue 14, item 8)
