@@ -171,28 +171,15 @@ step vibrate {
 /// 32.107 mJ (x 4: 128.4 mJ, the case's sum of the die nodes'
 /// dissipations), summary.json's `friction_work` 32.107 mJ. The deck: a
 /// block (1 x 1 x 0.5, rho 1e-3) pressed on a rigid floor (tz = -1, mu =
-/// 0.3) slides at vx = 2 and is stopped by friction within the 16
-/// increments (as `robust_restart`'s).
+/// 0.3) slides at vx = 2 and is stopped by friction within the step
+/// (`tests/decks/friction_slide_3d.ctc`, as `robust_restart`'s).
 #[test]
 fn history_friction_work_is_per_increment() {
-    let text = "analysis { dimension = 3d }
-material soft { elastic { E = 1e5  nu = 0 }  density = 1e-3 }
-body block {
-  mesh = box { size = (1, 1, 0.5)  divisions = (2, 2, 1) }
-  material = soft
-}
-tool floor = plane { point = (0, 0, 0)  normal = (0, 0, 1) }
-contact block.zmin -> floor {
-  method = penalty { kind = area  stiffness = 1e7 }
-  friction = coulomb { mu = 0.3 }
-  prof = 0.1
-}
-traction block.zmax { tz = -1 }
-initial_velocity block.all { vx = 2 }
-step slide { time = 0 .. 0.004  increments = 16  dynamic { }  newton { tol = 1e-9 } }
-output { every = 4 }
-";
-    let source = ctc_lang::Source::new(std::path::Path::new("slide.ctc"), text.to_string());
+    let text = include_str!("../decks/friction_slide_3d.ctc");
+    let source = ctc_lang::Source::new(
+        std::path::Path::new("friction_slide_3d.ctc"),
+        text.to_string(),
+    );
     let model = match ctc_lang::compile_any(&source) {
         Ok(ctc_engine::model::AnyModel::D3(m)) => m,
         Ok(_) => panic!("a 3d deck"),

@@ -518,26 +518,11 @@ fn restart_dynamic_friction_continues_the_friction_work() {
     // forces are in the restart point), and its summary's total is the
     // continued increments' share of the uninterrupted run's. A block
     // (1 x 1 x 0.5, rho 1e-3) pressed on a rigid floor (tz = -1, mu =
-    // 0.3) slides at vx = 2 and is stopped by friction within the 16
-    // increments (4e-3 s): friction work in every increment of the tail
-    let text = "analysis { dimension = 3d }
-material soft { elastic { E = 1e5  nu = 0 }  density = 1e-3 }
-body block {
-  mesh = box { size = (1, 1, 0.5)  divisions = (2, 2, 1) }
-  material = soft
-}
-tool floor = plane { point = (0, 0, 0)  normal = (0, 0, 1) }
-contact block.zmin -> floor {
-  method = penalty { kind = area  stiffness = 1e7 }
-  friction = coulomb { mu = 0.3 }
-  prof = 0.1
-}
-traction block.zmax { tz = -1 }
-initial_velocity block.all { vx = 2 }
-step slide { time = 0 .. 0.004  increments = 16  dynamic { }  newton { tol = 1e-9 } }
-output { every = 4 }
-";
-    let source = ctc_lang::Source::new(Path::new("slide.ctc"), text.to_string());
+    // 0.3) slides at vx = 2 and is stopped by friction within the step
+    // (4e-3 s; tests/decks/friction_slide_3d.ctc): friction work in every
+    // increment of the tail
+    let text = include_str!("../decks/friction_slide_3d.ctc");
+    let source = ctc_lang::Source::new(Path::new("friction_slide_3d.ctc"), text.to_string());
     let model: Model<3> = match ctc_lang::compile_any(&source) {
         Ok(AnyModel::D3(m)) => m,
         Ok(AnyModel::D2(_)) => panic!("a 3d deck"),
