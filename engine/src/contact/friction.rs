@@ -466,7 +466,15 @@ impl Coulomb {
         let alpha = self.tangential_stiffness;
         let limit = self.mu * self.normal_force;
         let trial = shift - alpha * gap;
-        // mu R_N = 0 slides freely (no stick stiffness from a zero cone)
+        // mu R_N = 0 slides freely (no stick stiffness from a zero cone).
+        // No `friction_facet::CONE_TIE` here (3D tools have it): measured,
+        // a trial within 1e-9 below the cone slipping cut the 2D
+        // catalogue's iterations (friction_quadratic 528 -> 291,
+        // friction_inclined_plane 475 -> 381, blankholder level 0 1626 ->
+        // 1285) but `blankholder` level 1 (mu 0.05, free rollers) stalled
+        // at t = 0.70 (relative residual 1.95e-7 for 23 iterations, line
+        // search steps 0.016-0.06, two closed nodes on roller A) and
+        // stopped; its level-0 moment balance went 1.4e-11 -> 3.3e-10
         if (trial.abs() <= limit && limit > 0.0) || alpha <= 0.0 {
             return Tangential {
                 friction: NodeFriction {

@@ -44,6 +44,7 @@
 //! for `cut_at_impact`.
 
 use super::friction::{tangential_stiffness, FrictionState, FrictionStatus, NodeFriction};
+use super::friction_facet::CONE_TIE;
 use crate::model::{ContactMethod, FirstImpact, Friction};
 use ctc_geom::{Mat3, Placement, Projection, Vec3};
 
@@ -185,7 +186,9 @@ pub fn respond(
             Mat3::zeros(),
             -trial / kt,
         )
-    } else if norm <= limit {
+    } else if norm <= limit * (1.0 - CONE_TIE) {
+        // a trial within `CONE_TIE` below the cone slips (the tie rule of
+        // node-to-facet friction: one tangent for mirror nodes)
         (FrictionStatus::Stick, trial, dtrial, Vec3::zeros())
     } else {
         let s = trial / norm;
@@ -380,5 +383,106 @@ pub fn uzawa_update(
             state.shift[i] = (qt * Vec3::from(c.friction.traction)).into();
             state.base[i] = state.anchor[i];
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::PenaltyKind;
+
+    /// The tie rule of `friction_facet::CONE_TIE` on a rigid surface tool:
+    /// a node that slipped starts the next increment with its stick point
+    /// where the return map left it, its trial force on the disc's rim to
+    /// round-off. Plane tool `z = 0`, node 0.01 below it, normal force 10,
+    /// mu 0.3, `k_T` 40: the stick point at the origin and the node at
+    /// `mu R_N / k_T = 0.075 (+-1e-13)` along x (two mirror nodes'
+    /// round-off) must get one status and one tangent, the slip's (no
+    /// tangential stiffness along the slip). Before the tie the node a
+    /// hair inside stuck with `K_xx = k_T`.
+    #[test]
+    fn a_trial_on_the_disc_rim_to_round_off_slips_whatever_the_round_off() {
+        let law = Friction {
+            mu: 0.3,
+            stiffness: Some(40.0),
+            first_impact: FirstImpact::Intersect,
+            cut_at_impact: false,
+        };
+        let method = ContactMethod::Penalty {
+            kind: PenaltyKind::Nodal,
+            stiffness: 1000.0,
+        };
+        let placement = Placement::identity();
+        let mut kxx = Vec::new();
+        for dx in [-1e-13, 0.0, 1e-13] {
+            let x = Vec3::new(0.075 + dx, 0.0, -0.01);
+            let projection = Projection::closed_form(
+                Vec3::new(x.x, 0.0, 0.0),
+                -0.01,
+                Vec3::new(0.0, 0.0, 1.0),
+                Mat3::zeros(),
+            );
+            let c = SurfaceContact {
+                placement: &placement,
+                x,
+                reference: x,
+                projection: &projection,
+                normal_force: 10.0,
+                normal_stiffness: 1000.0,
+                area: 1.0,
+            };
+            let mut state = FrictionState::<3>::new(vec![[0.0; 3]]);
+            state.committed_anchor[0] = Some([0.0; 3]);
+            let (mut force, mut stiffness) = ([0.0; 3], [[0.0; 3]; 3]);
+            let f = respond(
+                &law,
+                &method,
+                0,
+                &c,
+                |_| None,
+                &mut state,
+                &mut force,
+                &mut stiffness,
+                &mut None,
+            );
+            assert_eq!(f.status, FrictionStatus::Slip, "dx {dx:e}");
+            assert!((force[0] + 3.0).abs() < 1e-9, "{force:?}");
+            kxx.push(stiffness[0][0]);
+        }
+        // the slip's tangent: no stiffness along the slip, for all three
+        assert!(kxx.iter().all(|k| k.abs() < 1e-9), "{kxx:?}");
+        // well inside the disc it still sticks
+        let x = Vec3::new(0.07, 0.0, -0.01);
+        let projection = Projection::closed_form(
+            Vec3::new(x.x, 0.0, 0.0),
+            -0.01,
+            Vec3::new(0.0, 0.0, 1.0),
+            Mat3::zeros(),
+        );
+        let c = SurfaceContact {
+            placement: &placement,
+            x,
+            reference: x,
+            projection: &projection,
+            normal_force: 10.0,
+            normal_stiffness: 1000.0,
+            area: 1.0,
+        };
+        let mut state = FrictionState::<3>::new(vec![[0.0; 3]]);
+        state.committed_anchor[0] = Some([0.0; 3]);
+        let (mut force, mut stiffness) = ([0.0; 3], [[0.0; 3]; 3]);
+        let f = respond(
+            &law,
+            &method,
+            0,
+            &c,
+            |_| None,
+            &mut state,
+            &mut force,
+            &mut stiffness,
+            &mut None,
+        );
+        assert_eq!(f.status, FrictionStatus::Stick);
+        assert!((stiffness[0][0] - 40.0).abs() < 1e-9);
     }
 }
