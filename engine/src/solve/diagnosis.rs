@@ -390,6 +390,30 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
                 ),
             )
         }
+        FailureKind::MaxIterations | FailureKind::Diverged if plateau(&failure.residuals) => {
+            let n = failure.residuals.len();
+            let flat = failure
+                .residuals
+                .iter()
+                .rev()
+                .take_while(|r| (*r / last - 1.0).abs() <= PLATEAU)
+                .count();
+            (
+                format!(
+                    "the residual stalls at {last:.2e} for its last {flat} of {n} iterations, \
+                     far above round-off: the Newton steps no longer lower it, so the tangent does not describe the residual there \
+                     -- a force that is not differentiable at the solution, typically a \
+                     contact or friction node sitting on its switching point (the gap at 0, \
+                     the tangential force on the Coulomb cone); a smaller increment did not \
+                     move it off"
+                ),
+                "try another contact method for the pair (`augmented_lagrange` or `penalty` \
+                 with another stiffness), change the friction coefficient or the increment \
+                 size of the step so the node does not land on the switching point, or accept \
+                 the stalled value: `newton { tol = .. }` above it"
+                    .into(),
+            )
+        }
         FailureKind::MaxIterations => (
             "the increment is too large for the nonlinearity (no contact node changed \
              status back and forth; a large load or contact change, a stiff penalty)"
@@ -459,6 +483,25 @@ pub fn failure_cause(failure: &Failure, settings: &NewtonSettings, floor: f64) -
             "check the mesh orientation and quality, or use smaller increments".into(),
         ),
     }
+}
+
+/// Relative spread under which residuals are "the same" for [`plateau`].
+const PLATEAU: f64 = 1e-2;
+
+/// Whether a residual history stalls above round-off: its last five
+/// residuals within [`PLATEAU`] of the last one, that one at or above 1e-9
+/// (below, [`stagnates`] names the round-off floor). Newton's divergence
+/// test counts growths of the last bits of such a plateau as growth
+/// (`examples/blankholder.ctc` at mu 0.05 with a cone tie in 2D rigid
+/// friction: 23 iterations at 1.952e-7, reported as "the residual grows").
+pub fn plateau(residuals: &[f64]) -> bool {
+    let n = residuals.len();
+    let last = residuals.last().copied().unwrap_or(f64::NAN);
+    n >= 5
+        && last >= 1e-9
+        && residuals[n - 5..]
+            .iter()
+            .all(|r| (*r / last - 1.0).abs() <= PLATEAU)
 }
 
 /// Whether a residual history stagnates at round-off level: the last
@@ -609,6 +652,36 @@ mod tests {
         let grew =
             Failure::new(FailureKind::Diverged, "grew").with_residuals(&[1e-14, 2e-14, 4e-14]);
         assert!(failure_cause(&grew, &settings, 0.0).0.contains("stagnates"));
+    }
+
+    /// The final diagnosis of `examples/blankholder.ctc` at mu 0.05 with
+    /// a cone tie tried in 2D rigid friction: the relative residual sat at
+    /// 1.952e-7 from its third iteration to its 25th, and the divergence
+    /// test fired on growths of its last bits; it was reported as "the
+    /// residual grows ... the increment is too large". A plateau far
+    /// above round-off is a stall: named as such, with the switching
+    /// point as the likely cause. A residual that really grows, or falls,
+    /// is not one.
+    #[test]
+    fn a_residual_stalled_far_above_round_off_is_named_a_stall_not_a_divergence() {
+        let settings = NewtonSettings::default();
+        let mut stalled = vec![1.68e-3, 9.66e-7];
+        stalled.extend((0..23).map(|k| 1.952e-7 * (1.0 + 1e-12 * f64::from(k % 3))));
+        let f = Failure::new(FailureKind::Diverged, "grew").with_residuals(&stalled);
+        let (cause, remedy) = failure_cause(&f, &settings, 1e-12);
+        assert!(cause.contains("stalls at 1.95e-7"), "{cause}");
+        assert!(cause.contains("last 23 of 25 iterations"), "{cause}");
+        assert!(cause.contains("switching point"), "{cause}");
+        assert!(!cause.contains("grows"), "{cause}");
+        assert!(remedy.contains("another contact method"), "{remedy}");
+        // growing, falling or round-off histories are not plateaus
+        let grows = [1e-3, 2e-3, 4e-3, 8e-3, 1.6e-2, 3.2e-2];
+        assert!(!plateau(&grows));
+        let g = Failure::new(FailureKind::Diverged, "grew").with_residuals(&grows);
+        assert!(failure_cause(&g, &settings, 0.0).0.contains("grows"));
+        assert!(!plateau(&[1e-3, 5e-4, 2.5e-4, 1.2e-4, 6e-5, 3e-5]));
+        assert!(!plateau(&[2e-12; 6]));
+        assert!(!plateau(&[1e-7; 4]));
     }
 
     #[test]
