@@ -20,8 +20,18 @@
 //! ([`crate::material::dual`]); it is not symmetric. In the increment of
 //! a first impact the stick point's parameter depends on `x`
 //! (`anchor_rate`, its derivative), which the tangent includes.
+//!
+//! Under `smoothing = nodal` ([`respond_smoothed`], [`apply_smoothed`])
+//! the basis is the smoothed normal's tangent at the projection and the
+//! element has the 10 coordinates of [`super::smoothing`]; the stick point
+//! is measured on the chord of the reference segment that holds it (this
+//! one or a neighbour), so the slip is continuous when the node passes a
+//! master node. A trial force on the cone to round-off slips
+//! ([`CONE_TIE`], as node-to-facet and mortar).
 
 use super::friction::{FrictionStatus, NodeFriction};
+use super::friction_facet::CONE_TIE;
+use super::smoothing;
 use crate::material::dual::{Dual, Scalar};
 
 /// Six seeded directions: `[x_s, x_1, x_2]`.
@@ -145,7 +155,10 @@ pub fn respond(
     let rn = if rn.re() > 0.0 { rn } else { D6::cst(0.0) };
     let limit = rn * law.mu;
     let trial = (gt * -law.alpha_t) + law.shift;
-    let (rt, status) = if trial.re().abs() <= limit.re() && limit.re() > 0.0 {
+    // a trial within `CONE_TIE` below the cone slips (node-to-facet's tie
+    // rule: a node that slipped starts the next increment on the cone to
+    // round-off, and its tangent must not depend on the last bits)
+    let (rt, status) = if trial.re().abs() <= limit.re() * (1.0 - CONE_TIE) && limit.re() > 0.0 {
         (trial, FrictionStatus::Stick)
     } else {
         (limit * trial.re().signum(), FrictionStatus::Slip)
@@ -236,50 +249,17 @@ pub fn apply(
     forces: &mut [f64; 6],
     tangent: &mut [[f64; 6]; 6],
 ) -> NodeFriction {
-    use crate::model::ContactMethod;
     let i = e.slave;
-    if e.status != super::ContactStatus::Closed || i >= state.anchor.len() {
-        state.open(i, e.xs);
-        return NodeFriction::default();
-    }
-    let [m1, m2] = e.nodes;
-    let (Some(&r1), Some(&r2), Some(&x1), Some(&x2)) =
-        (reference.get(m1), reference.get(m2), x.get(m1), x.get(m2))
+    let Some(Start {
+        anchor,
+        rate: anchor_rate,
+        shift,
+        alpha_n,
+        r: [r1, r2],
+        x: [x1, x2],
+    }) = start(law, method, reference, x, committed, e, state)
     else {
         return NodeFriction::default();
-    };
-    let mut anchor_rate = None;
-    let start = match state.committed_anchor[i] {
-        Some(a) => a,
-        None => {
-            let s0 = state.committed_position[i];
-            let ends = (committed.get(m1), committed.get(m2));
-            let hit = first_impact(s0, e.xs, ends, (x1, x2));
-            if let Some((tau, _)) = hit {
-                state.record_impact(tau);
-            }
-            match (law.first_impact, hit) {
-                (crate::model::FirstImpact::Intersect, Some((tau, xi))) => {
-                    if tau > 0.0 {
-                        anchor_rate = Some(impact_rate(s0, ends, [e.xs, x1, x2], xi));
-                    }
-                    reference_point([r1, r2], xi)
-                }
-                _ => {
-                    // frictionless in this increment
-                    state.anchor[i] = Some(reference_point([r1, r2], e.xi));
-                    state.position[i] = e.xs;
-                    return NodeFriction::default();
-                }
-            }
-        }
-    };
-    let anchor = state.base[i].unwrap_or(start);
-    let alpha_n = super::penalty::effective_stiffness(method, e.tributary);
-    let shift = match method {
-        ContactMethod::Penalty { .. } => 0.0,
-        ContactMethod::AugmentedLagrange { .. } => state.multiplier[i],
-        ContactMethod::Lagrange { .. } => return NodeFriction::default(),
     };
     // R_N(x) = R_N + alpha_N (g_now - g): pass the law through the current
     // force (penalty and augmented Lagrangian alike)
@@ -303,8 +283,6 @@ pub fn apply(
         normal_shift: e.normal_force + alpha_n * gap_now,
         normal_stiffness: alpha_n,
     };
-    // the Uzawa base (augmented Lagrangian) is a fixed stick point
-    let anchor_rate = anchor_rate.filter(|_| state.base[i].is_none());
     let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor, anchor_rate, e.vertex) else {
         return NodeFriction::default();
     };
@@ -321,6 +299,335 @@ pub fn apply(
     state.anchor[i] = Some(r.anchor);
     state.position[i] = e.xs;
     r.friction
+}
+
+/// Friction contribution of one smoothed element (`smoothing = nodal`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SmoothedResponse {
+    /// Status, force, gap, slip increment (along `tau`) and work.
+    pub friction: NodeFriction,
+    /// Forces over `[x_s, x_0, x_1, x_2, x_3]`.
+    pub forces: [f64; smoothing::N],
+    /// `-d forces / d x` (10x10, not symmetric).
+    pub tangent: [[f64; smoothing::N]; smoothing::N],
+    /// New stick point (reference coordinates) after the return map.
+    pub anchor: [f64; 2],
+}
+
+/// Where the stick point of reference coordinates `anchor` is on the
+/// master around segment `X_1 -> X_2` of `reference = [X_0, X_1, X_2,
+/// X_3]`: the segment (`0`), the previous one `X_0 -> X_1` (`-1`, when its
+/// parameter on the segment's line is below 0 and `has[0]`) or the next
+/// one `X_2 -> X_3` (`1`), and its parameter on that segment (0 at its
+/// first node; the line extended past the neighbour, if the node slid
+/// further in one increment).
+fn stick_segment(reference: [[f64; 2]; 4], has: [bool; 2], anchor: [f64; 2]) -> Option<(i8, f64)> {
+    let on = |a: [f64; 2], b: [f64; 2]| {
+        let e = [b[0] - a[0], b[1] - a[1]];
+        let l2 = e[0] * e[0] + e[1] * e[1];
+        (l2 > 0.0).then(|| ((anchor[0] - a[0]) * e[0] + (anchor[1] - a[1]) * e[1]) / l2)
+    };
+    let [r0, r1, r2, r3] = reference;
+    let xi = on(r1, r2)?;
+    if xi < 0.0 && has[0] {
+        on(r0, r1).map(|q| (-1, q))
+    } else if xi > 1.0 && has[1] {
+        on(r2, r3).map(|q| (1, q))
+    } else {
+        Some((0, xi))
+    }
+}
+
+/// Friction on the smoothed element (`smoothing = nodal`, [`smoothing`]):
+/// the slave `x_s` against segment `x_1 -> x_2` with the far nodes `x_0`,
+/// `x_3` of its neighbours (`x = [x_s, x_0, x_1, x_2, x_3]`, `has` which
+/// neighbours exist), projected at `xi` ([`smoothing::project`]).
+///
+/// One geometry everywhere: the friction acts along `tau = (-n_y, n_x)`,
+/// the tangent of the smoothed normal `n(xi)` at the projection, so it is
+/// orthogonal to the normal force and continuous where the node passes a
+/// master node. The stick point is a material point of the master: its
+/// reference coordinates lie on a reference segment ([`stick_segment`]:
+/// this one or a neighbour, which `x_0`, `x_3` carry), `x_a` the same
+/// parameter on the current segment (the chord point: on a neighbour when
+/// the node slid past the master node, continuous across it). The
+/// tangential gap is `g_T = (x_s - x_a) . tau`, the reaction `-R_T tau`
+/// acts at the projection point `x(xi)` with weights `1 - xi`, `xi`:
+/// forces sum to zero, their moment is `g R_T` (the slave is `g n` off the
+/// point). `R_N = normal_shift - normal_stiffness g` with the smoothed
+/// gap. The tangent `-d f / d x` over the 10 coordinates is exact (dual
+/// numbers through the projection, [`smoothing::dual`]: `tau` depends on
+/// `x_0 .. x_3` through the nodal normals and on `xi(x)`). After a slip
+/// the new stick point is where `g_T` has dropped by the slip, on the
+/// current segment or, past its end, on the neighbour's chord.
+/// `anchor_rate`: `d xi_a / d x` of a first impact's stick point on the
+/// segment (over the 10 coordinates).
+#[allow(clippy::too_many_arguments)]
+pub fn respond_smoothed(
+    law: &SegmentFriction,
+    x: [[f64; 2]; 5],
+    has: [bool; 2],
+    xi: f64,
+    reference: [[f64; 2]; 4],
+    anchor: [f64; 2],
+    anchor_rate: Option<[f64; smoothing::N]>,
+) -> Option<SmoothedResponse> {
+    type A = smoothing::Ad10;
+    let p = smoothing::dual(x, has[0], has[1], xi)?;
+    let [s, p0, p1, p2, p3] = p.x;
+    let n = p.normal;
+    let tau = [-n[1], n[0]];
+    let (side, q) = stick_segment(reference, has, anchor)?;
+    // the stick point on the current chord
+    let (a, b) = match side {
+        -1 => (p0, p1),
+        1 => (p2, p3),
+        _ => (p1, p2),
+    };
+    let q = match (side, anchor_rate) {
+        (0, Some(d)) => A { v: q, d },
+        _ => A::cst(q),
+    };
+    let xa = [a[0] + (b[0] - a[0]) * q, a[1] + (b[1] - a[1]) * q];
+    let gt = (s[0] - xa[0]) * tau[0] + (s[1] - xa[1]) * tau[1];
+    let rn = p.gap * -law.normal_stiffness + law.normal_shift;
+    let rn = if rn.v > 0.0 { rn } else { A::cst(0.0) };
+    let limit = rn * law.mu;
+    let trial = gt * -law.alpha_t + law.shift;
+    // the cone tie of `respond`
+    let (rt, status) = if trial.v.abs() <= limit.v * (1.0 - CONE_TIE) && limit.v > 0.0 {
+        (trial, FrictionStatus::Stick)
+    } else {
+        (limit * trial.v.signum(), FrictionStatus::Slip)
+    };
+    let ds = if law.alpha_t > 0.0 {
+        (rt.v - trial.v) / law.alpha_t
+    } else {
+        0.0
+    };
+    // R_T tau on the slave, -(1 - xi) R_T tau and -xi R_T tau on x_1, x_2
+    let w = [A::cst(1.0), A::cst(0.0), -(p.xi + -1.0), p.xi, A::cst(0.0)];
+    let sign = [1.0, 0.0, -1.0, -1.0, 0.0];
+    let mut forces = [0.0; smoothing::N];
+    let mut tangent = [[0.0; smoothing::N]; smoothing::N];
+    for node in [0, 2, 3] {
+        for c in 0..2 {
+            let f = rt * w[node] * tau[c] * sign[node];
+            forces[2 * node + c] = f.v;
+            for (j, dj) in f.d.iter().enumerate() {
+                tangent[2 * node + c][j] = -dj;
+            }
+        }
+    }
+    // the new stick point: g_T - ds from the slave along tau, on the chord
+    // of this segment, or of the neighbour past its end
+    let v = |z: [A; 2]| [z[0].v, z[1].v];
+    let (xs, t) = (v(s), v(tau));
+    let gt_new = gt.v - ds;
+    let param = |a: [f64; 2], b: [f64; 2]| {
+        let e = [b[0] - a[0], b[1] - a[1]];
+        let l = e[0].hypot(e[1]);
+        let along = (e[0] * t[0] + e[1] * t[1]).max(MIN_COSINE * l);
+        ((xs[0] - a[0]) * t[0] + (xs[1] - a[1]) * t[1] - gt_new) / along
+    };
+    let [r0, r1, r2, r3] = reference;
+    let on = |ra: [f64; 2], rb: [f64; 2], q: f64| {
+        [ra[0] + q * (rb[0] - ra[0]), ra[1] + q * (rb[1] - ra[1])]
+    };
+    let (x0, x1, x2, x3) = (v(p0), v(p1), v(p2), v(p3));
+    let xi_new = param(x1, x2);
+    let new_anchor = if xi_new < 0.0 && has[0] {
+        on(r0, r1, param(x0, x1))
+    } else if xi_new > 1.0 && has[1] {
+        on(r2, r3, param(x2, x3))
+    } else {
+        on(r1, r2, xi_new)
+    };
+    Some(SmoothedResponse {
+        friction: NodeFriction {
+            status,
+            tangential_force: rt.v,
+            tangential_gap: gt.v,
+            slip: ds,
+            gap_gradient: t,
+            dissipation: -rt.v * ds,
+            traction: [rt.v * t[0], rt.v * t[1]],
+            slip_vector: [ds * t[0], ds * t[1]],
+        },
+        forces,
+        tangent,
+        anchor: new_anchor,
+    })
+}
+
+/// A closed smoothed element: the element of [`apply`] with the far
+/// nodes of the neighbouring segments (`x_0`, `x_3`) its normal depends
+/// on, and its smoothed gap.
+#[derive(Debug, Clone, Copy)]
+pub struct SmoothedElement {
+    /// The element (`xi` the smoothed projection's, `vertex` `None`).
+    pub element: Element,
+    /// Far nodes `x_0` (before `m1`) and `x_3` (after `m2`).
+    pub far: [Option<usize>; 2],
+    /// The smoothed gap.
+    pub gap: f64,
+}
+
+/// [`apply`] on a smoothed element ([`respond_smoothed`]): adds the
+/// friction forces and tangent over `[x_s, x_0, x_1, x_2, x_3]` to
+/// `forces`, `tangent` and updates the trial friction state. The first
+/// impact is found on the chord `x_1 -> x_2` as in [`apply`].
+#[allow(clippy::too_many_arguments)]
+pub fn apply_smoothed(
+    law: &crate::model::Friction,
+    method: &crate::model::ContactMethod,
+    reference: &[[f64; 2]],
+    x: &[[f64; 2]],
+    committed: &[[f64; 2]],
+    se: &SmoothedElement,
+    state: &mut super::friction::FrictionState,
+    forces: &mut [f64; smoothing::N],
+    tangent: &mut [[f64; smoothing::N]; smoothing::N],
+) -> NodeFriction {
+    let e = &se.element;
+    let Some(Start {
+        anchor,
+        rate,
+        shift,
+        alpha_n,
+        r: [r1, r2],
+        x: [x1, x2],
+    }) = start(law, method, reference, x, committed, e, state)
+    else {
+        return NodeFriction::default();
+    };
+    let [m1, m2] = e.nodes;
+    let node = |k: Option<usize>, own: usize| k.unwrap_or(own);
+    let (n0, n3) = (node(se.far[0], m1), node(se.far[1], m2));
+    let (Some(&r0), Some(&r3), Some(&x0), Some(&x3)) =
+        (reference.get(n0), reference.get(n3), x.get(n0), x.get(n3))
+    else {
+        return NodeFriction::default();
+    };
+    let seg = SegmentFriction {
+        mu: law.mu,
+        alpha_t: super::friction::tangential_stiffness(law, method, e.tributary),
+        shift,
+        normal_shift: e.normal_force + alpha_n * se.gap,
+        normal_stiffness: alpha_n,
+    };
+    // the first impact's rate over [x_s, x_1, x_2] into the 10 coordinates
+    let rate = rate.map(|d| {
+        let mut r = [0.0; smoothing::N];
+        for (k, &to) in [0usize, 1, 4, 5, 6, 7].iter().enumerate() {
+            r[to] = d[k];
+        }
+        r
+    });
+    let has = [se.far[0].is_some(), se.far[1].is_some()];
+    let Some(r) = respond_smoothed(
+        &seg,
+        [e.xs, x0, x1, x2, x3],
+        has,
+        e.xi,
+        [r0, r1, r2, r3],
+        anchor,
+        rate,
+    ) else {
+        return NodeFriction::default();
+    };
+    for ((f, row), (rf, rrow)) in forces
+        .iter_mut()
+        .zip(tangent.iter_mut())
+        .zip(r.forces.iter().zip(&r.tangent))
+    {
+        *f += rf;
+        for (k, rk) in row.iter_mut().zip(rrow) {
+            *k += rk;
+        }
+    }
+    state.anchor[e.slave] = Some(r.anchor);
+    state.position[e.slave] = e.xs;
+    r.friction
+}
+
+/// The stick point a closed element's trial is measured from, with the
+/// method's data; `None` when the element has no friction in this
+/// evaluation (open, Lagrange, the frictionless first impact: the state is
+/// updated for those).
+struct Start {
+    anchor: [f64; 2],
+    rate: Option<[f64; 6]>,
+    shift: f64,
+    alpha_n: f64,
+    r: [[f64; 2]; 2],
+    x: [[f64; 2]; 2],
+}
+
+fn start(
+    law: &crate::model::Friction,
+    method: &crate::model::ContactMethod,
+    reference: &[[f64; 2]],
+    x: &[[f64; 2]],
+    committed: &[[f64; 2]],
+    e: &Element,
+    state: &mut super::friction::FrictionState,
+) -> Option<Start> {
+    use crate::model::ContactMethod;
+    let i = e.slave;
+    if e.status != super::ContactStatus::Closed || i >= state.anchor.len() {
+        state.open(i, e.xs);
+        return None;
+    }
+    let [m1, m2] = e.nodes;
+    let (Some(&r1), Some(&r2), Some(&x1), Some(&x2)) =
+        (reference.get(m1), reference.get(m2), x.get(m1), x.get(m2))
+    else {
+        return None;
+    };
+    let mut anchor_rate = None;
+    let start = match state.committed_anchor[i] {
+        Some(a) => a,
+        None => {
+            let s0 = state.committed_position[i];
+            let ends = (committed.get(m1), committed.get(m2));
+            let hit = first_impact(s0, e.xs, ends, (x1, x2));
+            if let Some((tau, _)) = hit {
+                state.record_impact(tau);
+            }
+            match (law.first_impact, hit) {
+                (crate::model::FirstImpact::Intersect, Some((tau, xi))) => {
+                    if tau > 0.0 {
+                        anchor_rate = Some(impact_rate(s0, ends, [e.xs, x1, x2], xi));
+                    }
+                    reference_point([r1, r2], xi)
+                }
+                _ => {
+                    // frictionless in this increment
+                    state.anchor[i] = Some(reference_point([r1, r2], e.xi));
+                    state.position[i] = e.xs;
+                    return None;
+                }
+            }
+        }
+    };
+    let anchor = state.base[i].unwrap_or(start);
+    let alpha_n = super::penalty::effective_stiffness(method, e.tributary);
+    let shift = match method {
+        ContactMethod::Penalty { .. } => 0.0,
+        ContactMethod::AugmentedLagrange { .. } => state.multiplier[i],
+        ContactMethod::Lagrange { .. } => return None,
+    };
+    // the Uzawa base (augmented Lagrangian) is a fixed stick point
+    let rate = anchor_rate.filter(|_| state.base[i].is_none());
+    Some(Start {
+        anchor,
+        rate,
+        shift,
+        alpha_n,
+        r: [r1, r2],
+        x: [x1, x2],
+    })
 }
 
 /// Where, in the increment, a slave node going `s0 -> s1` met the segment
@@ -557,6 +864,201 @@ mod tests {
             0.35,
         );
         assert!((r[0] + 0.375).abs() < 1e-6, "{r:?}");
+    }
+
+    /// A trial force on the cone to round-off (`1e-12` of it below) slips
+    /// ([`CONE_TIE`]): the force is the cone's and the tangent the slip's
+    /// (no tangential stiffness `alpha_T` on the slave's own x); without
+    /// the tie it stuck, its tangent decided by the last bits.
+    #[test]
+    fn a_trial_on_the_cone_to_round_off_slips() {
+        let reference = [[0.0, 0.0], [2.0, 0.0]];
+        // R_N = 100 * 0.01 = 1, limit 0.1; trial -30 g_T = -0.1 (1 - 1e-12)
+        let gt = 0.1 / 30.0 * (1.0 - 1e-12);
+        let xs = [1.1, 0.01];
+        let r = respond(
+            &law(0.1),
+            xs,
+            [0.0, 0.0],
+            [2.0, 0.0],
+            reference,
+            [xs[0] - gt, 0.0],
+            None,
+            None,
+        )
+        .unwrap();
+        assert_eq!(r.friction.status, FrictionStatus::Slip, "{:?}", r.friction);
+        assert!((r.friction.tangential_force + 0.1).abs() < 1e-14);
+        // slip: the force does not depend on the slave's tangential x
+        assert!(r.tangent[0][0].abs() < 1e-12, "{}", r.tangent[0][0]);
+    }
+
+    /// A wavy master walked `-x` (body below), nodes `x_0 .. x_3` at `x =
+    /// 2, 1, 0, -1`; its reference is the same polyline with other waves
+    /// (the master deformed); `w` the waves, `[x_s]` near segment `x_1 ->
+    /// x_2` at `xi`, gap `g`.
+    fn wavy(w: &[f64], xi: f64, g: f64) -> ([[f64; 2]; 5], [[f64; 2]; 4]) {
+        let base = [2.0, 1.0, 0.0, -1.0];
+        let mut x = [[0.0; 2]; 5];
+        let mut r = [[0.0; 2]; 4];
+        for k in 0..4 {
+            x[k + 1] = [base[k] + w[2 * k], w[2 * k + 1]];
+            r[k] = [base[k] + 0.5 * w[8 + k], 0.5 * w[12 + k]];
+        }
+        // `g` below the chord (penetrating: R_N > 0)
+        let chord = (1.0 - xi) * x[2][1] + xi * x[3][1];
+        x[0] = [1.0 - xi + w[16], chord + g];
+        (x, r)
+    }
+
+    /// The smoothed element's forces at `x` (projection solved from the
+    /// faceted one), with its projection's `xi` and gap.
+    fn smoothed_at(
+        law: &SegmentFriction,
+        x: [[f64; 2]; 5],
+        has: [bool; 2],
+        r: [[f64; 2]; 4],
+        anchor: [f64; 2],
+    ) -> Option<(SmoothedResponse, f64, f64, [f64; 2])> {
+        let p = smoothing::Patch::new(x, has[0], has[1])?;
+        let xi = smoothing::project(&p, 0.5)?;
+        let (g, n) = p.gap(xi);
+        let out = respond_smoothed(law, x, has, xi, r, anchor, None)?;
+        Some((out, xi, g, n))
+    }
+
+    /// A point of the reference polyline `r` at arclength-like parameter
+    /// `q` from `X_1` towards `X_2` (`q < 0`: on `X_0 -> X_1`, `q > 1`: on
+    /// `X_2 -> X_3`, where they exist; else the segment's line).
+    fn on_reference(r: [[f64; 2]; 4], has: [bool; 2], q: f64) -> [f64; 2] {
+        let at =
+            |a: [f64; 2], b: [f64; 2], t: f64| [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+        if q < 0.0 && has[0] {
+            at(r[1], r[0], -q)
+        } else if q > 1.0 && has[1] {
+            at(r[2], r[3], q - 1.0)
+        } else {
+            at(r[1], r[2], q)
+        }
+    }
+
+    proptest::proptest! {
+        /// Smoothed friction (`smoothing = nodal`), stick and slip, inside a
+        /// segment and next to a master node (the stick point on this
+        /// segment or a neighbour), with and without the far nodes: the
+        /// force on the slave is orthogonal to the smoothed normal; forces
+        /// sum to zero and their moment is `g R_T`; the 10x10 tangent is
+        /// minus the derivative of the forces (central differences, the
+        /// projection solved again at each perturbed point).
+        #[test]
+        fn smoothed_friction_is_orthogonal_balanced_and_its_tangent_matches_finite_differences(
+            w in proptest::collection::vec(-0.12f64..0.12, 17),
+            xi in -0.1f64..1.1,
+            g in -0.03f64..-0.001,
+            q in -0.6f64..1.6,
+            mu in 0.02f64..1.0,
+            h0 in proptest::bool::ANY,
+            h3 in proptest::bool::ANY,
+        ) {
+            let has = [h0, h3];
+            let (x, r) = wavy(&w, xi, g);
+            let law = law(mu);
+            let anchor = on_reference(r, has, q);
+            let Some((out, xi, g, n)) = smoothed_at(&law, x, has, r, anchor) else {
+                return Ok(());
+            };
+            proptest::prop_assume!((-0.3..1.3).contains(&xi));
+            let t = out.friction.traction;
+            let tl = t[0].hypot(t[1]);
+            proptest::prop_assert!((t[0] * n[0] + t[1] * n[1]).abs() <= 1e-14 * tl);
+            for c in 0..2 {
+                let sum: f64 = (0..5).map(|k| out.forces[2 * k + c]).sum();
+                proptest::prop_assert!(sum.abs() < 1e-13 * (1.0 + tl), "sum {sum}");
+            }
+            let moment: f64 = (0..5)
+                .map(|k| x[k][0] * out.forces[2 * k + 1] - x[k][1] * out.forces[2 * k])
+                .sum();
+            let expected = g * out.friction.tangential_force;
+            proptest::prop_assert!((moment - expected).abs() < 1e-12 * (1.0 + tl),
+                "moment {moment} vs g R_T {expected}");
+            let h = 1e-6;
+            for j in 0..smoothing::N {
+                let (mut xp, mut xm) = (x, x);
+                xp[j / 2][j % 2] += h;
+                xm[j / 2][j % 2] -= h;
+                let (Some(fp), Some(fm)) = (
+                    smoothed_at(&law, xp, has, r, anchor),
+                    smoothed_at(&law, xm, has, r, anchor),
+                ) else {
+                    continue;
+                };
+                // the stick / slip boundary is a kink of the force
+                if fp.0.friction.status != out.friction.status
+                    || fm.0.friction.status != out.friction.status
+                {
+                    continue;
+                }
+                for i in 0..smoothing::N {
+                    let fd = -(fp.0.forces[i] - fm.0.forces[i]) / (2.0 * h);
+                    let k = out.tangent[i][j];
+                    proptest::prop_assert!((fd - k).abs() < 1e-5 * (1.0 + fd.abs()),
+                        "{:?} K[{i}][{j}]: {fd} vs {k}", out.friction.status);
+                }
+            }
+        }
+    }
+
+    /// The slave on a master vertex's nodal normal: the element of the
+    /// segment before the vertex (at `xi = 1`) and the one after it (at
+    /// `xi = 0`) give the same friction force on the slave and on the
+    /// vertex (continuous where the node passes a master node), in stick
+    /// and in slip, and the same new stick point; the faceted tangents of
+    /// the two segments differ by the kink's 11 degrees.
+    #[test]
+    fn smoothed_friction_is_the_same_from_both_segments_of_a_vertex() {
+        // master nodes walked -x, a kink at (0, 0)
+        let m = [[2.0, 0.1], [1.0, 0.0], [0.0, 0.0], [-1.0, 0.2], [-2.0, 0.3]];
+        let rf = [[2.0, 0.0], [1.0, 0.0], [0.0, 0.0], [-1.0, 0.0], [-2.0, 0.0]];
+        let nv = smoothing::Patch::new([m[2], m[0], m[1], m[2], m[3]], true, true)
+            .unwrap()
+            .nu[1];
+        let xs = [-0.01 * nv[0], -0.01 * nv[1]];
+        for (mu, anchor, status) in [
+            (0.5, [0.01, 0.0], FrictionStatus::Stick),
+            (0.1, [-0.3, 0.0], FrictionStatus::Slip),
+        ] {
+            let before = respond_smoothed(
+                &law(mu),
+                [xs, m[0], m[1], m[2], m[3]],
+                [true, true],
+                1.0,
+                [rf[0], rf[1], rf[2], rf[3]],
+                anchor,
+                None,
+            )
+            .unwrap();
+            let after = respond_smoothed(
+                &law(mu),
+                [xs, m[1], m[2], m[3], m[4]],
+                [true, true],
+                0.0,
+                [rf[1], rf[2], rf[3], rf[4]],
+                anchor,
+                None,
+            )
+            .unwrap();
+            assert_eq!(before.friction.status, status);
+            assert_eq!(after.friction.status, status);
+            let (tb, ta) = (before.friction.traction, after.friction.traction);
+            let tl = tb[0].hypot(tb[1]);
+            assert!(tl > 0.0);
+            for c in 0..2 {
+                assert!((tb[c] - ta[c]).abs() < 1e-12 * tl, "{tb:?} {ta:?}");
+                // the vertex: x_2 before, x_1 after
+                assert!((before.forces[6 + c] - after.forces[4 + c]).abs() < 1e-12 * tl);
+                assert!((before.anchor[c] - after.anchor[c]).abs() < 1e-12);
+            }
+        }
     }
 
     #[test]

@@ -540,21 +540,34 @@ fn patch_points(
     (pts, [far0, far3])
 }
 
+/// Relative tolerance (of the segment's length) within which the smoothed
+/// `|g|` of two segments is a tie: at a master vertex both segments give
+/// the same point, gap and normal, and round-off decided.
+const VERTEX_TIE: f64 = 1e-9;
+
 /// Smoothed projection of `xs` on the candidates (the nodal normal field
 /// of [`smoothing`]): among the projections inside their segment (past a
 /// free end only by [`FREE_END_XI`]), the smallest `|g|`, ties to the
-/// lower segment index; `None` when no projection falls inside (the caller
+/// lower segment index; but the segment `last` of the last evaluation is
+/// kept while its `|g|` is within [`VERTEX_TIE`] of its length of the
+/// smallest (a node on a master vertex projects on both segments with the
+/// same gap to round-off: choosing by the last bits made it switch at
+/// every iteration, 308 times on the sliding cylinder with the vertex
+/// under its pole); `None` when no projection falls inside (the caller
 /// then keeps the faceted projection).
+#[allow(clippy::too_many_arguments)]
 fn closest_smoothed(
     surface: &Surface,
     x: &[[f64; 2]],
     xs: [f64; 2],
     candidates: &[usize],
     memory: &[usize],
+    last: Option<usize>,
     depth: f64,
     tests: &mut usize,
 ) -> Option<SmoothKept> {
     let mut best: Option<(f64, usize, f64)> = None;
+    let mut kept: Option<(f64, usize, f64, f64)> = None;
     for &e in candidates {
         let (pts, far) = patch_points(surface, x, xs, e);
         let Some(line) = SegmentProjection::new(xs, pts[2], pts[3]) else {
@@ -587,8 +600,15 @@ fn closest_smoothed(
         if best.is_none_or(|(d, _, _)| gap.abs() < d) {
             best = Some((gap.abs(), e, xi));
         }
+        if last == Some(e) {
+            kept = Some((gap.abs(), e, xi, line.length));
+        }
     }
-    let (_, e, xi) = best?;
+    let (d, e, xi) = best?;
+    let (_, e, xi) = match kept {
+        Some((dk, ek, xik, length)) if dk <= d + VERTEX_TIE * length => (dk, ek, xik),
+        _ => (d, e, xi),
+    };
     let (pts, far) = patch_points(surface, x, xs, e);
     let d = smoothing::differentiate(pts, far[0].is_some(), far[1].is_some(), xi)?;
     Some(SmoothKept { segment: e, far, d })
@@ -672,7 +692,8 @@ pub fn evaluate(
             });
         }
         let smoothed = if smooth {
-            closest_smoothed(surface, x, xs, &candidates, &memory, prof, &mut tests)
+            let last = state.last_entity[i];
+            closest_smoothed(surface, x, xs, &candidates, &memory, last, prof, &mut tests)
         } else {
             None
         };
@@ -735,35 +756,52 @@ pub fn evaluate(
             Some(_) => ([0.0; 6], [[0.0; 6]; 6]),
             None => p.element(rn, dr_dg),
         };
-        let friction = match &cp.friction {
-            Some(law) => super::friction_segment::apply(
+        // the smoothed element's friction over [x_s, x_0, x_1, x_2, x_3]
+        let mut f10 = [0.0; smoothing::N];
+        let mut k10 = [[0.0; smoothing::N]; smoothing::N];
+        let element = super::friction_segment::Element {
+            slave: i,
+            xs,
+            nodes: [m1, m2],
+            xi: smoothed.as_ref().map_or(p.xi, |s| s.d.xi),
+            normal_force: rn,
+            status: resp.status,
+            tributary,
+            // a vertex projection: the friction in the tangent of the
+            // vertex's normal
+            vertex: (smoothed.is_none() && p.corner).then(|| super::friction_segment::Vertex {
+                end: usize::from(p.xi > 0.5),
+                side: if p.gap < 0.0 { -1.0 } else { 1.0 },
+            }),
+        };
+        let friction = match (&cp.friction, &smoothed) {
+            (Some(law), Some(s)) => super::friction_segment::apply_smoothed(
                 law,
                 &method,
                 &model.mesh.nodes,
                 x,
                 &sp.committed_positions,
-                &super::friction_segment::Element {
-                    slave: i,
-                    xs,
-                    nodes: [m1, m2],
-                    xi: smoothed.as_ref().map_or(p.xi, |s| s.d.xi),
-                    normal_force: rn,
-                    status: resp.status,
-                    tributary,
-                    // a vertex projection: the friction in the tangent of
-                    // the vertex's normal
-                    vertex: (smoothed.is_none() && p.corner).then(|| {
-                        super::friction_segment::Vertex {
-                            end: usize::from(p.xi > 0.5),
-                            side: if p.gap < 0.0 { -1.0 } else { 1.0 },
-                        }
-                    }),
+                &super::friction_segment::SmoothedElement {
+                    element,
+                    far: s.far,
+                    gap: s.d.gap.v,
                 },
+                &mut state.friction,
+                &mut f10,
+                &mut k10,
+            ),
+            (Some(law), None) => super::friction_segment::apply(
+                law,
+                &method,
+                &model.mesh.nodes,
+                x,
+                &sp.committed_positions,
+                &element,
                 &mut state.friction,
                 &mut f,
                 &mut kt,
             ),
-            None => Default::default(),
+            (None, _) => Default::default(),
         };
         let mut gap_gradient = p.gap_gradient();
         if let (Some(s), Some(rows)) = (&smoothed, couplings.as_mut()) {
@@ -792,24 +830,24 @@ pub fn evaluate(
                     tangent[ra * nd + rc] += -dr_dg * s.d.b[a].v * g.d[c] - rn * s.d.b[a].d[c];
                 }
             }
-            // friction (6 dofs: slave, m1, m2 = local 0, 2, 3)
-            let six = [0usize, 1, 4, 5, 6, 7];
-            for (a6, &a) in six.iter().enumerate() {
+            // friction (over the same 10 coordinates)
+            for a in 0..smoothing::N {
                 let Some(pa) = pos(a / 2) else { continue };
                 let ra = 2 * pa + a % 2;
-                force[ra] += f[a6];
-                for (c6, &c) in six.iter().enumerate() {
+                force[ra] += f10[a];
+                for c in 0..smoothing::N {
                     let Some(pc) = pos(c / 2) else { continue };
-                    tangent[ra * nd + 2 * pc + c % 2] += kt[a6][c6];
+                    tangent[ra * nd + 2 * pc + c % 2] += k10[a][c];
                 }
             }
-            // the 6-dof view, for output and the search (the full element
-            // is the coupling)
+            // the 6-dof view (slave, m1, m2 = local 0, 2, 3), for output
+            // and the search (the full element is the coupling)
+            let six = [0usize, 1, 4, 5, 6, 7];
             for (a6, &a) in six.iter().enumerate() {
-                f[a6] += rn * s.d.b[a].v;
+                f[a6] += rn * s.d.b[a].v + f10[a];
                 gap_gradient[a6] = s.d.b[a].v;
                 for (c6, &c) in six.iter().enumerate() {
-                    kt[a6][c6] += -dr_dg * s.d.b[a].v * g.d[c] - rn * s.d.b[a].d[c];
+                    kt[a6][c6] += -dr_dg * s.d.b[a].v * g.d[c] - rn * s.d.b[a].d[c] + k10[a][c];
                 }
             }
             if resp.status == ContactStatus::Closed {
@@ -1070,6 +1108,42 @@ mod tests {
         let k = closest(&s, &x, [0.05, -0.01], &[0, 1], &[], 0.5, &mut tests).unwrap();
         assert_eq!(k.segment, 0);
         assert!((k.projection.gap - 0.05).abs() < 1e-15);
+    }
+
+    /// A slave node on a master vertex (to round-off) projects on both
+    /// segments with the same smoothed gap: `closest_smoothed` keeps the
+    /// segment of the last evaluation, whichever it is, instead of letting
+    /// round-off choose (the sliding cylinder's pole switched 308 times);
+    /// without a last segment the smaller `|g|` and the lower index win.
+    #[test]
+    fn smoothed_projection_on_a_vertex_keeps_the_last_segment() {
+        // walked -x, a 9-degree kink at (0, 0), body below
+        let k = 9f64.to_radians();
+        let x = vec![
+            [2.0, 0.0],
+            [1.0, 0.0],
+            [0.0, 0.0],
+            [-k.cos(), -k.sin()],
+            [-2.0 * k.cos(), -2.0 * k.sin()],
+        ];
+        let s = Surface::new(&[[0, 1], [1, 2], [2, 3], [3, 4]]);
+        // on the vertex's nodal normal, 1e-3 inside, a few ulps off
+        let nv = smoothing::Patch::new([x[2], x[0], x[1], x[2], x[3]], true, true)
+            .unwrap()
+            .nu[1];
+        let xs = [-1e-3 * nv[0] + 1e-17, -1e-3 * nv[1]];
+        let mut tests = 0;
+        let run = |last: Option<usize>, tests: &mut usize| {
+            closest_smoothed(&s, &x, xs, &[0, 1, 2, 3], &[], last, 0.5, tests)
+                .unwrap()
+                .segment
+        };
+        assert_eq!(run(Some(1), &mut tests), 1);
+        assert_eq!(run(Some(2), &mut tests), 2);
+        // a clear choice is not overridden by the last segment
+        let far = [0.5, -1e-3];
+        let k = closest_smoothed(&s, &x, far, &[0, 1, 2, 3], &[], Some(2), 0.5, &mut tests);
+        assert_eq!(k.unwrap().segment, 1);
     }
 
     #[test]

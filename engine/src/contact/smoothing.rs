@@ -31,7 +31,10 @@
 //! symmetric: the solver factorizes with LU), from dual numbers carried
 //! through one Newton step of the projection at its solution (which makes
 //! `d xi / d x` exact). The same gap decides contact, gives the force and
-//! the reported pressure.
+//! the reported pressure, and the same normal gives the friction basis:
+//! the friction force acts along `tau = (-n_y, n_x)` of `n(xi)`
+//! ([`super::friction_segment::respond_smoothed`], over the same 10
+//! coordinates, [`dual`]).
 
 use super::mortar::ad::Ad;
 
@@ -227,11 +230,28 @@ pub struct Smoothed {
     pub b: [Ad10; N],
 }
 
-/// The smoothed gap of `x[0]` (slave) against segment `x[2] -> x[3]` with
-/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`), at the solved
-/// parameter `xi` (from [`project`]): one Newton step in dual numbers from
-/// the solution gives the exact `d xi / d x`.
-pub fn differentiate(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Option<Smoothed> {
+/// The smoothed projection in dual numbers over `[x_s, x_0, x_1, x_2,
+/// x_3]` (the friction of [`super::friction_segment::respond_smoothed`]
+/// carries them through its return map).
+#[derive(Debug, Clone, Copy)]
+pub struct DualProjection {
+    /// The coordinates, seeded.
+    pub x: [[Ad10; 2]; 5],
+    /// `xi(x)`.
+    pub xi: Ad10,
+    /// The point `x(xi)` of the segment.
+    pub point: [Ad10; 2],
+    /// The unit normal `n(xi)`.
+    pub normal: [Ad10; 2],
+    /// The gap `(x_s - x(xi)) . n(xi)`.
+    pub gap: Ad10,
+}
+
+/// The projection of `x[0]` (slave) on segment `x[2] -> x[3]` with
+/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`) in dual numbers, at
+/// the solved parameter `xi` (from [`project`]): one Newton step in dual
+/// numbers from the solution gives the exact `d xi / d x`.
+pub fn dual(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Option<DualProjection> {
     let mut v = [[Ad10::cst(0.0); 2]; 5];
     for (k, p) in x.iter().enumerate() {
         for c in 0..2 {
@@ -240,7 +260,28 @@ pub fn differentiate(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Optio
     }
     let p = Patch::new(v, has0, has3)?;
     let t = p.step(Ad10::cst(xi))?;
-    let (g, n) = p.gap(t);
+    let (point, _) = p.at(t);
+    let (gap, normal) = p.gap(t);
+    Some(DualProjection {
+        x: v,
+        xi: t,
+        point,
+        normal,
+        gap,
+    })
+}
+
+/// The smoothed gap of `x[0]` (slave) against segment `x[2] -> x[3]` with
+/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`), at the solved
+/// parameter `xi` (from [`project`]), with its exact derivatives
+/// ([`dual`]).
+pub fn differentiate(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Option<Smoothed> {
+    let DualProjection {
+        xi: t,
+        normal: n,
+        gap: g,
+        ..
+    } = dual(x, has0, has3, xi)?;
     let w1 = Ad10::cst(1.0) - t;
     let z = Ad10::cst(0.0);
     let b = [

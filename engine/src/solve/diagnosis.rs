@@ -285,15 +285,17 @@ pub fn contact_cause(
                     list.join(", ")
                 ),
                 if smoothed(first.pair) {
-                    // issue 18: with the normal smoothed, a node on a
-                    // master vertex to round-off still switches, the |g|
-                    // tie broken by round-off and the friction basis the
-                    // segment's own tangent
+                    // issue 18: the smoothed normal, its gap and friction
+                    // basis are continuous across the master nodes, and a
+                    // node on a vertex to round-off keeps its segment
+                    // (`node_to_segment::VERTEX_TIE`): what switches here
+                    // goes to and fro across a vertex by more than that
                     format!(
-                        "pair `{}` already smooths its normal: a slave node lying on a master \
-                         vertex to round-off still switches segments there (the friction \
-                         tangent is the segment's own); shift or refine the master surface so \
-                         no slave node starts on a master vertex, or use `formulation = mortar`",
+                        "pair `{}` already smooths its normal (continuous normal, gap and \
+                         friction across the master nodes; a node on a vertex to round-off \
+                         keeps its segment): the nodes cross master vertices back and forth; \
+                         use more `increments`, refine the master surface, or use \
+                         `formulation = mortar`",
                         pair_name(first.pair)
                     )
                 } else {
