@@ -649,8 +649,8 @@ pub static CONTACT: [Key; 8] = [
         "master normal of node-to-segment contact: none (faceted, exact segment normals), \
          nodal (averaged nodal normals interpolated along each segment: continuous across the \
          master nodes; planar analyses) or nagata (3d node-to-facet: Nagata's quadratic \
-         patches through the master facets' nodes and their area-weighted nodal normals; \
-         frictionless)",
+         patches through the master facets' nodes and their area-weighted nodal normals, \
+         which give the gap, the force and the friction's tangent plane)",
     )
     .default(Default::Choice("none")),
     Key::new("thermal", KeyType::Choice(&["{ .. }"]), "thermal contact"),

@@ -162,8 +162,8 @@ pub struct FacetResponse {
     pub point: [f64; 3],
 }
 
-fn cst3(p: [f64; 3]) -> [A; 3] {
-    p.map(A::cst)
+fn cst3<const N: usize>(p: [f64; 3]) -> [Ad<N>; 3] {
+    p.map(Ad::cst)
 }
 
 /// Where the slave node projects on the contact facet: its interior
@@ -276,6 +276,118 @@ fn along_normal(q: [f64; 3], n: [f64; 3], pts: &[[f64; 3]], xi: [f64; 2]) -> Opt
     None
 }
 
+/// The Coulomb law at a contact point: its state, the friction force `t`
+/// (dual numbers over the element's variables), the tangential gap, the
+/// stick point's move `delta` and its position after the return map.
+pub(crate) struct Coulomb<const N: usize> {
+    /// Stick or slip.
+    pub status: FrictionStatus,
+    /// The friction force on the slave.
+    pub t: [Ad<N>; 3],
+    /// Tangential gap `P (x_s - x_a)`.
+    pub gt: [f64; 3],
+    /// The stick point's move (the slip).
+    pub delta: [f64; 3],
+    /// The stick point after the return map.
+    pub point: [f64; 3],
+}
+
+impl<const N: usize> Coulomb<N> {
+    /// The friction record of the element.
+    pub fn friction(&self) -> NodeFriction<3> {
+        let tv = self.t.map(|v| v.v);
+        let slip = self.delta;
+        let dissipation = -(0..3).map(|c| tv[c] * slip[c]).sum::<f64>() + 0.0;
+        let norm3 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        NodeFriction {
+            status: self.status,
+            tangential_force: norm3(tv),
+            tangential_gap: norm3(self.gt),
+            slip: norm3(slip),
+            traction: tv,
+            slip_vector: slip,
+            gap_gradient: [0.0; 3],
+            dissipation,
+        }
+    }
+}
+
+/// The law of [`FacetFriction`] at the contact point `x` of normal `n` of
+/// the slave `xs_d` (`faded` the free-edge fade of `R_N`), the stick point
+/// `anchor()` (its current position on its facet), or the first touch's
+/// crossing ([`FacetFriction::impact`]); the faceted element and the
+/// Nagata element ([`super::friction_nagata`]) share it.
+pub(crate) fn coulomb<const N: usize>(
+    law: &FacetFriction,
+    xs_d: [Ad<N>; 3],
+    x: [Ad<N>; 3],
+    n: [Ad<N>; 3],
+    faded: Ad<N>,
+    anchor: impl FnOnce() -> [Ad<N>; 3],
+) -> Coulomb<N> {
+    let gap = dot(sub(xs_d, x), n);
+    let xa: [Ad<N>; 3] = match law.impact {
+        // first touch: where the path from `x_0` crosses the tangent plane
+        // of the current iterate
+        Some(x0) => {
+            let x0 = cst3(x0);
+            let g0 = dot(sub(x0, x), n);
+            if g0.v > 0.0 && gap.v < 0.0 {
+                let tau = g0 / (g0 - gap);
+                std::array::from_fn(|c| x0[c] + (xs_d[c] - x0[c]) * tau)
+            } else if g0.v > 0.0 {
+                // not there yet at a positive gap (augmented Lagrangian)
+                xs_d
+            } else {
+                // behind the plane at the start
+                x0
+            }
+        }
+        // the stick point on its facet (convected)
+        None => anchor(),
+    };
+    let d = sub(xs_d, xa);
+    let dn = dot(d, n);
+    let gt: [Ad<N>; 3] = std::array::from_fn(|c| d[c] - n[c] * dn);
+    let shift = cst3(law.shift);
+    let sn = dot(shift, n);
+    let trial: [Ad<N>; 3] = std::array::from_fn(|c| shift[c] - n[c] * sn - gt[c] * law.alpha_t);
+    let rn = gap * -law.normal_stiffness + law.normal_shift;
+    let rn = if rn.v > 0.0 { rn * faded } else { Ad::cst(0.0) };
+    let limit = rn * law.mu;
+    let norm2 = dot(trial, trial);
+    let zero = [Ad::cst(0.0); 3];
+    let (status, t) = if law.alpha_t <= 0.0 {
+        (FrictionStatus::Stick, zero)
+    } else if limit.v <= 0.0 {
+        // mu R_N = 0: slides freely
+        (FrictionStatus::Slip, zero)
+    } else if norm2.v.sqrt() <= limit.v * (1.0 - CONE_TIE) {
+        (FrictionStatus::Stick, trial)
+    } else {
+        let norm = norm2.sqrt();
+        let s = limit / norm;
+        (FrictionStatus::Slip, trial.map(|v| v * s))
+    };
+    // held by the cycling guard: frozen sticking, the law's status kept
+    let t = if law.held { trial } else { t };
+    let tv = t.map(|v| v.v);
+    let trial_v = trial.map(|v| v.v);
+    let delta: [f64; 3] = if law.alpha_t > 0.0 {
+        std::array::from_fn(|c| (tv[c] - trial_v[c]) / law.alpha_t)
+    } else {
+        std::array::from_fn(|c| -gt[c].v)
+    };
+    let point: [f64; 3] = std::array::from_fn(|c| xa[c].v + delta[c]);
+    Coulomb {
+        status,
+        t,
+        gt: gt.map(|v| v.v),
+        delta,
+        point,
+    }
+}
+
 /// The friction law on the element: slave `xs` projected on the facet
 /// `pts` at the converged foot `xi` (`at` the face; at an edge or vertex,
 /// `xi` is the foot on the extended facet, the start of the stick point's
@@ -321,59 +433,11 @@ pub fn respond(
         // the closest point of the edge (vertex) and its normal
         Some((a, b)) => edge_point(xs_d, &p, a, b, at.side)?,
     };
-    let gap = dot(sub(xs_d, x), n);
-    let xa: [A; 3] = match law.impact {
-        // first touch: where the path from `x_0` crosses the tangent plane
-        // of the current iterate
-        Some(x0) => {
-            let x0 = cst3(x0);
-            let g0 = dot(sub(x0, x), n);
-            if g0.v > 0.0 && gap.v < 0.0 {
-                let tau = g0 / (g0 - gap);
-                std::array::from_fn(|c| x0[c] + (xs_d[c] - x0[c]) * tau)
-            } else if g0.v > 0.0 {
-                // not there yet at a positive gap (augmented Lagrangian)
-                xs_d
-            } else {
-                // behind the plane at the start
-                x0
-            }
-        }
+    let cl = coulomb(law, xs_d, x, n, faded, || {
         // the stick point on its facet (convected)
-        None => surface_point(&pa, xi_a.map(A::cst)).1,
-    };
-    let d = sub(xs_d, xa);
-    let dn = dot(d, n);
-    let gt: [A; 3] = std::array::from_fn(|c| d[c] - n[c] * dn);
-    let shift = cst3(law.shift);
-    let sn = dot(shift, n);
-    let trial: [A; 3] = std::array::from_fn(|c| shift[c] - n[c] * sn - gt[c] * law.alpha_t);
-    let rn = gap * -law.normal_stiffness + law.normal_shift;
-    let rn = if rn.v > 0.0 { rn * faded } else { A::cst(0.0) };
-    let limit = rn * law.mu;
-    let norm2 = dot(trial, trial);
-    let zero = [A::cst(0.0); 3];
-    let (status, t) = if law.alpha_t <= 0.0 {
-        (FrictionStatus::Stick, zero)
-    } else if limit.v <= 0.0 {
-        // mu R_N = 0: slides freely
-        (FrictionStatus::Slip, zero)
-    } else if norm2.v.sqrt() <= limit.v * (1.0 - CONE_TIE) {
-        (FrictionStatus::Stick, trial)
-    } else {
-        let norm = norm2.sqrt();
-        let s = limit / norm;
-        (FrictionStatus::Slip, trial.map(|v| v * s))
-    };
-    // held by the cycling guard: frozen sticking, the law's status kept
-    let t = if law.held { trial } else { t };
-    let tv = t.map(|v| v.v);
-    let trial_v = trial.map(|v| v.v);
-    let delta: [f64; 3] = if law.alpha_t > 0.0 {
-        std::array::from_fn(|c| (tv[c] - trial_v[c]) / law.alpha_t)
-    } else {
-        std::array::from_fn(|c| -gt[c].v)
-    };
+        surface_point(&pa, xi_a.map(A::cst)).1
+    });
+    let (status, t) = (cl.status, cl.t);
     let mut forces = [0.0; NDOF];
     let mut tangent = vec![0.0; NDOF * NDOF];
     let mut put = |row: usize, f: A| {
@@ -388,7 +452,7 @@ pub fn respond(
             put(3 + 3 * a + c, -(*wa * tc));
         }
     }
-    let point: [f64; 3] = std::array::from_fn(|c| xa[c].v + delta[c]);
+    let point = cl.point;
     let moved = (status == FrictionStatus::Slip && !law.held).then(|| match at.feature {
         Feature::Face => foot(point, pts).map_or(xi, |(f, _)| f),
         // the facet's point on the line through `point` along `n`
@@ -396,20 +460,8 @@ pub fn respond(
             .or_else(|| foot(point, pts).map(|f| f.0))
             .unwrap_or(xi),
     });
-    let slip = delta;
-    let dissipation = -(0..3).map(|c| tv[c] * slip[c]).sum::<f64>() + 0.0;
-    let norm3 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     Some(FacetResponse {
-        friction: NodeFriction {
-            status,
-            tangential_force: norm3(tv),
-            tangential_gap: norm3(gt.map(|v| v.v)),
-            slip: norm3(slip),
-            traction: tv,
-            slip_vector: slip,
-            gap_gradient: [0.0; 3],
-            dissipation,
-        },
+        friction: cl.friction(),
         forces,
         tangent,
         moved,
@@ -461,13 +513,110 @@ pub fn encode(facet: usize, xi: [f64; 2]) -> [f64; 3] {
     [facet as f64, xi[0], xi[1]]
 }
 
-/// Friction of a closed node-to-facet element: the stick point from the
-/// committed state (or the Uzawa base, or the first touch), the law, the
-/// trial state updated. `facet_points(k)` gives facet `k`'s current node
-/// coordinates on the master side, `facets` their number. Returns the
-/// response and the stick point's facet (whose nodes follow the contact
-/// facet's in the forces), `None` when there is no tangential force
-/// (Lagrange multipliers, first touch without friction, degenerate facet).
+/// The master geometry a node-to-facet friction element lives on: the
+/// flat facets ([`Faceted`]) or their Nagata patches
+/// ([`super::friction_nagata::Patches`]). [`apply_on`] keeps the stick
+/// point's bookkeeping (first touch, base, anchor, the slip of the
+/// increment) the same on both.
+pub trait Master {
+    /// The element's response (forces and tangent over its coordinates).
+    type Response;
+    /// The contact point and unit normal at the converged foot (the plane
+    /// a first touch crosses); `None` for a degenerate facet.
+    fn frame(&self, c: &FacetContact<'_>) -> Option<([f64; 3], [f64; 3])>;
+    /// The parameters on the contact facet of the foot of `q` (`c.xi` if
+    /// the projection fails).
+    fn foot_on(&self, c: &FacetContact<'_>, q: [f64; 3]) -> [f64; 2];
+    /// The current position of the material point `xi` of facet `k`.
+    fn point_on(&self, c: &FacetContact<'_>, k: usize, xi: [f64; 2]) -> [f64; 3];
+    /// The law on the element with the stick point `xi_a` on facet `ka`.
+    fn respond(
+        &self,
+        law: &FacetFriction,
+        c: &FacetContact<'_>,
+        ka: usize,
+        xi_a: [f64; 2],
+    ) -> Option<Self::Response>;
+    /// The response's friction record, the stick point's parameters on the
+    /// contact facet after a slip and its position.
+    fn outcome(r: &mut Self::Response) -> (&mut NodeFriction<3>, Option<[f64; 2]>, [f64; 3]);
+    /// The free-edge fade of the normal force at the foot.
+    fn fade(&self, c: &FacetContact<'_>) -> f64;
+}
+
+/// Flat facets: `facet_points(k)` gives facet `k`'s current node
+/// coordinates.
+pub struct Faceted<F: Fn(usize) -> Vec<[f64; 3]>> {
+    /// See the type.
+    pub facet_points: F,
+}
+
+impl<F: Fn(usize) -> Vec<[f64; 3]>> Faceted<F> {
+    fn points(&self, c: &FacetContact<'_>, k: usize) -> Vec<[f64; 3]> {
+        if k == c.facet {
+            c.pts.to_vec()
+        } else {
+            (self.facet_points)(k)
+        }
+    }
+}
+
+impl<F: Fn(usize) -> Vec<[f64; 3]>> Master for Faceted<F> {
+    type Response = FacetResponse;
+
+    fn frame(&self, c: &FacetContact<'_>) -> Option<([f64; 3], [f64; 3])> {
+        let (_, x, ..) = surface_point(
+            &c.pts
+                .iter()
+                .map(|&q| q.map(Ad::<0>::cst))
+                .collect::<Vec<_>>(),
+            c.xi.map(Ad::<0>::cst),
+        );
+        match edge_of(c.at) {
+            None => Some((x.map(|v| v.v), facet_normal(c.pts, c.xi))),
+            // the tangent plane of the edge's (vertex's) normal through its
+            // closest point
+            Some((a, b)) => {
+                let p: Vec<[Ad<0>; 3]> = c.pts.iter().map(|&q| q.map(Ad::<0>::cst)).collect();
+                let (_, x, n) = edge_point(c.xs.map(Ad::<0>::cst), &p, a, b, c.at.side)?;
+                Some((x.map(|v| v.v), n.map(|v| v.v)))
+            }
+        }
+    }
+
+    fn foot_on(&self, c: &FacetContact<'_>, q: [f64; 3]) -> [f64; 2] {
+        foot(q, c.pts).map_or(c.xi, |(f, _)| f)
+    }
+
+    fn point_on(&self, c: &FacetContact<'_>, k: usize, xi: [f64; 2]) -> [f64; 3] {
+        point_at(&self.points(c, k), xi)
+    }
+
+    fn respond(
+        &self,
+        law: &FacetFriction,
+        c: &FacetContact<'_>,
+        ka: usize,
+        xi_a: [f64; 2],
+    ) -> Option<FacetResponse> {
+        respond(law, c.xs, c.pts, c.xi, &self.points(c, ka), xi_a, c.at)
+    }
+
+    fn outcome(r: &mut FacetResponse) -> (&mut NodeFriction<3>, Option<[f64; 2]>, [f64; 3]) {
+        (&mut r.friction, r.moved, r.point)
+    }
+
+    fn fade(&self, c: &FacetContact<'_>) -> f64 {
+        match edge_of(c.at) {
+            None => edge_fade::<0>(c.pts.len(), c.xi.map(Ad::cst), c.free_edges).v,
+            Some(_) => 1.0,
+        }
+    }
+}
+
+/// Friction of a closed node-to-facet element on flat facets
+/// ([`apply_on`] with [`Faceted`]); `facet_points(k)` gives facet `k`'s
+/// current node coordinates on the master side, `facets` their number.
 pub fn apply(
     law: &Friction,
     method: &ContactMethod,
@@ -476,6 +625,23 @@ pub fn apply(
     facet_points: impl Fn(usize) -> Vec<[f64; 3]>,
     state: &mut FrictionState<3>,
 ) -> Option<(FacetResponse, usize)> {
+    apply_on(law, method, c, facets, &Faceted { facet_points }, state)
+}
+
+/// Friction of a closed node-to-facet element: the stick point from the
+/// committed state (or the Uzawa base, or the first touch), the law, the
+/// trial state updated; `facets` the number of master facets. Returns the
+/// response and the stick point's facet (whose nodes follow the contact
+/// facet's in the forces), `None` when there is no tangential force
+/// (Lagrange multipliers, first touch without friction, degenerate facet).
+pub fn apply_on<M: Master>(
+    law: &Friction,
+    method: &ContactMethod,
+    c: &FacetContact<'_>,
+    facets: usize,
+    master: &M,
+    state: &mut FrictionState<3>,
+) -> Option<(M::Response, usize)> {
     let i = c.slave;
     if i >= state.anchor.len() {
         return None;
@@ -489,69 +655,47 @@ pub fn apply(
     // the base: the stick point after an augmented-Lagrangian update, or
     // of a node behind the facet's plane at the start
     let mut impact = None;
-    let start = match decode(state.committed_anchor[i], facets)
-        .or_else(|| decode(state.base[i], facets))
-    {
-        Some(a) => a,
-        None => {
-            // first touch in this increment
-            let x0 = state.committed_position[i];
-            let (_, x, ..) = surface_point(
-                &c.pts
-                    .iter()
-                    .map(|&q| q.map(Ad::<0>::cst))
-                    .collect::<Vec<_>>(),
-                c.xi.map(Ad::<0>::cst),
-            );
-            let (x, n) = match edge_of(c.at) {
-                None => (x.map(|v| v.v), facet_normal(c.pts, c.xi)),
-                // the tangent plane of the edge's (vertex's) normal
-                // through its closest point
-                Some((a, b)) => {
-                    let p: Vec<[Ad<0>; 3]> = c.pts.iter().map(|&q| q.map(Ad::<0>::cst)).collect();
-                    let (_, x, n) = edge_point(c.xs.map(Ad::<0>::cst), &p, a, b, c.at.side)?;
-                    (x.map(|v| v.v), n.map(|v| v.v))
+    let start =
+        match decode(state.committed_anchor[i], facets).or_else(|| decode(state.base[i], facets)) {
+            Some(a) => a,
+            None => {
+                // first touch in this increment
+                let x0 = state.committed_position[i];
+                let (x, n) = master.frame(c)?;
+                let g0: f64 = (0..3).map(|k| (x0[k] - x[k]) * n[k]).sum();
+                if c.gap < 0.0 {
+                    let tau = if g0 > 0.0 { g0 / (g0 - c.gap) } else { 0.0 };
+                    state.record_impact(tau);
                 }
-            };
-            let g0: f64 = (0..3).map(|k| (x0[k] - x[k]) * n[k]).sum();
-            if c.gap < 0.0 {
-                let tau = if g0 > 0.0 { g0 / (g0 - c.gap) } else { 0.0 };
-                state.record_impact(tau);
-            }
-            if law.first_impact == FirstImpact::Frictionless {
-                state.anchor[i] = Some(encode(c.facet, c.xi));
-                return None;
-            }
-            let penalty = matches!(method, ContactMethod::Penalty { .. });
-            if penalty && g0 > 0.0 && c.gap < 0.0 {
-                // the stick point follows the iterate (`FacetFriction::impact`)
-                impact = Some(x0);
-                (c.facet, c.xi)
-            } else {
-                // behind the plane at the start (`x_0`), or the augmented
-                // Lagrangian (the crossing, or `x_s` at a positive gap): the
-                // facet's material point at the foot, held in the base
-                // and convected with the facet
-                let at = if g0 <= 0.0 {
-                    x0
-                } else if c.gap < 0.0 {
-                    let tau = g0 / (g0 - c.gap);
-                    std::array::from_fn(|k| x0[k] + tau * (c.xs[k] - x0[k]))
+                if law.first_impact == FirstImpact::Frictionless {
+                    state.anchor[i] = Some(encode(c.facet, c.xi));
+                    return None;
+                }
+                let penalty = matches!(method, ContactMethod::Penalty { .. });
+                if penalty && g0 > 0.0 && c.gap < 0.0 {
+                    // the stick point follows the iterate (`FacetFriction::impact`)
+                    impact = Some(x0);
+                    (c.facet, c.xi)
                 } else {
-                    c.xs
-                };
-                let first = (c.facet, foot(at, c.pts).map_or(c.xi, |(f, _)| f));
-                state.base[i] = Some(encode(first.0, first.1));
-                first
+                    // behind the plane at the start (`x_0`), or the augmented
+                    // Lagrangian (the crossing, or `x_s` at a positive gap): the
+                    // facet's material point at the foot, held in the base
+                    // and convected with the facet
+                    let at = if g0 <= 0.0 {
+                        x0
+                    } else if c.gap < 0.0 {
+                        let tau = g0 / (g0 - c.gap);
+                        std::array::from_fn(|k| x0[k] + tau * (c.xs[k] - x0[k]))
+                    } else {
+                        c.xs
+                    };
+                    let first = (c.facet, master.foot_on(c, at));
+                    state.base[i] = Some(encode(first.0, first.1));
+                    first
+                }
             }
-        }
-    };
+        };
     let (ka, xi_a) = decode(state.base[i], facets).unwrap_or(start);
-    let anchor_pts = if ka == c.facet {
-        c.pts.to_vec()
-    } else {
-        facet_points(ka)
-    };
     let fl = FacetFriction {
         mu: law.mu,
         alpha_t: tangential_stiffness(law, method, c.area),
@@ -562,27 +706,19 @@ pub fn apply(
         impact,
         held: c.held,
     };
-    let mut r = respond(&fl, c.xs, c.pts, c.xi, &anchor_pts, xi_a, c.at)?;
-    state.anchor[i] = Some(match r.moved {
+    let mut r = master.respond(&fl, c, ka, xi_a)?;
+    let (_, moved, point) = M::outcome(&mut r);
+    state.anchor[i] = Some(match moved {
         Some(xi) => encode(c.facet, xi),
         // a first touch sticks at the crossing: the material point there
-        None if impact.is_some() => encode(c.facet, foot(r.point, c.pts).map_or(c.xi, |f| f.0)),
+        None if impact.is_some() => encode(c.facet, master.foot_on(c, point)),
         None => encode(ka, xi_a),
     });
     // the slip of the increment: from the committed (or first-touch) stick
     // point, whose current position the base may have left (Uzawa)
     if (ka, xi_a) != start {
-        let pts0 = if start.0 == c.facet {
-            c.pts.to_vec()
-        } else {
-            facet_points(start.0)
-        };
-        let p0 = point_at(&pts0, start.1);
-        let slip: [f64; 3] = std::array::from_fn(|k| r.point[k] - p0[k]);
-        let f = &mut r.friction;
-        f.slip_vector = slip;
-        f.slip = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
-        f.dissipation = -(0..3).map(|k| f.traction[k] * slip[k]).sum::<f64>() + 0.0;
+        let p0 = master.point_on(c, start.0, start.1);
+        let slip: [f64; 3] = std::array::from_fn(|k| point[k] - p0[k]);
         // the augmented Lagrangian slides a node by moving the base of its
         // trial force: it ends on the cone (within k_T times the pair's gap
         // tolerance) with a slip, and is reported as slipping (as against
@@ -591,11 +727,12 @@ pub fn apply(
             ContactMethod::AugmentedLagrange { tolerance, .. } => fl.alpha_t * tolerance,
             _ => 0.0,
         };
-        let faded = match edge_of(c.at) {
-            None => edge_fade::<0>(c.pts.len(), c.xi.map(Ad::cst), c.free_edges).v,
-            Some(_) => 1.0,
-        };
+        let faded = master.fade(c);
         let limit = law.mu * c.normal_force * faded;
+        let (f, ..) = M::outcome(&mut r);
+        f.slip_vector = slip;
+        f.slip = (slip[0] * slip[0] + slip[1] * slip[1] + slip[2] * slip[2]).sqrt();
+        f.dissipation = -(0..3).map(|k| f.traction[k] * slip[k]).sum::<f64>() + 0.0;
         if f.status == FrictionStatus::Stick
             && limit > 0.0
             && f.tangential_force >= limit * (1.0 - CONE_TIE) - near

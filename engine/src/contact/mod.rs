@@ -31,7 +31,8 @@
 //!   elements, single / double / modified double pass, self contact);
 //!   [`node_to_facet`]: the 3D form (tri3 / quad4 master facets);
 //!   [`smoothing`]: the nodal normal field of `smoothing = nodal`;
-//!   [`nagata`]: Nagata patches on 3D master facets (`smoothing = nagata`);
+//!   [`nagata`]: Nagata patches on 3D master facets (`smoothing = nagata`),
+//!   [`friction_nagata`] their Coulomb friction;
 //! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
 //!   and `M`, segmentation; penalty and augmented Lagrangian);
 //! - [`face_integrated`]: quadratic slave faces against rigid tools (the
@@ -45,6 +46,7 @@ pub mod face_integrated;
 pub mod friction;
 pub mod friction_facet;
 pub mod friction_lagrange;
+pub mod friction_nagata;
 pub mod friction_segment;
 pub mod friction_surface;
 pub mod geometry;

@@ -311,7 +311,7 @@ impl<T: Scalar> Patch<T> {
 }
 
 /// Residual and Jacobian of the closest-point equations at `xi`.
-fn system<T: Scalar>(xs: V<T>, patch: &Patch<T>, xi: [T; 2]) -> ([T; 2], [[T; 2]; 2]) {
+pub(crate) fn system<T: Scalar>(xs: V<T>, patch: &Patch<T>, xi: [T; 2]) -> ([T; 2], [[T; 2]; 2]) {
     let (p, t, s) = patch.at(xi);
     let d = minus(xs, p);
     let j12 = vdot(d, s[2]) - vdot(t[0], t[1]);
@@ -373,6 +373,36 @@ pub struct PatchGap {
     pub hessian: [[f64; NY]; NY],
 }
 
+/// `-(dx/dY)^T w` at the patch point `x(xi)` (`xi` held), over the
+/// patch's node coordinates (slots 0..12) and nodal normals (12..24): the
+/// reaction on the patch of a force `w` on the slave at the foot (the
+/// normal force with `w = n`, the friction force with `w = t`): `-N_a w`
+/// on the nodes, plus the edge corrections' `beta_e d(w . c_e)/dY`.
+pub(crate) fn reaction<T: Scalar>(patch: &Patch<T>, xi: [T; 2], w: V<T>) -> [T; 24] {
+    let count = patch.count;
+    let (v, _, _) = basis(count, xi);
+    let z = T::of(0.0);
+    let mut g = [z; 24];
+    for a in 0..count {
+        for c in 0..3 {
+            g[3 * a + c] = z - v[a] * w[c];
+        }
+    }
+    for (e, &(a, b)) in edges(count).iter().enumerate() {
+        let (dd, da, db) =
+            coefficient_derivatives(minus(patch.x[b], patch.x[a]), patch.n[a], patch.n[b], w);
+        let we = v[4 + e];
+        for c in 0..3 {
+            // x = .. - beta_e c_e: -d(x.w)/dY = + beta_e d(w.c_e)/dY
+            g[3 * b + c] = g[3 * b + c] + we * dd[c];
+            g[3 * a + c] = g[3 * a + c] - we * dd[c];
+            g[12 + 3 * a + c] = g[12 + 3 * a + c] + we * da[c];
+            g[12 + 3 * b + c] = g[12 + 3 * b + c] + we * db[c];
+        }
+    }
+    g
+}
+
 /// The gap of `xs` on the patch of nodes `x` and nodal normals `n` at the
 /// solved foot `xi` ([`project`]), with its first and second derivatives
 /// over `Y`; `None` for a degenerate patch.
@@ -400,26 +430,10 @@ pub fn differentiate(
     let nrm = m.map(|v| v / len);
     let gap = dot(sub(xs_d, p), nrm);
     // dg/dY at fixed xi: n on x_s; -(dx/dY)^T n on the patch
-    let (v, _, _) = basis(count, xi_d);
     let z = A::cst(0.0);
     let mut g = [z; NY];
     g[..3].copy_from_slice(&nrm);
-    for a in 0..count {
-        for c in 0..3 {
-            g[3 + 3 * a + c] = z - v[a] * nrm[c];
-        }
-    }
-    for (e, &(a, b)) in edges(count).iter().enumerate() {
-        let (dd, da, db) = coefficient_derivatives(minus(xd[b], xd[a]), nd[a], nd[b], nrm);
-        let w = v[4 + e];
-        for c in 0..3 {
-            // x = .. - beta_e c_e: -d(x.n)/dY = + beta_e d(n.c_e)/dY
-            g[3 + 3 * b + c] += w * dd[c];
-            g[3 + 3 * a + c] = g[3 + 3 * a + c] - w * dd[c];
-            g[15 + 3 * a + c] += w * da[c];
-            g[15 + 3 * b + c] += w * db[c];
-        }
-    }
+    g[3..].copy_from_slice(&reaction(&patch, xi_d, nrm));
     Some(PatchGap {
         xi,
         gap: gap.v,
@@ -459,6 +473,101 @@ pub fn nodal_normal(ring: &[&[usize]], x: &[[f64; 3]]) -> Option<[f64; 3]> {
 /// `[v]x`, the matrix of `w -> v x w`.
 fn skew(v: [f64; 3]) -> [[f64; 3]; 3] {
     [[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]]
+}
+
+/// The nodal normal of a node whose facets are `ring` (`n = m / |m|`, `m`
+/// the sum of their area vectors) differentiated over the local dofs of an
+/// element (`at(node)` the local node of a global one, `nn` local nodes):
+/// returns `J = dn/dX` (one `[f64; 3]` per local dof) and adds `lambda .
+/// d^2 n / dX^2` (closed form: `m` is bilinear in `X`) into `hess`
+/// (row-major, `3 nn` square).
+pub(crate) fn normal_chain(
+    ring: &[&[usize]],
+    x: &[[f64; 3]],
+    at: &impl Fn(usize) -> usize,
+    nn: usize,
+    lam: [f64; 3],
+    hess: &mut [f64],
+) -> Vec<[f64; 3]> {
+    let nd = 3 * nn;
+    // dm/dx_k = 1/2 sum_f [x_prev - x_next]x
+    let mut dm = vec![[[0.0; 3]; 3]; nn];
+    let mut m = [0.0; 3];
+    for f in ring {
+        let am = area_vector(f, x);
+        for c in 0..3 {
+            m[c] += am[c];
+        }
+        for (i, &k) in f.iter().enumerate() {
+            let prev = x[f[(i + f.len() - 1) % f.len()]];
+            let next = x[f[(i + 1) % f.len()]];
+            let s = skew([0, 1, 2].map(|c| 0.5 * (prev[c] - next[c])));
+            let l = at(k);
+            for r in 0..3 {
+                for c in 0..3 {
+                    dm[l][r][c] += s[r][c];
+                }
+            }
+        }
+    }
+    let r = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+    let nv = m.map(|v| v / r);
+    // dn/dm = (I - n n^T) / r
+    let p: [[f64; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| (f64::from(u8::from(i == j)) - nv[i] * nv[j]) / r)
+    });
+    // J = P dm, per local node a 3x3 block: column = local dof
+    let mut j = vec![[0.0; 3]; nd];
+    for l in 0..nn {
+        for c in 0..3 {
+            for i in 0..3 {
+                j[3 * l + c][i] = (0..3).map(|q| p[i][q] * dm[l][q][c]).sum();
+            }
+        }
+    }
+    if lam == [0.0; 3] {
+        return j;
+    }
+    let ln = (0..3).map(|c| lam[c] * nv[c]).sum::<f64>();
+    let mu: [f64; 3] = std::array::from_fn(|c| (lam[c] - ln * nv[c]) / r);
+    // d^2 psi / dm^2 = -[lam n^T + n lam^T + (lam.n)(I - 3 n n^T)] / r^2
+    let hm: [[f64; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|k| {
+            -(lam[i] * nv[k]
+                + nv[i] * lam[k]
+                + ln * (f64::from(u8::from(i == k)) - 3.0 * nv[i] * nv[k]))
+                / (r * r)
+        })
+    });
+    // dm^T hm dm
+    let mut hmd = vec![[0.0; 3]; nd];
+    for (col, h) in hmd.iter_mut().enumerate() {
+        let (l, c) = (col / 3, col % 3);
+        for i in 0..3 {
+            h[i] = (0..3).map(|q| hm[i][q] * dm[l][q][c]).sum();
+        }
+    }
+    for row in 0..nd {
+        let (l, c) = (row / 3, row % 3);
+        for col in 0..nd {
+            hess[row * nd + col] += (0..3).map(|i| dm[l][i][c] * hmd[col][i]).sum::<f64>();
+        }
+    }
+    // mu . d^2 m / dX^2: 1/2 sum over facet edges (i, i+1) of
+    // -[mu]x on block (i, i+1) and [mu]x on (i+1, i)
+    let sk = skew(mu);
+    for f in ring {
+        for (i, &k) in f.iter().enumerate() {
+            let (li, lj) = (at(k), at(f[(i + 1) % f.len()]));
+            for r in 0..3 {
+                for c in 0..3 {
+                    hess[(3 * li + r) * nd + 3 * lj + c] -= 0.5 * sk[r][c];
+                    hess[(3 * lj + r) * nd + 3 * li + c] += 0.5 * sk[r][c];
+                }
+            }
+        }
+    }
+    j
 }
 
 /// A node-to-patch element over global nodes: gap, normal, `G = dg/dX`
@@ -534,82 +643,9 @@ pub fn element(
     let mut grad = vec![0.0; nd];
     let mut hess = vec![0.0; nd * nd];
     for (a, ring) in rings.iter().enumerate().take(count) {
-        // dm/dx_k = 1/2 sum_f [x_prev - x_next]x
-        let mut dm = vec![[[0.0; 3]; 3]; nn];
-        let mut m = [0.0; 3];
-        for f in ring {
-            let am = area_vector(f, x);
-            for c in 0..3 {
-                m[c] += am[c];
-            }
-            for (i, &k) in f.iter().enumerate() {
-                let prev = x[f[(i + f.len() - 1) % f.len()]];
-                let next = x[f[(i + 1) % f.len()]];
-                let s = skew([0, 1, 2].map(|c| 0.5 * (prev[c] - next[c])));
-                let l = at(k);
-                for r in 0..3 {
-                    for c in 0..3 {
-                        dm[l][r][c] += s[r][c];
-                    }
-                }
-            }
-        }
-        let r = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
-        let nv = m.map(|v| v / r);
-        // dn/dm = (I - n n^T) / r
-        let p: [[f64; 3]; 3] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| (f64::from(u8::from(i == j)) - nv[i] * nv[j]) / r)
-        });
-        // J = P dm, per local node a 3x3 block: column = local dof
-        let mut j = vec![[0.0; 3]; nd];
-        for l in 0..nn {
-            for c in 0..3 {
-                for i in 0..3 {
-                    j[3 * l + c][i] = (0..3).map(|q| p[i][q] * dm[l][q][c]).sum();
-                }
-            }
-        }
-        // lambda = dg/dn_a; lambda . d^2 n / dX^2
+        // lambda = dg/dn_a; lambda . d^2 n / dX^2 into H, J_a = dn_a/dX
         let lam: [f64; 3] = std::array::from_fn(|c| pg.gradient[15 + 3 * a + c]);
-        let ln = (0..3).map(|c| lam[c] * nv[c]).sum::<f64>();
-        let mu: [f64; 3] = std::array::from_fn(|c| (lam[c] - ln * nv[c]) / r);
-        // d^2 psi / dm^2 = -[lam n^T + n lam^T + (lam.n)(I - 3 n n^T)] / r^2
-        let hm: [[f64; 3]; 3] = std::array::from_fn(|i| {
-            std::array::from_fn(|k| {
-                -(lam[i] * nv[k]
-                    + nv[i] * lam[k]
-                    + ln * (f64::from(u8::from(i == k)) - 3.0 * nv[i] * nv[k]))
-                    / (r * r)
-            })
-        });
-        // dm^T hm dm
-        let mut hmd = vec![[0.0; 3]; nd];
-        for (col, h) in hmd.iter_mut().enumerate() {
-            let (l, c) = (col / 3, col % 3);
-            for i in 0..3 {
-                h[i] = (0..3).map(|q| hm[i][q] * dm[l][q][c]).sum();
-            }
-        }
-        for row in 0..nd {
-            let (l, c) = (row / 3, row % 3);
-            for col in 0..nd {
-                hess[row * nd + col] += (0..3).map(|i| dm[l][i][c] * hmd[col][i]).sum::<f64>();
-            }
-        }
-        // mu . d^2 m / dX^2: 1/2 sum over facet edges (i, i+1) of
-        // -[mu]x on block (i, i+1) and [mu]x on (i+1, i)
-        let sk = skew(mu);
-        for f in ring {
-            for (i, &k) in f.iter().enumerate() {
-                let (li, lj) = (at(k), at(f[(i + 1) % f.len()]));
-                for r in 0..3 {
-                    for c in 0..3 {
-                        hess[(3 * li + r) * nd + 3 * lj + c] -= 0.5 * sk[r][c];
-                        hess[(3 * lj + r) * nd + 3 * li + c] += 0.5 * sk[r][c];
-                    }
-                }
-            }
-        }
+        let j = normal_chain(ring, x, &at, nn, lam, &mut hess);
         for (col, jc) in j.iter().enumerate() {
             grad[col] += (0..3).map(|i| lam[i] * jc[i]).sum::<f64>();
         }
@@ -666,7 +702,7 @@ pub fn element(
 
 /// The node coordinates and nodal normals of the patch of `facet`.
 #[allow(clippy::type_complexity)]
-fn patch_data(
+pub(crate) fn patch_data(
     facet: &[usize],
     rings: &[Vec<&[usize]>],
     x: &[[f64; 3]],
@@ -687,14 +723,19 @@ pub fn patch_of(facet: &[usize], rings: &[Vec<&[usize]>], x: &[[f64; 3]]) -> Opt
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use proptest::prelude::*;
 
     /// A curved surface: a grid of `(n + 1)^2` nodes on the sphere of
     /// radius 2 about `(0, 0, -2)` near its pole, quads (or each split in
     /// two triangles), outward (+z at the pole); nodes moved by `jitter`.
-    fn dome(n: usize, tri: bool, jitter: f64, seed: &mut u64) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
+    pub(crate) fn dome(
+        n: usize,
+        tri: bool,
+        jitter: f64,
+        seed: &mut u64,
+    ) -> (Vec<[f64; 3]>, Vec<Vec<usize>>) {
         let mut rnd = || {
             *seed ^= *seed << 13;
             *seed ^= *seed >> 7;
@@ -728,7 +769,7 @@ mod tests {
         (x, f)
     }
 
-    fn rings<'a>(faces: &'a [Vec<usize>], facet: &[usize]) -> Vec<Vec<&'a [usize]>> {
+    pub(crate) fn rings<'a>(faces: &'a [Vec<usize>], facet: &[usize]) -> Vec<Vec<&'a [usize]>> {
         facet
             .iter()
             .map(|&k| {

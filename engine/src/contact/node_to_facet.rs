@@ -1640,6 +1640,16 @@ pub fn quadratic_mortar(model: &Model<3>, pair: usize) -> bool {
     })
 }
 
+/// The friction of one element as `evaluate` assembles it: the record,
+/// the global node of each local node of the forces (`None`: an unused
+/// slot), the forces and `-d forces / dx` (row-major).
+struct FrictionForces {
+    friction: super::friction::NodeFriction<3>,
+    owners: Vec<Option<usize>>,
+    forces: Vec<f64>,
+    tangent: Vec<f64>,
+}
+
 /// Prepares a 3D pair; `None` if the master is a rigid tool.
 pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<DeformablePair> {
     let cp = model.contacts.get(pair)?;
@@ -1952,55 +1962,119 @@ pub fn evaluate(
             } else {
                 [false; 4]
             };
-            // Coulomb friction (penalty, augmented Lagrangian; faceted
-            // master): its forces over the slave, the facet and the stick
-            // point's facet
-            let law = cp.friction.as_ref().zip(faceted.as_ref().map(|f| f.1));
-            let friction = law.and_then(|(law, el)| {
-                let pts: Vec<[f64; 3]> = face.iter().map(|&m| x[m]).collect();
-                // an edge or vertex element: the foot on the extended facet
-                let xi = match el.feature {
-                    Feature::Face => Some(el.xi),
-                    _ => foot(xs, &pts).map(|f| f.0),
-                };
-                let Some(xi) = xi else {
-                    state.friction.anchor[i] = state.friction.committed_anchor[i];
-                    state.friction.position[i] = xs;
-                    return None;
-                };
-                let contact = super::friction_facet::FacetContact {
-                    slave: i,
-                    xs,
-                    facet: k,
-                    pts: &pts,
-                    xi,
-                    // the normal that gives the gap (an edge's or vertex's
-                    // at such a projection: `gap = side |x_s - p|`)
-                    at: super::friction_facet::Projection {
-                        feature: el.feature,
-                        side: if el.gap < 0.0 { -1.0 } else { 1.0 },
-                    },
-                    gap: el.gap,
-                    normal_force: rn,
-                    normal_stiffness: -slope,
-                    area: state.area[i],
-                    free_edges,
-                    held: held && !fp.held_slip.get(i).copied().unwrap_or(false),
-                };
-                let points = |f: usize| surface.faces[f].nodes().iter().map(|&m| x[m]).collect();
-                let (r, ka) = super::friction_facet::apply(
-                    law,
-                    &method,
-                    &contact,
-                    surface.faces.len(),
-                    points,
-                    &mut state.friction,
-                )?;
-                Some((r, surface.faces[ka].nodes().to_vec()))
-            });
+            // Coulomb friction (penalty, augmented Lagrangian): its forces
+            // over the slave, the facet and the stick point's facet
+            // (faceted), or over the nodes of both patches' rings (Nagata,
+            // `super::friction_nagata`); as (record, the global node of
+            // each local node, forces, tangent)
+            let held_law = held && !fp.held_slip.get(i).copied().unwrap_or(false);
+            let friction: Option<FrictionForces> = match (cp.friction.as_ref(), &smooth, &faceted) {
+                (Some(law), Some((_, e)), _) => {
+                    let pts: Vec<[f64; 3]> = face.iter().map(|&m| x[m]).collect();
+                    let contact = super::friction_facet::FacetContact {
+                        slave: i,
+                        xs,
+                        facet: k,
+                        pts: &pts,
+                        xi: e.xi,
+                        at: super::friction_facet::Projection::FACE,
+                        gap: e.gap,
+                        normal_force: rn,
+                        normal_stiffness: -slope,
+                        area: state.area[i],
+                        free_edges,
+                        held: held_law,
+                    };
+                    let patches = super::friction_nagata::Patches {
+                        surface,
+                        x,
+                        slave: node,
+                    };
+                    super::friction_facet::apply_on(
+                        law,
+                        &method,
+                        &contact,
+                        surface.faces.len(),
+                        &patches,
+                        &mut state.friction,
+                    )
+                    .map(|(r, _)| FrictionForces {
+                        owners: r.nodes.iter().map(|&n| Some(n)).collect(),
+                        friction: r.friction,
+                        forces: r.forces,
+                        tangent: r.tangent,
+                    })
+                }
+                (Some(law), None, Some((_, el))) => {
+                    let pts: Vec<[f64; 3]> = face.iter().map(|&m| x[m]).collect();
+                    // an edge or vertex element: the foot on the extended facet
+                    let xi = match el.feature {
+                        Feature::Face => Some(el.xi),
+                        _ => foot(xs, &pts).map(|f| f.0),
+                    };
+                    match xi {
+                        None => {
+                            state.friction.anchor[i] = state.friction.committed_anchor[i];
+                            state.friction.position[i] = xs;
+                            None
+                        }
+                        Some(xi) => {
+                            let contact = super::friction_facet::FacetContact {
+                                slave: i,
+                                xs,
+                                facet: k,
+                                pts: &pts,
+                                xi,
+                                // the normal that gives the gap (an edge's or
+                                // vertex's at such a projection: `gap = side
+                                // |x_s - p|`)
+                                at: super::friction_facet::Projection {
+                                    feature: el.feature,
+                                    side: if el.gap < 0.0 { -1.0 } else { 1.0 },
+                                },
+                                gap: el.gap,
+                                normal_force: rn,
+                                normal_stiffness: -slope,
+                                area: state.area[i],
+                                free_edges,
+                                held: held_law,
+                            };
+                            let points =
+                                |f: usize| surface.faces[f].nodes().iter().map(|&m| x[m]).collect();
+                            super::friction_facet::apply(
+                                law,
+                                &method,
+                                &contact,
+                                surface.faces.len(),
+                                points,
+                                &mut state.friction,
+                            )
+                            .map(|(r, ka)| {
+                                let anchor_face = surface.faces[ka].nodes();
+                                // friction dof -> node: the slave, facet k,
+                                // facet k_a
+                                let owners = (0..super::friction_facet::NDOF / 3)
+                                    .map(|a| match a {
+                                        0 => Some(node),
+                                        1..=4 => face.get(a - 1).copied(),
+                                        _ => anchor_face.get(a - 5).copied(),
+                                    })
+                                    .collect();
+                                FrictionForces {
+                                    owners,
+                                    friction: r.friction,
+                                    forces: r.forces.to_vec(),
+                                    tangent: r.tangent,
+                                }
+                            })
+                        }
+                    }
+                }
+                _ => None,
+            };
             let mut nodes = local.clone();
-            if let Some((_, anchor_face)) = &friction {
-                nodes.extend_from_slice(anchor_face);
+            if let Some(f) = &friction {
+                nodes.extend(f.owners.iter().flatten());
             }
             nodes.sort_unstable();
             nodes.dedup();
@@ -2028,17 +2102,12 @@ pub fn evaluate(
                     nc.stiffness[r][c] = k_rc(r, c);
                 }
             }
-            if let Some((r, anchor_face)) = friction {
-                use super::friction_facet::NDOF as FD;
+            if let Some(r) = friction {
+                let fd = r.forces.len();
                 // friction dof -> position in `nodes`
-                let node_of = |d: usize| match d / 3 {
-                    0 => Some(node),
-                    a @ 1..=4 => face.get(a - 1).copied(),
-                    a => anchor_face.get(a - 5).copied(),
-                };
-                let at: Vec<Option<usize>> = (0..FD)
+                let at: Vec<Option<usize>> = (0..fd)
                     .map(|d| {
-                        let n = node_of(d)?;
+                        let n = r.owners.get(d / 3).copied().flatten()?;
                         Some(3 * nodes.binary_search(&n).ok()? + d % 3)
                     })
                     .collect();
@@ -2047,14 +2116,14 @@ pub fn evaluate(
                     force[pd] += r.forces[d];
                     for (e, pe) in at.iter().enumerate() {
                         if let Some(pe) = *pe {
-                            tangent[pd * nd + pe] += r.tangent[d * FD + e];
+                            tangent[pd * nd + pe] += r.tangent[d * fd + e];
                         }
                     }
                 }
                 for a in 0..3 {
                     nc.force[a] += r.forces[a];
                     for b in 0..3 {
-                        nc.stiffness[a][b] += r.tangent[a * FD + b];
+                        nc.stiffness[a][b] += r.tangent[a * fd + b];
                     }
                 }
                 nc.friction = r.friction;

@@ -352,10 +352,6 @@ pub fn check_model<const D: usize>(model: &Model<D>) -> Vec<String> {
                     )
                 } else if c.smoothing == crate::model::NormalSmoothing::Nodal {
                     Some("nodal normal smoothing (use Nagata patches)")
-                } else if c.smoothing == crate::model::NormalSmoothing::Nagata
-                    && c.friction.is_some()
-                {
-                    Some("friction on Nagata patches (drop `friction` or `smoothing`)")
                 } else if c.friction.is_some()
                     && matches!(c.method, crate::model::ContactMethod::Lagrange { .. })
                 {

@@ -63,9 +63,9 @@ pub fn exactly_one(ctx: &mut Ctx<'_>) {
 /// self contact (every method; Coulomb friction with the penalty and
 /// augmented Lagrangian methods; the redundant Lagrange rows of two-way
 /// pairs are dropped by the engine, `contact::redundancy`); normal
-/// smoothing: `nagata` in 3d only (planar analyses have no facets; friction
-/// on the patches is refused in [`super::contacts`]), `nodal` (planar) is
-/// refused in 3d.
+/// smoothing: `nagata` in 3d only (planar analyses have no facets; Coulomb
+/// friction on the patches with the penalty and augmented Lagrangian
+/// methods), `nodal` (planar) is refused in 3d.
 pub fn three_d_deformable_contact_supported(a: &Analysis, ctx: &mut Ctx<'_>) {
     if a.dimension.as_ref().map(|d| d.value) != Some(Dimension::ThreeD) {
         // Nagata patches are surfaces over 3d facets

@@ -176,14 +176,6 @@ fn smoothing_supported(c: &crate::ast::Contact, ctx: &mut Ctx<'_>) {
             "drop `smoothing` (mortar integrates the gap along the slave surface)",
         );
     }
-    if let Some(f) = c.friction.as_ref().filter(|_| !nodal) {
-        refuse(
-            "on Nagata patches has no friction yet (the stick point lives on the faceted \
-             master)",
-            f.span,
-            "drop `friction`, or drop `smoothing` (faceted master with friction)",
-        );
-    }
     if let Some(m) = c.method.as_ref().filter(|m| {
         nodal
             && matches!(

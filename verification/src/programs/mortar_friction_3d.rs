@@ -70,7 +70,8 @@ const HEIGHT: f64 = 1.0;
 /// The slip runs' top displacement over the stick limit's.
 const SLIP: f64 = 1.05;
 
-const PENALTY: &str = "penalty { kind = area  stiffness = 1e8 }";
+/// The area penalty method of the runs.
+pub const PENALTY: &str = "penalty { kind = area  stiffness = 1e8 }";
 const AUGMENTED: &str = "augmented_lagrange { kind = area  penalty = 1e8  tolerance = 1e-13 }";
 
 /// One run: name, cell, method, tangential penalty per area, slip, shear
@@ -287,10 +288,22 @@ pub struct Outcome {
     pub closed: usize,
     /// Newton iterations of the run.
     pub iterations: usize,
+    /// Per closed slave node: the node, its traction vector `q` and its
+    /// pressure.
+    pub nodes: Vec<(usize, [f64; 3], f64)>,
 }
 
 /// Runs one of [`RUNS`].
 pub fn run_one(r: &Run) -> Result<(Outcome, ProgramLevel), String> {
+    run_edited(r, &|deck| deck)
+}
+
+/// Runs one of [`RUNS`] on its deck changed by `edit` (another
+/// formulation, other meshes: `super::nagata_3d`'s node-to-facet runs).
+pub fn run_edited(
+    r: &Run,
+    edit: &dyn Fn(String) -> String,
+) -> Result<(Outcome, ProgramLevel), String> {
     let &(name, cell, method, k_t, slip, degrees) = r;
     let augmented = method.starts_with("augmented");
     let p = pressure(augmented);
@@ -302,7 +315,7 @@ pub fn run_one(r: &Run) -> Result<(Outcome, ProgramLevel), String> {
         (0.5 * limit, 0.5 * MU * p, 2.0)
     };
     let theta = degrees.to_radians();
-    let text = deck(cell, method, k_t, delta, tau, t_lim, theta);
+    let text = edit(deck(cell, method, k_t, delta, tau, t_lim, theta));
     let path = std::path::Path::new("contact_patch_friction_3d.ctc");
     let src = ctc_lang::Source::new(path, &text);
     let AnyModel::D3(model) = ctc_lang::compile_any(&src).map_err(|d| d.render(&src))? else {
@@ -398,6 +411,11 @@ pub fn run_one(r: &Run) -> Result<(Outcome, ProgramLevel), String> {
             values,
             closed: closed.len(),
             iterations: s.newton_iterations,
+            nodes: closed
+                .iter()
+                .zip(q.iter().zip(&pr))
+                .map(|(c, (v, p))| (c.node, *v, *p))
+                .collect(),
         },
         level,
     ))

@@ -22,9 +22,40 @@
 //!   base 4 x 4 (or 3 x 3) cells, rollers        master base.zmax (Nagata)
 //! ```
 //!
+//! `contact_patch_friction_nagata_3d` — the frictional patch test of
+//! [`super::mortar_friction_3d`] (two hex8 blocks pressed, then sheared
+//! at 30 degrees by a top displacement with the side tractions of the
+//! uniform state; Coulomb mu = 0.3, area penalty `k_N = 1e8`, `k_T = 1e9`)
+//! with node-to-facet contact on matching interface meshes (3 x 3 | 3 x 3
+//! facets, where node-to-facet passes the frictionless patch test to
+//! round-off), faceted and Nagata master: the master stays flat, its
+//! nodal normals parallel, so its patches are its facets, and the friction
+//! element on a flat patch is the faceted one (to 1e-13:
+//! `friction_nagata::tests::a_flat_patch_gives_the_faceted_friction`).
+//! Stick (`tau = mu p / 2`: every node sticks, `q` uniform) and slip (the
+//! top displaced 1.05 times the stick limit: every node on the cone, `|q|
+//! = mu p`). Measured per run: both masters' own figures (as
+//! [`super::mortar_friction_3d`]'s) and the largest differences of the
+//! nodal tractions `q` (over the mean `|q|`) and pressures (over the mean
+//! `p`) between them (`ctc verify contact_patch_friction_nagata_3d`, 4
+//! runs, 0.3 s CPU debug): stick `q` deviation 9.7e-6 Nagata, 2.5e-5
+//! faceted (the penalty's elastic slip `g_T` moves the slave's rim off the
+//! master's: an end effect of the regularization, as with mortar), slip
+//! `| |q| - mu p | / (mu p)` 4.6e-16 / 1.5e-16; Nagata - faceted `q`
+//! 2.1e-5 (stick), 9.2e-4 (slip), `p` 7.6e-6, 7.6e-4. Not round-off: the
+//! frictionless Nagata element puts a share of `R_N` on the ring nodes
+//! even on a flat master where the foot is off a node (`dg/dn_a` through
+//! the edge coefficients `c_e`, zero on the plane but not their
+//! derivative: `d(n . c)/dn_a = d / 2` per edge blend), so once the slip
+//! moves the slave nodes off the master's nodes (matching meshes: on them
+//! in the press, where the blends vanish and the two agree) the two
+//! masters carry the load on slightly different nodes; the friction
+//! forces take no such share (`t . (n_a + n_b) = 0`). The guards are the
+//! measured figures rounded up.
+//!
 //! `ironing_nagata_3d` — the die-on-slab ironing of Puso & Laursen, CMAME
-//! 193 (2004) 4891 (see [`super::friction_ntf_3d`]), frictionless (friction
-//! on Nagata patches is not there yet): the Neo-Hookean slab's top nodes
+//! 193 (2004) 4891 (see [`super::friction_ntf_3d`]), frictionless (with friction:
+//! [`super::ironing_3d`]'s `ntf nagata mu 0.3`): the Neo-Hookean slab's top nodes
 //! against the die's cylindrical face, faceted (5 degree facets) or Nagata
 //! patches. Measured both ways over the second half of the slide: the
 //! oscillation `(max - min) / mean` of the die force `F_n` (along y) and
@@ -44,6 +75,7 @@
 
 use super::contact_ntf_3d::{patch_deck, run_patch_deck, PENALTY};
 use super::friction_ntf_3d::{run_deck, Rows};
+use super::mortar_friction_3d::{run_edited, Run, PENALTY as PATCH_PENALTY};
 use super::{error, value};
 use crate::case::{Check, Quantity};
 use crate::registry::{CaseKind, ProgramCase, ProgramLevel, VerifyCase};
@@ -111,6 +143,108 @@ fn patch_level(_level: usize) -> Result<ProgramLevel, String> {
                 out.values.push(error(names[1], compared));
                 out.values.push(value(names[2], o.force, o.exact));
             }
+        }
+    }
+    Ok(out)
+}
+
+/// The frictional patch runs (of [`super::mortar_friction_3d::RUNS`]'s
+/// form): hex8, penalty, 30 degrees, stick and slip.
+const FRICTION_RUNS: [Run; 2] = [
+    (
+        "hex8 stick penalty 30deg",
+        "hex8",
+        PATCH_PENALTY,
+        1e9,
+        false,
+        30.0,
+    ),
+    (
+        "hex8 slip penalty 30deg",
+        "hex8",
+        PATCH_PENALTY,
+        1e9,
+        true,
+        30.0,
+    ),
+];
+
+/// Quantities of the frictional patch case and their tolerances: per run
+/// Nagata's figure (stick: the traction's deviation from uniform; slip:
+/// `| |q| - mu p | / (mu p)`), then the differences Nagata - faceted of
+/// the nodal tractions and pressures.
+const FRICTION_CHECKS: [(&str, f64); 8] = [
+    ("hex8 stick penalty 30deg none: q deviation", 5e-5),
+    ("hex8 stick penalty 30deg nagata: q deviation", 2e-5),
+    (
+        "hex8 stick penalty 30deg: max |q_nagata - q_faceted| / |q|",
+        5e-5,
+    ),
+    (
+        "hex8 stick penalty 30deg: max |p_nagata - p_faceted| / p",
+        2e-5,
+    ),
+    (
+        "hex8 slip penalty 30deg none: max ||q| - mu p| / (mu p)",
+        1e-12,
+    ),
+    (
+        "hex8 slip penalty 30deg nagata: max ||q| - mu p| / (mu p)",
+        1e-12,
+    ),
+    (
+        "hex8 slip penalty 30deg: max |q_nagata - q_faceted| / |q|",
+        2e-3,
+    ),
+    (
+        "hex8 slip penalty 30deg: max |p_nagata - p_faceted| / p",
+        2e-3,
+    ),
+];
+
+/// The patch deck of [`super::mortar_friction_3d`] with node-to-facet
+/// contact and `smoothing`, the base meshed as the top (3 x 3 cells
+/// across: matching interface).
+fn friction_patch_deck(deck: String, smoothing: &str) -> String {
+    deck.replace(
+        "  formulation = mortar\n",
+        &format!("  formulation = node_to_segment\n  smoothing = {smoothing}\n"),
+    )
+    .replace("divisions = (4, 4, 2)", "divisions = (3, 3, 2)")
+}
+
+fn friction_patch_level(_level: usize) -> Result<ProgramLevel, String> {
+    let mut out = ProgramLevel {
+        h: 1.0 / 3.0,
+        ..ProgramLevel::default()
+    };
+    for (k, r) in FRICTION_RUNS.iter().enumerate() {
+        let mut runs = Vec::new();
+        for s in SMOOTHINGS {
+            let edit = |d: String| friction_patch_deck(d, s);
+            let (o, l) = run_edited(r, &edit).map_err(|e| format!("{s}: {e}"))?;
+            super::contact_ntf_3d::add_level(&mut out, &l);
+            runs.push(o);
+        }
+        let (faceted, nagata) = (&runs[0], &runs[1]);
+        let own = |o: &super::mortar_friction_3d::Outcome| {
+            o.values.first().map_or(f64::INFINITY, |v| v.1.abs())
+        };
+        let n = nagata.nodes.len() as f64;
+        let len = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+        let q_mean = nagata.nodes.iter().map(|c| len(c.1)).sum::<f64>() / n;
+        let p_mean = nagata.nodes.iter().map(|c| c.2).sum::<f64>() / n;
+        let (mut dq, mut dp) = (0.0f64, 0.0f64);
+        for c in &nagata.nodes {
+            let Some(f) = faceted.nodes.iter().find(|f| f.0 == c.0) else {
+                return Err(format!("{}: node {} closed on Nagata only", r.0, c.0));
+            };
+            dq = dq.max(len([c.1[0] - f.1[0], c.1[1] - f.1[1], c.1[2] - f.1[2]]) / q_mean);
+            dp = dp.max((c.2 - f.2).abs() / p_mean);
+        }
+        let values = [own(faceted), own(nagata), dq, dp];
+        for (v, (name, _)) in values.into_iter().zip(&FRICTION_CHECKS[4 * k..]) {
+            out.values.push(error(name, v));
         }
     }
     Ok(out)
@@ -282,6 +416,31 @@ pub fn cases() -> Vec<VerifyCase> {
             kind: CaseKind::Program(ProgramCase {
                 max_levels: 1,
                 run: patch_level,
+            }),
+        },
+        VerifyCase {
+            name: "contact_patch_friction_nagata_3d",
+            title: "3D frictional contact patch test with Nagata patches on the flat master \
+                    (matching meshes): stick and slip against the faceted master (node-to-facet, \
+                    single pass, penalty)",
+            source: "Taylor & Papadopoulos IJNME 31 (1991), in 3D; Nagata, CAGD 22 (2005) 327",
+            tags: &[
+                "3d",
+                "contact",
+                "smoothing",
+                "node_to_segment",
+                "patch",
+                "friction",
+                "penalty",
+            ],
+            levels: 1,
+            checks: FRICTION_CHECKS
+                .iter()
+                .map(|(n, t)| Check::new(Quantity::Named(n), &[*t]))
+                .collect(),
+            kind: CaseKind::Program(ProgramCase {
+                max_levels: 1,
+                run: friction_patch_level,
             }),
         },
         VerifyCase {
