@@ -648,7 +648,8 @@ pub static CONTACT: [Key; 8] = [
         KeyType::Choice(&["none", "nodal", "nagata"]),
         "master normal of node-to-segment contact: none (faceted, exact segment normals), \
          nodal (averaged nodal normals interpolated along each segment: continuous across the \
-         master nodes; planar analyses) or nagata (3d node-to-facet: Nagata's quadratic \
+         master nodes, they give the gap, the force and the friction's tangent; planar \
+         analyses) or nagata (3d node-to-facet: Nagata's quadratic \
          patches through the master facets' nodes and their area-weighted nodal normals, \
          which give the gap, the force and the friction's tangent plane)",
     )

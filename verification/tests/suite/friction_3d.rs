@@ -127,7 +127,10 @@ fn newton_converges_quadratically_while_the_base_slides() {
             checked += 1;
         }
     }
-    assert!(checked >= 8, "{checked} iterations checked");
+    // 4 windows since the cone tie of the rigid-tool law (7f49f94): the
+    // pull increments converge in fewer iterations (8 or more windows
+    // before); each of them still squares the residual
+    assert!(checked >= 4, "{checked} iterations checked");
 }
 
 #[derive(Default)]
