@@ -413,9 +413,9 @@ mod tests {
             stiffness: 1000.0,
         };
         let placement = Placement::identity();
-        let mut kxx = Vec::new();
-        for dx in [-1e-13, 0.0, 1e-13] {
-            let x = Vec3::new(0.075 + dx, 0.0, -0.01);
+        // the node at `(x, 0, -0.01)`, its stick point at the origin
+        let eval = |x: f64| {
+            let x = Vec3::new(x, 0.0, -0.01);
             let projection = Projection::closed_form(
                 Vec3::new(x.x, 0.0, 0.0),
                 -0.01,
@@ -445,44 +445,18 @@ mod tests {
                 &mut stiffness,
                 &mut None,
             );
-            assert_eq!(f.status, FrictionStatus::Slip, "dx {dx:e}");
-            assert!((force[0] + 3.0).abs() < 1e-9, "{force:?}");
-            kxx.push(stiffness[0][0]);
-        }
-        // the slip's tangent: no stiffness along the slip, for all three
-        assert!(kxx.iter().all(|k| k.abs() < 1e-9), "{kxx:?}");
-        // well inside the disc it still sticks
-        let x = Vec3::new(0.07, 0.0, -0.01);
-        let projection = Projection::closed_form(
-            Vec3::new(x.x, 0.0, 0.0),
-            -0.01,
-            Vec3::new(0.0, 0.0, 1.0),
-            Mat3::zeros(),
-        );
-        let c = SurfaceContact {
-            placement: &placement,
-            x,
-            reference: x,
-            projection: &projection,
-            normal_force: 10.0,
-            normal_stiffness: 1000.0,
-            area: 1.0,
+            (f.status, force[0], stiffness[0][0])
         };
-        let mut state = FrictionState::<3>::new(vec![[0.0; 3]]);
-        state.committed_anchor[0] = Some([0.0; 3]);
-        let (mut force, mut stiffness) = ([0.0; 3], [[0.0; 3]; 3]);
-        let f = respond(
-            &law,
-            &method,
-            0,
-            &c,
-            |_| None,
-            &mut state,
-            &mut force,
-            &mut stiffness,
-            &mut None,
-        );
-        assert_eq!(f.status, FrictionStatus::Stick);
-        assert!((stiffness[0][0] - 40.0).abs() < 1e-9);
+        for dx in [-1e-13, 0.0, 1e-13] {
+            let (status, fx, kxx) = eval(0.075 + dx);
+            assert_eq!(status, FrictionStatus::Slip, "dx {dx:e}");
+            assert!((fx + 3.0).abs() < 1e-9, "{fx}");
+            // the slip's tangent: no stiffness along the slip
+            assert!(kxx.abs() < 1e-9, "dx {dx:e}: {kxx}");
+        }
+        // well inside the disc it still sticks
+        let (status, _, kxx) = eval(0.07);
+        assert_eq!(status, FrictionStatus::Stick);
+        assert!((kxx - 40.0).abs() < 1e-9);
     }
 }
