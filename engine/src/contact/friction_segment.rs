@@ -54,6 +54,29 @@ pub struct SegmentFriction {
     pub normal_stiffness: f64,
 }
 
+impl SegmentFriction {
+    /// The law of element `e` (its method's tangential penalty, the
+    /// augmented shift) with the normal force passed through the current
+    /// one: `R_N(x) = R_N + alpha_N (g_now - g)` (penalty and augmented
+    /// Lagrangian alike).
+    fn of(
+        law: &crate::model::Friction,
+        method: &crate::model::ContactMethod,
+        e: &Element,
+        shift: f64,
+        alpha_n: f64,
+        gap_now: f64,
+    ) -> Self {
+        SegmentFriction {
+            mu: law.mu,
+            alpha_t: super::friction::tangential_stiffness(law, method, e.tributary),
+            shift,
+            normal_shift: e.normal_force + alpha_n * gap_now,
+            normal_stiffness: alpha_n,
+        }
+    }
+}
+
 /// Friction contribution of one element.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SegmentResponse {
@@ -276,29 +299,34 @@ pub fn apply(
             v.side * (e.xs[0] - xv[0]).hypot(e.xs[1] - xv[1])
         }
     };
-    let seg = SegmentFriction {
-        mu: law.mu,
-        alpha_t: super::friction::tangential_stiffness(law, method, e.tributary),
-        shift,
-        normal_shift: e.normal_force + alpha_n * gap_now,
-        normal_stiffness: alpha_n,
-    };
+    let seg = SegmentFriction::of(law, method, e, shift, alpha_n, gap_now);
     let Some(r) = respond(&seg, e.xs, x1, x2, [r1, r2], anchor, anchor_rate, e.vertex) else {
         return NodeFriction::default();
     };
+    add_element(forces, tangent, &r.forces, &r.tangent);
+    state.anchor[i] = Some(r.anchor);
+    state.position[i] = e.xs;
+    r.friction
+}
+
+/// Adds an element's friction forces and tangent (`N` coordinates) to the
+/// contact element's.
+fn add_element<const N: usize>(
+    forces: &mut [f64; N],
+    tangent: &mut [[f64; N]; N],
+    rf: &[f64; N],
+    rt: &[[f64; N]; N],
+) {
     for ((f, row), (rf, rrow)) in forces
         .iter_mut()
         .zip(tangent.iter_mut())
-        .zip(r.forces.iter().zip(&r.tangent))
+        .zip(rf.iter().zip(rt))
     {
         *f += rf;
         for (k, rk) in row.iter_mut().zip(rrow) {
             *k += rk;
         }
     }
-    state.anchor[i] = Some(r.anchor);
-    state.position[i] = e.xs;
-    r.friction
 }
 
 /// Friction contribution of one smoothed element (`smoothing = nodal`).
@@ -509,13 +537,7 @@ pub fn apply_smoothed(
     else {
         return NodeFriction::default();
     };
-    let seg = SegmentFriction {
-        mu: law.mu,
-        alpha_t: super::friction::tangential_stiffness(law, method, e.tributary),
-        shift,
-        normal_shift: e.normal_force + alpha_n * se.gap,
-        normal_stiffness: alpha_n,
-    };
+    let seg = SegmentFriction::of(law, method, e, shift, alpha_n, se.gap);
     // the first impact's rate over [x_s, x_1, x_2] into the 10 coordinates
     let rate = rate.map(|d| {
         let mut r = [0.0; smoothing::N];
@@ -536,16 +558,7 @@ pub fn apply_smoothed(
     ) else {
         return NodeFriction::default();
     };
-    for ((f, row), (rf, rrow)) in forces
-        .iter_mut()
-        .zip(tangent.iter_mut())
-        .zip(r.forces.iter().zip(&r.tangent))
-    {
-        *f += rf;
-        for (k, rk) in row.iter_mut().zip(rrow) {
-            *k += rk;
-        }
-    }
+    add_element(forces, tangent, &r.forces, &r.tangent);
     state.anchor[e.slave] = Some(r.anchor);
     state.position[e.slave] = e.xs;
     r.friction
