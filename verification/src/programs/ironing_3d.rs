@@ -378,8 +378,22 @@
 //! kept, or the law at the tensile force, which the cone clips to 0: the
 //! same iterates) it was worse: level 0 Nagata 22 / 310 / 4, faceted 12
 //! / 97 / 1; level 1 Nagata 92 / 1306 / 15, faceted 34 / 375 / 3. The
-//! benchmark's Nagata run keeps 2 cutbacks (the press at t = 0.43, no
-//! convergence in 30 iterations; the slide at t = 1.65), not traced.
+//! benchmark's Nagata run keeps 2 cutbacks (before: 2 in the press, the
+//! increments from t = 0.14 and 0.64, 9 in the slide). The press one (t =
+//! 0.29 -> 0.43, residual 7.2e-6 at iteration 30), traced (`CTC_LOG=debug
+//! ctc run -v`
+//! of the level-1 Nagata deck, closed nodes per evaluation): the row of
+//! slab nodes at the die's flank (33, 73, 113, 153, 193: one x, every z)
+//! cycles closed (gap -3e-4..-4e-4) -> held (open by 5e-5..5e-4, within
+//! the band) -> open (no longer held: the hold lasts one iterate) -> 4e-3
+//! into the die after the next step (line search to 1/64, residual
+//! 0.3..0.5) -> closed; a three-iterate cycle, which the cycling guard
+//! (`A -> B -> A` of the status set) catches once (iteration 12, 2
+//! nodes) while the row's other nodes keep cycling; the increment
+//! converges from iteration 25 on (`4.7e-2 -> 7.2e-6`), too late. Not
+//! fixed: a hold of such a node past one iterate, or the guard counting a
+//! held iterate as closed, are the candidates (not measured). The slide's
+//! cutback (t = 1.60 -> 1.65) not traced.
 //!
 //! ## `F_t / F_n` at mu = 0.3: node-to-facet vs mortar (traced)
 //!
