@@ -143,8 +143,11 @@ pub trait ContactScene<const D: usize>: Sized + Clone + std::fmt::Debug {
     fn set_touching(&mut self, _model: &Model<D>, _on: bool) {}
     /// A Newton loop starts: the penalty cycling guard forgets what it
     /// held (3D node-to-facet pairs,
-    /// `crate::contact::node_to_facet::DeformablePair::guard_cycle`).
-    fn guard_start(&mut self) {}
+    /// `crate::contact::node_to_facet::DeformablePair::guard_cycle`);
+    /// `quasi_static`: the step has no inertia (the hold keeps frictional
+    /// node-to-facet nodes too,
+    /// `crate::contact::node_to_facet::DeformablePair::hold_friction`).
+    fn guard_start(&mut self, _quasi_static: bool) {}
     /// After an accepted Newton iterate: the penalty cycling guard holds
     /// the nodes whose statuses cycle; whether it held new ones (the
     /// tangent at hand is then stale).

@@ -621,8 +621,9 @@ impl ContactScene<3> for SurfaceAssembly {
         }
     }
 
-    fn guard_start(&mut self) {
+    fn guard_start(&mut self, quasi_static: bool) {
         for fp in self.pairs.iter_mut().filter_map(|p| p.deformable.as_mut()) {
+            fp.hold_friction = quasi_static;
             fp.guard_start();
         }
     }

