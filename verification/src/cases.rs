@@ -354,9 +354,14 @@ pub fn hertz_two_spheres_nts_smoothed() -> Case {
         // the cylinders); a (moment) 3.2e-2 1.4e-2 2.8e-3 (rates 1.18,
         // 2.11); p0 4.2e-3 1.1e-2 1.1e-2 (high, no rate: a plateau at +1.1
         // %); L2 9.9e-2 4.0e-2 1.6e-2 (rates 1.30, 1.20); Newton 26 / 32 /
-        // 40. Where the plateau is (level 2, `ctc run` of the deck refined
-        // to radial 32, circumferential 64, the contact CSV of the last
-        // increment): the two axis nodes coincide and carry the reported
+        // 42 (40 before the axis nodes' nodal normals were mirrored,
+        // `ctc_engine::contact::symmetry`: they now project exactly onto
+        // each other, the force along the axis, and p0 did not move, the
+        // axis node's pressure 50.66816 -> 50.66813 at level 2: the
+        // plateau is not the normal's). Where the plateau is (level 2,
+        // `ctc run` of the deck refined to radial 32, circumferential 64,
+        // the contact CSV of the last increment): the two axis nodes
+        // coincide and carry the reported
         // peak, +1.1 % over Hertz (the cylinders' +1.7 %: equal gaps, loads
         // split by area); every other interface pressure of the first 12
         // is within -1.0 % .. -0.2 % of Hertz's at its radius. Issue 18's 2

@@ -38,7 +38,7 @@
 use super::friction::{FrictionStatus, NodeFriction};
 use super::friction_facet::{coulomb, FacetContact, FacetFriction, Master};
 use super::mortar::ad::Ad;
-use super::nagata::{self, normal_chain, patch_data, reaction, Patch};
+use super::nagata::{self, normal_chain, patch_data, reaction, Patch, Ring};
 use super::node_to_facet::{cross, dot, newton_step, FacetSurface};
 
 /// Variables of the law: the slave, the contact patch's 4 nodes and 4
@@ -127,7 +127,7 @@ fn law_on_patches(
 
 /// The friction law on the Nagata element of slave node `slave` at `xs`
 /// on the patch of `facet` (its global nodes; `rings[a]` the facets around
-/// its node `a`) at the converged foot `xi`, with the stick point `xi_a`
+/// its node `a` and its symmetry planes) at the converged foot `xi`, with the stick point `xi_a`
 /// on the patch of `anchor` (`anchor_rings`), at coordinates `x`. `None`
 /// for a degenerate patch.
 #[allow(clippy::too_many_arguments)]
@@ -136,10 +136,10 @@ pub fn respond(
     slave: usize,
     xs: [f64; 3],
     facet: &[usize],
-    rings: &[Vec<&[usize]>],
+    rings: &[Ring<'_>],
     xi: [f64; 2],
     anchor: &[usize],
-    anchor_rings: &[Vec<&[usize]>],
+    anchor_rings: &[Ring<'_>],
     xi_a: [f64; 2],
     x: &[[f64; 3]],
 ) -> Option<PatchFriction> {
@@ -151,7 +151,7 @@ pub fn respond(
     let mut others: Vec<usize> = rings
         .iter()
         .chain(anchor_rings)
-        .flatten()
+        .flat_map(|r| r.facets.iter())
         .flat_map(|f| f.iter().copied())
         .chain(facet.iter().copied())
         .chain(anchor.iter().copied())
@@ -253,11 +253,11 @@ pub struct Patches<'a> {
 }
 
 impl Patches<'_> {
-    fn rings(&self, k: usize) -> Vec<Vec<&[usize]>> {
+    fn rings(&self, k: usize) -> Vec<Ring<'_>> {
         self.surface.faces[k]
             .nodes()
             .iter()
-            .map(|&m| self.surface.ring(m))
+            .map(|&m| self.surface.nagata_ring(m))
             .collect()
     }
 

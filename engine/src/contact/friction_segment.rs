@@ -369,7 +369,8 @@ fn stick_segment(reference: [[f64; 2]; 4], has: [bool; 2], anchor: [f64; 2]) -> 
 /// Friction on the smoothed element (`smoothing = nodal`, [`smoothing`]):
 /// the slave `x_s` against segment `x_1 -> x_2` with the far nodes `x_0`,
 /// `x_3` of its neighbours (`x = [x_s, x_0, x_1, x_2, x_3]`, `has` which
-/// neighbours exist), projected at `xi` ([`smoothing::project`]).
+/// neighbours exist, `sym` the coordinates the nodal normals drop),
+/// projected at `xi` ([`smoothing::project`]).
 ///
 /// One geometry everywhere: the friction acts along `tau = (-n_y, n_x)`,
 /// the tangent of the smoothed normal `n(xi)` at the projection, so it is
@@ -395,13 +396,14 @@ pub fn respond_smoothed(
     law: &SegmentFriction,
     x: [[f64; 2]; 5],
     has: [bool; 2],
+    sym: smoothing::Symmetry,
     xi: f64,
     reference: [[f64; 2]; 4],
     anchor: [f64; 2],
     anchor_rate: Option<[f64; smoothing::N]>,
 ) -> Option<SmoothedResponse> {
     type A = smoothing::Ad10;
-    let p = smoothing::dual(x, has[0], has[1], xi)?;
+    let p = smoothing::dual(x, has[0], has[1], sym, xi)?;
     let [s, p0, p1, p2, p3] = p.x;
     let n = p.normal;
     let tau = [-n[1], n[0]];
@@ -497,6 +499,9 @@ pub struct SmoothedElement {
     pub element: Element,
     /// Far nodes `x_0` (before `m1`) and `x_3` (after `m2`).
     pub far: [Option<usize>; 2],
+    /// The coordinates the nodal normals drop at a symmetry line or the
+    /// axis ([`smoothing::Symmetry`]).
+    pub sym: smoothing::Symmetry,
     /// The smoothed gap.
     pub gap: f64,
 }
@@ -551,6 +556,7 @@ pub fn apply_smoothed(
         &seg,
         [e.xs, x0, x1, x2, x3],
         has,
+        se.sym,
         e.xi,
         [r0, r1, r2, r3],
         anchor,
@@ -930,13 +936,14 @@ mod tests {
         law: &SegmentFriction,
         x: [[f64; 2]; 5],
         has: [bool; 2],
+        sym: smoothing::Symmetry,
         r: [[f64; 2]; 4],
         anchor: [f64; 2],
     ) -> Option<(SmoothedResponse, f64, f64, [f64; 2])> {
-        let p = smoothing::Patch::new(x, has[0], has[1])?;
+        let p = smoothing::Patch::new(x, has[0], has[1], sym)?;
         let xi = smoothing::project(&p, 0.5)?;
         let (g, n) = p.gap(xi);
-        let out = respond_smoothed(law, x, has, xi, r, anchor, None)?;
+        let out = respond_smoothed(law, x, has, sym, xi, r, anchor, None)?;
         Some((out, xi, g, n))
     }
 
@@ -958,7 +965,8 @@ mod tests {
     proptest::proptest! {
         /// Smoothed friction (`smoothing = nodal`), stick and slip, inside a
         /// segment and next to a master node (the stick point on this
-        /// segment or a neighbour), with and without the far nodes: the
+        /// segment or a neighbour), with and without the far nodes and a
+        /// symmetry line `x = const` at a free end (`s0`, `s3`): the
         /// force on the slave is orthogonal to the smoothed normal; forces
         /// sum to zero and their moment is `g R_T`; the 10x10 tangent is
         /// minus the derivative of the forces (central differences, the
@@ -972,12 +980,15 @@ mod tests {
             mu in 0.02f64..1.0,
             h0 in proptest::bool::ANY,
             h3 in proptest::bool::ANY,
+            s0 in proptest::bool::ANY,
+            s3 in proptest::bool::ANY,
         ) {
             let has = [h0, h3];
+            let sym = [[s0 && !h0, false], [s3 && !h3, false]];
             let (x, r) = wavy(&w, xi, g);
             let law = law(mu);
             let anchor = on_reference(r, has, q);
-            let Some((out, xi, g, n)) = smoothed_at(&law, x, has, r, anchor) else {
+            let Some((out, xi, g, n)) = smoothed_at(&law, x, has, sym, r, anchor) else {
                 return Ok(());
             };
             proptest::prop_assume!((-0.3..1.3).contains(&xi));
@@ -1000,8 +1011,8 @@ mod tests {
                 xp[j / 2][j % 2] += h;
                 xm[j / 2][j % 2] -= h;
                 let (Some(fp), Some(fm)) = (
-                    smoothed_at(&law, xp, has, r, anchor),
-                    smoothed_at(&law, xm, has, r, anchor),
+                    smoothed_at(&law, xp, has, sym, r, anchor),
+                    smoothed_at(&law, xm, has, sym, r, anchor),
                 ) else {
                     continue;
                 };
@@ -1032,9 +1043,14 @@ mod tests {
         // master nodes walked -x, a kink at (0, 0)
         let m = [[2.0, 0.1], [1.0, 0.0], [0.0, 0.0], [-1.0, 0.2], [-2.0, 0.3]];
         let rf = [[2.0, 0.0], [1.0, 0.0], [0.0, 0.0], [-1.0, 0.0], [-2.0, 0.0]];
-        let nv = smoothing::Patch::new([m[2], m[0], m[1], m[2], m[3]], true, true)
-            .unwrap()
-            .nu[1];
+        let nv = smoothing::Patch::new(
+            [m[2], m[0], m[1], m[2], m[3]],
+            true,
+            true,
+            smoothing::NO_SYMMETRY,
+        )
+        .unwrap()
+        .nu[1];
         let xs = [-0.01 * nv[0], -0.01 * nv[1]];
         for (mu, anchor, status) in [
             (0.5, [0.01, 0.0], FrictionStatus::Stick),
@@ -1044,6 +1060,7 @@ mod tests {
                 &law(mu),
                 [xs, m[0], m[1], m[2], m[3]],
                 [true, true],
+                smoothing::NO_SYMMETRY,
                 1.0,
                 [rf[0], rf[1], rf[2], rf[3]],
                 anchor,
@@ -1054,6 +1071,7 @@ mod tests {
                 &law(mu),
                 [xs, m[1], m[2], m[3], m[4]],
                 [true, true],
+                smoothing::NO_SYMMETRY,
                 0.0,
                 [rf[1], rf[2], rf[3], rf[4]],
                 anchor,

@@ -32,7 +32,8 @@
 //!   [`node_to_facet`]: the 3D form (tri3 / quad4 master facets);
 //!   [`smoothing`]: the nodal normal field of `smoothing = nodal`;
 //!   [`nagata`]: Nagata patches on 3D master facets (`smoothing = nagata`),
-//!   [`friction_nagata`] their Coulomb friction;
+//!   [`friction_nagata`] their Coulomb friction; [`symmetry`]: the
+//!   symmetry planes and the axis their nodal normals are mirrored at;
 //! - [`mortar`]: mortar segment-to-segment contact (weighted gaps, `D`
 //!   and `M`, segmentation; penalty and augmented Lagrangian);
 //! - [`face_integrated`]: quadratic slave faces against rigid tools (the
@@ -69,6 +70,7 @@ pub mod segment_search;
 pub mod semismooth;
 pub mod smoothing;
 pub mod surface;
+pub mod symmetry;
 pub mod tributary;
 pub(crate) mod vec2;
 

@@ -10,7 +10,12 @@
 //! Each master node `a` gets the nodal normal `n_a = m / |m|`, `m = sum_f
 //! m_f` over the facets `f` that hold it, `m_f = 1/2 sum x_i x x_(i+1)`
 //! the facet's area vector (area-weighted average; exact for warped
-//! quadrilaterals). On each edge `a -> b` (`d = x_b - x_a`) the quadratic
+//! quadrilaterals). A rim node on a symmetry plane of a half, quarter or
+//! octant model (or on two: an octant's pole) has the facets of one side
+//! only: `m` is projected off the planes' normals, `m = P sum_f m_f`
+//! ([`Ring::mirror`], the rule of [`super::symmetry`]), which is the
+//! mirrored whole's nodal normal (the mirror images' area vectors double
+//! the in-plane parts and cancel the rest). On each edge `a -> b` (`d = x_b - x_a`) the quadratic
 //! curve `x(t) = x_a + (d - c) t + c t^2` is tangent to the planes of
 //! `n_a` and `n_b` at its ends: `c` is the smallest vector with `n_a . c =
 //! n_a . d`, `n_b . c = -n_b . d` (in the span of the two normals):
@@ -456,16 +461,61 @@ pub fn area_vector(f: &[usize], x: &[[f64; 3]]) -> [f64; 3] {
     m
 }
 
-/// The nodal normal of a node whose facets are `ring` (node lists,
-/// outward): the unit sum of their area vectors; `None` when they cancel.
-pub fn nodal_normal(ring: &[&[usize]], x: &[[f64; 3]]) -> Option<[f64; 3]> {
-    let mut m = [0.0; 3];
-    for f in ring {
-        let a = area_vector(f, x);
-        for c in 0..3 {
-            m[c] += a[c];
+/// The facets around a master node (their node lists, outward) and the
+/// coordinates its nodal normal drops: the normals of the symmetry planes
+/// through it ([`super::symmetry`]; none off the rim).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Ring<'a> {
+    /// The facets holding the node.
+    pub facets: Vec<&'a [usize]>,
+    /// `mirror[k]`: the node is on a symmetry plane `x_k = c`.
+    pub mirror: [bool; 3],
+}
+
+impl<'a> Ring<'a> {
+    /// The facets `facets` with no symmetry plane.
+    pub fn plain(facets: Vec<&'a [usize]>) -> Self {
+        Ring {
+            facets,
+            mirror: [false; 3],
         }
     }
+
+    /// The sum `m` of the facets' area vectors, and the mask of the
+    /// coordinates dropped from it: [`Ring::mirror`], unless that leaves
+    /// less than 1e-6 of `|m|` (the facets lie in the plane: kept whole).
+    fn sum(&self, x: &[[f64; 3]]) -> ([f64; 3], [bool; 3]) {
+        let mut m = [0.0; 3];
+        for f in &self.facets {
+            let a = area_vector(f, x);
+            for c in 0..3 {
+                m[c] += a[c];
+            }
+        }
+        let whole = m[0] * m[0] + m[1] * m[1] + m[2] * m[2];
+        let kept: f64 = (0..3)
+            .filter(|&c| !self.mirror[c])
+            .map(|c| m[c] * m[c])
+            .sum();
+        let mask = if kept > 1e-12 * whole {
+            self.mirror
+        } else {
+            [false; 3]
+        };
+        for c in 0..3 {
+            if mask[c] {
+                m[c] = 0.0;
+            }
+        }
+        (m, mask)
+    }
+}
+
+/// The nodal normal of a node whose facets are `ring` (node lists,
+/// outward): the unit sum of their area vectors, without the coordinates
+/// of its symmetry planes ([`Ring::mirror`]); `None` when they cancel.
+pub fn nodal_normal(ring: &Ring<'_>, x: &[[f64; 3]]) -> Option<[f64; 3]> {
+    let (m, _) = ring.sum(x);
     let r = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
     (r > 0.0 && r.is_finite()).then(|| m.map(|v| v / r))
 }
@@ -476,13 +526,14 @@ fn skew(v: [f64; 3]) -> [[f64; 3]; 3] {
 }
 
 /// The nodal normal of a node whose facets are `ring` (`n = m / |m|`, `m`
-/// the sum of their area vectors) differentiated over the local dofs of an
-/// element (`at(node)` the local node of a global one, `nn` local nodes):
-/// returns `J = dn/dX` (one `[f64; 3]` per local dof) and adds `lambda .
-/// d^2 n / dX^2` (closed form: `m` is bilinear in `X`) into `hess`
-/// (row-major, `3 nn` square).
+/// the sum of their area vectors, projected off its symmetry planes: `m =
+/// P sum`, `P` constant) differentiated over the local dofs of an element
+/// (`at(node)` the local node of a global one, `nn` local nodes): returns
+/// `J = dn/dX` (one `[f64; 3]` per local dof) and adds `lambda . d^2 n /
+/// dX^2` (closed form: `m` is bilinear in `X`) into `hess` (row-major, `3
+/// nn` square).
 pub(crate) fn normal_chain(
-    ring: &[&[usize]],
+    ring: &Ring<'_>,
     x: &[[f64; 3]],
     at: &impl Fn(usize) -> usize,
     nn: usize,
@@ -490,20 +541,17 @@ pub(crate) fn normal_chain(
     hess: &mut [f64],
 ) -> Vec<[f64; 3]> {
     let nd = 3 * nn;
-    // dm/dx_k = 1/2 sum_f [x_prev - x_next]x
+    // dm/dx_k = 1/2 sum_f P [x_prev - x_next]x (the rows of P's dropped
+    // coordinates zero)
     let mut dm = vec![[[0.0; 3]; 3]; nn];
-    let mut m = [0.0; 3];
-    for f in ring {
-        let am = area_vector(f, x);
-        for c in 0..3 {
-            m[c] += am[c];
-        }
+    let (m, mask) = ring.sum(x);
+    for f in &ring.facets {
         for (i, &k) in f.iter().enumerate() {
             let prev = x[f[(i + f.len() - 1) % f.len()]];
             let next = x[f[(i + 1) % f.len()]];
             let s = skew([0, 1, 2].map(|c| 0.5 * (prev[c] - next[c])));
             let l = at(k);
-            for r in 0..3 {
+            for r in (0..3).filter(|&r| !mask[r]) {
                 for c in 0..3 {
                     dm[l][r][c] += s[r][c];
                 }
@@ -529,7 +577,14 @@ pub(crate) fn normal_chain(
         return j;
     }
     let ln = (0..3).map(|c| lam[c] * nv[c]).sum::<f64>();
-    let mu: [f64; 3] = std::array::from_fn(|c| (lam[c] - ln * nv[c]) / r);
+    // dpsi/dm projected: P mu (the second derivative of P m is P's)
+    let mu: [f64; 3] = std::array::from_fn(|c| {
+        if mask[c] {
+            0.0
+        } else {
+            (lam[c] - ln * nv[c]) / r
+        }
+    });
     // d^2 psi / dm^2 = -[lam n^T + n lam^T + (lam.n)(I - 3 n n^T)] / r^2
     let hm: [[f64; 3]; 3] = std::array::from_fn(|i| {
         std::array::from_fn(|k| {
@@ -556,7 +611,7 @@ pub(crate) fn normal_chain(
     // mu . d^2 m / dX^2: 1/2 sum over facet edges (i, i+1) of
     // -[mu]x on block (i, i+1) and [mu]x on (i+1, i)
     let sk = skew(mu);
-    for f in ring {
+    for f in &ring.facets {
         for (i, &k) in f.iter().enumerate() {
             let (li, lj) = (at(k), at(f[(i + 1) % f.len()]));
             for r in 0..3 {
@@ -593,13 +648,14 @@ pub struct NagataElement {
 
 /// The element of slave node `slave` at `xs` on the patch of facet
 /// `facet` (its global nodes), `rings[a]` the facets (global node lists)
-/// around facet node `a`, at coordinates `x`, with the foot `xi` (from
-/// [`project`] on [`patch_of`]). `None` for a degenerate patch.
+/// around facet node `a` and its symmetry planes, at coordinates `x`, with
+/// the foot `xi` (from [`project`] on [`patch_of`]). `None` for a
+/// degenerate patch.
 pub fn element(
     slave: usize,
     xs: [f64; 3],
     facet: &[usize],
-    rings: &[Vec<&[usize]>],
+    rings: &[Ring<'_>],
     x: &[[f64; 3]],
     xi: [f64; 2],
 ) -> Option<NagataElement> {
@@ -610,7 +666,7 @@ pub fn element(
     // nodes are in them)
     let mut others: Vec<usize> = rings
         .iter()
-        .flatten()
+        .flat_map(|r| r.facets.iter())
         .flat_map(|f| f.iter().copied())
         .collect();
     others.extend_from_slice(facet);
@@ -704,7 +760,7 @@ pub fn element(
 #[allow(clippy::type_complexity)]
 pub(crate) fn patch_data(
     facet: &[usize],
-    rings: &[Vec<&[usize]>],
+    rings: &[Ring<'_>],
     x: &[[f64; 3]],
 ) -> Option<([[f64; 3]; 4], [[f64; 3]; 4])> {
     let mut xp = [[0.0; 3]; 4];
@@ -717,7 +773,7 @@ pub(crate) fn patch_data(
 }
 
 /// The Nagata patch of `facet` with the nodal normals from `rings`.
-pub fn patch_of(facet: &[usize], rings: &[Vec<&[usize]>], x: &[[f64; 3]]) -> Option<Patch<f64>> {
+pub fn patch_of(facet: &[usize], rings: &[Ring<'_>], x: &[[f64; 3]]) -> Option<Patch<f64>> {
     let (xp, np) = patch_data(facet, rings, x)?;
     Some(Patch::new(xp, np, facet.len()))
 }
@@ -769,15 +825,17 @@ pub(crate) mod tests {
         (x, f)
     }
 
-    pub(crate) fn rings<'a>(faces: &'a [Vec<usize>], facet: &[usize]) -> Vec<Vec<&'a [usize]>> {
+    pub(crate) fn rings<'a>(faces: &'a [Vec<usize>], facet: &[usize]) -> Vec<Ring<'a>> {
         facet
             .iter()
             .map(|&k| {
-                faces
-                    .iter()
-                    .filter(|f| f.contains(&k))
-                    .map(|f| f.as_slice())
-                    .collect()
+                Ring::plain(
+                    faces
+                        .iter()
+                        .filter(|f| f.contains(&k))
+                        .map(|f| f.as_slice())
+                        .collect(),
+                )
             })
             .collect()
     }
@@ -816,15 +874,70 @@ pub(crate) mod tests {
         );
     }
 
+    /// A quarter of the dome (the facets in `u >= 0`, `v >= 0`: a quarter
+    /// model cut by the planes `x = 0`, `y = 0`): a node on `x = 0` with
+    /// `x` dropped has the whole dome's nodal normal (the mirrored facets'
+    /// area vectors only double its `y`, `z` parts), the pole with `x` and
+    /// `y` dropped the axis; without, they tilt by about half a facet
+    /// angle and a whole one.
+    #[test]
+    fn a_node_on_a_symmetry_plane_gets_the_whole_models_normal() {
+        let mut seed = 3u64;
+        let (x, faces) = dome(4, false, 0.0, &mut seed);
+        let id = |i: usize, j: usize| i + 5 * j;
+        let quarter: Vec<Vec<usize>> = faces
+            .iter()
+            .filter(|f| f.iter().all(|&k| x[k][0] >= -1e-12 && x[k][1] >= -1e-12))
+            .cloned()
+            .collect();
+        assert_eq!(quarter.len(), 4);
+        fn ring(fs: &[Vec<usize>], k: usize) -> Ring<'_> {
+            Ring::plain(
+                fs.iter()
+                    .filter(|f| f.contains(&k))
+                    .map(|f| f.as_slice())
+                    .collect(),
+            )
+        }
+        let (edge, pole) = (id(2, 3), id(2, 2));
+        let whole = nodal_normal(&ring(&faces, edge), &x).unwrap();
+        let half = nodal_normal(&ring(&quarter, edge), &x).unwrap();
+        let mut mirrored = ring(&quarter, edge);
+        mirrored.mirror = [true, false, false];
+        let m = nodal_normal(&mirrored, &x).unwrap();
+        let angle = |a: [f64; 3], b: [f64; 3]| vdot(a, b).min(1.0).acos();
+        assert!(
+            (0..3).all(|c| (m[c] - whole[c]).abs() < 1e-15),
+            "{m:?} {whole:?}"
+        );
+        // half the facet angle along x (0.25 / 2 rad) about; the pole:
+        // the facet centre, (0.125, 0.125) / 2 rad
+        assert!(angle(half, whole) > 0.03, "{}", angle(half, whole));
+        let mut p = ring(&quarter, pole);
+        assert!(angle(nodal_normal(&p, &x).unwrap(), [0.0, 0.0, 1.0]) > 0.08);
+        p.mirror = [true, true, false];
+        assert_eq!(nodal_normal(&p, &x).unwrap(), [0.0, 0.0, 1.0]);
+        assert_eq!(
+            nodal_normal(&ring(&faces, pole), &x).unwrap(),
+            [0.0, 0.0, 1.0]
+        );
+    }
+
     /// Largest relative FD errors of `G` and `H` of elements on random
-    /// jittered domes (tri3 and quad4), random slave positions.
-    fn fd_errors(tri: bool, count: usize, seed: &mut u64) -> (f64, f64, usize) {
+    /// jittered domes (tri3 and quad4), random slave positions; with
+    /// `mirror`, the facet's first node on a plane `x = c` and its second
+    /// on `x = c` and `y = c` (an octant's pole: the normal along z).
+    fn fd_errors(tri: bool, mirror: bool, count: usize, seed: &mut u64) -> (f64, f64, usize) {
         let (mut eg, mut eh, mut done) = (0.0f64, 0.0f64, 0);
         for t in 0..count {
             let (mut x, faces) = dome(3, tri, 0.05, seed);
             let k = if tri { 8 + t % 2 } else { 4 };
             let f = faces[k].clone();
-            let r = rings(&faces, &f);
+            let mut r = rings(&faces, &f);
+            if mirror {
+                r[0].mirror = [true, false, false];
+                r[1].mirror = [true, true, false];
+            }
             let c: [f64; 3] =
                 std::array::from_fn(|q| f.iter().map(|&n| x[n][q]).sum::<f64>() / f.len() as f64);
             let h = [0.37, -0.61, 0.29][t % 3] * 0.1;
@@ -895,9 +1008,10 @@ pub(crate) mod tests {
                 mom[1] += p[2] * q[0] - p[0] * q[2];
                 mom[2] += p[0] * q[1] - p[1] * q[0];
             }
+            // the planes are fixed in space: no rotation invariance there
             for c in 0..3 {
                 assert!(
-                    sum[c].abs() < 1e-12 && mom[c].abs() < 1e-11,
+                    sum[c].abs() < 1e-12 && (mirror || mom[c].abs() < 1e-11),
                     "{sum:?} {mom:?}"
                 );
             }
@@ -912,15 +1026,16 @@ pub(crate) mod tests {
     #[test]
     fn gradient_and_hessian_match_finite_differences() {
         let mut seed = 0x9e37_79b9_7f4a_7c15u64;
-        for tri in [false, true] {
-            let (eg, eh, done) = fd_errors(tri, 12, &mut seed);
+        for (tri, mirror) in [(false, false), (true, false), (false, true), (true, true)] {
+            let (eg, eh, done) = fd_errors(tri, mirror, 12, &mut seed);
             println!(
-                "nagata {}: {done} elements, max rel. FD error G {eg:.2e}, H {eh:.2e}",
-                if tri { "tri3" } else { "quad4" }
+                "nagata {}{}: {done} elements, max rel. FD error G {eg:.2e}, H {eh:.2e}",
+                if tri { "tri3" } else { "quad4" },
+                if mirror { " on symmetry planes" } else { "" }
             );
             assert!(
                 done >= 8 && eg < 1e-7 && eh < 1e-6,
-                "{tri}: {done} {eg} {eh}"
+                "{tri} {mirror}: {done} {eg} {eh}"
             );
         }
     }

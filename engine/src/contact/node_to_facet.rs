@@ -521,6 +521,10 @@ pub struct FacetSurface {
     /// `(node, facet)` for every facet node, sorted (the facets around a
     /// node: its nodal normal).
     by_node: Vec<(usize, usize)>,
+    /// Rim nodes on symmetry planes and the coordinates their Nagata
+    /// nodal normals drop (`smoothing = nagata`, [`super::symmetry`]),
+    /// sorted; set by [`FacetSurface::mirror_rim`].
+    mirror: Vec<(usize, [bool; 3])>,
     /// Broad phase over the facet boxes at the current coordinates.
     grid: BroadPhase<3>,
     /// Scratch: facet boxes.
@@ -607,6 +611,7 @@ impl FacetSurface {
         free_nodes.dedup();
         FacetSurface {
             by_node,
+            mirror: Vec::new(),
             neighbours,
             free_edges,
             free_nodes,
@@ -619,6 +624,32 @@ impl FacetSurface {
     /// Whether the edge between global nodes `a` and `b` is on the rim.
     pub fn is_free_edge(&self, a: usize, b: usize) -> bool {
         self.free_edges.binary_search(&(a.min(b), a.max(b))).is_ok()
+    }
+
+    /// Sets the rim nodes on the symmetry planes of body `body` (the rule
+    /// of [`super::symmetry`]): their Nagata nodal normals drop the
+    /// planes' coordinates ([`Self::nagata_ring`]).
+    pub fn mirror_rim(&mut self, model: &Model<3>, body: usize) {
+        let masks = super::symmetry::masks(model, body, &self.free_nodes);
+        self.mirror = self
+            .free_nodes
+            .iter()
+            .zip(masks)
+            .filter(|(_, m)| m.iter().any(|&v| v))
+            .map(|(&n, m)| (n, m))
+            .collect();
+    }
+
+    /// The facets around global node `n` and its symmetry planes (the
+    /// nodal normal of a Nagata patch, [`super::nagata::Ring`]).
+    pub fn nagata_ring(&self, n: usize) -> super::nagata::Ring<'_> {
+        super::nagata::Ring {
+            facets: self.ring(n),
+            mirror: self
+                .mirror
+                .binary_search_by_key(&n, |&(m, _)| m)
+                .map_or([false; 3], |i| self.mirror[i].1),
+        }
     }
 
     /// The facets holding global node `n` (their node lists).
@@ -661,7 +692,7 @@ impl FacetSurface {
         for &k in candidates {
             let nodes = self.faces[k].nodes();
             let n = nodes.len();
-            let rings: Vec<Vec<&[usize]>> = nodes.iter().map(|&m| self.ring(m)).collect();
+            let rings: Vec<nagata::Ring<'_>> = nodes.iter().map(|&m| self.nagata_ring(m)).collect();
             let Some(patch) = nagata::patch_of(nodes, &rings, x) else {
                 continue;
             };
@@ -724,7 +755,7 @@ impl FacetSurface {
             .or(inside.map(|(_, k, xi)| (k, xi)))
             .or(outside.map(|(_, k, xi)| (k, xi)))?;
         let nodes = self.faces[k].nodes();
-        let rings: Vec<Vec<&[usize]>> = nodes.iter().map(|&m| self.ring(m)).collect();
+        let rings: Vec<nagata::Ring<'_>> = nodes.iter().map(|&m| self.nagata_ring(m)).collect();
         nagata::element(node, xs, nodes, &rings, x, xi).map(|e| (k, e))
     }
 
@@ -1699,7 +1730,14 @@ pub fn prepare(model: &Model<3>, pair: usize, slaves: &[usize]) -> Option<Deform
             FacetSurface::quadratic(faces),
         ]
     } else {
-        [FacetSurface::new(&cp.faces), FacetSurface::new(faces)]
+        let mut sides = [FacetSurface::new(&cp.faces), FacetSurface::new(faces)];
+        if cp.smoothing == crate::model::NormalSmoothing::Nagata {
+            sides[0].mirror_rim(model, cp.body);
+            if let ContactMaster::Surface { body, .. } = &cp.master {
+                sides[1].mirror_rim(model, *body);
+            }
+        }
+        sides
     };
     let excluded = if self_contact {
         slaves

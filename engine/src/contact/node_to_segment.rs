@@ -89,6 +89,10 @@ pub struct Surface {
     pub prev: Vec<Option<usize>>,
     /// Per segment: the segment starting at its second node (next one).
     pub next: Vec<Option<usize>>,
+    /// Per segment: the coordinates its free ends' smoothed nodal normals
+    /// drop (a symmetry line or the axis, [`super::symmetry`]; set by
+    /// [`prepare`], none by [`Surface::new`]).
+    pub sym: Vec<smoothing::Symmetry>,
     /// Broad phase over the segment boxes at the current coordinates.
     pub(crate) grid: Option<BroadPhase>,
     /// Scratch: segment boxes.
@@ -116,9 +120,47 @@ impl Surface {
             edges: edges.to_vec(),
             prev,
             next,
+            sym: vec![smoothing::NO_SYMMETRY; edges.len()],
             grid: None,
             boxes: Vec::with_capacity(edges.len()),
         }
+    }
+
+    /// Sets [`Surface::sym`]: the free ends of the surface (a body's
+    /// segments) on a symmetry line or the axis ([`super::symmetry`]).
+    pub(crate) fn mirror_free_ends(&mut self, model: &Model, body: usize) {
+        let mut ends: Vec<usize> = Vec::new();
+        for (e, ed) in self.edges.iter().enumerate() {
+            if self.prev[e].is_none() {
+                ends.push(ed[0]);
+            }
+            if self.next[e].is_none() {
+                ends.push(ed[1]);
+            }
+        }
+        ends.sort_unstable();
+        ends.dedup();
+        let masks = super::symmetry::masks(model, body, &ends);
+        let mask = |n: usize| ends.binary_search(&n).map_or([false; 2], |i| masks[i]);
+        self.sym = self
+            .edges
+            .iter()
+            .enumerate()
+            .map(|(e, ed)| {
+                [
+                    if self.prev[e].is_none() {
+                        mask(ed[0])
+                    } else {
+                        [false; 2]
+                    },
+                    if self.next[e].is_none() {
+                        mask(ed[1])
+                    } else {
+                        [false; 2]
+                    },
+                ]
+            })
+            .collect();
     }
 
     /// Rebuilds the broad phase at the current coordinates `x` with each
@@ -255,7 +297,11 @@ pub fn prepare(model: &Model, pair: usize, slaves: &[usize]) -> Option<SurfacePa
     };
     let master_body = *master_body;
     let self_contact = edges == &cp.edges;
-    let sides = [Surface::new(&cp.edges), Surface::new(edges)];
+    let mut sides = [Surface::new(&cp.edges), Surface::new(edges)];
+    if cp.smoothing == NormalSmoothing::Nodal {
+        sides[0].mirror_free_ends(model, cp.body);
+        sides[1].mirror_free_ends(model, master_body);
+    }
     let side_of = slaves
         .iter()
         .map(|n| u8::from(cp.nodes.binary_search(n).is_err()))
@@ -516,11 +562,13 @@ fn kink_side(surface: &Surface, x: &[[f64; 2]], e: usize, f: usize, before: bool
 struct SmoothKept {
     segment: usize,
     far: [Option<usize>; 2],
+    sym: smoothing::Symmetry,
     d: smoothing::Smoothed,
 }
 
 /// The coordinates `[x_s, x_0, x_1, x_2, x_3]` of segment `e` of `surface`
-/// and the far nodes `x_0`, `x_3` (if the neighbours exist).
+/// and the far nodes `x_0`, `x_3` (if the neighbours exist); the
+/// segment's symmetry is `surface.sym[e]`.
 fn patch_points(
     surface: &Surface,
     x: &[[f64; 2]],
@@ -573,7 +621,12 @@ fn closest_smoothed(
         let Some(line) = SegmentProjection::new(xs, pts[2], pts[3]) else {
             continue;
         };
-        let Some(p) = smoothing::Patch::new(pts, far[0].is_some(), far[1].is_some()) else {
+        let sym = surface
+            .sym
+            .get(e)
+            .copied()
+            .unwrap_or(smoothing::NO_SYMMETRY);
+        let Some(p) = smoothing::Patch::new(pts, far[0].is_some(), far[1].is_some(), sym) else {
             continue;
         };
         *tests += 1;
@@ -610,8 +663,18 @@ fn closest_smoothed(
         _ => (d, e, xi),
     };
     let (pts, far) = patch_points(surface, x, xs, e);
-    let d = smoothing::differentiate(pts, far[0].is_some(), far[1].is_some(), xi)?;
-    Some(SmoothKept { segment: e, far, d })
+    let sym = surface
+        .sym
+        .get(e)
+        .copied()
+        .unwrap_or(smoothing::NO_SYMMETRY);
+    let d = smoothing::differentiate(pts, far[0].is_some(), far[1].is_some(), sym, xi)?;
+    Some(SmoothKept {
+        segment: e,
+        far,
+        sym,
+        d,
+    })
 }
 
 /// Evaluates deformable pair `pair` at current coordinates `x`: one entry
@@ -784,6 +847,7 @@ pub fn evaluate(
                 &super::friction_segment::SmoothedElement {
                     element,
                     far: s.far,
+                    sym: s.sym,
                     gap: s.d.gap.v,
                 },
                 &mut state.friction,
@@ -1128,9 +1192,14 @@ mod tests {
         ];
         let s = Surface::new(&[[0, 1], [1, 2], [2, 3], [3, 4]]);
         // on the vertex's nodal normal, 1e-3 inside, a few ulps off
-        let nv = smoothing::Patch::new([x[2], x[0], x[1], x[2], x[3]], true, true)
-            .unwrap()
-            .nu[1];
+        let nv = smoothing::Patch::new(
+            [x[2], x[0], x[1], x[2], x[3]],
+            true,
+            true,
+            smoothing::NO_SYMMETRY,
+        )
+        .unwrap()
+        .nu[1];
         let xs = [-1e-3 * nv[0] + 1e-17, -1e-3 * nv[1]];
         let mut tests = 0;
         let run = |last: Option<usize>, tests: &mut usize| {

@@ -10,6 +10,15 @@
 //!
 //! - nodal normal `nu_k` of master node `k`: the unit mean of the unit
 //!   normals of its two segments (the segment normal at a free end);
+//! - at a free end on a symmetry line of its body or on the axis `r = 0`
+//!   of an axisymmetric model ([`super::symmetry`]: the mirrored half's
+//!   segment is not in the model) the end segment's normal is tilted by
+//!   half a segment angle off the whole's mean normal, which lies in the
+//!   line by symmetry: `nu_k = P n / |P n|`, `P` the constant projection
+//!   that removes the coordinate across the line (the radial one at `r =
+//!   0`), i.e. the unit vector along the line pointing out of the body
+//!   (the whole's nodal normal there). `P` is constant, so the
+//!   derivatives below go through it unchanged;
 //! - along segment `x_1 -> x_2`: `m(xi) = (1 - xi) nu_1 + xi nu_2`,
 //!   `n(xi) = m / |m|`, the point `x(xi) = (1 - xi) x_1 + xi x_2`;
 //! - projection of the slave node `x_s`: the `xi` where `x_s - x(xi)` is
@@ -109,10 +118,20 @@ fn seg_normal<T: Scalar>(a: V<T>, b: V<T>) -> V<T> {
     unit([d[1], T::of(0.0) - d[0]])
 }
 
+/// Coordinates removed from the nodal normals at the two ends of a
+/// segment, `[at x_1, at x_2]` (a node on a symmetry line or the axis,
+/// [`super::symmetry`]); [`NO_SYMMETRY`] elsewhere.
+pub type Symmetry = [[bool; 2]; 2];
+
+/// No coordinate removed at either end.
+pub const NO_SYMMETRY: Symmetry = [[false; 2]; 2];
+
 /// Nodal normal at `x` between segments `p -> x` and `x -> q` (either may
-/// be missing: the other's normal).
-fn nodal<T: Scalar>(p: Option<V<T>>, x: V<T>, q: Option<V<T>>) -> Option<V<T>> {
-    match (p, q) {
+/// be missing: the other's normal), with the coordinates `sym` removed and
+/// renormalized (kept whole where that leaves nothing: a segment lying in
+/// its symmetry line).
+fn nodal<T: Scalar>(p: Option<V<T>>, x: V<T>, q: Option<V<T>>, sym: [bool; 2]) -> Option<V<T>> {
+    let n = match (p, q) {
         (Some(p), Some(q)) => {
             let (a, b) = (seg_normal(p, x), seg_normal(x, q));
             let s = [a[0] + b[0], a[1] + b[1]];
@@ -122,7 +141,13 @@ fn nodal<T: Scalar>(p: Option<V<T>>, x: V<T>, q: Option<V<T>>) -> Option<V<T>> {
         (Some(p), None) => Some(seg_normal(p, x)),
         (None, Some(q)) => Some(seg_normal(x, q)),
         (None, None) => None,
+    }?;
+    if sym == [false; 2] {
+        return Some(n);
     }
+    let z = T::of(0.0);
+    let m = [if sym[0] { z } else { n[0] }, if sym[1] { z } else { n[1] }];
+    Some(if dot(m, m).val() > 1e-12 { unit(m) } else { n })
 }
 
 /// One smoothed segment `x_1 -> x_2` with the slave node and the nodal
@@ -141,16 +166,17 @@ pub struct Patch<T> {
 
 impl<T: Scalar> Patch<T> {
     /// The patch of coordinates `[x_s, x_0, x_1, x_2, x_3]` (`x_0` unused
-    /// unless `has0`, `x_3` unless `has3`); `None` for a degenerate
+    /// unless `has0`, `x_3` unless `has3`), the nodal normals at `x_1`,
+    /// `x_2` without the coordinates `sym`; `None` for a degenerate
     /// segment or a surface folded onto itself.
-    pub fn new(x: [V<T>; 5], has0: bool, has3: bool) -> Option<Self> {
+    pub fn new(x: [V<T>; 5], has0: bool, has3: bool, sym: Symmetry) -> Option<Self> {
         let [xs, x0, x1, x2, x3] = x;
         let d = sub(x2, x1);
         if dot(d, d).val().is_nan() || dot(d, d).val() <= 0.0 {
             return None;
         }
-        let nu1 = nodal(has0.then_some(x0), x1, Some(x2))?;
-        let nu2 = nodal(Some(x1), x2, has3.then_some(x3))?;
+        let nu1 = nodal(has0.then_some(x0), x1, Some(x2), sym[0])?;
+        let nu2 = nodal(Some(x1), x2, has3.then_some(x3), sym[1])?;
         Some(Patch {
             xs,
             x1,
@@ -248,17 +274,24 @@ pub struct DualProjection {
 }
 
 /// The projection of `x[0]` (slave) on segment `x[2] -> x[3]` with
-/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`) in dual numbers, at
-/// the solved parameter `xi` (from [`project`]): one Newton step in dual
-/// numbers from the solution gives the exact `d xi / d x`.
-pub fn dual(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Option<DualProjection> {
+/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`), the nodal normals
+/// without the coordinates `sym`, in dual numbers, at the solved parameter
+/// `xi` (from [`project`]): one Newton step in dual numbers from the
+/// solution gives the exact `d xi / d x`.
+pub fn dual(
+    x: [[f64; 2]; 5],
+    has0: bool,
+    has3: bool,
+    sym: Symmetry,
+    xi: f64,
+) -> Option<DualProjection> {
     let mut v = [[Ad10::cst(0.0); 2]; 5];
     for (k, p) in x.iter().enumerate() {
         for c in 0..2 {
             v[k][c] = Ad10::var(p[c], 2 * k + c);
         }
     }
-    let p = Patch::new(v, has0, has3)?;
+    let p = Patch::new(v, has0, has3, sym)?;
     let t = p.step(Ad10::cst(xi))?;
     let (point, _) = p.at(t);
     let (gap, normal) = p.gap(t);
@@ -272,16 +305,22 @@ pub fn dual(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Option<DualPro
 }
 
 /// The smoothed gap of `x[0]` (slave) against segment `x[2] -> x[3]` with
-/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`), at the solved
-/// parameter `xi` (from [`project`]), with its exact derivatives
-/// ([`dual`]).
-pub fn differentiate(x: [[f64; 2]; 5], has0: bool, has3: bool, xi: f64) -> Option<Smoothed> {
+/// neighbours `x[1]` (if `has0`) and `x[4]` (if `has3`), the nodal normals
+/// without the coordinates `sym`, at the solved parameter `xi` (from
+/// [`project`]), with its exact derivatives ([`dual`]).
+pub fn differentiate(
+    x: [[f64; 2]; 5],
+    has0: bool,
+    has3: bool,
+    sym: Symmetry,
+    xi: f64,
+) -> Option<Smoothed> {
     let DualProjection {
         xi: t,
         normal: n,
         gap: g,
         ..
-    } = dual(x, has0, has3, xi)?;
+    } = dual(x, has0, has3, sym, xi)?;
     let w1 = Ad10::cst(1.0) - t;
     let z = Ad10::cst(0.0);
     let b = [
@@ -314,25 +353,27 @@ mod tests {
         [c(0), c(1), c(2), c(3), c(4)]
     }
 
-    fn solve(x: &[f64; 10], has0: bool, has3: bool) -> Option<Smoothed> {
-        let p = Patch::new(pts(x), has0, has3)?;
+    fn solve(x: &[f64; 10], has0: bool, has3: bool, sym: Symmetry) -> Option<Smoothed> {
+        let p = Patch::new(pts(x), has0, has3, sym)?;
         let xi = project(&p, 0.5)?;
-        differentiate(pts(x), has0, has3, xi)
+        differentiate(pts(x), has0, has3, sym, xi)
     }
 
     #[test]
     fn flat_surface_gives_the_segment_gap_and_a_kink_a_continuous_one() {
         // flat: nodal normals = segment normal (walk -x, body below: +y)
         let x = [0.3, 0.2, 2.0, 0.0, 1.0, 0.0, 0.0, 0.0, -1.0, 0.0];
-        let s = solve(&x, true, true).unwrap();
+        let s = solve(&x, true, true, NO_SYMMETRY).unwrap();
         assert!((s.gap.v - 0.2).abs() < 1e-15 && (s.xi - 0.7).abs() < 1e-15);
         // a kink at (0, 0): a node on the vertex's nodal normal projects
         // on the vertex from both segments, with the same gap and normal
         let (a, v, b) = ([1.0, 0.0], [0.0, 0.0], [-1.0, 0.2]);
-        let nv = Patch::new([v, [2.0, 0.0], a, v, b], true, true).unwrap().nu[1];
+        let nv = Patch::new([v, [2.0, 0.0], a, v, b], true, true, NO_SYMMETRY)
+            .unwrap()
+            .nu[1];
         let xs = [0.05 * nv[0], 0.05 * nv[1]];
-        let p1 = Patch::new([xs, [2.0, 0.0], a, v, b], true, true).unwrap();
-        let p2 = Patch::new([xs, a, v, b, [-2.0, 0.4]], true, true).unwrap();
+        let p1 = Patch::new([xs, [2.0, 0.0], a, v, b], true, true, NO_SYMMETRY).unwrap();
+        let p2 = Patch::new([xs, a, v, b, [-2.0, 0.4]], true, true, NO_SYMMETRY).unwrap();
         let xi1 = project(&p1, 0.5).unwrap();
         let xi2 = project(&p2, 0.5).unwrap();
         assert!(
@@ -345,15 +386,60 @@ mod tests {
         assert!((n1[0] - n2[0]).abs() < 1e-12 && (n1[1] - n2[1]).abs() < 1e-12);
     }
 
-    fn coords() -> impl Strategy<Value = ([f64; 10], bool, bool)> {
+    /// A quarter circle of radius 1 about `(0, 1)` from the axis node
+    /// `(0, 0)` (body above, walked +x): the end segment's normal is tilted
+    /// by half its angle; with the axis coordinate removed the nodal normal
+    /// at the axis node is `-y`, so a node on the axis below it projects on
+    /// it at the gap of its distance, as on the mirrored whole.
+    #[test]
+    fn a_free_end_on_a_symmetry_line_gets_the_mirrored_normal() {
+        let arc = |k: f64| {
+            let t = k * std::f64::consts::PI / 32.0;
+            [t.sin(), 1.0 - t.cos()]
+        };
+        let xs = [0.0, -0.01];
+        let x = [xs, arc(0.0), arc(0.0), arc(1.0), arc(2.0)];
+        let plain = Patch::new(x, false, true, NO_SYMMETRY).unwrap();
+        let half = std::f64::consts::PI / 64.0;
+        // tilted by half the segment angle off -y
+        assert!(
+            (plain.nu[0][0] - half.sin()).abs() < 1e-15,
+            "{:?}",
+            plain.nu[0]
+        );
+        let sym = [[true, false], [false, false]];
+        let p = Patch::new(x, false, true, sym).unwrap();
+        assert_eq!(p.nu[0], [0.0, -1.0]);
+        // the interior node's normal is untouched
+        assert_eq!(p.nu[1], plain.nu[1]);
+        let xi = project(&p, 0.5).unwrap();
+        let (g, n) = p.gap(xi);
+        assert!(xi.abs() < 1e-15 && (g - 0.01).abs() < 1e-15, "{xi} {g}");
+        assert!(n[0].abs() < 1e-15 && (n[1] + 1.0).abs() < 1e-15);
+        // faceted end normal: the foot is off the axis node, the gap off
+        let xi = project(&plain, 0.5).unwrap();
+        let (g, _) = plain.gap(xi);
+        assert!(xi < -1e-3 && (g - 0.01).abs() > 1e-6, "{xi} {g}");
+        // the derivatives: the axis node's normal is constant
+        let d = differentiate(x, false, true, sym, 0.0).unwrap();
+        assert!((d.gap.v - 0.01).abs() < 1e-15);
+        // a segment lying in its symmetry line keeps its own normal
+        let flat = [xs, [0.0, 0.0], [0.0, 0.0], [0.0, 1.0], [0.0, 2.0]];
+        let f = Patch::new(flat, false, true, [[false, true], [false, false]]).unwrap();
+        assert_eq!(f.nu[0], [1.0, 0.0]);
+    }
+
+    fn coords() -> impl Strategy<Value = ([f64; 10], bool, bool, Symmetry)> {
         (
             proptest::collection::vec(-0.15f64..0.15, 10),
             -0.2f64..1.2,
             -0.3f64..0.3,
             any::<bool>(),
             any::<bool>(),
+            any::<bool>(),
+            any::<bool>(),
         )
-            .prop_map(|(w, xi, g, h0, h3)| {
+            .prop_map(|(w, xi, g, h0, h3, s1, s2)| {
                 // a wavy master walked -x (body below), the slave near it
                 let base = [2.0, 1.0, 0.0, -1.0];
                 let mut x = [0.0; 10];
@@ -363,21 +449,24 @@ mod tests {
                 }
                 x[0] = 1.0 - xi + w[0];
                 x[1] = g + w[1];
-                (x, h0, h3)
+                // x removed at either end or not: a symmetry line x =
+                // const across the surface (y would be along it)
+                let mask = |k: bool| [k, false];
+                (x, h0, h3, [mask(s1), mask(s2)])
             })
     }
 
     proptest! {
         #[test]
-        fn gap_and_force_derivatives_match_finite_differences((x, h0, h3) in coords()) {
-            let Some(s) = solve(&x, h0, h3) else { return Ok(()); };
+        fn gap_and_force_derivatives_match_finite_differences((x, h0, h3, sym) in coords()) {
+            let Some(s) = solve(&x, h0, h3, sym) else { return Ok(()); };
             prop_assume!((-0.5..1.5).contains(&s.xi));
             let e = 1e-6;
             for j in 0..N {
                 let (mut xp, mut xm) = (x, x);
                 xp[j] += e;
                 xm[j] -= e;
-                let (Some(sp), Some(sm)) = (solve(&xp, h0, h3), solve(&xm, h0, h3)) else {
+                let (Some(sp), Some(sm)) = (solve(&xp, h0, h3, sym), solve(&xm, h0, h3, sym)) else {
                     continue;
                 };
                 let fd = (sp.gap.v - sm.gap.v) / (2.0 * e);
@@ -389,7 +478,7 @@ mod tests {
                         "dB{i}/dx{j}: {fd} vs {}", s.b[i].d[j]);
                 }
             }
-            // rigid motions leave the gap unchanged
+            // a translation leaves the gap unchanged
             let sum: f64 = (0..5).map(|k| s.gap.d[2 * k]).sum();
             prop_assert!(sum.abs() < 1e-10, "sum {sum}");
             // the forces R B: sum and moment zero

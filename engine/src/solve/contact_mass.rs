@@ -221,10 +221,29 @@ pub fn free_directions<const D: usize>(
     size: f64,
 ) -> [bool; D] {
     let mut free = [true; D];
+    for (k, _) in symmetry_planes(nodes, body, held, size) {
+        free[k] = false;
+    }
+    free
+}
+
+/// The symmetry planes `x_k = c` of a body (the rule of
+/// [`free_directions`]), as `(k, c)`: a coordinate plane at the body's
+/// least or largest `x_k` (within 1e-9 of `size`) whose nodes there (at
+/// least `D`, spanning the plane) all have `u_k` held at zero. Also the
+/// planes the smoothed contact normals are mirrored at
+/// (`crate::contact::symmetry`).
+pub fn symmetry_planes<const D: usize>(
+    nodes: &[[f64; D]],
+    body: std::ops::Range<usize>,
+    held: &[[bool; D]],
+    size: f64,
+) -> Vec<(usize, f64)> {
+    let mut planes = Vec::new();
     let Some(body_nodes) = nodes.get(body.clone()) else {
-        return free;
+        return planes;
     };
-    for (k, f) in free.iter_mut().enumerate() {
+    for k in 0..D {
         let lo = body_nodes
             .iter()
             .map(|x| x[k])
@@ -240,11 +259,11 @@ pub fn free_directions<const D: usize>(
                 .collect();
             let all_held = on.iter().all(|&n| held.get(n).is_some_and(|h| h[k]));
             if on.len() >= D && all_held && spans_plane(nodes, &on, k, size) {
-                *f = false;
+                planes.push((k, c));
             }
         }
     }
-    free
+    planes
 }
 
 /// Whether the points `on` (indices into `nodes`), which share their
