@@ -148,28 +148,19 @@ pub fn respond(
     let stick = patch_data(anchor, anchor_rings, x)?;
     let pl = law_on_patches(law, xs, (contact, count), xi, (stick, count_a), xi_a)?;
     // global nodes: the slave, then every node of both patches' rings
-    let mut others: Vec<usize> = rings
-        .iter()
-        .chain(anchor_rings)
-        .flat_map(|r| r.facets.iter())
-        .flat_map(|f| f.iter().copied())
-        .chain(facet.iter().copied())
-        .chain(anchor.iter().copied())
-        .collect();
-    others.sort_unstable();
-    others.dedup();
-    others.retain(|&n| n != slave);
-    let mut nodes = vec![slave];
-    nodes.extend(others);
+    let nodes = nagata::element_nodes(
+        slave,
+        rings
+            .iter()
+            .chain(anchor_rings)
+            .flat_map(|r| r.facets.iter())
+            .flat_map(|f| f.iter().copied())
+            .chain(facet.iter().copied())
+            .chain(anchor.iter().copied()),
+    );
     let nn = nodes.len();
     let nd = 3 * nn;
-    let at = |node: usize| -> usize {
-        if node == slave {
-            0
-        } else {
-            1 + nodes[1..].binary_search(&node).unwrap_or(0)
-        }
-    };
+    let at = |node: usize| nagata::local_index(&nodes, node);
     // P = dY/dX (nd x 51): coordinates directly, normals through J_a
     let mut pm = vec![[0.0; NF]; nd];
     for (c, row) in pm.iter_mut().enumerate().take(3) {

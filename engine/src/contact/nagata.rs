@@ -646,6 +646,29 @@ pub struct NagataElement {
     pub hessian: Vec<f64>,
 }
 
+/// The global nodes of an element over slave node `slave` and the nodes
+/// `others` (any order, repeats allowed): the slave first, then the
+/// others sorted, each once. [`local_index`] gives a node's place.
+pub(crate) fn element_nodes(slave: usize, others: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut rest: Vec<usize> = others.filter(|&n| n != slave).collect();
+    rest.sort_unstable();
+    rest.dedup();
+    let mut nodes = Vec::with_capacity(1 + rest.len());
+    nodes.push(slave);
+    nodes.extend(rest);
+    nodes
+}
+
+/// The place of `node` in `nodes` of [`element_nodes`] (0 for the slave;
+/// every node the callers ask for is in the list).
+pub(crate) fn local_index(nodes: &[usize], node: usize) -> usize {
+    if node == nodes[0] {
+        0
+    } else {
+        1 + nodes[1..].binary_search(&node).unwrap_or(0)
+    }
+}
+
 /// The element of slave node `slave` at `xs` on the patch of facet
 /// `facet` (its global nodes), `rings[a]` the facets (global node lists)
 /// around facet node `a` and its symmetry planes, at coordinates `x`, with
@@ -664,26 +687,17 @@ pub fn element(
     let pg = differentiate(xs, xp, np, count, xi)?;
     // global nodes: slave, then every node of the rings (the facet's own
     // nodes are in them)
-    let mut others: Vec<usize> = rings
-        .iter()
-        .flat_map(|r| r.facets.iter())
-        .flat_map(|f| f.iter().copied())
-        .collect();
-    others.extend_from_slice(facet);
-    others.sort_unstable();
-    others.dedup();
-    others.retain(|&n| n != slave);
-    let mut nodes = vec![slave];
-    nodes.extend(others);
+    let nodes = element_nodes(
+        slave,
+        rings
+            .iter()
+            .flat_map(|r| r.facets.iter())
+            .flat_map(|f| f.iter().copied())
+            .chain(facet.iter().copied()),
+    );
     let nn = nodes.len();
     let nd = 3 * nn;
-    let at = |node: usize| -> usize {
-        if node == slave {
-            0
-        } else {
-            1 + nodes[1..].binary_search(&node).unwrap_or(0)
-        }
-    };
+    let at = |node: usize| local_index(&nodes, node);
     // Y index -> (local node, component) for the coordinates; normal slots
     // go through the chain rule
     let ymap: Vec<Option<usize>> = (0..15)
